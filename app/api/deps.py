@@ -1,0 +1,29 @@
+"""Shared state for route handlers, injected with ``Annotated[..., Depends()]``."""
+
+from __future__ import annotations
+
+from typing import Annotated
+
+from fastapi import Depends
+from starlette.requests import HTTPConnection
+
+from app.content import Course
+from app.scenes.host import SceneHost
+from app.settings import Settings
+
+
+def get_course(request: HTTPConnection) -> Course:
+    return request.app.state.course
+
+
+def get_scene_host(request: HTTPConnection) -> SceneHost:
+    return request.app.state.scene_host
+
+
+def get_settings(request: HTTPConnection) -> Settings:
+    return request.app.state.settings
+
+
+CourseDep = Annotated[Course, Depends(get_course)]
+SceneHostDep = Annotated[SceneHost, Depends(get_scene_host)]
+SettingsDep = Annotated[Settings, Depends(get_settings)]

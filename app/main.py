@@ -1,0 +1,48 @@
+"""Assemble the application: routers, static files, shared state, the scene host."""
+
+from __future__ import annotations
+
+from collections.abc import AsyncIterator
+from contextlib import asynccontextmanager
+from pathlib import Path
+
+from fastapi import FastAPI
+from fastapi.staticfiles import StaticFiles
+
+from app import __version__
+from app.api import chapters, errors, examples, health, scenes
+from app.content import Course
+from app.scenes import SCENES
+from app.scenes.host import SceneHost
+from app.settings import Settings
+from app.web import pages, relay
+
+STATIC_DIR = Path(__file__).resolve().parent.parent / "static"
+
+
+def create_app(settings: Settings | None = None) -> FastAPI:
+    settings = settings or Settings.from_env()
+
+    @asynccontextmanager
+    async def lifespan(app: FastAPI) -> AsyncIterator[None]:
+        host = SceneHost(SCENES, frame_rate_hz=settings.frame_rate_hz, max_sessions=settings.max_sessions)
+        host.start()
+        app.state.scene_host = host
+        try:
+            yield
+        finally:
+            host.stop()
+
+    app = FastAPI(
+        title="Dynamics Lab",
+        version=__version__,
+        summary="Interactive engineering dynamics: worked examples, solvers and live 3D scenes.",
+        lifespan=lifespan,
+    )
+    app.state.settings = settings
+    app.state.course = Course()
+    errors.install(app)
+    for router in (health.router, chapters.router, scenes.router, examples.router, pages.router, relay.router):
+        app.include_router(router)
+    app.mount("/static", StaticFiles(directory=STATIC_DIR), name="static")
+    return app

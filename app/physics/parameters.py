@@ -1,0 +1,143 @@
+"""Parameter metadata shared by worked examples, scenes and the API.
+
+A :class:`Parameter` states a physical input once: its name (with the unit in the
+name, e.g. ``tension_N``), unit, default, allowed range and a one-line
+description. Scenes build their controls from it, the API builds its schema from
+it, and :func:`validate_inputs` checks request data against it.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Any, Literal
+
+
+class ParameterError(ValueError):
+    """An input is unknown, missing its type, non-finite or out of range.
+
+    ``field`` names the offending input so the API can point at it.
+    """
+
+    def __init__(self, field: str, message: str) -> None:
+        super().__init__(f"{field}: {message}")
+        self.field = field
+        self.message = message
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """One physical input.
+
+    ``kind`` is ``"float"`` (a finite number in ``[min, max]``), ``"int"`` or
+    ``"choice"`` (one of ``choices``). ``scale`` is a hint for controls:
+    ``"log"`` means a slider should move in log10 of the value.
+    """
+
+    name: str
+    unit: str
+    default: float | int | str
+    min: float | None = None
+    max: float | None = None
+    description: str = ""
+    label: str = ""
+    kind: Literal["float", "int", "choice"] = "float"
+    choices: tuple[str, ...] = ()
+    scale: Literal["linear", "log"] = "linear"
+    step: float | None = None
+
+    def __post_init__(self) -> None:
+        if self.kind == "choice":
+            if self.default not in self.choices:
+                raise ValueError(f"{self.name}: default {self.default!r} not in choices")
+        else:
+            if self.min is None or self.max is None or not self.min <= self.default <= self.max:
+                raise ValueError(f"{self.name}: default must lie in [min, max]")
+            if self.scale == "log" and self.min <= 0:
+                raise ValueError(f"{self.name}: a log-scale parameter needs min > 0")
+
+    def range_text(self) -> str:
+        if self.kind == "choice":
+            return "one of " + ", ".join(repr(c) for c in self.choices)
+        unit = f" {self.unit}" if self.unit else ""
+        return f"between {self.min:g} and {self.max:g}{unit}"
+
+    def validate(self, value: Any) -> float | int | str:
+        """Return ``value`` converted to this parameter's type, or raise ParameterError."""
+        if self.kind == "choice":
+            if not isinstance(value, str) or value not in self.choices:
+                raise ParameterError(self.name, f"must be {self.range_text()}")
+            return value
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise ParameterError(self.name, f"must be a number {self.range_text()}")
+        if not math.isfinite(value):
+            raise ParameterError(self.name, "must be a finite number")
+        if self.kind == "int":
+            if float(value) != int(value):
+                raise ParameterError(self.name, "must be a whole number")
+            value = int(value)
+        else:
+            value = float(value)
+        assert self.min is not None and self.max is not None
+        if not self.min <= value <= self.max:
+            raise ParameterError(self.name, f"must be {self.range_text()} (got {value:g})")
+        return value
+
+    def schema(self) -> dict[str, Any]:
+        """JSON description used by the API and by the page that draws controls."""
+        out: dict[str, Any] = {
+            "name": self.name,
+            "label": self.label or self.name,
+            "unit": self.unit,
+            "default": self.default,
+            "description": self.description,
+            "kind": self.kind,
+        }
+        if self.kind == "choice":
+            out["choices"] = list(self.choices)
+        else:
+            out.update(min=self.min, max=self.max, scale=self.scale)
+            if self.step is not None:
+                out["step"] = self.step
+        return out
+
+
+@dataclass(frozen=True)
+class ParameterSet:
+    """An ordered collection of parameters with whole-request validation.
+
+    ``check`` (optional) receives the complete validated values and raises
+    ``ValueError`` for combinations that are each in range but impossible
+    together (e.g. a cable of zero length).
+    """
+
+    parameters: Sequence[Parameter]
+    check: Callable[[Mapping[str, Any]], None] | None = None
+    by_name: Mapping[str, Parameter] = field(init=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "by_name", {p.name: p for p in self.parameters})
+
+    def defaults(self) -> dict[str, Any]:
+        return {p.name: p.default for p in self.parameters}
+
+    def validate(self, raw: Mapping[str, Any] | None, *, base: Mapping[str, Any] | None = None) -> dict[str, Any]:
+        """Validate ``raw`` and fill the rest from ``base`` (default: the defaults).
+
+        Unknown names are rejected rather than ignored, so a typo never passes
+        silently. Raises :class:`ParameterError` naming the first bad field.
+        """
+        values = dict(base) if base is not None else self.defaults()
+        for name, value in (raw or {}).items():
+            parameter = self.by_name.get(name)
+            if parameter is None:
+                known = ", ".join(self.by_name)
+                raise ParameterError(name, f"unknown input; expected one of: {known}")
+            values[name] = parameter.validate(value)
+        if self.check is not None:
+            self.check(values)
+        return values
+
+    def schema(self) -> list[dict[str, Any]]:
+        return [p.schema() for p in self.parameters]

@@ -1,0 +1,12 @@
+"""Scenes: one per file, each drawing one model for one browser. Registry by scene id."""
+
+from __future__ import annotations
+
+from app.scenes.base import Scene
+from app.scenes.projectile_drag import ProjectileDragScene
+from app.scenes.radar_tracking import RadarTrackingScene
+from app.scenes.robot_arm_cable import RobotArmCableScene
+
+SCENES: dict[str, type[Scene]] = {cls.id: cls for cls in (RobotArmCableScene, RadarTrackingScene, ProjectileDragScene)}
+
+__all__ = ["SCENES", "Scene"]

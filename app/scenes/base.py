@@ -1,0 +1,118 @@
+"""The scene abstraction every chapter reuses.
+
+A :class:`Scene` is one browser's view of one model: it builds its viser nodes on
+that client's own ``client.scene`` (so one student's controls never move
+another's scene), redraws when its parameters change, advances its animation a
+frame at a time, and removes what it built when the client leaves. Scenes draw;
+the numbers they draw come from ``app.physics``.
+"""
+
+from __future__ import annotations
+
+import logging
+from abc import ABC, abstractmethod
+from collections.abc import Mapping
+from typing import Any, ClassVar
+
+import numpy as np
+import viser
+
+from app.physics.parameters import ParameterSet
+
+log = logging.getLogger(__name__)
+
+
+class Scene(ABC):
+    """One client's instance of a scene.
+
+    Subclasses set the class attributes and implement :meth:`build` and
+    :meth:`update`; animated scenes also implement :meth:`advance`.
+    """
+
+    id: ClassVar[str]
+    title: ClassVar[str]
+    chapter: ClassVar[int]
+    parameters: ClassVar[ParameterSet]
+    animated: ClassVar[bool] = False
+    #: Initial camera (m, world frame, +Z up).
+    camera_position: ClassVar[tuple[float, float, float]] = (4.0, -6.0, 4.0)
+    camera_look_at: ClassVar[tuple[float, float, float]] = (0.0, 0.0, 0.0)
+
+    def __init__(self, client: viser.ClientHandle, params: Mapping[str, Any]) -> None:
+        self.client = client
+        self.params = dict(params)
+        #: A message the page may show (e.g. why the last parameters were refused).
+        self.status = ""
+        self._camera_placed = False
+        # The camera can only be moved once the browser has reported it.
+        client.camera.on_update(self._place_camera_once)
+        client.gui.main_panel.minimize()  # the lesson page carries the controls
+        self.build()
+        self.update()
+
+    @classmethod
+    def schema(cls) -> dict[str, Any]:
+        return {
+            "id": cls.id,
+            "title": cls.title,
+            "chapter": cls.chapter,
+            "animated": cls.animated,
+            "parameters": cls.parameters.schema(),
+        }
+
+    @abstractmethod
+    def build(self) -> None:
+        """Create this scene's nodes on ``self.client.scene``."""
+
+    @abstractmethod
+    def update(self) -> None:
+        """Redraw for ``self.params`` (called after build and on every change)."""
+
+    def set_params(self, params: Mapping[str, Any]) -> None:
+        """Take already-validated parameters and redraw."""
+        self.params = dict(params)
+        with self.client.atomic():
+            self.update()
+
+    def camera_view(self) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
+        """Initial camera (position, look-at point) in m on the world frame (+Z up)."""
+        return self.camera_position, self.camera_look_at
+
+    def _place_camera_once(self, camera: viser.CameraHandle) -> None:
+        if self._camera_placed:
+            return
+        self._camera_placed = True
+        position, look_at = self.camera_view()
+        try:
+            camera.look_at = look_at
+            camera.position = position
+            camera.look_at = look_at
+        except Exception:  # a camera we cannot move is cosmetic: log it, keep the scene
+            log.exception("placing the camera for scene %s failed", self.id)
+
+    def advance(self, dt_s: float) -> None:
+        """Advance the animation by ``dt_s`` seconds of wall-clock time."""
+
+    def close(self) -> None:
+        """Remove everything this scene added (the client may still be connected)."""
+        self.client.scene.reset()
+
+
+def quaternion_z_to(direction: np.ndarray) -> np.ndarray:
+    """Unit quaternion (wxyz) rotating the local +z axis onto ``direction``."""
+    d = np.asarray(direction, dtype=float)
+    d = d / np.linalg.norm(d)
+    z = np.array([0.0, 0.0, 1.0])
+    c = float(z @ d)
+    if c < -1.0 + 1e-12:
+        return np.array([0.0, 1.0, 0.0, 0.0])  # half turn about x
+    axis = np.cross(z, d)
+    q = np.array([1.0 + c, *axis])
+    return q / np.linalg.norm(q)
+
+
+def arrow_segments(tails: np.ndarray, vectors: np.ndarray, scale: float) -> np.ndarray:
+    """(N, 2, 3) start/end points for ``add_arrows`` from tails and vectors (scaled)."""
+    tails = np.asarray(tails, dtype=float).reshape(-1, 3)
+    heads = tails + scale * np.asarray(vectors, dtype=float).reshape(-1, 3)
+    return np.stack([tails, heads], axis=1).astype(np.float32)

@@ -1,0 +1,95 @@
+"""The viewer websocket relay: the only way a browser reaches the loopback viser server.
+
+The viser client opens a websocket at its own page URL, so the viewer page at
+``/viewer/{scene_id}/{session_id}/`` connects to ``/viewer/{scene_id}/{session_id}``
+here. The relay copies the ``viser-v<version>`` subprotocol (viser refuses a
+mismatch with close code 1002), forwards the path so the scene host knows which
+scene to build for which session, and drops share-tunnel requests so no browser
+can open a public tunnel to the server.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import logging
+
+import msgspec
+import websockets
+from fastapi import APIRouter, WebSocket
+from starlette.websockets import WebSocketDisconnect
+
+from app.api.deps import SceneHostDep
+from app.scenes.host import SESSION_ID_PATTERN
+
+log = logging.getLogger(__name__)
+router = APIRouter(tags=["viewer"])
+
+#: Client-to-server message types that never reach viser.
+BLOCKED_MESSAGE_TYPES = frozenset({"ShareUrlRequest", "ShareUrlDisconnect"})
+
+
+def is_blocked_message(data: bytes) -> bool:
+    """True for a viser client message whose type is in :data:`BLOCKED_MESSAGE_TYPES`."""
+    if b"ShareUrl" not in data:  # cheap filter: camera and GUI updates pass untouched
+        return False
+    try:
+        message = msgspec.msgpack.decode(data)
+    except msgspec.DecodeError:
+        return False
+    return isinstance(message, dict) and message.get("type") in BLOCKED_MESSAGE_TYPES
+
+
+@router.websocket("/viewer/{scene_id}/{session_id}")
+async def viewer_relay(websocket: WebSocket, scene_id: str, session_id: str, host: SceneHostDep) -> None:
+    if scene_id not in host.scenes or not SESSION_ID_PATTERN.match(session_id):
+        await websocket.close(code=1008, reason="unknown scene or malformed session id")
+        return
+    offered = websocket.scope.get("subprotocols") or []
+    protocol = next((p for p in offered if p.startswith("viser-v")), None)
+    if protocol is None:
+        await websocket.close(code=1002, reason="expected a viser-v<version> subprotocol")
+        return
+    try:
+        upstream = await websockets.connect(
+            f"{host.url}/{scene_id}/{session_id}",
+            subprotocols=[protocol],  # type: ignore[list-item]
+            max_size=None,
+            compression=None,
+            open_timeout=10,
+        )
+    except (OSError, websockets.InvalidHandshake, TimeoutError) as exc:
+        log.warning("scene server unreachable: %s", exc)
+        await websocket.close(code=1011, reason="scene server unreachable")
+        return
+    await websocket.accept(subprotocol=protocol)
+
+    async def browser_to_scene() -> None:
+        while True:
+            message = await websocket.receive()
+            if message["type"] == "websocket.disconnect":
+                return
+            data = message.get("bytes")
+            if data is not None and not is_blocked_message(data):
+                await upstream.send(data)
+
+    async def scene_to_browser() -> None:
+        async for data in upstream:
+            if isinstance(data, bytes):
+                await websocket.send_bytes(data)
+            else:
+                await websocket.send_text(data)
+
+    tasks = [asyncio.create_task(browser_to_scene()), asyncio.create_task(scene_to_browser())]
+    try:
+        await asyncio.wait(tasks, return_when=asyncio.FIRST_COMPLETED)
+    finally:
+        for task in tasks:
+            task.cancel()
+        for task in tasks:
+            with contextlib.suppress(asyncio.CancelledError, WebSocketDisconnect, websockets.ConnectionClosed, RuntimeError):
+                await task
+        await upstream.close()
+        close_code = upstream.close_code if upstream.close_code not in (None, 1000, 1005, 1006) else 1000
+        with contextlib.suppress(RuntimeError, WebSocketDisconnect):
+            await websocket.close(code=close_code)

@@ -1,0 +1,228 @@
+// Lesson page: controls generated from the scene's parameter schema, the live
+// viewer (one scene per page session) and the worked-solution panel.
+(function () {
+  const config = JSON.parse(document.getElementById("lesson-config").textContent);
+  const scene = config.scene;
+  const examples = config.examples;
+  if (!scene && !examples.length) return;
+
+  // ---- session: one per tab and lesson, kept across reloads --------------------
+  const storageKey = `dynlab.session.${config.lesson_id}`;
+  const randomId = () => Array.from(crypto.getRandomValues(new Uint8Array(16)), (b) => b.toString(16).padStart(2, "0")).join("");
+  let saved = null;
+  try { saved = JSON.parse(sessionStorage.getItem(storageKey)); } catch (e) { saved = null; }
+  const session = { id: (saved && saved.id) || randomId(), values: {} };
+
+  // ---- parameters: the scene's, else the union of the examples' inputs ------------
+  const specs = [];
+  const seen = new Set();
+  for (const spec of scene ? scene.parameters : examples.flatMap((e) => e.inputs)) {
+    if (!seen.has(spec.name)) { seen.add(spec.name); specs.push(spec); }
+  }
+  const defaults = Object.fromEntries(specs.map((s) => [s.name, s.default]));
+  session.values = { ...defaults };
+  if (saved && saved.values) for (const s of specs) if (s.name in saved.values) session.values[s.name] = saved.values[s.name];
+
+  // ---- number formatting (significant figures, units shown beside) -------------
+  const fmt = (v) => {
+    if (typeof v !== "number") return String(v);
+    if (v === 0) return "0";
+    const a = Math.abs(v);
+    if (a >= 1e6 || a < 1e-3) return v.toExponential(4).replace("e+", "e");
+    return String(+v.toPrecision(6));
+  };
+  const fmtValue = (v) => Array.isArray(v) ? `[${v.map(fmt).join(", ")}]` : fmt(v);
+
+  // ---- controls -------------------------------------------------------------------
+  const form = document.getElementById("controls");
+  const list = document.getElementById("control-list");
+  const errorBox = document.getElementById("control-error");
+  const widgets = {};
+
+  function toSlider(spec, v) { return spec.scale === "log" ? Math.log10(v) : v; }
+  function fromSlider(spec, x) { return spec.scale === "log" ? +Math.pow(10, x).toPrecision(6) : +x; }
+
+  for (const spec of specs) {
+    const row = document.createElement("div");
+    row.className = "control";
+    row.dataset.name = spec.name;
+    const id = `ctl-${spec.name}`;
+    const label = document.createElement("label");
+    label.htmlFor = id;
+    label.innerHTML = `${spec.label} <span class="unit">${spec.unit ? "(" + spec.unit + ")" : ""}</span>`;
+    row.appendChild(label);
+    if (spec.kind === "choice") {
+      const select = document.createElement("select");
+      select.id = id;
+      for (const c of spec.choices) select.add(new Option(c, c));
+      select.value = session.values[spec.name];
+      select.addEventListener("change", () => { session.values[spec.name] = select.value; schedule(); });
+      row.appendChild(select);
+      row.appendChild(document.createElement("span"));
+      widgets[spec.name] = { set: (v) => { select.value = v; } };
+    } else {
+      const range = document.createElement("input");
+      range.type = "range";
+      range.min = toSlider(spec, spec.min);
+      range.max = toSlider(spec, spec.max);
+      range.step = spec.scale === "log" ? 0.05 : (spec.step || (spec.max - spec.min) / 200);
+      range.setAttribute("aria-label", `${spec.label} slider`);
+      range.setAttribute("aria-describedby", `${id}-desc`);
+      const number = document.createElement("input");
+      number.type = "number";
+      number.id = id;
+      number.min = spec.min; number.max = spec.max; number.step = "any";
+      const set = (v) => { range.value = toSlider(spec, v); number.value = v; };
+      set(session.values[spec.name]);
+      range.addEventListener("input", () => {
+        const v = fromSlider(spec, range.value);
+        number.value = v;
+        session.values[spec.name] = v;
+        schedule();
+      });
+      number.addEventListener("change", () => {
+        const v = Number(number.value);
+        if (number.value === "" || !Number.isFinite(v)) { showError(spec.name, `${spec.label} needs a number`); return; }
+        range.value = toSlider(spec, v);
+        session.values[spec.name] = v;
+        schedule();
+      });
+      row.appendChild(range);
+      row.appendChild(number);
+      widgets[spec.name] = { set };
+    }
+    const desc = document.createElement("div");
+    desc.className = "desc";
+    desc.id = `${id}-desc`;
+    desc.textContent = spec.kind === "choice" ? spec.description : `${spec.description} (${spec.min} to ${spec.max} ${spec.unit})`;
+    row.appendChild(desc);
+    list.appendChild(row);
+  }
+  form.hidden = specs.length === 0;
+  document.getElementById("reset").addEventListener("click", () => {
+    session.values = { ...defaults };
+    for (const s of specs) widgets[s.name].set(defaults[s.name]);
+    schedule();
+  });
+
+  function showError(field, message) {
+    list.querySelectorAll(".control").forEach((row) => row.classList.toggle("invalid", row.dataset.name === field));
+    errorBox.textContent = message;
+    errorBox.hidden = !message;
+  }
+
+  async function call(method, url, body) {
+    const response = await fetch(url, { method, headers: { "Content-Type": "application/json" }, body: JSON.stringify(body) });
+    const data = await response.json().catch(() => ({}));
+    if (!response.ok) {
+      const d = Array.isArray(data.detail) ? data.detail[0] : { msg: data.detail || response.statusText, loc: [] };
+      const err = new Error(d.msg);
+      err.field = d.loc ? d.loc[d.loc.length - 1] : null;
+      throw err;
+    }
+    return data;
+  }
+
+  // ---- solution panel ---------------------------------------------------------------
+  const panel = document.getElementById("solution");
+  function katexInto(el, latex, display) {
+    if (window.katex) katex.render(latex, el, { displayMode: display, throwOnError: false });
+    else el.textContent = latex;
+  }
+  function renderSolution(example, result) {
+    const box = document.createElement("div");
+    box.className = "example";
+    box.dataset.example = example.id;
+    const h = document.createElement("h2");
+    h.textContent = `Worked solution — ${example.title}`;
+    box.appendChild(h);
+    const outputs = document.createElement("table");
+    outputs.className = "outputs";
+    outputs.innerHTML = "<thead><tr><th>output</th><th>value</th><th>unit</th></tr></thead>";
+    const tbody = document.createElement("tbody");
+    for (const [name, value] of Object.entries(result.outputs)) {
+      if (Array.isArray(value) && value.length > 3) continue; // sweeps are plotted, not listed
+      const tr = document.createElement("tr");
+      tr.innerHTML = `<td class="sym"></td><td class="val"></td><td class="unit"></td>`;
+      tr.children[0].textContent = name;
+      tr.children[1].textContent = fmtValue(value);
+      tr.children[1].dataset.output = name;
+      tr.children[1].dataset.value = JSON.stringify(value);
+      tr.children[2].textContent = example.output_units[name] || "";
+      tbody.appendChild(tr);
+    }
+    outputs.appendChild(tbody);
+    box.appendChild(outputs);
+    for (const step of result.steps) {
+      const div = document.createElement("div");
+      div.className = "step";
+      const title = document.createElement("h3");
+      title.textContent = step.title;
+      const eq = document.createElement("div");
+      katexInto(eq, step.latex, true);
+      const table = document.createElement("table");
+      table.className = "values";
+      for (const [sym, value] of Object.entries(step.values)) {
+        const tr = document.createElement("tr");
+        tr.innerHTML = `<td class="sym"></td><td></td>`;
+        tr.children[0].textContent = sym;
+        tr.children[1].textContent = `${fmtValue(value)} ${step.units[sym] || ""}`;
+        table.appendChild(tr);
+      }
+      div.append(title, eq, table);
+      box.appendChild(div);
+    }
+    for (const plot of result.plots || []) {
+      const div = document.createElement("div");
+      window.DynPlot.render(div, plot);
+      box.appendChild(div);
+    }
+    return box;
+  }
+
+  // ---- one update at a time, always ending on the latest values ------------------
+  let running = false, pending = false, viewerStarted = false;
+  async function update() {
+    const values = { ...session.values };
+    try {
+      if (scene) {
+        const reply = await call("PUT", `/api/scenes/${scene.id}/sessions/${session.id}`, { params: values });
+        Object.assign(values, reply.params);
+      }
+      const rendered = [];
+      for (const example of examples) {
+        const inputs = Object.fromEntries(example.inputs.map((s) => [s.name, values[s.name]]));
+        const result = await call("POST", `/api/examples/${encodeURIComponent(example.id)}/solve`, { inputs });
+        rendered.push(renderSolution(example, result));
+      }
+      if (rendered.length) {
+        const stamp = document.createElement("p");
+        stamp.className = "updated";
+        stamp.textContent = `Computed by the server at ${new Date().toLocaleTimeString()} for the controls above.`;
+        panel.replaceChildren(...rendered, stamp);
+        panel.hidden = false;
+      }
+      showError(null, "");
+      sessionStorage.setItem(storageKey, JSON.stringify(session));
+      if (scene && !viewerStarted) startViewer();
+    } catch (err) {
+      showError(err.field, err.message);
+    }
+  }
+  async function schedule() {
+    if (running) { pending = true; return; }
+    running = true;
+    do { pending = false; await update(); } while (pending);
+    running = false;
+  }
+
+  function startViewer() {
+    viewerStarted = true;
+    const wrap = document.getElementById("viewer-wrap");
+    wrap.hidden = false;
+    document.getElementById("viewer").src = `/viewer/${scene.id}/${session.id}/?hideViserLogo`;
+  }
+
+  window.dynlabLesson = { session, schedule };
+  schedule();
+})();
