@@ -9,17 +9,15 @@ the numbers they draw come from ``app.physics``.
 
 from __future__ import annotations
 
-import logging
 from abc import ABC, abstractmethod
 from collections.abc import Mapping
 from typing import Any, ClassVar
 
 import numpy as np
 import viser
+from viser._viser import InitialCameraConfig
 
 from app.physics.parameters import ParameterSet
-
-log = logging.getLogger(__name__)
 
 
 class Scene(ABC):
@@ -43,12 +41,14 @@ class Scene(ABC):
         self.params = dict(params)
         #: A message the page may show (e.g. why the last parameters were refused).
         self.status = ""
-        self._camera_placed = False
-        # The camera can only be moved once the browser has reported it.
-        client.camera.on_update(self._place_camera_once)
         client.gui.main_panel.minimize()  # the lesson page carries the controls
+        # viser 1.1.1 (pinned) sets an initial camera only server-wide; the same
+        # message addressed to one client makes it this viewer's start pose and
+        # its "Reset View" target without fighting the student's own camera.
+        self._initial_camera = InitialCameraConfig(client._websock_connection.queue_message)
         self.build()
         self.update()
+        self._set_initial_camera()
 
     @classmethod
     def schema(cls) -> dict[str, Any]:
@@ -73,22 +73,16 @@ class Scene(ABC):
         self.params = dict(params)
         with self.client.atomic():
             self.update()
+            self._set_initial_camera()
 
     def camera_view(self) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
         """Initial camera (position, look-at point) in m on the world frame (+Z up)."""
         return self.camera_position, self.camera_look_at
 
-    def _place_camera_once(self, camera: viser.CameraHandle) -> None:
-        if self._camera_placed:
-            return
-        self._camera_placed = True
+    def _set_initial_camera(self) -> None:
         position, look_at = self.camera_view()
-        try:
-            camera.look_at = look_at
-            camera.position = position
-            camera.look_at = look_at
-        except Exception:  # a camera we cannot move is cosmetic: log it, keep the scene
-            log.exception("placing the camera for scene %s failed", self.id)
+        self._initial_camera.look_at = look_at
+        self._initial_camera.position = position
 
     def advance(self, dt_s: float) -> None:
         """Advance the animation by ``dt_s`` seconds of wall-clock time."""

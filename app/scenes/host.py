@@ -142,6 +142,12 @@ class SceneHost:
             session = self._sessions.get(session_id)
             return None if session is None else dict(session.params)
 
+    def instances(self, session_id: str) -> list[Scene]:
+        """The live scene instances (one per connected viewer) of a session."""
+        with self._lock:
+            session = self._sessions.get(session_id)
+            return [] if session is None else list(session.instances.values())
+
     def viewer_count(self, session_id: str | None = None) -> int:
         with self._lock:
             if session_id is None:

@@ -25,7 +25,7 @@ class ProjectileDragScene(Scene):
 
     def camera_view(self):
         span = max(self._span_m, 10.0)
-        return (0.5 * span, -1.1 * span, 0.45 * span), (0.5 * span, 0.0, 0.15 * span)
+        return (0.5 * span, -0.62 * span, 0.3 * span), (0.5 * span, 0.0, 0.12 * span)
 
     def build(self) -> None:
         scene = self.client.scene
@@ -34,7 +34,7 @@ class ProjectileDragScene(Scene):
         self.ground = scene.add_grid("/ground", width=200.0, height=60.0, cell_size=5.0, section_size=10.0, position=(100.0, 0.0, 0.0))
         self.path = scene.add_line_segments("/path", np.zeros((1, 2, 3), np.float32), (120, 120, 160), thickness=0.25)
         self.ball = scene.add_icosphere("/ball", radius=1.0, color=(200, 60, 40))
-        self.label = scene.add_label("/ball/label", "", position=(0.0, 0.0, 2.0), anchor="bottom-left")
+        self.label = scene.add_label("/readout", "", anchor="bottom-left")
         self.arrows = scene.add_arrows(
             "/forces",
             np.zeros((3, 2, 3), np.float32),
@@ -62,7 +62,7 @@ class ProjectileDragScene(Scene):
         self.path.thickness = size * 0.25
         weight = self.params["mass_kg"] * self.params["g_m_s2"]
         self._force_scale = 0.1 * self._span_m / weight
-        self._arrow_size = size
+        self.label.position = (0.0, 0.0, 1.25 * float(pos[:, 2].max()) + size)
         self.t_s = 0.0
         self._draw()
 

@@ -14,7 +14,7 @@ from app.scenes.base import Scene, arrow_segments
 KM = 1e-3  # scene units per metre
 VELOCITY_SCALE = 0.01  # km of arrow per m/s
 PATH_T_S = np.linspace(0.0, 60.0, 301)
-LOOP_S = 60.0
+LOOP_S = 30.0  # the aircraft's animation replays its first 30 s
 
 
 class RadarTrackingScene(Scene):
@@ -23,21 +23,21 @@ class RadarTrackingScene(Scene):
     chapter = 1
     parameters = physics.INPUTS
     animated = True
-    camera_position = (3.5, -3.0, 3.0)
-    camera_look_at = (0.8, 1.0, 1.6)
+    camera_position = (3.6, -1.6, 2.6)
+    camera_look_at = (0.6, 2.0, 1.2)
 
     def build(self) -> None:
         scene = self.client.scene
         self.t_s = 0.0
-        scene.add_grid("/ground", width=8.0, height=8.0, cell_size=0.5, section_size=1.0, position=(1.0, 1.5, 0.0))
-        scene.add_label("/ground/note", "grid: 1 km squares", position=(-2.8, -2.3, 0.0))
+        scene.add_grid("/ground", width=6.0, height=10.0, cell_size=0.5, section_size=1.0, position=(1.0, 3.0, 0.0))
+        scene.add_label("/ground/note", "grid: 1 km squares", position=(-2.0, -2.0, 0.0))
         scene.add_cylinder("/radar", radius=0.08, height=0.16, color=(70, 70, 70), position=(0, 0, 0.08))
         scene.add_label("/radar/label", "radar", position=(0, 0, 0.2), anchor="bottom-center")
         path = physics.position(PATH_T_S) * KM
         scene.add_line_segments(
             "/path", np.stack([path[:-1], path[1:]], axis=1).astype(np.float32), (120, 120, 160), thickness=0.012
         )
-        self.aircraft = scene.add_icosphere("/aircraft", radius=0.06, color=(20, 90, 200))
+        self.aircraft = scene.add_icosphere("/aircraft", radius=0.09, color=(20, 90, 200))
         self.aircraft_label = scene.add_label("/aircraft/label", "", position=(0.0, 0.0, 0.12), anchor="bottom-left")
         self.sight = scene.add_line_segments("/sight", np.zeros((2, 2, 3), np.float32), (60, 160, 60), thickness=0.006)
         # 0: live velocity of the aircraft; 1: exact velocity at t_s; 2: finite-difference velocity at t_s.
@@ -49,7 +49,7 @@ class RadarTrackingScene(Scene):
             head_radius=0.035,
             head_length=0.09,
         )
-        self.marker = scene.add_icosphere("/evaluation", radius=0.045, color=(30, 150, 60))
+        self.marker = scene.add_icosphere("/evaluation", radius=0.07, color=(30, 150, 60))
         self.marker_label = scene.add_label("/evaluation/label", "", position=(0.0, 0.0, -0.1), anchor="top-left")
 
     def update(self) -> None:

@@ -133,6 +133,7 @@
     const box = document.createElement("div");
     box.className = "example";
     box.dataset.example = example.id;
+    box.dataset.inputs = JSON.stringify(result.inputs);
     const h = document.createElement("h2");
     h.textContent = `Worked solution — ${example.title}`;
     box.appendChild(h);

@@ -1,0 +1,127 @@
+"""Real-browser tests: Debian's Chromium, headless, against a live server.
+
+These are few and serial (one viser tab costs about a core of software
+rendering). They wait on the server's own client list, not on page text.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+
+import pytest
+
+from app.physics.examples import EXAMPLES
+from tests.browser.conftest import wait_until
+
+pytestmark = pytest.mark.browser
+
+LESSON_11 = "/lessons/1-1-vector-operations"
+
+
+def _open_lesson(context, live_server, path):
+    page = context.new_page()
+    errors: list[str] = []
+    page.on("pageerror", lambda exc: errors.append(str(exc)))
+    page.goto(live_server.url + path)
+    page.wait_for_function("window.dynlabLesson !== undefined")
+    session_id = page.evaluate("window.dynlabLesson.session.id")
+    return page, session_id, errors
+
+
+def _panel_outputs(page) -> dict:
+    cells = page.query_selector_all("#solution [data-output]")
+    return {c.get_attribute("data-output"): json.loads(c.get_attribute("data-value")) for c in cells}
+
+
+def _close(a, b) -> bool:
+    if isinstance(a, list):
+        return len(a) == len(b) and all(_close(x, y) for x, y in zip(a, b))
+    return math.isclose(a, b, rel_tol=1e-12, abs_tol=1e-9)
+
+
+def test_example_11_theta_control_updates_solution_and_scene(browser, live_server, shots):
+    context = browser.new_context(viewport={"width": 1500, "height": 950})
+    page, session_id, errors = _open_lesson(context, live_server, LESSON_11)
+    host = live_server.host
+    wait_until(lambda: host.viewer_count(session_id) == 1, 30, what="the 3D viewer to connect through the relay")
+    page.wait_for_selector('#solution [data-output="M_AB_Nm"]', timeout=20_000)
+    before = _panel_outputs(page)
+    defaults = EXAMPLES["1.1"].solve(EXAMPLES["1.1"].inputs.defaults()).as_dict()["outputs"]
+    assert all(_close(before[k], defaults[k]) for k in defaults), (before, defaults)
+
+    # Move the θ slider with the keyboard: 5 steps of 1° from 25° to 30°.
+    slider = page.locator('.control[data-name="theta_deg"] input[type=range]')
+    slider.focus()
+    for _ in range(5):
+        page.keyboard.press("ArrowRight")
+    page.wait_for_function("document.getElementById('ctl-theta_deg').value === '30'")
+    page.wait_for_function(
+        "() => { const box = document.querySelector('#solution [data-example=\"1.1\"]');"
+        " return box && JSON.parse(box.dataset.inputs).theta_deg === 30; }"
+    )
+
+    expected = page.request.post(live_server.url + "/api/examples/1.1/solve", data={"inputs": {"theta_deg": 30}}).json()
+    after = _panel_outputs(page)
+    for name, value in expected["outputs"].items():
+        assert _close(after[name], value), (name, after[name], value)
+    assert not _close(after["M_AB_Nm"], before["M_AB_Nm"])
+
+    # The scene this browser is watching received the same θ.
+    wait_until(lambda: host.instances(session_id)[0].params["theta_deg"] == 30.0, 10, what="the scene to take θ = 30°")
+    page.wait_for_timeout(2500)  # let software WebGL draw the new pose before the screenshot
+    page.screenshot(path=str(shots / "lesson-1-1-vector-operations.png"))
+    assert not errors, errors
+    context.close()
+
+
+def test_two_browsers_get_independent_scenes(browser, live_server):
+    contexts = [browser.new_context(viewport={"width": 1200, "height": 800}) for _ in range(2)]
+    opened = [_open_lesson(c, live_server, LESSON_11) for c in contexts]
+    host = live_server.host
+    (page_a, session_a, _), (page_b, session_b, _) = opened
+    assert session_a != session_b
+    wait_until(lambda: host.viewer_count(session_a) == 1 and host.viewer_count(session_b) == 1, 40, what="both viewers")
+
+    page_a.fill("#ctl-gamma_deg", "60")
+    page_a.press("#ctl-gamma_deg", "Enter")
+    page_a.locator("#ctl-gamma_deg").blur()
+    wait_until(lambda: host.instances(session_a)[0].params["gamma_deg"] == 60.0, 10, what="scene A to take γ = 60°")
+    page_b.wait_for_timeout(500)
+    assert host.instances(session_b)[0].params["gamma_deg"] == 40.0
+    assert page_b.input_value("#ctl-gamma_deg") == "40"
+    # And the two scenes are distinct objects on distinct viser clients.
+    scene_a, scene_b = host.instances(session_a)[0], host.instances(session_b)[0]
+    assert scene_a is not scene_b and scene_a.client.client_id != scene_b.client.client_id
+    for c in contexts:
+        c.close()
+    wait_until(lambda: host.viewer_count(session_a) == 0 and host.viewer_count(session_b) == 0, 20, what="clients to leave")
+
+
+@pytest.mark.parametrize(
+    "path, name, has_scene",
+    [
+        ("/", "course", False),
+        ("/lessons/1-1-vector-calculus", "lesson-1-1-vector-calculus", True),
+        ("/lessons/1-2-newtonian-mechanics", "lesson-1-2-newtonian-mechanics", True),
+        ("/lessons/1-3-biographical-perspective", "lesson-1-3-biographical-perspective", False),
+    ],
+)
+def test_pages_render_without_errors(browser, live_server, shots, path, name, has_scene):
+    context = browser.new_context(viewport={"width": 1500, "height": 950})
+    page = context.new_page()
+    errors: list[str] = []
+    page.on("pageerror", lambda exc: errors.append(str(exc)))
+    page.goto(live_server.url + path)
+    page.wait_for_load_state("networkidle") if not has_scene else None
+    if has_scene:
+        page.wait_for_function("window.dynlabLesson !== undefined")
+        session_id = page.evaluate("window.dynlabLesson.session.id")
+        wait_until(lambda: live_server.host.viewer_count(session_id) == 1, 30, what="viewer")
+        page.wait_for_selector("#solution .step", timeout=20_000)
+        page.wait_for_timeout(3000)
+    # KaTeX rendered every math span (no raw TeX left, no KaTeX error nodes).
+    assert page.locator(".katex-error").count() == 0
+    page.screenshot(path=str(shots / f"{name}.png"))
+    assert not errors, errors
+    context.close()

@@ -1,0 +1,14 @@
+#!/usr/bin/env bash
+# Set up everything the tests need, then run the whole suite (arguments go to pytest).
+#   - uv (from PyPI) for the project environment
+#   - Debian's Chromium for the real-browser tests (Playwright drives it; it never downloads a browser)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+python3 -m uv --version >/dev/null 2>&1 || python3 -m pip install --quiet uv
+if [ ! -x /usr/bin/chromium ]; then
+  echo "Installing Debian's chromium for the browser tests..."
+  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq chromium >/dev/null
+fi
+exec python3 -m uv run --group test pytest "$@"
