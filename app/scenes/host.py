@@ -130,8 +130,10 @@ class SceneHost:
             raise ValueError("session_id: must be 8–64 letters, digits, '-' or '_'")
         cls = self.scene_class(scene_id)
         with self._lock:
+            existing = self._sessions.get(session_id)
+            base = existing.params if existing is not None and existing.scene_id == scene_id else None
+            params = cls.parameters.validate(raw, base=base)  # raises before anything changes
             session = self._session(scene_id, session_id)
-            params = cls.parameters.validate(raw, base=session.params)
             session.params = params
             for scene in session.instances.values():
                 scene.set_params(params)
