@@ -3,10 +3,11 @@
 from __future__ import annotations
 
 from app.scenes.base import Scene
+from app.scenes.heavy_top import HeavyTopScene
 from app.scenes.projectile_drag import ProjectileDragScene
 from app.scenes.radar_tracking import RadarTrackingScene
 from app.scenes.robot_arm_cable import RobotArmCableScene
 
-SCENES: dict[str, type[Scene]] = {cls.id: cls for cls in (RobotArmCableScene, RadarTrackingScene, ProjectileDragScene)}
+SCENES: dict[str, type[Scene]] = {cls.id: cls for cls in (RobotArmCableScene, RadarTrackingScene, ProjectileDragScene, HeavyTopScene)}
 
 __all__ = ["SCENES", "Scene"]

@@ -150,6 +150,15 @@ class SceneHost:
             session = self._sessions.get(session_id)
             return [] if session is None else list(session.instances.values())
 
+    def live_readout(self, scene_id: str, session_id: str) -> dict[str, Any] | None:
+        """Live numbers from the session's first viewer of an integrated scene (None if none)."""
+        with self._lock:
+            session = self._sessions.get(session_id)
+            for scene in [] if session is None else session.instances.values():
+                if scene.id == scene_id and hasattr(scene, "live_readout"):
+                    return scene.live_readout()
+        return None
+
     def viewer_count(self, session_id: str | None = None) -> int:
         with self._lock:
             if session_id is None:

@@ -1,0 +1,1 @@
+"""Models: one physical system per module (parameters, state, right-hand side, invariants, references)."""

@@ -1,0 +1,154 @@
+"""Scene: the heavy symmetric top, integrated live, with its axis locus and invariants.
+
+Drawn in display units: the pivot is at the origin and the symmetry axis is one
+display unit long whatever ``cg_distance_m`` is, so tops of every size fill the
+view. Arrows: angular momentum about the pivot (blue) and the gravity torque
+(red), each scaled to its own maximum. The tip of the symmetry axis leaves a
+trail on the unit sphere (its locus: waves, loops or cusps).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from app.physics.models import heavy_top as physics
+from app.physics.rotations import rotate_vector
+from app.scenes.base import arrow_segments
+from app.scenes.integrated import IntegratedScene, scene_parameters
+
+AXIS_LENGTH = 1.0  # display units from pivot to the tip of the axis
+TRAIL_CHUNK_FRAMES = 6
+TRAIL_CHUNKS = 90  # 90 × 6 frames = 18 s of trail at 30 Hz
+
+
+def top_mesh(*, radius: float, height_cg: float, segments: int = 48) -> tuple[np.ndarray, np.ndarray]:
+    """A top-shaped solid of revolution about +Z (display units): tip at the origin.
+
+    Profile: cone from the tip out to ``radius`` at ``height_cg``, a rounded
+    crown above it, and a stem to the axis tip.
+    """
+    profile = np.array(
+        [
+            [0.0, 0.0],
+            [0.35 * radius, 0.35 * height_cg],
+            [radius, height_cg],
+            [0.95 * radius, height_cg + 0.06],
+            [0.6 * radius, height_cg + 0.12],
+            [0.06, height_cg + 0.14],
+            [0.04, AXIS_LENGTH],
+            [0.0, AXIS_LENGTH],
+        ]
+    )
+    angles = np.linspace(0.0, 2.0 * math.pi, segments, endpoint=False)
+    rings = [np.stack([r * np.cos(angles), r * np.sin(angles), np.full(segments, z)], axis=1) for r, z in profile]
+    vertices = np.concatenate(rings).astype(np.float32)
+    faces = []
+    for k in range(len(profile) - 1):
+        a, b = k * segments, (k + 1) * segments
+        for j in range(segments):
+            jn = (j + 1) % segments
+            faces.append((a + j, b + j, b + jn))
+            faces.append((a + j, b + jn, a + jn))
+    return vertices, np.asarray(faces, dtype=np.uint32)
+
+
+class HeavyTopScene(IntegratedScene):
+    id = "heavy-top"
+    title = "The heavy symmetric top"
+    chapter = 10
+    model = physics.HeavyTop
+    parameters = scene_parameters(physics.HeavyTop)
+    camera_position = (1.9, -2.3, 1.5)
+    camera_look_at = (0.0, 0.0, 0.35)
+
+    def build(self) -> None:
+        scene = self.client.scene
+        scene.add_grid("/ground", width=3.0, height=3.0, cell_size=0.1, section_size=0.5, position=(0.0, 0.0, 0.0))
+        scene.add_icosphere("/pivot", radius=0.025, color=(40, 40, 40))
+        scene.add_icosphere(
+            "/locus_sphere", radius=AXIS_LENGTH, color=(150, 170, 200), opacity=0.12, subdivisions=4, cast_shadow=False, receive_shadow=False
+        )
+        self.body = scene.add_frame("/top", show_axes=False)
+        self.mesh = None
+        self.spin_marker = scene.add_icosphere("/top/marker", radius=0.03, color=(240, 190, 40))
+        self.arrows = scene.add_arrows(
+            "/vectors",
+            np.zeros((2, 2, 3), np.float32),
+            np.array([[40, 100, 220], [220, 50, 40]], np.uint8),
+            shaft_radius=0.012,
+            head_radius=0.03,
+            head_length=0.07,
+        )
+        self.arrow_labels = [
+            scene.add_label("/vectors/L", "L (angular momentum)", anchor="center-left"),
+            scene.add_label("/vectors/tau", "τ (gravity torque)", anchor="center-left"),
+        ]
+        self.readout = scene.add_label("/readout", "", position=(0.0, 0.0, 1.35), anchor="bottom-left")
+        self._trail_nodes: list = []
+        self._trail_points: list[np.ndarray] = []
+        self._trail_serial = 0
+
+    def update(self) -> None:
+        params = self.physical_params()
+        self.restart()
+        m, l = params["mass_kg"], params["cg_distance_m"]
+        radius_m = math.sqrt(2.0 * params["I_axial"] / m)  # a uniform disc with the same axial moment
+        # Display: pivot-to-CM distance l maps to 0.55 of the axis; the crown radius follows in proportion.
+        height_cg = 0.55
+        radius = float(np.clip(radius_m / l * height_cg, 0.08, 0.8))
+        vertices, faces = top_mesh(radius=radius, height_cg=height_cg)
+        if self.mesh is not None:
+            self.mesh.remove()
+        self.mesh = self.client.scene.add_mesh_simple("/top/body", vertices, faces, color=(70, 130, 180), flat_shading=False)
+        self.spin_marker.position = (radius, 0.0, height_cg)
+        self._clear_trail()
+        body = physics.rigid_body(params)
+        self._momentum_scale = 0.8 / max(float(np.linalg.norm(body.angular_momentum_world(self.run.y))), 1e-12)
+        self._torque_scale = 0.6 / max(body.gravity_moment_N_m, 1e-12)
+        self._body_model = body
+        self._draw()
+
+    def _clear_trail(self) -> None:
+        for node in self._trail_nodes:
+            node.remove()
+        self._trail_nodes = []
+        self._trail_points = []
+
+    def _draw(self) -> None:
+        y = self.run.y
+        q = y[0:4] / np.linalg.norm(y[0:4])
+        self.body.wxyz = q
+        axis = rotate_vector(q, np.array([0.0, 0.0, 1.0]))
+        momentum = self._body_model.angular_momentum_world(y)
+        torque = self._body_model.gravity_moment_N_m * np.cross(axis, [0.0, 0.0, -1.0])
+        vectors = np.array([momentum * self._momentum_scale, torque * self._torque_scale])
+        self.arrows.points = arrow_segments(np.zeros((2, 3)), vectors, 1.0)
+        for label, vector in zip(self.arrow_labels, vectors):
+            label.position = tuple(vector * 1.05)
+        self._extend_trail(axis * AXIS_LENGTH)
+        theta = math.degrees(math.acos(max(-1.0, min(1.0, axis[2]))))
+        drift = max(self.current_drift().values(), default=0.0)
+        self.readout.text = f"t = {self.run.t_s:6.2f} s   θ = {theta:5.1f}°   drift {drift:.1e}   {self.description}"
+
+    def _extend_trail(self, tip: np.ndarray) -> None:
+        self._trail_points.append(tip.astype(np.float32))
+        if len(self._trail_points) <= TRAIL_CHUNK_FRAMES:
+            return
+        points = np.asarray(self._trail_points)
+        segments = np.stack([points[:-1], points[1:]], axis=1)
+        self._trail_serial += 1
+        node = self.client.scene.add_line_segments(
+            f"/trail/{self._trail_serial}", segments, (230, 120, 30), thickness=3.0, thickness_units="screen"
+        )
+        self._trail_nodes.append(node)
+        self._trail_points = [self._trail_points[-1]]
+        while len(self._trail_nodes) > TRAIL_CHUNKS:
+            self._trail_nodes.pop(0).remove()
+
+    def advance(self, dt_s: float) -> None:
+        if self.step_physics():
+            self._draw()
+        else:
+            self.readout.text = f"Paused — {self.status}"
