@@ -1,4 +1,4 @@
-"""Command line: ``dynlab serve [--host H] [--port P]``."""
+"""Command line: ``dynlab serve [--host H] [--port P]`` and ``dynlab bench [--quick] [--case C]``."""
 
 from __future__ import annotations
 
@@ -21,6 +21,12 @@ def _serve(args: argparse.Namespace) -> int:
     return 0
 
 
+def _bench(args: argparse.Namespace) -> int:
+    from app.bench.work_precision import main as bench_main
+
+    return bench_main(args.bench_args)
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="dynlab", description="Dynamics Lab: interactive engineering dynamics.")
     commands = parser.add_subparsers(dest="command", required=True)
@@ -29,6 +35,11 @@ def main(argv: list[str] | None = None) -> int:
     serve.add_argument("--port", type=int, default=None, help="port (default 8000)")
     serve.add_argument("--log-level", default="info", choices=["critical", "error", "warning", "info", "debug"])
     serve.set_defaults(run=_serve)
+    bench = commands.add_parser(
+        "bench", help="measure speed against error (writes docs/bench/work_precision.json and plots)", add_help=False
+    )
+    bench.add_argument("bench_args", nargs=argparse.REMAINDER, help="options of the benchmark (see dynlab bench --help)")
+    bench.set_defaults(run=_bench)
     args = parser.parse_args(argv)
     logging.basicConfig(level=getattr(logging, args.log_level.upper()), format="%(levelname)s %(name)s: %(message)s")
     return args.run(args)

@@ -57,6 +57,8 @@ class Scene(ABC):
             "title": cls.title,
             "chapter": cls.chapter,
             "animated": cls.animated,
+            # Integrated scenes publish live invariants at /api/scenes/{id}/sessions/{sid}/live.
+            "integrated": getattr(cls, "model", None) is not None,
             "parameters": cls.parameters.schema(),
         }
 

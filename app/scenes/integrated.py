@@ -22,6 +22,9 @@ from app.scenes.base import Scene
 FRAME_DT_S = 1.0 / 30.0
 DRIFT_HISTORY_FRAMES = 300  # 10 s of history at 30 Hz
 DRIFT_SAMPLE_EVERY = 3
+#: An invariant off by more than this fraction of its scale means the step is far
+#: too large: the motion on screen would be fiction, so the scene pauses.
+RUNAWAY_DRIFT = 0.2
 
 
 def scene_parameters(model: type[IntegratedModel]) -> ParameterSet:
@@ -68,8 +71,17 @@ class IntegratedScene(Scene):
             return False
         if self._frames % DRIFT_SAMPLE_EVERY == 0:
             drift = self.current_drift()
+            worst = max(drift, key=drift.get, default=None)
             self._drift_t.append(self.run.t_s)
-            self._drift_max.append(max(drift.values(), default=0.0))
+            self._drift_max.append(drift[worst] if worst else 0.0)
+            if worst is not None and drift[worst] > RUNAWAY_DRIFT:
+                self.run.status = "runaway"
+                self.status = (
+                    f"Paused at t = {self.run.t_s:.2f} s: {worst.replace('_', ' ')} has drifted by "
+                    f"{100 * drift[worst]:.0f}% of its scale with {self.description}, so the motion shown is no longer "
+                    f"the physics. Use more steps per frame or the splitting method."
+                )
+                return False
         return True
 
     def current_invariants(self) -> dict[str, float]:

@@ -217,7 +217,47 @@
     running = false;
   }
 
+  // ---- live readout of integrated scenes: method, invariants, drift -----------------
+  const live = document.getElementById("live");
+  async function pollLive() {
+    try {
+      const response = await fetch(`/api/scenes/${scene.id}/sessions/${session.id}/live`);
+      if (response.ok) renderLive(await response.json());
+    } catch (e) { /* the next poll retries */ }
+    setTimeout(pollLive, document.hidden ? 3000 : 1000);
+  }
+  function renderLive(data) {
+    live.hidden = false;
+    const q = (name) => live.querySelector(`[data-live="${name}"]`);
+    q("description").textContent = data.description;
+    q("t_s").textContent = data.t_s.toFixed(2);
+    q("cost").textContent = data.physics_us_per_frame.toFixed(1);
+    const status = q("status");
+    status.hidden = !data.status;
+    status.textContent = data.status;
+    const rows = Object.entries(data.invariants).map(([name, inv]) => {
+      const tr = document.createElement("tr");
+      tr.innerHTML = "<td class='sym'></td><td class='val'></td><td class='unit'></td><td class='val'></td>";
+      tr.children[0].textContent = name.replaceAll("_", " ");
+      tr.children[1].textContent = fmt(inv.value);
+      tr.children[2].textContent = inv.unit;
+      tr.children[3].textContent = inv.relative_drift.toExponential(1);
+      tr.children[3].dataset.drift = name;
+      return tr;
+    });
+    q("invariants").replaceChildren(...rows);
+    const h = data.drift_history;
+    const points = h.t_s.map((t, i) => [t, Math.max(h.max_relative_drift[i], 1e-17)]);
+    if (points.length > 1) {
+      window.DynPlot.render(q("plot"), {
+        title: "Largest invariant drift (relative)", x_label: "t (s)", y_label: "|ΔI| / scale", log_x: false, log_y: true,
+        series: [{ name: "max drift", x: points.map((p) => p[0]), y: points.map((p) => p[1]) }],
+      });
+    }
+  }
+
   function startViewer() {
+    if (scene.integrated) setTimeout(pollLive, 1500);
     viewerStarted = true;
     const wrap = document.getElementById("viewer-wrap");
     wrap.hidden = false;

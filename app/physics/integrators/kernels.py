@@ -63,10 +63,22 @@ class Kernel:
 
 
 def kernel(signature: Any) -> Callable[[Callable[..., Any]], Kernel]:
-    """Decorator: compile ``fn`` for ``signature`` (cached on disk) and keep its source twin."""
+    """Decorator: compile ``fn`` for ``signature`` (cached on disk) and keep its source twin.
+
+    Model functions (the ``*_SIGNATURE`` types above: right-hand sides,
+    projections, torques, events) become C callbacks (``numba.cfunc``): an
+    integrator receives them as function pointers, which costs about 3× less
+    per call from Python than passing a dispatcher. Everything else is an
+    ordinary ``njit`` function.
+    """
+    model_function = signature in (RHS_SIGNATURE, PROJECT_SIGNATURE, TORQUE_SIGNATURE, EVENT_SIGNATURE)
 
     def wrap(fn: Callable[..., Any]) -> Kernel:
-        return Kernel(compiled=numba.njit(signature, cache=True, nogil=True)(fn), python=fn)
+        if model_function:
+            compiled = numba.cfunc(signature, cache=True, nopython=True, error_model="numpy")(fn)
+        else:
+            compiled = numba.njit(signature, cache=True, nogil=True, error_model="numpy")(fn)
+        return Kernel(compiled=compiled, python=fn)
 
     return wrap
 

@@ -144,7 +144,13 @@ def simulate(
 
 @dataclass
 class LiveRun:
-    """A system advanced frame by frame for a live scene (never yields a non-finite state)."""
+    """A system advanced frame by frame for a live scene (never yields a non-finite state).
+
+    Frames are computed ``batch_frames`` at a time and handed out one per call:
+    a call from Python into a compiled kernel costs far more than a few steps of
+    a small model, so batching keeps the physics cost per displayed frame to a
+    few microseconds. A failure inside a batch surfaces when playback reaches it.
+    """
 
     system: OdeSystem
     integrator: Integrator
@@ -153,27 +159,53 @@ class LiveRun:
     status: str = "ok"
     message: str = ""
     steps: int = 0
-    _frame: np.ndarray = field(init=False, repr=False)
+    batch_frames: int = 15
+    _buffer: np.ndarray = field(init=False, repr=False)
+    _ready: int = field(init=False, default=0, repr=False)
+    _next: int = field(init=False, default=0, repr=False)
+    _pending_status: str = field(init=False, default="ok", repr=False)
+    _frame_dt_s: float = field(init=False, default=0.0, repr=False)
 
     def __post_init__(self) -> None:
         self.y = np.array(self.y, dtype=float)
-        self._frame = np.empty((1, self.y.shape[0]))
+        self._buffer = np.empty((self.batch_frames, self.y.shape[0]))
 
     @property
     def running(self) -> bool:
         return self.status == "ok"
 
+    def _refill(self, frame_dt_s: float) -> None:
+        trial = self.y.copy()
+        outcome = self.integrator.run_frames(self.system, self.t_s, trial, frame_dt_s, self.batch_frames, self._buffer)
+        self.steps += outcome.steps
+        done = outcome.frames_done
+        finite = np.all(np.isfinite(self._buffer[:done]), axis=1)
+        if not finite.all():
+            done = int(np.argmin(finite))
+        self._ready, self._next = done, 0
+        self._frame_dt_s = frame_dt_s
+        self._pending_status = "ok" if done == self.batch_frames and outcome.status == "ok" else (
+            outcome.status if outcome.status != "ok" else "non_finite"
+        )
+
     def advance(self, frame_dt_s: float) -> bool:
         """Advance one frame; on failure keep the last good state, pause and explain. Returns running."""
         if not self.running:
             return False
-        trial = self.y.copy()
-        outcome = self.integrator.run_frames(self.system, self.t_s, trial, frame_dt_s, 1, self._frame)
-        self.steps += outcome.steps
-        if outcome.status == "ok" and np.all(np.isfinite(trial)):
-            self.y = trial
-            self.t_s += frame_dt_s
-            return True
-        self.status = outcome.status if outcome.status != "ok" else "non_finite"
+        if self._next >= self._ready or frame_dt_s != self._frame_dt_s:
+            if self._next < self._ready:  # frame length changed: drop the precomputed frames
+                self._ready = self._next
+            if self._pending_status != "ok" and self._next >= self._ready and self._ready < self.batch_frames and self._frame_dt_s:
+                return self._fail(frame_dt_s)
+            self._refill(frame_dt_s)
+            if self._ready == 0:
+                return self._fail(frame_dt_s)
+        self.y = self._buffer[self._next].copy()
+        self._next += 1
+        self.t_s += frame_dt_s
+        return True
+
+    def _fail(self, frame_dt_s: float) -> bool:
+        self.status = self._pending_status if self._pending_status != "ok" else "non_finite"
         self.message = failure_message(self.status, self.t_s, self.integrator, frame_dt_s)
         return False

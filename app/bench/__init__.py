@@ -1,0 +1,1 @@
+"""Benchmarks: reference implementations (e.g. MuJoCo) to time our integrators against."""
