@@ -60,7 +60,7 @@ class HeavyTopScene(IntegratedScene):
     chapter = 10
     model = physics.HeavyTop
     parameters = scene_parameters(physics.HeavyTop)
-    camera_position = (1.9, -2.3, 1.5)
+    camera_position = (1.35, -1.65, 1.05)
     camera_look_at = (0.0, 0.0, 0.35)
 
     def build(self) -> None:
@@ -85,7 +85,7 @@ class HeavyTopScene(IntegratedScene):
             scene.add_label("/vectors/L", "L (angular momentum)", anchor="center-left"),
             scene.add_label("/vectors/tau", "τ (gravity torque)", anchor="center-left"),
         ]
-        self.readout = scene.add_label("/readout", "", position=(0.0, 0.0, 1.35), anchor="bottom-left")
+        self.readout = scene.add_label("/readout", "", position=(-0.6, 0.0, 1.25), anchor="bottom-left")
         self._trail_nodes: list = []
         self._trail_points: list[np.ndarray] = []
         self._trail_serial = 0
@@ -130,7 +130,7 @@ class HeavyTopScene(IntegratedScene):
         self._extend_trail(axis * AXIS_LENGTH)
         theta = math.degrees(math.acos(max(-1.0, min(1.0, axis[2]))))
         drift = max(self.current_drift().values(), default=0.0)
-        self.readout.text = f"t = {self.run.t_s:6.2f} s   θ = {theta:5.1f}°   drift {drift:.1e}   {self.description}"
+        self.readout.text = f"t = {self.run.t_s:6.2f} s   θ = {theta:5.2f}°   largest drift {drift:.1e}"
 
     def _extend_trail(self, tip: np.ndarray) -> None:
         self._trail_points.append(tip.astype(np.float32))
