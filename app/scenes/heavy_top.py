@@ -151,4 +151,4 @@ class HeavyTopScene(IntegratedScene):
         if self.step_physics():
             self._draw()
         else:
-            self.readout.text = f"Paused — {self.status}"
+            self.readout.text = self.status

@@ -125,3 +125,41 @@ def test_pages_render_without_errors(browser, live_server, shots, path, name, ha
     page.screenshot(path=str(shots / f"{name}.png"))
     assert not errors, errors
     context.close()
+
+
+def test_heavy_top_live_invariants_and_blow_up_pause(browser, live_server, shots):
+    """The heavy-top lesson shows method, invariants and drift live; a far-too-large RK4 step pauses the
+    scene with a reason instead of drawing non-physical motion; choosing the splitting method resumes it."""
+    context = browser.new_context(viewport={"width": 1500, "height": 1000})
+    page, session_id, errors = _open_lesson(context, live_server, "/lessons/10-2-spinning-top")
+    host = live_server.host
+    wait_until(lambda: host.viewer_count(session_id) == 1, 30, what="the 3D viewer to connect")
+    page.wait_for_selector('#live [data-drift="energy"]', timeout=20_000)
+    description = page.text_content('#live [data-live="description"]')
+    assert description.startswith("Splitting, order 4")
+    energy_drift = float(page.text_content('#live [data-drift="energy"]'))
+    assert energy_drift < 1e-6  # the default method keeps energy to far better than 1e-6 (measured ~1e-10)
+    page.wait_for_timeout(2500)
+    page.screenshot(path=str(shots / "lesson-10-2-spinning-top.png"))
+
+    # RK4 with one step per frame at a 300 rad/s spin: h·ω ≈ 10, far beyond RK4's stability limit.
+    page.select_option("#ctl-method", "rk4")
+    page.fill("#ctl-steps_per_frame", "1")
+    page.dispatch_event("#ctl-steps_per_frame", "change")
+    page.fill("#ctl-spin_rad_s", "300")
+    page.dispatch_event("#ctl-spin_rad_s", "change")
+    wait_until(lambda: host.instances(session_id)[0].params["spin_rad_s"] == 300.0, 10, what="the scene to take the new spin")
+    page.wait_for_function("() => !document.querySelector('#live [data-live=\"status\"]').hidden", timeout=20_000)
+    status = page.text_content('#live [data-live="status"]')
+    assert "steps per frame" in status and "RK4" in status, status
+    scene = host.instances(session_id)[0]
+    assert scene.status and all(math.isfinite(v) for v in scene.run.y)
+    page.evaluate("document.getElementById('viewer-wrap').scrollIntoView()")
+    page.wait_for_timeout(1500)
+    page.screenshot(path=str(shots / "lesson-10-2-spinning-top-paused.png"))
+
+    page.select_option("#ctl-method", "splitting4")
+    page.wait_for_function("() => document.querySelector('#live [data-live=\"status\"]').hidden", timeout=20_000)
+    assert host.instances(session_id)[0].status == ""
+    assert not errors, errors
+    context.close()

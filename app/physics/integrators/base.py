@@ -69,4 +69,4 @@ class FixedStepIntegrator(Integrator):
 
     def describe(self, frame_dt_s: float) -> str:
         h_ms = 1e3 * frame_dt_s / self.steps_per_frame
-        return f"{self.label}, {self.steps_per_frame} steps/frame (h = {h_ms:.3g} ms)"
+        return f"{self.label}, {self.steps_per_frame} step{'' if self.steps_per_frame == 1 else 's'}/frame (h = {h_ms:.3g} ms)"
