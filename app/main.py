@@ -10,7 +10,7 @@ from fastapi import FastAPI
 from fastapi.staticfiles import StaticFiles
 
 from app import __version__
-from app.api import chapters, errors, examples, health, scenes
+from app.api import bench, chapters, errors, examples, health, scenes
 from app.content import Course
 from app.scenes import SCENES
 from app.scenes.host import SceneHost
@@ -42,7 +42,8 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     app.state.settings = settings
     app.state.course = Course()
     errors.install(app)
-    for router in (health.router, chapters.router, scenes.router, examples.router, pages.router, relay.router):
+    routers = (health.router, chapters.router, scenes.router, examples.router, bench.router, pages.router, relay.router)
+    for router in routers:
         app.include_router(router)
     app.mount("/static", StaticFiles(directory=STATIC_DIR), name="static")
     return app

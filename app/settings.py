@@ -4,6 +4,10 @@ from __future__ import annotations
 
 import os
 from dataclasses import dataclass
+from pathlib import Path
+
+#: Where ``dynlab bench`` writes work_precision.json and one <scene_id>.svg per scene.
+DEFAULT_BENCH_DIR = Path(__file__).resolve().parent.parent / "docs" / "bench"
 
 
 @dataclass(frozen=True)
@@ -14,6 +18,8 @@ class Settings:
     frame_rate_hz: float = 30.0
     #: Sessions kept for reconnects before the least recently used idle one is dropped.
     max_sessions: int = 2000
+    #: Benchmark results shown on the Solver lab page (work_precision.json and the SVG diagrams).
+    bench_dir: Path = DEFAULT_BENCH_DIR
 
     @classmethod
     def from_env(cls, **overrides: object) -> "Settings":
@@ -21,6 +27,7 @@ class Settings:
             "host": os.environ.get("DYNLAB_HOST"),
             "port": os.environ.get("DYNLAB_PORT"),
             "frame_rate_hz": os.environ.get("DYNLAB_FRAME_RATE_HZ"),
+            "bench_dir": os.environ.get("DYNLAB_BENCH_DIR"),
         }
         values: dict[str, object] = {}
         for name, raw in env.items():

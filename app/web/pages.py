@@ -1,9 +1,13 @@
-"""HTML pages: the course outline, lesson pages and the viser viewer page."""
+"""HTML pages: the course outline, lesson pages, the Solver lab and the viser viewer page."""
 
 from __future__ import annotations
 
 import html
 import json
+import math
+import re
+import tomllib
+from datetime import datetime
 from functools import lru_cache
 from pathlib import Path
 from string import Template
@@ -12,8 +16,9 @@ import viser
 from fastapi import APIRouter, HTTPException
 from fastapi.responses import HTMLResponse, RedirectResponse, Response
 
-from app.api.deps import CourseDep, SceneHostDep
-from app.content import Chapter, Lesson
+from app.api import bench
+from app.api.deps import CourseDep, SceneHostDep, SettingsDep
+from app.content import LESSONS_DIR, Chapter, Lesson, render_markdown
 from app.physics.examples import EXAMPLES
 from app.scenes.host import SESSION_ID_PATTERN
 
@@ -103,6 +108,281 @@ def lesson_page(lesson_id: str, course: CourseDep, host: SceneHostDep) -> HTMLRe
         f"{lesson.section} {lesson.title} — Dynamics Lab",
         body,
         scripts=("/static/vendor/katex/katex.min.js", "/static/js/common.js", "/static/js/plot.js", "/static/js/lesson.js"),
+    )
+
+
+# ---- Solver lab ---------------------------------------------------------------------------
+
+
+def fmt_sig(value: object, digits: int = 3, min_exp: int = -3) -> str:
+    """A number to ``digits`` significant figures, as HTML: decimals from 10^min_exp to 9999, else a × 10ⁿ."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        return "—"
+    if value == 0:
+        return "0"
+    mantissa, exponent = f"{value:.{digits - 1}e}".split("e")
+    exp = int(exponent)
+    if min_exp <= exp <= 3:
+        return f"{round(value, digits - 1 - exp):.{max(0, digits - 1 - exp)}f}"
+    return f"{mantissa} × 10<sup>{str(exp).replace('-', '−')}</sup>"
+
+
+def fmt_setting(value: object) -> str:
+    """A solver setting: integers as they are, powers of ten as 10ⁿ, other numbers to 3 significant figures."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        return esc(str(value))
+    if isinstance(value, int) or (math.isfinite(value) and value.is_integer() and abs(value) < 1e6):
+        return str(int(value))
+    if value > 0 and math.isfinite(value):
+        exp = round(math.log10(value))
+        if math.isclose(value, 10.0**exp, rel_tol=1e-9):
+            return f"10<sup>{str(exp).replace('-', '−')}</sup>"
+    return fmt_sig(value)
+
+
+def _setting_name(name: object) -> str:
+    return esc(str(name or "setting").replace("_", " "))
+
+
+def _esc_code(text: str) -> str:
+    """Escape, then show `backticked` parts as code."""
+    return re.sub(r"`([^`]+)`", r"<code>\1</code>", esc(text))
+
+
+def _with_unit(value_html: str, unit: str) -> str:
+    return f"{value_html} {esc(unit)}" if unit and value_html != "—" else value_html
+
+
+@lru_cache(maxsize=1)
+def _solver_lab_text() -> tuple[dict, str]:
+    """Front matter and rendered body of lessons/solver-lab.md (TOML between '+++' lines, like the lessons)."""
+    text = (LESSONS_DIR / "solver-lab.md").read_text(encoding="utf-8")
+    _, front, body = text.split("+++", 2)
+    return tomllib.loads(front), render_markdown(body.strip())
+
+
+def _method_labels(scene: dict) -> dict[str, str]:
+    return {str(m.get("method")): str(m.get("label") or m.get("method")) for m in scene.get("methods") or ()}
+
+
+def _ratio_sentence(ratio: dict, scene: dict) -> str:
+    if ratio.get("text"):
+        return esc(str(ratio["text"]))
+    labels = _method_labels(scene)
+    default = scene.get("default") or {}
+    ours = esc(labels.get(str(default.get("method")), str(default.get("method", "the default method"))))
+    baseline = esc(labels.get(str(ratio.get("baseline")), str(ratio.get("baseline", "the baseline"))))
+    value = ratio.get("ratio")
+    at = _with_unit(fmt_setting(ratio.get("at_error")), str(scene.get("error_unit") or ""))
+    if not isinstance(value, (int, float)) or not math.isfinite(value) or value <= 0:
+        return f"At an error of {at}, {baseline} could not be compared with {ours}."
+    if value >= 1:
+        return f"At an error of {at}, {baseline} takes <strong>{fmt_sig(value)} times</strong> the CPU time of {ours}."
+    return f"At an error of {at}, {baseline} is <strong>{fmt_sig(1 / value)} times faster</strong> than {ours}."
+
+
+def _point_note(point: dict) -> str:
+    status = point.get("status", "ok")
+    error = point.get("error")
+    if status != "ok":
+        return f"{esc(str(status))}; not plotted"
+    if isinstance(error, (int, float)) and not isinstance(error, bool) and error == 0:
+        return "error 0 (below what the reference resolves); not plotted"
+    if not isinstance(error, (int, float)) or isinstance(error, bool) or not math.isfinite(error):
+        return "no finite error; not plotted"
+    return ""
+
+
+def _points_table(scene: dict) -> str:
+    unit = str(scene.get("error_unit") or "")
+    default = scene.get("default") or {}
+    rows = []
+    count = 0
+    for method in scene.get("methods") or ():
+        points = list(method.get("points") or ())
+        count += len(points)
+        setting_name = _setting_name(method.get("setting_name"))
+        for i, point in enumerate(points):
+            is_default = (method.get("method"), point.get("setting")) == (default.get("method"), default.get("setting"))
+            cpu = point.get("cpu_s")
+            cpu_ms = 1e3 * cpu if isinstance(cpu, (int, float)) and not isinstance(cpu, bool) else None
+            evals = point.get("rhs_evals")
+            evals_text = f"{evals:,}" if isinstance(evals, int) and not isinstance(evals, bool) else "—"
+            first = (
+                f'<th scope="rowgroup" rowspan="{len(points)}">{esc(str(method.get("label") or method.get("method")))}'
+                f'<span class="family">{esc(str(method.get("family", "")))}; setting: {setting_name}</span></th>'
+                if i == 0
+                else ""
+            )
+            note = _point_note(point)
+            rows.append(
+                f'<tr{" class=is-default" if is_default else ""}>{first}'
+                f'<td class="num">{fmt_setting(point.get("setting"))}</td>'
+                f'<td class="num">{fmt_sig(cpu_ms)}</td>'
+                f'<td class="num">{fmt_sig(point.get("error"), min_exp=-1)}</td>'
+                f'<td class="num">{evals_text}</td>'
+                f"<td>{'<span class=tag>default</span> ' if is_default else ''}{note}</td></tr>"
+            )
+    unit_text = f" ({esc(unit)})" if unit else ""
+    return (
+        f'<details class="bench-points"><summary>All {count} measured points</summary>'
+        '<div class="table-wrap"><table><thead><tr><th scope="col">Method</th><th scope="col">Setting</th>'
+        f'<th scope="col">CPU time (ms)</th><th scope="col">Error{unit_text}</th>'
+        '<th scope="col">RHS evaluations</th><th scope="col">Note</th></tr></thead>'
+        f"<tbody>{''.join(rows)}</tbody></table></div></details>"
+    )
+
+
+def _default_paragraph(scene: dict) -> str:
+    default = scene.get("default")
+    if not default:
+        return ""
+    unit = str(scene.get("error_unit") or "")
+    labels = _method_labels(scene)
+    setting_name = next(
+        (m.get("setting_name") for m in scene.get("methods") or () if m.get("method") == default.get("method")), None
+    )
+    name = esc(labels.get(str(default.get("method")), str(default.get("method"))))
+    setting = f" with {_setting_name(setting_name)} = {fmt_setting(default['setting'])}" if "setting" in default else ""
+    cpu = default.get("cpu_s")
+    parts = [f"<strong>Default for the live scene:</strong> {name}{setting}."]
+    if isinstance(cpu, (int, float)) and not isinstance(cpu, bool) and math.isfinite(cpu):
+        t_end, rate = scene.get("t_end_s"), scene.get("frame_rate_hz")
+        span = f"the whole {fmt_setting(t_end)} s run" if isinstance(t_end, (int, float)) else "the whole run"
+        sentence = f"CPU time <strong>{fmt_sig(1e3 * cpu)} ms</strong> for {span}"
+        if isinstance(t_end, (int, float)) and isinstance(rate, (int, float)) and t_end > 0 and rate > 0:
+            per_frame_us = 1e6 * cpu / (t_end * rate)
+            sentence += (
+                f" ({fmt_sig(per_frame_us)} µs per frame, out of a frame budget of {fmt_sig(1e3 / rate)} ms"
+                f" at {fmt_setting(rate)} frames per second)"
+            )
+        parts.append(sentence + ";")
+    error = default.get("error")
+    parts.append(f"error <strong>{_with_unit(fmt_sig(error, min_exp=-1), unit)}</strong>")
+    target = scene.get("target_error")
+    if isinstance(target, (int, float)) and isinstance(error, (int, float)) and math.isfinite(error):
+        verdict = "within" if error <= target else "above"
+        parts[-1] += f", {verdict} the target of {_with_unit(fmt_setting(target), unit)}"
+    parts[-1] += "."
+    return f'<p class="bench-default">{" ".join(parts)}</p>'
+
+
+def _scene_section(scene: dict, settings) -> str:
+    scene_id = str(scene.get("scene_id", ""))
+    safe_id = scene_id if bench.SCENE_ID_PATTERN.fullmatch(scene_id) else ""
+    title = esc(str(scene.get("title") or scene_id))
+    unit = str(scene.get("error_unit") or "")
+    meta = []
+    if scene.get("error_measure"):
+        measure = f"<strong>Error:</strong> {esc(str(scene['error_measure']))}{f' ({esc(unit)})' if unit else ''}"
+        if scene.get("reference"):
+            reference = re.sub(r"^the\s+", "", str(scene["reference"]), flags=re.IGNORECASE)
+            measure += f", against the {esc(reference)}"
+        meta.append(measure + ".")
+    t_end, rate = scene.get("t_end_s"), scene.get("frame_rate_hz")
+    if isinstance(t_end, (int, float)) and isinstance(rate, (int, float)):
+        meta.append(f"{fmt_setting(t_end)} s of motion at {fmt_setting(rate)} frames per second.")
+    if isinstance(scene.get("target_error"), (int, float)):
+        meta.append(f"Target error {_with_unit(fmt_setting(scene['target_error']), unit)}.")
+    if safe_id and bench.diagram_path(settings, safe_id):
+        methods = ", ".join(str(m.get("label") or m.get("method")) for m in scene.get("methods") or ())
+        alt = (
+            f"Work-precision diagram for {scene.get('title') or scene_id}: CPU time against error, both on log scales, "
+            f"for {methods}. The measured values are in the table below."
+        )
+        figure = (
+            f'<figure class="bench-figure"><a href="/bench/{safe_id}.svg" title="Open the diagram on its own">'
+            f'<img src="/bench/{safe_id}.svg" alt="{esc(alt)}" width="760" height="480"></a></figure>'
+        )
+    else:
+        figure = f'<p class="notice">The diagram for this scene is missing; {_esc_code(bench.HOW_TO_MEASURE)}.</p>'
+    ratios = "".join(f"<li>{_ratio_sentence(r, scene)}</li>" for r in scene.get("ratios") or ())
+    anchor = f' id="bench-{safe_id}"' if safe_id else ""
+    return (
+        f'<section class="bench-scene"{anchor}>'
+        f"<h2>{title}</h2>"
+        f'<p class="bench-meta">{" ".join(meta)}</p>'
+        f"{figure}{_default_paragraph(scene)}"
+        + (f'<ul class="bench-ratios">{ratios}</ul>' if ratios else "")
+        + _points_table(scene)
+        + "</section>"
+    )
+
+
+def _run_summary(results: dict) -> str:
+    machine = results.get("machine") or {}
+    bits = []
+    if machine.get("cpu"):
+        cores = machine.get("cores")
+        bits.append(esc(str(machine["cpu"])) + (f" ({esc(str(cores))} cores)" if cores else ""))
+    names = {"python": "Python", "numpy": "NumPy", "scipy": "SciPy", "numba": "numba", "mujoco": "MuJoCo"}
+    versions = [f"{name} {esc(str(machine[key]))}" for key, name in names.items() if machine.get(key)]
+    if versions:
+        bits.append(", ".join(versions))
+    created = str(results.get("created") or "")
+    try:
+        when = datetime.fromisoformat(created.replace("Z", "+00:00")).strftime("%d %b %Y, %H:%M UTC")
+    except ValueError:
+        when = esc(created)
+    scenes = results.get("scenes") or []
+    toc = " · ".join(
+        f'<a href="#bench-{esc(str(s.get("scene_id")))}">{esc(str(s.get("title") or s.get("scene_id")))}</a>'
+        for s in scenes
+        if bench.SCENE_ID_PATTERN.fullmatch(str(s.get("scene_id", "")))
+    )
+    return (
+        '<section class="bench-run"><h2>Measured results</h2>'
+        f"<p>One run{f' on {when}' if when else ''}{': ' + '; '.join(bits) if bits else ''}. "
+        "Every number below comes from that run on that machine. "
+        '<a href="/api/bench/work-precision">Raw data (JSON)</a></p>'
+        + (f'<nav class="bench-toc" aria-label="Scenes">Scenes: {toc}</nav>' if toc else "")
+        + "</section>"
+    )
+
+
+def _guarded(render, item, *args) -> str:
+    """Render one part of the results; a malformed entry becomes a notice instead of a failed page."""
+    try:
+        return render(item, *args)
+    except (AttributeError, TypeError, KeyError, ValueError, IndexError):
+        name = item.get("title") or item.get("scene_id") if isinstance(item, dict) else None
+        what = f"The entry for {esc(str(name))}" if name else "An entry"
+        return (
+            f'<section class="bench-scene notice"><p>{what} in the benchmark results is malformed; '
+            f"{_esc_code(bench.HOW_TO_MEASURE)} again.</p></section>"
+        )
+
+
+@router.get("/solver-lab", response_class=HTMLResponse)
+def solver_lab_page(settings: SettingsDep) -> HTMLResponse:
+    meta, prose = _solver_lab_text()
+    try:
+        results = bench.load_results(settings)
+    except bench.BenchResultsError as exc:
+        results_html = (
+            '<section class="bench-run notice" role="status"><h2>Measured results</h2>'
+            f"<p>{_esc_code(str(exc))}; {_esc_code(bench.HOW_TO_MEASURE)} again.</p></section>"
+        )
+    else:
+        if results is None:
+            results_html = (
+                '<section class="bench-run notice" role="status"><h2>No measurements yet</h2>'
+                f"<p>{_esc_code(bench.missing_message(settings))}</p>"
+                "<p>Then reload this page: <code>uv run dynlab bench</code> writes <code>work_precision.json</code> "
+                "and one diagram per scene into the benchmark folder.</p></section>"
+            )
+        else:
+            results_html = _guarded(_run_summary, results) + "".join(
+                _guarded(_scene_section, scene, settings) for scene in results["scenes"]
+            )
+    body = _template("solver_lab.html").substitute(
+        title=esc(str(meta.get("title", "Solver lab"))),
+        summary=esc(str(meta.get("summary", ""))),
+        prose=prose,
+        results=results_html,
+    )
+    return _page(
+        "Solver lab — Dynamics Lab", body, scripts=("/static/vendor/katex/katex.min.js", "/static/js/common.js")
     )
 
 
