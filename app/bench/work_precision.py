@@ -385,7 +385,7 @@ def write_report(report: dict[str, Any], out_dir: Path = OUT_DIR) -> list[Path]:
 
     out_dir.mkdir(parents=True, exist_ok=True)
     paths = [out_dir / "work_precision.json"]
-    paths[0].write_text(json.dumps(report, indent=1) + "\n")
+    paths[0].write_text(json.dumps(report, indent=1, allow_nan=False) + "\n")
     for scene in report["scenes"]:
         path = out_dir / scene["plot"]
         path.write_text(work_precision_svg(scene))
