@@ -23,7 +23,7 @@ router = APIRouter(tags=["bench"])
 RESULTS_FILE = "work_precision.json"
 #: Scene ids that may name a diagram file; anything else (dots, slashes, capitals) is refused.
 SCENE_ID_PATTERN = re.compile(r"[a-z0-9-]+")
-HOW_TO_MEASURE = "run `uv run dynlab bench` to measure the integrators and write it"
+HOW_TO_MEASURE = "run `uv run --group bench dynlab bench` to measure the integrators and write it"
 _SVG_HEADERS = {
     "Cache-Control": "no-cache",
     "X-Content-Type-Options": "nosniff",

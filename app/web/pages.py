@@ -368,7 +368,7 @@ def solver_lab_page(settings: SettingsDep) -> HTMLResponse:
             results_html = (
                 '<section class="bench-run notice" role="status"><h2>No measurements yet</h2>'
                 f"<p>{_esc_code(bench.missing_message(settings))}</p>"
-                "<p>Then reload this page: <code>uv run dynlab bench</code> writes <code>work_precision.json</code> "
+                "<p>Then reload this page: <code>uv run --group bench dynlab bench</code> writes <code>work_precision.json</code> "
                 "and one diagram per scene into the benchmark folder.</p></section>"
             )
         else:

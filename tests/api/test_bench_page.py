@@ -124,7 +124,7 @@ def test_page_shows_each_scene_its_ratios_default_and_points(client, bench_dir):
     assert "/bench/tumbling-t-handle.svg" not in page and "diagram for this scene is missing" in page
     # Machine, the explanation and how to regenerate.
     assert "Test CPU 9000" in page and "work-precision diagram" in page
-    assert "uv run dynlab bench" in page
+    assert "uv run --group bench dynlab bench" in page
 
 
 def test_json_route_returns_the_file(client, bench_dir):
@@ -170,7 +170,7 @@ def test_missing_results_give_404_and_the_page_says_how_to_make_them(client, emp
     assert client.get("/bench/heavy-top.svg").status_code == 404
     page = client.get("/solver-lab")
     assert page.status_code == 200
-    assert "No measurements yet" in page.text and "<code>uv run dynlab bench</code>" in page.text
+    assert "No measurements yet" in page.text and "<code>uv run --group bench dynlab bench</code>" in page.text
     # The explanation is still there.
     assert "Symplectic does not mean accurate" in page.text
 

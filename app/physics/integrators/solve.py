@@ -192,11 +192,13 @@ class LiveRun:
         """Advance one frame; on failure keep the last good state, pause and explain. Returns running."""
         if not self.running:
             return False
-        if self._next >= self._ready or frame_dt_s != self._frame_dt_s:
-            if self._next < self._ready:  # frame length changed: drop the precomputed frames
-                self._ready = self._next
-            if self._pending_status != "ok" and self._next >= self._ready and self._ready < self.batch_frames and self._frame_dt_s:
-                return self._fail(frame_dt_s)
+        if frame_dt_s != self._frame_dt_s:
+            # A new frame length: frames (and any failure) precomputed with the old one no longer apply.
+            self._ready = self._next = 0
+            self._pending_status = "ok"
+        if self._next >= self._ready:
+            if self._pending_status != "ok":
+                return self._fail(frame_dt_s)  # playback has reached the failure found in the last batch
             self._refill(frame_dt_s)
             if self._ready == 0:
                 return self._fail(frame_dt_s)
