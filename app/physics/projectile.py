@@ -14,13 +14,15 @@ to check the integrator.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from scipy.integrate import solve_ivp
 
+from app.physics.integrators import DormandPrince, OdeSystem
+from app.physics.integrators.kernels import EVENT_SIGNATURE, RHS_SIGNATURE, kernel
 from app.physics.parameters import Parameter, ParameterSet
 from app.physics.solution import Plot, PlotSeries, Solution, Step, WorkedExample
 
@@ -83,42 +85,55 @@ def _drag_force(m: float, b: float, c: float, v: np.ndarray) -> np.ndarray:
     return -(b + c * np.linalg.norm(v, axis=-1, keepdims=True)) * v
 
 
+@kernel(RHS_SIGNATURE)
+def projectile_rhs(t, y, p, dydt):
+    """y = [position (3), velocity (3), drag work (1), drag impulse (3)]; p = [m, g, b, c]."""
+    m, g, b, c = p[0], p[1], p[2], p[3]
+    speed = math.sqrt(y[3] * y[3] + y[4] * y[4] + y[5] * y[5])
+    k = -(b + c * speed)
+    for i in range(3):
+        dydt[i] = y[3 + i]
+        dydt[3 + i] = k * y[3 + i] / m
+        dydt[7 + i] = k * y[3 + i]
+    dydt[5] -= g
+    dydt[6] = k * speed * speed
+
+
+@kernel(EVENT_SIGNATURE)
+def height_above_ground(t, y, p):
+    """z (m): the flight ends where it reaches 0 falling."""
+    return y[2]
+
+
 def simulate(inputs: Mapping[str, Any], samples: int = 241) -> ProjectileTrajectory:
-    """Integrate launch to landing (DOP853, rtol 1e-11) and sample ``samples`` instants."""
+    """Integrate launch to landing (Dormand–Prince 5(4), rtol 1e-11, landing as an event) and sample ``samples`` instants."""
     m, g = inputs["mass_kg"], inputs["g_m_s2"]
     b, c = inputs["linear_drag_kg_s"], inputs["quadratic_drag_kg_m"]
     r0 = np.array([0.0, 0.0, inputs["height0_m"]])
     v0 = initial_velocity(inputs["speed0_m_s"], inputs["elevation_deg"])
     if r0[2] == 0.0 and v0[2] <= 0.0:
         raise ValueError("the particle starts on the ground moving down: raise height0_m or elevation_deg")
-
-    def rhs(_t: float, y: np.ndarray) -> np.ndarray:
-        # y = [position (3), velocity (3), drag work (1), drag impulse (3)]
-        v = y[3:6]
-        drag = -(b + c * np.sqrt(v @ v)) * v
-        out = np.empty(10)
-        out[0:3] = v
-        out[3:6] = drag / m
-        out[5] -= g
-        out[6] = drag @ v
-        out[7:10] = drag
-        return out
-
-    def landed(_t: float, y: np.ndarray) -> float:
-        return y[2]
-
-    landed.terminal = True  # type: ignore[attr-defined]
-    landed.direction = -1  # type: ignore[attr-defined]
-
+    system = OdeSystem(
+        rhs=projectile_rhs, parameters=np.array([m, g, b, c], dtype=float),
+        state_names=("x", "y", "z", "vx", "vy", "vz", "work_drag", "impulse_x", "impulse_y", "impulse_z"),
+        event=height_above_ground, event_direction=-1,
+    )
     y0 = np.concatenate([r0, v0, [0.0], np.zeros(3)])
-    sol = solve_ivp(rhs, (0.0, MAX_FLIGHT_S), y0, method="DOP853", rtol=RTOL, atol=ATOL, events=landed, dense_output=True)
-    if sol.status == -1:
-        raise ValueError(f"integration failed: {sol.message}")
-    if not sol.t_events[0].size:
+    solver = DormandPrince(rtol=RTOL, atol=ATOL)
+    # Pass 1 finds the landing time; pass 2 samples the flight uniformly up to it.
+    y = y0.copy()
+    first = solver.solve(system, 0.0, y, np.array([MAX_FLIGHT_S]), np.empty((1, 10)), terminal_event=True)
+    if first.status not in ("ok", "event"):
+        raise ValueError(f"integration failed: {first.status}")
+    if first.t_event_s is None:
         raise ValueError(f"the particle did not land within {MAX_FLIGHT_S:g} s")
-    t_land = float(sol.t_events[0][0])
+    t_land = first.t_event_s
     t = np.linspace(0.0, t_land, samples)
-    y = sol.sol(t).T
+    y_samples = np.empty((samples, 10))
+    y_samples[0] = y0
+    second = solver.solve(system, 0.0, y0.copy(), t[1:], y_samples[1:])
+    y = y_samples
+    rhs_evaluations = first.rhs_evals + second.rhs_evals
     y[-1, 2] = 0.0  # the event root is exact to ~1e-12 m; pin it for display
     position, velocity = y[:, 0:3], y[:, 3:6]
     k = np.array([0.0, 0.0, 1.0])
@@ -133,7 +148,7 @@ def simulate(inputs: Mapping[str, Any], samples: int = 241) -> ProjectileTraject
         impulse_gravity_N_s=-m * g * t[:, None] * k,
         impulse_drag_N_s=y[:, 7:10],
         drag_force_N=_drag_force(m, b, c, velocity),
-        rhs_evaluations=int(sol.nfev),
+        rhs_evaluations=int(rhs_evaluations),
     )
 
 
