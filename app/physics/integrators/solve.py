@@ -39,6 +39,8 @@ MAX_STEPS_PER_FRAME = 4096
 
 def automatic_steps_per_frame(method: str, fastest_rate_rad_s: float, frame_dt_s: float) -> int:
     """Steps per frame so that ``h · fastest_rate ≤ STEP_RATIO[method]`` (at most 4096)."""
+    if not (math.isfinite(fastest_rate_rad_s) and fastest_rate_rad_s >= 0.0):
+        raise ValueError(f"the fastest rate must be a finite number ≥ 0 rad/s to choose a step (got {fastest_rate_rad_s!r})")
     ratio = STEP_RATIO[method]
     needed = math.ceil(fastest_rate_rad_s * frame_dt_s / ratio - 1e-9)
     return int(min(max(needed, 1), MAX_STEPS_PER_FRAME))
