@@ -93,6 +93,37 @@ def test_dzhanibekov_flip_times_match_the_integrations_zero_crossings():
     assert np.all(np.diff(np.sign(body.omega_body(flips[:-1] + 0.25 * body.period_s)[:, 1])) != 0)
 
 
+def test_dzhanibekov_flip_times_match_a_30_digit_evaluation():
+    # The same formula t_j = (2K j − x0)/λ in 30-digit arithmetic from the same float inputs:
+    # checks K, x0 and λ where 1 − m = 2e-6 (forming 1 − m in double would cost ~1e-10 in K,
+    # ~1e-8 s by the 22nd flip). Measured agreement: 1.4e-14 s.
+    mpmath = pytest.importorskip("mpmath")
+    mpmath.mp.dps = 30
+    I1, I2, I3 = (mpmath.mpf(v) for v in DZHANIBEKOV["inertia"])
+    w1, w2, w3 = (mpmath.mpf(v) for v in DZHANIBEKOV["omega0_body"])
+    two_T = I1 * w1**2 + I2 * w2**2 + I3 * w3**2
+    D = (I1**2 * w1**2 + I2**2 * w2**2 + I3**2 * w3**2) / two_T
+    m = (I2 - I1) * (I3 - D) / ((I3 - I2) * (D - I1))
+    rate = mpmath.sqrt(two_T * (I3 - I2) * (D - I1) / (I1 * I2 * I3))
+    A1 = mpmath.sqrt(two_T * (I3 - D) / (I1 * (I3 - I1)))
+    A2 = mpmath.sqrt(two_T * (I3 - D) / (I2 * (I3 - I2)))
+    x0 = mpmath.ellipf(mpmath.atan2(w2 / A2, w1 / A1), m)
+    K = mpmath.ellipk(m)
+    expected = [float((2 * K * j - x0) / rate) for j in range(1, 23)]
+    flips = free_body_elliptic(**DZHANIBEKOV).flip_times(60.0)
+    assert np.abs(flips - np.array(expected)).max() < 1e-12
+
+
+def test_quaternion_output_is_continuous_in_time():
+    # No sign flips of q(t) (Ψ is unwrapped across half periods): over dt the quaternion moves by
+    # ≤ |ω| dt / 2; a sign flip would jump by ~2.
+    body = free_body_elliptic(**DZHANIBEKOV, q0=Q0)
+    t = np.linspace(0.0, 20.0, 20001)
+    steps = np.linalg.norm(np.diff(body.quaternion(t), axis=0), axis=1)
+    fastest = np.linalg.norm(body.omega_body(t), axis=1).max()
+    assert steps.max() < 0.5 * fastest * (t[1] - t[0]) * 1.001
+
+
 def test_dzhanibekov_motion_matches_the_integration_within_its_accuracy():
     body = free_body_elliptic(**DZHANIBEKOV)
     t = np.linspace(0.0, 10.0, 401)
@@ -160,12 +191,18 @@ def test_axisymmetric_body_against_the_textbook_solution(symmetry_axis, I_axial)
 
 
 @pytest.mark.parametrize(
-    "omega0",
-    [(0.0, 5.0, 0.0), (0.0, 0.0, -5.0), (0.0, 0.0, 0.0)],
-    ids=["intermediate-axis", "major-axis", "at-rest"],
+    ("inertia", "omega0"),
+    [
+        ((1.0, 2.0, 3.0), (0.0, 5.0, 0.0)),
+        ((1.0, 2.0, 3.0), (0.0, 0.0, -5.0)),
+        ((1.0, 2.0, 3.0), (0.0, 0.0, 0.0)),
+        ((1.0, 1.0, 1.5), (1.0, 2.0, 0.0)),  # any axis in the plane of equal moments is principal
+        ((1.0, 1.0, 1.0), (1.0, 2.0, 3.0)),  # spherical body
+    ],
+    ids=["intermediate-axis", "major-axis", "at-rest", "axisymmetric-equator", "sphere"],
 )
-def test_rotation_exactly_about_a_principal_axis_is_steady(omega0):
-    body = free_body_elliptic(inertia=(1.0, 2.0, 3.0), omega0_body=np.array(omega0), q0=Q0)
+def test_rotation_about_a_principal_axis_is_steady(inertia, omega0):
+    body = free_body_elliptic(inertia=inertia, omega0_body=np.array(omega0), q0=Q0)
     assert body.kind == "steady" and body.period_s == math.inf and len(body.flip_times(100.0)) == 0
     t = np.linspace(0.0, 10.0, 11)
     assert np.all(body.omega_body(t) == np.array(omega0))
@@ -175,15 +212,18 @@ def test_rotation_exactly_about_a_principal_axis_is_steady(omega0):
     assert attitude_error_rad(body.quaternion(t), expected).max() < 1e-13
 
 
-def test_exactly_on_the_separatrix_uses_the_hyperbolic_form():
-    # I = (3, 4, 6), ω0 = (2, 1.3, 1): I1(I1 − I2)ω1² + I3(I3 − I2)ω3² = −12 + 12 = 0 exactly, so L² = 2T·I2.
-    inertia, omega0 = (3.0, 4.0, 6.0), np.array([2.0, 1.3, 1.0])
+@pytest.mark.parametrize("signs", [(1, 1, 1), (-1, 1, 1), (1, 1, -1), (-1, -1, -1)])
+def test_exactly_on_the_separatrix_uses_the_hyperbolic_form(signs):
+    # I = (3, 4, 6), ω0 = (±2, ±1.3, ±1): I1(I1 − I2)ω1² + I3(I3 − I2)ω3² = −12 + 12 = 0 exactly, so L² = 2T·I2.
+    inertia, omega0 = (3.0, 4.0, 6.0), np.array(signs) * np.array([2.0, 1.3, 1.0])
     body = free_body_elliptic(inertia=inertia, omega0_body=omega0, q0=Q0)
     assert body.kind == "separatrix" and body.period_s == math.inf
     t = np.linspace(0.0, 10.0, 201)
     q_ref, omega_ref = integrate(inertia, omega0, Q0, t)
     assert np.abs(body.omega_body(t) - omega_ref).max() < 1e-10
     assert attitude_error_rad(body.quaternion(t), q_ref).max() < 1e-9
+    if signs != (1, 1, 1):
+        return
     # Asymptotically a rotation about the intermediate axis at √(2T/I2); ω2 > 0 here, so no flip.
     omega_late = body.omega_body(np.array([40.0]))[0]
     assert omega_late[1] == pytest.approx(math.sqrt(2.0 * body.energy_J / 4.0), rel=1e-12, abs=0)
@@ -197,24 +237,27 @@ def test_exactly_on_the_separatrix_uses_the_hyperbolic_form():
 
 
 def test_jacobi_functions_keep_relative_precision_near_the_separatrix():
-    # Against 30-digit mpmath at the Dzhanibekov parameter and closer still; scipy's ellipj takes m
-    # alone (1 − m is then only known to ~1e-16 absolute) and uses a first-order series for m > 1 − 1e-9.
+    # Against mpmath (60 digits) at the Dzhanibekov parameter and much closer to 1. scipy's ellipj
+    # takes m alone (1 − m then known to ~1e-16 absolute) and uses a first-order series for
+    # m > 1 − 1e-9; a plain AGM loses ~1e-9 relative in cn, dn at 1 − m = 1e-15.
     mpmath = pytest.importorskip("mpmath")
-    mpmath.mp.dps = 30
-    for mc in (2e-6, 1e-15):
-        m = 1.0 - mc  # mpmath gets the exact complement below; ours gets both m and mc
+    mpmath.mp.dps = 60
+    eps = np.finfo(float).eps
+    for mc in (0.3, 2e-6, 1e-15, 1e-25, 1e-40):
+        m = 1.0 - mc  # the float m is not exact for small mc: it is not used where that matters
         m_exact = 1 - mpmath.mpf(mc)
         K = complete_elliptic_k(m=m, mc=mc)
-        assert K == pytest.approx(float(mpmath.ellipk(m_exact)), rel=1e-15, abs=0)
-        x = np.array([0.3, 0.5 * K, K - 1.0, K - 1e-2, K + 0.2, 3.0 * K - 1.0])
+        assert K == pytest.approx(float(mpmath.ellipk(m_exact)), rel=5e-16, abs=0)  # ≤ 2 ulp
+        x = np.array([1e-9, 0.3, 0.4 * K, 0.7 * K, K - 1.0, K - 1e-2, K + 0.2, 3.0 * K - 1.0, -5.5 * K])
         k, sn, cn, dn = jacobi_reduced(x, m=m, mc=mc, K=K)
         parity = (-1.0) ** k
         for xi, s, c, d in zip(x, parity * sn, parity * cn, dn):
-            xm = mpmath.mpf(xi)
-            s_ref, c_ref, d_ref = (float(mpmath.ellipfun(kind, xm, m=m_exact)) for kind in ("sn", "cn", "dn"))
+            s_ref, c_ref, d_ref = (float(mpmath.ellipfun(kind, mpmath.mpf(xi), m=m_exact)) for kind in ("sn", "cn", "dn"))
+            # Near ±K, cn ∝ (K − |x|) is only as good as the rounding of x and K relative to that gap.
+            gap = abs(abs(xi - 2.0 * K * round(xi / (2.0 * K))) - K)
             assert s == pytest.approx(s_ref, rel=1e-13, abs=0)
-            assert c == pytest.approx(c_ref, rel=1e-12, abs=0)  # cn ~ 1e-8 near K when mc = 1e-15
-            assert d == pytest.approx(d_ref, rel=1e-12, abs=0)
+            assert c == pytest.approx(c_ref, rel=1e-13 + 4.0 * eps * abs(xi) / gap, abs=0)
+            assert d == pytest.approx(d_ref, rel=1e-13, abs=0)
 
 
 @pytest.mark.parametrize(

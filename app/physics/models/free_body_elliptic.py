@@ -56,7 +56,7 @@ def complete_elliptic_k(*, m: float, mc: float) -> float:
 
 
 def _amplitude_agm(x: np.ndarray, *, m: float, mc: float) -> np.ndarray:
-    """am(x | m) by the descending AGM (Cephes' scheme); accurate to ~1e-16 absolute for m ≤ 1/2, |x| ≤ K."""
+    """am(x | m) by the descending AGM (Cephes' scheme); ~1e-16 absolute for m ≤ 1/2, |x| ≤ K."""
     a = [1.0]
     c = [math.sqrt(m)]
     b = math.sqrt(mc)
@@ -72,13 +72,14 @@ def _amplitude_agm(x: np.ndarray, *, m: float, mc: float) -> np.ndarray:
     return phi
 
 
-def _sn_cn_dn_half_period(y: np.ndarray, *, m: float, mc: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _sn_cn_dn(y: np.ndarray, *, m: float, mc: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """sn, cn, dn for 0 ≤ y ≤ K/2, each to full *relative* precision (there cn, dn ≥ mc^¼/√2).
 
     m ≤ 1/2: descending AGM for am, then dn = √(mc + m cn²). m > 1/2: the ascending Landen
     (Gauss) transformation, which moves the parameter towards 1 with complement
-    μc = ((1 − k)/(1 + k))⁴ (k = √m), repeated until μc < 1e-34 where sn, cn, dn are tanh,
-    sech, sech to rounding (the AGM loses ~√(1/mc^¼) of relative precision in cn, dn there).
+    μc = ((1 − k)/(1 + k))⁴ (k = √m) and halves y/K, repeated until μc < 1e-34, where sn, cn,
+    dn are tanh, sech, sech to within ~4√μc. No step cancels for y ≤ K/2. (Near m = 1 the AGM
+    itself loses relative precision in cn and dn: ~1e-9 at 1 − m = 1e-15.)
     """
     if m <= 0.5:
         ph = y if m == 0.0 else _amplitude_agm(y, m=m, mc=mc)
@@ -90,7 +91,7 @@ def _sn_cn_dn_half_period(y: np.ndarray, *, m: float, mc: float) -> tuple[np.nda
     k = math.sqrt(m)
     s1 = mc / (1.0 + k) ** 2  # √μ1 = (1 − k)/(1 + k), formed from mc without cancellation
     mu = 4.0 * k / (1.0 + k) ** 2
-    sn_v, cn_v, dn_v = _sn_cn_dn_half_period(y / (1.0 + s1), m=mu, mc=s1 * s1)
+    sn_v, cn_v, dn_v = _sn_cn_dn(y / (1.0 + s1), m=mu, mc=s1 * s1)
     dn_v2 = dn_v * dn_v
     return (
         (1.0 + s1) * sn_v * cn_v / dn_v,
@@ -102,20 +103,19 @@ def _sn_cn_dn_half_period(y: np.ndarray, *, m: float, mc: float) -> tuple[np.nda
 def jacobi_reduced(x: np.ndarray, *, m: float, mc: float, K: float) -> tuple[np.ndarray, ...]:
     """``(k, sn, cn, dn)`` of ``x_r`` where ``x = 2Kk + x_r``, ``|x_r| ≤ K`` (so ``cn ≥ 0``).
 
-    Then ``sn(x) = (−1)^k sn``, ``cn(x) = (−1)^k cn``, ``dn(x) = dn``. Within K/2 of ±K the
-    values come from ``y = K − |x_r|`` through ``sn(K − y) = cd y``, ``cn(K − y) = √mc sd y``,
-    ``dn(K − y) = √mc nd y``, so that every value keeps its *relative* precision where it is
-    small (near the separatrix ``cn`` and ``dn`` fall to ~√mc); ``mc = 1 − m`` is passed
-    separately and never formed as ``1 − m``. scipy's ``ellipj`` takes m alone and switches
-    to a first-order series for m > 1 − 1e-9.
+    Then ``sn(x) = (−1)^k sn``, ``cn(x) = (−1)^k cn``, ``dn(x) = dn``. ``mc = 1 − m`` is passed
+    separately and never formed as ``1 − m``; each value keeps its relative precision where it
+    is small (cn and dn near ±K fall to ~√mc near the separatrix). Beyond K/2 the values come
+    from ``y = K − |x_r|`` through ``sn(K − y) = cd y``, ``cn(K − y) = √mc sd y``,
+    ``dn(K − y) = √mc nd y``, so the kernel only sees 0 ≤ y ≤ K/2. scipy's ``ellipj`` takes
+    m alone and switches to a first-order series for m > 1 − 1e-9.
     """
     x = np.asarray(x, dtype=float)
     k = np.round(x / (2.0 * K))
     x_r = x - 2.0 * K * k
     ax = np.abs(x_r)
     near = ax > 0.5 * K
-    y = np.where(near, np.maximum(K - ax, 0.0), ax)
-    s, c, d = _sn_cn_dn_half_period(y, m=m, mc=mc)
+    s, c, d = _sn_cn_dn(np.where(near, np.maximum(K - ax, 0.0), ax), m=m, mc=mc)
     root_mc = math.sqrt(mc)
     sn = np.sign(x_r) * np.where(near, c / d, s)
     cn = np.where(near, root_mc * s / d, c)
@@ -123,17 +123,14 @@ def jacobi_reduced(x: np.ndarray, *, m: float, mc: float, K: float) -> tuple[np.
     return k, sn, cn, dn
 
 
-def elliptic_f_from_sn_cn(sn: float, cn: float, *, m: float, mc: float, K: float, dn2: float | None = None) -> float:
-    """The x in [−2K, 2K] with sn x = ``sn``, cn x = ``cn`` (i.e. F(φ | m) for φ in [−π, π]).
+def elliptic_f_from_sn_cn(sn: float, cn: float, *, m: float, mc: float, K: float) -> float:
+    """The x in [−2K, 2K] with sn x = ``sn`` and cn x = ``cn`` (F(φ | m) for φ in [−π, π]).
 
-    ``dn2`` (= 1 − m sn²) may be passed when known more accurately than ``mc + m cn²``.
     Carlson's R_F is well conditioned in *relative* perturbations of its arguments, so a
-    small ``cn`` or ``dn`` given to full relative precision gives x to full precision —
-    unlike going through φ = atan2(...), where dF/dφ = 1/dn amplifies the rounding of φ.
+    small ``cn`` given to full relative precision gives x to full precision — unlike going
+    through φ = atan2(sn, cn), where dF/dφ = 1/dn (up to 1/√mc) amplifies the rounding of φ.
     """
-    if dn2 is None:
-        dn2 = mc + m * cn * cn
-    part = sn * float(elliprf(cn * cn, dn2, 1.0))
+    part = sn * float(elliprf(cn * cn, mc + m * cn * cn, 1.0))
     if cn >= 0.0:
         return part
     return math.copysign(2.0 * K, sn) - part
@@ -225,27 +222,27 @@ def check_inertia(inertia: tuple[float, float, float] | np.ndarray) -> np.ndarra
 
 @dataclass(frozen=True)
 class _Working:
-    """Closed-form data on the working frame (other, middle, circled axis)."""
+    """Closed-form data on the working frame (other, middle, circled axis); internal."""
 
     kind: str  # "steady", "elliptic" or "separatrix"
     P: np.ndarray  # proper signed permutation: ω_work = P @ ω_user
-    J: np.ndarray  # moments on the working axes
-    amplitude: np.ndarray  # A1, A2, A3 (rad/s)
-    sign_circled: float  # σ = sign of ω3 (circled axis)
-    sign_other: float  # separatrix only: sign of ω1 (cn has no half-period shift to absorb it)
-    epsilon: float  # sign(J3 − J1)
-    m: float
-    mc: float
-    K: float
-    rate: float  # λ (1/s)
-    x0: float
-    n: float  # characteristic of the Φ integral (≤ 0)
-    q_world_L: np.ndarray  # attitude of the inertial frame whose Z is along L
-    q_work_from_user: np.ndarray  # quaternion of P
-    phi_at_x0: float  # Q(x0): the Φ integral's origin value
+    J: np.ndarray  # moments on the working axes (kg·m²)
+    amplitude: np.ndarray = field(default_factory=lambda: np.zeros(3))  # A1, A2, A3 (rad/s)
+    sign_circled: float = 1.0  # σ = sign of ω3 (the circled axis)
+    sign_other: float = 1.0  # separatrix only: sign of ω1 (no half-period shift of sech to absorb it)
+    epsilon: float = 1.0  # sign(J3 − J1)
+    m: float = 0.0
+    mc: float = 1.0
+    K: float = 0.5 * math.pi
+    rate: float = 0.0  # λ (1/s)
+    x0: float = 0.0
+    n: float = 0.0  # characteristic of the Φ integral (≤ 0)
+    q_world_L: np.ndarray = field(default_factory=lambda: np.array([1.0, 0.0, 0.0, 0.0]))  # inertial frame, Z along L
+    q_work_from_user: np.ndarray = field(default_factory=lambda: np.array([1.0, 0.0, 0.0, 0.0]))  # R(q) = P
+    phi_at_x0: float = 0.0  # Q(x0): origin of the Φ integral
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class FreeBodyElliptic:
     """Torque-free motion of a rigid body about its centre of mass, in closed form.
 
@@ -420,9 +417,7 @@ def free_body_elliptic(
         angular_momentum_world=L_world,
     )
     if steady:
-        P = np.eye(3)
-        w = _Working("steady", P, I.copy(), np.zeros(3), 1.0, 1.0, 1.0, 0.0, 1.0, math.inf, 0.0, 0.0, 0.0,
-                     q0, np.array([1.0, 0.0, 0.0, 0.0]), 0.0)
+        w = _Working("steady", np.eye(3), I.copy())
         return FreeBodyElliptic(**common, period_s=math.inf, circled_axis=None, intermediate_axis=i_mid, kind="steady", _w=w)
 
     d_mid = distance_from(i_mid)  # D − I_mid: the sign picks the circled axis; zero on the separatrix
@@ -438,7 +433,7 @@ def free_body_elliptic(
     A1 = math.sqrt(two_T * (-d3) / (J1 * (J3 - J1)))
     A2 = math.sqrt(two_T * (-d3) / (J2 * (J3 - J2)))
     A3 = math.sqrt(two_T * d1 / (J3 * (J3 - J1)))
-    m = (J2 - J1) * (-d3) / ((J3 - J2) * d1)
+    m = (J2 - J1) * (-d3) / ((J3 - J2) * d1) + 0.0  # + 0.0: no −0.0 for an axisymmetric body
     mc = (J3 - J1) * d_mid / ((J3 - J2) * d1)
     if kind == "separatrix":
         m, mc = 1.0, 0.0
@@ -453,14 +448,16 @@ def free_body_elliptic(
         period = math.inf
     else:
         sign_other = 1.0
-        # sn x0, cn x0, dn x0 straight from the data (relative precision kept for the small ones).
+        # sn x0 and cn x0 straight from the data (a small cn keeps its relative precision).
         sn0, cn0 = omega_w[1] / (epsilon * sigma * A2), omega_w[0] / A1
         norm = math.hypot(sn0, cn0)
-        x0 = elliptic_f_from_sn_cn(sn0 / norm, cn0 / norm, m=m, mc=mc, K=K, dn2=(omega_w[2] / A3) ** 2)
+        x0 = elliptic_f_from_sn_cn(sn0 / norm, cn0 / norm, m=m, mc=mc, K=K)
         period = 4.0 * K / rate
 
-    w = _Working(kind, P, J, np.array([A1, A2, A3]), sigma, sign_other, epsilon, m, mc, K, rate, x0, n,
-                 np.array([1.0, 0.0, 0.0, 0.0]), _quaternion_from_rotation_matrix(P), 0.0)
+    w = _Working(
+        kind, P, J, amplitude=np.array([A1, A2, A3]), sign_circled=sigma, sign_other=sign_other, epsilon=epsilon,
+        m=m, mc=mc, K=K, rate=rate, x0=x0, n=n, q_work_from_user=_quaternion_from_rotation_matrix(P),
+    )
     body = FreeBodyElliptic(**common, period_s=period, circled_axis=None if kind == "separatrix" else circled,
                             intermediate_axis=i_mid, kind=kind, _w=w)
     # Φ counts from t = 0; the inertial frame along L is q_world_L = q0 ⊗ p* ⊗ e(0)*, so that q(0) = q0.
