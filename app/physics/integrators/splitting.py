@@ -61,20 +61,27 @@ def _rotate_quaternion_body(q, axis_x, axis_y, axis_z, angle):
 
 
 @register_jitable
+def _asymmetric_flow(q, L, asym, duration):
+    """Exact flow of ``T_asym = asym·L2²/2``: L turns by −asym·L2·t about body 2, the body by +asym·L2·t."""
+    if asym == 0.0:
+        return
+    alpha = asym * L[1] * duration
+    ca = math.cos(alpha)
+    sa = math.sin(alpha)
+    l0 = L[0]
+    L[0] = ca * l0 - sa * L[2]
+    L[2] = sa * l0 + ca * L[2]
+    _rotate_quaternion_body(q, 0.0, 1.0, 0.0, alpha)
+
+
+@register_jitable
 def _strang_step(q, L, h, inv_I1, inv_I3, asym, torque, p, tau):
     """One symmetric step: kick(h/2) asym(h/2) axi(h) asym(h/2) kick(h/2)."""
     half = 0.5 * h
     torque(q, p, tau)
     for i in range(3):
         L[i] += half * tau[i]
-    if asym != 0.0:
-        alpha = asym * L[1] * half
-        ca = math.cos(alpha)
-        sa = math.sin(alpha)
-        l0 = L[0]
-        L[0] = ca * l0 - sa * L[2]
-        L[2] = sa * l0 + ca * L[2]
-        _rotate_quaternion_body(q, 0.0, 1.0, 0.0, alpha)
+    _asymmetric_flow(q, L, asym, half)
     # Exact axisymmetric free flow over h.
     norm_L = math.sqrt(L[0] * L[0] + L[1] * L[1] + L[2] * L[2])
     if norm_L > 0.0:
@@ -86,14 +93,7 @@ def _strang_step(q, L, h, inv_I1, inv_I3, asym, torque, p, tau):
     l0 = L[0]
     L[0] = cg * l0 + sg * L[1]
     L[1] = -sg * l0 + cg * L[1]
-    if asym != 0.0:
-        alpha = asym * L[1] * half
-        ca = math.cos(alpha)
-        sa = math.sin(alpha)
-        l0 = L[0]
-        L[0] = ca * l0 - sa * L[2]
-        L[2] = sa * l0 + ca * L[2]
-        _rotate_quaternion_body(q, 0.0, 1.0, 0.0, alpha)
+    _asymmetric_flow(q, L, asym, half)
     torque(q, p, tau)
     for i in range(3):
         L[i] += half * tau[i]
