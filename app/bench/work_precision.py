@@ -100,7 +100,7 @@ def heavy_top_case() -> Case:
     return Case(
         id="heavy-top", scene_id="heavy-top", title="Heavy symmetric top, 10 s (scene defaults)", body=body, y0=y0,
         t_end_s=10.0, frame_rate_hz=60.0, error_measure="largest symmetry-axis angle error over all frames",
-        reference_name="quadrature solution (elliptic functions for θ, Gauss–Legendre for φ and ψ)",
+        reference_name="quadrature solution (Jacobi elliptic functions for θ, elliptic integrals of the third kind for φ and ψ)",
         reference_quaternion=reference, error_kind="axis",
     )
 
