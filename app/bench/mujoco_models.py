@@ -37,6 +37,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from app.physics.models.rigid_body import check_principal_inertia
+
 #: Our names for MuJoCo's integrators (``mjtIntegrator``). "Euler" is MuJoCo's
 #: semi-implicit Euler; "implicitfast" drops the Coriolis terms from the
 #: implicit velocity derivative, "implicit" keeps them.
@@ -98,11 +100,7 @@ def rigid_body_mjcf(
     i1, i2, i3 = (float(v) for v in inertia_pivot)
     shift = mass_kg * cg_distance_m * cg_distance_m
     cm = (i1 - shift, i2 - shift, i3)
-    if min(cm) <= 0.0:
-        raise ValueError(f"moments about the centre of mass must be positive, got {cm}")
-    a, b, c = sorted(cm)
-    if a + b < c * (1.0 - 1e-12):
-        raise ValueError(f"moments about the centre of mass {cm} violate the triangle inequality")
+    check_principal_inertia(cm, about="the centre of mass")
     return f"""<mujoco model="rigid_body_fixed_point">
   <compiler angle="radian" inertiafromgeom="false" autolimits="false"/>
   <option timestep="{_fmt(timestep_s)}" integrator="{integrator}" gravity="0 0 {_fmt(-g_m_s2)}">

@@ -33,7 +33,7 @@ def check_principal_inertia(inertia_kg_m2: tuple[float, float, float], *, about:
     names = ("I1", "I2", "I3")
     for name, value in zip(names, inertia_kg_m2):
         if not math.isfinite(value) or value <= 0.0:
-            raise ValueError(f"{name} must be a finite positive moment of inertia in kg·m² (got {value!r})")
+            raise ValueError(f"{name} must be a finite positive moment of inertia about {about}, in kg·m² (got {value!r})")
     for i in range(3):
         j, k = (i + 1) % 3, (i + 2) % 3
         slack = inertia_kg_m2[j] + inertia_kg_m2[k] - inertia_kg_m2[i]
