@@ -6,6 +6,7 @@ from fastapi import APIRouter, HTTPException
 from pydantic import BaseModel, ConfigDict, Field
 
 from app.api.deps import SceneHostDep
+from app.physics.closed_form import ClosedFormModel, evaluate_model
 from app.physics.parameters import ParameterError, ParameterSet
 from app.physics.simulation import simulate_model
 from app.scenes.host import UnknownSceneError
@@ -66,12 +67,16 @@ def simulate_scene(scene_id: str, request: SimulateRequest, host: SceneHostDep) 
     if model_cls is None:
         raise HTTPException(
             status_code=422,
-            detail=[{"loc": ["path", "scene_id"], "msg": f"scene {scene_id!r} is not integrated in time: nothing to simulate", "type": "value_error"}],
+            detail=[{"loc": ["path", "scene_id"], "msg": f"scene {scene_id!r} has no motion in time: nothing to simulate", "type": "value_error"}],
         )
     try:
         params = model_cls.parameters.validate(request.params)
     except ParameterError as exc:
         raise _unprocessable(["body", "params", exc.field], str(exc)) from None
+    except ValueError as exc:  # a combination of values that cannot exist together
+        raise _unprocessable(["body", "params"], str(exc)) from None
+    if issubclass(model_cls, ClosedFormModel):
+        return _closed_form_report(model_cls, params, request)
     raw_controls = {k: v for k, v in (("method", request.method), ("steps_per_frame", request.steps_per_frame), ("rtol", request.rtol)) if v is not None}
     try:
         controls = ParameterSet(model_cls.controls()).validate(raw_controls)
@@ -79,6 +84,21 @@ def simulate_scene(scene_id: str, request: SimulateRequest, host: SceneHostDep) 
     except ParameterError as exc:
         raise _unprocessable(["body", exc.field], str(exc)) from None
     out = report.as_dict()
+    out["params"] = params
+    out["units"] = {"t": "s", **model_cls.series_units, **{f"invariants.{k}": v for k, v in model_cls.invariant_units.items()}}
+    return out
+
+
+def _closed_form_report(model_cls: type[ClosedFormModel], params: dict[str, Any], request: SimulateRequest) -> dict[str, Any]:
+    for name in ("method", "steps_per_frame", "rtol"):
+        if getattr(request, name) not in (None, "auto", "closed-form", 0):
+            raise _unprocessable(["body", name], "this scene's motion is a closed form in time: there is no integrator to control")
+    try:
+        out = evaluate_model(model_cls(), params, t_end_s=request.t_end, frame_rate_hz=request.frame_rate)
+    except ParameterError as exc:
+        raise _unprocessable(["body", exc.field], str(exc)) from None
+    except ValueError as exc:  # the formula has no solution for these values (e.g. a linkage that cannot assemble)
+        raise _unprocessable(["body", "params"], str(exc)) from None
     out["params"] = params
     out["units"] = {"t": "s", **model_cls.series_units, **{f"invariants.{k}": v for k, v in model_cls.invariant_units.items()}}
     return out

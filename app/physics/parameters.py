@@ -30,9 +30,13 @@ class ParameterError(ValueError):
 class Parameter:
     """One physical input.
 
-    ``kind`` is ``"float"`` (a finite number in ``[min, max]``), ``"int"`` or
-    ``"choice"`` (one of ``choices``). ``scale`` is a hint for controls:
-    ``"log"`` means a slider should move in log10 of the value.
+    ``kind`` is ``"float"`` (a finite number in ``[min, max]``), ``"int"``,
+    ``"choice"`` (one of ``choices``), ``"vector"`` (``length`` finite numbers,
+    each in ``[min, max]``; e.g. body-frame components ``[x, y, z]``) or
+    ``"text"`` (a string of at most ``max_length`` characters, checked by
+    ``parse``, which raises ``ValueError`` with a student-readable reason and
+    never evaluates the text). ``scale`` is a hint for controls: ``"log"``
+    means a slider should move in log10 of the value.
     """
 
     name: str
@@ -42,15 +46,26 @@ class Parameter:
     max: float | None = None
     description: str = ""
     label: str = ""
-    kind: Literal["float", "int", "choice"] = "float"
+    kind: Literal["float", "int", "choice", "vector", "text"] = "float"
     choices: tuple[str, ...] = ()
     scale: Literal["linear", "log"] = "linear"
     step: float | None = None
+    length: int = 3
+    max_length: int = 200
+    parse: Callable[[str], Any] | None = field(default=None, compare=False, repr=False)
 
     def __post_init__(self) -> None:
         if self.kind == "choice":
             if self.default not in self.choices:
                 raise ValueError(f"{self.name}: default {self.default!r} not in choices")
+        elif self.kind == "text":
+            if not isinstance(self.default, str) or len(self.default) > self.max_length:
+                raise ValueError(f"{self.name}: default must be a string of at most max_length characters")
+        elif self.kind == "vector":
+            if self.min is None or self.max is None or len(self.default) != self.length:
+                raise ValueError(f"{self.name}: a vector needs min, max and a default of length {self.length}")
+            if not all(self.min <= float(v) <= self.max for v in self.default):
+                raise ValueError(f"{self.name}: default components must lie in [min, max]")
         else:
             if self.min is None or self.max is None or not self.min <= self.default <= self.max:
                 raise ValueError(f"{self.name}: default must lie in [min, max]")
@@ -60,6 +75,8 @@ class Parameter:
     def range_text(self) -> str:
         if self.kind == "choice":
             return "one of " + ", ".join(repr(c) for c in self.choices)
+        if self.kind == "text":
+            return f"text of at most {self.max_length} characters"
         unit = f" {self.unit}" if self.unit else ""
         return f"between {self.min:g} and {self.max:g}{unit}"
 
@@ -69,6 +86,10 @@ class Parameter:
             if not isinstance(value, str) or value not in self.choices:
                 raise ParameterError(self.name, f"must be {self.range_text()}")
             return value
+        if self.kind == "text":
+            return self._validate_text(value)
+        if self.kind == "vector":
+            return self._validate_vector(value)
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             raise ParameterError(self.name, f"must be a number {self.range_text()}")
         if not math.isfinite(value):
@@ -84,6 +105,31 @@ class Parameter:
             raise ParameterError(self.name, f"must be {self.range_text()} (got {value:g})")
         return value
 
+    def _validate_text(self, value: Any) -> str:
+        if not isinstance(value, str):
+            raise ParameterError(self.name, "must be text")
+        if len(value) > self.max_length:
+            raise ParameterError(self.name, f"is {len(value)} characters long; the limit is {self.max_length}")
+        if self.parse is not None:
+            try:
+                self.parse(value)
+            except ValueError as exc:
+                raise ParameterError(self.name, str(exc)) from None
+        return value
+
+    def _validate_vector(self, value: Any) -> list[float]:
+        if not isinstance(value, (list, tuple)) or len(value) != self.length:
+            raise ParameterError(self.name, f"must be a list of {self.length} numbers, each {self.range_text()}")
+        out = []
+        for index, component in enumerate(value):
+            if isinstance(component, bool) or not isinstance(component, (int, float)) or not math.isfinite(component):
+                raise ParameterError(self.name, f"component {index} must be a finite number (got {component!r})")
+            assert self.min is not None and self.max is not None
+            if not self.min <= component <= self.max:
+                raise ParameterError(self.name, f"component {index} must be {self.range_text()} (got {component:g})")
+            out.append(float(component))
+        return out
+
     def schema(self) -> dict[str, Any]:
         """JSON description used by the API and by the page that draws controls."""
         out: dict[str, Any] = {
@@ -96,7 +142,11 @@ class Parameter:
         }
         if self.kind == "choice":
             out["choices"] = list(self.choices)
+        elif self.kind == "text":
+            out["max_length"] = self.max_length
         else:
+            if self.kind == "vector":
+                out["length"] = self.length
             out.update(min=self.min, max=self.max, scale=self.scale)
             if self.step is not None:
                 out["step"] = self.step
@@ -120,7 +170,7 @@ class ParameterSet:
         object.__setattr__(self, "by_name", {p.name: p for p in self.parameters})
 
     def defaults(self) -> dict[str, Any]:
-        return {p.name: p.default for p in self.parameters}
+        return {p.name: list(p.default) if p.kind == "vector" else p.default for p in self.parameters}
 
     def validate(self, raw: Mapping[str, Any] | None, *, base: Mapping[str, Any] | None = None) -> dict[str, Any]:
         """Validate ``raw`` and fill the rest from ``base`` (default: the defaults).

@@ -18,6 +18,7 @@ import viser
 from viser._viser import InitialCameraConfig
 
 from app.physics.parameters import ParameterSet
+from app.physics.simulation import IntegratedModel
 
 
 class Scene(ABC):
@@ -58,7 +59,9 @@ class Scene(ABC):
             "chapter": cls.chapter,
             "animated": cls.animated,
             # Integrated scenes publish live invariants at /api/scenes/{id}/sessions/{sid}/live.
-            "integrated": getattr(cls, "model", None) is not None,
+            "integrated": issubclass(getattr(cls, "model", type(None)), IntegratedModel),
+            # Scenes with live numbers (readouts, marks on controls) for the lesson page.
+            "readout": cls.readout is not Scene.readout,
             "parameters": cls.parameters.schema(),
         }
 
@@ -88,6 +91,17 @@ class Scene(ABC):
 
     def advance(self, dt_s: float) -> None:
         """Advance the animation by ``dt_s`` seconds of wall-clock time."""
+
+    def readout(self) -> dict[str, Any] | None:
+        """Numbers a student reads beside the scene, polled by the lesson page.
+
+        ``{"quantities": [{"name", "label", "value", "unit"}, ...],
+        "marks": {parameter_name: [{"value", "label"}, ...]}, "message": str}``:
+        ``name`` is a stable id (tests and pages find values by it), ``value`` a
+        finite number or a short string, ``marks`` put a labelled tick on a
+        control's slider (e.g. the sleeping-top threshold on the spin control).
+        """
+        return None
 
     def close(self) -> None:
         """Remove everything this scene added (the client may still be connected)."""

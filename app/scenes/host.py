@@ -151,12 +151,20 @@ class SceneHost:
             return [] if session is None else list(session.instances.values())
 
     def live_readout(self, scene_id: str, session_id: str) -> dict[str, Any] | None:
-        """Live numbers from the session's first viewer of an integrated scene (None if none)."""
+        """Live numbers from the session's first viewer of the scene (None if none is connected).
+
+        Integrated scenes add their integration readout (method, invariants,
+        drift); every scene adds its own ``readout`` when it has one.
+        """
         with self._lock:
             session = self._sessions.get(session_id)
             for scene in [] if session is None else session.instances.values():
-                if scene.id == scene_id and hasattr(scene, "live_readout"):
-                    return scene.live_readout()
+                if scene.id == scene_id:
+                    out: dict[str, Any] = scene.live_readout() if hasattr(scene, "live_readout") else {}
+                    readout = scene.readout()
+                    if readout is not None:
+                        out["readout"] = readout
+                    return out
         return None
 
     def viewer_count(self, session_id: str | None = None) -> int:

@@ -60,7 +60,47 @@
       row.appendChild(select);
       row.appendChild(document.createElement("span"));
       widgets[spec.name] = { set: (v) => { select.value = v; } };
+    } else if (spec.kind === "text") {
+      // Typed text (e.g. a curve x(t)): sent on Enter or when the box loses focus; the server parses it.
+      row.classList.add("wide");
+      const input = document.createElement("input");
+      input.type = "text";
+      input.id = id;
+      input.maxLength = spec.max_length;
+      input.spellcheck = false;
+      input.autocomplete = "off";
+      input.value = session.values[spec.name];
+      input.addEventListener("change", () => { session.values[spec.name] = input.value; schedule(); });
+      row.appendChild(input);
+      widgets[spec.name] = { set: (v) => { input.value = v; } };
+    } else if (spec.kind === "vector") {
+      // A vector: one number box per component, e.g. [x, y, z] in the body frame.
+      row.classList.add("wide");
+      const boxes = document.createElement("span");
+      boxes.className = "vector";
+      const inputs = [];
+      for (let i = 0; i < spec.length; i++) {
+        const number = document.createElement("input");
+        number.type = "number";
+        number.id = i === 0 ? id : `${id}-${i}`;
+        number.min = spec.min; number.max = spec.max; number.step = "any";
+        number.setAttribute("aria-label", `${spec.label} component ${"xyz"[i] || i}`);
+        number.addEventListener("change", () => {
+          const v = inputs.map((box) => Number(box.value));
+          if (inputs.some((box) => box.value === "") || !v.every(Number.isFinite)) { showError(spec.name, `${spec.label} needs ${spec.length} numbers`); return; }
+          session.values[spec.name] = v;
+          schedule();
+        });
+        inputs.push(number);
+        boxes.appendChild(number);
+      }
+      const set = (v) => { inputs.forEach((box, i) => { box.value = v[i]; }); };
+      set(session.values[spec.name]);
+      row.appendChild(boxes);
+      widgets[spec.name] = { set };
     } else {
+      const slot = document.createElement("span");
+      slot.className = "slider";
       const range = document.createElement("input");
       range.type = "range";
       range.min = toSlider(spec, spec.min);
@@ -87,14 +127,15 @@
         session.values[spec.name] = v;
         schedule();
       });
-      row.appendChild(range);
+      slot.appendChild(range);
+      row.appendChild(slot);
       row.appendChild(number);
-      widgets[spec.name] = { set };
+      widgets[spec.name] = { set, slot };
     }
     const desc = document.createElement("div");
     desc.className = "desc";
     desc.id = `${id}-desc`;
-    desc.textContent = spec.kind === "choice" ? spec.description : `${spec.description} (${spec.min} to ${spec.max} ${spec.unit})`;
+    desc.textContent = spec.kind === "choice" || spec.kind === "text" ? spec.description : `${spec.description} (${spec.min} to ${spec.max} ${spec.unit})`;
     row.appendChild(desc);
     list.appendChild(row);
   }
@@ -217,14 +258,56 @@
     running = false;
   }
 
-  // ---- live readout of integrated scenes: method, invariants, drift -----------------
+  // ---- live readout: the scene's own quantities, marks on controls, integration ------
   const live = document.getElementById("live");
+  const readoutBox = document.getElementById("readout");
   async function pollLive() {
     try {
       const response = await fetch(`/api/scenes/${scene.id}/sessions/${session.id}/live`);
-      if (response.ok) renderLive(await response.json());
+      if (response.ok) {
+        const data = await response.json();
+        if (data.readout) renderReadout(data.readout);
+        if (scene.integrated && data.invariants) renderLive(data);
+      }
     } catch (e) { /* the next poll retries */ }
     setTimeout(pollLive, document.hidden ? 3000 : 1000);
+  }
+  function renderReadout(readout) {
+    readoutBox.hidden = false;
+    const rows = (readout.quantities || []).map((item) => {
+      const tr = document.createElement("tr");
+      tr.innerHTML = "<td class='sym'></td><td class='val'></td><td class='unit'></td>";
+      tr.children[0].textContent = item.label;
+      tr.children[1].textContent = fmt(item.value);
+      tr.children[1].dataset.quantity = item.name;
+      tr.children[1].dataset.value = JSON.stringify(item.value);
+      tr.children[2].textContent = item.unit || "";
+      return tr;
+    });
+    readoutBox.querySelector("tbody").replaceChildren(...rows);
+    const message = readoutBox.querySelector(".readout-message");
+    message.textContent = readout.message || "";
+    message.hidden = !readout.message;
+    // Marks: a labelled tick on a slider at a value that depends on the other controls.
+    for (const [name, spec] of Object.entries(widgets)) {
+      if (!spec.slot) continue;
+      spec.slot.querySelectorAll(".mark").forEach((el) => el.remove());
+      const control = specs.find((s) => s.name === name);
+      for (const mark of (readout.marks || {})[name] || []) {
+        const lo = toSlider(control, control.min), hi = toSlider(control, control.max);
+        const x = (toSlider(control, mark.value) - lo) / (hi - lo);
+        const tick = document.createElement("span");
+        tick.className = "mark";
+        tick.dataset.mark = mark.label;
+        tick.dataset.value = String(mark.value);
+        tick.title = `${mark.label}: ${fmt(mark.value)} ${control.unit}`;
+        tick.hidden = !(x >= 0 && x <= 1);
+        tick.style.left = `${(100 * Math.min(Math.max(x, 0), 1)).toFixed(2)}%`;
+        tick.innerHTML = "<span></span>";
+        tick.firstChild.textContent = mark.label;
+        spec.slot.appendChild(tick);
+      }
+    }
   }
   function renderLive(data) {
     live.hidden = false;
@@ -257,7 +340,7 @@
   }
 
   function startViewer() {
-    if (scene.integrated) setTimeout(pollLive, 1500);
+    if (scene.integrated || scene.readout) setTimeout(pollLive, 1000);
     viewerStarted = true;
     const wrap = document.getElementById("viewer-wrap");
     wrap.hidden = false;
