@@ -8,6 +8,14 @@ from app.scenes.projectile_drag import ProjectileDragScene
 from app.scenes.radar_tracking import RadarTrackingScene
 from app.scenes.robot_arm_cable import RobotArmCableScene
 
-SCENES: dict[str, type[Scene]] = {cls.id: cls for cls in (RobotArmCableScene, RadarTrackingScene, ProjectileDragScene, HeavyTopScene)}
+SCENES: dict[str, type[Scene]] = {
+    cls.id: cls
+    for cls in (
+        RobotArmCableScene,
+        RadarTrackingScene,
+        ProjectileDragScene,
+        HeavyTopScene,
+    )
+}
 
 __all__ = ["SCENES", "Scene"]
