@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from abc import ABC, abstractmethod
 from collections.abc import Mapping
+from dataclasses import dataclass
 from typing import Any, ClassVar
 
 import numpy as np
@@ -19,6 +20,23 @@ from viser._viser import InitialCameraConfig
 
 from app.physics.parameters import ParameterSet
 from app.physics.simulation import IntegratedModel
+
+
+@dataclass(frozen=True)
+class Preset:
+    """A named set of parameter values the lesson page offers as one button.
+
+    ``values`` must validate against the scene's parameters (a test checks every
+    preset); controls not named keep their current values.
+    """
+
+    name: str
+    label: str
+    values: Mapping[str, Any]
+    description: str = ""
+
+    def schema(self) -> dict[str, Any]:
+        return {"name": self.name, "label": self.label, "values": dict(self.values), "description": self.description}
 
 
 class Scene(ABC):
@@ -33,6 +51,8 @@ class Scene(ABC):
     chapter: ClassVar[int]
     parameters: ClassVar[ParameterSet]
     animated: ClassVar[bool] = False
+    #: Buttons on the lesson page that set several controls at once.
+    presets: ClassVar[tuple[Preset, ...]] = ()
     #: Initial camera (m, world frame, +Z up).
     camera_position: ClassVar[tuple[float, float, float]] = (4.0, -6.0, 4.0)
     camera_look_at: ClassVar[tuple[float, float, float]] = (0.0, 0.0, 0.0)
@@ -63,6 +83,7 @@ class Scene(ABC):
             # Scenes with live numbers (readouts, marks on controls) for the lesson page.
             "readout": cls.readout is not Scene.readout,
             "parameters": cls.parameters.schema(),
+            "presets": [preset.schema() for preset in cls.presets],
         }
 
     @abstractmethod

@@ -139,6 +139,30 @@
     row.appendChild(desc);
     list.appendChild(row);
   }
+  // Presets: one button sets several controls (e.g. a helix, the tennis-racket body).
+  if (scene && scene.presets && scene.presets.length) {
+    const bar = document.createElement("div");
+    bar.className = "presets";
+    bar.setAttribute("role", "group");
+    bar.setAttribute("aria-label", "Presets");
+    const title = document.createElement("span");
+    title.textContent = "Presets:";
+    bar.appendChild(title);
+    for (const preset of scene.presets) {
+      const button = document.createElement("button");
+      button.type = "button";
+      button.dataset.preset = preset.name;
+      button.textContent = preset.label;
+      button.title = preset.description || preset.label;
+      button.addEventListener("click", () => {
+        Object.assign(session.values, preset.values);
+        for (const name of Object.keys(preset.values)) if (widgets[name]) widgets[name].set(preset.values[name]);
+        schedule();
+      });
+      bar.appendChild(button);
+    }
+    list.before(bar);
+  }
   form.hidden = specs.length === 0;
   document.getElementById("reset").addEventListener("click", () => {
     session.values = { ...defaults };
