@@ -88,14 +88,7 @@ def heavy_top_case() -> Case:
     y0 = heavy_top.initial_state(params)
 
     def reference(t: np.ndarray) -> np.ndarray:
-        from app.physics.models.heavy_top_quadrature import heavy_top_quadrature
-
-        solution = heavy_top_quadrature(
-            I_transverse=params["I_transverse_pivot"], I_axial=params["I_axial"], mgl=body.gravity_moment_N_m,
-            spin_rad_s=params["spin_rad_s"], theta0_rad=math.radians(params["theta0_deg"]),
-            phi_dot0=params["precession_rate0_rad_s"], theta_dot0=params["nutation_rate0_rad_s"],
-        )
-        return solution.quaternion(t)
+        return heavy_top.quadrature(params).quaternion(t)
 
     return Case(
         id="heavy-top", scene_id="heavy-top", title="Heavy symmetric top, 10 s (scene defaults)", body=body, y0=y0,

@@ -2,9 +2,9 @@
 
 from __future__ import annotations
 
-from app.physics import projectile, radar_tracking, robot_arm_cable
+from app.physics import equinox_precession, projectile, radar_tracking, robot_arm_cable
 from app.physics.solution import WorkedExample
 
 EXAMPLES: dict[str, WorkedExample] = {
-    example.id: example for example in (robot_arm_cable.EXAMPLE, radar_tracking.EXAMPLE, projectile.EXAMPLE)
+    example.id: example for example in (robot_arm_cable.EXAMPLE, radar_tracking.EXAMPLE, projectile.EXAMPLE, equinox_precession.EXAMPLE)
 }

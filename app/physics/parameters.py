@@ -36,7 +36,9 @@ class Parameter:
     ``"text"`` (a string of at most ``max_length`` characters, checked by
     ``parse``, which raises ``ValueError`` with a student-readable reason and
     never evaluates the text). ``scale`` is a hint for controls: ``"log"``
-    means a slider should move in log10 of the value.
+    means a slider should move in log10 of the value, ``"symlog"`` in
+    sign(v)·log10(1 + |v|) (for ranges that span zero and several decades,
+    such as a spin that may be −2000 to 2000 rad/s but is usually tens).
     """
 
     name: str
@@ -48,7 +50,7 @@ class Parameter:
     label: str = ""
     kind: Literal["float", "int", "choice", "vector", "text"] = "float"
     choices: tuple[str, ...] = ()
-    scale: Literal["linear", "log"] = "linear"
+    scale: Literal["linear", "log", "symlog"] = "linear"
     step: float | None = None
     length: int = 3
     max_length: int = 200

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from app.scenes.base import Scene
+from app.scenes.equinox_precession import EquinoxPrecessionScene
 from app.scenes.heavy_top import HeavyTopScene
 from app.scenes.projectile_drag import ProjectileDragScene
 from app.scenes.radar_tracking import RadarTrackingScene
@@ -15,6 +16,7 @@ SCENES: dict[str, type[Scene]] = {
         RadarTrackingScene,
         ProjectileDragScene,
         HeavyTopScene,
+        EquinoxPrecessionScene,
     )
 }
 

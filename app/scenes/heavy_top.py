@@ -5,6 +5,11 @@ display unit long whatever ``cg_distance_m`` is, so tops of every size fill the
 view. Arrows: angular momentum about the pivot (blue) and the gravity torque
 (red), each scaled to its own maximum. The tip of the symmetry axis leaves a
 trail on the unit sphere (its locus: waves, loops or cusps).
+
+The quadrature solution is drawn alongside the integration: two green rings on
+the sphere bound the nutation band (θ_min, θ_max from the cubic in cos θ) and a
+small white sphere marks where the quadrature puts the axis tip now; the
+readout compares the band the integration has swept with the predicted one.
 """
 
 from __future__ import annotations
@@ -15,7 +20,7 @@ import numpy as np
 
 from app.physics.models import heavy_top as physics
 from app.physics.rotations import rotate_vector
-from app.scenes.base import arrow_segments
+from app.scenes.base import arrow_segments, circle_segments
 from app.scenes.integrated import IntegratedScene, scene_parameters
 
 AXIS_LENGTH = 1.0  # display units from pivot to the tip of the axis
@@ -85,7 +90,11 @@ class HeavyTopScene(IntegratedScene):
             scene.add_label("/vectors/L", "L (angular momentum)", anchor="center-left"),
             scene.add_label("/vectors/tau", "τ (gravity torque)", anchor="center-left"),
         ]
-        self.readout = scene.add_label("/readout", "", position=(-0.6, 0.0, 1.25), anchor="bottom-left")
+        self.readout_label = scene.add_label("/readout", "", position=(-0.6, 0.0, 1.25), anchor="bottom-left")
+        self.band_rings = scene.add_line_segments(
+            "/nutation_band", np.zeros((1, 2, 3), np.float32), (40, 160, 80), thickness=2.5, thickness_units="screen"
+        )
+        self.reference_tip = scene.add_icosphere("/reference_tip", radius=0.022, color=(250, 250, 250))
         self._trail_nodes: list = []
         self._trail_points: list[np.ndarray] = []
         self._trail_serial = 0
@@ -108,7 +117,26 @@ class HeavyTopScene(IntegratedScene):
         self._momentum_scale = 0.8 / max(float(np.linalg.norm(body.angular_momentum_world(self.run.y))), 1e-12)
         self._torque_scale = 0.6 / max(body.gravity_moment_N_m, 1e-12)
         self._body_model = body
+        self._update_reference(params)
         self._draw()
+
+    def _update_reference(self, params) -> None:
+        """Quadrature solution for these parameters: nutation band rings and the reference tip."""
+        try:
+            self.reference = physics.quadrature(params)
+            self.reference_message = ""
+        except ValueError as exc:
+            self.reference = None
+            self.reference_message = f"No quadrature reference for these values: {exc}"
+        self._theta_swept = [math.inf, -math.inf]
+        rings = []
+        if self.reference is not None:
+            for theta in {self.reference.theta_min_rad, self.reference.theta_max_rad}:
+                height = AXIS_LENGTH * 1.004 * math.cos(theta)
+                rings.append(circle_segments(radius=AXIS_LENGTH * 1.004 * math.sin(theta), center=(0.0, 0.0, height)))
+        self.band_rings.points = np.concatenate(rings).astype(np.float32) if rings else np.zeros((1, 2, 3), np.float32)
+        self.band_rings.visible = bool(rings)
+        self.reference_tip.visible = self.reference is not None
 
     def _clear_trail(self) -> None:
         for node in self._trail_nodes:
@@ -128,9 +156,12 @@ class HeavyTopScene(IntegratedScene):
         for label, vector in zip(self.arrow_labels, vectors):
             label.position = tuple(vector * 1.05)
         self._extend_trail(axis * AXIS_LENGTH)
-        theta = math.degrees(math.acos(max(-1.0, min(1.0, axis[2]))))
+        theta_rad = math.acos(max(-1.0, min(1.0, axis[2])))
+        self._theta_swept = [min(self._theta_swept[0], theta_rad), max(self._theta_swept[1], theta_rad)]
+        if self.reference is not None:
+            self.reference_tip.position = tuple(self.reference.symmetry_axis(np.array([self.run.t_s]))[0] * AXIS_LENGTH)
         drift = max(self.current_drift().values(), default=0.0)
-        self.readout.text = f"t = {self.run.t_s:6.2f} s   θ = {theta:5.2f}°   largest drift {drift:.1e}"
+        self.readout_label.text = f"t = {self.run.t_s:6.2f} s   θ = {math.degrees(theta_rad):5.2f}°   largest drift {drift:.1e}"
 
     def _extend_trail(self, tip: np.ndarray) -> None:
         self._trail_points.append(tip.astype(np.float32))
@@ -151,4 +182,38 @@ class HeavyTopScene(IntegratedScene):
         if self.step_physics():
             self._draw()
         else:
-            self.readout.text = self.status
+            self.readout_label.text = self.status
+
+    def readout(self) -> dict:
+        """Quadrature predictions beside what the integration has done so far; the sleeping threshold mark."""
+        params = self.physical_params()
+        critical = physics.critical_spin_rad_s(params)
+        quantities = []
+        reference = self.reference
+        if reference is not None:
+            quantities += [
+                {"name": "theta_min_deg", "label": "nutation band: θ min (quadrature)", "value": math.degrees(reference.theta_min_rad), "unit": "deg"},
+                {"name": "theta_max_deg", "label": "nutation band: θ max (quadrature)", "value": math.degrees(reference.theta_max_rad), "unit": "deg"},
+                {"name": "nutation_period_s", "label": "nutation period (quadrature)", "value": _finite_or_text(reference.nutation_period_s), "unit": "s"},
+                {"name": "mean_precession_rate_rad_s", "label": "mean precession rate (quadrature)", "value": reference.mean_precession_rate_rad_s, "unit": "rad/s"},
+                {"name": "locus", "label": "axis locus", "value": physics.locus_shape(reference), "unit": ""},
+            ]
+        if self._theta_swept[0] <= self._theta_swept[1]:
+            quantities += [
+                {"name": "theta_min_swept_deg", "label": "θ min swept so far (integration)", "value": math.degrees(self._theta_swept[0]), "unit": "deg"},
+                {"name": "theta_max_swept_deg", "label": "θ max swept so far (integration)", "value": math.degrees(self._theta_swept[1]), "unit": "deg"},
+            ]
+        quantities.append({"name": "critical_spin_rad_s", "label": "sleeping threshold |ω₃|", "value": critical, "unit": "rad/s"})
+        spin = abs(params["spin_rad_s"])
+        message = self.reference_message or (
+            f"|ω₃| = {spin:.4g} rad/s is above the sleeping threshold {critical:.4g} rad/s: started upright, this top would stay up."
+            if spin > critical
+            else f"|ω₃| = {spin:.4g} rad/s is below the sleeping threshold {critical:.4g} rad/s: an upright start is unstable."
+        )
+        marks = {"spin_rad_s": [{"value": critical, "label": "sleeping threshold"}, {"value": -critical, "label": "sleeping threshold"}]}
+        return {"quantities": quantities, "marks": marks, "message": message}
+
+
+def _finite_or_text(value: float) -> float | str:
+    """A JSON-safe readout value: infinite periods (an upright top that never returns) as text."""
+    return value if math.isfinite(value) else "never returns"

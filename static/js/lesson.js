@@ -39,8 +39,16 @@
   const errorBox = document.getElementById("control-error");
   const widgets = {};
 
-  function toSlider(spec, v) { return spec.scale === "log" ? Math.log10(v) : v; }
-  function fromSlider(spec, x) { return spec.scale === "log" ? +Math.pow(10, x).toPrecision(6) : +x; }
+  function toSlider(spec, v) {
+    if (spec.scale === "log") return Math.log10(v);
+    if (spec.scale === "symlog") return Math.sign(v) * Math.log10(1 + Math.abs(v));
+    return v;
+  }
+  function fromSlider(spec, x) {
+    if (spec.scale === "log") return +Math.pow(10, x).toPrecision(6);
+    if (spec.scale === "symlog") return +(Math.sign(x) * (Math.pow(10, Math.abs(x)) - 1)).toPrecision(4);
+    return +x;
+  }
 
   for (const spec of specs) {
     const row = document.createElement("div");
@@ -105,7 +113,7 @@
       range.type = "range";
       range.min = toSlider(spec, spec.min);
       range.max = toSlider(spec, spec.max);
-      range.step = spec.scale === "log" ? 0.05 : (spec.step || (spec.max - spec.min) / 200);
+      range.step = spec.scale === "log" ? 0.05 : spec.scale === "symlog" ? 0.01 : (spec.step || (spec.max - spec.min) / 200);
       range.setAttribute("aria-label", `${spec.label} slider`);
       range.setAttribute("aria-describedby", `${id}-desc`);
       const number = document.createElement("input");
@@ -317,7 +325,10 @@
       if (!spec.slot) continue;
       spec.slot.querySelectorAll(".mark").forEach((el) => el.remove());
       const control = specs.find((s) => s.name === name);
-      for (const mark of (readout.marks || {})[name] || []) {
+      const marks = (readout.marks || {})[name] || [];
+      spec.slot.closest(".control").classList.toggle("has-mark", marks.length > 0);
+      let lastLabelled = -1e9;
+      for (const mark of marks) {
         const lo = toSlider(control, control.min), hi = toSlider(control, control.max);
         const x = (toSlider(control, mark.value) - lo) / (hi - lo);
         const tick = document.createElement("span");
@@ -328,7 +339,7 @@
         tick.hidden = !(x >= 0 && x <= 1);
         tick.style.left = `${(100 * Math.min(Math.max(x, 0), 1)).toFixed(2)}%`;
         tick.innerHTML = "<span></span>";
-        tick.firstChild.textContent = mark.label;
+        if (Math.abs(x - lastLabelled) > 0.04) { tick.firstChild.textContent = mark.label; lastLabelled = x; }
         spec.slot.appendChild(tick);
       }
     }

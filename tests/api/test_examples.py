@@ -26,9 +26,9 @@ def test_list_examples(client):
     response = client.get("/api/examples")
     assert response.status_code == 200
     listed = response.json()
-    assert [e["id"] for e in listed] == ["1.1", "1.2", "particle-work-energy"]
+    assert [e["id"] for e in listed] == ["1.1", "1.2", "particle-work-energy", "equinox-precession"]
     for e in listed:
-        assert e["title"] and e["chapter"] == 1
+        assert e["title"] and e["chapter"] == (10 if e["id"] == "equinox-precession" else 1)
         for p in e["inputs"]:
             assert {"name", "unit", "default", "min", "max", "description"} <= set(p)
 

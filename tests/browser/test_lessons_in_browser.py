@@ -163,3 +163,63 @@ def test_heavy_top_live_invariants_and_blow_up_pause(browser, live_server, shots
     assert host.instances(session_id)[0].status == ""
     assert not errors, errors
     context.close()
+
+
+def _quantity(page, name):
+    cell = page.query_selector(f'#readout [data-quantity="{name}"]')
+    return None if cell is None else json.loads(cell.get_attribute("data-value"))
+
+
+def test_heavy_top_spin_changes_the_nutation_band_readout(browser, live_server, shots):
+    """Changing the spin on the lesson page changes the quadrature nutation band shown beside the scene,
+    to the values the quadrature gives; the sleeping threshold sits on the spin slider as a mark."""
+    from app.physics.models import heavy_top
+
+    context = browser.new_context(viewport={"width": 1500, "height": 1000})
+    page, session_id, errors = _open_lesson(context, live_server, "/lessons/10-2-spinning-top")
+    wait_until(lambda: live_server.host.viewer_count(session_id) == 1, 30, what="the 3D viewer to connect")
+    page.wait_for_selector('#readout [data-quantity="theta_max_deg"]', timeout=20_000)
+    defaults = heavy_top.PARAMETERS.defaults()
+    expected = heavy_top.quadrature(defaults)
+    before = _quantity(page, "theta_max_deg")
+    assert before == pytest.approx(math.degrees(expected.theta_max_rad), rel=1e-12)
+    assert _quantity(page, "locus") == "cusps"
+    mark = page.locator('.control[data-name="spin_rad_s"] .mark:not([hidden])').first
+    assert float(mark.get_attribute("data-value")) == pytest.approx(heavy_top.critical_spin_rad_s(defaults), rel=1e-12)
+
+    page.fill("#ctl-spin_rad_s", "25")
+    page.dispatch_event("#ctl-spin_rad_s", "change")
+    page.wait_for_function(
+        f"() => {{ const c = document.querySelector('#readout [data-quantity=\"theta_max_deg\"]'); return c && JSON.parse(c.dataset.value) !== {before!r}; }}",
+        timeout=20_000,
+    )
+    after = _quantity(page, "theta_max_deg")
+    slower = heavy_top.quadrature(dict(defaults, spin_rad_s=25.0))
+    assert after == pytest.approx(math.degrees(slower.theta_max_rad), rel=1e-12)
+    assert after > before + 3.0  # a slower top dips much further: about 31.0° → 37.5°
+    assert _quantity(page, "nutation_period_s") == pytest.approx(slower.nutation_period_s, rel=1e-12)
+    page.wait_for_timeout(4000)  # let the trail show a few nutation cycles
+    page.locator("#controls").screenshot(path=str(shots / "lesson-10-2-spinning-top-controls.png"))
+    page.evaluate("window.scrollTo(0, 0); document.querySelector('.lesson-live').scrollTop = 0")
+    page.wait_for_timeout(1000)
+    page.screenshot(path=str(shots / "lesson-10-2-spinning-top-readout.png"))
+    assert not errors, errors
+    context.close()
+
+
+def test_equinox_precession_lesson_scene_and_worked_solution(browser, live_server, shots):
+    """The equinox lesson shows the worked solution (contract outputs) and the scene's readout agrees with it."""
+    context = browser.new_context(viewport={"width": 1500, "height": 1000})
+    page, session_id, errors = _open_lesson(context, live_server, "/lessons/10-2-precession-of-the-equinoxes")
+    wait_until(lambda: live_server.host.viewer_count(session_id) == 1, 30, what="the 3D viewer to connect")
+    page.wait_for_selector('#solution [data-output="rate_arcsec_per_year"]', timeout=20_000)
+    page.wait_for_selector('#readout [data-quantity="rate_arcsec_per_year"]', timeout=20_000)
+    outputs = _panel_outputs(page)
+    assert outputs["rate_arcsec_per_year"] == pytest.approx(50.307, abs=1e-3)
+    assert _quantity(page, "rate_arcsec_per_year") == pytest.approx(outputs["rate_arcsec_per_year"], rel=1e-12)
+    assert _quantity(page, "moon_share") == pytest.approx(outputs["moon_share"], rel=1e-12)
+    page.wait_for_timeout(3000)
+    page.evaluate("window.scrollTo(0, 0); document.querySelector('.lesson-live').scrollTop = 0")
+    page.screenshot(path=str(shots / "lesson-10-2-precession-of-the-equinoxes.png"))
+    assert not errors, errors
+    context.close()

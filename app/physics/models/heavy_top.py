@@ -21,6 +21,7 @@ from typing import Any
 
 import numpy as np
 
+from app.physics.models.heavy_top_quadrature import HeavyTopQuadrature, heavy_top_quadrature
 from app.physics.models.rigid_body import RigidBody
 from app.physics.parameters import Parameter, ParameterError, ParameterSet
 from app.physics.rotations import body_rates_from_euler_313_rates, euler_313_from_quaternion, quaternion_from_euler_313
@@ -50,7 +51,7 @@ PARAMETERS = ParameterSet(
         Parameter("cg_distance_m", "m", 0.05, 0.001, 2.0, "Pivot to centre of mass, along the symmetry axis", "l", scale="log"),
         Parameter("I_transverse_pivot", "kg·m²", 0.0125, 1e-5, 100.0, "Moment of inertia about a transverse axis through the pivot", "I_t", scale="log"),
         Parameter("I_axial", "kg·m²", 0.01, 1e-5, 100.0, "Moment of inertia about the symmetry axis", "I_a", scale="log"),
-        Parameter("spin_rad_s", "rad/s", 60.0, -2000.0, 2000.0, "Spin ω3: angular velocity component along the symmetry axis", "ω₃", step=0.5),
+        Parameter("spin_rad_s", "rad/s", 60.0, -2000.0, 2000.0, "Spin ω3: angular velocity component along the symmetry axis", "ω₃", scale="symlog"),
         Parameter("theta0_deg", "deg", 30.0, 0.0, 179.0, "Initial tilt of the symmetry axis from the upward vertical", "θ₀", step=0.5),
         Parameter("precession_rate0_rad_s", "rad/s", 0.0, -100.0, 100.0, "Initial precession rate φ̇₀", "φ̇₀", step=0.05),
         Parameter("nutation_rate0_rad_s", "rad/s", 0.0, -100.0, 100.0, "Initial nutation rate θ̇₀", "θ̇₀", step=0.05),
@@ -84,6 +85,49 @@ def critical_spin_rad_s(params: Mapping[str, Any]) -> float:
     """Sleeping-top threshold: ω3² = 4 m g l I_t / I_a² (rad/s)."""
     mgl = params["mass_kg"] * params["g_m_s2"] * params["cg_distance_m"]
     return math.sqrt(4.0 * mgl * params["I_transverse_pivot"]) / params["I_axial"]
+
+
+def quadrature(params: Mapping[str, Any]) -> HeavyTopQuadrature:
+    """The quadrature solution from the same initial state as :func:`initial_state` (φ0 = ψ0 = 0).
+
+    Raises ValueError for the one motion it cannot represent (exactly on the
+    separatrix, reaching the upright position in infinite time).
+    """
+    return heavy_top_quadrature(
+        I_transverse=params["I_transverse_pivot"], I_axial=params["I_axial"],
+        mgl=params["mass_kg"] * params["g_m_s2"] * params["cg_distance_m"], spin_rad_s=params["spin_rad_s"],
+        theta0_rad=math.radians(params["theta0_deg"]), phi_dot0=params["precession_rate0_rad_s"],
+        theta_dot0=params["nutation_rate0_rad_s"],
+    )
+
+
+#: Relative size of φ̇ at a turning point below which the locus counts as cusped.
+CUSP_TOLERANCE = 1e-6
+
+
+def locus_shape(solution: HeavyTopQuadrature) -> str:
+    """What the tip of the symmetry axis traces on the unit sphere.
+
+    ``"circle"`` (steady precession, θ constant), ``"waves"`` (φ̇ keeps one sign
+    between the turning points), ``"loops"`` (φ̇ changes sign) or ``"cusps"``
+    (φ̇ = 0 at one turning point, as when released with no precession rate).
+    ``"vertical"`` when the axis stays on the vertical (a sleeping top).
+    """
+    if solution.theta_max_rad - solution.theta_min_rad <= 1e-12 * max(solution.theta_max_rad, 1.0):
+        return "vertical" if math.sin(solution.theta_min_rad) < 1e-12 else "circle"
+    It, Ia = solution.I_transverse, solution.I_axial
+    rates = []
+    for theta in (solution.theta_min_rad, solution.theta_max_rad):
+        u, sin2 = math.cos(theta), math.sin(theta) ** 2
+        # φ̇ = (p_φ − p_ψ u) / (I_t sin²θ); at a pole the axis passes through it (no azimuth: skip).
+        rates.append(None if sin2 < 1e-15 else (solution.p_phi - solution.p_psi * u) / (It * sin2))
+    known = [r for r in rates if r is not None]
+    scale = max(max((abs(r) for r in known), default=0.0), abs(solution.p_psi / It), 1e-300)
+    if any(abs(r) <= CUSP_TOLERANCE * scale for r in known):
+        return "cusps"
+    if len(known) == 2 and known[0] * known[1] < 0.0:
+        return "loops"
+    return "waves"
 
 
 class HeavyTop(IntegratedModel):
