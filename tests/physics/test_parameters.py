@@ -125,3 +125,59 @@ def test_every_example_default_validates_to_itself(example_id):
     inputs = EXAMPLES[example_id].inputs
     assert inputs.validate({}) == inputs.defaults()
     assert inputs.validate(inputs.defaults()) == inputs.defaults()
+
+
+OMEGA = Parameter("omega0_rad_s", "rad/s", (0.1, 5.0, 0.0), -100.0, 100.0, "Initial angular velocity, body frame", kind="vector")
+
+
+def _no_digits(text: str) -> None:
+    if any(ch.isdigit() for ch in text):
+        raise ValueError("digits are not allowed here")
+
+
+CURVE = Parameter("x_of_t", "m", "cos(t)", kind="text", max_length=20, parse=_no_digits)
+
+
+def test_vector_parameter_converts_and_defaults_to_a_list():
+    values = ParameterSet((OMEGA,)).validate({"omega0_rad_s": [1, 2.5, -3]})
+    assert values["omega0_rad_s"] == [1.0, 2.5, -3.0]
+    assert ParameterSet((OMEGA,)).defaults()["omega0_rad_s"] == [0.1, 5.0, 0.0]
+    schema = OMEGA.schema()
+    assert schema["kind"] == "vector" and schema["length"] == 3 and schema["min"] == -100.0
+
+
+@pytest.mark.parametrize(
+    "bad, words",
+    [
+        ([1.0, 2.0], "list of 3 numbers"),
+        ([1.0, 2.0, 3.0, 4.0], "list of 3 numbers"),
+        ("1,2,3", "list of 3 numbers"),
+        ([1.0, math.nan, 0.0], "component 1 must be a finite number"),
+        ([1.0, True, 0.0], "component 1 must be a finite number"),
+        ([1.0, 0.0, 500.0], "component 2 must be between -100 and 100"),
+    ],
+)
+def test_vector_parameter_rejects_with_the_component_named(bad, words):
+    with pytest.raises(ParameterError) as info:
+        OMEGA.validate(bad)
+    assert info.value.field == "omega0_rad_s" and words in info.value.message
+
+
+def test_text_parameter_runs_its_parser_and_limits_length():
+    assert CURVE.validate("sin(t)") == "sin(t)"
+    with pytest.raises(ParameterError, match="digits are not allowed"):
+        CURVE.validate("t^2")
+    with pytest.raises(ParameterError, match="21 characters long; the limit is 20"):
+        CURVE.validate("t" * 21)
+    with pytest.raises(ParameterError, match="must be text"):
+        CURVE.validate(3.0)
+    assert CURVE.schema()["max_length"] == 20
+
+
+def test_bad_defaults_are_caught_when_the_parameter_is_declared():
+    with pytest.raises(ValueError):
+        Parameter("v", "m", (0.0, 0.0), -1.0, 1.0, kind="vector")  # length 2, not 3
+    with pytest.raises(ValueError):
+        Parameter("v", "m", (0.0, 0.0, 2.0), -1.0, 1.0, kind="vector")  # component out of range
+    with pytest.raises(ValueError):
+        Parameter("s", "", "x" * 300, kind="text")
