@@ -8,6 +8,7 @@ from app.scenes.heavy_top import HeavyTopScene
 from app.scenes.projectile_drag import ProjectileDragScene
 from app.scenes.radar_tracking import RadarTrackingScene
 from app.scenes.robot_arm_cable import RobotArmCableScene
+from app.scenes.torque_free_body import TorqueFreeBodyScene
 
 SCENES: dict[str, type[Scene]] = {
     cls.id: cls
@@ -17,6 +18,7 @@ SCENES: dict[str, type[Scene]] = {
         ProjectileDragScene,
         HeavyTopScene,
         EquinoxPrecessionScene,
+        TorqueFreeBodyScene,
     )
 }
 
