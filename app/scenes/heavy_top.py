@@ -22,6 +22,7 @@ from app.physics.models import heavy_top as physics
 from app.physics.rotations import rotate_vector
 from app.scenes.base import arrow_segments, circle_segments
 from app.scenes.integrated import IntegratedScene, scene_parameters
+from app.scenes.trail import Trail
 
 AXIS_LENGTH = 1.0  # display units from pivot to the tip of the axis
 TRAIL_CHUNK_FRAMES = 6
@@ -95,9 +96,7 @@ class HeavyTopScene(IntegratedScene):
             "/nutation_band", np.zeros((1, 2, 3), np.float32), (40, 160, 80), thickness=2.5, thickness_units="screen"
         )
         self.reference_tip = scene.add_icosphere("/reference_tip", radius=0.022, color=(250, 250, 250))
-        self._trail_nodes: list = []
-        self._trail_points: list[np.ndarray] = []
-        self._trail_serial = 0
+        self.trail = Trail(scene, "/trail", color=(230, 120, 30), chunk_frames=TRAIL_CHUNK_FRAMES, max_chunks=TRAIL_CHUNKS, thickness=3.0)
 
     def update(self) -> None:
         params = self.physical_params()
@@ -112,7 +111,7 @@ class HeavyTopScene(IntegratedScene):
             self.mesh.remove()
         self.mesh = self.client.scene.add_mesh_simple("/top/body", vertices, faces, color=(70, 130, 180), flat_shading=False)
         self.spin_marker.position = (radius, 0.0, height_cg)
-        self._clear_trail()
+        self.trail.clear()
         body = physics.rigid_body(params)
         self._momentum_scale = 0.8 / max(float(np.linalg.norm(body.angular_momentum_world(self.run.y))), 1e-12)
         self._torque_scale = 0.6 / max(body.gravity_moment_N_m, 1e-12)
@@ -138,12 +137,6 @@ class HeavyTopScene(IntegratedScene):
         self.band_rings.visible = bool(rings)
         self.reference_tip.visible = self.reference is not None
 
-    def _clear_trail(self) -> None:
-        for node in self._trail_nodes:
-            node.remove()
-        self._trail_nodes = []
-        self._trail_points = []
-
     def _draw(self) -> None:
         y = self.run.y
         q = y[0:4] / np.linalg.norm(y[0:4])
@@ -155,28 +148,13 @@ class HeavyTopScene(IntegratedScene):
         self.arrows.points = arrow_segments(np.zeros((2, 3)), vectors, 1.0)
         for label, vector in zip(self.arrow_labels, vectors):
             label.position = tuple(vector * 1.05)
-        self._extend_trail(axis * AXIS_LENGTH)
+        self.trail.add(axis * AXIS_LENGTH)
         theta_rad = math.acos(max(-1.0, min(1.0, axis[2])))
         self._theta_swept = [min(self._theta_swept[0], theta_rad), max(self._theta_swept[1], theta_rad)]
         if self.reference is not None:
             self.reference_tip.position = tuple(self.reference.symmetry_axis(np.array([self.run.t_s]))[0] * AXIS_LENGTH)
         drift = max(self.current_drift().values(), default=0.0)
         self.readout_label.text = f"t = {self.run.t_s:6.2f} s   θ = {math.degrees(theta_rad):5.2f}°   largest drift {drift:.1e}"
-
-    def _extend_trail(self, tip: np.ndarray) -> None:
-        self._trail_points.append(tip.astype(np.float32))
-        if len(self._trail_points) <= TRAIL_CHUNK_FRAMES:
-            return
-        points = np.asarray(self._trail_points)
-        segments = np.stack([points[:-1], points[1:]], axis=1)
-        self._trail_serial += 1
-        node = self.client.scene.add_line_segments(
-            f"/trail/{self._trail_serial}", segments, (230, 120, 30), thickness=3.0, thickness_units="screen"
-        )
-        self._trail_nodes.append(node)
-        self._trail_points = [self._trail_points[-1]]
-        while len(self._trail_nodes) > TRAIL_CHUNKS:
-            self._trail_nodes.pop(0).remove()
 
     def advance(self, dt_s: float) -> None:
         if self.step_physics():

@@ -26,6 +26,7 @@ import numpy as np
 from app.physics.models import torque_free_body as physics
 from app.physics.parameters import Parameter, ParameterSet
 from app.scenes.base import Preset, Scene
+from app.scenes.trail import Trail
 from app.scenes.integrated import FRAME_DT_S
 
 ELLIPSOID_SIZE = 1.0  # display units: the largest semi-axis of the energy ellipsoid
@@ -117,9 +118,8 @@ class TorqueFreeBodyScene(Scene):
         self.plane_label = scene.add_label("/plane_label", "invariable plane (⊥ L, fixed in space)", anchor="top-left")
         self.herpolhode_label = scene.add_label("/herpolhode_label", "herpolhode", anchor="center-right", font_screen_scale=0.85)
         self.polhode_label = scene.add_label("/body/polhode_label", "polhode", anchor="bottom-right", font_screen_scale=0.85)
-        self._trail_serial = 0
-        self._polhode_nodes: list = []
-        self._herpolhode_nodes: list = []
+        self.polhode_trail = Trail(scene, "/body/polhode", color=POLHODE_COLOR, chunk_frames=TRAIL_CHUNK_FRAMES, max_chunks=POLHODE_CHUNKS)
+        self.herpolhode_trail = Trail(scene, "/herpolhode", color=HERPOLHODE_COLOR, chunk_frames=TRAIL_CHUNK_FRAMES, max_chunks=HERPOLHODE_CHUNKS)
 
     def update(self) -> None:
         self.body = physics.motion(self.params)
@@ -193,11 +193,8 @@ class TorqueFreeBodyScene(Scene):
         self.ghost_frame.visible = on
 
     def _clear_trails(self) -> None:
-        for node in self._polhode_nodes + self._herpolhode_nodes:
-            node.remove()
-        self._polhode_nodes, self._herpolhode_nodes = [], []
-        self._polhode_points: list[np.ndarray] = []
-        self._herpolhode_points: list[np.ndarray] = []
+        self.polhode_trail.clear()
+        self.herpolhode_trail.clear()
 
     # -- animation -----------------------------------------------------------------------------
     @property
@@ -222,22 +219,8 @@ class TorqueFreeBodyScene(Scene):
         # ω_body is periodic: after one period (and a chunk of overlap) the polhode only retraces itself.
         polhode_done = math.isfinite(self.body.period_s) and self.t_s > self.body.period_s + 2 * TRAIL_CHUNK_FRAMES * FRAME_DT_S
         if not polhode_done:
-            self._polhode_points.append(omega_body * self.scale * ON_ELLIPSOID)
-            self._extend_trail("/body/polhode", self._polhode_points, self._polhode_nodes, POLHODE_COLOR, POLHODE_CHUNKS)
-        self._herpolhode_points.append(tip + np.array([0.0, 0.0, ABOVE_PLANE]))
-        self._extend_trail("/herpolhode", self._herpolhode_points, self._herpolhode_nodes, HERPOLHODE_COLOR, HERPOLHODE_CHUNKS)
-
-    def _extend_trail(self, root: str, points: list[np.ndarray], nodes: list, color: tuple[int, int, int], cap: int) -> None:
-        if len(points) <= TRAIL_CHUNK_FRAMES:
-            return
-        line = np.asarray(points, np.float32)
-        self._trail_serial += 1
-        nodes.append(self.client.scene.add_line_segments(
-            f"{root}/{self._trail_serial}", np.stack([line[:-1], line[1:]], axis=1), color, thickness=2.5, thickness_units="screen",
-        ))
-        del points[:-1]
-        while len(nodes) > cap:
-            nodes.pop(0).remove()
+            self.polhode_trail.add(omega_body * self.scale * ON_ELLIPSOID)
+        self.herpolhode_trail.add(tip + np.array([0.0, 0.0, ABOVE_PLANE]))
 
     def advance(self, dt_s: float) -> None:
         """One frame of 1/30 s of motion (the closed form is exact at any t; the ghost steps with it)."""

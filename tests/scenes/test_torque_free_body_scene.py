@@ -77,10 +77,10 @@ def test_tennis_racket_with_ghost_for_20_s(client):
     body_point = rotation_matrix(q).T @ contact
     assert np.sum((body_point / shown_axes) ** 2) == pytest.approx(1.0, rel=1e-6)  # … and on the drawn ellipsoid (float32 scale)
     # Each trail grows a node per 10 new points (601 points: frames 0 to 600) …
-    assert len(scene._herpolhode_nodes) == 60
+    assert scene.herpolhode_trail.chunk_count == 60
     # … but the polhode stops once ω has gone round once (plus two nodes of overlap).
     polhode_points = sum(1 for k in range(601) if k * FRAME_DT_S <= body.period_s + 20 * FRAME_DT_S)
-    assert polhode_points < 601 and len(scene._polhode_nodes) == (polhode_points - 1) // 10
+    assert polhode_points < 601 and scene.polhode_trail.chunk_count == (polhode_points - 1) // 10
     scene.close()
 
 

@@ -1,0 +1,63 @@
+"""A path left behind by a moving point, drawn in chunks so a frame never resends the whole line.
+
+Each frame adds one point; every ``chunk_frames`` points become one new
+line-segment node under ``root`` and the oldest chunks are removed beyond
+``max_chunks`` (so a trail shows the last ``chunk_frames × max_chunks`` frames).
+A viser message per chunk, not per frame, keeps a classroom of browsers cheap.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import viser
+
+
+class Trail:
+    """A chunked polyline under ``root`` on one client's scene (points in that node's frame)."""
+
+    def __init__(
+        self,
+        scene: viser.SceneApi,
+        root: str,
+        *,
+        color: tuple[int, int, int],
+        chunk_frames: int,
+        max_chunks: int,
+        thickness: float = 2.5,
+    ) -> None:
+        self.scene = scene
+        self.root = root
+        self.color = color
+        self.chunk_frames = chunk_frames
+        self.max_chunks = max_chunks
+        self.thickness = thickness
+        self._nodes: list = []
+        self._points: list[np.ndarray] = []
+        self._serial = 0
+
+    def add(self, point: np.ndarray) -> None:
+        """Append one point; draws a new chunk when enough have gathered."""
+        self._points.append(np.asarray(point, dtype=np.float32))
+        if len(self._points) <= self.chunk_frames:
+            return
+        line = np.asarray(self._points, np.float32)
+        self._serial += 1
+        self._nodes.append(
+            self.scene.add_line_segments(
+                f"{self.root}/{self._serial}", np.stack([line[:-1], line[1:]], axis=1), self.color,
+                thickness=self.thickness, thickness_units="screen",
+            )
+        )
+        self._points = [self._points[-1]]  # the next chunk starts where this one ended
+        while len(self._nodes) > self.max_chunks:
+            self._nodes.pop(0).remove()
+
+    def clear(self) -> None:
+        for node in self._nodes:
+            node.remove()
+        self._nodes = []
+        self._points = []
+
+    @property
+    def chunk_count(self) -> int:
+        return len(self._nodes)
