@@ -8,6 +8,7 @@ from app.scenes.heavy_top import HeavyTopScene
 from app.scenes.projectile_drag import ProjectileDragScene
 from app.scenes.radar_tracking import RadarTrackingScene
 from app.scenes.robot_arm_cable import RobotArmCableScene
+from app.scenes.torque_free_axisymmetric import TorqueFreeAxisymmetricScene
 from app.scenes.torque_free_body import TorqueFreeBodyScene
 
 SCENES: dict[str, type[Scene]] = {
@@ -19,6 +20,7 @@ SCENES: dict[str, type[Scene]] = {
         HeavyTopScene,
         EquinoxPrecessionScene,
         TorqueFreeBodyScene,
+        TorqueFreeAxisymmetricScene,
     )
 }
 

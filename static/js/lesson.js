@@ -306,17 +306,26 @@
   }
   function renderReadout(readout) {
     readoutBox.hidden = false;
-    const rows = (readout.quantities || []).map((item) => {
-      const tr = document.createElement("tr");
-      tr.innerHTML = "<td class='sym'></td><td class='val'></td><td class='unit'></td>";
+    const tbody = readoutBox.querySelector("tbody");
+    const items = readout.quantities || [];
+    // Same quantities as last time: update the cells in place (no flicker, stable for screen readers).
+    const names = items.map((item) => item.name).join("|");
+    if (tbody.dataset.names !== names) {
+      tbody.replaceChildren(...items.map(() => {
+        const tr = document.createElement("tr");
+        tr.innerHTML = "<td class='sym'></td><td class='val'></td><td class='unit'></td>";
+        return tr;
+      }));
+      tbody.dataset.names = names;
+    }
+    items.forEach((item, i) => {
+      const tr = tbody.children[i];
       tr.children[0].textContent = item.label;
       tr.children[1].textContent = fmt(item.value);
       tr.children[1].dataset.quantity = item.name;
       tr.children[1].dataset.value = JSON.stringify(item.value);
       tr.children[2].textContent = item.unit || "";
-      return tr;
     });
-    readoutBox.querySelector("tbody").replaceChildren(...rows);
     const message = readoutBox.querySelector(".readout-message");
     message.textContent = readout.message || "";
     message.hidden = !readout.message;
