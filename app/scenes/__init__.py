@@ -8,6 +8,7 @@ from app.scenes.heavy_top import HeavyTopScene
 from app.scenes.projectile_drag import ProjectileDragScene
 from app.scenes.radar_tracking import RadarTrackingScene
 from app.scenes.robot_arm_cable import RobotArmCableScene
+from app.scenes.rotation_sequence import RotationSequenceScene
 from app.scenes.torque_free_axisymmetric import TorqueFreeAxisymmetricScene
 from app.scenes.torque_free_body import TorqueFreeBodyScene
 
@@ -21,6 +22,7 @@ SCENES: dict[str, type[Scene]] = {
         EquinoxPrecessionScene,
         TorqueFreeBodyScene,
         TorqueFreeAxisymmetricScene,
+        RotationSequenceScene,
     )
 }
 
