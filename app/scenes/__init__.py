@@ -9,6 +9,7 @@ from app.scenes.projectile_drag import ProjectileDragScene
 from app.scenes.radar_tracking import RadarTrackingScene
 from app.scenes.robot_arm_cable import RobotArmCableScene
 from app.scenes.rotation_sequence import RotationSequenceScene
+from app.scenes.space_curve import SpaceCurveScene
 from app.scenes.torque_free_axisymmetric import TorqueFreeAxisymmetricScene
 from app.scenes.torque_free_body import TorqueFreeBodyScene
 
@@ -23,6 +24,7 @@ SCENES: dict[str, type[Scene]] = {
         TorqueFreeBodyScene,
         TorqueFreeAxisymmetricScene,
         RotationSequenceScene,
+        SpaceCurveScene,
     )
 }
 

@@ -131,8 +131,11 @@ class SceneHost:
         cls = self.scene_class(scene_id)
         with self._lock:
             existing = self._sessions.get(session_id)
-            base = existing.params if existing is not None and existing.scene_id == scene_id else None
-            params = cls.parameters.validate(raw, base=base)  # raises before anything changes
+            base = dict(existing.params) if existing is not None and existing.scene_id == scene_id else None
+        # Validation can take a while (compiling a typed curve): outside the lock, so every other
+        # scene keeps animating meanwhile. It raises before anything changes.
+        params = cls.parameters.validate(raw, base=base)
+        with self._lock:
             session = self._session(scene_id, session_id)
             session.params = params
             for scene in session.instances.values():
