@@ -3,12 +3,16 @@
 from __future__ import annotations
 
 from app.scenes.base import Scene
+from app.scenes.cardan_joint import CardanJointScene
 from app.scenes.equinox_precession import EquinoxPrecessionScene
+from app.scenes.four_bar import FourBarScene
 from app.scenes.heavy_top import HeavyTopScene
 from app.scenes.projectile_drag import ProjectileDragScene
 from app.scenes.radar_tracking import RadarTrackingScene
 from app.scenes.robot_arm_cable import RobotArmCableScene
+from app.scenes.rolling_without_slip import RollingScene
 from app.scenes.rotation_sequence import RotationSequenceScene
+from app.scenes.slider_crank import SliderCrankScene
 from app.scenes.space_curve import SpaceCurveScene
 from app.scenes.torque_free_axisymmetric import TorqueFreeAxisymmetricScene
 from app.scenes.torque_free_body import TorqueFreeBodyScene
@@ -25,6 +29,10 @@ SCENES: dict[str, type[Scene]] = {
         TorqueFreeAxisymmetricScene,
         RotationSequenceScene,
         SpaceCurveScene,
+        CardanJointScene,
+        FourBarScene,
+        RollingScene,
+        SliderCrankScene,
     )
 }
 
