@@ -4,9 +4,12 @@ from __future__ import annotations
 
 from app.scenes.base import Scene
 from app.scenes.cardan_joint import CardanJointScene
+from app.scenes.eastward_deflection import EastwardDeflectionScene
 from app.scenes.equinox_precession import EquinoxPrecessionScene
+from app.scenes.foucault_pendulum import FoucaultPendulumScene
 from app.scenes.four_bar import FourBarScene
 from app.scenes.heavy_top import HeavyTopScene
+from app.scenes.moving_frame import MovingFrameScene
 from app.scenes.projectile_drag import ProjectileDragScene
 from app.scenes.radar_tracking import RadarTrackingScene
 from app.scenes.robot_arm_cable import RobotArmCableScene
@@ -33,6 +36,9 @@ SCENES: dict[str, type[Scene]] = {
         FourBarScene,
         RollingScene,
         SliderCrankScene,
+        EastwardDeflectionScene,
+        FoucaultPendulumScene,
+        MovingFrameScene,
     )
 }
 
