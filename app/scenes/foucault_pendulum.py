@@ -19,6 +19,7 @@ from app.physics.earth import EARTH_RATE_RAD_S, SECONDS_PER_HOUR, direction_from
 from app.physics.models import foucault_pendulum as physics
 from app.scenes.base import Preset
 from app.scenes.integrated import IntegratedScene, scene_parameters
+from app.scenes.trail import Trail
 
 TRAIL_CHUNK_FRAMES = 15
 TRAIL_CHUNKS = 360  # 360 × 15 frames = 180 s of path at 30 Hz
@@ -61,9 +62,7 @@ class FoucaultPendulumScene(IntegratedScene):
         self.predicted_plane = scene.add_line_segments("/predicted_plane", np.zeros((1, 2, 3), np.float32), (240, 130, 20), thickness=3.0, thickness_units="screen")
         self.predicted_label = scene.add_label("/predicted_plane/label", "predicted plane (Ω sin λ)", anchor="bottom-left")
         self.rate_label = scene.add_label("/rate_note", "", anchor="top-left")
-        self._trail_nodes: list = []
-        self._trail_points: list[np.ndarray] = []
-        self._trail_serial = 0
+        self.trail = Trail(scene, "/trail", color=(40, 90, 200), chunk_frames=TRAIL_CHUNK_FRAMES, max_chunks=TRAIL_CHUNKS, thickness=2.0)
 
     def update(self) -> None:
         params = self.physical_params()
@@ -92,19 +91,13 @@ class FoucaultPendulumScene(IntegratedScene):
         self._bearing0 = bearing0
         self._rate = physics.clockwise_precession_rate_rad_s(params)
         self._tracker = physics.ApexTracker()
-        self._clear_trail()
+        self.trail.clear()
         self._draw()
 
     def _plane_segment(self, bearing_deg: float) -> np.ndarray:
         d = direction_from_bearing(bearing_deg) * self._plane_half_m
         lift = np.array([0.0, 0.0, FLOOR_LIFT_M])
         return np.array([[lift - d, lift + d]], np.float32)
-
-    def _clear_trail(self) -> None:
-        for node in self._trail_nodes:
-            node.remove()
-        self._trail_nodes = []
-        self._trail_points = []
 
     def _draw(self) -> None:
         y = self.run.y
@@ -116,21 +109,7 @@ class FoucaultPendulumScene(IntegratedScene):
         self.predicted_plane.points = segment
         self.predicted_label.position = segment[0, 1]
         self._tracker.add(self.run.t_s, float(y[0]), float(y[1]))
-        self._extend_trail(np.array([y[0], y[1], FLOOR_LIFT_M], np.float32))
-
-    def _extend_trail(self, point: np.ndarray) -> None:
-        self._trail_points.append(point)
-        if len(self._trail_points) <= TRAIL_CHUNK_FRAMES:
-            return
-        points = np.asarray(self._trail_points)
-        self._trail_serial += 1
-        node = self.client.scene.add_line_segments(
-            f"/trail/{self._trail_serial}", np.stack([points[:-1], points[1:]], axis=1), (40, 90, 200), thickness=2.0, thickness_units="screen"
-        )
-        self._trail_nodes.append(node)
-        self._trail_points = [self._trail_points[-1]]
-        while len(self._trail_nodes) > TRAIL_CHUNKS:
-            self._trail_nodes.pop(0).remove()
+        self.trail.add(np.array([y[0], y[1], FLOOR_LIFT_M], np.float32))
 
     def advance(self, dt_s: float) -> None:
         if self.step_physics():

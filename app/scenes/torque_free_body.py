@@ -26,8 +26,8 @@ import numpy as np
 from app.physics.models import torque_free_body as physics
 from app.physics.parameters import Parameter, ParameterSet
 from app.scenes.base import Preset, Scene
-from app.scenes.trail import Trail
 from app.scenes.integrated import FRAME_DT_S
+from app.scenes.trail import Trail
 
 ELLIPSOID_SIZE = 1.0  # display units: the largest semi-axis of the energy ellipsoid
 BOX_FILL = 0.8  # the box's corners sit at this fraction of the way out to the ellipsoid
