@@ -14,3 +14,25 @@ from app.main import create_app
 def client() -> Iterator[TestClient]:
     with TestClient(create_app()) as client:
         yield client
+
+
+def first_camera_message() -> bytes:
+    """What a browser's viewer sends first over the viewer websocket; viser counts a client as connected only after it."""
+    import msgspec
+    from viser import _messages
+
+    camera = _messages.ViewerCameraMessage(
+        wxyz=(1.0, 0.0, 0.0, 0.0), position=(3.0, -3.0, 2.0), fov=1.0, near=0.01, far=100.0,
+        image_height=480, image_width=640, look_at=(0.0, 0.0, 0.0), up_direction=(0.0, 0.0, 1.0),
+    )
+    return msgspec.msgpack.encode(camera.as_serializable_dict())
+
+
+def wait_for(predicate, timeout_s: float = 30.0) -> None:
+    """Poll ``predicate`` every 50 ms until it holds; fail after ``timeout_s``."""
+    import time
+
+    deadline = time.monotonic() + timeout_s
+    while not predicate():
+        assert time.monotonic() < deadline, "timed out"
+        time.sleep(0.05)

@@ -11,14 +11,13 @@ import itertools
 import math
 import time
 
-import msgspec
 import numpy as np
 import pytest
 import viser
 from scipy.integrate import solve_ivp
-from viser import _messages
 
 from app.physics.models import free_gyroscope, gyrocompass, rate_gyro
+from tests.api.conftest import first_camera_message, wait_for
 
 _ids = itertools.count()
 
@@ -133,22 +132,6 @@ def test_bad_requests_are_422(client, scene_id, extra, field):
 
 
 # -- live scenes ----------------------------------------------------------------------------------
-def _wait(predicate, timeout_s=30.0):
-    deadline = time.monotonic() + timeout_s
-    while not predicate():
-        assert time.monotonic() < deadline, "timed out"
-        time.sleep(0.05)
-
-
-def _first_camera_message() -> bytes:
-    """What a browser's viewer sends first; viser counts a client as connected only after it."""
-    camera = _messages.ViewerCameraMessage(
-        wxyz=(1.0, 0.0, 0.0, 0.0), position=(3.0, -3.0, 2.0), fov=1.0, near=0.01, far=100.0,
-        image_height=480, image_width=640, look_at=(0.0, 0.0, 0.0), up_direction=(0.0, 0.0, 1.0),
-    )
-    return msgspec.msgpack.encode(camera.as_serializable_dict())
-
-
 def _readout(client, scene_id, sid):
     live = client.get(f"/api/scenes/{scene_id}/sessions/{sid}/live")
     assert live.status_code == 200
@@ -163,10 +146,10 @@ def test_live_free_gyroscope_reads_out_the_closed_form(client):
     assert client.put(f"/api/scenes/free-gyroscope/sessions/{sid}", json={"params": {"vehicle_rate_rad_s": [0.0, 0.0, 0.5]}}).status_code == 200
     with client.websocket_connect(f"/viewer/free-gyroscope/{sid}", subprotocols=["viser-v" + viser.__version__]) as ws:
         ws.receive()
-        ws.send_bytes(_first_camera_message())
-        _wait(lambda: len(host.instances(sid)) == 1)
+        ws.send_bytes(first_camera_message())
+        wait_for(lambda: len(host.instances(sid)) == 1)
         scene = host.instances(sid)[0]
-        _wait(lambda: scene.t_s > 0.3)
+        wait_for(lambda: scene.t_s > 0.3)
         with host._lock:  # the frame loop holds this lock while it advances the scene
             t_drawn, drawn_outer = scene.t_s, np.asarray(scene.outer.wxyz)
         values, _ = _readout(client, "free-gyroscope", sid)  # one readout is one consistent instant
@@ -189,10 +172,10 @@ def test_live_rate_gyro_reads_out_gain_frequency_damping_and_beta(client):
     sid = new_session()
     with client.websocket_connect(f"/viewer/rate-gyro/{sid}", subprotocols=["viser-v" + viser.__version__]) as ws:
         ws.receive()
-        ws.send_bytes(_first_camera_message())
-        _wait(lambda: len(host.instances(sid)) == 1)
+        ws.send_bytes(first_camera_message())
+        wait_for(lambda: len(host.instances(sid)) == 1)
         scene = host.instances(sid)[0]
-        _wait(lambda: scene.t_s > 0.3)
+        wait_for(lambda: scene.t_s > 0.3)
         values, live = _readout(client, "rate-gyro", sid)  # one readout is one consistent instant
         t_s = values["t_s"]
         params = rate_gyro.PARAMETERS.defaults()
@@ -211,10 +194,10 @@ def test_live_gyrocompass_runs_time_scaled_and_reads_out_the_period(client):
     assert client.put(f"/api/scenes/gyrocompass/sessions/{sid}", json={"params": {"time_scale": 50.0}}).status_code == 200
     with client.websocket_connect(f"/viewer/gyrocompass/{sid}", subprotocols=["viser-v" + viser.__version__]) as ws:
         ws.receive()
-        ws.send_bytes(_first_camera_message())
-        _wait(lambda: len(host.instances(sid)) == 1)
+        ws.send_bytes(first_camera_message())
+        wait_for(lambda: len(host.instances(sid)) == 1)
         scene = host.instances(sid)[0]
-        _wait(lambda: scene.run.t_s > 20.0)  # 50× real time: 20 simulated seconds in about 0.4 s
+        wait_for(lambda: scene.run.t_s > 20.0)  # 50× real time: 20 simulated seconds in about 0.4 s
         values, live = _readout(client, "gyrocompass", sid)  # one readout is one consistent instant
         t_s, alpha = values["t_s"], math.radians(values["alpha_deg"])
         params = gyrocompass.PARAMETERS.defaults()

@@ -7,16 +7,14 @@ from __future__ import annotations
 
 import itertools
 import math
-import time
 
-import msgspec
 import numpy as np
 import pytest
 import viser
-from viser import _messages
 
 from app.physics.linkages import four_bar
 from app.physics.rolling import SteadyRolling
+from tests.api.conftest import first_camera_message, wait_for
 
 _ids = itertools.count()
 
@@ -124,22 +122,6 @@ def test_every_preset_assembles_and_simulates(client):
 # ---- live scenes ---------------------------------------------------------------------------------
 
 
-def _wait(predicate, timeout_s=30.0):
-    deadline = time.monotonic() + timeout_s
-    while not predicate():
-        assert time.monotonic() < deadline, "timed out"
-        time.sleep(0.05)
-
-
-def _first_camera_message() -> bytes:
-    """What a browser's viewer sends first; viser counts a client as connected only after it."""
-    camera = _messages.ViewerCameraMessage(
-        wxyz=(1.0, 0.0, 0.0, 0.0), position=(3.0, -3.0, 2.0), fov=1.0, near=0.01, far=100.0,
-        image_height=480, image_width=640, look_at=(0.0, 0.0, 0.0), up_direction=(0.0, 0.0, 1.0),
-    )
-    return msgspec.msgpack.encode(camera.as_serializable_dict())
-
-
 def _live_scene(client, scene_id, sid):
     host = client.app.state.scene_host
     ws = client.websocket_connect(f"/viewer/{scene_id}/{sid}", subprotocols=["viser-v" + viser.__version__])
@@ -151,10 +133,10 @@ def test_live_four_bar_draws_the_closed_form_and_reads_out_its_numbers(client):
     host, connection = _live_scene(client, "four-bar", sid)
     with connection as ws:
         ws.receive()
-        ws.send_bytes(_first_camera_message())
-        _wait(lambda: len(host.instances(sid)) == 1)
+        ws.send_bytes(first_camera_message())
+        wait_for(lambda: len(host.instances(sid)) == 1)
         scene = host.instances(sid)[0]
-        _wait(lambda: scene.t_s > 0.2)  # the frame loop is advancing it
+        wait_for(lambda: scene.t_s > 0.2)  # the frame loop is advancing it
         with host._lock:  # the frame loop holds this lock while it advances the scene
             t_s = scene.t_s
             links = np.asarray(scene.links.points)
@@ -189,10 +171,10 @@ def test_live_rolling_scene_reports_a_computed_zero_contact_velocity(client):
     assert client.put(f"/api/scenes/rolling/sessions/{sid}", json={"params": {"body": "cone", "tilt_deg": 25.0}}).status_code == 200
     with connection as ws:
         ws.receive()
-        ws.send_bytes(_first_camera_message())
-        _wait(lambda: len(host.instances(sid)) == 1)
+        ws.send_bytes(first_camera_message())
+        wait_for(lambda: len(host.instances(sid)) == 1)
         scene = host.instances(sid)[0]
-        _wait(lambda: scene.t_s > 0.2)
+        wait_for(lambda: scene.t_s > 0.2)
         readout = client.get(f"/api/scenes/rolling/sessions/{sid}/live").json()["readout"]
         values = {q["name"]: q for q in readout["quantities"]}
         assert values["contact_point_velocity"]["value"] == "0.000" and values["contact_point_velocity"]["unit"] == "m/s"

@@ -4,18 +4,16 @@ from __future__ import annotations
 
 import itertools
 import math
-import time
 
-import msgspec
 import numpy as np
 import pytest
 import viser
-from viser import _messages
 
 from app.physics import earth
 from app.physics import moving_frame as moving
 from app.physics.models import eastward_deflection as deflection
 from app.physics.models import foucault_pendulum as foucault
+from tests.api.conftest import first_camera_message, wait_for
 
 _ids = itertools.count()
 
@@ -100,22 +98,6 @@ def test_bad_requests_get_a_422_naming_the_field(client, scene_id, body, loc_end
 
 
 # -- a connected viewer: the scene builds and its readout is the physics ----------------------------
-def _first_camera_message() -> bytes:
-    """What a browser's viewer sends first; viser counts a client as connected only after it."""
-    camera = _messages.ViewerCameraMessage(
-        wxyz=(1.0, 0.0, 0.0, 0.0), position=(3.0, -3.0, 2.0), fov=1.0, near=0.01, far=100.0,
-        image_height=480, image_width=640, look_at=(0.0, 0.0, 0.0), up_direction=(0.0, 0.0, 1.0),
-    )
-    return msgspec.msgpack.encode(camera.as_serializable_dict())
-
-
-def _wait(predicate, timeout_s=30.0):
-    deadline = time.monotonic() + timeout_s
-    while not predicate():
-        assert time.monotonic() < deadline, "timed out"
-        time.sleep(0.05)
-
-
 def _readout(client, scene_id, sid) -> dict:
     live = client.get(f"/api/scenes/{scene_id}/sessions/{sid}/live")
     assert live.status_code == 200
@@ -129,9 +111,9 @@ def _connect(client, scene_id, sid):
     ws = client.websocket_connect(f"/viewer/{scene_id}/{sid}", subprotocols=["viser-v" + viser.__version__])
     ws.__enter__()
     ws.receive()
-    ws.send_bytes(_first_camera_message())
+    ws.send_bytes(first_camera_message())
     host = client.app.state.scene_host
-    _wait(lambda: len(host.instances(sid)) == 1)
+    wait_for(lambda: len(host.instances(sid)) == 1)
     return ws, host.instances(sid)[0]
 
 
@@ -177,7 +159,7 @@ def test_foucault_viewer_reads_out_the_predicted_rates(client):
     sid = new_session()
     ws, scene = _connect(client, "foucault-pendulum", sid)
     try:
-        _wait(lambda: scene.run.t_s > 0.3)
+        wait_for(lambda: scene.run.t_s > 0.3)
         values = _readout(client, "foucault-pendulum", sid)
         defaults = foucault.PARAMETERS.defaults()
         assert values["real_rate_deg_h"] == pytest.approx(math.degrees(earth.vertical_earth_rate_rad_s(48.85)) * 3600.0, rel=1e-12)

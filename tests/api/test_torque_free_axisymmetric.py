@@ -6,15 +6,14 @@ import itertools
 import math
 import time
 
-import msgspec
 import numpy as np
 import pytest
 import viser
-from viser import _messages
 
 from app.physics.models import torque_free_axisymmetric as physics
 from app.physics.rotations import quaternion_from_euler_313, quaternion_multiply
 from app.scenes.torque_free_axisymmetric import TorqueFreeAxisymmetricScene
+from tests.api.conftest import first_camera_message, wait_for
 
 SCENE = "torque-free-axisymmetric"
 _ids = itertools.count()
@@ -111,32 +110,16 @@ def test_session_put_out_of_slider_range_is_422_and_changes_nothing(client):
     assert client.put(url, json={"params": {}}).json()["params"] == before
 
 
-def _wait(predicate, timeout_s=20.0):
-    deadline = time.monotonic() + timeout_s
-    while not predicate():
-        assert time.monotonic() < deadline, "timed out"
-        time.sleep(0.05)
-
-
-def _first_camera_message() -> bytes:
-    """What a browser's viewer sends first; viser counts a client as connected only after it."""
-    camera = _messages.ViewerCameraMessage(
-        wxyz=(1.0, 0.0, 0.0, 0.0), position=(3.0, -3.0, 2.0), fov=1.0, near=0.01, far=100.0,
-        image_height=480, image_width=640, look_at=(0.0, 0.0, 0.0), up_direction=(0.0, 0.0, 1.0),
-    )
-    return msgspec.msgpack.encode(camera.as_serializable_dict())
-
-
 def test_live_scene_draws_the_closed_form_and_reads_out_its_numbers(client):
     host = client.app.state.scene_host
     sid = new_session()
     with client.websocket_connect(f"/viewer/{SCENE}/{sid}", subprotocols=["viser-v" + viser.__version__]) as ws:
         ws.receive()
-        ws.send_bytes(_first_camera_message())
-        _wait(lambda: len(host.instances(sid)) == 1)
+        ws.send_bytes(first_camera_message())
+        wait_for(lambda: len(host.instances(sid)) == 1)
         scene = host.instances(sid)[0]
         assert isinstance(scene, TorqueFreeAxisymmetricScene)
-        _wait(lambda: scene.t_s > 0.2)  # the frame loop is advancing it
+        wait_for(lambda: scene.t_s > 0.2)  # the frame loop is advancing it
 
         # The drawn attitude (nodal frame ∘ body frame) is the closed form at the scene's own time.
         with host._lock:  # the frame loop holds this lock while it advances the scene
