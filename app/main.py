@@ -13,7 +13,7 @@ from app import __version__
 from app.api import bench, chapters, errors, examples, health, scenes
 from app.content import Course
 from app.scenes import SCENES
-from app.scenes.host import SceneHost
+from app.scenes.host.host import SceneHost
 from app.settings import Settings
 from app.web import pages, relay
 

@@ -7,7 +7,9 @@ import re
 import pytest
 
 from app.content import LESSONS_DIR, Course, parse_lesson, render_markdown
-from app.physics.examples import EXAMPLES
+from app.physics.systems import worked_examples
+
+EXAMPLES = worked_examples()
 from app.scenes import SCENES
 
 COURSE = Course()

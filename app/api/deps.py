@@ -8,7 +8,7 @@ from fastapi import Depends
 from starlette.requests import HTTPConnection
 
 from app.content import Course
-from app.scenes.host import SceneHost
+from app.scenes.host.host import SceneHost
 from app.settings import Settings
 
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 from fastapi import FastAPI, Request
 from fastapi.responses import JSONResponse
 
-from app.physics.parameters import ParameterError
+from app.physics.core.parameters import ParameterError
 
 
 def _unprocessable(loc: list[str], message: str) -> JSONResponse:

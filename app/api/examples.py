@@ -5,7 +5,9 @@ from typing import Any
 from fastapi import APIRouter, HTTPException
 from pydantic import BaseModel, ConfigDict, Field
 
-from app.physics.examples import EXAMPLES
+from app.physics.systems import worked_examples
+
+EXAMPLES = worked_examples()
 
 router = APIRouter(prefix="/api/examples", tags=["examples"])
 

@@ -6,10 +6,10 @@ from fastapi import APIRouter, HTTPException
 from pydantic import BaseModel, ConfigDict, Field
 
 from app.api.deps import SceneHostDep
-from app.physics.closed_form import ClosedFormModel, evaluate_model
-from app.physics.parameters import ParameterError, ParameterSet
-from app.physics.simulation import simulate_model
-from app.scenes.host import UnknownSceneError
+from app.physics.core.closed_form import ClosedFormModel, evaluate_model
+from app.physics.core.parameters import ParameterError, ParameterSet
+from app.physics.solvers.integrated_model import simulate_model
+from app.scenes.host.host import UnknownSceneError
 
 router = APIRouter(prefix="/api/scenes", tags=["scenes"])
 

@@ -8,7 +8,7 @@ Rigid body about a fixed point (heavy top; torque-free body when ``l = 0``)
 Our model: body frame = principal axes at the pivot, body +3 the symmetry axis,
 principal moments about the PIVOT ``(I1, I2, I3)``, mass ``m`` with its centre of
 mass on body +3 at distance ``l`` from the pivot, gravity ``g`` along world −Z.
-State: ``q_world_body`` (``wxyz``, see :mod:`app.physics.rotations`) and the
+State: ``q_world_body`` (``wxyz``, see :mod:`app.physics.math.rotations`) and the
 body-frame angular velocity ``omega``.
 
 MuJoCo model: one body whose frame coincides with the pivot frame, attached to
@@ -37,7 +37,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from app.physics.models.rigid_body import check_principal_inertia
+from app.physics.bodies.rigid_body import check_principal_inertia
 
 #: Our names for MuJoCo's integrators (``mjtIntegrator``). "Euler" is MuJoCo's
 #: semi-implicit Euler; "implicitfast" drops the Coriolis terms from the

@@ -26,11 +26,11 @@ from typing import Any
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from app.physics.integrators import make_integrator, simulate
-from app.physics.models import heavy_top
-from app.physics.models.rigid_body import RigidBody
-from app.physics.rotations import rotate_vector
-from app.physics.simulation import simulate_model
+from app.physics.bodies.rigid_body import RigidBody
+from app.physics.math.rotations import rotate_vector
+from app.physics.solvers import make_integrator, simulate
+from app.physics.solvers.integrated_model import simulate_model
+from app.physics.systems.ch10 import heavy_top
 
 OUT_DIR = Path(__file__).resolve().parents[2] / "docs" / "bench"
 E3 = np.array([0.0, 0.0, 1.0])
@@ -105,7 +105,7 @@ def free_body_case() -> Case:
     y0 = np.concatenate([[1.0, 0.0, 0.0, 0.0], omega0])
 
     def reference(t: np.ndarray) -> np.ndarray:
-        from app.physics.models.free_body_elliptic import free_body_elliptic
+        from app.physics.systems.ch10.free_body_elliptic import free_body_elliptic
 
         return free_body_elliptic(inertia=inertia, omega0_body=omega0).quaternion(t)
 
@@ -232,9 +232,9 @@ def cost_at_error(points: Sequence[dict], target: float) -> float | None:
 
 def live_frame_costs() -> list[dict[str, Any]]:
     """Physics cost of one displayed frame (30 Hz) of every integrated scene at its defaults."""
-    from app.physics.integrators import LiveRun
+    from app.physics.solvers import LiveRun
     from app.scenes import SCENES
-    from app.scenes.integrated import FRAME_DT_S, IntegratedScene
+    from app.scenes.kit.integrated import FRAME_DT_S, IntegratedScene
 
     out = []
     for scene_id, cls in SCENES.items():

@@ -1,51 +1,33 @@
-"""Scenes: one per file, each drawing one model for one browser. Registry by scene id."""
+"""Scenes: one per file, grouped by chapter (``chNN``), each drawing one model for one browser.
+
+:data:`SCENES` maps scene id to class. It is found, not kept by hand: every
+:class:`~app.scenes.kit.Scene` subclass with an ``id`` defined in a module under
+``app/scenes/chNN/`` is registered, chapter by chapter.
+"""
 
 from __future__ import annotations
 
-from app.scenes.base import Scene
-from app.scenes.cardan_joint import CardanJointScene
-from app.scenes.four_bar import FourBarScene
-from app.scenes.rolling_without_slip import RollingScene
-from app.scenes.slider_crank import SliderCrankScene
-from app.scenes.eastward_deflection import EastwardDeflectionScene
-from app.scenes.foucault_pendulum import FoucaultPendulumScene
-from app.scenes.moving_frame import MovingFrameScene
-from app.scenes.equinox_precession import EquinoxPrecessionScene
-from app.scenes.heavy_top import HeavyTopScene
-from app.scenes.free_gyroscope import FreeGyroscopeScene
-from app.scenes.gyrocompass import GyrocompassScene
-from app.scenes.rate_gyro import RateGyroScene
-from app.scenes.projectile_drag import ProjectileDragScene
-from app.scenes.radar_tracking import RadarTrackingScene
-from app.scenes.robot_arm_cable import RobotArmCableScene
-from app.scenes.rotation_sequence import RotationSequenceScene
-from app.scenes.space_curve import SpaceCurveScene
-from app.scenes.torque_free_body import TorqueFreeBodyScene
-from app.scenes.torque_free_axisymmetric import TorqueFreeAxisymmetricScene
+import importlib
+import pkgutil
 
-SCENES: dict[str, type[Scene]] = {
-    cls.id: cls
-    for cls in (
-        FourBarScene,
-        SliderCrankScene,
-        CardanJointScene,
-        RollingScene,
-        MovingFrameScene,
-        FoucaultPendulumScene,
-        EastwardDeflectionScene,
-        RobotArmCableScene,
-        RotationSequenceScene,
-        SpaceCurveScene,
-        RadarTrackingScene,
-        ProjectileDragScene,
-        HeavyTopScene,
-        FreeGyroscopeScene,
-        GyrocompassScene,
-        RateGyroScene,
-        TorqueFreeBodyScene,
-        TorqueFreeAxisymmetricScene,
-        EquinoxPrecessionScene,
-    )
-}
+from app.scenes.kit import Scene
+
+
+def _discover() -> dict[str, type[Scene]]:
+    found: dict[str, type[Scene]] = {}
+    chapters = sorted(m.name for m in pkgutil.iter_modules(__path__) if m.ispkg and m.name.startswith("ch"))
+    for chapter in chapters:
+        package = importlib.import_module(f"{__name__}.{chapter}")
+        for info in sorted(pkgutil.iter_modules(package.__path__), key=lambda m: m.name):
+            module = importlib.import_module(f"{package.__name__}.{info.name}")
+            for value in vars(module).values():
+                if isinstance(value, type) and issubclass(value, Scene) and value.__module__ == module.__name__ and "id" in vars(value):
+                    if value.id in found:
+                        raise ValueError(f"two scenes share the id {value.id!r}: {found[value.id].__module__} and {module.__name__}")
+                    found[value.id] = value
+    return found
+
+
+SCENES: dict[str, type[Scene]] = _discover()
 
 __all__ = ["SCENES", "Scene"]

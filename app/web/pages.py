@@ -19,8 +19,10 @@ from fastapi.responses import HTMLResponse, RedirectResponse, Response
 from app.api import bench
 from app.api.deps import CourseDep, SceneHostDep, SettingsDep
 from app.content import LESSONS_DIR, Chapter, Lesson, render_markdown
-from app.physics.examples import EXAMPLES
-from app.scenes.host import SESSION_ID_PATTERN
+from app.physics.systems import worked_examples
+
+EXAMPLES = worked_examples()
+from app.scenes.host.host import SESSION_ID_PATTERN
 
 router = APIRouter(tags=["pages"], include_in_schema=False)
 TEMPLATES = Path(__file__).resolve().parent / "templates"

@@ -20,7 +20,7 @@ from fastapi import APIRouter, WebSocket
 from starlette.websockets import WebSocketDisconnect
 
 from app.api.deps import SceneHostDep
-from app.scenes.host import SESSION_ID_PATTERN
+from app.scenes.host.host import SESSION_ID_PATTERN
 
 log = logging.getLogger(__name__)
 router = APIRouter(tags=["viewer"])

@@ -7,9 +7,9 @@ import math
 import numpy as np
 import pytest
 
-from app.physics.closed_form import ClosedFormModel, ClosedFormSolution, Event
-from app.physics.parameters import Parameter, ParameterSet
-from app.scenes.base import Scene
+from app.physics.core.closed_form import ClosedFormModel, ClosedFormSolution, Event
+from app.physics.core.parameters import Parameter, ParameterSet
+from app.scenes.kit import Scene
 
 
 def _check(values):

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from app.physics.equinox_precession import EXAMPLE
+from app.physics.systems.ch10.equinox_precession import EXAMPLE
 
 URL = "/api/examples/equinox-precession/solve"
 

@@ -5,7 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from app.physics.examples import EXAMPLES
+from app.physics.systems import worked_examples
+
+EXAMPLES = worked_examples()
 
 
 def solve(client, example_id, body=None, *, raw=None):

@@ -9,14 +9,13 @@ from __future__ import annotations
 
 import itertools
 import math
-import time
 
 import numpy as np
 import pytest
 import viser
 from scipy.integrate import solve_ivp
 
-from app.physics.models import free_gyroscope, gyrocompass, rate_gyro
+from app.physics.systems.ch10 import free_gyroscope, gyrocompass, rate_gyro
 from tests.api.conftest import first_camera_message, wait_for
 
 _ids = itertools.count()

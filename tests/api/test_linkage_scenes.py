@@ -12,8 +12,8 @@ import numpy as np
 import pytest
 import viser
 
-from app.physics.linkages import four_bar
-from app.physics.rolling import SteadyRolling
+from app.physics.systems.ch04 import four_bar
+from app.physics.systems.ch04.rolling import SteadyRolling
 from tests.api.conftest import first_camera_message, wait_for
 
 _ids = itertools.count()

@@ -9,10 +9,10 @@ import numpy as np
 import pytest
 import viser
 
-from app.physics import earth
-from app.physics import moving_frame as moving
-from app.physics.models import eastward_deflection as deflection
-from app.physics.models import foucault_pendulum as foucault
+from app.physics.systems import earth
+from app.physics.systems.ch03 import eastward_deflection as deflection
+from app.physics.systems.ch03 import foucault_pendulum as foucault
+from app.physics.systems.ch03 import moving_frame as moving
 from tests.api.conftest import first_camera_message, wait_for
 
 _ids = itertools.count()

@@ -9,7 +9,7 @@ import pytest
 import viser
 from starlette.websockets import WebSocketDisconnect
 
-from app.physics import projectile, radar_tracking, robot_arm_cable
+from app.physics.systems.ch01 import projectile, radar_tracking, robot_arm_cable
 from app.web.relay import is_blocked_message
 
 _ids = itertools.count()

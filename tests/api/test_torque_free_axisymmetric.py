@@ -4,15 +4,14 @@ from __future__ import annotations
 
 import itertools
 import math
-import time
 
 import numpy as np
 import pytest
 import viser
 
-from app.physics.models import torque_free_axisymmetric as physics
-from app.physics.rotations import quaternion_from_euler_313, quaternion_multiply
-from app.scenes.torque_free_axisymmetric import TorqueFreeAxisymmetricScene
+from app.physics.math.rotations import quaternion_from_euler_313, quaternion_multiply
+from app.physics.systems.ch10 import torque_free_axisymmetric as physics
+from app.scenes.ch10.torque_free_axisymmetric import TorqueFreeAxisymmetricScene
 from tests.api.conftest import first_camera_message, wait_for
 
 SCENE = "torque-free-axisymmetric"

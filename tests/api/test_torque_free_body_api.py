@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from app.physics.models import torque_free_body as tfb
+from app.physics.systems.ch10 import torque_free_body as tfb
 
 URL = "/api/scenes/torque-free-body/simulate"
 

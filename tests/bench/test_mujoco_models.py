@@ -23,7 +23,7 @@ from app.bench.mujoco_models import (  # noqa: E402
     rigid_body_mjcf,
     simulate_rigid_body_mujoco,
 )
-from app.physics.rotations import (  # noqa: E402
+from app.physics.math.rotations import (  # noqa: E402
     quaternion_from_euler_313,
     rotate_vector,
     rotation_matrix,

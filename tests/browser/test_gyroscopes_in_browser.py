@@ -9,7 +9,7 @@ import math
 
 import pytest
 
-from app.physics.models import free_gyroscope, gyrocompass, rate_gyro
+from app.physics.systems.ch10 import free_gyroscope, gyrocompass, rate_gyro
 from tests.browser.conftest import wait_until
 
 pytestmark = pytest.mark.browser

@@ -11,7 +11,9 @@ import math
 
 import pytest
 
-from app.physics.examples import EXAMPLES
+from app.physics.systems import worked_examples
+
+EXAMPLES = worked_examples()
 from tests.browser.conftest import wait_until
 
 pytestmark = pytest.mark.browser
@@ -173,7 +175,7 @@ def _quantity(page, name):
 def test_heavy_top_spin_changes_the_nutation_band_readout(browser, live_server, shots):
     """Changing the spin on the lesson page changes the quadrature nutation band shown beside the scene,
     to the values the quadrature gives; the sleeping threshold sits on the spin slider as a mark."""
-    from app.physics.models import heavy_top
+    from app.physics.systems.ch10 import heavy_top
 
     context = browser.new_context(viewport={"width": 1500, "height": 1000})
     page, session_id, errors = _open_lesson(context, live_server, "/lessons/10-2-spinning-top")

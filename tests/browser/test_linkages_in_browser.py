@@ -12,7 +12,7 @@ import math
 import numpy as np
 import pytest
 
-from app.physics.linkages import cardan_joint, four_bar, slider_crank
+from app.physics.systems.ch04 import cardan_joint, four_bar, slider_crank
 from tests.browser.conftest import wait_until
 
 try:

@@ -13,9 +13,9 @@ import math
 import numpy as np
 import pytest
 
-from app.physics import earth
-from app.physics import moving_frame as moving
-from app.physics.models import eastward_deflection as deflection
+from app.physics.systems import earth
+from app.physics.systems.ch03 import eastward_deflection as deflection
+from app.physics.systems.ch03 import moving_frame as moving
 from tests.browser.conftest import wait_until
 
 pytestmark = pytest.mark.browser

@@ -7,7 +7,7 @@ import math
 
 import pytest
 
-from app.physics.models import torque_free_axisymmetric as physics
+from app.physics.systems.ch10 import torque_free_axisymmetric as physics
 from tests.browser.conftest import wait_until
 
 pytestmark = pytest.mark.browser

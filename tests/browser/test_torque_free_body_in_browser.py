@@ -10,7 +10,7 @@ import json
 import numpy as np
 import pytest
 
-from app.physics.models import torque_free_body as tfb
+from app.physics.systems.ch10 import torque_free_body as tfb
 from tests.browser.conftest import wait_until
 
 pytestmark = pytest.mark.browser

@@ -1,0 +1,1 @@
+"""What every model and example shares: parameters, closed-form models, reports, worked solutions."""

@@ -1,0 +1,1 @@
+"""Mathematics the systems share: vectors, rotations (the only implementation), expressions, curvilinear frames."""

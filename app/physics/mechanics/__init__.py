@@ -1,0 +1,1 @@
+"""Analytical mechanics as data: derivations over sympy.physics.mechanics (the home of chapters 7-9)."""

@@ -1,1 +1,0 @@
-"""Models: one physical system per module (parameters, state, right-hand side, invariants, references)."""

@@ -1,0 +1,163 @@
+"""Integrated models and the simulation report the API and the scenes share.
+
+An :class:`IntegratedModel` says what to integrate (its compiled system and
+initial state), how fast it moves (for the automatic step), what a student
+reads off it (named series) and what it conserves (named invariants with the
+scale their drift is measured against). :func:`simulate_model` runs one with
+the integration controls and reports series, invariants and counters.
+"""
+
+from __future__ import annotations
+
+from abc import ABC, abstractmethod
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any, ClassVar
+
+import numpy as np
+
+from app.physics.core.closed_form import frame_times
+from app.physics.core.parameters import Parameter, ParameterError, ParameterSet
+from app.physics.solvers import DormandPrince, FixedStepIntegrator, OdeSystem, simulate
+from app.physics.solvers.controls import integration_parameters, integrator_from_controls
+
+
+class IntegratedModel(ABC):
+    """A model whose motion is found by numerical integration."""
+
+    #: Physical parameters (names are API contracts).
+    parameters: ClassVar[ParameterSet]
+    #: Methods a student may pick, and the one ``auto`` means.
+    methods: ClassVar[tuple[str, ...]]
+    default_method: ClassVar[str]
+    #: Unit of each series, by name.
+    series_units: ClassVar[Mapping[str, str]]
+    invariant_units: ClassVar[Mapping[str, str]]
+
+    @classmethod
+    def controls(cls) -> tuple[Parameter, ...]:
+        return integration_parameters(cls.methods, default_method=cls.default_method)
+
+    @abstractmethod
+    def system(self, params: Mapping[str, Any]) -> OdeSystem: ...
+
+    @abstractmethod
+    def initial_state(self, params: Mapping[str, Any]) -> np.ndarray: ...
+
+    @abstractmethod
+    def fastest_rate_rad_s(self, params: Mapping[str, Any], state: np.ndarray) -> float: ...
+
+    @abstractmethod
+    def series(self, params: Mapping[str, Any], t_s: np.ndarray, states: np.ndarray) -> dict[str, np.ndarray]: ...
+
+    @abstractmethod
+    def invariants(self, params: Mapping[str, Any], states: np.ndarray) -> dict[str, np.ndarray]: ...
+
+    @abstractmethod
+    def invariant_scales(self, params: Mapping[str, Any], state: np.ndarray) -> dict[str, float]:
+        """Positive scale per invariant: drift is reported as |I(t) − I(0)| / scale."""
+
+    def integrator(self, params: Mapping[str, Any], controls: Mapping[str, Any], frame_dt_s: float):
+        y0 = self.initial_state(params)
+        return integrator_from_controls(
+            controls, default_method=self.default_method,
+            fastest_rate_rad_s=self.fastest_rate_rad_s(params, y0), frame_dt_s=frame_dt_s,
+        )
+
+    def relative_drift(self, params: Mapping[str, Any], states: np.ndarray) -> dict[str, np.ndarray]:
+        """Per invariant, |I(t) − I(0)| / scale along ``states`` (dimensionless)."""
+        scales = self.invariant_scales(params, states[0])
+        values = self.invariants(params, states)
+        return {name: np.abs(v - v[0]) / scales[name] for name, v in values.items()}
+
+
+@dataclass
+class SimulationReport:
+    """What ``POST /api/scenes/{id}/simulate`` returns (see :meth:`as_dict`)."""
+
+    t_s: np.ndarray
+    series: dict[str, np.ndarray]
+    invariants: dict[str, np.ndarray]
+    method: str
+    description: str
+    steps: int
+    rhs_evals: int
+    cpu_s: float
+    max_invariant_drift: float
+    status: str
+    message: str
+
+    def as_dict(self) -> dict[str, Any]:
+        return {
+            "t": self.t_s.tolist(),
+            "series": {k: v.tolist() for k, v in self.series.items()},
+            "invariants": {k: v.tolist() for k, v in self.invariants.items()},
+            "stats": {
+                "method": self.method,
+                "description": self.description,
+                "steps": self.steps,
+                "rhs_evals": self.rhs_evals,
+                "cpu_s": self.cpu_s,
+                "max_invariant_drift": self.max_invariant_drift,
+                "status": self.status,
+                "message": self.message,
+            },
+        }
+
+
+#: Bounds on one simulation request, so none holds a core for more than about a second
+#: (the time span and frame bounds are shared with closed-form models).
+MAX_FIXED_STEP_WORK = 4_000_000  # fixed-step work: steps × sub-steps per step (splitting4 has 5 Strang sub-steps)
+MAX_ADAPTIVE_STEPS = 1_000_000
+
+
+def check_request_bounds(integrator, *, t_end_s: float, frame_rate_hz: float) -> None:
+    """Raise ParameterError naming the limit a request exceeds (before any work is done)."""
+    frames = len(frame_times(t_end_s=t_end_s, frame_rate_hz=frame_rate_hz)) - 1
+    if isinstance(integrator, FixedStepIntegrator):
+        substeps = len(getattr(integrator, "weights", (1,)))
+        work = frames * integrator.steps_per_frame * substeps
+        if work > MAX_FIXED_STEP_WORK:
+            raise ParameterError(
+                "steps_per_frame",
+                f"{frames} frames × {integrator.steps_per_frame} steps/frame × {substeps} sub-steps = {work} exceeds "
+                f"the limit of {MAX_FIXED_STEP_WORK} (shorten t_end or use fewer steps per frame)",
+            )
+    elif isinstance(integrator, DormandPrince):
+        integrator.max_steps = MAX_ADAPTIVE_STEPS
+
+
+def simulate_model(
+    model: IntegratedModel,
+    params: Mapping[str, Any],
+    controls: Mapping[str, Any],
+    *,
+    t_end_s: float,
+    frame_rate_hz: float,
+    request_limits: bool = True,
+) -> SimulationReport:
+    """Integrate ``model`` for ``t_end_s`` and sample it at ``frame_rate_hz`` (t = 0 included).
+
+    ``request_limits`` applies the per-request bounds (:func:`check_request_bounds`);
+    tests and benchmarks that need longer or denser runs switch it off.
+    """
+    frame_dt = 1.0 / frame_rate_hz
+    integrator = model.integrator(params, controls, frame_dt)
+    if request_limits:
+        check_request_bounds(integrator, t_end_s=t_end_s, frame_rate_hz=frame_rate_hz)
+    result = simulate(model.system(params), integrator, model.initial_state(params), t_end_s=t_end_s, frame_rate_hz=frame_rate_hz)
+    drift = model.relative_drift(params, result.states)
+    max_drift = max((float(d.max()) for d in drift.values()), default=0.0)
+    return SimulationReport(
+        t_s=result.t_s,
+        series=model.series(params, result.t_s, result.states),
+        invariants=model.invariants(params, result.states),
+        method=result.method,
+        description=result.description,
+        steps=result.steps,
+        rhs_evals=result.rhs_evals,
+        cpu_s=result.cpu_s,
+        max_invariant_drift=max_drift,
+        status=result.status,
+        message=result.message,
+    )

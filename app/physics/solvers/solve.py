@@ -1,0 +1,215 @@
+"""Where a model, an integrator and a step choice meet.
+
+:func:`simulate` runs a system over a time span and samples it once per frame;
+:class:`LiveRun` advances a scene's system a frame at a time. Both stop at the
+first non-finite state and say so in words instead of returning NaN.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from app.physics.solvers.base import FixedStepIntegrator, Integrator
+from app.physics.solvers.dormand_prince import DormandPrince
+from app.physics.solvers.kernels import Backend
+from app.physics.solvers.rk4 import RK4
+from app.physics.solvers.splitting import RigidBodySplitting
+from app.physics.solvers.system import OdeSystem
+
+#: Identifiers accepted by the API and the controls, with what each is.
+METHODS = {
+    "splitting4": "Splitting, order 4: exact free flow + gravity kicks (geometric, bounded energy error)",
+    "splitting2": "Splitting, order 2 (Strang): cheap, geometric, less accurate",
+    "rk4": "Classical Runge–Kutta 4 with the quaternion projected back to unit length",
+    "dopri5": "Dormand–Prince 5(4): adaptive steps to a relative tolerance, dense output",
+}
+
+#: Largest h·ω_max each fixed-step method is allowed by the automatic step choice.
+#: RK4 follows the classical rule h·ω ≲ 0.1; the splittings integrate the
+#: fastest rotation exactly, so their limit comes from how well the kicks
+#: sample the torque (calibrated on the heavy top to keep invariant drift
+#: below 1e-6 over 60 s; see tests/physics/test_integrator_defaults.py).
+STEP_RATIO = {"rk4": 0.1, "splitting2": 0.02, "splitting4": 0.25}
+MAX_STEPS_PER_FRAME = 4096
+
+
+def automatic_steps_per_frame(method: str, fastest_rate_rad_s: float, frame_dt_s: float) -> int:
+    """Steps per frame so that ``h · fastest_rate ≤ STEP_RATIO[method]`` (at most 4096)."""
+    if not (math.isfinite(fastest_rate_rad_s) and fastest_rate_rad_s >= 0.0):
+        raise ValueError(f"the fastest rate must be a finite number ≥ 0 rad/s to choose a step (got {fastest_rate_rad_s!r})")
+    ratio = STEP_RATIO[method]
+    needed = math.ceil(fastest_rate_rad_s * frame_dt_s / ratio - 1e-9)
+    return int(min(max(needed, 1), MAX_STEPS_PER_FRAME))
+
+
+def make_integrator(
+    method: str,
+    *,
+    steps_per_frame: int | None = None,
+    rtol: float | None = None,
+    fastest_rate_rad_s: float = 0.0,
+    frame_dt_s: float = 1 / 60,
+) -> Integrator:
+    """Build an integrator by name; ``steps_per_frame=None`` picks it from the fastest rate."""
+    if method not in METHODS:
+        raise ValueError(f"unknown method {method!r}; choose one of {', '.join(METHODS)}")
+    if method == "dopri5":
+        return DormandPrince(rtol=1e-8 if rtol is None else rtol)
+    if steps_per_frame is None:
+        steps_per_frame = automatic_steps_per_frame(method, fastest_rate_rad_s, frame_dt_s)
+    if method == "rk4":
+        return RK4(steps_per_frame=steps_per_frame)
+    return RigidBodySplitting(order=int(method[-1]), steps_per_frame=steps_per_frame)
+
+
+_FAILURE_TEXT = {
+    "non_finite": "the solution stopped being finite (blew up)",
+    "step_too_small": "the adaptive step fell below round-off",
+    "too_many_steps": "the adaptive solver needed too many steps",
+}
+
+
+def failure_message(status: str, t_s: float, integrator: Integrator, frame_dt_s: float) -> str:
+    """A sentence a student can act on."""
+    what = _FAILURE_TEXT.get(status, status)
+    advice = (
+        "Use more steps per frame, or the splitting method."
+        if isinstance(integrator, FixedStepIntegrator)
+        else "Loosen the tolerance or check the parameters."
+    )
+    return f"Stopped at t = {t_s:.3f} s: {what} with {integrator.describe(frame_dt_s)}. {advice}"
+
+
+@dataclass
+class SimulationResult:
+    """Frame-sampled solution with counters; ``status`` is "ok", "event" or a failure."""
+
+    t_s: np.ndarray
+    states: np.ndarray
+    status: str
+    message: str
+    method: str
+    description: str
+    steps: int
+    rhs_evals: int
+    cpu_s: float
+    t_event_s: float | None = None
+
+    @property
+    def ok(self) -> bool:
+        return self.status in ("ok", "event")
+
+
+def simulate(
+    system: OdeSystem,
+    integrator: Integrator,
+    y0: np.ndarray,
+    *,
+    t_end_s: float,
+    frame_rate_hz: float,
+    backend: Backend = "numba",
+) -> SimulationResult:
+    """Integrate from t = 0 to ``t_end_s``, sampling ``y`` at every frame (t = 0 included).
+
+    ``cpu_s`` is the process CPU time of the integration alone.
+    """
+    frame_dt = 1.0 / frame_rate_hz
+    n_frames = max(int(round(t_end_s * frame_rate_hz)), 1)
+    y = np.array(y0, dtype=float)
+    states = np.full((n_frames + 1, y.shape[0]), np.nan)
+    states[0] = y
+    start = time.process_time()
+    outcome = integrator.run_frames(system, 0.0, y, frame_dt, n_frames, states[1:], backend=backend)
+    cpu_s = time.process_time() - start
+    done = outcome.frames_done
+    t = frame_dt * np.arange(done + 1)
+    message = ""
+    if outcome.status not in ("ok", "event"):
+        message = failure_message(outcome.status, float(t[-1]), integrator, frame_dt)
+    return SimulationResult(
+        t_s=t,
+        states=states[: done + 1],
+        status=outcome.status,
+        message=message,
+        method=integrator.name,
+        description=integrator.describe(frame_dt),
+        steps=outcome.steps,
+        rhs_evals=outcome.rhs_evals,
+        cpu_s=cpu_s,
+        t_event_s=outcome.t_event_s,
+    )
+
+
+@dataclass
+class LiveRun:
+    """A system advanced frame by frame for a live scene (never yields a non-finite state).
+
+    Frames are computed ``batch_frames`` at a time and handed out one per call:
+    a call from Python into a compiled kernel costs far more than a few steps of
+    a small model, so batching keeps the physics cost per displayed frame to a
+    few microseconds. A failure inside a batch surfaces when playback reaches it.
+    """
+
+    system: OdeSystem
+    integrator: Integrator
+    y: np.ndarray
+    t_s: float = 0.0
+    status: str = "ok"
+    message: str = ""
+    steps: int = 0
+    batch_frames: int = 15
+    _buffer: np.ndarray = field(init=False, repr=False)
+    _ready: int = field(init=False, default=0, repr=False)
+    _next: int = field(init=False, default=0, repr=False)
+    _pending_status: str = field(init=False, default="ok", repr=False)
+    _frame_dt_s: float = field(init=False, default=0.0, repr=False)
+
+    def __post_init__(self) -> None:
+        self.y = np.array(self.y, dtype=float)
+        self._buffer = np.empty((self.batch_frames, self.y.shape[0]))
+
+    @property
+    def running(self) -> bool:
+        return self.status == "ok"
+
+    def _refill(self, frame_dt_s: float) -> None:
+        trial = self.y.copy()
+        outcome = self.integrator.run_frames(self.system, self.t_s, trial, frame_dt_s, self.batch_frames, self._buffer)
+        self.steps += outcome.steps
+        done = outcome.frames_done
+        finite = np.all(np.isfinite(self._buffer[:done]), axis=1)
+        if not finite.all():
+            done = int(np.argmin(finite))
+        self._ready, self._next = done, 0
+        self._frame_dt_s = frame_dt_s
+        self._pending_status = "ok" if done == self.batch_frames and outcome.status == "ok" else (
+            outcome.status if outcome.status != "ok" else "non_finite"
+        )
+
+    def advance(self, frame_dt_s: float) -> bool:
+        """Advance one frame; on failure keep the last good state, pause and explain. Returns running."""
+        if not self.running:
+            return False
+        if frame_dt_s != self._frame_dt_s:
+            # A new frame length: frames (and any failure) precomputed with the old one no longer apply.
+            self._ready = self._next = 0
+            self._pending_status = "ok"
+        if self._next >= self._ready:
+            if self._pending_status != "ok":
+                return self._fail(frame_dt_s)  # playback has reached the failure found in the last batch
+            self._refill(frame_dt_s)
+            if self._ready == 0:
+                return self._fail(frame_dt_s)
+        self.y = self._buffer[self._next].copy()
+        self._next += 1
+        self.t_s += frame_dt_s
+        return True
+
+    def _fail(self, frame_dt_s: float) -> bool:
+        self.status = self._pending_status if self._pending_status != "ok" else "non_finite"
+        self.message = failure_message(self.status, self.t_s, self.integrator, frame_dt_s)
+        return False

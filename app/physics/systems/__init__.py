@@ -1,0 +1,36 @@
+"""Physical systems, one module each, grouped by the chapter whose lessons use them (``chNN``).
+
+A system module holds its parameters, its model (closed form or integrated) and
+its reference solution beside it. Systems used by more than one chapter
+(the rotating Earth) sit here at the top.
+"""
+
+from __future__ import annotations
+
+import importlib
+import pkgutil
+from functools import cache
+
+from app.physics.core.solution import WorkedExample
+
+
+def system_modules() -> list[str]:
+    """Every system module's dotted name, chapter by chapter (``ch01`` … ``ch10``), then by name."""
+    names = []
+    for chapter in sorted(m.name for m in pkgutil.iter_modules(__path__) if m.ispkg and m.name.startswith("ch")):
+        package = importlib.import_module(f"{__name__}.{chapter}")
+        names += sorted(f"{package.__name__}.{m.name}" for m in pkgutil.iter_modules(package.__path__) if not m.ispkg)
+    return names
+
+
+@cache
+def worked_examples() -> dict[str, WorkedExample]:
+    """Every worked example by id, ordered by chapter then id: the ``EXAMPLE`` a system module declares (found, not listed)."""
+    examples: dict[str, WorkedExample] = {}
+    for name in system_modules():
+        example = getattr(importlib.import_module(name), "EXAMPLE", None)
+        if isinstance(example, WorkedExample):
+            if example.id in examples:
+                raise ValueError(f"two worked examples share the id {example.id!r} ({name})")
+            examples[example.id] = example
+    return dict(sorted(examples.items(), key=lambda item: (item[1].chapter, item[0])))

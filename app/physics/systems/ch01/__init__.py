@@ -1,0 +1,1 @@
+"""Chapter 1, basic considerations: the robotic arm and cable, radar tracking, a projectile with drag."""

@@ -1,0 +1,153 @@
+"""Worked Example 1.1: a robotic arm ABC pulled by a cable from C to a fixed point D.
+
+Frame: fixed xyz with A at the origin and z vertical (unit vectors i, j, k).
+Link AB lies in the horizontal plane at angle theta from x; link BC is raised by
+gamma about a horizontal pin at B perpendicular to AB, so AB and BC share a
+vertical plane. D lies on the x axis. Lengths in m, forces in N, moments in N·m.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from app.physics.core.parameters import Parameter, ParameterError, ParameterSet
+from app.physics.core.solution import Solution, Step, WorkedExample
+from app.physics.math.vectors import moment_about_point, unit_vector
+
+
+def _check_cable_has_length(values: Mapping[str, Any]) -> None:
+    arm_geometry(values["theta_deg"], values["gamma_deg"], values["AB_m"], values["BC_m"], values["D_x_m"])
+
+
+INPUTS = ParameterSet(
+    (
+        Parameter("theta_deg", "deg", 25.0, -180.0, 180.0, "Angle of link AB from the x axis, in the horizontal plane", "θ", step=1),
+        Parameter("gamma_deg", "deg", 40.0, -90.0, 90.0, "Elevation of link BC above the horizontal", "γ", step=1),
+        Parameter("tension_N", "N", 5000.0, 0.0, 100_000.0, "Tension in cable CD", "T", step=100),
+        Parameter("AB_m", "m", 2.0, 0.05, 10.0, "Length of link AB", "AB", step=0.05),
+        Parameter("BC_m", "m", 1.5, 0.05, 10.0, "Length of link BC", "BC", step=0.05),
+        Parameter("D_x_m", "m", 3.5, -10.0, 10.0, "x coordinate of the cable anchor D on the x axis", "x_D", step=0.05),
+    ),
+    check=_check_cable_has_length,
+)
+
+
+@dataclass(frozen=True)
+class ArmGeometry:
+    """Points of the arm (m, fixed frame xyz)."""
+
+    A: np.ndarray
+    B: np.ndarray
+    C: np.ndarray
+    D: np.ndarray
+    e_AB: np.ndarray  # unit vector along AB
+    e_BC: np.ndarray  # unit vector along BC
+    e_CD: np.ndarray  # unit vector from C toward D (cable direction on the arm)
+
+
+@dataclass(frozen=True)
+class CableLoads:
+    """The cable force on the arm and its moments (N, N·m, fixed frame xyz)."""
+
+    geometry: ArmGeometry
+    F_N: np.ndarray
+    F_BC_N: float
+    M_A_Nm: np.ndarray
+    M_z_Nm: float
+    M_AB_Nm: float
+
+
+def arm_geometry(theta_deg: float, gamma_deg: float, AB_m: float, BC_m: float, D_x_m: float) -> ArmGeometry:
+    theta, gamma = np.radians(theta_deg), np.radians(gamma_deg)
+    A = np.zeros(3)
+    e_AB = np.array([np.cos(theta), np.sin(theta), 0.0])
+    e_BC = np.array([np.cos(gamma) * np.cos(theta), np.cos(gamma) * np.sin(theta), np.sin(gamma)])
+    B = A + AB_m * e_AB
+    C = B + BC_m * e_BC
+    D = np.array([D_x_m, 0.0, 0.0])
+    try:
+        e_CD = unit_vector(D - C)
+    except ValueError:
+        raise ParameterError("D_x_m", "the cable end C coincides with the anchor D, so the cable has no direction") from None
+    return ArmGeometry(A, B, C, D, e_AB, e_BC, e_CD)
+
+
+def cable_loads(inputs: Mapping[str, Any]) -> CableLoads:
+    g = arm_geometry(inputs["theta_deg"], inputs["gamma_deg"], inputs["AB_m"], inputs["BC_m"], inputs["D_x_m"])
+    F = inputs["tension_N"] * g.e_CD
+    M_A = moment_about_point(g.C, F, g.A)
+    return CableLoads(
+        geometry=g,
+        F_N=F,
+        F_BC_N=float(F @ g.e_BC),
+        M_A_Nm=M_A,
+        M_z_Nm=float(M_A[2]),
+        M_AB_Nm=float(M_A @ g.e_AB),
+    )
+
+
+def solve(inputs: Mapping[str, Any]) -> Solution:
+    loads = cable_loads(inputs)
+    g = loads.geometry
+    steps = (
+        Step(
+            "Positions of B, C and D",
+            r"\bar r_{B} = AB(\cos\theta\,\bar i + \sin\theta\,\bar j),\quad "
+            r"\bar r_{C} = \bar r_{B} + BC(\cos\gamma\cos\theta\,\bar i + \cos\gamma\sin\theta\,\bar j + \sin\gamma\,\bar k),\quad "
+            r"\bar r_{D} = x_D\,\bar i",
+            {"r_B": g.B, "r_C": g.C, "r_D": g.D},
+            {"r_B": "m", "r_C": "m", "r_D": "m"},
+        ),
+        Step(
+            "Cable direction and force on the arm",
+            r"\bar e_{CD} = \frac{\bar r_D - \bar r_C}{|\bar r_D - \bar r_C|},\quad \bar F = T\,\bar e_{CD}",
+            {"e_CD": g.e_CD, "F": loads.F_N},
+            {"e_CD": "", "F": "N"},
+        ),
+        Step(
+            "(a) Component of F along BC",
+            r"F_{BC} = \bar F\cdot\bar e_{BC}",
+            {"e_BC": g.e_BC, "F_BC": loads.F_BC_N},
+            {"e_BC": "", "F_BC": "N"},
+        ),
+        Step(
+            "(b) Moment of F about A",
+            r"\bar M_A = \bar r_{C/A}\times\bar F",
+            {"M_A": loads.M_A_Nm},
+            {"M_A": "N·m"},
+        ),
+        Step(
+            "(c) Moment about the vertical z axis",
+            r"M_z = \bar M_A\cdot\bar k",
+            {"M_z": loads.M_z_Nm},
+            {"M_z": "N·m"},
+        ),
+        Step(
+            "(d) Moment about the line of arm AB",
+            r"M_{AB} = \bar M_A\cdot\bar e_{AB},\quad \bar e_{AB} = \cos\theta\,\bar i + \sin\theta\,\bar j",
+            {"e_AB": g.e_AB, "M_AB": loads.M_AB_Nm},
+            {"e_AB": "", "M_AB": "N·m"},
+        ),
+    )
+    outputs = {
+        "F_N": loads.F_N,
+        "F_BC_N": loads.F_BC_N,
+        "M_A_Nm": loads.M_A_Nm,
+        "M_z_Nm": loads.M_z_Nm,
+        "M_AB_Nm": loads.M_AB_Nm,
+    }
+    return Solution(outputs=outputs, steps=steps)
+
+
+EXAMPLE = WorkedExample(
+    id="1.1",
+    title="Robotic arm and cable: force components and moments",
+    chapter=1,
+    inputs=INPUTS,
+    solve=solve,
+    output_units={"F_N": "N", "F_BC_N": "N", "M_A_Nm": "N·m", "M_z_Nm": "N·m", "M_AB_Nm": "N·m"},
+)

@@ -1,0 +1,1 @@
+"""Chapter 2, particle kinematics: a particle on a typed space curve."""

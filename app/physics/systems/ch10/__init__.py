@@ -1,0 +1,1 @@
+"""Chapter 10, gyroscopic effects: free bodies and their references, the heavy top, gyroscopes, the equinoxes."""

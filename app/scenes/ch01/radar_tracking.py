@@ -1,0 +1,81 @@
+"""Scene for Example 1.2: the radar, the aircraft's path and its velocity.
+
+Drawn in kilometres (1 scene unit = 1 km) so the 2 km range fits the view;
+velocity arrows are drawn at 1 km per 100 m/s.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from app.physics.systems.ch01 import radar_tracking as physics
+from app.scenes.kit import Scene, arrow_segments
+
+KM = 1e-3  # scene units per metre
+VELOCITY_SCALE = 0.01  # km of arrow per m/s
+PATH_T_S = np.linspace(0.0, 60.0, 301)
+LOOP_S = 30.0  # the aircraft's animation replays its first 30 s
+
+
+class RadarTrackingScene(Scene):
+    id = "radar-tracking"
+    title = "Example 1.2 — radar tracking an aircraft"
+    chapter = 1
+    parameters = physics.INPUTS
+    animated = True
+    camera_position = (3.6, -1.6, 2.6)
+    camera_look_at = (0.6, 2.0, 1.2)
+
+    def build(self) -> None:
+        scene = self.client.scene
+        self.t_s = 0.0
+        scene.add_grid("/ground", width=6.0, height=10.0, cell_size=0.5, section_size=1.0, position=(1.0, 3.0, 0.0))
+        scene.add_label("/ground/note", "grid: 1 km squares", position=(-2.0, -2.0, 0.0))
+        scene.add_cylinder("/radar", radius=0.08, height=0.16, color=(70, 70, 70), position=(0, 0, 0.08))
+        scene.add_label("/radar/label", "radar", position=(0, 0, 0.2), anchor="bottom-center")
+        path = physics.position(PATH_T_S) * KM
+        scene.add_line_segments(
+            "/path", np.stack([path[:-1], path[1:]], axis=1).astype(np.float32), (120, 120, 160), thickness=0.012
+        )
+        self.aircraft = scene.add_icosphere("/aircraft", radius=0.09, color=(20, 90, 200))
+        self.aircraft_label = scene.add_label("/aircraft/label", "", position=(0.0, 0.0, 0.12), anchor="bottom-left")
+        self.sight = scene.add_line_segments("/sight", np.zeros((2, 2, 3), np.float32), (60, 160, 60), thickness=0.006)
+        # 0: live velocity of the aircraft; 1: exact velocity at t_s; 2: finite-difference velocity at t_s.
+        self.arrows = scene.add_arrows(
+            "/velocity",
+            np.zeros((3, 2, 3), np.float32),
+            np.array([[20, 90, 200], [30, 150, 60], [220, 60, 40]], np.uint8),
+            shaft_radius=0.012,
+            head_radius=0.035,
+            head_length=0.09,
+        )
+        self.marker = scene.add_icosphere("/evaluation", radius=0.07, color=(30, 150, 60))
+        self.marker_label = scene.add_label("/evaluation/label", "", position=(0.0, 0.0, -0.1), anchor="top-left")
+
+    def update(self) -> None:
+        t, h = self.params["t_s"], self.params["dt_s"]
+        p = physics.position(t) * KM
+        v_exact = physics.velocity_exact(t)
+        v_fd = physics.velocity_central_difference(t, h)
+        self.marker.position = p
+        self.marker_label.text = (
+            f"t = {t:g} s: |v| = {np.linalg.norm(v_exact):.3f} m/s, "
+            f"finite-difference error = {np.linalg.norm(v_fd - v_exact):.2e} m/s"
+        )
+        self._v_pair = (p, v_exact, v_fd)
+        self._draw_aircraft()
+
+    def _draw_aircraft(self) -> None:
+        p_now = physics.position(self.t_s) * KM
+        v_now = physics.velocity_exact(max(self.t_s, 1e-6))
+        p_eval, v_exact, v_fd = self._v_pair
+        self.aircraft.position = p_now
+        self.aircraft_label.text = f"t = {self.t_s:4.1f} s  speed {np.linalg.norm(v_now):.1f} m/s"
+        self.arrows.points = arrow_segments(
+            np.array([p_now, p_eval, p_eval]), np.array([v_now, v_exact, v_fd]), VELOCITY_SCALE
+        )
+        self.sight.points = np.array([[[0, 0, 0], p_now], [[0, 0, 0], p_eval]], dtype=np.float32)
+
+    def advance(self, dt_s: float) -> None:
+        self.t_s = (self.t_s + dt_s) % LOOP_S
+        self._draw_aircraft()

@@ -1,0 +1,1 @@
+"""Chapter 2 scenes: a particle on a typed space curve."""

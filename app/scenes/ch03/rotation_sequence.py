@@ -1,0 +1,253 @@
+"""Scene: a rotation sequence applied one turn at a time, with every intermediate frame drawn.
+
+Frames (all through the origin, axes red/green/blue for x/y/z): the fixed frame
+``XYZ`` (longest axes), ``x′y′z′`` after the first turn, ``x″y″z″`` after the
+second, and the body frame ``xyz`` after the third (shortest axes, carrying a
+translucent plate). Each turn's axis is an arrow in its own colour, labelled with
+its angle, and the tip of one axis of the turning frame leaves an arc showing
+the angle swept. In gimbal lock the first and third turn axes turn red.
+
+Display units: the fixed axes are 1.3 units long. The animation (apply θ1, then
+θ2, then θ3, hold, repeat) is a drawing device, not a model in time: every
+number in the readout is for the complete sequence and comes from
+:mod:`app.physics.math.rotations`.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from app.physics.core.parameters import Parameter, ParameterSet
+from app.physics.math.rotations import (
+    SEQUENCES,
+    angle_rate_matrix_body,
+    angles_from_matrix,
+    axis_angle_from_quaternion,
+    intermediate_frames,
+    quaternion_multiply,
+    rotation_sequence,
+)
+from app.scenes.kit import Preset, Scene
+
+STAGES = ("animate", "after turn 1", "after turn 2", "after turn 3")
+NEAR_LOCK_DEG = 10.0
+
+INPUTS = ParameterSet(
+    (
+        Parameter(
+            "sequence", "", "3-1-3", kind="choice", choices=tuple(SEQUENCES), label="Sequence",
+            description="Axes of the three body-fixed turns (1 = x, 2 = y, 3 = z): proper Euler (first axis repeated) or Tait–Bryan (all three)",
+        ),
+        Parameter("angle1_deg", "deg", 80.0, -180.0, 180.0, label="θ1", step=1.0, description="First turn, about axis a1 of the fixed frame XYZ"),
+        Parameter("angle2_deg", "deg", 35.0, -180.0, 180.0, label="θ2", step=1.0, description="Second turn, about axis a2 of the once-turned frame x′y′z′"),
+        Parameter("angle3_deg", "deg", 60.0, -180.0, 180.0, label="θ3", step=1.0, description="Third turn, about axis a3 of the twice-turned frame x″y″z″"),
+        Parameter(
+            "stage", "", "animate", kind="choice", choices=STAGES, label="Stage",
+            description="animate: sweep θ1, then θ2, then θ3, hold and repeat; or hold the frame reached after one, two or all three turns",
+        ),
+    )
+)
+
+# Axis lengths (display units) of the frames after 0, 1, 2, 3 turns: nested so labels never coincide.
+FRAME_AXIS_LENGTH = (1.3, 1.1, 0.9, 0.72)
+FRAME_AXIS_RADIUS = (0.012, 0.016, 0.02, 0.026)
+FRAME_LABELS = (("X", "Y", "Z"), ("x′", "y′", "z′"), ("x″", "y″", "z″"), ("x", "y", "z"))
+TURN_AXIS_LENGTH = (2.0, 1.8, 1.6)
+TURN_COLORS = ((240, 140, 20), (190, 60, 200), (20, 160, 170))
+LOCK_COLOR = (225, 25, 25)
+ARC_DEGREES_PER_SEGMENT = 4.0
+
+# Animation: (completed turns, turn being swept or 0, seconds). A drawing device only.
+TIMELINE = ((0, 0, 0.8), (0, 1, 2.0), (1, 0, 0.6), (1, 2, 2.0), (2, 0, 0.6), (2, 3, 2.0), (3, 0, 3.0))
+CYCLE_S = sum(phase[2] for phase in TIMELINE)
+
+
+def animation_state(t_s: float) -> tuple[int, int, float]:
+    """``(turns completed, turn being swept (1–3) or 0, eased fraction swept)`` at ``t_s`` into the loop."""
+    t = t_s % CYCLE_S
+    for done, sweeping, duration in TIMELINE:
+        if t < duration:
+            f = t / duration
+            return done, sweeping, f * f * (3.0 - 2.0 * f) if sweeping else 0.0
+        t -= duration
+    return 3, 0, 0.0
+
+
+def _fmt(value: float) -> str:
+    return f"{value:+.4f}".replace("+", " ").replace("-0.0000", " 0.0000")
+
+
+class RotationSequenceScene(Scene):
+    id = "rotation-sequence"
+    title = "Rotation sequences: Euler and Tait–Bryan angles"
+    chapter = 3
+    parameters = INPUTS
+    animated = True
+    camera_position = (1.95, -2.55, 2.0)
+    camera_look_at = (0.0, 0.0, 0.7)
+    presets = (
+        Preset("aircraft", "Aircraft yaw–pitch–roll (3-2-1)", {"sequence": "3-2-1", "angle1_deg": 30.0, "angle2_deg": -20.0, "angle3_deg": 25.0, "stage": "animate"},
+               "Yaw 30° about Z, pitch 20° nose-up (θ2 = −20° about y′, because Z points up here), roll 25° about x″"),
+        Preset("classic-euler", "Classic Euler angles (3-1-3)", {"sequence": "3-1-3", "angle1_deg": 80.0, "angle2_deg": 35.0, "angle3_deg": 60.0, "stage": "animate"},
+               "Precession 80° about Z, nutation 35° about the line of nodes x′, spin 60° about z″"),
+        Preset("gimbal-lock", "Gimbal lock (3-2-1, pitch 90°)", {"sequence": "3-2-1", "angle1_deg": 30.0, "angle2_deg": 90.0, "angle3_deg": 10.0, "stage": "after turn 3"},
+               "Pitch 90°: the roll axis x″ lands on the yaw axis Z, so only yaw − roll is determined"),
+    )
+
+    # -- building -----------------------------------------------------------------------------------
+    def build(self) -> None:
+        scene = self.client.scene
+        self.frames = []
+        for n, (length, radius, labels) in enumerate(zip(FRAME_AXIS_LENGTH, FRAME_AXIS_RADIUS, FRAME_LABELS)):
+            frame = scene.add_frame(f"/frame{n}", axes_length=length, axes_radius=radius, origin_radius=0.05)
+            for axis, text in enumerate(labels):
+                tip = np.zeros(3)
+                tip[axis] = length + 0.1
+                scene.add_label(f"/frame{n}/label_{axis}", text, position=tip, anchor="center-center", font_screen_scale=1.2 if n in (0, 3) else 1.0)
+            self.frames.append(frame)
+        scene.add_box("/frame3/plate", color=(90, 120, 170), dimensions=(0.7, 0.42, 0.06), opacity=0.45, cast_shadow=False, receive_shadow=False)
+        self.turn_axes = [
+            scene.add_arrows(f"/turn{k}/axis", np.zeros((1, 2, 3), np.float32), TURN_COLORS[k], shaft_radius=0.02, head_radius=0.06, head_length=0.15)
+            for k in range(3)
+        ]
+        self.turn_labels = [scene.add_label(f"/turn{k}/label", "", anchor="bottom-left") for k in range(3)]
+        self.arcs = [
+            scene.add_line_segments(f"/turn{k}/arc", np.zeros((1, 2, 3), np.float32), TURN_COLORS[k], thickness=4.0, thickness_units="screen")
+            for k in range(3)
+        ]
+        self.t_s = 0.0
+        self._shown: tuple[int, int] | None = None
+
+    # -- parameters → geometry ------------------------------------------------------------------------
+    def angles_rad(self) -> np.ndarray:
+        return np.radians([self.params["angle1_deg"], self.params["angle2_deg"], self.params["angle3_deg"]])
+
+    def update(self) -> None:
+        self.sequence = rotation_sequence(self.params["sequence"])
+        self.angles = self.angles_rad()
+        self.geometry = intermediate_frames(self.angles, self.sequence)
+        R = self.geometry.R_world_frame[3]
+        self.decomposition = angles_from_matrix(R, self.sequence)
+        self._prepare_turns()
+        locked = bool(self.decomposition.degenerate)
+        for k in range(3):
+            n = self.geometry.rotation_axes_world[k]
+            self.turn_axes[k].points = np.array([[np.zeros(3), TURN_AXIS_LENGTH[k] * n]], np.float32)
+            self.turn_axes[k].colors = np.array(LOCK_COLOR if locked and k != 1 else TURN_COLORS[k], np.uint8)
+            self.turn_labels[k].position = tuple(TURN_AXIS_LENGTH[k] * n + np.array([0.0, 0.0, 0.04 * (1 - k)]))
+            text = f"turn {k + 1}: θ{k + 1} = {math.degrees(self.angles[k]):g}° about {self.sequence.axis_label(k + 1)}"
+            if locked and k != 1:
+                text += f" (on the line of {self.sequence.axis_label(3 - k)}: gimbal lock)"
+            self.turn_labels[k].text = text
+        self.t_s = 0.0
+        self._shown = None
+        self._draw()
+
+    def _prepare_turns(self) -> None:
+        """Per turn, everything a frame of its sweep needs, so a frame costs a few flops.
+
+        Turning frame ``k`` by ``φ`` about its axis ``a``: ``q(φ) = q_before ⊗ (cos ½φ, sin ½φ e_a)
+        = cos ½φ · q_before + sin ½φ · (q_before ⊗ e_a)``. The arc is the path of the tip of the
+        axis after ``a`` (display length of the frame being turned): ``start cos φ + (n × start) sin φ``.
+        """
+        self._turns = []
+        for k in range(3):
+            q_before = self.geometry.q_world_frame[k]
+            e_axis = np.zeros(4)
+            e_axis[1 + self.sequence.axes[k]] = 1.0
+            q_axis = quaternion_multiply(q_before, e_axis)
+            n = self.geometry.rotation_axes_world[k]
+            start = self.geometry.R_world_frame[k][:, (self.sequence.axes[k] + 1) % 3] * FRAME_AXIS_LENGTH[k + 1]
+            count = max(2, int(math.ceil(abs(math.degrees(self.angles[k])) / ARC_DEGREES_PER_SEGMENT)) + 1)
+            phi = np.linspace(0.0, self.angles[k], count)[:, None]
+            points = (start * np.cos(phi) + np.cross(n, start) * np.sin(phi)).astype(np.float32)
+            self._turns.append((q_before, q_axis, start, np.cross(n, start), points))
+
+    def _turn(self, k: int, fraction: float) -> None:
+        """Place frame ``k+1`` partway (``fraction``) through turn ``k`` and grow its arc."""
+        q_before, q_axis, start, side, points = self._turns[k]
+        phi = fraction * self.angles[k]
+        self.frames[k + 1].wxyz = math.cos(0.5 * phi) * q_before + math.sin(0.5 * phi) * q_axis
+        tip = (start * math.cos(phi) + side * math.sin(phi)).astype(np.float32)
+        whole = int(fraction * (len(points) - 1))  # arc samples already passed
+        path = np.concatenate([points[: whole + 1], tip[None, :]])
+        self.arcs[k].points = np.stack([path[:-1], path[1:]], axis=1)
+
+    def _draw(self) -> None:
+        stage = self.params["stage"]
+        if stage == "animate":
+            done, sweeping, fraction = animation_state(self.t_s)
+        else:
+            done, sweeping, fraction = STAGES.index(stage), 0, 0.0
+        shown = (done, sweeping)
+        if shown != self._shown:  # frames, axes and arcs appear only when a phase starts
+            visible_turns = max(done, sweeping)
+            for n in (1, 2, 3):
+                self.frames[n].visible = n <= visible_turns
+            for k in range(3):
+                for node in (self.turn_axes[k], self.turn_labels[k], self.arcs[k]):
+                    node.visible = k < visible_turns
+            for k in range(done):
+                self._turn(k, 1.0)
+            self._shown = shown
+        if sweeping:
+            self._turn(sweeping - 1, fraction)
+
+    def advance(self, dt_s: float) -> None:
+        if self.params["stage"] != "animate":
+            return
+        self.t_s += dt_s
+        self._draw()
+
+    # -- numbers beside the scene ---------------------------------------------------------------------
+    def readout(self) -> dict[str, Any]:
+        seq, decomposition = self.sequence, self.decomposition
+        R = self.geometry.R_world_frame[3]
+        q = self.geometry.q_world_frame[3]
+        axis, angle = axis_angle_from_quaternion(q)
+        lock_deg = math.degrees(float(decomposition.lock_distance_rad))
+        singular_values = np.linalg.svd(angle_rate_matrix_body(self.angles, seq), compute_uv=False)
+        rate_gain: float | str = "unbounded" if decomposition.degenerate else float(1.0 / singular_values[-1])
+        recovered = np.degrees(decomposition.angles_rad)
+        quantities = [
+            {"name": "sequence", "label": "sequence", "value": f"{seq.name} ({seq.kind})", "unit": ""},
+            *(
+                {"name": f"R_row{i + 1}", "label": f"[R] row {i + 1} (v_XYZ = [R] v_xyz)", "value": "  ".join(_fmt(v) for v in R[i]), "unit": ""}
+                for i in range(3)
+            ),
+            *({"name": f"q_{c}", "label": f"quaternion {c}", "value": float(v), "unit": ""} for c, v in zip("wxyz", q)),
+            {"name": "axis", "label": "rotation axis (unit vector, XYZ)", "value": "  ".join(_fmt(v) for v in axis), "unit": ""},
+            {"name": "rotation_angle_deg", "label": "rotation angle about that axis", "value": math.degrees(float(angle)), "unit": "deg"},
+            {"name": "gimbal_lock_distance_deg", "label": "distance to gimbal lock", "value": lock_deg, "unit": "deg"},
+            {"name": "recovered_angles_deg", "label": "angles read back from [R]", "value": ", ".join(f"{a:.2f}" for a in recovered), "unit": "deg"},
+            {"name": "rate_gain", "label": "largest angle rate per unit |ω|", "value": rate_gain, "unit": "(rad/s)/(rad/s)"},
+        ]
+        marks = {"angle2_deg": [{"value": math.degrees(a), "label": "gimbal lock"} for a in seq.lock_angles_rad]}
+        return {"quantities": quantities, "marks": marks, "message": self.message()}
+
+    def message(self) -> str:
+        seq, decomposition = self.sequence, self.decomposition
+        degrees = np.degrees(self.angles)
+        turns = ", then ".join(f"θ{k + 1} = {degrees[k]:g}° about {seq.axis_label(k + 1)}" for k in range(3))
+        text = f"{seq.name} is a {seq.kind} sequence: {turns}."
+        lock_deg = math.degrees(float(decomposition.lock_distance_rad))
+        if decomposition.degenerate:
+            s = float(decomposition.lock_sign)
+            combination = "θ1 + θ3" if s > 0 else "θ1 − θ3"
+            value = math.degrees(self.angles[0] + s * self.angles[2])
+            value = (value + 180.0) % 360.0 - 180.0
+            text += (
+                f" Gimbal lock: θ2 = {degrees[1]:g}° puts the third turn's axis {seq.axis_label(3)} on the line of the first "
+                f"turn's axis {seq.axis_label(1)}, so the first and third turns act about the same line. Only {combination} "
+                f"= {value:.6g}° is determined; every pair with that {'sum' if s > 0 else 'difference'} gives the same [R], "
+                "and the angle rates can no longer be found from ω."
+            )
+        elif lock_deg < NEAR_LOCK_DEG:
+            text += (
+                f" Near gimbal lock ({lock_deg:.3g}° away): small changes of attitude need large, opposite changes of θ1 and θ3, "
+                "and the angle rates for a given ω grow like 1/sin of that distance."
+            )
+        return text

@@ -1,0 +1,1 @@
+"""Chapter 4 scenes: the four-bar, the slider-crank, the cardan joint, rolling without slip."""

@@ -1,0 +1,195 @@
+"""Scene: the heavy symmetric top, integrated live, with its axis locus and invariants.
+
+Drawn in display units: the pivot is at the origin and the symmetry axis is one
+display unit long whatever ``cg_distance_m`` is, so tops of every size fill the
+view. Arrows: angular momentum about the pivot (blue) and the gravity torque
+(red), each scaled to its own maximum. The tip of the symmetry axis leaves a
+trail on the unit sphere (its locus: waves, loops or cusps).
+
+The quadrature solution is drawn alongside the integration: two green rings on
+the sphere bound the nutation band (θ_min, θ_max from the cubic in cos θ) and a
+small white sphere marks where the quadrature puts the axis tip now; the
+readout compares the band the integration has swept with the predicted one.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from app.physics.math.rotations import rotate_vector
+from app.physics.systems.ch10 import heavy_top as physics
+from app.scenes.kit import IntegratedScene, Trail, arrow_segments, circle_segments, scene_parameters
+
+AXIS_LENGTH = 1.0  # display units from pivot to the tip of the axis
+TRAIL_CHUNK_FRAMES = 6
+TRAIL_CHUNKS = 90  # 90 × 6 frames = 18 s of trail at 30 Hz
+
+
+def top_mesh(*, radius: float, height_cg: float, segments: int = 48) -> tuple[np.ndarray, np.ndarray]:
+    """A top-shaped solid of revolution about +Z (display units): tip at the origin.
+
+    Profile: cone from the tip out to ``radius`` at ``height_cg``, a rounded
+    crown above it, and a stem to the axis tip.
+    """
+    profile = np.array(
+        [
+            [0.0, 0.0],
+            [0.35 * radius, 0.35 * height_cg],
+            [radius, height_cg],
+            [0.95 * radius, height_cg + 0.06],
+            [0.6 * radius, height_cg + 0.12],
+            [0.06, height_cg + 0.14],
+            [0.04, AXIS_LENGTH],
+            [0.0, AXIS_LENGTH],
+        ]
+    )
+    angles = np.linspace(0.0, 2.0 * math.pi, segments, endpoint=False)
+    rings = [np.stack([r * np.cos(angles), r * np.sin(angles), np.full(segments, z)], axis=1) for r, z in profile]
+    vertices = np.concatenate(rings).astype(np.float32)
+    faces = []
+    for k in range(len(profile) - 1):
+        a, b = k * segments, (k + 1) * segments
+        for j in range(segments):
+            jn = (j + 1) % segments
+            faces.append((a + j, b + j, b + jn))
+            faces.append((a + j, b + jn, a + jn))
+    return vertices, np.asarray(faces, dtype=np.uint32)
+
+
+class HeavyTopScene(IntegratedScene):
+    id = "heavy-top"
+    title = "The heavy symmetric top"
+    chapter = 10
+    model = physics.HeavyTop
+    parameters = scene_parameters(physics.HeavyTop)
+    camera_position = (1.35, -1.65, 1.05)
+    camera_look_at = (0.0, 0.0, 0.35)
+
+    def build(self) -> None:
+        scene = self.client.scene
+        scene.add_grid("/ground", width=3.0, height=3.0, cell_size=0.1, section_size=0.5, position=(0.0, 0.0, 0.0))
+        scene.add_icosphere("/pivot", radius=0.025, color=(40, 40, 40))
+        scene.add_icosphere(
+            "/locus_sphere", radius=AXIS_LENGTH, color=(150, 170, 200), opacity=0.12, subdivisions=4, cast_shadow=False, receive_shadow=False
+        )
+        self.body = scene.add_frame("/top", show_axes=False)
+        self.mesh = None
+        self.spin_marker = scene.add_icosphere("/top/marker", radius=0.03, color=(240, 190, 40))
+        self.arrows = scene.add_arrows(
+            "/vectors",
+            np.zeros((2, 2, 3), np.float32),
+            np.array([[40, 100, 220], [220, 50, 40]], np.uint8),
+            shaft_radius=0.012,
+            head_radius=0.03,
+            head_length=0.07,
+        )
+        self.arrow_labels = [
+            scene.add_label("/vectors/L", "L (angular momentum)", anchor="center-left"),
+            scene.add_label("/vectors/tau", "τ (gravity torque)", anchor="center-left"),
+        ]
+        self.readout_label = scene.add_label("/readout", "", position=(-0.6, 0.0, 1.25), anchor="bottom-left")
+        self.band_rings = scene.add_line_segments(
+            "/nutation_band", np.zeros((1, 2, 3), np.float32), (40, 160, 80), thickness=2.5, thickness_units="screen"
+        )
+        self.reference_tip = scene.add_icosphere("/reference_tip", radius=0.022, color=(250, 250, 250))
+        self.trail = Trail(scene, "/trail", color=(230, 120, 30), chunk_frames=TRAIL_CHUNK_FRAMES, max_chunks=TRAIL_CHUNKS, thickness=3.0)
+
+    def update(self) -> None:
+        params = self.physical_params()
+        self.restart()
+        m, l = params["mass_kg"], params["cg_distance_m"]
+        radius_m = math.sqrt(2.0 * params["I_axial"] / m)  # a uniform disc with the same axial moment
+        # Display: pivot-to-CM distance l maps to 0.55 of the axis; the crown radius follows in proportion.
+        height_cg = 0.55
+        radius = float(np.clip(radius_m / l * height_cg, 0.08, 0.8))
+        vertices, faces = top_mesh(radius=radius, height_cg=height_cg)
+        if self.mesh is not None:
+            self.mesh.remove()
+        self.mesh = self.client.scene.add_mesh_simple("/top/body", vertices, faces, color=(70, 130, 180), flat_shading=False)
+        self.spin_marker.position = (radius, 0.0, height_cg)
+        self.trail.clear()
+        body = physics.rigid_body(params)
+        self._momentum_scale = 0.8 / max(float(np.linalg.norm(body.angular_momentum_world(self.run.y))), 1e-12)
+        self._torque_scale = 0.6 / max(body.gravity_moment_N_m, 1e-12)
+        self._body_model = body
+        self._update_reference(params)
+        self._draw()
+
+    def _update_reference(self, params) -> None:
+        """Quadrature solution for these parameters: nutation band rings and the reference tip."""
+        try:
+            self.reference = physics.quadrature(params)
+            self.reference_message = ""
+        except ValueError as exc:
+            self.reference = None
+            self.reference_message = f"No quadrature reference for these values: {exc}"
+        self._theta_swept = [math.inf, -math.inf]
+        rings = []
+        if self.reference is not None:
+            for theta in {self.reference.theta_min_rad, self.reference.theta_max_rad}:
+                height = AXIS_LENGTH * 1.004 * math.cos(theta)
+                rings.append(circle_segments(radius=AXIS_LENGTH * 1.004 * math.sin(theta), center=(0.0, 0.0, height)))
+        self.band_rings.points = np.concatenate(rings).astype(np.float32) if rings else np.zeros((1, 2, 3), np.float32)
+        self.band_rings.visible = bool(rings)
+        self.reference_tip.visible = self.reference is not None
+
+    def _draw(self) -> None:
+        y = self.run.y
+        q = y[0:4] / np.linalg.norm(y[0:4])
+        self.body.wxyz = q
+        axis = rotate_vector(q, np.array([0.0, 0.0, 1.0]))
+        momentum = self._body_model.angular_momentum_world(y)
+        torque = self._body_model.gravity_moment_N_m * np.cross(axis, [0.0, 0.0, -1.0])
+        vectors = np.array([momentum * self._momentum_scale, torque * self._torque_scale])
+        self.arrows.points = arrow_segments(np.zeros((2, 3)), vectors, 1.0)
+        for label, vector in zip(self.arrow_labels, vectors):
+            label.position = tuple(vector * 1.05)
+        self.trail.add(axis * AXIS_LENGTH)
+        theta_rad = math.acos(max(-1.0, min(1.0, axis[2])))
+        self._theta_swept = [min(self._theta_swept[0], theta_rad), max(self._theta_swept[1], theta_rad)]
+        if self.reference is not None:
+            self.reference_tip.position = tuple(self.reference.symmetry_axis(np.array([self.run.t_s]))[0] * AXIS_LENGTH)
+        drift = max(self.current_drift().values(), default=0.0)
+        self.readout_label.text = f"t = {self.run.t_s:6.2f} s   θ = {math.degrees(theta_rad):5.2f}°   largest drift {drift:.1e}"
+
+    def advance(self, dt_s: float) -> None:
+        if self.step_physics():
+            self._draw()
+        else:
+            self.readout_label.text = self.status
+
+    def readout(self) -> dict:
+        """Quadrature predictions beside what the integration has done so far; the sleeping threshold mark."""
+        params = self.physical_params()
+        critical = physics.critical_spin_rad_s(params)
+        quantities = []
+        reference = self.reference
+        if reference is not None:
+            quantities += [
+                {"name": "theta_min_deg", "label": "nutation band: θ min (quadrature)", "value": math.degrees(reference.theta_min_rad), "unit": "deg"},
+                {"name": "theta_max_deg", "label": "nutation band: θ max (quadrature)", "value": math.degrees(reference.theta_max_rad), "unit": "deg"},
+                {"name": "nutation_period_s", "label": "nutation period (quadrature)", "value": _finite_or_text(reference.nutation_period_s), "unit": "s"},
+                {"name": "mean_precession_rate_rad_s", "label": "mean precession rate (quadrature)", "value": reference.mean_precession_rate_rad_s, "unit": "rad/s"},
+                {"name": "locus", "label": "axis locus", "value": physics.locus_shape(reference), "unit": ""},
+            ]
+        if self._theta_swept[0] <= self._theta_swept[1]:
+            quantities += [
+                {"name": "theta_min_swept_deg", "label": "θ min swept so far (integration)", "value": math.degrees(self._theta_swept[0]), "unit": "deg"},
+                {"name": "theta_max_swept_deg", "label": "θ max swept so far (integration)", "value": math.degrees(self._theta_swept[1]), "unit": "deg"},
+            ]
+        quantities.append({"name": "critical_spin_rad_s", "label": "sleeping threshold |ω₃|", "value": critical, "unit": "rad/s"})
+        spin = abs(params["spin_rad_s"])
+        message = self.reference_message or (
+            f"|ω₃| = {spin:.4g} rad/s is above the sleeping threshold {critical:.4g} rad/s: started upright, this top would stay up."
+            if spin > critical
+            else f"|ω₃| = {spin:.4g} rad/s is below the sleeping threshold {critical:.4g} rad/s: an upright start is unstable."
+        )
+        marks = {"spin_rad_s": [{"value": critical, "label": "sleeping threshold"}, {"value": -critical, "label": "sleeping threshold"}]}
+        return {"quantities": quantities, "marks": marks, "message": message}
+
+
+def _finite_or_text(value: float) -> float | str:
+    """A JSON-safe readout value: infinite periods (an upright top that never returns) as text."""
+    return value if math.isfinite(value) else "never returns"

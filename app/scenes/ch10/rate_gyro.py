@@ -1,0 +1,225 @@
+"""Scene: the single-axis rate gyro on a turntable (section 10.3).
+
+World frame: +Z up. The case (a translucent box) stands on a turntable that
+turns about Z, the gyro's input axis. The gimbal (teal ring) pivots in the
+case about the case's x axis (output axis), restrained by a spring and a
+damper; the rotor (blue) spins about the gimbal's y axis. A pointer on the
+gimbal reads the deflection β against a scale calibrated in rad/s of input
+rate (β = G Ω in the steady state, G = I_a ω_s / k).
+
+For a step input the turntable runs at Ω₀ for ``hold`` seconds, stops for as
+long, and repeats; by linearity β is the step response minus the step response
+delayed by ``hold`` (superposition of :func:`app.physics.systems.ch10.rate_gyro.gimbal_response`).
+A sine input simply runs on. Arrows: spin angular momentum ``H`` (blue, fixed
+length), input rate ``Ω`` (green, scaled to Ω₀), and the spring-plus-damper
+moment on the gimbal (red, scaled to its steady value H Ω₀) — the moment that
+turns ``H`` with the case.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from app.physics.systems.ch10 import rate_gyro as physics
+from app.scenes.ch10.free_gyroscope import COLOR_H, COLOR_RATE, COLOR_TORQUE, add_rotor, drawn_spin_rate, ring_mesh, spin_quaternion
+from app.scenes.kit import Preset, Scene, arrow_segments
+
+GIMBAL_RADIUS = 0.55
+ROTOR_RADIUS = 0.34
+CASE_SIZE = (1.5, 1.5, 1.2)
+POINTER_LENGTH = 0.62
+SCALE_X = 0.78  # the pointer and its scale sit just inside the case's +x wall
+H_ARROW_LENGTH = 0.95
+RATE_ARROW_MAX = 0.7
+MOMENT_ARROW_MAX = 0.6
+MAX_SCALE_RAD = math.radians(60.0)
+#: Label texts (numbers) are refreshed every this many frames (5 Hz): each assignment is sent to the browser.
+LABEL_TEXT_EVERY = 6
+RATE_ARROW_TAIL = np.array([0.0, 0.0, 0.5 * CASE_SIZE[2] + 0.25])
+MOMENT_ARROW_TAIL = np.array([-0.5 * CASE_SIZE[0] - 0.05, 0.0, -0.15])
+
+
+def hold_time_s(params) -> float:
+    """How long the turntable runs (and then rests) in the step demonstration: ~6 time constants, 3–20 s."""
+    decay = physics.damping_ratio(params) * physics.natural_frequency_rad_s(params)
+    return float(np.clip(6.0 / decay, 3.0, 20.0)) if decay > 0.0 else 10.0
+
+
+def nice_step(value: float) -> float:
+    """The smallest of 1, 2, 2.5, 5 × 10ⁿ at or above ``value`` (> 0)."""
+    exponent = math.floor(math.log10(value))
+    for mantissa in (1.0, 2.0, 2.5, 5.0, 10.0):
+        if mantissa * 10.0**exponent >= value * (1 - 1e-12):
+            return mantissa * 10.0**exponent
+    return 10.0 ** (exponent + 1)
+
+
+class RateGyroScene(Scene):
+    id = "rate-gyro"
+    title = "The single-axis rate gyro"
+    chapter = 10
+    parameters = physics.PARAMETERS
+    model = physics.RateGyro
+    animated = True
+    camera_position = (2.05, -1.75, 1.25)
+    camera_look_at = (0.1, 0.0, -0.05)
+    presets = (
+        Preset("underdamped", "Under-damped (ζ ≈ 0.2)", {"damping_N_m_s_rad": 0.02, "input_kind": "step"},
+               "The pointer overshoots and rings before it settles on the input rate."),
+        Preset("critical", "Critically damped (ζ = 1)", {"damping_N_m_s_rad": 0.1, "input_kind": "step", "stiffness_N_m_rad": 0.5, "gimbal_inertia_kg_m2": 5e-3},
+               "The fastest approach without overshoot."),
+        Preset("overdamped", "Over-damped (ζ = 3)", {"damping_N_m_s_rad": 0.3, "input_kind": "step"},
+               "Sluggish: the pointer creeps up to the reading."),
+        Preset("sine", "Oscillating input", {"input_kind": "sine", "input_frequency_rad_s": 5.0, "damping_N_m_s_rad": 0.03},
+               "The case rocks back and forth; the pointer follows with a gain and a lag set by ω/ω_n and ζ."),
+    )
+
+    def build(self) -> None:
+        scene = self.client.scene
+        self.t_s = 0.0
+        self._spin_angle = 0.0
+        lx, ly, lz = CASE_SIZE
+        scene.add_grid("/ground", width=4.0, height=4.0, cell_size=0.25, section_size=1.0, position=(0.0, 0.0, -0.5 * lz - 0.12))
+        self.table = scene.add_frame("/table", show_axes=False)
+        scene.add_cylinder("/table/top", radius=1.25, height=0.06, color=(150, 150, 155), position=(0.0, 0.0, -0.5 * lz - 0.06), radial_segments=64)
+        scene.add_box("/table/mark", color=(235, 200, 40), dimensions=(0.25, 0.08, 0.065), position=(1.1, 0.0, -0.5 * lz - 0.06))
+        scene.add_box("/table/case", color=(180, 190, 210), dimensions=CASE_SIZE, opacity=0.18, side="double", cast_shadow=False, receive_shadow=False)
+        scene.add_box("/table/case_edges", color=(90, 100, 120), dimensions=CASE_SIZE, wireframe=True)
+        for sign in (-1.0, 1.0):  # the output-axis bearings in the case walls
+            scene.add_cylinder(
+                f"/table/bearing{int(sign)}", radius=0.03, height=0.5 * lx - GIMBAL_RADIUS, color=(110, 110, 110),
+                position=(sign * 0.5 * (0.5 * lx + GIMBAL_RADIUS), 0.0, 0.0), wxyz=np.array([math.cos(math.pi / 4), 0.0, math.sin(math.pi / 4), 0.0]),
+            )
+        scene.add_label("/table/output_axis", "output axis x", position=(-0.5 * lx - 0.05, 0.0, 0.1), anchor="bottom-right")
+        self.gimbal = scene.add_frame("/table/gimbal", show_axes=False)
+        vertices, faces = ring_mesh(GIMBAL_RADIUS, 0.028, normal="z")  # holds the output pivots (±x) and the rotor bearings (±y)
+        scene.add_mesh_simple("/table/gimbal/ring", vertices, faces, color=(40, 160, 160), flat_shading=False)
+        scene.add_box(
+            "/table/gimbal/pointer", color=(200, 40, 40), dimensions=(0.02, 0.02, POINTER_LENGTH),
+            position=(SCALE_X - 0.03, 0.0, 0.5 * POINTER_LENGTH),
+        )
+        self.rotor = add_rotor(scene, "/table/gimbal/rotor", radius=ROTOR_RADIUS, thickness=0.12, axle_length=2 * GIMBAL_RADIUS)
+        self.scale_nodes: list = []
+        self.arrows = scene.add_arrows(
+            "/table/vectors", np.zeros((3, 2, 3), np.float32), np.array([COLOR_H, COLOR_RATE, COLOR_TORQUE], np.uint8),
+            shaft_radius=0.016, head_radius=0.04, head_length=0.09,
+        )
+        self.labels = {name: scene.add_label(f"/table/vectors/{name}", "", anchor="bottom-left") for name in ("H", "rate", "moment")}
+
+    def update(self) -> None:
+        params = self.params
+        self.t_s = 0.0
+        self._hold_s = hold_time_s(params)
+        self._gain = physics.steady_gain_s(params)
+        self._h = physics.angular_momentum_N_m_s(params)
+        self._draw_scale()
+        self.labels["H"].text = f"H = {abs(self._h):.3g} N·m·s"
+        self.labels["rate"].position = tuple(RATE_ARROW_TAIL + np.array([0.05, 0.0, 0.0]))
+        self.labels["moment"].position = tuple(MOMENT_ARROW_TAIL + np.array([0.0, 0.0, 0.06]))
+        self._frame = 0
+        self._draw()
+
+    def _draw_scale(self) -> None:
+        """Ticks on the case wall at β = G Ω for round input rates Ω (every half of |Ω₀|, up to ±2|Ω₀|
+        and at most ±60° of deflection), every other one labelled in rad/s."""
+        for node in self.scale_nodes:
+            node.remove()
+        scene = self.client.scene
+        full_rate = abs(self.params["input_rate_rad_s"]) or 1.0
+        step = nice_step(0.5 * full_rate)
+        count = int(min(2.0 * full_rate / step, MAX_SCALE_RAD / (abs(self._gain) * step), 8))
+        segments, nodes = [], []
+        for k in range(-count, count + 1):
+            beta = self._gain * k * step
+            # The pointer turns about +x by β: its tip goes to (0, −sin β, cos β)·L.
+            tip = np.array([SCALE_X, -math.sin(beta), math.cos(beta)])
+            segments.append([[SCALE_X, -math.sin(beta) * POINTER_LENGTH, math.cos(beta) * POINTER_LENGTH],
+                             [SCALE_X, -math.sin(beta) * (POINTER_LENGTH + 0.07), math.cos(beta) * (POINTER_LENGTH + 0.07)]])
+            if k % 2 == 0:
+                label = scene.add_label(
+                    f"/table/scale/t{k + count}", f"{k * step:g}", position=(SCALE_X, tip[1] * (POINTER_LENGTH + 0.12), tip[2] * (POINTER_LENGTH + 0.12)),
+                    anchor="bottom-center", font_screen_scale=0.8,
+                )
+                nodes.append(label)
+        nodes.append(scene.add_line_segments("/table/scale/ticks", np.asarray(segments, np.float32), (40, 40, 40), thickness=2.0, thickness_units="screen"))
+        nodes.append(scene.add_label("/table/scale/unit", "scale: rad/s", position=(SCALE_X, 0.0, POINTER_LENGTH + 0.24), anchor="bottom-center"))
+        self.scale_nodes = nodes
+
+    def demonstration(self, t_s: float) -> tuple[float, float, float, float]:
+        """``(β, β̇, Ω, case angle)`` at scene time ``t_s``: the step on/off cycle or the running sine."""
+        params = self.params
+        if params["input_kind"] == "sine":
+            response = physics.gimbal_response(params, t_s)
+            return float(response.beta_rad[0]), float(response.beta_rate_rad_s[0]), float(response.input_rate_rad_s[0]), float(physics.case_angle_rad(params, t_s))
+        hold = self._hold_s
+        cycle = math.floor(t_s / (2.0 * hold))
+        local = t_s - 2.0 * hold * cycle
+        on = physics.gimbal_response(params, local)
+        beta, beta_rate = float(on.beta_rad[0]), float(on.beta_rate_rad_s[0])
+        rate = params["input_rate_rad_s"]
+        if local >= hold:  # the table stopped at t = hold: subtract the delayed step response
+            off = physics.gimbal_response(params, local - hold)
+            beta -= float(off.beta_rad[0])
+            beta_rate -= float(off.beta_rate_rad_s[0])
+            rate = 0.0
+        angle = params["input_rate_rad_s"] * (hold * cycle + min(local, hold))
+        return beta, beta_rate, rate, angle
+
+    def _draw(self) -> None:
+        beta, beta_rate, rate, angle = self.demonstration(self.t_s)
+        self._state = (beta, beta_rate, rate)
+        self.table.wxyz = np.array([math.cos(0.5 * angle), 0.0, 0.0, math.sin(0.5 * angle)])
+        self.gimbal.wxyz = np.array([math.cos(0.5 * beta), math.sin(0.5 * beta), 0.0, 0.0])
+        self.rotor.wxyz = spin_quaternion(self._spin_angle)
+        params = self.params
+        spin_axis = np.array([0.0, math.cos(beta), math.sin(beta)])  # gimbal y in case components
+        h_vector = math.copysign(H_ARROW_LENGTH, self._h) * spin_axis
+        full_rate = max(abs(params["input_rate_rad_s"]), 1e-12)
+        rate_tail = RATE_ARROW_TAIL
+        rate_vector = np.array([0.0, 0.0, rate / full_rate * RATE_ARROW_MAX])
+        moment = -(params["stiffness_N_m_rad"] * beta + params["damping_N_m_s_rad"] * beta_rate)  # on the gimbal, about +x
+        moment_scale = MOMENT_ARROW_MAX / max(abs(self._h) * full_rate, 1e-300)
+        moment_tail = MOMENT_ARROW_TAIL
+        moment_vector = np.array([moment * moment_scale, 0.0, 0.0])
+        self.arrows.points = np.concatenate(
+            [arrow_segments(np.zeros(3), h_vector, 1.0), arrow_segments(rate_tail, rate_vector, 1.0), arrow_segments(moment_tail, moment_vector, 1.0)]
+        )
+        self.labels["H"].position = tuple(1.03 * h_vector)
+        if self._frame % LABEL_TEXT_EVERY == 0:
+            self.labels["rate"].text = f"Ω = {rate:.3g} rad/s (input axis z)"
+            self.labels["moment"].text = f"spring + damper {abs(moment):.3g} N·m"
+        self._frame += 1
+
+    def advance(self, dt_s: float) -> None:
+        self.t_s += dt_s
+        self._spin_angle = (self._spin_angle + drawn_spin_rate(self.params["spin_rad_s"]) * dt_s) % (2.0 * math.pi)
+        self._draw()
+
+    def readout(self) -> dict[str, Any]:
+        params = self.params
+        beta, beta_rate, rate = self._state
+        quantities = [
+            {"name": "t_s", "label": "time t", "value": self.t_s, "unit": "s"},
+            {"name": "input_rate_rad_s", "label": "input rate Ω now", "value": rate, "unit": "rad/s"},
+            {"name": "beta_rad", "label": "gimbal deflection β", "value": beta, "unit": "rad"},
+            {"name": "beta_deg", "label": "gimbal deflection β", "value": math.degrees(beta), "unit": "deg"},
+            {"name": "indicated_rate_rad_s", "label": "indicated rate β/G", "value": beta / self._gain, "unit": "rad/s"},
+            {"name": "steady_gain_s", "label": "steady-state gain G = I_a ω_s/k", "value": self._gain, "unit": "rad per rad/s"},
+            {"name": "natural_frequency_rad_s", "label": "natural frequency ω_n = √(k/I_g)", "value": physics.natural_frequency_rad_s(params), "unit": "rad/s"},
+            {"name": "damping_ratio", "label": "damping ratio ζ = c/(2√(k I_g))", "value": physics.damping_ratio(params), "unit": ""},
+        ]
+        if params["input_kind"] == "sine":
+            ratio, lag = physics.frequency_response(params, params["input_frequency_rad_s"])
+            quantities += [
+                {"name": "amplitude_ratio_s", "label": "steady amplitude ratio |β|/|Ω|", "value": ratio, "unit": "rad per rad/s"},
+                {"name": "phase_lag_deg", "label": "phase lag of β behind Ω", "value": math.degrees(lag), "unit": "deg"},
+            ]
+            message = "The case rocks at the input frequency; after the start-up transient β is a sine with the gain and lag above."
+        else:
+            quantities.append({"name": "hold_s", "label": "turntable runs, then rests, for", "value": self._hold_s, "unit": "s"})
+            message = ""
+        marks = {"damping_N_m_s_rad": [{"value": physics.critical_damping_N_m_s_rad(params), "label": "critical (ζ = 1)"}]}
+        return {"quantities": quantities, "marks": marks, "message": message}

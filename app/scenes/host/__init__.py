@@ -1,0 +1,1 @@
+"""The viser life cycle: one loopback viser server, sessions, the frame loop (:mod:`.host`)."""

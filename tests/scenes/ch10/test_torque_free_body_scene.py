@@ -1,0 +1,116 @@
+"""The torque-free-body scene on a real (loopback) viser server, without a browser.
+
+A stand-in client carries the server's own scene and GUI APIs, so the scene's build,
+per-frame drawing and readout run exactly as for a viewer; what it drew is read back
+from its node handles and checked against the physics.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import math
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+import viser
+
+from app.physics.math.rotations import rotation_matrix
+from app.physics.systems.ch10 import torque_free_body as tfb
+from app.scenes.ch10.torque_free_body import BOX_FILL, PRESETS, TorqueFreeBodyScene
+from app.scenes.kit import FRAME_DT_S
+
+PARAMETERS = TorqueFreeBodyScene.parameters
+TENNIS = next(p for p in PRESETS if p.name == "tennis-racket")
+
+
+@pytest.fixture(scope="module")
+def client():
+    with contextlib.redirect_stdout(io.StringIO()):
+        server = viser.ViserServer(host="127.0.0.1", port=0, verbose=False)
+    yield SimpleNamespace(
+        scene=server.scene, gui=server.gui, atomic=server.atomic,
+        _websock_connection=SimpleNamespace(queue_message=lambda message: None),
+    )
+    server.stop()
+
+
+def quantities(scene) -> dict:
+    return {q["name"]: q for q in scene.readout()["quantities"]}
+
+
+def test_tennis_racket_with_ghost_for_20_s(client):
+    scene = TorqueFreeBodyScene(client, PARAMETERS.validate({**TENNIS.values, "ghost": "on"}))
+    for _ in range(600):
+        scene.advance(FRAME_DT_S)
+    body = tfb.motion(scene.params)
+    t = 600 * FRAME_DT_S
+    readout = quantities(scene)
+    assert readout["t"]["value"] == pytest.approx(20.0, rel=1e-12) and readout["t"]["unit"] == "s"
+    assert readout["energy"]["value"] == pytest.approx(0.5 * np.sum(body.inertia * body.omega0_body**2), rel=1e-15)
+    assert readout["angular_momentum"]["value"] == pytest.approx(np.linalg.norm(body.inertia * body.omega0_body), rel=1e-15)
+    assert readout["period"]["value"] == body.period_s and readout["period"]["unit"] == "s"
+    assert readout["intermediate_axis"]["value"].startswith("2 ")
+    assert readout["circled_axis"]["value"] == "axis 3 (largest I)"
+    flips = tfb.flip_times_s(body, 40.0)
+    upcoming = flips[flips > t][0]
+    assert readout["next_flip"]["value"] == pytest.approx(upcoming - t, abs=1e-9)
+    # The ghost (RK4 on the solver core) stayed within 1e-7 rad of the closed form (measured ~2e-9).
+    assert readout["ghost_method"]["value"].startswith("RK4")
+    assert 0.0 < readout["ghost_attitude_difference"]["value"] < 1e-7
+    assert "turns over every" in scene.readout()["message"]
+    assert scene.readout()["marks"]["I3"] == [{"value": pytest.approx(0.0025 + 0.0049), "label": "I1+I2"}]
+
+    # What was drawn is the physics at t = 20 s.
+    q = body.quaternion(np.array([t]))[0]
+    assert tfb.attitude_difference_rad(np.asarray(scene.body_frame.wxyz), q) < 1e-12
+    assert tfb.attitude_difference_rad(np.asarray(scene.ghost_frame.wxyz), q) < 1e-7
+    assert scene.ghost_frame.visible
+    contact = np.asarray(scene.contact.position)
+    omega_world = rotation_matrix(q) @ body.omega_body(np.array([t]))[0]
+    assert contact == pytest.approx(omega_world * scene.scale, abs=1e-12)
+    _, distance = tfb.invariable_plane(body)
+    assert contact[2] == pytest.approx(-distance * scene.scale, rel=1e-12)  # on the plane …
+    shown_axes = np.asarray(scene.ellipsoid.scale)
+    assert max(shown_axes) == pytest.approx(1.0)
+    body_point = rotation_matrix(q).T @ contact
+    assert np.sum((body_point / shown_axes) ** 2) == pytest.approx(1.0, rel=1e-6)  # … and on the drawn ellipsoid (float32 scale)
+    # Each trail grows a node per 10 new points (601 points: frames 0 to 600) …
+    assert scene.herpolhode_trail.chunk_count == 60
+    # … but the polhode stops once ω has gone round once (plus two nodes of overlap).
+    polhode_points = sum(1 for k in range(601) if k * FRAME_DT_S <= body.period_s + 20 * FRAME_DT_S)
+    assert polhode_points < 601 and scene.polhode_trail.chunk_count == (polhode_points - 1) // 10
+    scene.close()
+
+
+def test_box_fits_its_ellipsoid_and_new_parameters_restart_the_motion(client):
+    scene = TorqueFreeBodyScene(client, PARAMETERS.defaults())
+    for _ in range(45):
+        scene.advance(FRAME_DT_S)
+    readout = quantities(scene)
+    assert "ghost_attitude_difference" not in readout and not scene.ghost_frame.visible
+    assert readout["next_flip"]["value"] == "no flips in this motion"
+    assert scene.readout()["message"].startswith("The polhode circles axis 3")
+    scene.set_params(PARAMETERS.validate({"I1": 0.003}, base=scene.params))
+    assert scene.t_s == 0.0 and scene.body.inertia[0] == 0.003
+    assert np.asarray(scene.body_frame.wxyz) == pytest.approx(scene.body.q0, abs=1e-15)
+    sides = np.asarray(scene.client.scene._handle_from_node_name["/body/box"].dimensions)
+    shown_axes = np.asarray(scene.ellipsoid.scale)
+    assert math.sqrt(np.sum((0.5 * sides / shown_axes) ** 2)) == pytest.approx(BOX_FILL, rel=1e-6)
+    # Box proportions are the uniform box's with these moments.
+    expected = tfb.uniform_box_sides(scene.body.inertia)
+    assert sides / sides[0] == pytest.approx(expected / expected[0], rel=1e-6)
+    scene.close()
+
+
+def test_steady_rotation_draws_and_says_so(client):
+    scene = TorqueFreeBodyScene(client, PARAMETERS.validate({"omega0_rad_s": [0.0, 0.0, 3.0]}))
+    for _ in range(40):
+        scene.advance(FRAME_DT_S)
+    readout = quantities(scene)
+    assert readout["period"]["value"] == "none: ω is constant"
+    assert "Steady rotation" in scene.readout()["message"]
+    contact = np.asarray(scene.contact.position)
+    assert contact == pytest.approx([0.0, 0.0, -scene.plane_distance_rad_s * scene.scale], abs=1e-12)
+    scene.close()
