@@ -321,9 +321,12 @@
     items.forEach((item, i) => {
       const tr = tbody.children[i];
       tr.children[0].textContent = item.label;
-      tr.children[1].textContent = fmt(item.value);
+      // A null value shows its text (why it is undefined, or a word); a number with a text shows both.
+      const shown = item.value === null || item.value === undefined ? (item.text || "") : item.value;
+      tr.children[1].textContent = item.value === null || item.value === undefined
+        ? shown : (item.text ? `${fmt(item.value)} (${item.text})` : fmt(item.value));
       tr.children[1].dataset.quantity = item.name;
-      tr.children[1].dataset.value = JSON.stringify(item.value);
+      tr.children[1].dataset.value = JSON.stringify(shown);
       tr.children[2].textContent = item.unit || "";
     });
     const message = readoutBox.querySelector(".readout-message");

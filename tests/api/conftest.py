@@ -18,14 +18,9 @@ def client() -> Iterator[TestClient]:
 
 def first_camera_message() -> bytes:
     """What a browser's viewer sends first over the viewer websocket; viser counts a client as connected only after it."""
-    import msgspec
-    from viser import _messages
+    from app.scenes.host.viser_compat import viewer_camera_message
 
-    camera = _messages.ViewerCameraMessage(
-        wxyz=(1.0, 0.0, 0.0, 0.0), position=(3.0, -3.0, 2.0), fov=1.0, near=0.01, far=100.0,
-        image_height=480, image_width=640, look_at=(0.0, 0.0, 0.0), up_direction=(0.0, 0.0, 1.0),
-    )
-    return msgspec.msgpack.encode(camera.as_serializable_dict())
+    return viewer_camera_message()
 
 
 def wait_for(predicate, timeout_s: float = 30.0) -> None:

@@ -149,7 +149,7 @@ def test_live_free_gyroscope_reads_out_the_closed_form(client):
         wait_for(lambda: len(host.instances(sid)) == 1)
         scene = host.instances(sid)[0]
         wait_for(lambda: scene.t_s > 0.3)
-        with host._lock:  # the frame loop holds this lock while it advances the scene
+        with host.inspect(sid):  # the frame loop waits while the drawn state is read
             t_drawn, drawn_outer = scene.t_s, np.asarray(scene.outer.wxyz)
         values, _ = _readout(client, "free-gyroscope", sid)  # one readout is one consistent instant
         t_s = values["t_s"]

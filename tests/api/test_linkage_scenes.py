@@ -137,7 +137,7 @@ def test_live_four_bar_draws_the_closed_form_and_reads_out_its_numbers(client):
         wait_for(lambda: len(host.instances(sid)) == 1)
         scene = host.instances(sid)[0]
         wait_for(lambda: scene.t_s > 0.2)  # the frame loop is advancing it
-        with host._lock:  # the frame loop holds this lock while it advances the scene
+        with host.inspect(sid):  # the frame loop waits while the drawn state is read
             t_s = scene.t_s
             links = np.asarray(scene.links.points)
         state = scene.motion.at(np.array([t_s]))
@@ -148,9 +148,9 @@ def test_live_four_bar_draws_the_closed_form_and_reads_out_its_numbers(client):
 
         live = client.get(f"/api/scenes/four-bar/sessions/{sid}/live").json()
         values = {q["name"]: q for q in live["readout"]["quantities"]}
-        assert values["grashof_class"]["value"] == "crank-rocker"
+        assert values["grashof_class"]["text"] == "crank-rocker" and values["grashof_class"]["value"] is None
         assert values["transmission_angle"]["unit"] == "deg" and values["rocker_rate"]["unit"] == "rad/s"
-        t_read = values["t"]["value"]
+        t_read = values["t_s"]["value"]
         expected = scene.motion.at(np.array([t_read]))
         # t is shown to 1 ms and μ to 0.01°: |dμ/dt| ≤ 32°/s here, so the two agree to 0.016° + 0.005°.
         assert values["transmission_angle"]["value"] == pytest.approx(math.degrees(expected.transmission_angle[0]), abs=0.03)
@@ -158,7 +158,7 @@ def test_live_four_bar_draws_the_closed_form_and_reads_out_its_numbers(client):
         # The non-Grashof preset: the crank rocks, its limits are marked on the start-angle slider.
         assert client.put(f"/api/scenes/four-bar/sessions/{sid}", json={"params": NON_GRASHOF}).status_code == 200
         live = client.get(f"/api/scenes/four-bar/sessions/{sid}/live").json()["readout"]
-        values = {q["name"]: q["value"] for q in live["quantities"]}
+        values = {q["name"]: q["value"] if q["value"] is not None else q["text"] for q in live["quantities"]}
         assert values["grashof_class"] == "non-Grashof"
         limits = four_bar.FourBarMotion.from_params(four_bar.PARAMETERS.validate(NON_GRASHOF)).drive.limits_rad
         assert [m["value"] for m in live["marks"]["crank_angle0_deg"]] == pytest.approx([math.degrees(x) for x in limits], abs=0.006)
@@ -177,11 +177,11 @@ def test_live_rolling_scene_reports_a_computed_zero_contact_velocity(client):
         wait_for(lambda: scene.t_s > 0.2)
         readout = client.get(f"/api/scenes/rolling/sessions/{sid}/live").json()["readout"]
         values = {q["name"]: q for q in readout["quantities"]}
-        assert values["contact_point_velocity"]["value"] == "0.000" and values["contact_point_velocity"]["unit"] == "m/s"
+        assert values["contact_point_velocity"]["text"] == "0.000" and values["contact_point_velocity"]["unit"] == "m/s"
         assert 0.0 <= values["contact_point_speed"]["value"] < 1e-14
         rolling = SteadyRolling.from_params(scene.params)
         assert values["path_radius"]["value"] == pytest.approx(rolling.rim_radius_m / math.sin(math.radians(25.0)), abs=1e-6)
         assert abs(values["axis_misalignment"]["value"]) < 1e-9
-        with host._lock:
+        with host.inspect(sid):
             assert scene.contact_label.text == "C: v_C = 0.000 m/s"
             assert scene.contact_arrow.visible is False  # a zero-length arrow: drawn as the dot at C

@@ -102,9 +102,9 @@ def _readout(client, scene_id, sid) -> dict:
     live = client.get(f"/api/scenes/{scene_id}/sessions/{sid}/live")
     assert live.status_code == 200
     quantities = live.json()["readout"]["quantities"]
-    for q in quantities:  # every number carries its unit
-        assert isinstance(q["value"], str) or (math.isfinite(q["value"]) and (q["unit"] or q["name"] == "turning_points")), q
-    return {q["name"]: q["value"] for q in quantities}
+    for q in quantities:  # every number carries its unit; a quantity without a number says why in words
+        assert (q["value"] is None and q["text"]) or (math.isfinite(q["value"]) and (q["unit"] or q["name"] == "turning_points")), q
+    return {q["name"]: q["value"] if q["value"] is not None else q["text"] for q in quantities}
 
 
 def _connect(client, scene_id, sid):
@@ -130,13 +130,13 @@ def test_moving_frame_viewer_holds_an_instant_and_reads_out_its_terms(client):
         physical = moving.PARAMETERS.validate({k: v for k, v in params.items() if k in moving.PARAMETERS.by_name})
         motion = moving.MovingFrameMotion.from_params(physical)
         terms = {k: v[0] for k, v in motion.acceleration_terms(np.array([1.5])).items()}
-        assert values["t"] == 1.5
+        assert values["t_s"] == 1.5
         for name in (*moving.TERM_NAMES, "total"):
             assert values[f"a_{name}_magnitude"] == pytest.approx(float(np.linalg.norm(terms[name])), rel=1e-12)
             shown = [float(c) for c in values[f"a_{name}"].strip("()").split(",")]
             np.testing.assert_allclose(shown, terms[name], atol=5e-4)  # printed to 3 decimals
         # The drawn arrows: the five terms head to tail from P, and a_P from P to the same end point.
-        with client.app.state.scene_host._lock:
+        with client.app.state.scene_host.inspect(sid):
             points = np.asarray(scene.accel._node.points, dtype=float)
             drawn = scene.accel._drawn
         # Terms shorter than their own arrowhead are listed but not drawn; at this instant most are drawn.

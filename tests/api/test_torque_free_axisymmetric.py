@@ -121,7 +121,7 @@ def test_live_scene_draws_the_closed_form_and_reads_out_its_numbers(client):
         wait_for(lambda: scene.t_s > 0.2)  # the frame loop is advancing it
 
         # The drawn attitude (nodal frame ∘ body frame) is the closed form at the scene's own time.
-        with host._lock:  # the frame loop holds this lock while it advances the scene
+        with host.inspect(sid):  # the frame loop waits while the drawn state is read
             t_s = scene.t_s
             drawn = quaternion_multiply(np.asarray(scene.nodal.wxyz), np.asarray(scene.body.wxyz))
         phi, theta, psi = (float(a) for a in scene.motion.euler_angles_313(t_s))
@@ -133,7 +133,7 @@ def test_live_scene_draws_the_closed_form_and_reads_out_its_numbers(client):
         motion = physics.motion_from_params(physics.PARAMETERS.defaults())
         assert values["precession_rate"]["value"] == pytest.approx(motion.precession_rate_rad_s, rel=1e-15)
         assert values["spin_rate"]["value"] == pytest.approx(1.8, rel=1e-15)
-        assert values["sense"]["value"] == "direct"
+        assert values["sense"]["text"] == "direct" and values["sense"]["value"] is None
         assert values["body_cone_half_angle"]["unit"] == "deg"
         assert values["space_cone_half_angle"]["value"] == pytest.approx(math.degrees(motion.space_cone_half_angle_rad), rel=1e-15)
         assert all(q["unit"] or q["name"] == "sense" for q in values.values())
@@ -142,5 +142,5 @@ def test_live_scene_draws_the_closed_form_and_reads_out_its_numbers(client):
         # A preset for an oblate body: the readout turns retrograde and the cone angles follow.
         coin = next(p for p in TorqueFreeAxisymmetricScene.presets if p.name == "coin")
         assert client.put(f"/api/scenes/{SCENE}/sessions/{sid}", json={"params": dict(coin.values)}).status_code == 200
-        values = {q["name"]: q["value"] for q in client.get(f"/api/scenes/{SCENE}/sessions/{sid}/live").json()["readout"]["quantities"]}
+        values = {q["name"]: q["value"] if q["value"] is not None else q["text"] for q in client.get(f"/api/scenes/{SCENE}/sessions/{sid}/live").json()["readout"]["quantities"]}
         assert values["sense"] == "retrograde" and values["body_cone_half_angle"] > 15.0 > values["space_cone_half_angle"]

@@ -49,6 +49,12 @@ class Quantity:
         """A quantity whose value is a word (a locus shape, a direction)."""
         return cls(name, label, None, "", text)
 
+    @classmethod
+    def or_text(cls, name: str, label: str, value: float | None, unit: str, text: str) -> Quantity:
+        """``value`` in ``unit`` where it is a finite number; otherwise no value, and ``text`` says why."""
+        finite = value is not None and math.isfinite(value)
+        return cls(name, label, float(value) if finite else None, unit, "" if finite else text)
+
     def as_dict(self) -> dict[str, Any]:
         out: dict[str, Any] = {"name": self.name, "label": self.label, "value": self.value, "unit": self.unit}
         if self.text:

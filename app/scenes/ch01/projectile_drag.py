@@ -20,7 +20,7 @@ class ProjectileDragScene(Scene):
     id = "projectile-drag"
     title = "A projectile with air drag: work and energy"
     chapter = 1
-    parameters = physics.INPUTS
+    example = physics.EXAMPLE
     animated = True
 
     def camera_view(self):

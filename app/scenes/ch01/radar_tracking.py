@@ -21,7 +21,7 @@ class RadarTrackingScene(Scene):
     id = "radar-tracking"
     title = "Example 1.2 — radar tracking an aircraft"
     chapter = 1
-    parameters = physics.INPUTS
+    example = physics.EXAMPLE
     animated = True
     camera_position = (3.6, -1.6, 2.6)
     camera_look_at = (0.6, 2.0, 1.2)

@@ -24,7 +24,7 @@ class RobotArmCableScene(Scene):
     id = "robot-arm-cable"
     title = "Example 1.1 — robotic arm and cable"
     chapter = 1
-    parameters = physics.INPUTS
+    example = physics.EXAMPLE
     camera_position = (3.4, -3.0, 2.6)
     camera_look_at = (1.4, 0.5, 0.6)
 

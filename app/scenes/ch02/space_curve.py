@@ -22,11 +22,11 @@ from typing import Any
 
 import numpy as np
 
-from app.physics.core.parameters import Parameter, ParameterError, ParameterSet
+from app.physics.core.parameters import Parameter, ParameterError
 from app.physics.math.curvilinear import cylindrical, spherical
 from app.physics.math.rotations import quaternion_from_matrix
 from app.physics.systems.ch02 import space_curve as physics
-from app.scenes.kit import Preset, Scene, arrow_segments
+from app.scenes.kit import Preset, Quantity, Readout, Scene, arrow_segments
 
 CURVE_SEGMENTS_MAX = 3000  # the drawn curve is the frame table's points, thinned to at most this many segments
 TRIAD_FRACTION = 0.16  # triad arrow length / curve size
@@ -53,15 +53,13 @@ def _unit_osculating_circle() -> np.ndarray:
     return np.stack([points[:-1], points[1:]], axis=1).astype(np.float32)
 
 
-def _check(values: Mapping[str, Any]) -> None:
-    physics.INPUTS.check(values)
+def _check_playback(values: Mapping[str, Any]) -> None:
     if values["t_start_s"] > values["t_end_s"]:
         raise ParameterError("t_start_s", f"must not exceed the loop's end t_end_s = {values['t_end_s']:g} s")
 
 
-PARAMETERS = ParameterSet(
-    (
-        *physics.INPUTS.parameters,
+#: Playback and display controls, after the curve's own inputs.
+CONTROLS = (
         Parameter("t_end_s", "s", 12.57, 0.1, 600.0, "The particle runs t from 0 to this time, then starts again", "t end"),
         Parameter("t_start_s", "s", 0.0, 0.0, 600.0, "Time at which the particle starts (and stays, if the speed scale is 0)", "t start"),
         Parameter("speed_scale", "s/s", 1.0, 0.0, 5.0, "Seconds of t per second of wall-clock time (0 holds the particle at t start)", "playback speed", step=0.05),
@@ -74,8 +72,6 @@ PARAMETERS = ParameterSet(
             label="unit vectors",
             description="Which unit vectors ride on the particle: path (T, N, B), cylindrical (e_R, e_θ, e_z) or spherical (e_r, e_φ, e_θ)",
         ),
-    ),
-    check=_check,
 )
 
 PRESETS = (
@@ -189,10 +185,11 @@ class SpaceCurveScene(Scene):
     id = "space-curve"
     title = "A particle on a space curve: path variables and curvilinear coordinates"
     chapter = 2
-    parameters = PARAMETERS
+    model = physics.ParticleOnCurve
+    controls = CONTROLS
+    check_controls = staticmethod(_check_playback)
     presets = PRESETS
     animated = True
-    model = physics.ParticleOnCurve
 
     def camera_view(self) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
         c, size = self._center, self._size
@@ -424,17 +421,17 @@ class SpaceCurveScene(Scene):
         self._shown["acceleration"] = mask
 
     # -- numbers for the lesson page -----------------------------------------------------------
-    def readout(self) -> dict[str, Any]:
+    def readout(self) -> Readout:
         path, coordinates = self._describe(self.t_s)
         quantities = [
-            _quantity("t", "t", self.t_s, "s"),
-            _quantity("speed", "speed v", path.speed_m_s[0], "m/s"),
-            _quantity("a_tangential", "a_t = dv/dt", path.a_tangential_m_s2[0], "m/s²"),
-            _quantity("a_normal", "a_n = κ v²", path.a_normal_m_s2[0], "m/s²"),
-            _quantity("curvature", "curvature κ", path.curvature_1_m[0], "1/m"),
-            _quantity("torsion", "torsion τ", path.torsion_1_m[0], "1/m"),
-            _quantity("arc_length", "arc length s from t = 0", float(physics.arc_length(self.curve, np.array([self.t_s]))[0]), "m"),
-            _quantity("grid_cell", "side of a grid square", self._grid_cell_m, "m"),
+            Quantity("t_s", "t", self.t_s, "s"),
+            Quantity("speed", "speed v", float(path.speed_m_s[0]), "m/s"),
+            Quantity("a_tangential", "a_t = dv/dt", float(path.a_tangential_m_s2[0]), "m/s²"),
+            Quantity("a_normal", "a_n = κ v²", float(path.a_normal_m_s2[0]), "m/s²"),
+            Quantity("curvature", "curvature κ", float(path.curvature_1_m[0]), "1/m"),
+            Quantity("torsion", "torsion τ", float(path.torsion_1_m[0]), "1/m"),
+            Quantity("arc_length", "arc length s from t = 0", float(physics.arc_length(self.curve, np.array([self.t_s]))[0]), "m"),
+            Quantity("grid_cell", "side of a grid square", self._grid_cell_m, "m"),
         ]
         messages = [physics.undefined_reason(path)]
         frame = self.params["frame"]
@@ -446,12 +443,7 @@ class SpaceCurveScene(Scene):
                 f"The position has no finite value on {100 * self._undrawn_share:.1f}% of 0 ≤ t ≤ {self.t_end_s:g} s; "
                 "that part of the path is not drawn."
             )
-        return {"quantities": quantities, "marks": {}, "message": " ".join(m for m in messages if m)}
-
-
-def _quantity(name: str, label: str, value: float, unit: str) -> dict[str, Any]:
-    value = float(value)
-    return {"name": name, "label": label, "value": value if math.isfinite(value) else "undefined", "unit": unit}
+        return Readout(quantities, message=" ".join(m for m in messages if m))
 
 
 _COORDINATE_ROWS = {
@@ -460,11 +452,11 @@ _COORDINATE_ROWS = {
 }
 
 
-def _coordinate_quantities(frame: str, coordinates) -> list[dict[str, Any]]:
+def _coordinate_quantities(frame: str, coordinates) -> list[Quantity]:
     rows = _COORDINATE_ROWS[frame]
-    out = [_quantity(name, label, coordinates.coordinates[0, k], unit) for k, (name, label, unit) in enumerate(rows)]
-    out += [_quantity(f"v_{name}", f"v_{label}", coordinates.velocity[0, k], "m/s") for k, (name, label, _) in enumerate(rows)]
-    out += [_quantity(f"a_{name}", f"a_{label}", coordinates.acceleration[0, k], "m/s²") for k, (name, label, _) in enumerate(rows)]
+    out = [Quantity(name, label, float(coordinates.coordinates[0, k]), unit) for k, (name, label, unit) in enumerate(rows)]
+    out += [Quantity(f"v_{name}", f"v_{label}", float(coordinates.velocity[0, k]), "m/s") for k, (name, label, _) in enumerate(rows)]
+    out += [Quantity(f"a_{name}", f"a_{label}", float(coordinates.acceleration[0, k]), "m/s²") for k, (name, label, _) in enumerate(rows)]
     return out
 
 

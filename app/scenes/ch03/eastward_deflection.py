@@ -10,13 +10,12 @@ the throw itself are drawn true to scale.
 from __future__ import annotations
 
 import math
-from typing import Any
 
 import numpy as np
 
 from app.physics.systems.ch03 import eastward_deflection as physics
 from app.physics.systems.earth import EARTH_RATE_RAD_S
-from app.scenes.kit import Preset, Scene
+from app.scenes.kit import Preset, Quantity, Readout, Scene
 
 PATH_SAMPLES = 240
 PAUSE_AT_LANDING_S = 1.5
@@ -49,7 +48,6 @@ class EastwardDeflectionScene(Scene):
     title = "Dropped from a tower: the eastward deflection"
     chapter = 3
     model = physics.EastwardDeflection
-    parameters = physics.PARAMETERS
     animated = True
     presets = (
         Preset("drop-100m", "Drop 100 m at 45°", {"height_m": 100.0, "latitude_deg": 45.0, "launch_velocity_m_s": [0.0, 0.0, 0.0]},
@@ -155,22 +153,23 @@ class EastwardDeflectionScene(Scene):
             self.t_s = 0.0
         self._draw()
 
-    def readout(self) -> dict[str, Any]:
+    def readout(self) -> Readout:
         params = self.params
         lam = params["latitude_deg"]
         dropped = not any(params["launch_velocity_m_s"])
         quantities = [
-            {"name": "time_of_fall_s", "label": "time of flight (exact)", "value": self.t_land, "unit": "s"},
-            {"name": "time_without_rotation_s", "label": "time of flight without the Earth's rotation", "value": self.flight.fall_time_without_rotation_s(), "unit": "s"},
-            {"name": "east_mm", "label": "east deflection (exact)", "value": 1000.0 * self.deflection[0], "unit": "mm"},
-            {"name": "east_first_order_mm", "label": "east, first order in Ω" + (" (⅓ Ω g t³ cos λ)" if dropped else ""), "value": 1000.0 * self.deflection_first[0], "unit": "mm"},
-            {"name": "south_mm", "label": "south deflection (exact, uniform g)", "value": -1000.0 * self.deflection[1], "unit": "mm"},
-            {"name": "south_second_order_mm", "label": "south, second order in Ω" + (" (⅙ Ω² g t⁴ sin λ cos λ)" if dropped else ""), "value": -1000.0 * self.deflection_second[1], "unit": "mm"},
-            {"name": "exaggeration", "label": "sideways deviation drawn enlarged by", "value": self.exaggeration, "unit": "×"},
-            {"name": "earth_rate", "label": "Earth's rotation rate Ω", "value": EARTH_RATE_RAD_S, "unit": "rad/s"},
+            Quantity("t_s", "time since release", min(self.t_s, self.t_land), "s"),
+            Quantity("time_of_fall_s", "time of flight (exact)", float(self.t_land), "s"),
+            Quantity("time_without_rotation_s", "time of flight without the Earth's rotation", float(self.flight.fall_time_without_rotation_s()), "s"),
+            Quantity("east_mm", "east deflection (exact)", 1000.0 * float(self.deflection[0]), "mm"),
+            Quantity("east_first_order_mm", "east, first order in Ω" + (" (⅓ Ω g t³ cos λ)" if dropped else ""), 1000.0 * float(self.deflection_first[0]), "mm"),
+            Quantity("south_mm", "south deflection (exact, uniform g)", -1000.0 * float(self.deflection[1]), "mm"),
+            Quantity("south_second_order_mm", "south, second order in Ω" + (" (⅙ Ω² g t⁴ sin λ cos λ)" if dropped else ""), -1000.0 * float(self.deflection_second[1]), "mm"),
+            Quantity("exaggeration", "sideways deviation drawn enlarged by", self.exaggeration, "×"),
+            Quantity("earth_rate", "Earth's rotation rate Ω", EARTH_RATE_RAD_S, "rad/s"),
         ]
         message = (
             f"At latitude {lam:g}° the Earth turns about the local vertical at Ω sin λ and about the north axis at Ω cos λ; "
             "only the north part acts on a vertical fall, which is why the deflection goes as cos λ."
         )
-        return {"quantities": quantities, "marks": {}, "message": message}
+        return Readout(quantities, message=message)

@@ -11,13 +11,12 @@ minutes; the readout gives the real Earth's figures beside the scene's.
 from __future__ import annotations
 
 import math
-from typing import Any
 
 import numpy as np
 
 from app.physics.systems.ch03 import foucault_pendulum as physics
 from app.physics.systems.earth import EARTH_RATE_RAD_S, SECONDS_PER_HOUR, direction_from_bearing, vertical_earth_rate_rad_s
-from app.scenes.kit import IntegratedScene, Preset, Trail, scene_parameters
+from app.scenes.kit import IntegratedScene, Mark, Preset, Quantity, Readout, Trail
 
 TRAIL_CHUNK_FRAMES = 15
 TRAIL_CHUNKS = 360  # 360 × 15 frames = 180 s of path at 30 Hz
@@ -29,7 +28,6 @@ class FoucaultPendulumScene(IntegratedScene):
     title = "The Foucault pendulum: a swing plane that turns with the latitude"
     chapter = 3
     model = physics.FoucaultPendulum
-    parameters = scene_parameters(physics.FoucaultPendulum)
     presets = (
         Preset("paris", "Paris, exaggerated ×1000", {"latitude_deg": 48.85, "earth_rate_factor": 1000.0, "release": "from rest"},
                "Foucault's city; the rate is a thousand times the Earth's so one turn takes about two minutes."),
@@ -113,39 +111,39 @@ class FoucaultPendulumScene(IntegratedScene):
         if self.step_physics():
             self._draw()
 
-    def readout(self) -> dict[str, Any]:
+    def readout(self) -> Readout:
         params = self.physical_params()
         factor = params["earth_rate_factor"]
         real_rate = vertical_earth_rate_rad_s(params["latitude_deg"], EARTH_RATE_RAD_S)
         real_deg_h = math.degrees(real_rate) * SECONDS_PER_HOUR
         measured = self._tracker.clockwise_rate_rad_s()
         omega0 = physics.natural_frequency_rad_s(params)
-        quantities: list[dict[str, Any]] = [
-            {"name": "t", "label": "t", "value": round(self.run.t_s, 2), "unit": "s"},
-            {"name": "real_rate_deg_h", "label": "Ω sin λ, real Earth (clockwise from above)", "value": real_deg_h, "unit": "deg/h"},
-            {
-                "name": "real_full_turn_h", "label": "one full turn of the plane, real Earth",
-                "value": 360.0 / abs(real_deg_h) if abs(real_rate) > 1e-12 else "never (equator)", "unit": "h",
-            },
-            {"name": "scene_rate_deg_s", "label": f"Ω sin λ in this scene (Earth rate ×{factor:g})", "value": math.degrees(self._rate), "unit": "deg/s"},
-            {
-                "name": "measured_rate_deg_s", "label": "measured from the swings' turning points",
-                "value": math.degrees(measured) if measured is not None else "waiting for 3 turning points", "unit": "deg/s",
-            },
-            {
-                "name": "measured_real_deg_h", "label": f"measured ÷ {factor:g} (as on the real Earth)",
-                "value": math.degrees(measured) * SECONDS_PER_HOUR / factor if measured is not None else "waiting", "unit": "deg/h",
-            },
-            {"name": "turning_points", "label": "turning points measured", "value": self._tracker.count, "unit": ""},
-            {"name": "period_s", "label": "swing period 2π/ω₀", "value": 2.0 * math.pi / omega0, "unit": "s"},
+        quantities = [
+            Quantity("t_s", "t", self.run.t_s, "s"),
+            Quantity("real_rate_deg_h", "Ω sin λ, real Earth (clockwise from above)", real_deg_h, "deg/h"),
+            Quantity(
+                "real_full_turn_h", "one full turn of the plane, real Earth",
+                360.0 / abs(real_deg_h) if abs(real_rate) > 1e-12 else None, "h", "" if abs(real_rate) > 1e-12 else "never (equator)",
+            ),
+            Quantity("scene_rate_deg_s", f"Ω sin λ in this scene (Earth rate ×{factor:g})", math.degrees(self._rate), "deg/s"),
+            Quantity(
+                "measured_rate_deg_s", "measured from the swings' turning points",
+                math.degrees(measured) if measured is not None else None, "deg/s", "" if measured is not None else "waiting for 3 turning points",
+            ),
+            Quantity(
+                "measured_real_deg_h", f"measured ÷ {factor:g} (as on the real Earth)",
+                math.degrees(measured) * SECONDS_PER_HOUR / factor if measured is not None else None, "deg/h", "" if measured is not None else "waiting",
+            ),
+            Quantity("turning_points", "turning points measured", self._tracker.count, ""),
+            Quantity("period_s", "swing period 2π/ω₀", 2.0 * math.pi / omega0, "s"),
         ]
         expected = physics.expected_clockwise_rate_rad_s(params)
         lag = 1.0 - expected / self._rate if self._rate != 0.0 else 0.0
-        quantities.append({"name": "expected_rate_deg_s", "label": "expected with the finite-swing correction", "value": math.degrees(expected), "unit": "deg/s"})
+        quantities.append(Quantity("expected_rate_deg_s", "expected with the finite-swing correction", math.degrees(expected), "deg/s"))
         message = (
             "Positive rates turn clockwise seen from above. A finite swing turns its own ellipse a little "
             f"(Airy): here the plane should lag Ω sin λ by about {100 * lag:.2g}%."
         )
         if self.status:
             message = self.status
-        return {"quantities": quantities, "marks": {"earth_rate_factor": [{"value": 1.0, "label": "real Earth"}]}, "message": message}
+        return Readout(quantities, marks={"earth_rate_factor": [Mark(1.0, "real Earth")]}, message=message)

@@ -15,9 +15,9 @@ from typing import Any
 
 import numpy as np
 
-from app.physics.core.parameters import Parameter, ParameterSet
+from app.physics.core.parameters import Parameter
 from app.physics.systems.ch03 import moving_frame as physics
-from app.scenes.kit import FRAME_DT_S, Preset, Scene
+from app.scenes.kit import FRAME_DT_S, Preset, Quantity, Readout, Scene
 
 COLORS = {
     "reference": (120, 80, 180),   # purple
@@ -118,7 +118,7 @@ class MovingFrameScene(Scene):
     title = "Acceleration seen from a moving frame: the five terms"
     chapter = 3
     model = physics.MovingFrameAcceleration
-    parameters = ParameterSet((*physics.PARAMETERS.parameters, *DISPLAY_PARAMETERS), check=physics.PARAMETERS.check)
+    controls = DISPLAY_PARAMETERS
     animated = True
     presets = (
         Preset("steady-radial", "Steady spin, radial groove", {
@@ -243,16 +243,17 @@ class MovingFrameScene(Scene):
             self._start_batch((self.t_s + step) % self.params["replay_s"])
         self._draw()
 
-    def readout(self) -> dict[str, Any]:
-        quantities: list[dict[str, Any]] = [
-            {"name": "t", "label": "t", "value": round(self.t_s, 3), "unit": "s"},
-            {"name": "omega", "label": "ω (X, Y, Z)", "value": _vector_text(self._omega), "unit": "rad/s"},
-            {"name": "alpha", "label": "α (X, Y, Z)", "value": _vector_text(self._alpha), "unit": "rad/s²"},
+    def readout(self) -> Readout:
+        """Vectors are written out as text (world X, Y, Z components); their magnitudes are numbers."""
+        quantities = [
+            Quantity("t_s", "t", float(self.t_s), "s"),
+            Quantity("omega", "ω (X, Y, Z)", None, "rad/s", _vector_text(self._omega)),
+            Quantity("alpha", "α (X, Y, Z)", None, "rad/s²", _vector_text(self._alpha)),
         ]
         for name in (*physics.TERM_NAMES, "total"):
             vector = self._terms[name]
-            quantities.append({"name": f"a_{name}", "label": physics.TERM_LABELS[name], "value": _vector_text(vector), "unit": "m/s² (world X, Y, Z)"})
-            quantities.append({"name": f"a_{name}_magnitude", "label": f"|{SHORT_LABELS[name]}|", "value": float(np.linalg.norm(vector)), "unit": "m/s²"})
-        quantities.append({"name": "arrow_scale", "label": "acceleration arrows", "value": self.arrow_m_per_m_s2, "unit": "m of arrow per m/s²"})
-        return {"quantities": quantities, "marks": {}, "message": "Terms shorter than their arrowhead are listed here but not drawn."}
+            quantities.append(Quantity(f"a_{name}", physics.TERM_LABELS[name], None, "m/s² (world X, Y, Z)", _vector_text(vector)))
+            quantities.append(Quantity(f"a_{name}_magnitude", f"|{SHORT_LABELS[name]}|", float(np.linalg.norm(vector)), "m/s²"))
+        quantities.append(Quantity("arrow_scale", "acceleration arrows", self.arrow_m_per_m_s2, "m of arrow per m/s²"))
+        return Readout(quantities, message="Terms shorter than their arrowhead are listed here but not drawn.")
 

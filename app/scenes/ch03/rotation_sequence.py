@@ -16,11 +16,10 @@ number in the readout is for the complete sequence and comes from
 from __future__ import annotations
 
 import math
-from typing import Any
 
 import numpy as np
 
-from app.physics.core.parameters import Parameter, ParameterSet
+from app.physics.core.parameters import Parameter
 from app.physics.math.rotations import (
     SEQUENCES,
     angle_rate_matrix_body,
@@ -30,13 +29,12 @@ from app.physics.math.rotations import (
     quaternion_multiply,
     rotation_sequence,
 )
-from app.scenes.kit import Preset, Scene
+from app.scenes.kit import Mark, Preset, Quantity, Readout, Scene
 
 STAGES = ("animate", "after turn 1", "after turn 2", "after turn 3")
 NEAR_LOCK_DEG = 10.0
 
-INPUTS = ParameterSet(
-    (
+CONTROLS = (
         Parameter(
             "sequence", "", "3-1-3", kind="choice", choices=tuple(SEQUENCES), label="Sequence",
             description="Axes of the three body-fixed turns (1 = x, 2 = y, 3 = z): proper Euler (first axis repeated) or Tait–Bryan (all three)",
@@ -48,7 +46,6 @@ INPUTS = ParameterSet(
             "stage", "", "animate", kind="choice", choices=STAGES, label="Stage",
             description="animate: sweep θ1, then θ2, then θ3, hold and repeat; or hold the frame reached after one, two or all three turns",
         ),
-    )
 )
 
 # Axis lengths (display units) of the frames after 0, 1, 2, 3 turns: nested so labels never coincide.
@@ -84,7 +81,7 @@ class RotationSequenceScene(Scene):
     id = "rotation-sequence"
     title = "Rotation sequences: Euler and Tait–Bryan angles"
     chapter = 3
-    parameters = INPUTS
+    controls = CONTROLS
     animated = True
     camera_position = (1.95, -2.55, 2.0)
     camera_look_at = (0.0, 0.0, 0.7)
@@ -203,30 +200,29 @@ class RotationSequenceScene(Scene):
         self._draw()
 
     # -- numbers beside the scene ---------------------------------------------------------------------
-    def readout(self) -> dict[str, Any]:
+    def readout(self) -> Readout:
+        """Rows of [R], the axis and the angles read back are written out as text; the rest are numbers."""
         seq, decomposition = self.sequence, self.decomposition
         R = self.geometry.R_world_frame[3]
         q = self.geometry.q_world_frame[3]
         axis, angle = axis_angle_from_quaternion(q)
         lock_deg = math.degrees(float(decomposition.lock_distance_rad))
         singular_values = np.linalg.svd(angle_rate_matrix_body(self.angles, seq), compute_uv=False)
-        rate_gain: float | str = "unbounded" if decomposition.degenerate else float(1.0 / singular_values[-1])
+        rate_gain = None if decomposition.degenerate else float(1.0 / singular_values[-1])
         recovered = np.degrees(decomposition.angles_rad)
         quantities = [
-            {"name": "sequence", "label": "sequence", "value": f"{seq.name} ({seq.kind})", "unit": ""},
-            *(
-                {"name": f"R_row{i + 1}", "label": f"[R] row {i + 1} (v_XYZ = [R] v_xyz)", "value": "  ".join(_fmt(v) for v in R[i]), "unit": ""}
-                for i in range(3)
-            ),
-            *({"name": f"q_{c}", "label": f"quaternion {c}", "value": float(v), "unit": ""} for c, v in zip("wxyz", q)),
-            {"name": "axis", "label": "rotation axis (unit vector, XYZ)", "value": "  ".join(_fmt(v) for v in axis), "unit": ""},
-            {"name": "rotation_angle_deg", "label": "rotation angle about that axis", "value": math.degrees(float(angle)), "unit": "deg"},
-            {"name": "gimbal_lock_distance_deg", "label": "distance to gimbal lock", "value": lock_deg, "unit": "deg"},
-            {"name": "recovered_angles_deg", "label": "angles read back from [R]", "value": ", ".join(f"{a:.2f}" for a in recovered), "unit": "deg"},
-            {"name": "rate_gain", "label": "largest angle rate per unit |ω|", "value": rate_gain, "unit": "(rad/s)/(rad/s)"},
+            Quantity.word("sequence", "sequence", f"{seq.name} ({seq.kind})"),
+            *(Quantity(f"R_row{i + 1}", f"[R] row {i + 1} (v_XYZ = [R] v_xyz)", None, "", "  ".join(_fmt(v) for v in R[i])) for i in range(3)),
+            *(Quantity(f"q_{c}", f"quaternion {c}", float(v), "") for c, v in zip("wxyz", q)),
+            Quantity("axis", "rotation axis (unit vector, XYZ)", None, "", "  ".join(_fmt(v) for v in axis)),
+            Quantity("rotation_angle_deg", "rotation angle about that axis", math.degrees(float(angle)), "deg"),
+            Quantity("gimbal_lock_distance_deg", "distance to gimbal lock", lock_deg, "deg"),
+            Quantity("recovered_angles_deg", "angles read back from [R]", None, "deg", ", ".join(f"{a:.2f}" for a in recovered)),
+            Quantity.or_text("rate_gain", "largest angle rate per unit |ω|", rate_gain, "(rad/s)/(rad/s)", "unbounded"),
+            Quantity("t_s", "time into the animation loop", self.t_s % CYCLE_S, "s"),
         ]
-        marks = {"angle2_deg": [{"value": math.degrees(a), "label": "gimbal lock"} for a in seq.lock_angles_rad]}
-        return {"quantities": quantities, "marks": marks, "message": self.message()}
+        marks = {"angle2_deg": [Mark(math.degrees(a), "gimbal lock") for a in seq.lock_angles_rad]}
+        return Readout(quantities, marks=marks, message=self.message())
 
     def message(self) -> str:
         seq, decomposition = self.sequence, self.decomposition

@@ -12,13 +12,12 @@ and one dot move.
 from __future__ import annotations
 
 import math
-from typing import Any
 
 import numpy as np
 from scipy.spatial.transform import Rotation
 
 from app.physics.systems.ch04 import cardan_joint as physics
-from app.scenes.kit import Preset, Scene
+from app.scenes.kit import Preset, Quantity, Readout, Scene
 
 SHAFT_LENGTH = 1.2
 YOKE_RADIUS = 0.22  # distance of each yoke arm (and pin end) from the shaft axis
@@ -39,7 +38,6 @@ class CardanJointScene(Scene):
     title = "The cardan (Hooke) joint"
     chapter = 4
     model = physics.CardanJointDrive
-    parameters = physics.PARAMETERS
     animated = True
     camera_position = (0.45, -2.0, 1.05)
     camera_look_at = (0.05, 0.2, 0.5)
@@ -141,19 +139,15 @@ class CardanJointScene(Scene):
         self.t_s += dt_s
         self._draw()
 
-    def readout(self) -> dict[str, Any]:
+    def readout(self) -> Readout:
         state = self._state
         low, high = self.motion.joint.speed_ratio_span
-        return {
-            "quantities": [
-                {"name": "t", "label": "time t", "value": round(float(state.t_s[0]), 3), "unit": "s"},
-                {"name": "input_angle", "label": "input angle φ₁", "value": round(math.degrees(float(state.input_angle[0])) % 360.0, 2), "unit": "deg"},
-                {"name": "output_angle", "label": "output angle φ₂", "value": round(math.degrees(float(state.output_angle[0])) % 360.0, 2), "unit": "deg"},
-                {"name": "speed_ratio", "label": "speed ratio ω₂/ω₁ now", "value": round(float(state.speed_ratio[0]), 6), "unit": ""},
-                {"name": "speed_ratio_min", "label": "smallest ratio, cos β", "value": round(low, 6), "unit": ""},
-                {"name": "speed_ratio_max", "label": "largest ratio, 1/cos β", "value": round(high, 6), "unit": ""},
-                {"name": "output_rate", "label": "output speed ω₂", "value": round(float(state.output_rate[0]), 6), "unit": "rad/s"},
-            ],
-            "marks": {},
-            "message": "",
-        }
+        return Readout([
+            Quantity("t_s", "time t", float(state.t_s[0]), "s"),
+            Quantity("input_angle", "input angle φ₁", math.degrees(float(state.input_angle[0])) % 360.0, "deg"),
+            Quantity("output_angle", "output angle φ₂", math.degrees(float(state.output_angle[0])) % 360.0, "deg"),
+            Quantity("speed_ratio", "speed ratio ω₂/ω₁ now", float(state.speed_ratio[0]), ""),
+            Quantity("speed_ratio_min", "smallest ratio, cos β", float(low), ""),
+            Quantity("speed_ratio_max", "largest ratio, 1/cos β", float(high), ""),
+            Quantity("output_rate", "output speed ω₂", float(state.output_rate[0]), "rad/s"),
+        ])  # fmt: skip

@@ -11,12 +11,11 @@ scene's time (no integration, so no drift) and moves two nodes.
 from __future__ import annotations
 
 import math
-from typing import Any
 
 import numpy as np
 
 from app.physics.systems.ch04 import four_bar as physics
-from app.scenes.kit import Preset, Scene
+from app.scenes.kit import Mark, Preset, Quantity, Readout, Scene
 
 LINK_COLORS = np.array([[40, 100, 220], [40, 150, 70], [210, 70, 50], [120, 190, 130], [120, 190, 130]], np.uint8)
 GHOST_COLOR = (175, 175, 185)
@@ -46,7 +45,6 @@ class FourBarScene(Scene):
     title = "The four-bar linkage"
     chapter = 4
     model = physics.FourBarLinkage
-    parameters = physics.PARAMETERS
     animated = True
     presets = (
         Preset("crank-rocker", "Crank-rocker", {"ground_m": 1.0, "crank_m": 0.3, "coupler_m": 1.0, "rocker_m": 0.9, "crank_angle0_deg": 60.0},
@@ -144,27 +142,25 @@ class FourBarScene(Scene):
         self.t_s += dt_s
         self._draw()
 
-    def readout(self) -> dict[str, Any]:
+    def readout(self) -> Readout:
         motion = self.motion
         state = motion.at(np.array([self._t_drawn]))  # the full state at the instant on screen
         grashof = motion.linkage.grashof()
         mu = math.degrees(float(state.transmission_angle[0]))
         rocker_rate = float(state.rocker_rate[0])
         quantities = [
-            {"name": "grashof_class", "label": "Grashof class", "value": grashof.name, "unit": ""},
-            {"name": "crank_travel", "label": "crank travel", "value": motion.crank_range.describe().removeprefix("the crank "), "unit": ""},
-            {"name": "t", "label": "time t", "value": round(float(state.t_s[0]), 3), "unit": "s"},
-            {"name": "crank_angle", "label": "crank angle θ₂", "value": round(math.degrees(math.remainder(float(state.crank_angle[0]), 2 * math.pi)), 2), "unit": "deg"},
-            {"name": "transmission_angle", "label": "transmission angle μ", "value": round(mu, 2), "unit": "deg"},
-            {"name": "rocker_rate", "label": "rocker rate ω₄", "value": round(rocker_rate, 4) if math.isfinite(rocker_rate) else "unbounded", "unit": "rad/s"},
-            {"name": "coupler_rate", "label": "coupler rate ω₃", "value": round(float(state.coupler_rate[0]), 4) if math.isfinite(state.coupler_rate[0]) else "undefined", "unit": "rad/s"},
+            Quantity.word("grashof_class", "Grashof class", grashof.name),
+            Quantity.word("crank_travel", "crank travel", motion.crank_range.describe().removeprefix("the crank ")),
+            Quantity("t_s", "time t", float(state.t_s[0]), "s"),
+            Quantity("crank_angle", "crank angle θ₂", math.degrees(math.remainder(float(state.crank_angle[0]), 2 * math.pi)), "deg"),
+            Quantity("transmission_angle", "transmission angle μ", mu, "deg"),
+            Quantity.or_text("rocker_rate", "rocker rate ω₄", rocker_rate, "rad/s", "unbounded"),
+            Quantity.or_text("coupler_rate", "coupler rate ω₃", float(state.coupler_rate[0]), "rad/s", "undefined"),
         ]
-        marks: dict[str, list[dict[str, Any]]] = {}
+        marks: dict[str, list[Mark]] = {}
         if not motion.drive.turns_fully:
             lower, upper = motion.drive.limits_rad
-            marks["crank_angle0_deg"] = [
-                {"value": round(math.degrees(math.remainder(angle, 2 * math.pi)), 2), "label": "toggle"} for angle in (lower, upper)
-            ]
+            marks["crank_angle0_deg"] = [Mark(math.degrees(math.remainder(angle, 2 * math.pi)), "toggle") for angle in (lower, upper)]
         if bool(state.singular[0]) or min(mu, 180.0 - mu) < TOGGLE_WINDOW_DEG:
             message = "toggle position: rocker rate is unbounded here (coupler and rocker are in line)"
         elif not GOOD_TRANSMISSION_DEG[0] <= mu <= GOOD_TRANSMISSION_DEG[1]:
@@ -173,4 +169,4 @@ class FourBarScene(Scene):
             message = f"The crank cannot turn fully ({motion.crank_range.describe()}); it reverses at each toggle position."
         else:
             message = ""
-        return {"quantities": quantities, "marks": marks, "message": message}
+        return Readout(quantities, marks=marks, message=message)

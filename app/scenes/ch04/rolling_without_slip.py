@@ -21,12 +21,11 @@ second scene class would be a near-copy of this one.
 from __future__ import annotations
 
 import math
-from typing import Any
 
 import numpy as np
 
 from app.physics.systems.ch04 import rolling as physics
-from app.scenes.kit import Preset, Scene
+from app.scenes.kit import Preset, Quantity, Readout, Scene
 
 RIM_ARROWS = 8
 #: Paths wider than this many rim radii are shown near the body, replaying a stretch of the motion.
@@ -55,7 +54,6 @@ class RollingScene(Scene):
     title = "Rolling without slip: a disk and a cone"
     chapter = 4
     model = physics.SteadyRollingMotion
-    parameters = physics.PARAMETERS
     animated = True
     presets = (
         Preset("upright-disk", "Upright disk", {"body": "disk", "tilt_deg": 0.0, "path_radius_m": 1.5}, "A wheel rolling upright round a circle."),
@@ -181,25 +179,27 @@ class RollingScene(Scene):
             self.t_s -= self._replay_s  # back to the start of the framed stretch
         self._draw()
 
-    def readout(self) -> dict[str, Any]:
+    def readout(self) -> Readout:
         rolling, state = self.rolling, self._state
         v_c = float(np.linalg.norm(state.contact_point_velocity[0]))
         misalignment = float(rolling.axis_misalignment(state)[0])
         omega = state.angular_velocity[0]
         line_name = "the contact line" if rolling.body == "cone" else "the line C–O′"
         quantities = [
-            {"name": "contact_point_velocity", "label": "contact point velocity |v_C| = |v_G + ω × r_GC|", "value": f"{v_c:.3f}", "unit": "m/s"},
-            {"name": "contact_point_speed", "label": "|v_C| unrounded (round-off)", "value": v_c, "unit": "m/s"},
-            {"name": "center_speed", "label": "speed of the rim's centre |v_G|", "value": round(float(np.linalg.norm(state.center_velocity[0])), 6), "unit": "m/s"},
-            {"name": "angular_speed", "label": "|ω|", "value": round(float(np.linalg.norm(omega)), 6), "unit": "rad/s"},
-            {"name": "spin_rate", "label": "spin rate about the axis, −v/R", "value": round(rolling.spin_rate_rad_s, 6), "unit": "rad/s"},
-            {"name": "turn_rate", "label": "turn rate about Z, v/ρ", "value": round(rolling.turn_rate_rad_s, 6), "unit": "rad/s"},
-            {"name": "path_radius", "label": "contact circle radius ρ", "value": round(rolling.path_radius_m, 6), "unit": "m"},
-            {"name": "axis_point_height", "label": "height of O′ above the ground", "value": round(float(rolling.axis_point[2]), 6), "unit": "m"},
-            {"name": "axis_misalignment", "label": f"angle between ω and {line_name}", "value": round(math.degrees(misalignment), 9) if math.isfinite(misalignment) else "at rest", "unit": "deg"},
+            # To the millimetre per second, as a student would measure it; the next row has the computed round-off.
+            Quantity("contact_point_velocity", "contact point velocity |v_C| = |v_G + ω × r_GC|", None, "m/s", f"{v_c:.3f}"),
+            Quantity("contact_point_speed", "|v_C| unrounded (round-off)", v_c, "m/s"),
+            Quantity("center_speed", "speed of the rim's centre |v_G|", float(np.linalg.norm(state.center_velocity[0])), "m/s"),
+            Quantity("angular_speed", "|ω|", float(np.linalg.norm(omega)), "rad/s"),
+            Quantity("spin_rate", "spin rate about the axis, −v/R", float(rolling.spin_rate_rad_s), "rad/s"),
+            Quantity("turn_rate", "turn rate about Z, v/ρ", float(rolling.turn_rate_rad_s), "rad/s"),
+            Quantity("path_radius", "contact circle radius ρ", float(rolling.path_radius_m), "m"),
+            Quantity("axis_point_height", "height of O′ above the ground", float(rolling.axis_point[2]), "m"),
+            Quantity.or_text("axis_misalignment", f"angle between ω and {line_name}", math.degrees(misalignment), "deg", "at rest"),
+            Quantity("t_s", "time t", float(self.t_s), "s"),
         ]
         if rolling.body == "cone":
             message = "ω lies along the line of contact: every point of the cone touching the ground is momentarily at rest."
         else:
             message = f"The instantaneous axis runs from C through O′, {rolling.axis_point[2]:.3f} m up the vertical through the centre of the path."
-        return {"quantities": quantities, "marks": {}, "message": message}
+        return Readout(quantities, message=message)

@@ -10,13 +10,12 @@ both stay readable. Every frame evaluates the closed form at the scene's time.
 from __future__ import annotations
 
 import math
-from typing import Any
 
 import numpy as np
 
 from app.physics.systems.ch04 import slider_crank as physics
 from app.scenes.ch04.four_bar import polyline_segments, to_world
-from app.scenes.kit import Preset, Scene
+from app.scenes.kit import Preset, Quantity, Readout, Scene
 
 LINK_COLORS = np.array([[40, 100, 220], [40, 150, 70]], np.uint8)
 
@@ -26,7 +25,6 @@ class SliderCrankScene(Scene):
     title = "The slider-crank"
     chapter = 4
     model = physics.SliderCrankMechanism
-    parameters = physics.PARAMETERS
     animated = True
     presets = (
         Preset("in-line", "In line", {"crank_m": 0.3, "rod_m": 1.0, "offset_m": 0.0}, "No offset: both strokes take the same time."),
@@ -116,24 +114,24 @@ class SliderCrankScene(Scene):
         self.t_s += dt_s
         self._draw()
 
-    def readout(self) -> dict[str, Any]:
+    def readout(self) -> Readout:
         state = self._state
         mech = self.motion.mechanism
         x_min, x_max = mech.stroke_limits_m
         counterclockwise = self.motion.drive.speed_rad_s >= 0.0
         ratio = mech.stroke_time_ratio(counterclockwise=counterclockwise)
         quantities = [
-            {"name": "t", "label": "time t", "value": round(float(state.t_s[0]), 3), "unit": "s"},
-            {"name": "crank_angle", "label": "crank angle θ", "value": round(math.degrees(float(state.crank_angle[0])) % 360.0, 2), "unit": "deg"},
-            {"name": "slider_position", "label": "slider position x", "value": round(float(state.slider_position_m[0]), 5), "unit": "m"},
-            {"name": "slider_velocity", "label": "slider velocity ẋ", "value": round(float(state.slider_velocity_m_s[0]), 5), "unit": "m/s"},
-            {"name": "slider_acceleration", "label": "slider acceleration ẍ", "value": round(float(state.slider_acceleration_m_s2[0]), 5), "unit": "m/s²"},
-            {"name": "rod_angle", "label": "rod angle φ", "value": round(math.degrees(float(state.rod_angle[0])), 2), "unit": "deg"},
-            {"name": "stroke", "label": "stroke x_max − x_min", "value": round(x_max - x_min, 6), "unit": "m"},
-            {"name": "stroke_time_ratio", "label": "outward / return stroke time", "value": round(ratio, 4), "unit": ""},
+            Quantity("t_s", "time t", float(state.t_s[0]), "s"),
+            Quantity("crank_angle", "crank angle θ", math.degrees(float(state.crank_angle[0])) % 360.0, "deg"),
+            Quantity("slider_position", "slider position x", float(state.slider_position_m[0]), "m"),
+            Quantity("slider_velocity", "slider velocity ẋ", float(state.slider_velocity_m_s[0]), "m/s"),
+            Quantity("slider_acceleration", "slider acceleration ẍ", float(state.slider_acceleration_m_s2[0]), "m/s²"),
+            Quantity("rod_angle", "rod angle φ", math.degrees(float(state.rod_angle[0])), "deg"),
+            Quantity("stroke", "stroke x_max − x_min", float(x_max - x_min), "m"),
+            Quantity("stroke_time_ratio", "outward / return stroke time", float(ratio), ""),
         ]
         message = ""
         if mech.offset_m != 0.0:
             sense = "counterclockwise" if counterclockwise else "clockwise"
             message = f"With the offset the strokes take unequal times: turning {sense}, the outward stroke lasts {ratio:.3f} times the return stroke."
-        return {"quantities": quantities, "marks": {}, "message": message}
+        return Readout(quantities, message=message)

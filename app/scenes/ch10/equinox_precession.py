@@ -14,9 +14,9 @@ import math
 
 import numpy as np
 
-from app.physics.core.parameters import Parameter, ParameterSet
+from app.physics.core.parameters import Parameter
 from app.physics.systems.ch10 import equinox_precession as physics
-from app.scenes.kit import Scene, arrow_segments, circle_segments, quaternion_z_to
+from app.scenes.kit import Quantity, Readout, Scene, arrow_segments, circle_segments, quaternion_z_to
 
 FLATTENING_SHOWN = 0.1  # the real 1/298 is invisible; the label says so
 AXIS_HALF_LENGTH = 1.9
@@ -47,11 +47,9 @@ class EquinoxPrecessionScene(Scene):
     title = "Precession of the equinoxes"
     chapter = 10
     animated = True
-    parameters = ParameterSet(
-        (
-            *physics.INPUTS.parameters,
-            Parameter("years_per_second", "yr/s", 2000.0, 10.0, 20000.0, "Time scale of the animation: simulated years per second", "time scale", scale="log"),
-        )
+    example = physics.EXAMPLE
+    controls = (
+        Parameter("years_per_second", "yr/s", 2000.0, 10.0, 20000.0, "Time scale of the animation: simulated years per second", "time scale", scale="log"),
     )
     camera_position = (3.4, -4.4, 3.6)
     camera_look_at = (0.0, 0.0, 1.1)
@@ -144,18 +142,19 @@ class EquinoxPrecessionScene(Scene):
         era = f"{year:,.0f} CE" if year >= 0.5 else f"{1 - year:,.0f} BCE"
         self.time_label.text = f"{era}   axis turned {math.degrees(-phi) % 360:5.1f}° westward"
 
-    def readout(self) -> dict:
+    def readout(self) -> Readout:
         result = self.result
         share = result.sun_rate_rad_s / result.rate_rad_s if result.rate_rad_s > 0 else 0.0
-        return {
-            "quantities": [
-                {"name": "rate_arcsec_per_year", "label": "precession rate", "value": result.rate_arcsec_per_year, "unit": "arcsec/yr"},
-                {"name": "period_years", "label": "period of one full cone", "value": result.period_years, "unit": "yr"},
-                {"name": "sun_share", "label": "Sun's share", "value": share, "unit": ""},
-                {"name": "moon_share", "label": "Moon's share", "value": 1.0 - share if result.rate_rad_s > 0 else 0.0, "unit": ""},
-                {"name": "years_elapsed", "label": "years since 2000 CE", "value": round(self.elapsed_years), "unit": "yr"},
-                {"name": "precession_angle_deg", "label": "axis turned since 2000 CE", "value": math.degrees(-self.precession_angle_rad()) % 360.0, "unit": "deg"},
+        return Readout(
+            [
+                Quantity("rate_arcsec_per_year", "precession rate", result.rate_arcsec_per_year, "arcsec/yr"),
+                Quantity("period_years", "period of one full cone", result.period_years, "yr"),
+                Quantity("sun_share", "Sun's share", share, ""),
+                Quantity("moon_share", "Moon's share", 1.0 - share if result.rate_rad_s > 0 else 0.0, ""),
+                Quantity("t_s", "simulated time since 2000 CE", self.elapsed_years * physics.JULIAN_YEAR_S, "s"),
+                Quantity("years_elapsed", "years since 2000 CE", self.elapsed_years, "yr"),
+                Quantity("precession_angle_deg", "axis turned since 2000 CE", math.degrees(-self.precession_angle_rad()) % 360.0, "deg"),
             ],
-            "message": f"Time runs {self.params['years_per_second']:g} years per second; the daily spin and the yearly orbit are far too fast to show and appear as their averages.",
-        }
+            message=f"Time runs {self.params['years_per_second']:g} years per second; the daily spin and the yearly orbit are far too fast to show and appear as their averages.",
+        )
 

@@ -15,13 +15,12 @@ to at most ``DRAWN_SPIN_RAD_S``. The ring and rotor meshes here
 from __future__ import annotations
 
 import math
-from typing import Any
 
 import numpy as np
 
 from app.physics.math.rotations import quaternion_from_axis_angle
 from app.physics.systems.ch10 import free_gyroscope as physics
-from app.scenes.kit import Preset, Scene, arrow_segments
+from app.scenes.kit import Preset, Quantity, Readout, Scene, arrow_segments
 
 OUTER_RADIUS = 0.8  # display units (the scene is drawn at an arbitrary size)
 INNER_RADIUS = 0.62
@@ -33,6 +32,9 @@ RATE_ARROW_LENGTH = 0.8
 #: World-fixed places (display units) for the inertial axes and the vehicle-rate arrow, clear of the rings.
 INERTIAL_AXES_AT = (1.6, 1.1, -1.45)
 RATE_ARROW_TAIL = (-1.55, -0.7, -1.05)
+
+#: What a gimbal rate reads where gimbal lock leaves it undefined.
+LOCKED = "undefined (gimbal lock)"
 
 COLOR_H = (40, 100, 220)
 COLOR_RATE = (40, 160, 70)
@@ -102,7 +104,6 @@ class FreeGyroscopeScene(Scene):
     id = "free-gyroscope"
     title = "The free gyroscope: a rotor in two gimbals on a turning vehicle"
     chapter = 10
-    parameters = physics.PARAMETERS
     model = physics.FreeGyroscope
     animated = True
     camera_position = (2.6, -1.35, 0.95)  # mostly from +x: the default spin axis (+y) is seen side-on
@@ -198,35 +199,31 @@ class FreeGyroscopeScene(Scene):
         self._spin_angle = (self._spin_angle + drawn_spin_rate(self.params["spin_rad_s"]) * dt_s) % (2.0 * math.pi)
         self._draw()
 
-    def readout(self) -> dict[str, Any]:
+    def readout(self) -> Readout:
         motion = self._motion
         params = self.params
         lock_deg = math.degrees(float(motion.lock_angle_rad[0]))
         outer = motion.outer_rad[0]
         rate = float(np.linalg.norm(physics.vehicle_rate(params)))
         quantities = [
-            {"name": "t_s", "label": "time t", "value": self.t_s, "unit": "s"},
-            {"name": "vehicle_turn_deg", "label": "vehicle has turned", "value": math.degrees(rate * self.t_s), "unit": "deg"},
-            {"name": "outer_gimbal_deg", "label": "outer gimbal φ_o", "value": math.degrees(outer) if math.isfinite(outer) else "undefined", "unit": "deg"},
-            {"name": "inner_gimbal_deg", "label": "inner gimbal φ_i", "value": math.degrees(float(motion.inner_rad[0])), "unit": "deg"},
-            {"name": "outer_gimbal_rate_rad_s", "label": "outer gimbal rate φ̇_o", "value": _finite_or_text(motion.outer_rate_rad_s[0]), "unit": "rad/s"},
-            {"name": "inner_gimbal_rate_rad_s", "label": "inner gimbal rate φ̇_i", "value": _finite_or_text(motion.inner_rate_rad_s[0]), "unit": "rad/s"},
-            {"name": "lock_angle_deg", "label": "spin axis to outer gimbal axis", "value": lock_deg, "unit": "deg"},
-            {"name": "angular_momentum_N_m_s", "label": "spin angular momentum H", "value": physics.angular_momentum_N_m_s(params), "unit": "N·m·s"},
-            {"name": "torque_on_rotor_N_m", "label": "torque reaching the rotor", "value": 0.0, "unit": "N·m"},
-            {"name": "axis_drift_rad_s", "label": "drift of the spin axis", "value": 0.0, "unit": "rad/s"},
+            Quantity("t_s", "time t", self.t_s, "s"),
+            Quantity("vehicle_turn_deg", "vehicle has turned", math.degrees(rate * self.t_s), "deg"),
+            Quantity.or_text("outer_gimbal_deg", "outer gimbal φ_o", math.degrees(outer), "deg", "undefined"),
+            Quantity("inner_gimbal_deg", "inner gimbal φ_i", math.degrees(float(motion.inner_rad[0])), "deg"),
+            Quantity.or_text("outer_gimbal_rate_rad_s", "outer gimbal rate φ̇_o", float(motion.outer_rate_rad_s[0]), "rad/s", LOCKED),
+            Quantity.or_text("inner_gimbal_rate_rad_s", "inner gimbal rate φ̇_i", float(motion.inner_rate_rad_s[0]), "rad/s", LOCKED),
+            Quantity("lock_angle_deg", "spin axis to outer gimbal axis", lock_deg, "deg"),
+            Quantity("angular_momentum_N_m_s", "spin angular momentum H", physics.angular_momentum_N_m_s(params), "N·m·s"),
+            Quantity("torque_on_rotor_N_m", "torque reaching the rotor", 0.0, "N·m"),
+            Quantity("axis_drift_rad_s", "drift of the spin axis", 0.0, "rad/s"),
         ]
         message = ""
         if lock_deg < physics.LOCK_WARNING_DEG:
-            needed = _finite_or_text(motion.outer_rate_rad_s[0])
-            needed_text = f"{abs(needed):.3g} rad/s" if isinstance(needed, float) else "an unbounded rate"
+            needed = float(motion.outer_rate_rad_s[0])
+            needed_text = f"{abs(needed):.3g} rad/s" if math.isfinite(needed) else "an unbounded rate"
             message = (
                 f"Near gimbal lock: the spin axis is {lock_deg:.1f}° from the outer gimbal axis, so the two rings are almost "
                 f"in one plane; the outer ring must turn at {needed_text} to keep the rotor free of torque."
             )
-        return {"quantities": quantities, "marks": {}, "message": message}
-
-
-def _finite_or_text(value: float) -> float | str:
-    return float(value) if math.isfinite(value) else "undefined (gimbal lock)"
+        return Readout(quantities, message=message)
 

@@ -18,11 +18,10 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any
 
 import numpy as np
 
-from app.physics.core.parameters import Parameter, ParameterSet
+from app.physics.core.parameters import Parameter
 from app.physics.solvers import LiveRun
 from app.physics.systems.ch10 import gyrocompass as physics
 from app.scenes.ch10.free_gyroscope import (
@@ -35,7 +34,7 @@ from app.scenes.ch10.free_gyroscope import (
     ring_mesh,
     spin_quaternion,
 )
-from app.scenes.kit import FRAME_DT_S, IntegratedScene, Preset, arrow_segments
+from app.scenes.kit import FRAME_DT_S, IntegratedScene, Preset, Quantity, Readout, arrow_segments
 
 CARD_RADIUS = 1.3
 HOUSING_RADIUS = 0.72
@@ -73,7 +72,7 @@ class GyrocompassScene(IntegratedScene):
     title = "The gyrocompass: a level spin axis that seeks north"
     chapter = 10
     model = physics.Gyrocompass
-    parameters = ParameterSet((*physics.PARAMETERS.parameters, TIME_SCALE, *physics.Gyrocompass.controls()), check=physics.PARAMETERS.check)
+    controls = (TIME_SCALE,)
     camera_position = (2.45, -1.2, 1.35)  # from the east-south-east: an axis near north is seen side-on
     camera_look_at = (0.0, 0.1, -0.15)
     presets = (
@@ -88,9 +87,6 @@ class GyrocompassScene(IntegratedScene):
     )
 
     # -- integration with a time scale -----------------------------------------------------
-    def physical_params(self) -> dict[str, Any]:
-        return {k: v for k, v in super().physical_params().items() if k != TIME_SCALE.name}
-
     @property
     def time_scale(self) -> float:
         return float(self.params[TIME_SCALE.name])
@@ -100,7 +96,7 @@ class GyrocompassScene(IntegratedScene):
         super().restart()
         model, params = self._model_instance, self.physical_params()
         frame_dt = FRAME_DT_S * self.time_scale
-        integrator = model.integrator(params, self.controls(), frame_dt)
+        integrator = model.integrator(params, self.integration_controls(), frame_dt)
         self.run = ScaledLiveRun(model.system(params), integrator, model.initial_state(params), time_scale=self.time_scale)
         self.description = f"{integrator.describe(frame_dt)}, {self.time_scale:g}× real time"
 
@@ -197,22 +193,22 @@ class GyrocompassScene(IntegratedScene):
         if self.step_physics():
             self._draw()
 
-    def readout(self) -> dict[str, Any]:
+    def readout(self) -> Readout:
         params = self.physical_params()
         alpha, alpha_rate = float(self.run.y[0]), float(self.run.y[1])
         amplitude = physics.amplitude_rad(params)
         period = physics.large_amplitude_period_s(params, amplitude) if amplitude is not None and amplitude < math.pi else None
         quantities = [
-            {"name": "t_s", "label": "simulated time t", "value": self.run.t_s, "unit": "s"},
-            {"name": "time_scale", "label": "time scale", "value": self.time_scale, "unit": "simulated s per s"},
-            {"name": "alpha_deg", "label": "azimuth α of the spin axis (east of north)", "value": math.degrees(math.remainder(alpha, 2 * math.pi)), "unit": "deg"},
-            {"name": "alpha_rate_rad_s", "label": "azimuth rate α̇", "value": alpha_rate, "unit": "rad/s"},
-            {"name": "horizontal_earth_rate_rad_s", "label": "Ω cos λ", "value": physics.horizontal_earth_rate_rad_s(params), "unit": "rad/s"},
-            {"name": "restoring_moment_N_m", "label": "K = I_a ω_s Ω cos λ", "value": physics.restoring_moment_N_m(params), "unit": "N·m"},
-            {"name": "small_angle_period_s", "label": "small-swing period 2π√(I_t/K)", "value": physics.small_angle_period_s(params), "unit": "s"},
-            {"name": "swing_period_s", "label": "period of this swing (elliptic)", "value": period if period is not None else "goes right round", "unit": "s"},
-            {"name": "damping_ratio", "label": "damping ratio ζ", "value": physics.damping_ratio(params), "unit": ""},
-            {"name": "spin_to_swing_ratio", "label": "spin rate / swing rate ω_s/ω_n", "value": abs(params["spin_rad_s"]) / physics.natural_frequency_rad_s(params), "unit": ""},
-            {"name": "full_model_steps_per_period", "label": "RK4 steps per period if the spin were integrated", "value": physics.full_model_steps_per_period(params), "unit": ""},
+            Quantity("t_s", "simulated time t", self.run.t_s, "s"),
+            Quantity("time_scale", "time scale", self.time_scale, "simulated s per s"),
+            Quantity("alpha_deg", "azimuth α of the spin axis (east of north)", math.degrees(math.remainder(alpha, 2 * math.pi)), "deg"),
+            Quantity("alpha_rate_rad_s", "azimuth rate α̇", alpha_rate, "rad/s"),
+            Quantity("horizontal_earth_rate_rad_s", "Ω cos λ", physics.horizontal_earth_rate_rad_s(params), "rad/s"),
+            Quantity("restoring_moment_N_m", "K = I_a ω_s Ω cos λ", physics.restoring_moment_N_m(params), "N·m"),
+            Quantity("small_angle_period_s", "small-swing period 2π√(I_t/K)", physics.small_angle_period_s(params), "s"),
+            Quantity.or_text("swing_period_s", "period of this swing (elliptic)", period, "s", "goes right round"),
+            Quantity("damping_ratio", "damping ratio ζ", physics.damping_ratio(params), ""),
+            Quantity("spin_to_swing_ratio", "spin rate / swing rate ω_s/ω_n", abs(params["spin_rad_s"]) / physics.natural_frequency_rad_s(params), ""),
+            Quantity("full_model_steps_per_period", "RK4 steps per period if the spin were integrated", physics.full_model_steps_per_period(params), ""),
         ]
-        return {"quantities": quantities, "marks": {}, "message": self.status}
+        return Readout(quantities, message=self.status)

@@ -20,7 +20,7 @@ import numpy as np
 
 from app.physics.math.rotations import rotate_vector
 from app.physics.systems.ch10 import heavy_top as physics
-from app.scenes.kit import IntegratedScene, Trail, arrow_segments, circle_segments, scene_parameters
+from app.scenes.kit import IntegratedScene, Mark, Quantity, Readout, Trail, arrow_segments, circle_segments
 
 AXIS_LENGTH = 1.0  # display units from pivot to the tip of the axis
 TRAIL_CHUNK_FRAMES = 6
@@ -63,7 +63,6 @@ class HeavyTopScene(IntegratedScene):
     title = "The heavy symmetric top"
     chapter = 10
     model = physics.HeavyTop
-    parameters = scene_parameters(physics.HeavyTop)
     camera_position = (1.35, -1.65, 1.05)
     camera_look_at = (0.0, 0.0, 0.35)
 
@@ -160,36 +159,32 @@ class HeavyTopScene(IntegratedScene):
         else:
             self.readout_label.text = self.status
 
-    def readout(self) -> dict:
+    def readout(self) -> Readout:
         """Quadrature predictions beside what the integration has done so far; the sleeping threshold mark."""
         params = self.physical_params()
         critical = physics.critical_spin_rad_s(params)
-        quantities = []
+        quantities = [Quantity("t_s", "time t", self.run.t_s, "s")]
         reference = self.reference
         if reference is not None:
             quantities += [
-                {"name": "theta_min_deg", "label": "nutation band: θ min (quadrature)", "value": math.degrees(reference.theta_min_rad), "unit": "deg"},
-                {"name": "theta_max_deg", "label": "nutation band: θ max (quadrature)", "value": math.degrees(reference.theta_max_rad), "unit": "deg"},
-                {"name": "nutation_period_s", "label": "nutation period (quadrature)", "value": _finite_or_text(reference.nutation_period_s), "unit": "s"},
-                {"name": "mean_precession_rate_rad_s", "label": "mean precession rate (quadrature)", "value": reference.mean_precession_rate_rad_s, "unit": "rad/s"},
-                {"name": "locus", "label": "axis locus", "value": physics.locus_shape(reference), "unit": ""},
+                Quantity("theta_min_deg", "nutation band: θ min (quadrature)", math.degrees(reference.theta_min_rad), "deg"),
+                Quantity("theta_max_deg", "nutation band: θ max (quadrature)", math.degrees(reference.theta_max_rad), "deg"),
+                # An upright top's axis never comes back: its nutation period is infinite.
+                Quantity.or_text("nutation_period_s", "nutation period (quadrature)", reference.nutation_period_s, "s", "never returns"),
+                Quantity("mean_precession_rate_rad_s", "mean precession rate (quadrature)", reference.mean_precession_rate_rad_s, "rad/s"),
+                Quantity.word("locus", "axis locus", physics.locus_shape(reference)),
             ]
         if self._theta_swept[0] <= self._theta_swept[1]:
             quantities += [
-                {"name": "theta_min_swept_deg", "label": "θ min swept so far (integration)", "value": math.degrees(self._theta_swept[0]), "unit": "deg"},
-                {"name": "theta_max_swept_deg", "label": "θ max swept so far (integration)", "value": math.degrees(self._theta_swept[1]), "unit": "deg"},
+                Quantity("theta_min_swept_deg", "θ min swept so far (integration)", math.degrees(self._theta_swept[0]), "deg"),
+                Quantity("theta_max_swept_deg", "θ max swept so far (integration)", math.degrees(self._theta_swept[1]), "deg"),
             ]
-        quantities.append({"name": "critical_spin_rad_s", "label": "sleeping threshold |ω₃|", "value": critical, "unit": "rad/s"})
+        quantities.append(Quantity("critical_spin_rad_s", "sleeping threshold |ω₃|", critical, "rad/s"))
         spin = abs(params["spin_rad_s"])
         message = self.reference_message or (
             f"|ω₃| = {spin:.4g} rad/s is above the sleeping threshold {critical:.4g} rad/s: started upright, this top would stay up."
             if spin > critical
             else f"|ω₃| = {spin:.4g} rad/s is below the sleeping threshold {critical:.4g} rad/s: an upright start is unstable."
         )
-        marks = {"spin_rad_s": [{"value": critical, "label": "sleeping threshold"}, {"value": -critical, "label": "sleeping threshold"}]}
-        return {"quantities": quantities, "marks": marks, "message": message}
-
-
-def _finite_or_text(value: float) -> float | str:
-    """A JSON-safe readout value: infinite periods (an upright top that never returns) as text."""
-    return value if math.isfinite(value) else "never returns"
+        marks = {"spin_rad_s": [Mark(critical, "sleeping threshold"), Mark(-critical, "sleeping threshold")]}
+        return Readout(quantities, marks=marks, message=message)

@@ -19,13 +19,12 @@ turns ``H`` with the case.
 from __future__ import annotations
 
 import math
-from typing import Any
 
 import numpy as np
 
 from app.physics.systems.ch10 import rate_gyro as physics
 from app.scenes.ch10.free_gyroscope import COLOR_H, COLOR_RATE, COLOR_TORQUE, add_rotor, drawn_spin_rate, ring_mesh, spin_quaternion
-from app.scenes.kit import Preset, Scene, arrow_segments
+from app.scenes.kit import Mark, Preset, Quantity, Readout, Scene, arrow_segments
 
 GIMBAL_RADIUS = 0.55
 ROTOR_RADIUS = 0.34
@@ -61,7 +60,6 @@ class RateGyroScene(Scene):
     id = "rate-gyro"
     title = "The single-axis rate gyro"
     chapter = 10
-    parameters = physics.PARAMETERS
     model = physics.RateGyro
     animated = True
     camera_position = (2.05, -1.75, 1.25)
@@ -198,28 +196,28 @@ class RateGyroScene(Scene):
         self._spin_angle = (self._spin_angle + drawn_spin_rate(self.params["spin_rad_s"]) * dt_s) % (2.0 * math.pi)
         self._draw()
 
-    def readout(self) -> dict[str, Any]:
+    def readout(self) -> Readout:
         params = self.params
         beta, beta_rate, rate = self._state
         quantities = [
-            {"name": "t_s", "label": "time t", "value": self.t_s, "unit": "s"},
-            {"name": "input_rate_rad_s", "label": "input rate Ω now", "value": rate, "unit": "rad/s"},
-            {"name": "beta_rad", "label": "gimbal deflection β", "value": beta, "unit": "rad"},
-            {"name": "beta_deg", "label": "gimbal deflection β", "value": math.degrees(beta), "unit": "deg"},
-            {"name": "indicated_rate_rad_s", "label": "indicated rate β/G", "value": beta / self._gain, "unit": "rad/s"},
-            {"name": "steady_gain_s", "label": "steady-state gain G = I_a ω_s/k", "value": self._gain, "unit": "rad per rad/s"},
-            {"name": "natural_frequency_rad_s", "label": "natural frequency ω_n = √(k/I_g)", "value": physics.natural_frequency_rad_s(params), "unit": "rad/s"},
-            {"name": "damping_ratio", "label": "damping ratio ζ = c/(2√(k I_g))", "value": physics.damping_ratio(params), "unit": ""},
+            Quantity("t_s", "time t", self.t_s, "s"),
+            Quantity("input_rate_rad_s", "input rate Ω now", float(rate), "rad/s"),
+            Quantity("beta_rad", "gimbal deflection β", float(beta), "rad"),
+            Quantity("beta_deg", "gimbal deflection β", math.degrees(beta), "deg"),
+            Quantity("indicated_rate_rad_s", "indicated rate β/G", float(beta / self._gain), "rad/s"),
+            Quantity("steady_gain_s", "steady-state gain G = I_a ω_s/k", float(self._gain), "rad per rad/s"),
+            Quantity("natural_frequency_rad_s", "natural frequency ω_n = √(k/I_g)", physics.natural_frequency_rad_s(params), "rad/s"),
+            Quantity("damping_ratio", "damping ratio ζ = c/(2√(k I_g))", physics.damping_ratio(params), ""),
         ]
         if params["input_kind"] == "sine":
             ratio, lag = physics.frequency_response(params, params["input_frequency_rad_s"])
             quantities += [
-                {"name": "amplitude_ratio_s", "label": "steady amplitude ratio |β|/|Ω|", "value": ratio, "unit": "rad per rad/s"},
-                {"name": "phase_lag_deg", "label": "phase lag of β behind Ω", "value": math.degrees(lag), "unit": "deg"},
+                Quantity("amplitude_ratio_s", "steady amplitude ratio |β|/|Ω|", float(ratio), "rad per rad/s"),
+                Quantity("phase_lag_deg", "phase lag of β behind Ω", math.degrees(lag), "deg"),
             ]
             message = "The case rocks at the input frequency; after the start-up transient β is a sine with the gain and lag above."
         else:
-            quantities.append({"name": "hold_s", "label": "turntable runs, then rests, for", "value": self._hold_s, "unit": "s"})
+            quantities.append(Quantity("hold_s", "turntable runs, then rests, for", self._hold_s, "s"))
             message = ""
-        marks = {"damping_N_m_s_rad": [{"value": physics.critical_damping_N_m_s_rad(params), "label": "critical (ζ = 1)"}]}
-        return {"quantities": quantities, "marks": marks, "message": message}
+        marks = {"damping_N_m_s_rad": [Mark(physics.critical_damping_N_m_s_rad(params), "critical (ζ = 1)")]}
+        return Readout(quantities, marks=marks, message=message)

@@ -18,14 +18,11 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import replace
-from typing import Any
 
 import numpy as np
 
-from app.physics.core.parameters import ParameterSet
 from app.physics.systems.ch10 import torque_free_axisymmetric as physics
-from app.scenes.kit import Preset, Scene, arrow_segments
+from app.scenes.kit import Mark, Preset, Quantity, Readout, Scene, arrow_segments
 
 BODY_SIZE = 0.7  # display units: the body's largest semi-axis
 MIN_THICKNESS = 0.05  # the flattest body is drawn this thick (relative to its radius) so a disc stays visible
@@ -49,15 +46,6 @@ SLIDER_RANGES: Mapping[str, tuple[float, float, float]] = {
     "spin_rad_s": (0.1, 5.0, 0.05),
     "nutation_deg": (0.0, 70.0, 0.5),
 }
-
-
-def _slider_parameters(parameters: ParameterSet, ranges: Mapping[str, tuple[float, float, float]]) -> ParameterSet:
-    """The model's parameters (names, units, descriptions, check) with the lesson's narrower slider ranges."""
-    narrowed = []
-    for p in parameters.parameters:
-        low, high, step = ranges[p.name]
-        narrowed.append(replace(p, min=low, max=high, step=step, scale="linear"))
-    return ParameterSet(tuple(narrowed), check=parameters.check)
 
 
 def spheroid_sectors(*, axial: float, transverse: float, sectors: int = 8, rings: int = 24, segments: int = 64) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -111,7 +99,7 @@ class TorqueFreeAxisymmetricScene(Scene):
     chapter = 10
     animated = True
     model = physics.TorqueFreeAxisymmetric
-    parameters = _slider_parameters(physics.PARAMETERS, SLIDER_RANGES)
+    slider_ranges = SLIDER_RANGES
     presets = (
         Preset(
             "football",
@@ -216,31 +204,23 @@ class TorqueFreeAxisymmetricScene(Scene):
         self.t_s += dt_s
         self._draw()
 
-    def readout(self) -> dict[str, Any]:
+    def readout(self) -> Readout:
         m = self.motion
         quantities = [
-            ("precession_rate", "precession rate φ̇", m.precession_rate_rad_s, "rad/s"),
-            ("spin_rate", "spin rate ψ̇ (relative to the line of nodes)", m.spin_rate_rad_s, "rad/s"),
-            ("sense", "precession sense", m.sense, ""),
-            ("body_cone_half_angle", "body cone half-angle β", math.degrees(m.body_cone_half_angle_rad), "deg"),
-            ("space_cone_half_angle", "space cone half-angle γ", math.degrees(m.space_cone_half_angle_rad), "deg"),
-            ("angular_momentum", "angular momentum |L|", m.angular_momentum_kg_m2_s, "kg·m²/s"),
-            ("energy", "kinetic energy T", m.energy_J, "J"),
-            ("angular_speed", "angular speed |ω|", m.angular_speed_rad_s, "rad/s"),
-            ("body_frame_precession_rate", "λ: ω round the axis, seen from the body", m.body_frame_precession_rate_rad_s, "rad/s"),
-            ("precession_period", "precession period 2π/φ̇", m.precession_period_s, "s"),
-            ("t", "time t", self.t_s, "s"),
+            Quantity("precession_rate", "precession rate φ̇", m.precession_rate_rad_s, "rad/s"),
+            Quantity("spin_rate", "spin rate ψ̇ (relative to the line of nodes)", m.spin_rate_rad_s, "rad/s"),
+            Quantity.word("sense", "precession sense", m.sense),
+            Quantity("body_cone_half_angle", "body cone half-angle β", math.degrees(m.body_cone_half_angle_rad), "deg"),
+            Quantity("space_cone_half_angle", "space cone half-angle γ", math.degrees(m.space_cone_half_angle_rad), "deg"),
+            Quantity("angular_momentum", "angular momentum |L|", m.angular_momentum_kg_m2_s, "kg·m²/s"),
+            Quantity("energy", "kinetic energy T", m.energy_J, "J"),
+            Quantity("angular_speed", "angular speed |ω|", m.angular_speed_rad_s, "rad/s"),
+            Quantity("body_frame_precession_rate", "λ: ω round the axis, seen from the body", m.body_frame_precession_rate_rad_s, "rad/s"),
+            Quantity.or_text("precession_period", "precession period 2π/φ̇", m.precession_period_s, "s", "no precession"),
+            Quantity("t_s", "time t", self.t_s, "s"),
         ]
-        return {
-            "quantities": [{"name": n, "label": label, "value": v, "unit": u} for n, label, v, u in quantities],
-            "marks": {
-                "I_axial": [
-                    {"value": self.params["I_transverse"], "label": "sphere"},
-                    {"value": 2.0 * self.params["I_transverse"], "label": "flat disc"},
-                ]
-            },
-            "message": _sense_message(m),
-        }
+        marks = {"I_axial": [Mark(self.params["I_transverse"], "sphere"), Mark(2.0 * self.params["I_transverse"], "flat disc")]}
+        return Readout(quantities, marks=marks, message=_sense_message(m))
 
 
 def _sense_message(motion: physics.AxisymmetricFreeMotion) -> str:

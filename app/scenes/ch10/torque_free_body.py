@@ -19,13 +19,12 @@ around it cannot hide it the way it hides a translucent box.
 from __future__ import annotations
 
 import math
-from typing import Any
 
 import numpy as np
 
-from app.physics.core.parameters import Parameter, ParameterSet
+from app.physics.core.parameters import Parameter
 from app.physics.systems.ch10 import torque_free_body as physics
-from app.scenes.kit import FRAME_DT_S, Preset, Scene, Trail
+from app.scenes.kit import FRAME_DT_S, Mark, Preset, Quantity, Readout, Scene, Trail
 
 ELLIPSOID_SIZE = 1.0  # display units: the largest semi-axis of the energy ellipsoid
 BOX_FILL = 0.8  # the box's corners sit at this fraction of the way out to the ellipsoid
@@ -86,7 +85,7 @@ class TorqueFreeBodyScene(Scene):
     title = "The torque-free body and Poinsot's construction"
     chapter = 10
     model = physics.TorqueFreeBody
-    parameters = ParameterSet((*physics.PARAMETERS.parameters, GHOST), check=physics.PARAMETERS.check)
+    controls = (GHOST,)
     presets = PRESETS
     animated = True
     camera_position = (1.25, -1.7, 1.05)
@@ -236,46 +235,39 @@ class TorqueFreeBodyScene(Scene):
         exact = self.body.quaternion(np.array([self.ghost.t_s]))[0]
         return float(physics.attitude_difference_rad(exact, self.ghost.q_world_body))
 
-    def readout(self) -> dict[str, Any]:
+    def readout(self) -> Readout:
         body = self.body
         inertia = body.inertia
         mid = body.intermediate_axis
-        quantities: list[dict[str, Any]] = [
-            {"name": "t", "label": "time t", "value": self.t_s, "unit": "s"},
-            {"name": "energy", "label": "kinetic energy T", "value": body.energy_J, "unit": "J"},
-            {"name": "angular_momentum", "label": "|L|", "value": body.angular_momentum_norm, "unit": "kg·m²/s"},
-            {"name": "plane_distance", "label": "plane distance 2T/|L|", "value": self.plane_distance_rad_s, "unit": "rad/s"},
-            {
-                "name": "period", "label": "period of ω",
-                "value": body.period_s if math.isfinite(body.period_s) else ("none: ω is constant" if body.kind == "steady" else "infinite (separatrix)"),
-                "unit": "s" if math.isfinite(body.period_s) else "",
-            },
-            {"name": "intermediate_axis", "label": "intermediate axis", "value": f"{mid + 1} (I{mid + 1} = {inertia[mid]:.4g} kg·m²)", "unit": ""},
+        quantities = [
+            Quantity("t_s", "time t", self.t_s, "s"),
+            Quantity("energy", "kinetic energy T", body.energy_J, "J"),
+            Quantity("angular_momentum", "|L|", body.angular_momentum_norm, "kg·m²/s"),
+            Quantity("plane_distance", "plane distance 2T/|L|", self.plane_distance_rad_s, "rad/s"),
+            Quantity.or_text(
+                "period", "period of ω", body.period_s, "s", "none: ω is constant" if body.kind == "steady" else "infinite (separatrix)"
+            ),
+            Quantity.word("intermediate_axis", "intermediate axis", f"{mid + 1} (I{mid + 1} = {inertia[mid]:.4g} kg·m²)"),
         ]
         if body.circled_axis is not None:
             rank = "largest" if inertia[body.circled_axis] == inertia.max() else "smallest"
-            quantities.append({"name": "circled_axis", "label": "polhode circles", "value": f"axis {body.circled_axis + 1} ({rank} I)", "unit": ""})
+            quantities.append(Quantity.word("circled_axis", "polhode circles", f"axis {body.circled_axis + 1} ({rank} I)"))
         next_flip = physics.next_flip_s(body, self.t_s)
-        quantities.append({
-            "name": "next_flip", "label": "time to next flip",
-            "value": next_flip - self.t_s if next_flip is not None else "no flips in this motion",
-            "unit": "s" if next_flip is not None else "",
-        })
+        quantities.append(
+            Quantity.or_text("next_flip", "time to next flip", None if next_flip is None else next_flip - self.t_s, "s", "no flips in this motion")
+        )
         if self.ghost is not None:
-            quantities.append({"name": "ghost_method", "label": "ghost integrator", "value": self.ghost.description, "unit": ""})
-            quantities.append({
-                "name": "ghost_attitude_difference", "label": "ghost vs closed form, attitude",
-                "value": self.ghost_attitude_difference_rad(), "unit": "rad",
-            })
-        return {"quantities": quantities, "marks": self._triangle_marks(), "message": self._message(next_flip)}
+            quantities.append(Quantity.word("ghost_method", "ghost integrator", self.ghost.description))
+            quantities.append(Quantity("ghost_attitude_difference", "ghost vs closed form, attitude", self.ghost_attitude_difference_rad(), "rad"))
+        return Readout(quantities, marks=self._triangle_marks(), message=self._message(next_flip))
 
-    def _triangle_marks(self) -> dict[str, list[dict[str, Any]]]:
+    def _triangle_marks(self) -> dict[str, list[Mark]]:
         """On each moment's slider, the largest value the triangle inequality allows."""
         values = [float(self.params[name]) for name in physics.INERTIA_NAMES]
         marks = {}
         for k, name in enumerate(physics.INERTIA_NAMES):
             others = [j for j in range(3) if j != k]
-            marks[name] = [{"value": values[others[0]] + values[others[1]], "label": f"I{others[0] + 1}+I{others[1] + 1}"}]
+            marks[name] = [Mark(values[others[0]] + values[others[1]], f"I{others[0] + 1}+I{others[1] + 1}")]
         return marks
 
     def _message(self, next_flip: float | None) -> str:

@@ -17,12 +17,13 @@ import re
 import threading
 import time
 from collections import OrderedDict
-from collections.abc import Mapping
+from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
 import viser
 
+from app.scenes.host.viser_compat import connection_path
 from app.scenes.kit import Scene
 
 log = logging.getLogger(__name__)
@@ -153,6 +154,17 @@ class SceneHost:
             session = self._sessions.get(session_id)
             return [] if session is None else list(session.instances.values())
 
+    @contextlib.contextmanager
+    def inspect(self, session_id: str) -> Iterator[list[Scene]]:
+        """The session's live scene instances, with the frame loop held still while the block runs.
+
+        For reading several of a scene's drawn properties at one instant (tests,
+        diagnostics); keep the block short: every scene waits for it.
+        """
+        with self._lock:
+            session = self._sessions.get(session_id)
+            yield [] if session is None else list(session.instances.values())
+
     def live_readout(self, scene_id: str, session_id: str) -> dict[str, Any] | None:
         """Live numbers from the session's first viewer of the scene (None if none is connected).
 
@@ -166,7 +178,7 @@ class SceneHost:
                     out: dict[str, Any] = scene.live_readout() if hasattr(scene, "live_readout") else {}
                     readout = scene.readout()
                     if readout is not None:
-                        out["readout"] = readout
+                        out["readout"] = readout.as_dict()
                     return out
         return None
 
@@ -178,15 +190,9 @@ class SceneHost:
             return 0 if session is None else len(session.instances)
 
     # -- viser callbacks ------------------------------------------------------------
-    def _connection_path(self, client: viser.ClientHandle) -> str | None:
-        # viser 1.1.1 (pinned) does not expose the request path on ClientHandle;
-        # the websocket server keeps the live connection by client id.
-        assert self._server is not None
-        connection = self._server._websock_server._live_connections.get(client.client_id)
-        return None if connection is None else connection.request.path
-
     def _on_connect(self, client: viser.ClientHandle) -> None:
-        path = self._connection_path(client) or ""
+        assert self._server is not None
+        path = connection_path(self._server, client) or ""
         parts = [p for p in path.split("?")[0].split("/") if p]
         if len(parts) != 2 or parts[0] not in self.scenes or not SESSION_ID_PATTERN.match(parts[1]):
             log.warning("viewer connected with unusable path %r", path)

@@ -1,18 +1,21 @@
-"""What every scene is built from: the Scene base, integrated scenes, trails, drawing helpers."""
+"""What every scene is built from: the Scene base, integrated scenes, typed readouts, trails, drawing helpers."""
 
 from app.scenes.kit.drawing import arrow_segments, circle_segments, quaternion_z_to
-from app.scenes.kit.integrated import FRAME_DT_S, IntegratedScene, scene_parameters
+from app.physics.core.readout import Mark, Quantity, Readout
+from app.scenes.kit.integrated import FRAME_DT_S, IntegratedScene
 from app.scenes.kit.scene import Preset, Scene
 from app.scenes.kit.trail import Trail
 
 __all__ = [
     "FRAME_DT_S",
     "IntegratedScene",
+    "Mark",
     "Preset",
+    "Quantity",
+    "Readout",
     "Scene",
     "Trail",
     "arrow_segments",
     "circle_segments",
     "quaternion_z_to",
-    "scene_parameters",
 ]

@@ -12,7 +12,6 @@ import time
 from collections import deque
 from typing import Any, ClassVar
 
-from app.physics.core.parameters import ParameterSet
 from app.physics.solvers import LiveRun
 from app.physics.solvers.controls import CONTROL_NAMES
 from app.physics.solvers.integrated_model import IntegratedModel
@@ -27,11 +26,6 @@ DRIFT_SAMPLE_EVERY = 3
 RUNAWAY_DRIFT = 0.2
 
 
-def scene_parameters(model: type[IntegratedModel]) -> ParameterSet:
-    """The model's physical parameters followed by its integration controls."""
-    return ParameterSet((*model.parameters.parameters, *model.controls()), check=model.parameters.check)
-
-
 class IntegratedScene(Scene):
     """A scene driven by an :class:`IntegratedModel`; subclasses draw :attr:`run`'s state."""
 
@@ -39,16 +33,18 @@ class IntegratedScene(Scene):
     animated = True
 
     def physical_params(self) -> dict[str, Any]:
-        return {k: v for k, v in self.params.items() if k not in CONTROL_NAMES}
+        """The model's parameters only (no scene or integration controls)."""
+        return {name: self.params[name] for name in self.model.parameters.by_name}
 
-    def controls(self) -> dict[str, Any]:
+    def integration_controls(self) -> dict[str, Any]:
+        """Method, steps per frame and tolerance."""
         return {k: v for k, v in self.params.items() if k in CONTROL_NAMES}
 
     def restart(self) -> None:
         """(Re)start the integration from the current parameters' initial state."""
         model = self.model()
         params = self.physical_params()
-        integrator = model.integrator(params, self.controls(), FRAME_DT_S)
+        integrator = model.integrator(params, self.integration_controls(), FRAME_DT_S)
         self._model_instance = model
         self.run = LiveRun(model.system(params), integrator, model.initial_state(params))
         self.description = integrator.describe(FRAME_DT_S)

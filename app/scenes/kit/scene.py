@@ -10,15 +10,17 @@ the numbers they draw come from ``app.physics``.
 from __future__ import annotations
 
 from abc import ABC, abstractmethod
-from collections.abc import Mapping
-from dataclasses import dataclass
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, replace
 from typing import Any, ClassVar
 
 import viser
-from viser._viser import InitialCameraConfig
 
-from app.physics.core.parameters import ParameterSet
+from app.physics.core.parameters import Parameter, ParameterSet
+from app.physics.core.readout import Readout
+from app.physics.core.solution import WorkedExample
 from app.physics.solvers.integrated_model import IntegratedModel
+from app.scenes.host.viser_compat import set_initial_camera
 
 
 @dataclass(frozen=True)
@@ -38,17 +40,74 @@ class Preset:
         return {"name": self.name, "label": self.label, "values": dict(self.values), "description": self.description}
 
 
+def compose_parameters(
+    *,
+    model: type | None,
+    example: WorkedExample | None,
+    controls: tuple[Parameter, ...],
+    slider_ranges: Mapping[str, tuple[float, float, float]],
+    check_controls: Callable[[Mapping[str, Any]], None] | None,
+) -> ParameterSet:
+    """A scene's parameters: the model's (or the worked example's inputs), the scene's own controls,
+    then the integration controls of an integrated model.
+
+    ``slider_ranges`` narrows named parameters to ``(min, max, step)`` on a linear
+    slider. The whole-set check is the model's (or example's), followed by
+    ``check_controls`` when the scene has one.
+    """
+    if model is not None and example is not None:
+        raise TypeError("a scene shows either a model or a worked example, not both")
+    physical = model.parameters if model is not None else example.inputs if example is not None else ParameterSet(())
+    integration = tuple(model.controls()) if isinstance(model, type) and issubclass(model, IntegratedModel) else ()
+    parameters = (*physical.parameters, *controls, *integration)
+    unknown = set(slider_ranges) - {p.name for p in parameters}
+    if unknown:
+        raise ValueError(f"slider_ranges names no parameter: {', '.join(sorted(unknown))}")
+    parameters = tuple(
+        replace(p, min=slider_ranges[p.name][0], max=slider_ranges[p.name][1], step=slider_ranges[p.name][2], scale="linear")
+        if p.name in slider_ranges
+        else p
+        for p in parameters
+    )
+    model_check = physical.check
+    if check_controls is None:
+        check = model_check
+    else:
+
+        def check(values: Mapping[str, Any]) -> None:
+            if model_check is not None:
+                model_check(values)
+            check_controls(values)
+
+    return ParameterSet(parameters, check=check)
+
+
 class Scene(ABC):
     """One client's instance of a scene.
 
     Subclasses set the class attributes and implement :meth:`build` and
-    :meth:`update`; animated scenes also implement :meth:`advance`.
+    :meth:`update`; animated scenes also implement :meth:`advance`. A scene
+    declares what it shows — its ``model`` (a closed-form or integrated model
+    class) or the worked ``example`` whose inputs it draws — and its own
+    ``controls`` (display options, time scale, …); :attr:`parameters` is
+    composed from them once, when the class is defined.
     """
 
     id: ClassVar[str]
     title: ClassVar[str]
     chapter: ClassVar[int]
-    parameters: ClassVar[ParameterSet]
+    #: The model drawn (a ClosedFormModel or IntegratedModel class), or None.
+    model: ClassVar[type | None] = None
+    #: The worked example whose inputs the scene draws (instead of a model), or None.
+    example: ClassVar[WorkedExample | None] = None
+    #: Scene-only parameters (display options, time scale, …), after the model's.
+    controls: ClassVar[tuple[Parameter, ...]] = ()
+    #: Narrower slider ranges for the lesson page: name -> (min, max, step).
+    slider_ranges: ClassVar[Mapping[str, tuple[float, float, float]]] = {}
+    #: Composed by ``__init_subclass__``: model/example parameters, controls, integration controls.
+    parameters: ClassVar[ParameterSet] = ParameterSet(())
+    #: Raises ValueError for control values impossible with the rest (run after the model's check).
+    check_controls: ClassVar[Callable[[Mapping[str, Any]], None] | None] = None
     animated: ClassVar[bool] = False
     #: Buttons on the lesson page that set several controls at once.
     presets: ClassVar[tuple[Preset, ...]] = ()
@@ -56,16 +115,19 @@ class Scene(ABC):
     camera_position: ClassVar[tuple[float, float, float]] = (4.0, -6.0, 4.0)
     camera_look_at: ClassVar[tuple[float, float, float]] = (0.0, 0.0, 0.0)
 
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        cls.parameters = compose_parameters(
+            model=cls.model, example=cls.example, controls=tuple(cls.controls),
+            slider_ranges=cls.slider_ranges, check_controls=cls.check_controls,
+        )  # fmt: skip
+
     def __init__(self, client: viser.ClientHandle, params: Mapping[str, Any]) -> None:
         self.client = client
         self.params = dict(params)
         #: A message the page may show (e.g. why the last parameters were refused).
         self.status = ""
         client.gui.main_panel.minimize()  # the lesson page carries the controls
-        # viser 1.1.1 (pinned) sets an initial camera only server-wide; the same
-        # message addressed to one client makes it this viewer's start pose and
-        # its "Reset View" target without fighting the student's own camera.
-        self._initial_camera = InitialCameraConfig(client._websock_connection.queue_message)
         self.build()
         self.update()
         self._set_initial_camera()
@@ -78,7 +140,7 @@ class Scene(ABC):
             "chapter": cls.chapter,
             "animated": cls.animated,
             # Integrated scenes publish live invariants at /api/scenes/{id}/sessions/{sid}/live.
-            "integrated": issubclass(getattr(cls, "model", type(None)), IntegratedModel),
+            "integrated": cls.model is not None and issubclass(cls.model, IntegratedModel),
             # Scenes with live numbers (readouts, marks on controls) for the lesson page.
             "readout": cls.readout is not Scene.readout,
             "parameters": cls.parameters.schema(),
@@ -106,20 +168,17 @@ class Scene(ABC):
 
     def _set_initial_camera(self) -> None:
         position, look_at = self.camera_view()
-        self._initial_camera.look_at = look_at
-        self._initial_camera.position = position
+        set_initial_camera(self.client, position=position, look_at=look_at)
 
     def advance(self, dt_s: float) -> None:
         """Advance the animation by ``dt_s`` seconds of wall-clock time."""
 
-    def readout(self) -> dict[str, Any] | None:
-        """Numbers a student reads beside the scene, polled by the lesson page.
+    def readout(self) -> Readout | None:
+        """Numbers a student reads beside the scene, polled by the lesson page (None: no readout).
 
-        ``{"quantities": [{"name", "label", "value", "unit"}, ...],
-        "marks": {parameter_name: [{"value", "label"}, ...]}, "message": str}``:
-        ``name`` is a stable id (tests and pages find values by it), ``value`` a
-        finite number or a short string, ``marks`` put a labelled tick on a
-        control's slider (e.g. the sleeping-top threshold on the spin control).
+        Quantities are found by ``name`` (time is always ``t_s``); marks put a
+        labelled tick on a control's slider (e.g. the sleeping-top threshold on
+        the spin control).
         """
         return None
 

@@ -1,0 +1,113 @@
+"""viser's private API is used in one module only, for the pinned version, and each use works.
+
+The compat functions are checked against a real loopback viser server and a
+real websocket client (what a browser's viewer does, without the browser).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import re
+import time
+from pathlib import Path
+
+import msgspec
+import numpy as np
+import viser
+import zstandard
+from websockets.sync.client import connect
+
+from app.scenes.host import viser_compat
+from app.scenes.host.viser_compat import connection_path, scene_node_names, set_initial_camera, viewer_camera_message
+
+ROOT = Path(__file__).resolve().parents[3]
+PRIVATE_USE = re.compile(r"\bviser\._(?!_)|from viser import _|\._websock")
+
+
+def test_viser_is_the_version_the_private_calls_were_checked_against():
+    assert viser.__version__ == viser_compat.CHECKED_VISER_VERSION == "1.1.1", (
+        f"viser {viser.__version__} is installed: app/scenes/host/viser_compat.py reaches into viser's private API and was "
+        "checked against 1.1.1 only; re-check every function there (and its tests) against the new version, then update the pin."
+    )
+
+
+def test_no_other_module_uses_viser_private_api():
+    offenders = [
+        f"{path.relative_to(ROOT)}:{number}"
+        for folder in ("app", "tests")
+        for path in sorted((ROOT / folder).rglob("*.py"))
+        if path.name not in ("viser_compat.py", "test_viser_compat.py")
+        for number, line in enumerate(path.read_text(encoding="utf-8").splitlines(), start=1)
+        if PRIVATE_USE.search(line)
+    ]
+    assert offenders == [], "viser's private API is used outside app/scenes/host/viser_compat.py: " + ", ".join(offenders)
+
+
+@contextlib.contextmanager
+def server_with_viewer(path: str):
+    """A loopback server and one viewer connected at ``path``; yields (server, client handle, socket)."""
+    with contextlib.redirect_stdout(io.StringIO()):
+        server = viser.ViserServer(host="127.0.0.1", port=0, verbose=False)
+    socket = connect(f"ws://127.0.0.1:{server.get_port()}{path}", subprotocols=[f"viser-v{viser.__version__}"], max_size=None)
+    try:
+        socket.send(viewer_camera_message())  # viser lists the client only after this message
+        deadline = time.monotonic() + 10.0
+        while not server.get_clients():
+            assert time.monotonic() < deadline, "viser never counted the viewer as connected"
+            time.sleep(0.01)
+        yield server, next(iter(server.get_clients().values())), socket
+    finally:
+        socket.close()
+        server.stop()
+
+
+def received_messages(socket, *, seconds: float) -> list[dict]:
+    """Every message dict the viewer received within ``seconds`` (batches flattened)."""
+    found: list[dict] = []
+
+    def walk(item) -> None:
+        if isinstance(item, dict):
+            if "type" in item:
+                found.append(item)
+            for value in item.values():
+                walk(value)
+        elif isinstance(item, (list, tuple)):
+            for value in item:
+                walk(value)
+
+    deadline = time.monotonic() + seconds
+    while (remaining := deadline - time.monotonic()) > 0:
+        try:
+            raw = socket.recv(timeout=remaining)
+        except TimeoutError:
+            break
+        if isinstance(raw, bytes):  # 8-byte sizes (decompressed, compressed), then zstd-compressed msgpack
+            compressed_size = int.from_bytes(raw[8:16], "little")
+            walk(msgspec.msgpack.decode(zstandard.ZstdDecompressor().decompress(raw[16 : 16 + compressed_size])))
+    return found
+
+
+def test_connection_path_is_the_viewer_request_path():
+    with server_with_viewer("/heavy-top/session-1234?x=1") as (server, client, _):
+        assert connection_path(server, client) == "/heavy-top/session-1234?x=1"
+
+
+def test_initial_camera_is_sent_to_that_viewer():
+    with server_with_viewer("/") as (_, client, socket):
+        received_messages(socket, seconds=0.3)  # the connection's own start-up messages
+        set_initial_camera(client, position=(1.0, -2.0, 3.0), look_at=(0.5, 0.0, 0.25))
+        messages = received_messages(socket, seconds=1.0)
+    by_type = {m["type"]: m for m in messages}
+    position, look_at = by_type["SetCameraPositionMessage"], by_type["SetCameraLookAtMessage"]
+    assert position["initial"] and look_at["initial"]
+    assert np.allclose(position["position"], (1.0, -2.0, 3.0)) and np.allclose(look_at["look_at"], (0.5, 0.0, 0.25))
+
+
+def test_scene_node_names_lists_what_is_on_a_client_scene():
+    with server_with_viewer("/") as (_, client, _socket):
+        assert scene_node_names(client.scene) == set()
+        handle = client.scene.add_icosphere("/ball", radius=0.1)
+        assert scene_node_names(client.scene) == {"/ball"}
+        handle.remove()
+        assert scene_node_names(client.scene) == set()
