@@ -11,7 +11,7 @@ from fastapi.staticfiles import StaticFiles
 
 from app import __version__
 from app.api import bench, chapters, errors, examples, health, scenes
-from app.content import Course
+from app.course import load_catalogue
 from app.scenes import SCENES
 from app.scenes.host.host import SceneHost
 from app.settings import Settings
@@ -40,7 +40,8 @@ def create_app(settings: Settings | None = None) -> FastAPI:
         lifespan=lifespan,
     )
     app.state.settings = settings
-    app.state.course = Course()
+    # Every lesson reference is checked here: a bad one stops the server before it starts.
+    app.state.catalogue = load_catalogue(settings.lessons_dir)
     errors.install(app)
     routers = (health.router, chapters.router, scenes.router, examples.router, bench.router, pages.router, relay.router)
     for router in routers:

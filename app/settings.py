@@ -8,6 +8,8 @@ from pathlib import Path
 
 #: Where ``dynlab bench`` writes work_precision.json and one <scene_id>.svg per scene.
 DEFAULT_BENCH_DIR = Path(__file__).resolve().parent.parent / "docs" / "bench"
+#: Where the course outline (course.toml) and the lesson files (chNN/*.md) live.
+DEFAULT_LESSONS_DIR = Path(__file__).resolve().parent.parent / "lessons"
 
 
 @dataclass(frozen=True)
@@ -20,6 +22,8 @@ class Settings:
     max_sessions: int = 2000
     #: Benchmark results shown on the Solver lab page (work_precision.json and the SVG diagrams).
     bench_dir: Path = DEFAULT_BENCH_DIR
+    #: Lessons checked into the course catalogue at start-up.
+    lessons_dir: Path = DEFAULT_LESSONS_DIR
 
     @classmethod
     def from_env(cls, **overrides: object) -> "Settings":
@@ -28,6 +32,7 @@ class Settings:
             "port": os.environ.get("DYNLAB_PORT"),
             "frame_rate_hz": os.environ.get("DYNLAB_FRAME_RATE_HZ"),
             "bench_dir": os.environ.get("DYNLAB_BENCH_DIR"),
+            "lessons_dir": os.environ.get("DYNLAB_LESSONS_DIR"),
         }
         values: dict[str, object] = {}
         for name, raw in env.items():

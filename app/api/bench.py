@@ -16,6 +16,8 @@ from fastapi import APIRouter, HTTPException
 from fastapi.responses import FileResponse
 
 from app.api.deps import SettingsDep
+from app.api.schemas.bench import WorkPrecisionReport
+from app.api.schemas.errors import error_responses
 from app.settings import Settings
 
 router = APIRouter(tags=["bench"])
@@ -75,7 +77,14 @@ def diagram_path(settings: Settings, scene_id: str) -> Path | None:
     return path if path.is_file() else None
 
 
-@router.get("/api/bench/work-precision")
+@router.get(
+    "/api/bench/work-precision",
+    response_class=FileResponse,
+    responses={
+        200: {"model": WorkPrecisionReport, "description": "work_precision.json as `dynlab bench` wrote it"},
+        **error_responses(not_found="`dynlab bench` has not been run: there is no work_precision.json"),
+    },
+)
 def work_precision(settings: SettingsDep) -> FileResponse:
     """The latest benchmark results as written by ``dynlab bench`` (404 until it has run)."""
     path = results_path(settings)

@@ -4,14 +4,15 @@ from typing import Any
 
 from fastapi import APIRouter
 
-from app.api.deps import CourseDep
+from app.api.deps import CatalogueDep
+from app.api.schemas.chapters import ChapterEntry
 
 router = APIRouter(prefix="/api", tags=["course"])
 
 
-@router.get("/chapters")
-def list_chapters(course: CourseDep) -> list[dict[str, Any]]:
-    """The ten chapters in order, with their sections and lessons."""
+@router.get("/chapters", response_model=list[ChapterEntry])
+def list_chapters(catalogue: CatalogueDep) -> list[dict[str, Any]]:
+    """The ten chapters in order, with their sections and lessons (each with the first scene it shows)."""
     return [
         {
             "number": ch.number,
@@ -23,5 +24,5 @@ def list_chapters(course: CourseDep) -> list[dict[str, Any]]:
                 for lesson in ch.lessons
             ],
         }
-        for ch in course.chapters
+        for ch in catalogue.chapters
     ]

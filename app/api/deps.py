@@ -7,13 +7,13 @@ from typing import Annotated
 from fastapi import Depends
 from starlette.requests import HTTPConnection
 
-from app.content import Course
+from app.course import Catalogue
 from app.scenes.host.host import SceneHost
 from app.settings import Settings
 
 
-def get_course(request: HTTPConnection) -> Course:
-    return request.app.state.course
+def get_catalogue(request: HTTPConnection) -> Catalogue:
+    return request.app.state.catalogue
 
 
 def get_scene_host(request: HTTPConnection) -> SceneHost:
@@ -24,6 +24,6 @@ def get_settings(request: HTTPConnection) -> Settings:
     return request.app.state.settings
 
 
-CourseDep = Annotated[Course, Depends(get_course)]
+CatalogueDep = Annotated[Catalogue, Depends(get_catalogue)]
 SceneHostDep = Annotated[SceneHost, Depends(get_scene_host)]
 SettingsDep = Annotated[Settings, Depends(get_settings)]

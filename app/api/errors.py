@@ -1,24 +1,32 @@
-"""Turn physics ``ValueError``s into 422 responses that name the field."""
+"""The one way the API answers bad input: a 422 whose ``detail`` names the field (``loc``) and says why (``msg``).
+
+Routes raise :func:`unprocessable`; physics ``ParameterError``/``ValueError``
+reaching the app are turned into the same answer by the handlers :func:`install` adds.
+"""
 
 from __future__ import annotations
 
-from fastapi import FastAPI, Request
-from fastapi.responses import JSONResponse
+from collections.abc import Sequence
+
+from fastapi import FastAPI, HTTPException, Request
+from fastapi.exception_handlers import http_exception_handler
+from fastapi.responses import Response
 
 from app.physics.core.parameters import ParameterError
 
 
-def _unprocessable(loc: list[str], message: str) -> JSONResponse:
-    return JSONResponse(status_code=422, content={"detail": [{"loc": loc, "msg": message, "type": "value_error"}]})
+def unprocessable(loc: Sequence[str], message: str) -> HTTPException:
+    """A 422 ``{"detail": [{"loc": loc, "msg": message, "type": "value_error"}]}``."""
+    return HTTPException(status_code=422, detail=[{"loc": list(loc), "msg": message, "type": "value_error"}])
 
 
-async def parameter_error_handler(_request: Request, exc: Exception) -> JSONResponse:
+async def parameter_error_handler(request: Request, exc: Exception) -> Response:
     assert isinstance(exc, ParameterError)
-    return _unprocessable(["body", "inputs", exc.field], str(exc))
+    return await http_exception_handler(request, unprocessable(["body", "inputs", exc.field], str(exc)))
 
 
-async def value_error_handler(_request: Request, exc: Exception) -> JSONResponse:
-    return _unprocessable(["body"], str(exc))
+async def value_error_handler(request: Request, exc: Exception) -> Response:
+    return await http_exception_handler(request, unprocessable(["body"], str(exc)))
 
 
 def install(app: FastAPI) -> None:

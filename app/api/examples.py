@@ -3,32 +3,33 @@ from __future__ import annotations
 from typing import Any
 
 from fastapi import APIRouter, HTTPException
-from pydantic import BaseModel, ConfigDict, Field
 
-from app.physics.systems import worked_examples
-
-EXAMPLES = worked_examples()
+from app.api.deps import CatalogueDep
+from app.api.schemas.errors import error_responses
+from app.api.schemas.examples import ExampleSummary, SolveAnswer, SolveRequest
 
 router = APIRouter(prefix="/api/examples", tags=["examples"])
 
 
-class SolveRequest(BaseModel):
-    model_config = ConfigDict(extra="forbid")
-    inputs: dict[str, Any] = Field(default_factory=dict, description="Inputs by name; omitted ones take their defaults")
-
-
-@router.get("")
-def list_examples() -> list[dict[str, Any]]:
+@router.get("", response_model=list[ExampleSummary], response_model_exclude_unset=True)
+def list_examples(catalogue: CatalogueDep) -> list[dict[str, Any]]:
     """Every worked example with its input schema (name, unit, default, range)."""
-    return [example.schema() for example in EXAMPLES.values()]
+    return [example.schema() for example in catalogue.examples.values()]
 
 
-@router.post("/{example_id}/solve")
-def solve_example(example_id: str, request: SolveRequest) -> dict[str, Any]:
+@router.post(
+    "/{example_id}/solve",
+    response_model=SolveAnswer,
+    responses=error_responses(
+        not_found="No worked example has this id",
+        unprocessable="An input is unknown, not finite, out of range, or the inputs cannot exist together; `loc` names it",
+    ),
+)
+def solve_example(example_id: str, request: SolveRequest, catalogue: CatalogueDep) -> dict[str, Any]:
     """Solve a worked example: ``outputs`` (SI; vectors as [x, y, z]), ``steps`` and ``plots``."""
-    example = EXAMPLES.get(example_id)
+    example = catalogue.examples.get(example_id)
     if example is None:
-        raise HTTPException(status_code=404, detail=f"no worked example {example_id!r}; known: {', '.join(EXAMPLES)}")
+        raise HTTPException(status_code=404, detail=f"no worked example {example_id!r}; known: {', '.join(catalogue.examples)}")
     inputs = example.inputs.validate(request.inputs)
     result = example.solve(inputs).as_dict()
     result["inputs"] = inputs

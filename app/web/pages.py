@@ -6,7 +6,6 @@ import html
 import json
 import math
 import re
-import tomllib
 from datetime import datetime
 from functools import lru_cache
 from pathlib import Path
@@ -17,11 +16,9 @@ from fastapi import APIRouter, HTTPException
 from fastapi.responses import HTMLResponse, RedirectResponse, Response
 
 from app.api import bench
-from app.api.deps import CourseDep, SceneHostDep, SettingsDep
-from app.content import LESSONS_DIR, Chapter, Lesson, render_markdown
-from app.physics.systems import worked_examples
-
-EXAMPLES = worked_examples()
+from app.api.deps import CatalogueDep, SceneHostDep, SettingsDep
+from app.course import LESSONS_DIR, Catalogue, Chapter, Lesson, render_markdown
+from app.course.lessons import split_front_matter
 from app.scenes.host.host import SESSION_ID_PATTERN
 
 router = APIRouter(tags=["pages"], include_in_schema=False)
@@ -69,32 +66,35 @@ def _chapter_card(chapter: Chapter) -> str:
 
 
 @router.get("/", response_class=HTMLResponse)
-def course_page(course: CourseDep) -> HTMLResponse:
-    body = _template("course.html").substitute(chapters="".join(_chapter_card(ch) for ch in course.chapters))
+def course_page(catalogue: CatalogueDep) -> HTMLResponse:
+    body = _template("course.html").substitute(chapters="".join(_chapter_card(ch) for ch in catalogue.chapters))
     return _page("Dynamics Lab — course", body, scripts=("/static/js/common.js",))
 
 
-def _lesson_config(lesson: Lesson, host_scenes: dict) -> dict:
-    scene_cls = host_scenes.get(lesson.scene) if lesson.scene else None
+def _lesson_config(lesson: Lesson, catalogue: Catalogue) -> dict:
+    """What lesson.js needs: the first scene's schema (the page shows one viewer) and every example's schema.
+
+    The catalogue checked every reference at start-up, so each id is found here.
+    """
     return {
         "lesson_id": lesson.id,
-        "scene": scene_cls.schema() if scene_cls else None,
-        "examples": [EXAMPLES[e].schema() for e in lesson.examples if e in EXAMPLES],
+        "scene": catalogue.scenes[lesson.scene].schema() if lesson.scene else None,
+        "examples": [catalogue.examples[example_id].schema() for example_id in lesson.examples],
     }
 
 
 @router.get("/lessons/{lesson_id}", response_class=HTMLResponse)
-def lesson_page(lesson_id: str, course: CourseDep, host: SceneHostDep) -> HTMLResponse:
-    lesson = course.lessons.get(lesson_id)
+def lesson_page(lesson_id: str, catalogue: CatalogueDep) -> HTMLResponse:
+    lesson = catalogue.lessons.get(lesson_id)
     if lesson is None:
         raise HTTPException(status_code=404, detail=f"no lesson {lesson_id!r}")
-    chapter = course.chapter_of(lesson)
-    previous, following = course.neighbours(lesson)
+    chapter = catalogue.chapter_of(lesson)
+    previous, following = catalogue.neighbours(lesson)
     nav = "".join(
         f'<a class="{cls}" href="{esc(l.url)}">{arrow} {esc(l.section)} {esc(l.title)}</a>' if l else "<span></span>"
         for l, cls, arrow in ((previous, "prev", "←"), (following, "next", "→"))
     )
-    config = json.dumps(_lesson_config(lesson, host.scenes)).replace("</", "<\\/")
+    config = json.dumps(_lesson_config(lesson, catalogue)).replace("</", "<\\/")
     body = _template("lesson.html").substitute(
         chapter_number=chapter.number,
         chapter_title=esc(chapter.title),
@@ -158,9 +158,9 @@ def _with_unit(value_html: str, unit: str) -> str:
 @lru_cache(maxsize=1)
 def _solver_lab_text() -> tuple[dict, str]:
     """Front matter and rendered body of lessons/solver-lab.md (TOML between '+++' lines, like the lessons)."""
-    text = (LESSONS_DIR / "solver-lab.md").read_text(encoding="utf-8")
-    _, front, body = text.split("+++", 2)
-    return tomllib.loads(front), render_markdown(body.strip())
+    path = LESSONS_DIR / "solver-lab.md"
+    meta, body = split_front_matter(path.read_text(encoding="utf-8"), str(path))
+    return meta, render_markdown(body)
 
 
 def _method_labels(scene: dict) -> dict[str, str]:

@@ -1,4 +1,4 @@
-"""The course outline, the lesson files and the Markdown + math renderer (app/content.py)."""
+"""The course outline, the lesson files and the Markdown + math renderer (app/course/lessons.py)."""
 
 from __future__ import annotations
 
@@ -6,13 +6,13 @@ import re
 
 import pytest
 
-from app.content import LESSONS_DIR, Course, parse_lesson, render_markdown
+from app.course import LESSONS_DIR, load_catalogue, render_markdown
+from app.course.lessons import parse_lesson
 from app.physics.systems import worked_examples
-
-EXAMPLES = worked_examples()
 from app.scenes import SCENES
 
-COURSE = Course()
+COURSE = load_catalogue()
+EXAMPLES = worked_examples()
 LESSON_FILES = sorted(LESSONS_DIR.glob("ch*/*.md"))
 
 
@@ -33,8 +33,8 @@ def test_lessons_are_ordered_within_a_chapter():
 
 @pytest.mark.parametrize("lesson", list(COURSE.lessons.values()), ids=lambda lesson: lesson.id)
 def test_lesson_scenes_and_examples_exist(lesson):
-    if lesson.scene is not None:
-        assert lesson.scene in SCENES
+    for scene_id in lesson.scenes:
+        assert scene_id in SCENES
     for example_id in lesson.examples:
         assert example_id in EXAMPLES
 

@@ -1,10 +1,13 @@
-"""The course outline and lesson files under ``lessons/``.
+"""Lesson files and the course outline as parsed, before any cross-checking.
 
 ``lessons/course.toml`` lists the ten chapters and their sections. Each lesson
 is ``lessons/chNN/<id>.md``: TOML front matter between ``+++`` lines (id,
-chapter, section, order, title, summary, optional scene and examples) and a
-Markdown body with LaTeX math (``$...$`` inline, ``$$...$$`` display). Math is
-set aside before Markdown runs and rendered in the browser by the vendored KaTeX.
+chapter, section, order, title, summary, optional ``scenes``, ``examples`` and
+``derivations``, each a list of ids; ``scene = "id"`` is accepted as a
+one-scene shorthand) and a Markdown body with LaTeX math (``$...$`` inline,
+``$$...$$`` display). Math is set aside before Markdown runs and rendered in
+the browser by the vendored KaTeX. Whether the ids exist is checked by
+:mod:`app.course.catalogue`.
 """
 
 from __future__ import annotations
@@ -12,14 +15,13 @@ from __future__ import annotations
 import html
 import re
 import tomllib
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from functools import cached_property
-from pathlib import Path
 from typing import Any
 
 from markdown_it import MarkdownIt
 
-LESSONS_DIR = Path(__file__).resolve().parent.parent / "lessons"
+from app.settings import DEFAULT_LESSONS_DIR as LESSONS_DIR
 
 _DISPLAY_MATH = re.compile(r"\$\$(.+?)\$\$", re.DOTALL)
 _INLINE_MATH = re.compile(r"(?<![\\$])\$(?!\$)([^\n$]+?)(?<!\\)\$")
@@ -55,8 +57,16 @@ class Lesson:
     title: str
     summary: str
     body_markdown: str
-    scene: str | None = None
+    #: The file it was read from, named in every error about it.
+    source: str = ""
+    scenes: tuple[str, ...] = ()
     examples: tuple[str, ...] = ()
+    derivations: tuple[str, ...] = ()
+
+    @property
+    def scene(self) -> str | None:
+        """The first scene, the one the lesson page shows (``None`` for a lesson without one)."""
+        return self.scenes[0] if self.scenes else None
 
     @property
     def url(self) -> str:
@@ -80,22 +90,32 @@ class Chapter:
     title: str
     summary: str
     sections: tuple[Section, ...]
-    lessons: tuple[Lesson, ...] = field(default=())
+    lessons: tuple[Lesson, ...] = ()
 
 
-def parse_lesson(text: str, source: str) -> Lesson:
-    """Parse one lesson file; raises ValueError naming ``source`` on a malformed file."""
+def split_front_matter(text: str, source: str) -> tuple[dict[str, Any], str]:
+    """The TOML front matter (between ``+++`` lines) and the stripped Markdown body of a content file."""
     parts = text.split("+++", 2)
     if len(parts) != 3 or parts[0].strip():
-        raise ValueError(f"{source}: a lesson starts with TOML front matter between '+++' lines")
+        raise ValueError(f"{source}: a content file starts with TOML front matter between '+++' lines")
     try:
         meta: dict[str, Any] = tomllib.loads(parts[1])
     except tomllib.TOMLDecodeError as exc:
         raise ValueError(f"{source}: front matter: {exc}") from None
+    return meta, parts[2].strip()
+
+
+def parse_lesson(text: str, source: str) -> Lesson:
+    """Parse one lesson file; raises ValueError naming ``source`` on a malformed file."""
+    meta, body = split_front_matter(text, source)
     required = ("id", "chapter", "section", "order", "title")
     missing = [k for k in required if k not in meta]
     if missing:
         raise ValueError(f"{source}: front matter lacks {', '.join(missing)}")
+    if "scene" in meta:
+        if "scenes" in meta:
+            raise ValueError(f"{source}: front matter has both 'scene' and 'scenes'; keep 'scenes'")
+        meta["scenes"] = [meta.pop("scene")]
     return Lesson(
         id=str(meta["id"]),
         chapter=int(meta["chapter"]),
@@ -103,41 +123,34 @@ def parse_lesson(text: str, source: str) -> Lesson:
         order=int(meta["order"]),
         title=str(meta["title"]),
         summary=str(meta.get("summary", "")),
-        body_markdown=parts[2].strip(),
-        scene=meta.get("scene"),
-        examples=tuple(meta.get("examples", ())),
+        body_markdown=body,
+        source=source,
+        scenes=_id_list(meta, "scenes", source),
+        examples=_id_list(meta, "examples", source),
+        derivations=_id_list(meta, "derivations", source),
     )
 
 
-class Course:
-    """All chapters and lessons, loaded once at start-up."""
+def _id_list(meta: dict[str, Any], key: str, source: str) -> tuple[str, ...]:
+    """``meta[key]`` as a tuple of ids; ValueError naming the file and key if it is not a list of strings."""
+    value = meta.get(key, [])
+    if not isinstance(value, list) or not all(isinstance(v, str) and v for v in value):
+        raise ValueError(f"{source}: front matter {key!r} must be a list of ids (strings), got {value!r}")
+    return tuple(value)
 
-    def __init__(self, root: Path = LESSONS_DIR) -> None:
-        outline = tomllib.loads((root / "course.toml").read_text(encoding="utf-8"))
-        lessons = sorted(
-            (parse_lesson(p.read_text(encoding="utf-8"), str(p)) for p in sorted(root.glob("ch*/*.md"))),
-            key=lambda lesson: (lesson.chapter, lesson.order),
-        )
-        self.lessons: dict[str, Lesson] = {}
-        for lesson in lessons:
-            if lesson.id in self.lessons:
-                raise ValueError(f"two lessons share the id {lesson.id!r}")
-            self.lessons[lesson.id] = lesson
-        self.chapters: tuple[Chapter, ...] = tuple(
+
+def parse_outline(text: str, source: str) -> tuple[Chapter, ...]:
+    """The chapters and sections of ``course.toml`` (no lessons yet); ValueError naming ``source`` if malformed."""
+    try:
+        outline = tomllib.loads(text)
+        return tuple(
             Chapter(
                 number=int(ch["number"]),
                 title=ch["title"],
                 summary=ch.get("summary", ""),
                 sections=tuple(Section(s["number"], s["title"], tuple(s.get("topics", ()))) for s in ch["sections"]),
-                lessons=tuple(lesson for lesson in lessons if lesson.chapter == int(ch["number"])),
             )
             for ch in outline["chapter"]
         )
-
-    def chapter_of(self, lesson: Lesson) -> Chapter:
-        return next(ch for ch in self.chapters if ch.number == lesson.chapter)
-
-    def neighbours(self, lesson: Lesson) -> tuple[Lesson | None, Lesson | None]:
-        ordered = list(self.lessons.values())
-        i = ordered.index(lesson)
-        return (ordered[i - 1] if i > 0 else None, ordered[i + 1] if i + 1 < len(ordered) else None)
+    except (tomllib.TOMLDecodeError, KeyError, TypeError, ValueError) as exc:
+        raise ValueError(f"{source}: malformed course outline: {exc!r}") from None

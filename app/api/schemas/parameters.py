@@ -1,0 +1,33 @@
+"""Parameter values and parameter descriptions, shared by scenes and worked examples."""
+
+from __future__ import annotations
+
+from pydantic import BaseModel
+
+#: A JSON number as the physics wrote it: integers stay integers (``step: 1``), floats stay floats.
+Number = int | float
+#: One parameter's value: a number, a choice or text, or a vector ``[x, y, z]``.
+ParameterValue = Number | str | list[Number]
+
+
+class ParameterSpec(BaseModel):
+    """One input control: name, unit, default and, by ``kind``, its range, choices or length.
+
+    ``kind`` is ``float``, ``int``, ``choice`` (with ``choices``), ``text`` (with
+    ``max_length``) or ``vector`` (with ``length``); numeric kinds carry ``min``,
+    ``max``, ``scale`` and optionally ``step``. Keys a kind does not use are absent.
+    """
+
+    name: str
+    label: str
+    unit: str
+    default: ParameterValue
+    description: str
+    kind: str
+    choices: list[str] = []
+    max_length: int = 0
+    length: int = 0
+    min: Number = 0
+    max: Number = 0
+    scale: str = ""
+    step: Number = 0

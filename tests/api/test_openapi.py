@@ -1,0 +1,79 @@
+"""The OpenAPI document describes every answer: a 200 schema per route, the 404s and 422s it can give, the session-id pattern."""
+
+from __future__ import annotations
+
+import pytest
+from fastapi.testclient import TestClient
+
+from app.main import create_app
+from app.scenes.host.host import SESSION_ID_PATTERN
+
+SPEC = TestClient(create_app()).get("/openapi.json").json()  # no lifespan needed: the spec is static
+OPERATIONS = [(path, method, op) for path, item in SPEC["paths"].items() for method, op in item.items()]
+#: Routes whose path names something that may not exist (404), and routes that read a body or a checked path (422).
+CAN_BE_NOT_FOUND = {
+    ("/api/examples/{example_id}/solve", "post"),
+    ("/api/scenes/{scene_id}/sessions/{session_id}", "put"),
+    ("/api/scenes/{scene_id}/simulate", "post"),
+    ("/api/scenes/{scene_id}/sessions/{session_id}/live", "get"),
+    ("/api/bench/work-precision", "get"),
+}
+CAN_BE_UNPROCESSABLE = CAN_BE_NOT_FOUND - {("/api/bench/work-precision", "get")}
+
+
+def resolve(schema: dict) -> dict:
+    """Follow one ``$ref`` into components/schemas."""
+    ref = schema.get("$ref")
+    return SPEC["components"]["schemas"][ref.rsplit("/", 1)[1]] if ref else schema
+
+
+def test_every_json_route_is_documented():
+    documented = {(path, method) for path, method, _ in OPERATIONS}
+    assert CAN_BE_NOT_FOUND <= documented
+    assert {("/api/health", "get"), ("/api/chapters", "get"), ("/api/scenes", "get"), ("/api/examples", "get")} <= documented
+
+
+@pytest.mark.parametrize(("path", "method", "op"), OPERATIONS, ids=[f"{m.upper()} {p}" for p, m, _ in OPERATIONS])
+def test_every_route_has_a_typed_200(path, method, op):
+    schema = op["responses"]["200"]["content"]["application/json"]["schema"]
+    target = resolve(schema.get("items", schema))
+    assert target.get("properties"), f"{method.upper()} {path}: the 200 answer has no described fields"
+
+
+@pytest.mark.parametrize(("path", "method"), sorted(CAN_BE_NOT_FOUND))
+def test_404_is_documented_where_it_can_happen(path, method):
+    answer = SPEC["paths"][path][method]["responses"]["404"]
+    assert answer["description"]
+    assert resolve(answer["content"]["application/json"]["schema"])["properties"]["detail"]["type"] == "string"
+
+
+@pytest.mark.parametrize(("path", "method"), sorted(CAN_BE_UNPROCESSABLE))
+def test_422_is_documented_where_it_can_happen(path, method):
+    answer = SPEC["paths"][path][method]["responses"]["422"]
+    issue = resolve(resolve(answer["content"]["application/json"]["schema"])["properties"]["detail"]["items"])
+    assert {"loc", "msg", "type"} <= set(issue["required"])
+
+
+@pytest.mark.parametrize(("path", "method", "op"), OPERATIONS, ids=[f"{m.upper()} {p}" for p, m, _ in OPERATIONS])
+def test_no_404_or_422_where_none_can_happen(path, method, op):
+    if (path, method) not in CAN_BE_NOT_FOUND:
+        assert "404" not in op["responses"], path
+    if (path, method) not in CAN_BE_UNPROCESSABLE:
+        assert "422" not in op["responses"], path
+
+
+@pytest.mark.parametrize("path", ["/api/scenes/{scene_id}/sessions/{session_id}", "/api/scenes/{scene_id}/sessions/{session_id}/live"])
+def test_session_id_pattern_is_in_the_spec(path):
+    for op in SPEC["paths"][path].values():
+        (param,) = [p for p in op["parameters"] if p["name"] == "session_id"]
+        assert param["in"] == "path"
+        assert param["schema"]["pattern"] == SESSION_ID_PATTERN.pattern
+
+
+def test_a_malformed_session_id_is_a_422_naming_the_path_parameter(client):
+    for response in (
+        client.put("/api/scenes/four-bar/sessions/short", json={"params": {}}),
+        client.get("/api/scenes/four-bar/sessions/short/live"),
+    ):
+        assert response.status_code == 422
+        assert response.json()["detail"][0]["loc"] == ["path", "session_id"]
