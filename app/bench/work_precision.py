@@ -28,7 +28,7 @@ from scipy.integrate import solve_ivp
 
 from app.physics.bodies.rigid_body import RigidBody
 from app.physics.math.rotations import rotate_vector
-from app.physics.solvers import make_integrator, simulate
+from app.physics.solvers import METHODS, make_integrator, simulate
 from app.physics.solvers.integrated_model import simulate_model
 from app.physics.systems.ch10 import heavy_top
 
@@ -119,13 +119,28 @@ def free_body_case() -> Case:
 
 CASES: dict[str, Callable[[], Case]] = {"heavy-top": heavy_top_case, "free-body-dzhanibekov": free_body_case}
 
+#: Settings swept for each of our methods: steps per frame (fixed step) or rtol (adaptive).
+OUR_SETTINGS: dict[str, list[float]] = {
+    "splitting4": [1, 2, 3, 4, 6, 8, 12, 16],
+    "splitting2": [2, 4, 8, 16, 32, 64, 128],
+    "rk4": [2, 4, 8, 12, 16, 24, 32, 64],
+    "dopri5": [1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11],
+}
+
+
+def our_sweeps() -> list[tuple[str, str, str, str, list[float]]]:
+    """One sweep per registered method: (method id, family, label, setting name, settings)."""
+    missing = set(METHODS) - set(OUR_SETTINGS)
+    if missing:
+        raise ValueError(f"no benchmark settings for the registered methods {sorted(missing)}")
+    return [
+        (name, "dynlab", f"{spec.short_label} (numba)", "rtol" if spec.adaptive else "steps_per_frame", OUR_SETTINGS[name])
+        for name, spec in METHODS.items()
+    ]
+
+
 # Sweeps: (method id, family, label, setting name, settings).
-OUR_SWEEPS = [
-    ("splitting4", "dynlab", "Splitting 4, exact free flow (numba)", "steps_per_frame", [1, 2, 3, 4, 6, 8, 12, 16]),
-    ("splitting2", "dynlab", "Splitting 2, Strang (numba)", "steps_per_frame", [2, 4, 8, 16, 32, 64, 128]),
-    ("rk4", "dynlab", "RK4 + projection (numba)", "steps_per_frame", [2, 4, 8, 12, 16, 24, 32, 64]),
-    ("dopri5", "dynlab", "Dormand–Prince 5(4) (numba)", "rtol", [1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11]),
-]
+OUR_SWEEPS = our_sweeps()
 SCIPY_SWEEPS = [
     ("scipy-RK45", "scipy", "scipy RK45 (numpy RHS)", "rtol", [1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9]),
     ("scipy-DOP853", "scipy", "scipy DOP853 (numpy RHS)", "rtol", [1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11]),
@@ -173,7 +188,7 @@ def numpy_rhs(body: RigidBody) -> Callable[[float, np.ndarray], np.ndarray]:
 
 
 def run_ours(case: Case, method: str, setting: float, frames_t: np.ndarray) -> tuple[np.ndarray, float, int, str]:
-    if method == "dopri5":
+    if METHODS[method].adaptive:
         integrator = make_integrator(method, rtol=float(setting))
     else:
         integrator = make_integrator(method, steps_per_frame=int(setting))

@@ -11,7 +11,6 @@ than crossed silently.
 
 from __future__ import annotations
 
-import math
 import time
 from abc import ABC, abstractmethod
 from collections.abc import Mapping
@@ -20,19 +19,10 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from app.physics.core.parameters import ParameterError, ParameterSet
+from app.physics.core.parameters import ParameterSet
+from app.physics.core.report import Event, SimulationReport, frame_times
 
-
-@dataclass(frozen=True)
-class Event:
-    """Something the student should know happened at ``t_s`` (s): ``kind`` is a short tag."""
-
-    t_s: float
-    kind: str
-    message: str
-
-    def as_dict(self) -> dict[str, Any]:
-        return {"t_s": self.t_s, "kind": self.kind, "message": self.message}
+__all__ = ["ClosedFormModel", "ClosedFormSolution", "Event", "evaluate_model", "frame_times"]
 
 
 @dataclass
@@ -64,25 +54,6 @@ class ClosedFormModel(ABC):
         return {name: max(abs(float(values[0])), 1e-300) for name, values in invariants.items()}
 
 
-#: The same request bounds as an integrated run (frames only: there are no steps).
-MAX_T_END_S = 600.0
-FRAME_RATE_RANGE_HZ = (1.0, 240.0)
-MAX_FRAMES = 36_000
-
-
-def frame_times(*, t_end_s: float, frame_rate_hz: float) -> np.ndarray:
-    """Frame grid 0, 1/rate, … ≤ t_end (s); raises ParameterError naming a bound it breaks."""
-    if not (math.isfinite(t_end_s) and 0.0 < t_end_s <= MAX_T_END_S):
-        raise ParameterError("t_end", f"must be a finite time in (0, {MAX_T_END_S:g}] s (got {t_end_s!r})")
-    low, high = FRAME_RATE_RANGE_HZ
-    if not (math.isfinite(frame_rate_hz) and low <= frame_rate_hz <= high):
-        raise ParameterError("frame_rate", f"must lie in [{low:g}, {high:g}] Hz (got {frame_rate_hz!r})")
-    frames = round(t_end_s * frame_rate_hz)
-    if frames > MAX_FRAMES:
-        raise ParameterError("t_end", f"t_end × frame_rate = {frames} frames exceeds the limit of {MAX_FRAMES} frames")
-    return np.arange(frames + 1) / frame_rate_hz
-
-
 def evaluate_model(model: ClosedFormModel, params: Mapping[str, Any], *, t_end_s: float, frame_rate_hz: float) -> dict[str, Any]:
     """The simulate report for a closed-form model (same shape as an integrated one)."""
     t_s = frame_times(t_end_s=t_end_s, frame_rate_hz=frame_rate_hz)
@@ -92,25 +63,17 @@ def evaluate_model(model: ClosedFormModel, params: Mapping[str, Any], *, t_end_s
     scales = model.invariant_scales(params, solution.invariants)
     drift = [float(np.max(np.abs(v - v[0])) / scales[k]) for k, v in solution.invariants.items()]
     finite = all(np.all(np.isfinite(v)) for v in (*solution.series.values(), *solution.invariants.values()))
-    return {
-        "t": t_s.tolist(),
-        "series": {k: _json_values(v) for k, v in solution.series.items()},
-        "invariants": {k: _json_values(v) for k, v in solution.invariants.items()},
-        "events": [event.as_dict() for event in solution.events],
-        "stats": {
-            "method": "closed-form",
-            "description": model.description,
-            "steps": 0,
-            "rhs_evals": 0,
-            "cpu_s": cpu_s,
-            "max_invariant_drift": max(drift, default=0.0),
-            "status": "ok" if finite else "undefined",
-            "message": "" if finite else "the formula is undefined at some frames (see events)",
-        },
-    }
-
-
-def _json_values(values: np.ndarray) -> list[float | None]:
-    """A float array as a JSON list, with non-finite entries (undefined instants) as null."""
-    array = np.asarray(values, dtype=float)
-    return [float(v) if math.isfinite(v) else None for v in array.tolist()]
+    return SimulationReport(
+        t_s=t_s,
+        series=solution.series,
+        invariants=solution.invariants,
+        events=list(solution.events),
+        method="closed-form",
+        description=model.description,
+        steps=0,
+        rhs_evals=0,
+        cpu_s=cpu_s,
+        max_invariant_drift=max(drift, default=0.0),
+        status="ok" if finite else "undefined",
+        message="" if finite else "the formula is undefined at some frames (see events)",
+    ).as_dict()

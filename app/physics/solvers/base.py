@@ -1,15 +1,30 @@
-"""The integrator interface: a small object that advances a system frame by frame."""
+"""The integrator interface: a small object that advances a system frame by frame.
+
+The base class does the bookkeeping (the method's facts come from its
+:class:`~app.physics.solvers.spec.MethodSpec`, and the system is checked
+against what the method supports); subclasses implement one method each.
+"""
 
 from __future__ import annotations
 
 from abc import ABC, abstractmethod
 from dataclasses import dataclass
-from typing import ClassVar
 
 import numpy as np
 
 from app.physics.solvers.kernels import Backend
+from app.physics.solvers.spec import MethodSpec
+from app.physics.solvers.status import NON_FINITE, OK, STATUS_NAMES
 from app.physics.solvers.system import OdeSystem
+
+
+@dataclass(frozen=True)
+class EventRecord:
+    """An event that happened: time ``t_s`` (s), which event function, and the state there (before any reset)."""
+
+    t_s: float
+    index: int
+    state: np.ndarray
 
 
 @dataclass(frozen=True)
@@ -19,25 +34,39 @@ class FramesOutcome:
     frames_done: int
     steps: int
     rhs_evals: int
-    #: "ok", "non_finite", "event", "step_too_small" or "too_many_steps".
+    #: A name from :data:`app.physics.solvers.status.STATUS_NAMES`.
     status: str = "ok"
     #: Time (s) of a terminal event, if one stopped the run.
     t_event_s: float | None = None
+    #: Every event located during the call, in order.
+    events: tuple[EventRecord, ...] = ()
 
 
 class Integrator(ABC):
-    """Advances ``y`` through frames of equal length; subclasses implement one method each.
+    """Advances ``y`` through frames of equal length.
 
-    ``name`` is the identifier used by the API and the controls; ``order`` is the
-    global order of accuracy the tests measure.
+    ``name``, ``label`` and ``order`` come from the method's spec (``name`` is
+    the identifier used by the API and the controls).
     """
 
-    name: ClassVar[str]
-    label: ClassVar[str]
-    order: ClassVar[int]
-    adaptive: ClassVar[bool] = False
+    spec: MethodSpec
 
-    @abstractmethod
+    @property
+    def name(self) -> str:
+        return self.spec.name
+
+    @property
+    def label(self) -> str:
+        return self.spec.label
+
+    @property
+    def order(self) -> int:
+        return self.spec.order
+
+    @property
+    def adaptive(self) -> bool:
+        return self.spec.adaptive
+
     def run_frames(
         self,
         system: OdeSystem,
@@ -49,7 +78,13 @@ class Integrator(ABC):
         *,
         backend: Backend = "numba",
     ) -> FramesOutcome:
-        """Advance ``y`` in place by ``n_frames`` frames, storing each frame's end state."""
+        """Advance ``y`` in place by ``n_frames`` frames, storing each frame's end state in ``y_frames`` (n_frames, n)."""
+        self.spec.check_system(system)
+        return self._run_frames(system, t0_s, y, frame_dt_s, n_frames, y_frames, backend=backend)
+
+    @abstractmethod
+    def _run_frames(self, system, t0_s, y, frame_dt_s, n_frames, y_frames, *, backend) -> FramesOutcome:
+        """:meth:`run_frames` for a system already checked against the spec."""
 
     @abstractmethod
     def describe(self, frame_dt_s: float) -> str:
@@ -59,14 +94,23 @@ class Integrator(ABC):
 class FixedStepIntegrator(Integrator):
     """An integrator taking ``steps_per_frame`` equal steps per frame."""
 
-    #: Right-hand-side (or force) evaluations per step.
-    evals_per_step: ClassVar[int]
-
     def __init__(self, *, steps_per_frame: int) -> None:
         if not isinstance(steps_per_frame, int) or steps_per_frame < 1:
             raise ValueError(f"steps_per_frame must be a whole number ≥ 1 (got {steps_per_frame!r})")
         self.steps_per_frame = steps_per_frame
 
+    @property
+    def evals_per_step(self) -> int:
+        return self.spec.evals_per_step
+
     def describe(self, frame_dt_s: float) -> str:
         h_ms = 1e3 * frame_dt_s / self.steps_per_frame
         return f"{self.label}, {self.steps_per_frame} step{'' if self.steps_per_frame == 1 else 's'}/frame (h = {h_ms:.3g} ms)"
+
+    def outcome(self, frames_done: int, n_frames: int) -> FramesOutcome:
+        """Counters of a run that completed ``frames_done`` of ``n_frames`` (fewer: the state stopped being finite)."""
+        steps = int(frames_done) * self.steps_per_frame
+        return FramesOutcome(
+            frames_done=int(frames_done), steps=steps, rhs_evals=steps * self.spec.evals_per_step,
+            status=STATUS_NAMES[OK if frames_done == n_frames else NON_FINITE],
+        )

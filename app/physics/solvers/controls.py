@@ -12,7 +12,7 @@ from typing import Any
 
 from app.physics.core.parameters import Parameter
 from app.physics.solvers.base import Integrator
-from app.physics.solvers.solve import METHODS, make_integrator
+from app.physics.solvers.registry import METHODS, make_integrator
 
 AUTO = "auto"
 CONTROL_NAMES = ("method", "steps_per_frame", "rtol")
@@ -23,7 +23,8 @@ def integration_parameters(methods: tuple[str, ...], *, default_method: str) -> 
     unknown = set(methods) - set(METHODS)
     if unknown:
         raise ValueError(f"unknown methods {sorted(unknown)}")
-    described = "; ".join(f"{m}: {METHODS[m]}" for m in methods)
+    described = "; ".join(f"{m}: {METHODS[m].description}" for m in methods)
+    rk4_ratio = METHODS["rk4"].step_ratio
     return (
         Parameter(
             "method", "", AUTO, kind="choice", choices=(AUTO, *methods), label="integrator",
@@ -31,13 +32,17 @@ def integration_parameters(methods: tuple[str, ...], *, default_method: str) -> 
         ),
         Parameter(
             "steps_per_frame", "", 0, 0, 4096, kind="int", step=1, label="steps per frame",
-            description="Fixed steps per displayed frame; 0 chooses h from the fastest time scale (RK4: h·ω_max ≤ 0.1)",
+            description=f"Fixed steps per displayed frame; 0 chooses h from the fastest time scale (RK4: h·ω_max ≤ {rk4_ratio:g})",
         ),
         Parameter(
             "rtol", "", 1e-8, 1e-12, 1e-3, scale="log", label="tolerance",
-            description="Relative tolerance of the adaptive method (dopri5 only)",
+            description=f"Relative tolerance of the adaptive method ({_adaptive_methods()} only)",
         ),
     )
+
+
+def _adaptive_methods() -> str:
+    return ", ".join(name for name, spec in METHODS.items() if spec.adaptive)
 
 
 def integrator_from_controls(

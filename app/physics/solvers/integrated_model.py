@@ -11,15 +11,19 @@ from __future__ import annotations
 
 from abc import ABC, abstractmethod
 from collections.abc import Mapping
-from dataclasses import dataclass
 from typing import Any, ClassVar
 
 import numpy as np
 
-from app.physics.core.closed_form import frame_times
 from app.physics.core.parameters import Parameter, ParameterError, ParameterSet
-from app.physics.solvers import DormandPrince, FixedStepIntegrator, OdeSystem, simulate
+from app.physics.core.report import MAX_ADAPTIVE_STEPS, MAX_FIXED_STEP_WORK, SimulationReport, frame_times
+from app.physics.solvers.base import FixedStepIntegrator
 from app.physics.solvers.controls import integration_parameters, integrator_from_controls
+from app.physics.solvers.dormand_prince import DormandPrince
+from app.physics.solvers.solve import simulate
+from app.physics.solvers.system import OdeSystem
+
+__all__ = ["IntegratedModel", "SimulationReport", "check_request_bounds", "simulate_model"]
 
 
 class IntegratedModel(ABC):
@@ -71,51 +75,11 @@ class IntegratedModel(ABC):
         return {name: np.abs(v - v[0]) / scales[name] for name, v in values.items()}
 
 
-@dataclass
-class SimulationReport:
-    """What ``POST /api/scenes/{id}/simulate`` returns (see :meth:`as_dict`)."""
-
-    t_s: np.ndarray
-    series: dict[str, np.ndarray]
-    invariants: dict[str, np.ndarray]
-    method: str
-    description: str
-    steps: int
-    rhs_evals: int
-    cpu_s: float
-    max_invariant_drift: float
-    status: str
-    message: str
-
-    def as_dict(self) -> dict[str, Any]:
-        return {
-            "t": self.t_s.tolist(),
-            "series": {k: v.tolist() for k, v in self.series.items()},
-            "invariants": {k: v.tolist() for k, v in self.invariants.items()},
-            "stats": {
-                "method": self.method,
-                "description": self.description,
-                "steps": self.steps,
-                "rhs_evals": self.rhs_evals,
-                "cpu_s": self.cpu_s,
-                "max_invariant_drift": self.max_invariant_drift,
-                "status": self.status,
-                "message": self.message,
-            },
-        }
-
-
-#: Bounds on one simulation request, so none holds a core for more than about a second
-#: (the time span and frame bounds are shared with closed-form models).
-MAX_FIXED_STEP_WORK = 4_000_000  # fixed-step work: steps × sub-steps per step (splitting4 has 5 Strang sub-steps)
-MAX_ADAPTIVE_STEPS = 1_000_000
-
-
 def check_request_bounds(integrator, *, t_end_s: float, frame_rate_hz: float) -> None:
     """Raise ParameterError naming the limit a request exceeds (before any work is done)."""
     frames = len(frame_times(t_end_s=t_end_s, frame_rate_hz=frame_rate_hz)) - 1
     if isinstance(integrator, FixedStepIntegrator):
-        substeps = len(getattr(integrator, "weights", (1,)))
+        substeps = integrator.spec.substeps_per_step
         work = frames * integrator.steps_per_frame * substeps
         if work > MAX_FIXED_STEP_WORK:
             raise ParameterError(

@@ -7,7 +7,8 @@ numba is how the tests check that the compiled path computes what it says
 (results agree to the last bit or two), and it is the fallback a debugger can
 step through.
 
-Model functions (right-hand sides, projections, torques, events) are passed to
+Model functions (right-hand sides, projections, torques, events, reset maps,
+constraints) are passed to
 the integrator kernels as first-class function values of a fixed signature, so
 each integrator is compiled once and cached, whatever the model.
 """
@@ -31,16 +32,27 @@ RHS_SIGNATURE = types.void(types.float64, _vector, _vector, _vector)
 PROJECT_SIGNATURE = types.void(_vector, _vector)
 #: ``torque(q_world_body, p, torque_body_out)``: external torque (N·m, body frame).
 TORQUE_SIGNATURE = types.void(_vector, _vector, _vector)
-#: ``event(t, y, p) -> g``: an event happens where ``g`` changes sign.
-EVENT_SIGNATURE = types.float64(types.float64, _vector, _vector)
+#: ``events(t, y, p, g_out)``: the values of all m event functions; event i happens where ``g_out[i]`` changes sign.
+EVENTS_SIGNATURE = types.void(types.float64, _vector, _vector, _vector)
+#: ``reset(t, y, p, index)``: change ``y`` in place at event ``index`` (an impact, a mode switch).
+RESET_SIGNATURE = types.void(types.float64, _vector, _vector, types.int64)
+#: ``constraint(y, p, g_out, G_out)``: residuals ``g(q)`` (m,) and Jacobian ``∂g/∂q`` (m, n_positions).
+CONSTRAINT_SIGNATURE = types.void(_vector, _vector, _vector, _matrix)
 
 RHS_TYPE = types.FunctionType(RHS_SIGNATURE)
 PROJECT_TYPE = types.FunctionType(PROJECT_SIGNATURE)
 TORQUE_TYPE = types.FunctionType(TORQUE_SIGNATURE)
-EVENT_TYPE = types.FunctionType(EVENT_SIGNATURE)
+EVENTS_TYPE = types.FunctionType(EVENTS_SIGNATURE)
+RESET_TYPE = types.FunctionType(RESET_SIGNATURE)
+CONSTRAINT_TYPE = types.FunctionType(CONSTRAINT_SIGNATURE)
 
 VECTOR = _vector
 MATRIX = _matrix
+INDEX_VECTOR = types.int64[::1]
+
+_MODEL_SIGNATURES = (
+    RHS_SIGNATURE, PROJECT_SIGNATURE, TORQUE_SIGNATURE, EVENTS_SIGNATURE, RESET_SIGNATURE, CONSTRAINT_SIGNATURE,
+)
 
 
 @dataclass(frozen=True)
@@ -66,12 +78,12 @@ def kernel(signature: Any) -> Callable[[Callable[..., Any]], Kernel]:
     """Decorator: compile ``fn`` for ``signature`` (cached on disk) and keep its source twin.
 
     Model functions (the ``*_SIGNATURE`` types above: right-hand sides,
-    projections, torques, events) become C callbacks (``numba.cfunc``): an
+    projections, torques, events, reset maps, constraints) become C callbacks (``numba.cfunc``): an
     integrator receives them as function pointers, which costs about 3× less
     per call from Python than passing a dispatcher. Everything else is an
     ordinary ``njit`` function.
     """
-    model_function = signature in (RHS_SIGNATURE, PROJECT_SIGNATURE, TORQUE_SIGNATURE, EVENT_SIGNATURE)
+    model_function = signature in _MODEL_SIGNATURES
 
     def wrap(fn: Callable[..., Any]) -> Kernel:
         if model_function:
@@ -89,7 +101,19 @@ def no_projection(y, p):  # pragma: no cover - trivial
     return None
 
 
-@kernel(EVENT_SIGNATURE)
-def no_event(t, y, p):  # pragma: no cover - trivial
-    """An event function that never changes sign."""
-    return 1.0
+@kernel(EVENTS_SIGNATURE)
+def no_events(t, y, p, g_out):  # pragma: no cover - trivial
+    """No event functions (``g_out`` has length 0)."""
+    return None
+
+
+@kernel(RESET_SIGNATURE)
+def no_reset(t, y, p, index):  # pragma: no cover - trivial
+    """The identity reset map."""
+    return None
+
+
+@kernel(CONSTRAINT_SIGNATURE)
+def no_constraint(y, p, g_out, G_out):  # pragma: no cover - trivial
+    """No constraints (``g_out`` has length 0)."""
+    return None

@@ -7,79 +7,31 @@ first non-finite state and say so in words instead of returning NaN.
 
 from __future__ import annotations
 
-import math
 import time
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from app.physics.solvers.base import FixedStepIntegrator, Integrator
-from app.physics.solvers.dormand_prince import DormandPrince
+from app.physics.solvers.base import EventRecord, Integrator
 from app.physics.solvers.kernels import Backend
-from app.physics.solvers.rk4 import RK4
-from app.physics.solvers.splitting import RigidBodySplitting
+from app.physics.solvers.registry import (  # noqa: F401 - re-exported: the names other modules import from here
+    MAX_STEPS_PER_FRAME,
+    METHODS,
+    STEP_RATIO,
+    automatic_steps_per_frame,
+    make_integrator,
+)
+from app.physics.solvers.status import FAILURE_TEXT, SUCCESSFUL
 from app.physics.solvers.system import OdeSystem
-
-#: Identifiers accepted by the API and the controls, with what each is.
-METHODS = {
-    "splitting4": "Splitting, order 4: exact free flow + gravity kicks (geometric, bounded energy error)",
-    "splitting2": "Splitting, order 2 (Strang): cheap, geometric, less accurate",
-    "rk4": "Classical Runge–Kutta 4 with the quaternion projected back to unit length",
-    "dopri5": "Dormand–Prince 5(4): adaptive steps to a relative tolerance, dense output",
-}
-
-#: Largest h·ω_max each fixed-step method is allowed by the automatic step choice.
-#: RK4 follows the classical rule h·ω ≲ 0.1; the splittings integrate the
-#: fastest rotation exactly, so their limit comes from how well the kicks
-#: sample the torque (calibrated on the heavy top to keep invariant drift
-#: below 1e-6 over 60 s; see tests/physics/test_integrator_defaults.py).
-STEP_RATIO = {"rk4": 0.1, "splitting2": 0.02, "splitting4": 0.25}
-MAX_STEPS_PER_FRAME = 4096
-
-
-def automatic_steps_per_frame(method: str, fastest_rate_rad_s: float, frame_dt_s: float) -> int:
-    """Steps per frame so that ``h · fastest_rate ≤ STEP_RATIO[method]`` (at most 4096)."""
-    if not (math.isfinite(fastest_rate_rad_s) and fastest_rate_rad_s >= 0.0):
-        raise ValueError(f"the fastest rate must be a finite number ≥ 0 rad/s to choose a step (got {fastest_rate_rad_s!r})")
-    ratio = STEP_RATIO[method]
-    needed = math.ceil(fastest_rate_rad_s * frame_dt_s / ratio - 1e-9)
-    return int(min(max(needed, 1), MAX_STEPS_PER_FRAME))
-
-
-def make_integrator(
-    method: str,
-    *,
-    steps_per_frame: int | None = None,
-    rtol: float | None = None,
-    fastest_rate_rad_s: float = 0.0,
-    frame_dt_s: float = 1 / 60,
-) -> Integrator:
-    """Build an integrator by name; ``steps_per_frame=None`` picks it from the fastest rate."""
-    if method not in METHODS:
-        raise ValueError(f"unknown method {method!r}; choose one of {', '.join(METHODS)}")
-    if method == "dopri5":
-        return DormandPrince(rtol=1e-8 if rtol is None else rtol)
-    if steps_per_frame is None:
-        steps_per_frame = automatic_steps_per_frame(method, fastest_rate_rad_s, frame_dt_s)
-    if method == "rk4":
-        return RK4(steps_per_frame=steps_per_frame)
-    return RigidBodySplitting(order=int(method[-1]), steps_per_frame=steps_per_frame)
-
-
-_FAILURE_TEXT = {
-    "non_finite": "the solution stopped being finite (blew up)",
-    "step_too_small": "the adaptive step fell below round-off",
-    "too_many_steps": "the adaptive solver needed too many steps",
-}
 
 
 def failure_message(status: str, t_s: float, integrator: Integrator, frame_dt_s: float) -> str:
     """A sentence a student can act on."""
-    what = _FAILURE_TEXT.get(status, status)
+    what = FAILURE_TEXT.get(status, status)
     advice = (
-        "Use more steps per frame, or the splitting method."
-        if isinstance(integrator, FixedStepIntegrator)
-        else "Loosen the tolerance or check the parameters."
+        "Loosen the tolerance or check the parameters."
+        if integrator.spec.adaptive
+        else "Use more steps per frame, or the splitting method."
     )
     return f"Stopped at t = {t_s:.3f} s: {what} with {integrator.describe(frame_dt_s)}. {advice}"
 
@@ -98,10 +50,12 @@ class SimulationResult:
     rhs_evals: int
     cpu_s: float
     t_event_s: float | None = None
+    #: Events located during the run, in order (see :class:`EventRecord`).
+    events: tuple[EventRecord, ...] = ()
 
     @property
     def ok(self) -> bool:
-        return self.status in ("ok", "event")
+        return self.status in SUCCESSFUL
 
 
 def simulate(
@@ -128,7 +82,7 @@ def simulate(
     done = outcome.frames_done
     t = frame_dt * np.arange(done + 1)
     message = ""
-    if outcome.status not in ("ok", "event"):
+    if outcome.status not in SUCCESSFUL:
         message = failure_message(outcome.status, float(t[-1]), integrator, frame_dt)
     return SimulationResult(
         t_s=t,
@@ -141,6 +95,7 @@ def simulate(
         rhs_evals=outcome.rhs_evals,
         cpu_s=cpu_s,
         t_event_s=outcome.t_event_s,
+        events=outcome.events,
     )
 
 

@@ -27,12 +27,13 @@ from app.physics.solvers import (
     OdeSystem,
     RigidBodySplitting,
     automatic_steps_per_frame,
+    Events,
     dormand_prince,
     make_integrator,
     simulate,
 )
 from app.physics.solvers.controls import integrator_from_controls
-from app.physics.solvers.kernels import EVENT_SIGNATURE, RHS_SIGNATURE, kernel, no_projection
+from app.physics.solvers.kernels import EVENTS_SIGNATURE, RHS_SIGNATURE, kernel, no_projection
 from app.physics.solvers.solve import MAX_STEPS_PER_FRAME, STEP_RATIO
 from app.physics.systems.ch10 import heavy_top
 
@@ -54,10 +55,10 @@ def ball_rhs(t, y, p, dydt):
     dydt[1] = -p[0] - p[1] * y[1]
 
 
-@kernel(EVENT_SIGNATURE)
-def height_event(t, y, p):
+@kernel(EVENTS_SIGNATURE)
+def height_event(t, y, p, g_out):
     """Height above the ground (m): the event is z = 0."""
-    return y[0]
+    g_out[0] = y[0]
 
 
 @kernel(RHS_SIGNATURE)
@@ -88,8 +89,14 @@ def oscillator_exact(t: np.ndarray) -> np.ndarray:
 
 G, DRAG = 9.81, 0.3  # m/s², 1/s
 BALL = OdeSystem(
-    rhs=ball_rhs, parameters=np.array([G, DRAG]), state_names=("z", "v"), event=height_event, event_direction=-1
+    rhs=ball_rhs, parameters=np.array([G, DRAG]), state_names=("z", "v"),
+    events=Events(height_event, directions=(-1,), terminal=(True,)),
 )
+
+
+def with_direction(system: OdeSystem, direction: int) -> OdeSystem:
+    """``system`` with its one event watched in ``direction`` instead."""
+    return dataclasses.replace(system, events=dataclasses.replace(system.events, directions=(direction,)))
 
 
 def ball_height(z0: float, v0: float, t: float) -> float:
@@ -272,7 +279,7 @@ def test_terminal_event_finds_the_landing(z0, v0, backend):
     y = np.array([z0, v0])
     y_out = np.full((t_out.size, 2), np.nan)
     outcome = DormandPrince(rtol=1e-10, max_steps=MAX_TEST_STEPS).solve(
-        BALL, 0.0, y, t_out, y_out, terminal_event=True, backend=backend
+        BALL, 0.0, y, t_out, y_out, backend=backend
     )
     assert outcome.status == "event"
     # Observed relative error 2e-12..3e-12: the Illinois iteration converges to 1e-13 of the
@@ -296,12 +303,11 @@ def test_event_direction_is_respected():
     t_fall = ball_crossing_time(z0, v0, branch=0)
     assert 0.0 < t_rise < t_fall and ball_velocity(v0, t_rise) > 0.0
     t_out = np.linspace(0.1, 2.0, 20)  # ends before the fall
-    cases = {-1: (BALL, None), +1: (dataclasses.replace(BALL, event_direction=+1), t_rise),
-             0: (dataclasses.replace(BALL, event_direction=0), t_rise)}
+    cases = {-1: (BALL, None), +1: (with_direction(BALL, +1), t_rise), 0: (with_direction(BALL, 0), t_rise)}
     for direction, (system, t_expected) in cases.items():
         y = np.array([z0, v0])
         y_out = np.full((t_out.size, 2), np.nan)
-        outcome = DormandPrince(rtol=1e-10, max_steps=MAX_TEST_STEPS).solve(system, 0.0, y, t_out, y_out, terminal_event=True)
+        outcome = DormandPrince(rtol=1e-10, max_steps=MAX_TEST_STEPS).solve(system, 0.0, y, t_out, y_out)
         if t_expected is None:
             # Falling-only: the rising crossing is ignored and the run reaches the last output.
             assert outcome.status == "ok" and outcome.t_event_s is None
@@ -313,12 +319,12 @@ def test_event_direction_is_respected():
             assert abs(y[0]) < 1e-9 and y[1] > 0.0
 
 
-def test_events_are_ignored_unless_terminal():
-    # Without terminal_event the same run passes the landing and writes every output.
+def test_events_are_ignored_when_switched_off():
+    # With events=False the same run passes the landing and writes every output.
     t_out = np.linspace(0.1, 5.0, 50)
     y = np.array([10.0, 0.0])
     y_out = np.full((t_out.size, 2), np.nan)
-    outcome = DormandPrince(rtol=1e-10, max_steps=MAX_TEST_STEPS).solve(BALL, 0.0, y, t_out, y_out)
+    outcome = DormandPrince(rtol=1e-10, max_steps=MAX_TEST_STEPS).solve(BALL, 0.0, y, t_out, y_out, events=False)
     assert outcome.status == "ok" and outcome.frames_done == t_out.size
     assert y_out[-1, 0] < 0.0  # below ground: the event did not stop it
     assert abs(y_out[-1, 0] - ball_height(10.0, 0.0, 5.0)) <= 1e-8  # 100 × rtol on an O(10 m) state

@@ -23,8 +23,8 @@ import numpy as np
 
 from app.physics.core.parameters import Parameter, ParameterSet
 from app.physics.core.solution import Plot, PlotSeries, Solution, Step, WorkedExample
-from app.physics.solvers import DormandPrince, OdeSystem
-from app.physics.solvers.kernels import EVENT_SIGNATURE, RHS_SIGNATURE, kernel
+from app.physics.solvers import DormandPrince, Events, OdeSystem
+from app.physics.solvers.kernels import EVENTS_SIGNATURE, RHS_SIGNATURE, kernel
 
 INPUTS = ParameterSet(
     (
@@ -99,10 +99,10 @@ def projectile_rhs(t, y, p, dydt):
     dydt[6] = k * speed * speed
 
 
-@kernel(EVENT_SIGNATURE)
-def height_above_ground(t, y, p):
+@kernel(EVENTS_SIGNATURE)
+def height_above_ground(t, y, p, g_out):
     """z (m): the flight ends where it reaches 0 falling."""
-    return y[2]
+    g_out[0] = y[2]
 
 
 def simulate(inputs: Mapping[str, Any], samples: int = 241) -> ProjectileTrajectory:
@@ -116,13 +116,13 @@ def simulate(inputs: Mapping[str, Any], samples: int = 241) -> ProjectileTraject
     system = OdeSystem(
         rhs=projectile_rhs, parameters=np.array([m, g, b, c], dtype=float),
         state_names=("x", "y", "z", "vx", "vy", "vz", "work_drag", "impulse_x", "impulse_y", "impulse_z"),
-        event=height_above_ground, event_direction=-1,
+        events=Events(height_above_ground, directions=(-1,), terminal=(True,)),
     )
     y0 = np.concatenate([r0, v0, [0.0], np.zeros(3)])
     solver = DormandPrince(rtol=RTOL, atol=ATOL)
     # Pass 1 finds the landing time; pass 2 samples the flight uniformly up to it.
     y = y0.copy()
-    first = solver.solve(system, 0.0, y, np.array([MAX_FLIGHT_S]), np.empty((1, 10)), terminal_event=True)
+    first = solver.solve(system, 0.0, y, np.array([MAX_FLIGHT_S]), np.empty((1, 10)))
     if first.status not in ("ok", "event"):
         raise ValueError(f"integration failed: {first.status}")
     if first.t_event_s is None:
@@ -131,7 +131,7 @@ def simulate(inputs: Mapping[str, Any], samples: int = 241) -> ProjectileTraject
     t = np.linspace(0.0, t_land, samples)
     y_samples = np.empty((samples, 10))
     y_samples[0] = y0
-    second = solver.solve(system, 0.0, y0.copy(), t[1:], y_samples[1:])
+    second = solver.solve(system, 0.0, y0.copy(), t[1:], y_samples[1:], events=False)
     y = y_samples
     rhs_evaluations = first.rhs_evals + second.rhs_evals
     y[-1, 2] = 0.0  # the event root is exact to ~1e-12 m; pin it for display
