@@ -34,6 +34,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -118,26 +119,11 @@ def rigid_body_mjcf(
 """
 
 
-def build_rigid_body_model(
-    *,
-    inertia_pivot: tuple[float, float, float],
-    mass_kg: float,
-    cg_distance_m: float,
-    g_m_s2: float,
-    timestep_s: float = 0.002,
-    integrator: str = "RK4",
-):
-    """Compiled ``(mujoco.MjModel, mujoco.MjData)`` of :func:`rigid_body_mjcf`."""
+def build_rigid_body_model(**mjcf_options: Any):
+    """Compiled ``(mujoco.MjModel, mujoco.MjData)`` of :func:`rigid_body_mjcf` (same keyword options)."""
     import mujoco
 
-    xml = rigid_body_mjcf(
-        inertia_pivot=inertia_pivot,
-        mass_kg=mass_kg,
-        cg_distance_m=cg_distance_m,
-        g_m_s2=g_m_s2,
-        timestep_s=timestep_s,
-        integrator=integrator,
-    )
+    xml = rigid_body_mjcf(**mjcf_options)
     model = mujoco.MjModel.from_xml_string(xml)
     return model, mujoco.MjData(model)
 
