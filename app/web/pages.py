@@ -71,30 +71,48 @@ def course_page(catalogue: CatalogueDep) -> HTMLResponse:
     return _page("Dynamics Lab — course", body, scripts=("/static/js/common.js",))
 
 
-def _lesson_config(lesson: Lesson, catalogue: Catalogue) -> dict:
-    """What lesson.js needs: the first scene's schema (the page shows one viewer) and every example's schema.
+def _lesson_config(lesson: Lesson, catalogue: Catalogue, scene_id: str | None) -> dict:
+    """What lesson.js needs: the shown scene's schema (the page shows one viewer) and every example's schema.
 
     The catalogue checked every reference at start-up, so each id is found here.
     """
     return {
         "lesson_id": lesson.id,
-        "scene": catalogue.scenes[lesson.scene].schema() if lesson.scene else None,
+        "scene": catalogue.scenes[scene_id].schema() if scene_id else None,
         "examples": [catalogue.examples[example_id].schema() for example_id in lesson.examples],
     }
 
 
+def _scene_picker(lesson: Lesson, catalogue: Catalogue, shown: str | None) -> str:
+    """Links between the scenes of a lesson that names several (empty for one or none)."""
+    if len(lesson.scenes) < 2:
+        return ""
+    current = ' aria-current="page"'
+    links = "".join(
+        f'<a href="{esc(lesson.url)}?scene={esc(scene_id)}"{current if scene_id == shown else ""}>'
+        f"{esc(catalogue.scenes[scene_id].title)}</a>"
+        for scene_id in lesson.scenes
+    )
+    return f'<nav class="scene-picker" aria-label="Scenes of this lesson">{links}</nav>'
+
+
 @router.get("/lessons/{lesson_id}", response_class=HTMLResponse)
-def lesson_page(lesson_id: str, catalogue: CatalogueDep) -> HTMLResponse:
+def lesson_page(lesson_id: str, catalogue: CatalogueDep, scene: str | None = None) -> HTMLResponse:
+    """A lesson page; ``?scene=<id>`` picks which of the lesson's scenes the viewer shows (default: the first)."""
     lesson = catalogue.lessons.get(lesson_id)
     if lesson is None:
         raise HTTPException(status_code=404, detail=f"no lesson {lesson_id!r}")
+    if scene is not None and scene not in lesson.scenes:
+        named = ", ".join(lesson.scenes) or "none"
+        raise HTTPException(status_code=404, detail=f"lesson {lesson_id!r} has no scene {scene!r} (its scenes: {named})")
+    shown = scene or lesson.scene
     chapter = catalogue.chapter_of(lesson)
     previous, following = catalogue.neighbours(lesson)
     nav = "".join(
         f'<a class="{cls}" href="{esc(l.url)}">{arrow} {esc(l.section)} {esc(l.title)}</a>' if l else "<span></span>"
         for l, cls, arrow in ((previous, "prev", "←"), (following, "next", "→"))
     )
-    config = json.dumps(_lesson_config(lesson, catalogue)).replace("</", "<\\/")
+    config = json.dumps(_lesson_config(lesson, catalogue, shown)).replace("</", "<\\/")
     body = _template("lesson.html").substitute(
         chapter_number=chapter.number,
         chapter_title=esc(chapter.title),
@@ -104,6 +122,7 @@ def lesson_page(lesson_id: str, catalogue: CatalogueDep) -> HTMLResponse:
         lesson_html=lesson.body_html,
         nav=nav,
         config=config,
+        scene_picker=_scene_picker(lesson, catalogue, shown),
         has_scene="has-scene" if lesson.scene or lesson.examples else "no-scene",
     )
     return _page(
