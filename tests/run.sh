@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
 # Set up everything the tests need, then run the whole suite (arguments go to pytest).
+# The default run skips the `slow` tests; `tests/run.sh -m slow` recomputes the stored references in
+# tests/references/ and checks them (DYNLAB_REGENERATE_REFERENCES=1 rewrites them instead).
 #   - uv (from PyPI) for the project environment
 #   - Debian's Chromium for the real-browser tests (Playwright drives it; it never downloads a browser)
 set -euo pipefail

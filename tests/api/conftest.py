@@ -21,13 +21,3 @@ def first_camera_message() -> bytes:
     from app.scenes.host.viser_compat import viewer_camera_message
 
     return viewer_camera_message()
-
-
-def wait_for(predicate, timeout_s: float = 30.0) -> None:
-    """Poll ``predicate`` every 50 ms until it holds; fail after ``timeout_s``."""
-    import time
-
-    deadline = time.monotonic() + timeout_s
-    while not predicate():
-        assert time.monotonic() < deadline, "timed out"
-        time.sleep(0.05)

@@ -16,7 +16,8 @@ import viser
 from scipy.integrate import solve_ivp
 
 from app.physics.systems.ch10 import free_gyroscope, gyrocompass, rate_gyro
-from tests.api.conftest import first_camera_message, wait_for
+from tests.api.conftest import first_camera_message
+from tests.conftest import wait_until
 
 _ids = itertools.count()
 
@@ -146,9 +147,9 @@ def test_live_free_gyroscope_reads_out_the_closed_form(client):
     with client.websocket_connect(f"/viewer/free-gyroscope/{sid}", subprotocols=["viser-v" + viser.__version__]) as ws:
         ws.receive()
         ws.send_bytes(first_camera_message())
-        wait_for(lambda: len(host.instances(sid)) == 1)
+        wait_until(lambda: len(host.instances(sid)) == 1)
         scene = host.instances(sid)[0]
-        wait_for(lambda: scene.t_s > 0.3)
+        wait_until(lambda: scene.t_s > 0.3)
         with host.inspect(sid):  # the frame loop waits while the drawn state is read
             t_drawn, drawn_outer = scene.t_s, np.asarray(scene.outer.wxyz)
         values, _ = _readout(client, "free-gyroscope", sid)  # one readout is one consistent instant
@@ -172,9 +173,9 @@ def test_live_rate_gyro_reads_out_gain_frequency_damping_and_beta(client):
     with client.websocket_connect(f"/viewer/rate-gyro/{sid}", subprotocols=["viser-v" + viser.__version__]) as ws:
         ws.receive()
         ws.send_bytes(first_camera_message())
-        wait_for(lambda: len(host.instances(sid)) == 1)
+        wait_until(lambda: len(host.instances(sid)) == 1)
         scene = host.instances(sid)[0]
-        wait_for(lambda: scene.t_s > 0.3)
+        wait_until(lambda: scene.t_s > 0.3)
         values, live = _readout(client, "rate-gyro", sid)  # one readout is one consistent instant
         t_s = values["t_s"]
         params = rate_gyro.PARAMETERS.defaults()
@@ -194,9 +195,9 @@ def test_live_gyrocompass_runs_time_scaled_and_reads_out_the_period(client):
     with client.websocket_connect(f"/viewer/gyrocompass/{sid}", subprotocols=["viser-v" + viser.__version__]) as ws:
         ws.receive()
         ws.send_bytes(first_camera_message())
-        wait_for(lambda: len(host.instances(sid)) == 1)
+        wait_until(lambda: len(host.instances(sid)) == 1)
         scene = host.instances(sid)[0]
-        wait_for(lambda: scene.run.t_s > 20.0)  # 50× real time: 20 simulated seconds in about 0.4 s
+        wait_until(lambda: scene.run.t_s > 20.0)  # 50× real time: 20 simulated seconds in about 0.4 s
         values, live = _readout(client, "gyrocompass", sid)  # one readout is one consistent instant
         t_s, alpha = values["t_s"], math.radians(values["alpha_deg"])
         params = gyrocompass.PARAMETERS.defaults()

@@ -14,7 +14,8 @@ import viser
 
 from app.physics.systems.ch04 import four_bar
 from app.physics.systems.ch04.rolling import SteadyRolling
-from tests.api.conftest import first_camera_message, wait_for
+from tests.api.conftest import first_camera_message
+from tests.conftest import wait_until
 
 _ids = itertools.count()
 
@@ -134,9 +135,9 @@ def test_live_four_bar_draws_the_closed_form_and_reads_out_its_numbers(client):
     with connection as ws:
         ws.receive()
         ws.send_bytes(first_camera_message())
-        wait_for(lambda: len(host.instances(sid)) == 1)
+        wait_until(lambda: len(host.instances(sid)) == 1)
         scene = host.instances(sid)[0]
-        wait_for(lambda: scene.t_s > 0.2)  # the frame loop is advancing it
+        wait_until(lambda: scene.t_s > 0.2)  # the frame loop is advancing it
         with host.inspect(sid):  # the frame loop waits while the drawn state is read
             t_s = scene.t_s
             links = np.asarray(scene.links.points)
@@ -172,9 +173,9 @@ def test_live_rolling_scene_reports_a_computed_zero_contact_velocity(client):
     with connection as ws:
         ws.receive()
         ws.send_bytes(first_camera_message())
-        wait_for(lambda: len(host.instances(sid)) == 1)
+        wait_until(lambda: len(host.instances(sid)) == 1)
         scene = host.instances(sid)[0]
-        wait_for(lambda: scene.t_s > 0.2)
+        wait_until(lambda: scene.t_s > 0.2)
         readout = client.get(f"/api/scenes/rolling/sessions/{sid}/live").json()["readout"]
         values = {q["name"]: q for q in readout["quantities"]}
         assert values["contact_point_velocity"]["text"] == "0.000" and values["contact_point_velocity"]["unit"] == "m/s"

@@ -13,7 +13,8 @@ from app.physics.systems import earth
 from app.physics.systems.ch03 import eastward_deflection as deflection
 from app.physics.systems.ch03 import foucault_pendulum as foucault
 from app.physics.systems.ch03 import moving_frame as moving
-from tests.api.conftest import first_camera_message, wait_for
+from tests.api.conftest import first_camera_message
+from tests.conftest import wait_until
 
 _ids = itertools.count()
 
@@ -113,7 +114,7 @@ def _connect(client, scene_id, sid):
     ws.receive()
     ws.send_bytes(first_camera_message())
     host = client.app.state.scene_host
-    wait_for(lambda: len(host.instances(sid)) == 1)
+    wait_until(lambda: len(host.instances(sid)) == 1)
     return ws, host.instances(sid)[0]
 
 
@@ -159,7 +160,7 @@ def test_foucault_viewer_reads_out_the_predicted_rates(client):
     sid = new_session()
     ws, scene = _connect(client, "foucault-pendulum", sid)
     try:
-        wait_for(lambda: scene.run.t_s > 0.3)
+        wait_until(lambda: scene.run.t_s > 0.3)
         values = _readout(client, "foucault-pendulum", sid)
         defaults = foucault.PARAMETERS.defaults()
         assert values["real_rate_deg_h"] == pytest.approx(math.degrees(earth.vertical_earth_rate_rad_s(48.85)) * 3600.0, rel=1e-12)

@@ -12,7 +12,8 @@ import viser
 from app.physics.math.rotations import quaternion_from_euler_313, quaternion_multiply
 from app.physics.systems.ch10 import torque_free_axisymmetric as physics
 from app.scenes.ch10.torque_free_axisymmetric import TorqueFreeAxisymmetricScene
-from tests.api.conftest import first_camera_message, wait_for
+from tests.api.conftest import first_camera_message
+from tests.conftest import wait_until
 
 SCENE = "torque-free-axisymmetric"
 _ids = itertools.count()
@@ -115,10 +116,10 @@ def test_live_scene_draws_the_closed_form_and_reads_out_its_numbers(client):
     with client.websocket_connect(f"/viewer/{SCENE}/{sid}", subprotocols=["viser-v" + viser.__version__]) as ws:
         ws.receive()
         ws.send_bytes(first_camera_message())
-        wait_for(lambda: len(host.instances(sid)) == 1)
+        wait_until(lambda: len(host.instances(sid)) == 1)
         scene = host.instances(sid)[0]
         assert isinstance(scene, TorqueFreeAxisymmetricScene)
-        wait_for(lambda: scene.t_s > 0.2)  # the frame loop is advancing it
+        wait_until(lambda: scene.t_s > 0.2)  # the frame loop is advancing it
 
         # The drawn attitude (nodal frame ∘ body frame) is the closed form at the scene's own time.
         with host.inspect(sid):  # the frame loop waits while the drawn state is read

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import os
 import socket
 import threading
@@ -14,6 +15,7 @@ import uvicorn
 
 from app.main import create_app
 from app.settings import Settings
+from tests.conftest import wait_until
 
 CHROMIUM = "/usr/bin/chromium"
 CHROMIUM_ARGS = (
@@ -86,9 +88,60 @@ def shots() -> Path:
     return target
 
 
-def wait_until(predicate, timeout_s: float = 30.0, interval_s: float = 0.1, what: str = "condition") -> None:
-    deadline = time.monotonic() + timeout_s
-    while not predicate():
-        if time.monotonic() > deadline:
-            raise AssertionError(f"timed out after {timeout_s} s waiting for {what}")
-        time.sleep(interval_s)
+def open_lesson(browser, live_server, path: str, *, viewport=(1500, 1000), context=None, viewer: bool = True, timeout_s: float = 40.0):
+    """Open ``path`` (e.g. ``/lessons/3-1-rotation-sequences``) in a new page; returns ``(context, page, session_id, errors)``.
+
+    A new browser context of ``viewport`` (width, height) px is made unless ``context`` is given.
+    ``errors`` collects the page's uncaught JavaScript errors. With ``viewer`` it waits on the
+    server's own client list until the lesson's 3D viewer has connected through the relay.
+    """
+    context = context or browser.new_context(viewport={"width": viewport[0], "height": viewport[1]})
+    page = context.new_page()
+    errors: list[str] = []
+    page.on("pageerror", lambda exc: errors.append(str(exc)))
+    page.goto(live_server.url + path)
+    page.wait_for_function("window.dynlabLesson !== undefined")
+    session_id = page.evaluate("window.dynlabLesson.session.id")
+    if viewer:
+        wait_until(lambda: live_server.host.viewer_count(session_id) == 1, timeout_s, what="the 3D viewer to connect through the relay")
+    return context, page, session_id, errors
+
+
+def readout_values(page) -> dict:
+    """Every readout cell as {quantity: value}, read in one JavaScript call: the page rebuilds the
+    table about once a second, so reading cells one round trip at a time could mix two instants."""
+    return page.evaluate(
+        "() => Object.fromEntries([...document.querySelectorAll('#readout [data-quantity]')]"
+        ".map((cell) => [cell.dataset.quantity, JSON.parse(cell.dataset.value)]))"
+    )
+
+
+def readout_quantity(page, name: str):
+    """The readout cell ``name``'s value, or None while the page does not show it."""
+    cell = page.query_selector(f'#readout [data-quantity="{name}"]')
+    return None if cell is None else json.loads(cell.get_attribute("data-value"))
+
+
+def let_webgl_draw(page, milliseconds: int) -> None:
+    """Give software WebGL time to draw before a screenshot: the full ``milliseconds`` when the pictures
+    are kept (DYNLAB_UPDATE_SCREENSHOTS=1, docs/screenshots), 300 ms otherwise — the test-results
+    pictures are for a person debugging a run, and no assertion depends on them."""
+    page.wait_for_timeout(milliseconds if os.environ.get("DYNLAB_UPDATE_SCREENSHOTS") == "1" else min(milliseconds, 300))
+
+
+@pytest.fixture(autouse=True)
+def _close_pages_left_open(request):
+    """After each test, close every browser context it left open (a failed assertion skips its own
+    ``context.close()``): a viewer tab left rendering would slow every later test by a core."""
+    yield
+    if "browser" in request.fixturenames:
+        for context in list(request.getfixturevalue("browser").contexts):
+            context.close()
+
+
+def dismiss_webgl_notice(page) -> None:
+    """Close viser's "software WebGL" notice if it is showing (headless Chromium draws in software;
+    the notice only covers part of the scene in a screenshot). Never waits for it to appear."""
+    for frame in page.frames:
+        if "/viewer/" in frame.url:
+            frame.evaluate("() => document.querySelectorAll('.mantine-Notification-closeButton').forEach((b) => b.click())")

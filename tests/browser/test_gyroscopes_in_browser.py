@@ -4,44 +4,27 @@ page goes to docs/screenshots/ (with DYNLAB_UPDATE_SCREENSHOTS=1) for a person t
 
 from __future__ import annotations
 
-import json
 import math
 
 import pytest
 
 from app.physics.systems.ch10 import free_gyroscope, gyrocompass, rate_gyro
-from tests.browser.conftest import wait_until
+from tests.browser.conftest import let_webgl_draw, open_lesson, readout_values
 
 pytestmark = pytest.mark.browser
 
 
 def _open_lesson(browser, live_server, lesson_id):
-    context = browser.new_context(viewport={"width": 1500, "height": 1000})
-    page = context.new_page()
-    errors: list[str] = []
-    page.on("pageerror", lambda exc: errors.append(str(exc)))
-    page.goto(f"{live_server.url}/lessons/{lesson_id}")
-    page.wait_for_function("window.dynlabLesson !== undefined")
-    session_id = page.evaluate("window.dynlabLesson.session.id")
-    wait_until(lambda: live_server.host.viewer_count(session_id) == 1, 40, what="the 3D viewer to connect through the relay")
+    context, page, session_id, errors = open_lesson(browser, live_server, f"/lessons/{lesson_id}")
     page.wait_for_selector("#readout [data-quantity]", timeout=30_000)
     return context, page, session_id, errors
-
-
-def _readout(page) -> dict:
-    """Every readout cell as {name: value}, read in one JavaScript call: the page updates the cells in
-    place once a second, so reading them one round trip at a time could mix two instants."""
-    pairs = page.evaluate(
-        "() => [...document.querySelectorAll('#readout [data-quantity]')].map((c) => [c.dataset.quantity, c.dataset.value])"
-    )
-    return {name: json.loads(value) for name, value in pairs}
 
 
 def _finish(context, page, errors, shots, lesson_id):
     assert page.locator(".katex-error").count() == 0
     assert page.locator(".lesson-text .katex").count() > 20  # the formulas were typeset
     page.evaluate("document.getElementById('viewer-wrap').scrollIntoView()")
-    page.wait_for_timeout(3000)  # software WebGL: let the scene draw before the screenshot
+    let_webgl_draw(page, 3000)
     page.screenshot(path=str(shots / f"lesson-{lesson_id}.png"))
     assert not errors, errors
     context.close()
@@ -50,7 +33,7 @@ def _finish(context, page, errors, shots, lesson_id):
 def test_free_gyroscope_lesson(browser, live_server, shots):
     """Default yaw turn: the outer ring turns back at the yaw rate, the inner ring stays level."""
     context, page, session_id, errors = _open_lesson(browser, live_server, "10-3-free-gyroscope")
-    values = _readout(page)
+    values = readout_values(page)
     assert values["outer_gimbal_rate_rad_s"] == pytest.approx(-0.3, abs=1e-12)
     assert values["inner_gimbal_deg"] == pytest.approx(0.0, abs=1e-9)
     assert values["angular_momentum_N_m_s"] == pytest.approx(free_gyroscope.angular_momentum_N_m_s(free_gyroscope.PARAMETERS.defaults()))
@@ -63,7 +46,7 @@ def test_gyrocompass_lesson(browser, live_server, shots):
     """The readout's periods are the physics module's formulas; the integration panel names the time scale."""
     context, page, session_id, errors = _open_lesson(browser, live_server, "10-3-gyrocompass")
     params = gyrocompass.PARAMETERS.defaults()
-    values = _readout(page)
+    values = readout_values(page)
     assert values["small_angle_period_s"] == pytest.approx(97.8286, abs=1e-4)
     assert values["small_angle_period_s"] == pytest.approx(gyrocompass.small_angle_period_s(params), rel=1e-15)
     assert values["swing_period_s"] == pytest.approx(gyrocompass.large_amplitude_period_s(params, math.radians(40.0)), rel=1e-12)
@@ -77,7 +60,7 @@ def test_gyrocompass_lesson(browser, live_server, shots):
 def test_rate_gyro_lesson(browser, live_server, shots):
     """Gain, natural frequency and damping ratio in the readout; the critical damping marked on its slider."""
     context, page, session_id, errors = _open_lesson(browser, live_server, "10-3-rate-gyro")
-    values = _readout(page)
+    values = readout_values(page)
     assert values["steady_gain_s"] == pytest.approx(0.4, rel=1e-15)
     assert values["natural_frequency_rad_s"] == pytest.approx(10.0, rel=1e-14)
     assert values["damping_ratio"] == pytest.approx(0.2, rel=1e-14)

@@ -12,23 +12,14 @@ import math
 import pytest
 
 from app.physics.systems import worked_examples
+from tests.browser.conftest import let_webgl_draw, open_lesson, readout_quantity
+from tests.conftest import wait_until
 
 EXAMPLES = worked_examples()
-from tests.browser.conftest import wait_until
 
 pytestmark = pytest.mark.browser
 
 LESSON_11 = "/lessons/1-1-vector-operations"
-
-
-def _open_lesson(context, live_server, path):
-    page = context.new_page()
-    errors: list[str] = []
-    page.on("pageerror", lambda exc: errors.append(str(exc)))
-    page.goto(live_server.url + path)
-    page.wait_for_function("window.dynlabLesson !== undefined")
-    session_id = page.evaluate("window.dynlabLesson.session.id")
-    return page, session_id, errors
 
 
 def _panel_outputs(page) -> dict:
@@ -43,10 +34,8 @@ def _close(a, b) -> bool:
 
 
 def test_example_11_theta_control_updates_solution_and_scene(browser, live_server, shots):
-    context = browser.new_context(viewport={"width": 1500, "height": 950})
-    page, session_id, errors = _open_lesson(context, live_server, LESSON_11)
+    context, page, session_id, errors = open_lesson(browser, live_server, LESSON_11, viewport=(1500, 950), timeout_s=30)
     host = live_server.host
-    wait_until(lambda: host.viewer_count(session_id) == 1, 30, what="the 3D viewer to connect through the relay")
     page.wait_for_selector('#solution [data-output="M_AB_Nm"]', timeout=20_000)
     before = _panel_outputs(page)
     defaults = EXAMPLES["1.1"].solve(EXAMPLES["1.1"].inputs.defaults()).as_dict()["outputs"]
@@ -71,7 +60,7 @@ def test_example_11_theta_control_updates_solution_and_scene(browser, live_serve
 
     # The scene this browser is watching received the same θ.
     wait_until(lambda: host.instances(session_id)[0].params["theta_deg"] == 30.0, 10, what="the scene to take θ = 30°")
-    page.wait_for_timeout(2500)  # let software WebGL draw the new pose before the screenshot
+    let_webgl_draw(page, 2500)  # the new pose
     page.screenshot(path=str(shots / "lesson-1-1-vector-operations.png"))
     assert not errors, errors
     context.close()
@@ -79,7 +68,7 @@ def test_example_11_theta_control_updates_solution_and_scene(browser, live_serve
 
 def test_two_browsers_get_independent_scenes(browser, live_server):
     contexts = [browser.new_context(viewport={"width": 1200, "height": 800}) for _ in range(2)]
-    opened = [_open_lesson(c, live_server, LESSON_11) for c in contexts]
+    opened = [open_lesson(browser, live_server, LESSON_11, context=c, viewer=False)[1:] for c in contexts]
     host = live_server.host
     (page_a, session_a, _), (page_b, session_b, _) = opened
     assert session_a != session_b
@@ -110,18 +99,17 @@ def test_two_browsers_get_independent_scenes(browser, live_server):
     ],
 )
 def test_pages_render_without_errors(browser, live_server, shots, path, name, has_scene):
-    context = browser.new_context(viewport={"width": 1500, "height": 950})
-    page = context.new_page()
-    errors: list[str] = []
-    page.on("pageerror", lambda exc: errors.append(str(exc)))
-    page.goto(live_server.url + path)
-    page.wait_for_load_state("networkidle") if not has_scene else None
     if has_scene:
-        page.wait_for_function("window.dynlabLesson !== undefined")
-        session_id = page.evaluate("window.dynlabLesson.session.id")
-        wait_until(lambda: live_server.host.viewer_count(session_id) == 1, 30, what="viewer")
+        context, page, _, errors = open_lesson(browser, live_server, path, viewport=(1500, 950), timeout_s=30)
         page.wait_for_selector("#solution .step", timeout=20_000)
-        page.wait_for_timeout(3000)
+        let_webgl_draw(page, 3000)
+    else:
+        context = browser.new_context(viewport={"width": 1500, "height": 950})
+        page = context.new_page()
+        errors: list[str] = []
+        page.on("pageerror", lambda exc: errors.append(str(exc)))
+        page.goto(live_server.url + path)
+        page.wait_for_load_state("networkidle")
     # KaTeX rendered every math span (no raw TeX left, no KaTeX error nodes).
     assert page.locator(".katex-error").count() == 0
     page.screenshot(path=str(shots / f"{name}.png"))
@@ -132,16 +120,14 @@ def test_pages_render_without_errors(browser, live_server, shots, path, name, ha
 def test_heavy_top_live_invariants_and_blow_up_pause(browser, live_server, shots):
     """The heavy-top lesson shows method, invariants and drift live; a far-too-large RK4 step pauses the
     scene with a reason instead of drawing non-physical motion; choosing the splitting method resumes it."""
-    context = browser.new_context(viewport={"width": 1500, "height": 1000})
-    page, session_id, errors = _open_lesson(context, live_server, "/lessons/10-2-spinning-top")
+    context, page, session_id, errors = open_lesson(browser, live_server, "/lessons/10-2-spinning-top", timeout_s=30)
     host = live_server.host
-    wait_until(lambda: host.viewer_count(session_id) == 1, 30, what="the 3D viewer to connect")
     page.wait_for_selector('#live [data-drift="energy"]', timeout=20_000)
     description = page.text_content('#live [data-live="description"]')
     assert description.startswith("Splitting, order 4")
     energy_drift = float(page.text_content('#live [data-drift="energy"]'))
     assert energy_drift < 1e-6  # the default method keeps energy to far better than 1e-6 (measured ~1e-10)
-    page.wait_for_timeout(2500)
+    let_webgl_draw(page, 2500)
     page.screenshot(path=str(shots / "lesson-10-2-spinning-top.png"))
 
     # RK4 with one step per frame at a 300 rad/s spin: h·ω ≈ 10, far beyond RK4's stability limit.
@@ -157,7 +143,7 @@ def test_heavy_top_live_invariants_and_blow_up_pause(browser, live_server, shots
     scene = host.instances(session_id)[0]
     assert scene.status and all(math.isfinite(v) for v in scene.run.y)
     page.evaluate("document.getElementById('viewer-wrap').scrollIntoView()")
-    page.wait_for_timeout(1500)
+    let_webgl_draw(page, 1500)
     page.screenshot(path=str(shots / "lesson-10-2-spinning-top-paused.png"))
 
     page.select_option("#ctl-method", "splitting4")
@@ -167,25 +153,18 @@ def test_heavy_top_live_invariants_and_blow_up_pause(browser, live_server, shots
     context.close()
 
 
-def _quantity(page, name):
-    cell = page.query_selector(f'#readout [data-quantity="{name}"]')
-    return None if cell is None else json.loads(cell.get_attribute("data-value"))
-
-
 def test_heavy_top_spin_changes_the_nutation_band_readout(browser, live_server, shots):
     """Changing the spin on the lesson page changes the quadrature nutation band shown beside the scene,
     to the values the quadrature gives; the sleeping threshold sits on the spin slider as a mark."""
     from app.physics.systems.ch10 import heavy_top
 
-    context = browser.new_context(viewport={"width": 1500, "height": 1000})
-    page, session_id, errors = _open_lesson(context, live_server, "/lessons/10-2-spinning-top")
-    wait_until(lambda: live_server.host.viewer_count(session_id) == 1, 30, what="the 3D viewer to connect")
+    context, page, session_id, errors = open_lesson(browser, live_server, "/lessons/10-2-spinning-top", timeout_s=30)
     page.wait_for_selector('#readout [data-quantity="theta_max_deg"]', timeout=20_000)
     defaults = heavy_top.PARAMETERS.defaults()
     expected = heavy_top.quadrature(defaults)
-    before = _quantity(page, "theta_max_deg")
+    before = readout_quantity(page, "theta_max_deg")
     assert before == pytest.approx(math.degrees(expected.theta_max_rad), rel=1e-12)
-    assert _quantity(page, "locus") == "cusps"
+    assert readout_quantity(page, "locus") == "cusps"
     mark = page.locator('.control[data-name="spin_rad_s"] .mark:not([hidden])').first
     assert float(mark.get_attribute("data-value")) == pytest.approx(heavy_top.critical_spin_rad_s(defaults), rel=1e-12)
 
@@ -195,15 +174,15 @@ def test_heavy_top_spin_changes_the_nutation_band_readout(browser, live_server, 
         f"() => {{ const c = document.querySelector('#readout [data-quantity=\"theta_max_deg\"]'); return c && JSON.parse(c.dataset.value) !== {before!r}; }}",
         timeout=20_000,
     )
-    after = _quantity(page, "theta_max_deg")
+    after = readout_quantity(page, "theta_max_deg")
     slower = heavy_top.quadrature(dict(defaults, spin_rad_s=25.0))
     assert after == pytest.approx(math.degrees(slower.theta_max_rad), rel=1e-12)
     assert after > before + 3.0  # a slower top dips much further: about 31.0° → 37.5°
-    assert _quantity(page, "nutation_period_s") == pytest.approx(slower.nutation_period_s, rel=1e-12)
-    page.wait_for_timeout(4000)  # let the trail show a few nutation cycles
+    assert readout_quantity(page, "nutation_period_s") == pytest.approx(slower.nutation_period_s, rel=1e-12)
+    let_webgl_draw(page, 4000)  # and the trail show a few nutation cycles
     page.locator("#controls").screenshot(path=str(shots / "lesson-10-2-spinning-top-controls.png"))
     page.evaluate("window.scrollTo(0, 0); document.querySelector('.lesson-live').scrollTop = 0")
-    page.wait_for_timeout(1000)
+    let_webgl_draw(page, 1000)
     page.screenshot(path=str(shots / "lesson-10-2-spinning-top-readout.png"))
     assert not errors, errors
     context.close()
@@ -211,16 +190,14 @@ def test_heavy_top_spin_changes_the_nutation_band_readout(browser, live_server, 
 
 def test_equinox_precession_lesson_scene_and_worked_solution(browser, live_server, shots):
     """The equinox lesson shows the worked solution (contract outputs) and the scene's readout agrees with it."""
-    context = browser.new_context(viewport={"width": 1500, "height": 1000})
-    page, session_id, errors = _open_lesson(context, live_server, "/lessons/10-2-precession-of-the-equinoxes")
-    wait_until(lambda: live_server.host.viewer_count(session_id) == 1, 30, what="the 3D viewer to connect")
+    context, page, session_id, errors = open_lesson(browser, live_server, "/lessons/10-2-precession-of-the-equinoxes", timeout_s=30)
     page.wait_for_selector('#solution [data-output="rate_arcsec_per_year"]', timeout=20_000)
     page.wait_for_selector('#readout [data-quantity="rate_arcsec_per_year"]', timeout=20_000)
     outputs = _panel_outputs(page)
     assert outputs["rate_arcsec_per_year"] == pytest.approx(50.307, abs=1e-3)
-    assert _quantity(page, "rate_arcsec_per_year") == pytest.approx(outputs["rate_arcsec_per_year"], rel=1e-12)
-    assert _quantity(page, "moon_share") == pytest.approx(outputs["moon_share"], rel=1e-12)
-    page.wait_for_timeout(3000)
+    assert readout_quantity(page, "rate_arcsec_per_year") == pytest.approx(outputs["rate_arcsec_per_year"], rel=1e-12)
+    assert readout_quantity(page, "moon_share") == pytest.approx(outputs["moon_share"], rel=1e-12)
+    let_webgl_draw(page, 3000)
     page.evaluate("window.scrollTo(0, 0); document.querySelector('.lesson-live').scrollTop = 0")
     page.screenshot(path=str(shots / "lesson-10-2-precession-of-the-equinoxes.png"))
     assert not errors, errors

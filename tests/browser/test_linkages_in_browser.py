@@ -13,36 +13,15 @@ import numpy as np
 import pytest
 
 from app.physics.systems.ch04 import cardan_joint, four_bar, slider_crank
-from tests.browser.conftest import wait_until
-
-try:
-    from playwright.sync_api import TimeoutError as PlaywrightTimeout
-except ImportError:  # the browser fixture reports a missing Playwright itself
-    PlaywrightTimeout = TimeoutError
+from tests.browser.conftest import dismiss_webgl_notice, let_webgl_draw, open_lesson, readout_values
 
 pytestmark = pytest.mark.browser
-
-
-def _readout(page) -> dict:
-    """Every readout cell's value at one instant (the page redraws the table about once a second)."""
-    return page.evaluate(
-        "() => Object.fromEntries([...document.querySelectorAll('#readout [data-quantity]')]"
-        ".map((cell) => [cell.dataset.quantity, JSON.parse(cell.dataset.value)]))"
-    )
-
-
-def _dismiss_viewer_notice(page) -> None:
-    """Close viser's "software WebGL" notice so the screenshot shows the scene (cosmetic only)."""
-    try:
-        page.frame_locator("#viewer").locator("#webgl-software-rendering .mantine-Notification-closeButton").click(timeout=10_000)
-    except PlaywrightTimeout:
-        pass
 
 
 def _check_four_bar(values: dict) -> None:
     motion = four_bar.FourBarMotion.from_params(four_bar.PARAMETERS.defaults())
     assert values["grashof_class"] == "crank-rocker"
-    state = motion.at(np.array([values["t"]]))
+    state = motion.at(np.array([values["t_s"]]))
     # t is shown to 1 ms and μ to 0.01°: |dμ/dt| ≤ 32°/s here, so the two agree to 0.016° + 0.005°.
     assert values["transmission_angle"] == pytest.approx(math.degrees(state.transmission_angle[0]), abs=0.03)
 
@@ -80,21 +59,14 @@ LESSONS = [
 
 @pytest.mark.parametrize("lesson_id, quantity, check", LESSONS, ids=[lesson for lesson, _, _ in LESSONS])
 def test_lesson_scene_connects_and_its_readout_matches_the_physics(browser, live_server, shots, lesson_id, quantity, check):
-    context = browser.new_context(viewport={"width": 1500, "height": 1000})
-    page = context.new_page()
-    errors: list[str] = []
-    page.on("pageerror", lambda exc: errors.append(str(exc)))
-    page.goto(f"{live_server.url}/lessons/{lesson_id}")
-    page.wait_for_function("window.dynlabLesson !== undefined")
-    session_id = page.evaluate("window.dynlabLesson.session.id")
-    wait_until(lambda: live_server.host.viewer_count(session_id) == 1, 40, what="the 3D viewer to connect through the relay")
+    context, page, session_id, errors = open_lesson(browser, live_server, f"/lessons/{lesson_id}")
     page.wait_for_selector(f'#readout [data-quantity="{quantity}"]', timeout=30_000)
-    check(_readout(page))
+    check(readout_values(page))
     assert page.locator(".katex-error").count() == 0
     page.evaluate("document.getElementById('viewer-wrap').scrollIntoView()")
-    _dismiss_viewer_notice(page)
-    page.wait_for_timeout(3000)  # let software WebGL draw before the screenshot
+    dismiss_webgl_notice(page)
+    let_webgl_draw(page, 3000)
     page.screenshot(path=str(shots / f"lesson-{lesson_id}.png"))
     assert not errors, errors
-    json.dumps(_readout(page))  # the readout stays plain JSON while the scene runs
+    json.dumps(readout_values(page))  # the readout stays plain JSON while the scene runs
     context.close()

@@ -16,21 +16,14 @@ import pytest
 from app.physics.systems import earth
 from app.physics.systems.ch03 import eastward_deflection as deflection
 from app.physics.systems.ch03 import moving_frame as moving
-from tests.browser.conftest import wait_until
+from tests.browser.conftest import dismiss_webgl_notice, let_webgl_draw, open_lesson
+from tests.conftest import wait_until
 
 pytestmark = pytest.mark.browser
 
 
 def _open(browser, live_server, lesson_id):
-    context = browser.new_context(viewport={"width": 1500, "height": 950})
-    page = context.new_page()
-    errors: list[str] = []
-    page.on("pageerror", lambda exc: errors.append(str(exc)))
-    page.goto(f"{live_server.url}/lessons/{lesson_id}")
-    page.wait_for_function("window.dynlabLesson !== undefined")
-    session_id = page.evaluate("window.dynlabLesson.session.id")
-    wait_until(lambda: live_server.host.viewer_count(session_id) == 1, 40, what="the 3D viewer to connect through the relay")
-    return context, page, session_id, errors
+    return open_lesson(browser, live_server, f"/lessons/{lesson_id}", viewport=(1500, 950))
 
 
 def _set_controls(page, values: dict) -> None:
@@ -64,10 +57,8 @@ def _wait_for_readout(page, live_server, name: str, condition_js: str, arg=None,
 
 
 def _finish(page, context, shots, lesson_id, errors) -> None:
-    # The viewer warns that WebGL runs in software (true here, headless); close that notice for the picture.
-    viewer = next(f for f in page.frames if "/viewer/" in f.url)
-    viewer.evaluate("() => { const b = document.querySelector('.mantine-Notification-root button'); if (b) b.click(); }")
-    page.wait_for_timeout(2500)  # let software WebGL draw before the screenshot
+    dismiss_webgl_notice(page)
+    let_webgl_draw(page, 2500)
     page.screenshot(path=str(shots / f"lesson-{lesson_id}.png"))
     assert page.locator(".katex-error").count() == 0
     assert not errors, errors
@@ -89,7 +80,7 @@ def test_moving_frame_lesson_reads_out_the_five_terms(browser, live_server, shot
     expected = float(np.linalg.norm(terms["total"][0]))
     _wait_for_readout(page, live_server, "a_total_magnitude", "Math.abs(value - arg) < 1e-9 * arg", expected)
     assert _readout_value(page, "a_coriolis_magnitude") == pytest.approx(float(np.linalg.norm(terms["coriolis"][0])), rel=1e-12)
-    assert _readout_value(page, "t") == 2.6
+    assert _readout_value(page, "t_s") == 2.6
     _finish(page, context, shots, "3-5-moving-frame", errors)
 
 

@@ -7,33 +7,16 @@ by hand. Two tests, serial, like the other browser tests.
 
 from __future__ import annotations
 
-import json
 import math
 
 import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from tests.browser.conftest import wait_until
+from tests.browser.conftest import let_webgl_draw, open_lesson, readout_quantity
+from tests.conftest import wait_until
 
 pytestmark = pytest.mark.browser
-
-
-def _open(browser, live_server, path):
-    context = browser.new_context(viewport={"width": 1500, "height": 1000})
-    page = context.new_page()
-    errors: list[str] = []
-    page.on("pageerror", lambda exc: errors.append(str(exc)))
-    page.goto(live_server.url + path)
-    page.wait_for_function("window.dynlabLesson !== undefined")
-    session_id = page.evaluate("window.dynlabLesson.session.id")
-    wait_until(lambda: live_server.host.viewer_count(session_id) == 1, 30, what="the 3D viewer to connect through the relay")
-    return context, page, session_id, errors
-
-
-def _quantity(page, name: str):
-    cell = page.query_selector(f'#readout [data-quantity="{name}"]')
-    return None if cell is None else json.loads(cell.get_attribute("data-value"))
 
 
 def _wait_for_quantity(page, name: str, predicate_js: str, timeout_ms: int = 30_000) -> None:
@@ -47,20 +30,20 @@ def _wait_for_quantity(page, name: str, predicate_js: str, timeout_ms: int = 30_
 
 def _screenshot(page, path) -> None:
     page.evaluate("document.getElementById('viewer-wrap').scrollIntoView()")
-    page.wait_for_timeout(2500)  # software WebGL needs a moment to draw the new pose
+    let_webgl_draw(page, 2500)
     page.screenshot(path=str(path))
 
 
 def test_rotation_sequences_lesson_readout_and_gimbal_lock(browser, live_server, shots):
-    context, page, session_id, errors = _open(browser, live_server, "/lessons/3-1-rotation-sequences")
+    context, page, session_id, errors = open_lesson(browser, live_server, "/lessons/3-1-rotation-sequences", timeout_s=30)
     host = live_server.host
     _wait_for_quantity(page, "rotation_angle_deg", "true")
 
     # Default 3-1-3 (80°, 35°, 60°): the single equivalent turn, as scipy computes it.
     expected = Rotation.from_euler("ZXZ", [80.0, 35.0, 60.0], degrees=True)
-    assert _quantity(page, "rotation_angle_deg") == pytest.approx(math.degrees(expected.magnitude()), abs=1e-9)  # 141.92°
-    assert _quantity(page, "gimbal_lock_distance_deg") == pytest.approx(35.0, abs=1e-9)
-    assert _quantity(page, "recovered_angles_deg") == "80.00, 35.00, 60.00"
+    assert readout_quantity(page, "rotation_angle_deg") == pytest.approx(math.degrees(expected.magnitude()), abs=1e-9)  # 141.92°
+    assert readout_quantity(page, "gimbal_lock_distance_deg") == pytest.approx(35.0, abs=1e-9)
+    assert readout_quantity(page, "recovered_angles_deg") == "80.00, 35.00, 60.00"
     assert page.locator(".katex-error").count() == 0
 
     # Hold the finished sequence for the picture: all four frames, three turn axes and arcs.
@@ -73,8 +56,8 @@ def test_rotation_sequences_lesson_readout_and_gimbal_lock(browser, live_server,
     wait_until(lambda: host.instances(session_id)[0].params["angle2_deg"] == 90.0, 15, what="the scene to take the preset")
     _wait_for_quantity(page, "rate_gain", 'v === "unbounded"')
     locked = Rotation.from_euler("ZYX", [30.0, 90.0, 10.0], degrees=True)
-    assert _quantity(page, "rotation_angle_deg") == pytest.approx(math.degrees(locked.magnitude()), abs=1e-9)
-    assert _quantity(page, "gimbal_lock_distance_deg") < 1e-9
+    assert readout_quantity(page, "rotation_angle_deg") == pytest.approx(math.degrees(locked.magnitude()), abs=1e-9)
+    assert readout_quantity(page, "gimbal_lock_distance_deg") < 1e-9
     message = page.text_content("#readout .readout-message")
     assert "Gimbal lock" in message and "Only θ1 − θ3 = 20° is determined" in message
     marks = [float(m.get_attribute("data-value")) for m in page.query_selector_all('.control[data-name="angle2_deg"] .mark')]
@@ -86,7 +69,7 @@ def test_rotation_sequences_lesson_readout_and_gimbal_lock(browser, live_server,
 
 
 def test_angular_velocity_lesson_rate_gain_near_lock(browser, live_server, shots):
-    context, page, session_id, errors = _open(browser, live_server, "/lessons/3-4-angular-velocity")
+    context, page, session_id, errors = open_lesson(browser, live_server, "/lessons/3-4-angular-velocity", timeout_s=30)
     host = live_server.host
     _wait_for_quantity(page, "rate_gain", "true")
     page.select_option("#ctl-sequence", "3-2-1")
@@ -102,7 +85,7 @@ def test_angular_velocity_lesson_rate_gain_near_lock(browser, live_server, shots
     # 3-2-1 body rates written out: ωx = θ̇3 − θ̇1 s2, ωy = θ̇2 c3 + θ̇1 c2 s3, ωz = −θ̇2 s3 + θ̇1 c2 c3.
     t2, t3 = math.radians(85.0), math.radians(10.0)
     J = np.array([[-math.sin(t2), 0.0, 1.0], [math.cos(t2) * math.sin(t3), math.cos(t3), 0.0], [math.cos(t2) * math.cos(t3), -math.sin(t3), 0.0]])
-    assert _quantity(page, "rate_gain") == pytest.approx(1.0 / np.linalg.svd(J, compute_uv=False)[-1], rel=1e-12)  # 16.2
+    assert readout_quantity(page, "rate_gain") == pytest.approx(1.0 / np.linalg.svd(J, compute_uv=False)[-1], rel=1e-12)  # 16.2
     assert "Near gimbal lock (5° away)" in page.text_content("#readout .readout-message")
     assert page.locator(".katex-error").count() == 0
     _screenshot(page, shots / "lesson-3-4-angular-velocity.png")

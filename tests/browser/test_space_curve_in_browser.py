@@ -10,22 +10,16 @@ import json
 
 import pytest
 
-from tests.browser.conftest import wait_until
+from tests.browser.conftest import dismiss_webgl_notice, let_webgl_draw, open_lesson
+from tests.conftest import wait_until
 
 pytestmark = pytest.mark.browser
 
 
 def _open_lesson(browser, live_server, path):
-    context = browser.new_context(viewport={"width": 1500, "height": 1000})
-    page = context.new_page()
-    errors: list[str] = []
-    page.on("pageerror", lambda exc: errors.append(str(exc)))
-    page.goto(live_server.url + path)
-    page.wait_for_function("window.dynlabLesson !== undefined")
-    session_id = page.evaluate("window.dynlabLesson.session.id")
-    wait_until(lambda: live_server.host.viewer_count(session_id) == 1, 30, what="the 3D viewer to connect through the relay")
-    _dismiss_webgl_notice(page)
-    return context, page, session_id, errors
+    opened = open_lesson(browser, live_server, path, timeout_s=30)
+    dismiss_webgl_notice(opened[1])
+    return opened
 
 
 def _type(page, name, text):
@@ -48,19 +42,10 @@ def _wait_for_quantity(page, name, expected, rel=1e-9):
     return json.loads(page.get_attribute(f'#readout [data-quantity="{name}"]', "data-value"))
 
 
-def _dismiss_webgl_notice(page):
-    """viser's "software WebGL" notice covers part of the scene in headless Chromium; close it if shown."""
-    close = page.frame_locator("#viewer").locator(".mantine-Notification-closeButton")
-    try:
-        close.first.click(timeout=8000)
-    except Exception:  # noqa: BLE001 - best effort: the notice is cosmetic
-        pass
-
-
 def _screenshot(page, path):
-    _dismiss_webgl_notice(page)
+    dismiss_webgl_notice(page)
     page.evaluate("window.scrollTo(0, 0); const live = document.querySelector('.lesson-live'); if (live) live.scrollTop = 0")
-    page.wait_for_timeout(2500)  # let software WebGL draw the new curve
+    let_webgl_draw(page, 2500)
     page.screenshot(path=str(path))
 
 

@@ -2,40 +2,28 @@
 
 from __future__ import annotations
 
-import json
 import math
 
 import pytest
 
 from app.physics.systems.ch10 import torque_free_axisymmetric as physics
-from tests.browser.conftest import wait_until
+from tests.browser.conftest import let_webgl_draw, open_lesson, readout_values
+from tests.conftest import wait_until
 
 pytestmark = pytest.mark.browser
 
 LESSON = "/lessons/10-1-axisymmetric-free-motion"
 
 
-def _readout(page) -> dict:
-    cells = page.query_selector_all("#readout [data-quantity]")
-    return {c.get_attribute("data-quantity"): json.loads(c.get_attribute("data-value")) for c in cells}
-
-
 def test_lesson_scene_readout_matches_the_closed_form_and_presets_switch_the_sense(browser, live_server, shots):
-    context = browser.new_context(viewport={"width": 1500, "height": 1000})
-    page = context.new_page()
-    errors: list[str] = []
-    page.on("pageerror", lambda exc: errors.append(str(exc)))
-    page.goto(live_server.url + LESSON)
-    page.wait_for_function("window.dynlabLesson !== undefined")
-    session_id = page.evaluate("window.dynlabLesson.session.id")
+    context, page, session_id, errors = open_lesson(browser, live_server, LESSON, timeout_s=30)
     host = live_server.host
-    wait_until(lambda: host.viewer_count(session_id) == 1, 30, what="the 3D viewer to connect through the relay")
     page.wait_for_selector('#readout [data-quantity="precession_rate"]', timeout=45_000)
     assert page.locator(".katex-error").count() == 0
 
     # Default (prolate) body: the page shows the model's own numbers.
     motion = physics.motion_from_params(physics.PARAMETERS.defaults())
-    shown = _readout(page)
+    shown = readout_values(page)
     assert shown["precession_rate"] == pytest.approx(motion.precession_rate_rad_s, rel=1e-15)
     assert shown["spin_rate"] == pytest.approx(motion.spin_rate_rad_s, rel=1e-15)
     assert shown["body_cone_half_angle"] + shown["space_cone_half_angle"] == pytest.approx(25.0, rel=1e-13)
@@ -43,7 +31,7 @@ def test_lesson_scene_readout_matches_the_closed_form_and_presets_switch_the_sen
     scene = host.instances(session_id)[0]
     wait_until(lambda: scene.t_s > 1.0, 20, what="the scene to animate")
     page.evaluate("document.getElementById('viewer-wrap').scrollIntoView()")
-    page.wait_for_timeout(3000)  # let software WebGL draw before the screenshot
+    let_webgl_draw(page, 3000)
     page.screenshot(path=str(shots / "lesson-10-1-axisymmetric-free-motion.png"))
 
     # The coin preset: oblate, retrograde, the space cone inside the body cone.
@@ -53,11 +41,11 @@ def test_lesson_scene_readout_matches_the_closed_form_and_presets_switch_the_sen
         "() => { const c = document.querySelector('#readout [data-quantity=\"sense\"]'); return c && JSON.parse(c.dataset.value) === 'retrograde'; }",
         timeout=45_000,
     )
-    coin = _readout(page)
+    coin = readout_values(page)
     beta, gamma = coin["body_cone_half_angle"], coin["space_cone_half_angle"]
     assert beta - gamma == pytest.approx(15.0, rel=1e-13) and math.isclose(coin["spin_rate"], -0.98, rel_tol=1e-13)
     page.evaluate("document.getElementById('viewer-wrap').scrollIntoView()")
-    page.wait_for_timeout(2500)
+    let_webgl_draw(page, 2500)
     page.screenshot(path=str(shots / "lesson-10-1-axisymmetric-free-motion-coin.png"))
     assert not errors, errors
     context.close()

@@ -5,47 +5,34 @@ One test, serial, like the other browser tests: one viser tab costs about a core
 
 from __future__ import annotations
 
-import json
-
 import numpy as np
 import pytest
 
 from app.physics.systems.ch10 import torque_free_body as tfb
-from tests.browser.conftest import wait_until
+from tests.browser.conftest import let_webgl_draw, open_lesson, readout_quantity
+from tests.conftest import wait_until
 
 pytestmark = pytest.mark.browser
 
 LESSON = "/lessons/10-1-poinsot-construction"
 
 
-def _quantity(page, name: str):
-    cell = page.query_selector(f'#readout [data-quantity="{name}"]')
-    return None if cell is None else json.loads(cell.get_attribute("data-value"))
-
-
 def test_poinsot_lesson_readout_presets_and_ghost(browser, live_server, shots):
-    context = browser.new_context(viewport={"width": 1500, "height": 1000})
-    page = context.new_page()
-    errors: list[str] = []
-    page.on("pageerror", lambda exc: errors.append(str(exc)))
-    page.goto(live_server.url + LESSON)
-    page.wait_for_function("window.dynlabLesson !== undefined")
-    session_id = page.evaluate("window.dynlabLesson.session.id")
+    context, page, session_id, errors = open_lesson(browser, live_server, LESSON, timeout_s=30)
     host = live_server.host
-    wait_until(lambda: host.viewer_count(session_id) == 1, 30, what="the 3D viewer to connect through the relay")
     page.wait_for_selector('#readout [data-quantity="energy"]', timeout=20_000)
 
     # The readout is the physics of the default book: T = ½ Σ I ω², |L| = |I ω|, axis 2 intermediate.
     defaults = tfb.PARAMETERS.defaults()
     inertia, omega0 = tfb.inertia_of(defaults), np.array(defaults["omega0_rad_s"])
-    assert _quantity(page, "energy") == pytest.approx(0.5 * np.sum(inertia * omega0**2), rel=1e-12)
-    assert _quantity(page, "angular_momentum") == pytest.approx(np.linalg.norm(inertia * omega0), rel=1e-12)
-    assert _quantity(page, "period") == pytest.approx(tfb.motion(defaults).period_s, rel=1e-12)
-    assert _quantity(page, "intermediate_axis").startswith("2 ")
+    assert readout_quantity(page, "energy") == pytest.approx(0.5 * np.sum(inertia * omega0**2), rel=1e-12)
+    assert readout_quantity(page, "angular_momentum") == pytest.approx(np.linalg.norm(inertia * omega0), rel=1e-12)
+    assert readout_quantity(page, "period") == pytest.approx(tfb.motion(defaults).period_s, rel=1e-12)
+    assert readout_quantity(page, "intermediate_axis").startswith("2 ")
     assert page.locator(".katex-error").count() == 0
-    page.wait_for_timeout(4000)  # let the trails grow and software WebGL draw before the screenshot
+    let_webgl_draw(page, 4000)  # and the trails grow
     page.evaluate("document.getElementById('viewer-wrap').scrollIntoView()")
-    page.wait_for_timeout(1500)
+    let_webgl_draw(page, 1500)
     page.screenshot(path=str(shots / "lesson-10-1-poinsot-construction.png"))
 
     # The tennis-racket preset with the numerical ghost on: the scene flips, and RK4 keeps up with the closed form.
@@ -57,17 +44,17 @@ def test_poinsot_lesson_readout_presets_and_ghost(browser, live_server, shots):
         15, what="the scene to take the preset and the ghost",
     )
     page.wait_for_function(
-        "() => { const c = document.querySelector('#readout [data-quantity=\"t\"]'); return c && JSON.parse(c.dataset.value) > 5.5; }",
+        "() => { const c = document.querySelector('#readout [data-quantity=\"t_s\"]'); return c && JSON.parse(c.dataset.value) > 5.5; }",
         timeout=30_000,
     )
     page.wait_for_selector('#readout [data-quantity="ghost_attitude_difference"]', timeout=10_000)
-    difference = _quantity(page, "ghost_attitude_difference")
+    difference = readout_quantity(page, "ghost_attitude_difference")
     assert 0.0 <= difference < 1e-6  # measured ~1e-9 rad after a few seconds
-    next_flip = _quantity(page, "next_flip")
+    next_flip = readout_quantity(page, "next_flip")
     assert isinstance(next_flip, float) and 0.0 < next_flip <= 0.5 * tfb.motion(host.instances(session_id)[0].params).period_s
     assert "turns over every 4.31 s" in page.text_content("#readout .readout-message")
     page.evaluate("document.getElementById('viewer-wrap').scrollIntoView()")
-    page.wait_for_timeout(1500)
+    let_webgl_draw(page, 1500)
     page.screenshot(path=str(shots / "lesson-10-1-poinsot-construction-ghost.png"))
     assert not errors, errors
     context.close()

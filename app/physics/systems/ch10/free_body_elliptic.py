@@ -38,7 +38,13 @@ import numpy as np
 from scipy.special import elliprf, elliprj
 
 from app.physics.bodies.rigid_body import check_principal_inertia
-from app.physics.math.rotations import quaternion_multiply, rotation_matrix
+from app.physics.math.rotations import (
+    quaternion_from_axis_angle,
+    quaternion_from_euler_313,
+    quaternion_from_matrix,
+    quaternion_multiply,
+    rotation_matrix,
+)
 
 _EPS = np.finfo(float).eps
 
@@ -158,52 +164,6 @@ def elliptic_pi_reduced(
 def complete_elliptic_pi(*, n: float, one_minus_n: float, m: float, mc: float) -> float:
     """Π(n | m), the integral of :func:`elliptic_pi_reduced` to r = π/2."""
     return float(elliptic_pi_reduced(1.0, 0.0, n=n, one_minus_n=one_minus_n, m=m, mc=mc))
-
-
-# --------------------------------------------------------------------------------------------
-# Small quaternion helpers (vectorised).
-# --------------------------------------------------------------------------------------------
-
-
-def _quaternion_from_euler_313_array(phi: np.ndarray, theta: np.ndarray, psi: np.ndarray) -> np.ndarray:
-    """Vectorised :func:`app.physics.math.rotations.quaternion_from_euler_313` (N×4, wxyz)."""
-    c = np.cos(0.5 * theta)
-    s = np.sin(0.5 * theta)
-    sum_half = 0.5 * (phi + psi)
-    diff_half = 0.5 * (phi - psi)
-    return np.stack([c * np.cos(sum_half), s * np.cos(diff_half), s * np.sin(diff_half), c * np.sin(sum_half)], axis=-1)
-
-
-def _quaternion_from_rotation_matrix(R: np.ndarray) -> np.ndarray:
-    """Unit wxyz quaternion of a proper rotation matrix (Shepperd's branch choice)."""
-    R = np.asarray(R, dtype=float)
-    trace = R[0, 0] + R[1, 1] + R[2, 2]
-    candidates = [trace, R[0, 0], R[1, 1], R[2, 2]]
-    i = int(np.argmax(candidates))
-    if i == 0:
-        w = 0.5 * math.sqrt(1.0 + trace)
-        q = [w, (R[2, 1] - R[1, 2]) / (4 * w), (R[0, 2] - R[2, 0]) / (4 * w), (R[1, 0] - R[0, 1]) / (4 * w)]
-    elif i == 1:
-        x = 0.5 * math.sqrt(1.0 + R[0, 0] - R[1, 1] - R[2, 2])
-        q = [(R[2, 1] - R[1, 2]) / (4 * x), x, (R[0, 1] + R[1, 0]) / (4 * x), (R[0, 2] + R[2, 0]) / (4 * x)]
-    elif i == 2:
-        y = 0.5 * math.sqrt(1.0 - R[0, 0] + R[1, 1] - R[2, 2])
-        q = [(R[0, 2] - R[2, 0]) / (4 * y), (R[0, 1] + R[1, 0]) / (4 * y), y, (R[1, 2] + R[2, 1]) / (4 * y)]
-    else:
-        z = 0.5 * math.sqrt(1.0 - R[0, 0] - R[1, 1] + R[2, 2])
-        q = [(R[1, 0] - R[0, 1]) / (4 * z), (R[0, 2] + R[2, 0]) / (4 * z), (R[1, 2] + R[2, 1]) / (4 * z), z]
-    q = np.array(q)
-    return q / np.linalg.norm(q)
-
-
-def _quaternion_exp_body(omega: np.ndarray, t: np.ndarray) -> np.ndarray:
-    """Quaternions (N×4) of rotations by ``|ω| t`` about the fixed axis ``ω``."""
-    rate = float(np.linalg.norm(omega))
-    half = 0.5 * rate * t
-    if rate == 0.0:
-        return np.stack([np.ones_like(t), np.zeros_like(t), np.zeros_like(t), np.zeros_like(t)], axis=-1)
-    axis = omega / rate
-    return np.concatenate([np.cos(half)[..., None], np.sin(half)[..., None] * axis], axis=-1)
 
 
 # --------------------------------------------------------------------------------------------
@@ -344,10 +304,13 @@ class FreeBodyElliptic:
         """``q_world_body`` (wxyz, unit) at times ``t`` (s), shape t.shape + (4,)."""
         w = self._w
         t = np.asarray(t, dtype=float)
-        if w.kind == "steady":
-            return quaternion_multiply(self.q0, _quaternion_exp_body(self.omega0_body, t))
+        if w.kind == "steady":  # a turn by |ω| t about the fixed body axis ω
+            rate = float(np.linalg.norm(self.omega0_body))
+            if rate == 0.0:
+                return np.broadcast_to(self.q0, t.shape + (4,)).copy()
+            return quaternion_multiply(self.q0, quaternion_from_axis_angle(self.omega0_body, rate * t))
         phi, theta, psi = self._euler_about_L(t)
-        e = _quaternion_from_euler_313_array(phi, theta, psi)
+        e = quaternion_from_euler_313(phi, theta, psi)
         return quaternion_multiply(quaternion_multiply(w.q_world_L, e), w.q_work_from_user)
 
     # -- flips ---------------------------------------------------------------------------------
@@ -456,13 +419,13 @@ def free_body_elliptic(
 
     w = _Working(
         kind, P, J, amplitude=np.array([A1, A2, A3]), sign_circled=sigma, sign_other=sign_other, epsilon=epsilon,
-        m=m, mc=mc, K=K, rate=rate, x0=x0, n=n, q_work_from_user=_quaternion_from_rotation_matrix(P),
+        m=m, mc=mc, K=K, rate=rate, x0=x0, n=n, q_work_from_user=quaternion_from_matrix(P),
     )
     body = FreeBodyElliptic(**common, period_s=period, circled_axis=None if kind == "separatrix" else circled,
                             intermediate_axis=i_mid, kind=kind, _w=w)
     # Φ counts from t = 0; the inertial frame along L is q_world_L = q0 ⊗ p* ⊗ e(0)*, so that q(0) = q0.
     body = replace(body, _w=replace(w, phi_at_x0=float(body._phi_integral(np.array(x0)))))
-    e0 = _quaternion_from_euler_313_array(*body._euler_about_L(np.zeros(())))
+    e0 = quaternion_from_euler_313(*body._euler_about_L(np.zeros(())))
     conj = np.array([1.0, -1.0, -1.0, -1.0])
     q_world_L = quaternion_multiply(quaternion_multiply(q0, w.q_work_from_user * conj), e0 * conj)
     return replace(body, _w=replace(body._w, q_world_L=q_world_L))

@@ -43,6 +43,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from app.physics.math.rotations import quaternion_from_euler_313
 from app.physics.systems.ch10.free_body_elliptic import (
     complete_elliptic_k,
     complete_elliptic_pi,
@@ -73,13 +74,6 @@ def critical_spin_rad_s(I_transverse: float, I_axial: float, mgl: float) -> floa
     """Sleeping-top threshold ω3 (rad/s): the upright top is stable for ω3² > 4 mgl I_t / I_a²."""
     _check_top(I_transverse, I_axial, mgl)
     return math.sqrt(4.0 * mgl * I_transverse) / I_axial
-
-
-def _euler_313_quaternions(phi: np.ndarray, theta: np.ndarray, psi: np.ndarray) -> np.ndarray:
-    """Vectorised ``quaternion_from_euler_313``: wxyz, shape phi.shape + (4,)."""
-    c, s = np.cos(0.5 * theta), np.sin(0.5 * theta)
-    sum_half, diff_half = 0.5 * (phi + psi), 0.5 * (phi - psi)
-    return np.stack([c * np.cos(sum_half), s * np.cos(diff_half), s * np.sin(diff_half), c * np.sin(sum_half)], axis=-1)
 
 
 def _theta_from(one_minus_u: np.ndarray, one_plus_u: np.ndarray) -> np.ndarray:
@@ -239,7 +233,7 @@ class HeavyTopQuadrature:
     def quaternion(self, t: np.ndarray) -> np.ndarray:
         """``q_world_body`` (wxyz, unit), shape t.shape + (4,)."""
         phi, psi = self._phi_psi(t)
-        return _euler_313_quaternions(phi, self.theta(t), psi)
+        return quaternion_from_euler_313(phi, self.theta(t), psi)
 
 
 def _largest_root_right(coefficients: tuple[float, float, float]) -> float:
