@@ -80,12 +80,23 @@ def browser():
         browser.close()
 
 
+def keeping_screenshots() -> bool:
+    """Screenshots are taken only to refresh docs/screenshots (DYNLAB_UPDATE_SCREENSHOTS=1): each costs 2–5 s
+    of software WebGL and no assertion reads a picture. A failed test leaves one of every open page in test-results/."""
+    return os.environ.get("DYNLAB_UPDATE_SCREENSHOTS") == "1"
+
+
 @pytest.fixture
 def shots() -> Path:
-    """Where screenshots go: docs/screenshots when DYNLAB_UPDATE_SCREENSHOTS=1, else test-results/."""
-    target = SCREENSHOTS if os.environ.get("DYNLAB_UPDATE_SCREENSHOTS") == "1" else RESULTS
-    target.mkdir(parents=True, exist_ok=True)
-    return target
+    """Where kept screenshots go (docs/screenshots)."""
+    SCREENSHOTS.mkdir(parents=True, exist_ok=True)
+    return SCREENSHOTS
+
+
+def screenshot(target, path: Path) -> None:
+    """Save ``target`` (a page or a locator) to ``path`` when screenshots are kept; otherwise nothing."""
+    if keeping_screenshots():
+        target.screenshot(path=str(path))
 
 
 def open_lesson(browser, live_server, path: str, *, viewport=(1500, 1000), context=None, viewer: bool = True, timeout_s: float = 40.0):
@@ -123,20 +134,34 @@ def readout_quantity(page, name: str):
 
 
 def let_webgl_draw(page, milliseconds: int) -> None:
-    """Give software WebGL time to draw before a screenshot: the full ``milliseconds`` when the pictures
-    are kept (DYNLAB_UPDATE_SCREENSHOTS=1, docs/screenshots), 300 ms otherwise — the test-results
-    pictures are for a person debugging a run, and no assertion depends on them."""
-    page.wait_for_timeout(milliseconds if os.environ.get("DYNLAB_UPDATE_SCREENSHOTS") == "1" else min(milliseconds, 300))
+    """Give software WebGL ``milliseconds`` to draw before a kept screenshot (no wait when none is taken)."""
+    if keeping_screenshots():
+        page.wait_for_timeout(milliseconds)
+
+
+@pytest.hookimpl(wrapper=True, tryfirst=True)
+def pytest_runtest_makereport(item, call):
+    """Keep each phase's report on the test item, so a fixture can tell that the test failed."""
+    report = yield
+    setattr(item, f"report_{report.when}", report)
+    return report
 
 
 @pytest.fixture(autouse=True)
 def _close_pages_left_open(request):
     """After each test, close every browser context it left open (a failed assertion skips its own
-    ``context.close()``): a viewer tab left rendering would slow every later test by a core."""
+    ``context.close()``): a viewer tab left rendering would slow every later test by a core. A failed
+    test first leaves a screenshot of each open page in test-results/ for the person debugging it."""
     yield
-    if "browser" in request.fixturenames:
-        for context in list(request.getfixturevalue("browser").contexts):
-            context.close()
+    if "browser" not in request.fixturenames:
+        return
+    failed = getattr(request.node, "report_call", None) is not None and request.node.report_call.failed
+    for context in list(request.getfixturevalue("browser").contexts):
+        if failed:
+            RESULTS.mkdir(parents=True, exist_ok=True)
+            for index, page in enumerate(context.pages):
+                page.screenshot(path=str(RESULTS / f"{request.node.name}-{index}.png"))
+        context.close()
 
 
 def dismiss_webgl_notice(page) -> None:

@@ -9,7 +9,7 @@ import math
 import pytest
 
 from app.physics.systems.ch10 import free_gyroscope, gyrocompass, rate_gyro
-from tests.browser.conftest import let_webgl_draw, open_lesson, readout_values
+from tests.browser.conftest import let_webgl_draw, open_lesson, readout_values, screenshot
 
 pytestmark = pytest.mark.browser
 
@@ -25,7 +25,7 @@ def _finish(context, page, errors, shots, lesson_id):
     assert page.locator(".lesson-text .katex").count() > 20  # the formulas were typeset
     page.evaluate("document.getElementById('viewer-wrap').scrollIntoView()")
     let_webgl_draw(page, 3000)
-    page.screenshot(path=str(shots / f"lesson-{lesson_id}.png"))
+    screenshot(page, shots / f"lesson-{lesson_id}.png")
     assert not errors, errors
     context.close()
 

@@ -12,7 +12,7 @@ import math
 import pytest
 
 from app.physics.systems import worked_examples
-from tests.browser.conftest import let_webgl_draw, open_lesson, readout_quantity
+from tests.browser.conftest import let_webgl_draw, open_lesson, readout_quantity, screenshot
 from tests.conftest import wait_until
 
 EXAMPLES = worked_examples()
@@ -61,7 +61,7 @@ def test_example_11_theta_control_updates_solution_and_scene(browser, live_serve
     # The scene this browser is watching received the same θ.
     wait_until(lambda: host.instances(session_id)[0].params["theta_deg"] == 30.0, 10, what="the scene to take θ = 30°")
     let_webgl_draw(page, 2500)  # the new pose
-    page.screenshot(path=str(shots / "lesson-1-1-vector-operations.png"))
+    screenshot(page, shots / "lesson-1-1-vector-operations.png")
     assert not errors, errors
     context.close()
 
@@ -112,7 +112,7 @@ def test_pages_render_without_errors(browser, live_server, shots, path, name, ha
         page.wait_for_load_state("networkidle")
     # KaTeX rendered every math span (no raw TeX left, no KaTeX error nodes).
     assert page.locator(".katex-error").count() == 0
-    page.screenshot(path=str(shots / f"{name}.png"))
+    screenshot(page, shots / f"{name}.png")
     assert not errors, errors
     context.close()
 
@@ -128,7 +128,7 @@ def test_heavy_top_live_invariants_and_blow_up_pause(browser, live_server, shots
     energy_drift = float(page.text_content('#live [data-drift="energy"]'))
     assert energy_drift < 1e-6  # the default method keeps energy to far better than 1e-6 (measured ~1e-10)
     let_webgl_draw(page, 2500)
-    page.screenshot(path=str(shots / "lesson-10-2-spinning-top.png"))
+    screenshot(page, shots / "lesson-10-2-spinning-top.png")
 
     # RK4 with one step per frame at a 300 rad/s spin: h·ω ≈ 10, far beyond RK4's stability limit.
     page.select_option("#ctl-method", "rk4")
@@ -144,7 +144,7 @@ def test_heavy_top_live_invariants_and_blow_up_pause(browser, live_server, shots
     assert scene.status and all(math.isfinite(v) for v in scene.run.y)
     page.evaluate("document.getElementById('viewer-wrap').scrollIntoView()")
     let_webgl_draw(page, 1500)
-    page.screenshot(path=str(shots / "lesson-10-2-spinning-top-paused.png"))
+    screenshot(page, shots / "lesson-10-2-spinning-top-paused.png")
 
     page.select_option("#ctl-method", "splitting4")
     page.wait_for_function("() => document.querySelector('#live [data-live=\"status\"]').hidden", timeout=20_000)
@@ -180,10 +180,10 @@ def test_heavy_top_spin_changes_the_nutation_band_readout(browser, live_server, 
     assert after > before + 3.0  # a slower top dips much further: about 31.0° → 37.5°
     assert readout_quantity(page, "nutation_period_s") == pytest.approx(slower.nutation_period_s, rel=1e-12)
     let_webgl_draw(page, 4000)  # and the trail show a few nutation cycles
-    page.locator("#controls").screenshot(path=str(shots / "lesson-10-2-spinning-top-controls.png"))
+    screenshot(page.locator("#controls"), shots / "lesson-10-2-spinning-top-controls.png")
     page.evaluate("window.scrollTo(0, 0); document.querySelector('.lesson-live').scrollTop = 0")
     let_webgl_draw(page, 1000)
-    page.screenshot(path=str(shots / "lesson-10-2-spinning-top-readout.png"))
+    screenshot(page, shots / "lesson-10-2-spinning-top-readout.png")
     assert not errors, errors
     context.close()
 
@@ -199,6 +199,6 @@ def test_equinox_precession_lesson_scene_and_worked_solution(browser, live_serve
     assert readout_quantity(page, "moon_share") == pytest.approx(outputs["moon_share"], rel=1e-12)
     let_webgl_draw(page, 3000)
     page.evaluate("window.scrollTo(0, 0); document.querySelector('.lesson-live').scrollTop = 0")
-    page.screenshot(path=str(shots / "lesson-10-2-precession-of-the-equinoxes.png"))
+    screenshot(page, shots / "lesson-10-2-precession-of-the-equinoxes.png")
     assert not errors, errors
     context.close()

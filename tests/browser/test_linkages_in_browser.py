@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from app.physics.systems.ch04 import cardan_joint, four_bar, slider_crank
-from tests.browser.conftest import dismiss_webgl_notice, let_webgl_draw, open_lesson, readout_values
+from tests.browser.conftest import dismiss_webgl_notice, let_webgl_draw, open_lesson, readout_values, screenshot
 
 pytestmark = pytest.mark.browser
 
@@ -66,7 +66,7 @@ def test_lesson_scene_connects_and_its_readout_matches_the_physics(browser, live
     page.evaluate("document.getElementById('viewer-wrap').scrollIntoView()")
     dismiss_webgl_notice(page)
     let_webgl_draw(page, 3000)
-    page.screenshot(path=str(shots / f"lesson-{lesson_id}.png"))
+    screenshot(page, shots / f"lesson-{lesson_id}.png")
     assert not errors, errors
     json.dumps(readout_values(page))  # the readout stays plain JSON while the scene runs
     context.close()

@@ -16,7 +16,7 @@ import pytest
 from app.physics.systems import earth
 from app.physics.systems.ch03 import eastward_deflection as deflection
 from app.physics.systems.ch03 import moving_frame as moving
-from tests.browser.conftest import dismiss_webgl_notice, let_webgl_draw, open_lesson
+from tests.browser.conftest import dismiss_webgl_notice, let_webgl_draw, open_lesson, screenshot
 from tests.conftest import wait_until
 
 pytestmark = pytest.mark.browser
@@ -59,7 +59,7 @@ def _wait_for_readout(page, live_server, name: str, condition_js: str, arg=None,
 def _finish(page, context, shots, lesson_id, errors) -> None:
     dismiss_webgl_notice(page)
     let_webgl_draw(page, 2500)
-    page.screenshot(path=str(shots / f"lesson-{lesson_id}.png"))
+    screenshot(page, shots / f"lesson-{lesson_id}.png")
     assert page.locator(".katex-error").count() == 0
     assert not errors, errors
     context.close()

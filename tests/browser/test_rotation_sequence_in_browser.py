@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from tests.browser.conftest import let_webgl_draw, open_lesson, readout_quantity
+from tests.browser.conftest import let_webgl_draw, open_lesson, readout_quantity, screenshot
 from tests.conftest import wait_until
 
 pytestmark = pytest.mark.browser
@@ -31,7 +31,7 @@ def _wait_for_quantity(page, name: str, predicate_js: str, timeout_ms: int = 30_
 def _screenshot(page, path) -> None:
     page.evaluate("document.getElementById('viewer-wrap').scrollIntoView()")
     let_webgl_draw(page, 2500)
-    page.screenshot(path=str(path))
+    screenshot(page, path)
 
 
 def test_rotation_sequences_lesson_readout_and_gimbal_lock(browser, live_server, shots):

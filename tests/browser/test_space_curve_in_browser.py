@@ -10,7 +10,7 @@ import json
 
 import pytest
 
-from tests.browser.conftest import dismiss_webgl_notice, let_webgl_draw, open_lesson
+from tests.browser.conftest import dismiss_webgl_notice, let_webgl_draw, open_lesson, screenshot
 from tests.conftest import wait_until
 
 pytestmark = pytest.mark.browser
@@ -46,7 +46,7 @@ def _screenshot(page, path):
     dismiss_webgl_notice(page)
     page.evaluate("window.scrollTo(0, 0); const live = document.querySelector('.lesson-live'); if (live) live.scrollTop = 0")
     let_webgl_draw(page, 2500)
-    page.screenshot(path=str(path))
+    screenshot(page, path)
 
 
 def test_typed_helix_gives_the_closed_form_curvature_and_torsion(browser, live_server, shots):

@@ -7,7 +7,7 @@ import math
 import pytest
 
 from app.physics.systems.ch10 import torque_free_axisymmetric as physics
-from tests.browser.conftest import let_webgl_draw, open_lesson, readout_values
+from tests.browser.conftest import let_webgl_draw, open_lesson, readout_values, screenshot
 from tests.conftest import wait_until
 
 pytestmark = pytest.mark.browser
@@ -32,7 +32,7 @@ def test_lesson_scene_readout_matches_the_closed_form_and_presets_switch_the_sen
     wait_until(lambda: scene.t_s > 1.0, 20, what="the scene to animate")
     page.evaluate("document.getElementById('viewer-wrap').scrollIntoView()")
     let_webgl_draw(page, 3000)
-    page.screenshot(path=str(shots / "lesson-10-1-axisymmetric-free-motion.png"))
+    screenshot(page, shots / "lesson-10-1-axisymmetric-free-motion.png")
 
     # The coin preset: oblate, retrograde, the space cone inside the body cone.
     page.click('button[data-preset="coin"]')
@@ -46,6 +46,6 @@ def test_lesson_scene_readout_matches_the_closed_form_and_presets_switch_the_sen
     assert beta - gamma == pytest.approx(15.0, rel=1e-13) and math.isclose(coin["spin_rate"], -0.98, rel_tol=1e-13)
     page.evaluate("document.getElementById('viewer-wrap').scrollIntoView()")
     let_webgl_draw(page, 2500)
-    page.screenshot(path=str(shots / "lesson-10-1-axisymmetric-free-motion-coin.png"))
+    screenshot(page, shots / "lesson-10-1-axisymmetric-free-motion-coin.png")
     assert not errors, errors
     context.close()

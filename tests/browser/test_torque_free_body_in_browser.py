@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from app.physics.systems.ch10 import torque_free_body as tfb
-from tests.browser.conftest import let_webgl_draw, open_lesson, readout_quantity
+from tests.browser.conftest import let_webgl_draw, open_lesson, readout_quantity, screenshot
 from tests.conftest import wait_until
 
 pytestmark = pytest.mark.browser
@@ -33,7 +33,7 @@ def test_poinsot_lesson_readout_presets_and_ghost(browser, live_server, shots):
     let_webgl_draw(page, 4000)  # and the trails grow
     page.evaluate("document.getElementById('viewer-wrap').scrollIntoView()")
     let_webgl_draw(page, 1500)
-    page.screenshot(path=str(shots / "lesson-10-1-poinsot-construction.png"))
+    screenshot(page, shots / "lesson-10-1-poinsot-construction.png")
 
     # The tennis-racket preset with the numerical ghost on: the scene flips, and RK4 keeps up with the closed form.
     page.click('button[data-preset="tennis-racket"]')
@@ -55,6 +55,6 @@ def test_poinsot_lesson_readout_presets_and_ghost(browser, live_server, shots):
     assert "turns over every 4.31 s" in page.text_content("#readout .readout-message")
     page.evaluate("document.getElementById('viewer-wrap').scrollIntoView()")
     let_webgl_draw(page, 1500)
-    page.screenshot(path=str(shots / "lesson-10-1-poinsot-construction-ghost.png"))
+    screenshot(page, shots / "lesson-10-1-poinsot-construction-ghost.png")
     assert not errors, errors
     context.close()
