@@ -13,3 +13,15 @@ def wait_until(predicate: Callable[[], bool], timeout_s: float = 30.0, interval_
         if time.monotonic() > deadline:
             raise AssertionError(f"timed out after {timeout_s} s waiting for {what}")
         time.sleep(interval_s)
+
+
+#: How a work-precision report describes the heavy-top case (the bench page and plot tests build reports around it).
+HEAVY_TOP_BENCH_SETUP = {
+    "scene_id": "heavy-top",
+    "t_end_s": 10.0,
+    "frame_rate_hz": 60,
+    "error_measure": "largest symmetry-axis angle error over all frames",
+    "error_unit": "rad",
+    "reference": "quadrature (elliptic) solution",
+    "target_error": 1e-6,
+}

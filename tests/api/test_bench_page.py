@@ -18,6 +18,7 @@ from app.api.bench import diagram_path
 from app.bench.plot import work_precision_svg
 from app.settings import Settings
 from app.web.pages import fmt_setting, fmt_sig
+from tests.conftest import HEAVY_TOP_BENCH_SETUP
 
 RESULTS = {
     "created": "2026-11-22T10:00:00Z",
@@ -25,14 +26,8 @@ RESULTS = {
                 "numba": "0.61.0", "mujoco": "3.2.6"},
     "scenes": [
         {
-            "scene_id": "heavy-top",
+            **HEAVY_TOP_BENCH_SETUP,
             "title": "Heavy symmetric top, 10 s",
-            "t_end_s": 10.0,
-            "frame_rate_hz": 60,
-            "error_measure": "largest symmetry-axis angle error over all frames",
-            "error_unit": "rad",
-            "reference": "quadrature (elliptic) solution",
-            "target_error": 1e-6,
             "default": {"method": "splitting4", "setting": 3, "cpu_s": 0.0012, "error": 2e-7},
             "methods": [
                 {"method": "splitting4", "family": "dynlab", "label": "Splitting 4 (numba)",

@@ -12,11 +12,10 @@ import math
 
 import numpy as np
 import pytest
-import viser
 from scipy.integrate import solve_ivp
 
 from app.physics.systems.ch10 import free_gyroscope, gyrocompass, rate_gyro
-from tests.api.conftest import first_camera_message
+from tests.api.conftest import live_viewer
 from tests.conftest import wait_until
 
 _ids = itertools.count()
@@ -144,11 +143,7 @@ def test_live_free_gyroscope_reads_out_the_closed_form(client):
     host = client.app.state.scene_host
     sid = new_session()
     assert client.put(f"/api/scenes/free-gyroscope/sessions/{sid}", json={"params": {"vehicle_rate_rad_s": [0.0, 0.0, 0.5]}}).status_code == 200
-    with client.websocket_connect(f"/viewer/free-gyroscope/{sid}", subprotocols=["viser-v" + viser.__version__]) as ws:
-        ws.receive()
-        ws.send_bytes(first_camera_message())
-        wait_until(lambda: len(host.instances(sid)) == 1)
-        scene = host.instances(sid)[0]
+    with live_viewer(client, "free-gyroscope", sid) as scene:
         wait_until(lambda: scene.t_s > 0.3)
         with host.inspect(sid):  # the frame loop waits while the drawn state is read
             t_drawn, drawn_outer = scene.t_s, np.asarray(scene.outer.wxyz)
@@ -168,13 +163,8 @@ def test_live_free_gyroscope_reads_out_the_closed_form(client):
 
 
 def test_live_rate_gyro_reads_out_gain_frequency_damping_and_beta(client):
-    host = client.app.state.scene_host
     sid = new_session()
-    with client.websocket_connect(f"/viewer/rate-gyro/{sid}", subprotocols=["viser-v" + viser.__version__]) as ws:
-        ws.receive()
-        ws.send_bytes(first_camera_message())
-        wait_until(lambda: len(host.instances(sid)) == 1)
-        scene = host.instances(sid)[0]
+    with live_viewer(client, "rate-gyro", sid) as scene:
         wait_until(lambda: scene.t_s > 0.3)
         values, live = _readout(client, "rate-gyro", sid)  # one readout is one consistent instant
         t_s = values["t_s"]
@@ -189,14 +179,9 @@ def test_live_rate_gyro_reads_out_gain_frequency_damping_and_beta(client):
 
 
 def test_live_gyrocompass_runs_time_scaled_and_reads_out_the_period(client):
-    host = client.app.state.scene_host
     sid = new_session()
     assert client.put(f"/api/scenes/gyrocompass/sessions/{sid}", json={"params": {"time_scale": 50.0}}).status_code == 200
-    with client.websocket_connect(f"/viewer/gyrocompass/{sid}", subprotocols=["viser-v" + viser.__version__]) as ws:
-        ws.receive()
-        ws.send_bytes(first_camera_message())
-        wait_until(lambda: len(host.instances(sid)) == 1)
-        scene = host.instances(sid)[0]
+    with live_viewer(client, "gyrocompass", sid) as scene:
         wait_until(lambda: scene.run.t_s > 20.0)  # 50× real time: 20 simulated seconds in about 0.4 s
         values, live = _readout(client, "gyrocompass", sid)  # one readout is one consistent instant
         t_s, alpha = values["t_s"], math.radians(values["alpha_deg"])

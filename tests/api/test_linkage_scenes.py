@@ -10,11 +10,10 @@ import math
 
 import numpy as np
 import pytest
-import viser
 
 from app.physics.systems.ch04 import four_bar
 from app.physics.systems.ch04.rolling import SteadyRolling
-from tests.api.conftest import first_camera_message
+from tests.api.conftest import live_viewer
 from tests.conftest import wait_until
 
 _ids = itertools.count()
@@ -123,20 +122,10 @@ def test_every_preset_assembles_and_simulates(client):
 # ---- live scenes ---------------------------------------------------------------------------------
 
 
-def _live_scene(client, scene_id, sid):
-    host = client.app.state.scene_host
-    ws = client.websocket_connect(f"/viewer/{scene_id}/{sid}", subprotocols=["viser-v" + viser.__version__])
-    return host, ws
-
-
 def test_live_four_bar_draws_the_closed_form_and_reads_out_its_numbers(client):
     sid = new_session()
-    host, connection = _live_scene(client, "four-bar", sid)
-    with connection as ws:
-        ws.receive()
-        ws.send_bytes(first_camera_message())
-        wait_until(lambda: len(host.instances(sid)) == 1)
-        scene = host.instances(sid)[0]
+    host = client.app.state.scene_host
+    with live_viewer(client, "four-bar", sid) as scene:
         wait_until(lambda: scene.t_s > 0.2)  # the frame loop is advancing it
         with host.inspect(sid):  # the frame loop waits while the drawn state is read
             t_s = scene.t_s
@@ -168,13 +157,9 @@ def test_live_four_bar_draws_the_closed_form_and_reads_out_its_numbers(client):
 
 def test_live_rolling_scene_reports_a_computed_zero_contact_velocity(client):
     sid = new_session()
-    host, connection = _live_scene(client, "rolling", sid)
+    host = client.app.state.scene_host
     assert client.put(f"/api/scenes/rolling/sessions/{sid}", json={"params": {"body": "cone", "tilt_deg": 25.0}}).status_code == 200
-    with connection as ws:
-        ws.receive()
-        ws.send_bytes(first_camera_message())
-        wait_until(lambda: len(host.instances(sid)) == 1)
-        scene = host.instances(sid)[0]
+    with live_viewer(client, "rolling", sid) as scene:
         wait_until(lambda: scene.t_s > 0.2)
         readout = client.get(f"/api/scenes/rolling/sessions/{sid}/live").json()["readout"]
         values = {q["name"]: q for q in readout["quantities"]}

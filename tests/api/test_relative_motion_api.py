@@ -7,13 +7,12 @@ import math
 
 import numpy as np
 import pytest
-import viser
 
 from app.physics.systems import earth
 from app.physics.systems.ch03 import eastward_deflection as deflection
 from app.physics.systems.ch03 import foucault_pendulum as foucault
 from app.physics.systems.ch03 import moving_frame as moving
-from tests.api.conftest import first_camera_message
+from tests.api.conftest import live_viewer
 from tests.conftest import wait_until
 
 _ids = itertools.count()
@@ -108,16 +107,6 @@ def _readout(client, scene_id, sid) -> dict:
     return {q["name"]: q["value"] if q["value"] is not None else q["text"] for q in quantities}
 
 
-def _connect(client, scene_id, sid):
-    ws = client.websocket_connect(f"/viewer/{scene_id}/{sid}", subprotocols=["viser-v" + viser.__version__])
-    ws.__enter__()
-    ws.receive()
-    ws.send_bytes(first_camera_message())
-    host = client.app.state.scene_host
-    wait_until(lambda: len(host.instances(sid)) == 1)
-    return ws, host.instances(sid)[0]
-
-
 def test_moving_frame_viewer_holds_an_instant_and_reads_out_its_terms(client):
     sid = new_session()
     params = {
@@ -125,8 +114,7 @@ def test_moving_frame_viewer_holds_an_instant_and_reads_out_its_terms(client):
         "cart_amplitude_m": 0.2, "cart_frequency_hz": 0.5, "playback_speed": 0.0, "time_s": 1.5, "replay_s": 3.0,
     }
     assert client.put(f"/api/scenes/moving-frame-acceleration/sessions/{sid}", json={"params": params}).status_code == 200
-    ws, scene = _connect(client, "moving-frame-acceleration", sid)
-    try:
+    with live_viewer(client, "moving-frame-acceleration", sid) as scene:
         values = _readout(client, "moving-frame-acceleration", sid)
         physical = moving.PARAMETERS.validate({k: v for k, v in params.items() if k in moving.PARAMETERS.by_name})
         motion = moving.MovingFrameMotion.from_params(physical)
@@ -152,14 +140,11 @@ def test_moving_frame_viewer_holds_an_instant_and_reads_out_its_terms(client):
             tail = head
         np.testing.assert_allclose(points[drawn.index("total")], [p, p + scale * terms["total"]], atol=1e-5)
         np.testing.assert_allclose(tail, p + scale * terms["total"], atol=1e-12)  # the chain closes on a_P
-    finally:
-        ws.__exit__(None, None, None)
 
 
 def test_foucault_viewer_reads_out_the_predicted_rates(client):
     sid = new_session()
-    ws, scene = _connect(client, "foucault-pendulum", sid)
-    try:
+    with live_viewer(client, "foucault-pendulum", sid) as scene:
         wait_until(lambda: scene.run.t_s > 0.3)
         values = _readout(client, "foucault-pendulum", sid)
         defaults = foucault.PARAMETERS.defaults()
@@ -172,14 +157,11 @@ def test_foucault_viewer_reads_out_the_predicted_rates(client):
         # At the equator the real Earth has no full turn to report.
         assert client.put(f"/api/scenes/foucault-pendulum/sessions/{sid}", json={"params": {"latitude_deg": 0.0}}).status_code == 200
         assert _readout(client, "foucault-pendulum", sid)["real_full_turn_h"] == "never (equator)"
-    finally:
-        ws.__exit__(None, None, None)
 
 
 def test_eastward_viewer_reads_out_exact_and_series_deflections(client):
     sid = new_session()
-    ws, scene = _connect(client, "eastward-deflection", sid)
-    try:
+    with live_viewer(client, "eastward-deflection", sid):
         values = _readout(client, "eastward-deflection", sid)
         flight = deflection.Flight.from_params(deflection.PARAMETERS.defaults())
         assert values["east_mm"] == pytest.approx(1000.0 * flight.deflection()[0], rel=1e-12)
@@ -198,5 +180,3 @@ def test_eastward_viewer_reads_out_exact_and_series_deflections(client):
         assert client.put(f"/api/scenes/eastward-deflection/sessions/{sid}", json={"params": pole}).status_code == 200
         values = _readout(client, "eastward-deflection", sid)
         assert abs(values["east_mm"]) < 1e-9 and values["exaggeration"] == 1.0
-    finally:
-        ws.__exit__(None, None, None)

@@ -7,12 +7,11 @@ import math
 
 import numpy as np
 import pytest
-import viser
 
 from app.physics.math.rotations import quaternion_from_euler_313, quaternion_multiply
 from app.physics.systems.ch10 import torque_free_axisymmetric as physics
 from app.scenes.ch10.torque_free_axisymmetric import TorqueFreeAxisymmetricScene
-from tests.api.conftest import first_camera_message
+from tests.api.conftest import live_viewer
 from tests.conftest import wait_until
 
 SCENE = "torque-free-axisymmetric"
@@ -113,11 +112,7 @@ def test_session_put_out_of_slider_range_is_422_and_changes_nothing(client):
 def test_live_scene_draws_the_closed_form_and_reads_out_its_numbers(client):
     host = client.app.state.scene_host
     sid = new_session()
-    with client.websocket_connect(f"/viewer/{SCENE}/{sid}", subprotocols=["viser-v" + viser.__version__]) as ws:
-        ws.receive()
-        ws.send_bytes(first_camera_message())
-        wait_until(lambda: len(host.instances(sid)) == 1)
-        scene = host.instances(sid)[0]
+    with live_viewer(client, SCENE, sid) as scene:
         assert isinstance(scene, TorqueFreeAxisymmetricScene)
         wait_until(lambda: scene.t_s > 0.2)  # the frame loop is advancing it
 

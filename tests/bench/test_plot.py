@@ -17,6 +17,7 @@ from app.bench.plot import (
     usable_points,
     work_precision_svg,
 )
+from tests.conftest import HEAVY_TOP_BENCH_SETUP
 
 NS = {"svg": "http://www.w3.org/2000/svg"}
 
@@ -28,14 +29,8 @@ def _pt(setting, cpu_s, error, status="ok"):
 def make_scene() -> dict:
     """Errors span 1e-8 .. 1e-2 and CPU times 0.1 .. 100 ms, so the axes are exactly those decades."""
     return {
-        "scene_id": "heavy-top",
+        **HEAVY_TOP_BENCH_SETUP,
         "title": "Heavy symmetric top, 10 s & <friends>",
-        "t_end_s": 10.0,
-        "frame_rate_hz": 60,
-        "error_measure": "largest symmetry-axis angle error over all frames",
-        "error_unit": "rad",
-        "reference": "quadrature (elliptic) solution",
-        "target_error": 1e-6,
         "default": {"method": "splitting4", "setting": 2, "cpu_s": 1e-3, "error": 1e-5},
         "methods": [
             {
