@@ -21,7 +21,9 @@ from typing import Any
 
 from markdown_it import MarkdownIt
 
-from app.settings import DEFAULT_LESSONS_DIR as LESSONS_DIR
+from app.settings import DEFAULT_LESSONS_DIR as LESSONS_DIR  # the default the catalogue loads
+
+__all__ = ["LESSONS_DIR", "Chapter", "Lesson", "Section", "parse_lesson", "parse_outline", "render_markdown", "split_front_matter"]
 
 _DISPLAY_MATH = re.compile(r"\$\$(.+?)\$\$", re.DOTALL)
 _INLINE_MATH = re.compile(r"(?<![\\$])\$(?!\$)([^\n$]+?)(?<!\\)\$")

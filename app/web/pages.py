@@ -17,7 +17,7 @@ from fastapi.responses import HTMLResponse, RedirectResponse, Response
 
 from app.api import bench
 from app.api.deps import CatalogueDep, SceneHostDep, SettingsDep
-from app.course import LESSONS_DIR, Catalogue, Chapter, Lesson, render_markdown
+from app.course import Catalogue, Chapter, Lesson, render_markdown
 from app.course.lessons import split_front_matter
 from app.scenes.host.host import SESSION_ID_PATTERN
 
@@ -174,10 +174,10 @@ def _with_unit(value_html: str, unit: str) -> str:
     return f"{value_html} {esc(unit)}" if unit and value_html != "—" else value_html
 
 
-@lru_cache(maxsize=1)
-def _solver_lab_text() -> tuple[dict, str]:
-    """Front matter and rendered body of lessons/solver-lab.md (TOML between '+++' lines, like the lessons)."""
-    path = LESSONS_DIR / "solver-lab.md"
+@lru_cache(maxsize=4)
+def _solver_lab_text(lessons_dir: Path) -> tuple[dict, str]:
+    """Front matter and rendered body of ``solver-lab.md`` in the lessons folder (TOML between '+++' lines, like the lessons)."""
+    path = lessons_dir / "solver-lab.md"
     meta, body = split_front_matter(path.read_text(encoding="utf-8"), str(path))
     return meta, render_markdown(body)
 
@@ -376,7 +376,7 @@ def _guarded(render, item, *args) -> str:
 
 @router.get("/solver-lab", response_class=HTMLResponse)
 def solver_lab_page(settings: SettingsDep) -> HTMLResponse:
-    meta, prose = _solver_lab_text()
+    meta, prose = _solver_lab_text(Path(settings.lessons_dir))
     try:
         results = bench.load_results(settings)
     except bench.BenchResultsError as exc:

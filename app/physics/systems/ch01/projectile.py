@@ -171,7 +171,6 @@ def linear_drag_closed_form(inputs: Mapping[str, Any], t_s: np.ndarray) -> tuple
 
 def solve(inputs: Mapping[str, Any]) -> Solution:
     traj = simulate(inputs)
-    m = inputs["mass_kg"]
     dT = float(traj.kinetic_energy_J[-1] - traj.kinetic_energy_J[0])
     Wg, Wd = float(traj.work_gravity_J[-1]), float(traj.work_drag_J[-1])
     dp = traj.momentum_change_N_s[-1]

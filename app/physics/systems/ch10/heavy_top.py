@@ -115,7 +115,7 @@ def locus_shape(solution: HeavyTopQuadrature) -> str:
     """
     if solution.theta_max_rad - solution.theta_min_rad <= 1e-12 * max(solution.theta_max_rad, 1.0):
         return "vertical" if math.sin(solution.theta_min_rad) < 1e-12 else "circle"
-    It, Ia = solution.I_transverse, solution.I_axial
+    It = solution.I_transverse
     rates = []
     for theta in (solution.theta_min_rad, solution.theta_max_rad):
         u, sin2 = math.cos(theta), math.sin(theta) ** 2
