@@ -15,14 +15,14 @@ from fastapi.responses import Response
 from app.physics.core.parameters import ParameterError
 
 
-def unprocessable(loc: Sequence[str], message: str) -> HTTPException:
+def unprocessable(loc: Sequence[str | int], message: str) -> HTTPException:
     """A 422 ``{"detail": [{"loc": loc, "msg": message, "type": "value_error"}]}``."""
     return HTTPException(status_code=422, detail=[{"loc": list(loc), "msg": message, "type": "value_error"}])
 
 
 async def parameter_error_handler(request: Request, exc: Exception) -> Response:
     assert isinstance(exc, ParameterError)
-    return await http_exception_handler(request, unprocessable(["body", "inputs", exc.field], str(exc)))
+    return await http_exception_handler(request, unprocessable(["body", "inputs", *exc.path], str(exc)))
 
 
 async def value_error_handler(request: Request, exc: Exception) -> Response:

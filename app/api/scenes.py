@@ -77,7 +77,7 @@ def simulate_scene(scene_id: str, request: SimulateRequest, host: SceneHostDep) 
     try:
         params = model_cls.parameters.validate(request.params)
     except ParameterError as exc:
-        raise unprocessable(["body", "params", exc.field], str(exc)) from None
+        raise unprocessable(["body", "params", *exc.path], str(exc)) from None
     except ValueError as exc:  # a combination of values that cannot exist together
         raise unprocessable(["body", "params"], str(exc)) from None
     if issubclass(model_cls, ClosedFormModel):

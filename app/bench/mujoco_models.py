@@ -38,7 +38,7 @@ from typing import Any
 
 import numpy as np
 
-from app.physics.bodies.rigid_body import check_principal_inertia
+from app.physics.bodies.inertia import check_principal_inertia
 
 #: Our names for MuJoCo's integrators (``mjtIntegrator``). "Euler" is MuJoCo's
 #: semi-implicit Euler; "implicitfast" drops the Coriolis terms from the

@@ -17,31 +17,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from app.physics.bodies.inertia import centroidal_from_point, check_inertia_tensor, check_principal_inertia
 from app.physics.math.rotations import rotation_matrix
 from app.physics.solvers.kernels import PROJECT_SIGNATURE, RHS_SIGNATURE, TORQUE_SIGNATURE, kernel
 from app.physics.solvers.system import OdeSystem
 
 STATE_NAMES = ("q_w", "q_x", "q_y", "q_z", "omega1", "omega2", "omega3")
-
-
-def check_principal_inertia(inertia_kg_m2: tuple[float, float, float], *, about: str = "the centre of mass") -> None:
-    """Raise ValueError unless the three principal moments can belong to a real body.
-
-    Each must be a finite positive number and no one may exceed the sum of the
-    other two (a flat plate is the limit ``I3 = I1 + I2``).
-    """
-    names = ("I1", "I2", "I3")
-    for name, value in zip(names, inertia_kg_m2):
-        if not math.isfinite(value) or value <= 0.0:
-            raise ValueError(f"{name} must be a finite positive moment of inertia about {about}, in kg·m² (got {value!r})")
-    for i in range(3):
-        j, k = (i + 1) % 3, (i + 2) % 3
-        slack = inertia_kg_m2[j] + inertia_kg_m2[k] - inertia_kg_m2[i]
-        if slack < -1e-12 * max(inertia_kg_m2):
-            raise ValueError(
-                f"inertia about {about} violates the triangle inequality: {names[i]} = {inertia_kg_m2[i]:g} kg·m² "
-                f"exceeds {names[j]} + {names[k]} = {inertia_kg_m2[j] + inertia_kg_m2[k]:g} kg·m²; no real body has these moments"
-            )
 
 
 @dataclass(frozen=True)
@@ -59,11 +40,10 @@ class RigidBody:
             if not math.isfinite(value) or value < 0.0:
                 raise ValueError(f"{name} must be a finite number ≥ 0 (got {value!r})")
         check_principal_inertia(self.inertia_pivot_kg_m2, about="the fixed point")
-        # Parallel axis theorem back to the centre of mass (on body 3).
-        shift = self.mass_kg * self.cg_distance_m**2
-        I1, I2, I3 = self.inertia_pivot_kg_m2
-        if shift > 0.0:
-            check_principal_inertia((I1 - shift, I2 - shift, I3), about="the centre of mass")
+        # Parallel-axis theorem back to the centre of mass (on body 3): that body must exist too.
+        if self.mass_kg * self.cg_distance_m > 0.0:
+            inertia_cm = centroidal_from_point(np.diag(self.inertia_pivot_kg_m2), self.mass_kg, np.array([0.0, 0.0, self.cg_distance_m]))
+            check_inertia_tensor(inertia_cm, about="the centre of mass")
 
     @property
     def gravity_moment_N_m(self) -> float:

@@ -8,6 +8,7 @@ it, and :func:`validate_inputs` checks request data against it.
 
 from __future__ import annotations
 
+import copy
 import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
@@ -17,11 +18,14 @@ from typing import Any, Literal
 class ParameterError(ValueError):
     """An input is unknown, missing its type, non-finite or out of range.
 
-    ``field`` names the offending input so the API can point at it.
+    ``field`` names the offending input so the API can point at it; ``path``
+    goes further into a structured input (``("bodies", 2, "radius_m")``) and
+    defaults to ``(field,)``.
     """
 
-    def __init__(self, field: str, message: str) -> None:
-        super().__init__(f"{field}: {message}")
+    def __init__(self, field: str, message: str, *, path: Sequence[str | int] | None = None) -> None:
+        self.path: tuple[str | int, ...] = tuple(path) if path else (field,)
+        super().__init__(f"{' → '.join(str(p) for p in self.path)}: {message}")
         self.field = field
         self.message = message
 
@@ -32,10 +36,13 @@ class Parameter:
 
     ``kind`` is ``"float"`` (a finite number in ``[min, max]``), ``"int"``,
     ``"choice"`` (one of ``choices``), ``"vector"`` (``length`` finite numbers,
-    each in ``[min, max]``; e.g. body-frame components ``[x, y, z]``) or
+    each in ``[min, max]``; e.g. body-frame components ``[x, y, z]``),
     ``"text"`` (a string of at most ``max_length`` characters, checked by
     ``parse``, which raises ``ValueError`` with a student-readable reason and
-    never evaluates the text). ``scale`` is a hint for controls: ``"log"``
+    never evaluates the text) or ``"list"`` (a JSON list of records, such as
+    the parts of a composite body: ``parse`` checks and normalises it and
+    raises :class:`ParameterError` whose ``path`` names the entry and field;
+    ``item_schema`` describes the records for the API and the page). ``scale`` is a hint for controls: ``"log"``
     means a slider should move in log10 of the value, ``"symlog"`` in
     sign(v)·log10(1 + |v|) (for ranges that span zero and several decades,
     such as a spin that may be −2000 to 2000 rad/s but is usually tens).
@@ -43,18 +50,19 @@ class Parameter:
 
     name: str
     unit: str
-    default: float | int | str
+    default: float | int | str | list
     min: float | None = None
     max: float | None = None
     description: str = ""
     label: str = ""
-    kind: Literal["float", "int", "choice", "vector", "text"] = "float"
+    kind: Literal["float", "int", "choice", "vector", "text", "list"] = "float"
     choices: tuple[str, ...] = ()
     scale: Literal["linear", "log", "symlog"] = "linear"
     step: float | None = None
     length: int = 3
     max_length: int = 200
-    parse: Callable[[str], Any] | None = field(default=None, compare=False, repr=False)
+    parse: Callable[[Any], Any] | None = field(default=None, compare=False, repr=False)
+    item_schema: Any = None
 
     def __post_init__(self) -> None:
         if self.kind == "choice":
@@ -63,6 +71,10 @@ class Parameter:
         elif self.kind == "text":
             if not isinstance(self.default, str) or len(self.default) > self.max_length:
                 raise ValueError(f"{self.name}: default must be a string of at most max_length characters")
+        elif self.kind == "list":
+            if self.parse is None or not isinstance(self.default, list):
+                raise ValueError(f"{self.name}: a list parameter needs a parse function and a list default")
+            self.parse(self.default)
         elif self.kind == "vector":
             if self.min is None or self.max is None or len(self.default) != self.length:
                 raise ValueError(f"{self.name}: a vector needs min, max and a default of length {self.length}")
@@ -79,10 +91,12 @@ class Parameter:
             return "one of " + ", ".join(repr(c) for c in self.choices)
         if self.kind == "text":
             return f"text of at most {self.max_length} characters"
+        if self.kind == "list":
+            return "a list of records"
         unit = f" {self.unit}" if self.unit else ""
         return f"between {self.min:g} and {self.max:g}{unit}"
 
-    def validate(self, value: Any) -> float | int | str:
+    def validate(self, value: Any) -> Any:
         """Return ``value`` converted to this parameter's type, or raise ParameterError."""
         if self.kind == "choice":
             if not isinstance(value, str) or value not in self.choices:
@@ -90,6 +104,9 @@ class Parameter:
             return value
         if self.kind == "text":
             return self._validate_text(value)
+        if self.kind == "list":
+            assert self.parse is not None
+            return self.parse(value)
         if self.kind == "vector":
             return self._validate_vector(value)
         if isinstance(value, bool) or not isinstance(value, (int, float)):
@@ -146,6 +163,8 @@ class Parameter:
             out["choices"] = list(self.choices)
         elif self.kind == "text":
             out["max_length"] = self.max_length
+        elif self.kind == "list":
+            out["item_schema"] = self.item_schema
         else:
             if self.kind == "vector":
                 out["length"] = self.length
@@ -172,7 +191,10 @@ class ParameterSet:
         object.__setattr__(self, "by_name", {p.name: p for p in self.parameters})
 
     def defaults(self) -> dict[str, Any]:
-        return {p.name: list(p.default) if p.kind == "vector" else p.default for p in self.parameters}
+        return {
+            p.name: list(p.default) if p.kind == "vector" else copy.deepcopy(p.default) if p.kind == "list" else p.default
+            for p in self.parameters
+        }
 
     def validate(self, raw: Mapping[str, Any] | None, *, base: Mapping[str, Any] | None = None) -> dict[str, Any]:
         """Validate ``raw`` and fill the rest from ``base`` (default: the defaults).

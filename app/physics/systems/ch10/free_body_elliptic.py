@@ -37,7 +37,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 from scipy.special import elliprf, elliprj
 
-from app.physics.bodies.rigid_body import check_principal_inertia
+from app.physics.bodies.inertia import check_principal_inertia
 from app.physics.math.rotations import (
     quaternion_from_axis_angle,
     quaternion_from_euler_313,

@@ -21,6 +21,7 @@ from typing import Any
 
 import numpy as np
 
+from app.physics.bodies.inertia import centroidal_from_point
 from app.physics.bodies.rigid_body import RigidBody
 from app.physics.core.parameters import Parameter, ParameterError, ParameterSet
 from app.physics.math.rotations import body_rates_from_euler_313_rates, euler_313_from_quaternion, quaternion_from_euler_313
@@ -30,7 +31,8 @@ from app.physics.systems.ch10.heavy_top_quadrature import HeavyTopQuadrature, he
 
 def _check(values: Mapping[str, Any]) -> None:
     m, l = values["mass_kg"], values["cg_distance_m"]
-    transverse_cm = values["I_transverse_pivot"] - m * l * l
+    inertia_pivot = np.diag([values["I_transverse_pivot"], values["I_transverse_pivot"], values["I_axial"]])
+    transverse_cm = float(centroidal_from_point(inertia_pivot, m, np.array([0.0, 0.0, l]))[0, 0])
     if transverse_cm <= 0.0:
         raise ParameterError(
             "I_transverse_pivot",

@@ -36,7 +36,8 @@ from typing import Any
 
 import numpy as np
 
-from app.physics.bodies.rigid_body import RigidBody, check_principal_inertia
+from app.physics.bodies.inertia import check_principal_inertia
+from app.physics.bodies.rigid_body import RigidBody
 from app.physics.core.closed_form import ClosedFormModel, ClosedFormSolution, Event
 from app.physics.core.parameters import Parameter, ParameterError, ParameterSet
 from app.physics.math.rotations import quaternion_conjugate, quaternion_multiply, rotate_vector

@@ -197,7 +197,12 @@ def test_every_example_solves_its_defaults_into_strict_json(example_id):
     assert set(data["outputs"]) == set(example.output_units)
     for name, raw in solution.outputs.items():
         value = data["outputs"][name]
-        if np.ndim(raw) == 1 and np.shape(raw) == (3,):
+        if isinstance(raw, str):  # a verdict in words (e.g. whether principal moments repeat)
+            assert value and isinstance(value, str), name
+        elif np.shape(raw) == (3, 3):  # a tensor or a set of axes: three rows of three floats
+            assert isinstance(value, list) and all(isinstance(row, list) and len(row) == 3 for row in value), name
+            assert all(isinstance(v, float) for row in value for v in row), name
+        elif np.ndim(raw) == 1 and np.shape(raw) == (3,):
             assert isinstance(value, list) and len(value) == 3 and all(isinstance(v, float) for v in value), name
         elif np.ndim(raw) == 0:
             assert isinstance(value, (int, float)) and not isinstance(value, bool), name
@@ -208,3 +213,5 @@ def test_every_example_solves_its_defaults_into_strict_json(example_id):
         assert step["title"] and step["latex"] and isinstance(step["values"], dict)
         for v in step["values"].values():
             assert isinstance(v, float | int) or (isinstance(v, list) and len(v) == 3), (step["title"], v)
+            if isinstance(v, list) and isinstance(v[0], list):  # a 3×3 tensor
+                assert all(isinstance(row, list) and len(row) == 3 and all(isinstance(x, float) for x in row) for row in v)
