@@ -28,11 +28,13 @@ def test_list_examples(client):
     response = client.get("/api/examples")
     assert response.status_code == 200
     listed = response.json()
-    assert [e["id"] for e in listed] == ["1.1", "1.2", "particle-work-energy", "equinox-precession"]
+    chapters = {"1.1": 1, "1.2": 1, "particle-work-energy": 1, "inertia-of-composite-body": 5, "planar-collision": 6, "equinox-precession": 10}
+    assert [e["id"] for e in listed] == list(chapters)
     for e in listed:
-        assert e["title"] and e["chapter"] == (10 if e["id"] == "equinox-precession" else 1)
+        assert e["title"] and e["chapter"] == chapters[e["id"]]
         for p in e["inputs"]:
-            assert {"name", "unit", "default", "min", "max", "description"} <= set(p)
+            assert {"name", "unit", "default", "description", "kind"} <= set(p)
+            assert {"min", "max"} <= set(p) or p["kind"] in ("choice", "text", "list")
 
 
 @pytest.mark.parametrize("body", [{}, {"inputs": {}}])
