@@ -165,6 +165,8 @@ class SlidingLadderScene(IntegratedScene):
             physics.WALL_AND_FLOOR: "Both ends slide: the wall force falls as the ladder speeds up.",
             physics.FLOOR_SLIDING: "The wall force reached zero: the top end has left the wall and the ladder slides on the floor alone.",
             physics.FLOOR_STUCK: "The bottom end has stopped sliding: friction holds it, and the ladder pivots about it.",
-            physics.LYING: "The ladder has landed flat (a plastic impact, e = 0) and slides on the floor until friction stops it.",
+            physics.LYING: "The ladder has landed flat (a plastic impact, e = 0) and "
+            + ("slides on the floor until friction stops it." if params["mu_floor"] > 0.0
+               else "slides on at constant speed: the floor is smooth, so nothing stops it."),
         }
         return words[phase]
