@@ -81,6 +81,13 @@
       input.addEventListener("change", () => { session.values[spec.name] = input.value; schedule(); });
       row.appendChild(input);
       widgets[spec.name] = { set: (v) => { input.value = v; } };
+    } else if (spec.kind === "list") {
+      // A list of records (the bodies of a composite): an editable table, the whole list sent on each change.
+      row.classList.add("list");
+      const editor = bodyEditor(spec, (records) => { session.values[spec.name] = records; schedule(); });
+      editor.set(session.values[spec.name]);
+      row.appendChild(editor.element);
+      widgets[spec.name] = { set: (v) => { session.values[spec.name] = editor.set(v); }, markError: editor.markError };
     } else if (spec.kind === "vector") {
       // A vector: one number box per component, e.g. [x, y, z] in the body frame.
       row.classList.add("wide");
@@ -143,7 +150,7 @@
     const desc = document.createElement("div");
     desc.className = "desc";
     desc.id = `${id}-desc`;
-    desc.textContent = spec.kind === "choice" || spec.kind === "text" ? spec.description : `${spec.description} (${spec.min} to ${spec.max} ${spec.unit})`;
+    desc.textContent = ["choice", "text", "list"].includes(spec.kind) ? spec.description : `${spec.description} (${spec.min} to ${spec.max} ${spec.unit})`;
     row.appendChild(desc);
     list.appendChild(row);
   }
@@ -178,10 +185,133 @@
     schedule();
   });
 
-  function showError(field, message) {
-    list.querySelectorAll(".control").forEach((row) => row.classList.toggle("invalid", row.dataset.name === field));
+  function showError(field, message, loc) {
+    // loc (from a 422): [..., name, index, field, ...] points into a list control's row and field.
+    const path = loc || [];
+    let listName = null;
+    for (const [name, widget] of Object.entries(widgets)) {
+      if (!widget.markError) continue;
+      const at = path.indexOf(name);
+      const hit = at >= 0 && path.length > at + 1;
+      widget.markError(hit ? path[at + 1] : null, hit ? path[at + 2] : null);
+      if (at >= 0) listName = name;
+    }
+    const invalid = listName || field;
+    list.querySelectorAll(".control").forEach((row) => row.classList.toggle("invalid", row.dataset.name === invalid));
     errorBox.textContent = message;
     errorBox.hidden = !message;
+  }
+
+  // ---- body editor: one row per record of a "list" parameter (item_schema: fields, shapes, sequences) -----
+  function bodyEditor(spec, onChange) {
+    const schema = spec.item_schema;
+    const shapes = Object.fromEntries(schema.shapes.map((s) => [s.shape, s]));
+    const element = document.createElement("div");
+    element.className = "body-editor";
+    const rows = document.createElement("div");
+    const add = document.createElement("button");
+    add.type = "button";
+    add.className = "add-body";
+    add.textContent = "add body";
+    element.append(rows, add);
+    let records = [];
+    const clone = (v) => JSON.parse(JSON.stringify(v));
+    const field = (text, input) => {
+      const label = document.createElement("label");
+      label.className = "field";
+      const span = document.createElement("span");
+      span.textContent = text;
+      label.append(span, input);
+      return label;
+    };
+    const number = (value, name, component) => {
+      const input = document.createElement("input");
+      input.type = "number";
+      input.step = "any";
+      input.value = value;
+      input.dataset.field = name;
+      if (component !== undefined) input.dataset.component = component;
+      return input;
+    };
+    const select = (options, value, name) => {
+      const el = document.createElement("select");
+      for (const o of options) el.add(new Option(o, o));
+      el.value = value;
+      el.dataset.field = name;
+      return el;
+    };
+    function render() {
+      rows.replaceChildren(...records.map((record, index) => {
+        const shape = shapes[record.shape];
+        const box = document.createElement("fieldset");
+        box.className = "body-row";
+        box.dataset.index = index;
+        const legend = document.createElement("legend");
+        legend.textContent = `body ${index + 1}`;
+        box.appendChild(legend);
+        box.appendChild(field("shape", select(schema.shapes.map((s) => s.shape), record.shape, "shape")));
+        box.appendChild(field("mass (kg)", number(record.mass_kg, "mass_kg")));
+        for (const d of shape.dimensions) box.appendChild(field(`${d.replace(/_m$/, "").replaceAll("_", " ")} (m)`, number(record[d], d)));
+        "xyz".split("").forEach((c, i) => box.appendChild(field(`${c} (m)`, number(record.position_m[i], "position_m", i))));
+        box.appendChild(field("sequence", select(schema.sequences, record.sequence, "sequence")));
+        [0, 1, 2].forEach((i) => box.appendChild(field(`angle ${i + 1} (deg)`, number(record.angles_deg[i], "angles_deg", i))));
+        const hole = document.createElement("input");
+        hole.type = "checkbox";
+        hole.checked = record.hole;
+        hole.dataset.field = "hole";
+        box.appendChild(field("hole", hole));
+        const remove = document.createElement("button");
+        remove.type = "button";
+        remove.className = "remove-body";
+        remove.textContent = "remove";
+        remove.setAttribute("aria-label", `remove body ${index + 1}`);
+        remove.addEventListener("click", () => { records.splice(index, 1); render(); onChange(clone(records)); });
+        box.appendChild(remove);
+        box.addEventListener("change", (event) => edit(index, event.target));
+        return box;
+      }));
+      add.disabled = records.length >= schema.max_items;
+    }
+    function edit(index, input) {
+      const record = records[index];
+      const name = input.dataset.field;
+      if (name === "shape") {
+        // Keep the dimensions the new shape shares with the old one; the rest start at 0.1 m.
+        const kept = { shape: input.value, mass_kg: record.mass_kg };
+        for (const d of shapes[input.value].dimensions) kept[d] = d in record ? record[d] : 0.1;
+        records[index] = { ...kept, position_m: record.position_m, sequence: record.sequence, angles_deg: record.angles_deg, hole: record.hole };
+        render();
+      } else if (name === "sequence") {
+        record.sequence = input.value;
+      } else if (name === "hole") {
+        record.hole = input.checked;
+      } else {
+        const v = Number(input.value);
+        if (input.value === "" || !Number.isFinite(v)) {
+          showError(spec.name, `body ${index + 1}: ${name} needs a number`, [spec.name, index, name]);
+          return;
+        }
+        if (input.dataset.component !== undefined) record[name][Number(input.dataset.component)] = v;
+        else record[name] = v;
+      }
+      onChange(clone(records));
+    }
+    add.addEventListener("click", () => {
+      records.push({ shape: "sphere", mass_kg: 1, radius_m: 0.05, position_m: [0, 0, 0], sequence: "3-2-1", angles_deg: [0, 0, 0], hole: false });
+      render();
+      onChange(clone(records));
+    });
+    return {
+      element,
+      set(v) { records = clone(v); render(); return clone(records); },
+      markError(index, name) {
+        rows.querySelectorAll(".body-row").forEach((box) => {
+          const here = index !== null && index !== undefined && Number(box.dataset.index) === Number(index);
+          box.classList.toggle("invalid", here);
+          box.querySelectorAll("[data-field]").forEach((el) => el.classList.toggle("invalid", here && el.dataset.field === name));
+        });
+      },
+    };
   }
 
   async function call(method, url, body) {
@@ -191,6 +321,7 @@
       const d = Array.isArray(data.detail) ? data.detail[0] : { msg: data.detail || response.statusText, loc: [] };
       const err = new Error(d.msg);
       err.field = d.loc ? d.loc[d.loc.length - 1] : null;
+      err.loc = d.loc || [];
       throw err;
     }
     return data;
@@ -280,7 +411,7 @@
       sessionStorage.setItem(storageKey, JSON.stringify(session));
       if (scene && !viewerStarted) startViewer();
     } catch (err) {
-      showError(err.field, err.message);
+      showError(err.field, err.message, err.loc);
     }
   }
   async function schedule() {
