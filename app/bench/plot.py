@@ -413,6 +413,39 @@ def work_precision_svg(scene: dict) -> str:
     return "\n".join(out) + "\n"
 
 
+#: Physics time one displayed frame may take (µs): a fraction of the 33 ms frame that leaves room for 100 students on two cores.
+FRAME_BUDGET_US = 50.0
+
+
+def frame_cost_svg(live_scenes: Sequence[dict]) -> str:
+    """A bar per animated scene: physics µs per displayed frame (linear axis) against :data:`FRAME_BUDGET_US`."""
+    rows = sorted(live_scenes, key=lambda s: -float(s["physics_us_per_frame"]))
+    row_h, left, right, top = 22, 210, 700, 64
+    height = top + row_h * len(rows) + 56
+    top_value = max([FRAME_BUDGET_US * 1.2, *(float(s["physics_us_per_frame"]) for s in rows)])
+    x = lambda v: left + (right - left) * v / top_value  # noqa: E731
+    out = [
+        f'<svg xmlns="{SVG_NS}" width="{WIDTH}" height="{height}" viewBox="0 0 {WIDTH} {height}" font-family="{escape(FONT)}">',
+        f'<rect width="{WIDTH}" height="{height}" fill="#ffffff"/>',
+        _text(16, 28, "Physics time per displayed frame, each animated scene at its defaults", size=15, weight="600"),
+        _text(16, 46, "µs of CPU per frame at 30 frames/s: a closed form evaluated at the frame's time, or one frame of an integrated live run", size=11, fill="#555"),
+    ]
+    for i, scene in enumerate(rows):
+        value = float(scene["physics_us_per_frame"])
+        y = top + i * row_h
+        colour = "#1b8a3a" if value <= FRAME_BUDGET_US else "#d0202e"
+        out.append(_text(left - 8, y + 15, str(scene["scene_id"]), size=12, anchor="end"))
+        out.append(f'<rect x="{left}" y="{y + 4}" width="{_f(max(x(value) - left, 1.0))}" height="{row_h - 8}" fill="{colour}"/>')
+        out.append(_text(x(value) + 6, y + 15, f"{value:.3g} µs ({scene['method']})", size=11))
+    bottom = top + row_h * len(rows)
+    budget = x(FRAME_BUDGET_US)
+    out.append(f'<line x1="{_f(budget)}" x2="{_f(budget)}" y1="{top - 4}" y2="{bottom + 4}" stroke="#d0202e" stroke-width="1.5" stroke-dasharray="5 3"/>')
+    out.append(_text(budget, bottom + 20, f"budget {FRAME_BUDGET_US:g} µs", size=11, anchor="middle", fill="#d0202e"))
+    out.append(f'<line x1="{left}" x2="{right}" y1="{bottom + 4}" y2="{bottom + 4}" stroke="#888" stroke-width="1"/>')
+    out.append("</svg>")
+    return "\n".join(out) + "\n"
+
+
 def write_svgs(results: dict, out_dir: Path) -> list[Path]:
     """Write ``<scene_id>.svg`` for every scene of a work_precision.json document; returns the paths."""
     out_dir.mkdir(parents=True, exist_ok=True)
@@ -420,6 +453,10 @@ def write_svgs(results: dict, out_dir: Path) -> list[Path]:
     for scene in results.get("scenes", ()):
         path = out_dir / f"{scene['scene_id']}.svg"
         path.write_text(work_precision_svg(scene), encoding="utf-8")
+        written.append(path)
+    if results.get("live_scenes"):
+        path = out_dir / "live-frame-costs.svg"
+        path.write_text(frame_cost_svg(results["live_scenes"]), encoding="utf-8")
         written.append(path)
     return written
 

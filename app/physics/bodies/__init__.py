@@ -1,1 +1,1 @@
-"""Rigid bodies as data: principal inertia checks and the body about a fixed point (chapter 5 adds inertia tensors)."""
+"""Rigid bodies as data: inertia (the one home for tensors and principal axes), composite bodies, the body about a fixed point."""
