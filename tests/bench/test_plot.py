@@ -213,3 +213,20 @@ def test_degenerate_scenes_still_give_valid_svg(change):
     root = ET.fromstring(text)
     assert root.tag == "{http://www.w3.org/2000/svg}svg"
     assert "nan" not in text.lower().replace("dynamics", "") and "inf" not in text.replace("info", "")
+
+
+def test_frame_cost_chart_marks_scenes_over_the_budget_red():
+    from app.bench.plot import FRAME_BUDGET_US, frame_cost_svg
+
+    live = [
+        {"scene_id": "quick", "method": "closed-form", "physics_us_per_frame": 3.0},
+        {"scene_id": "slow", "method": "rk4", "physics_us_per_frame": 2 * FRAME_BUDGET_US},
+        {"scene_id": "still", "method": "static", "physics_us_per_frame": 0.0},
+    ]
+    root = ET.fromstring(frame_cost_svg(live))
+    bars = [r for r in root.findall("svg:rect", NS) if r.get("height") != root.get("height")]
+    assert [b.get("fill") for b in bars] == ["#d0202e", "#1b8a3a", "#1b8a3a"]  # sorted slowest first
+    widths = [float(b.get("width")) for b in bars]
+    assert widths[0] > widths[1] >= widths[2] > 0.0
+    labels = [t.text for t in root.findall("svg:text", NS)]
+    assert "slow" in labels and f"budget {FRAME_BUDGET_US:g} µs" in labels
