@@ -49,19 +49,21 @@ is a continuous-contact motion this impact model does not follow). Every joule
 that leaves the bar is booked in ``energy_lost_J``, so kinetic + potential +
 lost stays equal to the initial energy.
 
-The reset map runs in Python (the impulse law is Python); the compiled kernel
-calls it through a ctypes callback, which is cheap next to the rarity of impacts.
+The reset map and its helpers are ``register_jitable``: the compiled reset
+kernel runs them with the compiled impulse law
+(:func:`~app.physics.systems.ch06.impact.impact_core`) inlined, and the same
+source runs as plain Python for the kernel's Python twin and for
+:func:`reset_state` called from Python.
 """
 
 from __future__ import annotations
 
-import ctypes
 import math
-import warnings
 from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
+from numba.extending import register_jitable
 
 from app.physics.bodies.inertia import slender_rod
 from app.physics.core.parameters import Parameter, ParameterError, ParameterSet
@@ -73,7 +75,15 @@ from app.physics.solvers.kernels import (
     RHS_SIGNATURE,
     kernel,
 )
-from app.physics.systems.ch06.impact import SLIP_STATES, resolve_impact
+from app.physics.systems.ch06.impact import (
+    IMPACT_OUT_SIZE,
+    OUT_ENERGY_LOSS,
+    OUT_NORMAL_IMPULSE,
+    OUT_SLIP_CODE,
+    OUT_TANGENTIAL_IMPULSE,
+    SLIP_STATES,
+    impact_core,
+)
 
 #: Lowest release height of the lower end above the floor (m): the bar starts in flight.
 START_CLEARANCE_M = 1e-3
@@ -155,6 +165,7 @@ def initial_state(params: Mapping[str, Any]) -> np.ndarray:
     return y
 
 
+@register_jitable
 def lever_arm_m(theta_rad: float, length_m: float, end: int) -> np.ndarray:
     """(2,) [x, z] from the centre to end A (``end`` 0) or B (1), m."""
     sign = -1.0 if end == END_A else 1.0
@@ -169,21 +180,29 @@ def end_positions_m(states: np.ndarray, length_m: float) -> tuple[np.ndarray, np
     return centre - half, centre + half
 
 
+@register_jitable
 def contact_velocity_m_s(y: np.ndarray, r: np.ndarray) -> np.ndarray:
     """(2,) [vn, vt] of the bar's point at lever arm ``r`` (m): normal +z, tangent +x, m/s."""
     return np.array([y[VZ] + y[OMEGA] * r[0], y[VX] - y[OMEGA] * r[1]])
 
 
+@register_jitable
 def inverse_effective_mass(mass_kg: float, inertia_kg_m2: float, r: np.ndarray) -> np.ndarray:
     """(2, 2) W (1/kg) of the point at lever arm ``r`` in [normal, tangent]: ``(1/m) 1 + q qᵀ / I``, ``q = (r_x, −r_z)``."""
     q = np.array([r[0], -r[1]])
     return np.eye(2) / mass_kg + np.outer(q, q) / inertia_kg_m2
 
 
+@register_jitable
+def _kinetic_plus_potential_J(vx_m_s, vz_m_s, omega_rad_s, z_m, p):
+    """Kinetic + potential energy (J, floor at z = 0) from the velocities and centre height (scalars or arrays alike)."""
+    m, inertia, g = p[P_MASS], p[P_INERTIA], p[P_G]
+    return 0.5 * m * (vx_m_s**2 + vz_m_s**2) + 0.5 * inertia * omega_rad_s**2 + m * g * z_m
+
+
 def mechanical_energy_J(y: np.ndarray, p: np.ndarray) -> np.ndarray:
     """Kinetic + potential energy (J, floor at z = 0) of states ``y`` (..., 16)."""
-    m, inertia, g = p[P_MASS], p[P_INERTIA], p[P_G]
-    return 0.5 * m * (y[..., VX] ** 2 + y[..., VZ] ** 2) + 0.5 * inertia * y[..., OMEGA] ** 2 + m * g * y[..., Z]
+    return _kinetic_plus_potential_J(y[..., VX], y[..., VZ], y[..., OMEGA], y[..., Z], p)
 
 
 def angular_momentum_about_point(y: np.ndarray, p: np.ndarray, point_m: np.ndarray) -> float:
@@ -192,36 +211,36 @@ def angular_momentum_about_point(y: np.ndarray, p: np.ndarray, point_m: np.ndarr
     return float(p[P_INERTIA] * y[OMEGA] + p[P_MASS] * (d[0] * y[VZ] - d[1] * y[VX]))
 
 
-def _apply_impulse(y: np.ndarray, p: np.ndarray, r: np.ndarray, impulse_n_t: np.ndarray) -> None:
+@register_jitable
+def _apply_impulse(y, p, r, impulse_n_t):
     """Change the velocities of ``y`` for impulse [Pn, Pt] (N·s) at lever arm ``r``: Δv = P/m, Δθ̇ = r × P / I."""
-    pn, pt = impulse_n_t
+    pn, pt = impulse_n_t[0], impulse_n_t[1]
     y[VX] += pt / p[P_MASS]
     y[VZ] += pn / p[P_MASS]
     y[OMEGA] += (r[0] * pn - r[1] * pt) / p[P_INERTIA]
 
 
-def _single_contact(y: np.ndarray, p: np.ndarray, end: int) -> tuple[float, str]:
-    """One end strikes alone; returns (energy loss J, slip state)."""
+@register_jitable
+def _single_contact(y, p, end):
+    """One end strikes alone; returns (energy loss J, slip code: index in SLIP_STATES)."""
     r = lever_arm_m(y[THETA], p[P_LENGTH], end)
-    result = resolve_impact(
-        inverse_effective_mass=inverse_effective_mass(p[P_MASS], p[P_INERTIA], r),
-        contact_velocity_m_s=contact_velocity_m_s(y, r), restitution=p[P_E], friction_coefficient=p[P_MU],
-    )
-    _apply_impulse(y, p, r, result.impulse_N_s)
-    impulses = np.zeros((2, 2))
-    impulses[end] = result.impulse_N_s
-    y[PN_A:SLIP] = impulses.ravel()
-    return result.energy_loss_J, result.slip_state
+    law = np.empty(IMPACT_OUT_SIZE)
+    impact_core(inverse_effective_mass(p[P_MASS], p[P_INERTIA], r), contact_velocity_m_s(y, r), p[P_E], p[P_MU], law)
+    _apply_impulse(y, p, r, law[OUT_NORMAL_IMPULSE : OUT_TANGENTIAL_IMPULSE + 1])
+    for k in range(PN_A, SLIP):
+        y[k] = 0.0
+    y[PN_A + 2 * end] = law[OUT_NORMAL_IMPULSE]
+    y[PT_A + 2 * end] = law[OUT_TANGENTIAL_IMPULSE]
+    return law[OUT_ENERGY_LOSS], law[OUT_SLIP_CODE]
 
 
-def _two_contacts(y: np.ndarray, p: np.ndarray) -> tuple[float, str]:
-    """Both ends strike a flat bar at once (common + rocking modes, see the module text); (energy loss J, slip state)."""
+@register_jitable
+def _two_contacts(y, p):
+    """Both ends strike a flat bar at once (common + rocking modes, see the module text); (energy loss J, slip code)."""
     m, L = p[P_MASS], p[P_LENGTH]
-    common = resolve_impact(
-        inverse_effective_mass=np.eye(2) / m, contact_velocity_m_s=np.array([y[VZ], y[VX]]),
-        restitution=p[P_E], friction_coefficient=p[P_MU],
-    )
-    total_normal, total_tangential = common.impulse_N_s
+    common = np.empty(IMPACT_OUT_SIZE)
+    impact_core(np.eye(2) / m, np.array([y[VZ], y[VX]]), p[P_E], p[P_MU], common)
+    total_normal, total_tangential = common[OUT_NORMAL_IMPULSE], common[OUT_TANGENTIAL_IMPULSE]
     # Rocking mode: w = (L/2) cos θ θ̇ is half of (vn_B − vn_A). Q, half of (P_B − P_A), turns the bar by
     # Δθ̇ = L cos θ Q / I; the impulse that does work on w is 2Q (power P_A vn_A + P_B vn_B = S ż + 2Q w), and
     # Δw = (3 cos²θ / m)(2Q). The law sees the side that approaches: vn = −|w|.
@@ -229,22 +248,28 @@ def _two_contacts(y: np.ndarray, p: np.ndarray) -> tuple[float, str]:
     w = lever * y[OMEGA]
     rocking_q, rocking_loss = 0.0, 0.0
     if w != 0.0:
-        rocking = resolve_impact(
-            inverse_effective_mass=np.eye(2) * (3.0 * math.cos(y[THETA]) ** 2 / m),
-            contact_velocity_m_s=np.array([-abs(w), 0.0]), restitution=p[P_E], friction_coefficient=0.0,
-        )
-        rocking_q, rocking_loss = -0.5 * math.copysign(rocking.impulse_N_s[0], w), rocking.energy_loss_J
-    normal = np.array([0.5 * total_normal - rocking_q, 0.5 * total_normal + rocking_q])  # ends A, B
-    # Friction shared in proportion to the normal impulses keeps each end inside its own cone.
-    tangential = total_tangential * normal / total_normal
+        rocking = np.empty(IMPACT_OUT_SIZE)
+        impact_core(np.eye(2) * (3.0 * math.cos(y[THETA]) ** 2 / m), np.array([-abs(w), 0.0]), p[P_E], 0.0, rocking)
+        rocking_q, rocking_loss = -0.5 * math.copysign(rocking[OUT_NORMAL_IMPULSE], w), rocking[OUT_ENERGY_LOSS]
+    normal_a, normal_b = 0.5 * total_normal - rocking_q, 0.5 * total_normal + rocking_q
     y[VX] += total_tangential / m
     y[VZ] += total_normal / m
     y[OMEGA] += 2.0 * rocking_q * lever / p[P_INERTIA]
-    y[PN_A:SLIP] = np.array([normal[0], tangential[0], normal[1], tangential[1]])
-    return common.energy_loss_J + rocking_loss, common.slip_state
+    y[PN_A], y[PN_B] = normal_a, normal_b
+    # Friction shared in proportion to the normal impulses keeps each end inside its own cone.
+    y[PT_A], y[PT_B] = total_tangential * normal_a / total_normal, total_tangential * normal_b / total_normal
+    return common[OUT_ENERGY_LOSS] + rocking_loss, common[OUT_SLIP_CODE]
 
 
-def floor_impacts(y: np.ndarray, p: np.ndarray, t_s: float, end: int) -> None:
+@register_jitable
+def _end_height_and_approach(y, length_m, end):
+    """(height m, normal velocity m/s, negative approaching) of end A (``end`` 0) or B (1) of state ``y``."""
+    r = lever_arm_m(y[THETA], length_m, end)
+    return y[Z] + r[1], contact_velocity_m_s(y, r)[0]
+
+
+@register_jitable
+def floor_impacts(y, p, t_s, end):
     """The reset map at the floor: resolve the impact(s) starting at ``end`` and update the ledger in ``y`` (16,) in place.
 
     After the striking end, the other end is checked too (it may be touching and now
@@ -255,52 +280,64 @@ def floor_impacts(y: np.ndarray, p: np.ndarray, t_s: float, end: int) -> None:
     if y[MODE] != FLIGHT:
         return
     L = p[P_LENGTH]
-    struck = [False, False]
+    struck_a, struck_b = False, False
     slowest_m_s = math.inf  # the slowest approach or rebound of a struck end at this instant
     impacts = 0
     for _ in range(4):
-        heights = [y[Z] + lever_arm_m(y[THETA], L, e)[1] for e in (END_A, END_B)]
-        approach = [contact_velocity_m_s(y, lever_arm_m(y[THETA], L, e))[0] for e in (END_A, END_B)]
-        touching = [heights[e] <= TOUCH_TOLERANCE_M or (e == end and impacts == 0) for e in (END_A, END_B)]
-        striking = [touching[e] and approach[e] < -GRAZING_SPEED_M_S for e in (END_A, END_B)]
-        if not any(striking):
+        height_a, approach_a = _end_height_and_approach(y, L, END_A)
+        height_b, approach_b = _end_height_and_approach(y, L, END_B)
+        striking_a = (height_a <= TOUCH_TOLERANCE_M or (end == END_A and impacts == 0)) and approach_a < -GRAZING_SPEED_M_S
+        striking_b = (height_b <= TOUCH_TOLERANCE_M or (end == END_B and impacts == 0)) and approach_b < -GRAZING_SPEED_M_S
+        if not (striking_a or striking_b):
             break
-        slowest_m_s = min(slowest_m_s, *(-approach[e] for e in (END_A, END_B) if striking[e]))
-        if all(striking) and L * abs(math.sin(y[THETA])) <= 2.0 * TOUCH_TOLERANCE_M:  # both on the floor: flat
+        if striking_a:
+            slowest_m_s = min(slowest_m_s, -approach_a)
+        if striking_b:
+            slowest_m_s = min(slowest_m_s, -approach_b)
+        if striking_a and striking_b and L * abs(math.sin(y[THETA])) <= 2.0 * TOUCH_TOLERANCE_M:  # both on the floor: flat
             loss, slip = _two_contacts(y, p)
         else:
-            loss, slip = _single_contact(y, p, end if striking[end] else END_A if striking[END_A] else END_B)
-        struck = [struck[e] or striking[e] for e in (END_A, END_B)]
+            end_striking = striking_a if end == END_A else striking_b
+            loss, slip = _single_contact(y, p, end if end_striking else END_A if striking_a else END_B)
+        struck_a, struck_b = struck_a or striking_a, struck_b or striking_b
         impacts += 1
         y[IMPACTS] += 1.0
         y[LOST] += loss
         y[LAST_LOSS] = loss if impacts == 1 else y[LAST_LOSS] + loss
         y[LAST_T] = t_s
-        y[SLIP] = 1.0 + SLIP_STATES.index(slip)
-    if not impacts:
+        y[SLIP] = 1.0 + slip
+    if impacts == 0:
         return
-    rebounds = [contact_velocity_m_s(y, lever_arm_m(y[THETA], L, e))[0] for e in (END_A, END_B) if struck[e]]
-    if min(slowest_m_s, *rebounds) < REST_SPEED_M_S:
+    slowest_rebound_m_s = slowest_m_s
+    if struck_a:
+        slowest_rebound_m_s = min(slowest_rebound_m_s, _end_height_and_approach(y, L, END_A)[1])
+    if struck_b:
+        slowest_rebound_m_s = min(slowest_rebound_m_s, _end_height_and_approach(y, L, END_B)[1])
+    if slowest_rebound_m_s < REST_SPEED_M_S:
         _settle(y, p)
 
 
-def _settle(y: np.ndarray, p: np.ndarray) -> None:
+@register_jitable
+def _settle(y, p):
     """End the Zeno cascade: lay a nearly flat bar on the floor (RESTING) or stop a tilted one (SETTLED_ON_END).
 
     The energy the bar gives up here (its remaining vertical and rocking motion,
     and the small drop to lying flat) is booked as lost.
     """
-    before = float(mechanical_energy_J(y, p))
+    before = _kinetic_plus_potential_J(y[VX], y[VZ], y[OMEGA], y[Z], p)
     raised_m = p[P_LENGTH] * abs(math.sin(y[THETA]))
     if raised_m <= FLAT_FRACTION * p[P_LENGTH]:
         y[THETA] = math.pi * round(y[THETA] / math.pi)
         y[Z] = 0.0
-        y[VZ] = y[OMEGA] = 0.0
+        y[VZ] = 0.0
+        y[OMEGA] = 0.0
         y[MODE] = RESTING
     else:
-        y[VX] = y[VZ] = y[OMEGA] = 0.0
+        y[VX] = 0.0
+        y[VZ] = 0.0
+        y[OMEGA] = 0.0
         y[MODE] = SETTLED_ON_END
-    y[LOST] += before - float(mechanical_energy_J(y, p))
+    y[LOST] += before - _kinetic_plus_potential_J(y[VX], y[VZ], y[OMEGA], y[Z], p)
 
 
 # -- compiled kernels --------------------------------------------------------------------
@@ -331,36 +368,19 @@ def bar_events(t, y, p, g_out):
     g_out[2] = y[3] if y[6] == 1.0 else 1.0
 
 
-def _reset_from_pointers(y_address: int, n_state: int, p_address: int, n_parameters: int, t_s: float, index: int) -> None:
-    """The reset map on raw arrays (called from the compiled kernel through ctypes)."""
-    y = np.ctypeslib.as_array((ctypes.c_double * n_state).from_address(y_address))
-    p = np.ctypeslib.as_array((ctypes.c_double * n_parameters).from_address(p_address))
-    try:
-        reset_state(y, p, t_s, int(index))
-    except Exception:  # noqa: BLE001 - an error must stop the run, not be printed by ctypes and ignored
-        y[:] = math.nan
-
-
-def reset_state(y: np.ndarray, p: np.ndarray, t_s: float, index: int) -> None:
-    """Event ``index``: an end reaches the floor (impacts), or the resting bar stops sliding (ẋ = 0)."""
+@register_jitable
+def reset_state(y, p, t_s, index):
+    """Event ``index``: an end reaches the floor (impacts), or the resting bar stops sliding (ẋ = 0); ``y`` (16,) in place."""
     if index == EVENT_STOPS_SLIDING:
         y[VX] = 0.0
     else:
         floor_impacts(y, p, t_s, END_A if index == EVENT_END_A else END_B)
 
 
-_RESET_CALLBACK = ctypes.CFUNCTYPE(None, ctypes.c_void_p, ctypes.c_int64, ctypes.c_void_p, ctypes.c_int64, ctypes.c_double, ctypes.c_int64)(
-    _reset_from_pointers
-)
-
-with warnings.catch_warnings():
-    # A kernel that calls a ctypes function holds its address, so numba compiles it per process instead of caching it.
-    warnings.filterwarnings("ignore", message=r"Cannot cache compiled function", category=Warning)
-
-    @kernel(RESET_SIGNATURE)
-    def bar_reset(t, y, p, index):
-        """Hands the reset map to Python (the impulse law lives there)."""
-        _RESET_CALLBACK(y.ctypes, y.shape[0], p.ctypes, p.shape[0], t, index)
+@kernel(RESET_SIGNATURE)
+def bar_reset(t, y, p, index):
+    """The reset map :func:`reset_state`, with the impulse law compiled in."""
+    reset_state(y, p, t, index)
 
 
 def system(params: Mapping[str, Any]) -> OdeSystem:
