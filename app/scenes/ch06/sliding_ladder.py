@@ -4,7 +4,7 @@ The ladder's plane is the world x–z plane at y = 0, seen from −y: the wall i
 the plane x = 0 (drawn as a grey slab at x < 0), the floor z = 0 (a slab below
 it). The bar is drawn in metres. Arrows: the whole contact force (normal plus
 friction) on the top end (blue) and on the bottom end (orange; drawn at the centre
-once the bar lies flat), and the weight at the centre (grey), all on one scale: m·g is drawn 0.3 L long. The fall replays
+once the bar lies flat), and the weight pointing down onto the centre (grey), all on one scale: m·g is drawn 0.3 L long. The fall replays
 from the start 2.5 s after the landing (on a smooth floor the ladder would slide
 out of view).
 """
@@ -80,7 +80,7 @@ class SlidingLadderScene(IntegratedScene):
         self.arrows.head_length = 0.06 * length
         self._force_scale = 0.3 * length / (params["mass_kg"] * params["g_m_s2"])
         self.legend.position = (0.05 * length, 0.0, 1.3 * length)
-        self.legend.text = "blue: wall on A · orange: floor on B (on G once lying) · grey: weight m·g (0.3 L long)"
+        self.legend.text = "blue: wall on A · orange: floor on B (on G once lying) · grey: weight m·g, ending at G (0.3 L long)"
         self.changes = physics.phase_changes(params, t_end_s=LOOKAHEAD_S)
         self._draw()
 
@@ -98,7 +98,8 @@ class SlidingLadderScene(IntegratedScene):
         weight = np.array([0.0, 0.0, -params["mass_kg"] * params["g_m_s2"]])
         # Lying flat, the floor carries the bar along its length: its resultant acts below G.
         floor_point = center if int(y[physics.PHASE]) == physics.LYING else bottom
-        tails = np.array([_xz(top), _xz(floor_point), _xz(center)])
+        # The weight is drawn ending at G (from above), so it never pokes through the floor once the bar lies flat.
+        tails = np.array([_xz(top), _xz(floor_point), _xz(center) - self._force_scale * weight])
         self.arrows.points = arrow_segments(tails, np.array([on_top, on_bottom, weight]), self._force_scale)
         for label, tail, vector in zip(self.arrow_labels, tails, (on_top, on_bottom)):
             label.position = tuple(tail + 1.05 * self._force_scale * vector)
