@@ -245,82 +245,61 @@ def cost_at_error(points: Sequence[dict], target: float) -> float | None:
     return min(reached) if reached else None
 
 
-def _integrated_frame_cost(cls) -> dict[str, Any]:
-    from app.physics.solvers import LiveRun
-    from app.scenes.kit.integrated import FRAME_DT_S
-
-    model = cls.model()
-    params = model.parameters.defaults()
-    integrator = model.integrator(params, {}, FRAME_DT_S)
-    run = LiveRun(model.system(params), integrator, model.initial_state(params))
-    run.advance(FRAME_DT_S)
-    frames = 3000
-    start = time.perf_counter()
-    for _ in range(frames):
-        run.advance(FRAME_DT_S)
-    per_frame = (time.perf_counter() - start) / frames
-    report = simulate_model(model, params, {}, t_end_s=60.0, frame_rate_hz=30.0)
-    return {
-        "method": integrator.name, "description": integrator.describe(FRAME_DT_S),
-        "physics_us_per_frame": 1e6 * per_frame, "max_invariant_drift_60s": report.max_invariant_drift,
-    }
-
-
-def _closed_form_frame_cost(cls) -> dict[str, Any]:
-    from app.physics.core.closed_form import evaluate_model
-    from app.scenes.kit.integrated import FRAME_DT_S
-
-    model = cls.model()
-    params = model.parameters.defaults()
-    frames = 3000
-    model.evaluate(params, np.array([0.0]))
-    start = time.perf_counter()
-    for frame in range(frames):
-        model.evaluate(params, np.array([frame * FRAME_DT_S]))
-    per_frame = (time.perf_counter() - start) / frames
-    report = evaluate_model(model, params, t_end_s=60.0, frame_rate_hz=30.0)
-    return {
-        "method": "closed-form", "description": f"{model.description}, evaluated at each frame's time",
-        "physics_us_per_frame": 1e6 * per_frame, "max_invariant_drift_60s": report["stats"]["max_invariant_drift"],
-    }
-
-
-def _worked_example_change_cost(cls) -> dict[str, Any]:
-    example = cls.example
-    inputs = example.inputs.defaults()
-    example.solve(inputs)
-    runs = 200
-    start = time.perf_counter()
-    for _ in range(runs):
-        example.solve(inputs)
-    return {
-        "method": "static",
-        "description": f"{example.id} is solved again only when a control changes"
-        + ("; frames only move what was drawn" if cls.animated else "; nothing is computed per frame"),
-        "physics_us_per_frame": 0.0, "solve_us_on_change": 1e6 * (time.perf_counter() - start) / runs,
-    }
-
-
 def live_frame_costs() -> list[dict[str, Any]]:
-    """Physics cost of one displayed frame (30 Hz) of every scene with a model or a worked example, at its defaults.
+    """Cost of one displayed frame (30 Hz) of every scene, at its defaults (see :mod:`app.bench.frame_costs`).
 
-    Integrated scenes: one frame of the live run (steps, events, resets).
-    Closed-form scenes: the model's formula evaluated at one frame's time.
-    Animated scenes also give the largest relative drift of the model's invariants over 60 s;
-    still scenes drawing a worked example give the cost of solving it again when a control changes.
+    ``physics_us_per_frame``: for an integrated scene, one frame of its compiled
+    live run; for an animated closed-form scene, the physics share of its
+    ``advance`` (profiled); 0 for a scene that computes nothing per frame.
+    ``scene_us_per_frame``: the scene's whole ``advance`` (physics and the
+    Python side of the drawing updates, nothing sent).
+    Integrated and closed-form scenes also give the largest relative drift of
+    their invariants over 60 s; scenes drawing a worked example give the cost
+    of solving it again when a control changes.
     """
-    from app.physics.core.closed_form import ClosedFormModel
+    from app.bench.frame_costs import FRAME_DT_S, live_run_cost_us, scene_frame_cost_us
+    from app.physics.core.closed_form import ClosedFormModel, evaluate_model
+    from app.physics.solvers.integrated_model import IntegratedModel
     from app.scenes import SCENES
-    from app.scenes.kit.integrated import IntegratedScene
 
     out = []
     for scene_id, cls in SCENES.items():
-        if isinstance(cls, type) and issubclass(cls, IntegratedScene):
-            out.append({"scene_id": scene_id, **_integrated_frame_cost(cls)})
-        elif cls.animated and isinstance(cls.model, type) and issubclass(cls.model, ClosedFormModel):
-            out.append({"scene_id": scene_id, **_closed_form_frame_cost(cls)})
+        entry: dict[str, Any] = {"scene_id": scene_id}
+        model_cls = cls.model
+        scene_us, scene_physics_us = scene_frame_cost_us(cls) if cls.animated else (0.0, 0.0)
+        drift = None
+        if isinstance(model_cls, type) and issubclass(model_cls, IntegratedModel):
+            physics_us, integrator = live_run_cost_us(cls)
+            model = model_cls()
+            params = model.parameters.defaults()
+            drift = simulate_model(model, params, {}, t_end_s=60.0, frame_rate_hz=30.0).max_invariant_drift
+            entry.update(method=integrator.name, description=integrator.describe(FRAME_DT_S), physics_us_per_frame=physics_us)
+        elif isinstance(model_cls, type) and issubclass(model_cls, ClosedFormModel):
+            model = model_cls()
+            params = model.parameters.defaults()
+            drift = evaluate_model(model, params, t_end_s=60.0, frame_rate_hz=30.0)["stats"]["max_invariant_drift"]
+            entry.update(
+                method="closed-form", physics_us_per_frame=scene_physics_us,
+                description=f"{model.description}, evaluated at each frame's time",
+            )
         elif cls.example is not None:
-            out.append({"scene_id": scene_id, **_worked_example_change_cost(cls)})
+            example = cls.example
+            inputs = example.inputs.defaults()
+            example.solve(inputs)
+            start = time.perf_counter()
+            for _ in range(100):
+                example.solve(inputs)
+            entry.update(
+                method="static", physics_us_per_frame=0.0, solve_us_on_change=1e4 * (time.perf_counter() - start),
+                description=f"{example.id} is solved again only when a control changes"
+                + ("; frames only move what was drawn" if cls.animated else "; nothing is computed per frame"),
+            )
+        else:
+            continue
+        entry["scene_us_per_frame"] = scene_us
+        if drift is not None:
+            entry["max_invariant_drift_60s"] = drift
+        out.append(entry)
     return out
 
 
