@@ -19,7 +19,6 @@ import math
 
 import numpy as np
 
-from app.physics.math.rotations import quaternion_from_matrix
 from app.physics.systems.ch05 import angular_momentum as physics
 from app.scenes.kit import (
     Preset,
@@ -176,7 +175,7 @@ class AngularMomentumScene(Scene):
         state = spin.at(t)
         self._state = state
         self.rig.position = tuple(state.centre_m[0])
-        self.body_frame.wxyz = tuple(quaternion_from_matrix(spin.attitude(t)[0]))
+        self.body_frame.wxyz = spin.attitude_wxyz(self.t_s)
         h_tip = state.angular_momentum_G[0] * self._h_scale
         rate_tip = state.bearing_moment[0] * self._moment_scale
         force_b = state.bearing_force_B[0] * self._force_scale

@@ -36,7 +36,7 @@ import numpy as np
 from app.physics.bodies import inertia
 from app.physics.core.closed_form import ClosedFormModel, ClosedFormSolution
 from app.physics.core.parameters import Parameter, ParameterSet
-from app.physics.math.rotations import elementary_rotation_matrix
+from app.physics.math.rotations import elementary_rotation_matrix, quaternion_from_matrix
 
 BODIES = ("plate", "box", "disk")
 VIEWS = ("rigid body", "particles")
@@ -194,6 +194,18 @@ class ShaftSpin:
         """``R_world_body(t) = R_z(Ω t) R_x(tilt)`` (N, 3, 3)."""
         t = np.atleast_1d(np.asarray(t_s, dtype=float))
         return elementary_rotation_matrix(2, self.spin_rate_rad_s * t) @ self.body.mounting
+
+    @cached_property
+    def _mounting_wxyz(self) -> tuple[float, float, float, float]:
+        w, x, y, z = quaternion_from_matrix(self.body.mounting)
+        return float(w), float(x), float(y), float(z)
+
+    def attitude_wxyz(self, t_s: float) -> tuple[float, float, float, float]:
+        """The attitude of :meth:`attitude` at one time as a ``wxyz`` quaternion: the turn Ω t about Z composed with the mounting."""
+        half = 0.5 * self.spin_rate_rad_s * t_s
+        c, s = math.cos(half), math.sin(half)
+        w, x, y, z = self._mounting_wxyz
+        return c * w - s * z, c * x - s * y, c * y + s * x, c * z + s * w
 
     @cached_property
     def _sweep(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
