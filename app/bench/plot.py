@@ -420,7 +420,7 @@ FRAME_BUDGET_US = 50.0
 def frame_cost_svg(live_scenes: Sequence[dict]) -> str:
     """A bar per animated scene: physics µs per displayed frame (linear axis) against :data:`FRAME_BUDGET_US`."""
     rows = sorted(live_scenes, key=lambda s: -float(s["physics_us_per_frame"]))
-    row_h, left, right, top = 22, 210, 700, 64
+    row_h, left, right, top = 22, 210, 590, 64  # room right of the longest bar for its label
     height = top + row_h * len(rows) + 56
     top_value = max([FRAME_BUDGET_US * 1.2, *(float(s["physics_us_per_frame"]) for s in rows)])
     x = lambda v: left + (right - left) * v / top_value  # noqa: E731
@@ -428,7 +428,7 @@ def frame_cost_svg(live_scenes: Sequence[dict]) -> str:
         f'<svg xmlns="{SVG_NS}" width="{WIDTH}" height="{height}" viewBox="0 0 {WIDTH} {height}" font-family="{escape(FONT)}">',
         f'<rect width="{WIDTH}" height="{height}" fill="#ffffff"/>',
         _text(16, 28, "Physics time per displayed frame, each animated scene at its defaults", size=15, weight="600"),
-        _text(16, 46, "µs of CPU per frame at 30 frames/s: a closed form evaluated at the frame's time, or one frame of an integrated live run", size=11, fill="#555"),
+        _text(16, 46, "µs of CPU per frame at 30 frames/s: the physics share of a closed-form scene's frame (profiled), one frame of an integrated live run", size=11, fill="#555"),
     ]
     for i, scene in enumerate(rows):
         value = float(scene["physics_us_per_frame"])
