@@ -170,3 +170,13 @@ def dismiss_webgl_notice(page) -> None:
     for frame in page.frames:
         if "/viewer/" in frame.url:
             frame.evaluate("() => document.querySelectorAll('.mantine-Notification-closeButton').forEach((b) => b.click())")
+
+
+def show_scene_and_keep_screenshot(page, path: Path) -> None:
+    """The end of every lesson test: no KaTeX errors, the viewer scrolled into view and, when screenshots are kept,
+    saved to ``path`` once software WebGL has drawn."""
+    assert page.locator(".katex-error").count() == 0
+    page.evaluate("document.getElementById('viewer-wrap').scrollIntoView()")
+    dismiss_webgl_notice(page)
+    let_webgl_draw(page, 3000)
+    screenshot(page, path)

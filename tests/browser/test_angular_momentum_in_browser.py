@@ -15,11 +15,11 @@ import pytest
 from app.physics.systems.ch05 import angular_momentum as am
 from app.scenes.ch05.angular_momentum import AngularMomentumScene
 from tests.browser.conftest import (
-    dismiss_webgl_notice,
     let_webgl_draw,
     open_lesson,
     readout_values,
     screenshot,
+    show_scene_and_keep_screenshot,
 )
 
 pytestmark = pytest.mark.browser
@@ -69,11 +69,7 @@ def test_lesson_scene_connects_and_its_readout_matches_the_physics(browser, live
     context, page, session_id, errors = open_lesson(browser, live_server, f"/lessons/{lesson_id}")
     page.wait_for_selector(f'#readout [data-quantity="{quantity}"]', timeout=30_000)
     check(readout_values(page))
-    assert page.locator(".katex-error").count() == 0
-    page.evaluate("document.getElementById('viewer-wrap').scrollIntoView()")
-    dismiss_webgl_notice(page)
-    let_webgl_draw(page, 3000)
-    screenshot(page, shots / f"lesson-{lesson_id}.png")
+    show_scene_and_keep_screenshot(page, shots / f"lesson-{lesson_id}.png")
     if then is not None:
         then(page, shots)
     assert not errors, errors

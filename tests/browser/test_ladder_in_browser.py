@@ -9,11 +9,9 @@ import pytest
 
 from app.physics.systems.ch06 import sliding_ladder as sl
 from tests.browser.conftest import (
-    dismiss_webgl_notice,
-    let_webgl_draw,
     open_lesson,
     readout_values,
-    screenshot,
+    show_scene_and_keep_screenshot,
 )
 
 pytestmark = pytest.mark.browser
@@ -34,11 +32,7 @@ def test_ladder_lesson_connects_and_its_readout_matches_the_physics(browser, liv
     assert 0.0 <= values["angle_deg"] <= 60.0
     energy = params["mass_kg"] * params["g_m_s2"] * 0.5 * params["length_m"] * math.sin(math.radians(60.0))
     assert values["energy_total_J"] == pytest.approx(energy, rel=1e-6)  # the budget: drift ≤ 1e-6 at rtol 1e-8
-    assert page.locator(".katex-error").count() == 0
-    page.evaluate("document.getElementById('viewer-wrap').scrollIntoView()")
-    dismiss_webgl_notice(page)
-    let_webgl_draw(page, 3000)
-    screenshot(page, shots / f"lesson-{LESSON}.png")
+    show_scene_and_keep_screenshot(page, shots / f"lesson-{LESSON}.png")
     assert not errors, errors
     json.dumps(readout_values(page))  # the readout stays plain JSON while the scene runs
     context.close()

@@ -10,11 +10,9 @@ import pytest
 
 from app.physics.systems.ch06 import mechanism_kinetics as physics
 from tests.browser.conftest import (
-    dismiss_webgl_notice,
-    let_webgl_draw,
     open_lesson,
     readout_values,
-    screenshot,
+    show_scene_and_keep_screenshot,
 )
 
 pytestmark = pytest.mark.browser
@@ -35,11 +33,7 @@ def test_lesson_scene_connects_and_its_torque_and_energy_match_the_physics(brows
     # T = ½ M(θ) ω² with |dM/dθ| < 0.5 kg·m²: 0.005° moves T by < 3e-3 J.
     assert values["kinetic_energy_J"] == pytest.approx(0.5 * float(physics.generalized_inertia_kg_m2(links, theta)[0]) * 100.0, abs=5e-3)
     assert abs(values["work_energy_residual_J"]) < 1e-4
-    assert page.locator(".katex-error").count() == 0
-    page.evaluate("document.getElementById('viewer-wrap').scrollIntoView()")
-    dismiss_webgl_notice(page)
-    let_webgl_draw(page, 3000)
-    screenshot(page, shots / f"lesson-{LESSON}.png")
+    show_scene_and_keep_screenshot(page, shots / f"lesson-{LESSON}.png")
     assert not errors, errors
     json.dumps(readout_values(page))  # the readout stays plain JSON while the scene runs
     context.close()

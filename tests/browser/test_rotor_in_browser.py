@@ -8,7 +8,11 @@ import numpy as np
 import pytest
 
 from app.physics.systems.ch06 import unbalanced_rotor as rotor
-from tests.browser.conftest import dismiss_webgl_notice, let_webgl_draw, open_lesson, readout_values, screenshot
+from tests.browser.conftest import (
+    open_lesson,
+    readout_values,
+    show_scene_and_keep_screenshot,
+)
 
 pytestmark = pytest.mark.browser
 
@@ -27,10 +31,6 @@ def test_rotor_lesson_loads_and_its_readout_bearing_forces_match_the_physics(bro
     assert values["bearing_B_rotating_force_N"] == pytest.approx(67.009, abs=1e-3)
     assert 23.05 <= values["bearing_A_force_N"] <= 153.86
     assert values["imbalance_class"] == "both"
-    assert page.locator(".katex-error").count() == 0
-    page.evaluate("document.getElementById('viewer-wrap').scrollIntoView()")
-    dismiss_webgl_notice(page)
-    let_webgl_draw(page, 3000)
-    screenshot(page, shots / "lesson-6-1-unbalanced-rotor.png")
+    show_scene_and_keep_screenshot(page, shots / "lesson-6-1-unbalanced-rotor.png")
     assert not errors, errors
     context.close()
