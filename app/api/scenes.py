@@ -50,7 +50,10 @@ def set_session_params(scene_id: str, session_id: SessionId, request: SessionPar
     Bad input gets a 422 naming the field and changes nothing.
     """
     _scene_class(host, scene_id)
-    params = host.set_params(scene_id, session_id, request.params)
+    try:
+        params = host.set_params(scene_id, session_id, request.params)
+    except ParameterError as exc:  # the request's field is `params`: name it, and the path inside it
+        raise unprocessable(["body", "params", *exc.path], str(exc)) from None
     return {"scene_id": scene_id, "session_id": session_id, "params": params, "viewers": host.viewer_count(session_id)}
 
 

@@ -106,3 +106,15 @@ def test_non_finite_json_numbers_are_refused_before_the_physics(client):
     body = '{"inputs": {"about_point_m": [NaN, 0, 0]}}'
     response = client.post(URL, content=body, headers={"Content-Type": "application/json"})
     assert response.status_code == 422
+
+
+def test_a_bad_body_sent_to_the_explorer_scene_names_its_path_under_params_and_changes_nothing(client):
+    sid = "c0ffee" * 5 + "00"
+    url = f"/api/scenes/inertia-explorer/sessions/{sid}"
+    first = client.put(url, json={"params": {"about_point_m": [0.1, 0.0, 0.0]}})
+    assert first.status_code == 200, first.text
+    bad = client.put(url, json={"params": {"bodies": [{"shape": "sphere", "mass_kg": -1.0, "radius_m": 0.1}]}})
+    assert bad.status_code == 422
+    assert bad.json()["detail"][0]["loc"] == ["body", "params", "bodies", 0, "mass_kg"]
+    again = client.put(url, json={"params": {}})
+    assert again.json()["params"]["bodies"] == DEFAULT_BODIES and again.json()["params"]["about_point_m"] == [0.1, 0.0, 0.0]
