@@ -156,12 +156,11 @@ def _nearest_frame_basis(subspace: np.ndarray) -> np.ndarray:
 
     Projects x, y, z onto the subspace and orthonormalises the largest projections in order.
     """
-    projector = subspace.T @ subspace
-    candidates = projector  # rows: projections of the frame axes
-    order = np.argsort(-np.linalg.norm(candidates, axis=1), kind="stable")
+    projections = subspace.T @ subspace  # row k: frame axis k projected onto the subspace
+    order = np.argsort(-np.linalg.norm(projections, axis=1), kind="stable")
     basis: list[np.ndarray] = []
     for index in order:
-        v = candidates[index].copy()
+        v = projections[index].copy()
         for b in basis:
             v -= (v @ b) * b
         norm = np.linalg.norm(v)
