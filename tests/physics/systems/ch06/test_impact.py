@@ -16,7 +16,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from app.physics.bodies.inertia import slender_rod
@@ -152,6 +152,7 @@ def contacts(draw):
 
 @settings(max_examples=400, deadline=None)
 @given(contacts())
+@example(contact=(2.0 * np.eye(2), np.array([-1e-6, 1.0]), 1.0, np.finfo(float).tiny))  # found by CI: mu P_n underflows
 def test_energy_is_never_created_and_matches_the_quadratic_form(contact):
     W, v, e, mu = contact
     result = resolve(W, v, e, mu)
@@ -163,7 +164,8 @@ def test_energy_is_never_created_and_matches_the_quadratic_form(contact):
     # The bodies do not interpenetrate after; v' = v + W P cancels terms of size |v| + |W P|, so allow round-off of those.
     assert result.contact_velocity_after_m_s[0] >= -1e-12 * (np.linalg.norm(v) + np.linalg.norm(W @ result.impulse_N_s))
     assert result.impulse_N_s[0] >= 0.0
-    assert abs(result.impulse_N_s[1]) <= mu * result.impulse_N_s[0] * (1 + 1e-12)  # inside the friction cone
+    # Inside the friction cone; below the normal range (mu P_n < 2.2e-308) a product keeps only absolute precision.
+    assert abs(result.impulse_N_s[1]) <= mu * result.impulse_N_s[0] * (1 + 1e-12) + np.finfo(float).tiny
 
 
 @settings(max_examples=400, deadline=None)
