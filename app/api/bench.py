@@ -23,8 +23,9 @@ from app.settings import Settings
 router = APIRouter(tags=["bench"])
 
 RESULTS_FILE = "work_precision.json"
-#: Scene ids that may name a diagram file; anything else (dots, slashes, capitals) is refused.
-SCENE_ID_PATTERN = re.compile(r"[a-z0-9-]+")
+#: Scene ids that may name a diagram file; anything else (dots, slashes, capitals, or a name longer than
+#: any scene id and than a file name may be) is refused.
+SCENE_ID_PATTERN = re.compile(r"[a-z0-9-]{1,64}")
 HOW_TO_MEASURE = "run `uv run --group bench dynlab bench` to measure the integrators and write it"
 _SVG_HEADERS = {
     "Cache-Control": "no-cache",
@@ -95,7 +96,7 @@ def work_precision(settings: SettingsDep) -> FileResponse:
 
 @router.get("/bench/{scene_id}.svg", include_in_schema=False)
 def work_precision_diagram(scene_id: str, settings: SettingsDep) -> FileResponse:
-    """One scene's work-precision diagram; only names matching ``[a-z0-9-]+`` are served."""
+    """One scene's work-precision diagram; only names matching ``[a-z0-9-]{1,64}`` are served."""
     path = diagram_path(settings, scene_id)
     if path is None:
         detail = (

@@ -98,12 +98,8 @@ def test_gyrocompass_simulate_integrates_the_reduced_equation(client):
         ("rate-gyro", {"spin_rad_s": 0}, "spin_rad_s", "non-zero"),
         ("rate-gyro", {"input_kind": "ramp"}, "input_kind", "one of"),
         ("rate-gyro", {"stiffness_N_m_rad": 0}, "stiffness_N_m_rad", "between"),
-        (
-            "rate-gyro",
-            {"input_kind": "sine", "damping_N_m_s_rad": 0, "stiffness_N_m_rad": 0.5, "gimbal_inertia_kg_m2": 5e-3, "input_frequency_rad_s": 10.0},
-            "input_frequency_rad_s",
-            "grow without bound",
-        ),
+        # The undamped gimbal driven at resonance is valid input (finite for finite time): answered with a
+        # warning, see tests/api/test_hardening_physics.py (issue 16, item 8).
     ],
 )
 def test_bad_parameters_are_422_with_a_sentence(client, scene_id, params, field, words):

@@ -22,16 +22,25 @@ import numpy as np
 from app.physics.core.parameters import ParameterSet
 from app.physics.core.report import Event, SimulationReport, frame_times
 
-__all__ = ["ClosedFormModel", "ClosedFormSolution", "Event", "evaluate_model", "frame_times"]
+__all__ = ["OUTSIDE_MODEL", "ClosedFormModel", "ClosedFormSolution", "Event", "evaluate_model", "frame_times"]
+
+#: ``stats.status`` of a result that is finite but outside the model's assumptions (``message`` says which).
+OUTSIDE_MODEL = "outside_model"
 
 
 @dataclass
 class ClosedFormSolution:
-    """Series and invariants at the requested times, plus any events in the span."""
+    """Series and invariants at the requested times, plus any events in the span.
+
+    ``warning`` (empty when none) says in words where the result leaves the model's
+    assumptions (e.g. a small-angle model driven to large angles); the report's
+    status is then ``outside_model`` and its message the warning.
+    """
 
     series: dict[str, np.ndarray]
     invariants: dict[str, np.ndarray] = field(default_factory=dict)
     events: list[Event] = field(default_factory=list)
+    warning: str = ""
 
 
 class ClosedFormModel(ABC):
@@ -74,6 +83,6 @@ def evaluate_model(model: ClosedFormModel, params: Mapping[str, Any], *, t_end_s
         rhs_evals=0,
         cpu_s=cpu_s,
         max_invariant_drift=max(drift, default=0.0),
-        status="ok" if finite else "undefined",
-        message="" if finite else "the formula is undefined at some frames (see events)",
+        status="undefined" if not finite else OUTSIDE_MODEL if solution.warning else "ok",
+        message=" ".join(m for m in ("" if finite else "the formula is undefined at some frames (see events)", solution.warning) if m),
     ).as_dict()

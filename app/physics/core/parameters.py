@@ -30,6 +30,14 @@ class ParameterError(ValueError):
         self.message = message
 
 
+def _is_finite_float(value: int | float) -> bool:
+    """Whether a JSON number is a finite float (an integer too large for a float, e.g. 400 digits, is not)."""
+    try:
+        return math.isfinite(float(value))
+    except OverflowError:
+        return False
+
+
 @dataclass(frozen=True)
 class Parameter:
     """One physical input.
@@ -111,8 +119,8 @@ class Parameter:
             return self._validate_vector(value)
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             raise ParameterError(self.name, f"must be a number {self.range_text()}")
-        if not math.isfinite(value):
-            raise ParameterError(self.name, "must be a finite number")
+        if not _is_finite_float(value):
+            raise ParameterError(self.name, f"must be a finite number {self.range_text()}")
         if self.kind == "int":
             if float(value) != int(value):
                 raise ParameterError(self.name, "must be a whole number")
@@ -141,8 +149,8 @@ class Parameter:
             raise ParameterError(self.name, f"must be a list of {self.length} numbers, each {self.range_text()}")
         out = []
         for index, component in enumerate(value):
-            if isinstance(component, bool) or not isinstance(component, (int, float)) or not math.isfinite(component):
-                raise ParameterError(self.name, f"component {index} must be a finite number (got {component!r})")
+            if isinstance(component, bool) or not isinstance(component, (int, float)) or not _is_finite_float(component):
+                raise ParameterError(self.name, f"component {index} must be a finite number {self.range_text()}")
             assert self.min is not None and self.max is not None
             if not self.min <= component <= self.max:
                 raise ParameterError(self.name, f"component {index} must be {self.range_text()} (got {component:g})")

@@ -90,7 +90,7 @@ class SimulationReport:
             "steps": self.steps,
             "rhs_evals": self.rhs_evals,
             "cpu_s": self.cpu_s,
-            "max_invariant_drift": self.max_invariant_drift,
+            "max_invariant_drift": self.max_invariant_drift if math.isfinite(self.max_invariant_drift) else None,
             "status": self.status,
             "message": self.message,
         }

@@ -20,7 +20,7 @@ from app.physics.core.report import MAX_ADAPTIVE_STEPS, MAX_FIXED_STEP_WORK, Sim
 from app.physics.solvers.base import FixedStepIntegrator
 from app.physics.solvers.controls import integration_parameters, integrator_from_controls
 from app.physics.solvers.dormand_prince import DormandPrince
-from app.physics.solvers.solve import simulate
+from app.physics.solvers.solve import failure_message, simulate
 from app.physics.solvers.system import OdeSystem
 
 __all__ = ["IntegratedModel", "SimulationReport", "check_request_bounds", "simulate_model"]
@@ -68,6 +68,14 @@ class IntegratedModel(ABC):
             fastest_rate_rad_s=self.fastest_rate_rad_s(params, y0), frame_dt_s=frame_dt_s,
         )
 
+    def describable(self, params: Mapping[str, Any], states: np.ndarray) -> np.ndarray:
+        """(N,) bool: whether the model can describe each of ``states`` (N, n); by default, every component finite.
+
+        A model whose state has more structure (a unit quaternion) refuses states
+        that are finite but have lost it, as a run that blew up leaves them.
+        """
+        return np.all(np.isfinite(states), axis=1)
+
     def relative_drift(self, params: Mapping[str, Any], states: np.ndarray) -> dict[str, np.ndarray]:
         """Per invariant, |I(t) − I(0)| / scale along ``states`` (dimensionless)."""
         scales = self.invariant_scales(params, states[0])
@@ -105,12 +113,20 @@ def simulate_model(
     ``request_limits`` applies the per-request bounds (:func:`check_request_bounds`);
     tests and benchmarks that need longer or denser runs switch it off.
     """
+    if request_limits:
+        frame_times(t_end_s=t_end_s, frame_rate_hz=frame_rate_hz)  # span and rate checked before anything divides by them
     frame_dt = 1.0 / frame_rate_hz
     integrator = model.integrator(params, controls, frame_dt)
     if request_limits:
         check_request_bounds(integrator, t_end_s=t_end_s, frame_rate_hz=frame_rate_hz)
     result = simulate(model.system(params), integrator, model.initial_state(params), t_end_s=t_end_s, frame_rate_hz=frame_rate_hz)
-    drift = model.relative_drift(params, result.states)
+    describable = model.describable(params, result.states)
+    if not describable.all():  # blew up while staying finite (e.g. an overflowed norm zeroed the quaternion)
+        frames = max(int(np.argmin(describable)), 1)
+        t_stop = float(result.t_s[frames - 1])
+        result = result.truncated(frames, status="non_finite", message=failure_message("non_finite", t_stop, integrator, frame_dt))
+    with np.errstate(over="ignore", invalid="ignore"):
+        drift = model.relative_drift(params, result.states)
     max_drift = max((float(d.max()) for d in drift.values()), default=0.0)
     return SimulationReport(
         t_s=result.t_s,

@@ -8,7 +8,7 @@ first non-finite state and say so in words instead of returning NaN.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -56,6 +56,10 @@ class SimulationResult:
     @property
     def ok(self) -> bool:
         return self.status in SUCCESSFUL
+
+    def truncated(self, frames: int, *, status: str, message: str) -> SimulationResult:
+        """The first ``frames`` frames only (``frames`` ≥ 1), ended with ``status`` and ``message``."""
+        return replace(self, t_s=self.t_s[:frames], states=self.states[:frames], status=status, message=message)
 
 
 def simulate(

@@ -53,9 +53,21 @@ def _unit_osculating_circle() -> np.ndarray:
     return np.stack([points[:-1], points[1:]], axis=1).astype(np.float32)
 
 
+def table_times(t_end_s: float) -> np.ndarray:
+    """The instants (s) the frame table samples over the loop 0 … ``t_end_s``."""
+    samples = int(np.clip(math.ceil(t_end_s * TABLE_RATE_HZ), TABLE_MIN, TABLE_MAX))
+    return np.linspace(0.0, t_end_s, samples + 1)
+
+
 def _check_playback(values: Mapping[str, Any]) -> None:
+    """The start lies in the loop, and the curve stays drawable over the whole loop (checked before anything is stored)."""
     if values["t_start_s"] > values["t_end_s"]:
         raise ParameterError("t_start_s", f"must not exceed the loop's end t_end_s = {values['t_end_s']:g} s")
+    curve = physics.compile_curve(*(values[name] for name in physics.COMPONENTS))
+    try:
+        physics.check_curve_span(curve, table_times(values["t_end_s"]))
+    except physics.CurveError as exc:
+        raise ParameterError(exc.component, str(exc)) from None
 
 
 #: Playback and display controls, after the curve's own inputs.
@@ -243,9 +255,7 @@ class SpaceCurveScene(Scene):
         self.curve = physics.compile_curve(p["x_of_t"], p["y_of_t"], p["z_of_t"])
         self.t_end_s = float(p["t_end_s"])
         self.scales = physics.reference_scales(self.curve, self.t_end_s)
-        samples = int(np.clip(math.ceil(self.t_end_s * TABLE_RATE_HZ), TABLE_MIN, TABLE_MAX))
-        t = np.linspace(0.0, self.t_end_s, samples + 1)
-        path, coordinates = self._describe(t)
+        path, coordinates = self._describe(table_times(self.t_end_s))
         old_center, old_size = self._center.copy(), self._size
         points = path.position_m
         finite = np.all(np.isfinite(points), axis=1)

@@ -155,6 +155,13 @@ class EquinoxPrecessionScene(Scene):
                 Quantity("years_elapsed", "years since 2000 CE", self.elapsed_years, "yr"),
                 Quantity("precession_angle_deg", "axis turned since 2000 CE", math.degrees(-self.precession_angle_rad()) % 360.0, "deg"),
             ],
-            message=f"Time runs {self.params['years_per_second']:g} years per second; the daily spin and the yearly orbit are far too fast to show and appear as their averages.",
+            message=" ".join(
+                m
+                for m in (
+                    physics.averaged_model_warning(self.params, result),
+                    f"Time runs {self.params['years_per_second']:g} years per second; the daily spin and the yearly orbit are far too fast to show and appear as their averages.",
+                )
+                if m
+            ),
         )
 

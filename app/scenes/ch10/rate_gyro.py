@@ -118,6 +118,7 @@ class RateGyroScene(Scene):
         self.labels["rate"].position = tuple(RATE_ARROW_TAIL + np.array([0.05, 0.0, 0.0]))
         self.labels["moment"].position = tuple(MOMENT_ARROW_TAIL + np.array([0.0, 0.0, 0.06]))
         self._frame = 0
+        self._outside_model: tuple[float, float] | None = None  # (first time, largest |β|) beyond the small-angle limit
         self._draw()
 
     def _draw_scale(self) -> None:
@@ -169,6 +170,9 @@ class RateGyroScene(Scene):
     def _draw(self) -> None:
         beta, beta_rate, rate, angle = self.demonstration(self.t_s)
         self._state = (beta, beta_rate, rate)
+        if abs(beta) > physics.SMALL_ANGLE_LIMIT_RAD:
+            first = self._outside_model[0] if self._outside_model else self.t_s
+            self._outside_model = (first, max(abs(beta), self._outside_model[1] if self._outside_model else 0.0))
         self.table.wxyz = np.array([math.cos(0.5 * angle), 0.0, 0.0, math.sin(0.5 * angle)])
         self.gimbal.wxyz = np.array([math.cos(0.5 * beta), math.sin(0.5 * beta), 0.0, 0.0])
         self.rotor.wxyz = spin_quaternion(self._spin_angle)
@@ -212,12 +216,18 @@ class RateGyroScene(Scene):
         if params["input_kind"] == "sine":
             ratio, lag = physics.frequency_response(params, params["input_frequency_rad_s"])
             quantities += [
-                Quantity("amplitude_ratio_s", "steady amplitude ratio |β|/|Ω|", float(ratio), "rad per rad/s"),
+                Quantity.or_text("amplitude_ratio_s", "steady amplitude ratio |β|/|Ω|", float(ratio), "rad per rad/s", "none: grows without bound"),
                 Quantity("phase_lag_deg", "phase lag of β behind Ω", math.degrees(lag), "deg"),
             ]
-            message = "The case rocks at the input frequency; after the start-up transient β is a sine with the gain and lag above."
+            message = (
+                "Undamped and driven at its natural frequency: resonance. β = (G Ω₀/2)(sin ω_n t − ω_n t cos ω_n t) grows in proportion to t."
+                if physics.resonant(params)
+                else "The case rocks at the input frequency; after the start-up transient β is a sine with the gain and lag above."
+            )
         else:
             quantities.append(Quantity("hold_s", "turntable runs, then rests, for", self._hold_s, "s"))
             message = ""
+        if self._outside_model is not None:
+            message = " ".join(m for m in (physics.small_angle_warning(*self._outside_model), message) if m)
         marks = {"damping_N_m_s_rad": [Mark(physics.critical_damping_N_m_s_rad(params), "critical (ζ = 1)")]}
         return Readout(quantities, marks=marks, message=message)

@@ -183,3 +183,16 @@ def test_bad_defaults_are_caught_when_the_parameter_is_declared():
         Parameter("v", "m", (0.0, 0.0, 2.0), -1.0, 1.0, kind="vector")  # component out of range
     with pytest.raises(ValueError):
         Parameter("s", "", "x" * 300, kind="text")
+
+
+@pytest.mark.parametrize("huge", [10**399, -(10**399)])
+def test_an_integer_beyond_float_range_is_refused_naming_the_field_not_an_overflow(huge):
+    """A JSON number of 400 digits arrives as a Python int that no float can hold."""
+    for parameter in (ANGLE, COUNT):
+        with pytest.raises(ParameterError) as info:
+            SET.validate({parameter.name: huge})
+        assert info.value.field == parameter.name and "finite number" in info.value.message
+    vector = Parameter("r_m", "m", [0.0, 0.0, 0.0], -1.0, 1.0, "A position", kind="vector")
+    with pytest.raises(ParameterError) as info:
+        vector.validate([0.0, huge, 0.0])
+    assert info.value.field == "r_m" and info.value.message.startswith("component 1 must be a finite number")

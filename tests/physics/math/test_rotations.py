@@ -456,3 +456,13 @@ def test_313_at_lock_splits_the_sum_equally():
     # −0.0 components do not turn the split into φ − ψ = 2π (they did before the general code).
     phi, _, psi = rot.euler_313_from_quaternion(np.array([0.6, -0.0, 0.0, 0.8]))
     assert phi == psi
+
+
+def test_one_quaternion_takes_the_scalar_path_and_agrees_with_the_array_path():
+    """rotation_matrix has a plain-float path for a single attitude (every live frame); it must be the same matrix."""
+    rng = np.random.default_rng(7)
+    quaternions = rng.normal(size=(200, 4)) * rng.uniform(0.1, 10.0, size=(200, 1))  # not normalised: both paths normalise
+    batched = rotation_matrix(quaternions)
+    for q, expected in zip(quaternions, batched):
+        np.testing.assert_allclose(rotation_matrix(q), expected, rtol=0.0, atol=4e-16)  # the same formula: round-off only
+    assert np.all(np.isnan(rotation_matrix(np.zeros(4))))  # no rotation has a zero quaternion; as the array path says

@@ -7,6 +7,8 @@ over leading axes: quaternions have shape ``(..., 4)``, matrices ``(..., 3, 3)``
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 #: A matrix further than this from orthonormal (max entry of ``RᵀR − I``) is refused.
@@ -43,6 +45,17 @@ def quaternion_conjugate(q: np.ndarray) -> np.ndarray:
 def rotation_matrix(q: np.ndarray) -> np.ndarray:
     """``R_world_body`` (shape (..., 3, 3)) of a ``wxyz`` quaternion (normalised first)."""
     q = np.asarray(q, dtype=float)
+    if q.shape == (4,):  # one attitude (every live frame): plain floats, a tenth of the array path's cost
+        norm = math.sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3])
+        norm = norm if norm > 0.0 else math.nan  # a zero quaternion has no rotation: NaN, as the array path gives
+        w, x, y, z = (float(c) / norm for c in q)
+        return np.array(
+            [
+                [1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+                [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+                [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)],
+            ]
+        )
     q = q / np.linalg.norm(q, axis=-1, keepdims=True)
     w, x, y, z = np.moveaxis(q, -1, 0)
     return np.stack(

@@ -47,6 +47,14 @@ CURVATURE_TOLERANCE = 1e-9
 #: than the size. With these limits the slowest formulas we found compile in
 #: well under a second; typical curves take 10-50 ms.
 MAX_DERIVATIVE_NODES = (300, 600, 3000)
+#: Largest component of r, r', r'' or r''' (m, m/s, m/s², m/s³) a curve may reach over the span it is
+#: drawn on. The viewer draws in float32 (largest 3.4e38), and the path variables raise these to at most
+#: the fourth power in float64 (|v|³ in κ, |v × a|² in τ: ≤ 1e122 ≪ 1.8e308), so nothing derived from a
+#: curve under this bound overflows; ``exp(50*t)`` or ``t^100`` over a long span are refused instead.
+MAX_CURVE_MAGNITUDE = 1e30
+#: Times evaluated per call of the compiled formulas: each of sympy's common subexpressions becomes an
+#: array of this length, so a formula's peak memory is bounded whatever the number of frames.
+EVALUATION_CHUNK = 4096
 #: Gauss–Legendre points per panel for the arc length, and the longest panel (s).
 _ARC_NODES, _ARC_WEIGHTS = np.polynomial.legendre.leggauss(8)
 ARC_PANEL_S = 0.05
@@ -84,12 +92,14 @@ class SpaceCurve:
         Instants where a formula is undefined (sqrt of a negative number, log of
         zero, overflow) are NaN.
         """
-        t = np.atleast_1d(np.asarray(t_s, dtype=float))
-        with np.errstate(all="ignore"):
-            values = self._evaluate(t)
-            columns = [np.broadcast_to(np.asarray(v, dtype=float), t.shape) for v in values]
-        out = np.stack(columns, axis=-1).reshape(t.size, 4, 3).transpose(1, 0, 2)
-        out = np.array(out)  # own the memory (broadcast views are read-only)
+        t = np.atleast_1d(np.asarray(t_s, dtype=float)).ravel()
+        out = np.empty((4, t.size, 3))
+        for start in range(0, t.size, EVALUATION_CHUNK):
+            chunk = t[start : start + EVALUATION_CHUNK]
+            with np.errstate(all="ignore"):
+                values = self._evaluate(chunk)
+                for column, value in enumerate(values):  # order k = column // 3, axis = column % 3
+                    out[column // 3, start : start + chunk.size, column % 3] = np.broadcast_to(np.asarray(value, dtype=float), chunk.shape)
         out[~np.isfinite(out)] = np.nan
         return out
 
@@ -127,6 +137,31 @@ def compile_curve(x_text: str, y_text: str, z_text: str) -> SpaceCurve:
     flat = [expr for order in orders for expr in order]
     evaluate = sympy.lambdify(T_SYMBOL, flat, modules="numpy", cse=True)
     return SpaceCurve(texts, tuple(tuple(order) for order in orders), evaluate)
+
+
+def check_curve_span(curve: SpaceCurve, t_s: np.ndarray) -> None:
+    """Raise :class:`CurveError` if a component of r or a derivative exceeds :data:`MAX_CURVE_MAGNITUDE` at any of ``t_s`` (s).
+
+    The error names the component and the first time it happens. Instants where a
+    formula has no value (a pole, the root of a negative number) are not refused:
+    they are reported as undefined where the curve is drawn.
+    """
+    t = np.atleast_1d(np.asarray(t_s, dtype=float))
+    jets = curve.jets(t)  # (4, N, 3); NaN where undefined
+    with np.errstate(invalid="ignore"):
+        over = np.abs(jets) > MAX_CURVE_MAGNITUDE  # NaN compares False
+    times = np.flatnonzero(over.any(axis=(0, 2)))
+    if times.size == 0:
+        return
+    index = int(times[0])
+    order, axis = (int(k[0]) for k in np.nonzero(over[:, index, :]))  # lowest derivative order first
+    value = float(jets[order, index, axis])
+    what = "xyz"[axis] + ("(t)", "′(t)", "″(t)", "‴(t)")[order]
+    raise CurveError(
+        COMPONENTS[axis],
+        f"{what} reaches {value:.3g} at t = {t[index]:.4g} s, beyond the bound of {MAX_CURVE_MAGNITUDE:g} (SI units) "
+        f"within the span 0 to {t[-1]:.4g} s it is drawn over: shorten the span or type a formula that grows more slowly",
+    )
 
 
 @dataclass(frozen=True)
@@ -241,7 +276,9 @@ def arc_length(curve: SpaceCurve, t_s: np.ndarray) -> np.ndarray:
     half = 0.5 * widths[interval] / panels[interval]
     left = starts[interval] + 2.0 * half * within
     nodes = (left[:, None] + half[:, None] * (1.0 + _ARC_NODES[None, :])).ravel()
-    speed = np.linalg.norm(curve.jets(nodes)[1], axis=1).reshape(interval.size, -1)
+    speed = np.concatenate(  # in chunks: the jets of every node at once would be 12 floats per node
+        [np.linalg.norm(curve.jets(nodes[i : i + EVALUATION_CHUNK])[1], axis=1) for i in range(0, nodes.size, EVALUATION_CHUNK)]
+    ).reshape(interval.size, -1)
     pieces = np.bincount(interval, weights=half * (speed @ _ARC_WEIGHTS), minlength=t.size)
     return np.cumsum(pieces)
 
@@ -323,6 +360,10 @@ class ParticleOnCurve(ClosedFormModel):
 
     def evaluate(self, params: Mapping[str, Any], t_s: np.ndarray) -> ClosedFormSolution:
         curve = compile_curve(*(params[name] for name in COMPONENTS))
+        try:
+            check_curve_span(curve, t_s)
+        except CurveError as exc:
+            raise ParameterError(exc.component, str(exc)) from None
         scales = reference_scales(curve, float(t_s[-1]) if t_s[-1] > 0 else 1.0)
         path = path_variables(curve, t_s, scales)
         cyl = cylindrical(path.position_m, path.velocity_m_s, path.acceleration_m_s2, length_scale_m=scales.length_m)

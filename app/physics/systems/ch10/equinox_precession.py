@@ -79,6 +79,23 @@ class EquinoxPrecession:
         return ARCSEC_PER_TURN / self.rate_arcsec_per_year if self.rate_rad_s > 0.0 else math.inf
 
 
+#: The gyroscopic (averaged) model needs the precession far slower than the spin, so the spin angular
+#: momentum C ω s dominates; beyond this ratio Ω/ω the model's answer is outside its assumptions.
+GYROSCOPIC_RATIO_LIMIT = 1e-2
+
+
+def averaged_model_warning(inputs: Mapping[str, Any], result: EquinoxPrecession) -> str:
+    """The sentence a student reads when Ω/ω exceeds :data:`GYROSCOPIC_RATIO_LIMIT` ('' when the model holds)."""
+    ratio = result.rate_rad_s / inputs["earth_spin_rad_s"]
+    if ratio <= GYROSCOPIC_RATIO_LIMIT:
+        return ""
+    return (
+        f"Outside the model: the precession rate is {ratio:.3g} times the spin rate. The gyroscopic, orbit-averaged "
+        f"model assumes precession far slower than spin (Ω/ω below {GYROSCOPIC_RATIO_LIMIT:g}), so these numbers are the "
+        "formula's, not the motion such a body would have."
+    )
+
+
 def mean_motion_rad_s(period_days: float) -> float:
     return 2.0 * math.pi / (period_days * DAY_S)
 
@@ -154,6 +171,16 @@ def solve(inputs: Mapping[str, Any]) -> Solution:
             {"Ω": "arcsec/yr", "T": "yr", "Sun's share": "", "Moon's share": ""},
         ),
     )
+    warning = averaged_model_warning(inputs, result)
+    if warning:
+        steps += (
+            Step(
+                f"Warning. {warning}",
+                r"\frac{\Omega}{\omega} \ll 1 \quad\text{(gyroscopic approximation)}",
+                {"Ω/ω": total / omega, "limit": GYROSCOPIC_RATIO_LIMIT},
+                {"Ω/ω": "", "limit": ""},
+            ),
+        )
     obliquities = np.linspace(0.0, 89.0, 90)
     sweep = np.array([equinox_precession({**inputs, "obliquity_deg": float(e)}).rate_arcsec_per_year for e in obliquities])
     plot = Plot(

@@ -323,7 +323,8 @@ def heavy_top_quadrature(
         if at_top:
             u_other = c * c / beta - 1.0 if beta > 0.0 else math.inf
             stable = u_other > 1.0
-            period = 2.0 * math.pi / math.sqrt(c * c - 2.0 * beta) if stable else math.inf
+            # A top at rest with no gravity (c = β = 0) never moves: no oscillation, an infinite period.
+            period = 2.0 * math.pi / math.sqrt(c * c - 2.0 * beta) if stable and c * c - 2.0 * beta > 0.0 else math.inf
             roots = (1.0, 1.0, u_other) if stable else (u_other, 1.0, 1.0)
             return constant(*roots, period, 0.5 * c, spin_rad_s - 0.5 * c)
         u3 = 1.0 + c * c / beta if beta > 0.0 else math.inf

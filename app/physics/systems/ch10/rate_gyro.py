@@ -27,23 +27,48 @@ from typing import Any
 
 import numpy as np
 
-from app.physics.core.closed_form import ClosedFormModel, ClosedFormSolution
+from app.physics.core.closed_form import ClosedFormModel, ClosedFormSolution, Event
 from app.physics.core.parameters import Parameter, ParameterError, ParameterSet
 
 INPUT_KINDS = ("step", "sine")
 
 
+#: The output equation linearises the gimbal's motion in β (sin β ≈ β, cos β ≈ 1); beyond this |β| (rad,
+#: 20°) sin β differs from β by more than 2 %, and the response is outside the model's assumptions.
+SMALL_ANGLE_LIMIT_RAD = 0.35
+#: A sine input within this fraction of the natural frequency of an undamped gimbal is treated as exact
+#: resonance (the general formula's denominator (ω_n² − w²)² would be round-off).
+RESONANCE_TOLERANCE = 1e-9
+
+
 def _check(values: Mapping[str, Any]) -> None:
     if values["spin_rad_s"] == 0.0:
         raise ParameterError("spin_rad_s", "must be non-zero: without spin the rotor has no angular momentum and the gimbal cannot sense rate (the gain I_a ω_s / k would be zero)")
-    if values["input_kind"] == "sine" and values["damping_N_m_s_rad"] == 0.0:
-        natural = math.sqrt(values["stiffness_N_m_rad"] / values["gimbal_inertia_kg_m2"])
-        if abs(values["input_frequency_rad_s"] - natural) <= 1e-9 * natural:
-            raise ParameterError(
-                "input_frequency_rad_s",
-                f"equals the natural frequency {natural:.6g} rad/s of an undamped gimbal: the swing would grow without bound "
-                "(add damping or change the frequency)",
-            )
+
+
+def resonant(params: Mapping[str, Any]) -> bool:
+    """Whether the input is a sine at the natural frequency of an undamped gimbal (β then grows linearly in t)."""
+    if params["input_kind"] != "sine" or params["damping_N_m_s_rad"] != 0.0:
+        return False
+    natural = natural_frequency_rad_s(params)
+    return abs(params["input_frequency_rad_s"] - natural) <= RESONANCE_TOLERANCE * natural
+
+
+def small_angle_excess(t_s: np.ndarray, beta_rad: np.ndarray) -> tuple[float, float] | None:
+    """``(first time (s), largest |β| (rad))`` if |β| exceeds :data:`SMALL_ANGLE_LIMIT_RAD` at any of ``t_s``, else None."""
+    over = np.flatnonzero(np.abs(beta_rad) > SMALL_ANGLE_LIMIT_RAD)
+    if over.size == 0:
+        return None
+    return float(np.asarray(t_s)[over[0]]), float(np.max(np.abs(beta_rad)))
+
+
+def small_angle_warning(first_t_s: float, largest_beta_rad: float) -> str:
+    """The sentence a student reads when the response leaves the small-angle model."""
+    return (
+        f"Outside the model: from t = {first_t_s:.4g} s the gimbal deflection |β| exceeds {SMALL_ANGLE_LIMIT_RAD:g} rad "
+        f"({math.degrees(SMALL_ANGLE_LIMIT_RAD):.0f}°), reaching {largest_beta_rad:.3g} rad; the output equation assumes a small β "
+        "(sin β ≈ β), so the numbers beyond it are the linear model's, not a real gyro's (a real gimbal hits its stops)."
+    )
 
 
 PARAMETERS = ParameterSet(
@@ -93,8 +118,10 @@ def frequency_response(params: Mapping[str, Any], frequency_rad_s: float) -> tup
     """Steady sine response: (amplitude ratio |β|/|Ω| in s, phase lag of β behind Ω in rad, in [0, π])."""
     r = frequency_rad_s / natural_frequency_rad_s(params)
     zeta = damping_ratio(params)
-    ratio = abs(steady_gain_s(params)) / math.hypot(1.0 - r * r, 2.0 * zeta * r)
-    return ratio, math.atan2(2.0 * zeta * r, 1.0 - r * r)
+    denominator = math.hypot(1.0 - r * r, 2.0 * zeta * r)
+    if denominator == 0.0:  # undamped at resonance: no steady sine, the swing −t cos ω_n t grows and lags Ω by 90°
+        return math.inf, 0.5 * math.pi
+    return abs(steady_gain_s(params)) / denominator, math.atan2(2.0 * zeta * r, 1.0 - r * r)
 
 
 def free_response(x0: float, v0: float, zeta: float, omega_n: float, t_s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -163,6 +190,12 @@ def gimbal_response(params: Mapping[str, Any], t_s: np.ndarray | float) -> Gimba
     zeta = damping_ratio(params)
     gain = steady_gain_s(params)
     rate = params["input_rate_rad_s"]
+    if resonant(params):
+        # β̈ + ω_n² β = G Ω₀ ω_n² sin ω_n t from rest: β = (G Ω₀ / 2)(sin ω_n t − ω_n t cos ω_n t), growing linearly in t.
+        phase = omega_n * t
+        beta = 0.5 * gain * rate * (np.sin(phase) - phase * np.cos(phase))
+        beta_rate = 0.5 * gain * rate * omega_n * phase * np.sin(phase)
+        return GimbalResponse(beta, beta_rate, input_rate(params, t))
     if params["input_kind"] == "step":
         forced, forced_rate = np.full_like(t, gain * rate), np.zeros_like(t)
         forced0, forced_rate0 = gain * rate, 0.0
@@ -196,7 +229,11 @@ class RateGyro(ClosedFormModel):
 
     def evaluate(self, params: Mapping[str, Any], t_s: np.ndarray) -> ClosedFormSolution:
         response = gimbal_response(params, t_s)
+        excess = small_angle_excess(t_s, response.beta_rad)
+        warning = small_angle_warning(*excess) if excess else ""
         return ClosedFormSolution(
+            warning=warning,
+            events=[Event(excess[0], "outside-model", warning)] if excess else [],
             series={
                 "beta_rad": response.beta_rad,
                 "beta_rate_rad_s": response.beta_rate_rad_s,
