@@ -1,23 +1,69 @@
 """The one way the API answers bad input: a 422 whose ``detail`` names the field (``loc``) and says why (``msg``).
 
-Routes raise :func:`unprocessable`; physics ``ParameterError``/``ValueError``
-reaching the app are turned into the same answer by the handlers :func:`install` adds.
+Routes raise :func:`unprocessable`, catching the physics' ``ParameterError`` and the
+``ValueError`` they expect where they call it; a ``ParameterError`` reaching the app is
+turned into the same answer by the handler :func:`install` adds. Nothing else is: an
+unexpected exception is a bug, answered with a generic 500 and logged with its traceback.
+A 422 never echoes large input back: each issue's ``input`` is cut to :data:`MAX_ECHO_CHARS`.
 """
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+import json
+import logging
+from collections.abc import Callable, Sequence
+from typing import Any
 
 from fastapi import FastAPI, HTTPException, Request
+from fastapi.encoders import jsonable_encoder
 from fastapi.exception_handlers import http_exception_handler
-from fastapi.responses import Response
+from fastapi.exceptions import RequestValidationError
+from fastapi.responses import JSONResponse, Response
 
+from app.api.schemas.errors import ErrorDetail
 from app.physics.core.parameters import ParameterError
+from app.scenes.host.rpc import WorkerUnavailableError
+
+log = logging.getLogger(__name__)
+
+#: Longest text of a refused input, or of a message, sent back in a 422 (characters).
+MAX_ECHO_CHARS = 200
+MAX_MESSAGE_CHARS = 500
+
+
+def _cut(text: str, limit: int) -> str:
+    return text if len(text) <= limit else f"{text[:limit]}… ({len(text)} characters)"
 
 
 def unprocessable(loc: Sequence[str | int], message: str) -> HTTPException:
     """A 422 ``{"detail": [{"loc": loc, "msg": message, "type": "value_error"}]}``."""
-    return HTTPException(status_code=422, detail=[{"loc": list(loc), "msg": message, "type": "value_error"}])
+    return HTTPException(status_code=422, detail=[{"loc": list(loc), "msg": _cut(message, MAX_MESSAGE_CHARS), "type": "value_error"}])
+
+
+def _echo(value: Any) -> Any:
+    """``value`` (JSON-able) if its strict JSON is short; else that JSON as text cut to :data:`MAX_ECHO_CHARS`
+    (a NaN or an infinity, which strict JSON cannot carry, is sent as text too)."""
+    try:
+        text = json.dumps(value, ensure_ascii=False, allow_nan=False)
+    except ValueError:
+        return _cut(json.dumps(value, ensure_ascii=False), MAX_ECHO_CHARS)
+    return value if len(text) <= MAX_ECHO_CHARS else _cut(text, MAX_ECHO_CHARS)
+
+
+def brief_issue(issue: dict[str, Any]) -> dict[str, Any]:
+    """One request-validation issue as JSON: ``loc``, ``msg``, ``type`` kept; ``input`` and ``ctx`` short and finite."""
+    out = jsonable_encoder(issue)
+    for key in ("input", "ctx"):
+        if key in out:
+            out[key] = _echo(out[key])
+    if isinstance(out.get("msg"), str):
+        out["msg"] = _cut(out["msg"], MAX_MESSAGE_CHARS)
+    return out
+
+
+async def request_validation_error_handler(request: Request, exc: Exception) -> Response:
+    assert isinstance(exc, RequestValidationError)
+    return JSONResponse({"detail": [brief_issue(issue) for issue in exc.errors()]}, status_code=422)
 
 
 async def parameter_error_handler(request: Request, exc: Exception) -> Response:
@@ -25,10 +71,43 @@ async def parameter_error_handler(request: Request, exc: Exception) -> Response:
     return await http_exception_handler(request, unprocessable(["body", "inputs", *exc.path], str(exc)))
 
 
-async def value_error_handler(request: Request, exc: Exception) -> Response:
-    return await http_exception_handler(request, unprocessable(["body"], str(exc)))
+async def internal_error_handler(request: Request, exc: Exception) -> Response:
+    log.error("internal error answering %s %s", request.method, request.url.path, exc_info=exc)
+    return JSONResponse({"detail": "internal server error: the fault is ours and has been logged"}, status_code=500)
+
+
+async def worker_unavailable_handler(request: Request, exc: Exception) -> Response:
+    log.warning("%s %s: %s", request.method, request.url.path, exc)
+    detail = "the scene worker for this session is restarting; try again in a moment"
+    return JSONResponse({"detail": detail}, status_code=503, headers={"Retry-After": "2"})
 
 
 def install(app: FastAPI) -> None:
+    app.add_exception_handler(RequestValidationError, request_validation_error_handler)
     app.add_exception_handler(ParameterError, parameter_error_handler)
-    app.add_exception_handler(ValueError, value_error_handler)
+    app.add_exception_handler(WorkerUnavailableError, worker_unavailable_handler)
+    app.add_exception_handler(Exception, internal_error_handler)
+
+
+def document_refusals(app: FastAPI, refusals: Callable[..., dict[int, str]]) -> None:
+    """Add to ``app``'s OpenAPI the answers a middleware gives, which FastAPI cannot see.
+
+    ``refusals(method, path_template, reads_body=...)`` returns status -> description for one
+    operation; each becomes a response whose body is :class:`ErrorDetail`.
+    """
+    generate = app.openapi
+
+    def openapi() -> dict[str, Any]:
+        if app.openapi_schema is not None:
+            return app.openapi_schema
+        schema = generate()
+        components = schema.setdefault("components", {}).setdefault("schemas", {})
+        components.setdefault(ErrorDetail.__name__, ErrorDetail.model_json_schema())
+        body = {"application/json": {"schema": {"$ref": f"#/components/schemas/{ErrorDetail.__name__}"}}}
+        for path, item in schema["paths"].items():
+            for method, operation in item.items():
+                for status, description in refusals(method, path, reads_body="requestBody" in operation).items():
+                    operation["responses"].setdefault(str(status), {"description": description, "content": body})
+        return schema
+
+    app.openapi = openapi  # type: ignore[method-assign]

@@ -1,4 +1,4 @@
-"""The OpenAPI document describes every answer: a 200 schema per route, the 404s and 422s it can give, the session-id pattern."""
+"""The OpenAPI document describes every answer: a 200 schema per route, the 403/404/413/422/429s it can give, the session-id pattern."""
 
 from __future__ import annotations
 
@@ -19,6 +19,12 @@ CAN_BE_NOT_FOUND = {
     ("/api/bench/work-precision", "get"),
 }
 CAN_BE_UNPROCESSABLE = CAN_BE_NOT_FOUND - {("/api/bench/work-precision", "get")}
+#: Answers the web front's guard gives before any route runs (app/web/guard.py), which FastAPI cannot see by itself.
+WITH_BODY = [(path, method) for path, method, op in OPERATIONS if "requestBody" in op]
+STATE_CHANGING = [(path, method) for path, method, _ in OPERATIONS if method not in ("get", "head", "options")]
+RATE_LIMITED = [("/api/scenes/{scene_id}/simulate", "post")]
+#: Where each error answer may be documented: no route lists one it cannot give.
+CAN_ANSWER = {"404": CAN_BE_NOT_FOUND, "422": CAN_BE_UNPROCESSABLE, "413": set(WITH_BODY), "403": set(STATE_CHANGING), "429": set(RATE_LIMITED)}
 
 
 def resolve(schema: dict) -> dict:
@@ -55,11 +61,10 @@ def test_422_is_documented_where_it_can_happen(path, method):
 
 
 @pytest.mark.parametrize(("path", "method", "op"), OPERATIONS, ids=[f"{m.upper()} {p}" for p, m, _ in OPERATIONS])
-def test_no_404_or_422_where_none_can_happen(path, method, op):
-    if (path, method) not in CAN_BE_NOT_FOUND:
-        assert "404" not in op["responses"], path
-    if (path, method) not in CAN_BE_UNPROCESSABLE:
-        assert "422" not in op["responses"], path
+def test_no_error_answer_where_none_can_happen(path, method, op):
+    for status, where in CAN_ANSWER.items():
+        if (path, method) not in where:
+            assert status not in op["responses"], f"{method.upper()} {path} documents a {status} it cannot give"
 
 
 @pytest.mark.parametrize("path", ["/api/scenes/{scene_id}/sessions/{session_id}", "/api/scenes/{scene_id}/sessions/{session_id}/live"])
@@ -77,3 +82,29 @@ def test_a_malformed_session_id_is_a_422_naming_the_path_parameter(client):
     ):
         assert response.status_code == 422
         assert response.json()["detail"][0]["loc"] == ["path", "session_id"]
+
+
+def assert_error_detail(answer: dict) -> None:
+    assert answer["description"]
+    assert resolve(answer["content"]["application/json"]["schema"])["properties"]["detail"]["type"] == "string"
+
+
+def test_the_guarded_routes_are_found():
+    assert {("/api/examples/{example_id}/solve", "post"), ("/api/scenes/{scene_id}/simulate", "post")} <= set(WITH_BODY)
+    assert ("/api/scenes/{scene_id}/sessions/{session_id}", "put") in STATE_CHANGING
+
+
+@pytest.mark.parametrize(("path", "method"), WITH_BODY)
+def test_413_is_documented_on_every_route_that_reads_a_body(path, method):
+    assert_error_detail(SPEC["paths"][path][method]["responses"]["413"])
+
+
+@pytest.mark.parametrize(("path", "method"), STATE_CHANGING)
+def test_403_is_documented_on_every_state_changing_route(path, method):
+    assert_error_detail(SPEC["paths"][path][method]["responses"]["403"])
+
+
+@pytest.mark.parametrize(("path", "method"), RATE_LIMITED)
+def test_429_is_documented_where_a_client_can_be_rate_limited(path, method):
+    assert_error_detail(SPEC["paths"][path][method]["responses"]["429"])
+

@@ -1,4 +1,4 @@
-"""Error bodies: 404 ``{"detail": "..."}`` and 422 ``{"detail": [{"loc", "msg", "type"}, ...]}``."""
+"""Error bodies: 403, 404, 413, 429 and 500 ``{"detail": "..."}``; 422 ``{"detail": [{"loc", "msg", "type"}, ...]}``."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ from pydantic import BaseModel, ConfigDict
 
 
 class ErrorDetail(BaseModel):
-    """A 404: what was not found, in words."""
+    """A refusal in words: what was not found (404), or why the request was refused (403, 413, 429)."""
 
     detail: str
 

@@ -1,0 +1,46 @@
+"""Per-client token buckets: a burst allowed at once, then a steady rate per second."""
+
+from __future__ import annotations
+
+import math
+import time
+from collections import OrderedDict
+from collections.abc import Callable
+
+
+class TokenBuckets:
+    """One token bucket per client key (an IP address), holding at most ``burst`` tokens refilled at ``rate_per_s``.
+
+    A request takes one token; with none left it waits :meth:`take`'s answer in seconds.
+    At most ``max_clients`` buckets are kept: the least recently seen client is forgotten
+    first (its next request starts from a full bucket). ``burst=0`` means no limit.
+    """
+
+    def __init__(self, *, burst: int, rate_per_s: float, max_clients: int, clock: Callable[[], float] = time.monotonic) -> None:
+        if burst < 0 or not (math.isfinite(rate_per_s) and rate_per_s > 0) or max_clients < 1:
+            raise ValueError(f"burst must be >= 0, rate_per_s finite and > 0, max_clients >= 1 (got {burst}, {rate_per_s}, {max_clients})")
+        self.burst = burst
+        self.rate_per_s = rate_per_s
+        self.max_clients = max_clients
+        self._clock = clock
+        self._buckets: OrderedDict[str, tuple[float, float]] = OrderedDict()  # key -> (tokens, clock time of that count)
+
+    def __len__(self) -> int:
+        return len(self._buckets)
+
+    def take(self, client: str) -> float:
+        """Take one token for ``client``: 0.0 if granted, else the seconds (> 0) until a token is due."""
+        if self.burst == 0:
+            return 0.0
+        now = self._clock()
+        tokens, then = self._buckets.pop(client, (float(self.burst), now))
+        tokens = min(float(self.burst), tokens + (now - then) * self.rate_per_s)
+        wait_s = 0.0
+        if tokens >= 1.0:
+            tokens -= 1.0
+        else:
+            wait_s = (1.0 - tokens) / self.rate_per_s
+        self._buckets[client] = (tokens, now)
+        while len(self._buckets) > self.max_clients:
+            self._buckets.popitem(last=False)
+        return wait_s
