@@ -1,9 +1,11 @@
-"""Command line: ``dynlab serve [--host H] [--port P]`` and ``dynlab bench [--quick] [--case C]``."""
+"""Command line: ``dynlab serve [--host H] [--port P]``, ``dynlab bench [--quick] [--case C]``,
+``dynlab load [--students 10,30] [--scene ID]`` and ``dynlab soak [--students N] [--minutes M]``."""
 
 from __future__ import annotations
 
 import argparse
 import logging
+import os
 import sys
 
 from app.settings import Settings
@@ -13,11 +15,26 @@ def _serve(args: argparse.Namespace) -> int:
     import uvicorn
 
     from app.main import create_app
+    from app.scenes.host.worker import tune_garbage_collection
 
-    settings = Settings.from_env(host=args.host, port=args.port)
+    workers = args.workers if args.workers is not None else int(os.environ.get("DYNLAB_WORKERS", os.cpu_count() or 1))
+    settings = Settings.from_env(host=args.host, port=args.port, workers=workers)
     app = create_app(settings)
-    print(f"Dynamics Lab: serving on http://{settings.host}:{settings.port}  (Ctrl+C to stop)", flush=True)
-    uvicorn.run(app, host=settings.host, port=settings.port, log_level=args.log_level, ws_max_size=64 * 1024 * 1024)
+    tune_garbage_collection()  # the front relays every frame of every viewer: the same allocation pattern as a worker
+    where = f"{settings.workers} scene worker{'s' if settings.workers != 1 else ''}" if settings.workers else "scenes in this process"
+    print(f"Dynamics Lab: serving on http://{settings.host}:{settings.port}  ({where}; Ctrl+C to stop)", flush=True)
+    uvicorn.run(
+        app,
+        host=settings.host,
+        port=settings.port,
+        log_level=args.log_level,
+        # A viewer sends only camera and GUI messages (< 1 kB); scene data is already zstd-compressed by viser,
+        # so per-message deflate would spend CPU on every frame of every student for nothing.
+        ws_max_size=1024 * 1024,
+        ws_per_message_deflate=False,
+        # Rate limits key on the client's address; only the guard may take it from X-Forwarded-For (trust_forwarded_for).
+        proxy_headers=False,
+    )
     return 0
 
 
@@ -27,12 +44,41 @@ def _bench(args: argparse.Namespace) -> int:
     return bench_main(args.bench_args)
 
 
+def _load(args: argparse.Namespace) -> int:
+    from app.bench.capacity import run_load_command
+
+    return run_load_command(args, args.parser)
+
+
+def _soak(args: argparse.Namespace) -> int:
+    from app.bench.soak import run_soak_command
+
+    return run_soak_command(args, args.parser)
+
+
+def _add_load_and_soak(commands: argparse._SubParsersAction) -> None:
+    """``dynlab load`` (classroom capacity) and ``dynlab soak`` (a long class, then resources back to baseline)."""
+    from app.bench.capacity import add_load_arguments
+    from app.bench.soak import add_soak_arguments
+
+    load = commands.add_parser("load", help="classroom capacity: N viewers per scene (writes docs/bench/capacity.json and .svg)")
+    add_load_arguments(load)
+    load.set_defaults(run=_load, parser=load)
+    soak = commands.add_parser("soak", help="N viewers for M minutes, then all gone: resources back to baseline")
+    add_soak_arguments(soak)
+    soak.set_defaults(run=_soak, parser=soak)
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="dynlab", description="Dynamics Lab: interactive engineering dynamics.")
     commands = parser.add_subparsers(dest="command", required=True)
     serve = commands.add_parser("serve", help="run the web application")
     serve.add_argument("--host", default=None, help="interface to bind (default 127.0.0.1; 0.0.0.0 for a classroom LAN)")
     serve.add_argument("--port", type=int, default=None, help="port (default 8000)")
+    serve.add_argument(
+        "--workers", type=int, default=None,
+        help="scene-worker processes (default: one per core, or DYNLAB_WORKERS); 0 runs the scenes in the front process",
+    )  # fmt: skip
     serve.add_argument("--log-level", default="info", choices=["critical", "error", "warning", "info", "debug"])
     serve.set_defaults(run=_serve)
     bench = commands.add_parser(
@@ -40,6 +86,7 @@ def main(argv: list[str] | None = None) -> int:
     )
     bench.add_argument("bench_args", nargs=argparse.REMAINDER, help="options of the benchmark (see dynlab bench --help)")
     bench.set_defaults(run=_bench)
+    _add_load_and_soak(commands)
     args = parser.parse_args(argv)
     logging.basicConfig(level=getattr(logging, getattr(args, "log_level", "warning").upper()), format="%(levelname)s %(name)s: %(message)s")
     return args.run(args)

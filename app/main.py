@@ -7,15 +7,19 @@ from contextlib import asynccontextmanager
 from pathlib import Path
 
 from fastapi import FastAPI
+from fastapi.openapi.docs import get_swagger_ui_html
+from fastapi.responses import HTMLResponse
 from fastapi.staticfiles import StaticFiles
 
 from app import __version__
 from app.api import bench, chapters, errors, examples, health, scenes
+from app.api.session_keys import SessionKeys
 from app.course import load_catalogue
 from app.scenes import SCENES
 from app.scenes.host.host import SceneHost
+from app.scenes.host.pool import WorkerPool
 from app.settings import Settings
-from app.web import pages, relay
+from app.web import guard, pages, relay
 
 STATIC_DIR = Path(__file__).resolve().parent.parent / "static"
 
@@ -25,7 +29,11 @@ def create_app(settings: Settings | None = None) -> FastAPI:
 
     @asynccontextmanager
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
-        host = SceneHost(SCENES, frame_rate_hz=settings.frame_rate_hz, max_sessions=settings.max_sessions)
+        host: SceneHost | WorkerPool
+        if settings.workers:
+            host = WorkerPool(SCENES, workers=settings.workers, frame_rate_hz=settings.frame_rate_hz, max_sessions=settings.max_sessions)
+        else:
+            host = SceneHost(SCENES, frame_rate_hz=settings.frame_rate_hz, max_sessions=settings.max_sessions)
         host.start()
         app.state.scene_host = host
         try:
@@ -38,13 +46,34 @@ def create_app(settings: Settings | None = None) -> FastAPI:
         version=__version__,
         summary="Interactive engineering dynamics: worked examples, solvers and live 3D scenes.",
         lifespan=lifespan,
+        docs_url=None,  # served by _offline_docs from static/vendor: /docs works without internet
+        redoc_url=None,
     )
     app.state.settings = settings
+    app.state.session_keys = SessionKeys(max_sessions=settings.max_sessions)
     # Every lesson reference is checked here: a bad one stops the server before it starts.
     app.state.catalogue = load_catalogue(settings.lessons_dir)
     errors.install(app)
+    app.add_middleware(guard.RequestGuard, settings=settings)
     routers = (health.router, chapters.router, scenes.router, examples.router, bench.router, pages.router, relay.router)
     for router in routers:
         app.include_router(router)
+    errors.document_refusals(app, guard.refusals)
+    _offline_docs(app)
     app.mount("/static", StaticFiles(directory=STATIC_DIR), name="static")
     return app
+
+
+def _offline_docs(app: FastAPI) -> None:
+    """``/docs``: Swagger UI from the vendored copy in static/vendor/swagger-ui, never a CDN."""
+
+    @app.get("/docs", include_in_schema=False)
+    def swagger_ui() -> HTMLResponse:
+        return get_swagger_ui_html(
+            openapi_url=app.openapi_url or "/openapi.json",
+            title=f"{app.title} API",
+            swagger_js_url="/static/vendor/swagger-ui/swagger-ui-bundle.js",
+            swagger_css_url="/static/vendor/swagger-ui/swagger-ui.css",
+            swagger_favicon_url="/static/favicon.svg",
+            swagger_ui_parameters={"validatorUrl": None},  # no badge fetched from an online validator
+        )

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import os
 from dataclasses import dataclass
 from pathlib import Path
@@ -24,6 +25,41 @@ class Settings:
     bench_dir: Path = DEFAULT_BENCH_DIR
     #: Lessons checked into the course catalogue at start-up.
     lessons_dir: Path = DEFAULT_LESSONS_DIR
+    #: Scene-worker processes (app/scenes/host/pool.py); 0 runs the scenes inside the front process
+    #: (tests, a single user). ``dynlab serve`` defaults to one worker per core.
+    workers: int = 0
+
+    # --- The web front's guard (app/web/guard.py): what one client may send, from where, how often ---
+    #: Largest HTTP request body (bytes) accepted; a larger one is refused with 413 (the largest real body is a few kB).
+    max_body_bytes: int = 1024 * 1024
+    #: Extra names the ``Host`` header may carry (``name`` for any port, or ``name:port``); ``*`` accepts any
+    #: (behind a reverse proxy that checks Host itself). Environment: comma separated.
+    allowed_hosts: tuple[str, ...] = ()
+    #: Extra origins (``scheme://host[:port]``) allowed to change state and open viewers from another site.
+    allowed_origins: tuple[str, ...] = ()
+    #: Simulate requests one client may make at once, and per second after that (token bucket); burst 0 = no limit.
+    simulate_burst: int = 10
+    simulate_rate_per_s: float = 2.0
+    #: Viewer websockets one client may open at once, and per second after that; a classroom load test opens
+    #: 150 from one address at once. Burst 0 = no limit.
+    viewer_open_burst: int = 200
+    viewer_open_rate_per_s: float = 20.0
+    #: Clients the rate limits remember; beyond this the least recently seen is forgotten.
+    rate_limit_clients: int = 10_000
+    #: Take the client's address from the last ``X-Forwarded-For`` entry (only behind a reverse proxy that sets it).
+    trust_forwarded_for: bool = False
+
+    def __post_init__(self) -> None:
+        for name in ("max_body_bytes", "simulate_burst", "viewer_open_burst"):
+            if getattr(self, name) < 0:
+                raise ValueError(f"{name} must be >= 0 (got {getattr(self, name)!r})")
+        for name in ("simulate_rate_per_s", "viewer_open_rate_per_s"):
+            if not math.isfinite(getattr(self, name)) or getattr(self, name) <= 0:
+                raise ValueError(f"{name} must be a finite rate > 0 per second (got {getattr(self, name)!r})")
+        if not 0 <= self.workers <= 64:
+            raise ValueError(f"workers must be 0 (scenes in the front process) to 64 (got {self.workers!r})")
+        if self.rate_limit_clients < 1:
+            raise ValueError(f"rate_limit_clients must be >= 1 (got {self.rate_limit_clients!r})")
 
     @classmethod
     def from_env(cls, **overrides: object) -> "Settings":
@@ -33,10 +69,41 @@ class Settings:
             "frame_rate_hz": os.environ.get("DYNLAB_FRAME_RATE_HZ"),
             "bench_dir": os.environ.get("DYNLAB_BENCH_DIR"),
             "lessons_dir": os.environ.get("DYNLAB_LESSONS_DIR"),
+            "workers": os.environ.get("DYNLAB_WORKERS"),
+            **{name: os.environ.get(f"DYNLAB_{name.upper()}") for name in _GUARD_FIELDS},
         }
         values: dict[str, object] = {}
         for name, raw in env.items():
             if raw is not None:
-                values[name] = type(getattr(cls, name))(raw)
+                values[name] = _parse(getattr(cls, name), raw, name=name)
         values.update({k: v for k, v in overrides.items() if v is not None})
         return cls(**values)  # type: ignore[arg-type]
+
+
+#: The guard's settings, each read from ``DYNLAB_<NAME>`` (e.g. ``DYNLAB_ALLOWED_HOSTS=lab.example.org,10.0.0.5``).
+_GUARD_FIELDS = (
+    "max_body_bytes",
+    "allowed_hosts",
+    "allowed_origins",
+    "simulate_burst",
+    "simulate_rate_per_s",
+    "viewer_open_burst",
+    "viewer_open_rate_per_s",
+    "rate_limit_clients",
+    "trust_forwarded_for",
+)
+
+
+def _parse(default: object, raw: str, *, name: str) -> object:
+    """An environment variable's text as the type of the field's default: tuples comma separated, booleans 1/0, true/false, yes/no."""
+    if isinstance(default, bool):
+        word = raw.strip().lower()
+        if word not in ("1", "true", "yes", "on", "0", "false", "no", "off", ""):
+            raise ValueError(f"DYNLAB_{name.upper()} must be true or false (got {raw!r})")
+        return word in ("1", "true", "yes", "on")
+    if isinstance(default, tuple):
+        return tuple(item.strip() for item in raw.split(",") if item.strip())
+    try:
+        return type(default)(raw)
+    except ValueError:
+        raise ValueError(f"DYNLAB_{name.upper()} must be a {type(default).__name__} (got {raw!r})") from None

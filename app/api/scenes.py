@@ -2,11 +2,15 @@ from __future__ import annotations
 
 from typing import Annotated, Any
 
-from fastapi import APIRouter, HTTPException, Path
+from fastapi import APIRouter, Header, HTTPException, Path
+from fastapi.responses import JSONResponse
 
-from app.api.deps import SceneHostDep
+from app.api.deps import SceneHostDep, SessionKeysDep
 from app.api.errors import unprocessable
-from app.api.schemas.errors import error_responses
+from app.api.limits import SIMULATIONS, TOO_MANY_RESPONSE
+from app.api.schemas.errors import ErrorDetail, error_responses
+from app.api.session_keys import HEADER as SESSION_KEY_HEADER
+from app.api.session_keys import SESSION_KEY_PATTERN, SessionKeyError
 from app.api.schemas.readout import LiveAnswer
 from app.api.schemas.scenes import SceneSummary, SessionParamsAnswer, SessionParamsRequest
 from app.api.schemas.simulation import SimulateRequest, SimulationAnswer
@@ -19,6 +23,10 @@ from app.scenes.kit import Scene
 router = APIRouter(prefix="/api/scenes", tags=["scenes"])
 
 SessionId = Annotated[str, Path(pattern=SESSION_ID_PATTERN, description="One page's session: 8–64 letters, digits, '-' or '_'")]
+SessionKey = Annotated[
+    str | None,
+    Header(alias=SESSION_KEY_HEADER, pattern=SESSION_KEY_PATTERN, description="The page's secret for its session: 16–128 letters, digits, '-' or '_'"),
+]
 _UNKNOWN_SCENE = "No scene has this id"
 
 
@@ -39,21 +47,35 @@ def list_scenes(host: SceneHostDep) -> list[dict[str, Any]]:
 @router.put(
     "/{scene_id}/sessions/{session_id}",
     response_model=SessionParamsAnswer,
-    responses=error_responses(
-        not_found=_UNKNOWN_SCENE,
-        unprocessable="A parameter is unknown, not finite or out of range, or the session id is malformed; nothing changed",
-    ),
+    responses={
+        **error_responses(
+            not_found=_UNKNOWN_SCENE,
+            unprocessable="A parameter is unknown, not finite or out of range, or the session id or key is malformed; nothing changed",
+        ),
+        403: {"model": ErrorDetail, "description": "The session belongs to another page: its X-Session-Key is missing or wrong; nothing changed"},
+    },
 )
-def set_session_params(scene_id: str, session_id: SessionId, request: SessionParamsRequest, host: SceneHostDep) -> dict[str, Any]:
+def set_session_params(
+    scene_id: str, session_id: SessionId, request: SessionParamsRequest, host: SceneHostDep, session_keys: SessionKeysDep, session_key: SessionKey = None
+) -> dict[str, Any]:
     """Set the parameters of one page's scene; every viewer of that session redraws.
 
-    Bad input gets a 422 naming the field and changes nothing.
+    The first change that carries an ``X-Session-Key`` claims the session for that
+    key: later changes without it are refused with 403. Bad input gets a 422
+    naming the field and changes nothing.
     """
     _scene_class(host, scene_id)
+    try:
+        session_keys.check(session_id, session_key)
+    except SessionKeyError as exc:
+        raise HTTPException(status_code=403, detail=str(exc)) from None
     try:
         params = host.set_params(scene_id, session_id, request.params)
     except ParameterError as exc:  # the request's field is `params`: name it, and the path inside it
         raise unprocessable(["body", "params", *exc.path], str(exc)) from None
+    except ValueError as exc:  # values that cannot exist together (a linkage that cannot assemble, …)
+        raise unprocessable(["body", "params"], str(exc)) from None
+    session_keys.claim(session_id, session_key)
     return {"scene_id": scene_id, "session_id": session_id, "params": params, "viewers": host.viewer_count(session_id)}
 
 
@@ -61,40 +83,48 @@ def set_session_params(scene_id: str, session_id: SessionId, request: SessionPar
     "/{scene_id}/simulate",
     response_model=SimulationAnswer,
     response_model_exclude_unset=True,
-    responses=error_responses(
-        not_found=_UNKNOWN_SCENE,
-        unprocessable="The scene has no motion in time, a parameter or control is bad, or the request is over a limit; `loc` names it",
-    ),
+    responses={
+        **error_responses(
+            not_found=_UNKNOWN_SCENE,
+            unprocessable="The scene has no motion in time, a parameter or control is bad, or the request is over a limit; `loc` names it",
+        ),
+        **TOO_MANY_RESPONSE,
+    },
 )
-def simulate_scene(scene_id: str, request: SimulateRequest, host: SceneHostDep) -> dict[str, Any]:
+def simulate_scene(scene_id: str, request: SimulateRequest, host: SceneHostDep) -> JSONResponse:
     """Integrate a scene's model off-screen and return the frame-sampled solution.
 
     Returns ``t`` (s), ``series`` and ``invariants`` by name, and ``stats``
     (``method``, ``steps``, ``rhs_evals``, ``cpu_s``, ``max_invariant_drift`` plus
-    ``status``/``message`` when the integration had to stop). Bad input or a
-    request over the limits gets a 422 naming the field and the limit.
+    ``status``/``message`` when the integration had to stop, e.g. ``non_finite``
+    with the finite part of the run). Bad input or a request over the limits gets
+    a 422 naming the field and the limit; while the process's simulations are all
+    busy and their queue is full, a 429 with ``Retry-After``.
     """
     model_cls = _scene_class(host, scene_id).model
     if model_cls is None:
         raise unprocessable(["path", "scene_id"], f"scene {scene_id!r} has no motion in time: nothing to simulate")
-    try:
-        params = model_cls.parameters.validate(request.params)
-    except ParameterError as exc:
-        raise unprocessable(["body", "params", *exc.path], str(exc)) from None
-    except ValueError as exc:  # a combination of values that cannot exist together
-        raise unprocessable(["body", "params"], str(exc)) from None
-    if issubclass(model_cls, ClosedFormModel):
-        out = _closed_form_report(model_cls, params, request)
-    else:
-        raw_controls = {k: v for k, v in (("method", request.method), ("steps_per_frame", request.steps_per_frame), ("rtol", request.rtol)) if v is not None}
+    with SIMULATIONS.slot("simulate"):  # the heavy part: at most a few at once, or a 429
         try:
-            controls = ParameterSet(model_cls.controls()).validate(raw_controls)
-            out = simulate_model(model_cls(), params, controls, t_end_s=request.t_end, frame_rate_hz=request.frame_rate).as_dict()
+            params = model_cls.parameters.validate(request.params)
         except ParameterError as exc:
-            raise unprocessable(["body", exc.field], str(exc)) from None
-    out["params"] = params
-    out["units"] = {"t": "s", **model_cls.series_units, **{f"invariants.{k}": v for k, v in model_cls.invariant_units.items()}}
-    return out
+            raise unprocessable(["body", "params", *exc.path], str(exc)) from None
+        except ValueError as exc:  # a combination of values that cannot exist together
+            raise unprocessable(["body", "params"], str(exc)) from None
+        if issubclass(model_cls, ClosedFormModel):
+            out = _closed_form_report(model_cls, params, request)
+        else:
+            raw_controls = {k: v for k, v in (("method", request.method), ("steps_per_frame", request.steps_per_frame), ("rtol", request.rtol)) if v is not None}
+            try:
+                controls = ParameterSet(model_cls.controls()).validate(raw_controls)
+                out = simulate_model(model_cls(), params, controls, t_end_s=request.t_end, frame_rate_hz=request.frame_rate).as_dict()
+            except ParameterError as exc:
+                raise unprocessable(["body", exc.field], str(exc)) from None
+        out["params"] = params
+        invariant_units = {k: v for k, v in model_cls.invariant_units.items() if k in out["invariants"]}  # e.g. |L| only without gravity
+        out["units"] = {"t": "s", **model_cls.series_units, **{f"invariants.{k}": v for k, v in invariant_units.items()}}
+        # Encoded here, inside the slot, as FastAPI would after it: the encoding is half the answer's memory.
+        return JSONResponse(SimulationAnswer.model_validate(out).model_dump(mode="json", exclude_unset=True))
 
 
 def _closed_form_report(model_cls: type[ClosedFormModel], params: dict[str, Any], request: SimulateRequest) -> dict[str, Any]:
@@ -103,8 +133,9 @@ def _closed_form_report(model_cls: type[ClosedFormModel], params: dict[str, Any]
             raise unprocessable(["body", name], "this scene's motion is a closed form in time: there is no integrator to control")
     try:
         return evaluate_model(model_cls(), params, t_end_s=request.t_end, frame_rate_hz=request.frame_rate)
-    except ParameterError as exc:
-        raise unprocessable(["body", exc.field], str(exc)) from None
+    except ParameterError as exc:  # a request field (t_end, frame_rate), or a parameter that fails over this span
+        where = ["body", "params", *exc.path] if exc.field in params else ["body", exc.field]
+        raise unprocessable(where, str(exc)) from None
     except ValueError as exc:  # the formula has no solution for these values (e.g. a linkage that cannot assemble)
         raise unprocessable(["body", "params"], str(exc)) from None
 

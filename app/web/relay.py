@@ -52,7 +52,7 @@ async def viewer_relay(websocket: WebSocket, scene_id: str, session_id: str, hos
         return
     try:
         upstream = await websockets.connect(
-            f"{host.url}/{scene_id}/{session_id}",
+            f"{host.viewer_url(session_id)}/{scene_id}/{session_id}",
             subprotocols=[protocol],  # type: ignore[list-item]
             max_size=None,
             compression=None,

@@ -11,7 +11,8 @@
   const randomId = () => Array.from(crypto.getRandomValues(new Uint8Array(16)), (b) => b.toString(16).padStart(2, "0")).join("");
   let saved = null;
   try { saved = JSON.parse(sessionStorage.getItem(storageKey)); } catch (e) { saved = null; }
-  const session = { id: (saved && saved.id) || randomId(), values: {} };
+  // The key claims the session on the first change: nobody who only learns the id can drive this page's scene.
+  const session = { id: (saved && saved.id) || randomId(), key: (saved && saved.key) || randomId(), values: {} };
 
   // ---- parameters: the scene's, else the union of the examples' inputs ------------
   const specs = [];
@@ -315,7 +316,8 @@
   }
 
   async function call(method, url, body) {
-    const response = await fetch(url, { method, headers: { "Content-Type": "application/json" }, body: JSON.stringify(body) });
+    const headers = { "Content-Type": "application/json", "X-Session-Key": session.key };
+    const response = await fetch(url, { method, headers, body: JSON.stringify(body) });
     const data = await response.json().catch(() => ({}));
     if (!response.ok) {
       const d = Array.isArray(data.detail) ? data.detail[0] : { msg: data.detail || response.statusText, loc: [] };

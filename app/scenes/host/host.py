@@ -6,6 +6,15 @@ the session's current parameters (kept here so a reconnect rebuilds the same
 scene, and so the lesson page can set parameters before the viewer connects),
 and builds a fresh :class:`~app.scenes.kit.scene.Scene` on that client only. One
 background thread advances every animated scene at ``frame_rate_hz``.
+
+Locking: the host's lock guards only the session table and is held for
+dictionary operations; each session has its own lock, held while its scenes are
+built, redrawn, advanced or read. So one student's slow redraw (compiling a
+typed curve, rebuilding a mesh) never stalls another student's frames, and a
+readout poll waits for one scene's frame at most. Lock order: host, then session.
+
+``dynlab serve`` runs several of these hosts in scene-worker processes
+(:mod:`app.scenes.host.pool`); tests and a single-process server use one directly.
 """
 
 from __future__ import annotations
@@ -13,6 +22,7 @@ from __future__ import annotations
 import contextlib
 import io
 import logging
+import os
 import re
 import threading
 import time
@@ -23,7 +33,7 @@ from typing import Any
 
 import viser
 
-from app.scenes.host.viser_compat import connection_path
+from app.scenes.host.viser_compat import BatchedWakeups, connection_path, share_prop_hints
 from app.scenes.kit import Scene
 
 log = logging.getLogger(__name__)
@@ -43,6 +53,8 @@ class Session:
     params: dict[str, Any]
     instances: dict[int, Scene] = field(default_factory=dict)  # viser client id -> scene
     last_used_s: float = field(default_factory=time.monotonic)
+    #: Held while this session's scenes are built, redrawn, advanced or read.
+    lock: threading.RLock = field(default_factory=threading.RLock)
 
 
 class SceneHost:
@@ -66,9 +78,11 @@ class SceneHost:
         self._stop = threading.Event()
         self._server: viser.ViserServer | None = None
         self._thread: threading.Thread | None = None
+        self._frame_stats = {"iterations": 0, "busy_s": 0.0, "scene_frames": 0, "late": 0, "since": time.perf_counter()}
 
     # -- life cycle ---------------------------------------------------------------
     def start(self) -> None:
+        share_prop_hints()
         with contextlib.redirect_stdout(io.StringIO()):  # viser prints its loopback URL unconditionally
             server = viser.ViserServer(host=self._host, port=0, verbose=False)
         log.info("scene server listening on loopback port %d (reached only through the relay)", server.get_port())
@@ -94,6 +108,10 @@ class SceneHost:
     @property
     def url(self) -> str:
         return f"ws://{self._host}:{self.port}"
+
+    def viewer_url(self, session_id: str) -> str:
+        """The loopback websocket address that serves ``session_id``'s viewers (the relay appends the path)."""
+        return self.url
 
     # -- sessions -----------------------------------------------------------------
     def scene_class(self, scene_id: str) -> type[Scene]:
@@ -138,6 +156,7 @@ class SceneHost:
         params = cls.parameters.validate(raw, base=base)
         with self._lock:
             session = self._session(scene_id, session_id)
+        with session.lock:
             session.params = params
             for scene in session.instances.values():
                 scene.set_params(params)
@@ -152,18 +171,25 @@ class SceneHost:
         """The live scene instances (one per connected viewer) of a session."""
         with self._lock:
             session = self._sessions.get(session_id)
-            return [] if session is None else list(session.instances.values())
+        if session is None:
+            return []
+        with session.lock:
+            return list(session.instances.values())
 
     @contextlib.contextmanager
     def inspect(self, session_id: str) -> Iterator[list[Scene]]:
-        """The session's live scene instances, with the frame loop held still while the block runs.
+        """The session's live scene instances, held still (no frame advances them) while the block runs.
 
         For reading several of a scene's drawn properties at one instant (tests,
-        diagnostics); keep the block short: every scene waits for it.
+        diagnostics); keep the block short: this session's frames wait for it.
         """
         with self._lock:
             session = self._sessions.get(session_id)
-            yield [] if session is None else list(session.instances.values())
+        if session is None:
+            yield []
+            return
+        with session.lock:
+            yield list(session.instances.values())
 
     def live_readout(self, scene_id: str, session_id: str) -> dict[str, Any] | None:
         """Live numbers from the session's first viewer of the scene (None if none is connected).
@@ -173,7 +199,10 @@ class SceneHost:
         """
         with self._lock:
             session = self._sessions.get(session_id)
-            for scene in [] if session is None else session.instances.values():
+        if session is None:
+            return None
+        with session.lock:
+            for scene in session.instances.values():
                 if scene.id == scene_id:
                     out: dict[str, Any] = scene.live_readout() if hasattr(scene, "live_readout") else {}
                     readout = scene.readout()
@@ -201,6 +230,8 @@ class SceneHost:
         scene_id, session_id = parts
         with self._lock:
             session = self._session(scene_id, session_id)
+            self._client_session[client.client_id] = session_id
+        with session.lock:
             try:
                 scene = self.scenes[scene_id](client, session.params)
             except Exception:
@@ -208,40 +239,67 @@ class SceneHost:
                 client.gui.add_markdown("**This scene failed to build.** The error is in the server log.")
                 return
             session.instances[client.client_id] = scene
-            self._client_session[client.client_id] = session_id
 
     def _on_disconnect(self, client: viser.ClientHandle) -> None:
         with self._lock:
             session_id = self._client_session.pop(client.client_id, None)
             session = self._sessions.get(session_id) if session_id else None
-            if session is not None:
+        if session is not None:
+            with session.lock:
                 session.instances.pop(client.client_id, None)
                 session.last_used_s = time.monotonic()
 
     def _close_instances(self, session: Session) -> None:
-        for client_id, scene in list(session.instances.items()):
-            self._client_session.pop(client_id, None)
-            try:
-                scene.close()
-            except Exception:
-                log.exception("closing scene failed")
-        session.instances.clear()
+        """Close a replaced session's scenes (caller holds the host lock; this takes the session's)."""
+        with session.lock:
+            for client_id, scene in list(session.instances.items()):
+                self._client_session.pop(client_id, None)
+                try:
+                    scene.close()
+                except Exception:
+                    log.exception("closing scene failed")
+            session.instances.clear()
 
     # -- frame loop -----------------------------------------------------------------
     def _frame_loop(self) -> None:
         period = 1.0 / self.frame_rate_hz
-        last = time.perf_counter()
-        while not self._stop.wait(max(0.0, period - (time.perf_counter() - last))):
+        last = deadline = time.perf_counter()
+        # Frames start on a fixed grid of deadlines, so a late wake-up (waiting for the GIL) is made up on the
+        # next frame instead of lowering the rate; after a stall of more than a frame the grid restarts from now.
+        while not self._stop.wait(max(0.0, deadline - time.perf_counter())):
             now = time.perf_counter()
             dt, last = now - last, now
+            deadline = deadline + period if now - deadline < period else now + period
             with self._lock:
-                animated = [s for sess in self._sessions.values() for s in sess.instances.values() if s.animated]
-                for scene in animated:
-                    if scene.status:
-                        continue
-                    try:
-                        with scene.client.atomic():
-                            scene.advance(dt)
-                    except Exception:
-                        log.exception("advancing scene %s failed; it is paused", scene.id)
-                        scene.status = "paused after an error (see the server log)"
+                sessions = [sess for sess in self._sessions.values() if sess.instances]
+            wakeups = BatchedWakeups()  # one wake-up of viser's sender per few viewers, not one per viewer
+            advanced = 0
+            for session in sessions:
+                with session.lock:
+                    for scene in list(session.instances.values()):
+                        if scene.animated and not scene.status:
+                            self._advance(scene, dt, wakeups)
+                            advanced += 1
+            wakeups.flush()
+            self._tick_stats(now, time.perf_counter(), advanced)
+
+    def _tick_stats(self, start: float, end: float, scenes: int) -> None:
+        stats = self._frame_stats
+        stats["iterations"] += 1
+        stats["busy_s"] += end - start
+        stats["scene_frames"] += scenes
+        if end - start > 1.0 / self.frame_rate_hz:
+            stats["late"] += 1
+        if end - stats["since"] > 5.0 and os.environ.get("DYNLAB_FRAME_STATS"):
+            log.warning("frame loop: %.1f it/s, busy %.0f%%, %d late, %.1f scenes/it", stats["iterations"] / (end - stats["since"]),
+                        100 * stats["busy_s"] / (end - stats["since"]), stats["late"], stats["scene_frames"] / max(stats["iterations"], 1))
+            self._frame_stats = {"iterations": 0, "busy_s": 0.0, "scene_frames": 0, "late": 0, "since": end}
+
+    @staticmethod
+    def _advance(scene: Scene, dt_s: float, wakeups: BatchedWakeups) -> None:
+        try:
+            with wakeups.atomic(scene.client):
+                scene.advance(dt_s)
+        except Exception:
+            log.exception("advancing scene %s failed; it is paused", scene.id)
+            scene.status = "paused after an error (see the server log)"

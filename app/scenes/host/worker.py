@@ -1,0 +1,87 @@
+"""A scene worker: one process running a :class:`SceneHost` for the sessions pinned to it.
+
+The front process (FastAPI, the relay) starts workers with :func:`run_worker`
+as the target of a ``spawn`` process. Each worker binds its viser server and an
+RPC listener on loopback, reports both addresses on its start pipe, then answers
+calls (:mod:`app.scenes.host.rpc`) from one thread per connection. It exits when
+told to, or by itself when the front process's end of the start pipe closes (the
+front died), so no worker outlives its server.
+"""
+
+from __future__ import annotations
+
+import gc
+import logging
+import os
+import threading
+from multiprocessing.connection import Connection, Listener
+from typing import Any
+
+log = logging.getLogger(__name__)
+
+
+def run_worker(index: int, start_pipe: Connection, authkey: bytes, options: dict[str, Any]) -> None:
+    """Process entry: serve scenes until ``"stop"`` arrives on ``start_pipe`` or it closes."""
+    logging.basicConfig(level=options.get("log_level", "WARNING"), format=f"%(levelname)s worker{index} %(name)s: %(message)s")
+    from app.scenes import SCENES  # importing the scenes loads every numba kernel (compiled eagerly, cached on disk)
+    from app.scenes.host.host import SceneHost
+
+    host = SceneHost(SCENES, frame_rate_hz=options["frame_rate_hz"], max_sessions=options["max_sessions"])
+    host.start()
+    tune_garbage_collection()
+    listener = Listener(("127.0.0.1", 0), authkey=authkey)
+    threading.Thread(target=_accept_calls, args=(listener, host), name="worker-rpc", daemon=True).start()
+    start_pipe.send({"viewer_url": host.url, "rpc_address": listener.address, "pid": os.getpid()})
+    try:
+        start_pipe.recv()  # "stop", or EOFError when the front process has gone
+    except (EOFError, OSError):
+        log.warning("front process gone: worker %d stopping", index)
+    finally:
+        host.stop()
+        listener.close()
+
+
+def tune_garbage_collection() -> None:
+    """Fewer, cheaper garbage collections for a server that allocates small objects at every frame.
+
+    Every message to every viewer allocates; Python's default (a young-generation
+    pass every 700 allocations) then runs thousands of collections a second.
+    Objects that live for the whole run (modules, kernels, scene classes) are
+    moved out of the collector's way with ``gc.freeze()``, and the young
+    generation is collected every 50 000 allocations. Measured with 100 viewers
+    of the heavy top on two cores: about a tenth less server CPU per frame.
+    """
+    gc.freeze()
+    gc.set_threshold(50_000, 20, 20)
+
+
+def _accept_calls(listener: Listener, host: Any) -> None:
+    while True:
+        try:
+            connection = listener.accept()
+        except OSError:  # closed at shutdown, or a caller that failed authentication
+            if listener._listener is None:  # type: ignore[attr-defined]
+                return
+            continue
+        threading.Thread(target=_answer_calls, args=(connection, host), name="worker-call", daemon=True).start()
+
+
+def _answer_calls(connection: Connection, host: Any) -> None:
+    from app.scenes.host.rpc import WORKER_METHODS, encode_error
+
+    with connection:
+        while True:
+            try:
+                method, args, kwargs = connection.recv()
+            except (EOFError, OSError):
+                return
+            if method not in WORKER_METHODS:
+                connection.send(("internal_error", f"no worker method {method!r}"))
+                continue
+            try:
+                answer = ("ok", getattr(host, method)(*args, **kwargs))
+            except Exception as exc:  # every error goes back to the caller, which raises it again
+                if not isinstance(exc, ValueError | KeyError):
+                    log.exception("worker call %s failed", method)
+                answer = encode_error(exc)
+            connection.send(answer)
