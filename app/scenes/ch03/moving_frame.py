@@ -17,7 +17,7 @@ import numpy as np
 
 from app.physics.core.parameters import Parameter
 from app.physics.systems.ch03 import moving_frame as physics
-from app.scenes.kit import FRAME_DT_S, Preset, Quantity, Readout, Scene
+from app.scenes.kit import FRAME_DT_S, Preset, Quantity, Readout, Scene, move_node, update_node
 
 COLORS = {
     "reference": (120, 80, 180),   # purple
@@ -96,7 +96,7 @@ class LabelledArrows:
         for key, (tail, head) in segments.items():
             visible = key in keep
             if visible:
-                self._labels[key].position = tail + label_at * (head - tail)
+                move_node(self._labels[key], position=tail + label_at * (head - tail))
             if visible != self._label_visible[key]:
                 self._labels[key].visible = visible
                 self._label_visible[key] = visible
@@ -110,7 +110,7 @@ class LabelledArrows:
             self._node = self._scene.add_arrows(f"{self._name}/{self._serial}", points, colors, **self._style)
             self._drawn = tuple(keep)
         else:
-            self._node.points = points
+            update_node(self._node, points=points)
 
 
 class MovingFrameScene(Scene):
@@ -212,10 +212,9 @@ class MovingFrameScene(Scene):
         k, i = self._batch, self._row
         self.t_s = float(k.t_s[i])
         origin = k.origin_m[i]
-        self.cart.position = (float(origin[0]), 0.0, 0.0)
-        self.table.position = origin
-        self.table.wxyz = k.attitude_wxyz[i]
-        self.slider.position = k.slider_body_m[i]
+        move_node(self.cart, position=(float(origin[0]), 0.0, 0.0))
+        move_node(self.table, position=origin, wxyz=k.attitude_wxyz[i])
+        move_node(self.slider, position=k.slider_body_m[i])
         p = k.position_m[i]
         self._terms = {name: value[i] for name, value in k.terms_m_s2.items()}
         self._omega = k.omega_rad_s[i]

@@ -15,7 +15,7 @@ import math
 import numpy as np
 
 from app.physics.systems.ch04 import four_bar as physics
-from app.scenes.kit import Mark, Preset, Quantity, Readout, Scene
+from app.scenes.kit import Mark, Preset, Quantity, Readout, Scene, update_node
 
 LINK_COLORS = np.array([[40, 100, 220], [40, 150, 70], [210, 70, 50], [120, 190, 130], [120, 190, 130]], np.uint8)
 GHOST_COLOR = (175, 175, 185)
@@ -42,6 +42,8 @@ def polyline_segments(points_xy: np.ndarray) -> np.ndarray:
 
 class FourBarScene(Scene):
     id = "four-bar"
+    #: Links, joints and the other assembly: three batched nodes.
+    frame_message_budget = 3.0
     title = "The four-bar linkage"
     chapter = 4
     model = physics.FourBarLinkage
@@ -132,11 +134,11 @@ class FourBarScene(Scene):
         self._t_drawn = self.t_s
         o2, o4 = np.zeros(2), np.array([motion.linkage.ground_m, 0.0])
         planar = np.array([[o2, a], [a, b], [o4, b], [a, p], [b, p]])
-        self.links.points = to_world(planar).astype(np.float32)
-        self.joints.points = to_world(np.array([a, b, p])).astype(np.float32)
+        update_node(self.links, points=to_world(planar))
+        update_node(self.joints, points=to_world(np.array([a, b, p])))
         gb = ghost.rocker_pin[0]
         if np.all(np.isfinite(gb)):
-            self.ghost.points = to_world(np.array([[a, gb], [o4, gb]])).astype(np.float32)
+            update_node(self.ghost, points=to_world(np.array([[a, gb], [o4, gb]])))
 
     def advance(self, dt_s: float) -> None:
         self.t_s += dt_s

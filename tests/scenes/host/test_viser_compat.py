@@ -14,6 +14,7 @@ from pathlib import Path
 
 import msgspec
 import numpy as np
+import pytest
 import viser
 import zstandard
 from websockets.sync.client import connect
@@ -111,3 +112,79 @@ def test_scene_node_names_lists_what_is_on_a_client_scene():
         assert scene_node_names(client.scene) == {"/ball"}
         handle.remove()
         assert scene_node_names(client.scene) == set()
+
+
+def test_move_node_sends_what_the_setters_send_and_skips_unchanged_values():
+    with server_with_viewer("/") as (_, client, socket):
+        frame = client.scene.add_frame("/body", show_axes=False)
+        received_messages(socket, seconds=0.3)
+        with client.atomic():
+            viser_compat.move_node(frame, position=(1.0, 2.0, 3.0), wxyz=(0.0, 1.0, 0.0, 0.0))
+        moved = received_messages(socket, seconds=0.5)
+        viser_compat.move_node(frame, position=np.array([1.0, 2.0, 3.0]), wxyz=(0.0, 1.0, 0.0, 0.0))  # unchanged
+        unchanged = received_messages(socket, seconds=0.3)
+        frame.remove()
+        with pytest.raises(RuntimeError, match="removed"):
+            viser_compat.move_node(frame, position=(0.0, 0.0, 0.0))
+    by_type = {m["type"]: m for m in moved}
+    assert by_type["SetPositionMessage"]["name"] == "/body" and by_type["SetPositionMessage"]["position"] == [1.0, 2.0, 3.0]
+    assert by_type["SetOrientationMessage"]["wxyz"] == [0.0, 1.0, 0.0, 0.0]
+    assert np.array_equal(frame.position, [1.0, 2.0, 3.0]) and np.array_equal(frame.wxyz, [0.0, 1.0, 0.0, 0.0])  # reads agree
+    assert not [m for m in unchanged if m["type"] in ("SetPositionMessage", "SetOrientationMessage")]
+
+
+def test_update_node_sends_changed_properties_in_one_message_with_the_stored_dtype():
+    with server_with_viewer("/") as (_, client, socket):
+        segments = client.scene.add_line_segments("/path", np.zeros((2, 2, 3), np.float32), (255, 0, 0))
+        label = client.scene.add_label("/label", "before")
+        received_messages(socket, seconds=0.3)
+        points = np.arange(18, dtype=float).reshape(3, 2, 3)
+        viser_compat.update_node(segments, points=points)
+        points[:] = -1.0  # the caller's buffer may be reused at once
+        viser_compat.update_node(label, text="after")
+        viser_compat.update_node(label, text="after")  # unchanged: nothing sent
+        messages = [m for m in received_messages(socket, seconds=0.5) if m["type"] == "SceneNodeUpdateMessage"]
+        with pytest.raises(TypeError, match="no property 'pionts'"):
+            viser_compat.update_node(segments, pionts=points)
+    assert segments.points.dtype == np.float32 and np.array_equal(segments.points, np.arange(18).reshape(3, 2, 3))
+    assert label.text == "after"
+    assert [(m["name"], sorted(m["updates"])) for m in messages] == [("/path", ["points"]), ("/label", ["text"])]
+
+
+def test_shared_prop_hints_give_every_handle_what_viser_computes_for_it():
+    from typing import get_type_hints
+
+    with server_with_viewer("/") as (_, client, _socket):
+        before = client.scene.add_line_segments("/a", np.zeros((1, 2, 3), np.float32), (255, 0, 0))
+        viser_compat.share_prop_hints()
+        viser_compat.share_prop_hints()  # idempotent
+        handles = [
+            before,
+            client.scene.add_line_segments("/b", np.zeros((1, 2, 3), np.float32), (255, 0, 0)),
+            client.scene.add_label("/c", "text"),
+            client.scene.add_frame("/d"),
+        ]
+        for handle in handles:
+            assert handle._prop_hints == get_type_hints(type(handle._impl.props))
+        handles[1].points = np.ones((2, 2, 3))  # the setter path still casts with the hints
+        assert handles[1].points.dtype == np.float32 and handles[1].points.shape == (2, 2, 3)
+
+
+def test_batched_wakeups_group_a_clients_messages_and_deliver_them_once_woken():
+    with server_with_viewer("/") as (server, client, socket):
+        label = client.scene.add_label("/label", "before")
+        received_messages(socket, seconds=0.3)
+        wakeups = viser_compat.BatchedWakeups(wake_every=2)
+        with wakeups.atomic(client):
+            label.text = "first"
+            label.text = "second"  # grouped: only the last value of a property is sent
+            held = received_messages(socket, seconds=0.3)
+        wakeups.flush()
+        delivered = received_messages(socket, seconds=0.5)
+        with wakeups.atomic(client):
+            label.text = "third"
+        with wakeups.atomic(client):  # the second released client reaches wake_every: woken without flush()
+            label.text = "fourth"
+        woken = received_messages(socket, seconds=0.5)
+    updates = lambda messages: [m["updates"]["text"] for m in messages if m["type"] == "SceneNodeUpdateMessage"]  # noqa: E731
+    assert updates(held) == [] and updates(delivered) == ["second"] and updates(woken)[-1] == "fourth"
