@@ -17,6 +17,7 @@ from fastapi.responses import HTMLResponse, RedirectResponse, Response
 
 from app.api import bench
 from app.api.deps import CatalogueDep, SceneHostDep, SettingsDep
+from app.bench import capacity
 from app.course import Catalogue, Chapter, Lesson, render_markdown
 from app.course.lessons import split_front_matter
 from app.scenes.host.host import SESSION_ID_PATTERN
@@ -374,6 +375,77 @@ def _guarded(render, item, *args) -> str:
         )
 
 
+def _capacity_row(step: dict) -> str:
+    fps = step.get("frames_per_s") or {}
+    health = step.get("health_ms") or {}
+    cells = [
+        fmt_sig(fps.get("p10")), fmt_sig(fps.get("median")), fmt_sig(fps.get("min")),
+        fmt_sig(step.get("server_cpu_cores")), fmt_sig(step.get("server_rss_mb")),
+        fmt_sig(step.get("load_tool_cpu_cores")), fmt_sig(health.get("p95")), fmt_sig(step.get("bytes_per_frame")),
+    ]  # fmt: skip
+    errors = step.get("errors")
+    return (
+        f'<tr><th scope="row">{esc(str(step.get("scene_id")))}</th><td class="num">{esc(str(step.get("students")))}</td>'
+        + "".join(f'<td class="num">{cell}</td>' for cell in cells)
+        + f'<td class="num">{esc(str(errors))}</td></tr>'
+    )
+
+
+def _capacity_table(report: dict, settings) -> str:
+    machine = report.get("machine") or {}
+    server = report.get("server") or {}
+    targets = report.get("targets") or {}
+    created = esc(str(report.get("created") or "")[:16].replace("T", " "))
+    lines = (
+        f"Measured {created} UTC on {esc(str(machine.get('cores', '?')))} cores "
+        f"({esc(str(machine.get('cpu') or 'unknown CPU'))}); scene workers: "
+        f"{esc(capacity.describe_workers(server.get('workers')))}; each student a real viewer "
+        f"websocket on its own scene. Targets: 100 students at ≥ {fmt_sig(targets.get('p10_frames_per_s'))} frames/s "
+        f"for 9 students in 10 (10th percentile); 150 students with every one at ≥ "
+        f"{fmt_sig(targets.get('min_frames_per_s_degraded'))} frames/s."
+    )
+    figure = ""
+    if bench.diagram_path(settings, "capacity"):
+        figure = (
+            '<figure class="bench-figure"><a href="/bench/capacity.svg" title="Open the plot on its own">'
+            '<img src="/bench/capacity.svg" alt="Classroom capacity: frames per second each student receives '
+            'against the number of students, per scene. The measured values are in the table below." '
+            'width="760" height="460"></a></figure>'
+        )
+    rows = "".join(_capacity_row(step) for step in report["steps"] if isinstance(step, dict))
+    return (
+        f'<p class="bench-meta">{lines}</p>{figure}'
+        '<div class="table-wrap"><table><thead><tr><th scope="col">Scene</th><th scope="col">Students</th>'
+        '<th scope="col">Frames/s, 10th percentile</th><th scope="col">Median</th><th scope="col">Slowest</th>'
+        '<th scope="col">Server CPU (cores)</th><th scope="col">Server memory (MB)</th>'
+        '<th scope="col">Load tool CPU (cores)</th><th scope="col">Health p95 (ms)</th>'
+        '<th scope="col">Bytes per frame</th><th scope="col">Errors</th></tr></thead>'
+        f"<tbody>{rows}</tbody></table></div>"
+    )
+
+
+def _capacity_section(settings) -> str:
+    """The "Classroom capacity" section: the plot and table of ``capacity.json`` (written by ``dynlab load``)."""
+    how = "<code>dynlab load</code> measures it (real viewer websockets, 10 to 150 students) and writes it"
+    try:
+        report = capacity.read_report(Path(settings.bench_dir) / capacity.REPORT_FILE)
+    except ValueError as exc:
+        content = f'<p class="notice">{esc(str(exc))}; {how} again.</p>'
+    else:
+        if report is None:
+            content = f'<p class="notice">No classroom measurement yet: {how}.</p>'
+        else:
+            try:
+                content = _capacity_table(report, settings)
+            except (AttributeError, TypeError, KeyError, ValueError):
+                content = f'<p class="notice">The classroom measurement is malformed; {how} again.</p>'
+    return (
+        '<section class="bench-scene bench-capacity" id="bench-capacity"><h2>Classroom capacity</h2>'
+        "<p>How many students the server streams their own live scene to, at how many frames per second.</p>"
+        f"{content}</section>"
+    )
+
+
 @router.get("/solver-lab", response_class=HTMLResponse)
 def solver_lab_page(settings: SettingsDep) -> HTMLResponse:
     meta, prose = _solver_lab_text(Path(settings.lessons_dir))
@@ -401,6 +473,7 @@ def solver_lab_page(settings: SettingsDep) -> HTMLResponse:
         summary=esc(str(meta.get("summary", ""))),
         prose=prose,
         results=results_html,
+        capacity=_capacity_section(settings),
     )
     return _page(
         "Solver lab — Dynamics Lab", body, scripts=("/static/vendor/katex/katex.min.js", "/static/js/common.js")
