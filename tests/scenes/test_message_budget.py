@@ -18,7 +18,7 @@ WARM_UP_FRAMES = 30
 COUNTED_FRAMES = 120  # 4 s of motion: every trail chunk, label refresh and batch refill comes round several times
 ANIMATED = sorted(scene_id for scene_id, cls in SCENES.items() if cls.animated)
 #: The scenes a classroom load test drives: their budgets are tight, so a new message per frame is noticed.
-TIGHT_BUDGETS = {"heavy-top": 6.0, "four-bar": 3.0, "moving-frame-acceleration": 8.0}
+TIGHT_BUDGETS = {"heavy-top": 6.0, "four-bar": 3.0, "moving-frame-acceleration": 6.0}
 
 
 def messages_per_frame(cls, client) -> float:

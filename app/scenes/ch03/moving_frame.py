@@ -90,12 +90,16 @@ class LabelledArrows:
         self._style = dict(shaft_radius=shaft_radius, head_radius=head_radius, head_length=head_length)
         self._drawn = None  # rebuild with the new sizes on the next draw
 
-    def draw(self, segments: dict[str, tuple[np.ndarray, np.ndarray]], *, label_at: float = 0.6) -> None:
-        """``segments``: key -> (tail, head) in scene units; labels sit ``label_at`` of the way along."""
+    def draw(self, segments: dict[str, tuple[np.ndarray, np.ndarray]], *, label_at: float = 0.6, move_labels: bool = True) -> None:
+        """``segments``: key -> (tail, head) in scene units; labels sit ``label_at`` of the way along.
+
+        ``move_labels=False`` leaves the labels where they are this frame (they are still shown or
+        hidden with their arrows): the scene moves them every other frame, half the messages.
+        """
         keep = [k for k, (tail, head) in segments.items() if np.linalg.norm(head - tail) > 0.6 * self._style["head_length"]]
         for key, (tail, head) in segments.items():
             visible = key in keep
-            if visible:
+            if visible and (move_labels or visible != self._label_visible[key]):
                 move_node(self._labels[key], position=tail + label_at * (head - tail))
             if visible != self._label_visible[key]:
                 self._labels[key].visible = visible
@@ -113,8 +117,14 @@ class LabelledArrows:
             update_node(self._node, points=points)
 
 
+#: Frames between moves of the arrow labels (2: at 15 Hz).
+LABEL_MOVE_EVERY_FRAMES = 2
+
+
 class MovingFrameScene(Scene):
     id = "moving-frame-acceleration"
+    #: Table attitude, slider, the two arrow batches, and the labels of the drawn arrows at 15 Hz.
+    frame_message_budget = 6.0
     title = "Acceleration seen from a moving frame: the five terms"
     chapter = 3
     model = physics.MovingFrameAcceleration
@@ -226,10 +236,14 @@ class MovingFrameScene(Scene):
             segments[name] = (tail, tail + scale * self._terms[name])
             tail = segments[name][1]
         segments["total"] = (p, p + scale * self._terms["total"])
-        self.accel.draw(segments)
+        # Labels ride along their arrows at 15 Hz (the arrows move at 30): with eight labels that is four messages
+        # a frame fewer per student, and a label trails its arrow by at most one frame.
+        move_labels = self._row % LABEL_MOVE_EVERY_FRAMES == 0
+        self.accel.draw(segments, move_labels=move_labels)
         self.rates.draw(
             {"omega": (origin, origin + RATE_ARROW_M_PER_RAD_S * self._omega), "alpha": (origin, origin + RATE_ARROW_M_PER_RAD_S * self._alpha)},
             label_at=1.0,
+            move_labels=move_labels,
         )
 
     def advance(self, dt_s: float) -> None:

@@ -272,7 +272,7 @@ class SceneHost:
             deadline = deadline + period if now - deadline < period else now + period
             with self._lock:
                 sessions = [sess for sess in self._sessions.values() if sess.instances]
-            wakeups = BatchedWakeups()  # one wake-up of viser's sender per few viewers, not one per viewer
+            wakeups = BatchedWakeups()  # viser's sender is woken once for every viewer's frame, not once per viewer
             advanced = 0
             for session in sessions:
                 with session.lock:
