@@ -7,7 +7,6 @@ new benchmark run shows up without restarting the server.
 
 from __future__ import annotations
 
-import json
 import re
 from pathlib import Path
 from typing import Any
@@ -18,6 +17,7 @@ from fastapi.responses import FileResponse
 from app.api.deps import SettingsDep
 from app.api.schemas.bench import WorkPrecisionReport
 from app.api.schemas.errors import error_responses
+from app.bench.report_file import read_report_file
 from app.settings import Settings
 
 router = APIRouter(tags=["bench"])
@@ -59,15 +59,10 @@ def _shown(path: Path) -> str:
 def load_results(settings: Settings) -> dict[str, Any] | None:
     """The parsed results, ``None`` if the file is missing; ``BenchResultsError`` if it is unreadable."""
     path = results_path(settings)
-    if not path.is_file():
-        return None
     try:
-        data = json.loads(path.read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
-        raise BenchResultsError(f"`{_shown(path)}` cannot be read: {exc}") from None
-    if not isinstance(data, dict) or not isinstance(data.get("scenes"), list):
-        raise BenchResultsError(f"`{_shown(path)}` has no list of scenes")
-    return data
+        return read_report_file(path, list_key="scenes", shown_as=f"`{_shown(path)}`")
+    except ValueError as exc:
+        raise BenchResultsError(str(exc)) from None
 
 
 def diagram_path(settings: Settings, scene_id: str) -> Path | None:

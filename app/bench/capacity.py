@@ -46,6 +46,7 @@ import numpy as np
 from app.bench.load_client import Classroom, HealthLatency, loopback_base, probe_health
 from app.bench.plot import FONT, SVG_NS, _f, _marker, _text
 from app.bench.process_tree import TreeUsage, tree_usage
+from app.bench.report_file import read_report_file
 
 REPORT_FILE = "capacity.json"
 PLOT_FILE = "capacity.svg"
@@ -472,15 +473,7 @@ def write_report(report: dict, out_dir: Path, *, name: str = REPORT_FILE, plot: 
 
 def read_report(path: Path) -> dict | None:
     """A saved capacity report, None if the file is missing; ValueError if it is unreadable or has no steps."""
-    if not path.is_file():
-        return None
-    try:
-        data = json.loads(path.read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
-        raise ValueError(f"{path.name} cannot be read: {exc}") from None
-    if not isinstance(data, dict) or not isinstance(data.get("steps"), list):
-        raise ValueError(f"{path.name} has no list of steps")
-    return data
+    return read_report_file(path, list_key="steps", shown_as=path.name)
 
 
 # ---- command line ----------------------------------------------------------------------------

@@ -33,7 +33,12 @@ from typing import Any
 
 import viser
 
-from app.scenes.host.viser_compat import BatchedWakeups, connection_path, share_prop_hints
+from app.scenes.host.viser_compat import (
+    BatchedWakeups,
+    connection_path,
+    share_prop_hints,
+    start_callback_threads,
+)
 from app.scenes.kit import Scene
 
 log = logging.getLogger(__name__)
@@ -87,6 +92,7 @@ class SceneHost:
             server = viser.ViserServer(host=self._host, port=0, verbose=False)
         log.info("scene server listening on loopback port %d (reached only through the relay)", server.get_port())
         server.gui.configure_theme(show_share_button=False, show_logo=False)
+        start_callback_threads(server)  # a constant thread count, so a soak can tell a leak from a growing pool
         server.on_client_connect(self._on_connect)
         server.on_client_disconnect(self._on_disconnect)
         self._server = server

@@ -20,8 +20,9 @@ touch a ``_websock*`` attribute (a test greps for it).
 from __future__ import annotations
 
 import contextlib
+import threading
 import typing
-from collections.abc import Iterable, Iterator
+from collections.abc import Iterator
 from typing import Any
 
 import msgspec
@@ -229,3 +230,21 @@ class BatchedWakeups:
 
             with contextlib.suppress(RuntimeError):  # the server's loop has closed (stopping): nothing to wake
                 loop.call_soon_threadsafe(wake)
+
+
+def start_callback_threads(server: viser.ViserServer, *, timeout_s: float = 10.0) -> int:
+    """Start every thread of viser's callback pool now; returns how many it has.
+
+    viser runs connect and disconnect callbacks (our scene builds) on a thread
+    pool of at most 32 threads that grows only when callbacks overlap, so a
+    worker's thread count crept up class after class until it reached 32 —
+    bounded, but indistinguishable from a leak in a soak test. Started all at
+    once, the worker's threads are a constant from the first student on.
+    """
+    executor = server._thread_executor
+    size = executor._max_workers
+    everyone_started = threading.Barrier(size, timeout=timeout_s)
+    futures = [executor.submit(everyone_started.wait) for _ in range(size)]
+    for future in futures:
+        future.result(timeout=timeout_s)
+    return len(executor._threads)

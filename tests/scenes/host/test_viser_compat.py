@@ -20,7 +20,12 @@ import zstandard
 from websockets.sync.client import connect
 
 from app.scenes.host import viser_compat
-from app.scenes.host.viser_compat import connection_path, scene_node_names, set_initial_camera, viewer_camera_message
+from app.scenes.host.viser_compat import (
+    connection_path,
+    scene_node_names,
+    set_initial_camera,
+    viewer_camera_message,
+)
 
 ROOT = Path(__file__).resolve().parents[3]
 PRIVATE_USE = re.compile(r"\bviser\._(?!_)|from viser import _|\._websock")
@@ -183,3 +188,13 @@ def test_batched_wakeups_group_a_clients_messages_and_deliver_them_once_woken():
         delivered = received_messages(socket, seconds=0.5)
     updates = [m["updates"]["text"] for m in delivered if m["type"] == "SceneNodeUpdateMessage"]
     assert not [m for m in held if m["type"] == "SceneNodeUpdateMessage"] and updates == ["second"]
+
+
+def test_callback_threads_are_all_started_so_the_count_stays_constant():
+    with server_with_viewer("/") as (server, _client, _socket):
+        started = viser_compat.start_callback_threads(server)
+        assert started == server._thread_executor._max_workers == 32
+        for _ in range(50):  # overlapping callbacks reuse the started threads
+            server._thread_executor.submit(time.sleep, 0.001)
+        time.sleep(0.2)
+        assert len(server._thread_executor._threads) == started
