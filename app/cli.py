@@ -11,13 +11,18 @@ import sys
 from app.settings import Settings
 
 
+def default_worker_count() -> int:
+    """Scene workers when ``--workers`` is not given: ``DYNLAB_WORKERS``, else one per core."""
+    return int(os.environ.get("DYNLAB_WORKERS", os.cpu_count() or 1))
+
+
 def _serve(args: argparse.Namespace) -> int:
     import uvicorn
 
     from app.main import create_app
     from app.scenes.host.worker import tune_garbage_collection
 
-    workers = args.workers if args.workers is not None else int(os.environ.get("DYNLAB_WORKERS", os.cpu_count() or 1))
+    workers = args.workers if args.workers is not None else default_worker_count()
     settings = Settings.from_env(host=args.host, port=args.port, workers=workers)
     app = create_app(settings)
     tune_garbage_collection()  # the front relays every frame of every viewer: the same allocation pattern as a worker
@@ -70,6 +75,9 @@ def _add_load_and_soak(commands: argparse._SubParsersAction) -> None:
 
 
 def main(argv: list[str] | None = None) -> int:
+    argv = sys.argv[1:] if argv is None else list(argv)
+    if argv[:1] == ["bench"]:  # the benchmark parses its own options (argparse's REMAINDER refuses a leading --option)
+        return _bench(argparse.Namespace(bench_args=argv[1:]))
     parser = argparse.ArgumentParser(prog="dynlab", description="Dynamics Lab: interactive engineering dynamics.")
     commands = parser.add_subparsers(dest="command", required=True)
     serve = commands.add_parser("serve", help="run the web application")

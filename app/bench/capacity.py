@@ -296,12 +296,14 @@ def utc_now() -> str:
 
 
 def server_facts(server: ServerUnderTest) -> dict:
+    from app.cli import default_worker_count
     from app.settings import Settings
 
     return {
         "url": server.base_url,
         "started_by_tool": server.started_by_tool,
-        "workers": server.workers,
+        # A server started here without --workers runs `dynlab serve`'s default: one scene worker per core.
+        "workers": server.workers if server.workers is not None or not server.started_by_tool else default_worker_count(),
         # The frame rate a server started here runs at (DYNLAB_FRAME_RATE_HZ or the default); unknown for --url.
         "frame_rate_hz": Settings.from_env().frame_rate_hz if server.started_by_tool else None,
         "measured_pid": server.pid,
@@ -366,7 +368,7 @@ def run_load(options: LoadOptions) -> dict:
 
 # ---- the report: JSON and a plot -------------------------------------------------------------
 
-WIDTH, HEIGHT = 760, 460
+WIDTH, HEIGHT = 840, 460  # room on the right for the longest scene id in the legend
 LEFT, RIGHT, TOP, BOTTOM = 70, 560, 64, 400
 SCENE_COLOURS = ("#d0202e", "#1f5fbf", "#1b8a3a", "#7b2fa8", "#e67e00", "#00796b", "#5d4037")
 
@@ -429,7 +431,8 @@ def capacity_svg(report: dict) -> str:
         out.append(
             f'<g class="target"><line x1="{LEFT}" x2="{RIGHT}" y1="{_f(y(rate))}" y2="{_f(y(rate))}" stroke="#1d2330" '
             f'stroke-width="1.3" stroke-dasharray="6 4"/>'
-            + _text(RIGHT - 4, y(rate) + 14, f"{label} ({rate:g})", size=11, anchor="end", halo=True)
+            # At the left end, under its line: small classes sit at 30 frames/s, above both lines, so nothing is hidden.
+            + _text(LEFT + 6, y(rate) + 14, f"{label} ({rate:g})", size=11, anchor="start", halo=True)
             + "</g>"
         )
     legend_y = TOP + 8

@@ -40,7 +40,11 @@ def test_bouncing_bar_lesson_counts_impacts_keeps_the_energy_ledger_and_comes_to
     # Try-this 5 (e = 1, μ = 0, here from 45°): it bounces for ever, losing nothing; the screenshot shows it in flight.
     host = live_server.host
     elastic = {"restitution": 1.0, "friction_coefficient": 0.0, "angle0_deg": 45.0}
-    assert httpx.put(f"{live_server.url}/api/scenes/bouncing-bar/sessions/{session_id}", json={"params": elastic}).status_code == 200
+    # The page claimed its session with its key: a change from outside the page must carry it (without it: 403).
+    url = f"{live_server.url}/api/scenes/bouncing-bar/sessions/{session_id}"
+    assert httpx.put(url, json={"params": elastic}).status_code == 403
+    key = page.evaluate("window.dynlabLesson.session.key")
+    assert httpx.put(url, json={"params": elastic}, headers={"X-Session-Key": key}).status_code == 200
     wait_until(lambda: host.instances(session_id)[0].params["restitution"] == 1.0, 15, what="the scene to take the new parameters")
     def bouncing_elastically() -> bool:
         now = readout_values(page)
