@@ -22,7 +22,6 @@ from __future__ import annotations
 import contextlib
 import io
 import logging
-import os
 import re
 import threading
 import time
@@ -83,7 +82,6 @@ class SceneHost:
         self._stop = threading.Event()
         self._server: viser.ViserServer | None = None
         self._thread: threading.Thread | None = None
-        self._frame_stats = {"iterations": 0, "busy_s": 0.0, "scene_frames": 0, "late": 0, "since": time.perf_counter()}
 
     # -- life cycle ---------------------------------------------------------------
     def start(self) -> None:
@@ -279,27 +277,12 @@ class SceneHost:
             with self._lock:
                 sessions = [sess for sess in self._sessions.values() if sess.instances]
             wakeups = BatchedWakeups()  # viser's sender is woken once for every viewer's frame, not once per viewer
-            advanced = 0
             for session in sessions:
                 with session.lock:
                     for scene in list(session.instances.values()):
                         if scene.animated and not scene.status:
                             self._advance(scene, dt, wakeups)
-                            advanced += 1
             wakeups.flush()
-            self._tick_stats(now, time.perf_counter(), advanced)
-
-    def _tick_stats(self, start: float, end: float, scenes: int) -> None:
-        stats = self._frame_stats
-        stats["iterations"] += 1
-        stats["busy_s"] += end - start
-        stats["scene_frames"] += scenes
-        if end - start > 1.0 / self.frame_rate_hz:
-            stats["late"] += 1
-        if end - stats["since"] > 5.0 and os.environ.get("DYNLAB_FRAME_STATS"):
-            log.warning("frame loop: %.1f it/s, busy %.0f%%, %d late, %.1f scenes/it", stats["iterations"] / (end - stats["since"]),
-                        100 * stats["busy_s"] / (end - stats["since"]), stats["late"], stats["scene_frames"] / max(stats["iterations"], 1))
-            self._frame_stats = {"iterations": 0, "busy_s": 0.0, "scene_frames": 0, "late": 0, "since": end}
 
     @staticmethod
     def _advance(scene: Scene, dt_s: float, wakeups: BatchedWakeups) -> None:

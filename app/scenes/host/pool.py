@@ -22,7 +22,6 @@ import multiprocessing
 import queue
 import secrets
 import threading
-import time
 import zlib
 from collections import OrderedDict
 from collections.abc import Mapping

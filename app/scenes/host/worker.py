@@ -14,6 +14,7 @@ import gc
 import logging
 import os
 import threading
+from multiprocessing import AuthenticationError
 from multiprocessing.connection import Connection, Listener
 from typing import Any
 
@@ -30,7 +31,8 @@ def run_worker(index: int, start_pipe: Connection, authkey: bytes, options: dict
     host.start()
     tune_garbage_collection()
     listener = Listener(("127.0.0.1", 0), authkey=authkey)
-    threading.Thread(target=_accept_calls, args=(listener, host), name="worker-rpc", daemon=True).start()
+    closing = threading.Event()
+    threading.Thread(target=_accept_calls, args=(listener, host, closing), name="worker-rpc", daemon=True).start()
     start_pipe.send({"viewer_url": host.url, "rpc_address": listener.address, "pid": os.getpid()})
     try:
         start_pipe.recv()  # "stop", or EOFError when the front process has gone
@@ -38,6 +40,7 @@ def run_worker(index: int, start_pipe: Connection, authkey: bytes, options: dict
         log.warning("front process gone: worker %d stopping", index)
     finally:
         host.stop()
+        closing.set()
         listener.close()
 
 
@@ -55,12 +58,12 @@ def tune_garbage_collection() -> None:
     gc.set_threshold(50_000, 20, 20)
 
 
-def _accept_calls(listener: Listener, host: Any) -> None:
+def _accept_calls(listener: Listener, host: Any, closing: threading.Event) -> None:
     while True:
         try:
             connection = listener.accept()
-        except OSError:  # closed at shutdown, or a caller that failed authentication
-            if listener._listener is None:  # type: ignore[attr-defined]
+        except (OSError, AuthenticationError):  # closed at shutdown, or a caller without the pool's key
+            if closing.is_set():
                 return
             continue
         threading.Thread(target=_answer_calls, args=(connection, host), name="worker-call", daemon=True).start()

@@ -106,3 +106,16 @@ def test_a_session_whose_worker_is_down_gets_a_503_with_retry_after(client, pool
     response = client.put(f"/api/scenes/heavy-top/sessions/{sid}", json={"params": {}})
     assert response.status_code == 503 and response.headers["Retry-After"] == "2"
     assert "restarting" in response.json()["detail"]
+
+
+def test_a_caller_without_the_key_is_refused_and_the_worker_keeps_answering(client, pool):
+    from multiprocessing import AuthenticationError
+    from multiprocessing.connection import Client
+
+    address = pool._workers[0].rpc_address
+    with pytest.raises(AuthenticationError):
+        Client(address, authkey=b"not the pool's key")
+    sid = session_on(pool, 0)
+    assert client.put(f"/api/scenes/four-bar/sessions/{sid}", json={"params": {"crank_m": 0.11}}).status_code == 200
+    pool._close_connections(pool._workers[0])  # a new connection: the listener must still accept
+    assert pool.session_params(sid)["crank_m"] == 0.11

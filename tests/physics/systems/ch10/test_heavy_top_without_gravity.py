@@ -10,7 +10,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-import pytest
 
 from app.physics.core.parameters import ParameterSet
 from app.physics.solvers.integrated_model import simulate_model
