@@ -1,0 +1,1 @@
+"""Chapter 9 scenes: alternative formulations."""
