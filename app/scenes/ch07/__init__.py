@@ -1,0 +1,1 @@
+"""Chapter 7 scenes: analytical mechanics."""
