@@ -6,8 +6,16 @@ The grammar is deliberately small::
     term       := unary (("*" | "/") unary)*
     unary      := ("-" | "+") unary | power
     power      := atom ("^" unary)?            (right-associative: 2^3^2 = 2^9)
-    atom       := number | "t" | "pi" | function "(" expression ")" | "(" expression ")"
+    atom       := number | name | "pi" | function "(" expression ")" | "(" expression ")"
     function   := sqrt | sin | cos | tan | exp | log      (log is the natural logarithm)
+
+Two vocabularies share it. :func:`parse_expression` reads formulas in time
+alone (``name`` is ``t``). :func:`parse_formula` reads formulas in names the
+caller gives, such as the kinetic and potential energy of chapter 7 in the
+generalized coordinates ``q1 q2 q3``, their rates ``q1d q2d q3d``, time ``t``
+and constants the student names (checked by :func:`check_parameter_name`);
+its result is also bounded in size (:data:`MAX_FORMULA_OPERATIONS`) and in
+its constants (:data:`MAX_FORMULA_CONSTANT`), so what reaches a derivation is small.
 
 ``**`` is accepted as ``^``; the typed signs ``×`` ``·`` ``÷`` ``−`` and ``π`` as
 ``*`` ``*`` ``/`` ``-`` and ``pi``. Nothing else is: no other names, no
@@ -24,16 +32,18 @@ character position (1-based) and says what is allowed.
 
 from __future__ import annotations
 
+import builtins
+import keyword
 import math
 import re
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from fractions import Fraction
 from functools import lru_cache
 
 import sympy
 
-#: Longest formula accepted (characters).
+#: Longest formula in t accepted (characters).
 MAX_LENGTH = 200
 #: Deepest nesting of parentheses, functions, signs and powers.
 MAX_DEPTH = 30
@@ -41,8 +51,26 @@ MAX_DEPTH = 30
 MAX_LITERAL = 1e9
 #: A power of two constants may not exceed this magnitude (e.g. 10^30 is refused).
 MAX_CONSTANT_POWER = 1e15
-#: A power of t may not have an exponent larger than this in magnitude.
+#: A power of a variable (t, q1, ...) may not have an exponent larger than this in magnitude.
 MAX_EXPONENT = 100
+
+#: Longest formula in named variables accepted by default (characters): a triple pendulum's
+#: kinetic energy typed out is about 200.
+MAX_FORMULA_LENGTH = 400
+#: Most operations (``sympy.count_ops``) a formula in named variables may have by default: that
+#: triple pendulum's kinetic energy has 45. Deriving equations of motion multiplies the size
+#: several times over per coordinate, so this bound keeps a derivation's input small.
+MAX_FORMULA_OPERATIONS = 120
+#: Largest constant (magnitude) a formula in named variables may form, e.g. by ``1e9*1e9``:
+#: far below float64's 1.8e308, so compiled equations cannot overflow on constants alone.
+MAX_FORMULA_CONSTANT = 1e15
+#: Longest name a student may give a constant parameter (characters).
+MAX_PARAMETER_NAME_LENGTH = 12
+
+#: Names of the generalized coordinates, their rates and time in the formulas of chapter 7.
+COORDINATE_NAMES = ("q1", "q2", "q3")
+RATE_NAMES = ("q1d", "q2d", "q3d")
+TIME_NAME = "t"
 
 ALLOWED = "only t, numbers, + - * / ^, ( ) and sqrt sin cos tan exp log pi are allowed"
 
@@ -59,6 +87,7 @@ _FUNCTIONS: dict[str, Callable[[sympy.Expr], sympy.Expr]] = {
 _TYPED_SIGNS = {"×": "*", "·": "*", "⋅": "*", "÷": "/", "−": "-", "–": "-"}
 _NUMBER = re.compile(r"(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?", re.ASCII)
 _NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
+_PLAIN_NAME = re.compile(r"[A-Za-z][A-Za-z0-9]*", re.ASCII)
 _NAME_HINTS = {
     "e": "write exp(1) for Euler's number, or 2e3 (no space) for 2000; " + ALLOWED,
     "ln": "write log for the natural logarithm; " + ALLOWED,
@@ -76,6 +105,10 @@ _HINTS = {
     "=": "type only the right-hand side, e.g. 2*cos(t)",
     "_": "underscores are not allowed",
 }
+#: Names a student may not give a parameter, beyond keywords and built-ins: they read as something else,
+#: or they would hide the numeric modules compiled equations call.
+_RESERVED_NAMES = frozenset({"pi", "e", TIME_NAME, "ln", "np", "numpy", "math", "mpmath", "scipy", "sympy"})
+_PYTHON_NAMES = frozenset(dir(builtins)) | frozenset(keyword.kwlist) | frozenset(keyword.softkwlist)
 
 
 @dataclass(frozen=True)
@@ -85,6 +118,52 @@ class Token:
     kind: str
     text: str
     position: int
+
+
+@dataclass(frozen=True)
+class _Vocabulary:
+    """The names a formula may use (``symbols``; pi and the functions always) and how refusals explain them.
+
+    ``allowed`` ends most refusals; ``name_hints`` and ``char_hints`` replace it for a typed name or
+    character; ``unknown_name_hint`` is for any other name, ``letter_hint`` for a non-ASCII letter.
+    ``described`` says what to type into an empty field.
+    """
+
+    symbols: Mapping[str, sympy.Symbol]
+    max_length: int
+    allowed: str
+    described: str
+    name_hints: Mapping[str, str]
+    char_hints: Mapping[str, str]
+    unknown_name_hint: str
+    letter_hint: str
+
+    @property
+    def sample(self) -> str:
+        """The name shown in examples such as ``2*t``."""
+        return next(iter(self.symbols))
+
+    @property
+    def operand(self) -> str:
+        """What an operand may be named, in "expected a number, t, pi…"."""
+        return self.sample if len(self.symbols) == 1 else "a name"
+
+    def char_hint(self, char: str) -> str:
+        if char in self.char_hints:
+            return self.char_hints[char]
+        return self.letter_hint if char.isalpha() else self.allowed
+
+
+_TIME_VOCABULARY = _Vocabulary(
+    symbols={TIME_NAME: T},
+    max_length=MAX_LENGTH,
+    allowed=ALLOWED,
+    described="an expression in t, e.g. 2*cos(t)",
+    name_hints=_NAME_HINTS,
+    char_hints=_HINTS,
+    unknown_name_hint=ALLOWED,
+    letter_hint=ALLOWED,
+)
 
 
 def _fail(position: int, message: str) -> ValueError:
@@ -97,11 +176,16 @@ def _unexpected(token_text: str, position: int, hint: str = ALLOWED) -> ValueErr
 
 
 def tokenize(text: str) -> list[Token]:
-    """Split ``text`` into tokens, refusing any character or name outside the grammar."""
+    """Split a formula in ``t`` into tokens, refusing any character or name outside the grammar."""
+    return _scan(text, _TIME_VOCABULARY)
+
+
+def _scan(text: str, vocabulary: _Vocabulary) -> list[Token]:
+    """Split ``text`` into tokens, refusing any character or name outside the grammar and ``vocabulary``."""
     if not isinstance(text, str):
         raise ValueError("the formula must be text")
-    if len(text) > MAX_LENGTH:
-        raise ValueError(f"the formula is {len(text)} characters long; the limit is {MAX_LENGTH}")
+    if len(text) > vocabulary.max_length:
+        raise ValueError(f"the formula is {len(text)} characters long; the limit is {vocabulary.max_length}")
     tokens: list[Token] = []
     i = 0
     while i < len(text):
@@ -123,9 +207,9 @@ def tokenize(text: str) -> list[Token]:
             assert match is not None
             name = match.group(0)
             if "_" in name:
-                raise _unexpected(name, position, "underscores are not allowed; " + ALLOWED)
-            if name != "t" and name != "pi" and name not in _FUNCTIONS:
-                raise _unexpected(name, position, _NAME_HINTS.get(name, ALLOWED))
+                raise _unexpected(name, position, "underscores are not allowed; " + vocabulary.allowed)
+            if name not in vocabulary.symbols and name != "pi" and name not in _FUNCTIONS:
+                raise _unexpected(name, position, vocabulary.name_hints.get(name, vocabulary.unknown_name_hint))
             tokens.append(Token("name", name, position))
             i = match.end()
             continue
@@ -149,7 +233,7 @@ def tokenize(text: str) -> list[Token]:
             tokens.append(Token(char, char, position))
             i += 1
             continue
-        raise _unexpected(char, position, _HINTS.get(char, ALLOWED))
+        raise _unexpected(char, position, vocabulary.char_hint(char))
     return tokens
 
 
@@ -167,11 +251,12 @@ def _number(token: Token) -> sympy.Rational:
 class _Parser:
     """Recursive descent over the token list, building the sympy tree as it goes."""
 
-    def __init__(self, tokens: list[Token], length: int) -> None:
+    def __init__(self, tokens: list[Token], length: int, vocabulary: _Vocabulary) -> None:
         self.tokens = tokens
         self.index = 0
         self.end_position = length + 1
         self.depth = 0
+        self.vocabulary = vocabulary
 
     def peek(self) -> Token | None:
         return self.tokens[self.index] if self.index < len(self.tokens) else None
@@ -190,7 +275,7 @@ class _Parser:
 
     def parse(self) -> sympy.Expr:
         if not self.tokens:
-            raise ValueError("the formula is empty: type an expression in t, e.g. 2*cos(t)")
+            raise ValueError(f"the formula is empty: type {self.vocabulary.described}")
         expr = self.expression()
         token = self.peek()
         if token is not None:
@@ -199,7 +284,8 @@ class _Parser:
 
     def unexpected_after_operand(self, token: Token) -> ValueError:
         if token.kind in ("number", "name", "("):
-            return _unexpected(token.text, token.position, "a product needs an explicit *, e.g. 2*t or 3*sin(t)")
+            sample = self.vocabulary.sample
+            return _unexpected(token.text, token.position, f"a product needs an explicit *, e.g. 2*{sample} or 3*sin({sample})")
         return _unexpected(token.text, token.position, "expected an operator + - * / ^ or the end of the formula")
 
     def expression(self) -> sympy.Expr:
@@ -250,8 +336,8 @@ class _Parser:
         if token.kind == "number":
             return _number(token)
         if token.kind == "name":
-            if token.text == "t":
-                return T
+            if token.text in self.vocabulary.symbols:
+                return self.vocabulary.symbols[token.text]
             if token.text == "pi":
                 return sympy.pi
             return self.call(token)
@@ -262,13 +348,13 @@ class _Parser:
             self.depth -= 1
             return inner
         if token.kind == ")":
-            raise _unexpected(")", token.position, "expected a number, t, pi, a function or '('")
-        raise _unexpected(token.text, token.position, "expected a number, t, pi, a function or '(' here")
+            raise _unexpected(")", token.position, f"expected a number, {self.vocabulary.operand}, pi, a function or '('")
+        raise _unexpected(token.text, token.position, f"expected a number, {self.vocabulary.operand}, pi, a function or '(' here")
 
     def call(self, name: Token) -> sympy.Expr:
         opening = self.peek()
         if opening is None or opening.kind != "(":
-            raise _fail(name.position, f"{name.text} needs its argument in parentheses, e.g. {name.text}(t)")
+            raise _fail(name.position, f"{name.text} needs its argument in parentheses, e.g. {name.text}({self.vocabulary.sample})")
         self.take()
         self.enter(opening.position)
         argument = self.expression()
@@ -320,7 +406,8 @@ def _power(base: sympy.Expr, exponent: sympy.Expr, position: int) -> sympy.Expr:
             if b.real < 0 and not float(e.real).is_integer():
                 raise _fail(position, "a negative number to a fractional power is not a real number")
     elif _is_constant(base) and _constant_value(base, position).real <= 0:
-        raise _fail(position, "a power whose exponent depends on t needs a positive base, e.g. 2^t")
+        variable = min(str(symbol) for symbol in exponent.free_symbols)
+        raise _fail(position, f"a power whose exponent depends on {variable} needs a positive base, e.g. 2^{variable}")
     return _checked(sympy.Pow(base, exponent), position)
 
 
@@ -343,10 +430,109 @@ def parse_expression(text: str) -> sympy.Expr:
     Raises ``ValueError`` with the character position and what is allowed. The
     result may be a constant (no ``t``) and uses exact rationals for typed numbers.
     """
-    tokens = tokenize(text)
-    return _Parser(tokens, len(text)).parse()
+    return _Parser(tokenize(text), len(text), _TIME_VOCABULARY).parse()
 
 
 def check_expression(text: str) -> None:
     """``Parameter.parse`` hook: raises ``ValueError`` if ``text`` is not an allowed formula."""
     parse_expression(text)
+
+
+def _formula_vocabulary(symbols: Mapping[str, sympy.Symbol], max_length: int) -> _Vocabulary:
+    """The vocabulary of :func:`parse_formula`, its refusals naming ``symbols`` and the chapter-7 conventions."""
+    if not symbols:
+        raise ValueError("symbols: a formula needs at least one name")
+    for name, symbol in symbols.items():
+        if not isinstance(name, str) or not _PLAIN_NAME.fullmatch(name) or name == "pi" or name in _FUNCTIONS:
+            raise ValueError(f"symbols: {name!r} cannot be a name in a formula (ASCII letters and digits, not pi or a function)")
+        if not isinstance(symbol, sympy.Symbol):
+            raise ValueError(f"symbols: the value for {name!r} must be a sympy.Symbol")
+    names = ", ".join(symbols)
+    allowed = f"only {names}, numbers, + - * / ^, ( ) and sqrt sin cos tan exp log pi are allowed"
+    coordinates = [name for name in COORDINATE_NAMES if name in symbols]
+    rates = [name for name in RATE_NAMES if name in symbols]
+    if coordinates:
+        conventions = f"the coordinates are {', '.join(coordinates)}" + (f" and their rates {', '.join(rates)}" if rates else "")
+    else:
+        conventions = f"the names defined here are {names}"
+    example = f"{(rates or coordinates or list(symbols))[0]}^2/2"
+    char_hints = dict(_HINTS)
+    char_hints["="] = f"type only the right-hand side, e.g. {example}"
+    char_hints["'"] = f"{conventions}: write a rate as {rates[0] if rates else 'its own name'}, not with a prime; {allowed}"
+    name_hints = {name: hint.replace(ALLOWED, allowed) for name, hint in _NAME_HINTS.items() if name in ("e", "ln") and name not in symbols}
+    return _Vocabulary(
+        symbols=dict(symbols),
+        max_length=max_length,
+        allowed=allowed,
+        described=f"an expression in {names}, e.g. {example}",
+        name_hints=name_hints,
+        char_hints=char_hints,
+        unknown_name_hint=f"{conventions}, and every constant needs a parameter of that name; {allowed}",
+        letter_hint=f"names are ASCII letters and digits: {conventions}; {allowed}",
+    )
+
+
+def parse_formula(
+    text: str,
+    *,
+    symbols: Mapping[str, sympy.Symbol],
+    max_length: int = MAX_FORMULA_LENGTH,
+    max_operations: int = MAX_FORMULA_OPERATIONS,
+) -> sympy.Expr:
+    """The sympy expression for a formula in the names of ``symbols`` (name -> ``sympy.Symbol``), e.g. an energy.
+
+    Same grammar and limits as :func:`parse_expression`, with these names instead of ``t``
+    (the caller includes ``t`` if time is allowed). A formula longer than ``max_length``
+    characters, with more than ``max_operations`` operations (``sympy.count_ops``) or forming a
+    constant beyond :data:`MAX_FORMULA_CONSTANT` is refused. Raises ``ValueError`` saying where
+    (1-based character) and what is allowed; a typed ``q1'`` or an undefined name like ``theta``
+    is told the names of the coordinates and rates.
+    """
+    if max_length < 1 or max_operations < 1:
+        raise ValueError("max_length and max_operations must be at least 1")
+    vocabulary = _formula_vocabulary(symbols, max_length)
+    expr = _Parser(_scan(text, vocabulary), len(text), vocabulary).parse()
+    operations = sympy.count_ops(expr)
+    if operations > max_operations:
+        raise ValueError(f"the formula has {operations} operations; the limit is {max_operations}: write it shorter, or with fewer terms")
+    _check_constants(expr)
+    return expr
+
+
+def _check_constants(expr: sympy.Expr) -> None:
+    """Refuse a formula any of whose constant parts (``1e9*1e9``, ``1/exp(-1e9)``) exceeds :data:`MAX_FORMULA_CONSTANT`."""
+    for node in sympy.preorder_traversal(expr):
+        if node.free_symbols or not isinstance(node, sympy.Expr):
+            continue
+        magnitude = abs(sympy.N(node, 15))
+        if not magnitude.is_finite or magnitude > MAX_FORMULA_CONSTANT:
+            shown = f"{float(magnitude):.3g}" if magnitude < 1e300 else f"{node}"
+            raise ValueError(f"the formula forms the constant {shown}, larger than the limit {MAX_FORMULA_CONSTANT:g}")
+
+
+def check_parameter_name(name: str) -> None:
+    """Raise ``ValueError`` unless ``name`` may name a student's constant parameter in :func:`parse_formula`.
+
+    Allowed: an ASCII letter, then ASCII letters and digits, at most :data:`MAX_PARAMETER_NAME_LENGTH`
+    characters; not a function, ``pi``, ``e``, ``t``, a coordinate or rate (``q1``, ``q2d``, any
+    ``q`` with digits), a Python keyword or built-in, or a numeric module's name.
+    """
+    if not isinstance(name, str):
+        raise ValueError("a parameter name must be text")
+    shown = name if len(name) <= 20 else name[:17] + "..."
+    if not name:
+        raise ValueError("a parameter name is empty: use a letter, then letters or digits, e.g. m1")
+    if len(name) > MAX_PARAMETER_NAME_LENGTH:
+        raise ValueError(f"the parameter name {shown!r} is {len(name)} characters long; the limit is {MAX_PARAMETER_NAME_LENGTH}")
+    if not _PLAIN_NAME.fullmatch(name):
+        raise ValueError(f"the parameter name {shown!r} must be an ASCII letter followed by ASCII letters or digits, e.g. m1 or L")
+    if name in _FUNCTIONS:
+        raise ValueError(f"the parameter name {name!r} is a function (sqrt sin cos tan exp log); choose another")
+    if re.fullmatch(r"q\d+d*", name) or name in COORDINATE_NAMES or name in RATE_NAMES:  # q4 or q1dd would mislead too
+        raise ValueError(
+            f"the parameter name {name!r} is kept for the coordinates {', '.join(COORDINATE_NAMES)} and rates {', '.join(RATE_NAMES)}; choose another"
+        )
+    if name in _RESERVED_NAMES:
+        raise ValueError(f"the parameter name {name!r} is kept for pi, e, time t or a numeric module; choose another")
+    if name in _PYTHON_NAMES:
+        raise ValueError(f"the parameter name {name!r} is a word of Python itself; choose another")

@@ -1,0 +1,349 @@
+"""Bounded work in a child process: answers, passes ValueError back, is killed at its limits, leaks nothing.
+
+The functions the children run are defined here at module level (a child imports this module
+to unpickle them). Time bounds in the tests allow for a loaded 2-core machine: a warm child
+starts in tens of ms and a SIGKILL takes effect at once, so a timeout that fires within 2 s of
+its limit is the runner's doing, while a missing kill would leave the sleeping child 60 s.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import resource
+import signal
+import threading
+import time
+from functools import partial
+
+import pytest
+import sympy
+
+from app.physics.core.bounded import BoundedRunner, WorkBusy, WorkFailed, WorkRefused, WorkTimeout, WorkTooLarge
+from app.physics.core.parameters import ParameterError
+from app.physics.math.expressions import parse_formula
+
+#: Slack beyond a timeout for the child's start, the kill and the join on a loaded machine (s).
+KILL_SLACK_S = 2.0
+
+
+# -- what the children run -----------------------------------------------------------------
+
+def square(x: float) -> float:
+    return x * x
+
+
+def refuse(message: str) -> None:
+    raise ValueError(message)
+
+
+def refuse_parameter() -> None:
+    raise ParameterError("mass_kg", "must be positive", path=("bodies", 1, "mass_kg"))
+
+
+def fail() -> None:
+    raise KeyError("a bug")
+
+
+def sleep_for(seconds: float) -> str:
+    time.sleep(seconds)
+    return "slept"
+
+
+def spin_forever() -> None:
+    while True:
+        pass
+
+
+def hold_megabytes(megabytes: int) -> int:
+    """Allocate and touch ``megabytes`` MB; returns the count of bytes held."""
+    block = bytearray(megabytes * 2**20)
+    block[:: 4096] = b"\x01" * len(block[:: 4096])
+    return len(block)
+
+
+def grow_until_refused() -> int:
+    """Allocate 8 MB blocks without end, as a runaway derivation does."""
+    blocks = []
+    while True:
+        blocks.append(bytearray(8 * 2**20))
+
+
+def recurse(depth: int) -> int:
+    return 0 if depth == 0 else 1 + recurse(depth - 1)
+
+
+def exit_with(status: int) -> None:
+    os._exit(status)
+
+
+def signal_self(number: int) -> None:
+    os.kill(os.getpid(), number)
+    time.sleep(5)
+
+
+def large_result(megabytes: int) -> bytes:
+    return b"x" * (megabytes * 2**20)
+
+
+def limits_seen() -> tuple[int, int, int]:
+    """The child's (RLIMIT_AS soft, RLIMIT_CPU soft, address space now) in bytes, s, bytes."""
+    from app.physics.core.bounded import _address_space_bytes
+
+    return resource.getrlimit(resource.RLIMIT_AS)[0], resource.getrlimit(resource.RLIMIT_CPU)[0], _address_space_bytes()
+
+
+def kinetic_energy_rate_derivative(text: str) -> sympy.Expr:
+    """∂T/∂q1d of a typed kinetic energy: the kind of work the runner is for."""
+    names = {name: sympy.Symbol(name, real=True) for name in ("q1", "q1d", "m", "l")}
+    return sympy.diff(parse_formula(text, symbols=names), names["q1d"])
+
+
+# -- process bookkeeping -------------------------------------------------------------------
+
+def _process_table() -> dict[int, tuple[int, str, str]]:
+    """pid -> (parent pid, state letter, command line) for every process we can read."""
+    table = {}
+    for entry in os.listdir("/proc"):
+        if not entry.isdigit():
+            continue
+        try:
+            with open(f"/proc/{entry}/stat", encoding="utf-8", errors="replace") as stat:
+                fields = stat.read().rsplit(")", 1)[1].split()
+            with open(f"/proc/{entry}/cmdline", "rb") as cmdline:
+                command = cmdline.read().replace(b"\0", b" ").decode(errors="replace")
+        except OSError:
+            continue
+        table[int(entry)] = (int(fields[1]), fields[0], command)
+    return table
+
+
+def _descendants() -> list[tuple[int, int, str, str]]:
+    """(pid, parent pid, state, command) of every process below this one, the forkserver's children included."""
+    table = _process_table()
+    found, frontier = [], [os.getpid()]
+    while frontier:
+        parent = frontier.pop()
+        for pid, (ppid, state, command) in table.items():
+            if ppid == parent:
+                found.append((pid, ppid, state, command))
+                frontier.append(pid)
+    return found
+
+
+def _workers_left() -> list[tuple[int, int, str, str]]:
+    """Descendants other than the long-lived forkserver and resource tracker (our own children, started
+    with ``-c``): leaked or zombie workers. A worker is forked from the forkserver, so it shares its
+    command line but is the forkserver's child, not ours."""
+    helpers = ("multiprocessing.forkserver import main", "multiprocessing.resource_tracker import main")
+    return [
+        p for p in _descendants() if p[2] == "Z" or p[1] != os.getpid() or not any(helper in p[3] for helper in helpers)
+    ]
+
+
+def _open_fds() -> int:
+    return len(os.listdir("/proc/self/fd"))
+
+
+def _wait_for(condition, timeout_s: float = 10.0) -> bool:
+    deadline = time.monotonic() + timeout_s
+    while time.monotonic() < deadline:
+        if condition():
+            return True
+        time.sleep(0.02)
+    return condition()
+
+
+@pytest.fixture(scope="module")
+def runner() -> BoundedRunner:
+    runner = BoundedRunner(max_jobs=2, timeout_s=20.0, memory_mb=256.0, preload=("app.physics.core.bounded", "numpy", "sympy", __name__))
+    runner.warm()
+    runner.run(square, (1.0,))  # the first call waits for the forkserver's imports
+    return runner
+
+
+# -- answers -------------------------------------------------------------------------------
+
+def test_result_is_returned(runner):
+    assert runner.run(square, (7.5,)) == 56.25
+
+
+def test_sympy_work_returns_its_expression(runner):
+    m, l, q1, q1d = sympy.symbols("m l q1 q1d", real=True)
+    got = runner.run(kinetic_energy_rate_derivative, ("m*l^2*q1d^2/2 + m*l*cos(q1)",))
+    assert sympy.simplify(got - m * l**2 * q1d) == 0
+
+
+def test_value_error_comes_back_with_its_message(runner):
+    with pytest.raises(ValueError) as refused:
+        runner.run(refuse, ("the mass matrix is singular at q1 = 0",))
+    assert type(refused.value) is ValueError
+    assert str(refused.value) == "the mass matrix is singular at q1 = 0"
+
+
+def test_value_error_from_typed_input_comes_back(runner):
+    with pytest.raises(ValueError, match="unexpected 'theta' at character 1"):
+        runner.run(kinetic_energy_rate_derivative, ("theta",))
+
+
+def test_parameter_error_keeps_its_field_and_path(runner):
+    with pytest.raises(ParameterError) as refused:
+        runner.run(refuse_parameter)
+    assert refused.value.field == "mass_kg"
+    assert refused.value.path == ("bodies", 1, "mass_kg")
+    assert refused.value.message == "must be positive"
+
+
+def test_other_exceptions_are_failures_not_refusals(runner):
+    with pytest.raises(WorkFailed, match="KeyError: 'a bug'"):
+        runner.run(fail)
+    with pytest.raises(WorkFailed, match="exit status 3"):
+        runner.run(exit_with, (3,))
+
+
+def test_refusals_are_value_errors_for_the_routes():
+    assert issubclass(WorkTimeout, WorkRefused) and issubclass(WorkTooLarge, WorkRefused)
+    assert issubclass(WorkRefused, ValueError)
+    assert not issubclass(WorkBusy, ValueError) and not issubclass(WorkFailed, ValueError)
+
+
+# -- limits --------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("function, args", [(sleep_for, (60.0,)), (spin_forever, ())])
+def test_work_is_killed_at_its_timeout(runner, function, args):
+    start = time.monotonic()
+    with pytest.raises(WorkTimeout, match="took longer than its limit of 0.5 s"):
+        runner.run(function, args, timeout_s=0.5, what="deriving the equations")
+    elapsed = time.monotonic() - start
+    assert 0.5 <= elapsed < 0.5 + KILL_SLACK_S
+    assert _wait_for(lambda: not _workers_left(), 5.0), _workers_left()
+
+
+def test_child_limits_are_set_from_the_call(runner):
+    address_space_limit, cpu_limit, address_space_now = runner.run(limits_seen, timeout_s=3.2, memory_mb=100.0)
+    # The CPU limit is a backstop one second beyond the wall-clock limit (rounded up).
+    assert cpu_limit == math.ceil(3.2) + 1
+    # The address-space limit is the warm child's size plus the budget (the child has barely grown since).
+    assert 0 <= address_space_limit - address_space_now - 100 * 2**20 < 16 * 2**20
+
+
+def test_memory_within_the_budget_is_allowed(runner):
+    assert runner.run(hold_megabytes, (64,), memory_mb=256.0) == 64 * 2**20
+
+
+@pytest.mark.parametrize("function, args", [(hold_megabytes, (2048,)), (grow_until_refused, ())])
+def test_memory_hog_is_refused(runner, function, args):
+    with pytest.raises(WorkTooLarge, match="memory limit of 256 MB"):
+        runner.run(function, args, memory_mb=256.0, what="compiling the equations")
+
+
+def test_runaway_recursion_is_refused(runner):
+    with pytest.raises(WorkTooLarge, match="recursion"):
+        runner.run(recurse, (10**6,))
+
+
+def test_child_killed_by_a_signal_is_reported(runner):
+    with pytest.raises(WorkTooLarge, match="signal 6"):
+        runner.run(signal_self, (signal.SIGABRT,))
+
+
+def test_result_too_large_is_refused():
+    small = BoundedRunner(max_result_mb=1.0, preload=("app.physics.core.bounded", __name__))
+    assert len(small.run(large_result, (0,))) == 0
+    with pytest.raises(WorkTooLarge, match="larger than 1 MB"):
+        small.run(large_result, (4,))
+    assert _wait_for(lambda: not _workers_left(), 5.0), _workers_left()
+
+
+# -- concurrency and hygiene ---------------------------------------------------------------
+
+def test_busy_beyond_max_jobs_then_free_again(runner):
+    results: list[str] = []
+    threads = [threading.Thread(target=lambda: results.append(runner.run(sleep_for, (1.5,)))) for _ in range(runner.max_jobs)]
+    for thread in threads:
+        thread.start()
+    assert _wait_for(lambda: runner.running == runner.max_jobs)
+    with pytest.raises(WorkBusy, match="busy: 2 such jobs are running already; retry in about") as refused:
+        runner.run(square, (2.0,))
+    assert refused.value.retry_after_s >= 1
+    for thread in threads:
+        thread.join()
+    assert results == ["slept", "slept"]
+    assert runner.running == 0
+    assert runner.run(square, (2.0,)) == 4.0
+
+
+def test_a_waiting_call_gets_the_next_free_slot():
+    patient = BoundedRunner(max_jobs=1, wait_s=10.0, preload=("app.physics.core.bounded", __name__))
+    first = threading.Thread(target=patient.run, args=(sleep_for, (0.5,)))
+    first.start()
+    assert _wait_for(lambda: patient.running == 1)
+    assert patient.run(square, (3.0,)) == 9.0  # waited for the sleeper instead of refusing
+    first.join()
+
+
+def test_no_children_or_descriptors_are_left_after_many_calls(runner):
+    runner.run(square, (1.0,))
+    fds_before = _open_fds()
+    outcomes = {"result": 0, "value_error": 0, "timeout": 0, "memory": 0, "failed": 0}
+    for i in range(40):
+        kind = i % 5
+        try:
+            if kind == 0:
+                runner.run(square, (float(i),))
+                outcomes["result"] += 1
+            elif kind == 1:
+                runner.run(refuse, ("no",))
+            elif kind == 2:
+                runner.run(sleep_for, (30.0,), timeout_s=0.1)
+            elif kind == 3:
+                runner.run(hold_megabytes, (1024,), memory_mb=64.0)
+            else:
+                runner.run(exit_with, (5,))
+        except WorkTimeout:
+            outcomes["timeout"] += 1
+        except WorkTooLarge:
+            outcomes["memory"] += 1
+        except ValueError:
+            outcomes["value_error"] += 1
+        except WorkFailed:
+            outcomes["failed"] += 1
+    assert outcomes == {"result": 8, "value_error": 8, "timeout": 8, "memory": 8, "failed": 8}
+    assert _wait_for(lambda: not _workers_left(), 5.0), _workers_left()
+    assert _open_fds() == fds_before
+    assert runner.running == 0
+
+
+def test_unpicklable_function_is_refused_without_leaking(runner):
+    fds_before = _open_fds()
+    with pytest.raises(Exception):  # pickle's own error: a programming mistake, not bad input
+        runner.run(lambda: 1)
+    assert _open_fds() == fds_before
+    assert runner.running == 0
+
+
+def test_partial_functions_carry_keyword_arguments(runner):
+    assert runner.run(partial(sleep_for, seconds=0.0)) == "slept"
+
+
+@pytest.mark.parametrize(
+    "options, field",
+    [
+        ({"max_jobs": 0}, "max_jobs"),
+        ({"timeout_s": 0.0}, "timeout_s"),
+        ({"timeout_s": math.inf}, "timeout_s"),
+        ({"memory_mb": -1.0}, "memory_mb"),
+        ({"max_result_mb": math.nan}, "max_result_mb"),
+        ({"wait_s": -1.0}, "wait_s"),
+    ],
+)
+def test_bad_options_name_the_field(options, field):
+    with pytest.raises(ValueError, match=f"^{field}: "):
+        BoundedRunner(**options)
+
+
+def test_bad_call_limits_name_the_field(runner):
+    with pytest.raises(ValueError, match="^timeout_s: "):
+        runner.run(square, (1.0,), timeout_s=-1.0)
+    with pytest.raises(ValueError, match="^memory_mb: "):
+        runner.run(square, (1.0,), memory_mb=math.nan)
