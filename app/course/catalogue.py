@@ -3,7 +3,7 @@
 :func:`load_catalogue` reads ``lessons/course.toml`` and ``lessons/chNN/*.md``
 and joins them with the registries a lesson may name: scenes
 (``app.scenes.SCENES``), worked examples (``worked_examples()``) and
-derivations (chapters 7–9; none are registered yet). Every reference is
+derivations (the analytical systems of chapters 7–9, ``analytical_systems()``). Every reference is
 checked at load: an unknown scene, example or derivation, a duplicated lesson
 id, a chapter missing from ``course.toml`` or a section missing from its
 chapter raises :class:`CatalogueError`, naming the lesson file and the bad
@@ -19,7 +19,7 @@ from pathlib import Path
 
 from app.course.lessons import LESSONS_DIR, Chapter, Lesson, parse_lesson, parse_outline
 from app.physics.core.solution import WorkedExample
-from app.physics.systems import worked_examples
+from app.physics.systems import analytical_systems, worked_examples
 from app.scenes import SCENES, Scene
 
 
@@ -74,7 +74,7 @@ def load_catalogue(
     """
     scenes = SCENES if scenes is None else scenes
     examples = worked_examples() if examples is None else examples
-    derivations = {} if derivations is None else derivations
+    derivations = analytical_systems() if derivations is None else derivations
     outline_path = root / "course.toml"
     outline = parse_outline(outline_path.read_text(encoding="utf-8"), str(outline_path))
     lessons = sorted(

@@ -34,3 +34,18 @@ def worked_examples() -> dict[str, WorkedExample]:
                 raise ValueError(f"two worked examples share the id {example.id!r} ({name})")
             examples[example.id] = example
     return dict(sorted(examples.items(), key=lambda item: (item[1].chapter, item[0])))
+
+
+@cache
+def analytical_systems() -> dict:
+    """Every catalogue system of the derivation engine by id (chapters 7–9): the ``SYSTEM`` a module declares."""
+    from app.physics.mechanics.description import SystemDescription
+
+    systems: dict[str, SystemDescription] = {}
+    for name in system_modules():
+        system = getattr(importlib.import_module(name), "SYSTEM", None)
+        if isinstance(system, SystemDescription):
+            if system.id in systems:
+                raise ValueError(f"two catalogue systems share the id {system.id!r} ({name})")
+            systems[system.id] = system
+    return systems

@@ -1,0 +1,245 @@
+"""Derive, generate, load: one system by one formulation, done once and cached.
+
+:func:`derived` is the one entry point. It keeps every result in memory and
+on disk, keyed by the description's fingerprint and the formulation: the
+equations as LaTeX, the steps and the generated right-hand side (a Python
+module). A later call — in this process or the next — answers from the cache
+without sympy. The right-hand side runs as plain Python for the API and the
+tests; :meth:`Derived.kernel` compiles it with numba for live scenes (cached
+on disk by numba beside the generated module).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import importlib.util
+import json
+import os
+import sys
+import threading
+import time
+from collections import OrderedDict
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numba
+import numpy as np
+import sympy
+
+from app.physics.mechanics.codegen import generate_source
+from app.physics.mechanics.derivation import FORMULATIONS, Derivation, FormulationUnavailable
+from app.physics.mechanics.description import SystemDescription
+from app.physics.mechanics.gibbs_appell import derive_gibbs_appell
+from app.physics.mechanics.hamilton import derive_hamilton
+from app.physics.mechanics.kane import derive_kane
+from app.physics.mechanics.lagrange import derive_lagrange
+from app.physics.mechanics.newton_euler import derive_newton_euler
+from app.physics.mechanics.routh import derive_routh
+from app.physics.solvers.kernels import RHS_SIGNATURE, Kernel
+
+def _source_digest() -> str:
+    """A hash of this package's source: any change to a formulation or the generator makes new cache keys."""
+    digest = hashlib.sha256()
+    for path in sorted(Path(__file__).parent.glob("*.py")):
+        digest.update(path.name.encode() + path.read_bytes())
+    return digest.hexdigest()[:10]
+
+
+#: Part of every cache key: the package's source digest, so a changed engine never reads an old derivation.
+ENGINE_VERSION = _source_digest()
+
+DERIVERS: dict[str, Callable[[SystemDescription], Derivation]] = {
+    "newton-euler": derive_newton_euler,
+    "lagrange": derive_lagrange,
+    "hamilton": derive_hamilton,
+    "routh": derive_routh,
+    "gibbs-appell": derive_gibbs_appell,
+    "kane": derive_kane,
+}
+assert tuple(DERIVERS) == FORMULATIONS
+
+#: In-memory results kept (catalogue systems and typed Lagrangians alike).
+MEMORY_ENTRIES = 128
+
+
+def cache_directory() -> Path:
+    """Where derivations are kept: ``$DYNLAB_DERIVATION_CACHE`` or ``~/.cache/dynlab/derivations``."""
+    configured = os.environ.get("DYNLAB_DERIVATION_CACHE")
+    return Path(configured) if configured else Path.home() / ".cache" / "dynlab" / "derivations"
+
+
+@dataclass
+class Derived:
+    """A derivation ready to use: what the page shows and the generated right-hand side."""
+
+    system_id: str
+    formulation: str
+    coordinates: list[str]
+    speeds: list[str]
+    equations_latex: list[str]
+    mass_matrix_latex: str
+    forcing_latex: str
+    steps: list[dict[str, str]]
+    variables: str
+    derive_s: float
+    compile_s: float
+    source_path: Path
+    rhs_python: Callable[..., None]
+    from_cache: bool = False
+    derivation: Derivation | None = field(default=None, repr=False)
+    _kernel: Kernel | None = field(default=None, repr=False)
+    _lock: threading.Lock = field(default_factory=threading.Lock, repr=False)
+
+    def state_derivative(self, t_s: float, state: np.ndarray, parameters: np.ndarray) -> np.ndarray:
+        """(q̇, q̈) at the state (q, q̇) and time t (plain Python: no compile needed)."""
+        out = np.empty(len(state))
+        self.rhs_python(float(t_s), np.ascontiguousarray(state, dtype=float), np.ascontiguousarray(parameters, dtype=float), out)
+        return out
+
+    def kernel(self) -> Kernel:
+        """The right-hand side as a numba C callback for the integrators (compiled once; numba caches it on disk)."""
+        with self._lock:
+            if self._kernel is None:
+                compiled = numba.cfunc(RHS_SIGNATURE, cache=True, nopython=True, error_model="numpy")(self.rhs_python)
+                self._kernel = Kernel(compiled=compiled, python=self.rhs_python)
+            return self._kernel
+
+    def answer(self) -> dict:
+        """The derive route's body (names are API contracts)."""
+        return {
+            "system_id": self.system_id,
+            "formulation": self.formulation,
+            "coordinates": self.coordinates,
+            "speeds": self.speeds,
+            "variables": self.variables,
+            "equations_latex": self.equations_latex,
+            "mass_matrix_latex": self.mass_matrix_latex,
+            "forcing_latex": self.forcing_latex,
+            "steps": self.steps,
+            "derive_s": self.derive_s,
+            "compile_s": self.compile_s,
+            "cached": self.from_cache,
+        }
+
+
+_memory: OrderedDict[tuple[str, str], Derived] = OrderedDict()
+_memory_lock = threading.Lock()
+_key_locks: dict[tuple[str, str], threading.Lock] = {}
+
+
+def _load_module(path: Path) -> Callable[..., None]:
+    name = f"dynlab_derived_{path.stem.replace('-', '_')}"
+    spec = importlib.util.spec_from_file_location(name, path)
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[name] = module  # numba's cache finds the function's module by name
+    spec.loader.exec_module(module)
+    return module.rhs
+
+
+def load_recipe(system: SystemDescription, recipe, *, formulation: str, path: Path) -> Callable[..., None]:
+    """Generate ``recipe``'s source at ``path`` (written atomically) and load its ``rhs(t, y, p, dydt)``."""
+    source = generate_source(system, recipe, formulation=formulation)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    temporary = path.with_suffix(f".{os.getpid()}.{threading.get_ident()}.tmp")
+    temporary.write_text(source)
+    os.replace(temporary, path)
+    return _load_module(path)
+
+
+def _entry_name(system: SystemDescription, formulation: str) -> str:
+    return f"{system.id}-{formulation}-{system.fingerprint()}-v{ENGINE_VERSION}"
+
+
+def derived(system: SystemDescription, formulation: str, *, directory: Path | None = None) -> Derived:
+    """The derivation of ``system`` by ``formulation``, from memory, disk, or sympy (in that order).
+
+    Raises :class:`FormulationUnavailable` (a ValueError saying why) when the
+    formulation does not apply, and ValueError for an unknown formulation.
+    """
+    if formulation not in DERIVERS:
+        raise ValueError(f"unknown formulation {formulation!r}; choose one of {', '.join(FORMULATIONS)}")
+    if formulation in system.unavailable:
+        raise FormulationUnavailable(system.unavailable[formulation])
+    key = (system.fingerprint(), formulation)
+    with _memory_lock:
+        if key in _memory:
+            _memory.move_to_end(key)
+            return _memory[key]
+        lock = _key_locks.setdefault(key, threading.Lock())
+    with lock:  # one derivation per key at a time; others wait for it
+        with _memory_lock:
+            if key in _memory:
+                return _memory[key]
+        result = _from_disk(system, formulation, directory) or _derive_and_store(system, formulation, directory)
+        with _memory_lock:
+            _memory[key] = result
+            while len(_memory) > MEMORY_ENTRIES:
+                _memory.popitem(last=False)
+        return result
+
+
+def _paths(system: SystemDescription, formulation: str, directory: Path | None) -> tuple[Path, Path]:
+    base = (directory or cache_directory()) / _entry_name(system, formulation)
+    return base.with_suffix(".json"), base.with_name(base.name.replace("-", "_").replace(".", "_") + ".py")
+
+
+def _from_disk(system: SystemDescription, formulation: str, directory: Path | None) -> Derived | None:
+    meta_path, source_path = _paths(system, formulation, directory)
+    if not (meta_path.exists() and source_path.exists()):
+        return None
+    try:
+        meta = json.loads(meta_path.read_text())
+        start = time.perf_counter()
+        rhs = _load_module(source_path)
+        load_s = time.perf_counter() - start
+    except (OSError, ValueError, SyntaxError, AttributeError):
+        return None  # a damaged entry is derived again and overwritten
+    if meta.get("unavailable"):
+        raise FormulationUnavailable(meta["unavailable"])
+    return Derived(**meta["derived"], derive_s=0.0, compile_s=load_s, source_path=source_path, rhs_python=rhs, from_cache=True)
+
+
+def _derive_and_store(system: SystemDescription, formulation: str, directory: Path | None) -> Derived:
+    meta_path, source_path = _paths(system, formulation, directory)
+    start = time.perf_counter()
+    derivation = DERIVERS[formulation](system)
+    derive_s = time.perf_counter() - start
+    start = time.perf_counter()
+    rhs = load_recipe(system, derivation.recipe, formulation=formulation, path=source_path)
+    compile_s = time.perf_counter() - start
+    shown = {
+        "system_id": system.id,
+        "formulation": formulation,
+        "coordinates": [c.name for c in system.coordinates],
+        "speeds": [s.name for s in system.speed_list],
+        "equations_latex": list(derivation.equations_latex),
+        "mass_matrix_latex": derivation.latex(derivation.mass_matrix),
+        "forcing_latex": derivation.latex(derivation.forcing),
+        "steps": [s.as_dict() for s in derivation.steps],
+        "variables": derivation.variables,
+    }
+    meta = {"derived": shown, "derive_s": derive_s, "compile_s": compile_s, "sympy": sympy.__version__}
+    temporary = meta_path.with_suffix(f".{os.getpid()}.{threading.get_ident()}.tmp")
+    temporary.write_text(json.dumps(meta, ensure_ascii=False, indent=1))
+    os.replace(temporary, meta_path)
+    return Derived(**shown, derive_s=derive_s, compile_s=compile_s, source_path=source_path, rhs_python=rhs, derivation=derivation)
+
+
+def available_formulations(system: SystemDescription) -> dict[str, str]:
+    """Formulation id → "" if it applies, else why not (without deriving: from the description's shape)."""
+    reasons: dict[str, str] = {}
+    for formulation in FORMULATIONS:
+        reason = system.unavailable.get(formulation, "")
+        if not reason:
+            if formulation in ("lagrange", "hamilton", "routh") and not system.holonomic:
+                reason = "needs independent coordinates; the rolling constraints restrict velocities only (chapter 8's multipliers)"
+            elif formulation == "routh" and not system.ignorable:
+                reason = "no ignorable coordinate"
+            elif formulation == "newton-euler" and (not system.reactions or system.kinetic_energy is not None or system.extra_potential != 0):
+                reason = "no free-body diagrams: the system is given by its energies"
+            elif formulation in ("kane", "gibbs-appell") and system.kinetic_energy is not None:
+                reason = "needs particles and bodies, not only an energy expression"
+        reasons[formulation] = reason
+    return reasons

@@ -1,0 +1,39 @@
+"""The spherical pendulum: a point mass on a massless rod free to swing in every direction from a fixed pivot.
+
+Frame N: z up, the pivot at the origin. θ (rad) is the rod's angle from the
+downward vertical, φ (rad) its azimuth about z. φ is ignorable: the Lagrangian
+does not contain it, so its momentum m l² sin²θ φ̇ (the angular momentum about
+the vertical) is conserved and Routh's method removes it.
+"""
+
+from __future__ import annotations
+
+import sympy
+
+from app.physics.core.parameters import ParameterSet
+from app.physics.mechanics.description import Coordinate, Particle, Reaction, SystemDescription, parameter, vector
+
+m, l, g = sympy.symbols("m l g", positive=True)
+theta = Coordinate("theta", "\\theta")
+phi = Coordinate("phi", "\\phi")
+th, ph = theta.symbol, phi.symbol
+bob = l * vector(sympy.sin(th) * sympy.cos(ph), sympy.sin(th) * sympy.sin(ph), -sympy.cos(th))
+
+SYSTEM = SystemDescription(
+    id="spherical-pendulum",
+    title="Spherical pendulum",
+    chapter=9,
+    coordinates=(theta, phi),
+    parameters=ParameterSet((
+        parameter("mass_kg", "kg", 1.0, low=0.01, high=100.0, label="m", description="Mass of the bob"),
+        parameter("length_m", "m", 1.0, low=0.05, high=10.0, label="l", description="Length of the rod"),
+        parameter("g_m_s2", "m/s²", 9.81, low=0.0, high=100.0, label="g", description="Gravitational acceleration"),
+    )),
+    symbols={"mass_kg": m, "length_m": l, "g_m_s2": g},
+    particles=(Particle("bob", m, bob),),
+    gravity=vector(0, 0, -g),
+    reactions=(Reaction("rod", on="bob", point=bob, forces=(-bob / l,)),),
+    ignorable=("phi",),
+    state_ranges={"theta": (0.2, 2.9)},
+    assumptions="A point mass on a rigid massless rod, frictionless pivot. The angles are singular at θ = 0 (straight down), where φ is undefined.",
+)  # fmt: skip
