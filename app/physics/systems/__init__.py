@@ -44,8 +44,8 @@ def analytical_systems() -> dict:
     systems: dict[str, SystemDescription] = {}
     for name in system_modules():
         system = getattr(importlib.import_module(name), "SYSTEM", None)
-        if isinstance(system, SystemDescription):
-            if system.id in systems:
+        if isinstance(system, SystemDescription):  # a model module may import its system's SYSTEM: the same object
+            if systems.get(system.id, system) is not system:
                 raise ValueError(f"two catalogue systems share the id {system.id!r} ({name})")
             systems[system.id] = system
     return systems
