@@ -12,7 +12,7 @@ from fastapi.responses import HTMLResponse
 from fastapi.staticfiles import StaticFiles
 
 from app import __version__
-from app.api import bench, chapters, errors, examples, health, scenes
+from app.api import bench, chapters, errors, examples, health, scenes, systems
 from app.api.session_keys import SessionKeys
 from app.course import load_catalogue
 from app.scenes import SCENES
@@ -55,7 +55,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     app.state.catalogue = load_catalogue(settings.lessons_dir)
     errors.install(app)
     app.add_middleware(guard.RequestGuard, settings=settings)
-    routers = (health.router, chapters.router, scenes.router, examples.router, bench.router, pages.router, relay.router)
+    routers = (health.router, chapters.router, scenes.router, examples.router, systems.router, bench.router, pages.router, relay.router)
     for router in routers:
         app.include_router(router)
     errors.document_refusals(app, guard.refusals)

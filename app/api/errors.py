@@ -21,6 +21,7 @@ from fastapi.exceptions import RequestValidationError
 from fastapi.responses import JSONResponse, Response
 
 from app.api.schemas.errors import ErrorDetail
+from app.physics.core.bounded import WorkBusy, WorkRefused
 from app.physics.core.parameters import ParameterError
 from app.scenes.host.rpc import WorkerUnavailableError
 
@@ -82,10 +83,22 @@ async def worker_unavailable_handler(request: Request, exc: Exception) -> Respon
     return JSONResponse({"detail": detail}, status_code=503, headers={"Retry-After": "2"})
 
 
+async def work_refused_handler(request: Request, exc: Exception) -> Response:
+    """Bounded work (a typed Lagrangian's derivation) that exceeded its time or memory: the input asked too much."""
+    return await http_exception_handler(request, unprocessable(["body"], str(exc)))
+
+
+async def work_busy_handler(request: Request, exc: Exception) -> Response:
+    assert isinstance(exc, WorkBusy)
+    return JSONResponse({"detail": str(exc)}, status_code=429, headers={"Retry-After": str(exc.retry_after_s)})
+
+
 def install(app: FastAPI) -> None:
     app.add_exception_handler(RequestValidationError, request_validation_error_handler)
     app.add_exception_handler(ParameterError, parameter_error_handler)
     app.add_exception_handler(WorkerUnavailableError, worker_unavailable_handler)
+    app.add_exception_handler(WorkRefused, work_refused_handler)
+    app.add_exception_handler(WorkBusy, work_busy_handler)
     app.add_exception_handler(Exception, internal_error_handler)
 
 

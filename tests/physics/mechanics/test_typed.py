@@ -1,0 +1,55 @@
+"""A typed Lagrangian: parsed, never evaluated; derived; refused clearly."""
+
+from __future__ import annotations
+
+import builtins
+
+import pytest
+import sympy
+from sympy.parsing import sympy_parser
+
+from app.physics.core.parameters import ParameterError
+from app.physics.mechanics import typed
+
+
+def test_deriving_typed_energies_never_evaluates_text(monkeypatch):
+    """eval and sympify/parse_expr of a string all raise while a typed pendulum is parsed."""
+    real_sympify = sympy.sympify
+
+    def sympify_objects_only(value, *args, **kwargs):
+        if isinstance(value, str):
+            raise AssertionError(f"sympify was given text: {value!r}")
+        return real_sympify(value, *args, **kwargs)
+
+    def forbidden(*args, **kwargs):
+        raise AssertionError("text was evaluated")
+
+    monkeypatch.setattr(sympy, "sympify", sympify_objects_only)
+    monkeypatch.setattr(sympy.core.sympify, "sympify", sympify_objects_only)
+    monkeypatch.setattr(sympy_parser, "parse_expr", forbidden)
+    monkeypatch.setattr(builtins, "eval", forbidden)
+    system = typed.typed_system(["q1"], "m*l^2*q1d^2/2", "-m*g*l*cos(q1)", {"m": 2.0, "l": 0.5, "g": 9.81})
+    assert system.kinetic_energy == sympy.Symbol("m", real=True) * sympy.Symbol("l", real=True) ** 2 * system.qd[0] ** 2 / 2
+
+
+def test_the_check_state_answer_is_the_pendulum_equation():
+    answer = typed.derive_typed({"coordinates": ["q1"], "kinetic_energy": "m*l^2*q1d^2/2", "potential_energy": "-m*g*l*cos(q1)",
+                                 "parameters": {"m": 2.0, "l": 0.5, "g": 9.81}})  # fmt: skip
+    q, rate = answer["rhs_check"]["state"]
+    assert answer["rhs_check"]["state_derivative"] == pytest.approx([rate, -9.81 / 0.5 * sympy.sin(q).evalf()], rel=1e-14)
+
+
+@pytest.mark.parametrize(
+    ("coordinates", "kinetic", "potential", "parameters", "field"),
+    [
+        (["q1"], "m*q1d^2", "0", {"m": float("nan")}, "parameters"),
+        (["q1"], "m*q1d^2", "0", {"q1": 1.0}, "parameters"),
+        (["q1", "q2"], "q1d^2", "0", {}, "kinetic_energy"),
+        (["q1"], "q1d^2", "exp(", {}, "potential_energy"),
+        ([], "q1d^2", "0", {}, "coordinates"),
+    ],
+)
+def test_bad_typed_input_names_its_field(coordinates, kinetic, potential, parameters, field):
+    with pytest.raises(ParameterError) as error:
+        typed.typed_system(coordinates, kinetic, potential, parameters)
+    assert error.value.field == field
