@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import builtins
+import importlib
 
 import pytest
 import sympy
@@ -25,7 +26,7 @@ def test_deriving_typed_energies_never_evaluates_text(monkeypatch):
         raise AssertionError("text was evaluated")
 
     monkeypatch.setattr(sympy, "sympify", sympify_objects_only)
-    monkeypatch.setattr(sympy.core.sympify, "sympify", sympify_objects_only)
+    monkeypatch.setattr(importlib.import_module("sympy.core.sympify"), "sympify", sympify_objects_only)
     monkeypatch.setattr(sympy_parser, "parse_expr", forbidden)
     monkeypatch.setattr(builtins, "eval", forbidden)
     system = typed.typed_system(["q1"], "m*l^2*q1d^2/2", "-m*g*l*cos(q1)", {"m": 2.0, "l": 0.5, "g": 9.81})
