@@ -26,22 +26,13 @@ from app.api.schemas.systems import (
     RhsRequest,
     SystemSummary,
 )
-from app.physics.core.bounded import BoundedRunner
 from app.physics.core.parameters import ParameterError
 from app.physics.mechanics.derivation import FormulationUnavailable
 from app.physics.mechanics.description import SystemDescription
 from app.physics.mechanics.engine import available_formulations, derived
-from app.physics.mechanics.typed import derive_typed
+from app.physics.mechanics.typed import derive_typed_bounded
 
 router = APIRouter(prefix="/api/systems", tags=["systems"])
-
-#: A typed Lagrangian's derivation may take this long (s) and add this much memory (MB) before it is refused.
-CUSTOM_TIMEOUT_S = 20.0
-CUSTOM_MEMORY_MB = 1024.0
-_custom_runner = BoundedRunner(
-    max_jobs=2, timeout_s=CUSTOM_TIMEOUT_S, memory_mb=CUSTOM_MEMORY_MB, wait_s=2.0,
-    preload=("app.physics.core.bounded", "numpy", "sympy", "app.physics.mechanics.typed"),
-)  # fmt: skip
 
 
 def summary(system: SystemDescription) -> dict[str, Any]:
@@ -88,7 +79,7 @@ def list_systems(catalogue: CatalogueDep) -> list[dict[str, Any]]:
 )
 def derive_custom(request: CustomDeriveRequest) -> dict[str, Any]:
     """Lagrange's equations for typed energies T and V (parsed by a whitelisting parser; derived in a bounded process)."""
-    answer = _custom_runner.run(derive_typed, (request.model_dump(),), what="deriving these equations")
+    answer = derive_typed_bounded(request.model_dump())
     answer["params"] = dict(request.parameters)
     return answer
 

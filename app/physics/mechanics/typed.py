@@ -19,6 +19,7 @@ from typing import Any
 import numpy as np
 import sympy
 
+from app.physics.core.bounded import BoundedRunner
 from app.physics.core.parameters import Parameter, ParameterError, ParameterSet
 from app.physics.math.expressions import check_parameter_name, parse_formula
 from app.physics.mechanics.description import TIME, Coordinate, SystemDescription
@@ -31,6 +32,9 @@ COORDINATE_NAMES = ("q1", "q2", "q3")
 MAX_PARAMETERS = 8
 #: Largest magnitude of a parameter value.
 MAX_PARAMETER_VALUE = 1e6
+#: A typed Lagrangian's derivation may take this long (s) and add this much memory (MB) before it is refused.
+DERIVE_TIMEOUT_S = 20.0
+DERIVE_MEMORY_MB = 1024.0
 #: The state the answer checks the equations at: q_i = 0.3·i rad, q̇_i = 0.2 rad/s.
 CHECK_COORDINATE_RAD, CHECK_RATE_RAD_S = 0.3, 0.2
 
@@ -117,3 +121,25 @@ def derive_typed(request: Mapping[str, Any]) -> dict[str, Any]:
     answer = result.answer()
     answer["rhs_check"] = {"state": state.tolist(), "t": 0.0, "state_derivative": derivative.tolist()}
     return answer
+
+
+#: One bounded runner per process for typed derivations (the API's and the typed-Lagrangian scene's): two at once.
+runner = BoundedRunner(
+    max_jobs=2, timeout_s=DERIVE_TIMEOUT_S, memory_mb=DERIVE_MEMORY_MB, wait_s=2.0,
+    preload=("app.physics.core.bounded", "numpy", "sympy", __name__),
+)  # fmt: skip
+
+
+def derive_typed_bounded(request: Mapping[str, Any]) -> dict[str, Any]:
+    """:func:`derive_typed` in a bounded child process (raises WorkTimeout, WorkTooLarge, WorkBusy or its ValueError).
+
+    The child writes the derivation to the disk cache, so :func:`typed_derived` then loads it here without sympy.
+    """
+    return runner.run(derive_typed, (dict(request),), what="deriving these equations")
+
+
+def typed_derived(request: Mapping[str, Any]):
+    """The typed system and its Lagrange derivation, derived in a bounded child if not cached yet."""
+    system = typed_system(request["coordinates"], request["kinetic_energy"], request["potential_energy"], request["parameters"])
+    derive_typed_bounded(request)
+    return system, derived(system, "lagrange")
