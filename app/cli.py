@@ -1,5 +1,6 @@
 """Command line: ``dynlab serve [--host H] [--port P]``, ``dynlab bench [--quick] [--case C]``,
-``dynlab load [--students 10,30] [--scene ID]`` and ``dynlab soak [--students N] [--minutes M]``."""
+``dynlab load [--students 10,30] [--scene ID]``, ``dynlab soak [--students N] [--minutes M]`` and
+``dynlab derivations [--no-proofs]``."""
 
 from __future__ import annotations
 
@@ -49,6 +50,12 @@ def _bench(args: argparse.Namespace) -> int:
     return bench_main(args.bench_args)
 
 
+def _derivations(args: argparse.Namespace) -> int:
+    from app.bench.derivations import main as derivations_main
+
+    return derivations_main(args.bench_args)
+
+
 def _load(args: argparse.Namespace) -> int:
     from app.bench.capacity import run_load_command
 
@@ -78,6 +85,8 @@ def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
     if argv[:1] == ["bench"]:  # the benchmark parses its own options (argparse's REMAINDER refuses a leading --option)
         return _bench(argparse.Namespace(bench_args=argv[1:]))
+    if argv[:1] == ["derivations"]:
+        return _derivations(argparse.Namespace(bench_args=argv[1:]))
     parser = argparse.ArgumentParser(prog="dynlab", description="Dynamics Lab: interactive engineering dynamics.")
     commands = parser.add_subparsers(dest="command", required=True)
     serve = commands.add_parser("serve", help="run the web application")
@@ -94,6 +103,12 @@ def main(argv: list[str] | None = None) -> int:
     )
     bench.add_argument("bench_args", nargs=argparse.REMAINDER, help="options of the benchmark (see dynlab bench --help)")
     bench.set_defaults(run=_bench)
+    derivations = commands.add_parser(
+        "derivations", help="derivation engine: derive and compile times, agreement, proofs (writes docs/bench/derivations.json and .svg)",
+        add_help=False,
+    )  # fmt: skip
+    derivations.add_argument("bench_args", nargs=argparse.REMAINDER, help="options (see dynlab derivations --help)")
+    derivations.set_defaults(run=_derivations)
     _add_load_and_soak(commands)
     args = parser.parse_args(argv)
     logging.basicConfig(level=getattr(logging, getattr(args, "log_level", "warning").upper()), format="%(levelname)s %(name)s: %(message)s")

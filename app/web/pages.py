@@ -20,6 +20,8 @@ from app.api.deps import CatalogueDep, SceneHostDep, SettingsDep
 from app.bench import capacity
 from app.course import Catalogue, Chapter, Lesson, render_markdown
 from app.course.lessons import split_front_matter
+from app.physics.mechanics.derivation import FORMULATION_TITLES, FORMULATIONS
+from app.physics.mechanics.engine import available_formulations
 from app.scenes.host.host import SESSION_ID_PATTERN
 
 router = APIRouter(tags=["pages"], include_in_schema=False)
@@ -81,6 +83,18 @@ def _lesson_config(lesson: Lesson, catalogue: Catalogue, scene_id: str | None) -
         "lesson_id": lesson.id,
         "scene": catalogue.scenes[scene_id].schema() if scene_id else None,
         "examples": [catalogue.examples[example_id].schema() for example_id in lesson.examples],
+        "derivations": [_derivation_config(catalogue.derivations[system_id]) for system_id in lesson.derivations],
+    }
+
+
+def _derivation_config(system) -> dict:
+    """What derivations.js needs to ask /api/systems/{id}/derive for each formulation and show why others do not apply."""
+    reasons = available_formulations(system)
+    return {
+        "id": system.id,
+        "title": system.title,
+        "formulations": [{"id": f, "title": FORMULATION_TITLES[f], "unavailable": reasons[f]} for f in FORMULATIONS],
+        "assumptions": system.assumptions,
     }
 
 
@@ -129,7 +143,7 @@ def lesson_page(lesson_id: str, catalogue: CatalogueDep, scene: str | None = Non
     return _page(
         f"{lesson.section} {lesson.title} — Dynamics Lab",
         body,
-        scripts=("/static/vendor/katex/katex.min.js", "/static/js/common.js", "/static/js/plot.js", "/static/js/lesson.js"),
+        scripts=("/static/vendor/katex/katex.min.js", "/static/js/common.js", "/static/js/plot.js", "/static/js/lesson.js", "/static/js/derivations.js"),
     )
 
 
