@@ -78,7 +78,7 @@
   }
 
   const heading = document.createElement("h2");
-  heading.textContent = "The same motion, formulated six ways";
+  heading.textContent = "The same motion, formulation by formulation";
   section.appendChild(heading);
   const note = document.createElement("p");
   note.className = "note";
