@@ -277,7 +277,14 @@ class SystemDescription:
         return names
 
     def fingerprint(self) -> str:
-        """A hash of everything that shapes the equations (not the parameter values): the cache key."""
+        """A hash of everything that shapes the equations (not the parameter values): the cache key (computed once)."""
+        cached = self.__dict__.get("_fingerprint")
+        if cached is None:
+            cached = self._compute_fingerprint()
+            object.__setattr__(self, "_fingerprint", cached)  # frozen: the hash of immutable data never changes
+        return cached
+
+    def _compute_fingerprint(self) -> str:
         parts = [
             self.id,
             repr([(c.name, c.unit) for c in self.coordinates]),

@@ -11,7 +11,6 @@ derived and compiled once per process (and cached on disk), never per frame.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from functools import cache
 from typing import Any, ClassVar
 
 import numpy as np
@@ -44,9 +43,18 @@ def derived_parameters(
     )
 
 
-@cache
+_energy_functions: dict[str, tuple] = {}
+
+
 def energy_functions(system: SystemDescription):
-    """(T, V) as numpy functions of (t, q (n, N), q̇ (n, N), p), in J."""
+    """(T, V) as numpy functions of (t, q (n, N), q̇ (n, N), p), in J (built once per system, kept by fingerprint)."""
+    key = system.fingerprint()
+    if key not in _energy_functions:
+        _energy_functions[key] = _lambdified_energies(system)
+    return _energy_functions[key]
+
+
+def _lambdified_energies(system: SystemDescription):
     motion = coordinate_motion(system)
     arguments = [TIME, system.q, system.qd, system.parameter_symbols]
     T = sympy.lambdify(arguments, kinetic_energy(system, motion), modules="numpy", cse=True)
