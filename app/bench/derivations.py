@@ -120,7 +120,7 @@ def write_svg(report: dict[str, Any], path: Path) -> None:
     def x(seconds: float) -> float:
         return left + width * (min(max(np.log10(max(seconds, 1e-3)), lo), hi) - lo) / (hi - lo)
 
-    parts = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{left + width + 170}" height="{height + 30}" font-family="sans-serif" font-size="11">',
+    parts = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{left + width + 240}" height="{height + 30}" font-family="sans-serif" font-size="11">',
              f'<text x="{left}" y="14">derivation time (blue) and a second request (orange), log scale, 1 ms … 100 s</text>']  # fmt: skip
     for k in range(lo, hi + 1):
         parts.append(f'<line x1="{x(10.0**k):.1f}" y1="20" x2="{x(10.0**k):.1f}" y2="{height}" stroke="#ddd"/>')
