@@ -29,6 +29,7 @@ def run_worker(index: int, start_pipe: Connection, authkey: bytes, options: dict
 
     host = SceneHost(SCENES, frame_rate_hz=options["frame_rate_hz"], max_sessions=options["max_sessions"])
     host.start()
+    threading.Thread(target=warm_derived_models, args=(SCENES,), name="warm-derivations", daemon=True).start()
     tune_garbage_collection()
     listener = Listener(("127.0.0.1", 0), authkey=authkey)
     closing = threading.Event()
@@ -42,6 +43,23 @@ def run_worker(index: int, start_pipe: Connection, authkey: bytes, options: dict
         host.stop()
         closing.set()
         listener.close()
+
+
+def warm_derived_models(scenes: dict) -> None:
+    """Derive (or load from the disk cache) and compile every derived scene's equations at its defaults.
+
+    Runs in the background after the worker starts, so that the first student to open a chapter 7 or 9
+    scene does not wait for sympy (up to a few seconds per system) or numba (about half a second).
+    """
+    from app.physics.mechanics.model import DerivedModel
+
+    for scene in scenes.values():
+        model = getattr(scene, "model", None)
+        if isinstance(model, type) and issubclass(model, DerivedModel):
+            try:
+                model().derived(scene.parameters.defaults()).kernel()
+            except Exception:  # a failure here only means the first viewer derives it, and sees the error then
+                log.exception("warming %s failed", scene.id)
 
 
 def tune_garbage_collection() -> None:
