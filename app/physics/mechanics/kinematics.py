@@ -128,8 +128,11 @@ def kinetic_energy(system: SystemDescription, motion: Motion) -> sympy.Expr:
     return tidy(energy)
 
 
-def potential_energy(system: SystemDescription) -> sympy.Expr:
-    """V (J): gravity −Σ m g·r, springs ½ k (stretch)², plus the extra term."""
+def potential_energy(system: SystemDescription, *, tidied: bool = True) -> sympy.Expr:
+    """V (J): gravity −Σ m g·r, springs ½ k (stretch)², plus the extra term.
+
+    ``tidied=False`` skips the symbolic tidy-up (for numerics on typed input, whose expansion is unbounded).
+    """
     energy = system.extra_potential
     if system.gravity is not None:
         for p in system.particles:
@@ -138,7 +141,7 @@ def potential_energy(system: SystemDescription) -> sympy.Expr:
             energy -= b.mass * (system.gravity.T * b.mass_centre)[0]
     for spring in system.springs:
         energy += sympy.Rational(1, 2) * spring.stiffness * spring_stretch(spring) ** 2
-    return tidy(energy)
+    return tidy(energy) if tidied else energy
 
 
 def spring_stretch(spring: Spring) -> sympy.Expr:

@@ -58,7 +58,7 @@ def _lambdified_energies(system: SystemDescription):
     motion = coordinate_motion(system)
     arguments = [TIME, system.q, system.qd, system.parameter_symbols]
     T = sympy.lambdify(arguments, kinetic_energy(system, motion), modules="numpy", cse=True)
-    V = sympy.lambdify(arguments, potential_energy(system), modules="numpy", cse=True)
+    V = sympy.lambdify(arguments, potential_energy(system, tidied=False), modules="numpy", cse=True)
     return T, V
 
 
