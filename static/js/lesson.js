@@ -463,7 +463,18 @@
       tr.children[2].textContent = item.unit || "";
     });
     const message = readoutBox.querySelector(".readout-message");
-    message.textContent = readout.message || "";
+    if (message.dataset.source !== (readout.message || "")) {
+      // Text between $$ … $$ is an equation (e.g. equations a scene derived); the rest is plain text.
+      message.dataset.source = readout.message || "";
+      message.replaceChildren();
+      (readout.message || "").split("$$").forEach((part, i) => {
+        if (i % 2 === 0) { if (part) message.append(part); return; }
+        const eq = document.createElement("div");
+        eq.className = "readout-equation";
+        katexInto(eq, part, true);
+        message.append(eq);
+      });
+    }
     message.hidden = !readout.message;
     // Marks: a labelled tick on a slider at a value that depends on the other controls.
     for (const [name, spec] of Object.entries(widgets)) {

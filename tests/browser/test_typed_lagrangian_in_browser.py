@@ -19,7 +19,8 @@ H_AT_START_J = -1.0 * 9.81 * 0.5 * (2.0 * math.cos(1.0) + 1.0)
 
 
 def _message(page) -> str:
-    return page.evaluate("() => document.querySelector('#readout .readout-message').textContent")
+    """The readout message's source (its $$…$$ parts are shown as KaTeX equations)."""
+    return page.evaluate("() => document.querySelector('#readout .readout-message').dataset.source || ''")
 
 
 def test_typing_a_kinetic_energy_rederives_the_equations_and_runs_them(browser, live_server, shots):
@@ -37,7 +38,9 @@ def test_typing_a_kinetic_energy_rederives_the_equations_and_runs_them(browser, 
     host = live_server.host
     wait_until(lambda: host.instances(session_id)[0].params["kinetic_energy"] == HEAVIER, 60, what="the scene to take the typed T")
     # Doubling T doubles every inertia term: the first equation now starts 4 l² m q̈₁.
-    page.wait_for_function("() => document.querySelector('#readout .readout-message').textContent.includes('4 l^{2} m')", timeout=30_000)
+    page.wait_for_function("() => (document.querySelector('#readout .readout-message').dataset.source || '').includes('4 l^{2} m')", timeout=30_000)
+    assert page.locator("#readout .readout-equation .katex").count() == 2  # shown as equations, not as LaTeX source
+    assert page.locator("#readout .katex-error").count() == 0
     after = readout_values(page)
     assert after["jacobi_integral_J"] == pytest.approx(H_AT_START_J, abs=1e-3)  # same start at rest, same V
     assert page.locator("#control-error").is_hidden()

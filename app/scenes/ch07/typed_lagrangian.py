@@ -215,8 +215,8 @@ class TypedLagrangianScene(DerivedSystemScene):
             self._drift_row(prepared.explicit_time, abs(jacobi - kinetic - potential) <= 1e-9 * max(abs(jacobi), 1.0)),
             Quantity.word("derivation", "derivation", self.derivation_status()),
         ]
-        equations = "; ".join(prepared.derived.equations_latex)
-        return Readout(quantities, message=self.status or f"Lagrange's equations (LaTeX): {equations}")
+        equations = "".join(f"$${latex}$$" for latex in prepared.derived.equations_latex)
+        return Readout(quantities, message=self.status or f"Lagrange's equations, derived from what you typed:{equations}")
 
     def _drift_row(self, explicit_time: bool, h_is_energy: bool) -> Quantity:
         if explicit_time:
