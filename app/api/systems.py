@@ -75,6 +75,7 @@ def list_systems(catalogue: CatalogueDep) -> list[dict[str, Any]]:
     response_model=CustomDeriveAnswer,
     responses=error_responses(
         unprocessable="A name, value or formula is refused, the derivation exceeded its time or memory bound, or the mass matrix is singular; `loc` names the field",
+        busy="Two typed derivations are already running; the `Retry-After` header says when to try again (s)",
     ),
 )
 def derive_custom(request: CustomDeriveRequest) -> dict[str, Any]:

@@ -7,7 +7,7 @@
   ``Origin`` must come from the page's own origin (or ``Settings.allowed_origins``) and its ``Host``
   must name this server (:class:`HostPolicy`): otherwise 403, or close 1008 before accept. This
   stops cross-site requests and DNS rebinding; clients without ``Origin`` (scripts) pass.
-- Per-client rate limits (:class:`~app.web.rate_limit.TokenBuckets`): ``POST .../simulate`` gets 429
+- Per-client rate limits (:class:`~app.web.rate_limit.TokenBuckets`): ``POST .../simulate`` and ``POST /api/systems/custom/derive`` get 429
   with ``Retry-After``; opening a viewer websocket is closed with 1013 "try again later".
 """
 
@@ -34,8 +34,9 @@ log = logging.getLogger(__name__)
 
 #: Methods that never change state: no Origin check.
 SAFE_METHODS = frozenset({"GET", "HEAD", "OPTIONS"})
-#: Paths whose POST is rate limited as a simulation (a template such as ``/api/scenes/{scene_id}/simulate`` matches too).
-SIMULATE_PATH = re.compile(r"^/api/scenes/[^/]+/simulate$")
+#: Paths whose POST is rate limited as heavy work: simulations and typed-Lagrangian derivations (a template such as
+#: ``/api/scenes/{scene_id}/simulate`` matches too).
+SIMULATE_PATH = re.compile(r"^/api/(scenes/[^/]+/simulate|systems/custom/derive)$")
 #: Websocket paths whose opening is rate limited.
 VIEWER_PREFIX = "/viewer/"
 LOOPBACK_NAMES = frozenset({"127.0.0.1", "localhost", "::1"})
@@ -145,7 +146,7 @@ class RequestGuard:
             wait_s = self._wait_s(self.simulate_limit, scope, headers)
             if wait_s > 0:
                 retry_after = max(1, math.ceil(wait_s))
-                detail = f"too many simulate requests from this client: try again in {retry_after} s"
+                detail = f"too many simulate or derive requests from this client: try again in {retry_after} s"
                 await JSONResponse({"detail": detail}, status_code=429, headers={"Retry-After": str(retry_after)})(scope, receive, send)
                 return
         await self.app(scope, receive, send)
@@ -217,5 +218,5 @@ def refusals(method: str, path: str, *, reads_body: bool) -> dict[int, str]:
     if reads_body:
         answers[413] = "The request body is over the server's size limit"
     if method.upper() == "POST" and SIMULATE_PATH.match(path):
-        answers[429] = "Too many simulations from this client; Retry-After says when to try again"
+        answers[429] = "Too many simulations or derivations from this client; Retry-After says when to try again"
     return answers

@@ -17,12 +17,14 @@ CAN_BE_NOT_FOUND = {
     ("/api/scenes/{scene_id}/simulate", "post"),
     ("/api/scenes/{scene_id}/sessions/{session_id}/live", "get"),
     ("/api/bench/work-precision", "get"),
+    ("/api/systems/{system_id}/derive", "post"),
+    ("/api/systems/{system_id}/rhs", "post"),
 }
-CAN_BE_UNPROCESSABLE = CAN_BE_NOT_FOUND - {("/api/bench/work-precision", "get")}
+CAN_BE_UNPROCESSABLE = (CAN_BE_NOT_FOUND - {("/api/bench/work-precision", "get")}) | {("/api/systems/custom/derive", "post")}
 #: Answers the web front's guard gives before any route runs (app/web/guard.py), which FastAPI cannot see by itself.
 WITH_BODY = [(path, method) for path, method, op in OPERATIONS if "requestBody" in op]
 STATE_CHANGING = [(path, method) for path, method, _ in OPERATIONS if method not in ("get", "head", "options")]
-RATE_LIMITED = [("/api/scenes/{scene_id}/simulate", "post")]
+RATE_LIMITED = [("/api/scenes/{scene_id}/simulate", "post"), ("/api/systems/custom/derive", "post")]
 #: Where each error answer may be documented: no route lists one it cannot give.
 CAN_ANSWER = {"404": CAN_BE_NOT_FOUND, "422": CAN_BE_UNPROCESSABLE, "413": set(WITH_BODY), "403": set(STATE_CHANGING), "429": set(RATE_LIMITED)}
 

@@ -28,9 +28,13 @@ class ValidationErrorDetail(BaseModel):
     detail: list[ValidationIssue]
 
 
-def error_responses(*, not_found: str | None = None, unprocessable: str | None = None) -> dict[int | str, dict[str, Any]]:
-    """OpenAPI ``responses=`` entries for the 404 and 422 answers a route can give, each with its description."""
+def error_responses(
+    *, not_found: str | None = None, unprocessable: str | None = None, busy: str | None = None
+) -> dict[int | str, dict[str, Any]]:
+    """OpenAPI ``responses=`` entries for the 404, 422 and 429 answers a route can give, each with its description."""
     responses: dict[int | str, dict[str, Any]] = {}
+    if busy:
+        responses[429] = {"model": ErrorDetail, "description": busy}
     if not_found:
         responses[404] = {"model": ErrorDetail, "description": not_found}
     if unprocessable:
