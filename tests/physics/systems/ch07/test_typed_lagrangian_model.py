@@ -149,7 +149,7 @@ def test_the_constants_parser_refuses_anything_else(text, reason):
         ({"kinetic_energy": "m*q1d^2/2"}, "kinetic_energy", "q2d"),
         ({"kinetic_energy": "m*l^2*q1d^2/2 + q3d^2"}, "kinetic_energy", "q3d"),
         ({"potential_energy": "q1d*m"}, "potential_energy", "rates"),
-        ({"kinetic_energy": "m*q1d^2 + m*q2d^2", "potential_energy": "os.system(1)"}, "potential_energy", ""),
+        ({"kinetic_energy": "m*q1d^2 + m*q2d^2", "potential_energy": "os.system(1)"}, "potential_energy", "unexpected 'os' at character 1"),
         ({"coordinates": 1, "kinetic_energy": "q1^2*q1d^2/2", "potential_energy": "q1^2/2", "parameters": "", "q0_rad": [0, 0, 0]}, "q0_rad", "singular"),
     ],
 )
