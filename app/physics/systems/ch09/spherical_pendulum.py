@@ -10,8 +10,8 @@ from __future__ import annotations
 
 import sympy
 
-from app.physics.core.parameters import ParameterSet
-from app.physics.mechanics.description import Coordinate, Particle, Reaction, SystemDescription, parameter, vector
+from app.physics.mechanics.description import Coordinate, Particle, Reaction, SystemDescription, vector
+from app.physics.systems.ch07.simple_pendulum import PENDULUM_PARAMETERS
 
 m, l, g = sympy.symbols("m l g", positive=True)
 theta = Coordinate("theta", "\\theta")
@@ -24,11 +24,7 @@ SYSTEM = SystemDescription(
     title="Spherical pendulum",
     chapter=9,
     coordinates=(theta, phi),
-    parameters=ParameterSet((
-        parameter("mass_kg", "kg", 1.0, low=0.01, high=100.0, label="m", description="Mass of the bob"),
-        parameter("length_m", "m", 1.0, low=0.05, high=10.0, label="l", description="Length of the rod"),
-        parameter("g_m_s2", "m/s²", 9.81, low=0.0, high=100.0, label="g", description="Gravitational acceleration"),
-    )),
+    parameters=PENDULUM_PARAMETERS,
     symbols={"mass_kg": m, "length_m": l, "g_m_s2": g},
     particles=(Particle("bob", m, bob),),
     gravity=vector(0, 0, -g),
