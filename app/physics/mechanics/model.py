@@ -63,15 +63,16 @@ def _lambdified_energies(system: SystemDescription):
 
 
 class DerivedModel(IntegratedModel):
-    """Integrate a catalogue system from its derived equations (state: q then q̇)."""
+    """Integrate a catalogue system from its derived equations (state: q then q̇).
+
+    A subclass gives ``description``, ``parameters`` (see :func:`derived_parameters`) and the
+    abstract methods of :class:`IntegratedModel`: initial_state, series, invariants, invariant_scales.
+    """
 
     description: ClassVar[SystemDescription]
     methods = ("rk4", "dopri5")
     default_method = "rk4"
 
-    # --- what a subclass gives -------------------------------------------------------------------------------
-    def initial_state(self, params: Mapping[str, Any]) -> np.ndarray:  # pragma: no cover - abstract in spirit
-        raise NotImplementedError
 
     # --- derived pieces ---------------------------------------------------------------------------------------
     def parameter_array(self, params: Mapping[str, Any]) -> np.ndarray:

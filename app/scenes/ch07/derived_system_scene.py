@@ -8,6 +8,8 @@ every :data:`AGREEMENT_EVERY_FRAMES` frames, never per frame.
 
 from __future__ import annotations
 
+from abc import abstractmethod
+
 from app.physics.mechanics.derivation import FORMULATIONS
 from app.scenes.kit import IntegratedScene, Quantity
 
@@ -18,9 +20,9 @@ AGREEMENT_EVERY_FRAMES = 15
 class DerivedSystemScene(IntegratedScene):
     """An integrated scene whose model is a :class:`~app.physics.mechanics.model.DerivedModel`."""
 
+    @abstractmethod
     def draw_state(self) -> None:
         """Move the drawing to :attr:`run`'s current state (called after each successful frame)."""
-        raise NotImplementedError
 
     def advance(self, dt_s: float) -> None:
         if self.step_physics():
