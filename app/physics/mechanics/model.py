@@ -73,7 +73,6 @@ class DerivedModel(IntegratedModel):
     methods = ("rk4", "dopri5")
     default_method = "rk4"
 
-
     # --- derived pieces ---------------------------------------------------------------------------------------
     def parameter_array(self, params: Mapping[str, Any]) -> np.ndarray:
         return np.array(self.description.parameter_array(params), dtype=float)
