@@ -131,14 +131,20 @@ def _descendants() -> list[tuple[int, int, str, str]]:
     return found
 
 
+#: Processes below this one before the runner started (in a whole-suite run: the browser tests' Playwright
+#: driver and the like), which are not the runner's to clean up.
+_BEFORE: set[int] = set()
+
+
 def _workers_left() -> list[tuple[int, int, str, str]]:
     """Descendants other than the long-lived forkserver and resource tracker (our own children, started
-    with ``-c``): leaked or zombie workers. A worker is forked from the forkserver, so it shares its
-    command line but is the forkserver's child, not ours."""
+    with ``-c``) and other than what was there before the runner: leaked or zombie workers. A worker is
+    forked from the forkserver, so it shares its command line but is the forkserver's child, not ours."""
     helpers = ("multiprocessing.forkserver import main", "multiprocessing.resource_tracker import main")
     return [
-        p for p in _descendants() if p[2] == "Z" or p[1] != os.getpid() or not any(helper in p[3] for helper in helpers)
-    ]
+        p for p in _descendants()
+        if p[0] not in _BEFORE and (p[2] == "Z" or p[1] != os.getpid() or not any(helper in p[3] for helper in helpers))
+    ]  # fmt: skip
 
 
 def _open_fds() -> int:
@@ -156,6 +162,7 @@ def _wait_for(condition, timeout_s: float = 10.0) -> bool:
 
 @pytest.fixture(scope="module")
 def runner() -> BoundedRunner:
+    _BEFORE.update(p[0] for p in _descendants())
     runner = BoundedRunner(max_jobs=2, timeout_s=20.0, memory_mb=256.0, preload=("app.physics.core.bounded", "numpy", "sympy", __name__))
     runner.warm()
     runner.run(square, (1.0,))  # the first call waits for the forkserver's imports
