@@ -11,6 +11,7 @@ expressions, so one code generator turns any of them into a function.
 
 from __future__ import annotations
 
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
 import sympy
@@ -25,6 +26,20 @@ FORMULATION_TITLES = {
     "gibbs-appell": "Gibbs–Appell",
     "kane": "Kane",
 }
+
+
+def latex_printer(names: dict) -> Callable[[sympy.Expr | sympy.Matrix], str]:
+    """LaTeX of an expression with the page's symbol names (θ₁, θ̇₁ …)."""
+    return lambda expr: sympy.latex(expr, symbol_names=names)
+
+
+def linear_equations_latex(
+    matrix: sympy.Matrix, unknowns: Sequence[sympy.Symbol], forcing: sympy.Matrix, latex: Callable[[sympy.Expr], str],
+    *, tidy: Callable[[sympy.Expr], sympy.Expr] = lambda e: e,
+) -> tuple[str, ...]:
+    """One LaTeX equation per row of matrix · unknowns = forcing (each side passed through ``tidy``)."""
+    column = sympy.Matrix(list(unknowns))
+    return tuple(latex(sympy.Eq(tidy((matrix[j, :] * column)[0]), tidy(forcing[j]))) for j in range(matrix.shape[0]))
 
 
 class FormulationUnavailable(ValueError):
@@ -87,4 +102,4 @@ class Derivation:
     latex_names: dict = field(default_factory=dict, compare=False, repr=False)
 
     def latex(self, expr: sympy.Expr | sympy.Matrix) -> str:
-        return sympy.latex(expr, symbol_names=self.latex_names)
+        return latex_printer(self.latex_names)(expr)

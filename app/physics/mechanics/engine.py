@@ -205,8 +205,6 @@ def _from_disk(system: SystemDescription, formulation: str, directory: Path | No
         load_s = time.perf_counter() - start
     except (OSError, ValueError, SyntaxError, AttributeError):
         return None  # a damaged entry is derived again and overwritten
-    if meta.get("unavailable"):
-        raise FormulationUnavailable(meta["unavailable"])
     return Derived(**meta["derived"], derive_s=0.0, compile_s=load_s, source_path=source_path, rhs_python=rhs, from_cache=True)
 
 

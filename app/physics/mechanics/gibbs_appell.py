@@ -12,9 +12,9 @@ from __future__ import annotations
 import sympy
 
 from app.physics.mechanics.algebra import linear_parts, tidy
-from app.physics.mechanics.derivation import Derivation, FormulationUnavailable, Solve, Step
+from app.physics.mechanics.derivation import Derivation, FormulationUnavailable, Solve, Step, latex_printer, linear_equations_latex
 from app.physics.mechanics.description import SystemDescription
-from app.physics.mechanics.kinematics import body_motions, potential_energy, speed_motion
+from app.physics.mechanics.kinematics import body_motions, generalized_forces, potential_energy, speed_motion
 from app.physics.mechanics.speeds import conservative_share, recipe_through_speeds
 
 
@@ -36,13 +36,11 @@ def derive_gibbs_appell(system: SystemDescription) -> Derivation:
     if system.kinetic_energy is not None:
         raise FormulationUnavailable("the Gibbs function needs the particles' and bodies' accelerations, not only an energy expression")
     names = system.latex_names
-    latex = lambda e: sympy.latex(e, symbol_names=names)  # noqa: E731
+    latex = latex_printer(names)
     motion = speed_motion(system)
     u, ud = system.u, system.ud
     S = gibbs_function(system)
-    forces = [
-        sum(((f.force.T * motion.derivative(f.point).diff(u_r))[0] for f in system.forces), sympy.Integer(0)) for u_r in u
-    ]
+    forces = generalized_forces(system, motion, u)
     V = potential_energy(system)
     generalized = [F + C for F, C in zip(forces, conservative_share(system, V))]
     dS = [sympy.diff(S, a) for a in ud]
@@ -53,7 +51,7 @@ def derive_gibbs_appell(system: SystemDescription) -> Derivation:
         for speed, a, d in zip(system.speed_list, ud, dS)
     ]
     steps += [Step(f"Generalized force for {speed.name}", f"\\Pi_{{{speed.latex}}} = {latex(tidy(g))}") for speed, g in zip(system.speed_list, generalized)]
-    equations = tuple(latex(sympy.Eq((M[j, :] * sympy.Matrix(ud))[0], tidy(forcing[j]))) for j in range(len(u)))
+    equations = linear_equations_latex(M, ud, forcing, latex, tidy=tidy)
     return Derivation(
         system_id=system.id, formulation="gibbs-appell", variables="q, u",
         mass_matrix=M, forcing=forcing, equations_latex=equations, steps=tuple(steps),

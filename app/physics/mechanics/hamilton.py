@@ -11,7 +11,7 @@ from __future__ import annotations
 import sympy
 
 from app.physics.mechanics.algebra import solve_exactly, tidy
-from app.physics.mechanics.derivation import Assign, Derivation, FormulationUnavailable, Recipe, Solve, Step
+from app.physics.mechanics.derivation import Assign, Derivation, FormulationUnavailable, Recipe, Solve, Step, latex_printer
 from app.physics.mechanics.description import TIME, SystemDescription
 from app.physics.mechanics.kinematics import coordinate_motion, generalized_forces, jacobian_of
 from app.physics.mechanics.lagrange import lagrangian
@@ -52,7 +52,7 @@ def derive_hamilton(system: SystemDescription) -> Derivation:
     P = momentum_symbols(system)
     for c, p in zip(system.coordinates, P):
         names[p] = f"p_{{{c.latex}}}"
-    latex = lambda e: sympy.latex(e, symbol_names=names)  # noqa: E731
+    latex = latex_printer(names)
     q, qd, qdd = system.q, system.qd, system.qdd
     T, V = lagrangian(system)
     L = T - V

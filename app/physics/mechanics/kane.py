@@ -13,9 +13,9 @@ from __future__ import annotations
 import sympy
 
 from app.physics.mechanics.algebra import linear_parts, tidy
-from app.physics.mechanics.derivation import Derivation, FormulationUnavailable, Solve, Step
+from app.physics.mechanics.derivation import Derivation, FormulationUnavailable, Solve, Step, latex_printer, linear_equations_latex
 from app.physics.mechanics.description import SystemDescription
-from app.physics.mechanics.kinematics import body_motions, speed_motion, spring_force_on_b
+from app.physics.mechanics.kinematics import body_motions, inertia_torque_body, speed_motion, spring_force_on_b
 from app.physics.mechanics.speeds import conservative_share, recipe_through_speeds
 
 
@@ -23,7 +23,7 @@ def derive_kane(system: SystemDescription) -> Derivation:
     if system.kinetic_energy is not None:
         raise FormulationUnavailable("Kane's equations need the particles and bodies, not only an energy expression")
     names = system.latex_names
-    latex = lambda e: sympy.latex(e, symbol_names=names)  # noqa: E731
+    latex = latex_printer(names)
     motion = speed_motion(system)
     u, ud = system.u, system.ud
     items = body_motions(system, motion)
@@ -49,10 +49,7 @@ def derive_kane(system: SystemDescription) -> Derivation:
             acceleration = motion.derivative(item.velocity)
             total -= item.mass * (acceleration.T * item.velocity.diff(u_r))[0]
             if item.angular_velocity is not None:
-                omega, I = item.angular_velocity, item.inertia
-                alpha = motion.derivative(omega)
-                torque = I * alpha + omega.cross(I * omega)
-                total -= (omega.diff(u_r).T * torque)[0]
+                total -= (item.angular_velocity.diff(u_r).T * inertia_torque_body(item, motion))[0]
         inertia.append(total)
     A, b = linear_parts([a + s for a, s in zip(active, inertia)], ud)
     M, forcing = -A, -b
@@ -65,7 +62,7 @@ def derive_kane(system: SystemDescription) -> Derivation:
     for speed, F_r, Fs_r in zip(system.speed_list, active, inertia):
         steps.append(Step(f"Generalized active force for {speed.name}", f"F_{{{speed.latex}}} = {latex(tidy(F_r))}"))
         steps.append(Step(f"Generalized inertia force for {speed.name}", f"F^*_{{{speed.latex}}} = {latex(tidy(Fs_r))}"))
-    equations = tuple(latex(sympy.Eq((M[j, :] * sympy.Matrix(ud))[0], tidy(forcing[j]))) for j in range(len(u)))
+    equations = linear_equations_latex(M, ud, forcing, latex, tidy=tidy)
     return Derivation(
         system_id=system.id, formulation="kane", variables="q, u",
         mass_matrix=M, forcing=forcing, equations_latex=equations, steps=tuple(steps),

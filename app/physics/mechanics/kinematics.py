@@ -116,6 +116,12 @@ def body_motions(system: SystemDescription, motion: Motion) -> list[BodyMotion]:
     return found
 
 
+def inertia_torque_body(item: BodyMotion, motion: Motion) -> sympy.Matrix:
+    """I_G α + ω × I_G ω in body components (N·m): what a body's moment about its mass centre must supply."""
+    omega, inertia = item.angular_velocity, item.inertia
+    return inertia * motion.derivative(omega) + omega.cross(inertia * omega)
+
+
 def kinetic_energy(system: SystemDescription, motion: Motion) -> sympy.Expr:
     """T (J): ½ m v·v for particles; ½ m v_G·v_G + ½ ωᵀ I_G ω for bodies."""
     if system.kinetic_energy is not None:

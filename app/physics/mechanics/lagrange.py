@@ -12,7 +12,7 @@ import sympy
 from sympy.physics.mechanics import LagrangesMethod, dynamicsymbols
 
 from app.physics.mechanics.algebra import tidy
-from app.physics.mechanics.derivation import Derivation, FormulationUnavailable, Recipe, Solve, Step
+from app.physics.mechanics.derivation import Derivation, FormulationUnavailable, Recipe, Solve, Step, latex_printer, linear_equations_latex
 from app.physics.mechanics.description import TIME, SystemDescription
 from app.physics.mechanics.kinematics import coordinate_motion, generalized_forces, kinetic_energy, potential_energy
 
@@ -47,7 +47,7 @@ def derive_lagrange(system: SystemDescription) -> Derivation:
             "constraints restrict velocities only, so they need multipliers (chapter 8)"
         )
     names = system.latex_names
-    latex = lambda e: sympy.latex(e, symbol_names=names)  # noqa: E731
+    latex = latex_printer(names)
     motion = coordinate_motion(system)
     T, V = lagrangian(system)
     L = T - V
@@ -61,9 +61,7 @@ def derive_lagrange(system: SystemDescription) -> Derivation:
         steps.append(Step(f"Coordinate {c.name}: d/dt of it", f"\\frac{{d}}{{dt}}\\frac{{\\partial L}}{{\\partial {names[qd_j]}}} = {latex(tidy(motion.derivative(momentum)))}"))
         steps.append(Step(f"Coordinate {c.name}: ∂L/∂q", f"\\frac{{\\partial L}}{{\\partial {names[q_j]}}} = {latex(tidy(sympy.diff(L, q_j)))}"))
         steps.append(Step(f"Coordinate {c.name}: generalized force", f"Q_{{{names[q_j]}}} = {latex(Q_j)}"))
-    equations = tuple(
-        latex(sympy.Eq((mass_matrix[j, :] * sympy.Matrix(system.qdd))[0], tidy(forcing[j]))) for j in range(len(system.q))
-    )
+    equations = linear_equations_latex(mass_matrix, system.qdd, forcing, latex, tidy=tidy)
     return Derivation(
         system_id=system.id, formulation="lagrange", variables="q, q̇",
         mass_matrix=mass_matrix, forcing=forcing, equations_latex=equations, steps=tuple(steps),

@@ -14,9 +14,9 @@ from __future__ import annotations
 import sympy
 
 from app.physics.mechanics.algebra import linear_parts, tidy
-from app.physics.mechanics.derivation import Derivation, FormulationUnavailable, Solve, Step
+from app.physics.mechanics.derivation import Derivation, FormulationUnavailable, Solve, Step, latex_printer, linear_equations_latex
 from app.physics.mechanics.description import SystemDescription
-from app.physics.mechanics.kinematics import body_motions, speed_motion, spring_force_on_b
+from app.physics.mechanics.kinematics import body_motions, inertia_torque_body, speed_motion, spring_force_on_b
 from app.physics.mechanics.speeds import recipe_through_speeds
 
 
@@ -41,7 +41,7 @@ def derive_newton_euler(system: SystemDescription) -> Derivation:
     unknown_reactions = reaction_symbols(system)
     for symbol, reaction, kind, k in unknown_reactions:
         names[symbol] = f"{'R' if kind == 'force' else 'C'}_{{\\mathrm{{{reaction.name}}},{k + 1}}}"
-    latex = lambda e: sympy.latex(e, symbol_names=names)  # noqa: E731
+    latex = latex_printer(names)
     positions = {p.name: p.position for p in system.particles} | {b.name: b.mass_centre for b in system.bodies}
     masses = {p.name: p.mass for p in system.particles} | {b.name: b.mass for b in system.bodies}
     # Forces (N) at points (m) and pure moments (N·m) on each body, by name.
@@ -81,19 +81,17 @@ def derive_newton_euler(system: SystemDescription) -> Derivation:
         rows += list(linear)
         steps.append(Step(f"{item.name}: m a = ΣF", f"{latex(item.mass)}\\,{latex(tidy(acceleration).T)}^T = {latex(resultant.T)}^T"))
         if item.angular_velocity is not None:
-            omega, I, R = item.angular_velocity, item.inertia, item.rotation
-            alpha = motion.derivative(omega)
             centre = positions[item.name]
             moment = sum(((p - centre).cross(f) for p, f in forces[item.name]), sympy.zeros(3, 1))
             moment += sum(moments[item.name], sympy.zeros(3, 1))
-            rotational = R * (I * alpha + omega.cross(I * omega)) - moment
+            rotational = item.rotation * inertia_torque_body(item, motion) - moment
             rows += list(rotational)
             steps.append(Step(f"{item.name}: I α + ω × I ω = ΣM_G (N components)", f"{latex(moment.T)}^T"))
     unknowns = [*system.ud, *(s for s, *_ in unknown_reactions)]
     if len(rows) != len(unknowns):
         raise ValueError(f"{system.id}: Newton–Euler has {len(rows)} equations for {len(unknowns)} unknowns; declare the reactions fully")
     A, b = linear_parts(rows, unknowns)
-    equations = tuple(latex(sympy.Eq(tidy((A[j, :] * sympy.Matrix(unknowns))[0]), tidy(b[j]))) for j in range(len(rows)))
+    equations = linear_equations_latex(A, unknowns, b, latex, tidy=tidy)
     return Derivation(
         system_id=system.id, formulation="newton-euler", variables="q, u, reactions",
         mass_matrix=A, forcing=b, equations_latex=equations, steps=tuple(steps),

@@ -13,7 +13,16 @@ from __future__ import annotations
 import sympy
 
 from app.physics.mechanics.algebra import solve_exactly, tidy
-from app.physics.mechanics.derivation import Assign, Derivation, FormulationUnavailable, Recipe, Solve, Step
+from app.physics.mechanics.derivation import (
+    Assign,
+    Derivation,
+    FormulationUnavailable,
+    Recipe,
+    Solve,
+    Step,
+    latex_printer,
+    linear_equations_latex,
+)
 from app.physics.mechanics.description import SystemDescription
 from app.physics.mechanics.kinematics import Motion, coordinate_motion, generalized_forces, jacobian_of
 from app.physics.mechanics.lagrange import lagrangian
@@ -53,7 +62,7 @@ def derive_routh(system: SystemDescription) -> Derivation:
     cyclic = [c for c in system.coordinates if c.name in system.ignorable]
     for c, b in zip(cyclic, beta):
         names[b] = f"\\beta_{{{c.latex}}}"
-    latex = lambda e: sympy.latex(e, symbol_names=names)  # noqa: E731
+    latex = latex_printer(names)
     q_K, qd_K, qdd_K = [c.symbol for c in kept], [c.rate for c in kept], [c.acceleration for c in kept]
     motion = Motion(q_K, qd_K, qd_K, qdd_K)  # β is constant
     Q_all = dict(zip(system.q, generalized_forces(system, coordinate_motion(system), system.qd)))
@@ -84,9 +93,7 @@ def derive_routh(system: SystemDescription) -> Derivation:
         *(Step(f"Ignorable rate {c.name}", f"{names[c.rate]} = -\\frac{{\\partial R}}{{\\partial {names[b]}}} = {latex(e)}")
           for c, b, e in zip(cyclic, beta, cyclic_rates)),
     ]  # fmt: skip
-    equations = tuple(
-        latex(sympy.Eq((M[j, :] * sympy.Matrix(qdd_K))[0], forcing[j])) for j in range(len(q_K))
-    ) + tuple(f"{names[c.rate]} = {latex(e)}" for c, e in zip(cyclic, cyclic_rates))
+    equations = linear_equations_latex(M, qdd_K, forcing, latex) + tuple(f"{names[c.rate]} = {latex(e)}" for c, e in zip(cyclic, cyclic_rates))
     return Derivation(
         system_id=system.id, formulation="routh", variables="q_K, q̇_K, β",
         mass_matrix=M, forcing=forcing, equations_latex=equations, steps=tuple(steps), recipe=recipe, latex_names=names,
