@@ -35,11 +35,13 @@ def latex_printer(names: dict) -> Callable[[sympy.Expr | sympy.Matrix], str]:
 
 def linear_equations_latex(
     matrix: sympy.Matrix, unknowns: Sequence[sympy.Symbol], forcing: sympy.Matrix, latex: Callable[[sympy.Expr], str],
-    *, tidy: Callable[[sympy.Expr], sympy.Expr] = lambda e: e,
+    *, tidy: Callable[[sympy.Expr], sympy.Expr] = lambda e: e, tidy_left: bool = False,
 ) -> tuple[str, ...]:
-    """One LaTeX equation per row of matrix · unknowns = forcing (each side passed through ``tidy``)."""
+    """One LaTeX equation per row of matrix · unknowns = forcing: the right side passed through ``tidy``,
+    the left (the unknowns' coefficients, kept as written) only with ``tidy_left``."""
     column = sympy.Matrix(list(unknowns))
-    return tuple(latex(sympy.Eq(tidy((matrix[j, :] * column)[0]), tidy(forcing[j]))) for j in range(matrix.shape[0]))
+    left = tidy if tidy_left else (lambda e: e)
+    return tuple(latex(sympy.Eq(left((matrix[j, :] * column)[0]), tidy(forcing[j]))) for j in range(matrix.shape[0]))
 
 
 class FormulationUnavailable(ValueError):

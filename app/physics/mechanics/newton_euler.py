@@ -91,7 +91,7 @@ def derive_newton_euler(system: SystemDescription) -> Derivation:
     if len(rows) != len(unknowns):
         raise ValueError(f"{system.id}: Newton–Euler has {len(rows)} equations for {len(unknowns)} unknowns; declare the reactions fully")
     A, b = linear_parts(rows, unknowns)
-    equations = linear_equations_latex(A, unknowns, b, latex, tidy=tidy)
+    equations = linear_equations_latex(A, unknowns, b, latex, tidy=tidy, tidy_left=True)
     return Derivation(
         system_id=system.id, formulation="newton-euler", variables="q, u, reactions",
         mass_matrix=A, forcing=b, equations_latex=equations, steps=tuple(steps),
