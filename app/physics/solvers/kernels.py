@@ -38,6 +38,10 @@ EVENTS_SIGNATURE = types.void(types.float64, _vector, _vector, _vector)
 RESET_SIGNATURE = types.void(types.float64, _vector, _vector, types.int64)
 #: ``constraint(y, p, g_out, G_out)``: residuals ``g(q)`` (m,) and Jacobian ``∂g/∂q`` (m, n_positions).
 CONSTRAINT_SIGNATURE = types.void(_vector, _vector, _vector, _matrix)
+#: ``dynamics(t, q, v, p, M_out, f_out)``: mass matrix (n, n) and generalized forces (n,) of a constrained system.
+DYNAMICS_SIGNATURE = types.void(types.float64, _vector, _vector, _vector, _matrix, _vector)
+#: ``constraints(q, v, p, g_out, C_out, c_out)``: holonomic residuals (m_h,), velocity rows ``C`` (m, n), ``c = −Ċ v`` (m,).
+MULTIPLIER_CONSTRAINTS_SIGNATURE = types.void(_vector, _vector, _vector, _vector, _matrix, _vector)
 
 RHS_TYPE = types.FunctionType(RHS_SIGNATURE)
 PROJECT_TYPE = types.FunctionType(PROJECT_SIGNATURE)
@@ -45,6 +49,8 @@ TORQUE_TYPE = types.FunctionType(TORQUE_SIGNATURE)
 EVENTS_TYPE = types.FunctionType(EVENTS_SIGNATURE)
 RESET_TYPE = types.FunctionType(RESET_SIGNATURE)
 CONSTRAINT_TYPE = types.FunctionType(CONSTRAINT_SIGNATURE)
+DYNAMICS_TYPE = types.FunctionType(DYNAMICS_SIGNATURE)
+MULTIPLIER_CONSTRAINTS_TYPE = types.FunctionType(MULTIPLIER_CONSTRAINTS_SIGNATURE)
 
 VECTOR = _vector
 MATRIX = _matrix
@@ -52,6 +58,7 @@ INDEX_VECTOR = types.int64[::1]
 
 _MODEL_SIGNATURES = (
     RHS_SIGNATURE, PROJECT_SIGNATURE, TORQUE_SIGNATURE, EVENTS_SIGNATURE, RESET_SIGNATURE, CONSTRAINT_SIGNATURE,
+    DYNAMICS_SIGNATURE, MULTIPLIER_CONSTRAINTS_SIGNATURE,
 )
 
 
