@@ -14,8 +14,10 @@ from app.api.session_keys import SESSION_KEY_PATTERN, SessionKeyError
 from app.api.schemas.readout import LiveAnswer
 from app.api.schemas.scenes import SceneSummary, SessionParamsAnswer, SessionParamsRequest
 from app.api.schemas.simulation import SimulateRequest, SimulationAnswer
+from app.physics.constrained.model import ConstrainedModel
 from app.physics.core.closed_form import ClosedFormModel, evaluate_model
 from app.physics.core.parameters import ParameterError, ParameterSet
+from app.physics.solvers.controls import CONTROL_NAMES
 from app.physics.solvers.integrated_model import simulate_model
 from app.scenes.host.host import SESSION_ID_PATTERN, UnknownSceneError
 from app.scenes.kit import Scene
@@ -114,10 +116,14 @@ def simulate_scene(scene_id: str, request: SimulateRequest, host: SceneHostDep) 
         if issubclass(model_cls, ClosedFormModel):
             out = _closed_form_report(model_cls, params, request)
         else:
-            raw_controls = {k: v for k, v in (("method", request.method), ("steps_per_frame", request.steps_per_frame), ("rtol", request.rtol)) if v is not None}
+            raw_controls = {name: value for name in CONTROL_NAMES if (value := getattr(request, name)) is not None}
             try:
                 controls = ParameterSet(model_cls.controls()).validate(raw_controls)
-                out = simulate_model(model_cls(), params, controls, t_end_s=request.t_end, frame_rate_hz=request.frame_rate).as_dict()
+                if issubclass(model_cls, ConstrainedModel):  # method = the DAE algorithm; the report says what the start changed
+                    report = model_cls().simulate(params, controls, t_end_s=request.t_end, frame_rate_hz=request.frame_rate)
+                else:
+                    report = simulate_model(model_cls(), params, controls, t_end_s=request.t_end, frame_rate_hz=request.frame_rate)
+                out = report.as_dict()
             except ParameterError as exc:
                 raise unprocessable(["body", exc.field], str(exc)) from None
         out["params"] = params
@@ -128,7 +134,7 @@ def simulate_scene(scene_id: str, request: SimulateRequest, host: SceneHostDep) 
 
 
 def _closed_form_report(model_cls: type[ClosedFormModel], params: dict[str, Any], request: SimulateRequest) -> dict[str, Any]:
-    for name in ("method", "steps_per_frame", "rtol"):
+    for name in CONTROL_NAMES:
         if getattr(request, name) not in (None, "auto", "closed-form", 0):
             raise unprocessable(["body", name], "this scene's motion is a closed form in time: there is no integrator to control")
     try:

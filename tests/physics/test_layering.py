@@ -14,7 +14,7 @@ from pathlib import Path
 import pytest
 
 PHYSICS = Path(__file__).resolve().parents[2] / "app" / "physics"
-LAYERS = ("core", "math", "solvers", "bodies", "mechanics", "systems")
+LAYERS = ("core", "math", "solvers", "bodies", "mechanics", "constrained", "systems")
 FORBIDDEN_TOP = ("app.scenes", "app.api", "app.web", "app.course", "app.main", "app.bench", "viser", "fastapi", "starlette", "uvicorn")
 
 

@@ -60,6 +60,10 @@ class SimulationReport:
     arrays (N,) in their declared units. The remaining fields are the ``stats``.
     ``events`` is reported by closed-form models (possibly empty) and left
     ``None`` by integrated ones, whose answer has no ``events`` key.
+    Models in constrained coordinates (chapter 8) add ``integrator`` (``method`` is
+    then the DAE algorithm) and ``initial_conditions``: the coordinates and rates
+    the start had to change to satisfy the constraints (``name``, ``requested``,
+    ``consistent``, ``change``, ``unit``; empty when none). Both stay out of ``stats`` when ``None``.
     """
 
     t_s: np.ndarray
@@ -74,6 +78,11 @@ class SimulationReport:
     status: str
     message: str
     events: list[Event] | None = None
+    #: Accuracy keys added to ``stats`` for an integrated model with a stated target (target, estimate,
+    #: error against a reference; see :meth:`app.physics.solvers.step_choice.StepChoice.as_dict`).
+    accuracy: dict[str, Any] | None = None
+    integrator: str | None = None
+    initial_conditions: list[dict[str, Any]] | None = None
 
     def as_dict(self) -> dict[str, Any]:
         """The JSON answer; a non-finite value (an undefined instant of a formula) becomes null."""
@@ -94,6 +103,14 @@ class SimulationReport:
             "status": self.status,
             "message": self.message,
         }
+        if self.accuracy is not None:
+            out["stats"].update(
+                {k: (None if isinstance(v, float) and not math.isfinite(v) else v) for k, v in self.accuracy.items()}
+            )
+        if self.integrator is not None:
+            out["stats"]["integrator"] = self.integrator
+        if self.initial_conditions is not None:
+            out["stats"]["initial_conditions"] = self.initial_conditions
         return out
 
 

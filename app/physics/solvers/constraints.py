@@ -4,7 +4,7 @@ Both work from the residual ``g`` (m,) and Jacobian ``G = ∂g/∂q`` (m, n_q)
 of a :class:`~app.physics.solvers.system.Constraints` kernel:
 
 * :func:`project_onto_constraints` — after a step, Gauss–Newton corrections of
-  minimum norm, ``q ← q − Gᵀ (G Gᵀ)⁻¹ g(q)``, until ``g`` is at round-off, then
+  minimum norm (each one :func:`minimum_norm_correction`), ``q ← q − Gᵀ (G Gᵀ)⁻¹ g(q)``, until ``g`` is at round-off, then
   ``v ← v − Gᵀ (G Gᵀ)⁻¹ G v`` so that ``ġ = G v = 0``;
 * :func:`constrained_acceleration` — inside a right-hand side, solve
   ``[M Gᵀ; G 0] [a; λ] = [f; γ]`` for the accelerations ``a`` and multipliers ``λ``,
@@ -38,21 +38,35 @@ def _gram_solve(G, rhs):
 
 
 @register_jitable
+def minimum_norm_correction(G, residual, x):
+    """``x ← x − Gᵀ (G Gᵀ)⁻¹ residual`` in place: the smallest change of ``x`` (n,) with ``G Δx = −residual``.
+
+    ``G`` (m, n) of full row rank, ``residual`` (m,). Returns the largest |Δx| component.
+    Used for positions (residual ``g``, Gauss–Newton) and for velocities (residual ``G v``,
+    holonomic and nonholonomic rows alike: ``C v = 0`` is linear in ``v``).
+    """
+    multiplier = _gram_solve(G, residual)
+    largest_step = 0.0
+    for k in range(x.shape[0]):
+        step = 0.0
+        for i in range(G.shape[0]):
+            step += G[i, k] * multiplier[i]
+        x[k] -= step
+        largest_step = max(largest_step, abs(step))
+    return largest_step
+
+
+@register_jitable
 def project_onto_constraints(constraint, y, p, n_positions, n_constraints):
     """Move ``y`` in place onto ``g(q) = 0`` and ``G v = 0`` (q = y[:n_q], v = y[n_q:2 n_q])."""
     g = np.empty(n_constraints)
     G = np.empty((n_constraints, n_positions))
+    q = y[:n_positions]
     for _ in range(MAX_PROJECTION_ITERATIONS):
         constraint(y, p, g, G)
-        multiplier = _gram_solve(G, g)
-        largest_step = 0.0
+        largest_step = minimum_norm_correction(G, g, q)
         largest_q = 0.0
         for k in range(n_positions):
-            step = 0.0
-            for i in range(n_constraints):
-                step += G[i, k] * multiplier[i]
-            y[k] -= step
-            largest_step = max(largest_step, abs(step))
             largest_q = max(largest_q, abs(y[k]))
         if largest_step <= 4.0 * 2.220446049250313e-16 * max(largest_q, 1e-300):
             break
@@ -63,12 +77,7 @@ def project_onto_constraints(constraint, y, p, n_positions, n_constraints):
         for k in range(n_positions):
             acc += G[i, k] * y[n_positions + k]
         normal_velocity[i] = acc
-    multiplier = _gram_solve(G, normal_velocity)
-    for k in range(n_positions):
-        step = 0.0
-        for i in range(n_constraints):
-            step += G[i, k] * multiplier[i]
-        y[n_positions + k] -= step
+    minimum_norm_correction(G, normal_velocity, y[n_positions:2 * n_positions])
 
 
 @register_jitable
@@ -102,3 +111,13 @@ def constrained_acceleration(M, G, f, gamma, a_out):
     for i in range(n):
         a_out[i] = solution[i]
     return solution[n:]
+
+
+@register_jitable
+def kkt_inputs_finite(M, G, f, gamma):
+    """Whether ``M`` (n, n), ``G`` (m, n), ``f`` (n,) and ``γ`` (m,) are all finite.
+
+    Check before :func:`constrained_acceleration` where a state may have blown up:
+    the solve raises on non-finite input, which a C callback cannot pass on.
+    """
+    return np.all(np.isfinite(M)) and np.all(np.isfinite(G)) and np.all(np.isfinite(f)) and np.all(np.isfinite(gamma))

@@ -15,7 +15,7 @@ from app.physics.solvers.base import Integrator
 from app.physics.solvers.registry import METHODS, make_integrator
 
 AUTO = "auto"
-CONTROL_NAMES = ("method", "steps_per_frame", "rtol")
+CONTROL_NAMES = ("method", "steps_per_frame", "rtol", "integrator", "baumgarte_alpha_1_s", "baumgarte_beta_1_s")
 
 
 def integration_parameters(methods: tuple[str, ...], *, default_method: str) -> tuple[Parameter, ...]:

@@ -305,6 +305,11 @@ def dopri5_solve(
                 dense_state(theta, y, K, h, scratch)
                 for i in range(n):
                     y_out[next_out, i] = scratch[i]
+            # The interpolant leaves the manifold by its own error: a frame is projected as a step's end is.
+            if has_projection:
+                project(y_out[next_out], p)
+            if n_constraints > 0:
+                project_onto_constraints(constraint, y_out[next_out], p, n_positions, n_constraints)
             next_out += 1
         if acting >= 0:
             dense_state(theta_event, y, K, h, scratch)

@@ -29,7 +29,7 @@ def run_worker(index: int, start_pipe: Connection, authkey: bytes, options: dict
 
     host = SceneHost(SCENES, frame_rate_hz=options["frame_rate_hz"], max_sessions=options["max_sessions"])
     host.start()
-    threading.Thread(target=warm_derived_models, args=(SCENES,), name="warm-derivations", daemon=True).start()
+    threading.Thread(target=warm_compiled_models, args=(SCENES,), name="warm-models", daemon=True).start()
     tune_garbage_collection()
     listener = Listener(("127.0.0.1", 0), authkey=authkey)
     closing = threading.Event()
@@ -45,21 +45,28 @@ def run_worker(index: int, start_pipe: Connection, authkey: bytes, options: dict
         listener.close()
 
 
-def warm_derived_models(scenes: dict) -> None:
-    """Derive (or load from the disk cache) and compile every derived scene's equations at its defaults.
+def warm_compiled_models(scenes: dict) -> None:
+    """Compile, at their defaults, the equations that scenes build at run time rather than import time.
 
-    Runs in the background after the worker starts, so that the first student to open a chapter 7 or 9
-    scene does not wait for sympy (up to a few seconds per system) or numba (about half a second).
+    Runs in the background after the worker starts, so that the first student to open a scene does not wait:
+    chapters 7 and 9 derive (or load from the disk cache) and compile their equations (sympy up to a few seconds
+    per system, numba about half a second); chapter 8 compiles each constrained system's right-hand-side and
+    after-step callbacks, which are built per system at run time (0.1–0.25 s each with a warm disk cache).
     """
+    from app.physics.constrained.algorithms import algorithm_kernels
+    from app.physics.constrained.model import ConstrainedModel
     from app.physics.mechanics.model import DerivedModel
 
     for scene in scenes.values():
         model = getattr(scene, "model", None)
-        if isinstance(model, type) and issubclass(model, DerivedModel):
-            try:
+        try:
+            if isinstance(model, type) and issubclass(model, DerivedModel):
                 model().derived(scene.parameters.defaults()).kernel()
-            except Exception:  # a failure here only means the first viewer derives it, and sees the error then
-                log.exception("warming %s failed", scene.id)
+            elif isinstance(model, type) and issubclass(model, ConstrainedModel):
+                system = model().constrained_system(model.parameters.defaults())
+                algorithm_kernels(system.dynamics, system.constraints, system.n_coordinates, system.n_holonomic, system.n_constraints)
+        except Exception:  # a failure here only means the first viewer compiles it, and sees the error then
+            log.exception("warming %s failed", scene.id)
 
 
 def tune_garbage_collection() -> None:
