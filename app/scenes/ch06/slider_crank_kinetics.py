@@ -31,6 +31,21 @@ FORCE_ARROW_SPAN = 0.35
 LABEL_TEXT_EVERY_FRAMES = 3
 
 
+def paused_at_crank_speed_limit(scene: IntegratedScene, crank_speed_rad_s: float, limit_rad_s: float) -> bool:
+    """Pause ``scene`` with the reason once its crank turns faster than ``limit_rad_s`` (rad/s), the speed its step
+    was chosen for (a frictionless crank under a constant torque speeds up without limit); True when paused."""
+    speed = abs(crank_speed_rad_s)
+    if speed <= limit_rad_s:
+        return False
+    scene.run.status = "speed_limit"
+    scene.status = (
+        f"Paused at t = {scene.run.t_s:.2f} s: the crank has reached {speed:.0f} rad/s. With no friction "
+        f"a constant torque speeds the crank up without limit; the step was chosen for speeds up to "
+        f"{limit_rad_s:.0f} rad/s. Change a control to start again."
+    )
+    return True
+
+
 class SliderCrankKineticsScene(IntegratedScene):
     id = "slider-crank-kinetics"
     #: Links, joints, slider and the force arrows each frame; four moving labels whose numbers change at 10 Hz.
@@ -120,13 +135,7 @@ class SliderCrankKineticsScene(IntegratedScene):
                 update_node(label, text=f"{name} {size:.1f} N")
 
     def advance(self, dt_s: float) -> None:
-        if abs(self.run.y[1]) > self._speed_limit:
-            self.run.status = "speed_limit"
-            self.status = (
-                f"Paused at t = {self.run.t_s:.2f} s: the crank has reached {abs(self.run.y[1]):.0f} rad/s. With no friction "
-                f"a constant torque speeds the crank up without limit; the step was chosen for speeds up to "
-                f"{self._speed_limit:.0f} rad/s. Change a control to start again."
-            )
+        if paused_at_crank_speed_limit(self, float(self.run.y[1]), self._speed_limit):
             return
         if self.step_physics():
             self._draw()
