@@ -17,23 +17,11 @@ import numpy as np
 from app.physics.systems.ch09.rolling_disk_model import RollingDiskMotion, contact_speed_m_s, disk_pose
 from app.scenes.ch07.derived_system_scene import DerivedSystemScene
 from app.scenes.kit import Preset, Quantity, Readout, Trail, update_node
+from app.scenes.kit.drawing import disk_outline_colors, disk_outline_segments
 
-RIM_SEGMENTS = 40
-SPOKES = 3
-DISK_COLOR, SPOKE_COLOR = (40, 100, 220), (215, 45, 45)
 FALLEN_LEAN_DEG = 85.0
 TRAIL_CHUNK_FRAMES = 3
 TRAIL_CHUNKS = 150  # 15 s of path at 30 Hz
-
-
-def _disk_outline(radius_m: float) -> np.ndarray:
-    """(RIM_SEGMENTS + SPOKES, 2, 3) segments of the rim and spokes in body components (m), axis along body y."""
-    angles = np.linspace(0.0, 2.0 * math.pi, RIM_SEGMENTS + 1)
-    rim = radius_m * np.stack([np.cos(angles), np.zeros_like(angles), np.sin(angles)], axis=-1)
-    spoke_angles = np.linspace(0.0, 2.0 * math.pi, SPOKES, endpoint=False)
-    spoke_ends = radius_m * np.stack([np.cos(spoke_angles), np.zeros(SPOKES), np.sin(spoke_angles)], axis=-1)
-    spokes = np.stack([np.zeros((SPOKES, 3)), spoke_ends], axis=1)
-    return np.concatenate([np.stack([rim[:-1], rim[1:]], axis=1), spokes])
 
 
 class RollingDiskScene(DerivedSystemScene):
@@ -56,14 +44,14 @@ class RollingDiskScene(DerivedSystemScene):
     def build(self) -> None:
         scene = self.client.scene
         scene.add_grid("/floor", width=4.0, height=4.0, cell_size=0.1, section_size=0.5, position=(0.0, -0.8, 0.0))
-        outline_colors = np.array([[DISK_COLOR] * 2] * RIM_SEGMENTS + [[SPOKE_COLOR] * 2] * SPOKES, np.uint8)
-        self.disk = scene.add_line_segments("/disk", np.zeros((RIM_SEGMENTS + SPOKES, 2, 3), np.float32), outline_colors, thickness=3.0, thickness_units="screen")
+        outline_colors = disk_outline_colors()
+        self.disk = scene.add_line_segments("/disk", np.zeros(outline_colors.shape, np.float32), outline_colors, thickness=3.0, thickness_units="screen")
         self.trail = Trail(scene, "/contact-path", color=(235, 120, 20), chunk_frames=TRAIL_CHUNK_FRAMES, max_chunks=TRAIL_CHUNKS)
 
     def update(self) -> None:
         self.restart()
         self._radius_m = float(self.params["radius_m"])
-        self._outline = _disk_outline(self._radius_m)
+        self._outline = disk_outline_segments(self._radius_m)
         self._critical_spin = self._model_instance.upright_critical_spin_rad_s(self.physical_params())
         self.trail.clear()
         self.draw_state()
