@@ -1,6 +1,6 @@
 """Command line: ``dynlab serve [--host H] [--port P]``, ``dynlab bench [--quick] [--case C]``,
-``dynlab load [--students 10,30] [--scene ID]``, ``dynlab soak [--students N] [--minutes M]`` and
-``dynlab derivations [--no-proofs]``."""
+``dynlab load [--students 10,30] [--scene ID]``, ``dynlab soak [--students N] [--minutes M]``,
+``dynlab derivations [--no-proofs]`` and ``dynlab constrained [--quick] [--case C]``."""
 
 from __future__ import annotations
 
@@ -56,6 +56,23 @@ def _derivations(args: argparse.Namespace) -> int:
     return derivations_main(args.bench_args)
 
 
+def _constrained(args: argparse.Namespace) -> int:
+    from app.bench.constrained_precision import main as constrained_main
+
+    return constrained_main(args.bench_args)
+
+
+#: Commands that parse their own options: name → (runner, help, help of the options).
+_OWN_OPTIONS = {
+    "bench": (_bench, "measure speed against error (writes docs/bench/work_precision.json and plots)",
+              "options of the benchmark (see dynlab bench --help)"),
+    "derivations": (_derivations, "derivation engine: derive and compile times, agreement, proofs (writes docs/bench/derivations.json and .svg)",
+                    "options (see dynlab derivations --help)"),
+    "constrained": (_constrained, "work-precision of the DAE algorithms and scipy Radau/BDF (writes docs/bench/constrained_precision.json and .svg)",
+                    "options (see dynlab constrained --help)"),
+}  # fmt: skip
+
+
 def _load(args: argparse.Namespace) -> int:
     from app.bench.capacity import run_load_command
 
@@ -83,10 +100,8 @@ def _add_load_and_soak(commands: argparse._SubParsersAction) -> None:
 
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
-    if argv[:1] == ["bench"]:  # the benchmark parses its own options (argparse's REMAINDER refuses a leading --option)
-        return _bench(argparse.Namespace(bench_args=argv[1:]))
-    if argv[:1] == ["derivations"]:
-        return _derivations(argparse.Namespace(bench_args=argv[1:]))
+    if argv[:1] and argv[0] in _OWN_OPTIONS:  # these parse their own options (argparse's REMAINDER refuses a leading --option)
+        return _OWN_OPTIONS[argv[0]][0](argparse.Namespace(bench_args=argv[1:]))
     parser = argparse.ArgumentParser(prog="dynlab", description="Dynamics Lab: interactive engineering dynamics.")
     commands = parser.add_subparsers(dest="command", required=True)
     serve = commands.add_parser("serve", help="run the web application")
@@ -98,17 +113,10 @@ def main(argv: list[str] | None = None) -> int:
     )  # fmt: skip
     serve.add_argument("--log-level", default="info", choices=["critical", "error", "warning", "info", "debug"])
     serve.set_defaults(run=_serve)
-    bench = commands.add_parser(
-        "bench", help="measure speed against error (writes docs/bench/work_precision.json and plots)", add_help=False
-    )
-    bench.add_argument("bench_args", nargs=argparse.REMAINDER, help="options of the benchmark (see dynlab bench --help)")
-    bench.set_defaults(run=_bench)
-    derivations = commands.add_parser(
-        "derivations", help="derivation engine: derive and compile times, agreement, proofs (writes docs/bench/derivations.json and .svg)",
-        add_help=False,
-    )  # fmt: skip
-    derivations.add_argument("bench_args", nargs=argparse.REMAINDER, help="options (see dynlab derivations --help)")
-    derivations.set_defaults(run=_derivations)
+    for name, (run, help_text, options_help) in _OWN_OPTIONS.items():
+        command = commands.add_parser(name, help=help_text, add_help=False)
+        command.add_argument("bench_args", nargs=argparse.REMAINDER, help=options_help)
+        command.set_defaults(run=run)
     _add_load_and_soak(commands)
     args = parser.parse_args(argv)
     logging.basicConfig(level=getattr(logging, getattr(args, "log_level", "warning").upper()), format="%(levelname)s %(name)s: %(message)s")
