@@ -388,6 +388,8 @@ def work_precision_svg(scene: dict) -> str:
         legend_y += 15 * len(lines) + 7
     out.append('<g class="legend">' + "".join(legend) + "</g>")
 
+    out.append(_ratio_marks(scene, ax))
+
     # The default method's operating point: a ring and a label.
     if default_ok:
         dx, dy = ax(default["error"]), ay(1e3 * default["cpu_s"])
@@ -409,6 +411,90 @@ def work_precision_svg(scene: dict) -> str:
             + "</g>"
         )
 
+    out.append("</svg>")
+    return "\n".join(out) + "\n"
+
+
+#: File name of the phase-against-drift figure (fixed: never taken from the results file).
+PHASE_DRIFT_PLOT = "heavy-top-phase-drift.svg"
+_BASELINE_SHORT = {"scipy-DOP853": "DOP853", "mujoco-RK4": "MuJoCo RK4"}
+
+
+def _ratio_marks(scene: dict, ax: _Axis) -> str:
+    """At each error of the scene's best-of-ours ratios (entries with ``required_ratio``): a dotted line and the ratios.
+
+    The label reads e.g. ``DOP853 ×250`` / ``MuJoCo RK4 ×40``: their CPU time over that of the cheapest of ours
+    at that error, red when below the ratio asked for; drawn near the top of the plot, where only the slowest
+    curves run.
+    """
+    by_error: dict[float, list[dict]] = {}
+    for ratio in scene.get("ratios") or ():
+        if isinstance(ratio, dict) and "required_ratio" in ratio and _finite_positive(ratio.get("at_error")):
+            by_error.setdefault(float(ratio["at_error"]), []).append(ratio)
+    parts = ['<g class="ratios">']
+    for error, ratios in sorted(by_error.items(), reverse=True):
+        x = ax(error)
+        if not PLOT_LEFT <= x <= PLOT_RIGHT:
+            continue
+        parts.append(f'<line x1="{_f(x)}" x2="{_f(x)}" y1="{PLOT_TOP + 24}" y2="{PLOT_BOTTOM}" stroke="#7b2fa8" '
+                     'stroke-width="1" stroke-dasharray="1 3"/>')
+        parts.append(_text(x, PLOT_TOP + 34, f"at {_value_label(error)}:", size=10, anchor="middle", fill="#7b2fa8", halo=True))
+        for i, ratio in enumerate(ratios):
+            value = ratio.get("ratio")
+            name = _BASELINE_SHORT.get(str(ratio.get("baseline")), str(ratio.get("baseline")))
+            ok = _finite_positive(value) and value >= float(ratio.get("required_ratio") or 0.0)
+            text = f"{name} ×{value:.0f}" if _finite_positive(value) else f"{name} —"
+            parts.append(_text(x, PLOT_TOP + 47 + 12 * i, text, size=10, anchor="middle", weight="600",
+                               fill="#1b6b2f" if ok else "#d0202e", halo=True))
+    parts.append("</g>")
+    return "".join(parts) if len(parts) > 2 else ""
+
+
+def phase_drift_svg(study: dict) -> str:
+    """Two bars per method (log scale): the largest relative energy drift and the largest attitude error (rad).
+
+    ``study`` is ``phase_drift`` of work_precision.json: ``methods`` rows with ``label``, ``description``,
+    ``energy_drift`` and ``attitude_error_rad``. A method whose energy bar is short but whose error bar is
+    long keeps its invariants while its phase is wrong.
+    """
+    rows = [r for r in study.get("methods") or () if isinstance(r, dict)]
+    left, right, top, row_h = 230, WIDTH - 40, 92, 46
+    height = top + row_h * len(rows) + 64
+    values = [v for r in rows for v in (r.get("energy_drift"), r.get("attitude_error_rad")) if _finite_positive(v)]
+    lo, hi = decade_range(values + [1e-16, 1.0])
+    axis = _Axis(lo, hi, left, right)
+    colours = {"energy_drift": "#7d8894", "attitude_error_rad": "#d0202e"}
+    out = [
+        f'<svg xmlns="{SVG_NS}" width="{WIDTH}" height="{height}" viewBox="0 0 {WIDTH} {height}" role="img" font-family="{FONT}">',
+        f"<title>{escape(str(study.get('title', 'Energy drift beside attitude error')))}</title>",
+        f'<rect width="{WIDTH}" height="{height}" fill="#ffffff"/>',
+        _text(16, 26, str(study.get("title", "Energy drift beside attitude error")), size=16, weight="600"),
+        _text(16, 44, "Grey: largest relative energy drift |E(t) − E(0)|/|E(0)|. Red: largest attitude error (rad) against the",
+              size=11, fill="#5b6475"),
+        _text(16, 58, "exact (quadrature) solution, at 60 frames/s; under each name its step (auto: what a live scene picks). Log scale.",
+              size=11, fill="#5b6475"),
+    ]
+    for k in range(lo, hi + 1):
+        x = axis(10.0**k)
+        out.append(f'<line x1="{_f(x)}" x2="{_f(x)}" y1="{top - 8}" y2="{top + row_h * len(rows)}" stroke="#e3e6ec" stroke-width="1"/>')
+        if (k - lo) % 2 == 0:
+            out.append(_text(x, top + row_h * len(rows) + 18, tick_label(k), size=11, anchor="middle"))
+    for i, row in enumerate(rows):
+        y = top + i * row_h
+        out.append(_text(left - 8, y + 16, str(row.get("label") or row.get("method")), size=12, anchor="end", weight="600"))
+        out.append(_text(left - 8, y + 31, str(row.get("setting_text") or "")[:34], size=11, anchor="end", fill="#5b6475"))
+        for j, key in enumerate(("energy_drift", "attitude_error_rad")):
+            value = row.get(key)
+            bar_y = y + 4 + 17 * j
+            if not _finite_positive(value):
+                out.append(_text(left + 4, bar_y + 11, "0 (round-off)" if value == 0 else "—", size=11))
+                continue
+            width = max(axis(value) - left, 1.0)
+            out.append(f'<rect x="{left}" y="{bar_y}" width="{_f(width)}" height="14" fill="{colours[key]}"/>')
+            unit = " rad" if key == "attitude_error_rad" else ""
+            out.append(_text(left + width + 5, bar_y + 11, f"{_value_label(float(value))}{unit}", size=11))
+    out.append(_text((left + right) / 2, top + row_h * len(rows) + 40, "relative drift (grey), error in rad (red), log scale",
+                     size=12, anchor="middle", weight="600"))
     out.append("</svg>")
     return "\n".join(out) + "\n"
 
@@ -453,6 +539,11 @@ def write_svgs(results: dict, out_dir: Path) -> list[Path]:
     for scene in results.get("scenes", ()):
         path = out_dir / f"{scene['scene_id']}.svg"
         path.write_text(work_precision_svg(scene), encoding="utf-8")
+        written.append(path)
+    study = results.get("phase_drift")
+    if isinstance(study, dict) and study.get("methods"):
+        path = out_dir / PHASE_DRIFT_PLOT
+        path.write_text(phase_drift_svg(study), encoding="utf-8")
         written.append(path)
     if results.get("live_scenes"):
         path = out_dir / "live-frame-costs.svg"

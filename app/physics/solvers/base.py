@@ -107,10 +107,13 @@ class FixedStepIntegrator(Integrator):
         h_ms = 1e3 * frame_dt_s / self.steps_per_frame
         return f"{self.label}, {self.steps_per_frame} step{'' if self.steps_per_frame == 1 else 's'}/frame (h = {h_ms:.3g} ms)"
 
-    def outcome(self, frames_done: int, n_frames: int) -> FramesOutcome:
-        """Counters of a run that completed ``frames_done`` of ``n_frames`` (fewer: the state stopped being finite)."""
+    def outcome(self, frames_done: int, n_frames: int, *, evals_per_run: int = 0) -> FramesOutcome:
+        """Counters of a run that completed ``frames_done`` of ``n_frames`` (fewer: the state stopped being finite).
+
+        ``evals_per_run``: evaluations made once per call on top of ``evals_per_step`` per step.
+        """
         steps = int(frames_done) * self.steps_per_frame
         return FramesOutcome(
-            frames_done=int(frames_done), steps=steps, rhs_evals=steps * self.spec.evals_per_step,
+            frames_done=int(frames_done), steps=steps, rhs_evals=steps * self.spec.evals_per_step + evals_per_run,
             status=STATUS_NAMES[OK if frames_done == n_frames else NON_FINITE],
         )

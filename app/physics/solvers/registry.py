@@ -14,7 +14,8 @@ from app.physics.solvers.spec import MAX_STEPS_PER_FRAME, MethodSpec, Supports
 from app.physics.solvers.splitting import SPLITTING_SPECS
 
 METHODS: dict[str, MethodSpec] = {
-    spec.name: spec for spec in (SPLITTING_SPECS[4], SPLITTING_SPECS[2], RK4_SPEC, DOPRI5_SPEC)
+    spec.name: spec
+    for spec in (SPLITTING_SPECS[4], SPLITTING_SPECS[2], RK4_SPEC, DOPRI5_SPEC, SPLITTING_SPECS[6], SPLITTING_SPECS[8])
 }
 
 #: Largest h·ω_max each fixed-step method is allowed by the automatic step choice (from the specs).

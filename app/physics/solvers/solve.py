@@ -78,7 +78,8 @@ def simulate(
     frame_dt = 1.0 / frame_rate_hz
     n_frames = max(int(round(t_end_s * frame_rate_hz)), 1)
     y = np.array(y0, dtype=float)
-    states = np.full((n_frames + 1, y.shape[0]), np.nan)
+    # Rows past a failure are cut off below, so they need no filling.
+    states = np.empty((n_frames + 1, y.shape[0]))
     states[0] = y
     start = time.process_time()
     outcome = integrator.run_frames(system, 0.0, y, frame_dt, n_frames, states[1:], backend=backend)
