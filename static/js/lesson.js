@@ -520,6 +520,7 @@
       return tr;
     });
     q("invariants").replaceChildren(...rows);
+    renderAccuracy(data);
     const h = data.drift_history;
     const points = h.t_s.map((t, i) => [t, Math.max(h.max_relative_drift[i], 1e-17)]);
     if (points.length > 1) {
@@ -527,6 +528,41 @@
         title: "Largest invariant drift (relative)", x_label: "t (s)", y_label: "|ΔI| / scale", log_x: false, log_y: true,
         series: [{ name: "max drift", x: points.map((p) => p[0]), y: points.map((p) => p[1]) }],
       });
+    }
+  }
+
+  // Accuracy: the target the automatic step meets, the error estimated for the step in use, and the error
+  // against the model's reference solution (phase error, beside the invariants' drift). Absent keys hide the lines.
+  function liveLine(name, after) {
+    let el = live.querySelector(`[data-live="${name}"]`);
+    if (!el) {
+      el = document.createElement("p");
+      el.className = "live-accuracy";
+      el.dataset.live = name;
+      after.after(el);
+    }
+    return el;
+  }
+  function renderAccuracy(data) {
+    const method = live.querySelector(".live-method");
+    const accuracy = liveLine("accuracy", method);
+    const acc = data.accuracy;
+    accuracy.hidden = !acc;
+    if (acc) {
+      accuracy.textContent = acc.accuracy + (acc.note ? ` — ${acc.note}` : "");
+      // "estimating": the pilot is still measuring (the fixed step rule runs meanwhile), not a fault.
+      accuracy.classList.toggle("error", acc.status !== "ok" && acc.status !== "estimating");
+      accuracy.dataset.status = acc.status;
+      accuracy.dataset.estimated = acc.estimated_error === null ? "" : String(acc.estimated_error);
+    }
+    const reference = liveLine("reference_error", accuracy);
+    const ref = data.reference_error;
+    reference.hidden = !ref;
+    if (ref) {
+      const unit = ref.unit || "relative";
+      reference.textContent = `error against the ${ref.reference}: ${ref.value.toExponential(1)} ${unit} now, ` +
+        `${ref.max_so_far.toExponential(1)} ${unit} at most so far`;
+      reference.dataset.value = String(ref.value);
     }
   }
 

@@ -21,6 +21,7 @@ from app.physics.mechanics.description import TIME, SystemDescription
 from app.physics.mechanics.engine import Derived, available_formulations, derived
 from app.physics.mechanics.kinematics import coordinate_motion, kinetic_energy, potential_energy
 from app.physics.solvers.integrated_model import IntegratedModel
+from app.physics.solvers.step_choice import AccuracyTarget
 from app.physics.solvers.system import OdeSystem
 
 
@@ -72,6 +73,7 @@ class DerivedModel(IntegratedModel):
     description: ClassVar[SystemDescription]
     methods = ("rk4", "dopri5")
     default_method = "rk4"
+    accuracy_target = AccuracyTarget(1e-6, "", "state (q, q̇): largest component error relative to the largest component")
 
     # --- derived pieces ---------------------------------------------------------------------------------------
     def parameter_array(self, params: Mapping[str, Any]) -> np.ndarray:

@@ -1,26 +1,52 @@
 """Integrated models and the simulation report the API and the scenes share.
 
 An :class:`IntegratedModel` says what to integrate (its compiled system and
-initial state), how fast it moves (for the automatic step), what a student
-reads off it (named series) and what it conserves (named invariants with the
-scale their drift is measured against). :func:`simulate_model` runs one with
-the integration controls and reports series, invariants and counters.
+initial state), how fast it moves (the automatic step's starting guess), what a
+student reads off it (named series), what it conserves (named invariants with
+the scale their drift is measured against) and, where it states one, the error
+its default must meet (:mod:`.step_choice`) and the reference it is checked
+against. :func:`simulate_model` runs one with the integration controls and
+reports series, invariants, counters and the accuracy reached.
 """
 
 from __future__ import annotations
 
+import math
+import time
 from abc import ABC, abstractmethod
-from collections.abc import Mapping
+from collections.abc import Hashable, Mapping
+from dataclasses import replace
 from typing import Any, ClassVar
 
 import numpy as np
 
 from app.physics.core.parameters import Parameter, ParameterError, ParameterSet
-from app.physics.core.report import MAX_ADAPTIVE_STEPS, MAX_FIXED_STEP_WORK, SimulationReport, frame_times
-from app.physics.solvers.base import FixedStepIntegrator
-from app.physics.solvers.controls import integration_parameters, integrator_from_controls
+from app.physics.core.report import (
+    MAX_ADAPTIVE_STEPS,
+    MAX_FIXED_STEP_WORK,
+    SimulationReport,
+    frame_times,
+)
+from app.physics.solvers.base import EventRecord, FixedStepIntegrator, Integrator
+from app.physics.solvers.controls import (
+    AUTO,
+    integration_parameters,
+    integrator_from_controls,
+)
 from app.physics.solvers.dormand_prince import DormandPrince
+from app.physics.solvers.registry import METHODS, make_integrator
 from app.physics.solvers.solve import failure_message, simulate
+from app.physics.solvers.step_choice import (
+    EXACT_FALLBACK,
+    REDUCED_ACCURACY,
+    TARGET_MISSED,
+    AccuracyTarget,
+    PilotPending,
+    StepChoice,
+    choose,
+    error_model,
+    usable_methods,
+)
 from app.physics.solvers.system import OdeSystem
 
 __all__ = ["IntegratedModel", "SimulationReport", "check_request_bounds", "simulate_model"]
@@ -31,12 +57,26 @@ class IntegratedModel(ABC):
 
     #: Physical parameters (names are API contracts).
     parameters: ClassVar[ParameterSet]
-    #: Methods a student may pick, and the one ``auto`` means.
+    #: Methods a student may pick; ``auto`` means the cheapest of them at the accuracy target
+    #: (``default_method`` when the model states no target, and in the method menu's text).
     methods: ClassVar[tuple[str, ...]]
     default_method: ClassVar[str]
     #: Unit of each series, by name.
     series_units: ClassVar[Mapping[str, str]]
     invariant_units: ClassVar[Mapping[str, str]]
+    #: The error the automatic choice must meet, measured by :meth:`solution_error`; None: the
+    #: fixed ratio h·ω_max ≤ the method's ``step_ratio`` (a model that states no target).
+    accuracy_target: ClassVar[AccuracyTarget | None] = None
+    #: Methods ``auto`` chooses among at the target (None: all of :attr:`methods`); a model whose simulate answer
+    #: names its method in a contract keeps ``auto`` to that one and only chooses its step.
+    auto_methods: ClassVar[tuple[str, ...] | None] = None
+    #: State components the default :meth:`solution_error` compares (None: all); the motion's own
+    #: coordinates and rates, not bookkeeping slots (counters, modes, accumulated work).
+    accuracy_components: ClassVar[tuple[int, ...] | None] = None
+    #: Name of the series reporting the error against :meth:`reference_states` (e.g. ``attitude_error_rad``),
+    #: and what that reference is; empty for a model without one.
+    reference_error_series: ClassVar[str] = ""
+    reference_name: ClassVar[str] = ""
 
     @classmethod
     def controls(cls) -> tuple[Parameter, ...]:
@@ -61,12 +101,132 @@ class IntegratedModel(ABC):
     def invariant_scales(self, params: Mapping[str, Any], state: np.ndarray) -> dict[str, float]:
         """Positive scale per invariant: drift is reported as |I(t) − I(0)| / scale."""
 
-    def integrator(self, params: Mapping[str, Any], controls: Mapping[str, Any], frame_dt_s: float):
+    def solution_error(self, params: Mapping[str, Any], states: np.ndarray, reference: np.ndarray) -> np.ndarray:
+        """(N,) error of ``states`` (N, n) against ``reference`` (N, n) in :attr:`accuracy_target`'s unit.
+
+        By default the largest difference of the :attr:`accuracy_components` relative to the largest of them in the
+        reference state (dimensionless).
+        """
+        states, reference = np.asarray(states, dtype=float), np.asarray(reference, dtype=float)
+        if self.accuracy_components is not None:
+            states, reference = states[:, self.accuracy_components], reference[:, self.accuracy_components]
+        scale = np.maximum(np.max(np.abs(reference), axis=1), 1e-300)
+        return np.max(np.abs(states - reference), axis=1) / scale
+
+    def reference_states(self, params: Mapping[str, Any], t_s: np.ndarray) -> np.ndarray | None:
+        """States (N, n) of an exact (or independent, tight) solution at times ``t_s`` (N,), or None if there is none."""
+        return None
+
+    def starting_rate_rad_s(self, params: Mapping[str, Any]) -> float:
+        """The fastest rate (rad/s) at the initial state: the fixed step rule's, and the pilots' first step."""
+        return self.fastest_rate_rad_s(params, self.initial_state(params))
+
+    def pilot_key(self, params: Mapping[str, Any]) -> Hashable:
+        """Key under which the step choice's pilot is cached: the model and its parameter values."""
+        values = tuple(sorted((k, tuple(np.ravel(v).tolist()) if isinstance(v, (list, tuple, np.ndarray)) else v) for k, v in params.items()))
+        return (type(self).__module__, type(self).__qualname__, values)
+
+    def choose_integrator(
+        self, params: Mapping[str, Any], controls: Mapping[str, Any], frame_dt_s: float, *,
+        horizon_s: float | None = None, max_fixed_work: int | None = None, max_adaptive_steps: float = math.inf,
+        run_pilots: bool = True, max_frame_cpu_s: float = math.inf,
+    ) -> tuple[Integrator, StepChoice | None]:
+        """The integrator the controls ask for, and the step choice behind it (None without an accuracy target).
+
+        With automatic steps (``steps_per_frame`` 0) and a target, each candidate
+        method (``auto``: every usable method of :attr:`methods`) gets the fewest
+        steps meeting the target over ``horizon_s`` (default: the target's), and
+        ``auto`` takes the cheapest. ``max_fixed_work`` (sub-steps over the
+        horizon) and ``max_adaptive_steps`` are a request's limits: a choice
+        that would exceed them is capped, its lowered accuracy stated, as is one over a
+        live scene's physics budget per frame ``max_frame_cpu_s`` (s).
+
+        ``run_pilots=False`` (a live restart, which must not wait): where a pilot
+        is not cached yet, the fixed-ratio integrator with a choice of status
+        :data:`~.step_choice.ESTIMATING`; the same call with pilots (in the
+        background) then gives the measured one.
+        """
+        target = self.accuracy_target
+        steps = int(controls.get("steps_per_frame", 0) or 0)
+        method = controls.get("method", AUTO)
         y0 = self.initial_state(params)
-        return integrator_from_controls(
-            controls, default_method=self.default_method,
-            fastest_rate_rad_s=self.fastest_rate_rad_s(params, y0), frame_dt_s=frame_dt_s,
+        rate = self.starting_rate_rad_s(params)
+        explicit_adaptive = method != AUTO and method in self.methods and _is_adaptive(method)
+        if method == AUTO and _is_adaptive(self.default_method) and controls.get("rtol") not in (None, _default_rtol(self)):
+            explicit_adaptive = True  # a tolerance set by hand for a model whose default method is adaptive
+        ratio_rule = integrator_from_controls(controls, default_method=self.default_method, fastest_rate_rad_s=rate, frame_dt_s=frame_dt_s)
+        if target is None:
+            return ratio_rule, None
+        horizon = target.horizon_s if horizon_s is None else horizon_s
+        try:
+            if steps > 0 or explicit_adaptive:
+                return ratio_rule, self._estimate_for(params, ratio_rule, frame_dt_s, horizon, run_pilot=run_pilots)
+            chosen = choose(
+                self.system(params), y0, (self.auto_methods or self.methods) if method == AUTO else (method,), target=target, frame_dt_s=frame_dt_s,
+                horizon_s=horizon, fastest_rate_rad_s=rate, error=lambda a, b: self.solution_error(params, a, b),
+                cache_key=self.pilot_key(params), max_fixed_work=max_fixed_work, max_adaptive_steps=max_adaptive_steps,
+                run_pilots=run_pilots, max_frame_cpu_s=max_frame_cpu_s,
+            )
+        except PilotPending:
+            fixed = isinstance(ratio_rule, FixedStepIntegrator)
+            return ratio_rule, StepChoice.pending(
+                ratio_rule.name, ratio_rule.steps_per_frame if fixed else None, None if fixed else ratio_rule.rtol, target,
+                horizon_s=horizon, frame_dt_s=frame_dt_s,
+            )
+        if chosen is None:  # no pilot finished: every run blew up or ran out of steps
+            return self._unmeasured(controls, target, rate, frame_dt_s, horizon, max_fixed_work)
+        integrator = make_integrator(chosen.method, steps_per_frame=chosen.steps_per_frame, rtol=chosen.rtol)
+        return integrator, chosen
+
+    def _unmeasured(self, controls, target: AccuracyTarget, rate: float, frame_dt_s: float, horizon_s: float,
+                    max_fixed_work: int | None) -> tuple[Integrator, StepChoice]:
+        """No pilot finished (a motion too stiff or too fast for every method): the fixed ratio, capped by the
+        request limit, with the error stated as unknown; the run itself then says where it stopped."""
+        integrator = integrator_from_controls(controls, default_method=self.default_method, fastest_rate_rad_s=rate, frame_dt_s=frame_dt_s)
+        note = "no pilot run of any method finished (the motion is too stiff or too fast for the steps tried), so the error is unknown"
+        if isinstance(integrator, FixedStepIntegrator) and max_fixed_work is not None:
+            cap = max(int(max_fixed_work // max(math.ceil(horizon_s / frame_dt_s) * integrator.spec.substeps_per_step, 1)), 1)
+            if integrator.steps_per_frame > cap:
+                integrator = make_integrator(integrator.name, steps_per_frame=cap)
+                note += f"; {cap} steps/frame is the most the request limit of {max_fixed_work} sub-steps allows"
+        setting = dict(steps_per_frame=integrator.steps_per_frame, rtol=None) if isinstance(integrator, FixedStepIntegrator) else dict(steps_per_frame=None, rtol=integrator.rtol)
+        return integrator, StepChoice(integrator.name, target=target, horizon_s=horizon_s, frame_dt_s=frame_dt_s, estimated_error=math.nan,
+                                      cost_s=math.nan, status=REDUCED_ACCURACY, note=note, **setting)
+
+    def _estimate_for(self, params, integrator: Integrator, frame_dt_s: float, horizon: float, *, run_pilot: bool) -> StepChoice | None:
+        """The estimated error of a setting the student chose (from the same cached pilot as the automatic choice)."""
+        target = self.accuracy_target
+        assert target is not None
+        spec = integrator.spec
+        system = self.system(params)
+        if not usable_methods(system, (spec.name,)):
+            return None
+        y0 = self.initial_state(params)
+        start = spec.automatic_steps_per_frame(self.starting_rate_rad_s(params), frame_dt_s) if not spec.adaptive else 1
+        model = error_model(
+            system, y0, spec, target=target, start_steps=start, frame_dt_s=frame_dt_s,
+            error=lambda a, b: self.solution_error(params, a, b), cache_key=self.pilot_key(params), run_pilot=run_pilot,
+            horizon_s=horizon,
         )
+        if model is None:
+            return None
+        if spec.adaptive:
+            setting = dict(steps_per_frame=None, rtol=integrator.rtol)
+            error = model.error_adaptive(integrator.rtol, horizon)
+        else:
+            setting = dict(steps_per_frame=integrator.steps_per_frame, rtol=None)
+            error = model.error_fixed(frame_dt_s / integrator.steps_per_frame, horizon)
+        chosen = StepChoice(spec.name, target=target, horizon_s=horizon, frame_dt_s=frame_dt_s, estimated_error=error,
+                            cost_s=math.nan, **setting)
+        if chosen.meets_target:
+            return chosen
+        note = (f"the chosen setting misses the target of {target.format(target.error)} over {horizon:g} s: estimated "
+                f"{target.format(error)} (automatic steps meet it)")
+        return replace(chosen, status=TARGET_MISSED, note=note)
+
+    def integrator(self, params: Mapping[str, Any], controls: Mapping[str, Any], frame_dt_s: float) -> Integrator:
+        """The integrator the controls ask for (automatic steps: see :meth:`choose_integrator`)."""
+        return self.choose_integrator(params, controls, frame_dt_s)[0]
 
     def describable(self, params: Mapping[str, Any], states: np.ndarray) -> np.ndarray:
         """(N,) bool: whether the model can describe each of ``states`` (N, n); by default, every component finite.
@@ -76,11 +236,37 @@ class IntegratedModel(ABC):
         """
         return np.all(np.isfinite(states), axis=1)
 
+    def stop_message(self, params: Mapping[str, Any], event: EventRecord) -> str:
+        """Why a terminal ``event`` stopped the run, in words for the answer's ``message`` ("": the generic text)."""
+        return ""
+
     def relative_drift(self, params: Mapping[str, Any], states: np.ndarray) -> dict[str, np.ndarray]:
         """Per invariant, |I(t) − I(0)| / scale along ``states`` (dimensionless)."""
         scales = self.invariant_scales(params, states[0])
         values = self.invariants(params, states)
         return {name: np.abs(v - v[0]) / scales[name] for name, v in values.items()}
+
+    def reference_error(self, params: Mapping[str, Any], t_s: np.ndarray, states: np.ndarray) -> np.ndarray | None:
+        """(N,) error of ``states`` against the reference at ``t_s`` (target's unit), or None without a reference."""
+        if not self.reference_error_series:
+            return None
+        try:
+            reference = self.reference_states(params, t_s)
+        except ValueError:  # a motion the reference cannot represent
+            return None
+        if reference is None:
+            return None
+        return np.asarray(self.solution_error(params, states, reference), dtype=float)
+
+
+def _default_rtol(model: IntegratedModel) -> float | None:
+    """The ``rtol`` control's default value (what validated controls carry when no one set it)."""
+    return next((c.default for c in model.controls() if c.name == "rtol"), None)
+
+
+def _is_adaptive(method: str) -> bool:
+    spec = METHODS.get(method)
+    return spec is not None and spec.adaptive
 
 
 def check_request_bounds(integrator, *, t_end_s: float, frame_rate_hz: float) -> None:
@@ -111,12 +297,25 @@ def simulate_model(
     """Integrate ``model`` for ``t_end_s`` and sample it at ``frame_rate_hz`` (t = 0 included).
 
     ``request_limits`` applies the per-request bounds (:func:`check_request_bounds`);
-    tests and benchmarks that need longer or denser runs switch it off.
+    tests and benchmarks that need longer or denser runs switch it off. Automatic
+    steps meet the model's accuracy target over ``t_end_s``; where that would
+    exceed the bounds, the model's exact solution answers if it has one
+    (status :data:`~.step_choice.EXACT_FALLBACK`), else the most work allowed
+    runs with its estimated error stated (status :data:`~.step_choice.REDUCED_ACCURACY`).
+    Explicit steps over the bounds are refused, naming the limit.
     """
     if request_limits:
         frame_times(t_end_s=t_end_s, frame_rate_hz=frame_rate_hz)  # span and rate checked before anything divides by them
     frame_dt = 1.0 / frame_rate_hz
-    integrator = model.integrator(params, controls, frame_dt)
+    integrator, choice = model.choose_integrator(
+        params, controls, frame_dt, horizon_s=t_end_s,
+        max_fixed_work=MAX_FIXED_STEP_WORK if request_limits else None,
+        max_adaptive_steps=MAX_ADAPTIVE_STEPS if request_limits else math.inf,
+    )
+    if choice is not None and choice.status == REDUCED_ACCURACY:
+        exact = _exact_report(model, params, t_end_s=t_end_s, frame_rate_hz=frame_rate_hz, choice=choice)
+        if exact is not None:
+            return exact
     if request_limits:
         check_request_bounds(integrator, t_end_s=t_end_s, frame_rate_hz=frame_rate_hz)
     result = simulate(model.system(params), integrator, model.initial_state(params), t_end_s=t_end_s, frame_rate_hz=frame_rate_hz)
@@ -125,19 +324,53 @@ def simulate_model(
         frames = max(int(np.argmin(describable)), 1)
         t_stop = float(result.t_s[frames - 1])
         result = result.truncated(frames, status="non_finite", message=failure_message("non_finite", t_stop, integrator, frame_dt))
+    status, message = result.status, result.message
+    if status == "event" and result.events:
+        message = model.stop_message(params, result.events[-1]) or message
+    if choice is not None and choice.status in (REDUCED_ACCURACY, TARGET_MISSED):
+        note = f"{choice.note[0].upper()}{choice.note[1:]}."
+        status, message = (choice.status, note) if status == "ok" else (status, f"{message} {note}")
+    return _report(model, params, result.t_s, result.states, choice=choice, method=result.method, description=result.description,
+                   steps=result.steps, rhs_evals=result.rhs_evals, cpu_s=result.cpu_s, status=status, message=message)
+
+
+def _report(model: IntegratedModel, params, t_s: np.ndarray, states: np.ndarray, *, choice: StepChoice | None, **stats) -> SimulationReport:
+    """Series, invariants, drift and the accuracy of ``states`` (N, n) at ``t_s`` (N,)."""
     with np.errstate(over="ignore", invalid="ignore"):
-        drift = model.relative_drift(params, result.states)
+        drift = model.relative_drift(params, states)
     max_drift = max((float(d.max()) for d in drift.values()), default=0.0)
+    series = model.series(params, t_s, states)
+    reference_error = model.reference_error(params, t_s, states)
+    if reference_error is not None:
+        series[model.reference_error_series] = reference_error
+    accuracy = choice.as_dict() if choice is not None else {}
+    if reference_error is not None:
+        accuracy["max_reference_error"] = float(np.max(reference_error)) if np.all(np.isfinite(reference_error)) else None
+        accuracy["reference"] = model.reference_name
     return SimulationReport(
-        t_s=result.t_s,
-        series=model.series(params, result.t_s, result.states),
-        invariants=model.invariants(params, result.states),
-        method=result.method,
-        description=result.description,
-        steps=result.steps,
-        rhs_evals=result.rhs_evals,
-        cpu_s=result.cpu_s,
-        max_invariant_drift=max_drift,
-        status=result.status,
-        message=result.message,
+        t_s=t_s, series=series, invariants=model.invariants(params, states), max_invariant_drift=max_drift,
+        accuracy=accuracy or None, **stats,
     )
+
+
+def _exact_report(model: IntegratedModel, params, *, t_end_s: float, frame_rate_hz: float, choice: StepChoice) -> SimulationReport | None:
+    """The model's exact solution at the frame times, when it has one (else None)."""
+    start = time.process_time()
+    try:  # (a ParameterError is a ValueError: a span beyond the request limits has no exact answer here either)
+        t_s = frame_times(t_end_s=t_end_s, frame_rate_hz=frame_rate_hz)
+        states = model.reference_states(params, t_s)
+    except ValueError:
+        return None
+    cpu_s = time.process_time() - start
+    if states is None or not np.all(np.isfinite(states)):
+        return None
+    message = (
+        f"The automatic step for {choice.method} would exceed the request limit (it would run at "
+        f"~{choice.target.format(choice.estimated_error)} instead of {choice.target.format(choice.target.error)}), "
+        f"so the exact solution answers instead: {model.reference_name}."
+    )
+    exact_choice = StepChoice(
+        "exact", None, None, choice.target, choice.horizon_s, choice.frame_dt_s, 0.0, 0.0,
+    )
+    return _report(model, params, t_s, states, choice=exact_choice, method="exact", description=model.reference_name,
+                   steps=0, rhs_evals=0, cpu_s=cpu_s, status=EXACT_FALLBACK, message=message)

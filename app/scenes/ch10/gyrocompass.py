@@ -91,14 +91,16 @@ class GyrocompassScene(IntegratedScene):
     def time_scale(self) -> float:
         return float(self.params[TIME_SCALE.name])
 
-    def restart(self) -> None:
-        """As :meth:`IntegratedScene.restart`, but each displayed frame covers ``time_scale`` frames of simulated time."""
-        super().restart()
-        model, params = self._model_instance, self.physical_params()
-        frame_dt = FRAME_DT_S * self.time_scale
-        integrator = model.integrator(params, self.integration_controls(), frame_dt)
-        self.run = ScaledLiveRun(model.system(params), integrator, model.initial_state(params), time_scale=self.time_scale)
-        self.description = f"{integrator.describe(frame_dt)}, {self.time_scale:g}× real time"
+    @property
+    def frame_dt_s(self) -> float:
+        """Each displayed frame covers ``time_scale`` frames of simulated time."""
+        return FRAME_DT_S * self.time_scale
+
+    def new_run(self, system, integrator, y0) -> ScaledLiveRun:
+        return ScaledLiveRun(system, integrator, y0, time_scale=self.time_scale)
+
+    def describe(self, integrator) -> str:
+        return f"{integrator.describe(self.frame_dt_s)}, {self.time_scale:g}× real time"
 
     # -- drawing ---------------------------------------------------------------------------
     def build(self) -> None:

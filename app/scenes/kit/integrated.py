@@ -2,19 +2,34 @@
 
 It owns the :class:`~app.physics.solvers.LiveRun`, the integration
 controls (method, steps per frame, tolerance), the blow-up pause and the live
-readout the lesson page polls: time, method and step, invariant drift (with a
+readout the lesson page polls: time, method and step, the accuracy target with
+the error estimated for the step in use, the error against the model's reference
+solution where it has one (phase error, not only drift), invariant drift (with a
 short history for a plot) and the physics cost per frame.
+
+A restart never waits for the step choice's pilot: it starts at once with the
+cached choice, or else the fixed step rule ("estimating…" in the panel), and the
+pilot runs in the worker's background queue (:mod:`.background_pilots`); its
+choice replaces the running integrator at the next frame boundary, from the
+state reached.
 """
 
 from __future__ import annotations
 
 import time
 from collections import deque
+from dataclasses import replace
 from typing import Any, ClassVar
+
+import numpy as np
 
 from app.physics.solvers import LiveRun
 from app.physics.solvers.controls import CONTROL_NAMES
+from app.physics.solvers.base import Integrator
 from app.physics.solvers.integrated_model import IntegratedModel
+from app.physics.solvers.step_choice import ESTIMATING, PILOT_FAILED, StepChoice
+from app.physics.solvers.system import OdeSystem
+from app.scenes.kit.background_pilots import PILOTS
 from app.scenes.kit.scene import Scene
 
 #: Simulated seconds per displayed frame (the host draws at 30 Hz).
@@ -23,6 +38,10 @@ DRIFT_HISTORY_FRAMES = 300  # 10 s of history at 30 Hz
 #: Invariants are evaluated every 6th frame (5 Hz): enough for the drift plot and the runaway check, and a
 #: sixth of their cost per frame (with a class of 100 that cost is paid 3000 times a second).
 DRIFT_SAMPLE_EVERY = 6
+#: Physics CPU (s) a live scene's automatic step may cost per frame (every viewer of a class pays it 30 times a
+#: second): about the costliest default of the fixed step rule before the targets (the slider-crank DAE's 0.84 ms),
+#: so a target never makes a scene dearer than that; beyond it the accuracy is lowered and the panel says so.
+LIVE_PHYSICS_BUDGET_S = 1e-3
 #: An invariant off by more than this fraction of its scale means the step is far
 #: too large: the motion on screen would be fiction, so the scene pauses.
 RUNAWAY_DRIFT = 0.2
@@ -42,14 +61,40 @@ class IntegratedScene(Scene):
         """Method, steps per frame and tolerance."""
         return {k: v for k, v in self.params.items() if k in CONTROL_NAMES}
 
+    @property
+    def frame_dt_s(self) -> float:
+        """Simulated seconds per displayed frame (a scene showing time faster than real time scales it)."""
+        return FRAME_DT_S
+
+    def new_run(self, system: OdeSystem, integrator: Integrator, y0: np.ndarray) -> LiveRun:
+        """The live run :meth:`step_physics` advances by :data:`FRAME_DT_S` a frame."""
+        return LiveRun(system, integrator, y0)
+
+    def describe(self, integrator: Integrator) -> str:
+        """The integration in words for the readout ("RK4, 12 steps/frame")."""
+        return integrator.describe(self.frame_dt_s)
+
     def restart(self) -> None:
-        """(Re)start the integration from the current parameters' initial state."""
+        """(Re)start the integration from the current parameters' initial state, without waiting for a pilot."""
         model = self.model()
         params = self.physical_params()
-        integrator = model.integrator(params, self.integration_controls(), FRAME_DT_S)
+        controls = self.integration_controls()
+        frame_dt = self.frame_dt_s
+        integrator, self.accuracy = model.choose_integrator(
+            params, controls, frame_dt, run_pilots=False, max_frame_cpu_s=LIVE_PHYSICS_BUDGET_S
+        )
         self._model_instance = model
-        self.run = LiveRun(model.system(params), integrator, model.initial_state(params))
-        self.description = integrator.describe(FRAME_DT_S)
+        self.run = self.new_run(model.system(params), integrator, model.initial_state(params))
+        self.description = self.describe(integrator)
+        self._generation = getattr(self, "_generation", 0) + 1
+        self._applied = 0
+        self._measured: tuple[int, tuple[Integrator, StepChoice | None] | None] | None = None
+        if self.accuracy is not None and self.accuracy.status == ESTIMATING:
+            generation = self._generation
+            PILOTS.submit(
+                id(self), lambda: self.model().choose_integrator(params, controls, frame_dt, max_frame_cpu_s=LIVE_PHYSICS_BUDGET_S),
+                lambda chosen: setattr(self, "_measured", (generation, chosen)),
+            )
         self._scales = model.invariant_scales(params, self.run.y)
         self._invariants0 = {k: float(v[0]) for k, v in model.invariants(params, self.run.y[None, :]).items()}
         self._drift_t: deque[float] = deque(maxlen=DRIFT_HISTORY_FRAMES // DRIFT_SAMPLE_EVERY)
@@ -57,12 +102,15 @@ class IntegratedScene(Scene):
         self._frames = 0
         self._physics_s = 0.0
         self.status = ""
+        self._reference_error: float | None = None
+        self._reference_error_max = 0.0
 
     def step_physics(self) -> bool:
         """Advance one frame of simulated time; on blow-up pause with the reason."""
         # Wall time, not time.thread_time(): under load that clock's system call cost more than a whole frame's
         # physics (measured: a fifth of a scene worker's CPU). Most frames only copy a precomputed state; the
         # compiled batch that fills them runs every few frames and may wait for the GIL after it, which this counts.
+        self._take_measured_choice()
         start = time.perf_counter()
         running = self.run.advance(FRAME_DT_S)
         self._physics_s += time.perf_counter() - start
@@ -71,6 +119,7 @@ class IntegratedScene(Scene):
             self.status = self.run.message
             return False
         if self._frames % DRIFT_SAMPLE_EVERY == 0:
+            self._sample_reference_error()
             drift = self.current_drift()
             worst = max(drift, key=drift.get, default=None)
             self._drift_t.append(self.run.t_s)
@@ -84,6 +133,53 @@ class IntegratedScene(Scene):
                 )
                 return False
         return True
+
+    def _take_measured_choice(self) -> None:
+        """At a frame boundary: switch to the pilot's choice for the current parameters, if it has arrived."""
+        measured = self._measured  # written once per restart by the pilot thread; read, never cleared, here
+        if measured is None or measured[0] != self._generation or self._applied == self._generation:
+            return  # nothing yet, or a pilot for parameters since changed, or already applied
+        self._applied = self._generation
+        chosen = measured[1]
+        if chosen is None:
+            assert self.accuracy is not None
+            self.accuracy = replace(self.accuracy, status=PILOT_FAILED, note="the pilot failed, so the error of the fixed step rule is unknown")
+            return
+        integrator, self.accuracy = chosen
+        old = self.run
+        self.run = self.new_run(old.system, integrator, old.y)
+        self.run.t_s, self.run.steps = old.t_s, old.steps
+        self.description = self.describe(integrator)
+
+    def close(self) -> None:
+        PILOTS.cancel(id(self))
+        super().close()
+
+    def _sample_reference_error(self) -> None:
+        """The error of the current state against the model's reference at this time (target's unit), if it has one."""
+        model = self._model_instance
+        if not model.reference_error_series:
+            return
+        error = model.reference_error(self.physical_params(), np.array([self.run.t_s]), self.run.y[None, :])
+        if error is not None and np.isfinite(error[0]):
+            self._reference_error = float(error[0])
+            self._reference_error_max = max(self._reference_error_max, self._reference_error)
+
+    def accuracy_readout(self) -> dict[str, Any]:
+        """Target, estimated error and setting ("target 1e-06 rad over 60 s · estimated 3e-07 rad · 12 steps/frame"),
+        and the error against the reference so far; empty for a model that states no target."""
+        out: dict[str, Any] = {}
+        if self.accuracy is not None:
+            fields = self.accuracy.as_dict() | {"status": self.accuracy.status, "note": self.accuracy.note}
+            out["accuracy"] = {k: None if isinstance(v, float) and not np.isfinite(v) else v for k, v in fields.items()}
+        model = self._model_instance
+        if self._reference_error is not None:
+            unit = model.accuracy_target.unit if model.accuracy_target is not None else ""
+            out["reference_error"] = {
+                "name": model.reference_error_series, "reference": model.reference_name, "unit": unit,
+                "value": self._reference_error, "max_so_far": self._reference_error_max,
+            }
+        return out
 
     def current_invariants(self) -> dict[str, float]:
         values = self._model_instance.invariants(self.physical_params(), self.run.y[None, :])
@@ -110,6 +206,7 @@ class IntegratedScene(Scene):
                 for name in now
             },
             "drift_history": {"t_s": list(self._drift_t), "max_relative_drift": list(self._drift_max)},
+            **self.accuracy_readout(),
         }
 
     def frame_physics_cost_s(self, frames: int = 300) -> float:

@@ -18,6 +18,7 @@ from scipy.integrate import solve_ivp
 from app.physics.bodies.rigid_body import RigidBody
 from app.physics.solvers import make_integrator, simulate
 from app.physics.solvers.integrated_model import simulate_model
+from app.physics.solvers.step_choice import TARGET_MISSED
 from app.physics.systems.ch10 import heavy_top
 
 MODEL = heavy_top.HeavyTop()
@@ -111,7 +112,8 @@ def test_fast_spin_slow_precession_mean_rate_within_0p1_percent():
 def test_one_step_per_frame_stays_physical(frame_rate_hz):
     """Default method, 1 step per frame, 60 s: no NaN, |ΔE|/E < 1%, |q| = 1 to 1e-12."""
     report = simulate_model(MODEL, DEFAULTS, {"steps_per_frame": 1}, t_end_s=60.0, frame_rate_hz=frame_rate_hz)
-    assert report.status == "ok"
+    # One step per frame is coarser than the 1e-6 rad attitude target needs: the run completes and says so.
+    assert report.status == TARGET_MISSED and "misses the target" in report.message
     energy = report.invariants["energy"]
     assert np.all(np.isfinite(energy))
     assert np.max(np.abs(energy - energy[0])) / abs(energy[0]) < 0.01

@@ -153,8 +153,9 @@ def max_error(states: np.ndarray, exact: np.ndarray) -> float:
 
 # --------------------------------------------------------------------------- 1. orders
 
-#: What each registered method claims (Integrator.order); the measurements below must agree.
-DECLARED_ORDER = {"rk4": 4, "splitting2": 2, "splitting4": 4, "dopri5": 5}
+#: What each registered method claims (Integrator.order); the measurements below must agree (splitting6 and
+#: splitting8 on the heavy top against its quadrature: tests/physics/solvers/test_splitting_orders.py).
+DECLARED_ORDER = {"rk4": 4, "splitting2": 2, "splitting4": 4, "dopri5": 5, "splitting6": 6, "splitting8": 8}
 
 
 def test_every_registered_method_has_a_convergence_test():
@@ -225,7 +226,7 @@ def test_dopri5_tableau_is_scipys_rk45():
 
 # --------------------------------------------------------------------------- 2. twins
 
-@pytest.mark.parametrize("method", ["rk4", "splitting2", "splitting4", "dopri5"])
+@pytest.mark.parametrize("method", ["rk4", "splitting2", "splitting4", "dopri5", "splitting6", "splitting8"])
 def test_python_twin_matches_numba(method):
     integrator = make_integrator(method, steps_per_frame=4)
     if method == "dopri5":
@@ -468,7 +469,11 @@ def test_auto_means_the_models_default():
         )
         assert isinstance(integrator, RigidBodySplitting) and integrator.name == "splitting4"
         assert integrator.steps_per_frame == automatic_steps_per_frame("splitting4", 60.0, 1 / 60)
-    assert model.integrator(TOP_PARAMS, {"method": "auto", "steps_per_frame": 0}, 1 / 60).name == "splitting4"
+    # A model with an accuracy target: auto is the cheapest of its methods meeting the target (measured, see
+    # tests/physics/solvers/test_step_choice.py), no longer always default_method — a splitting method here.
+    integrator, choice = model.choose_integrator(TOP_PARAMS, {"method": "auto", "steps_per_frame": 0}, 1 / 60)
+    assert isinstance(integrator, RigidBodySplitting) and integrator.name in model.methods
+    assert choice.method == integrator.name and choice.estimated_error <= model.accuracy_target.error
     # An explicit choice wins over the default; steps_per_frame = 0 means automatic.
     chosen = integrator_from_controls({"method": "rk4", "steps_per_frame": 0}, default_method="splitting4",
                                       fastest_rate_rad_s=60.0, frame_dt_s=1 / 60)

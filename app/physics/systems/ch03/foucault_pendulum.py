@@ -36,6 +36,7 @@ import numpy as np
 
 from app.physics.core.parameters import Parameter, ParameterError, ParameterSet
 from app.physics.solvers.integrated_model import IntegratedModel
+from app.physics.solvers.step_choice import AccuracyTarget
 from app.physics.solvers.kernels import PROJECT_SIGNATURE, RHS_SIGNATURE, kernel
 from app.physics.solvers.system import OdeSystem
 from app.physics.systems.earth import (
@@ -230,6 +231,8 @@ class FoucaultPendulum(IntegratedModel):
     default_method = "rk4"
     series_units = {"bob_east": "m", "bob_north": "m", "bob_up": "m", "swing_plane_bearing": "deg"}
     invariant_units = {"jacobi_integral": "J/kg", "string_length_error": "m"}
+    accuracy_target = AccuracyTarget(1e-6, "", "bob position and velocity: largest component error relative to the largest component")
+    auto_methods = ("rk4",)  # the simulate contract answers with RK4; the target sets its step
 
     def system(self, params):
         return OdeSystem(rhs=foucault_rhs, parameters=kernel_parameters(params), state_names=STATE_NAMES, project=keep_string_length)

@@ -42,6 +42,7 @@ import numpy as np
 from app.physics.bodies.inertia import parallel_axis, slender_rod
 from app.physics.core.parameters import Parameter, ParameterSet
 from app.physics.solvers.integrated_model import IntegratedModel
+from app.physics.solvers.step_choice import AccuracyTarget
 from app.physics.solvers.kernels import RHS_SIGNATURE, kernel
 from app.physics.solvers.system import OdeSystem
 from app.physics.systems.ch04 import slider_crank as kinematics
@@ -389,6 +390,15 @@ class MechanismKinetics(IntegratedModel):
         "work_energy_residual_J": "J",
     }
     invariant_units = {"work_energy_residual": "J"}
+    #: 1e-8, not 1e-6: the lesson checks the work–energy balance (motor work = ΔT + ΔV) to 1e-8 of the energy scale.
+    accuracy_target = AccuracyTarget(1e-8, "", "crank angle per turn, crank speed per the speed scale, motor work per the energy scale: the largest")
+    auto_methods = ("rk4",)  # the simulate contract answers with RK4; the target sets its step
+
+    def solution_error(self, params: Mapping[str, Any], states: np.ndarray, reference: np.ndarray) -> np.ndarray:
+        """(N,) largest of |Δθ|/2π, |Δω|/ω_scale and |ΔW|/E_scale between ``states`` and ``reference`` (N, 3), dimensionless."""
+        difference = np.abs(np.asarray(states, dtype=float) - np.asarray(reference, dtype=float))
+        scales = np.array([2.0 * math.pi, max(speed_limit_rad_s(params), 1e-12), energy_scale_J(params)])
+        return np.max(difference / scales, axis=1)
 
     def system(self, params: Mapping[str, Any]) -> OdeSystem:
         links = SliderCrankLinks.from_params(params)

@@ -53,6 +53,7 @@ from app.physics.bodies.inertia import slender_rod
 from app.physics.core.parameters import Parameter, ParameterSet
 from app.physics.solvers import DormandPrince, Events, OdeSystem, simulate
 from app.physics.solvers.integrated_model import IntegratedModel
+from app.physics.solvers.step_choice import AccuracyTarget
 from app.physics.solvers.kernels import (
     EVENTS_SIGNATURE,
     RESET_SIGNATURE,
@@ -400,6 +401,9 @@ class SlidingLadder(IntegratedModel):
     parameters = PARAMETERS
     methods = ("dopri5",)
     default_method = "dopri5"
+    #: Events are located (to the tolerance), so the tolerance pilot's two runs meet the same phase changes.
+    accuracy_target = AccuracyTarget(1e-6, "", "x, angle and their rates: largest error relative to the largest of them")
+    accuracy_components = (0, 1, 2, 3)
     series_units = {"angle_from_floor": "rad", "wall_force_N": "N", "floor_force_N": "N", "top_height_m": "m"}
     invariant_units = {"energy_budget_J": "J"}
 

@@ -44,6 +44,7 @@ from app.physics.core.parameters import Parameter, ParameterError, ParameterSet
 from app.physics.solvers import OdeSystem
 from app.physics.solvers.integrated_model import IntegratedModel
 from app.physics.solvers.kernels import RHS_SIGNATURE, kernel
+from app.physics.solvers.step_choice import AccuracyTarget
 
 #: Sidereal rotation rate of the Earth (rad/s).
 EARTH_RATE_RAD_S = 7.292115e-5
@@ -192,6 +193,7 @@ class Gyrocompass(IntegratedModel):
     default_method = "rk4"
     series_units = {"alpha_rad": "rad", "alpha_rate_rad_s": "rad/s", "dissipated_energy_J": "J"}
     invariant_units = {"energy_plus_dissipated_J": "J"}
+    accuracy_target = AccuracyTarget(1e-6, "rad", "azimuth α of the spin axis")
 
     def system(self, params):
         inertia = params["vertical_inertia_kg_m2"]
@@ -205,6 +207,10 @@ class Gyrocompass(IntegratedModel):
     def fastest_rate_rad_s(self, params, state):
         inertia = params["vertical_inertia_kg_m2"]
         return natural_frequency_rad_s(params) + params["damping_N_m_s_rad"] / inertia + abs(float(state[1]))
+
+    def solution_error(self, params, states, reference):
+        """|Δα| (rad) between ``states`` and ``reference`` (N, 3)."""
+        return np.abs(np.asarray(states)[:, 0] - np.asarray(reference)[:, 0])
 
     def series(self, params, t_s, states):
         return {"alpha_rad": states[:, 0], "alpha_rate_rad_s": states[:, 1], "dissipated_energy_J": states[:, 2]}

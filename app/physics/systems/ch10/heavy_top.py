@@ -6,11 +6,17 @@ of mass, along the symmetry axis), ``I_transverse_pivot`` and ``I_axial``
 angular velocity), ``theta0_deg`` (initial tilt from +Z),
 ``precession_rate0_rad_s`` (φ̇0), ``nutation_rate0_rad_s`` (θ̇0) and ``g_m_s2``.
 Series: ``theta``, ``phi``, ``psi`` — 3-1-3 Euler angles in rad with Z up,
-``phi`` and ``psi`` unwrapped.
+``phi`` and ``psi`` unwrapped from the integrated angular velocity (each frame's
+increment is the integral of the angle rates, so a spin that turns ψ by more
+than π between two frames is counted, not aliased) — and ``attitude_error_rad``,
+the rotation angle between the integrated attitude and the quadrature
+solution's (rad), where that solution exists.
 
 The motion is integrated (:mod:`app.physics.bodies.rigid_body`); the
 quadrature solution (:mod:`app.physics.systems.ch10.heavy_top_quadrature`) is the
-reference it is checked against.
+reference it is checked against, and answers a request whose automatic step
+would exceed the request limits. The default meets 1e-6 rad of attitude error
+over the horizon (:class:`~app.physics.solvers.step_choice.AccuracyTarget`).
 """
 
 from __future__ import annotations
@@ -27,7 +33,10 @@ from app.physics.bodies.rigid_body import RigidBody
 from app.physics.core.parameters import Parameter, ParameterError, ParameterSet
 from app.physics.math.rotations import body_rates_from_euler_313_rates, euler_313_from_quaternion, quaternion_from_euler_313
 from app.physics.solvers.integrated_model import IntegratedModel
+from app.physics.solvers.registry import METHODS
+from app.physics.solvers.step_choice import AccuracyTarget
 from app.physics.systems.ch10.heavy_top_quadrature import HeavyTopQuadrature, heavy_top_quadrature
+from app.physics.systems.ch10.torque_free_body import attitude_difference_rad
 
 
 def _check(values: Mapping[str, Any]) -> None:
@@ -83,10 +92,53 @@ def initial_state(params: Mapping[str, Any]) -> np.ndarray:
     return np.concatenate([q0, omega])
 
 
-def euler_angles(states: np.ndarray) -> dict[str, np.ndarray]:
-    """``theta``, ``phi``, ``psi`` (rad) of states (N, 7); phi and psi unwrapped in time."""
-    angles = euler_313_from_quaternion(np.asarray(states)[:, 0:4])
-    return {"theta": angles[:, 1], "phi": np.unwrap(angles[:, 0]), "psi": np.unwrap(angles[:, 2])}
+def euler_313_rates(angles: np.ndarray, omega_body: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``(φ̇, ψ̇)`` (rad/s, (N,) each) from 3-1-3 angles (N, 3) and body angular velocity (N, 3).
+
+    ``φ̇ = (ω1 sin ψ + ω2 cos ψ) / sin θ`` and ``ψ̇ = ω3 − φ̇ cos θ``. On the vertical
+    (``sin θ = 0``) only ``φ ± ψ`` is defined and :func:`euler_313_from_quaternion`
+    splits it equally, so each rate is half of ``ω3`` there (``φ̇ = −ω3/2`` at θ = π).
+    """
+    _, theta, psi = angles[:, 0], angles[:, 1], angles[:, 2]
+    w1, w2, w3 = omega_body[:, 0], omega_body[:, 1], omega_body[:, 2]
+    sin_theta, cos_theta = np.sin(theta), np.cos(theta)
+    locked = np.abs(sin_theta) < 1e-12
+    phi_dot = np.where(locked, 0.5 * w3 * np.sign(cos_theta), (w1 * np.sin(psi) + w2 * np.cos(psi)) / np.where(locked, 1.0, sin_theta))
+    psi_dot = np.where(locked, 0.5 * w3, w3 - phi_dot * cos_theta)
+    return phi_dot, psi_dot
+
+
+def unwrap_with_rates(angle_rad: np.ndarray, rate_rad_s: np.ndarray, t_s: np.ndarray) -> np.ndarray:
+    """Continuous angle (rad, (N,)) from wrapped samples ``angle_rad`` and the rates ``rate_rad_s`` at times ``t_s``.
+
+    Each increment is the wrapped difference brought within ±π of the trapezoidal
+    integral of the rate over the interval, so turns of many times 2π between two
+    samples are kept; valid while that integral is within π of the true increment.
+    """
+    if len(angle_rad) < 2:
+        return np.asarray(angle_rad, dtype=float).copy()
+    predicted = 0.5 * (rate_rad_s[1:] + rate_rad_s[:-1]) * np.diff(t_s)
+    offset = np.diff(angle_rad) - predicted
+    increments = predicted + (offset + np.pi) % (2.0 * np.pi) - np.pi
+    return np.concatenate([[angle_rad[0]], angle_rad[0] + np.cumsum(increments)])
+
+
+def euler_angles(states: np.ndarray, t_s: np.ndarray | None = None) -> dict[str, np.ndarray]:
+    """``theta``, ``phi``, ``psi`` (rad) of states (N, 7) at times ``t_s`` (N,) s.
+
+    phi and psi are unwrapped with the rates of the integrated angular velocity
+    (:func:`unwrap_with_rates`); without ``t_s``, from the samples alone (``numpy.unwrap``: aliases fast spins).
+    """
+    states = np.asarray(states, dtype=float)
+    angles = euler_313_from_quaternion(states[:, 0:4])
+    if t_s is None:
+        return {"theta": angles[:, 1], "phi": np.unwrap(angles[:, 0]), "psi": np.unwrap(angles[:, 2])}
+    phi_dot, psi_dot = euler_313_rates(angles, states[:, 4:7])
+    return {
+        "theta": angles[:, 1],
+        "phi": unwrap_with_rates(angles[:, 0], phi_dot, t_s),
+        "psi": unwrap_with_rates(angles[:, 2], psi_dot, t_s),
+    }
 
 
 def critical_spin_rad_s(params: Mapping[str, Any]) -> float:
@@ -99,14 +151,49 @@ def quadrature(params: Mapping[str, Any]) -> HeavyTopQuadrature:
     """The quadrature solution from the same initial state as :func:`initial_state` (φ0 = ψ0 = 0).
 
     Raises ValueError for the one motion it cannot represent (exactly on the
-    separatrix, reaching the upright position in infinite time).
+    separatrix, reaching the upright position in infinite time). Cached per set of values.
     """
-    return heavy_top_quadrature(
-        I_transverse=params["I_transverse_pivot"], I_axial=params["I_axial"],
-        mgl=params["mass_kg"] * params["g_m_s2"] * params["cg_distance_m"], spin_rad_s=params["spin_rad_s"],
-        theta0_rad=math.radians(params["theta0_deg"]), phi_dot0=params["precession_rate0_rad_s"],
-        theta_dot0=params["nutation_rate0_rad_s"],
+    return _quadrature(
+        params["I_transverse_pivot"], params["I_axial"], params["mass_kg"] * params["g_m_s2"] * params["cg_distance_m"],
+        params["spin_rad_s"], math.radians(params["theta0_deg"]), params["precession_rate0_rad_s"], params["nutation_rate0_rad_s"],
     )
+
+
+@functools.lru_cache(maxsize=64)
+def _quadrature(I_transverse, I_axial, mgl, spin_rad_s, theta0_rad, phi_dot0, theta_dot0) -> HeavyTopQuadrature:
+    return heavy_top_quadrature(
+        I_transverse=I_transverse, I_axial=I_axial, mgl=mgl, spin_rad_s=spin_rad_s,
+        theta0_rad=theta0_rad, phi_dot0=phi_dot0, theta_dot0=theta_dot0,
+    )
+
+
+def quadrature_states(params: Mapping[str, Any], t_s: np.ndarray) -> np.ndarray:
+    """``[q, ω_body]`` (N, 7) of the quadrature solution at times ``t_s`` (N,) s.
+
+    The attitude is the quadrature's; ω follows from the Euler angle rates:
+    ``φ̇ = (p_φ − p_ψ cos θ)/(I_t sin²θ)``, ``ψ̇ = ω3 − φ̇ cos θ`` (ω3 constant) and
+    ``|θ̇|`` from the energy, its sign from the slope of θ(t). Energy, L_z and
+    the spin are therefore constant to round-off by construction.
+    """
+    solution = quadrature(params)
+    t_s = np.asarray(t_s, dtype=float)
+    theta = solution.theta(t_s)
+    q = solution.quaternion(t_s)
+    psi = euler_313_from_quaternion(q)[:, 2]
+    It, Ia, mgl, spin = solution.I_transverse, params["I_axial"], solution.mgl, params["spin_rad_s"]
+    sin2 = np.sin(theta) ** 2
+    upright = sin2 < 1e-24
+    phi_dot = np.where(upright, 0.0, (solution.p_phi - solution.p_psi * np.cos(theta)) / (It * np.where(upright, 1.0, sin2)))
+    psi_dot = spin - phi_dot * np.cos(theta)
+    y0 = initial_state(params)
+    energy = float(rigid_body(params).energy_J(y0[None, :])[0])
+    theta_dot_sq = (2.0 * energy - Ia * spin**2 - 2.0 * mgl * np.cos(theta)) / It - phi_dot**2 * sin2
+    delta = 1e-6 * max(min(solution.nutation_period_s, 1.0), 1e-6)
+    slope = solution.theta(t_s + delta) - solution.theta(t_s - delta)
+    theta_dot = np.sign(slope) * np.sqrt(np.maximum(theta_dot_sq, 0.0))
+    omega = body_rates_from_euler_313_rates(theta, psi, phi_dot, theta_dot, psi_dot)
+    omega[..., 2] = spin
+    return np.concatenate([q, omega], axis=1)
 
 
 #: Relative size of φ̇ at a turning point below which the locus counts as cusped.
@@ -140,9 +227,13 @@ def locus_shape(solution: HeavyTopQuadrature) -> str:
 
 class HeavyTop(IntegratedModel):
     parameters = PARAMETERS
-    methods = ("splitting4", "splitting2", "rk4", "dopri5")
+    #: Every registered method: each can step a rigid body about a fixed point (higher-order splittings included).
+    methods = tuple(METHODS)
     default_method = "splitting4"
-    series_units = {"theta": "rad", "phi": "rad", "psi": "rad"}
+    series_units = {"theta": "rad", "phi": "rad", "psi": "rad", "attitude_error_rad": "rad"}
+    accuracy_target = AccuracyTarget(1e-6, "rad", "attitude: rotation angle between the integrated and the exact attitude")
+    reference_error_series = "attitude_error_rad"
+    reference_name = "quadrature solution (elliptic functions for θ, elliptic integrals for φ and ψ)"
     #: ``angular_momentum`` (|L|) is conserved, and reported, only without gravity (``g_m_s2 = 0``).
     invariant_units = {"energy": "J", "angular_momentum_z": "kg·m²/s", "spin": "rad/s", "quaternion_norm_error": "", "angular_momentum": "kg·m²/s"}
 
@@ -156,7 +247,14 @@ class HeavyTop(IntegratedModel):
         return rigid_body(params).fastest_rate_rad_s(state)
 
     def series(self, params, t_s, states):
-        return euler_angles(states)
+        return euler_angles(states, t_s)
+
+    def solution_error(self, params, states, reference):
+        """Rotation angle (rad) between the attitudes of ``states`` and ``reference`` (N, 7)."""
+        return attitude_difference_rad(np.asarray(states)[:, 0:4], np.asarray(reference)[:, 0:4])
+
+    def reference_states(self, params, t_s):
+        return quadrature_states(params, t_s)
 
     def invariants(self, params, states):
         return rigid_body(params).invariants(states)

@@ -331,8 +331,7 @@ def heavy_top_quadrature(
         period = 2.0 * math.pi / math.sqrt(c * c + 2.0 * beta) if c * c + 2.0 * beta > 0.0 else math.inf
         return constant(-1.0, -1.0, u3, period, -0.5 * c, spin_rad_s - 0.5 * c)
 
-    # f(u0 + δ) = β δ³ + A2 δ² + A1 δ + A0, coefficients straight from the initial rates.
-    A2 = 2.0 * u0 * beta - kinetic - c * c
+    # f(u0 + δ) = β δ³ + A2 δ² + A1 δ + A0, coefficients straight from the initial rates (A2 is not needed below).
     A1 = -beta * sin2 - 2.0 * u0 * kinetic + 2.0 * c * phi_dot0 * sin2
     A0 = sin2 * theta_dot**2
     # Largest root from f(1 + w) = β w³ + B2 w² + B1 w + B0 (B0 = −(b − c)²).

@@ -1,0 +1,1 @@
+"""Chapter 8 scenes: constrained generalized coordinates, DAE algorithms, Coulomb friction."""
