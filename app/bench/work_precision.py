@@ -36,6 +36,7 @@ from app.physics.bodies.rigid_body import RigidBody
 from app.physics.math.rotations import rotate_vector
 from app.physics.solvers import METHODS, make_integrator, simulate
 from app.physics.solvers.integrated_model import simulate_model
+from app.physics.solvers.step_choice import AccuracyTarget, StepChoice, choose
 from app.physics.systems.ch10 import heavy_top
 
 OUT_DIR = Path(__file__).resolve().parents[2] / "docs" / "bench"
@@ -82,12 +83,24 @@ class Case:
     #: Method ids of the other libraries' sweeps to run (None: all of them).
     baselines: tuple[str, ...] | None = None
 
-    def error(self, quaternions: np.ndarray, reference: np.ndarray) -> float:
+    def frame_errors(self, quaternions: np.ndarray, reference: np.ndarray) -> np.ndarray:
+        """(N,) error (rad) of each frame's attitude (N, 4) against ``reference`` (N, 4)."""
         if self.error_kind == "axis":
-            axis = rotate_vector(quaternions, E3)
-            axis_ref = rotate_vector(reference, E3)
-            return float(angle_between(axis, axis_ref).max())
-        return float(attitude_error_rad(quaternions, reference).max())
+            return angle_between(rotate_vector(quaternions, E3), rotate_vector(reference, E3))
+        return attitude_error_rad(quaternions, reference)
+
+    def error(self, quaternions: np.ndarray, reference: np.ndarray) -> float:
+        return float(self.frame_errors(quaternions, reference).max())
+
+    def automatic_choice(self) -> StepChoice | None:
+        """What a live scene's ``auto`` runs for this motion: the cheapest method meeting :attr:`target_error`
+        over the case's span, from the same pilots (:func:`~app.physics.solvers.step_choice.choose`)."""
+        target = AccuracyTarget(self.target_error, "rad", self.error_measure, horizon_s=self.t_end_s)
+        return choose(
+            self.body.system(), self.y0, tuple(METHODS), target=target, frame_dt_s=1.0 / self.frame_rate_hz,
+            horizon_s=self.t_end_s, fastest_rate_rad_s=self.body.fastest_rate_rad_s(self.y0),
+            error=lambda states, reference: self.frame_errors(states[:, :4], reference[:, :4]),
+        )
 
 
 def heavy_top_params(overrides: dict[str, float]) -> dict[str, Any]:
@@ -496,15 +509,20 @@ def run_benchmark(case_ids: Sequence[str] | None = None, *, include_mujoco: bool
                 points.append({"setting": setting, "cpu_s": cpu, "error": error if math.isfinite(error) else None,
                                "rhs_evals": evals, "status": status if math.isfinite(error) else "failed"})
             methods.append({"method": method, "family": family, "label": label, "setting_name": setting_name, "points": points})
-        # The default operating point: what a scene uses at 60 frames/s with "auto".
-        default_integrator = make_integrator(
-            case.default_method, fastest_rate_rad_s=case.body.fastest_rate_rad_s(case.y0), frame_dt_s=1.0 / case.frame_rate_hz
-        )
-        q_default, cpu_default, _, _ = run_ours(case, case.default_method, default_integrator.steps_per_frame, frames_t)
+        # The default operating point: what a scene runs at this frame rate with "auto" (the error-target choice).
+        choice = case.automatic_choice()
+        if choice is None:
+            raise RuntimeError(f"{case.id}: no pilot run of any method finished; the automatic choice is undefined")
+        adaptive = choice.steps_per_frame is None
+        setting = choice.rtol if adaptive else choice.steps_per_frame
+        default_integrator = make_integrator(choice.method, rtol=choice.rtol) if adaptive else make_integrator(
+            choice.method, steps_per_frame=choice.steps_per_frame)
+        q_default, cpu_default, _, _ = run_ours(case, choice.method, setting, frames_t)
         default = {
-            "method": case.default_method, "setting": default_integrator.steps_per_frame, "setting_name": "steps_per_frame",
+            "method": choice.method, "setting": setting, "setting_name": "rtol" if adaptive else "steps_per_frame",
             "description": default_integrator.describe(1.0 / case.frame_rate_hz),
             "cpu_s": cpu_default, "error": case.error(q_default, reference),
+            "target_error": case.target_error, "estimated_error": choice.estimated_error, "accuracy": choice.text(),
         }
         ratios = []
         for method in methods:
