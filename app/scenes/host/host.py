@@ -13,6 +13,16 @@ built, redrawn, advanced or read. So one student's slow redraw (compiling a
 typed curve, rebuilding a mesh) never stalls another student's frames, and a
 readout poll waits for one scene's frame at most. Lock order: host, then session.
 
+Every session can be paused and its time scaled (:meth:`SceneHost.set_playback`):
+the frame loop advances a scene ``time_scale`` frames per displayed frame on
+average, so every scene, closed-form or integrated, slows and speeds alike.
+
+A *stage* (:meth:`SceneHost.open_stage`) is a session whose one scene is drawn
+on its own viser server rather than on one client: every viewer of that server
+sees the same simulation, and viser keeps its current state for viewers that
+join later. A classroom room shows its scene on a stage; the front fans the
+stage's one stream out to every student following it.
+
 ``dynlab serve`` runs several of these hosts in scene-worker processes
 (:mod:`app.scenes.host.pool`); tests and a single-process server use one directly.
 """
@@ -22,6 +32,7 @@ from __future__ import annotations
 import contextlib
 import io
 import logging
+import math
 import re
 import threading
 import time
@@ -34,15 +45,19 @@ import viser
 
 from app.scenes.host.viser_compat import (
     BatchedWakeups,
+    BroadcastViewer,
     connection_path,
     share_prop_hints,
     start_callback_threads,
+    viewer_count,
 )
 from app.scenes.kit import Scene
 
 log = logging.getLogger(__name__)
 
 SESSION_ID_PATTERN = re.compile(r"^[A-Za-z0-9_-]{8,64}$")
+#: Slowest and fastest time scale a session may run at (× real time).
+TIME_SCALE_RANGE = (0.1, 4.0)
 
 
 class UnknownSceneError(KeyError):
@@ -59,6 +74,17 @@ class Session:
     last_used_s: float = field(default_factory=time.monotonic)
     #: Held while this session's scenes are built, redrawn, advanced or read.
     lock: threading.RLock = field(default_factory=threading.RLock)
+    #: A paused session is not advanced; ``time_scale`` is the frames advanced per displayed frame, on average.
+    playing: bool = True
+    time_scale: float = 1.0
+    frame_credit: float = 0.0
+    #: A stage's own viser server (its one scene is broadcast to every viewer of it); None for a page's session.
+    stage: viser.ViserServer | None = None
+    #: Motion the next scene built for this session starts from (``Scene.resume_from``), then forgotten.
+    resume_motion: dict[str, Any] | None = None
+
+    def playback(self) -> dict[str, Any]:
+        return {"playing": self.playing, "time_scale": self.time_scale}
 
 
 class SceneHost:
@@ -101,6 +127,11 @@ class SceneHost:
         self._stop.set()
         if self._thread is not None:
             self._thread.join(timeout=2.0)
+        with self._lock:
+            stages = [session.stage for session in self._sessions.values() if session.stage is not None]
+        for stage in stages:
+            with contextlib.redirect_stdout(io.StringIO()):  # viser prints "Server stopped"
+                stage.stop()
         if self._server is not None:
             self._server.stop()
 
@@ -127,6 +158,8 @@ class SceneHost:
     def _session(self, scene_id: str, session_id: str) -> Session:
         """Get or create the session (caller holds the lock)."""
         session = self._sessions.get(session_id)
+        if session is not None and session.stage is not None and session.scene_id != scene_id:
+            raise ValueError(f"session {session_id!r} is a stage showing {session.scene_id!r}: open_stage changes its scene")
         if session is None or session.scene_id != scene_id:
             if session is not None:
                 self._close_instances(session)
@@ -165,6 +198,120 @@ class SceneHost:
             for scene in session.instances.values():
                 scene.set_params(params)
             return dict(params)
+
+    def set_playback(
+        self, session_id: str, *, playing: bool | None = None, time_scale: float | None = None, reset: bool = False
+    ) -> dict[str, Any]:
+        """Pause or play the session, scale its time (× real time, :data:`TIME_SCALE_RANGE`), or restart its
+        motion from t = 0; returns ``{"playing", "time_scale"}``. Checks everything before changing anything."""
+        if playing is not None and not isinstance(playing, bool):
+            raise ValueError("playing: must be true or false")
+        if time_scale is not None:
+            low, high = TIME_SCALE_RANGE
+            if isinstance(time_scale, bool) or not isinstance(time_scale, int | float) or not math.isfinite(time_scale) or not low <= time_scale <= high:
+                raise ValueError(f"time_scale: must be a number from {low:g} to {high:g} (× real time), got {time_scale!r}")
+        session = self._existing(session_id)
+        with session.lock:
+            if playing is not None:
+                session.playing = playing
+            if time_scale is not None:
+                session.time_scale = float(time_scale)
+            if reset:
+                for scene in session.instances.values():
+                    scene.set_params(scene.params)  # a scene's update starts its motion again from its initial state
+            return session.playback()
+
+    def playback(self, session_id: str) -> dict[str, Any] | None:
+        with self._lock:
+            session = self._sessions.get(session_id)
+        return None if session is None else session.playback()
+
+    def _existing(self, session_id: str) -> Session:
+        with self._lock:
+            session = self._sessions.get(session_id)
+        if session is None:
+            raise ValueError(f"session {session_id!r} has no scene yet: set its parameters first")
+        return session
+
+    # -- stages: one scene, every viewer -----------------------------------------------
+    def open_stage(self, session_id: str, scene_id: str, raw: Mapping[str, Any]) -> dict[str, Any]:
+        """Show ``scene_id`` with parameters ``raw`` on the stage ``session_id`` (created on first use, its scene
+        replaced after). Returns ``{"params", "viewer_url"}``: the validated parameters and the loopback websocket
+        address of the stage's own viser server. Raises ``ValueError`` and changes nothing on bad input."""
+        if not SESSION_ID_PATTERN.match(session_id):
+            raise ValueError("session_id: must be 8–64 letters, digits, '-' or '_'")
+        cls = self.scene_class(scene_id)
+        params = cls.parameters.validate(raw)
+        with self._lock:
+            session = self._sessions.get(session_id)
+            if session is None or session.stage is None:
+                if session is not None:
+                    self._close_instances(session)
+                session = Session(scene_id, params, stage=self._start_stage_server())
+                self._sessions[session_id] = session
+            session.last_used_s = time.monotonic()
+        with session.lock:
+            assert session.stage is not None
+            for scene in session.instances.values():
+                scene.close()
+            session.instances.clear()
+            session.scene_id, session.params = scene_id, params
+            session.frame_credit = 0.0
+            session.instances[BroadcastViewer.client_id] = cls(BroadcastViewer(session.stage), params)  # type: ignore[arg-type]
+            return {"params": dict(params), "viewer_url": self.stage_viewer_url(session_id)}
+
+    def _start_stage_server(self) -> viser.ViserServer:
+        with contextlib.redirect_stdout(io.StringIO()):
+            server = viser.ViserServer(host=self._host, port=0, verbose=False)
+        server.gui.configure_theme(show_share_button=False, show_logo=False)
+        return server
+
+    def close_stage(self, session_id: str) -> None:
+        """Stop a stage's scene and its viser server (its viewers are disconnected); unknown ids are ignored."""
+        with self._lock:
+            session = self._sessions.get(session_id)
+            if session is None or session.stage is None:
+                return
+            del self._sessions[session_id]
+        with session.lock:
+            for scene in session.instances.values():
+                scene.close()
+            session.instances.clear()
+        with contextlib.redirect_stdout(io.StringIO()):
+            session.stage.stop()
+
+    def stage_viewer_url(self, session_id: str) -> str | None:
+        """The loopback websocket address of a stage's viser server, or None if there is no such stage."""
+        with self._lock:
+            session = self._sessions.get(session_id)
+        return None if session is None or session.stage is None else f"ws://{self._host}:{session.stage.get_port()}"
+
+    def stage_viewers(self, session_id: str) -> int:
+        """Websockets open on a stage's server (the front's one stream per room, plus any joining)."""
+        with self._lock:
+            session = self._sessions.get(session_id)
+        return 0 if session is None or session.stage is None else viewer_count(session.stage)
+
+    # -- a motion handed from one session to another (a room's students exploring) ----------
+    def motion_state(self, session_id: str) -> dict[str, Any] | None:
+        """The session's scene's motion now (``Scene.motion_state``), or None (no scene, or one that restarts at t = 0)."""
+        with self._lock:
+            session = self._sessions.get(session_id)
+        if session is None:
+            return None
+        with session.lock:
+            for scene in session.instances.values():
+                return scene.motion_state()
+        return None
+
+    def resume_from(self, session_id: str, motion: Mapping[str, Any]) -> None:
+        """Start the session's scene (now, and the next one built for a viewer) from ``motion``; set its parameters first."""
+        session = self._existing(session_id)
+        with session.lock:
+            for scene in session.instances.values():
+                scene.resume_from(motion)
+            if not session.instances:
+                session.resume_motion = dict(motion)
 
     def session_params(self, session_id: str) -> dict[str, Any] | None:
         with self._lock:
@@ -242,6 +389,12 @@ class SceneHost:
                 log.exception("building scene %s failed", scene_id)
                 client.gui.add_markdown("**This scene failed to build.** The error is in the server log.")
                 return
+            if session.resume_motion is not None:
+                motion, session.resume_motion = session.resume_motion, None
+                try:
+                    scene.resume_from(motion)
+                except ValueError:
+                    log.warning("session %s: the motion handed over does not fit scene %s; it starts at t = 0", session_id, scene_id)
             session.instances[client.client_id] = scene
 
     def _on_disconnect(self, client: viser.ClientHandle) -> None:
@@ -278,10 +431,19 @@ class SceneHost:
                 sessions = [sess for sess in self._sessions.values() if sess.instances]
             wakeups = BatchedWakeups()  # viser's sender is woken once for every viewer's frame, not once per viewer
             for session in sessions:
+                if not session.playing:
+                    continue
+                # time_scale frames per displayed frame on average: 0.5 advances every other frame, 2 twice a frame.
+                session.frame_credit += session.time_scale
+                frames = int(session.frame_credit)
+                if frames == 0:
+                    continue
+                session.frame_credit -= frames
                 with session.lock:
                     for scene in list(session.instances.values()):
-                        if scene.animated and not scene.status:
-                            self._advance(scene, dt, wakeups)
+                        for _ in range(frames):
+                            if scene.animated and not scene.status:
+                                self._advance(scene, dt, wakeups)
             wakeups.flush()
 
     @staticmethod

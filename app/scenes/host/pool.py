@@ -79,6 +79,8 @@ class WorkerPool:
         self._pin_lock = threading.Lock()
         #: The parameters last set on each session (front-side copy, applied again after a worker restart).
         self._session_params: OrderedDict[str, tuple[str, dict[str, Any]]] = OrderedDict()
+        #: Sessions that are stages (a room's shared scene): opened again, not merely re-parameterised, after a restart.
+        self._stages: set[str] = set()
         self._params_lock = threading.Lock()
         self._restart_lock = threading.Lock()
         self._stopping = threading.Event()
@@ -150,7 +152,9 @@ class WorkerPool:
             pinned = [(sid, scene_id, params) for sid, (scene_id, params) in self._session_params.items() if self.worker_index(sid) == index]
         for session_id, scene_id, params in pinned:
             try:
-                self._call(index, "set_params", scene_id, session_id, params)
+                self._call(index, "open_stage" if session_id in self._stages else "set_params", *(
+                    (session_id, scene_id, params) if session_id in self._stages else (scene_id, session_id, params)
+                ))
             except Exception:
                 log.exception("applying session %s's parameters again failed", session_id)
 
@@ -219,12 +223,49 @@ class WorkerPool:
             raise ValueError("session_id: must be 8–64 letters, digits, '-' or '_'")
         self.scene_class(scene_id)
         params = self._call(self.worker_index(session_id), "set_params", scene_id, session_id, dict(raw))
+        self._remember(session_id, scene_id, params)
+        return params
+
+    def _remember(self, session_id: str, scene_id: str, params: dict[str, Any]) -> None:
         with self._params_lock:
             self._session_params[session_id] = (scene_id, params)
             self._session_params.move_to_end(session_id)
             while len(self._session_params) > self.max_sessions:
                 self._session_params.popitem(last=False)
-        return params
+
+    def open_stage(self, session_id: str, scene_id: str, raw: Mapping[str, Any]) -> dict[str, Any]:
+        """As :meth:`SceneHost.open_stage`, in the session's worker (opened again there if the worker restarts)."""
+        self.scene_class(scene_id)
+        answer = self._call(self.worker_index(session_id), "open_stage", session_id, scene_id, dict(raw))
+        with self._params_lock:
+            self._stages.add(session_id)
+        self._remember(session_id, scene_id, answer["params"])
+        return answer
+
+    def close_stage(self, session_id: str) -> None:
+        with self._params_lock:
+            self._stages.discard(session_id)
+            self._session_params.pop(session_id, None)
+        self._call(self.worker_index(session_id), "close_stage", session_id)
+
+    def stage_viewer_url(self, session_id: str) -> str | None:
+        """The stage's loopback websocket address now (it changes when its worker restarts), or None."""
+        return self._call(self.worker_index(session_id), "stage_viewer_url", session_id)
+
+    def set_playback(self, session_id: str, **playback: Any) -> dict[str, Any]:
+        return self._call(self.worker_index(session_id), "set_playback", session_id, **playback)
+
+    def playback(self, session_id: str) -> dict[str, Any] | None:
+        return self._call(self.worker_index(session_id), "playback", session_id)
+
+    def stage_viewers(self, session_id: str) -> int:
+        return self._call(self.worker_index(session_id), "stage_viewers", session_id)
+
+    def motion_state(self, session_id: str) -> dict[str, Any] | None:
+        return self._call(self.worker_index(session_id), "motion_state", session_id)
+
+    def resume_from(self, session_id: str, motion: Mapping[str, Any]) -> None:
+        self._call(self.worker_index(session_id), "resume_from", session_id, dict(motion))
 
     def session_params(self, session_id: str) -> dict[str, Any] | None:
         return self._call(self.worker_index(session_id), "session_params", session_id)

@@ -248,3 +248,36 @@ def start_callback_threads(server: viser.ViserServer, *, timeout_s: float = 10.0
     for future in futures:
         future.result(timeout=timeout_s)
     return len(executor._threads)
+
+
+class BroadcastViewer:
+    """A stand-in for a ``viser.ClientHandle`` that draws on a whole server: every viewer of it sees the same scene.
+
+    A room's shared scene (one simulation, many followers) is built on one of
+    these: its ``scene`` and ``gui`` are the server's, whose messages viser keeps
+    for every viewer that connects later (culled to the latest state of each
+    node), so a student who joins late, or whose phone slept, gets the scene as
+    it is now. Its ``camera`` sets the initial camera of every viewer (the
+    server has no single live camera).
+    """
+
+    #: No real client: a broadcast has no viser client id.
+    client_id = -1
+
+    def __init__(self, server: viser.ViserServer) -> None:
+        self.server = server
+        self.scene = server.scene
+        self.gui = server.gui
+        self._websock_connection = server._websock_server
+        self.camera = InitialCameraConfig(server._websock_server.queue_message)
+
+    def atomic(self) -> contextlib.AbstractContextManager[None]:
+        return self.server.atomic()
+
+    def flush(self) -> None:
+        self.server.flush()
+
+
+def viewer_count(server: viser.ViserServer) -> int:
+    """Websockets open on ``server`` now (counted before viser's camera handshake, unlike ``get_clients``)."""
+    return len(server._websock_server._live_connections)

@@ -16,8 +16,10 @@ state reached.
 
 from __future__ import annotations
 
+import math
 import time
 from collections import deque
+from collections.abc import Mapping
 from dataclasses import replace
 from typing import Any, ClassVar
 
@@ -154,6 +156,23 @@ class IntegratedScene(Scene):
         self.run = self.new_run(old.system, integrator, old.y)
         self.run.t_s, self.run.steps = old.t_s, old.steps
         self.description = self.describe(integrator)
+
+    def motion_state(self) -> dict[str, Any]:
+        """``{"t_s": simulated time (s), "y": the model's state vector}``."""
+        return {"t_s": float(self.run.t_s), "y": [float(v) for v in self.run.y]}
+
+    def resume_from(self, motion: Mapping[str, Any]) -> None:
+        """Continue the integration from another instance's :meth:`motion_state` (same parameters)."""
+        try:
+            t_s = float(motion["t_s"])
+            y = np.array(motion["y"], dtype=float)
+        except (KeyError, TypeError, ValueError):
+            raise ValueError("motion: needs t_s (s) and y (the state vector)") from None
+        if y.shape != self.run.y.shape or not np.all(np.isfinite(y)) or not math.isfinite(t_s) or t_s < 0.0:
+            raise ValueError(f"motion: y must be {self.run.y.size} finite numbers and t_s a finite time ≥ 0 s")
+        old = self.run
+        self.run = self.new_run(old.system, old.integrator, y)
+        self.run.t_s, self.run.steps = t_s, old.steps
 
     def close(self) -> None:
         PILOTS.cancel(id(self))

@@ -176,6 +176,18 @@ class Scene(ABC):
     def advance(self, dt_s: float) -> None:
         """Advance the animation by ``dt_s`` seconds of wall-clock time."""
 
+    def motion_state(self) -> dict[str, Any] | None:
+        """The motion now, as JSON data another instance can :meth:`resume_from` (a room's students exploring
+        from where the instructor's demo is); None for a scene whose motion only restarts at t = 0."""
+        return None
+
+    def resume_from(self, motion: Mapping[str, Any]) -> None:
+        """Continue from ``motion`` (from :meth:`motion_state` of an instance with the same parameters).
+
+        Raises ``ValueError`` for a motion this scene cannot take (wrong size, not finite).
+        """
+        raise ValueError(f"{self.id} restarts at t = 0: it cannot continue another instance's motion")
+
     def readout(self) -> Readout | None:
         """Numbers a student reads beside the scene, polled by the lesson page (None: no readout).
 

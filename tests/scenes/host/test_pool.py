@@ -99,6 +99,46 @@ def test_a_dead_worker_is_restarted_and_its_sessions_keep_their_parameters(clien
     assert client.put(f"/api/scenes/heavy-top/sessions/{sid}", json={"params": {"spin_rad_s": 67.0}}).status_code == 200
 
 
+def test_a_rooms_stage_in_a_worker_streams_to_followers_and_survives_a_worker_restart(client, pool):
+    """The room's scene runs in a worker; followers share the front's one stream; a killed worker's stage is opened
+    again with the room's parameters, and a follower arriving after that gets the scene afresh."""
+    from app.web.room_relay import ends_replay
+
+    instructor = {"X-Instructor-Key": client.app.state.instructor_key.secret}
+    lesson = next(l.id for l in client.app.state.catalogue.lessons.values() if "heavy-top" in l.scenes)
+    room = client.post("/api/rooms", json={"lesson_id": lesson, "scene_id": "heavy-top"}, headers=instructor).json()
+    stage = f"room-{room['room_id']}"
+    client.post(f"/api/rooms/{room['room_id']}/state", json={"params": {"spin_rad_s": 71.0}}, headers=instructor)
+
+    def follow_once() -> None:
+        with client.websocket_connect(f"/room-viewer/{room['room_id']}", subprotocols=["viser-v" + viser.__version__]) as socket:
+            socket.send_bytes(viewer_camera_message())
+            window = socket.receive_bytes()
+            while not ends_replay(window):
+                window = socket.receive_bytes()
+            for _ in range(5):
+                socket.receive_bytes()
+
+    follow_once()
+    assert pool.stage_viewers(stage) == 1  # the front's stream stays open for the next follower
+    worker = pool.worker_index(stage)
+    old_pid = pool.worker_pids()[worker]
+    os.kill(old_pid, signal.SIGKILL)
+    wait_until(lambda: pool.worker_pids()[worker] != old_pid, timeout_s=60.0, what="the supervisor to restart the stage's worker")
+    wait_until(lambda: pool.stage_viewer_url(stage) is not None, timeout_s=30.0, what="the stage to be opened again")
+    assert pool.session_params(stage)["spin_rad_s"] == 71.0
+    wait_until(lambda: _follows(follow_once), timeout_s=30.0, what="a follower to get the reopened stage")
+    client.delete(f"/api/rooms/{room['room_id']}", headers=instructor)
+
+
+def _follows(follow_once) -> bool:
+    try:
+        follow_once()
+    except Exception:  # the old stream is still closing: the viewer would reconnect, and so does this
+        return False
+    return True
+
+
 def test_a_session_whose_worker_is_down_gets_a_503_with_retry_after(client, pool, monkeypatch):
     sid = session_on(pool, 1)
     monkeypatch.setattr(pool._workers[1], "rpc_address", ("127.0.0.1", 1))  # nothing listens there: as if the worker were gone
