@@ -1,0 +1,1 @@
+"""The classroom: rooms, roles and polls."""

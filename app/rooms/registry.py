@@ -1,0 +1,68 @@
+"""Every open room, found by id (the API) or by its short code (a student joining)."""
+
+from __future__ import annotations
+
+import secrets
+import threading
+import time
+
+from app.rooms.room import CODE_ALPHABET, CODE_LENGTH, Room, RoomError
+
+#: Rooms one server keeps open at once (each has its own stage: a viser server in a scene worker).
+MAX_ROOMS = 16
+#: A room nobody has used for this long (s) is closed when a new one needs its place.
+IDLE_ROOM_S = 6 * 3600.0
+
+
+class Rooms:
+    """Open rooms (thread-safe). ``join_base`` is the address students use (``Settings.public_url`` or the request's)."""
+
+    def __init__(self, *, max_rooms: int = MAX_ROOMS) -> None:
+        self.max_rooms = max_rooms
+        self._rooms: dict[str, Room] = {}
+        self._lock = threading.Lock()
+
+    def create(self, *, join_base: str) -> tuple[Room, list[Room]]:
+        """A new room, and the idle rooms closed to make space for it (their stages are the caller's to close)."""
+        with self._lock:
+            closed = self._drop_idle()
+            if len(self._rooms) >= self.max_rooms:
+                raise RoomError("room", f"{self.max_rooms} rooms are open already; close one first")
+            codes = {room.code for room in self._rooms.values()}
+            code = "".join(secrets.choice(CODE_ALPHABET) for _ in range(CODE_LENGTH))
+            while code in codes:
+                code = "".join(secrets.choice(CODE_ALPHABET) for _ in range(CODE_LENGTH))
+            room_id = secrets.token_hex(8)
+            room = Room(room_id=room_id, code=code, join_url=f"{join_base.rstrip('/')}/join/{code}")
+            self._rooms[room_id] = room
+            return room, closed
+
+    def _drop_idle(self) -> list[Room]:
+        now = time.monotonic()
+        idle = [room for room in self._rooms.values() if now - room.last_used_s > IDLE_ROOM_S and not room.instructor_sockets]
+        for room in idle:
+            del self._rooms[room.room_id]
+        return idle
+
+    def get(self, room_id: str) -> Room:
+        with self._lock:
+            room = self._rooms.get(room_id)
+        if room is None:
+            raise KeyError(f"no room {room_id!r} (it may have been closed)")
+        return room
+
+    def by_code(self, code: str) -> Room:
+        wanted = code.strip().upper()
+        with self._lock:
+            room = next((r for r in self._rooms.values() if r.code == wanted), None)
+        if room is None:
+            raise KeyError(f"no open room has the code {wanted!r}")
+        return room
+
+    def close(self, room_id: str) -> Room | None:
+        with self._lock:
+            return self._rooms.pop(room_id, None)
+
+    def all(self) -> list[Room]:
+        with self._lock:
+            return list(self._rooms.values())

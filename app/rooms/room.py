@@ -1,0 +1,275 @@
+"""A room: what the instructor shows, the students in it, and its polls.
+
+The room's scene runs once, on a *stage* of the scene host (one simulation,
+broadcast to every follower); the room keeps the state every page needs to
+follow it — lesson, scene, parameters, play/pause, time scale, follow or
+explore — and a revision number that grows with every change. A change is
+checked whole before anything is applied: a bad field answers with a
+:class:`RoomError` naming it and the room stays as it was.
+"""
+
+from __future__ import annotations
+
+import math
+import secrets
+import threading
+import time
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Any, Protocol
+
+from app.course import Catalogue
+from app.rooms.polls import Poll
+from app.scenes.host.host import TIME_SCALE_RANGE
+
+#: Characters of a room code: capitals and digits a student cannot misread (no I, L, O, 0, 1).
+CODE_ALPHABET = "ABCDEFGHJKMNPQRSTUVWXYZ23456789"
+CODE_LENGTH = 6
+MODES = ("follow", "explore")
+#: Fields a state change may carry (``preset`` and ``reset`` are actions, not state).
+STATE_FIELDS = ("lesson_id", "scene_id", "params", "playing", "time_scale", "mode", "preset", "reset")
+#: Students one room admits (a lecture hall's worth, with room for reconnects under new tokens).
+MAX_STUDENTS = 500
+MAX_NAME_LENGTH = 40
+
+
+class RoomError(ValueError):
+    """A state change or request the room refuses; ``field`` names what is wrong, nothing changed."""
+
+    def __init__(self, field: str, message: str) -> None:
+        super().__init__(message)
+        self.field = field
+        self.message = message
+
+
+class StageHost(Protocol):
+    """What a room needs of the scene host (:class:`~app.scenes.host.host.SceneHost` or the worker pool)."""
+
+    scenes: Mapping[str, Any]
+
+    def open_stage(self, session_id: str, scene_id: str, raw: Mapping[str, Any]) -> dict[str, Any]: ...
+    def set_params(self, scene_id: str, session_id: str, raw: Mapping[str, Any]) -> dict[str, Any]: ...
+    def set_playback(self, session_id: str, **playback: Any) -> dict[str, Any]: ...
+    def motion_state(self, session_id: str) -> dict[str, Any] | None: ...
+    def close_stage(self, session_id: str) -> None: ...
+
+
+@dataclass
+class Student:
+    """One student's browser, known by the token it got on joining (kept across reconnects)."""
+
+    name: str = ""
+    sockets: int = 0
+    following: bool = True
+    joined_s: float = field(default_factory=time.time)
+
+
+@dataclass
+class Room:
+    room_id: str
+    code: str
+    join_url: str
+    lesson_id: str | None = None
+    scene_id: str | None = None
+    params: dict[str, Any] = field(default_factory=dict)
+    playing: bool = True
+    time_scale: float = 1.0
+    mode: str = "follow"
+    revision: int = 0
+    reset_count: int = 0
+    #: Where explorers start (set on each switch to explore): scene, parameters and the stage's motion then.
+    explore_start: dict[str, Any] | None = None
+    students: dict[str, Student] = field(default_factory=dict)
+    instructor_sockets: int = 0
+    polls: dict[str, Poll] = field(default_factory=dict)
+    poll_id: str | None = None
+    last_used_s: float = field(default_factory=time.monotonic)
+    #: Held while the room's state changes (routes run in threads, sockets in the event loop's executor).
+    lock: threading.RLock = field(default_factory=threading.RLock, repr=False)
+
+    @property
+    def stage_id(self) -> str:
+        """The scene host's session id for this room's shared scene."""
+        return f"room-{self.room_id}"
+
+    # -- state ---------------------------------------------------------------------
+    def state(self) -> dict[str, Any]:
+        """The room's state as every page reads it (``GET /api/rooms/{room_id}/state``)."""
+        with self.lock:
+            following = sum(1 for s in self.students.values() if s.sockets and s.following and self.mode == "follow")
+            poll = self.polls.get(self.poll_id) if self.poll_id else None
+            return {
+                "room_id": self.room_id, "code": self.code, "join_url": self.join_url,
+                "lesson_id": self.lesson_id, "scene_id": self.scene_id, "params": dict(self.params),
+                "playing": self.playing, "time_scale": self.time_scale, "mode": self.mode,
+                "revision": self.revision, "reset_count": self.reset_count, "explore_start": self.explore_start,
+                "students": {"connected": sum(1 for s in self.students.values() if s.sockets), "following": following},
+                "instructor_connected": self.instructor_sockets > 0,
+                "poll": poll.public() if poll is not None else None,
+            }  # fmt: skip
+
+    def change(self, raw: Mapping[str, Any], *, catalogue: Catalogue, host: StageHost) -> dict[str, Any]:
+        """Apply an instructor's change (any of :data:`STATE_FIELDS`), checked whole first; returns the new state."""
+        unknown = sorted(set(raw) - set(STATE_FIELDS))
+        if unknown:
+            raise RoomError(unknown[0], f"{unknown[0]}: not a room field (fields: {', '.join(STATE_FIELDS)})")
+        with self.lock:
+            plan = self._plan(raw, catalogue=catalogue, host=host)
+            self._apply(plan, host=host)
+            self.revision += 1
+            self.last_used_s = time.monotonic()
+        return self.state()
+
+    def _plan(self, raw: Mapping[str, Any], *, catalogue: Catalogue, host: StageHost) -> dict[str, Any]:
+        """Everything the change will do, every field checked; raises :class:`RoomError` before any effect."""
+        lesson_id = raw.get("lesson_id", self.lesson_id)
+        if lesson_id is None:
+            raise RoomError("lesson_id", "lesson_id: the room shows no lesson yet; name one")
+        lesson = catalogue.lessons.get(lesson_id) if isinstance(lesson_id, str) else None
+        if lesson is None:
+            raise RoomError("lesson_id", f"lesson_id: no lesson {lesson_id!r}")
+        if "scene_id" in raw and raw["scene_id"] is not None:
+            scene_id = raw["scene_id"]
+            if scene_id not in lesson.scenes:
+                named = ", ".join(lesson.scenes) or "none"
+                raise RoomError("scene_id", f"scene_id: lesson {lesson_id!r} has no scene {scene_id!r} (its scenes: {named})")
+        elif lesson_id != self.lesson_id or self.scene_id not in lesson.scenes:
+            scene_id = lesson.scene  # a new lesson opens on its first scene (None for a lesson without one)
+        else:
+            scene_id = self.scene_id
+        new_scene = scene_id != self.scene_id
+        params: dict[str, Any] | None = None
+        wants_params = new_scene or "params" in raw or "preset" in raw
+        if scene_id is not None and wants_params:
+            cls = host.scenes[scene_id]
+            values: dict[str, Any] = {} if new_scene else dict(self.params)
+            preset = raw.get("preset")
+            if preset is not None:
+                found = next((p for p in cls.presets if p.name == preset), None)
+                if found is None:
+                    names = ", ".join(p.name for p in cls.presets) or "none"
+                    raise RoomError("preset", f"preset: scene {scene_id!r} has no preset {preset!r} (its presets: {names})")
+                values.update(found.values)
+            given = raw.get("params") or {}
+            if not isinstance(given, Mapping):
+                raise RoomError("params", "params: must be an object of parameter names and values")
+            values.update(given)
+            try:
+                params = cls.parameters.validate(values)
+            except ValueError as exc:
+                raise RoomError(f"params.{getattr(exc, 'field', '')}".rstrip("."), str(exc)) from None
+        elif "params" in raw or "preset" in raw:
+            raise RoomError("params", f"params: lesson {lesson_id!r} has no scene to set parameters on")
+        playing = raw.get("playing")
+        if playing is not None and not isinstance(playing, bool):
+            raise RoomError("playing", "playing: must be true or false")
+        time_scale = raw.get("time_scale")
+        if time_scale is not None:
+            low, high = TIME_SCALE_RANGE
+            if isinstance(time_scale, bool) or not isinstance(time_scale, int | float) or not math.isfinite(time_scale) or not low <= time_scale <= high:
+                raise RoomError("time_scale", f"time_scale: a number from {low:g} to {high:g} (× real time), got {time_scale!r}")
+        mode = raw.get("mode")
+        if mode is not None and mode not in MODES:
+            raise RoomError("mode", f"mode: 'follow' or 'explore', got {mode!r}")
+        reset = raw.get("reset", False)
+        if not isinstance(reset, bool):
+            raise RoomError("reset", "reset: must be true or false")
+        return {
+            "lesson_id": lesson_id, "scene_id": scene_id, "new_scene": new_scene, "params": params,
+            "playing": playing, "time_scale": time_scale, "mode": mode, "reset": reset,
+        }  # fmt: skip
+
+    def _apply(self, plan: dict[str, Any], *, host: StageHost) -> None:
+        scene_id, params = plan["scene_id"], plan["params"]
+        if scene_id is not None and plan["new_scene"]:
+            params = host.open_stage(self.stage_id, scene_id, params or {})["params"]
+        elif scene_id is not None and params is not None:
+            params = host.set_params(scene_id, self.stage_id, params)
+        elif scene_id is None and self.scene_id is not None:
+            host.close_stage(self.stage_id)
+        self.lesson_id, self.scene_id = plan["lesson_id"], scene_id
+        if params is not None:
+            self.params = dict(params)
+        elif scene_id is None:
+            self.params = {}
+        if plan["playing"] is not None:
+            self.playing = plan["playing"]
+        if plan["time_scale"] is not None:
+            self.time_scale = float(plan["time_scale"])
+        if scene_id is not None:
+            # A new stage starts playing at 1×: apply the room's own playback to it, and any reset.
+            host.set_playback(self.stage_id, playing=self.playing, time_scale=self.time_scale, reset=plan["reset"])
+        if plan["reset"]:
+            self.reset_count += 1
+        if plan["mode"] is not None and plan["mode"] != self.mode:
+            self.mode = plan["mode"]
+            if self.mode == "explore":
+                motion = host.motion_state(self.stage_id) if scene_id is not None else None
+                self.explore_start = {"scene_id": scene_id, "params": dict(self.params), "motion": motion}
+            else:
+                self.explore_start = None
+
+    # -- students --------------------------------------------------------------------
+    def join(self, name: str = "") -> str:
+        """A new student's token (the browser keeps it, so a reconnect is the same student)."""
+        if not isinstance(name, str) or len(name) > MAX_NAME_LENGTH or any(ord(c) < 32 for c in name):
+            raise RoomError("name", f"name: at most {MAX_NAME_LENGTH} printable characters")
+        with self.lock:
+            if len(self.students) >= MAX_STUDENTS:
+                raise RoomError("code", f"this room is full ({MAX_STUDENTS} students)")
+            token = secrets.token_urlsafe(18)
+            self.students[token] = Student(name=name.strip())
+            self.last_used_s = time.monotonic()
+            return token
+
+    def student(self, token: str | None) -> Student | None:
+        with self.lock:
+            return self.students.get(token) if token else None
+
+    # -- polls -------------------------------------------------------------------------
+    def open_poll(self, raw: Mapping[str, Any]) -> Poll:
+        """A new poll (closing the one open before it); it becomes the room's current poll."""
+        with self.lock:
+            poll = Poll.create(raw, poll_id=f"p{len(self.polls) + 1}")
+            current = self.polls.get(self.poll_id) if self.poll_id else None
+            if current is not None and current.open:
+                current.close()
+            self.polls[poll.poll_id] = poll
+            self.poll_id = poll.poll_id
+            self.revision += 1
+            return poll
+
+    def poll(self, poll_id: str) -> Poll:
+        with self.lock:
+            try:
+                return self.polls[poll_id]
+            except KeyError:
+                raise KeyError(f"room {self.room_id} has no poll {poll_id!r}") from None
+
+    def answer(self, poll_id: str, token: str | None, raw: Mapping[str, Any]) -> None:
+        """A student's answer (one per student, replaced until the poll closes)."""
+        with self.lock:
+            student = self.students.get(token) if token else None
+            if student is None:
+                raise PermissionError("answering needs the X-Student-Token this room gave when you joined")
+            self.poll(poll_id).submit(token, raw, name=student.name)  # type: ignore[arg-type]
+
+    def update_poll(self, poll_id: str, raw: Mapping[str, Any], *, host: Any) -> Poll:
+        """Close or reopen a poll, reveal its answer (computed by the room's scene now), show or hide names."""
+        unknown = sorted(set(raw) - {"open", "reveal", "show_names"})
+        if unknown:
+            raise RoomError(unknown[0], f"{unknown[0]}: not a poll field (fields: open, reveal, show_names)")
+        for name in ("open", "reveal", "show_names"):
+            if name in raw and not isinstance(raw[name], bool):
+                raise RoomError(name, f"{name}: must be true or false")
+        with self.lock:
+            poll = self.poll(poll_id)
+            if raw.get("reveal"):
+                live = host.live_readout(self.scene_id, self.stage_id) if self.scene_id else None
+                poll.reveal((live or {}).get("readout"))
+            if "open" in raw and not raw.get("reveal"):
+                poll.reopen() if raw["open"] else poll.close()
+            if "show_names" in raw:
+                poll.show_names = raw["show_names"]
+            self.revision += 1
+            return poll

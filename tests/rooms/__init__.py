@@ -1,0 +1,1 @@
+"""Tests of the classroom: rooms, roles and polls."""
