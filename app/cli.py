@@ -1,5 +1,5 @@
 """Command line: ``dynlab serve [--host H] [--port P]``, ``dynlab bench [--quick] [--case C]``,
-``dynlab load [--students 10,30] [--scene ID]``, ``dynlab soak [--students N] [--minutes M]``,
+``dynlab load [--students 10,30] [--scene ID] [--room]``, ``dynlab soak [--students N] [--minutes M]``,
 ``dynlab derivations [--no-proofs]`` and ``dynlab constrained [--quick] [--case C]``."""
 
 from __future__ import annotations
@@ -8,6 +8,7 @@ import argparse
 import logging
 import os
 import sys
+from dataclasses import replace
 
 from app.settings import Settings
 
@@ -24,11 +25,15 @@ def _serve(args: argparse.Namespace) -> int:
     from app.scenes.host.worker import tune_garbage_collection
 
     workers = args.workers if args.workers is not None else default_worker_count()
-    settings = Settings.from_env(host=args.host, port=args.port, workers=workers)
+    settings = Settings.from_env(host=args.host, port=args.port, workers=workers, instructor_key=args.instructor_key)
+    if not settings.public_url and settings.host in ("0.0.0.0", "::"):
+        settings = replace(settings, public_url=f"http://{lan_address()}:{settings.port}")
     app = create_app(settings)
     tune_garbage_collection()  # the front relays every frame of every viewer: the same allocation pattern as a worker
     where = f"{settings.workers} scene worker{'s' if settings.workers != 1 else ''}" if settings.workers else "scenes in this process"
     print(f"Dynamics Lab: serving on http://{settings.host}:{settings.port}  ({where}; Ctrl+C to stop)", flush=True)
+    base = settings.public_url or f"http://{settings.host}:{settings.port}"
+    print(f"Instructor link (keep it to yourself: whoever opens it runs the rooms): {app.state.instructor_key.link(base)}", flush=True)
     uvicorn.run(
         app,
         host=settings.host,
@@ -42,6 +47,21 @@ def _serve(args: argparse.Namespace) -> int:
         proxy_headers=False,
     )
     return 0
+
+
+def lan_address() -> str:
+    """This machine's address on the local network (the one its default route leaves by); 127.0.0.1 if none.
+
+    No packet is sent: connecting a UDP socket only chooses the interface.
+    """
+    import socket
+
+    with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as probe:
+        try:
+            probe.connect(("10.255.255.255", 1))
+            return probe.getsockname()[0]
+        except OSError:
+            return "127.0.0.1"
 
 
 def _bench(args: argparse.Namespace) -> int:
@@ -90,7 +110,7 @@ def _add_load_and_soak(commands: argparse._SubParsersAction) -> None:
     from app.bench.capacity import add_load_arguments
     from app.bench.soak import add_soak_arguments
 
-    load = commands.add_parser("load", help="classroom capacity: N viewers per scene (writes docs/bench/capacity.json and .svg)")
+    load = commands.add_parser("load", help="classroom capacity: N viewers per scene, or with --room N followers of one room (writes docs/bench/capacity.json or classroom.json, and .svg)")
     add_load_arguments(load)
     load.set_defaults(run=_load, parser=load)
     soak = commands.add_parser("soak", help="N viewers for M minutes, then all gone: resources back to baseline")
@@ -110,6 +130,10 @@ def main(argv: list[str] | None = None) -> int:
     serve.add_argument(
         "--workers", type=int, default=None,
         help="scene-worker processes (default: one per core, or DYNLAB_WORKERS); 0 runs the scenes in the front process",
+    )  # fmt: skip
+    serve.add_argument(
+        "--instructor-key", default=None,
+        help="the instructor's secret in the printed instructor link (default: DYNLAB_INSTRUCTOR_KEY, else a new random one each start)",
     )  # fmt: skip
     serve.add_argument("--log-level", default="info", choices=["critical", "error", "warning", "info", "debug"])
     serve.set_defaults(run=_serve)

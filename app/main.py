@@ -12,14 +12,18 @@ from fastapi.responses import HTMLResponse
 from fastapi.staticfiles import StaticFiles
 
 from app import __version__
-from app.api import bench, chapters, errors, examples, health, scenes, systems
+from app.api import bench, chapters, errors, examples, health, rooms, scenes, systems
+from app.api.room_hub import RoomHub
 from app.api.session_keys import SessionKeys
 from app.course import load_catalogue
+from app.rooms.ready_questions import DEFAULT_READY_QUESTIONS, load_ready_questions
+from app.rooms.registry import Rooms
+from app.rooms.roles import InstructorKey
 from app.scenes import SCENES
 from app.scenes.host.host import SceneHost
 from app.scenes.host.pool import WorkerPool
 from app.settings import Settings
-from app.web import guard, pages, relay
+from app.web import guard, pages, relay, room_pages, room_relay
 
 STATIC_DIR = Path(__file__).resolve().parent.parent / "static"
 
@@ -39,6 +43,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
         try:
             yield
         finally:
+            await room_relay.close_streams(app)
             host.stop()
 
     app = FastAPI(
@@ -53,9 +58,17 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     app.state.session_keys = SessionKeys(max_sessions=settings.max_sessions)
     # Every lesson reference is checked here: a bad one stops the server before it starts.
     app.state.catalogue = load_catalogue(settings.lessons_dir)
+    # The classroom: the instructor's secret, the open rooms, their sockets and the ready poll questions (checked now).
+    app.state.instructor_key = InstructorKey(settings.instructor_key or None)
+    app.state.rooms = Rooms()
+    app.state.room_hub = RoomHub(lambda: app.state.scene_host)
+    app.state.ready_questions = load_ready_questions(DEFAULT_READY_QUESTIONS, SCENES)
     errors.install(app)
     app.add_middleware(guard.RequestGuard, settings=settings)
-    routers = (health.router, chapters.router, scenes.router, examples.router, systems.router, bench.router, pages.router, relay.router)
+    routers = (
+        health.router, chapters.router, scenes.router, examples.router, systems.router, bench.router, rooms.router,
+        pages.router, room_pages.router, relay.router, room_relay.router,
+    )  # fmt: skip
     for router in routers:
         app.include_router(router)
     errors.document_refusals(app, guard.refusals)

@@ -28,6 +28,11 @@ class Settings:
     #: Scene-worker processes (app/scenes/host/pool.py); 0 runs the scenes inside the front process
     #: (tests, a single user). ``dynlab serve`` defaults to one worker per core.
     workers: int = 0
+    #: The instructor's secret (``--instructor-key`` or ``DYNLAB_INSTRUCTOR_KEY``); empty: a new random one each start.
+    instructor_key: str = ""
+    #: The address students reach this server at (``http://10.0.0.5:8000``), used in room join links and QR codes;
+    #: empty: the address the instructor's browser used.
+    public_url: str = ""
 
     # --- The web front's guard (app/web/guard.py): what one client may send, from where, how often ---
     #: Largest HTTP request body (bytes) accepted; a larger one is refused with 413 (the largest real body is a few kB).
@@ -70,6 +75,8 @@ class Settings:
             "bench_dir": os.environ.get("DYNLAB_BENCH_DIR"),
             "lessons_dir": os.environ.get("DYNLAB_LESSONS_DIR"),
             "workers": os.environ.get("DYNLAB_WORKERS"),
+            "instructor_key": os.environ.get("DYNLAB_INSTRUCTOR_KEY"),
+            "public_url": os.environ.get("DYNLAB_PUBLIC_URL"),
             **{name: os.environ.get(f"DYNLAB_{name.upper()}") for name in _GUARD_FIELDS},
         }
         values: dict[str, object] = {}

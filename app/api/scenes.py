@@ -6,6 +6,7 @@ from fastapi import APIRouter, Header, HTTPException, Path
 from fastapi.responses import JSONResponse
 
 from app.api.deps import SceneHostDep, SessionKeysDep
+from app.api.rooms import RoomsDep
 from app.api.errors import unprocessable
 from app.api.limits import SIMULATIONS, TOO_MANY_RESPONSE
 from app.api.schemas.errors import ErrorDetail, error_responses
@@ -19,6 +20,7 @@ from app.physics.core.closed_form import ClosedFormModel, evaluate_model
 from app.physics.core.parameters import ParameterError, ParameterSet
 from app.physics.solvers.controls import CONTROL_NAMES
 from app.physics.solvers.integrated_model import simulate_model
+from app.rooms.registry import Rooms
 from app.scenes.host.host import SESSION_ID_PATTERN, UnknownSceneError
 from app.scenes.kit import Scene
 
@@ -58,7 +60,13 @@ def list_scenes(host: SceneHostDep) -> list[dict[str, Any]]:
     },
 )
 def set_session_params(
-    scene_id: str, session_id: SessionId, request: SessionParamsRequest, host: SceneHostDep, session_keys: SessionKeysDep, session_key: SessionKey = None
+    scene_id: str,
+    session_id: SessionId,
+    request: SessionParamsRequest,
+    host: SceneHostDep,
+    session_keys: SessionKeysDep,
+    rooms: RoomsDep,
+    session_key: SessionKey = None,
 ) -> dict[str, Any]:
     """Set the parameters of one page's scene; every viewer of that session redraws.
 
@@ -71,14 +79,32 @@ def set_session_params(
         session_keys.check(session_id, session_key)
     except SessionKeyError as exc:
         raise HTTPException(status_code=403, detail=str(exc)) from None
+    start = _explore_start(rooms, request.from_room, scene_id) if request.from_room else None
+    raw = {**start["params"], **request.params} if start else request.params
     try:
-        params = host.set_params(scene_id, session_id, request.params)
+        params = host.set_params(scene_id, session_id, raw)
     except ParameterError as exc:  # the request's field is `params`: name it, and the path inside it
         raise unprocessable(["body", "params", *exc.path], str(exc)) from None
     except ValueError as exc:  # values that cannot exist together (a linkage that cannot assemble, …)
         raise unprocessable(["body", "params"], str(exc)) from None
+    if start and start["motion"] is not None and params == start["params"]:
+        host.resume_from(session_id, start["motion"])  # same parameters: continue the room's motion, not restart it
     session_keys.claim(session_id, session_key)
     return {"scene_id": scene_id, "session_id": session_id, "params": params, "viewers": host.viewer_count(session_id)}
+
+
+def _explore_start(rooms: Rooms, room_id: str, scene_id: str) -> dict[str, Any]:
+    """Where a room's explorers start (its scene's parameters and motion when exploring began), or a 422 saying why not."""
+    try:
+        room = rooms.get(room_id)
+    except KeyError as exc:
+        raise unprocessable(["body", "from_room"], str(exc.args[0])) from None
+    start = room.state()["explore_start"]
+    if start is None:
+        raise unprocessable(["body", "from_room"], f"room {room_id} is not exploring: its students follow the instructor's scene")
+    if start["scene_id"] != scene_id:
+        raise unprocessable(["body", "from_room"], f"room {room_id} explores {start['scene_id']!r}, not {scene_id!r}")
+    return start
 
 
 @router.post(

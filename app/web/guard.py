@@ -37,8 +37,8 @@ SAFE_METHODS = frozenset({"GET", "HEAD", "OPTIONS"})
 #: Paths whose POST is rate limited as heavy work: simulations and typed-Lagrangian derivations (a template such as
 #: ``/api/scenes/{scene_id}/simulate`` matches too).
 SIMULATE_PATH = re.compile(r"^/api/(scenes/[^/]+/simulate|systems/custom/derive)$")
-#: Websocket paths whose opening is rate limited.
-VIEWER_PREFIX = "/viewer/"
+#: Websocket paths whose opening is rate limited: a page's own viewer, a room's shared scene and the room socket.
+VIEWER_PREFIXES = ("/viewer/", "/room-viewer/", "/api/rooms/")
 LOOPBACK_NAMES = frozenset({"127.0.0.1", "localhost", "::1"})
 _DEFAULT_PORTS = {"http": 80, "https": 443, "ws": 80, "wss": 443}
 
@@ -158,7 +158,7 @@ class RequestGuard:
             log.warning("refused websocket %s: %s", scope["path"], refusal)
             await self._close_before_accept(receive, send, code=1008, reason=refusal)
             return
-        if scope["path"].startswith(VIEWER_PREFIX) and self._wait_s(self.viewer_limit, scope, headers) > 0:
+        if scope["path"].startswith(VIEWER_PREFIXES) and self._wait_s(self.viewer_limit, scope, headers) > 0:
             await self._close_before_accept(receive, send, code=1013, reason="try again later: too many viewers opened from this client")
             return
         await self.app(scope, receive, send)

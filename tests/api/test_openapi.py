@@ -20,13 +20,28 @@ CAN_BE_NOT_FOUND = {
     ("/api/systems/{system_id}/derive", "post"),
     ("/api/systems/{system_id}/rhs", "post"),
 }
-CAN_BE_UNPROCESSABLE = (CAN_BE_NOT_FOUND - {("/api/bench/work-precision", "get")}) | {("/api/systems/custom/derive", "post")}
+#: The classroom: a room, poll or code that may not exist; every one of these reads a body or a checked id.
+ROOM_ROUTES = {
+    ("/api/rooms/{room_id}", "delete"),
+    ("/api/rooms/join", "post"),
+    ("/api/rooms/{room_id}/state", "get"),
+    ("/api/rooms/{room_id}/state", "post"),
+    ("/api/rooms/{room_id}/polls/ready", "get"),
+    ("/api/rooms/{room_id}/polls", "post"),
+    ("/api/rooms/{room_id}/polls/{poll_id}", "post"),
+    ("/api/rooms/{room_id}/polls/{poll_id}/answers", "post"),
+    ("/api/rooms/{room_id}/polls/{poll_id}/results", "get"),
+}
+CAN_BE_NOT_FOUND |= ROOM_ROUTES
+CAN_BE_UNPROCESSABLE = (CAN_BE_NOT_FOUND - {("/api/bench/work-precision", "get")}) | {("/api/systems/custom/derive", "post"), ("/api/rooms", "post")}
+#: Instructor-only reads: a student gets 403 (app/api/rooms.py require_instructor), as on every state-changing route.
+INSTRUCTOR_ONLY_READS = {("/api/rooms/{room_id}/polls/ready", "get"), ("/api/rooms/{room_id}/polls/{poll_id}/results", "get")}
 #: Answers the web front's guard gives before any route runs (app/web/guard.py), which FastAPI cannot see by itself.
 WITH_BODY = [(path, method) for path, method, op in OPERATIONS if "requestBody" in op]
 STATE_CHANGING = [(path, method) for path, method, _ in OPERATIONS if method not in ("get", "head", "options")]
 RATE_LIMITED = [("/api/scenes/{scene_id}/simulate", "post"), ("/api/systems/custom/derive", "post")]
 #: Where each error answer may be documented: no route lists one it cannot give.
-CAN_ANSWER = {"404": CAN_BE_NOT_FOUND, "422": CAN_BE_UNPROCESSABLE, "413": set(WITH_BODY), "403": set(STATE_CHANGING), "429": set(RATE_LIMITED)}
+CAN_ANSWER = {"404": CAN_BE_NOT_FOUND, "422": CAN_BE_UNPROCESSABLE, "413": set(WITH_BODY), "403": set(STATE_CHANGING) | INSTRUCTOR_ONLY_READS, "429": set(RATE_LIMITED)}
 
 
 def resolve(schema: dict) -> dict:
@@ -101,7 +116,7 @@ def test_413_is_documented_on_every_route_that_reads_a_body(path, method):
     assert_error_detail(SPEC["paths"][path][method]["responses"]["413"])
 
 
-@pytest.mark.parametrize(("path", "method"), STATE_CHANGING)
+@pytest.mark.parametrize(("path", "method"), STATE_CHANGING + sorted(INSTRUCTOR_ONLY_READS))
 def test_403_is_documented_on_every_state_changing_route(path, method):
     assert_error_detail(SPEC["paths"][path][method]["responses"]["403"])
 

@@ -32,10 +32,15 @@ def _free_port() -> int:
         return s.getsockname()[1]
 
 
+#: The browser tests' instructor secret (the instructor link is ``{url}/instructor?key={INSTRUCTOR_KEY}``).
+INSTRUCTOR_KEY = "browser-tests-instructor-key"
+
+
 class LiveServer:
     def __init__(self) -> None:
         self.port = _free_port()
-        self.app = create_app(Settings(port=self.port))
+        self.instructor_key = INSTRUCTOR_KEY
+        self.app = create_app(Settings(port=self.port, instructor_key=INSTRUCTOR_KEY))
         config = uvicorn.Config(self.app, host="127.0.0.1", port=self.port, log_level="warning")
         self.server = uvicorn.Server(config)
         self.thread = threading.Thread(target=self.server.run, daemon=True)
@@ -43,6 +48,10 @@ class LiveServer:
     @property
     def url(self) -> str:
         return f"http://127.0.0.1:{self.port}"
+
+    @property
+    def instructor_link(self) -> str:
+        return f"{self.url}/instructor?key={self.instructor_key}"
 
     @property
     def host(self):

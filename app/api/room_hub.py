@@ -1,0 +1,191 @@
+"""The room sockets: every page in a room gets each change as it happens, and the room's readout twice a second.
+
+A route or socket action that changes a room calls :meth:`RoomHub.publish_state`
+(from any thread); the hub hands the message to the event loop, which queues it
+for every socket of the room. Each socket has its own sender task and a bounded
+queue: a browser that stops reading is disconnected (its page reconnects and
+reads the state afresh) instead of holding everyone else's messages. One pump
+per room, running while the room has sockets, reads the room's scene readout
+from the scene host twice a second and publishes it, and coalesces presence
+(who is connected and following) into at most two state messages a second, so a
+class of 100 joining at once costs 2 broadcasts a second, not 100.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import json
+import logging
+import math
+from dataclasses import dataclass, field
+from typing import Annotated, Any
+
+from fastapi import Depends, WebSocket
+from starlette.concurrency import run_in_threadpool
+from starlette.requests import HTTPConnection
+
+from app.rooms.polls import Poll
+from app.rooms.room import Room
+
+log = logging.getLogger(__name__)
+
+#: Messages a socket may have waiting before it is dropped as not reading (about 30 s of readouts).
+QUEUE_LIMIT = 64
+#: Seconds between readout and presence messages.
+PUMP_PERIOD_S = 0.5
+
+
+def finite_json(message: Any) -> str:
+    """``message`` as strict JSON, every non-finite number sent as null (nothing non-finite reaches a client)."""
+
+    def clean(value: Any) -> Any:
+        if isinstance(value, float) and not math.isfinite(value):
+            return None
+        if isinstance(value, dict):
+            return {k: clean(v) for k, v in value.items()}
+        if isinstance(value, list | tuple):
+            return [clean(v) for v in value]
+        return value
+
+    try:
+        return json.dumps(message, allow_nan=False)
+    except ValueError:
+        return json.dumps(clean(message), allow_nan=False)
+
+
+@dataclass(eq=False)
+class Member:
+    """One open room socket: a student's page or the instructor's."""
+
+    websocket: WebSocket
+    instructor: bool
+    student_token: str | None = None
+    queue: asyncio.Queue[str | None] = field(default_factory=lambda: asyncio.Queue(QUEUE_LIMIT))
+    sender: asyncio.Task[None] | None = None
+
+    async def send_all(self) -> None:
+        while (text := await self.queue.get()) is not None:
+            await self.websocket.send_text(text)
+
+
+class RoomHub:
+    """Sockets by room, and the pumps that feed them (one event loop; publishing is thread-safe)."""
+
+    def __init__(self, host_of: Any) -> None:
+        #: Called with no arguments: the scene host (read at pump time, as the app sets it in its lifespan).
+        self._host_of = host_of
+        self._loop: asyncio.AbstractEventLoop | None = None
+        self._members: dict[str, set[Member]] = {}
+        self._pumps: dict[str, asyncio.Task[None]] = {}
+        self._presence_changed: set[str] = set()
+
+    # -- sockets (event loop) -------------------------------------------------------------
+    def join(self, room: Room, websocket: WebSocket, *, instructor: bool) -> Member:
+        self._loop = asyncio.get_running_loop()
+        member = Member(websocket, instructor)
+        member.sender = asyncio.create_task(self._send(member, room.room_id))
+        self._members.setdefault(room.room_id, set()).add(member)
+        if instructor:
+            with room.lock:
+                room.instructor_sockets += 1
+        if room.room_id not in self._pumps:
+            self._pumps[room.room_id] = asyncio.create_task(self._pump(room))
+        self._queue(member, finite_json({"type": "state", "state": room.state()}))
+        self._presence_changed.add(room.room_id)
+        return member
+
+    async def leave(self, room: Room, member: Member) -> None:
+        members = self._members.get(room.room_id, set())
+        members.discard(member)
+        with room.lock:
+            if member.instructor:
+                room.instructor_sockets -= 1
+            student = room.students.get(member.student_token) if member.student_token else None
+            if student is not None:
+                student.sockets -= 1
+        self._presence_changed.add(room.room_id)
+        if member.sender is not None:
+            member.sender.cancel()
+            with contextlib.suppress(asyncio.CancelledError, Exception):
+                await member.sender
+
+    def presence_changed(self, room: Room) -> None:
+        self._presence_changed.add(room.room_id)
+
+    def reply(self, member: Member, message: dict[str, Any]) -> None:
+        self._queue(member, finite_json(message))
+
+    def _queue(self, member: Member, text: str) -> None:
+        try:
+            member.queue.put_nowait(text)
+        except asyncio.QueueFull:  # not reading: drop it; its page reconnects and reads the state afresh
+            log.info("room socket not reading: closing it")
+            if member.sender is not None:
+                member.sender.cancel()
+            asyncio.create_task(member.websocket.close(code=1013, reason="too far behind: reconnect"))
+
+    async def _send(self, member: Member, room_id: str) -> None:
+        with contextlib.suppress(Exception):
+            await member.send_all()
+
+    async def _pump(self, room: Room) -> None:
+        """While the room has sockets: its readout and (coalesced) presence, every :data:`PUMP_PERIOD_S`."""
+        try:
+            while self._members.get(room.room_id):
+                if room.room_id in self._presence_changed:
+                    self._presence_changed.discard(room.room_id)
+                    self._deliver(room.room_id, finite_json({"type": "state", "state": room.state()}), False)
+                scene_id = room.scene_id
+                if scene_id is not None:
+                    try:
+                        live = await run_in_threadpool(self._host_of().live_readout, scene_id, room.stage_id)
+                    except Exception:  # a worker restarting: the next pump tries again
+                        live = None
+                    if live is not None and room.scene_id == scene_id:
+                        self._deliver(room.room_id, finite_json({"type": "readout", "scene_id": scene_id, "data": live}), False)
+                await asyncio.sleep(PUMP_PERIOD_S)
+        finally:
+            self._pumps.pop(room.room_id, None)
+
+    # -- publishing (any thread) ---------------------------------------------------------------
+    def publish(self, room_id: str, message: dict[str, Any], *, instructors_only: bool = False) -> None:
+        loop = self._loop
+        if loop is None or not self._members.get(room_id):
+            return
+        text = finite_json(message)
+        try:
+            running = asyncio.get_running_loop()
+        except RuntimeError:
+            running = None
+        if running is loop:
+            self._deliver(room_id, text, instructors_only)
+        else:
+            with contextlib.suppress(RuntimeError):  # the loop has closed (shutting down)
+                loop.call_soon_threadsafe(self._deliver, room_id, text, instructors_only)
+
+    def publish_state(self, room: Room, *, presence_only: bool = False) -> None:
+        """The room's state to every page now; ``presence_only`` changes wait for the next pump (coalesced)."""
+        if presence_only:
+            self._presence_changed.add(room.room_id)
+            return
+        self.publish(room.room_id, {"type": "state", "state": room.state()})
+
+    def publish_results(self, room: Room, poll: Poll) -> None:
+        """A poll's results to the instructor's sockets only (students never see others' answers)."""
+        self.publish(room.room_id, {"type": "results", "results": poll.results()}, instructors_only=True)
+
+    def _deliver(self, room_id: str, text: str, instructors_only: bool) -> None:
+        for member in list(self._members.get(room_id, ())):
+            if member.instructor or not instructors_only:
+                self._queue(member, text)
+
+    def socket_count(self, room_id: str) -> int:
+        return len(self._members.get(room_id, ()))
+
+
+def get_room_hub(request: HTTPConnection) -> RoomHub:
+    return request.app.state.room_hub
+
+
+RoomHubDep = Annotated[RoomHub, Depends(get_room_hub)]

@@ -1,0 +1,420 @@
+"""``/api/rooms``: the instructor opens a room and drives it; students join by code, follow it and answer polls.
+
+Every instructor-only route depends on :func:`require_instructor`, which answers
+403 before the route runs, so a student's request changes nothing. Each change
+is published at once on the room's socket (:mod:`app.api.room_hub`), so every
+page in the room sees it within a frame or two.
+"""
+
+from __future__ import annotations
+
+import json
+from typing import Annotated, Any
+
+from fastapi import APIRouter, Depends, Header, HTTPException, Path, Request, WebSocket
+from fastapi.concurrency import run_in_threadpool
+from pydantic import ValidationError
+from starlette.websockets import WebSocketDisconnect
+from fastapi.responses import PlainTextResponse, Response
+from starlette.requests import HTTPConnection
+
+from app.api.deps import CatalogueDep, SceneHostDep, SettingsDep
+from app.api.errors import unprocessable
+from app.api.room_hub import RoomHub, RoomHubDep
+from app.api.schemas.errors import ErrorDetail, error_responses
+from app.api.schemas.rooms import (
+    POLL_ID_PATTERN,
+    ROOM_ID_PATTERN,
+    AnswerAccepted,
+    AnswerRequest,
+    JoinAnswer,
+    JoinRequest,
+    PollPublic,
+    PollRequest,
+    PollResults,
+    PollUpdate,
+    ReadyQuestionSchema,
+    Role,
+    RoomClosed,
+    RoomCreated,
+    RoomCreateRequest,
+    RoomState,
+    RoomStateChange,
+)
+from app.rooms.polls import PollClosedError, PollError
+from app.rooms.qr import qr_svg
+from app.rooms.ready_questions import ReadyQuestion
+from app.rooms.registry import Rooms
+from app.rooms.roles import InstructorKey
+from app.rooms.room import Room, RoomError
+from app.settings import Settings
+
+router = APIRouter(prefix="/api", tags=["rooms"])
+
+STUDENT_HEADER = "X-Student-Token"
+_FORBIDDEN = {403: {"model": ErrorDetail, "description": "Instructor only (the instructor link's cookie, or X-Instructor-Key); nothing changed"}}
+_NO_ROOM = "No open room has this id"
+
+
+def get_rooms(request: HTTPConnection) -> Rooms:
+    return request.app.state.rooms
+
+
+def get_instructor_key(request: HTTPConnection) -> InstructorKey:
+    return request.app.state.instructor_key
+
+
+def get_ready_questions(request: HTTPConnection) -> tuple[ReadyQuestion, ...]:
+    return request.app.state.ready_questions
+
+
+RoomsDep = Annotated[Rooms, Depends(get_rooms)]
+InstructorKeyDep = Annotated[InstructorKey, Depends(get_instructor_key)]
+ReadyQuestionsDep = Annotated[tuple[ReadyQuestion, ...], Depends(get_ready_questions)]
+RoomId = Annotated[str, Path(pattern=ROOM_ID_PATTERN, description="The room's id (16 hex digits)")]
+PollId = Annotated[str, Path(pattern=POLL_ID_PATTERN, description="A poll of the room: p1, p2, …")]
+StudentToken = Annotated[str | None, Header(alias=STUDENT_HEADER, max_length=64, description="The token the room gave on joining")]
+
+
+def is_instructor(connection: HTTPConnection) -> bool:
+    return get_instructor_key(connection).is_instructor(cookies=connection.cookies, headers=connection.headers)
+
+
+def require_instructor(request: Request) -> None:
+    """403 unless the request carries the instructor's cookie or key (checked before anything else runs)."""
+    if not is_instructor(request):
+        raise HTTPException(status_code=403, detail="instructor only: open the instructor link that dynlab serve printed")
+
+
+Instructor = Depends(require_instructor)
+
+
+def room_of(room_id: RoomId, rooms: RoomsDep) -> Room:
+    try:
+        return rooms.get(room_id)
+    except KeyError as exc:
+        raise HTTPException(status_code=404, detail=str(exc.args[0])) from None
+
+
+RoomDep = Annotated[Room, Depends(room_of)]
+
+
+def join_base(request: Request, settings: Settings) -> str:
+    """The address students reach this server at: ``Settings.public_url``, else the one the instructor used."""
+    return settings.public_url or str(request.base_url)
+
+
+def room_error(exc: RoomError) -> HTTPException:
+    return unprocessable(["body", *exc.field.split(".")], exc.message)
+
+
+def change_room(room: Room, raw: dict[str, Any], *, catalogue: Any, host: Any, hub: RoomHub) -> dict[str, Any]:
+    """Apply an instructor's change and publish the new state (routes and the socket share this)."""
+    state = room.change(raw, catalogue=catalogue, host=host)
+    hub.publish_state(room)
+    return state
+
+
+# ---- who am I ------------------------------------------------------------------------------------
+@router.get("/me", response_model=Role)
+def whoami(request: Request) -> dict[str, str]:
+    """``{"role": "instructor" | "student"}`` for this browser."""
+    return {"role": "instructor" if is_instructor(request) else "student"}
+
+
+# ---- rooms -----------------------------------------------------------------------------------------
+@router.post("/rooms", response_model=RoomCreated, dependencies=[Instructor], responses={**_FORBIDDEN, **error_responses(unprocessable="A lesson or scene that does not exist, or too many rooms open")})
+def create_room(
+    body: RoomCreateRequest | None, request: Request, rooms: RoomsDep, settings: SettingsDep, catalogue: CatalogueDep, host: SceneHostDep, hub: RoomHubDep
+) -> dict[str, Any]:
+    """Open a room (instructor only), on a lesson if one is named; students join it by its code."""
+    try:
+        room, closed = rooms.create(join_base=join_base(request, settings))
+    except RoomError as exc:
+        raise room_error(exc) from None
+    for old in closed:
+        host.close_stage(old.stage_id)
+    wanted = body.model_dump(exclude_none=True) if body is not None else {}
+    if wanted:
+        try:
+            room.change(wanted, catalogue=catalogue, host=host)
+        except RoomError as exc:
+            rooms.close(room.room_id)
+            raise room_error(exc) from None
+    return {"room_id": room.room_id, "code": room.code, "join_url": room.join_url, "state": room.state()}
+
+
+@router.delete("/rooms/{room_id}", response_model=RoomClosed, dependencies=[Instructor], responses={**_FORBIDDEN, **error_responses(not_found=_NO_ROOM, unprocessable="A malformed room id")})
+def close_room(room: RoomDep, rooms: RoomsDep, host: SceneHostDep, hub: RoomHubDep) -> dict[str, str]:
+    """Close the room (instructor only): its scene stops and every page in it is told."""
+    rooms.close(room.room_id)
+    if room.scene_id is not None:
+        host.close_stage(room.stage_id)
+    hub.publish(room.room_id, {"type": "closed"})
+    return {"closed": room.room_id}
+
+
+@router.post("/rooms/join", response_model=JoinAnswer, responses=error_responses(not_found="No open room has this code", unprocessable="A name too long"))
+def join_room(body: JoinRequest, rooms: RoomsDep) -> dict[str, Any]:
+    """A student joins by the room's code: the answer's token identifies them (keep it; a reconnect reuses it)."""
+    try:
+        room = rooms.by_code(body.code)
+    except KeyError as exc:
+        raise HTTPException(status_code=404, detail=str(exc.args[0])) from None
+    try:
+        token = room.join(body.name)
+    except RoomError as exc:
+        raise room_error(exc) from None
+    return {"room_id": room.room_id, "student_token": token, "state": room.state()}
+
+
+@router.get("/rooms/{room_id}/state", response_model=RoomState, responses=error_responses(not_found=_NO_ROOM, unprocessable="A malformed room id"))
+def room_state(room: RoomDep) -> dict[str, Any]:
+    """What the room shows now: lesson, scene, parameters, play state, time scale, mode, students, the current poll."""
+    return room.state()
+
+
+@router.post(
+    "/rooms/{room_id}/state",
+    response_model=RoomState,
+    dependencies=[Instructor],
+    responses={**_FORBIDDEN, **error_responses(not_found=_NO_ROOM, unprocessable="A field is bad (named in loc); nothing changed")},
+)
+def change_room_state(room: RoomDep, body: RoomStateChange, catalogue: CatalogueDep, host: SceneHostDep, hub: RoomHubDep) -> dict[str, Any]:
+    """Change what every follower sees (instructor only): lesson, scene, parameters or preset, play/pause,
+    reset, time scale, follow or explore."""
+    try:
+        return change_room(room, body.model_dump(exclude_unset=True), catalogue=catalogue, host=host, hub=hub)
+    except RoomError as exc:
+        raise room_error(exc) from None
+
+
+@router.get("/rooms/{room_id}/qr.svg", include_in_schema=False)  # an image, not JSON
+def room_qr(room: RoomDep) -> Response:
+    """The room's join address as a QR code (SVG), for the projector."""
+    return Response(qr_svg(room.join_url), media_type="image/svg+xml", headers={"Cache-Control": "no-store"})
+
+
+# ---- polls -------------------------------------------------------------------------------------------
+@router.get(
+    "/rooms/{room_id}/polls/ready",
+    response_model=list[ReadyQuestionSchema],
+    dependencies=[Instructor],
+    responses={**_FORBIDDEN, **error_responses(not_found=_NO_ROOM, unprocessable="A malformed room id")},
+)
+def ready_polls(room: RoomDep, ready: ReadyQuestionsDep) -> list[dict[str, Any]]:
+    """Ready questions for the room's scene first, then the rest of its chapter (instructor only)."""
+    if room.scene_id is None:
+        return [q.schema() for q in ready]
+    chapter = next((q.chapter for q in ready if q.scene_id == room.scene_id), None)
+    ours = [q for q in ready if q.scene_id == room.scene_id]
+    same_chapter = [q for q in ready if q.chapter == chapter and q.scene_id != room.scene_id] if chapter else []
+    return [q.schema() for q in (*ours, *same_chapter)]
+
+
+@router.post(
+    "/rooms/{room_id}/polls",
+    response_model=PollPublic,
+    dependencies=[Instructor],
+    responses={**_FORBIDDEN, **error_responses(not_found=_NO_ROOM, unprocessable="A field of the question is bad; no poll was opened")},
+)
+def open_poll(room: RoomDep, body: PollRequest, ready: ReadyQuestionsDep, catalogue: CatalogueDep, host: SceneHostDep, hub: RoomHubDep) -> dict[str, Any]:
+    """Ask the room a question (instructor only): it becomes the current poll, closing any open one."""
+    return start_poll(room, body.model_dump(exclude_none=True), ready=ready, catalogue=catalogue, host=host, hub=hub)
+
+
+def start_poll(room: Room, raw: dict[str, Any], *, ready: tuple[ReadyQuestion, ...], catalogue: Any, host: Any, hub: RoomHub) -> dict[str, Any]:
+    """Open a poll from a request body (a ready question first sets the room's scene as the question needs it)."""
+    ready_id = raw.pop("ready_id", None)
+    if ready_id is not None:
+        question = next((q for q in ready if q.id == ready_id), None)
+        if question is None:
+            raise unprocessable(["body", "ready_id"], f"ready_id: no ready question {ready_id!r}")
+        if room.scene_id != question.scene_id or question.params or question.preset:
+            lesson = next((l for l in catalogue.lessons.values() if question.scene_id in l.scenes), None)
+            # The question's whole setting (defaults, its preset, its params): what its wording assumes.
+            change: dict[str, Any] = {"params": question.scene_params(host.scenes[question.scene_id])}
+            if lesson is not None and room.scene_id != question.scene_id:
+                change |= {"lesson_id": lesson.id, "scene_id": question.scene_id}
+            try:
+                change_room(room, change, catalogue=catalogue, host=host, hub=hub)
+            except RoomError as exc:
+                raise room_error(exc) from None
+        raw = question.poll_body() | raw
+    try:
+        poll = room.open_poll(raw)
+    except PollError as exc:
+        raise unprocessable(["body", exc.field], str(exc)) from None
+    hub.publish_state(room)
+    hub.publish_results(room, poll)
+    return poll.public()
+
+
+@router.post(
+    "/rooms/{room_id}/polls/{poll_id}",
+    response_model=PollResults,
+    response_model_exclude_none=True,
+    dependencies=[Instructor],
+    responses={**_FORBIDDEN, **error_responses(not_found="No such room or poll", unprocessable="The answer cannot be computed now (the scene has no such quantity)")},
+)
+def update_poll(room: RoomDep, poll_id: PollId, body: PollUpdate, host: SceneHostDep, hub: RoomHubDep) -> dict[str, Any]:
+    """Close or reopen the poll, reveal the answer the scene computes, or show names (instructor only)."""
+    try:
+        poll = room.update_poll(poll_id, body.model_dump(exclude_none=True), host=host)
+    except KeyError as exc:
+        raise HTTPException(status_code=404, detail=str(exc.args[0])) from None
+    except (RoomError, PollError) as exc:
+        raise unprocessable(["body", getattr(exc, "field", "reveal")], str(exc)) from None
+    hub.publish_state(room)
+    hub.publish_results(room, poll)
+    return poll.results()
+
+
+@router.post(
+    "/rooms/{room_id}/polls/{poll_id}/answers",
+    response_model=AnswerAccepted,
+    responses={
+        **error_responses(not_found="No such room or poll", unprocessable="The answer does not fit the poll (a choice out of range, a number not finite)"),
+        403: {"model": ErrorDetail, "description": "No X-Student-Token from this room"},
+        409: {"model": ErrorDetail, "description": "The poll is closed"},
+    },
+)
+def answer_poll(room: RoomDep, poll_id: PollId, body: AnswerRequest, hub: RoomHubDep, student_token: StudentToken = None) -> dict[str, Any]:
+    """A student's answer: one per student, which they may change until the poll closes."""
+    try:
+        room.answer(poll_id, student_token, body.model_dump(exclude_none=True))
+    except KeyError as exc:
+        raise HTTPException(status_code=404, detail=str(exc.args[0])) from None
+    except PermissionError as exc:
+        raise HTTPException(status_code=403, detail=str(exc)) from None
+    except PollClosedError as exc:
+        raise HTTPException(status_code=409, detail=str(exc)) from None
+    except PollError as exc:
+        raise unprocessable(["body", exc.field], str(exc)) from None
+    poll = room.poll(poll_id)
+    hub.publish_results(room, poll)
+    hub.publish_state(room, presence_only=True)
+    return {"accepted": True, "poll": poll.public()}
+
+
+@router.get(
+    "/rooms/{room_id}/polls/{poll_id}/results",
+    response_model=PollResults,
+    response_model_exclude_none=True,
+    dependencies=[Instructor],
+    responses={**_FORBIDDEN, **error_responses(not_found="No such room or poll", unprocessable="A malformed room or poll id")},
+)
+def poll_results(room: RoomDep, poll_id: PollId) -> dict[str, Any]:
+    """Counts per choice or per bin (instructor only); names only if the instructor turned them on."""
+    try:
+        return room.poll(poll_id).results()
+    except KeyError as exc:
+        raise HTTPException(status_code=404, detail=str(exc.args[0])) from None
+
+
+@router.get("/rooms/{room_id}/polls/{poll_id}/results.csv", dependencies=[Instructor], include_in_schema=False)  # CSV, not JSON
+def poll_results_csv(room: RoomDep, poll_id: PollId) -> PlainTextResponse:
+    """Every answer as CSV (instructor only): anonymous unless names are on."""
+    try:
+        poll = room.poll(poll_id)
+    except KeyError as exc:
+        raise HTTPException(status_code=404, detail=str(exc.args[0])) from None
+    filename = f"room-{room.code}-{poll_id}.csv"
+    return PlainTextResponse(poll.to_csv(), media_type="text/csv", headers={"Content-Disposition": f'attachment; filename="{filename}"'})
+
+
+
+# ---- the room socket ---------------------------------------------------------------------------------
+#: Largest message a page may send on the room socket (characters); the largest real one is a few hundred.
+MAX_SOCKET_MESSAGE = 16_384
+#: Socket actions only the instructor may take, and the request body each carries.
+INSTRUCTOR_ACTIONS = {"set_state": RoomStateChange, "open_poll": PollRequest, "update_poll": PollUpdate}
+
+
+@router.websocket("/rooms/{room_id}/socket")
+async def room_socket(websocket: WebSocket, room_id: str) -> None:
+    """Every change to the room as it happens, the room's readout twice a second; students say hello and whether
+    they follow; the instructor may send the actions of the instructor-only routes (a student's are refused, 403)."""
+    app = websocket.app
+    try:
+        room = app.state.rooms.get(room_id)
+    except KeyError:
+        await websocket.close(code=1008, reason="no open room has this id")
+        return
+    hub: RoomHub = app.state.room_hub
+    await websocket.accept()
+    member = hub.join(room, websocket, instructor=is_instructor(websocket))
+    try:
+        while True:
+            text = await websocket.receive_text()
+            if len(text) > MAX_SOCKET_MESSAGE:
+                hub.reply(member, {"type": "error", "status": 413, "detail": f"a room message is at most {MAX_SOCKET_MESSAGE} characters"})
+                continue
+            try:
+                message = json.loads(text)
+            except ValueError:
+                message = None
+            if not isinstance(message, dict) or not isinstance(message.get("type"), str):
+                hub.reply(member, {"type": "error", "status": 400, "detail": 'a room message is a JSON object with a "type"'})
+                continue
+            await _socket_message(websocket, room, member, message, hub)
+    except (WebSocketDisconnect, RuntimeError):
+        pass
+    finally:
+        await hub.leave(room, member)
+
+
+async def _socket_message(websocket: WebSocket, room: Room, member: Any, message: dict[str, Any], hub: RoomHub) -> None:
+    kind = message.pop("type")
+    if kind == "hello":
+        token = message.get("student_token")
+        student = room.student(token) if isinstance(token, str) else None
+        if token is not None and student is None:
+            hub.reply(member, {"type": "error", "status": 403, "detail": "this student token is not from this room: join again with the code"})
+            return
+        if student is not None and member.student_token is None:
+            with room.lock:
+                member.student_token = token
+                student.sockets += 1
+                student.following = message.get("following") is not False
+        hub.presence_changed(room)
+    elif kind == "following":
+        student = room.student(member.student_token)
+        if student is not None and isinstance(message.get("value"), bool):
+            student.following = message["value"]
+            hub.presence_changed(room)
+    elif kind in INSTRUCTOR_ACTIONS:
+        if not member.instructor:
+            hub.reply(member, {"type": "error", "status": 403, "action": kind, "detail": f"{kind}: only the instructor can change the room; nothing changed"})
+            return
+        try:
+            await run_in_threadpool(_instructor_action, websocket, room, kind, message)
+        except ValidationError as exc:
+            first = exc.errors()[0]
+            hub.reply(member, {"type": "error", "status": 422, "action": kind, "detail": f"{'.'.join(map(str, first['loc']))}: {first['msg']}"})
+        except HTTPException as exc:
+            detail = exc.detail[0]["msg"] if isinstance(exc.detail, list) else exc.detail
+            hub.reply(member, {"type": "error", "status": exc.status_code, "action": kind, "detail": detail})
+    elif kind == "ping":
+        hub.reply(member, {"type": "pong"})
+    else:
+        hub.reply(member, {"type": "error", "status": 400, "detail": f"unknown room message type {kind!r}"})
+
+
+def _instructor_action(websocket: WebSocket, room: Room, kind: str, message: dict[str, Any]) -> None:
+    """The same work as the instructor-only route of that name (run in a thread: it may call a scene worker)."""
+    state = websocket.app.state
+    body = INSTRUCTOR_ACTIONS[kind].model_validate(message if kind != "update_poll" else {k: v for k, v in message.items() if k != "poll_id"})
+    host, hub, catalogue = state.scene_host, state.room_hub, state.catalogue
+    if kind == "set_state":
+        try:
+            change_room(room, body.model_dump(exclude_unset=True), catalogue=catalogue, host=host, hub=hub)
+        except RoomError as exc:
+            raise room_error(exc) from None
+    elif kind == "open_poll":
+        start_poll(room, body.model_dump(exclude_none=True), ready=state.ready_questions, catalogue=catalogue, host=host, hub=hub)
+    else:
+        poll_id = message.get("poll_id")
+        if not isinstance(poll_id, str):
+            raise unprocessable(["poll_id"], "update_poll needs the poll_id")
+        update_poll(room, poll_id, body, host, hub)

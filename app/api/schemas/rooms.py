@@ -1,0 +1,181 @@
+"""``/api/rooms``: a classroom's room, its state, students joining, polls and answers."""
+
+from __future__ import annotations
+
+from typing import Any, Literal
+
+from pydantic import BaseModel, ConfigDict, Field, StrictBool, StrictInt
+
+ROOM_ID_PATTERN = r"^[0-9a-f]{16}$"
+POLL_ID_PATTERN = r"^p[0-9]{1,6}$"
+
+
+class RoomCreateRequest(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    lesson_id: str | None = Field(None, max_length=100, description="The lesson the room opens on (default: none yet)")
+    scene_id: str | None = Field(None, max_length=100, description="One of the lesson's scenes (default: its first)")
+
+
+class RoomCreated(BaseModel):
+    room_id: str
+    code: str = Field(description="What students type to join: 6 capitals and digits")
+    join_url: str = Field(description="The address students open (also shown as a QR code on the projector)")
+    state: "RoomState"
+
+
+class JoinRequest(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    code: str = Field(min_length=1, max_length=12, description="The room's code, as on the projector")
+    name: str = Field("", max_length=40, description="Shown to the instructor only if names are turned on")
+
+
+class JoinAnswer(BaseModel):
+    room_id: str
+    student_token: str = Field(description="Send as X-Student-Token with answers, and in the room socket's hello")
+    state: "RoomState"
+
+
+class RoomStateChange(BaseModel):
+    """Any of these; fields left out keep their values. ``preset`` and ``reset`` are actions on the room's scene."""
+
+    model_config = ConfigDict(extra="forbid")
+    lesson_id: str | None = Field(None, max_length=100)
+    scene_id: str | None = Field(None, max_length=100)
+    params: dict[str, Any] | None = Field(None, description="Parameters to change; others keep their values")
+    playing: StrictBool | None = None
+    time_scale: float | None = Field(None, ge=0.1, le=4.0, allow_inf_nan=False, description="× real time")
+    mode: Literal["follow", "explore"] | None = None
+    preset: str | None = Field(None, max_length=100, description="A preset name of the room's scene")
+    reset: StrictBool = Field(False, description="Start the motion again from t = 0")
+
+
+class PollRequest(BaseModel):
+    """A question to the room: multiple choice or a number with a unit; or one of the ready questions by id."""
+
+    model_config = ConfigDict(extra="forbid")
+    ready_id: str | None = Field(None, max_length=100, description="A ready question (GET .../polls/ready); the other fields override it")
+    question: str | None = Field(None, max_length=300)
+    kind: Literal["choice", "number"] | None = None
+    choices: list[str] | None = Field(None, max_length=8)
+    unit: str | None = Field(None, max_length=20)
+    answer_quantity: str | None = Field(None, max_length=100, description="A readout quantity of the room's scene that computes the answer")
+    answer_choices: dict[str, StrictInt] | None = Field(None, description="For a word quantity: its value -> the right choice's index")
+    answer_value: float | None = Field(None, allow_inf_nan=False)
+    answer_choice: StrictInt | None = None
+    show_names: StrictBool | None = None
+
+
+class PollUpdate(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    open: StrictBool | None = None
+    reveal: StrictBool | None = Field(None, description="Close the poll and show the answer, computed by the room's scene now")
+    show_names: StrictBool | None = None
+
+
+class AnswerRequest(BaseModel):
+    """``{"choice": index}`` for a multiple-choice poll, ``{"value": number}`` (in the poll's unit) for a number poll."""
+
+    model_config = ConfigDict(extra="forbid")
+    choice: StrictInt | None = None
+    value: float | None = Field(None, allow_inf_nan=False)
+
+
+# ---- answers ----------------------------------------------------------------------------------------
+class Role(BaseModel):
+    role: Literal["instructor", "student"]
+
+
+class Revealed(BaseModel):
+    text: str = Field(description="The answer as shown, with its unit")
+    value: float | None
+    choice: int | None
+    unit: str
+    source: str = Field(description='"computed by the scene: <quantity>" or "given by the instructor"')
+
+
+class PollPublic(BaseModel):
+    """What every page sees of a poll: never names, never anyone's answer."""
+
+    poll_id: str
+    question: str
+    kind: Literal["choice", "number"]
+    choices: list[str]
+    unit: str
+    open: bool
+    answers: int
+    revealed: Revealed | None
+
+
+class HistogramBin(BaseModel):
+    label: str
+    lo: float | None = Field(description="Lower edge (number polls; null for a choice)")
+    hi: float | None
+    count: int
+
+
+class NamedAnswer(BaseModel):
+    name: str
+    answer: str
+
+
+class PollResults(BaseModel):
+    """The instructor's view of a poll: counts per choice or bin; names only when turned on."""
+
+    poll_id: str
+    question: str
+    kind: Literal["choice", "number"]
+    unit: str
+    choices: list[str]
+    open: bool
+    answers: int
+    histogram: list[HistogramBin]
+    revealed: Revealed | None
+    show_names: bool
+    names: list[NamedAnswer] | None = None
+
+
+class AnswerAccepted(BaseModel):
+    accepted: bool
+    poll: PollPublic
+
+
+class StudentCounts(BaseModel):
+    connected: int = Field(description="Students with the room open now")
+    following: int = Field(description="Of those, following the instructor's scene")
+
+
+class RoomState(BaseModel):
+    """What the room shows now; every page in the room follows it."""
+
+    room_id: str
+    code: str
+    join_url: str
+    lesson_id: str | None
+    scene_id: str | None
+    params: dict[str, Any]
+    playing: bool
+    time_scale: float = Field(description="× real time")
+    mode: Literal["follow", "explore"]
+    revision: int = Field(description="Grows with every change")
+    reset_count: int
+    explore_start: dict[str, Any] | None = Field(description="Where explorers start: scene_id, params and motion (t_s, y), or null")
+    students: StudentCounts
+    instructor_connected: bool
+    poll: PollPublic | None
+
+
+class RoomClosed(BaseModel):
+    closed: str = Field(description="The id of the room closed")
+
+
+class ReadyQuestionSchema(BaseModel):
+    id: str
+    chapter: int
+    scene_id: str
+    question: str
+    kind: Literal["choice", "number"]
+    choices: list[str]
+    unit: str
+    preset: str | None
+    params: dict[str, Any]
+    answer_quantity: str
