@@ -257,7 +257,11 @@ class SceneHost:
             session.instances.clear()
             session.scene_id, session.params = scene_id, params
             session.frame_credit = 0.0
-            session.instances[BroadcastViewer.client_id] = cls(BroadcastViewer(session.stage), params)  # type: ignore[arg-type]
+            viewer = BroadcastViewer(session.stage)
+            scene = cls(viewer, params)  # type: ignore[arg-type]
+            position, look_at = scene.camera_view()
+            viewer.move_cameras(position=position, look_at=look_at)
+            session.instances[BroadcastViewer.client_id] = scene
             return {"params": dict(params), "viewer_url": self.stage_viewer_url(session_id)}
 
     def _start_stage_server(self) -> viser.ViserServer:

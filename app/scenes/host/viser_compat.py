@@ -274,6 +274,13 @@ class BroadcastViewer:
     def atomic(self) -> contextlib.AbstractContextManager[None]:
         return self.server.atomic()
 
+    def move_cameras(self, *, position: tuple[float, float, float], look_at: tuple[float, float, float]) -> None:
+        """Move every viewer's camera now (m, world frame): a new scene on the stage is seen from its own start pose,
+        not from wherever the last scene left the cameras."""
+        queue = self.server._websock_server.queue_message
+        queue(_messages.SetCameraLookAtMessage(tuple(map(float, look_at))))
+        queue(_messages.SetCameraPositionMessage(tuple(map(float, position))))
+
     def flush(self) -> None:
         self.server.flush()
 

@@ -1,0 +1,142 @@
+// The join page (/join, /join/<code>): a student types the room's code (or opens the QR code's link, which joins
+// at once), keeps the token the room gives in localStorage ("dynlab.room.<room_id>") and goes to the room's lesson;
+// before the instructor has opened one it waits on the room socket.
+(function () {
+  const CODE_LENGTH = 6;
+  const form = document.getElementById("join-form");
+  const codeBox = document.getElementById("join-code");
+  const nameBox = document.getElementById("join-name");
+  const button = document.getElementById("join-button");
+  const errorBox = document.getElementById("join-error");
+  const statusBox = document.getElementById("join-status");
+
+  // A code as typed or pasted: a whole join link gives its last part; capitals and digits only.
+  const normalise = (text) => {
+    const link = /\/join\/([^/?#\s]+)/.exec(text);
+    return (link ? link[1] : text).toUpperCase().replace(/[^A-Z0-9]/g, "").slice(0, CODE_LENGTH);
+  };
+  const showError = (message) => {
+    errorBox.textContent = message;
+    codeBox.setAttribute("aria-invalid", message ? "true" : "false");
+    if (message) codeBox.focus();
+  };
+  const showStatus = (message) => { statusBox.textContent = message; };
+
+  codeBox.addEventListener("input", () => {
+    const clean = normalise(codeBox.value);
+    if (clean !== codeBox.value) codeBox.value = clean;
+    if (errorBox.textContent) showError("");
+  });
+
+  const lessonUrl = (state, roomId) => {
+    const scene = state.scene_id ? `&scene=${encodeURIComponent(state.scene_id)}` : "";
+    return `/lessons/${encodeURIComponent(state.lesson_id)}?room=${encodeURIComponent(roomId)}${scene}`;
+  };
+
+  // Why a join failed, in words for a student holding a phone.
+  async function refusal(response, code) {
+    let detail = "";
+    try {
+      const body = await response.json();
+      detail = Array.isArray(body.detail) ? body.detail.map((d) => d.msg).join("; ") : String(body.detail || "");
+    } catch (e) { /* not JSON: the status says enough */ }
+    if (response.status === 404) return `No open room has the code ${code}. Check the code on the projector.`;
+    if (response.status === 422) return detail ? `That did not work: ${detail}` : "The code or the name is not valid.";
+    if (response.status === 429) return "Too many tries at once: wait a few seconds and join again.";
+    return `The server refused to join (${response.status}${detail ? `: ${detail}` : ""}).`;
+  }
+
+  let joining = false;
+  async function join() {
+    if (joining) return;
+    const code = normalise(codeBox.value);
+    codeBox.value = code;
+    if (code.length !== CODE_LENGTH) {
+      showError(code ? `A room code has ${CODE_LENGTH} characters; this one has ${code.length}.` : "Type the room code first.");
+      return;
+    }
+    showError("");
+    joining = true;
+    button.disabled = true;
+    showStatus(`Joining room ${code}…`);
+    try {
+      const response = await fetch("/api/rooms/join", {
+        method: "POST",
+        headers: { "Content-Type": "application/json" },
+        body: JSON.stringify({ code, name: nameBox.value.trim() }),
+      });
+      if (!response.ok) {
+        showStatus("");
+        showError(await refusal(response, code));
+        return;
+      }
+      const joined = await response.json();
+      localStorage.setItem(`dynlab.room.${joined.room_id}`, JSON.stringify({ student_token: joined.student_token }));
+      if (joined.state.lesson_id) {
+        showStatus(`Joined room ${code}: opening the lesson…`);
+        location.assign(lessonUrl(joined.state, joined.room_id));
+      } else {
+        form.hidden = true;
+        wait(joined.room_id, joined.student_token, code);
+      }
+    } catch (e) {
+      showStatus("");
+      showError("Could not reach the server. Check that you are on the classroom's network and try again.");
+    } finally {
+      joining = false;
+      button.disabled = false;
+    }
+  }
+
+  // Joined, no lesson yet: the room socket says when the instructor opens one (reconnecting if it drops).
+  function wait(roomId, token, code) {
+    const waiting = `Joined room ${code} — waiting for the instructor to open a lesson`;
+    let retryMs = 1000;
+    let done = false;
+    const stop = (message) => { done = true; showStatus(message); };
+    showStatus(waiting);
+    const open = () => {
+      const scheme = location.protocol === "https:" ? "wss:" : "ws:";
+      const socket = new WebSocket(`${scheme}//${location.host}/api/rooms/${encodeURIComponent(roomId)}/socket`);
+      socket.addEventListener("open", () => {
+        retryMs = 1000;
+        showStatus(waiting);
+        socket.send(JSON.stringify({ type: "hello", student_token: token, following: true }));
+      });
+      socket.addEventListener("message", (event) => {
+        let message;
+        try { message = JSON.parse(event.data); } catch (e) { return; }
+        if (message.type === "state" && message.state && message.state.lesson_id) {
+          stop("The instructor opened a lesson: opening it…");
+          socket.close();
+          location.assign(lessonUrl(message.state, roomId));
+        } else if (message.type === "closed") {
+          stop(`Room ${code} has been closed by the instructor.`);
+          socket.close();
+        } else if (message.type === "error" && message.status === 403) {
+          stop("");
+          socket.close();
+          localStorage.removeItem(`dynlab.room.${roomId}`);
+          form.hidden = false;
+          showError("The room no longer knows this device: join again with the code.");
+        }
+      });
+      socket.addEventListener("close", (event) => {
+        if (done) return;
+        if (event.code === 1008) { stop(`Room ${code} is closed.`); return; }  // the room is gone
+        showStatus(`Reconnecting to room ${code}…`);
+        setTimeout(open, retryMs);
+        retryMs = Math.min(2 * retryMs, 10000);
+      });
+    };
+    open();
+  }
+
+  form.addEventListener("submit", (event) => {
+    event.preventDefault();
+    join();
+  });
+  // The QR code's link (/join/<code>) joins at once.
+  if (codeBox.dataset.fromUrl) join();
+  else codeBox.focus();
+})();
