@@ -1,7 +1,9 @@
 """Scene for Example 1.2: the radar, the aircraft's path and its velocity.
 
 Drawn in kilometres (1 scene unit = 1 km) so the 2 km range fits the view;
-velocity arrows are drawn at 1 km per 100 m/s.
+velocity arrows are drawn at 1 km per 100 m/s. The readout is what the radar
+measures as the aircraft flies (r, θ, β and their rates) with the speed and
+acceleration they give, then the worked example at the chosen instant t_s.
 """
 
 from __future__ import annotations
@@ -9,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from app.physics.systems.ch01 import radar_tracking as physics
-from app.scenes.kit import Scene, arrow_segments
+from app.scenes.kit import Mark, Quantity, Readout, Scene, arrow_segments
 
 KM = 1e-3  # scene units per metre
 VELOCITY_SCALE = 0.01  # km of arrow per m/s
@@ -53,14 +55,13 @@ class RadarTrackingScene(Scene):
         self.marker_label = scene.add_label("/evaluation/label", "", position=(0.0, 0.0, -0.1), anchor="top-left")
 
     def update(self) -> None:
-        t, h = self.params["t_s"], self.params["dt_s"]
-        p = physics.position(t) * KM
-        v_exact = physics.velocity_exact(t)
-        v_fd = physics.velocity_central_difference(t, h)
+        # The worked example at the chosen instant: position, exact and finite-difference velocity, the error.
+        self.instant = out = physics.solve(self.params).outputs
+        p, v_exact, v_fd = out["position_m"] * KM, out["velocity_exact_m_s"], out["velocity_fd_m_s"]
         self.marker.position = p
         self.marker_label.text = (
-            f"t = {t:g} s: |v| = {np.linalg.norm(v_exact):.3f} m/s, "
-            f"finite-difference error = {np.linalg.norm(v_fd - v_exact):.2e} m/s"
+            f"t = {self.params['t_s']:g} s: |v| = {np.linalg.norm(v_exact):.3f} m/s, "
+            f"finite-difference error = {out['fd_error_m_s']:.2e} m/s"
         )
         self._v_pair = (p, v_exact, v_fd)
         self._draw_aircraft()
@@ -79,3 +80,44 @@ class RadarTrackingScene(Scene):
     def advance(self, dt_s: float) -> None:
         self.t_s = (self.t_s + dt_s) % LOOP_S
         self._draw_aircraft()
+
+    def readout(self) -> Readout:
+        """The radar's readings now (t_s of the flight on screen) and the worked example at the chosen instant."""
+        t = self.t_s
+        r, theta, beta = (float(v) for v in physics.radar_measurements(t))
+        quantities = [
+            Quantity("t_s", "time t", t, "s"),
+            Quantity("range_m", "range r", r, "m"),
+            Quantity("azimuth_deg", "azimuth θ", np.degrees(theta), "deg"),
+            Quantity("elevation_deg", "elevation β", np.degrees(beta), "deg"),
+        ]
+        try:
+            velocity = physics.velocity_radar_components(t)
+            acceleration = physics.acceleration_radar_components(t)
+        except ValueError as exc:  # at t = 0 the elevation rate is infinite
+            velocity, acceleration, undefined = None, None, str(exc)
+        else:
+            undefined = ""
+        r_dot, theta_dot, beta_dot = physics.radar_rates(t)
+        quantities += [
+            Quantity("range_rate_m_s", "range rate ṙ", r_dot, "m/s"),
+            Quantity("azimuth_rate_rad_s", "azimuth rate θ̇", theta_dot, "rad/s"),
+            Quantity.or_text("elevation_rate_rad_s", "elevation rate β̇", beta_dot, "rad/s", "infinite at t = 0 (β̇ = −0.05/√t)"),
+            Quantity.or_text("speed_m_s", "speed |v|", None if velocity is None else np.linalg.norm(velocity), "m/s", undefined),
+            Quantity.or_text(
+                "acceleration_m_s2", "acceleration |a|", None if acceleration is None else np.linalg.norm(acceleration), "m/s²", undefined
+            ),
+        ]
+        chosen = self.params["t_s"]
+        out = self.instant
+        quantities += [
+            Quantity("instant_speed_m_s", f"speed at the chosen t = {chosen:g} s", np.linalg.norm(out["velocity_exact_m_s"]), "m/s"),
+            Quantity("fd_error_m_s", f"finite-difference error at Δt = {self.params['dt_s']:.3g} s", out["fd_error_m_s"], "m/s"),
+            Quantity("optimal_dt_s", "best Δt of the error model", out["optimal_dt_s"], "s"),
+        ]
+        marks = {"dt_s": [Mark(out["optimal_dt_s"], "best Δt")]}
+        message = (
+            "The radar reads r, θ, β: v² = ṙ² + (r cos β θ̇)² + (r β̇)². "
+            "Green arrow: the exact velocity at the chosen instant; red: its finite-difference estimate."
+        )
+        return Readout(quantities, marks=marks, message=message)

@@ -1,11 +1,16 @@
-"""Scene for Example 1.1: the robotic arm, its cable, the cable force and its moments."""
+"""Scene for Example 1.1: the robotic arm, its cable, the cable force and its moments.
+
+The readout lists what the example solves: the force's components, its component
+along BC, its moment about A and that moment's components about the vertical
+axis and about arm AB, with the way the cable turns the arm seen from above.
+"""
 
 from __future__ import annotations
 
 import numpy as np
 
 from app.physics.systems.ch01 import robot_arm_cable as physics
-from app.scenes.kit import Scene, arrow_segments, quaternion_z_to
+from app.scenes.kit import Quantity, Readout, Scene, arrow_segments, quaternion_z_to
 
 LINK_RADIUS_M = 0.05
 ARROW_LENGTH_M = 1.6  # the largest force and the largest moment are drawn this long
@@ -64,6 +69,7 @@ class RobotArmCableScene(Scene):
             self.status = str(exc)
             return
         self.status = ""
+        self.loads = loads
         g = loads.geometry
         self._place_link(self.link_AB, g.A, g.B)
         self._place_link(self.link_BC, g.B, g.C)
@@ -96,3 +102,26 @@ class RobotArmCableScene(Scene):
         for label, tail, vector, text in zip(self.arrow_labels, tails, vectors, texts):
             label.position = tail + vector * 1.05
             label.text = text
+
+    def readout(self) -> Readout:
+        """The example's answers for the arm drawn (forces in N, moments in N·m, fixed frame xyz)."""
+        if self.status:
+            return Readout((), message=f"Cannot solve: {self.status}")
+        loads = self.loads
+        quantities = [
+            Quantity(f"F_{axis}_N", f"cable force on C, {axis} component F_{axis}", float(component), "N")
+            for axis, component in zip("xyz", loads.F_N)
+        ]
+        along = "toward B: it compresses BC" if loads.F_BC_N < 0.0 else "away from B: it stretches BC"
+        quantities += [
+            Quantity("F_BC_N", "component along BC (B → C)", loads.F_BC_N, "N"),
+            Quantity("M_A_Nm", "moment about A |M_A|", float(np.linalg.norm(loads.M_A_Nm)), "N·m"),
+            Quantity("M_z_Nm", "moment about the vertical axis M_z", loads.M_z_Nm, "N·m"),
+            Quantity("M_AB_Nm", "moment about arm AB M_AB", loads.M_AB_Nm, "N·m"),
+            Quantity.word("turning_about_z", "turns the arm about z, seen from above", physics.turning_about_z(loads)),
+        ]
+        message = (
+            f"The cable pulls C toward D with {np.linalg.norm(loads.F_N):,.0f} N; "
+            f"along BC that is {abs(loads.F_BC_N):,.0f} N {along}."
+        )
+        return Readout(quantities, message=message)

@@ -11,6 +11,11 @@ The velocity is found (a) by a central difference [p(t+h) - p(t-h)] / (2h) and
 (b) exactly by the chain rule; the difference between them is the finite
 difference's error, which falls as h^2 (truncation) until round-off, growing as
 eps |p| / h, takes over.
+
+The radar's own frame gives the same motion without xyz: velocity and
+acceleration along e_r (line of sight), e_theta (horizontal, azimuth growing)
+and e_beta (elevation growing) from r, theta, beta and their first and second
+rates (:func:`velocity_radar_components`, :func:`acceleration_radar_components`).
 """
 
 from __future__ import annotations
@@ -53,11 +58,55 @@ def radar_measurements(t_s: np.ndarray | float) -> tuple[np.ndarray, np.ndarray,
 
 
 def radar_rates(t_s: float) -> tuple[float, float, float]:
-    """Time derivatives of range (m/s), azimuth (rad/s), elevation (rad/s); needs t > 0."""
+    """Time derivatives of range (m/s), azimuth (rad/s), elevation (rad/s) at t ≥ 0 (the last is −inf at t = 0)."""
     r_dot = 100.0
     theta_dot = 0.5 * np.pi * 0.15 * np.exp(-0.15 * t_s)
-    beta_dot = -0.05 / np.sqrt(t_s)
+    beta_dot = -0.05 / np.sqrt(t_s) if t_s > 0.0 else -np.inf
     return r_dot, theta_dot, beta_dot
+
+
+def radar_second_rates(t_s: float) -> tuple[float, float, float]:
+    """Second time derivatives of range (m/s²), azimuth (rad/s²), elevation (rad/s²); needs t > 0."""
+    r_ddot = 0.0
+    theta_ddot = -0.5 * np.pi * 0.15**2 * np.exp(-0.15 * t_s)
+    beta_ddot = 0.025 * t_s**-1.5
+    return r_ddot, theta_ddot, beta_ddot
+
+
+def _check_rates_defined(t_s: float) -> None:
+    if not t_s > 0.0:
+        raise ValueError(f"undefined at t = {t_s:g} s: the elevation rate −0.05/√t is infinite at t = 0")
+
+
+def velocity_radar_components(t_s: float) -> np.ndarray:
+    """Velocity (m/s) on the radar's axes (e_r, e_theta, e_beta), shape (3,); ValueError for t ≤ 0.
+
+    v_r = ṙ, v_theta = r cos(beta) θ̇, v_beta = r β̇.
+    """
+    _check_rates_defined(t_s)
+    r, _, beta = (float(v) for v in radar_measurements(t_s))
+    r_dot, theta_dot, beta_dot = radar_rates(t_s)
+    return np.array([r_dot, r * np.cos(beta) * theta_dot, r * beta_dot])
+
+
+def acceleration_radar_components(t_s: float) -> np.ndarray:
+    """Acceleration (m/s²) on the radar's axes (e_r, e_theta, e_beta), shape (3,); ValueError for t ≤ 0.
+
+    a_r = r̈ − r β̇² − r cos²(beta) θ̇², a_theta = r cos(beta) θ̈ + 2 ṙ cos(beta) θ̇ − 2 r sin(beta) β̇ θ̇,
+    a_beta = r β̈ + 2 ṙ β̇ + r sin(beta) cos(beta) θ̇².
+    """
+    _check_rates_defined(t_s)
+    r, _, beta = (float(v) for v in radar_measurements(t_s))
+    r_dot, theta_dot, beta_dot = radar_rates(t_s)
+    r_ddot, theta_ddot, beta_ddot = radar_second_rates(t_s)
+    cb, sb = np.cos(beta), np.sin(beta)
+    return np.array(
+        [
+            r_ddot - r * beta_dot**2 - r * cb**2 * theta_dot**2,
+            r * cb * theta_ddot + 2.0 * r_dot * cb * theta_dot - 2.0 * r * sb * beta_dot * theta_dot,
+            r * beta_ddot + 2.0 * r_dot * beta_dot + r * sb * cb * theta_dot**2,
+        ]
+    )
 
 
 def position(t_s: np.ndarray | float) -> np.ndarray:

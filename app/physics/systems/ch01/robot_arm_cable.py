@@ -61,6 +61,13 @@ class CableLoads:
     M_AB_Nm: float
 
 
+#: Words of :func:`turning_about_z`: how the cable turns the arm about the vertical axis through A, seen from above.
+TURNING_WORDS = ("counter-clockwise", "clockwise", "none")
+#: |M_z| at or below this fraction of |F|·|r_C| counts as no turning: the moment is exact to a few
+#: ulps of that scale (≈ 1e-16; θ = 180° leaves sin θ ≈ 1e-16), while θ = 1e-6° already gives ≈ 1e-8 of it.
+NO_TURNING_RTOL = 1e-12
+
+
 def arm_geometry(theta_deg: float, gamma_deg: float, AB_m: float, BC_m: float, D_x_m: float) -> ArmGeometry:
     theta, gamma = np.radians(theta_deg), np.radians(gamma_deg)
     A = np.zeros(3)
@@ -88,6 +95,18 @@ def cable_loads(inputs: Mapping[str, Any]) -> CableLoads:
         M_z_Nm=float(M_A[2]),
         M_AB_Nm=float(M_A @ g.e_AB),
     )
+
+
+def turning_about_z(loads: CableLoads) -> str:
+    """How the cable turns the arm about the vertical z axis through A, seen from above (one of :data:`TURNING_WORDS`).
+
+    M_z > 0 turns it counter-clockwise (right-hand rule about +z), M_z < 0 clockwise.
+    """
+    counter_clockwise, clockwise, none = TURNING_WORDS
+    scale = float(np.linalg.norm(loads.F_N)) * float(np.linalg.norm(loads.geometry.C))
+    if abs(loads.M_z_Nm) <= NO_TURNING_RTOL * scale:
+        return none
+    return counter_clockwise if loads.M_z_Nm > 0.0 else clockwise
 
 
 def solve(inputs: Mapping[str, Any]) -> Solution:

@@ -215,3 +215,67 @@ def test_every_example_solves_its_defaults_into_strict_json(example_id):
             assert isinstance(v, float | int) or (isinstance(v, list) and len(v) == 3), (step["title"], v)
             if isinstance(v, list) and isinstance(v[0], list):  # a 3×3 tensor
                 assert all(isinstance(row, list) and len(row) == 3 and all(isinstance(x, float) for x in row) for row in v)
+
+
+# -- the apex, the vacuum comparison and the two legs of the flight ---------------------------
+
+
+@pytest.mark.parametrize("height0_m", [0.0, 12.5])
+def test_vacuum_flight_is_what_the_integrator_flies_without_drag(height0_m):
+    # The closed form against the integration with b = c = 0 (a quadratic in t, integrated exactly up to
+    # rounding; the landing and apex events are located to ~1e-13 s): 1e-10 relative.
+    inputs = {**NO_DRAG, "height0_m": height0_m}
+    vacuum = projectile.vacuum_flight(inputs)
+    traj = projectile.simulate(inputs)
+    v0 = projectile.initial_velocity(inputs["speed0_m_s"], inputs["elevation_deg"])
+    assert vacuum.flight_time_s == pytest.approx(traj.t_s[-1], rel=1e-10)
+    assert vacuum.range_m == pytest.approx(traj.position_m[-1, 0], rel=1e-10)
+    assert vacuum.apex_time_s == pytest.approx(traj.apex_time_s, rel=1e-10)
+    assert vacuum.apex_height_m == pytest.approx(traj.apex_position_m[2], rel=1e-10)
+    # And the apex event sits where the parabola peaks: t = v0z/g, x = v0x t, z = h0 + v0z²/(2g).
+    g = inputs["g_m_s2"]
+    np.testing.assert_allclose(
+        traj.apex_position_m, [v0[0] * v0[2] / g, 0.0, height0_m + v0[2] ** 2 / (2 * g)], rtol=1e-10, atol=1e-12
+    )
+
+
+def test_apex_with_linear_drag_matches_the_closed_form():
+    # v_z(t) = (v0z + g/k) e^{−kt} − g/k vanishes at t* = ln(1 + k v0z/g)/k; the position there from the
+    # module's closed form (checked above against the integrator). The apex event is located to ~1e-12 s
+    # and v_z's slope there is −g, so 1e-9 relative holds with margin.
+    inputs = {**LINEAR, "height0_m": 5.0}
+    m, b, g = inputs["mass_kg"], inputs["linear_drag_kg_s"], inputs["g_m_s2"]
+    k = b / m
+    v0z = projectile.initial_velocity(inputs["speed0_m_s"], inputs["elevation_deg"])[2]
+    t_apex = math.log(1.0 + k * v0z / g) / k
+    traj = projectile.simulate(inputs)
+    assert traj.apex_time_s == pytest.approx(t_apex, rel=1e-9)
+    position, _ = projectile.linear_drag_closed_form(inputs, np.array([t_apex]))
+    np.testing.assert_allclose(traj.apex_position_m, position[0], rtol=1e-9)
+    # The sampled maximum of solve() can only undershoot the located apex.
+    assert traj.position_m[:, 2].max() <= traj.apex_position_m[2] + 1e-9
+
+
+@pytest.mark.parametrize(
+    ("inputs", "expected"),
+    [
+        (NO_DRAG, "neither: equal"),  # symmetric parabola: climb = fall = v0z/g
+        ({**NO_DRAG, "height0_m": 12.5}, "the fall"),  # it falls further than it climbed
+        (DEFAULTS, "the fall"),  # drag: the climb decelerates faster than g, the fall accelerates slower
+        (LINEAR, "the fall"),
+        ({**DEFAULTS, "quadratic_drag_kg_m": 1e-5}, "the fall"),  # the smallest drag a control sets is still seen
+    ],
+    ids=["vacuum", "vacuum-raised", "quadratic", "linear", "faint-drag"],
+)
+def test_the_fall_takes_longer_than_the_climb_once_anything_breaks_the_symmetry(inputs, expected):
+    traj = projectile.simulate(inputs)
+    assert projectile.longer_leg(traj) == expected
+    assert traj.climb_time_s + traj.fall_time_s == pytest.approx(traj.t_s[-1], rel=1e-14)  # one rounding
+    if expected == "the fall":
+        # Clear of the "equal" band by 1e4 or more (faint drag: ~1e-3 of the flight).
+        assert traj.fall_time_s - traj.climb_time_s > 1e4 * projectile.EQUAL_LEGS_RTOL * traj.t_s[-1]
+
+
+def test_vacuum_flight_refuses_a_start_on_the_ground_moving_down():
+    with pytest.raises(ValueError, match="height0_m"):
+        projectile.vacuum_flight({**NO_DRAG, "elevation_deg": -5.0, "height0_m": 0.0})

@@ -127,3 +127,32 @@ def test_dt_outside_its_range_is_refused(bad):
         radar.INPUTS.validate({"dt_s": bad})
     assert info.value.field == "dt_s"
     assert "between 1e-12 and 1 s" in info.value.message
+
+
+def radar_axes(t_s: float) -> np.ndarray:
+    """Rows e_r (line of sight), e_theta (azimuth growing), e_beta (elevation growing), written from θ and β."""
+    _, theta, beta = (float(v) for v in radar.radar_measurements(t_s))
+    ct, st, cb, sb = np.cos(theta), np.sin(theta), np.cos(beta), np.sin(beta)
+    return np.array([[cb * ct, cb * st, sb], [-st, ct, 0.0], [-sb * ct, -sb * st, cb]])
+
+
+@pytest.mark.parametrize("t_s", [0.25, 2.0, 7.5, 30.0, 60.0])
+def test_radar_frame_velocity_and_acceleration_are_sympys_derivatives_on_the_radar_axes(t_s):
+    # The textbook formulas in r, θ, β and their rates against sympy's 30-digit first and second derivatives of
+    # the xyz position, projected on the radar's axes. 1e-12 of the vector's length: double-precision closed forms
+    # (a few ulps, ~1e-15 relative) with margin; a wrong sign or a missing Coriolis term 2ṙθ̇ is off by percent.
+    axes = radar_axes(t_s)
+    velocity, acceleration = exact_derivative(1, t_s), exact_derivative(2, t_s)
+    np.testing.assert_allclose(radar.velocity_radar_components(t_s), axes @ velocity, rtol=0, atol=1e-12 * np.linalg.norm(velocity))
+    np.testing.assert_allclose(
+        radar.acceleration_radar_components(t_s), axes @ acceleration, rtol=0, atol=1e-12 * np.linalg.norm(acceleration)
+    )
+    # The radar sees r̈ = 0, yet the line-of-sight acceleration is not zero: −r β̇² − r cos²β θ̇² < 0.
+    assert radar.radar_second_rates(t_s)[0] == 0.0 and radar.acceleration_radar_components(t_s)[0] < 0.0
+
+
+def test_rates_at_the_first_instant_say_the_elevation_rate_is_infinite():
+    assert radar.radar_rates(0.0)[2] == -np.inf and np.isfinite(radar.radar_rates(0.0)[:2]).all()
+    for components in (radar.velocity_radar_components, radar.acceleration_radar_components):
+        with pytest.raises(ValueError, match="infinite at t = 0"):
+            components(0.0)

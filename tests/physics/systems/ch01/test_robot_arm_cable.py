@@ -192,3 +192,19 @@ def test_c_coinciding_with_d_is_refused_naming_d_x():
     # A millimetre away the cable has a direction again, along -i (C is past D on x).
     loads = arm.cable_loads({**DEFAULTS, **raw, "D_x_m": 3.499})
     np.testing.assert_allclose(loads.F_N, [-5000.0, 0.0, 0.0], rtol=0, atol=1e-9)
+
+
+@pytest.mark.parametrize(
+    ("theta_deg", "expected"),
+    [(25.0, "clockwise"), (-30.0, "counter-clockwise"), (150.0, "clockwise"), (0.0, "none"), (180.0, "none")],
+)
+def test_turning_seen_from_above_follows_the_sign_of_the_independent_moment(theta_deg, expected):
+    # The reference moment about A (force placed at D) gives M_z; its sign is the turning sense by the right-hand
+    # rule about +z. In the vertical plane through the x axis (θ = 0° or 180°) the cable and the z axis are
+    # coplanar: no turning (M_z is 0 or a few ulps of T·|r_C|, under NO_TURNING_RTOL).
+    inputs = {**DEFAULTS, "theta_deg": theta_deg}
+    M_z = reference(*args(inputs))["M_A"][2]
+    assert arm.turning_about_z(arm.cable_loads(inputs)) == expected
+    if expected != "none":
+        assert (M_z > 0) == (expected == "counter-clockwise") and abs(M_z) > 1e3  # N·m: well clear of zero
+    assert arm.turning_about_z(arm.cable_loads({**inputs, "tension_N": 0.0})) == "none"  # no pull, no turning
