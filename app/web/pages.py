@@ -143,7 +143,7 @@ def lesson_page(lesson_id: str, catalogue: CatalogueDep, scene: str | None = Non
     return _page(
         f"{lesson.section} {lesson.title} — Dynamics Lab",
         body,
-        scripts=("/static/vendor/katex/katex.min.js", "/static/js/common.js", "/static/js/plot.js", "/static/js/lesson.js", "/static/js/derivations.js"),
+        scripts=("/static/vendor/katex/katex.min.js", "/static/js/common.js", "/static/js/plot.js", "/static/js/lesson.js", "/static/js/room.js", "/static/js/derivations.js"),
     )
 
 
@@ -438,8 +438,43 @@ def _capacity_table(report: dict, settings) -> str:
     )
 
 
+def _classroom_note(settings) -> str:
+    """What a class following one room's scene measured (``classroom.json``, from ``dynlab load --room``): the frame
+    rate of 100 followers and the server's CPU with 1 and 100 of them, and the plot; empty if there is no report."""
+    try:
+        report = capacity.read_report(Path(settings.bench_dir) / capacity.CLASSROOM_REPORT_FILE)
+    except ValueError as exc:
+        return f'<p class="notice">{esc(str(exc))}; <code>dynlab load --room</code> measures it again.</p>'
+    if report is None:
+        return ""
+    try:
+        cost = report["follow_cost"]
+        size = capacity.FOLLOW_COST_CLASS
+        step = next(s for s in report["steps"] if s["students"] == size)
+        fps = step["frames_per_s"]
+        text = (
+            f"<p>Following the instructor, the class shares one simulation: {size} students following one "
+            f"{esc(str(cost['scene_id']))} demo each received {fmt_sig(fps['p10'])} frames/s (10th percentile; slowest "
+            f"{fmt_sig(fps['min'])}), and the server used {fmt_sig(cost[f'cpu_cores_{size}'])} cores, against "
+            f"{fmt_sig(cost['cpu_cores_1'])} for one follower and {fmt_sig(cost.get('one_viewer_cpu_cores'))} for one "
+            f"student on a scene of their own (<code>dynlab load --room</code>).</p>"
+        )
+    except (AttributeError, TypeError, KeyError, ValueError, StopIteration):
+        return '<p class="notice">The measurement of a class following one room is malformed; <code>dynlab load --room</code> measures it again.</p>'
+    figure = ""
+    if bench.diagram_path(settings, "classroom"):
+        figure = (
+            '<figure class="bench-figure"><a href="/bench/classroom.svg" title="Open the plot on its own">'
+            '<img src="/bench/classroom.svg" alt="A class following one room: frames per second each student receives '
+            'and the server CPU against the number of students, beside students each on a scene of their own." '
+            'width="980" height="540"></a></figure>'
+        )
+    return text + figure
+
+
 def _capacity_section(settings) -> str:
-    """The "Classroom capacity" section: the plot and table of ``capacity.json`` (written by ``dynlab load``)."""
+    """The "Classroom capacity" section: the plot and table of ``capacity.json`` (written by ``dynlab load``), and
+    what a class following one room measured (``classroom.json``, from ``dynlab load --room``)."""
     how = "<code>dynlab load</code> measures it (real viewer websockets, 10 to 150 students) and writes it"
     try:
         report = capacity.read_report(Path(settings.bench_dir) / capacity.REPORT_FILE)
@@ -456,7 +491,7 @@ def _capacity_section(settings) -> str:
     return (
         '<section class="bench-scene bench-capacity" id="bench-capacity"><h2>Classroom capacity</h2>'
         "<p>How many students the server streams their own live scene to, at how many frames per second.</p>"
-        f"{content}</section>"
+        f"{content}{_classroom_note(settings)}</section>"
     )
 
 

@@ -54,10 +54,6 @@ def room_viewer_page(room_id: RoomId, rooms: RoomsDep) -> Response:
     return Response(_viser_client_html(), media_type="text/html; charset=utf-8")
 
 
-def require_instructor_page(request: Request) -> None:
-    if not is_instructor(request):
-        raise HTTPException(status_code=403, detail="instructor only: open the instructor link that dynlab serve printed")
-
 
 def _notice_page(status_code: int, title: str, message: str) -> HTMLResponse:
     """A page that says why it cannot show what was asked (a person reads it, not a client)."""

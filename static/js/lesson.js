@@ -5,6 +5,8 @@
   const scene = config.scene;
   const examples = config.examples;
   if (!scene && !examples.length) return;
+  // In a classroom room (?room=…) static/js/room.js decides what the viewer shows and where changes go.
+  const inRoom = new URLSearchParams(location.search).has("room");
 
   // ---- session: one per tab and lesson, kept across reloads --------------------
   const storageKey = `dynlab.session.${config.lesson_id}`;
@@ -173,7 +175,7 @@
       button.addEventListener("click", () => {
         Object.assign(session.values, preset.values);
         for (const name of Object.keys(preset.values)) if (widgets[name]) widgets[name].set(preset.values[name]);
-        schedule();
+        schedule({ preset: preset.name });
       });
       bar.appendChild(button);
     }
@@ -183,7 +185,7 @@
   document.getElementById("reset").addEventListener("click", () => {
     session.values = { ...defaults };
     for (const s of specs) widgets[s.name].set(defaults[s.name]);
-    schedule();
+    schedule({ reset: true });
   });
 
   function showError(field, message, loc) {
@@ -389,10 +391,20 @@
 
   // ---- one update at a time, always ending on the latest values ------------------
   let running = false, pending = false, viewerStarted = false;
+  // The room's hook (room.js): when set, changed values go to it instead of this page's own session.
+  let changeHook = null;
+  let sentValues = { ...session.values };
+  const same = (a, b) => JSON.stringify(a) === JSON.stringify(b);
+  function changedValues() {
+    const changed = {};
+    for (const s of specs) if (!same(session.values[s.name], sentValues[s.name])) changed[s.name] = session.values[s.name];
+    sentValues = { ...session.values };
+    return changed;
+  }
   async function update() {
     const values = { ...session.values };
     try {
-      if (scene) {
+      if (scene && !changeHook) {
         const reply = await call("PUT", `/api/scenes/${scene.id}/sessions/${session.id}`, { params: values });
         Object.assign(values, reply.params);
       }
@@ -411,12 +423,18 @@
       }
       showError(null, "");
       sessionStorage.setItem(storageKey, JSON.stringify(session));
-      if (scene && !viewerStarted) startViewer();
+      if (scene && !viewerStarted && !inRoom) startViewer();
     } catch (err) {
       showError(err.field, err.message, err.loc);
     }
   }
-  async function schedule() {
+  async function schedule(how) {
+    if (changeHook) {
+      const changed = changedValues();
+      if (Object.keys(changed).length || how) changeHook(changed, how || {});
+    } else {
+      sentValues = { ...session.values };
+    }
     if (running) { pending = true; return; }
     running = true;
     do { pending = false; await update(); } while (pending);
@@ -426,7 +444,9 @@
   // ---- live readout: the scene's own quantities, marks on controls, integration ------
   const live = document.getElementById("live");
   const readoutBox = document.getElementById("readout");
+  let pollTimer = null;
   async function pollLive() {
+    pollTimer = null;
     try {
       const response = await fetch(`/api/scenes/${scene.id}/sessions/${session.id}/live`);
       if (response.ok) {
@@ -435,7 +455,18 @@
         if (scene.integrated && data.invariants) renderLive(data);
       }
     } catch (e) { /* the next poll retries */ }
-    setTimeout(pollLive, document.hidden ? 3000 : 1000);
+    if (polling) pollTimer = setTimeout(pollLive, document.hidden ? 3000 : 1000);
+  }
+  let polling = false;
+  function startPolling() {
+    if (polling || !scene || !(scene.integrated || scene.readout)) return;
+    polling = true;
+    pollTimer = setTimeout(pollLive, 1000);
+  }
+  function stopPolling() {
+    polling = false;
+    clearTimeout(pollTimer);
+    pollTimer = null;
   }
   function renderReadout(readout) {
     readoutBox.hidden = false;
@@ -567,13 +598,53 @@
   }
 
   function startViewer() {
-    if (scene.integrated || scene.readout) setTimeout(pollLive, 1000);
+    startPolling();
+    showViewer(ownViewer);
+  }
+  const ownViewer = scene ? `/viewer/${scene.id}/${session.id}/?hideViserLogo` : null;
+  function showViewer(src) {
     viewerStarted = true;
-    const wrap = document.getElementById("viewer-wrap");
-    wrap.hidden = false;
-    document.getElementById("viewer").src = `/viewer/${scene.id}/${session.id}/?hideViserLogo`;
+    document.getElementById("viewer-wrap").hidden = false;
+    const frame = document.getElementById("viewer");
+    if (frame.getAttribute("src") !== src) frame.src = src;
   }
 
-  window.dynlabLesson = { session, schedule };
-  schedule();
+  // ---- what room.js drives: values shown without sending, locked controls, the viewer, the readout ------
+  let locked = false, lockReason = "";
+  const lockNote = document.createElement("p");
+  lockNote.className = "controls-locked";
+  lockNote.setAttribute("role", "status");
+  lockNote.hidden = true;
+  form.querySelector("h2").after(lockNote);
+  function applyLock() {
+    for (const el of form.querySelectorAll("input, select, textarea, button")) {
+      if (locked && !el.disabled) { el.disabled = true; el.dataset.roomLocked = "1"; }
+      else if (!locked && el.dataset.roomLocked) { el.disabled = false; delete el.dataset.roomLocked; }
+    }
+    form.classList.toggle("locked", locked);
+    lockNote.textContent = lockReason;
+    lockNote.hidden = !locked || !lockReason;
+  }
+  function lock(on, why) {
+    locked = Boolean(on);
+    lockReason = why || "";
+    applyLock();
+  }
+  function setValues(values) {
+    for (const s of specs) {
+      if (!(s.name in values)) continue;
+      session.values[s.name] = values[s.name];
+      sentValues[s.name] = values[s.name];
+      widgets[s.name].set(values[s.name]);
+    }
+    if (locked) applyLock(); // a list control redraws its rows: lock the new ones too
+  }
+  function onChange(fn) { changeHook = typeof fn === "function" ? fn : null; }
+
+  window.dynlabLesson = {
+    session, schedule, scene, specs, defaults, ownViewer,
+    setValues, lock, onChange, showViewer, startPolling, stopPolling,
+    renderReadout, renderLive: (data) => { if (scene && scene.integrated && data.invariants) renderLive(data); },
+  };
+  if (!inRoom) schedule();
 })();

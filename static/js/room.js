@@ -1,0 +1,560 @@
+// Classroom mode of a lesson page (?room=<room_id>): a student follows the instructor's room (controls locked,
+// the room's one shared scene in the viewer, its readout from the room socket) or explores their own copy;
+// the instructor's page drives the room and shows the instructor panel and the polls.
+// Without ?room the page is a plain lesson; the instructor only gets a button to open a room on it.
+(function () {
+  const query = new URLSearchParams(location.search);
+  const roomId = query.get("room");
+  const config = JSON.parse(document.getElementById("lesson-config").textContent);
+  const lesson = window.dynlabLesson || null; // absent on a lesson page without a scene or examples
+  const pageScene = config.scene ? config.scene.id : null;
+  const aside = document.querySelector(".lesson-live");
+  if (!aside) return;
+
+  const TIME_SCALES = [0.1, 0.25, 0.5, 1, 2, 4];
+  const THROTTLE_MS = 67; // about 15 changes a second while a slider is dragged; the last value is always sent
+  const FOLLOW_TEXT = "Following the instructor — the controls show what the class sees";
+  const EXPLORE_TEXT = "Exploring on your own — the instructor can bring everyone back";
+
+  const el = (tag, attrs = {}, ...children) => {
+    const node = document.createElement(tag);
+    for (const [name, value] of Object.entries(attrs)) {
+      if (name === "text") node.textContent = value;
+      else if (name === "class") node.className = value;
+      else if (value !== null && value !== undefined && value !== false) node.setAttribute(name, value === true ? "" : value);
+    }
+    node.append(...children);
+    return node;
+  };
+  const fmt = (v) => (typeof v === "number" ? String(+v.toPrecision(4)) : String(v));
+  const scaleText = (s) => `${fmt(s)}×`;
+  const announce = (message) => document.dispatchEvent(new CustomEvent("dynlab:room", { detail: message }));
+  const roomPage = (lessonId, sceneId, extra) =>
+    `/lessons/${encodeURIComponent(lessonId)}?room=${roomId}` + (sceneId ? `&scene=${encodeURIComponent(sceneId)}` : "") + (extra || "");
+
+  async function api(method, url, body, headers = {}) {
+    const response = await fetch(url, {
+      method,
+      headers: { "Content-Type": "application/json", ...headers },
+      body: body === undefined ? undefined : JSON.stringify(body),
+    });
+    const data = await response.json().catch(() => ({}));
+    if (!response.ok) {
+      const detail = Array.isArray(data.detail) ? data.detail[0].msg : data.detail || response.statusText;
+      const err = new Error(detail);
+      err.status = response.status;
+      throw err;
+    }
+    return data;
+  }
+
+  // ---- the room socket: reconnects with a growing wait when it drops (a phone that slept) -------------
+  function roomSocket({ onOpen, onMessage, onGone }) {
+    let socket = null, attempts = 0, timer = null, gone = false;
+    function connect() {
+      timer = null;
+      const scheme = location.protocol === "https:" ? "wss" : "ws";
+      socket = new WebSocket(`${scheme}://${location.host}/api/rooms/${roomId}/socket`);
+      socket.addEventListener("open", () => { attempts = 0; onOpen(); });
+      socket.addEventListener("message", (event) => {
+        let message;
+        try { message = JSON.parse(event.data); } catch (e) { return; }
+        if (message.type === "closed") { gone = true; onGone("The instructor closed this room."); }
+        onMessage(message);
+        announce(message);
+      });
+      socket.addEventListener("close", (event) => {
+        if (gone) return;
+        if (event.code === 1008) { gone = true; onGone("This room is not open any more (closed, or the server restarted)."); return; }
+        retry();
+      });
+    }
+    function retry() {
+      if (timer || gone) return;
+      attempts += 1;
+      timer = setTimeout(connect, Math.min(10000, 250 * 2 ** attempts));
+    }
+    document.addEventListener("visibilitychange", () => {
+      if (!document.hidden && !gone && socket && socket.readyState === WebSocket.CLOSED) { clearTimeout(timer); connect(); }
+    });
+    connect();
+    return {
+      send(message) {
+        if (!socket || socket.readyState !== WebSocket.OPEN) return false;
+        socket.send(JSON.stringify(message));
+        return true;
+      },
+    };
+  }
+
+  // ---- what both sides show: the play status, the room's readout, a room that has gone --------------
+  function playStatus(state, who) {
+    if (!state.playing) return `❚❚ paused by ${who} · ${scaleText(state.time_scale)}`;
+    return `▶ playing · ${scaleText(state.time_scale)}`;
+  }
+  function showReadout(message) {
+    if (!lesson || message.scene_id !== pageScene || !message.data) return;
+    if (message.data.readout) lesson.renderReadout(message.data.readout);
+    lesson.renderLive(message.data);
+  }
+  function goneNotice(text) {
+    const note = el("p", { class: "room-gone error", role: "alert" }, `${text} `, el("a", { href: "/join", text: "Join a room" }));
+    aside.prepend(note);
+    if (lesson) lesson.lock(true, text);
+  }
+
+  fetch("/api/me")
+    .then((response) => response.json())
+    .then(({ role }) => {
+      if (!roomId) { if (role === "instructor") offerRoom(); return; }
+      if (!/^[0-9a-f]{16}$/.test(roomId)) { goneNotice("This room link is not valid."); return; }
+      if (role === "instructor" && query.get("as") !== "student") instructorPage();
+      else studentPage(role === "instructor");
+    })
+    .catch(() => { /* offline: the page stays a plain lesson */ });
+
+  // ---- an instructor on a plain lesson page: open a room here -----------------------------------------
+  function offerRoom() {
+    const button = el("button", { type: "button", text: "Start a class room here" });
+    const error = el("p", { class: "error", role: "alert", hidden: true });
+    const box = el("section", { class: "room-start", "aria-label": "Class room" }, button,
+      el("p", { class: "muted", text: "Students join with a code or a QR code and see this lesson's scene as you drive it." }), error);
+    aside.prepend(box);
+    button.addEventListener("click", async () => {
+      button.disabled = true;
+      try {
+        const room = await api("POST", "/api/rooms", { lesson_id: config.lesson_id, scene_id: pageScene });
+        location.assign(`/lessons/${encodeURIComponent(config.lesson_id)}?room=${room.room_id}` + (pageScene ? `&scene=${encodeURIComponent(pageScene)}` : ""));
+      } catch (err) {
+        error.textContent = `Could not open a room: ${err.message}`;
+        error.hidden = false;
+        button.disabled = false;
+      }
+    });
+  }
+
+  // ---- a student (or the instructor previewing as one) ----------------------------------------------------
+  function studentToken() {
+    const raw = localStorage.getItem(`dynlab.room.${roomId}`);
+    if (!raw) return null;
+    try {
+      const saved = JSON.parse(raw);
+      return typeof saved === "string" ? saved : saved && saved.student_token;
+    } catch (e) {
+      return raw;
+    }
+  }
+
+  function studentPage(preview) {
+    const token = preview ? null : studentToken();
+    if (!preview && !token) { location.replace("/join"); return; }
+    const extra = preview ? "&as=student" : "";
+    const banner = el("p", { class: "room-banner", text: "Connecting to the room…" });
+    const status = el("p", { class: "room-status", "aria-live": "polite" });
+    const error = el("p", { class: "room-error error", role: "alert", hidden: true });
+    const bar = el("section", { class: "room-bar", "aria-label": "Class room" }, banner, status, error);
+    if (preview) bar.append(el("p", { class: "muted", text: "Preview: this is what a student sees (your changes here are not sent)." }));
+    const poll = studentPoll(token, preview);
+    aside.prepend(bar, poll.element);
+    let mode = null, latest = null, shownParams = "";
+
+    const socket = roomSocket({
+      onOpen: () => socket.send({ type: "hello", student_token: token || undefined, following: mode !== "explore" }),
+      onMessage,
+      onGone: goneNotice,
+    });
+    window.dynlabRoom = { roomId, role: "student", send: (m) => socket.send(m), state: () => latest };
+    if (lesson && !pageScene) lesson.schedule(); // worked examples only: the room has no scene to follow
+
+    function showError(text) {
+      error.textContent = text;
+      error.hidden = !text;
+    }
+    function onMessage(message) {
+      if (message.type === "state") onState(message.state);
+      else if (message.type === "readout" && mode === "follow") showReadout(message);
+      else if (message.type === "error") {
+        if (message.status === 403 && !message.action && token) { // the room does not know this token: join again
+          localStorage.removeItem(`dynlab.room.${roomId}`);
+          location.replace("/join");
+          return;
+        }
+        showError(message.detail);
+      }
+    }
+    function onState(state) {
+      latest = state;
+      if (state.lesson_id && (state.lesson_id !== config.lesson_id || (state.scene_id && state.scene_id !== pageScene))) {
+        location.replace(roomPage(state.lesson_id, state.scene_id, extra));
+        return;
+      }
+      status.textContent = state.lesson_id ? playStatus(state, "the instructor") : "Waiting for the instructor to choose a lesson";
+      status.dataset.playing = String(state.playing);
+      poll.render(state.poll);
+      if (!lesson || !pageScene) { banner.textContent = "Following the instructor"; return; }
+      if (state.mode === "explore" && state.explore_start) explore(state);
+      else follow(state);
+    }
+    function follow(state) {
+      if (mode !== "follow") {
+        const back = mode === "explore";
+        mode = "follow";
+        lesson.onChange(() => {}); // the page never sends its own session while following
+        lesson.stopPolling();
+        lesson.lock(true, "Locked while you follow the instructor");
+        lesson.showViewer(`/room-viewer/${roomId}/?hideViserLogo`);
+        banner.textContent = FOLLOW_TEXT;
+        bar.dataset.mode = "follow";
+        if (back) socket.send({ type: "following", value: true });
+      }
+      const params = JSON.stringify(state.params);
+      if (params !== shownParams) {
+        shownParams = params;
+        lesson.setValues(state.params);
+        if (config.examples.length) lesson.schedule(); // the worked solution for the class's values
+      }
+    }
+    async function explore(state) {
+      if (mode === "explore" || mode === "starting") return;
+      mode = "starting";
+      banner.textContent = "Starting your own copy of the scene…";
+      if (preview) {
+        mode = "explore";
+        banner.textContent = `${EXPLORE_TEXT} (the preview stays on the class's scene)`;
+        return;
+      }
+      socket.send({ type: "following", value: false });
+      try {
+        const reply = await api("PUT", `/api/scenes/${pageScene}/sessions/${lesson.session.id}`,
+          { params: state.explore_start.params, from_room: roomId }, { "X-Session-Key": lesson.session.key });
+        if (latest.mode !== "explore") { mode = null; follow(latest); return; } // brought back meanwhile
+        mode = "explore";
+        shownParams = "";
+        lesson.onChange(null);
+        lesson.setValues(reply.params);
+        lesson.lock(false);
+        lesson.showViewer(lesson.ownViewer);
+        lesson.startPolling();
+        banner.textContent = EXPLORE_TEXT;
+        bar.dataset.mode = "explore";
+        showError("");
+      } catch (err) {
+        mode = null;
+        showError(`Could not start your own scene: ${err.message}`);
+        follow(latest);
+      }
+    }
+  }
+
+  // The current poll on a student's page: the question, choices or a number box, and their answer.
+  function studentPoll(token, preview) {
+    const element = el("section", { class: "room-poll", "aria-label": "Question from the instructor", hidden: true });
+    const answersKey = `dynlab.room.${roomId}.answers`;
+    let shown = null, parts = null;
+    const saved = () => { try { return JSON.parse(localStorage.getItem(answersKey)) || {}; } catch (e) { return {}; } };
+
+    function build(poll) {
+      const name = `poll-${poll.poll_id}`;
+      const send = el("button", { type: "button", class: "room-poll-send", text: "Send" });
+      const mine = el("p", { class: "room-poll-mine", "aria-live": "polite" });
+      const note = el("p", { class: "room-poll-state muted" });
+      const revealed = el("p", { class: "room-poll-revealed", hidden: true });
+      const inputs = [];
+      let field;
+      if (poll.kind === "choice") {
+        field = el("fieldset", { class: "room-poll-choices" }, el("legend", { text: poll.question }));
+        poll.choices.forEach((choice, index) => {
+          const radio = el("input", { type: "radio", name, value: String(index), id: `${name}-${index}` });
+          inputs.push(radio);
+          field.append(el("label", { for: radio.id }, radio, ` ${choice}`));
+        });
+      } else {
+        const box = el("input", { type: "number", step: "any", id: `${name}-value`, inputmode: "decimal" });
+        inputs.push(box);
+        field = el("div", { class: "room-poll-number" },
+          el("label", { for: box.id, class: "room-poll-question", text: poll.question }),
+          el("span", {}, box, el("span", { class: "unit", text: ` ${poll.unit}` })));
+      }
+      element.replaceChildren(el("h2", { text: "Predict" }), field, send, mine, note, revealed);
+      const parts = { inputs, send, note, revealed, answer: saved()[poll.poll_id] || "" };
+      parts.showAnswer = () => {
+        if (parts.answer) mine.textContent = `Your answer: ${parts.answer}` + (shown && !shown.open ? "" : " (you can change it until the poll closes)");
+      };
+      parts.showAnswer();
+      if (preview) { send.disabled = true; note.textContent = "Preview: students answer here; answers from this page are not counted."; }
+      send.addEventListener("click", async () => {
+        let body, text;
+        if (poll.kind === "choice") {
+          const picked = inputs.find((radio) => radio.checked);
+          if (!picked) { mine.textContent = "Pick one of the choices first."; return; }
+          body = { choice: Number(picked.value) };
+          text = poll.choices[body.choice];
+        } else {
+          const value = Number(inputs[0].value);
+          if (inputs[0].value === "" || !Number.isFinite(value)) { mine.textContent = `Type a number in ${poll.unit || "the poll's unit"} first.`; return; }
+          body = { value };
+          text = `${fmt(value)} ${poll.unit}`.trim();
+        }
+        send.disabled = true;
+        try {
+          await api("POST", `/api/rooms/${roomId}/polls/${poll.poll_id}/answers`, body, { "X-Student-Token": token });
+          parts.answer = text;
+          parts.showAnswer();
+          localStorage.setItem(answersKey, JSON.stringify({ ...saved(), [poll.poll_id]: text }));
+        } catch (err) {
+          mine.textContent = `Not sent: ${err.message}`;
+        } finally {
+          send.disabled = !(shown && shown.open) || preview;
+        }
+      });
+      return parts;
+    }
+
+    return {
+      element,
+      render(poll) {
+        element.hidden = !poll;
+        if (!poll) { shown = null; return; }
+        if (!shown || shown.poll_id !== poll.poll_id) parts = build(poll);
+        shown = poll;
+        for (const input of parts.inputs) input.disabled = !poll.open;
+        parts.send.disabled = !poll.open || preview;
+        if (!preview) parts.note.textContent = poll.open ? "" : "The poll is closed.";
+        parts.showAnswer();
+        parts.revealed.hidden = !poll.revealed;
+        if (poll.revealed) parts.revealed.textContent = `Answer: ${poll.revealed.text} — ${poll.revealed.source}`;
+      },
+    };
+  }
+
+  // ---- the instructor's page: it drives the room -------------------------------------------------------------
+  function instructorPage() {
+    for (const link of document.querySelectorAll(".prevnext a, .scene-picker a")) {
+      const url = new URL(link.href, location.href);
+      url.searchParams.set("room", roomId);
+      link.href = url.pathname + url.search;
+    }
+    const panel = instructorPanel();
+    aside.prepend(panel.element);
+    let latest = null, checkedPage = false, lastLocal = 0, pendingApply = null, shownParams = "";
+    let pendingParams = {}, lastSent = 0, flushTimer = null;
+
+    const socket = roomSocket({ onOpen: () => panel.connected(true), onMessage, onGone: goneNotice });
+    window.dynlabRoom = { roomId, role: "instructor", send: (m) => socket.send(m), state: () => latest };
+    if (lesson && !pageScene) lesson.schedule(); // worked examples only: the room has no scene to drive
+    const send = (message) => {
+      if (!socket.send(message)) panel.error("Not connected to the room: reconnecting, try again in a moment.");
+    };
+    panel.onAction(send);
+
+    if (lesson && pageScene) {
+      lesson.stopPolling();
+      lesson.showViewer(`/room-viewer/${roomId}/?hideViserLogo`);
+      lesson.onChange((changed, how) => {
+        lastLocal = Date.now();
+        if (how.preset) { send({ type: "set_state", preset: how.preset }); return; }
+        if (how.reset) { pendingParams = {}; send({ type: "set_state", params: { ...lesson.defaults } }); return; }
+        Object.assign(pendingParams, changed);
+        const wait = lastSent + THROTTLE_MS - Date.now();
+        if (wait <= 0) flush();
+        else if (!flushTimer) flushTimer = setTimeout(flush, wait);
+      });
+    }
+    function flush() {
+      clearTimeout(flushTimer);
+      flushTimer = null;
+      if (!Object.keys(pendingParams).length) return;
+      lastSent = Date.now();
+      send({ type: "set_state", params: pendingParams });
+      pendingParams = {};
+    }
+
+    function onMessage(message) {
+      if (message.type === "state") onState(message.state);
+      else if (message.type === "readout") showReadout(message);
+      else if (message.type === "results") panel.results(message.results);
+      else if (message.type === "error") panel.error(message.detail);
+    }
+    function onState(state) {
+      latest = state;
+      panel.state(state);
+      const here = state.lesson_id === config.lesson_id && state.scene_id === pageScene;
+      if (!checkedPage) {
+        checkedPage = true;
+        if (!here) { send({ type: "set_state", lesson_id: config.lesson_id, scene_id: pageScene }); return; }
+      }
+      if (here && lesson && pageScene) applyParams();
+    }
+    function applyParams() {
+      // An echo of an older value must not pull a slider back while it is being dragged: wait for a pause.
+      const quiet = Date.now() - lastLocal;
+      if (quiet < 400 || Object.keys(pendingParams).length) {
+        if (!pendingApply) pendingApply = setTimeout(() => { pendingApply = null; applyParams(); }, Math.max(50, 400 - quiet));
+        return;
+      }
+      const params = JSON.stringify(latest.params);
+      if (params === shownParams) return;
+      shownParams = params;
+      lesson.setValues(latest.params);
+      if (config.examples.length) lesson.schedule();
+    }
+  }
+
+  // The instructor panel: how to join, who is here, playback for everyone, follow or explore, the polls.
+  function instructorPanel() {
+    let act = () => {}, current = null;
+    const button = (text, name) => el("button", { type: "button", "data-room": name, text });
+    const code = el("p", { class: "room-code", "aria-label": "Room code" });
+    const joinUrl = el("a", { class: "room-join-url" });
+    const qr = el("img", { class: "room-qr", src: `/api/rooms/${roomId}/qr.svg`, alt: "QR code of the join address", width: 112, height: 112 });
+    const presence = el("p", { class: "room-presence", "aria-live": "polite" });
+    const status = el("p", { class: "room-status", "aria-live": "polite" });
+    const play = button("❚❚ Pause", "play");
+    const restart = button("⟲ Restart", "restart");
+    const scale = el("select", { id: "room-time-scale" }, ...TIME_SCALES.map((s) => new Option(scaleText(s), String(s))));
+    const mode = button("Let everyone explore", "mode");
+    const error = el("p", { class: "room-error error", role: "alert", hidden: true });
+    const preview = new URL(location.href);
+    preview.searchParams.set("as", "student");
+    const polls = instructorPolls((message) => act(message));
+    const element = el("aside", { class: "room-panel", "aria-label": "Class room: instructor" },
+      el("div", { class: "room-join" }, qr,
+        el("div", {}, el("p", { class: "room-code-label", text: "Join with the code" }), code,
+          el("p", { class: "room-join-line" }, "or open ", joinUrl))),
+      presence, status,
+      el("div", { class: "room-buttons", role: "group", "aria-label": "Playback for everyone" }, play, restart,
+        el("label", { for: "room-time-scale", text: "Time scale " }), scale, mode),
+      el("p", { class: "room-links" },
+        el("a", { href: `/rooms/${roomId}/projector`, target: "_blank", rel: "noopener", text: "Projector view" }), " · ",
+        el("a", { href: preview.pathname + preview.search, target: "_blank", rel: "noopener", text: "Preview as a student" })),
+      error, polls.element);
+    play.addEventListener("click", () => current && act({ type: "set_state", playing: !current.playing }));
+    restart.addEventListener("click", () => act({ type: "set_state", reset: true }));
+    scale.addEventListener("change", () => act({ type: "set_state", time_scale: Number(scale.value) }));
+    mode.addEventListener("click", () => current && act({ type: "set_state", mode: current.mode === "follow" ? "explore" : "follow" }));
+    let errorTimer = null;
+    return {
+      element,
+      onAction(fn) { act = fn; },
+      connected() { error.hidden = true; },
+      error(text) {
+        error.textContent = text;
+        error.hidden = false;
+        clearTimeout(errorTimer);
+        errorTimer = setTimeout(() => { error.hidden = true; }, 10000);
+      },
+      results: polls.results,
+      state(state) {
+        current = state;
+        code.textContent = state.code;
+        joinUrl.textContent = state.join_url;
+        joinUrl.href = state.join_url;
+        const { connected, following } = state.students;
+        presence.textContent = `${connected} connected · ${following} following`;
+        presence.dataset.connected = String(connected);
+        presence.dataset.following = String(following);
+        status.textContent = playStatus(state, "you, for everyone");
+        status.dataset.playing = String(state.playing);
+        play.textContent = state.playing ? "❚❚ Pause" : "▶ Play";
+        if (![...scale.options].some((o) => Number(o.value) === state.time_scale)) scale.add(new Option(scaleText(state.time_scale), String(state.time_scale)));
+        scale.value = [...scale.options].find((o) => Number(o.value) === state.time_scale).value;
+        mode.textContent = state.mode === "follow" ? "Let everyone explore" : "Bring everyone back";
+        element.dataset.mode = state.mode;
+        polls.state(state);
+      },
+    };
+  }
+
+  // The instructor's polls: ask a ready question or one's own, watch the answers, close, reveal, export.
+  function instructorPolls(act) {
+    const ready = el("select", { id: "room-ready" }, new Option("Loading ready questions…", ""));
+    const askReady = el("button", { type: "button", text: "Ask", "data-room": "ask-ready" });
+    const question = el("input", { type: "text", id: "room-own-question", maxlength: 300 });
+    const kind = el("select", { id: "room-own-kind" }, new Option("Multiple choice", "choice"), new Option("A number with a unit", "number"));
+    const choices = el("textarea", { id: "room-own-choices", rows: 3, placeholder: "one choice per line" });
+    const unit = el("input", { type: "text", id: "room-own-unit", maxlength: 20, placeholder: "e.g. rad/s" });
+    const choicesRow = el("p", {}, el("label", { for: choices.id, text: "Choices (2 to 8, one a line)" }), choices);
+    const unitRow = el("p", { hidden: true }, el("label", { for: unit.id, text: "Unit" }), unit);
+    const askOwn = el("button", { type: "submit", text: "Ask", "data-room": "ask-own" });
+    const own = el("form", { class: "room-own" },
+      el("p", {}, el("label", { for: question.id, text: "Question" }), question),
+      el("p", {}, el("label", { for: kind.id, text: "Answer as " }), kind), choicesRow, unitRow, askOwn);
+    const resultsQuestion = el("p", { class: "room-results-question" });
+    const count = el("p", { class: "room-results-count", "aria-live": "polite" });
+    const bars = el("ol", { class: "room-histogram", "aria-label": "Answers (anonymous counts)" });
+    const revealed = el("p", { class: "room-results-revealed", hidden: true });
+    const close = el("button", { type: "button", text: "Close", "data-room": "close-poll" });
+    const reveal = el("button", { type: "button", text: "Reveal answer", "data-room": "reveal" });
+    const names = el("input", { type: "checkbox", id: "room-show-names" });
+    const csv = el("a", { class: "room-csv", text: "Download CSV", download: "" });
+    const nameList = el("ul", { class: "room-names", hidden: true });
+    const results = el("div", { class: "room-results", hidden: true }, resultsQuestion, count, bars, revealed,
+      el("div", { class: "room-buttons" }, close, reveal, el("label", { for: names.id }, names, " Show names"), csv), nameList);
+    const element = el("section", { class: "room-polls", "aria-label": "Polls" },
+      el("h3", { text: "Predict, then observe" }),
+      el("p", { class: "room-ready-row" }, el("label", { for: ready.id, text: "Ready question " }), ready, askReady),
+      el("details", {}, el("summary", { text: "Ask your own question" }), own), results);
+    let poll = null, shownId = null;
+
+    kind.addEventListener("change", () => { choicesRow.hidden = kind.value !== "choice"; unitRow.hidden = kind.value === "choice"; });
+    askReady.addEventListener("click", () => { if (ready.value) act({ type: "open_poll", ready_id: ready.value }); });
+    own.addEventListener("submit", (event) => {
+      event.preventDefault();
+      const body = { type: "open_poll", question: question.value.trim(), kind: kind.value };
+      if (kind.value === "choice") body.choices = choices.value.split("\n").map((c) => c.trim()).filter(Boolean);
+      else body.unit = unit.value.trim();
+      act(body);
+    });
+    close.addEventListener("click", () => poll && act({ type: "update_poll", poll_id: poll.poll_id, open: !poll.open }));
+    reveal.addEventListener("click", () => poll && act({ type: "update_poll", poll_id: poll.poll_id, reveal: true }));
+    names.addEventListener("change", () => poll && act({ type: "update_poll", poll_id: poll.poll_id, show_names: names.checked }));
+
+    let readyFor;
+    async function loadReady(sceneId) {
+      if (readyFor === sceneId) return;
+      readyFor = sceneId;
+      try {
+        const list = await api("GET", `/api/rooms/${roomId}/polls/ready`);
+        ready.replaceChildren(...(list.length ? list.map((q) => new Option(q.question, q.id)) : [new Option("No ready questions for this chapter", "")]));
+        askReady.disabled = !list.length;
+      } catch (err) {
+        ready.replaceChildren(new Option(`Ready questions unavailable: ${err.message}`, ""));
+        askReady.disabled = true;
+      }
+    }
+    function showResults(r) {
+      if (!poll || r.poll_id !== poll.poll_id) return;
+      results.hidden = false;
+      resultsQuestion.textContent = r.question + (r.unit ? ` (${r.unit})` : "");
+      count.textContent = `${r.answers} ${r.answers === 1 ? "answer" : "answers"}${r.open ? "" : " · closed"}`;
+      count.dataset.answers = String(r.answers);
+      const most = Math.max(1, ...r.histogram.map((b) => b.count));
+      bars.replaceChildren(...r.histogram.map((bin) => el("li", { "data-count": String(bin.count) },
+        el("span", { class: "bar-label", text: bin.lo === null ? bin.label : `${bin.label} ${r.unit}`.trim() }),
+        el("span", { class: "bar", style: `width: ${(100 * bin.count) / most}%` }),
+        el("span", { class: "bar-count", text: String(bin.count) }))));
+      if (!r.histogram.length) bars.append(el("li", { class: "muted", text: "No answers yet" }));
+      revealed.hidden = !r.revealed;
+      if (r.revealed) revealed.textContent = `Answer: ${r.revealed.text} — ${r.revealed.source}`;
+      names.checked = r.show_names;
+      nameList.hidden = !r.names;
+      nameList.replaceChildren(...(r.names || []).map((n) => el("li", { text: `${n.name}: ${n.answer}` })));
+    }
+    return {
+      element,
+      results: showResults,
+      state(state) {
+        loadReady(state.scene_id);
+        poll = state.poll;
+        if (!poll) { results.hidden = true; shownId = null; return; }
+        close.textContent = poll.open ? "Close" : "Reopen";
+        reveal.disabled = Boolean(poll.revealed);
+        csv.href = `/api/rooms/${roomId}/polls/${poll.poll_id}/results.csv`;
+        if (shownId !== poll.poll_id) {
+          shownId = poll.poll_id;
+          api("GET", `/api/rooms/${roomId}/polls/${poll.poll_id}/results`).then(showResults).catch(() => {});
+        }
+      },
+    };
+  }
+})();
