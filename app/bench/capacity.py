@@ -16,6 +16,15 @@ which the Solver lab page shows. By default the tool starts its own server
 (``python -m app.cli serve`` on a free loopback port) and stops it afterwards;
 ``--url`` targets a running one (CPU and memory then need ``--server-pid``).
 Loopback only; every loop is bounded in count and time.
+
+With ``--room`` the students *follow* an instructor instead: the tool opens a
+classroom room on the scene (``POST /api/rooms`` with the instructor's key; a
+server it starts gets a random one in ``DYNLAB_INSTRUCTOR_KEY``) and every
+viewer connects to the room's one shared scene, ``/room-viewer/<room_id>``. The
+same figures are measured per class size (1 to 150 by default), and the report
+is ``classroom.json`` plus ``classroom.svg``: frames/s and server CPU against
+students, following beside the independent viewers of ``capacity.json``, and
+the server's CPU with 1 and with 100 followers (``follow_cost``).
 """
 
 from __future__ import annotations
@@ -27,6 +36,7 @@ import json
 import math
 import os
 import platform
+import secrets
 import signal
 import socket
 import subprocess
@@ -45,11 +55,20 @@ import numpy as np
 
 from app.bench.load_client import Classroom, HealthLatency, loopback_base, probe_health
 from app.bench.plot import FONT, SVG_NS, _f, _marker, _text
-from app.bench.process_tree import TreeUsage, tree_usage
+from app.bench.process_tree import TreeUsage, tree_pids, tree_usage
 from app.bench.report_file import read_report_file
+from app.rooms.roles import HEADER as INSTRUCTOR_HEADER
+from app.rooms.roles import MIN_KEY_LENGTH
 
 REPORT_FILE = "capacity.json"
 PLOT_FILE = "capacity.svg"
+#: The report of a ``--room`` run: students following one room's shared scene.
+CLASSROOM_REPORT_FILE = "classroom.json"
+CLASSROOM_PLOT_FILE = "classroom.svg"
+#: Class sizes of a ``--room`` run unless ``--students`` gives others (1: what one viewer costs).
+ROOM_STUDENTS = (1, 10, 30, 60, 100, 150)
+#: The class size whose server CPU the issue compares with one viewer's.
+FOLLOW_COST_CLASS = 100
 PROJECT_ROOT = Path(__file__).resolve().parents[2]
 DEFAULT_OUT_DIR = PROJECT_ROOT / "docs" / "bench"
 
@@ -79,6 +98,10 @@ class LoadOptions:
     workers: int | None = None
     url: str | None = None
     server_pid: int | None = None
+    #: Follow one classroom room per scene instead of a session per student.
+    room: bool = False
+    #: The server's instructor secret, for opening the room (a server the tool starts gets a random one).
+    instructor_key: str | None = None
 
     def __post_init__(self) -> None:
         if not self.scenes:
@@ -102,6 +125,13 @@ class LoadOptions:
             loopback_base(self.url)
         elif self.server_pid is not None:
             raise ValueError("server_pid: only with --url (a server the tool starts is measured by its own pid)")
+        if self.instructor_key is not None:
+            if not self.room:
+                raise ValueError("instructor_key: only with --room (it opens the room the students follow)")
+            if len(self.instructor_key) < MIN_KEY_LENGTH:
+                raise ValueError(f"instructor_key: at least {MIN_KEY_LENGTH} characters, got {len(self.instructor_key)}")
+        elif self.room and self.url is not None:
+            raise ValueError("instructor_key: a --room run against --url needs the server's instructor key")
 
 
 def _check_range(name: str, value: float, lo: float, hi: float) -> None:
@@ -128,6 +158,34 @@ class ServerUnderTest:
     def usage(self) -> TreeUsage | None:
         return None if self.pid is None else tree_usage(self.pid)
 
+    def front_cpu_s(self) -> float | None:
+        """CPU seconds of the front process alone: the tree's less its child processes' trees; None if unmeasured."""
+        if self.pid is None:
+            return None
+        total = tree_usage(self.pid).cpu_s
+        descendants = tree_pids(self.pid)[1:]
+        grandchildren = {pid for child in descendants for pid in tree_pids(child)[1:]}
+        children_cpu_s = 0.0
+        for child in descendants:
+            if child not in grandchildren:
+                with contextlib.suppress(ValueError):  # a process that exited since the listing
+                    children_cpu_s += tree_usage(child).cpu_s
+        return total - children_cpu_s
+
+
+def machine_busy_cpu_s() -> float | None:
+    """CPU seconds this machine's processes have used, all cores (not idle, I/O wait or a hypervisor's steal), from
+    /proc/stat."""
+    try:
+        with open("/proc/stat", encoding="ascii") as stat:
+            fields = stat.readline().split()
+    except OSError:
+        return None
+    if not fields or fields[0] != "cpu":
+        return None
+    user, nice, system, _idle, _iowait, irq, softirq = (int(v) for v in fields[1:8])
+    return (user + nice + system + irq + softirq) / os.sysconf("SC_CLK_TCK")
+
 
 def free_loopback_port() -> int:
     with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as probe:
@@ -152,14 +210,20 @@ def wait_for_health(base_url: str, *, timeout_s: float, process: subprocess.Pope
 
 
 @contextlib.contextmanager
-def started_server(*, workers: int | None) -> Iterator[ServerUnderTest]:
-    """``python -m app.cli serve`` on a free loopback port, stopped on exit (SIGINT, then kill after a timeout)."""
+def started_server(*, workers: int | None, instructor_key: str | None = None) -> Iterator[ServerUnderTest]:
+    """``python -m app.cli serve`` on a free loopback port, stopped on exit (SIGINT, then kill after a timeout).
+
+    ``instructor_key`` becomes the server's ``DYNLAB_INSTRUCTOR_KEY`` (in its environment, not on its command line).
+    """
     port = free_loopback_port()
     command = [sys.executable, "-m", "app.cli", "serve", "--port", str(port), "--log-level", "warning"]
     if workers is not None:
         command += ["--workers", str(workers)]
+    env = dict(os.environ)
+    if instructor_key is not None:
+        env["DYNLAB_INSTRUCTOR_KEY"] = instructor_key
     with tempfile.TemporaryFile() as log:
-        process = subprocess.Popen(command, cwd=PROJECT_ROOT, stdout=log, stderr=subprocess.STDOUT)
+        process = subprocess.Popen(command, cwd=PROJECT_ROOT, stdout=log, stderr=subprocess.STDOUT, env=env)
         base_url = f"http://127.0.0.1:{port}"
         try:
             try:
@@ -180,10 +244,12 @@ def started_server(*, workers: int | None) -> Iterator[ServerUnderTest]:
 
 
 @contextlib.contextmanager
-def server_for(options_url: str | None, *, server_pid: int | None, workers: int | None) -> Iterator[ServerUnderTest]:
-    """The running server at ``options_url``, or one the tool starts and stops."""
+def server_for(
+    options_url: str | None, *, server_pid: int | None, workers: int | None, instructor_key: str | None = None
+) -> Iterator[ServerUnderTest]:
+    """The running server at ``options_url``, or one the tool starts (with ``instructor_key``) and stops."""
     if options_url is None:
-        with started_server(workers=workers) as server:
+        with started_server(workers=workers, instructor_key=instructor_key) as server:
             yield server
         return
     base_url = options_url.rstrip("/")
@@ -229,10 +295,16 @@ def per_client_rates(start, end, healthy: Sequence[bool]) -> list[float]:
     return [(b - a) / elapsed for a, b, ok in zip(start.frames, end.frames, healthy) if ok]
 
 
-async def measure_step(server: ServerUnderTest, scene_id: str, students: int, options: LoadOptions) -> dict:
-    """Connect ``students`` viewers of ``scene_id``, measure a steady window of ``options.seconds``, close them all."""
+async def measure_step(
+    server: ServerUnderTest, scene_id: str, students: int, options: LoadOptions, *, viewer_path: str = ""
+) -> dict:
+    """Connect ``students`` viewers of ``scene_id``, measure a steady window of ``options.seconds``, close them all.
+
+    ``viewer_path``: the websocket path every viewer opens (a room's ``/room-viewer/<room_id>``); empty: a
+    session of its own each.
+    """
     host, port = server.address
-    classroom = Classroom(host, port, scene_id, students, connect_per_s=options.connect_per_s)
+    classroom = Classroom(host, port, scene_id, students, connect_per_s=options.connect_per_s, path=viewer_path)
     stop_health = asyncio.Event()
     health = HealthLatency()
     prober: asyncio.Task | None = None
@@ -240,9 +312,12 @@ async def measure_step(server: ServerUnderTest, scene_id: str, students: int, op
         await classroom.open(timeout_s=30.0 + students / options.connect_per_s)
         await asyncio.sleep(options.warmup_s)
         prober = asyncio.create_task(probe_health(host, port, stop_health, health))
-        usage_start, tool_start, window_start = server.usage(), time.process_time(), classroom.snapshot()
+        busy_start, front_start, usage_start, tool_start, window_start = (
+            machine_busy_cpu_s(), server.front_cpu_s(), server.usage(), time.process_time(), classroom.snapshot()
+        )
         await asyncio.sleep(options.seconds)
         usage_end, tool_end, window_end = server.usage(), time.process_time(), classroom.snapshot()
+        front_end, busy_end = server.front_cpu_s(), machine_busy_cpu_s()
     finally:
         stop_health.set()
         if prober is not None:
@@ -255,6 +330,7 @@ async def measure_step(server: ServerUnderTest, scene_id: str, students: int, op
     decoded = window_end.decoded_frames - window_start.decoded_frames
     step = {
         "scene_id": scene_id,
+        "mode": "follow" if viewer_path else "independent",
         "students": students,
         "connected": sum(healthy),
         "errors": len(errors),
@@ -262,11 +338,15 @@ async def measure_step(server: ServerUnderTest, scene_id: str, students: int, op
         "window_s": round(elapsed, 2),
         "frames_per_s": frame_rate_summary(per_client_rates(window_start, window_end, healthy)),
         "server_cpu_cores": None,
+        # The front process alone (it relays every frame to every viewer); the rest is the scene workers'.
+        "server_front_cpu_cores": None,
         "server_rss_mb": None,
         "server_fds": None,
         "server_threads": None,
         "server_processes": None,
         "load_tool_cpu_cores": round((tool_end - tool_start) / elapsed, 3),
+        # Everything else the machine ran meanwhile (other people's work on a shared machine); None if unmeasured.
+        "other_cpu_cores": None,
         "health_ms": latency_summary(health),
         "messages_per_frame": round((window_end.decoded_messages - window_start.decoded_messages) / decoded, 2)
         if decoded
@@ -281,6 +361,11 @@ async def measure_step(server: ServerUnderTest, scene_id: str, students: int, op
             server_threads=usage_end.threads,
             server_processes=usage_end.processes,
         )
+    if front_start is not None and front_end is not None:
+        step["server_front_cpu_cores"] = round((front_end - front_start) / elapsed, 3)
+    if busy_start is not None and busy_end is not None and step["server_cpu_cores"] is not None:
+        busy = (busy_end - busy_start) / elapsed
+        step["other_cpu_cores"] = round(max(0.0, busy - step["server_cpu_cores"] - step["load_tool_cpu_cores"]), 3)
     return step
 
 
@@ -310,16 +395,22 @@ def server_facts(server: ServerUnderTest) -> dict:
     }
 
 
-async def _measure_all(server: ServerUnderTest, options: LoadOptions) -> list[dict]:
+async def _measure_all(server: ServerUnderTest, options: LoadOptions, rooms: dict[str, dict] | None = None) -> list[dict]:
+    """Every step; with ``rooms`` (scene id -> the room opened on it) the viewers follow that scene's room."""
     steps = []
     for scene_id in options.scenes:
+        path = f"/room-viewer/{rooms[scene_id]['room_id']}" if rooms is not None else ""
         for students in options.students:
             if steps:
                 await asyncio.sleep(PAUSE_BETWEEN_STEPS_S)
-            step = await measure_step(server, scene_id, students, options)
+            step = await measure_step(server, scene_id, students, options, viewer_path=path)
             steps.append(step)
             print(step_line(step), flush=True)
     return steps
+
+
+def _or_dash(value: object) -> str:
+    return "—" if value is None else str(value)
 
 
 def step_line(step: dict) -> str:
@@ -327,9 +418,10 @@ def step_line(step: dict) -> str:
     fps = step["frames_per_s"] or {}
     cpu = step["server_cpu_cores"]
     return (
-        f"{step['scene_id']:>28} {step['students']:4d} students: frames/s p10 {fps.get('p10', '—')} median "
+        f"{step['scene_id']:>28} {step['students']:4d} {'followers' if step.get('mode') == 'follow' else 'students '}: frames/s p10 {fps.get('p10', '—')} median "
         f"{fps.get('median', '—')} min {fps.get('min', '—')}; server {cpu if cpu is not None else '—'} cores, "
-        f"{step['server_rss_mb'] or '—'} MB; tool {step['load_tool_cpu_cores']} cores; health p95 "
+        f"{step['server_rss_mb'] or '—'} MB; front {_or_dash(step.get('server_front_cpu_cores'))}; tool "
+        f"{step['load_tool_cpu_cores']} cores; others {_or_dash(step.get('other_cpu_cores'))}; health p95 "
         f"{step['health_ms']['p95']} ms; errors {step['errors']}"
     )
 
@@ -343,13 +435,91 @@ def check_scenes(base_url: str, scenes: Sequence[str]) -> None:
         raise ValueError(f"scene: the server has no scene {', '.join(map(repr, unknown))} (it has {', '.join(sorted(known))})")
 
 
+# ---- a classroom room for --room ---------------------------------------------------------------
+
+
+def _request_json(url: str, *, method: str = "GET", body: dict | None = None, headers: dict[str, str] | None = None):
+    """One JSON request to the server under test; RuntimeError with the server's answer on an HTTP error."""
+    data = None if body is None else json.dumps(body).encode()
+    request = urllib.request.Request(url, data=data, method=method, headers={"Content-Type": "application/json", **(headers or {})})
+    try:
+        with urllib.request.urlopen(request, timeout=30.0) as answer:
+            raw = answer.read()
+    except urllib.error.HTTPError as exc:
+        detail = exc.read()[:500].decode(errors="replace")
+        raise RuntimeError(f"{method} {url} answered {exc.code}: {detail}") from None
+    return json.loads(raw) if raw else None
+
+
+def lesson_showing(chapters: Sequence[dict], scene_id: str) -> str:
+    """The id of the first lesson (``GET /api/chapters``) that opens on ``scene_id``; ValueError naming ``scene``."""
+    for chapter in chapters:
+        for lesson in chapter.get("lessons") or ():
+            if lesson.get("scene") == scene_id:
+                return str(lesson["id"])
+    raise ValueError(f"scene: no lesson opens on {scene_id!r}, so no room can show it")
+
+
+def open_room(base_url: str, scene_id: str, *, instructor_key: str) -> dict:
+    """Open a classroom room on ``scene_id`` (as the instructor): ``{"room_id", "code", "lesson_id", "scene_id"}``."""
+    lesson_id = lesson_showing(_request_json(f"{base_url}/api/chapters"), scene_id)
+    created = _request_json(
+        f"{base_url}/api/rooms", method="POST", body={"lesson_id": lesson_id, "scene_id": scene_id},
+        headers={INSTRUCTOR_HEADER: instructor_key},
+    )  # fmt: skip
+    return {"room_id": created["room_id"], "code": created["code"], "lesson_id": lesson_id, "scene_id": scene_id}
+
+
+def close_room(base_url: str, room_id: str, *, instructor_key: str) -> None:
+    """Close a room the tool opened (its scene stops); a room already gone is fine."""
+    with contextlib.suppress(RuntimeError, OSError):
+        _request_json(f"{base_url}/api/rooms/{room_id}", method="DELETE", headers={INSTRUCTOR_HEADER: instructor_key})
+
+
+async def _measure_one_viewer(server: ServerUnderTest, options: LoadOptions) -> list[dict]:
+    """Per scene, one student on a scene of their own: what "one viewer" costs, to compare a followed room with."""
+    steps = []
+    for scene_id in options.scenes:
+        step = await measure_step(server, scene_id, 1, options)
+        steps.append(step)
+        print(step_line(step), flush=True)
+        await asyncio.sleep(PAUSE_BETWEEN_STEPS_S)
+    return steps
+
+
+def _measure_in_rooms(
+    server: ServerUnderTest, options: LoadOptions, instructor_key: str
+) -> tuple[list[dict], dict[str, dict], list[dict]]:
+    """One viewer on its own scene first (no room open yet), then one room per scene and its followers at each
+    class size; the rooms are closed at the end. Returns (follow steps, rooms by scene, one-viewer steps)."""
+    one_viewer = asyncio.run(_measure_one_viewer(server, options))
+    rooms: dict[str, dict] = {}
+    try:
+        for scene_id in options.scenes:
+            rooms[scene_id] = open_room(server.base_url, scene_id, instructor_key=instructor_key)
+        return asyncio.run(_measure_all(server, options, rooms)), rooms, one_viewer
+    finally:
+        for room in rooms.values():
+            close_room(server.base_url, room["room_id"], instructor_key=instructor_key)
+
+
 def run_load(options: LoadOptions) -> dict:
     """Measure every (scene, students) step of ``options``; returns the report (see the module docstring)."""
-    with server_for(options.url, server_pid=options.server_pid, workers=options.workers) as server:
+    key = options.instructor_key
+    if options.room and key is None:
+        key = secrets.token_urlsafe(24)  # the server the tool starts is given it; it is never printed
+    child_key = key if options.room and options.url is None else None
+    rooms: dict[str, dict] | None = None
+    one_viewer: list[dict] = []
+    with server_for(options.url, server_pid=options.server_pid, workers=options.workers, instructor_key=child_key) as server:
         check_scenes(server.base_url, options.scenes)
-        steps = asyncio.run(_measure_all(server, options))
+        if options.room:
+            assert key is not None
+            steps, rooms, one_viewer = _measure_in_rooms(server, options, key)
+        else:
+            steps = asyncio.run(_measure_all(server, options))
         facts = server_facts(server)
-    return {
+    report = {
         "created": utc_now(),
         "machine": machine_facts(),
         "server": facts,
@@ -364,6 +534,59 @@ def run_load(options: LoadOptions) -> dict:
         "targets": {"p10_frames_per_s": TARGET_P10_FRAMES_PER_S, "min_frames_per_s_degraded": DEGRADED_MIN_FRAMES_PER_S},
         "steps": steps,
     }
+    if rooms is not None:
+        report.update(
+            mode="follow",
+            scene_id=options.scenes[0] if len(options.scenes) == 1 else list(options.scenes),
+            rooms=[{"scene_id": r["scene_id"], "lesson_id": r["lesson_id"]} for r in rooms.values()],
+            one_viewer=one_viewer,
+            follow_cost=follow_cost(steps, one_viewer=one_viewer),
+        )
+    return report
+
+
+def _step_at(steps: Sequence[dict], scene_id: str, students: int) -> dict | None:
+    return next((s for s in steps if s.get("scene_id") == scene_id and s.get("students") == students), None)
+
+
+def follow_cost(steps: Sequence[dict], *, one_viewer: Sequence[dict] = (), scene_id: str | None = None) -> dict:
+    """Server CPU (cores) with 1 follower and with :data:`FOLLOW_COST_CLASS` followers of one scene (the first
+    scene measured unless ``scene_id``), and with one student on a scene of their own (from ``one_viewer``);
+    a size not measured is None, and so is a ratio then."""
+    if scene_id is None:
+        scene_id = str(steps[0]["scene_id"]) if steps else ""
+    cpu = lambda step: step.get("server_cpu_cores") if step else None  # noqa: E731
+    ratio = lambda a, b: round(a / b, 2) if a is not None and b else None  # noqa: E731
+    cpu_1, cpu_class = cpu(_step_at(steps, scene_id, 1)), cpu(_step_at(steps, scene_id, FOLLOW_COST_CLASS))
+    cpu_viewer = cpu(_step_at(one_viewer, scene_id, 1))
+    return {
+        "scene_id": scene_id,
+        "cpu_cores_1": cpu_1,
+        f"cpu_cores_{FOLLOW_COST_CLASS}": cpu_class,
+        "one_viewer_cpu_cores": cpu_viewer,
+        f"ratio_{FOLLOW_COST_CLASS}_to_1": ratio(cpu_class, cpu_1),
+        f"ratio_{FOLLOW_COST_CLASS}_to_one_viewer": ratio(cpu_class, cpu_viewer),
+    }
+
+
+def with_independent_comparison(report: dict, independent: dict | None, *, source: str = REPORT_FILE) -> dict:
+    """A follow report with, per step, the independent viewers' figures at the same scene and class size
+    (from a ``capacity.json`` report; ``independent`` None: none to compare) under ``"independent"``."""
+    steps = (independent or {}).get("steps") or []
+    rows = []
+    for step in report["steps"]:
+        match = _step_at(steps, step["scene_id"], step["students"])
+        if match is not None and isinstance(match.get("frames_per_s"), dict):
+            rows.append({
+                "scene_id": step["scene_id"], "students": step["students"], "frames_per_s": match["frames_per_s"],
+                "server_cpu_cores": match.get("server_cpu_cores"), "server_rss_mb": match.get("server_rss_mb"),
+            })  # fmt: skip
+    comparison = {"source": source, "created": (independent or {}).get("created"), "steps": rows}
+    cost = dict(report.get("follow_cost") or {})
+    if cost:
+        match = _step_at(steps, cost.get("scene_id"), FOLLOW_COST_CLASS)
+        cost[f"independent_cpu_cores_{FOLLOW_COST_CLASS}"] = match.get("server_cpu_cores") if match else None
+    return {**report, "independent": comparison, **({"follow_cost": cost} if cost else {})}
 
 
 # ---- the report: JSON and a plot -------------------------------------------------------------
@@ -371,6 +594,9 @@ def run_load(options: LoadOptions) -> dict:
 WIDTH, HEIGHT = 840, 460  # room on the right for the longest scene id in the legend
 LEFT, RIGHT, TOP, BOTTOM = 70, 560, 64, 400
 SCENE_COLOURS = ("#d0202e", "#1f5fbf", "#1b8a3a", "#7b2fa8", "#e67e00", "#00796b", "#5d4037")
+#: Colours of the two ways a class watches a scene in ``classroom.svg``.
+MODE_COLOURS = {"follow": "#d0202e", "independent": "#1f5fbf"}
+MODE_NAMES = {"follow": "following one room's scene", "independent": "a scene each (capacity.json)"}
 
 
 def _nice_ceiling(value: float, step: float) -> float:
@@ -382,71 +608,124 @@ def describe_workers(workers: object) -> str:
     return "serve's default" if workers is None else "none (one process)" if workers == 0 else str(workers)
 
 
-def capacity_svg(report: dict) -> str:
-    """Frames/s (10th percentile solid, median dashed) against students, one colour per scene; linear axes."""
-    steps = [s for s in report.get("steps") or () if isinstance(s.get("frames_per_s"), dict)]
-    scenes = list(dict.fromkeys(str(s["scene_id"]) for s in steps))
-    most = max([s["students"] for s in steps] + [10])
-    max_students = _nice_ceiling(most, 10 if most <= 100 else 50)
-    rates = [s["frames_per_s"][k] for s in steps for k in ("p10", "median")]
-    max_rate = _nice_ceiling(max(rates + [TARGET_P10_FRAMES_PER_S + 2]) + 3, 5)  # room above the top line
-    x = lambda n: LEFT + (RIGHT - LEFT) * n / max_students  # noqa: E731
-    y = lambda r: BOTTOM - (BOTTOM - TOP) * r / max_rate  # noqa: E731
+@dataclass(frozen=True)
+class _Panel:
+    """One plot area: students (0..``max_x``) across, a quantity (0..``max_y``) up, in SVG user units."""
+
+    left: float
+    right: float
+    top: float
+    bottom: float
+    max_x: float
+    max_y: float
+
+    def x(self, n: float) -> float:
+        return self.left + (self.right - self.left) * n / self.max_x
+
+    def y(self, value: float) -> float:
+        return self.bottom - (self.bottom - self.top) * value / self.max_y
+
+    def frame(self, *, x_label: str, y_label: str, y_step: float) -> str:
+        """Grid, ticks, the box and both axis labels."""
+        grid = []
+        x_tick = next(step for step in (1, 2, 5, 10, 20, 25, 50, 100) if self.max_x / step <= 10)
+        for k in range(int(self.max_x / x_tick + 1e-9) + 1):
+            n = k * x_tick
+            grid.append(f'<line x1="{_f(self.x(n))}" x2="{_f(self.x(n))}" y1="{self.top}" y2="{self.bottom}" stroke="#eef0f4"/>')
+            grid.append(_text(self.x(n), self.bottom + 18, f"{n:g}", anchor="middle"))
+        for k in range(int(self.max_y / y_step + 1e-9) + 1):
+            value = k * y_step
+            grid.append(f'<line x1="{_f(self.left)}" x2="{_f(self.right)}" y1="{_f(self.y(value))}" y2="{_f(self.y(value))}" stroke="#eef0f4"/>')
+            grid.append(_text(self.left - 7, self.y(value) + 4, f"{value:g}", anchor="end"))
+        cy, label_x = (self.top + self.bottom) / 2, self.left - 52
+        return "".join([
+            '<g class="grid">', *grid, "</g>",
+            f'<rect x="{_f(self.left)}" y="{_f(self.top)}" width="{_f(self.right - self.left)}" '
+            f'height="{_f(self.bottom - self.top)}" fill="none" stroke="#9aa3b2"/>',
+            _text((self.left + self.right) / 2, self.bottom + 42, x_label, size=13, anchor="middle", weight="600"),
+            _text(label_x, cy, y_label, size=13, anchor="middle", weight="600", extra=f'transform="rotate(-90 {_f(label_x)} {_f(cy)})"'),
+        ])  # fmt: skip
+
+    def target(self, value: float, label: str = "") -> str:
+        """A dashed horizontal target line, labelled (unless ``label`` is empty) at its left end, under the line."""
+        y = _f(self.y(value))
+        return (
+            f'<g class="target"><line x1="{_f(self.left)}" x2="{_f(self.right)}" y1="{y}" y2="{y}" stroke="#1d2330" '
+            f'stroke-width="1.3" stroke-dasharray="6 4"/>'
+            + (_text(self.left + 6, self.y(value) + 14, label, size=11, anchor="start", halo=True) if label else "")
+            + "</g>"
+        )
+
+    def line(self, points: Sequence[tuple[float, float]], colour: str, *, dashed: bool, filled: bool) -> str:
+        """A polyline through ``(students, value)`` points (two or more) with a circle on each."""
+        out = []
+        if len(points) >= 2:
+            coords = " ".join(f"{_f(self.x(n))},{_f(self.y(v))}" for n, v in points)
+            dash = ' stroke-dasharray="5 3"' if dashed else ""
+            out.append(f'<polyline points="{coords}" fill="none" stroke="{colour}" stroke-width="2.2"{dash}/>')
+        out.extend(_marker("circle", self.x(n), self.y(v), colour, filled, size=4) for n, v in points)
+        return "".join(out)
+
+
+def _svg_open(width: int, height: int, title: str, heading: str, subtitle: str) -> list[str]:
+    return [
+        f'<svg xmlns="{SVG_NS}" width="{width}" height="{height}" viewBox="0 0 {width} {height}" role="img" '
+        f'font-family="{escape(FONT)}">',
+        f"<title>{escape(title)}</title>",
+        f'<rect width="{width}" height="{height}" fill="#ffffff"/>',
+        _text(LEFT, 26, heading, size=17, weight="600"),
+        _text(LEFT, 45, subtitle, size=12, fill="#5b6475"),
+    ]
+
+
+def _subtitle(report: dict) -> str:
     machine = report.get("machine") or {}
     server = report.get("server") or {}
     seconds = (report.get("method") or {}).get("seconds")
-    subtitle = (
+    return (
         f"{machine.get('cores', '?')} cores; scene workers: {describe_workers(server.get('workers'))}; "
         f"{f'{seconds:g}' if isinstance(seconds, (int, float)) else '?'} s steady window per point; "
         f"{str(report.get('created', ''))[:10]}"
     )
-    out = [
-        f'<svg xmlns="{SVG_NS}" width="{WIDTH}" height="{HEIGHT}" viewBox="0 0 {WIDTH} {HEIGHT}" role="img" '
-        f'font-family="{escape(FONT)}">',
-        "<title>Classroom capacity: frames per second delivered to each student against the number of students"
-        "</title>",
-        f'<rect width="{WIDTH}" height="{HEIGHT}" fill="#ffffff"/>',
-        _text(LEFT, 26, "Classroom capacity: frames/s each student receives", size=17, weight="600"),
-        _text(LEFT, 45, subtitle, size=12, fill="#5b6475"),
-    ]
-    grid = []
-    x_tick = next(step for step in (1, 2, 5, 10, 20, 25, 50, 100) if max_students / step <= 10)
-    n = 0.0
-    while n <= max_students + 1e-9:
-        grid.append(f'<line x1="{_f(x(n))}" x2="{_f(x(n))}" y1="{TOP}" y2="{BOTTOM}" stroke="#eef0f4"/>')
-        grid.append(_text(x(n), BOTTOM + 18, f"{n:g}", anchor="middle"))
-        n += x_tick
-    for r in range(0, int(max_rate) + 1, 5):
-        grid.append(f'<line x1="{LEFT}" x2="{RIGHT}" y1="{_f(y(r))}" y2="{_f(y(r))}" stroke="#eef0f4"/>')
-        grid.append(_text(LEFT - 7, y(r) + 4, str(r), anchor="end"))
-    out.append('<g class="grid">' + "".join(grid) + "</g>")
-    out.append(f'<rect x="{LEFT}" y="{TOP}" width="{RIGHT - LEFT}" height="{BOTTOM - TOP}" fill="none" stroke="#9aa3b2"/>')
-    out.append(_text((LEFT + RIGHT) / 2, BOTTOM + 42, "Students (one viewer and one scene each)", size=13,
-                     anchor="middle", weight="600"))  # fmt: skip
-    cy = (TOP + BOTTOM) / 2
-    out.append(_text(18, cy, "Frames per second per student", size=13, anchor="middle", weight="600",
-                     extra=f'transform="rotate(-90 18 {_f(cy)})"'))  # fmt: skip
-    for rate, label in ((TARGET_P10_FRAMES_PER_S, "target: 10th percentile at 100 students"),
-                        (DEGRADED_MIN_FRAMES_PER_S, "floor: every student at 150")):  # fmt: skip
-        out.append(
-            f'<g class="target"><line x1="{LEFT}" x2="{RIGHT}" y1="{_f(y(rate))}" y2="{_f(y(rate))}" stroke="#1d2330" '
-            f'stroke-width="1.3" stroke-dasharray="6 4"/>'
-            # At the left end, under its line: small classes sit at 30 frames/s, above both lines, so nothing is hidden.
-            + _text(LEFT + 6, y(rate) + 14, f"{label} ({rate:g})", size=11, anchor="start", halo=True)
-            + "</g>"
-        )
+
+
+def _measured(steps: object) -> list[dict]:
+    return [s for s in steps or () if isinstance(s, dict) and isinstance(s.get("frames_per_s"), dict)]
+
+
+def _rate_panel(steps: Sequence[dict], *, left: float, right: float) -> _Panel:
+    most = max([s["students"] for s in steps] + [10])
+    rates = [s["frames_per_s"][k] for s in steps for k in ("p10", "median")]
+    max_rate = _nice_ceiling(max(rates + [TARGET_P10_FRAMES_PER_S + 2]) + 3, 5)  # room above the top line
+    return _Panel(left, right, TOP, BOTTOM, _nice_ceiling(most, 10 if most <= 100 else 50), max_rate)
+
+
+def _rate_lines(panel: _Panel, points: Sequence[tuple[int, dict]], colour: str) -> str:
+    """The median (dashed, open circles) and 10th percentile (solid, filled) of frames/s."""
+    return "".join(
+        panel.line([(n, fps[key]) for n, fps in points], colour, dashed=key == "median", filled=key == "p10")
+        for key in ("median", "p10")
+    )
+
+
+def capacity_svg(report: dict) -> str:
+    """Frames/s (10th percentile solid, median dashed) against students, one colour per scene; linear axes."""
+    steps = _measured(report.get("steps"))
+    scenes = list(dict.fromkeys(str(s["scene_id"]) for s in steps))
+    panel = _rate_panel(steps, left=LEFT, right=RIGHT)
+    out = _svg_open(
+        WIDTH, HEIGHT, "Classroom capacity: frames per second delivered to each student against the number of students",
+        "Classroom capacity: frames/s each student receives", _subtitle(report),
+    )  # fmt: skip
+    out.append(panel.frame(x_label="Students (one viewer and one scene each)", y_label="Frames per second per student", y_step=5))
+    # At the left end, under its line: small classes sit at 30 frames/s, above both lines, so nothing is hidden.
+    out.append(panel.target(TARGET_P10_FRAMES_PER_S, f"target: 10th percentile at 100 students ({TARGET_P10_FRAMES_PER_S:g})"))
+    out.append(panel.target(DEGRADED_MIN_FRAMES_PER_S, f"floor: every student at 150 ({DEGRADED_MIN_FRAMES_PER_S:g})"))
     legend_y = TOP + 8
     for index, scene_id in enumerate(scenes):
         colour = SCENE_COLOURS[index % len(SCENE_COLOURS)]
         points = sorted((s["students"], s["frames_per_s"]) for s in steps if s["scene_id"] == scene_id)
-        series = [f'<g class="series" data-scene="{escape(scene_id)}">']
-        for key, dash in (("median", ' stroke-dasharray="5 3"'), ("p10", "")):
-            coords = " ".join(f"{_f(x(n))},{_f(y(fps[key]))}" for n, fps in points)
-            if len(points) >= 2:
-                series.append(f'<polyline points="{coords}" fill="none" stroke="{colour}" stroke-width="2.2"{dash}/>')
-            series.extend(_marker("circle", x(n), y(fps[key]), colour, key == "p10", size=4) for n, fps in points)
-        series.append("</g>")
-        out.append("".join(series))
+        out.append(f'<g class="series" data-scene="{escape(scene_id)}">{_rate_lines(panel, points, colour)}</g>')
         out.append(
             f'<line x1="{RIGHT + 16}" x2="{RIGHT + 44}" y1="{legend_y}" y2="{legend_y}" stroke="{colour}" stroke-width="2.2"/>'
             + _text(RIGHT + 52, legend_y + 4, scene_id)
@@ -456,20 +735,97 @@ def capacity_svg(report: dict) -> str:
     out.append(_text(RIGHT + 16, legend_y, "solid, filled: 10th percentile", size=11, fill="#5b6475"))
     out.append(_text(RIGHT + 16, legend_y + 16, "dashed, open: median", size=11, fill="#5b6475"))
     if not steps:
-        out.append(_text((LEFT + RIGHT) / 2, cy, "no step delivered frames", size=14, anchor="middle", fill="#d0202e"))
+        out.append(_text((LEFT + RIGHT) / 2, (TOP + BOTTOM) / 2, "no step delivered frames", size=14, anchor="middle", fill="#d0202e"))
     out.append("</svg>")
     return "\n".join(out) + "\n"
 
 
-def write_report(report: dict, out_dir: Path, *, name: str = REPORT_FILE, plot: bool = True) -> list[Path]:
-    """Write the report as JSON (and its SVG plot) into ``out_dir``; returns the paths written."""
+CLASSROOM_WIDTH, CLASSROOM_HEIGHT = 980, 540
+#: The two panels of classroom.svg: frames/s on the left, server CPU on the right.
+RATE_PANEL_X, CPU_PANEL_X = (LEFT, 440), (540, 910)
+
+
+def classroom_svg(report: dict) -> str:
+    """A ``--room`` report: frames/s (10th percentile solid, median dashed) and server CPU (cores) against
+    students, following one room's scene (red) beside a scene each (blue, from ``report["independent"]``)."""
+    follow = _measured(report.get("steps"))
+    independent = _measured((report.get("independent") or {}).get("steps"))
+    both = follow + independent
+    rates = _rate_panel(both, left=RATE_PANEL_X[0], right=RATE_PANEL_X[1])
+    cpu_values = [s["server_cpu_cores"] for s in both if isinstance(s.get("server_cpu_cores"), (int, float))]
+    cpu_max = _nice_ceiling(max(cpu_values + [1.0]) * 1.08, 0.5)
+    cpu = _Panel(CPU_PANEL_X[0], CPU_PANEL_X[1], TOP, BOTTOM, rates.max_x, cpu_max)
+    cost = report.get("follow_cost") or {}
+    scene = cost.get("scene_id") or report.get("scene_id") or "?"
+    out = _svg_open(
+        CLASSROOM_WIDTH, CLASSROOM_HEIGHT,
+        "Classroom following one scene: frames per second each student receives and the server's CPU, against students",
+        f"Classroom following one {scene} demo: frames/s each student receives, server CPU", _subtitle(report),
+    )  # fmt: skip
+    out.append(rates.frame(x_label="Students", y_label="Frames per second per student", y_step=5))
+    out.append(rates.target(TARGET_P10_FRAMES_PER_S))  # labelled in the legend: the lines cross it
+    out.append(cpu.frame(x_label="Students", y_label="Server CPU (cores, all its processes)", y_step=0.25 if cpu_max <= 2 else 0.5))
+    for mode, steps in (("independent", independent), ("follow", follow)):
+        colour = MODE_COLOURS[mode]
+        points = sorted((s["students"], s["frames_per_s"]) for s in steps)
+        cores = sorted((s["students"], s["server_cpu_cores"]) for s in steps if isinstance(s.get("server_cpu_cores"), (int, float)))
+        out.append(
+            f'<g class="series" data-mode="{mode}">{_rate_lines(rates, points, colour)}'
+            f"{cpu.line(cores, colour, dashed=False, filled=True)}</g>"
+        )
+    legend_y = BOTTOM + 66
+    for index, mode in enumerate(("follow", "independent")):
+        x0 = LEFT + 300 * index
+        out.append(
+            f'<line x1="{x0}" x2="{x0 + 28}" y1="{legend_y}" y2="{legend_y}" stroke="{MODE_COLOURS[mode]}" stroke-width="2.2"/>'
+            + _text(x0 + 36, legend_y + 4, MODE_NAMES[mode])
+        )
+    out.append(
+        f'<line x1="{LEFT + 600}" x2="{LEFT + 628}" y1="{legend_y}" y2="{legend_y}" stroke="#1d2330" stroke-width="1.3" '
+        f'stroke-dasharray="6 4"/>' + _text(LEFT + 636, legend_y + 4, f"target: 10th percentile at 100 ({TARGET_P10_FRAMES_PER_S:g})")
+    )
+    legend_y += 22
+    out.append(_text(LEFT, legend_y, "Frames/s: solid, filled: 10th percentile; dashed, open: median. Server CPU: the "
+                     "server process and its scene workers.", size=11, fill="#5b6475"))  # fmt: skip
+    note = _follow_cost_note(cost)
+    if note:
+        out.append(_text(LEFT, legend_y + 26, note, size=12))
+    if not follow:
+        out.append(_text(sum(RATE_PANEL_X) / 2, (TOP + BOTTOM) / 2, "no step delivered frames", size=14, anchor="middle", fill="#d0202e"))
+    out.append("</svg>")
+    return "\n".join(out) + "\n"
+
+
+def _follow_cost_note(cost: dict) -> str:
+    """The server's CPU with 1 and with 100 followers (and one viewer of its own scene, and 100 such) in words."""
+    def cores(key: str) -> str | None:
+        value = cost.get(key)
+        return f"{value:g}" if isinstance(value, (int, float)) else None
+
+    parts = [
+        f"{label}: {cores(key)}" for key, label in (
+            ("cpu_cores_1", "1 follower"), (f"cpu_cores_{FOLLOW_COST_CLASS}", f"{FOLLOW_COST_CLASS} followers"),
+            ("one_viewer_cpu_cores", "1 viewer on its own scene"),
+            (f"independent_cpu_cores_{FOLLOW_COST_CLASS}", f"{FOLLOW_COST_CLASS} on their own scenes"),
+        ) if cores(key) is not None
+    ]  # fmt: skip
+    return f"Server CPU (cores): {'; '.join(parts)}" if parts else ""
+
+
+def write_report(report: dict, out_dir: Path, *, name: str | None = None, plot: bool = True) -> list[Path]:
+    """Write the report as JSON (and its SVG plot) into ``out_dir``; returns the paths written.
+
+    A follow report (``"mode": "follow"``) is ``classroom.json`` and ``.svg``, any other ``capacity.json`` and
+    ``.svg``, unless ``name`` names the JSON file.
+    """
+    follow = report.get("mode") == "follow"
     out_dir.mkdir(parents=True, exist_ok=True)
-    path = out_dir / name
+    path = out_dir / (name or (CLASSROOM_REPORT_FILE if follow else REPORT_FILE))
     path.write_text(json.dumps(report, indent=2, allow_nan=False) + "\n", encoding="utf-8")
     written = [path]
     if plot:
-        svg = out_dir / PLOT_FILE
-        svg.write_text(capacity_svg(report), encoding="utf-8")
+        svg = out_dir / (CLASSROOM_PLOT_FILE if follow else PLOT_FILE)
+        svg.write_text(classroom_svg(report) if follow else capacity_svg(report), encoding="utf-8")
         written.append(svg)
     return written
 
@@ -506,20 +862,33 @@ def add_server_arguments(parser: argparse.ArgumentParser) -> None:
 
 def add_load_arguments(parser: argparse.ArgumentParser) -> None:
     """The options of ``dynlab load``."""
-    parser.add_argument("--students", type=_int_list, default=LoadOptions.students, help="class sizes, e.g. 10,30,60,100,150")
+    parser.add_argument(
+        "--students", type=_int_list, default=None,
+        help="class sizes, e.g. 10,30,60,100,150 (the default; with --room 1,10,30,60,100,150)",
+    )  # fmt: skip
     parser.add_argument("--seconds", type=float, default=LoadOptions.seconds, help=f"steady window per step (s, ≤ {MAX_STEP_SECONDS:g})")
     parser.add_argument("--warmup", type=float, default=LoadOptions.warmup_s, help="seconds after all connected before measuring")
     parser.add_argument("--connect-rate", type=float, default=LoadOptions.connect_per_s, help="viewers opened per second")
+    parser.add_argument(
+        "--room", action="store_true",
+        help="the students follow one classroom room on the scene instead of a scene each (writes classroom.json and .svg)",
+    )  # fmt: skip
+    parser.add_argument(
+        "--instructor-key", default=None,
+        help="with --room and --url: the server's instructor secret, to open the room (a server the tool starts gets its own)",
+    )  # fmt: skip
     add_server_arguments(parser)
 
 
 def run_load_command(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
-    """Measure, print one line per step, write capacity.json and capacity.svg; bad options exit through ``parser``."""
+    """Measure, print one line per step, write capacity.json and capacity.svg (with ``--room``: classroom.json and
+    classroom.svg, beside the independent figures of the capacity.json in ``--out``); bad options exit through ``parser``."""
+    students = args.students if args.students is not None else ROOM_STUDENTS if args.room else LoadOptions.students
     try:
         options = LoadOptions(
-            scenes=_scene_list(args.scene, LoadOptions.scenes), students=args.students, seconds=args.seconds,
+            scenes=_scene_list(args.scene, LoadOptions.scenes), students=students, seconds=args.seconds,
             warmup_s=args.warmup, connect_per_s=args.connect_rate, workers=args.workers, url=args.url,
-            server_pid=args.server_pid,
+            server_pid=args.server_pid, room=args.room, instructor_key=args.instructor_key,
         )  # fmt: skip
     except ValueError as exc:
         parser.error(str(exc))
@@ -528,6 +897,13 @@ def run_load_command(args: argparse.Namespace, parser: argparse.ArgumentParser) 
     except (RuntimeError, ValueError) as exc:
         print(f"dynlab load: {exc}", file=sys.stderr)
         return 1
+    if options.room:
+        try:
+            independent = read_report(args.out / REPORT_FILE)
+        except ValueError as exc:
+            print(f"dynlab load: no comparison with independent viewers: {exc}", file=sys.stderr)
+            independent = None
+        report = with_independent_comparison(report, independent)
     for path in write_report(report, args.out):
         print(path)
     return 0

@@ -1,13 +1,15 @@
 """Simulated students: viewer websockets opened through the relay as a browser's viser client opens them.
 
 A :class:`ViewerClient` connects to ``ws://<host>:<port>/viewer/<scene_id>/<session_id>``
+(a student's own scene), or to another viewer path such as a room's
+``/room-viewer/<room_id>`` (a follower of the room's one shared scene),
 with the ``viser-v<version>`` subprotocol, offering permessage-deflate (the
 ``websockets`` default, as browsers do), sends the camera message a browser
 sends first, then counts the binary messages the server streams: one per frame
 window. Every 30th message is decoded (viser's framing: 8 bytes msgpack length,
 8 bytes compressed length, zstd-compressed msgpack ``{"messages": [...]}``) to
 measure viser messages per frame. A :class:`Classroom` is N such clients, each
-with its own random session id. :func:`probe_health` times ``GET /api/health``
+with its own random session id, or all on one given viewer path. :func:`probe_health` times ``GET /api/health``
 with a raw HTTP/1.1 request. Loopback only; every loop ends on a stop event, a
 closed connection or a timeout.
 """
@@ -76,10 +78,14 @@ def viser_messages_in_frame(data: bytes) -> int:
 
 @dataclass
 class ViewerClient:
-    """One student's viewer. ``frames``/``frame_bytes`` count binary messages received since connecting."""
+    """One student's viewer. ``frames``/``frame_bytes`` count binary messages received since connecting.
+
+    ``path`` is the viewer websocket's path; empty: the student's own session, ``/viewer/<scene_id>/<session_id>``.
+    """
 
     scene_id: str
     session_id: str = field(default_factory=new_session_id)
+    path: str = ""
     frames: int = 0
     frame_bytes: int = 0
     decoded_frames: int = 0
@@ -88,9 +94,15 @@ class ViewerClient:
     #: Why the viewer failed to connect or was closed before being told to stop; None while healthy.
     error: str | None = None
 
+    def __post_init__(self) -> None:
+        if not self.path:
+            self.path = f"/viewer/{self.scene_id}/{self.session_id}"
+        elif not self.path.startswith("/"):
+            raise ValueError(f"path: a viewer websocket path starts with '/', got {self.path!r}")
+
     async def run(self, host: str, port: int, stop: asyncio.Event, camera_message: bytes) -> None:
         """Connect, send ``camera_message`` as a browser does first, count frames until ``stop`` or the connection ends."""
-        uri = f"ws://{host}:{port}/viewer/{self.scene_id}/{self.session_id}"
+        uri = f"ws://{host}:{port}{self.path}"
         try:
             connection = await websockets.connect(
                 uri,
@@ -147,15 +159,19 @@ class ClassroomSnapshot:
 
 
 class Classroom:
-    """``students`` viewers of one scene on the server at ``host:port``, connected ``connect_per_s`` per second."""
+    """``students`` viewers of one scene on the server at ``host:port``, connected ``connect_per_s`` per second.
 
-    def __init__(self, host: str, port: int, scene_id: str, students: int, *, connect_per_s: float) -> None:
+    Each viewer opens its own session of the scene, unless ``path`` names one viewer websocket path they all
+    open (a room's followers: ``/room-viewer/<room_id>``).
+    """
+
+    def __init__(self, host: str, port: int, scene_id: str, students: int, *, connect_per_s: float, path: str = "") -> None:
         # Imported here: importing app.scenes registers every scene (about 2 s), which only a running load needs.
         from app.scenes.host.viser_compat import viewer_camera_message
 
         self.camera_message = viewer_camera_message()
         self.host, self.port = host, port
-        self.clients = [ViewerClient(scene_id) for _ in range(students)]
+        self.clients = [ViewerClient(scene_id, path=path) for _ in range(students)]
         self.connect_per_s = connect_per_s
         self._stop = asyncio.Event()
         self._tasks: list[asyncio.Task] = []
