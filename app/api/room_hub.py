@@ -171,6 +171,11 @@ class RoomHub:
             return
         self.publish(room.room_id, {"type": "state", "state": room.state()})
 
+    def publish_poll(self, room: Room, poll: Poll) -> None:
+        """A poll changed: the room's state to every page (its public view) and the results to the instructor."""
+        self.publish_state(room)
+        self.publish_results(room, poll)
+
     def publish_results(self, room: Room, poll: Poll) -> None:
         """A poll's results to the instructor's sockets only (students never see others' answers)."""
         self.publish(room.room_id, {"type": "results", "results": poll.results()}, instructors_only=True)

@@ -245,8 +245,7 @@ def start_poll(room: Room, raw: dict[str, Any], *, ready: tuple[ReadyQuestion, .
         poll = room.open_poll(raw)
     except PollError as exc:
         raise unprocessable(["body", exc.field], str(exc)) from None
-    hub.publish_state(room)
-    hub.publish_results(room, poll)
+    hub.publish_poll(room, poll)
     return poll.public()
 
 
@@ -265,8 +264,7 @@ def update_poll(room: RoomDep, poll_id: PollId, body: PollUpdate, host: SceneHos
         raise HTTPException(status_code=404, detail=str(exc.args[0])) from None
     except (RoomError, PollError) as exc:
         raise unprocessable(["body", getattr(exc, "field", "reveal")], str(exc)) from None
-    hub.publish_state(room)
-    hub.publish_results(room, poll)
+    hub.publish_poll(room, poll)
     return poll.results()
 
 

@@ -40,15 +40,22 @@ def is_blocked_message(data: bytes) -> bool:
     return isinstance(message, dict) and message.get("type") in BLOCKED_MESSAGE_TYPES
 
 
+async def viser_protocol(websocket: WebSocket) -> str | None:
+    """The ``viser-v<version>`` subprotocol the browser's viewer offered; None after closing with 1002 if it offered none."""
+    offered = websocket.scope.get("subprotocols") or []
+    protocol = next((p for p in offered if p.startswith("viser-v")), None)
+    if protocol is None:
+        await websocket.close(code=1002, reason="expected a viser-v<version> subprotocol")
+    return protocol
+
+
 @router.websocket("/viewer/{scene_id}/{session_id}")
 async def viewer_relay(websocket: WebSocket, scene_id: str, session_id: str, host: SceneHostDep) -> None:
     if scene_id not in host.scenes or not SESSION_ID_PATTERN.match(session_id):
         await websocket.close(code=1008, reason="unknown scene or malformed session id")
         return
-    offered = websocket.scope.get("subprotocols") or []
-    protocol = next((p for p in offered if p.startswith("viser-v")), None)
+    protocol = await viser_protocol(websocket)
     if protocol is None:
-        await websocket.close(code=1002, reason="expected a viser-v<version> subprotocol")
         return
     try:
         upstream = await websockets.connect(

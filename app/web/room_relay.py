@@ -36,6 +36,7 @@ from starlette.websockets import WebSocketDisconnect
 
 from app.api.schemas.rooms import ROOM_ID_PATTERN
 from app.scenes.host.viser_compat import viewer_camera_message
+from app.web.relay import viser_protocol
 
 log = logging.getLogger(__name__)
 router = APIRouter(tags=["viewer"])
@@ -210,10 +211,8 @@ async def room_viewer(websocket: WebSocket, room_id: str) -> None:
     except KeyError:
         await websocket.close(code=1008, reason="no open room has this id")
         return
-    offered = websocket.scope.get("subprotocols") or []
-    protocol = next((p for p in offered if p.startswith("viser-v")), None)
+    protocol = await viser_protocol(websocket)
     if protocol is None:
-        await websocket.close(code=1002, reason="expected a viser-v<version> subprotocol")
         return
     if room.scene_id is None:
         await websocket.close(code=1013, reason="the room shows no scene now")

@@ -299,14 +299,8 @@ class SceneHost:
     # -- a motion handed from one session to another (a room's students exploring) ----------
     def motion_state(self, session_id: str) -> dict[str, Any] | None:
         """The session's scene's motion now (``Scene.motion_state``), or None (no scene, or one that restarts at t = 0)."""
-        with self._lock:
-            session = self._sessions.get(session_id)
-        if session is None:
-            return None
-        with session.lock:
-            for scene in session.instances.values():
-                return scene.motion_state()
-        return None
+        with self.inspect(session_id) as scenes:
+            return scenes[0].motion_state() if scenes else None
 
     def resume_from(self, session_id: str, motion: Mapping[str, Any]) -> None:
         """Start the session's scene (now, and the next one built for a viewer) from ``motion``; set its parameters first."""
