@@ -63,6 +63,8 @@ class Member:
     student_token: str | None = None
     queue: asyncio.Queue[str | None] = field(default_factory=lambda: asyncio.Queue(QUEUE_LIMIT))
     sender: asyncio.Task[None] | None = None
+    #: Closed for not reading: nothing more is queued for it.
+    closing: bool = False
 
     async def send_all(self) -> None:
         while (text := await self.queue.get()) is not None:
@@ -117,9 +119,12 @@ class RoomHub:
         self._queue(member, finite_json(message))
 
     def _queue(self, member: Member, text: str) -> None:
+        if member.closing:
+            return
         try:
             member.queue.put_nowait(text)
         except asyncio.QueueFull:  # not reading: drop it; its page reconnects and reads the state afresh
+            member.closing = True
             log.info("room socket not reading: closing it")
             if member.sender is not None:
                 member.sender.cancel()

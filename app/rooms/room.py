@@ -20,7 +20,7 @@ from typing import Any, Protocol
 
 from app.course import Catalogue
 from app.rooms.polls import Poll
-from app.scenes.host.host import TIME_SCALE_RANGE
+from app.scenes.host.host import STAGE_PREFIX, TIME_SCALE_RANGE
 
 #: Characters of a room code: capitals and digits a student cannot misread (no I, L, O, 0, 1).
 CODE_ALPHABET = "ABCDEFGHJKMNPQRSTUVWXYZ23456789"
@@ -48,7 +48,7 @@ class StageHost(Protocol):
     scenes: Mapping[str, Any]
 
     def open_stage(self, session_id: str, scene_id: str, raw: Mapping[str, Any]) -> dict[str, Any]: ...
-    def set_params(self, scene_id: str, session_id: str, raw: Mapping[str, Any]) -> dict[str, Any]: ...
+    def set_params(self, scene_id: str, session_id: str, raw: Mapping[str, Any], *, stage: bool = False) -> dict[str, Any]: ...
     def set_playback(self, session_id: str, **playback: Any) -> dict[str, Any]: ...
     def motion_state(self, session_id: str) -> dict[str, Any] | None: ...
     def close_stage(self, session_id: str) -> None: ...
@@ -90,7 +90,7 @@ class Room:
     @property
     def stage_id(self) -> str:
         """The scene host's session id for this room's shared scene."""
-        return f"room-{self.room_id}"
+        return f"{STAGE_PREFIX}{self.room_id}"
 
     # -- state ---------------------------------------------------------------------
     def state(self) -> dict[str, Any]:
@@ -184,7 +184,7 @@ class Room:
         if scene_id is not None and plan["new_scene"]:
             params = host.open_stage(self.stage_id, scene_id, params or {})["params"]
         elif scene_id is not None and params is not None:
-            params = host.set_params(scene_id, self.stage_id, params)
+            params = host.set_params(scene_id, self.stage_id, params, stage=True)
         elif scene_id is None and self.scene_id is not None:
             host.close_stage(self.stage_id)
         self.lesson_id, self.scene_id = plan["lesson_id"], scene_id
@@ -196,7 +196,7 @@ class Room:
             self.playing = plan["playing"]
         if plan["time_scale"] is not None:
             self.time_scale = float(plan["time_scale"])
-        if scene_id is not None:
+        if scene_id is not None and (plan["new_scene"] or plan["reset"] or plan["playing"] is not None or plan["time_scale"] is not None):
             # A new stage starts playing at 1×: apply the room's own playback to it, and any reset.
             host.set_playback(self.stage_id, playing=self.playing, time_scale=self.time_scale, reset=plan["reset"])
         if plan["reset"]:

@@ -75,6 +75,8 @@ class Follower:
     dropped: bool = False
 
     def offer(self, window: bytes) -> None:
+        if self.dropped:
+            return
         if self.held is not None:
             self.held.append(window)
             return
@@ -90,10 +92,12 @@ class Follower:
 
     def drop(self) -> None:
         """Too far behind, or the stream ended: close (the viewer reconnects and starts from a snapshot)."""
-        if not self.dropped:
-            self.dropped = True
-            with contextlib.suppress(asyncio.QueueFull):
-                self.queue.put_nowait(None)
+        if self.dropped:
+            return
+        self.dropped = True
+        while not self.queue.empty():  # what it has not sent is void: it reconnects and starts from a snapshot
+            self.queue.get_nowait()
+        self.queue.put_nowait(None)
 
 
 class StageStream:

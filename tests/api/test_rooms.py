@@ -253,3 +253,36 @@ def test_followers_share_one_stream_of_the_rooms_scene(client, room):
             f.__exit__(None, None, None)
     refused = client.get(f"/room-viewer/{'0' * 16}/")
     assert refused.status_code == 404
+
+
+def test_a_page_can_neither_drive_nor_join_a_rooms_stage_by_its_session_id(client, room):
+    """The stage's id (room-<room_id>) is derivable from the public room id: the page routes refuse it."""
+    room_id, host = room["room_id"], client.app.state.scene_host
+    stage = f"room-{room_id}"
+    before = host.session_params(stage)
+    answer = client.put(f"/api/scenes/heavy-top/sessions/{stage}", json={"params": {"spin_rad_s": 3.0}})
+    assert answer.status_code == 422 and "rooms' shared scenes" in answer.text
+    with client.websocket_connect(f"/viewer/heavy-top/{stage}", subprotocols=VISER) as viewer:
+        viewer.send_bytes(viewer_camera_message())
+        viewer.receive_bytes()
+        time.sleep(0.3)
+        with host.inspect(stage) as scenes:
+            assert len(scenes) == 1  # the stage's own scene only: the page's viewer built nothing in it
+    assert host.session_params(stage) == before
+
+
+def test_a_follower_that_falls_behind_is_dropped_whole_not_left_with_a_gap():
+    import asyncio
+
+    from app.web.room_relay import FOLLOWER_QUEUE, Follower
+
+    async def run() -> list:
+        follower = Follower(websocket=None)  # type: ignore[arg-type]
+        follower.go_live()
+        for n in range(FOLLOWER_QUEUE + 5):
+            follower.offer(bytes([n % 256]))
+        follower.offer(b"later")
+        return [follower.queue.get_nowait() for _ in range(follower.queue.qsize())], follower.dropped
+
+    left, dropped = asyncio.run(run())
+    assert dropped and left == [None]  # nothing after the gap is sent: the viewer reconnects from a snapshot

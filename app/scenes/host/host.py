@@ -56,8 +56,22 @@ from app.scenes.kit import Scene
 log = logging.getLogger(__name__)
 
 SESSION_ID_PATTERN = re.compile(r"^[A-Za-z0-9_-]{8,64}$")
+#: Session ids of stages begin with this (a room's stage is ``room-<room_id>``). No page may use one: its
+#: parameters change only through its room, and no viewer of the page kind may join it.
+STAGE_PREFIX = "room-"
 #: Slowest and fastest time scale a session may run at (× real time).
 TIME_SCALE_RANGE = (0.1, 4.0)
+
+
+def check_session_id(session_id: str, *, stage: bool = False) -> None:
+    """Raise ``ValueError`` for a malformed id, or one of the wrong kind (a stage's for a page, or the reverse)."""
+    if not SESSION_ID_PATTERN.match(session_id):
+        raise ValueError("session_id: must be 8–64 letters, digits, '-' or '_'")
+    if session_id.startswith(STAGE_PREFIX) != stage:
+        raise ValueError(
+            f"session_id: ids beginning {STAGE_PREFIX!r} are classroom rooms' shared scenes, changed only by their room"
+            if not stage else f"session_id: a stage's id begins {STAGE_PREFIX!r}"
+        )
 
 
 class UnknownSceneError(KeyError):
@@ -177,13 +191,14 @@ class SceneHost:
                 return
             del self._sessions[oldest]
 
-    def set_params(self, scene_id: str, session_id: str, raw: Mapping[str, Any]) -> dict[str, Any]:
+    def set_params(self, scene_id: str, session_id: str, raw: Mapping[str, Any], *, stage: bool = False) -> dict[str, Any]:
         """Validate ``raw`` against the scene's parameters and apply it to every viewer of the session.
 
-        Raises ``ValueError`` (naming the field) and changes nothing on bad input.
+        ``stage`` is True only for a room changing its own stage (ids beginning :data:`STAGE_PREFIX`);
+        a page's session may not use such an id. Raises ``ValueError`` (naming the field) and changes
+        nothing on bad input.
         """
-        if not SESSION_ID_PATTERN.match(session_id):
-            raise ValueError("session_id: must be 8–64 letters, digits, '-' or '_'")
+        check_session_id(session_id, stage=stage)
         cls = self.scene_class(scene_id)
         with self._lock:
             existing = self._sessions.get(session_id)
@@ -238,8 +253,7 @@ class SceneHost:
         """Show ``scene_id`` with parameters ``raw`` on the stage ``session_id`` (created on first use, its scene
         replaced after). Returns ``{"params", "viewer_url"}``: the validated parameters and the loopback websocket
         address of the stage's own viser server. Raises ``ValueError`` and changes nothing on bad input."""
-        if not SESSION_ID_PATTERN.match(session_id):
-            raise ValueError("session_id: must be 8–64 letters, digits, '-' or '_'")
+        check_session_id(session_id, stage=True)
         cls = self.scene_class(scene_id)
         params = cls.parameters.validate(raw)
         with self._lock:
@@ -372,7 +386,7 @@ class SceneHost:
         assert self._server is not None
         path = connection_path(self._server, client) or ""
         parts = [p for p in path.split("?")[0].split("/") if p]
-        if len(parts) != 2 or parts[0] not in self.scenes or not SESSION_ID_PATTERN.match(parts[1]):
+        if len(parts) != 2 or parts[0] not in self.scenes or not SESSION_ID_PATTERN.match(parts[1]) or parts[1].startswith(STAGE_PREFIX):
             log.warning("viewer connected with unusable path %r", path)
             client.gui.add_markdown(f"**No such scene:** `{path}`")
             return

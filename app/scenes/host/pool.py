@@ -29,7 +29,7 @@ from dataclasses import dataclass, field
 from multiprocessing.connection import Client, Connection
 from typing import Any
 
-from app.scenes.host.host import SESSION_ID_PATTERN, UnknownSceneError
+from app.scenes.host.host import UnknownSceneError, check_session_id
 from app.scenes.host.rpc import WorkerUnavailableError, raise_answer
 from app.scenes.host.worker import run_worker
 from app.scenes.kit import Scene
@@ -217,12 +217,11 @@ class WorkerPool:
         except KeyError:
             raise UnknownSceneError(scene_id) from None
 
-    def set_params(self, scene_id: str, session_id: str, raw: Mapping[str, Any]) -> dict[str, Any]:
+    def set_params(self, scene_id: str, session_id: str, raw: Mapping[str, Any], *, stage: bool = False) -> dict[str, Any]:
         """As :meth:`SceneHost.set_params`, in the session's worker."""
-        if not SESSION_ID_PATTERN.match(session_id):
-            raise ValueError("session_id: must be 8–64 letters, digits, '-' or '_'")
+        check_session_id(session_id, stage=stage)
         self.scene_class(scene_id)
-        params = self._call(self.worker_index(session_id), "set_params", scene_id, session_id, dict(raw))
+        params = self._call(self.worker_index(session_id), "set_params", scene_id, session_id, dict(raw), stage=stage)
         self._remember(session_id, scene_id, params)
         return params
 

@@ -70,7 +70,10 @@ def test_a_stage_replays_its_scene_to_a_late_viewer_then_streams_frames(host):
 def test_a_stage_changes_scene_and_refuses_set_params_for_another_scene(host):
     host.open_stage(STAGE, "heavy-top", {})
     with pytest.raises(ValueError, match="open_stage"):
-        host.set_params("four-bar", STAGE, {})
+        host.set_params("four-bar", STAGE, {}, stage=True)
+    with pytest.raises(ValueError, match="changed only by their room"):
+        host.set_params("heavy-top", STAGE, {})  # a page's call: a stage's id is not a page's
+    assert host.set_params("heavy-top", STAGE, {"spin_rad_s": 33.0}, stage=True)["spin_rad_s"] == 33.0
     assert host.open_stage(STAGE, "four-bar", {})["params"] == SCENES["four-bar"].parameters.defaults()
     wait_until(lambda: t_now(host, "four-bar", STAGE) > 0.1, timeout_s=5, what="the four-bar stage animating")
     with pytest.raises(ValueError, match="crank"):
