@@ -182,9 +182,12 @@
         showError(message.detail);
       }
     }
+    let leaving = false;
     function onState(state) {
       latest = state;
+      if (leaving) return; // going to the room's new page: a second navigation would abort the first
       if (state.lesson_id && (state.lesson_id !== config.lesson_id || (state.scene_id && state.scene_id !== pageScene))) {
+        leaving = true;
         location.replace(roomPage(state.lesson_id, state.scene_id, extra));
         return;
       }

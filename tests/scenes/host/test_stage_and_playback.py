@@ -10,14 +10,13 @@ another continues exactly the same trajectory.
 
 from __future__ import annotations
 
-import asyncio
 import time
 from collections.abc import Iterator
 
 import numpy as np
 import pytest
 import viser
-import websockets
+from websockets.sync.client import connect
 
 from app.scenes import SCENES
 from app.scenes.host.host import SceneHost
@@ -45,15 +44,14 @@ def t_now(host: SceneHost, scene_id: str, session_id: str) -> float:
     return next(q["value"] for q in live["readout"]["quantities"] if q["name"] == "t_s")
 
 
-async def first_windows(url: str, *, until_replay_done: bool) -> list[bytes]:
-    async with websockets.connect(url, subprotocols=[f"viser-v{viser.__version__}"], max_size=None) as viewer:  # type: ignore[list-item]
-        await viewer.send(viewer_camera_message())
-        windows: list[bytes] = []
-        async with asyncio.timeout(10):
-            async for window in viewer:
-                windows.append(window)
-                if not until_replay_done or ends_replay(window):
-                    return windows
+def replay_of(url: str) -> list[bytes]:
+    """What a viewer connecting now receives up to the end of viser's replay (the synchronous client: a test may run
+    after one that left an event loop running in this thread)."""
+    windows: list[bytes] = []
+    with connect(url, subprotocols=[f"viser-v{viser.__version__}"], max_size=None, open_timeout=10) as viewer:  # type: ignore[list-item]
+        viewer.send(viewer_camera_message())
+        while not windows or not ends_replay(windows[-1]):
+            windows.append(viewer.recv(timeout=10))
     return windows
 
 
@@ -61,7 +59,7 @@ def test_a_stage_replays_its_scene_to_a_late_viewer_then_streams_frames(host):
     opened = host.open_stage(STAGE, "heavy-top", {"spin_rad_s": 120.0})
     assert opened["params"]["spin_rad_s"] == 120.0 and opened["viewer_url"].startswith("ws://127.0.0.1:")
     time.sleep(0.5)  # the scene has moved on: a viewer arriving now needs its current state, not its first frame
-    replay = asyncio.run(first_windows(opened["viewer_url"], until_replay_done=True))
+    replay = replay_of(opened["viewer_url"])
     assert ends_replay(replay[-1]) and not any(ends_replay(w) for w in replay[:-1])
     assert sum(len(w) for w in replay) > 5000  # the top's mesh, axes and labels: the whole scene, not one frame's moves
     wait_until(lambda: host.stage_viewers(STAGE) == 0, timeout_s=5, what="the stage counting its viewer gone")
