@@ -59,6 +59,23 @@ class RecordingSceneApi:
 
         return add
 
+    def snapshot(self, *, skip_prefixes: tuple[str, ...] = ()) -> dict[str, dict[str, Any]]:
+        """What is drawn now: for each recorded node not removed (and not under ``skip_prefixes``), its position,
+        wxyz, visibility and every numeric or array property, as float arrays (booleans as 0/1)."""
+        out: dict[str, dict[str, Any]] = {}
+        for name, handle in self.handles.items():
+            impl = handle._impl
+            if impl.removed or any(name.startswith(prefix) for prefix in skip_prefixes):
+                continue
+            drawn: dict[str, Any] = {"position": np.array(impl.position, float), "wxyz": np.array(impl.wxyz, float), "visible": float(impl.visible)}
+            for prop, value in vars(impl.props).items():
+                if isinstance(value, np.ndarray) and value.dtype != object or isinstance(value, int | float) and not isinstance(value, bool):
+                    drawn[prop] = np.array(value, float)
+                elif isinstance(value, bool):
+                    drawn[prop] = float(value)
+            out[name] = drawn
+        return out
+
 
 class HeadlessClient:
     """A real viser client whose ``scene`` records what a scene adds; everything else is the client's own."""

@@ -103,11 +103,12 @@ class ProjectileDragScene(Scene):
         )
         self.label.text = f"t = {t:5.2f} s   T = {kinetic:8.2f} J   W_drag = {work_drag:8.2f} J"
 
-    def advance(self, dt_s: float) -> None:
+    def step_motion(self, dt_s: float) -> bool:
+        """The flight replays from t = 0 a moment after landing."""
         self.t_s += dt_s
         if self.t_s > float(self.trajectory.t_s[-1]) + PAUSE_AT_LANDING_S:
             self.t_s = 0.0
-        self._draw()
+        return True
 
     def readout(self) -> Readout:
         """The instant on screen (time, speed, energy and work so far), then the whole flight beside the vacuum's."""

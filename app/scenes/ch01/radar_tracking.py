@@ -64,9 +64,9 @@ class RadarTrackingScene(Scene):
             f"finite-difference error = {out['fd_error_m_s']:.2e} m/s"
         )
         self._v_pair = (p, v_exact, v_fd)
-        self._draw_aircraft()
+        self._draw()
 
-    def _draw_aircraft(self) -> None:
+    def _draw(self) -> None:
         p_now = physics.position(self.t_s) * KM
         v_now = physics.velocity_exact(max(self.t_s, 1e-6))
         p_eval, v_exact, v_fd = self._v_pair
@@ -77,9 +77,9 @@ class RadarTrackingScene(Scene):
         )
         self.sight.points = np.array([[[0, 0, 0], p_now], [[0, 0, 0], p_eval]], dtype=np.float32)
 
-    def advance(self, dt_s: float) -> None:
+    def step_motion(self, dt_s: float) -> bool:
         self.t_s = (self.t_s + dt_s) % LOOP_S
-        self._draw_aircraft()
+        return True
 
     def readout(self) -> Readout:
         """The radar's readings now (t_s of the flight on screen) and the worked example at the chosen instant."""

@@ -271,7 +271,7 @@ class SpaceCurveScene(Scene):
         self._built = True
         self.table = self._tabulate(path, coordinates)
         self.t_s = min(float(p["t_start_s"]), self.t_end_s)
-        self._draw_frame()
+        self._draw()
 
     def _describe(self, t_s: np.ndarray | float):
         """Path variables at ``t_s`` and, unless the Frenet frame is chosen, the chosen coordinates."""
@@ -359,11 +359,19 @@ class SpaceCurveScene(Scene):
     def advance(self, dt_s: float) -> None:
         if self._reframe_pending:
             self._reframe()
+        super().advance(dt_s)
+
+    def step_motion(self, dt_s: float) -> bool:
+        """The particle runs at ``speed_scale`` × real time along the curve's parameter and loops at ``t_end_s``."""
         speed = float(self.params["speed_scale"])
         if speed == 0.0:
-            return
+            return False
         self.t_s = (self.t_s + speed * dt_s) % self.t_end_s
-        self._draw_frame()
+        return True
+
+    def step_without_drawing(self, t_s: float) -> None:
+        """A closed form: the particle at the curve's time ``t_s`` (s; the loop repeats every ``t_end_s``)."""
+        self.t_s = t_s % self.t_end_s
 
     def _show(self, key: str, value: Any, apply) -> None:
         """Send a visibility change only when it changes."""
@@ -371,7 +379,7 @@ class SpaceCurveScene(Scene):
             apply(value)
             self._shown[key] = value
 
-    def _draw_frame(self) -> None:
+    def _draw(self) -> None:
         frame = self.table.at(self.t_s)
 
         def show_particle(visible: bool) -> None:

@@ -147,11 +147,12 @@ class EastwardDeflectionScene(Scene):
         blend = (t - self._drawn_t[i]) / (self._drawn_t[i + 1] - self._drawn_t[i])
         self.ball.position = (1.0 - blend) * self._drawn[i] + blend * self._drawn[i + 1]
 
-    def advance(self, dt_s: float) -> None:
+    def step_motion(self, dt_s: float) -> bool:
+        """The drop replays from t = 0 a moment after landing."""
         self.t_s += dt_s
         if self.t_s > self.t_land + PAUSE_AT_LANDING_S:
             self.t_s = 0.0
-        self._draw()
+        return True
 
     def readout(self) -> Readout:
         params = self.params

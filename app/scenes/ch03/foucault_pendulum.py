@@ -107,10 +107,6 @@ class FoucaultPendulumScene(IntegratedScene):
         self._tracker.add(self.run.t_s, float(y[0]), float(y[1]))
         self.trail.add(np.array([y[0], y[1], FLOOR_LIFT_M], np.float32))
 
-    def advance(self, dt_s: float) -> None:
-        if self.step_physics():
-            self._draw()
-
     def readout(self) -> Readout:
         params = self.physical_params()
         factor = params["earth_rate_factor"]

@@ -11,6 +11,7 @@ readout); ω and α are drawn from the table's centre. The motion replays every
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
@@ -246,15 +247,24 @@ class MovingFrameScene(Scene):
             move_labels=move_labels,
         )
 
-    def advance(self, dt_s: float) -> None:
+    def step_motion(self, dt_s: float) -> bool:
         """One displayed frame: ``playback_speed × FRAME_DT_S`` of motion (the host draws at 30 Hz)."""
         if self.params["playback_speed"] == 0.0:
-            return
+            return False
         self._row += 1
         if self._row >= BATCH_FRAMES:
             step = self.params["playback_speed"] * FRAME_DT_S
             self._start_batch((self.t_s + step) % self.params["replay_s"])
-        self._draw()
+        self.t_s = float(self._batch.t_s[self._row])
+        return True
+
+    def resume_from(self, motion: Mapping[str, Any]) -> None:
+        super().resume_from(motion)
+        self._start_batch(self.t_s % self.params["replay_s"])
+
+    def step_without_drawing(self, t_s: float) -> None:
+        """A closed form: the instant ``t_s`` of the replay (s; the replay repeats every ``replay_s``)."""
+        self._start_batch(t_s % self.params["replay_s"])
 
     def readout(self) -> Readout:
         """Vectors are written out as text (world X, Y, Z components); their magnitudes are numbers."""

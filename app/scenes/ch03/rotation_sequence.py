@@ -187,16 +187,21 @@ class RotationSequenceScene(Scene):
             for k in range(3):
                 for node in (self.turn_axes[k], self.turn_labels[k], self.arcs[k]):
                     node.visible = k < visible_turns
-            for k in range(done):
-                self._turn(k, 1.0)
+            for k in range(3):
+                self._turn(k, 1.0 if k < done else 0.0)  # turns not yet begun wait at their start (hidden)
             self._shown = shown
         if sweeping:
             self._turn(sweeping - 1, fraction)
 
-    def advance(self, dt_s: float) -> None:
+    def step_motion(self, dt_s: float) -> bool:
+        """The clock runs only while the stage is "animate"."""
         if self.params["stage"] != "animate":
-            return
+            return False
         self.t_s += dt_s
+        return True
+
+    def redraw(self) -> None:
+        self._shown = None  # the instant may be in another phase than the one drawn: show its frames afresh
         self._draw()
 
     # -- numbers beside the scene ---------------------------------------------------------------------

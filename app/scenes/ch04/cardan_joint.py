@@ -135,10 +135,6 @@ class CardanJointScene(Scene):
         self.cross.wxyz = _wxyz(Rotation.from_matrix(np.column_stack([np.cross(u, v), u, v])))
         self.graph_dot.position = tuple(self._graph_points(np.array([phi1 % (2.0 * math.pi)]), state.speed_ratio)[0])
 
-    def advance(self, dt_s: float) -> None:
-        self.t_s += dt_s
-        self._draw()
-
     def readout(self) -> Readout:
         state = self._state
         low, high = self.motion.joint.speed_ratio_span

@@ -140,10 +140,6 @@ class FourBarScene(Scene):
         if np.all(np.isfinite(gb)):
             update_node(self.ghost, points=to_world(np.array([[a, gb], [o4, gb]])))
 
-    def advance(self, dt_s: float) -> None:
-        self.t_s += dt_s
-        self._draw()
-
     def readout(self) -> Readout:
         motion = self.motion
         state = motion.at(np.array([self._t_drawn]))  # the full state at the instant on screen

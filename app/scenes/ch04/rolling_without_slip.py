@@ -173,11 +173,11 @@ class RollingScene(Scene):
         o_prime = rolling.axis_point
         self.instant_axis.points = np.array([[o_prime, contact + 0.25 * (contact - o_prime)]], np.float32)
 
-    def advance(self, dt_s: float) -> None:
+    def step_motion(self, dt_s: float) -> bool:
         self.t_s += dt_s
         if self._replay_s is not None and self.t_s > self._replay_s:
             self.t_s -= self._replay_s  # back to the start of the framed stretch
-        self._draw()
+        return True
 
     def readout(self) -> Readout:
         rolling, state = self.rolling, self._state

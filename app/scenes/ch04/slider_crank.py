@@ -110,10 +110,6 @@ class SliderCrankScene(Scene):
         ])
         self.arrows.points = np.stack([tails, tails + vectors], axis=1).astype(np.float32)
 
-    def advance(self, dt_s: float) -> None:
-        self.t_s += dt_s
-        self._draw()
-
     def readout(self) -> Readout:
         state = self._state
         mech = self.motion.mechanism

@@ -163,11 +163,12 @@ class AngularMomentumScene(Scene):
         self._draw()
 
     # -- animation -------------------------------------------------------------------------------
-    def advance(self, dt_s: float) -> None:
+    def step_motion(self, dt_s: float) -> bool:
+        """The particles' view replays from t = 0 after ``_replay_s``."""
         self.t_s += dt_s
         if self.particles_view and self.t_s > self._replay_s:
             self.t_s = 0.0
-        self._draw()
+        return True
 
     def _draw(self) -> None:
         spin = self.spin

@@ -127,7 +127,7 @@ class BouncingBarScene(IntegratedScene):
         )
 
     def advance(self, dt_s: float) -> None:
-        if self.step_physics():
+        if self.step_motion(dt_s):
             self._draw()
         else:
             self.label.text = self.status

@@ -55,7 +55,7 @@ class PlanarCollisionScene(Scene):
 
     def build(self) -> None:
         scene = self.client.scene
-        self.t_s = 0.0
+        self.elapsed_s = 0.0
         self._span = 1.0
         self._center = np.zeros(3)
         self.backdrop = scene.add_grid("/backdrop", width=4.0, height=4.0, plane="xz", cell_size=0.1, section_size=0.5, position=(0.0, 0.05, 0.0))
@@ -82,7 +82,7 @@ class PlanarCollisionScene(Scene):
         speeds = [np.linalg.norm(d.velocity_m_s) for d in (d1, d2, a1, a2)]
         # Show the time window in which the fastest disk moves one sum of radii.
         self._window_s = reach / max(max(speeds), 1e-9)
-        self.t_s = -self._window_s
+        self.elapsed_s = 0.0
         low = np.minimum(-d1.radius_m * np.ones(2), d2.centre_m[:2] - d2.radius_m) - reach
         high = np.maximum(d1.radius_m * np.ones(2), d2.centre_m[:2] + d2.radius_m) + reach
         self._span = float(max(high - low))
@@ -139,11 +139,22 @@ class PlanarCollisionScene(Scene):
             label.position = tuple(tail + 1.05 * self._arrow_scale * vector)
             label.text = text
 
-    def advance(self, dt_s: float) -> None:
-        self.t_s += dt_s * 2.0 * self._window_s / LOOP_S
-        if self.t_s > self._window_s:
-            self.t_s = -self._window_s
-        self._draw()
+    #: The motion's clock is the simulated time since the pass began (≥ 0), not the time from impact.
+    motion_attributes = {"t_s": "elapsed_s"}
+
+    @property
+    def t_s(self) -> float:
+        """Simulated time from the impact (s): negative before it."""
+        return self.elapsed_s - self._window_s
+
+    def step_motion(self, dt_s: float) -> bool:
+        """One pass from ``window`` before the impact to ``window`` after takes :data:`LOOP_S` of wall-clock time."""
+        self.elapsed_s = (self.elapsed_s + dt_s * 2.0 * self._window_s / LOOP_S) % (2.0 * self._window_s)
+        return True
+
+    def step_without_drawing(self, t_s: float) -> None:
+        """A closed form: the pass at ``t_s`` simulated seconds from its start (passes repeat)."""
+        self.elapsed_s = t_s % (2.0 * self._window_s)
 
     def readout(self) -> Readout:
         c = self.collision

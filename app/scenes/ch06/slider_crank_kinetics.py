@@ -134,11 +134,10 @@ class SliderCrankKineticsScene(IntegratedScene):
             if rewrite_text:
                 update_node(label, text=f"{name} {size:.1f} N")
 
-    def advance(self, dt_s: float) -> None:
+    def step_motion(self, dt_s: float) -> bool:
         if paused_at_crank_speed_limit(self, float(self.run.y[1]), self._speed_limit):
-            return
-        if self.step_physics():
-            self._draw()
+            return False
+        return self.step_physics()
 
     def readout(self) -> Readout:
         params = self.physical_params()

@@ -105,13 +105,12 @@ class SlidingLadderScene(IntegratedScene):
             label.position = tuple(tail + 1.05 * self._force_scale * vector)
             label.visible = bool(np.linalg.norm(vector) > 0.0)
 
-    def advance(self, dt_s: float) -> None:
+    def step_motion(self, dt_s: float) -> bool:
         landing = next((c for c in self.changes if c.index == physics.LANDING), None)
         if landing is not None and self.run.t_s > landing.t_s + REPLAY_AFTER_LANDING_S:
             self.restart()  # replay the fall: the readout's budget and drift start again with it
-            self._draw()
-        elif self.step_physics():
-            self._draw()
+            return True
+        return self.step_physics()
 
     def readout(self) -> Readout:
         params = self.physical_params()

@@ -17,7 +17,7 @@ import numpy as np
 
 from app.physics.math.rotations.axis_angle import quaternion_from_axis_angle
 from app.physics.systems.ch06 import unbalanced_rotor as physics
-from app.scenes.ch10.free_gyroscope import DRAWN_SPIN_RAD_S, drawn_spin_rate
+from app.scenes.ch10.free_gyroscope import DRAWN_SPIN_RAD_S, drawn_spin_angle
 from app.scenes.kit import (
     Preset,
     Quantity,
@@ -146,6 +146,7 @@ class UnbalancedRotorScene(Scene):
         self._draw()
 
     def _draw(self) -> None:
+        self.spin_angle = drawn_spin_angle(self.rotor_model.shaft_speed_rad_s, self.t_s)
         self.rotor.wxyz = quaternion_from_axis_angle(AXIS_X, self.spin_angle)
         self.loads = self.steady.at_spin_angle(np.array([self.spin_angle]))
         L = self.rotor_model.disk.bearing_span_m
@@ -155,11 +156,6 @@ class UnbalancedRotorScene(Scene):
         for label, tail, vector, name in zip(self.force_labels, tails, vectors, ("A", "B"), strict=True):
             label.position = tuple(tail + self._force_scale * vector + np.array([0.0, 0.0, 0.02 * self._span]))
             label.text = f"R_{name} = {np.linalg.norm(vector):.1f} N"
-
-    def advance(self, dt_s: float) -> None:
-        self.t_s += dt_s
-        self.spin_angle = (self.spin_angle + drawn_spin_rate(self.rotor_model.shaft_speed_rad_s) * dt_s) % (2.0 * math.pi)
-        self._draw()
 
     def readout(self) -> Readout:
         model, loads = self.rotor_model, self.loads

@@ -63,9 +63,9 @@ class BeadOnHoopScene(DerivedSystemScene):
             )
             for k, e in enumerate(hoop_equilibria(self.physical_params()))
         ]  # fmt: skip
-        self.draw_state()
+        self._draw()
 
-    def draw_state(self) -> None:
+    def _draw(self) -> None:
         turn = float(self.params["hoop_speed_rad_s"]) * self.run.t_s
         move_node(self.hoop, wxyz=(math.cos(turn / 2), 0.0, 0.0, math.sin(turn / 2)))
         move_node(self.bead, position=on_hoop(float(self.run.y[0])))

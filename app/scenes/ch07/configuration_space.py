@@ -273,10 +273,6 @@ class ConfigurationSpaceScene(Scene):
         else:
             self._draw_bead()
 
-    def advance(self, dt_s: float) -> None:
-        self.t_s += dt_s
-        self._draw()
-
     def readout(self) -> Readout:
         if self.params["constraint"] == "nonholonomic":
             return self._knife_readout()

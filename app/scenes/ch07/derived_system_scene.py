@@ -21,12 +21,8 @@ class DerivedSystemScene(IntegratedScene):
     """An integrated scene whose model is a :class:`~app.physics.mechanics.model.DerivedModel`."""
 
     @abstractmethod
-    def draw_state(self) -> None:
+    def _draw(self) -> None:
         """Move the drawing to :attr:`run`'s current state (called after each successful frame)."""
-
-    def advance(self, dt_s: float) -> None:
-        if self.step_physics():
-            self.draw_state()
 
     def restart(self) -> None:
         super().restart()

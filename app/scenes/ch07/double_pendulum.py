@@ -86,9 +86,9 @@ class DoublePendulumScene(DerivedSystemScene):
         params = self.physical_params()
         self._display_scale = PENDULUM_REACH / (float(params["l1_m"]) + float(params["l2_m"]))
         self.trail.clear()
-        self.draw_state()
+        self._draw()
 
-    def draw_state(self) -> None:
+    def _draw(self) -> None:
         params = self.physical_params()
         theta1, theta2 = float(self.run.y[0]), float(self.run.y[1])
         l1, l2 = float(params["l1_m"]) * self._display_scale, float(params["l2_m"]) * self._display_scale

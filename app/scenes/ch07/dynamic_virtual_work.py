@@ -137,10 +137,6 @@ class DynamicVirtualWorkScene(Scene):
         inertia = self._inertia_scale * np.array([table.inertia_force_G1_N[k], table.inertia_force_G2_N[k], table.inertia_force_B_N[k]])
         update_node(self.arrows, points=arrow_segments(tails, to_world(np.concatenate([shifts, inertia])), 1.0))
 
-    def advance(self, dt_s: float) -> None:
-        self.t_s += dt_s
-        self._draw()
-
     def readout(self) -> Readout:
         k = self._sample
         links, table = self._links, self._table

@@ -65,9 +65,9 @@ class PendulumOnCartScene(DerivedSystemScene):
         self.wall.position = (self._wall_x, 0.0, 0.0)
         self.rail.points = np.array([[[self._wall_x, 0.0, -0.08], [1.5 * length + 1.0, 0.0, -0.08]]], np.float32)
         self.bob.scale = max(0.5, min(2.0, length))
-        self.draw_state()
+        self._draw()
 
-    def draw_state(self) -> None:
+    def _draw(self) -> None:
         y, length = self.run.y, float(self.params["length_m"])
         x, theta = float(y[0]), float(y[1])
         bob = np.array([x + length * math.sin(theta), 0.0, -length * math.cos(theta)])

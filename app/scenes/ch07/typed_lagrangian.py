@@ -14,6 +14,8 @@ trail starts again.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
+from typing import Any
 
 import numpy as np
 
@@ -120,7 +122,7 @@ class TypedLagrangianScene(DerivedSystemScene):
             self._draw_fixed(n)
         self._label_ranges()
         self.trail.clear()
-        self.draw_state()
+        self._draw()
 
     def _draw_fixed(self, n: int) -> None:
         """The dials' rings, hubs and names and the configuration box for ``n`` coordinates."""
@@ -177,7 +179,7 @@ class TypedLagrangianScene(DerivedSystemScene):
         n = int(self.params["coordinates"])
         return self.run.y[:2] if n == 1 else self.run.y[:n]
 
-    def draw_state(self) -> None:
+    def _draw(self) -> None:
         update_node(self.rods, points=self._rod_segments())
         values = self._box_values()
         if np.any(np.abs(values) > self._ranges):
@@ -190,6 +192,25 @@ class TypedLagrangianScene(DerivedSystemScene):
         point = BOX_CENTER + offset
         move_node(self.state_point, position=point)
         self.trail.add(point)
+
+    def motion_state(self) -> dict[str, Any]:
+        """The run's ``t_s`` and ``y``, and ``box_ranges``: the box's half-widths per axis (coordinate units),
+        which double whenever the motion leaves the box."""
+        return super().motion_state() | {"box_ranges": [float(v) for v in self._ranges]}
+
+    def resume_from(self, motion: Mapping[str, Any]) -> None:
+        try:
+            ranges = np.array(motion["box_ranges"], dtype=float)
+        except (KeyError, TypeError, ValueError):
+            raise ValueError("motion: needs box_ranges (the box's half-widths)") from None
+        if ranges.shape != self._ranges.shape or not np.all(np.isfinite(ranges)) or not np.all(ranges > 0.0):
+            raise ValueError(f"motion: box_ranges must be {self._ranges.size} finite positive numbers")
+        super().resume_from(motion)
+        self._ranges = ranges
+
+    def redraw(self) -> None:
+        self._label_ranges()
+        self._draw()
 
     def derivation_status(self) -> str:
         prepared = self._model_instance.prepared(self.physical_params())

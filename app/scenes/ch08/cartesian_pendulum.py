@@ -77,7 +77,7 @@ class CartesianPendulumScene(IntegratedScene):
         except ValueError:  # over the top, or no gravity: no libration closed form
             self._exact = False
         self.trail.clear()
-        self.draw_state()
+        self._draw()
 
     @property
     def run_model(self) -> CartesianPendulum:
@@ -96,7 +96,7 @@ class CartesianPendulumScene(IntegratedScene):
     def _world(self, x_m: float, y_m: float) -> np.ndarray:
         return PIVOT + self._scale * np.array([x_m, 0.0, y_m])
 
-    def draw_state(self) -> None:
+    def _draw(self) -> None:
         x, y = (float(v) for v in self.state()[:2])
         bob = self._world(x, y)
         exact = self.exact_state()
@@ -104,10 +104,6 @@ class CartesianPendulumScene(IntegratedScene):
         update_node(self.rod, points=np.array([[PIVOT, bob]], np.float32))
         update_node(self.dots, points=np.array([ghost, bob], np.float32))
         self.trail.add(bob)
-
-    def advance(self, dt_s: float) -> None:
-        if self.step_physics():
-            self.draw_state()
 
     def readout(self) -> Readout:
         params = self.physical_params()

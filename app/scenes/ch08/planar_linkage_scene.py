@@ -121,11 +121,10 @@ class PlanarLinkageScene(IntegratedScene):
         crank, middle, third = ends
         return np.array([crank[0], crank[1], middle[1], third[0]])
 
-    def advance(self, dt_s: float) -> None:
+    def step_motion(self, dt_s: float) -> bool:
         if paused_at_crank_speed_limit(self, float(self._full_state()[11]), self._speed_limit):
-            return
-        if self.step_physics():
-            self._draw()
+            return False
+        return self.step_physics()
 
     def readout(self) -> Readout:
         params = self.physical_params()

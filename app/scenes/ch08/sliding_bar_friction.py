@@ -13,11 +13,13 @@ replays from the start after REPLAY_AFTER_STOP_S.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
+from typing import Any
 
 import numpy as np
 
 from app.physics.systems.ch08 import sliding_bar as physics
-from app.scenes.kit import IntegratedScene, Preset, Quantity, Readout, arrow_segments, update_node
+from app.scenes.kit import IntegratedScene, Preset, Quantity, Readout, arrow_segments, motion_numbers, update_node
 
 ARROW_COLORS = np.array([[40, 100, 220], [230, 130, 20], [120, 120, 120]], np.uint8)
 #: Seconds the stopped bar is shown before the motion replays.
@@ -83,6 +85,7 @@ class SlidingBarFrictionScene(IntegratedScene):
         self.events = physics.run_events(params, t_end_s=LOOKAHEAD_S)
         self.stop = next((e for e in self.events if e.index in (physics.JAM_STOP, physics.LIFT_OFF, physics.LANDS)), None)
         self._held_s = 0.0
+        self._clock_s = 0.0
         self._shown = self.run.y
         self._draw(self.run.y)
 
@@ -106,20 +109,37 @@ class SlidingBarFrictionScene(IntegratedScene):
         cone = np.array([[base, base + scale * np.array([-limit, 0.0, normal])], [base, base + scale * np.array([limit, 0.0, normal])]])
         update_node(self.cone, points=cone.astype(np.float32))
 
-    def advance(self, dt_s: float) -> None:
+    def step_motion(self, dt_s: float) -> bool:
+        """One frame; at the model's stop (jam, lift-off, landing) the bar is held there, then the run replays."""
         stop = self.stop
         if stop is not None and (not self.run.running or self.run.t_s + dt_s > stop.t_s):
             if self._held_s == 0.0:
                 self.status = ""  # a stop the model explains (readout message), not a numerical failure
-                self._draw(stop.state)
             self._held_s += dt_s
+            self._clock_s += dt_s
             if self._held_s > REPLAY_AFTER_STOP_S:
                 self.restart()
-                self._held_s = 0.0
-                self._draw(self.run.y)
-            return
-        if self.step_physics():
-            self._draw(self.run.y)
+                self._held_s = self._clock_s = 0.0
+            return True
+        running = self.step_physics()
+        self._clock_s = self.run.t_s
+        return running
+
+    def redraw(self) -> None:
+        self._draw(self.stop.state if self._held_s > 0.0 and self.stop is not None else self.run.y)
+
+    def motion_state(self) -> dict[str, Any]:
+        """The run's state ``y``, ``held_s`` (how long the bar has been held at the stop, s) and ``t_s``: the
+        time since the start, the hold included (the run's own clock stops at the stop)."""
+        return super().motion_state() | {"t_s": float(self._clock_s), "held_s": float(self._held_s)}
+
+    def resume_from(self, motion: Mapping[str, Any]) -> None:
+        numbers = motion_numbers(motion, ("t_s", "held_s"))
+        if not 0.0 <= numbers["held_s"] <= numbers["t_s"]:
+            raise ValueError(f"motion: held_s must be from 0 s to t_s, got {numbers['held_s']!r}")
+        super().resume_from(motion)
+        self._held_s, self._clock_s = numbers["held_s"], numbers["t_s"]
+        self.run.t_s = numbers["t_s"] - numbers["held_s"]
 
     def readout(self) -> Readout:
         params = self.physical_params()

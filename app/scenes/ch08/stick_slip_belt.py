@@ -123,10 +123,6 @@ class StickSlipBeltScene(IntegratedScene):
             self._mode = mode
             update_node(self.mode_label, text=physics.MODE_WORDS[mode])
 
-    def advance(self, dt_s: float) -> None:
-        if self.step_physics():
-            self._draw()
-
     def readout(self) -> Readout:
         params = self.physical_params()
         y = self.run.y

@@ -77,22 +77,23 @@ class UnsteadyRollingDiskScene(IntegratedScene):
         self._critical_spin = self.run_model.critical_spin_rad_s(params)
         self._stability = stability_sentence(float(params["spin_rate_0_rad_s"]), self._critical_spin)
         self.trail.clear()
-        self.draw_state()
+        self._draw()
 
-    def advance(self, dt_s: float) -> None:
+    def step_motion(self, dt_s: float) -> bool:
         off_floor = max(abs(float(self.run.y[0]) - FLOOR_CENTRE[0]), abs(float(self.run.y[1]) - FLOOR_CENTRE[1])) > FLOOR_HALF_WIDTH_M
         if off_floor:  # rolled out of view: replay from the start (drift and residuals start again with it)
-            self.update()
-            return
+            self.restart()
+            self.trail.clear()
+            return True
         if not self.step_physics():
-            return
+            return False
         lean_deg = math.degrees(float(self.run.y[3]))
         if abs(lean_deg) >= FALLEN_LEAN_DEG:
             self.run.status = FALLEN
             self.run.message = self.status = fallen_message(self.run.t_s, FALLEN_LEAN_DEG)
-        self.draw_state()
+        return True  # the fallen disk is drawn where it lies
 
-    def draw_state(self) -> None:
+    def _draw(self) -> None:
         centre, rotation = disk_pose(self._radius_m, self.run.y)
         update_node(self.disk, points=(centre + self._outline @ rotation.T).astype(np.float32))
         self.trail.add(np.array([float(self.run.y[0]), float(self.run.y[1]), 0.002]))

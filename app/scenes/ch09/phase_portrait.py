@@ -94,7 +94,7 @@ class PhasePortraitScene(DerivedSystemScene):
             colors.append(np.full((1, 2, 3), AXIS_COLOR, np.uint8))
         update_node(self.levels, points=np.concatenate(segments).astype(np.float32), colors=np.concatenate(colors))
         self._display_scale = PENDULUM_REACH / l
-        self.draw_state()
+        self._draw()
 
     def _plane_point(self, theta_rad: np.ndarray, p_theta_kg_m2_s: np.ndarray) -> np.ndarray:
         """(N, 3) world points of phase-plane states (θ wrapped to (−π, π])."""
@@ -104,7 +104,7 @@ class PhasePortraitScene(DerivedSystemScene):
         up = self._p_scale * np.asarray(p_theta_kg_m2_s, dtype=float)
         return PLANE_CENTER + np.stack([across, np.zeros_like(across), up], axis=-1)
 
-    def draw_state(self) -> None:
+    def _draw(self) -> None:
         theta, rate = float(self.run.y[0]), float(self.run.y[1])
         bob = PENDULUM_REACH * np.array([math.sin(theta), 0.0, -math.cos(theta)])
         update_node(self.rod, points=np.array([[np.zeros(3), bob]], np.float32))

@@ -62,7 +62,6 @@ class RitzCantileverScene(Scene):
     def build(self) -> None:
         scene = self.client.scene
         self.t_s = 0.0
-        self._wall_s = 0.0
         self._length = 1.0
         self.clamp = scene.add_box("/clamp", color=(90, 90, 95), dimensions=(0.05, 0.6, 0.4))
         self.axes = scene.add_line_segments("/rest_lines", np.zeros((2, 2, 3), np.float32), AXIS_COLOR, thickness=1.0, thickness_units="screen")
@@ -89,7 +88,7 @@ class RitzCantileverScene(Scene):
         self.amplitude = params["amplitude_m"]
         beam = self.ritz.beam
         L = self._length = beam.length_m
-        self.t_s = self._wall_s = 0.0
+        self.t_s = 0.0
         self.exact_omega = float(self.ritz.exact_omega_rad_s[self.mode - 1])
         self.slow_motion = self.exact_omega / (2.0 * math.pi * SHOWN_HZ)
         self.available = self.ritz.mode_available(self.mode)
@@ -115,7 +114,6 @@ class RitzCantileverScene(Scene):
         self.exact_label.position = (0.3 * L, y_exact, -1.1 * self.amplitude - 0.05 * L)
         self._draw_chart()
         self._draw()
-        self.beams.points = self._points.copy()  # the node keeps what it is given; advance refills self._points
 
     def _draw_chart(self) -> None:
         """log₁₀|relative error| of the chosen mode against N for both bases, in the XZ plane right of the beam."""
@@ -164,11 +162,14 @@ class RitzCantileverScene(Scene):
             label.text, label.position = text, position
 
     # -- animation -------------------------------------------------------------------------------
-    def advance(self, dt_s: float) -> None:
-        self._wall_s += dt_s
-        self.t_s = self._wall_s / self.slow_motion
-        self._draw()
-        update_node(self.beams, points=self._points)
+    def step_motion(self, dt_s: float) -> bool:
+        """Beam time runs ``slow_motion`` times slower than the wall clock."""
+        self.t_s += dt_s / self.slow_motion
+        return True
+
+    def step_without_drawing(self, t_s: float) -> None:
+        """A closed form: the beam at beam time ``t_s`` (s)."""
+        self.t_s = t_s
 
     def _draw(self) -> None:
         exact = self._exact_shape * math.cos(self.exact_omega * self.t_s)
@@ -176,6 +177,7 @@ class RitzCantileverScene(Scene):
         points = self._points
         points[:SEGMENTS, 0, 2], points[:SEGMENTS, 1, 2] = ritz[:-1], ritz[1:]
         points[SEGMENTS:, 0, 2], points[SEGMENTS:, 1, 2] = exact[:-1], exact[1:]
+        update_node(self.beams, points=points)
 
     def readout(self) -> Readout:
         ritz = self.ritz

@@ -54,15 +54,16 @@ class RollingDiskScene(DerivedSystemScene):
         self._outline = disk_outline_segments(self._radius_m)
         self._critical_spin = self._model_instance.upright_critical_spin_rad_s(self.physical_params())
         self.trail.clear()
-        self.draw_state()
+        self._draw()
 
-    def advance(self, dt_s: float) -> None:
-        super().advance(dt_s)
-        if self.run.running and abs(math.degrees(float(self.run.y[3]))) > FALLEN_LEAN_DEG:
+    def step_motion(self, dt_s: float) -> bool:
+        running = super().step_motion(dt_s)
+        if running and abs(math.degrees(float(self.run.y[3]))) > FALLEN_LEAN_DEG:
             self.run.status = "fallen"
             self.status = f"Paused at t = {self.run.t_s:.2f} s: the disk has fallen (lean past {FALLEN_LEAN_DEG:.0f}°)."
+        return running  # the frame it fell in is drawn
 
-    def draw_state(self) -> None:
+    def _draw(self) -> None:
         centre, rotation = disk_pose(self._radius_m, self.run.y)
         update_node(self.disk, points=(centre + self._outline @ rotation.T).astype(np.float32))
         self.trail.add(np.array([float(self.run.y[0]), float(self.run.y[1]), 0.002]))

@@ -96,7 +96,7 @@ class SphericalPendulumScene(DerivedSystemScene):
         update_node(self.turning, points=self._plot_point(np.array(self._turning), np.full(2, self._energy)).astype(np.float32))
         self._display_scale = PENDULUM_REACH / l
         self.trail.clear()
-        self.draw_state()
+        self._draw()
 
     def _plot_point(self, theta_rad: np.ndarray, potential_J: np.ndarray) -> np.ndarray:
         """(N, 3) world points of the V_eff plot for angles (N,) rad and energies (N,) J."""
@@ -104,7 +104,7 @@ class SphericalPendulumScene(DerivedSystemScene):
         up = PLOT_BOTTOM + PLOT_HEIGHT * (np.asarray(potential_J, dtype=float) - self._v_low) / self._v_span
         return np.stack([across, np.zeros_like(across), up], axis=-1)
 
-    def draw_state(self) -> None:
+    def _draw(self) -> None:
         theta, phi = float(self.run.y[0]), float(self.run.y[1])
         bob = PIVOT + PENDULUM_REACH * np.array([math.sin(theta) * math.cos(phi), math.sin(theta) * math.sin(phi), -math.cos(theta)])
         update_node(self.rod, points=np.array([[PIVOT, bob]], np.float32))

@@ -94,7 +94,7 @@ class EquinoxPrecessionScene(Scene):
         inputs = {p.name: self.params[p.name] for p in physics.INPUTS.parameters}
         self.result = physics.equinox_precession(inputs)
         self.obliquity = math.radians(self.params["obliquity_deg"])
-        self.elapsed_years = 0.0
+        self.t_s = 0.0
         tip = AXIS_HALF_LENGTH * 1.6
         radius, height = tip * math.sin(self.obliquity), tip * math.cos(self.obliquity)
         circle = circle_segments(radius=radius, center=(0.0, 0.0, height), segments=120)
@@ -121,9 +121,14 @@ class EquinoxPrecessionScene(Scene):
         """φ since 2000 CE: negative, the axis turns westward."""
         return -self.result.rate_rad_s * self.elapsed_years * physics.JULIAN_YEAR_S
 
-    def advance(self, dt_s: float) -> None:
-        self.elapsed_years += dt_s * self.params["years_per_second"]
-        self._draw()
+    @property
+    def elapsed_years(self) -> float:
+        """Years since 2000 CE: ``years_per_second`` for each second of the animation's clock ``t_s``.
+
+        The motion's ``t_s`` is that clock, not the 10¹⁰ s of simulated time the readout shows, so the time
+        controls and a share link (0–600 s) reach every era of the cycle.
+        """
+        return self.t_s * self.params["years_per_second"]
 
     def _draw(self) -> None:
         phi = self.precession_angle_rad()

@@ -100,6 +100,12 @@ def drawn_spin_rate(spin_rad_s: float) -> float:
     return math.copysign(min(abs(spin_rad_s), DRAWN_SPIN_RAD_S), spin_rad_s)
 
 
+def drawn_spin_angle(spin_rad_s: float, t_s: float) -> float:
+    """The rotor's drawn spin angle (rad, in [0, 2π)) after ``t_s`` s of wall-clock time: :func:`drawn_spin_rate`
+    × t, so the picture of an instant depends on its time alone."""
+    return (drawn_spin_rate(spin_rad_s) * t_s) % (2.0 * math.pi)
+
+
 class FreeGyroscopeScene(Scene):
     id = "free-gyroscope"
     title = "The free gyroscope: a rotor in two gimbals on a turning vehicle"
@@ -120,7 +126,6 @@ class FreeGyroscopeScene(Scene):
     def build(self) -> None:
         scene = self.client.scene
         self.t_s = 0.0
-        self._spin_angle = 0.0
         scene.add_grid("/ground", width=5.0, height=5.0, cell_size=0.25, section_size=1.0, position=(0.0, 0.0, -1.45))
         scene.add_frame("/inertial", axes_length=0.3, axes_radius=0.012, position=INERTIAL_AXES_AT)
         scene.add_label("/inertial/label", "inertial axes", position=(0.0, 0.0, 0.34), anchor="bottom-center")
@@ -189,15 +194,10 @@ class FreeGyroscopeScene(Scene):
         self.outer.wxyz = np.array([math.cos(0.5 * outer), 0.0, 0.0, math.sin(0.5 * outer)])
         inner = float(motion.inner_rad[0])
         self.inner.wxyz = np.array([math.cos(0.5 * inner), math.sin(0.5 * inner), 0.0, 0.0])
-        self.rotor.wxyz = spin_quaternion(self._spin_angle)
+        self.rotor.wxyz = spin_quaternion(drawn_spin_angle(self.params["spin_rad_s"], self.t_s))
         locked = float(motion.lock_angle_rad[0]) < math.radians(physics.LOCK_WARNING_DEG)
         if self.lock_label.visible != locked:
             self.lock_label.visible = locked
-
-    def advance(self, dt_s: float) -> None:
-        self.t_s += dt_s
-        self._spin_angle = (self._spin_angle + drawn_spin_rate(self.params["spin_rad_s"]) * dt_s) % (2.0 * math.pi)
-        self._draw()
 
     def readout(self) -> Readout:
         motion = self._motion

@@ -30,7 +30,7 @@ from app.scenes.ch10.free_gyroscope import (
     COLOR_RATE,
     COLOR_TORQUE,
     add_rotor,
-    drawn_spin_rate,
+    drawn_spin_angle,
     ring_mesh,
     spin_quaternion,
 )
@@ -105,7 +105,6 @@ class GyrocompassScene(IntegratedScene):
     # -- drawing ---------------------------------------------------------------------------
     def build(self) -> None:
         scene = self.client.scene
-        self._spin_angle = 0.0
         scene.add_cylinder("/card", radius=CARD_RADIUS, height=0.02, color=(235, 232, 220), position=(0.0, 0.0, -0.76), radial_segments=64)
         ticks = []
         for k in range(36):
@@ -162,7 +161,7 @@ class GyrocompassScene(IntegratedScene):
         alpha, alpha_rate = float(self.run.y[0]), float(self.run.y[1])
         lam = math.radians(params["latitude_deg"])
         self.housing.wxyz = np.array([math.cos(-0.5 * alpha), 0.0, 0.0, math.sin(-0.5 * alpha)])  # a turn of −α about up
-        self.rotor.wxyz = spin_quaternion(self._spin_angle)
+        self.rotor.wxyz = spin_quaternion(drawn_spin_angle(self.params["spin_rad_s"], self.run.t_s / self.time_scale))
         axis = np.array([math.sin(alpha), math.cos(alpha), 0.0])
         across = np.array([-math.cos(alpha), math.sin(alpha), 0.0])  # up × axis
         h_vector = math.copysign(H_ARROW_LENGTH, self._h) * axis
@@ -189,11 +188,6 @@ class GyrocompassScene(IntegratedScene):
             self.labels["moment"].text = f"gyroscopic moment {abs(moment):.3g} N·m"
             self.labels["level"].text = f"levelling torque {abs(level):.3g} N·m"
         self._frame += 1
-
-    def advance(self, dt_s: float) -> None:
-        self._spin_angle = (self._spin_angle + drawn_spin_rate(self.params["spin_rad_s"]) * dt_s) % (2.0 * math.pi)
-        if self.step_physics():
-            self._draw()
 
     def readout(self) -> Readout:
         params = self.physical_params()

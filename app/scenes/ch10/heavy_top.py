@@ -195,7 +195,7 @@ class HeavyTopScene(IntegratedScene):
         return tuple(self._reference_block[1][0])
 
     def advance(self, dt_s: float) -> None:
-        if self.step_physics():
+        if self.step_motion(dt_s):
             self._draw()
         else:
             self.readout_label.text = self.status

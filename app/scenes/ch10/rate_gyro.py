@@ -23,7 +23,7 @@ import math
 import numpy as np
 
 from app.physics.systems.ch10 import rate_gyro as physics
-from app.scenes.ch10.free_gyroscope import COLOR_H, COLOR_RATE, COLOR_TORQUE, add_rotor, drawn_spin_rate, ring_mesh, spin_quaternion
+from app.scenes.ch10.free_gyroscope import COLOR_H, COLOR_RATE, COLOR_TORQUE, add_rotor, drawn_spin_angle, ring_mesh, spin_quaternion
 from app.scenes.kit import Mark, Preset, Quantity, Readout, Scene, arrow_segments
 
 GIMBAL_RADIUS = 0.55
@@ -78,7 +78,6 @@ class RateGyroScene(Scene):
     def build(self) -> None:
         scene = self.client.scene
         self.t_s = 0.0
-        self._spin_angle = 0.0
         lx, ly, lz = CASE_SIZE
         scene.add_grid("/ground", width=4.0, height=4.0, cell_size=0.25, section_size=1.0, position=(0.0, 0.0, -0.5 * lz - 0.12))
         self.table = scene.add_frame("/table", show_axes=False)
@@ -175,7 +174,7 @@ class RateGyroScene(Scene):
             self._outside_model = (first, max(abs(beta), self._outside_model[1] if self._outside_model else 0.0))
         self.table.wxyz = np.array([math.cos(0.5 * angle), 0.0, 0.0, math.sin(0.5 * angle)])
         self.gimbal.wxyz = np.array([math.cos(0.5 * beta), math.sin(0.5 * beta), 0.0, 0.0])
-        self.rotor.wxyz = spin_quaternion(self._spin_angle)
+        self.rotor.wxyz = spin_quaternion(drawn_spin_angle(self.params["spin_rad_s"], self.t_s))
         params = self.params
         spin_axis = np.array([0.0, math.cos(beta), math.sin(beta)])  # gimbal y in case components
         h_vector = math.copysign(H_ARROW_LENGTH, self._h) * spin_axis
@@ -194,11 +193,6 @@ class RateGyroScene(Scene):
             self.labels["rate"].text = f"Ω = {rate:.3g} rad/s (input axis z)"
             self.labels["moment"].text = f"spring + damper {abs(moment):.3g} N·m"
         self._frame += 1
-
-    def advance(self, dt_s: float) -> None:
-        self.t_s += dt_s
-        self._spin_angle = (self._spin_angle + drawn_spin_rate(self.params["spin_rad_s"]) * dt_s) % (2.0 * math.pi)
-        self._draw()
 
     def readout(self) -> Readout:
         params = self.params

@@ -200,10 +200,6 @@ class TorqueFreeAxisymmetricScene(Scene):
     def _draw(self) -> None:
         self.nodal.wxyz, self.body.wxyz = self.motion.nodal_and_body_quaternions(self.t_s)
 
-    def advance(self, dt_s: float) -> None:
-        self.t_s += dt_s
-        self._draw()
-
     def readout(self) -> Readout:
         m = self.motion
         quantities = [

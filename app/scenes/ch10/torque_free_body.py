@@ -19,10 +19,13 @@ around it cannot hide it the way it hides a translucent box.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
+from typing import Any
 
 import numpy as np
 
 from app.physics.core.parameters import Parameter
+from app.physics.solvers import LiveRun
 from app.physics.systems.ch10 import torque_free_body as physics
 from app.scenes.kit import FRAME_DT_S, Mark, Preset, Quantity, Readout, Scene, Trail
 
@@ -196,7 +199,12 @@ class TorqueFreeBodyScene(Scene):
     # -- animation -----------------------------------------------------------------------------
     @property
     def t_s(self) -> float:
+        """Simulated time (s): a whole number of frames (a time set between frames snaps to the nearest)."""
         return self.frame_index * FRAME_DT_S
+
+    @t_s.setter
+    def t_s(self, value: float) -> None:
+        self.frame_index = round(value / FRAME_DT_S)
 
     def _state(self, index: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(q_world_body, ω body, ω world) at frame ``index``, refilling the closed-form batch as needed."""
@@ -219,15 +227,37 @@ class TorqueFreeBodyScene(Scene):
             self.polhode_trail.add(omega_body * self.scale * ON_ELLIPSOID)
         self.herpolhode_trail.add(tip + np.array([0.0, 0.0, ABOVE_PLANE]))
 
-    def advance(self, dt_s: float) -> None:
+    def step_motion(self, dt_s: float) -> bool:
         """One frame of 1/30 s of motion (the closed form is exact at any t; the ghost steps with it)."""
         self.frame_index += 1
+        if self.ghost is not None and not self.ghost_status and not self.ghost.advance():
+            self.ghost_status = self.ghost.run.message
+        return True
+
+    def redraw(self) -> None:
         self._draw(self.frame_index)
         if self.ghost is not None and not self.ghost_status:
-            if self.ghost.advance():
-                self.ghost_frame.wxyz = self.ghost.q_world_body
-            else:
-                self.ghost_status = self.ghost.run.message
+            self.ghost_frame.wxyz = self.ghost.q_world_body
+
+    def motion_state(self) -> dict[str, Any]:
+        """``{"t_s"}``, and with the ghost on its integrated state ``ghost_y`` (quaternion wxyz, ω body rad/s)."""
+        motion: dict[str, Any] = {"t_s": float(self.t_s)}
+        if self.ghost is not None:
+            motion["ghost_y"] = [float(v) for v in self.ghost.run.y]
+        return motion
+
+    def resume_from(self, motion: Mapping[str, Any]) -> None:
+        ghost_y = None
+        if self.ghost is not None:
+            ghost_y = np.array(motion.get("ghost_y", []) if isinstance(motion, Mapping) else [], dtype=float)
+            if ghost_y.shape != self.ghost.run.y.shape or not np.all(np.isfinite(ghost_y)):
+                raise ValueError(f"motion: ghost_y must be the ghost's {self.ghost.run.y.size} finite state numbers")
+        super().resume_from(motion)
+        if self.ghost is not None:
+            old = self.ghost.run
+            self.ghost.run = LiveRun(old.system, old.integrator, ghost_y)
+            self.ghost.run.t_s = self.t_s
+            self.ghost_status = ""
 
     # -- numbers beside the scene --------------------------------------------------------------
     def ghost_attitude_difference_rad(self) -> float:

@@ -16,7 +16,6 @@ state reached.
 
 from __future__ import annotations
 
-import math
 import time
 from collections import deque
 from collections.abc import Mapping
@@ -32,10 +31,7 @@ from app.physics.solvers.integrated_model import IntegratedModel
 from app.physics.solvers.step_choice import ESTIMATING, PILOT_FAILED, StepChoice
 from app.physics.solvers.system import OdeSystem
 from app.scenes.kit.background_pilots import PILOTS
-from app.scenes.kit.scene import Scene
-
-#: Simulated seconds per displayed frame (the host draws at 30 Hz).
-FRAME_DT_S = 1.0 / 30.0
+from app.scenes.kit.scene import FRAME_DT_S, Scene, motion_numbers
 DRIFT_HISTORY_FRAMES = 300  # 10 s of history at 30 Hz
 #: Invariants are evaluated every 6th frame (5 Hz): enough for the drift plot and the runaway check, and a
 #: sixth of their cost per frame (with a class of 100 that cost is paid 3000 times a second).
@@ -157,22 +153,48 @@ class IntegratedScene(Scene):
         self.run.t_s, self.run.steps = old.t_s, old.steps
         self.description = self.describe(integrator)
 
+    # -- motion ------------------------------------------------------------------------------------------------
+    def step_motion(self, dt_s: float) -> bool:
+        """One frame of :attr:`frame_dt_s` simulated time (``dt_s`` is the host's frame), without drawing."""
+        return self.step_physics()
+
+    def restart_motion(self) -> None:
+        """Back to the initial state: :meth:`update` restarts the integration and draws it."""
+        self.update()
+
     def motion_state(self) -> dict[str, Any]:
-        """``{"t_s": simulated time (s), "y": the model's state vector}``."""
+        """``{"t_s": simulated time (s), "y": the model's state vector}`` (a trail starts again after resume_from)."""
         return {"t_s": float(self.run.t_s), "y": [float(v) for v in self.run.y]}
 
     def resume_from(self, motion: Mapping[str, Any]) -> None:
-        """Continue the integration from another instance's :meth:`motion_state` (same parameters)."""
+        """Continue the integration from ``motion`` (:meth:`motion_state` of an instance with the same parameters),
+        with the integrator running now; a pause (blow-up) is lifted. ValueError ("motion: …") if it does not fit."""
+        t_s = motion_numbers(motion, ("t_s",))["t_s"]
         try:
-            t_s = float(motion["t_s"])
             y = np.array(motion["y"], dtype=float)
         except (KeyError, TypeError, ValueError):
             raise ValueError("motion: needs t_s (s) and y (the state vector)") from None
-        if y.shape != self.run.y.shape or not np.all(np.isfinite(y)) or not math.isfinite(t_s) or t_s < 0.0:
-            raise ValueError(f"motion: y must be {self.run.y.size} finite numbers and t_s a finite time ≥ 0 s")
+        if y.shape != self.run.y.shape or not np.all(np.isfinite(y)):
+            raise ValueError(f"motion: y must be {self.run.y.size} finite numbers")
         old = self.run
         self.run = self.new_run(old.system, old.integrator, y)
         self.run.t_s, self.run.steps = t_s, old.steps
+        self.status = ""
+        self.clear_trails()
+
+    def step_without_drawing(self, t_s: float) -> None:
+        """Step whole frames to the one nearest ``t_s`` (simulated s), keeping the step choice the run started with:
+        a pilot's choice arriving meanwhile applies at the next live frame, so the result does not depend on when."""
+        frames = round(t_s / self.frame_dt_s)
+        applied = self._applied
+        self._applied = self._generation  # read by _take_measured_choice as "already applied"
+        try:
+            for _ in range(frames):
+                if not self.step_motion(FRAME_DT_S):
+                    break
+        finally:
+            if self._applied == self._generation:
+                self._applied = applied
 
     def close(self) -> None:
         PILOTS.cancel(id(self))

@@ -9,6 +9,7 @@ the numbers they draw come from ``app.physics``.
 
 from __future__ import annotations
 
+import math
 from abc import ABC, abstractmethod
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, replace
@@ -21,6 +22,34 @@ from app.physics.core.readout import Readout
 from app.physics.core.solution import WorkedExample
 from app.physics.solvers.integrated_model import IntegratedModel
 from app.scenes.host.viser_compat import set_initial_camera
+from app.scenes.kit.trail import Trail
+
+#: Simulated seconds per displayed frame (the host draws at 30 Hz).
+FRAME_DT_S = 1.0 / 30.0
+#: Latest simulated time :meth:`Scene.go_to` computes (s): a share link's bound.
+GO_TO_MAX_S = 600.0
+
+
+def checked_go_to_time(t_s: Any) -> float:
+    """``t_s`` as a float in [0, :data:`GO_TO_MAX_S`] s; ValueError naming ``t_s`` otherwise."""
+    if isinstance(t_s, bool) or not isinstance(t_s, int | float) or not math.isfinite(t_s) or not 0.0 <= t_s <= GO_TO_MAX_S:
+        raise ValueError(f"t_s: a simulated time from 0 to {GO_TO_MAX_S:g} s, got {t_s!r}")
+    return float(t_s)
+
+
+def motion_numbers(motion: Any, keys: tuple[str, ...]) -> dict[str, float]:
+    """The finite numbers ``motion[key]`` for each key (``t_s`` ≥ 0 s); ValueError starting "motion:" otherwise."""
+    if not isinstance(motion, Mapping):
+        raise ValueError(f"motion: must be a mapping with {', '.join(keys)}, got {type(motion).__name__}")
+    out: dict[str, float] = {}
+    for key in keys:
+        value = motion.get(key)
+        if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
+            raise ValueError(f"motion: {key} must be a finite number, got {value!r}")
+        out[key] = float(value)
+    if out.get("t_s", 0.0) < 0.0:
+        raise ValueError(f"motion: t_s must be a time ≥ 0 s, got {out['t_s']!r}")
+    return out
 
 
 @dataclass(frozen=True)
@@ -86,7 +115,10 @@ class Scene(ABC):
     """One client's instance of a scene.
 
     Subclasses set the class attributes and implement :meth:`build` and
-    :meth:`update`; animated scenes also implement :meth:`advance`. A scene
+    :meth:`update`; an animated scene draws its current motion in ``_draw`` (or
+    :meth:`redraw`), moves it in :meth:`step_motion` where its clock is not a
+    plain ``t_s += dt`` and names what makes the motion in :attr:`motion_attributes`
+    (or overrides :meth:`motion_state`/:meth:`resume_from`). A scene
     declares what it shows — its ``model`` (a closed-form or integrated model
     class) or the worked ``example`` whose inputs it draws — and its own
     ``controls`` (display options, time scale, …); :attr:`parameters` is
@@ -173,20 +205,96 @@ class Scene(ABC):
         position, look_at = self.camera_view()
         set_initial_camera(self.client, position=position, look_at=look_at)
 
+    # -- motion: where an animated scene is, going back there, redrawing it --------------------------------------
+    #: An animated scene's motion as ``{key in motion_state(): instance attribute}``, every value a float, ``t_s``
+    #: (simulated s) first. The default fits the common closed-form scene: a clock ``self.t_s`` and ``_draw()``.
+    motion_attributes: ClassVar[Mapping[str, str]] = {"t_s": "t_s"}
+
     def advance(self, dt_s: float) -> None:
-        """Advance the animation by ``dt_s`` seconds of wall-clock time."""
+        """Advance the animation by ``dt_s`` seconds of wall-clock time: :meth:`step_motion`, then :meth:`redraw`."""
+        if self.animated and self.step_motion(dt_s):
+            self.redraw()
+
+    def step_motion(self, dt_s: float) -> bool:
+        """Advance the motion ``dt_s`` s without drawing; False when it stopped (``status`` says why).
+
+        The default moves the clock ``t_s``; a scene that loops or keeps more (a spin angle) overrides it, so
+        that :meth:`advance` and :meth:`go_to` share one rule.
+        """
+        self.t_s += dt_s
+        return True
+
+    def redraw(self) -> None:
+        """Draw the current motion without advancing it."""
+        self._draw()
+
+    def _draw(self) -> None:
+        """Move the drawing to the current motion (an animated scene implements it or overrides :meth:`redraw`)."""
+        raise NotImplementedError(f"{type(self).__name__} draws no motion")
+
+    def restart_motion(self) -> None:
+        """Back to the current parameters' start, drawn: every motion attribute at 0, then :meth:`update` (which
+        may set another start, such as a chosen starting time)."""
+        for attribute in self.motion_attributes.values():
+            setattr(self, attribute, 0.0)
+        self.update()
 
     def motion_state(self) -> dict[str, Any] | None:
-        """The motion now, as JSON data another instance can :meth:`resume_from` (a room's students exploring
-        from where the instructor's demo is); None for a scene whose motion only restarts at t = 0."""
-        return None
+        """The motion now, as JSON data (floats) another instance with the same parameters can :meth:`resume_from`
+        and :meth:`redraw` exactly (a room's students exploring from the instructor's demo, the scrubber's history);
+        always with ``t_s`` (simulated s). None for a scene that is not animated."""
+        if not self.animated:
+            return None
+        return {key: float(getattr(self, attribute)) for key, attribute in self.motion_attributes.items()}
 
     def resume_from(self, motion: Mapping[str, Any]) -> None:
-        """Continue from ``motion`` (from :meth:`motion_state` of an instance with the same parameters).
+        """Put this instance at ``motion`` (from :meth:`motion_state`, same parameters), without drawing; its trails
+        start again, empty.
 
-        Raises ``ValueError`` for a motion this scene cannot take (wrong size, not finite).
+        Raises ``ValueError`` ("motion: …") for a motion this scene cannot take (a missing key, not finite, t_s < 0).
         """
-        raise ValueError(f"{self.id} restarts at t = 0: it cannot continue another instance's motion")
+        if not self.animated:
+            raise ValueError(f"motion: {self.id} is not animated, so it has no motion to resume")
+        values = motion_numbers(motion, tuple(self.motion_attributes))
+        for key, attribute in self.motion_attributes.items():
+            setattr(self, attribute, values[key])
+        self.clear_trails()
+
+    def drawn_trails(self) -> list[Trail]:
+        """Every :class:`Trail` this scene keeps (as an attribute, or in a list, tuple or dict attribute)."""
+        found: list[Trail] = []
+        for value in vars(self).values():
+            items = value.values() if isinstance(value, dict) else value if isinstance(value, list | tuple) else (value,)
+            found.extend(item for item in items if isinstance(item, Trail))
+        return found
+
+    def clear_trails(self) -> None:
+        """Empty every trail: a trail is history, not the instant, so after :meth:`resume_from` it starts again."""
+        for trail in self.drawn_trails():
+            trail.clear()
+
+    def go_to(self, t_s: float) -> None:
+        """The motion at simulated time ``t_s`` (0–:data:`GO_TO_MAX_S` s, else ValueError) from the current
+        parameters' start, drawn: restart, step the motion frame by frame without drawing, redraw. Deterministic:
+        two instances with the same parameters draw the same instant."""
+        t_s = checked_go_to_time(t_s)
+        if not self.animated:
+            raise ValueError(f"t_s: {self.id} is not animated, so it has no time to go to")
+        with self.client.atomic():
+            self.restart_motion()
+            self.step_without_drawing(t_s)
+            self.redraw()
+
+    def step_without_drawing(self, t_s: float) -> None:
+        """Step :meth:`step_motion` from the start to ``t_s``: whole frames of :data:`FRAME_DT_S` (as the host
+        plays them, so loops and replays happen as on screen), then the part of a frame left."""
+        frames = math.floor(t_s / FRAME_DT_S + 1e-9)
+        for _ in range(frames):
+            if not self.step_motion(FRAME_DT_S):
+                return
+        rest = t_s - frames * FRAME_DT_S
+        if rest > 1e-12:
+            self.step_motion(rest)
 
     def readout(self) -> Readout | None:
         """Numbers a student reads beside the scene, polled by the lesson page (None: no readout).
