@@ -69,7 +69,7 @@ def test_rotation_sequences_lesson_readout_and_gimbal_lock(browser, live_server,
 
 
 def test_angular_velocity_lesson_rate_gain_near_lock(browser, live_server, shots):
-    context, page, session_id, errors = open_lesson(browser, live_server, "/lessons/3-4-angular-velocity", timeout_s=30)
+    context, page, session_id, errors = open_lesson(browser, live_server, "/lessons/3-4-angular-velocity?scene=rotation-sequence", timeout_s=30)
     host = live_server.host
     _wait_for_quantity(page, "rate_gain", "true")
     page.select_option("#ctl-sequence", "3-2-1")

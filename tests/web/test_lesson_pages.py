@@ -29,9 +29,13 @@ def test_a_lesson_with_two_scenes_links_both_and_shows_the_first(pages):
     picker = re.search(r'<nav class="scene-picker"[^>]*>(.*?)</nav>', response.text, re.S)
     assert picker, "a lesson with several scenes shows a scene picker"
     links = re.findall(r'href="([^"]+)"', picker.group(1))
-    assert links == ["/lessons/3-4-angular-velocity?scene=rotation-sequence", "/lessons/3-4-angular-velocity?scene=moving-frame-acceleration"]
-    assert 'aria-current="page">Rotation' in picker.group(1)
-    assert lesson_config(response.text)["scene"]["id"] == "rotation-sequence"
+    assert links == [
+        "/lessons/3-4-angular-velocity?scene=angle-rates",
+        "/lessons/3-4-angular-velocity?scene=rotation-sequence",
+        "/lessons/3-4-angular-velocity?scene=moving-frame-acceleration",
+    ]
+    assert links[0] + '" aria-current="page"' in picker.group(1)
+    assert lesson_config(response.text)["scene"]["id"] == "angle-rates"
 
 
 def test_the_query_picks_the_scene_the_viewer_shows(pages):
@@ -45,7 +49,7 @@ def test_a_scene_the_lesson_does_not_name_is_not_found(pages):
     response = pages.get("/lessons/3-4-angular-velocity", params={"scene": "four-bar"})
     assert response.status_code == 404
     assert "has no scene 'four-bar'" in response.json()["detail"]
-    assert "rotation-sequence, moving-frame-acceleration" in response.json()["detail"]
+    assert "angle-rates, rotation-sequence, moving-frame-acceleration" in response.json()["detail"]
 
 
 def test_a_lesson_with_one_scene_has_no_picker(pages):
