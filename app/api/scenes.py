@@ -3,9 +3,10 @@ from __future__ import annotations
 from typing import Annotated, Any
 
 from fastapi import APIRouter, Header, HTTPException, Path
-from fastapi.responses import JSONResponse
+from fastapi.responses import JSONResponse, Response
 
 from app.api.deps import SceneHostDep, SessionKeysDep
+from app.api.examples import ScriptParams, python_file
 from app.api.rooms import RoomsDep
 from app.api.errors import unprocessable
 from app.api.limits import SIMULATIONS, TOO_MANY_RESPONSE
@@ -13,8 +14,9 @@ from app.api.schemas.errors import ErrorDetail, error_responses
 from app.api.session_keys import HEADER as SESSION_KEY_HEADER
 from app.api.session_keys import SESSION_KEY_PATTERN, SessionKeyError
 from app.api.schemas.readout import LiveAnswer
-from app.api.schemas.scenes import SceneSummary, SessionParamsAnswer, SessionParamsRequest
+from app.api.schemas.scenes import PlaybackAnswer, PlaybackRequest, SceneSummary, SessionParamsAnswer, SessionParamsRequest
 from app.api.schemas.simulation import SimulateRequest, SimulationAnswer
+from app.course.scripts import scene_script, script_file_name, script_values
 from app.physics.constrained.model import ConstrainedModel
 from app.physics.core.closed_form import ClosedFormModel, evaluate_model
 from app.physics.core.parameters import ParameterError, ParameterSet
@@ -91,6 +93,51 @@ def set_session_params(
         host.resume_from(session_id, start["motion"])  # same parameters: continue the room's motion, not restart it
     session_keys.claim(session_id, session_key)
     return {"scene_id": scene_id, "session_id": session_id, "params": params, "viewers": host.viewer_count(session_id)}
+
+
+@router.put(
+    "/{scene_id}/sessions/{session_id}/playback",
+    response_model=PlaybackAnswer,
+    responses={
+        **error_responses(
+            not_found=_UNKNOWN_SCENE,
+            unprocessable="A field is out of range, the session has no scene yet, or seek_s is outside the kept motion; nothing changed",
+        ),
+        403: {"model": ErrorDetail, "description": "The session belongs to another page: its X-Session-Key is missing or wrong; nothing changed"},
+    },
+)
+def set_session_playback(
+    scene_id: str, session_id: SessionId, request: PlaybackRequest, host: SceneHostDep, session_keys: SessionKeysDep, session_key: SessionKey = None
+) -> dict[str, Any]:
+    """Play, pause, step, scrub, restart or change the speed of one page's scene (the page's time controls);
+    ``go_to_s`` restores the motion at a simulated time (a share link). Owned sessions need their X-Session-Key."""
+    _scene_class(host, scene_id)
+    try:
+        session_keys.check(session_id, session_key)
+    except SessionKeyError as exc:
+        raise HTTPException(status_code=403, detail=str(exc)) from None
+    if host.session_params(session_id) is None:
+        raise unprocessable(["path", "session_id"], f"session {session_id!r} has no scene yet: set its parameters first")
+    try:
+        answer = host.set_playback(session_id, **request.model_dump(exclude_none=True))
+    except ValueError as exc:
+        field = str(exc).split(":", 1)[0]
+        raise unprocessable(["body", field if field in PlaybackRequest.model_fields else "session_id"], str(exc)) from None
+    return {**answer, "camera": host.camera(session_id)}
+
+
+@router.get(
+    "/{scene_id}/sessions/{session_id}/playback",
+    response_model=PlaybackAnswer,
+    responses=error_responses(not_found="No scene has this id, or the session has none yet", unprocessable="The session id is malformed"),
+)
+def session_playback(scene_id: str, session_id: SessionId, host: SceneHostDep) -> dict[str, Any]:
+    """The session's play state, simulated time, the motion kept for scrubbing and the first viewer's camera (for a share link)."""
+    _scene_class(host, scene_id)
+    answer = host.playback(session_id)
+    if answer is None:
+        raise HTTPException(status_code=404, detail=f"session {session_id!r} has no scene yet")
+    return {**answer, "camera": host.camera(session_id)}
 
 
 def _explore_start(rooms: Rooms, room_id: str, scene_id: str) -> dict[str, Any]:
@@ -188,3 +235,18 @@ def live_readout(scene_id: str, session_id: SessionId, host: SceneHostDep) -> di
     if readout is None:
         raise HTTPException(status_code=404, detail=f"no live {scene_id!r} viewer in session {session_id!r} yet")
     return {"scene_id": scene_id, "viewers": host.viewer_count(session_id), **readout}
+
+
+@router.get("/{scene_id}/script.py", include_in_schema=False)
+def scene_script_file(scene_id: str, host: SceneHostDep, params: ScriptParams = None) -> Response:
+    """A Python script reproducing the scene's numbers for ``params`` with the project's own package ("Open as Python").
+
+    ``params`` are the scene's parameters (the page's controls); a bad one gets a 422
+    naming the field (``loc`` ``["query", "params", name]``) and no script.
+    """
+    cls = _scene_class(host, scene_id)
+    try:
+        params_checked = script_values(cls.parameters, params)
+    except ParameterError as exc:
+        raise unprocessable(["query", *exc.path], str(exc)) from None
+    return python_file(scene_script(cls, params_checked), script_file_name(scene_id))

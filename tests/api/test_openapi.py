@@ -32,7 +32,9 @@ ROOM_ROUTES = {
     ("/api/rooms/{room_id}/polls/{poll_id}/answers", "post"),
     ("/api/rooms/{room_id}/polls/{poll_id}/results", "get"),
 }
-CAN_BE_NOT_FOUND |= ROOM_ROUTES
+#: A page's time controls (issue 15): an unknown scene, or a session without one yet.
+PLAYBACK_ROUTES = {("/api/scenes/{scene_id}/sessions/{session_id}/playback", "put"), ("/api/scenes/{scene_id}/sessions/{session_id}/playback", "get")}
+CAN_BE_NOT_FOUND |= ROOM_ROUTES | PLAYBACK_ROUTES
 CAN_BE_UNPROCESSABLE = (CAN_BE_NOT_FOUND - {("/api/bench/work-precision", "get")}) | {("/api/systems/custom/derive", "post"), ("/api/rooms", "post")}
 #: Instructor-only reads: a student gets 403 (app/api/rooms.py require_instructor), as on every state-changing route.
 INSTRUCTOR_ONLY_READS = {("/api/rooms/{room_id}/polls/ready", "get"), ("/api/rooms/{room_id}/polls/{poll_id}/results", "get")}

@@ -48,3 +48,37 @@ class SessionParamsAnswer(BaseModel):
     session_id: str
     params: dict[str, ParameterValue]
     viewers: int
+
+
+class PlaybackRequest(BaseModel):
+    """How the session's motion runs: any of these; fields left out keep their values."""
+
+    model_config = ConfigDict(extra="forbid")
+    playing: bool | None = Field(None, strict=True, description="Play (true) or pause (false)")
+    time_scale: float | None = Field(None, ge=0.1, le=4.0, allow_inf_nan=False, description="× real time")
+    reset: bool = Field(False, strict=True, description="Start the motion again from t = 0")
+    step: int = Field(0, ge=0, le=300, strict=True, description="Advance this many displayed frames (1/30 s each) now, paused")
+    seek_s: float | None = Field(None, ge=0.0, allow_inf_nan=False, description="Go back to a kept instant (s; within history_s), paused")
+    go_to_s: float | None = Field(None, ge=0.0, le=600.0, allow_inf_nan=False, description="Compute the motion at this simulated time from the start (s): a share link")
+    camera: "CameraIn | None" = Field(None, description="Point the viewers' cameras (a share link)")
+
+
+class CameraIn(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    position: list[float] = Field(min_length=3, max_length=3, description="m, world frame (+Z up)")
+    look_at: list[float] = Field(min_length=3, max_length=3, description="m, world frame")
+
+
+class CameraOut(BaseModel):
+    position: list[float] = Field(description="m, world frame (+Z up)")
+    look_at: list[float] = Field(description="m, world frame")
+
+
+class PlaybackAnswer(BaseModel):
+    """The session's play state, its first viewer's simulated time and camera, and the motion kept for scrubbing."""
+
+    playing: bool
+    time_scale: float
+    t_s: float | None = Field(description="Simulated time of the first viewer's scene (s); null before a viewer connects")
+    history_s: list[float] | None = Field(description="[earliest, latest] simulated time kept for seek_s (s)")
+    camera: CameraOut | None = None

@@ -43,6 +43,7 @@ from typing import Any
 
 import viser
 
+from app.scenes.host.history import MotionHistory
 from app.scenes.host.viser_compat import (
     BatchedWakeups,
     BroadcastViewer,
@@ -61,6 +62,9 @@ SESSION_ID_PATTERN = re.compile(r"^[A-Za-z0-9_-]{8,64}$")
 STAGE_PREFIX = "room-"
 #: Slowest and fastest time scale a session may run at (× real time).
 TIME_SCALE_RANGE = (0.1, 4.0)
+#: Most frames one step request advances, and the latest simulated time a share link may ask for (s).
+MAX_STEP_FRAMES = 300
+MAX_GO_TO_S = 600.0
 
 
 def check_session_id(session_id: str, *, stage: bool = False) -> None:
@@ -72,6 +76,29 @@ def check_session_id(session_id: str, *, stage: bool = False) -> None:
             f"session_id: ids beginning {STAGE_PREFIX!r} are classroom rooms' shared scenes, changed only by their room"
             if not stage else f"session_id: a stage's id begins {STAGE_PREFIX!r}"
         )
+
+
+#: Farthest a camera may be placed from the origin (m).
+MAX_CAMERA_M = 1e4
+
+
+def checked_camera(raw: Mapping[str, Any]) -> dict[str, tuple[float, float, float]]:
+    """``{"position", "look_at"}`` as two finite 3-vectors within :data:`MAX_CAMERA_M`, distinct; ValueError otherwise."""
+    try:
+        view = {name: tuple(float(v) for v in raw[name]) for name in ("position", "look_at")}
+    except (KeyError, TypeError, ValueError):
+        raise ValueError("camera: needs position and look_at, each [x, y, z] in m") from None
+    if any(len(v) != 3 or not all(math.isfinite(c) and abs(c) <= MAX_CAMERA_M for c in v) for v in view.values()):
+        raise ValueError(f"camera: position and look_at are three finite numbers each, within {MAX_CAMERA_M:g} m")
+    if view["position"] == view["look_at"]:
+        raise ValueError("camera: position and look_at must differ")
+    return view  # type: ignore[return-value]
+
+
+def place_camera(client: Any, *, position: tuple[float, float, float], look_at: tuple[float, float, float]) -> None:
+    """Point a viewer's camera (a client's, or a stage's initial one) from ``position`` at ``look_at`` (m)."""
+    client.camera.position = position  # a client's camera keeps its look-at offset when moved: set look_at after
+    client.camera.look_at = look_at
 
 
 class UnknownSceneError(KeyError):
@@ -96,9 +123,36 @@ class Session:
     stage: viser.ViserServer | None = None
     #: Motion the next scene built for this session starts from (``Scene.resume_from``), then forgotten.
     resume_motion: dict[str, Any] | None = None
+    #: Simulated time (s) the next scene built for this session goes to (``Scene.go_to``: a share link), then forgotten.
+    go_to_s: float | None = None
+    #: Camera (m: position, look_at) the next viewer's view starts from (a share link), then forgotten.
+    camera: dict[str, tuple[float, float, float]] | None = None
+    #: Each viewer's recent motion, for the scrubber (keyed like ``instances``).
+    histories: dict[int, MotionHistory] = field(default_factory=dict)
 
     def playback(self) -> dict[str, Any]:
-        return {"playing": self.playing, "time_scale": self.time_scale}
+        """Play state, time scale, the first scene's simulated time and the span of motion kept for scrubbing."""
+        out: dict[str, Any] = {"playing": self.playing, "time_scale": self.time_scale, "t_s": None, "history_s": None}
+        for client_id, scene in self.instances.items():
+            motion = scene.motion_state()
+            out["t_s"] = None if motion is None else motion["t_s"]
+            history = self.histories.get(client_id)
+            span = history.span_s() if history is not None else None
+            out["history_s"] = None if span is None else list(span)
+            break
+        return out
+
+    def add_instance(self, client_id: int, scene: Scene) -> None:
+        self.instances[client_id] = scene
+        self.histories[client_id] = MotionHistory()
+        self.histories[client_id].record(scene.motion_state())
+
+    def restarted(self) -> None:
+        """The motion started again (new parameters, a reset, a jump): the kept frames belong to the old one."""
+        for client_id, scene in self.instances.items():
+            history = self.histories.setdefault(client_id, MotionHistory())
+            history.clear()
+            history.record(scene.motion_state())
 
 
 class SceneHost:
@@ -212,21 +266,47 @@ class SceneHost:
             session.params = params
             for scene in session.instances.values():
                 scene.set_params(params)
+            session.restarted()
             return dict(params)
 
     def set_playback(
-        self, session_id: str, *, playing: bool | None = None, time_scale: float | None = None, reset: bool = False
+        self,
+        session_id: str,
+        *,
+        playing: bool | None = None,
+        time_scale: float | None = None,
+        reset: bool = False,
+        step: int = 0,
+        seek_s: float | None = None,
+        go_to_s: float | None = None,
+        camera: Mapping[str, Any] | None = None,
     ) -> dict[str, Any]:
-        """Pause or play the session, scale its time (× real time, :data:`TIME_SCALE_RANGE`), or restart its
-        motion from t = 0; returns ``{"playing", "time_scale"}``. Checks everything before changing anything."""
+        """Change how the session's motion runs; returns :meth:`Session.playback`. Checks everything first.
+
+        ``playing`` pauses or plays; ``time_scale`` is × real time (:data:`TIME_SCALE_RANGE`); ``reset``
+        restarts from t = 0; ``step`` advances that many frames now (1–300; pauses); ``seek_s`` puts every
+        viewer's scene back at a kept frame (pauses: the scrubber); ``go_to_s`` computes the motion at that
+        simulated time from the start (0–600 s: a share link), applied to a viewer that connects later too;
+        ``camera`` (``{"position", "look_at"}``, m, world frame) moves the viewers' cameras, or the next one's.
+        """
+        view = checked_camera(camera) if camera is not None else None
         if playing is not None and not isinstance(playing, bool):
             raise ValueError("playing: must be true or false")
         if time_scale is not None:
             low, high = TIME_SCALE_RANGE
             if isinstance(time_scale, bool) or not isinstance(time_scale, int | float) or not math.isfinite(time_scale) or not low <= time_scale <= high:
                 raise ValueError(f"time_scale: must be a number from {low:g} to {high:g} (× real time), got {time_scale!r}")
+        if isinstance(step, bool) or not isinstance(step, int) or not 0 <= step <= MAX_STEP_FRAMES:
+            raise ValueError(f"step: a whole number of frames from 0 to {MAX_STEP_FRAMES}, got {step!r}")
+        for name, value, high in (("seek_s", seek_s, None), ("go_to_s", go_to_s, MAX_GO_TO_S)):
+            if value is not None and (isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value) or value < 0 or (high is not None and value > high)):
+                raise ValueError(f"{name}: a simulated time from 0 to {high or 'the latest kept'} s, got {value!r}")
         session = self._existing(session_id)
+        if (go_to_s is not None or step or seek_s is not None) and not self.scene_class(session.scene_id).animated:
+            raise ValueError(f"{session.scene_id} is not animated: it has no time to step, scrub or go to")
         with session.lock:
+            if seek_s is not None:  # checked against every viewer's kept motion before anything moves
+                motions = {cid: session.histories[cid].at(seek_s) for cid in session.instances if cid in session.histories}
             if playing is not None:
                 session.playing = playing
             if time_scale is not None:
@@ -234,7 +314,54 @@ class SceneHost:
             if reset:
                 for scene in session.instances.values():
                     scene.set_params(scene.params)  # a scene's update starts its motion again from its initial state
+                session.restarted()
+            if go_to_s is not None:
+                for scene in session.instances.values():
+                    scene.go_to(float(go_to_s))
+                session.restarted()
+                if not session.instances:
+                    session.go_to_s = float(go_to_s)
+            if seek_s is not None:
+                session.playing = False
+                for client_id, motion in motions.items():
+                    scene = session.instances[client_id]
+                    scene.resume_from(motion)
+                    scene.redraw()
+            if step:
+                session.playing = False
+                self._step(session, step)
+            if view is not None:
+                for scene in session.instances.values():
+                    place_camera(scene.client, **view)
+                if not session.instances:
+                    session.camera = view
+            if playing and seek_s is None:
+                # Playing on from a scrubbed instant: the frames kept after it are not this run's.
+                for client_id, scene in session.instances.items():
+                    motion = scene.motion_state()
+                    if motion is not None and client_id in session.histories:
+                        session.histories[client_id].forget_after(motion["t_s"])
             return session.playback()
+
+    def _step(self, session: Session, frames: int) -> None:
+        """Advance every animated scene of the session ``frames`` displayed frames now (caller holds its lock)."""
+        wakeups = BatchedWakeups()
+        for client_id, scene in list(session.instances.items()):
+            for _ in range(frames):
+                if scene.animated and not scene.status:
+                    self._advance(scene, 1.0 / self.frame_rate_hz, wakeups)
+                    session.histories.setdefault(client_id, MotionHistory()).record(scene.motion_state())
+        wakeups.flush()
+
+    def camera(self, session_id: str) -> dict[str, list[float]] | None:
+        """The first viewer's camera now (m, world frame), as its browser last reported it; None without a viewer."""
+        with self.inspect(session_id) as scenes:
+            for scene in scenes:
+                camera = getattr(scene.client, "camera", None)
+                if isinstance(camera, viser.CameraHandle):
+                    with contextlib.suppress(AssertionError):  # no camera message from the browser yet
+                        return {"position": [float(v) for v in camera.position], "look_at": [float(v) for v in camera.look_at]}
+        return None
 
     def playback(self, session_id: str) -> dict[str, Any] | None:
         with self._lock:
@@ -269,13 +396,14 @@ class SceneHost:
             for scene in session.instances.values():
                 scene.close()
             session.instances.clear()
+            session.histories.clear()
             session.scene_id, session.params = scene_id, params
             session.frame_credit = 0.0
             viewer = BroadcastViewer(session.stage)
             scene = cls(viewer, params)  # type: ignore[arg-type]
             position, look_at = scene.camera_view()
             viewer.move_cameras(position=position, look_at=look_at)
-            session.instances[BroadcastViewer.client_id] = scene
+            session.add_instance(BroadcastViewer.client_id, scene)
             return {"params": dict(params), "viewer_url": self.stage_viewer_url(session_id)}
 
     def _start_stage_server(self) -> viser.ViserServer:
@@ -371,6 +499,8 @@ class SceneHost:
                     readout = scene.readout()
                     if readout is not None:
                         out["readout"] = readout.as_dict()
+                    if scene.animated:
+                        out["playback"] = session.playback()
                     return out
         return None
 
@@ -405,9 +535,16 @@ class SceneHost:
                 motion, session.resume_motion = session.resume_motion, None
                 try:
                     scene.resume_from(motion)
+                    scene.redraw()
                 except ValueError:
                     log.warning("session %s: the motion handed over does not fit scene %s; it starts at t = 0", session_id, scene_id)
-            session.instances[client.client_id] = scene
+            if session.go_to_s is not None:
+                scene.go_to(session.go_to_s)
+                session.go_to_s = None
+            if session.camera is not None:
+                place_camera(client, **session.camera)
+                session.camera = None
+            session.add_instance(client.client_id, scene)
 
     def _on_disconnect(self, client: viser.ClientHandle) -> None:
         with self._lock:
@@ -416,6 +553,7 @@ class SceneHost:
         if session is not None:
             with session.lock:
                 session.instances.pop(client.client_id, None)
+                session.histories.pop(client.client_id, None)
                 session.last_used_s = time.monotonic()
 
     def _close_instances(self, session: Session) -> None:
@@ -428,6 +566,7 @@ class SceneHost:
                 except Exception:
                     log.exception("closing scene failed")
             session.instances.clear()
+            session.histories.clear()
 
     # -- frame loop -----------------------------------------------------------------
     def _frame_loop(self) -> None:
@@ -452,10 +591,13 @@ class SceneHost:
                     continue
                 session.frame_credit -= frames
                 with session.lock:
-                    for scene in list(session.instances.values()):
+                    for client_id, scene in list(session.instances.items()):
+                        history = session.histories.get(client_id)
                         for _ in range(frames):
                             if scene.animated and not scene.status:
                                 self._advance(scene, dt, wakeups)
+                                if history is not None:
+                                    history.record(scene.motion_state())
             wakeups.flush()
 
     @staticmethod

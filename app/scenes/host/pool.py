@@ -260,6 +260,9 @@ class WorkerPool:
     def stage_viewers(self, session_id: str) -> int:
         return self._call(self.worker_index(session_id), "stage_viewers", session_id)
 
+    def camera(self, session_id: str) -> dict[str, list[float]] | None:
+        return self._call(self.worker_index(session_id), "camera", session_id)
+
     def motion_state(self, session_id: str) -> dict[str, Any] | None:
         return self._call(self.worker_index(session_id), "motion_state", session_id)
 

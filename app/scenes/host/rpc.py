@@ -17,7 +17,7 @@ from app.scenes.host.host import UnknownSceneError
 #: SceneHost methods a worker answers (everything the routes and the relay need).
 WORKER_METHODS = frozenset({
     "set_params", "session_params", "live_readout", "viewer_count", "viewer_url",
-    "set_playback", "playback", "open_stage", "close_stage", "stage_viewers", "stage_viewer_url", "motion_state", "resume_from",
+    "set_playback", "playback", "open_stage", "close_stage", "stage_viewers", "stage_viewer_url", "motion_state", "resume_from", "camera",
 })  # fmt: skip
 
 Answer = tuple[Any, ...]
