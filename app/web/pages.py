@@ -47,8 +47,22 @@ def _page(title: str, body: str, *, scripts: tuple[str, ...] = ()) -> HTMLRespon
     )
 
 
+def _section_item(number: str, title: str, lessons: list[Lesson]) -> str:
+    """One section of a chapter's list, saying in words whether it has a lesson (links to each) or not yet."""
+    if lessons:
+        links = ", ".join(f'<a href="{esc(l.url)}">{esc(l.title)}</a>' for l in lessons)
+        status = f'<span class="sec-status has-lesson">lesson{"s" if len(lessons) > 1 else ""}:</span> {links}'
+    else:
+        status = '<span class="sec-status no-lesson">no lesson yet</span>'
+    return f"<li><span class=sec-num>{esc(number)}</span> {esc(title)} — {status}</li>"
+
+
 def _chapter_card(chapter: Chapter) -> str:
-    sections = "".join(f"<li><span class=sec-num>{esc(s.number)}</span> {esc(s.title)}</li>" for s in chapter.sections)
+    by_section: dict[str, list[Lesson]] = {}
+    for lesson in chapter.lessons:
+        by_section.setdefault(lesson.section, []).append(lesson)
+    sections = "".join(_section_item(s.number, s.title, by_section.get(s.number, [])) for s in chapter.sections)
+    covered = sum(1 for s in chapter.sections if s.number in by_section)
     if chapter.lessons:
         lessons = "".join(
             f'<li><a href="{esc(l.url)}"><span class=sec-num>{esc(l.section)}</span> {esc(l.title)}</a>'
@@ -63,7 +77,7 @@ def _chapter_card(chapter: Chapter) -> str:
         f'<section class="chapter" id="chapter-{chapter.number}" aria-labelledby="ch{chapter.number}-title">'
         f'<h3 id="ch{chapter.number}-title"><span class="ch-num">{chapter.number}</span> {esc(chapter.title)}</h3>'
         f'<p class="summary">{esc(chapter.summary)}</p>'
-        f'<details><summary>Sections</summary><ul class="sections">{sections}</ul></details>'
+        f'<details><summary>Sections: {covered} of {len(chapter.sections)} with a lesson</summary><ul class="sections">{sections}</ul></details>'
         f"{lessons_html}</section>"
     )
 
@@ -143,7 +157,7 @@ def lesson_page(lesson_id: str, catalogue: CatalogueDep, scene: str | None = Non
     return _page(
         f"{lesson.section} {lesson.title} — Dynamics Lab",
         body,
-        scripts=("/static/vendor/katex/katex.min.js", "/static/js/common.js", "/static/js/plot.js", "/static/js/lesson.js", "/static/js/room.js", "/static/js/derivations.js"),
+        scripts=("/static/vendor/katex/katex.min.js", "/static/js/common.js", "/static/js/plot.js", "/static/js/lesson.js", "/static/js/room.js", "/static/js/time_controls.js", "/static/js/derivations.js"),
     )
 
 

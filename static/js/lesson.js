@@ -25,6 +25,9 @@
   const defaults = Object.fromEntries(specs.map((s) => [s.name, s.default]));
   session.values = { ...defaults };
   if (saved && saved.values) for (const s of specs) if (s.name in saved.values) session.values[s.name] = saved.values[s.name];
+  // A share link (?params=…&t=…&playing=…&speed=…&camera=…) sets the values it carries; time_controls.js restores the rest.
+  const shared = sharedState(new URLSearchParams(location.search), specs);
+  if (shared) Object.assign(session.values, shared.params);
 
   // ---- number formatting (significant figures, units shown beside) -------------
   const fmt = (v) => {
@@ -401,6 +404,24 @@
     sentValues = { ...session.values };
     return changed;
   }
+  // ---- "Open as Python": scripts that print this page's numbers with the project's own package ----
+  const pythonLinks = document.getElementById("open-as-python");
+  function showPythonLinks(values) {
+    if (!pythonLinks) return;
+    const link = (url, params, text) => {
+      const a = document.createElement("a");
+      a.href = `${url}?params=${encodeURIComponent(JSON.stringify(params))}`;
+      a.textContent = text;
+      return a;
+    };
+    const links = scene ? [link(`/api/scenes/${scene.id}/script.py`, values, scene.title)] : [];
+    for (const example of examples) {
+      const inputs = Object.fromEntries(example.inputs.map((s) => [s.name, values[s.name]]));
+      links.push(link(`/api/examples/${encodeURIComponent(example.id)}/script.py`, inputs, `worked example ${example.id}`));
+    }
+    pythonLinks.replaceChildren("Open as Python, for the values above: ", ...links.flatMap((a, i) => (i ? [" · ", a] : [a])));
+    pythonLinks.hidden = false;
+  }
   async function update() {
     const values = { ...session.values };
     try {
@@ -422,6 +443,7 @@
         panel.hidden = false;
       }
       showError(null, "");
+      showPythonLinks(values);
       sessionStorage.setItem(storageKey, JSON.stringify(session));
       if (scene && !viewerStarted && !inRoom) startViewer();
     } catch (err) {
@@ -451,6 +473,7 @@
       const response = await fetch(`/api/scenes/${scene.id}/sessions/${session.id}/live`);
       if (response.ok) {
         const data = await response.json();
+        document.dispatchEvent(new CustomEvent("dynlab:live", { detail: data }));
         if (data.readout) renderReadout(data.readout);
         if (scene.integrated && data.invariants) renderLive(data);
       }
@@ -467,6 +490,40 @@
     polling = false;
     clearTimeout(pollTimer);
     pollTimer = null;
+  }
+  // ---- described motion: one short line a screen reader announces politely (the readout table is not live) ----
+  // The scene's time, its status, the readout's first two quantities and its message (only when the message is
+  // new), rewritten at most every MOTION_EVERY_MS: a screen reader must not read the table's numbers every second.
+  const motionLine = document.querySelector(".motion-description");
+  const MOTION_EVERY_MS = 5000;
+  const motion = { t_s: null, status: "", readout: null, shownAt: -Infinity, timer: null, toldMessage: "" };
+  const spoken = (v) => (v !== 0 && (Math.abs(v) >= 1e4 || Math.abs(v) < 1e-3) ? v.toExponential(2) : String(+v.toPrecision(3)));
+  const withoutEquations = (text) => text.split("$$").filter((_, i) => i % 2 === 0).join(" ").replace(/\s+/g, " ").trim();
+  function motionSentence() {
+    const items = (motion.readout && motion.readout.quantities) || [];
+    const clock = items.find((item) => item.name === "t_s" && typeof item.value === "number");
+    const t = motion.t_s !== null ? motion.t_s : clock ? clock.value : null;
+    const parts = [];
+    if (t !== null) parts.push(`t = ${t.toFixed(1)} s`);
+    if (motion.status) parts.push(motion.status);
+    const quantities = items.filter((item) => item.name !== "t_s").slice(0, 2).map((item) => (item.value === null || item.value === undefined
+      ? `${item.label}: ${item.text || "not defined"}` : `${item.label} = ${spoken(item.value)}${item.unit ? " " + item.unit : ""}`));
+    if (quantities.length) parts.push(quantities.join(", "));
+    const message = withoutEquations((motion.readout && motion.readout.message) || "");
+    if (message && message !== motion.toldMessage) parts.push(message.length > 160 ? `${message.slice(0, 159)}…` : message);
+    return { sentence: parts.join("; "), message };
+  }
+  function describeMotion(update) {
+    Object.assign(motion, update);
+    if (!motionLine || motion.timer) return;
+    motion.timer = setTimeout(() => {
+      motion.timer = null;
+      const { sentence, message } = motionSentence();
+      if (sentence === motionLine.textContent) return;
+      motionLine.textContent = sentence;
+      motion.shownAt = performance.now();
+      motion.toldMessage = message;
+    }, Math.max(motion.shownAt + MOTION_EVERY_MS - performance.now(), 0));
   }
   function renderReadout(readout) {
     readoutBox.hidden = false;
@@ -507,6 +564,7 @@
       });
     }
     message.hidden = !readout.message;
+    describeMotion({ readout });
     // Marks: a labelled tick on a slider at a value that depends on the other controls.
     for (const [name, spec] of Object.entries(widgets)) {
       if (!spec.slot) continue;
@@ -536,6 +594,7 @@
     const q = (name) => live.querySelector(`[data-live="${name}"]`);
     q("description").textContent = data.description;
     q("t_s").textContent = data.t_s.toFixed(2);
+    describeMotion({ t_s: data.t_s, status: data.status || "" });
     q("cost").textContent = data.physics_us_per_frame.toFixed(1);
     const status = q("status");
     status.hidden = !data.status;
@@ -598,6 +657,7 @@
   }
 
   function startViewer() {
+    document.dispatchEvent(new CustomEvent("dynlab:viewer-started"));
     startPolling();
     showViewer(ownViewer);
   }
@@ -641,8 +701,26 @@
   }
   function onChange(fn) { changeHook = typeof fn === "function" ? fn : null; }
 
+  // A share link's state: parameters (only known names; the server validates the values), time, play state, speed, camera.
+  function sharedState(query, knownSpecs) {
+    if (!query.has("t") && !query.has("params")) return null;
+    let values = {};
+    try { values = JSON.parse(query.get("params") || "{}"); } catch (e) { values = {}; }
+    const known = new Set(knownSpecs.map((s) => s.name));
+    const paramsOut = Object.fromEntries(Object.entries(values && typeof values === "object" ? values : {}).filter(([k]) => known.has(k)));
+    const t = Number(query.get("t"));
+    const camera = (query.get("camera") || "").split(",").map(Number);
+    return {
+      params: paramsOut,
+      t_s: Number.isFinite(t) && t >= 0 ? t : 0,
+      playing: query.get("playing") !== "0",
+      time_scale: query.has("speed") ? Number(query.get("speed")) : null,
+      camera: camera.length === 6 && camera.every(Number.isFinite) ? { position: camera.slice(0, 3), look_at: camera.slice(3) } : null,
+    };
+  }
+
   window.dynlabLesson = {
-    session, schedule, scene, specs, defaults, ownViewer,
+    session, schedule, scene, specs, defaults, ownViewer, shared,
     setValues, lock, onChange, showViewer, startPolling, stopPolling,
     renderReadout, renderLive: (data) => { if (scene && scene.integrated && data.invariants) renderLive(data); },
   };

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import html
+import re
 
 import pytest
 
@@ -79,3 +80,27 @@ def test_course_page_names_all_ten_chapters(client):
     assert response.headers["content-type"].startswith("text/html")
     for title in CHAPTER_TITLES:
         assert html.escape(title) in response.text, title
+
+
+def test_course_page_says_in_words_which_sections_have_a_lesson(client, chapters):
+    """Each section in a chapter's list links its lessons or says "no lesson yet" (words, not colour alone)."""
+    page = client.get("/").text
+    for ch in chapters:
+        card = re.search(rf'<section class="chapter" id="chapter-{ch["number"]}".*?</section>', page, re.S).group(0)
+        items = re.findall(r"<li><span class=sec-num>([^<]+)</span>(.*?)</li>", re.search(r'<ul class="sections">(.*?)</ul>', card, re.S).group(1), re.S)
+        assert [number for number, _ in items] == [s["number"] for s in ch["sections"]], ch["title"]
+        with_lessons = {lesson["section"] for lesson in ch["lessons"]}
+        for number, item in items:
+            if number in with_lessons:
+                assert "no lesson yet" not in item, number
+                for lesson in (l for l in ch["lessons"] if l["section"] == number):
+                    assert f'<a href="{lesson["url"]}">{html.escape(lesson["title"])}</a>' in item, (number, lesson["id"])
+            else:
+                assert "no lesson yet" in item and "<a " not in item, number
+        assert f"Sections: {len(with_lessons & {s['number'] for s in ch['sections']})} of {len(ch['sections'])} with a lesson" in card
+
+
+def test_sections_4_1_and_4_2_have_their_lessons(client):
+    page = client.get("/").text
+    assert re.search(r'4\.1</span> General equations — <span class="sec-status has-lesson">lesson:</span> <a href="/lessons/4-1-general-equations">', page)
+    assert re.search(r'4\.2</span> Eulerian angles — <span class="sec-status has-lesson">lesson:</span> <a href="/lessons/4-2-eulerian-angles">', page)

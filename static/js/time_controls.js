@@ -1,0 +1,129 @@
+// Time controls under an animated scene: play/pause, one step, restart, speed, a scrubber over the motion the
+// server keeps (the last 60 s, replayed from stored states), and a share link that restores parameters, time,
+// play state and camera in another browser. Keys (outside text boxes): space plays or pauses, ← / → step back
+// or forward one frame while paused.
+(function () {
+  const lesson = window.dynlabLesson;
+  if (!lesson || !lesson.scene || !lesson.scene.animated) return;
+  const params = new URLSearchParams(location.search);
+  if (params.has("room")) return; // a room's play state is the instructor's (room.js)
+  const scene = lesson.scene;
+  const session = lesson.session;
+  const FRAME_S = 1 / 30;
+  const SPEEDS = [0.1, 0.25, 0.5, 1, 2, 4];
+
+  // ---- the bar -----------------------------------------------------------------------------------------------
+  const el = (tag, attrs = {}, ...children) => {
+    const node = document.createElement(tag);
+    for (const [k, v] of Object.entries(attrs)) {
+      if (k === "text") node.textContent = v;
+      else node.setAttribute(k, v);
+    }
+    node.append(...children);
+    return node;
+  };
+  const play = el("button", { type: "button", class: "tc-play", "aria-label": "Pause" }, "❚❚ Pause");
+  const step = el("button", { type: "button", class: "tc-step", title: "One frame forward (→)", "aria-label": "Step one frame forward" }, "Step ▸");
+  const restart = el("button", { type: "button", class: "tc-reset", "aria-label": "Restart from t = 0" }, "⟲ Restart");
+  const speed = el("select", { class: "tc-speed", "aria-label": "Speed (× real time)" });
+  for (const s of SPEEDS) speed.add(new Option(`${s}×`, String(s)));
+  speed.value = "1";
+  const scrub = el("input", { type: "range", class: "tc-scrub", min: "0", max: "0", step: String(FRAME_S), value: "0", "aria-label": "Time: scrub through the last 60 s" });
+  const clock = el("output", { class: "tc-time", "aria-live": "off" }, "t = 0.00 s");
+  const share = el("button", { type: "button", class: "tc-share" }, "Share link");
+  const shareBox = el("input", { type: "text", class: "tc-share-url", readonly: "", "aria-label": "Share link", hidden: "" });
+  const error = el("p", { class: "tc-error error", role: "alert", hidden: "" });
+  const bar = el("div", { class: "time-controls", role: "group", "aria-label": "Time controls" },
+    play, step, restart, el("label", { class: "tc-speed-label" }, "Speed ", speed), scrub, clock, share, shareBox, error);
+  const wrap = document.getElementById("viewer-wrap");
+  wrap.after(bar);
+
+  // ---- state, from the server's answers and the live readout ----------------------------------------------------
+  let state = { playing: true, time_scale: 1, t_s: 0, history_s: null };
+  let shownAt = performance.now();
+  let scrubbing = false;
+  function show(next) {
+    state = { ...state, ...next };
+    shownAt = performance.now();
+    play.textContent = state.playing ? "❚❚ Pause" : "▶ Play";
+    play.setAttribute("aria-label", state.playing ? "Pause" : "Play");
+    play.dataset.playing = String(state.playing);
+    speed.value = String(state.time_scale);
+    if (state.history_s) {
+      scrub.min = String(state.history_s[0]);
+      scrub.max = String(state.history_s[1]);
+    }
+    if (!scrubbing && state.t_s !== null && state.t_s !== undefined) scrub.value = String(state.t_s);
+    clock.dataset.t = String(state.t_s);
+    tick();
+  }
+  function tick() {
+    // Between answers the clock runs on at the time scale while playing (the server's frames do the same).
+    const t = state.t_s === null || state.t_s === undefined ? 0 : state.t_s + (state.playing ? state.time_scale * (performance.now() - shownAt) / 1000 : 0);
+    clock.textContent = `t = ${t.toFixed(2)} s`;
+  }
+  setInterval(tick, 100);
+  document.addEventListener("dynlab:live", (event) => { if (event.detail && event.detail.playback) show(event.detail.playback); });
+
+  async function send(body) {
+    const response = await fetch(`/api/scenes/${scene.id}/sessions/${session.id}/playback`, {
+      method: "PUT", headers: { "Content-Type": "application/json", "X-Session-Key": session.key }, body: JSON.stringify(body),
+    });
+    const data = await response.json().catch(() => ({}));
+    if (!response.ok) {
+      const detail = Array.isArray(data.detail) ? data.detail[0].msg : data.detail || response.statusText;
+      error.textContent = detail;
+      error.hidden = false;
+      return null;
+    }
+    error.hidden = true;
+    show(data);
+    return data;
+  }
+  play.addEventListener("click", () => send({ playing: !state.playing }));
+  step.addEventListener("click", () => send({ step: 1 }));
+  restart.addEventListener("click", () => send({ reset: true }));
+  speed.addEventListener("change", () => send({ time_scale: Number(speed.value) }));
+  scrub.addEventListener("input", () => { scrubbing = true; });
+  scrub.addEventListener("change", async () => { await send({ seek_s: Number(scrub.value) }); scrubbing = false; });
+  document.addEventListener("keydown", (event) => {
+    const target = event.target;
+    if (target && (target.closest("input, select, textarea, [contenteditable]") || target.isContentEditable)) return;
+    const onButton = target && target.closest("button, a, summary");
+    if (event.key === " " && !onButton) { event.preventDefault(); send({ playing: !state.playing }); } // a focused button takes its own space
+    else if (event.key === "ArrowRight" && !state.playing) { event.preventDefault(); send({ step: 1 }); }
+    else if (event.key === "ArrowLeft" && !state.playing && state.history_s) {
+      event.preventDefault();
+      send({ seek_s: Math.max(state.history_s[0], (state.t_s || 0) - FRAME_S) });
+    }
+  });
+
+  // ---- share links -----------------------------------------------------------------------------------------------
+  share.addEventListener("click", async () => {
+    const now = await fetch(`/api/scenes/${scene.id}/sessions/${session.id}/playback`).then((r) => (r.ok ? r.json() : null)).catch(() => null);
+    if (now) show(now);
+    const url = new URL(location.pathname, location.origin);
+    if (params.has("scene")) url.searchParams.set("scene", params.get("scene"));
+    const changed = Object.fromEntries(Object.entries(session.values).filter(([k, v]) => JSON.stringify(v) !== JSON.stringify(lesson.defaults[k])));
+    if (Object.keys(changed).length) url.searchParams.set("params", JSON.stringify(changed));
+    url.searchParams.set("t", (state.t_s || 0).toFixed(4));
+    url.searchParams.set("playing", state.playing ? "1" : "0");
+    if (state.time_scale !== 1) url.searchParams.set("speed", String(state.time_scale));
+    if (now && now.camera) url.searchParams.set("camera", [...now.camera.position, ...now.camera.look_at].map((v) => +v.toFixed(4)).join(","));
+    shareBox.value = url.toString();
+    shareBox.hidden = false;
+    shareBox.select();
+    try { await navigator.clipboard.writeText(shareBox.value); share.textContent = "Link copied"; } catch (e) { share.textContent = "Share link"; }
+  });
+
+  // Opened from a share link: once the page's scene exists, go to the shared time, play state, speed and camera.
+  const shared = lesson.shared;
+  if (shared) {
+    document.addEventListener("dynlab:viewer-started", () => {
+      const body = { go_to_s: shared.t_s, playing: shared.playing };
+      if (shared.time_scale) body.time_scale = shared.time_scale;
+      if (shared.camera) body.camera = shared.camera;
+      send(body);
+    }, { once: true });
+  }
+})();
