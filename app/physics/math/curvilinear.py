@@ -139,3 +139,28 @@ def spherical(position_m: np.ndarray, velocity_m_s: np.ndarray, acceleration_m_s
         velocity=velocity,
         acceleration=acceleration,
     )
+
+
+def unwrapped_azimuth(angle_rad: np.ndarray) -> np.ndarray:
+    """An azimuth (rad) made continuous across ±π, left as it is where it is undefined (NaN on the axis)."""
+    finite = np.isfinite(angle_rad)
+    out = angle_rad.copy()
+    out[finite] = np.unwrap(angle_rad[finite])
+    return out
+
+
+def curvilinear_series(
+    position_m: np.ndarray, velocity_m_s: np.ndarray, acceleration_m_s2: np.ndarray, *, length_scale_m: float
+) -> dict[str, np.ndarray]:
+    """A path's cylindrical and spherical description as simulate series, by the names the scenes use:
+    R, theta (unwrapped), v_R, v_theta, v_z, a_R, a_theta, a_z and r, phi, v_r, v_phi, a_r, a_phi (m, rad, m/s, m/s²)."""
+    cyl = cylindrical(position_m, velocity_m_s, acceleration_m_s2, length_scale_m=length_scale_m)
+    sph = spherical(position_m, velocity_m_s, acceleration_m_s2, length_scale_m=length_scale_m)
+    return {
+        "R": cyl.coordinates[:, 0], "theta": unwrapped_azimuth(cyl.coordinates[:, 1]),
+        "v_R": cyl.velocity[:, 0], "v_theta": cyl.velocity[:, 1], "v_z": cyl.velocity[:, 2],
+        "a_R": cyl.acceleration[:, 0], "a_theta": cyl.acceleration[:, 1], "a_z": cyl.acceleration[:, 2],
+        "r": sph.coordinates[:, 0], "phi": sph.coordinates[:, 1],
+        "v_r": sph.velocity[:, 0], "v_phi": sph.velocity[:, 1],
+        "a_r": sph.acceleration[:, 0], "a_phi": sph.acceleration[:, 1],
+    }  # fmt: skip

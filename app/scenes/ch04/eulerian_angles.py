@@ -13,7 +13,6 @@ t = 0 every :data:`CYCLE_S` seconds. Every number comes from
 from __future__ import annotations
 
 import math
-from typing import Any
 
 import numpy as np
 

@@ -36,8 +36,7 @@ import sympy
 
 from app.physics.core.closed_form import ClosedFormModel, ClosedFormSolution
 from app.physics.core.parameters import Parameter, ParameterError, ParameterSet
-from app.physics.math.curvilinear import CurvilinearKinematics, cylindrical, spherical
-from app.physics.systems.ch02.space_curve import _unwrapped  # the typed curve's azimuth unwrapping, shared
+from app.physics.math.curvilinear import CurvilinearKinematics, curvilinear_series, cylindrical, spherical
 
 PATHS = ("helix", "conical-spiral", "latitude-circle", "loxodrome")
 FRAMES = ("cylindrical", "spherical")
@@ -171,17 +170,11 @@ class ParticleOnCoordinatePath(ClosedFormModel):
 
     def evaluate(self, params: Mapping[str, Any], t_s: np.ndarray) -> ClosedFormSolution:
         path = CoordinatePath.from_params(params)
-        position, velocity, acceleration, cyl = path.describe("cylindrical", t_s)
-        sph = spherical(position, velocity, acceleration, length_scale_m=path.length_scale_m)
+        position, velocity, acceleration = path.at(t_s)
         series = {
             "x": position[:, 0], "y": position[:, 1], "z": position[:, 2],
             "speed": np.linalg.norm(velocity, axis=1), "acceleration_magnitude": np.linalg.norm(acceleration, axis=1),
-            "R": cyl.coordinates[:, 0], "theta": _unwrapped(cyl.coordinates[:, 1]),
-            "v_R": cyl.velocity[:, 0], "v_theta": cyl.velocity[:, 1], "v_z": cyl.velocity[:, 2],
-            "a_R": cyl.acceleration[:, 0], "a_theta": cyl.acceleration[:, 1], "a_z": cyl.acceleration[:, 2],
-            "r": sph.coordinates[:, 0], "phi": sph.coordinates[:, 1],
-            "v_r": sph.velocity[:, 0], "v_phi": sph.velocity[:, 1],
-            "a_r": sph.acceleration[:, 0], "a_phi": sph.acceleration[:, 1],
+            **curvilinear_series(position, velocity, acceleration, length_scale_m=path.length_scale_m),
         }  # fmt: skip
         warning = ""
         if t_s[-1] > path.run_s:

@@ -34,7 +34,7 @@ import sympy
 
 from app.physics.core.closed_form import ClosedFormModel, ClosedFormSolution, Event
 from app.physics.core.parameters import Parameter, ParameterError, ParameterSet
-from app.physics.math.curvilinear import cylindrical, spherical
+from app.physics.math.curvilinear import curvilinear_series
 from app.physics.math.expressions import MAX_LENGTH, check_expression, parse_expression
 from app.physics.math.expressions import T as T_SYMBOL
 
@@ -366,29 +366,14 @@ class ParticleOnCurve(ClosedFormModel):
             raise ParameterError(exc.component, str(exc)) from None
         scales = reference_scales(curve, float(t_s[-1]) if t_s[-1] > 0 else 1.0)
         path = path_variables(curve, t_s, scales)
-        cyl = cylindrical(path.position_m, path.velocity_m_s, path.acceleration_m_s2, length_scale_m=scales.length_m)
-        sph = spherical(path.position_m, path.velocity_m_s, path.acceleration_m_s2, length_scale_m=scales.length_m)
         series = {
             "x": path.position_m[:, 0], "y": path.position_m[:, 1], "z": path.position_m[:, 2],
             "speed": path.speed_m_s, "arc_length": arc_length(curve, t_s),
             "curvature": path.curvature_1_m, "torsion": path.torsion_1_m,
             "a_tangential": path.a_tangential_m_s2, "a_normal": path.a_normal_m_s2,
-            "R": cyl.coordinates[:, 0], "theta": _unwrapped(cyl.coordinates[:, 1]),
-            "v_R": cyl.velocity[:, 0], "v_theta": cyl.velocity[:, 1], "v_z": cyl.velocity[:, 2],
-            "a_R": cyl.acceleration[:, 0], "a_theta": cyl.acceleration[:, 1], "a_z": cyl.acceleration[:, 2],
-            "r": sph.coordinates[:, 0], "phi": sph.coordinates[:, 1],
-            "v_r": sph.velocity[:, 0], "v_phi": sph.velocity[:, 1],
-            "a_r": sph.acceleration[:, 0], "a_phi": sph.acceleration[:, 1],
+            **curvilinear_series(path.position_m, path.velocity_m_s, path.acceleration_m_s2, length_scale_m=scales.length_m),
         }  # fmt: skip
         return ClosedFormSolution(series=series, events=_degenerate_events(path))
-
-
-def _unwrapped(angle_rad: np.ndarray) -> np.ndarray:
-    """Azimuth made continuous across ±π (left as is where it is undefined)."""
-    finite = np.isfinite(angle_rad)
-    out = angle_rad.copy()
-    out[finite] = np.unwrap(angle_rad[finite])
-    return out
 
 
 def _degenerate_events(path: PathVariables) -> list[Event]:
