@@ -313,7 +313,8 @@ class SceneHost:
                 session.time_scale = float(time_scale)
             if reset:
                 for scene in session.instances.values():
-                    scene.set_params(scene.params)  # a scene's update starts its motion again from its initial state
+                    with scene.client.atomic():
+                        scene.restart_motion()  # the kit's own restart (go_to's too), not a re-application of the parameters
                 session.restarted()
             if go_to_s is not None:
                 for scene in session.instances.values():
