@@ -92,7 +92,10 @@ def impact_core(W, v0, restitution, friction_coefficient, out):
     stick_ratio = -W[1, 0] / W[1, 1]  # dPt/dp that holds vt = 0
     can_stick = abs(W[1, 0]) <= mu * W[1, 1]
 
-    vn, vt = v0[0], v0[1]
+    # The law is positively homogeneous in the velocity (impulses scale with it, works with its square), so it is
+    # followed for the approach scaled to unit size: an approach of 1e-163 m/s would otherwise underflow its works.
+    speed = max(abs(v0[0]), abs(v0[1]))
+    vn, vt = v0[0] / speed, v0[1] / speed
     p_n = 0.0
     p_t = 0.0
     compression_work = 0.0  # ∫ vn dp while vn < 0 (≤ 0), J
@@ -141,12 +144,14 @@ def impact_core(W, v0, restitution, friction_coefficient, out):
     if not finished:  # pragma: no cover - the phase count is bounded above; reaching here is a bug
         out[:] = math.nan
         return
+    p_n *= speed
+    p_t *= speed
     out[OUT_NORMAL_IMPULSE] = p_n
     out[OUT_TANGENTIAL_IMPULSE] = p_t
     out[OUT_NORMAL_VELOCITY_AFTER] = v0[0] + (W[0, 0] * p_n + W[0, 1] * p_t)
     out[OUT_TANGENTIAL_VELOCITY_AFTER] = v0[1] + (W[1, 0] * p_n + W[1, 1] * p_t)
     # Summed from its non-negative parts; equals −½ Pᵀ(v_before + v_after) to rounding (tests check both).
-    out[OUT_ENERGY_LOSS] = (1.0 - restitution**2) * -compression_work + friction_loss
+    out[OUT_ENERGY_LOSS] = ((1.0 - restitution**2) * -compression_work + friction_loss) * speed * speed
     out[OUT_SLIP_CODE] = 2.0 if reversed_ else 1.0 if stuck else 0.0
 
 

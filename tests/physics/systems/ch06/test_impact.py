@@ -216,3 +216,19 @@ def test_no_initial_slip_that_friction_can_hold_is_stuck():
     starts_to_slide = resolve(BAR_45, [-2.0, 0.0], 0.5, 0.1)  # |W_tn|/W_tt = 0.6 > μ: it slides from the start
     assert starts_to_slide.slip_state == "slid throughout"
     assert starts_to_slide.impulse_N_s[1] == pytest.approx(0.1 * starts_to_slide.impulse_N_s[0], rel=1e-12)
+
+
+@pytest.mark.parametrize("e,mu", [(1.0, 0.0), (0.5, 0.3), (0.0, 2.0)])
+@pytest.mark.parametrize("scale", [1e-163, 1e-300, 1e150])
+def test_the_law_is_homogeneous_in_the_approach_speed_even_where_its_works_would_underflow(e, mu, scale):
+    # Impulses and velocities scale with the approach, the energy loss with its square (exactly: the law is followed
+    # for the approach scaled to unit size). Before that scaling an approach of 1e-163 m/s underflowed its works
+    # (1e-326 J) and the phase sequence never ended (found by the planar-collision property test).
+    W = np.array([[0.25, 0.0], [0.0, 0.75]])
+    unit = resolve(W, [-0.0349, -1.0], e, mu)
+    tiny = resolve(W, [-0.0349 * scale, -1.0 * scale], e, mu)
+    np.testing.assert_allclose(tiny.impulse_N_s, unit.impulse_N_s * scale, rtol=1e-12, atol=0.0)
+    np.testing.assert_allclose(tiny.contact_velocity_after_m_s, unit.contact_velocity_after_m_s * scale, rtol=1e-12, atol=0.0)
+    assert tiny.slip_state == unit.slip_state
+    if scale ** 2 > 1e-290:  # a square that a double can hold
+        assert tiny.energy_loss_J == pytest.approx(unit.energy_loss_J * scale**2, rel=1e-12)
