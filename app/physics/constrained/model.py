@@ -29,6 +29,7 @@ from app.physics.constrained.algorithms import ALGORITHMS, algorithm_system, rep
 from app.physics.constrained.initial_conditions import ConsistentStart, consistent_initial_conditions
 from app.physics.constrained.residuals import constraint_residuals, multipliers
 from app.physics.constrained.system import ConstrainedSystem
+from app.physics.core.energy import EnergyParts
 from app.physics.core.parameters import Parameter
 from app.physics.core.report import SimulationReport
 from app.physics.solvers.controls import AUTO, integration_parameters, integrator_from_controls
@@ -82,6 +83,11 @@ class ConstrainedModel(IntegratedModel):
         self, params: Mapping[str, Any], t_s: np.ndarray, states: np.ndarray, multipliers: np.ndarray
     ) -> dict[str, np.ndarray]:
         """Named series along ``states`` (N, 2n) with the multipliers (N, m)."""
+
+    def constrained_energy_parts(self, params: Mapping[str, Any], states: np.ndarray) -> EnergyParts | None:
+        """The energies (J) along ``(q, v)`` states (N, 2n) whose sum less the drives' work is :meth:`energy_J`;
+        None for a system that states no split."""
+        return None
 
     def minimal_system(self, params: Mapping[str, Any]) -> OdeSystem | None:
         """The minimal-coordinate equations as an OdeSystem, or None where there are none."""
@@ -193,6 +199,9 @@ class ConstrainedModel(IntegratedModel):
         full = self.constrained_view(params, states)
         position, velocity = constraint_residuals(self.constrained_system(params), full)
         return {"energy": self.energy_J(params, full), "constraint_position": position, "constraint_velocity": velocity}
+
+    def energy_parts(self, params: Mapping[str, Any], states: np.ndarray, *, t_s: np.ndarray | None = None) -> EnergyParts | None:
+        return self.constrained_energy_parts(params, self.constrained_view(params, states))
 
     def invariant_scales(self, params: Mapping[str, Any], state: np.ndarray) -> dict[str, float]:
         """Energy: :meth:`energy_scale_J`; residuals: :meth:`residual_scales` (a residual of 20% of these pauses a live scene)."""

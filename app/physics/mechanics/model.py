@@ -16,10 +16,11 @@ from typing import Any, ClassVar
 import numpy as np
 import sympy
 
+from app.physics.core.energy import EnergyParts
 from app.physics.core.parameters import Parameter, ParameterSet
 from app.physics.mechanics.description import TIME, SystemDescription
 from app.physics.mechanics.engine import Derived, available_formulations, derived
-from app.physics.mechanics.kinematics import coordinate_motion, kinetic_energy, potential_energy
+from app.physics.mechanics.kinematics import body_motions, coordinate_motion, kinetic_energy, potential_energy
 from app.physics.solvers.integrated_model import IntegratedModel
 from app.physics.solvers.step_choice import AccuracyTarget
 from app.physics.solvers.system import OdeSystem
@@ -61,6 +62,24 @@ def _lambdified_energies(system: SystemDescription):
     T = sympy.lambdify(arguments, kinetic_energy(system, motion), modules="numpy", cse=True)
     V = sympy.lambdify(arguments, potential_energy(system, tidied=False), modules="numpy", cse=True)
     return T, V
+
+
+_translational_functions: dict[str, Any] = {}
+
+
+def translational_kinetic_function(system: SystemDescription):
+    """½ Σ m v_G·v_G over the particles and bodies as a numpy function of (t, q (n, N), q̇ (n, N), p), in J; None
+    where the system states its kinetic energy directly (a typed T: no split into translation and rotation)."""
+    if system.kinetic_energy is not None:
+        return None
+    key = system.fingerprint()
+    if key not in _translational_functions:
+        translational = sum(
+            (sympy.Rational(1, 2) * item.mass * (item.velocity.T * item.velocity)[0] for item in body_motions(system, coordinate_motion(system))),
+            sympy.Integer(0),
+        )
+        _translational_functions[key] = sympy.lambdify([TIME, system.q, system.qd, system.parameter_symbols], translational, modules="numpy", cse=True)
+    return _translational_functions[key]
 
 
 class DerivedModel(IntegratedModel):
@@ -116,6 +135,25 @@ class DerivedModel(IntegratedModel):
         kinetic = np.broadcast_to(np.asarray(T(t_s, q, qd, p), dtype=float), t_s.shape)
         potential = np.broadcast_to(np.asarray(V(t_s, q, qd, p), dtype=float), t_s.shape)
         return np.array(kinetic), np.array(potential)
+
+    def drive_work_J(self, params: Mapping[str, Any], states: np.ndarray) -> np.ndarray | None:
+        """Work (J, (N,)) done on the system by its drives since t = 0 along ``states``, where the state tracks it."""
+        return None
+
+    def energy_parts(self, params: Mapping[str, Any], states: np.ndarray, *, t_s: np.ndarray | None = None) -> EnergyParts:
+        """T split as ½ Σ m v_G² (translational) and the rest, ½ Σ ω·I_G ω (rotational), unless the system states T
+        itself; V; the drives' work from :meth:`drive_work_J`. Only the first 2n state slots are the motion."""
+        states = np.atleast_2d(np.asarray(states, dtype=float))
+        p = self.parameter_array(params)  # (a typed Lagrangian prepares its description here)
+        n = len(self.description.coordinates)
+        t = np.zeros(len(states)) if t_s is None else np.asarray(t_s, dtype=float)
+        kinetic, potential = self.energies(params, t, states[:, : 2 * n])
+        work = self.drive_work_J(params, states)
+        translational_of = translational_kinetic_function(self.description)
+        if translational_of is None:
+            return EnergyParts(potential, kinetic_J=kinetic, drive_work_J=work)
+        translational = np.broadcast_to(np.asarray(translational_of(t, states[:, :n].T, states[:, n : 2 * n].T, p), dtype=float), t.shape)
+        return EnergyParts(potential, translational_kinetic_J=np.array(translational), rotational_kinetic_J=kinetic - translational, drive_work_J=work)
 
     def agreement(self, params: Mapping[str, Any], state: np.ndarray, t_s: float = 0.0) -> dict[str, float]:
         """Per available formulation, |ẏ_f − ẏ_ref| / |ẏ_ref| at ``state`` (ref: the running formulation)."""

@@ -20,6 +20,7 @@ from typing import Any, ClassVar
 
 import numpy as np
 
+from app.physics.core.energy import EnergyParts, energy_budget
 from app.physics.core.parameters import Parameter, ParameterError, ParameterSet
 from app.physics.core.report import (
     MAX_ADAPTIVE_STEPS,
@@ -77,6 +78,9 @@ class IntegratedModel(ABC):
     #: and what that reference is; empty for a model without one.
     reference_error_series: ClassVar[str] = ""
     reference_name: ClassVar[str] = ""
+    #: What a student reads for a series or invariant whose name is cryptic (a symbol: ``"θ"``, ``"ω₃"``), by name;
+    #: a name not here is shown in a readable form of itself.
+    series_labels: ClassVar[Mapping[str, str]] = {}
 
     @classmethod
     def controls(cls) -> tuple[Parameter, ...]:
@@ -100,6 +104,28 @@ class IntegratedModel(ABC):
     @abstractmethod
     def invariant_scales(self, params: Mapping[str, Any], state: np.ndarray) -> dict[str, float]:
         """Positive scale per invariant: drift is reported as |I(t) − I(0)| / scale."""
+
+    def energy_parts(self, params: Mapping[str, Any], states: np.ndarray, *, t_s: np.ndarray | None = None) -> EnergyParts | None:
+        """The model's energies (J) along ``states`` (N, n) at ``t_s`` (N,; None: the energies do not depend on t);
+        None for a model that states none."""
+        return None
+
+    def energy_budget(self, params: Mapping[str, Any], states: np.ndarray, *, t_s: np.ndarray | None = None) -> dict[str, np.ndarray] | None:
+        """Named energies (J, arrays (N,)) along ``states`` (N, n): ``translational_kinetic_J`` and
+        ``rotational_kinetic_J`` (or ``kinetic_J``), ``potential_J``, ``total_J`` and ``dissipated_J`` (energy removed
+        since t = 0, drive work counted; see :mod:`app.physics.core.energy`). None for a model without energies."""
+        states = np.atleast_2d(np.asarray(states, dtype=float))
+        parts = self.energy_parts(params, states, t_s=t_s)
+        if parts is None:
+            return None
+        start = self.energy_parts(params, self.initial_state(params)[None, :], t_s=None if t_s is None else np.zeros(1))
+        assert start is not None
+        return energy_budget(parts, start)
+
+    def energy_note(self, params: Mapping[str, Any]) -> str | None:
+        """What the energy budget leaves out or assumes, in words (a drive whose work is not tracked, a reduced
+        model's missing energy); None when it is complete."""
+        return None
 
     def solution_error(self, params: Mapping[str, Any], states: np.ndarray, reference: np.ndarray) -> np.ndarray:
         """(N,) error of ``states`` (N, n) against ``reference`` (N, n) in :attr:`accuracy_target`'s unit.

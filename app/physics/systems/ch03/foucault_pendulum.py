@@ -34,6 +34,7 @@ from typing import Any
 
 import numpy as np
 
+from app.physics.core.energy import EnergyParts
 from app.physics.core.parameters import Parameter, ParameterError, ParameterSet
 from app.physics.solvers.integrated_model import IntegratedModel
 from app.physics.solvers.step_choice import AccuracyTarget
@@ -177,10 +178,19 @@ def keep_string_length(y, p):
     y[5] -= along * uz
 
 
+def relative_kinetic_J_kg(states: np.ndarray) -> np.ndarray:
+    """``½|ṙ|²`` (J/kg) of states (..., 6): the bob's kinetic energy relative to the ground."""
+    return 0.5 * np.sum(np.asarray(states, dtype=float)[..., 3:6] ** 2, axis=-1)
+
+
+def gravity_potential_J_kg(params: Mapping[str, Any], states: np.ndarray) -> np.ndarray:
+    """``g z`` (J/kg) of states (..., 6), zero at the bob's rest position."""
+    return params["g_m_s2"] * np.asarray(states, dtype=float)[..., 2]
+
+
 def jacobi_integral_J_kg(params: Mapping[str, Any], states: np.ndarray) -> np.ndarray:
     """``½|ṙ|² + g z`` (J/kg) of states (..., 6): conserved in the rotating frame."""
-    states = np.asarray(states, dtype=float)
-    return 0.5 * np.sum(states[..., 3:6] ** 2, axis=-1) + params["g_m_s2"] * states[..., 2]
+    return relative_kinetic_J_kg(states) + gravity_potential_J_kg(params, states)
 
 
 def swing_plane_bearing_deg(params: Mapping[str, Any], states: np.ndarray) -> np.ndarray:
@@ -258,6 +268,18 @@ class FoucaultPendulum(IntegratedModel):
         states = np.asarray(states, dtype=float)
         string = np.linalg.norm(states[..., 0:3] - np.array([0.0, 0.0, params["length_m"]]), axis=-1)
         return {"jacobi_integral": jacobi_integral_J_kg(params, states), "string_length_error": string - params["length_m"]}
+
+    series_labels = {"bob_east": "x (east)", "bob_north": "y (north)", "bob_up": "z (up)", "swing_plane_bearing": "swing plane bearing",
+                     "jacobi_integral": "½|ṙ|² + g z", "string_length_error": "|r − pivot| − L"}
+
+    def energy_parts(self, params, states, *, t_s=None):
+        """For a 1 kg bob (the model is per unit mass): ½|ṙ|² relative to the ground (a point: no rotation) and g z."""
+        states = np.atleast_2d(states)
+        kinetic = relative_kinetic_J_kg(states)
+        return EnergyParts(gravity_potential_J_kg(params, states), translational_kinetic_J=kinetic, rotational_kinetic_J=np.zeros_like(kinetic))
+
+    def energy_note(self, params):
+        return "energies of a 1 kg bob (the motion does not depend on its mass), with its speed measured against the turning ground"
 
     def invariant_scales(self, params, state):
         # The swing's energy above the rest position (the Jacobi integral is zero there).

@@ -66,6 +66,7 @@ import numpy as np
 from numba.extending import register_jitable
 
 from app.physics.bodies.inertia import slender_rod
+from app.physics.core.energy import EnergyParts
 from app.physics.core.parameters import Parameter, ParameterError, ParameterSet
 from app.physics.solvers import Events, OdeSystem
 from app.physics.solvers.integrated_model import IntegratedModel
@@ -195,15 +196,41 @@ def inverse_effective_mass(mass_kg: float, inertia_kg_m2: float, r: np.ndarray) 
 
 
 @register_jitable
+def _translational_kinetic_J(vx_m_s, vz_m_s, p):
+    """½ m v_G² (J) from the centre's velocity (scalars or arrays alike)."""
+    return 0.5 * p[P_MASS] * (vx_m_s**2 + vz_m_s**2)
+
+
+@register_jitable
+def _rotational_kinetic_J(omega_rad_s, p):
+    """½ I_G ω² (J) (scalar or array)."""
+    return 0.5 * p[P_INERTIA] * omega_rad_s**2
+
+
+@register_jitable
+def _potential_J(z_m, p):
+    """m g z (J, floor at z = 0) from the centre height (scalar or array)."""
+    return p[P_MASS] * p[P_G] * z_m
+
+
+@register_jitable
 def _kinetic_plus_potential_J(vx_m_s, vz_m_s, omega_rad_s, z_m, p):
     """Kinetic + potential energy (J, floor at z = 0) from the velocities and centre height (scalars or arrays alike)."""
-    m, inertia, g = p[P_MASS], p[P_INERTIA], p[P_G]
-    return 0.5 * m * (vx_m_s**2 + vz_m_s**2) + 0.5 * inertia * omega_rad_s**2 + m * g * z_m
+    return _translational_kinetic_J(vx_m_s, vz_m_s, p) + _rotational_kinetic_J(omega_rad_s, p) + _potential_J(z_m, p)
 
 
 def mechanical_energy_J(y: np.ndarray, p: np.ndarray) -> np.ndarray:
     """Kinetic + potential energy (J, floor at z = 0) of states ``y`` (..., 16)."""
     return _kinetic_plus_potential_J(y[..., VX], y[..., VZ], y[..., OMEGA], y[..., Z], p)
+
+
+def energy_parts(y: np.ndarray, p: np.ndarray) -> EnergyParts:
+    """½ m v_G², ½ I_G ω² and m g z (J) of states ``y`` (N, 16)."""
+    y = np.atleast_2d(y)
+    return EnergyParts(
+        _potential_J(y[:, Z], p), translational_kinetic_J=_translational_kinetic_J(y[:, VX], y[:, VZ], p),
+        rotational_kinetic_J=_rotational_kinetic_J(y[:, OMEGA], p),
+    )  # fmt: skip
 
 
 def angular_momentum_about_point(y: np.ndarray, p: np.ndarray, point_m: np.ndarray) -> float:
@@ -433,6 +460,12 @@ class BouncingBar(IntegratedModel):
         """Kinetic + potential + everything lost so far (J): constant."""
         p = parameter_array(params)
         return {"energy_balance": mechanical_energy_J(states, p) + states[:, LOST]}
+
+    series_labels = {"angle": "θ", "centre_height_m": "height of G", "energy_J": "kinetic + potential", "impact_count": "impacts",
+                     "energy_lost_J": "energy lost", "energy_balance": "energy + lost"}
+
+    def energy_parts(self, params, states, *, t_s=None):
+        return energy_parts(states, parameter_array(params))
 
     def invariant_scales(self, params, state):
         p = parameter_array(params)

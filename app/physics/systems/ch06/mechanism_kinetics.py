@@ -40,6 +40,7 @@ from typing import Any
 import numpy as np
 
 from app.physics.bodies.inertia import parallel_axis, slender_rod
+from app.physics.core.energy import EnergyParts
 from app.physics.core.parameters import Parameter, ParameterSet
 from app.physics.solvers.integrated_model import IntegratedModel
 from app.physics.solvers.step_choice import AccuracyTarget
@@ -200,6 +201,13 @@ def kinetic_energy_J(links: SliderCrankLinks, motion: LinkMotion) -> np.ndarray:
         + links.rod_inertia_about_centre_kg_m2 * motion.rod_rate**2
         + links.slider_mass_kg * np.sum(motion.slider_velocity**2, axis=-1)
     )
+
+
+def rotational_kinetic_J(links: SliderCrankLinks, motion: LinkMotion) -> np.ndarray:
+    """½ I_G ω² summed over the crank and the rod (J), shape (N,): the slider does not turn. The rest of
+    :func:`kinetic_energy_J` is the links' translation, ½ m v_G²."""
+    crank_about_centre = float(slender_rod(links.crank_mass_kg, links.mechanism.crank_m)[0, 0])
+    return 0.5 * (crank_about_centre * motion.crank_speed_rad_s**2 + links.rod_inertia_about_centre_kg_m2 * motion.rod_rate**2)
 
 
 def potential_energy_J(links: SliderCrankLinks, motion: LinkMotion) -> np.ndarray:
@@ -460,3 +468,17 @@ class MechanismKinetics(IntegratedModel):
 
     def invariant_scales(self, params: Mapping[str, Any], state: np.ndarray) -> dict[str, float]:
         return {"work_energy_residual": energy_scale_J(params)}
+
+    series_labels = {"crank_angle": "θ", "crank_speed_rad_s": "ω (crank)", "driving_torque_N_m": "τ", "pin_force_O_N": "|O|",
+                     "pin_force_A_N": "|A|", "pin_force_B_N": "|B|", "guide_force_N": "N (guide)", "kinetic_energy_J": "T",
+                     "work_energy_residual_J": "T + V − T₀ − V₀ − W", "work_energy_residual": "T + V − T₀ − V₀ − W"}
+
+    def energy_parts(self, params: Mapping[str, Any], states: np.ndarray, *, t_s: np.ndarray | None = None) -> EnergyParts:
+        """Translation of G₁, G₂ and the slider, rotation of crank and rod, gravity; the motor's work W is the
+        drive's (tracked in the state for either drive)."""
+        states = np.atleast_2d(np.asarray(states, dtype=float))
+        links = SliderCrankLinks.from_params(params)
+        motion = link_motion(links, states[:, 0], states[:, 1], np.zeros(states.shape[0]))
+        kinetic, rotational = kinetic_energy_J(links, motion), rotational_kinetic_J(links, motion)
+        return EnergyParts(potential_energy_J(links, motion), translational_kinetic_J=kinetic - rotational, rotational_kinetic_J=rotational,
+                           drive_work_J=states[:, 2].copy())

@@ -50,6 +50,7 @@ import numpy as np
 from numba.extending import register_jitable
 
 from app.physics.bodies.inertia import slender_rod
+from app.physics.core.energy import EnergyParts
 from app.physics.core.parameters import Parameter, ParameterSet
 from app.physics.solvers import DormandPrince, Events, OdeSystem, simulate
 from app.physics.solvers.integrated_model import IntegratedModel
@@ -324,16 +325,27 @@ def contact_forces(params: Mapping[str, Any], states: np.ndarray) -> np.ndarray:
 
 @dataclass(frozen=True)
 class EnergyBudget:
-    """Energies along N states (J, arrays (N,)): their sum ``total_J`` stays at the initial energy."""
+    """Energies along N states (J, arrays (N,)): their sum ``total_J`` stays at the initial energy.
 
-    kinetic_J: np.ndarray
+    Kinetic energy split as ½ m v_G² (translational) and ½ I_G ω² (rotational)."""
+
+    translational_kinetic_J: np.ndarray
+    rotational_kinetic_J: np.ndarray
     potential_J: np.ndarray
     friction_work_J: np.ndarray
     impact_loss_J: np.ndarray
 
     @property
+    def kinetic_J(self) -> np.ndarray:
+        return self.translational_kinetic_J + self.rotational_kinetic_J
+
+    @property
     def total_J(self) -> np.ndarray:
         return self.kinetic_J + self.potential_J + self.friction_work_J + self.impact_loss_J
+
+    def parts(self) -> EnergyParts:
+        """The mechanical energies, for the model's energy budget (friction and impacts show up as dissipated)."""
+        return EnergyParts(self.potential_J, translational_kinetic_J=self.translational_kinetic_J, rotational_kinetic_J=self.rotational_kinetic_J)
 
 
 def energy_budget(params: Mapping[str, Any], states: np.ndarray) -> EnergyBudget:
@@ -347,8 +359,9 @@ def energy_budget(params: Mapping[str, Any], states: np.ndarray) -> EnergyBudget
     vx = np.where(phase == WALL_AND_FLOOR, -half * np.sin(theta) * omega, states[:, VX])
     vx = np.where(phase == FLOOR_STUCK, half * np.sin(theta) * omega, vx)
     vz = half * np.cos(theta) * omega
-    kinetic = 0.5 * mass * (vx**2 + vz**2) + 0.5 * inertia * omega**2
-    return EnergyBudget(kinetic, mass * g * half * np.sin(theta), states[:, FRICTION_WORK], states[:, IMPACT_LOSS])
+    return EnergyBudget(
+        0.5 * mass * (vx**2 + vz**2), 0.5 * inertia * omega**2, mass * g * half * np.sin(theta), states[:, FRICTION_WORK], states[:, IMPACT_LOSS]
+    )
 
 
 def top_height_m(params: Mapping[str, Any], states: np.ndarray) -> np.ndarray:
@@ -430,3 +443,9 @@ class SlidingLadder(IntegratedModel):
 
     def invariant_scales(self, params, state):
         return {"energy_budget_J": max(float(energy_budget(params, state).total_J[0]), 1e-300)}
+
+    series_labels = {"angle_from_floor": "θ", "wall_force_N": "N_wall", "floor_force_N": "N_floor", "top_height_m": "height of the top",
+                     "energy_budget_J": "energy + friction work + impact loss"}
+
+    def energy_parts(self, params, states, *, t_s=None):
+        return energy_budget(params, states).parts()

@@ -84,6 +84,11 @@ class BeadOnHoopMotion(DerivedModel):
         energy, jacobi = self.energy_and_jacobi_J(params, t_s, states)
         return {"theta_rad": states[:, 0], "theta_rate_rad_s": states[:, 1], "energy_J": energy, "jacobi_integral_J": jacobi}
 
+    def energy_note(self, params: Mapping[str, Any]) -> str | None:
+        if float(params["hoop_speed_rad_s"]) == 0.0:
+            return None
+        return "the motor that holds the hoop's spin does work that is not tracked: dissipated shows E(0) − E(t), not a loss"
+
     def invariants(self, params: Mapping[str, Any], states: np.ndarray) -> dict[str, np.ndarray]:
         """The Jacobi integral (J); T and V do not depend on t itself here, so t = 0 is used."""
         _, jacobi = self.energy_and_jacobi_J(params, np.zeros(len(states)), states)

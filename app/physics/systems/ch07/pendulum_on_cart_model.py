@@ -104,6 +104,10 @@ class CartPendulumMotion(DerivedModel):
             "force_work_J": states[:, WORK_SLOT], "energy_J": self.energy_J(params, t_s, states),
         }  # fmt: skip
 
+    def drive_work_J(self, params: Mapping[str, Any], states: np.ndarray) -> np.ndarray:
+        """W (J): the work of the force on the cart, integrated in the state."""
+        return np.atleast_2d(states)[:, WORK_SLOT].copy()
+
     def invariants(self, params: Mapping[str, Any], states: np.ndarray) -> dict[str, np.ndarray]:
         """T + V − W (J); T and V do not depend on t itself (only the force does), so t = 0 is used."""
         return {"energy_balance": self.energy_J(params, np.zeros(len(states)), states) - states[:, WORK_SLOT]}

@@ -262,6 +262,12 @@ class TypedLagrangianMotion(DerivedModel):
         out.update(kinetic_energy_J=kinetic, potential_energy_J=potential, energy_J=kinetic + potential, jacobi_integral_J=jacobi)
         return out
 
+    def energy_note(self, params: Mapping[str, Any]) -> str | None:
+        note = "kinetic energy as you typed it (not split into translation and rotation)"
+        if self.prepared(params).explicit_time:
+            note += "; t appears in T or V, so whatever drives that time dependence does work: dissipated shows E(0) − E(t)"
+        return note
+
     def invariants(self, params: Mapping[str, Any], states: np.ndarray) -> dict[str, np.ndarray]:
         """The Jacobi integral h (J) when t does not appear in T or V; nothing otherwise."""
         if self.prepared(params).explicit_time:

@@ -17,6 +17,7 @@ from typing import Any
 import numpy as np
 
 from app.physics.constrained.model import ConstrainedModel
+from app.physics.core.energy import EnergyParts
 from app.physics.core.parameters import Parameter, ParameterSet
 from app.physics.mechanics.engine import derived
 from app.physics.solvers.system import OdeSystem
@@ -62,7 +63,15 @@ class CartesianPendulum(ConstrainedModel):
         m, _, g = _m_l_g(params)
         states = np.atleast_2d(states)
         with np.errstate(over="ignore", invalid="ignore"):  # a run that blew up: inf, reported as null
-            return 0.5 * m * (states[:, 2] ** 2 + states[:, 3] ** 2) + m * g * states[:, 1]
+            return self.constrained_energy_parts(params, states).total_J
+
+    def constrained_energy_parts(self, params: Mapping[str, Any], states: np.ndarray) -> EnergyParts:
+        """The bob is a particle: ½ m (ẋ² + ẏ²) translational, no rotation; m g y."""
+        m, _, g = _m_l_g(params)
+        states = np.atleast_2d(states)
+        with np.errstate(over="ignore", invalid="ignore"):
+            kinetic = 0.5 * m * (states[:, 2] ** 2 + states[:, 3] ** 2)
+            return EnergyParts(m * g * states[:, 1], translational_kinetic_J=kinetic, rotational_kinetic_J=np.zeros_like(kinetic))
 
     def energy_scale_J(self, params: Mapping[str, Any], state: np.ndarray) -> float:
         """2 m g L (the potential energy's whole range) or the kinetic energy if larger (J)."""

@@ -23,6 +23,7 @@ import numpy as np
 from app.physics.constrained.initial_conditions import ConsistentStart, consistent_initial_conditions
 from app.physics.constrained.model import ConstrainedModel
 from app.physics.constrained.system import ConstrainedSystem
+from app.physics.core.energy import EnergyParts
 from app.physics.systems.ch08.planar_linkages import PlanarLinkage
 
 #: The step is chosen for the speed a constant torque builds up over this many crank turns (as in chapter 6).
@@ -77,6 +78,17 @@ class PlanarLinkageModel(ConstrainedModel):
         q0, _ = self.loop_closure_start(params)
         q, v = states[:, :9], states[:, 9:]
         return linkage.kinetic_energy_J(v) + linkage.potential_energy_J(q) - linkage.torque_work_J(q, q0)
+
+    def constrained_energy_parts(self, params: Mapping[str, Any], states: np.ndarray) -> EnergyParts:
+        """Each link's ½ I_G φ̇² (rotational) and ½ m v_G² (the rest of T), gravity, and the torque's work τ (θ − θ₀)."""
+        states = np.atleast_2d(states)
+        linkage = self.linkage(params)
+        q0, _ = self.loop_closure_start(params)
+        q, v = states[:, :9], states[:, 9:]
+        kinetic = linkage.kinetic_energy_J(v)
+        rotational = 0.5 * np.sum(linkage.mass_diagonal[2::3] * v[:, 2::3] ** 2, axis=-1)
+        return EnergyParts(linkage.potential_energy_J(q), translational_kinetic_J=kinetic - rotational, rotational_kinetic_J=rotational,
+                           drive_work_J=linkage.torque_work_J(q, q0))
 
     def _inertia_and_potential(self, params: Mapping[str, Any]) -> tuple[np.ndarray, np.ndarray]:
         """M(θ) (kg·m²) and V(θ) (J) over the crank's travel, where defined."""

@@ -38,6 +38,7 @@ from typing import Any
 import numpy as np
 
 from app.physics.constrained.system import ConstrainedSystem
+from app.physics.core.energy import EnergyParts
 from app.physics.solvers.kernels import DYNAMICS_SIGNATURE, MULTIPLIER_CONSTRAINTS_SIGNATURE, kernel
 
 #: Names of q (and, with "_rate", of v = q̇); the state of a run is (q, v).
@@ -126,6 +127,11 @@ def rolling_state(*, radius_m: float, heading_rad: float, lean_rad: float, headi
 
 def energy_J(params: Mapping[str, Any], states: np.ndarray) -> np.ndarray:
     """T + V (J) along ``states`` (N, 10) = (q, v); V = m g z_centre = m g r cos θ."""
+    return energy_parts(params, states).total_J
+
+
+def energy_parts(params: Mapping[str, Any], states: np.ndarray) -> EnergyParts:
+    """½ m v_G², ½ ω·I_G ω and m g r cos θ (J) along ``states`` (N, 10) = (q, v)."""
     states = np.atleast_2d(states)
     m, r, g = parameter_array(params)
     q, v = states[:, :5], states[:, 5:]
@@ -140,8 +146,7 @@ def energy_J(params: Mapping[str, Any], states: np.ndarray) -> np.ndarray:
     transverse, axial = 0.25 * m * r * r, 0.5 * m * r * r
     # Body rates in the lean frame Rz(ψ) Rx(θ) (the disk is symmetric about its axis): (θ̇, φ̇ + ψ̇ sθ, ψ̇ cθ).
     rotation = transverse * (lean_rate**2 + (heading_rate * c_th) ** 2) + axial * (spin_rate + heading_rate * s_th) ** 2
-    kinetic = 0.5 * m * np.sum(centre_velocity**2, axis=1) + 0.5 * rotation
-    return kinetic + m * g * r * c_th
+    return EnergyParts(m * g * r * c_th, translational_kinetic_J=0.5 * m * np.sum(centre_velocity**2, axis=1), rotational_kinetic_J=0.5 * rotation)
 
 
 def contact_velocity_m_s(params: Mapping[str, Any], states: np.ndarray) -> np.ndarray:

@@ -36,6 +36,7 @@ from app.physics.systems.ch08.rolling_disk_constrained import (
     COORDINATE_NAMES,
     LEAN,
     energy_J,
+    energy_parts,
     rolling_disk_system,
     rolling_state,
 )
@@ -93,6 +94,9 @@ class UnsteadyRollingDisk(ConstrainedModel):
 
     def energy_J(self, params: Mapping[str, Any], states: np.ndarray) -> np.ndarray:
         return energy_J(params, states)
+
+    def constrained_energy_parts(self, params: Mapping[str, Any], states: np.ndarray):
+        return energy_parts(params, states)
 
     def energy_scale_J(self, params: Mapping[str, Any], state: np.ndarray) -> float:
         """m g r (upright to flat) or the energy if larger (J)."""

@@ -275,8 +275,8 @@ def energy_budget(params: Mapping[str, Any], states: np.ndarray) -> EnergyBudget
     theta, omega = states[:, THETA], states[:, OMEGA]
     vx = states[:, U] + half * np.sin(theta) * omega
     vz = half * np.cos(theta) * omega
-    kinetic = 0.5 * mass * (vx**2 + vz**2) + 0.5 * inertia * omega**2
-    return EnergyBudget(kinetic, mass * g * half * np.sin(theta), states[:, FRICTION_WORK].copy(), np.zeros_like(kinetic))
+    translational, rotational = 0.5 * mass * (vx**2 + vz**2), 0.5 * inertia * omega**2
+    return EnergyBudget(translational, rotational, mass * g * half * np.sin(theta), states[:, FRICTION_WORK].copy(), np.zeros_like(rotational))
 
 
 def end_positions_m(params: Mapping[str, Any], state: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -369,6 +369,12 @@ class SlidingBar(IntegratedModel):
 
     def invariant_scales(self, params, state):
         return {"energy_budget_J": max(float(energy_budget(params, state).total_J[0]), 1e-300)}
+
+    series_labels = {"angle_rad": "θ", "contact_speed_m_s": "u (speed of B)", "normal_force_N": "N", "friction_force_N": "F",
+                     "friction_limit_N": "μN", "painleve_factor": "D (Painlevé)", "energy_budget_J": "energy + friction work"}
+
+    def energy_parts(self, params, states, *, t_s=None):
+        return energy_budget(params, states).parts()
 
     def stop_message(self, params, event):
         return stop_message(params, event)

@@ -38,6 +38,7 @@ from typing import Any
 import numpy as np
 from numba.extending import register_jitable
 
+from app.physics.core.energy import EnergyParts
 from app.physics.core.parameters import Parameter, ParameterError, ParameterSet
 from app.physics.solvers import DormandPrince, Events, OdeSystem, simulate
 from app.physics.solvers.integrated_model import IntegratedModel
@@ -289,6 +290,15 @@ class StickSlipBelt(IntegratedModel):
 
     def invariants(self, params, states):
         return {"energy_budget_J": energy_budget(params, states).total_J}
+
+    series_labels = {"x_m": "x", "v_m_s": "ẋ", "friction_force_N": "F", "friction_limit_N": "μN", "dissipated_J": "dissipated by friction",
+                     "energy_budget_J": "energy + dissipated − belt work"}
+
+    def energy_parts(self, params, states, *, t_s=None):
+        """The block translates only (½ m ẋ²); the spring's ½ k x²; the belt's work through friction is the drive's."""
+        budget = energy_budget(params, states)
+        return EnergyParts(budget.spring_J, translational_kinetic_J=budget.kinetic_J, rotational_kinetic_J=np.zeros_like(budget.kinetic_J),
+                           drive_work_J=budget.belt_work_J)
 
     def invariant_scales(self, params, state):
         # The energy stored in the spring at the static limit, or the initial energy if larger.

@@ -40,6 +40,7 @@ from typing import Any
 import numpy as np
 from scipy.special import ellipk
 
+from app.physics.core.energy import EnergyParts
 from app.physics.core.parameters import Parameter, ParameterError, ParameterSet
 from app.physics.solvers import OdeSystem
 from app.physics.solvers.integrated_model import IntegratedModel
@@ -145,11 +146,19 @@ def deviation_from_rest_rad(params: Mapping[str, Any], alpha_rad: np.ndarray | f
     return np.mod(delta + np.pi, 2.0 * np.pi) - np.pi
 
 
+def swing_kinetic_J(params: Mapping[str, Any], alpha_rate_rad_s) -> np.ndarray:
+    """``½ I_t α̇²`` (J): the housing's and rotor's turning about the vertical (the spin's own energy is constant)."""
+    return 0.5 * params["vertical_inertia_kg_m2"] * np.asarray(alpha_rate_rad_s, dtype=float) ** 2
+
+
+def gyroscopic_potential_J(params: Mapping[str, Any], alpha_rad) -> np.ndarray:
+    """``|K| (1 − cos δ)`` (J), δ the deviation from rest: the work of the north-seeking moment, zero at rest."""
+    return abs(restoring_moment_N_m(params)) * (1.0 - np.cos(deviation_from_rest_rad(params, alpha_rad)))
+
+
 def swing_energy_J(params: Mapping[str, Any], alpha_rad, alpha_rate_rad_s) -> np.ndarray:
     """``½ I_t α̇² + |K| (1 − cos δ)`` (J), δ the deviation from rest: kinetic plus gyroscopic potential."""
-    delta = deviation_from_rest_rad(params, alpha_rad)
-    rate = np.asarray(alpha_rate_rad_s, dtype=float)
-    return 0.5 * params["vertical_inertia_kg_m2"] * rate**2 + abs(restoring_moment_N_m(params)) * (1.0 - np.cos(delta))
+    return swing_kinetic_J(params, alpha_rate_rad_s) + gyroscopic_potential_J(params, alpha_rad)
 
 
 def amplitude_rad(params: Mapping[str, Any]) -> float | None:
@@ -217,6 +226,19 @@ class Gyrocompass(IntegratedModel):
 
     def invariants(self, params, states):
         return {"energy_plus_dissipated_J": swing_energy_J(params, states[:, 0], states[:, 1]) + states[:, 2]}
+
+    series_labels = {"alpha_rad": "α", "alpha_rate_rad_s": "α̇", "dissipated_energy_J": "damper's work",
+                     "energy_plus_dissipated_J": "swing energy + damper's work"}
+
+    def energy_parts(self, params, states, *, t_s=None):
+        """The swing about the vertical (rotational, ½ I_t α̇²) and the gyroscopic potential |K|(1 − cos δ)."""
+        states = np.atleast_2d(states)
+        kinetic = swing_kinetic_J(params, states[:, 1])
+        return EnergyParts(gyroscopic_potential_J(params, states[:, 0]), translational_kinetic_J=np.zeros_like(kinetic), rotational_kinetic_J=kinetic)
+
+    def energy_note(self, params):
+        return ("the reduced model's swing energy: the rotor's spin energy (constant) is left out, and the potential is "
+                "the work of the north-seeking moment I_a ω_s Ω cos λ sin α, not gravity")
 
     def invariant_scales(self, params, state):
         # The energy that would carry the axis right round (2|K|) plus the initial swing energy: never zero.

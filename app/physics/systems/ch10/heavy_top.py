@@ -30,6 +30,7 @@ import numpy as np
 
 from app.physics.bodies.inertia import centroidal_from_point
 from app.physics.bodies.rigid_body import RigidBody
+from app.physics.core.energy import EnergyParts
 from app.physics.core.parameters import Parameter, ParameterError, ParameterSet
 from app.physics.math.rotations import body_rates_from_euler_313_rates, euler_313_from_quaternion, quaternion_from_euler_313
 from app.physics.solvers.integrated_model import IntegratedModel
@@ -267,6 +268,19 @@ class HeavyTop(IntegratedModel):
 
     def invariants(self, params, states):
         return rigid_body(params).invariants(states)
+
+    series_labels = {"theta": "θ", "phi": "φ", "psi": "ψ", "attitude_error_rad": "attitude error", "spin": "ω₃",
+                     "angular_momentum_z": "L_z", "angular_momentum": "|L|", "quaternion_norm_error": "|q| − 1"}
+
+    def energy_parts(self, params, states, *, t_s=None):
+        """About the fixed pivot: ½ m v_G² with v_G = ω × l e₃ (so ½ m l² (ω₁² + ω₂²)) and the rest of ½ ω·I_O ω,
+        which is ½ ω·I_G ω; gravity m g l cos θ (zero at the pivot's height)."""
+        body = rigid_body(params)
+        states = np.atleast_2d(states)
+        omega = states[:, 4:7]
+        kinetic = 0.5 * np.sum(np.asarray(body.inertia_pivot_kg_m2) * omega**2, axis=-1)
+        translational = 0.5 * body.mass_kg * body.cg_distance_m**2 * (omega[:, 0] ** 2 + omega[:, 1] ** 2)
+        return EnergyParts(body.energy_J(states) - kinetic, translational_kinetic_J=translational, rotational_kinetic_J=kinetic - translational)
 
     def describable(self, params, states):
         """Finite states whose quaternion is still a unit one to within a half: every step renormalises it,
