@@ -1,5 +1,9 @@
 """The one way the API answers bad input: a 422 whose ``detail`` names the field (``loc``) and says why (``msg``).
 
+``loc`` carries the parameter's API name (``precession_rate0_rad_s``); ``msg`` is the text a student
+reads, which names the parameter as its control does, label and unit (``φ̇₀ (rad/s): must be …``,
+from :attr:`ParameterError.label <app.physics.core.parameters.ParameterError>`).
+
 Routes raise :func:`unprocessable`, catching the physics' ``ParameterError`` and the
 ``ValueError`` they expect where they call it; a ``ParameterError`` reaching the app is
 turned into the same answer by the handler :func:`install` adds. Nothing else is: an

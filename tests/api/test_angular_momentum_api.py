@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from app.physics.systems.ch05 import angular_momentum as am
+from app.scenes import SCENES
 from tests.api.conftest import live_viewer
 
 _ids = itertools.count()
@@ -69,7 +70,10 @@ def test_bad_input_is_a_422_naming_the_field(client, params, field):
     response = simulate(client, params)
     assert response.status_code == 422, response.text
     detail = response.json()["detail"][0]
-    assert detail["loc"][-1] == field and field in detail["msg"]
+    assert detail["loc"][-1] == field
+    # The message names the input as its control does (label and unit); an unknown name is echoed as it was sent.
+    parameter = SCENES["angular-momentum"].parameters.by_name.get(field)
+    assert detail["msg"].startswith(f"{parameter.display_name() if parameter else field}:"), detail
 
 
 def test_live_readout_states_the_physics_and_the_principal_axis_case(client):

@@ -23,7 +23,7 @@ to ``wait_s`` and is then refused with :class:`WorkBusy`. Outcomes:
 
 * the result, unpickled;
 * ``ValueError`` with the function's message if it raised one (a ``ParameterError`` keeps
-  its field and path);
+  its field, path and label);
 * :class:`WorkTimeout` / :class:`WorkTooLarge` (both ``ValueError``: the input asked for
   more than its bounds, a 422 for a route) when the limits stop it;
 * :class:`WorkFailed` for anything else (the function's bug: a 500).
@@ -125,7 +125,7 @@ def _answer(function: Callable[..., Any], args: tuple[Any, ...]) -> tuple[str, A
     try:
         return ("result", function(*args))
     except ParameterError as exc:
-        return ("parameter_error", (exc.field, exc.message[:MAX_MESSAGE_CHARS], exc.path))
+        return ("parameter_error", (exc.field, exc.message[:MAX_MESSAGE_CHARS], exc.path, exc.label))
     except ValueError as exc:
         return ("value_error", str(exc)[:MAX_MESSAGE_CHARS])
     except MemoryError:
@@ -294,8 +294,8 @@ def _outcome(kind: str, payload: Any, *, memory_mb: float, what: str) -> Any:
     if kind == "result":
         return payload
     if kind == "parameter_error":
-        field, message, path = payload
-        raise ParameterError(field, message, path=path)
+        field, message, path, label = payload
+        raise ParameterError(field, message, path=path, label=label)
     if kind == "value_error":
         raise ValueError(payload)
     if kind == "memory":

@@ -20,14 +20,23 @@ class ParameterError(ValueError):
 
     ``field`` names the offending input so the API can point at it; ``path``
     goes further into a structured input (``("bodies", 2, "radius_m")``) and
-    defaults to ``(field,)``.
+    defaults to ``(field,)``. ``label`` is what the page calls the input (its
+    :meth:`Parameter.display_name`, e.g. ``"φ̇₀ (rad/s)"``): where given, the
+    text a student reads, ``str(error)``, starts with it instead of the field's
+    name, which stays in ``field`` and ``path`` for the API.
     """
 
-    def __init__(self, field: str, message: str, *, path: Sequence[str | int] | None = None) -> None:
+    def __init__(self, field: str, message: str, *, path: Sequence[str | int] | None = None, label: str = "") -> None:
         self.path: tuple[str | int, ...] = tuple(path) if path else (field,)
-        super().__init__(f"{' → '.join(str(p) for p in self.path)}: {message}")
+        subject = (label or str(self.path[0]), *(str(p) for p in self.path[1:]))
+        super().__init__(f"{' → '.join(subject)}: {message}")
         self.field = field
         self.message = message
+        self.label = label
+
+    def named(self, label: str) -> ParameterError:
+        """This error with ``label`` as the name a student reads (the one it has, if it has one)."""
+        return self if self.label else ParameterError(self.field, self.message, path=self.path, label=label)
 
 
 def _is_finite_float(value: int | float) -> bool:
@@ -94,6 +103,11 @@ class Parameter:
             if self.scale == "log" and self.min <= 0:
                 raise ValueError(f"{self.name}: a log-scale parameter needs min > 0")
 
+    def display_name(self) -> str:
+        """What the page calls this input: its control's label, then its unit in brackets (``"φ̇₀ (rad/s)"``)."""
+        label = self.label or self.name
+        return f"{label} ({self.unit})" if self.unit else label
+
     def range_text(self) -> str:
         if self.kind == "choice":
             return "one of " + ", ".join(repr(c) for c in self.choices)
@@ -108,52 +122,59 @@ class Parameter:
         """Return ``value`` converted to this parameter's type, or raise ParameterError."""
         if self.kind == "choice":
             if not isinstance(value, str) or value not in self.choices:
-                raise ParameterError(self.name, f"must be {self.range_text()}")
+                raise self._refusal(f"must be {self.range_text()}")
             return value
         if self.kind == "text":
             return self._validate_text(value)
         if self.kind == "list":
             assert self.parse is not None
-            return self.parse(value)
+            try:
+                return self.parse(value)
+            except ParameterError as exc:
+                raise exc.named(self.display_name()) from None
         if self.kind == "vector":
             return self._validate_vector(value)
         if isinstance(value, bool) or not isinstance(value, (int, float)):
-            raise ParameterError(self.name, f"must be a number {self.range_text()}")
+            raise self._refusal(f"must be a number {self.range_text()}")
         if not _is_finite_float(value):
-            raise ParameterError(self.name, f"must be a finite number {self.range_text()}")
+            raise self._refusal(f"must be a finite number {self.range_text()}")
         if self.kind == "int":
             if float(value) != int(value):
-                raise ParameterError(self.name, "must be a whole number")
+                raise self._refusal("must be a whole number")
             value = int(value)
         else:
             value = float(value)
         assert self.min is not None and self.max is not None
         if not self.min <= value <= self.max:
-            raise ParameterError(self.name, f"must be {self.range_text()} (got {value:g})")
+            raise self._refusal(f"must be {self.range_text()} (got {value:g})")
         return value
+
+    def _refusal(self, message: str) -> ParameterError:
+        """A :class:`ParameterError` for this input, naming it as the page does."""
+        return ParameterError(self.name, message, label=self.display_name())
 
     def _validate_text(self, value: Any) -> str:
         if not isinstance(value, str):
-            raise ParameterError(self.name, "must be text")
+            raise self._refusal("must be text")
         if len(value) > self.max_length:
-            raise ParameterError(self.name, f"is {len(value)} characters long; the limit is {self.max_length}")
+            raise self._refusal(f"is {len(value)} characters long; the limit is {self.max_length}")
         if self.parse is not None:
             try:
                 self.parse(value)
             except ValueError as exc:
-                raise ParameterError(self.name, str(exc)) from None
+                raise self._refusal(str(exc)) from None
         return value
 
     def _validate_vector(self, value: Any) -> list[float]:
         if not isinstance(value, (list, tuple)) or len(value) != self.length:
-            raise ParameterError(self.name, f"must be a list of {self.length} numbers, each {self.range_text()}")
+            raise self._refusal(f"must be a list of {self.length} numbers, each {self.range_text()}")
         out = []
         for index, component in enumerate(value):
             if isinstance(component, bool) or not isinstance(component, (int, float)) or not _is_finite_float(component):
-                raise ParameterError(self.name, f"component {index} must be a finite number {self.range_text()}")
+                raise self._refusal(f"component {index} must be a finite number {self.range_text()}")
             assert self.min is not None and self.max is not None
             if not self.min <= component <= self.max:
-                raise ParameterError(self.name, f"component {index} must be {self.range_text()} (got {component:g})")
+                raise self._refusal(f"component {index} must be {self.range_text()} (got {component:g})")
             out.append(float(component))
         return out
 
@@ -218,7 +239,13 @@ class ParameterSet:
                 raise ParameterError(name, f"unknown input; expected one of: {known}")
             values[name] = parameter.validate(value)
         if self.check is not None:
-            self.check(values)
+            try:
+                self.check(values)
+            except ParameterError as exc:  # a combination refused: name its field as the page does
+                parameter = self.by_name.get(exc.field)
+                if parameter is None:
+                    raise
+                raise exc.named(parameter.display_name()) from None
         return values
 
     def schema(self) -> list[dict[str, Any]]:

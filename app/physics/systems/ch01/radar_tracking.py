@@ -31,7 +31,7 @@ from app.physics.core.solution import Plot, PlotSeries, Solution, Step, WorkedEx
 
 def _check_interval_fits(values: Mapping[str, Any]) -> None:
     if values["dt_s"] > values["t_s"]:
-        raise ParameterError("dt_s", f"must not exceed t_s = {values['t_s']:g} s (the elevation formula needs t − Δt ≥ 0)")
+        raise ParameterError("dt_s", f"must not exceed the time t = {values['t_s']:g} s (the elevation formula needs t − Δt ≥ 0)")
 
 
 INPUTS = ParameterSet(
@@ -160,8 +160,8 @@ def solve(inputs: Mapping[str, Any]) -> Solution:
             "Radar readings and their rates",
             r"r = 2000 + 100t,\ \ \theta = \tfrac{\pi}{2}(1-e^{-0.15t}),\ \ \beta = \tfrac{\pi}{3} - 0.1\sqrt{t};\quad "
             r"\dot r = 100,\ \ \dot\theta = 0.075\pi e^{-0.15t},\ \ \dot\beta = -\frac{0.05}{\sqrt t}",
-            {"r": r, "theta": theta, "beta": beta, "r_dot": r_dot, "theta_dot": theta_dot, "beta_dot": beta_dot},
-            {"r": "m", "theta": "rad", "beta": "rad", "r_dot": "m/s", "theta_dot": "rad/s", "beta_dot": "rad/s"},
+            {"r": r, "θ": theta, "β": beta, "ṙ": r_dot, "θ̇": theta_dot, "β̇": beta_dot},
+            {"r": "m", "θ": "rad", "β": "rad", "ṙ": "m/s", "θ̇": "rad/s", "β̇": "rad/s"},
         ),
         Step(
             "Position on the fixed frame",

@@ -142,11 +142,11 @@ def holding_force_by_virtual_work(press: TogglePress) -> float:
     if abs(slider_coefficient) <= TOGGLE_TOLERANCE * scale:
         if abs(loads) <= TOGGLE_TOLERANCE * scale * (abs(press.load_B_N) + press.weight_AB_N + press.weight_BC_N):
             raise TogglePositionError(
-                "angle_deg: at the toggle position (θ = 0°, bars in line) neither the loads nor Q do virtual work: "
+                "θ (deg): at the toggle position (θ = 0°, bars in line) neither the loads nor Q do virtual work: "
                 "the virtual-work equation holds for every Q, so it does not fix Q"
             )
         raise TogglePositionError(
-            f"angle_deg: at θ = {math.degrees(press.angle_rad):g}° the bars lie in line (the toggle position): δx_C = 0 for "
+            f"θ (deg): at θ = {math.degrees(press.angle_rad):g}° the bars lie in line (the toggle position): δx_C = 0 for "
             f"every δθ, so Q does no virtual work while the loads do {loads:.4g} N·m per rad; no finite Q holds them "
             "(the force needed grows like 1/θ as θ → 0)"
         )

@@ -200,14 +200,14 @@ def check_inputs(*, I_transverse: float, I_axial: float, spin_rad_s: float, nuta
     if I_axial > 2.0 * I_transverse * (1.0 + 1e-12):
         raise ParameterError(
             "I_axial",
-            f"must not exceed twice I_transverse (2 × {I_transverse:g} = {2.0 * I_transverse:g} kg·m²): for any real body "
-            "I_axial ≤ 2 I_transverse (triangle inequality of the moments), and a flat disc is the limit",
+            f"must not exceed twice I_t (2 × {I_transverse:g} = {2.0 * I_transverse:g} kg·m²): for any real body "
+            "I_a ≤ 2 I_t (triangle inequality of the moments), and a flat disc is the limit",
         )
     if not math.isfinite(spin_rad_s) or spin_rad_s == 0.0:
         raise ParameterError(
             "spin_rad_s",
             "must not be zero: with no spin about the symmetry axis and the axis less than 90° from L, "
-            "L = I_axial·ω3/cos θ is zero, the body is at rest, and the precession and cones are undefined",
+            "L = I_a·ω₃/cos θ is zero, the body is at rest, and the precession and cones are undefined",
         )
     if spin_rad_s < 0.0:
         raise ParameterError(
@@ -218,7 +218,7 @@ def check_inputs(*, I_transverse: float, I_axial: float, spin_rad_s: float, nuta
     if not (math.isfinite(nutation_deg) and 0.0 <= nutation_deg <= MAX_NUTATION_DEG):
         raise ParameterError(
             "nutation_deg",
-            f"must lie between 0° and {MAX_NUTATION_DEG:g}°: at 90° the axis is perpendicular to L and L = I_axial·ω3/cos θ is undefined",
+            f"must lie between 0° and {MAX_NUTATION_DEG:g}°: at 90° the axis is perpendicular to L and L = I_a·ω₃/cos θ is undefined",
         )
 
 

@@ -103,8 +103,9 @@ def test_two_points_of_the_body_never_approach_along_their_join():
 
 
 def test_bad_inputs_name_the_field():
-    with pytest.raises(ParameterError, match="point_radius_fraction"):
+    with pytest.raises(ParameterError, match="^ρ/R: ") as refused:  # named as its control shows it
         physics.PARAMETERS.validate({"point_radius_fraction": 1.5})
+    assert refused.value.field == "point_radius_fraction"
     with pytest.raises(ValueError, match="β"):
         physics.DiskOnTurntable(1.0, 0.0, 1.0, 0.0, math.radians(90.0), 0.8, 0.3, 0.0, 1.0)
 

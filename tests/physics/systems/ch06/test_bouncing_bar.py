@@ -255,6 +255,6 @@ def test_simulate_model_reports_the_contract_series():
 
 
 def test_a_bar_released_through_the_floor_is_refused_naming_the_height():
-    with pytest.raises(ParameterError, match="drop_height_m") as info:
+    with pytest.raises(ParameterError, match=r"^h₀ \(m\): must put the lower end") as info:  # as its control shows it
         params(drop_height_m=0.3, angle0_deg=60.0, length_m=1.0)
     assert info.value.field == "drop_height_m"

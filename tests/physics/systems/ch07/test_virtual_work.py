@@ -80,8 +80,9 @@ def test_virtual_displacements_are_the_derivatives_of_the_positions(overrides):
 
 def test_the_toggle_position_is_refused_with_its_reason_never_an_infinity():
     press = press_of(angle_deg=0.0)
-    with pytest.raises(vw.TogglePositionError, match=r"angle_deg: .*toggle position.*no finite Q"):
+    with pytest.raises(vw.TogglePositionError, match=r"^θ \(deg\): .*toggle position.*no finite Q") as refused:
         vw.holding_force_by_virtual_work(press)
+    assert "angle_deg" not in str(refused.value)  # the page reads θ, the name its control shows
     with pytest.raises(vw.TogglePositionError):
         vw.toggle_equilibrium(press)
     unloaded = press_of(angle_deg=0.0, load_B_N=0.0, weight_AB_N=0.0, weight_BC_N=0.0)
