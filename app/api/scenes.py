@@ -1,8 +1,9 @@
 from __future__ import annotations
 
+import math
 from typing import Annotated, Any
 
-from fastapi import APIRouter, Header, HTTPException, Path
+from fastapi import APIRouter, Header, HTTPException, Path, Query
 from fastapi.responses import JSONResponse, Response
 
 from app.api.deps import SceneHostDep, SessionKeysDep
@@ -13,6 +14,7 @@ from app.api.limits import SIMULATIONS, TOO_MANY_RESPONSE
 from app.api.schemas.errors import ErrorDetail, error_responses
 from app.api.session_keys import HEADER as SESSION_KEY_HEADER
 from app.api.session_keys import SESSION_KEY_PATTERN, SessionKeyError
+from app.api.schemas.graph import GraphAnswer
 from app.api.schemas.readout import LiveAnswer
 from app.api.schemas.scenes import PlaybackAnswer, PlaybackRequest, SceneSummary, SessionParamsAnswer, SessionParamsRequest
 from app.api.schemas.simulation import SimulateRequest, SimulationAnswer
@@ -23,7 +25,10 @@ from app.physics.core.parameters import ParameterError, ParameterSet
 from app.physics.solvers.controls import CONTROL_NAMES
 from app.physics.solvers.integrated_model import simulate_model
 from app.rooms.registry import Rooms
+from app.scenes.host.graph import DEFAULT_MAX_POINTS, MAX_POINTS_RANGE, graph_csv
 from app.scenes.host.host import SESSION_ID_PATTERN, UnknownSceneError
+from app.scenes.host.recorder import DEFAULT_RECORDING_S, RECORDING_SECONDS_RANGE
+from app.scenes.host.rpc import WorkerUnavailableError
 from app.scenes.kit import Scene
 
 router = APIRouter(prefix="/api/scenes", tags=["scenes"])
@@ -123,7 +128,7 @@ def set_session_playback(
     except ValueError as exc:
         field = str(exc).split(":", 1)[0]
         raise unprocessable(["body", field if field in PlaybackRequest.model_fields else "session_id"], str(exc)) from None
-    return {**answer, "camera": host.camera(session_id)}
+    return {**answer, "camera": host.camera(session_id), "viewers": host.viewer_count(session_id)}
 
 
 @router.get(
@@ -132,12 +137,13 @@ def set_session_playback(
     responses=error_responses(not_found="No scene has this id, or the session has none yet", unprocessable="The session id is malformed"),
 )
 def session_playback(scene_id: str, session_id: SessionId, host: SceneHostDep) -> dict[str, Any]:
-    """The session's play state, simulated time, the motion kept for scrubbing and the first viewer's camera (for a share link)."""
+    """The session's play state, simulated time, the motion kept for scrubbing, the first viewer's camera (for a share
+    link) and how many viewers are connected (a page waits for its viewer before asking for live numbers)."""
     _scene_class(host, scene_id)
     answer = host.playback(session_id)
     if answer is None:
         raise HTTPException(status_code=404, detail=f"session {session_id!r} has no scene yet")
-    return {**answer, "camera": host.camera(session_id)}
+    return {**answer, "camera": host.camera(session_id), "viewers": host.viewer_count(session_id)}
 
 
 def _explore_start(rooms: Rooms, room_id: str, scene_id: str) -> dict[str, Any]:
@@ -237,6 +243,35 @@ def live_readout(scene_id: str, session_id: SessionId, host: SceneHostDep) -> di
     return {"scene_id": scene_id, "viewers": host.viewer_count(session_id), **readout}
 
 
+@router.get("/{scene_id}/sessions/{session_id}/recording.html", include_in_schema=False)
+def session_recording(
+    scene_id: str,
+    session_id: SessionId,
+    host: SceneHostDep,
+    seconds: Annotated[float, Query(ge=RECORDING_SECONDS_RANGE[0], le=RECORDING_SECONDS_RANGE[1], description="Length (s)")] = DEFAULT_RECORDING_S,
+) -> Response:
+    """The last ``seconds`` (1–60) of what the session's viewer showed, as one HTML file that plays offline in any
+    browser (viser's client and the recording inside it); a still of the scene when it has no kept motion.
+
+    404 for an unknown scene or a session without this scene; 422 for bad ``seconds`` or a file over the size
+    limit; 500 with the reason when the recording fails.
+    """
+    _scene_class(host, scene_id)
+    try:
+        page = host.recording_html(scene_id, session_id, seconds=seconds)
+    except ValueError as exc:
+        raise unprocessable(["query", "seconds"], str(exc)) from None
+    except WorkerUnavailableError:
+        raise
+    except RuntimeError as exc:  # RecordingError in-process; a worker's arrives as "scene worker failed: …"
+        raise HTTPException(status_code=500, detail=f"the recording could not be made: {exc}") from None
+    if page is None:
+        raise HTTPException(status_code=404, detail=f"session {session_id!r} has no {scene_id!r} scene yet")
+    return Response(
+        page, media_type="text/html; charset=utf-8", headers={"Content-Disposition": f'attachment; filename="{scene_id}-recording.html"'}
+    )
+
+
 @router.get("/{scene_id}/script.py", include_in_schema=False)
 def scene_script_file(scene_id: str, host: SceneHostDep, params: ScriptParams = None) -> Response:
     """A Python script reproducing the scene's numbers for ``params`` with the project's own package ("Open as Python").
@@ -250,3 +285,44 @@ def scene_script_file(scene_id: str, host: SceneHostDep, params: ScriptParams = 
     except ParameterError as exc:
         raise unprocessable(["query", *exc.path], str(exc)) from None
     return python_file(scene_script(cls, params_checked), script_file_name(scene_id))
+
+
+_GRAPH_UNPROCESSABLE = "since_s is not a number or is +∞, max_points is outside 10–2000, or the session id is malformed"
+
+
+def _session_graph(host: SceneHostDep, scene_id: str, session_id: str, *, since_s: float | None, max_points: int) -> dict[str, Any]:
+    """The host's graph of the session's kept motion, or a 404 / 422 naming why not."""
+    _scene_class(host, scene_id)
+    try:
+        answer = host.graph(session_id, since_s=-math.inf if since_s is None else since_s, max_points=max_points)
+    except ValueError as exc:
+        field = str(exc).split(":", 1)[0]
+        raise unprocessable(["query", field], str(exc)) from None
+    if answer is None or answer["scene_id"] != scene_id:
+        raise HTTPException(status_code=404, detail=f"session {session_id!r} shows no {scene_id!r} scene")
+    return answer
+
+
+@router.get(
+    "/{scene_id}/sessions/{session_id}/graph",
+    response_model=GraphAnswer,
+    responses=error_responses(not_found="No scene has this id, or the session shows none (or another scene)", unprocessable=_GRAPH_UNPROCESSABLE),
+)
+def session_graph(
+    scene_id: str,
+    session_id: SessionId,
+    host: SceneHostDep,
+    since_s: Annotated[float | None, Query(description="Only frames later than this simulated time (s); none: all the kept motion")] = None,
+    max_points: Annotated[int, Query(ge=MAX_POINTS_RANGE[0], le=MAX_POINTS_RANGE[1], description="Most frames in the answer (evenly thinned, the latest kept)")] = DEFAULT_MAX_POINTS,
+) -> dict[str, Any]:
+    """Graphs of the session's kept motion (the scrubber's last 60 s): every series, invariant and energy part
+    against simulated time, evaluated on the kept states, and the energy bars at the latest frame. A scene that is
+    not integrated answers with no quantities and a note saying why."""
+    return _session_graph(host, scene_id, session_id, since_s=since_s, max_points=max_points)
+
+
+@router.get("/{scene_id}/sessions/{session_id}/graph.csv", include_in_schema=False)
+def session_graph_csv(scene_id: str, session_id: SessionId, host: SceneHostDep) -> Response:
+    """The session's kept motion as CSV (every quantity of :func:`session_graph`, every kept frame), as a download."""
+    answer = _session_graph(host, scene_id, session_id, since_s=None, max_points=MAX_POINTS_RANGE[1])
+    return Response(graph_csv(answer), media_type="text/csv", headers={"Content-Disposition": f'attachment; filename="{scene_id}-graph.csv"'})

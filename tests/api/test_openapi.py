@@ -34,7 +34,9 @@ ROOM_ROUTES = {
 }
 #: A page's time controls (issue 15): an unknown scene, or a session without one yet.
 PLAYBACK_ROUTES = {("/api/scenes/{scene_id}/sessions/{session_id}/playback", "put"), ("/api/scenes/{scene_id}/sessions/{session_id}/playback", "get")}
-CAN_BE_NOT_FOUND |= ROOM_ROUTES | PLAYBACK_ROUTES
+#: Graphs of a session's kept motion (issue 15): an unknown scene or a session without one; a bad since_s or max_points.
+GRAPH_ROUTES = {("/api/scenes/{scene_id}/sessions/{session_id}/graph", "get")}
+CAN_BE_NOT_FOUND |= ROOM_ROUTES | PLAYBACK_ROUTES | GRAPH_ROUTES
 CAN_BE_UNPROCESSABLE = (CAN_BE_NOT_FOUND - {("/api/bench/work-precision", "get")}) | {("/api/systems/custom/derive", "post"), ("/api/rooms", "post")}
 #: Instructor-only reads: a student gets 403 (app/api/rooms.py require_instructor), as on every state-changing route.
 INSTRUCTOR_ONLY_READS = {("/api/rooms/{room_id}/polls/ready", "get"), ("/api/rooms/{room_id}/polls/{poll_id}/results", "get")}

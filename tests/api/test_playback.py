@@ -111,6 +111,29 @@ def test_the_camera_is_placed_and_reported(page):
     assert answer["camera"] == view
 
 
+def test_reset_view_puts_the_camera_back_at_the_scenes_start_pose(client, page):
+    """Reset view (reset_camera) returns every viewer's camera to the scene's own start pose, whatever moved it;
+    the answer (and GET) also counts the session's viewers, which a page waits for before polling live numbers."""
+    start = page.client.app.state.scene_host.scene_class("heavy-top")
+    page.playback(camera={"position": [2.0, -3.0, 1.5], "look_at": [0.0, 0.0, 0.4]})
+    answer = page.playback(reset_camera=True)
+    np.testing.assert_allclose(answer["camera"]["position"], start.camera_position, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(answer["camera"]["look_at"], start.camera_look_at, rtol=0, atol=1e-12)
+    assert answer["viewers"] == 1 and page.now()["viewers"] == 1
+    both = {"reset_camera": True, "camera": {"position": [1, 2, 3], "look_at": [0, 0, 0]}}
+    refused = client.put(page.url, json=both, headers={"X-Session-Key": page.key})
+    assert refused.status_code == 422 and refused.json()["detail"][0]["loc"] == ["body", "reset_camera"]
+    assert client.put(page.url, json={"reset_camera": "yes"}, headers={"X-Session-Key": page.key}).status_code == 422
+
+
+def test_a_session_without_a_viewer_yet_says_so(client):
+    """Before its viewer connects a page's session answers GET playback with 0 viewers (not a 404), so the page
+    can wait for it instead of asking for live numbers that do not exist yet."""
+    waiting = Page(client)
+    answer = client.get(waiting.url)
+    assert answer.status_code == 200 and answer.json()["viewers"] == 0 and answer.json()["t_s"] is None
+
+
 def test_bad_requests_change_nothing_and_an_owned_session_needs_its_key(client, page):
     before = page.playback(playing=False)
     for body in (

@@ -61,6 +61,7 @@ class PlaybackRequest(BaseModel):
     seek_s: float | None = Field(None, ge=0.0, allow_inf_nan=False, description="Go back to a kept instant (s; within history_s), paused")
     go_to_s: float | None = Field(None, ge=0.0, le=600.0, allow_inf_nan=False, description="Compute the motion at this simulated time from the start (s): a share link")
     camera: "CameraIn | None" = Field(None, description="Point the viewers' cameras (a share link)")
+    reset_camera: bool = Field(False, strict=True, description="Put every viewer's camera back at the scene's start pose (Reset view)")
 
 
 class CameraIn(BaseModel):
@@ -82,3 +83,4 @@ class PlaybackAnswer(BaseModel):
     t_s: float | None = Field(description="Simulated time of the first viewer's scene (s); null before a viewer connects")
     history_s: list[float] | None = Field(description="[earliest, latest] simulated time kept for seek_s (s)")
     camera: CameraOut | None = None
+    viewers: int | None = Field(None, description="Viewers connected to the session now (0 until its viewer has connected)")

@@ -40,6 +40,10 @@ class MotionHistory:
         """Earliest and latest simulated time kept (s), or None if empty."""
         return (self._frames[0][0], self._frames[-1][0]) if self._frames else None
 
+    def since(self, t_s: float) -> list[tuple[float, Mapping[str, Any]]]:
+        """The kept ``(t_s, motion)`` frames later than ``t_s`` (s), oldest first (a copy: the frame loop goes on)."""
+        return [frame for frame in self._frames if frame[0] > t_s]
+
     def at(self, t_s: float) -> Mapping[str, Any]:
         """The last recorded motion at or before ``t_s``; ValueError outside the kept span."""
         span = self.span_s()
@@ -48,6 +52,10 @@ class MotionHistory:
             raise ValueError(f"seek_s: {t_s:g} s is outside the motion kept for scrubbing ({kept})")
         times = [t for t, _ in self._frames]
         return self._frames[max(0, bisect.bisect_right(times, t_s + 1e-9) - 1)][1]
+
+    def latest(self, count: int) -> list[tuple[float, Mapping[str, Any]]]:
+        """The last ``count`` kept frames ``(t_s, motion)``, oldest first (fewer if fewer are kept)."""
+        return list(self._frames)[-count:] if count > 0 else []
 
     def forget_after(self, t_s: float) -> None:
         """Drop the frames later than ``t_s`` (play resumes from a scrubbed instant: what followed is not this run)."""

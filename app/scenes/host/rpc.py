@@ -17,7 +17,8 @@ from app.scenes.host.host import UnknownSceneError
 #: SceneHost methods a worker answers (everything the routes and the relay need).
 WORKER_METHODS = frozenset({
     "set_params", "session_params", "live_readout", "viewer_count", "viewer_url",
-    "set_playback", "playback", "open_stage", "close_stage", "stage_viewers", "stage_viewer_url", "motion_state", "resume_from", "camera",
+    "set_playback", "playback", "open_stage", "close_stage", "stage_viewers", "stage_viewer_url", "motion_state", "resume_from", "camera", "graph",
+    "recording_html",
 })  # fmt: skip
 
 Answer = tuple[Any, ...]
@@ -30,7 +31,7 @@ class WorkerUnavailableError(RuntimeError):
 def encode_error(exc: BaseException) -> Answer:
     """An exception raised by the host, as data that crosses a process boundary."""
     if isinstance(exc, ParameterError):
-        return ("parameter_error", exc.field, exc.message, tuple(exc.path))
+        return ("parameter_error", exc.field, exc.message, tuple(exc.path), exc.label)
     if isinstance(exc, UnknownSceneError):
         return ("unknown_scene", exc.args[0] if exc.args else "")
     if isinstance(exc, ValueError):
@@ -44,8 +45,8 @@ def raise_answer(answer: Answer) -> Any:
     if kind == "ok":
         return answer[1]
     if kind == "parameter_error":
-        _, field, message, path = answer
-        raise ParameterError(field, message, path=path)
+        _, field, message, path, label = answer
+        raise ParameterError(field, message, path=path, label=label)
     if kind == "unknown_scene":
         raise UnknownSceneError(answer[1])
     if kind == "value_error":
