@@ -34,9 +34,53 @@ def _template(name: str) -> Template:
     return Template((TEMPLATES / name).read_text(encoding="utf-8"))
 
 
+#: CSS added to viser's client page on every viewer route (a lesson's viewer, a room's, the projector's).
+#: The lesson page carries the controls, so viser's own control panel is hidden: on a wide viewer its floating
+#: dock window (the one holding the "viser-control-panel" tab: the "Connected" pill, and when expanded the
+#: websocket URL, dev settings, scene tree and share button), on a viewer under 576 px wide its bottom sheet (the
+#: panel outside the dock root, a Paper around a ScrollArea). Selectors from viser 1.1.1's client
+#: (ControlPanelDock.tsx, ControlPanel.tsx, BottomPanel.tsx), pinned by tests/browser/test_viewer_controls_in_browser.py.
+#: Add viewer styling (label sizes, projector mode) here.
+VIEWER_CSS = """
+[data-floating-window]:has([data-dock-tab="viser-control-panel"]),
+[data-dock-leaf]:has([data-dock-tab="viser-control-panel"]),
+#root .mantine-Paper-root:not([data-floating-window]):has(> div > .mantine-ScrollArea-root) { display: none !important; }
+"""
+
+#: Script added to viser's client page, for the keyboard (outside text boxes; viser's own keys orbit, move and pan):
+#: "+" and "−" zoom (the camera moves towards or away from the point it looks at, 15 % a press) and "R" puts the camera
+#: back at the scene's start pose (viser's "Reset View": the initial camera each scene sets). Should viser's hook
+#: be missing, "R" asks the page around the viewer to reset it (a lesson page does so through the session's playback).
+VIEWER_SCRIPT = """
+document.addEventListener("keydown", (event) => {
+  const target = event.target instanceof Element ? event.target : null;
+  if (event.ctrlKey || event.metaKey || event.altKey || (target && target.closest("input, select, textarea, [contenteditable]"))) return;
+  const viewer = window.__viserMutable;
+  const controls = viewer && viewer.cameraControl;
+  const zoom = { "+": 1, "=": 1, "-": -1, "_": -1 }[event.key];
+  if (zoom && controls && controls.enabled) {
+    event.preventDefault();
+    controls.dolly(zoom * 0.15 * controls.distance, true);
+  } else if (event.key === "r" || event.key === "R") {
+    if (viewer && typeof viewer.resetCameraPose === "function") viewer.resetCameraPose(true);
+    else if (window.parent !== window) window.parent.postMessage({ type: "dynlab:reset-view" }, location.origin);
+  }
+});
+"""
+
+_VIEWER_HEAD_END = b"</title>"
+
+
 @lru_cache(maxsize=1)
-def _viser_client_html() -> bytes:
-    return (Path(viser.__file__).resolve().parent / "client" / "build" / "index.html").read_bytes()
+def viewer_client_html() -> bytes:
+    """viser's single-file client (``viser/client/build/index.html``) with :data:`VIEWER_CSS` and
+    :data:`VIEWER_SCRIPT` in its head and a title saying what it shows: the page every viewer route serves."""
+    client = (Path(viser.__file__).resolve().parent / "client" / "build" / "index.html").read_bytes()
+    if client.count(_VIEWER_HEAD_END) != 1:
+        raise RuntimeError(f"viser {viser.__version__}'s client page has no single {_VIEWER_HEAD_END!r}: the viewer page cannot be patched")
+    title_start = client.index(b"<title>")
+    added = f"<style>{VIEWER_CSS}</style><script>{VIEWER_SCRIPT}</script>".encode()
+    return client[:title_start] + "<title>3D scene — Dynamics Lab</title>".encode() + added + client[client.index(_VIEWER_HEAD_END) + len(_VIEWER_HEAD_END):]
 
 
 def _page(title: str, body: str, *, scripts: tuple[str, ...] = ()) -> HTMLResponse:
@@ -157,7 +201,7 @@ def lesson_page(lesson_id: str, catalogue: CatalogueDep, scene: str | None = Non
     return _page(
         f"{lesson.section} {lesson.title} — Dynamics Lab",
         body,
-        scripts=("/static/vendor/katex/katex.min.js", "/static/js/common.js", "/static/js/plot.js", "/static/js/lesson.js", "/static/js/room.js", "/static/js/time_controls.js", "/static/js/derivations.js"),
+        scripts=("/static/vendor/katex/katex.min.js", "/static/js/common.js", "/static/js/plot.js", "/static/js/lesson.js", "/static/js/room.js", "/static/js/time_controls.js", "/static/js/viewer_toolbar.js", "/static/js/derivations.js"),
     )
 
 
@@ -553,4 +597,4 @@ def viewer_page(scene_id: str, session_id: str, host: SceneHostDep) -> Response:
     """viser's single-file client; it connects back to this path's websocket relay."""
     if scene_id not in host.scenes or not SESSION_ID_PATTERN.match(session_id):
         raise HTTPException(status_code=404, detail="unknown scene or malformed session id")
-    return Response(_viser_client_html(), media_type="text/html; charset=utf-8")
+    return Response(viewer_client_html(), media_type="text/html; charset=utf-8")

@@ -10,7 +10,7 @@ from fastapi.responses import HTMLResponse, RedirectResponse, Response
 
 from app.api.rooms import RoomId, RoomsDep, is_instructor
 from app.rooms.roles import COOKIE
-from app.web.pages import _page, _template, _viser_client_html
+from app.web.pages import _page, _template, viewer_client_html
 
 router = APIRouter(tags=["pages"], include_in_schema=False)
 esc = html.escape
@@ -51,7 +51,7 @@ def room_viewer_page(room_id: RoomId, rooms: RoomsDep) -> Response:
         rooms.get(room_id)
     except KeyError as exc:
         raise HTTPException(status_code=404, detail=str(exc.args[0])) from None
-    return Response(_viser_client_html(), media_type="text/html; charset=utf-8")
+    return Response(viewer_client_html(), media_type="text/html; charset=utf-8")
 
 
 

@@ -467,23 +467,33 @@
   const live = document.getElementById("live");
   const readoutBox = document.getElementById("readout");
   let pollTimer = null;
+  // Live numbers exist once the page's viewer has connected (about 2 s after it starts): until then the poll asks
+  // the session's playback, which counts its viewers, instead of asking /live into a 404.
+  let viewerConnected = false;
   async function pollLive() {
     pollTimer = null;
     try {
-      const response = await fetch(`/api/scenes/${scene.id}/sessions/${session.id}/live`);
-      if (response.ok) {
-        const data = await response.json();
-        document.dispatchEvent(new CustomEvent("dynlab:live", { detail: data }));
-        if (data.readout) renderReadout(data.readout);
-        if (scene.integrated && data.invariants) renderLive(data);
+      if (!viewerConnected) {
+        const playback = await fetch(`/api/scenes/${scene.id}/sessions/${session.id}/playback`);
+        viewerConnected = playback.ok && (await playback.json()).viewers > 0;
+      }
+      if (viewerConnected) {
+        const response = await fetch(`/api/scenes/${scene.id}/sessions/${session.id}/live`);
+        if (response.ok) {
+          const data = await response.json();
+          document.dispatchEvent(new CustomEvent("dynlab:live", { detail: data }));
+          if (data.readout) renderReadout(data.readout);
+          if (scene.integrated && data.invariants) renderLive(data);
+        } else if (response.status === 404) viewerConnected = false; // the viewer went (a reconnect): wait for it again
       }
     } catch (e) { /* the next poll retries */ }
-    if (polling) pollTimer = setTimeout(pollLive, document.hidden ? 3000 : 1000);
+    if (polling) pollTimer = setTimeout(pollLive, document.hidden ? 3000 : viewerConnected ? 1000 : 500);
   }
   let polling = false;
   function startPolling() {
     if (polling || !scene || !(scene.integrated || scene.readout)) return;
     polling = true;
+    viewerConnected = false;
     pollTimer = setTimeout(pollLive, 1000);
   }
   function stopPolling() {
@@ -572,7 +582,6 @@
       const control = specs.find((s) => s.name === name);
       const marks = (readout.marks || {})[name] || [];
       spec.slot.closest(".control").classList.toggle("has-mark", marks.length > 0);
-      let lastLabelled = -1e9;
       for (const mark of marks) {
         const lo = toSlider(control, control.min), hi = toSlider(control, control.max);
         const x = (toSlider(control, mark.value) - lo) / (hi - lo);
@@ -584,10 +593,33 @@
         tick.hidden = !(x >= 0 && x <= 1);
         tick.style.left = `${(100 * Math.min(Math.max(x, 0), 1)).toFixed(2)}%`;
         tick.innerHTML = "<span></span>";
-        if (Math.abs(x - lastLabelled) > 0.04) { tick.firstChild.textContent = mark.label; lastLabelled = x; }
+        tick.firstChild.textContent = mark.label;
         spec.slot.appendChild(tick);
       }
+      placeMarkLabels(spec.slot);
     }
+  }
+  // Mark labels, measured: each is centred over its tick but kept inside the slider; one that would overlap the
+  // label before it goes up a row, and one that would overlap on both rows keeps only its tick (whose title names it).
+  // Redone on every readout (about once a second), so a narrower window or projector mode's larger text is taken in.
+  const MARK_LABEL_GAP_PX = 6;
+  function placeMarkLabels(slot) {
+    const slotBox = slot.getBoundingClientRect();
+    const rowEnds = [-Infinity, -Infinity];
+    let rowsUsed = 0;
+    const ticks = [...slot.querySelectorAll(".mark:not([hidden])")].map((tick) => [tick, tick.getBoundingClientRect().left - slotBox.left]);
+    for (const [tick, tickLeft] of ticks.sort((a, b) => a[1] - b[1])) {
+      const label = tick.firstChild;
+      const width = label.getBoundingClientRect().width;
+      const left = Math.min(Math.max(tickLeft + 1 - width / 2, 0), Math.max(slotBox.width - width, 0));
+      label.style.left = `${(left - tickLeft).toFixed(1)}px`;
+      label.style.transform = "none";
+      const row = rowEnds.findIndex((end) => left >= end + MARK_LABEL_GAP_PX);
+      label.hidden = row < 0;
+      label.classList.toggle("upper", row === 1);
+      if (row >= 0) { rowEnds[row] = left + width; rowsUsed = Math.max(rowsUsed, row + 1); }
+    }
+    slot.closest(".control").classList.toggle("two-mark-rows", rowsUsed > 1);
   }
   function renderLive(data) {
     live.hidden = false;

@@ -1,8 +1,10 @@
-// A small SVG line plot (linear or log axes) for solution panels. No dependencies.
+// A small SVG line plot (linear or log axes) for solution panels and the graphs panel. No dependencies.
+// plot: {title, x_label, y_label, log_x, log_y, series: [{name, x, y}], description?}; non-finite points are skipped.
 window.DynPlot = (function () {
   const COLORS = ["#1f5eea", "#d1495b", "#2e8b57", "#8e44ad", "#e08e0b", "#555"];
   const NS = "http://www.w3.org/2000/svg";
   const W = 640, H = 360, M = { l: 74, r: 16, t: 30, b: 50 };
+  let described = 0;
 
   function el(name, attrs, text) {
     const node = document.createElementNS(NS, name);
@@ -46,6 +48,13 @@ window.DynPlot = (function () {
     const tx = (v) => M.l + ((plot.log_x ? Math.log10(v) : v) - ax.lo) / (ax.hi - ax.lo) * (W - M.l - M.r);
     const ty = (v) => H - M.b - ((plot.log_y ? Math.log10(v) : v) - ay.lo) / (ay.hi - ay.lo) * (H - M.t - M.b);
     const svg = el("svg", { viewBox: `0 0 ${W} ${H}`, role: "img", "aria-label": plot.title });
+    if (plot.description) {
+      // A screen reader's summary of what is plotted (e.g. the graphs panel's ranges and point count).
+      const id = `plot-desc-${++described}`;
+      svg.appendChild(el("title", {}, plot.title));
+      svg.appendChild(el("desc", { id }, plot.description));
+      svg.setAttribute("aria-describedby", id);
+    }
     svg.appendChild(el("text", { x: W / 2, y: 18, "text-anchor": "middle", "font-size": 15, "font-weight": 600 }, plot.title));
     for (const t of ax.ticks) {
       const x = M.l + (t - ax.lo) / (ax.hi - ax.lo) * (W - M.l - M.r);

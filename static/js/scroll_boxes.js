@@ -1,9 +1,10 @@
 // Keyboard access to the boxes that scroll sideways (a wide equation in the text, a step of a worked
-// solution, a derived equation): while a box does overflow it is a tab stop with a name, so a keyboard
+// solution, a derived equation, a wide table): while a box does overflow it is a tab stop with a name, so a keyboard
 // user can reach it and scroll it with the arrow keys; when it fits again (a wider window) it is not.
 (function () {
-  const SCROLL_BOXES = ".math-display, .solution .step > div, .formulation .equations > div, .formulation .step > div";
+  const SCROLL_BOXES = ".math-display, .solution .step > div, .formulation .equations > div, .formulation .step > div, .table-wrap";
   const LABEL = "Equation (scroll sideways with the arrow keys)";
+  const TABLE_LABEL = "Table (scroll sideways with the arrow keys)";
 
   function markScrollBoxes() {
     for (const box of document.querySelectorAll(SCROLL_BOXES)) {
@@ -12,7 +13,7 @@
         box.dataset.keyboardScroll = "";
         box.tabIndex = 0;
         box.setAttribute("role", "group");
-        box.setAttribute("aria-label", LABEL);
+        box.setAttribute("aria-label", box.matches(".table-wrap") ? TABLE_LABEL : LABEL);
       } else if (!overflows && box.hasAttribute("data-keyboard-scroll")) {
         delete box.dataset.keyboardScroll;
         for (const name of ["tabindex", "role", "aria-label"]) box.removeAttribute(name);

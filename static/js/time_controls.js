@@ -127,3 +127,62 @@
     }, { once: true });
   }
 })();
+
+// "Save recording": the last few seconds the viewer showed (a still for a scene without motion), as one HTML file
+// that plays offline in any browser, for walkthroughs and for preparing a class. Beside the time controls.
+(function () {
+  const lesson = window.dynlabLesson;
+  if (!lesson || !lesson.scene) return;
+  if (new URLSearchParams(location.search).has("room")) return; // a room's scene is the instructor's
+  const scene = lesson.scene;
+  const session = lesson.session;
+  const group = document.createElement("div");
+  group.className = "recording-controls";
+  group.setAttribute("role", "group");
+  group.setAttribute("aria-label", "Save a recording");
+  const save = document.createElement("button");
+  save.type = "button";
+  save.className = "rec-save";
+  save.textContent = scene.animated ? "Save recording" : "Save recording (a still)";
+  const seconds = document.createElement("select");
+  seconds.className = "rec-seconds";
+  seconds.setAttribute("aria-label", "Recording length: the last seconds shown");
+  for (const s of [5, 10, 30, 60]) seconds.add(new Option(`last ${s} s`, String(s)));
+  seconds.value = "10";
+  seconds.hidden = !scene.animated;
+  const status = document.createElement("span");
+  status.className = "rec-status";
+  status.setAttribute("role", "status");
+  status.textContent = "One HTML file that plays offline in any browser, with no server.";
+  group.append(save, seconds, status);
+  (document.querySelector(".time-controls") || document.getElementById("viewer-wrap")).after(group);
+
+  save.addEventListener("click", async () => {
+    const name = `${scene.id}-recording.html`;
+    save.disabled = true;
+    status.textContent = "preparing…";
+    status.dataset.state = "preparing";
+    try {
+      const response = await fetch(`/api/scenes/${scene.id}/sessions/${session.id}/recording.html?seconds=${seconds.value}`);
+      if (!response.ok) {
+        const data = await response.json().catch(() => ({}));
+        throw new Error(Array.isArray(data.detail) ? data.detail[0].msg : data.detail || response.statusText);
+      }
+      const blob = await response.blob();
+      const link = document.createElement("a");
+      link.href = URL.createObjectURL(blob);
+      link.download = name;
+      document.body.append(link);
+      link.click();
+      link.remove();
+      setTimeout(() => URL.revokeObjectURL(link.href), 60000);
+      status.textContent = `Saved ${name} (${(blob.size / 2 ** 20).toFixed(1)} MB): open it in any browser, offline.`;
+      status.dataset.state = "saved";
+    } catch (e) {
+      status.textContent = `The recording could not be made: ${e.message}`;
+      status.dataset.state = "error";
+    } finally {
+      save.disabled = false;
+    }
+  });
+})();

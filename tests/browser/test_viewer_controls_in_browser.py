@@ -1,0 +1,138 @@
+"""The viewer is ours: viser's control panel hidden, its useful buttons (Reset view, Save image) under the scene,
+and the camera driven from the keyboard.
+
+The panel selectors are viser 1.1.1's (app/web/pages.py VIEWER_CSS): each test first finds the element they
+hide, so a viser whose DOM changed fails here instead of showing its panel again. Camera poses are read from
+the server (GET …/playback: the browser reports its camera to viser); a reset is compared with the scene's own
+start pose to 1e-3 m, the browser's report being float32 (about 1e-7 m here) after a short animation.
+"""
+
+from __future__ import annotations
+
+import io
+import math
+
+import numpy as np
+import pytest
+from PIL import Image
+
+from tests.browser.conftest import dismiss_webgl_notice, open_lesson, screenshot
+from tests.conftest import wait_until
+
+LESSON = "/lessons/1-1-vector-operations"  # the robot-arm cable: a scene that is not animated
+SCENE = "robot-arm-cable"
+CONTROL_PANEL_TAB = '[data-dock-tab="viser-control-panel"]'
+BOTTOM_SHEET = "#root .mantine-Paper-root:not([data-floating-window]):has(> div > .mantine-ScrollArea-root)"
+CANVAS = "canvas[data-engine]"
+
+
+def viewer_frame(page):
+    return page.locator("#viewer").element_handle().content_frame()
+
+
+def camera(live_server, session_id) -> dict:
+    answer = live_server.host.camera(session_id)
+    assert answer is not None, "the viewer has not reported its camera"
+    return {name: np.array(value) for name, value in answer.items()}
+
+
+def start_pose(live_server, session_id) -> dict:
+    (scene,) = live_server.host.instances(session_id)
+    position, look_at = scene.camera_view()
+    return {"position": np.array(position), "look_at": np.array(look_at)}
+
+
+def moved_from(pose: dict, live_server, session_id, *, by_m: float = 0.05) -> bool:
+    now = camera(live_server, session_id)
+    return max(np.linalg.norm(now[k] - pose[k]) for k in pose) > by_m
+
+
+def at_pose(pose: dict, live_server, session_id, *, within_m: float = 1e-3) -> bool:
+    now = camera(live_server, session_id)
+    return all(np.allclose(now[k], pose[k], rtol=0, atol=within_m) for k in pose)
+
+
+def hold(page, key: str, milliseconds: int) -> None:
+    page.keyboard.down(key)
+    page.wait_for_timeout(milliseconds)
+    page.keyboard.up(key)
+
+
+def test_viser_panel_is_hidden_and_the_scene_shows(browser, live_server, shots):
+    context, page, session_id, errors = open_lesson(browser, live_server, LESSON)
+    frame = viewer_frame(page)
+    frame.wait_for_selector(CANVAS)
+    tab = frame.locator(CONTROL_PANEL_TAB)
+    wait_until(lambda: tab.count() == 1, 15, what="viser's control panel tab, found by VIEWER_CSS's selector")
+    assert not tab.is_visible() and not frame.get_by_text("Connected").is_visible()
+    box = frame.locator(CANVAS).bounding_box()
+    assert frame.locator(CANVAS).is_visible() and box["width"] > 300 and box["height"] > 200
+    assert frame.evaluate("document.title") == "3D scene — Dynamics Lab"
+    for name in ("Reset view", "Save image"):  # a scene that is not animated has them too
+        assert page.get_by_role("button", name=name).is_visible()
+    dismiss_webgl_notice(page)
+    screenshot(page.locator("#viewer-wrap"), shots / "viewer-panel-hidden.png")
+    assert errors == []
+    context.close()
+
+    # A viewer under 576 px wide: viser shows a bottom sheet instead (websocket URL, dev settings); hidden too.
+    phone = browser.new_context(viewport={"width": 380, "height": 640})
+    viewer = phone.new_page()
+    viewer.goto(f"{live_server.url}/viewer/{SCENE}/{session_id}/")
+    wait_until(lambda: live_server.host.viewer_count(session_id) >= 1, 30, what="the narrow viewer to connect")
+    viewer.wait_for_selector(CANVAS)
+    sheet = viewer.locator(BOTTOM_SHEET)
+    wait_until(lambda: sheet.count() == 1, 10, what="viser's bottom sheet in the DOM")
+    assert not sheet.is_visible() and not viewer.get_by_text("Connected").is_visible()
+    assert viewer.locator(CANVAS).is_visible()
+    phone.close()
+
+
+def test_keyboard_orbits_and_zooms_and_reset_view_restores_the_start_pose(browser, live_server):
+    context, page, session_id, errors = open_lesson(browser, live_server, LESSON)
+    viewer_frame(page).wait_for_selector(CANVAS)
+    wait_until(lambda: live_server.host.camera(session_id) is not None, 20, what="the viewer's first camera report")
+    start = start_pose(live_server, session_id)
+    wait_until(lambda: at_pose(start, live_server, session_id), 10, what="the viewer to start at the scene's pose")
+
+    page.locator("#viewer").focus()  # Tab into the scene: the keys go to the viewer's document
+    hold(page, "ArrowLeft", 700)
+    wait_until(lambda: moved_from(start, live_server, session_id), 10, what="the arrow key to orbit the camera")
+    orbited = camera(live_server, session_id)
+    np.testing.assert_allclose(orbited["look_at"], start["look_at"], rtol=0, atol=1e-3)  # orbiting keeps the target
+    distance = np.linalg.norm(orbited["position"] - orbited["look_at"])
+    assert distance == pytest.approx(np.linalg.norm(start["position"] - start["look_at"]), rel=1e-3)
+
+    page.get_by_role("button", name="Reset view").click()
+    wait_until(lambda: at_pose(start, live_server, session_id), 10, what="Reset view to restore the start pose")
+
+    page.locator("#viewer").focus()
+    page.keyboard.press("+")  # zoom in: 15 % closer to the point looked at, which stays
+    wait_until(lambda: moved_from(start, live_server, session_id), 10, what="+ to zoom the camera in")
+    wait_until(lambda: np.linalg.norm(camera(live_server, session_id)["position"] - start["look_at"]) < 0.9 * distance, 10, what="the zoom to finish")
+    np.testing.assert_allclose(camera(live_server, session_id)["look_at"], start["look_at"], rtol=0, atol=1e-3)
+    hold(page, "w", 400)  # W moves the camera and the point it looks at forward together
+    wait_until(lambda: moved_from({"look_at": start["look_at"]}, live_server, session_id), 10, what="W to move the camera forward")
+    page.keyboard.press("r")  # R, with the viewer focused, resets too
+    wait_until(lambda: at_pose(start, live_server, session_id), 10, what="R to restore the start pose")
+    assert errors == []
+    context.close()
+
+
+def test_save_image_downloads_a_png_of_the_view(browser, live_server):
+    context, page, session_id, errors = open_lesson(browser, live_server, LESSON)
+    viewer_frame(page).wait_for_selector(CANVAS)
+    page.wait_for_timeout(1500)  # software WebGL draws the first frames
+    with page.expect_download() as download_info:
+        page.get_by_role("button", name="Save image").click()
+    download = download_info.value
+    assert download.suggested_filename == f"{SCENE}.png"
+    image = Image.open(io.BytesIO(open(download.path(), "rb").read()))
+    assert image.format == "PNG" and image.width > 300 and image.height > 200
+    pixels = np.asarray(image.convert("RGB"), dtype=float)
+    # Not blank: the scene's bodies, lines and labels differ from the background over a visible share of the view.
+    background = np.median(pixels.reshape(-1, 3), axis=0)
+    drawn = np.mean(np.abs(pixels - background).sum(axis=2) > 30)
+    assert drawn > 0.005, f"only {drawn:.2%} of the saved image differs from its background"
+    assert math.isfinite(drawn) and errors == []
+    context.close()
