@@ -25,6 +25,16 @@ MOON_RING_RADIUS = 3.0
 START_YEAR_CE = 2000.0
 
 
+def turns_and_degrees(angle_deg: float) -> str:
+    """An angle of several turns in words, e.g. 725.29 → "2 turns + 5.29°" (under one turn: "5.29°")."""
+    turns, rest = divmod(angle_deg, 360.0)
+    if round(rest, 2) >= 360.0:  # 719.999… shows as 2 turns + 0.00°, not 1 turn + 360.00°
+        turns, rest = turns + 1, 0.0
+    if turns < 1:
+        return f"{rest:.2f}°"
+    return f"{turns:.0f} turn{'s' if turns >= 2 else ''} + {rest:.2f}°"
+
+
 def ellipsoid_mesh(*, equatorial_radius: float, polar_radius: float, rings: int = 24, segments: int = 48):
     """Vertices and faces of an oblate spheroid about +Z (display units)."""
     polar = np.linspace(0.0, math.pi, rings + 1)
@@ -145,11 +155,12 @@ class EquinoxPrecessionScene(Scene):
         self.torque_label.position = tuple(tails[1] + vectors[1] * 1.05)
         year = START_YEAR_CE + self.elapsed_years
         era = f"{year:,.0f} CE" if year >= 0.5 else f"{1 - year:,.0f} BCE"
-        self.time_label.text = f"{era}   axis turned {math.degrees(-phi) % 360:5.1f}° westward"
+        self.time_label.text = f"{era}   axis turned {turns_and_degrees(math.degrees(-phi))} westward"
 
     def readout(self) -> Readout:
         result = self.result
         share = result.sun_rate_rad_s / result.rate_rad_s if result.rate_rad_s > 0 else 0.0
+        turned_deg = math.degrees(-self.precession_angle_rad())  # unwrapped: whole turns count
         return Readout(
             [
                 Quantity("rate_arcsec_per_year", "precession rate", result.rate_arcsec_per_year, "arcsec/yr"),
@@ -158,7 +169,7 @@ class EquinoxPrecessionScene(Scene):
                 Quantity("moon_share", "Moon's share", 1.0 - share if result.rate_rad_s > 0 else 0.0, ""),
                 Quantity("t_s", "simulated time since 2000 CE", self.elapsed_years * physics.JULIAN_YEAR_S, "s"),
                 Quantity("years_elapsed", "years since 2000 CE", self.elapsed_years, "yr"),
-                Quantity("precession_angle_deg", "axis turned since 2000 CE", math.degrees(-self.precession_angle_rad()) % 360.0, "deg"),
+                Quantity("precession_angle_deg", "axis turned since 2000 CE", turned_deg, "deg", turns_and_degrees(turned_deg) if turned_deg >= 360.0 else ""),
             ],
             message=" ".join(
                 m

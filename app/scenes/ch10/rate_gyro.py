@@ -31,6 +31,9 @@ ROTOR_RADIUS = 0.34
 CASE_SIZE = (1.5, 1.5, 1.2)
 POINTER_LENGTH = 0.62
 SCALE_X = 0.78  # the pointer and its scale sit just inside the case's +x wall
+SCALE_X_VECTOR = np.array([SCALE_X, 0.0, 0.0])
+SCALE_LABEL_GAP = 0.14  # numbers this far beyond the pointer's tip (m, display)
+SCALE_LABEL_SIZE = 1.0
 H_ARROW_LENGTH = 0.95
 RATE_ARROW_MAX = 0.7
 MOMENT_ARROW_MAX = 0.6
@@ -121,8 +124,9 @@ class RateGyroScene(Scene):
         self._draw()
 
     def _draw_scale(self) -> None:
-        """Ticks on the case wall at β = G Ω for round input rates Ω (every half of |Ω₀|, up to ±2|Ω₀|
-        and at most ±60° of deflection), every other one labelled in rad/s."""
+        """Ticks on the case wall at β = G Ω for round input rates Ω (every half of |Ω₀|, up to ±2|Ω₀| and at most
+        ±60° of deflection). Only the two ends ("+1 rad/s") and zero are numbered, in full-size type: numbers on
+        every other tick of so short an arc ran into each other and could not be read."""
         for node in self.scale_nodes:
             node.remove()
         scene = self.client.scene
@@ -133,17 +137,16 @@ class RateGyroScene(Scene):
         for k in range(-count, count + 1):
             beta = self._gain * k * step
             # The pointer turns about +x by β: its tip goes to (0, −sin β, cos β)·L.
-            tip = np.array([SCALE_X, -math.sin(beta), math.cos(beta)])
-            segments.append([[SCALE_X, -math.sin(beta) * POINTER_LENGTH, math.cos(beta) * POINTER_LENGTH],
-                             [SCALE_X, -math.sin(beta) * (POINTER_LENGTH + 0.07), math.cos(beta) * (POINTER_LENGTH + 0.07)]])
-            if k % 2 == 0:
-                label = scene.add_label(
-                    f"/table/scale/t{k + count}", f"{k * step:g}", position=(SCALE_X, tip[1] * (POINTER_LENGTH + 0.12), tip[2] * (POINTER_LENGTH + 0.12)),
-                    anchor="bottom-center", font_screen_scale=0.8,
-                )
-                nodes.append(label)
+            direction = np.array([0.0, -math.sin(beta), math.cos(beta)])
+            segments.append([SCALE_X_VECTOR + direction * POINTER_LENGTH, SCALE_X_VECTOR + direction * (POINTER_LENGTH + 0.07)])
+            if k in (-count, 0, count):
+                rate = k * step
+                text = "0" if k == 0 else f"{rate:+g} rad/s".replace("-", "−")
+                nodes.append(scene.add_label(
+                    f"/table/scale/t{k + count}", text, position=tuple(SCALE_X_VECTOR + direction * (POINTER_LENGTH + SCALE_LABEL_GAP)),
+                    anchor="bottom-center", font_screen_scale=SCALE_LABEL_SIZE,
+                ))  # fmt: skip
         nodes.append(scene.add_line_segments("/table/scale/ticks", np.asarray(segments, np.float32), (40, 40, 40), thickness=2.0, thickness_units="screen"))
-        nodes.append(scene.add_label("/table/scale/unit", "scale: rad/s", position=(SCALE_X, 0.0, POINTER_LENGTH + 0.24), anchor="bottom-center"))
         self.scale_nodes = nodes
 
     def demonstration(self, t_s: float) -> tuple[float, float, float, float]:
