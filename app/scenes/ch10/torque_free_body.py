@@ -25,7 +25,6 @@ from typing import Any
 import numpy as np
 
 from app.physics.core.parameters import Parameter
-from app.physics.math.rotations import rotate_vector
 from app.physics.solvers import LiveRun
 from app.physics.systems.ch10 import torque_free_body as physics
 from app.scenes.kit import FRAME_DT_S, Mark, Preset, Quantity, Readout, Scene, Trail
@@ -49,7 +48,6 @@ HERPOLHODE_COLOR = (200, 30, 70)
 GHOST_COLOR = (30, 190, 120)
 HERPOLHODE_LABEL_SIDE = np.array([-0.8, -0.6, 0.0])  # a horizontal direction on the camera's left
 POLHODE_LABEL_SIDE = -HERPOLHODE_LABEL_SIDE  # the camera's right: the two curves' names never meet
-POLHODE_LABEL_SAMPLES = 48
 
 GHOST = Parameter(
     "ghost", "", "off", kind="choice", choices=("off", "on"), label="numerical ghost",
@@ -119,8 +117,10 @@ class TorqueFreeBodyScene(Scene):
         scene.add_icosphere("/contact/marker", radius=0.022, color=HERPOLHODE_COLOR, cast_shadow=False)
         scene.add_label("/contact/omega_label", "ω", position=(0.03, 0.0, 0.05), anchor="bottom-left")
         self.plane_label = scene.add_label("/plane_label", "invariable plane (⊥ L, fixed in space)", anchor="top-left")
-        self.herpolhode_label = scene.add_label("/herpolhode_label", "herpolhode", anchor="center-right", font_screen_scale=0.85)
-        self.polhode_label = scene.add_label("/body/polhode_label", "polhode", anchor="center-left", font_screen_scale=0.85)
+        self.herpolhode_label = scene.add_label("/herpolhode_label", "herpolhode (red, on the plane)", anchor="center-right", font_screen_scale=0.85)
+        self.polhode_label = scene.add_label(
+            "/polhode_label", "polhode (orange, on the ellipsoid)", anchor="center-left", font_screen_scale=0.85
+        )
         self.polhode_trail = Trail(scene, "/body/polhode", color=POLHODE_COLOR, chunk_frames=TRAIL_CHUNK_FRAMES, max_chunks=POLHODE_CHUNKS)
         self.herpolhode_trail = Trail(scene, "/herpolhode", color=HERPOLHODE_COLOR, chunk_frames=TRAIL_CHUNK_FRAMES, max_chunks=HERPOLHODE_CHUNKS)
 
@@ -172,12 +172,10 @@ class TorqueFreeBodyScene(Scene):
         self._batch = physics.poinsot_frames(self.body, np.zeros(1))
         self._batch_start = 0
         self._clear_trails()
-        # Name the polhode at its point farthest to the camera's right at the start (the herpolhode's name is on the
-        # left), its text running further right: the two names sit on opposite sides of the contact point.
-        span = self.body.period_s if math.isfinite(self.body.period_s) else 4.0
-        loop = physics.poinsot_frames(self.body, np.linspace(0.0, span, POLHODE_LABEL_SAMPLES, endpoint=False)).omega_body
-        rightmost = loop[int(np.argmax(rotate_vector(self.body.q0, loop) @ POLHODE_LABEL_SIDE))]
-        self.polhode_label.position = tuple(rightmost * self.scale * 1.03)
+        # The polhode turns with the body, so a name riding on it would cross the herpolhode's as the body turns. Its
+        # name stays in space instead, just outside the ellipsoid on the camera's right, level with the centre: the
+        # herpolhode's is on the left and below, on the plane, so the two never meet.
+        self.polhode_label.position = tuple((ELLIPSOID_SIZE + 0.08) * POLHODE_LABEL_SIDE / np.linalg.norm(POLHODE_LABEL_SIDE))
         # The herpolhode stays within its largest radius of the foot of L: its label goes just outside, to the viewer's left.
         _, widest = physics.herpolhode_radii_rad_s(self.body)
         self.herpolhode_label.position = tuple((widest * self.scale + 0.06) * HERPOLHODE_LABEL_SIDE + np.array([0.0, 0.0, plane_z]))

@@ -24,7 +24,6 @@ from app.physics.math.rotations import rotation_matrix
 from app.physics.solvers import DormandPrince, simulate
 from app.physics.solvers.integrated_model import IntegratedModel
 from app.physics.systems.ch06 import mechanism_kinetics as mk
-from app.physics.systems.ch08 import stick_slip_belt as belt
 from app.scenes import SCENES
 
 INTEGRATED = {sid: cls for sid, cls in SCENES.items() if isinstance(cls.model, type) and issubclass(cls.model, IntegratedModel)}
