@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from app.physics.core.parameters import ParameterError
 from app.rooms.polls import Poll, PollError
 from app.scenes.kit import Scene
 from app.settings import DEFAULT_LESSONS_DIR
@@ -165,6 +166,9 @@ def _ready_question(entry: Any, scenes: Mapping[str, type[Scene]], *, path: Path
     )
     try:
         question.scene_params(scene)
+    except ParameterError as exc:  # the file's author wrote the parameter's name: say it, and what the page calls it
+        called = f" ({exc.label})" if exc.label else ""
+        raise ValueError(f"{where}: the scene refuses its params: {' → '.join(map(str, exc.path))}{called}: {exc.message}") from None
     except ValueError as exc:
         raise ValueError(f"{where}: the scene refuses its params: {exc}") from None
     return question

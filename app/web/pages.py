@@ -201,7 +201,7 @@ def lesson_page(lesson_id: str, catalogue: CatalogueDep, scene: str | None = Non
     return _page(
         f"{lesson.section} {lesson.title} — Dynamics Lab",
         body,
-        scripts=("/static/vendor/katex/katex.min.js", "/static/js/common.js", "/static/js/plot.js", "/static/js/lesson.js", "/static/js/room.js", "/static/js/time_controls.js", "/static/js/viewer_toolbar.js", "/static/js/derivations.js"),
+        scripts=("/static/vendor/katex/katex.min.js", "/static/js/common.js", "/static/js/plot.js", "/static/js/lesson.js", "/static/js/room.js", "/static/js/time_controls.js", "/static/js/viewer_toolbar.js", "/static/js/graphs.js", "/static/js/derivations.js"),
     )
 
 
