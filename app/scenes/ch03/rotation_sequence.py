@@ -7,6 +7,12 @@ translucent plate). Each turn's axis is an arrow in its own colour, labelled wit
 its angle, and the tip of one axis of the turning frame leaves an arc showing
 the angle swept. In gimbal lock the first and third turn axes turn red.
 
+Axis names sit at the axis tips; frames share the axis of the turn between
+them, and an axis can point at the camera, so tips of different axes often
+meet on the screen. Each frame drawn, every name's text is put on the side of
+its tip (above or below, left or right) where, in the default view, it covers
+no other name (:func:`label_anchors`).
+
 Display units: the fixed axes are 1.3 units long. The animation (apply θ1, then
 θ2, then θ3, hold, repeat) is a drawing device, not a model in time: every
 number in the readout is for the complete sequence and comes from
@@ -22,6 +28,7 @@ import numpy as np
 from app.physics.core.parameters import Parameter
 from app.physics.math.rotations import (
     SEQUENCES,
+    rotate_vector,
     angle_rate_matrix_body,
     angles_from_matrix,
     axis_angle_from_quaternion,
@@ -52,7 +59,18 @@ CONTROLS = (
 FRAME_AXIS_LENGTH = (1.3, 1.1, 0.9, 0.72)
 FRAME_AXIS_RADIUS = (0.012, 0.016, 0.02, 0.026)
 FRAME_LABELS = (("X", "Y", "Z"), ("x′", "y′", "z′"), ("x″", "y″", "z″"), ("x", "y", "z"))
+FRAME_LABEL_SCALE = (1.2, 1.0, 1.0, 1.2)
+LABEL_GAP = 0.1  # names this far beyond their axis tips (display units)
 TURN_AXIS_LENGTH = (2.0, 1.8, 1.6)
+#: The text box of a label as the viewer draws it, in px at font scale 1 (measured on screenshots: 5.3 px a
+#: character, 12 px tall), padded to 7 and 15 px; primes are thin and count as half a character.
+LABEL_CHAR_PX, LABEL_HEIGHT_PX = 7.0, 15.0
+#: px per unit of tangent off the line of sight in the lesson's viewer (520 px tall, vertical field of view 1 rad).
+VIEW_PX_PER_TANGENT = 260.0 / math.tan(0.5)
+#: The sides of its tip a name may be put on (viser anchors: the text's corner or edge at the tip), corners first.
+#: Half-size (px) of the spot around each name's tip that other names' texts keep clear of.
+TIP_CLEARANCE_PX = 1.5
+LABEL_SIDES = ("bottom-left", "bottom-right", "top-left", "top-right", "center-left", "center-right", "bottom-center", "top-center")
 TURN_COLORS = ((240, 140, 20), (190, 60, 200), (20, 160, 170))
 LOCK_COLOR = (225, 25, 25)
 ARC_DEGREES_PER_SEGMENT = 4.0
@@ -71,6 +89,66 @@ def animation_state(t_s: float) -> tuple[int, int, float]:
             return done, sweeping, f * f * (3.0 - 2.0 * f) if sweeping else 0.0
         t -= duration
     return 3, 0, 0.0
+
+
+def label_box_px(text: str, font_scale: float) -> tuple[float, float]:
+    """``(width, height)`` in px of a label's text box (see LABEL_CHAR_PX)."""
+    characters = sum(0.5 if c in "′″" else 1.0 for c in text)
+    return LABEL_CHAR_PX * characters * font_scale, LABEL_HEIGHT_PX * font_scale
+
+
+def view_px(camera_position, camera_look_at, points_world: np.ndarray) -> np.ndarray:
+    """(n, 2) px (right, up) from the view's centre of ``points_world`` (n, 3) seen from the camera (pinhole)."""
+    camera = np.asarray(camera_position, float)
+    forward = np.asarray(camera_look_at, float) - camera
+    forward /= np.linalg.norm(forward)
+    right = np.cross(forward, [0.0, 0.0, 1.0])
+    right /= np.linalg.norm(right)
+    offsets = np.asarray(points_world, float) - camera
+    return VIEW_PX_PER_TANGENT * np.column_stack([offsets @ right, offsets @ np.cross(right, forward)]) / (offsets @ forward)[:, None]
+
+
+#: Where each LABEL_SIDES anchor puts the text's lower-left corner, in widths and heights of the text from the tip.
+SIDE_OFFSETS = np.array(
+    [[-{"left": 0.0, "center": 0.5, "right": 1.0}[side.split("-")[1]], -{"bottom": 0.0, "center": 0.5, "top": 1.0}[side.split("-")[0]]] for side in LABEL_SIDES]
+)
+
+
+def text_box(point_px: np.ndarray, size_px: tuple[float, float], anchor: str) -> np.ndarray:
+    """``[left, bottom, right, top]`` px of a text of ``size_px`` whose ``anchor`` corner (or edge) is at ``point_px``."""
+    return side_boxes(point_px, size_px)[LABEL_SIDES.index(anchor)]
+
+
+def side_boxes(point_px: np.ndarray, size_px: tuple[float, float]) -> np.ndarray:
+    """(len(LABEL_SIDES), 4) ``[left, bottom, right, top]`` px of the text on each side of ``point_px``."""
+    lower_left = np.asarray(point_px, float) + SIDE_OFFSETS * np.asarray(size_px, float)
+    return np.concatenate([lower_left, lower_left + np.asarray(size_px, float)], axis=1)
+
+
+def boxes_overlap(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Area (px²) shared by ``[left, bottom, right, top]`` boxes ``a`` (..., 4) and ``b`` (..., 4), broadcast (0 when apart)."""
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    width = np.minimum(a[..., 2], b[..., 2]) - np.maximum(a[..., 0], b[..., 0])
+    height = np.minimum(a[..., 3], b[..., 3]) - np.maximum(a[..., 1], b[..., 1])
+    return np.clip(width, 0.0, None) * np.clip(height, 0.0, None)
+
+
+def label_anchors(points_px: np.ndarray, sizes_px, current: list[str]) -> list[str]:
+    """A side (LABEL_SIDES anchor) for each label at ``points_px`` (n, 2) whose text covers no label placed before
+    it and no other label's tip (TIP_CLEARANCE_PX around it, so a later name always has room): its ``current``
+    side if that is free (so names do not jump about), else the first free side, else the side covering least."""
+    points_px = np.asarray(points_px, float)
+    tips = np.concatenate([points_px - TIP_CLEARANCE_PX, points_px + TIP_CLEARANCE_PX], axis=1)
+    placed = np.empty((0, 4))
+    anchors = []
+    for i, (point, size, now) in enumerate(zip(points_px, sizes_px, current)):
+        others = np.concatenate([placed, tips[:i], tips[i + 1 :]])
+        cover = boxes_overlap(side_boxes(point, size)[:, None, :], others[None, :, :]).sum(axis=1)
+        kept = LABEL_SIDES.index(now)
+        best = kept if cover[kept] <= cover.min() else int(np.argmin(cover))
+        anchors.append(LABEL_SIDES[best])
+        placed = np.concatenate([placed, side_boxes(point, size)[best][None, :]])
+    return anchors
 
 
 def _fmt(value: float) -> str:
@@ -98,12 +176,14 @@ class RotationSequenceScene(Scene):
     def build(self) -> None:
         scene = self.client.scene
         self.frames = []
+        self.axis_labels = []  # (frame index, label handle, text box size px)
         for n, (length, radius, labels) in enumerate(zip(FRAME_AXIS_LENGTH, FRAME_AXIS_RADIUS, FRAME_LABELS)):
             frame = scene.add_frame(f"/frame{n}", axes_length=length, axes_radius=radius, origin_radius=0.05)
             for axis, text in enumerate(labels):
                 tip = np.zeros(3)
-                tip[axis] = length + 0.1
-                scene.add_label(f"/frame{n}/label_{axis}", text, position=tip, anchor="center-center", font_screen_scale=1.2 if n in (0, 3) else 1.0)
+                tip[axis] = length + LABEL_GAP
+                handle = scene.add_label(f"/frame{n}/label_{axis}", text, position=tip, anchor=LABEL_SIDES[n], font_screen_scale=FRAME_LABEL_SCALE[n])
+                self.axis_labels.append((n, handle, label_box_px(text, FRAME_LABEL_SCALE[n])))
             self.frames.append(frame)
         scene.add_box("/frame3/plate", color=(90, 120, 170), dimensions=(0.7, 0.42, 0.06), opacity=0.45, cast_shadow=False, receive_shadow=False)
         self.turn_axes = [
@@ -192,6 +272,24 @@ class RotationSequenceScene(Scene):
             self._shown = shown
         if sweeping:
             self._turn(sweeping - 1, fraction)
+        self._place_labels()
+
+    def _place_labels(self) -> None:
+        """Put each shown turn label and axis name on a side of its tip where its text covers no other label nor
+        another's tip in the default view (see :func:`label_anchors`); only labels whose side changes are sent."""
+        shown = [(label, np.asarray(label.position, float), label_box_px(label.text, 1.0)) for label in self.turn_labels if label.visible]
+        for n, handle, size in self.axis_labels:
+            frame = self.frames[n]
+            if frame.visible:
+                tip = np.asarray(frame.position, float) + rotate_vector(np.asarray(frame.wxyz, float), np.asarray(handle.position, float))
+                shown.append((handle, tip, size))
+        if not shown:
+            return
+        points = view_px(*self.camera_view(), np.array([tip for _, tip, _ in shown]))
+        anchors = label_anchors(points, [size for *_, size in shown], [label.anchor for label, _, _ in shown])
+        for (label, _, _), anchor in zip(shown, anchors):
+            if label.anchor != anchor:
+                label.anchor = anchor
 
     def step_motion(self, dt_s: float) -> bool:
         """The clock runs only while the stage is "animate"."""

@@ -4,8 +4,11 @@ World frame: +Z up. The case (a translucent box) stands on a turntable that
 turns about Z, the gyro's input axis. The gimbal (teal ring) pivots in the
 case about the case's x axis (output axis), restrained by a spring and a
 damper; the rotor (blue) spins about the gimbal's y axis. A pointer on the
-gimbal reads the deflection β against a scale calibrated in rad/s of input
-rate (β = G Ω in the steady state, G = I_a ω_s / k).
+gimbal shows the deflection β in the case. As in a real rate gyro, a pickoff on
+the output axis repeats β on an indicator that stands beside the turntable and
+does not turn with it: its needle turns by the same β against a scale
+calibrated in rad/s of input rate (β = G Ω in the steady state, G = I_a ω_s / k).
+The dial faces the default camera, so its numbers are never seen edge-on.
 
 For a step input the turntable runs at Ω₀ for ``hold`` seconds, stops for as
 long, and repeats; by linearity β is the step response minus the step response
@@ -22,6 +25,7 @@ import math
 
 import numpy as np
 
+from app.physics.math.rotations import quaternion_from_matrix
 from app.physics.systems.ch10 import rate_gyro as physics
 from app.scenes.ch10.free_gyroscope import COLOR_H, COLOR_RATE, COLOR_TORQUE, add_rotor, drawn_spin_angle, ring_mesh, spin_quaternion
 from app.scenes.kit import Mark, Preset, Quantity, Readout, Scene, arrow_segments
@@ -30,14 +34,25 @@ GIMBAL_RADIUS = 0.55
 ROTOR_RADIUS = 0.34
 CASE_SIZE = (1.5, 1.5, 1.2)
 POINTER_LENGTH = 0.62
-SCALE_X = 0.78  # the pointer and its scale sit just inside the case's +x wall
-SCALE_X_VECTOR = np.array([SCALE_X, 0.0, 0.0])
-SCALE_LABEL_GAP = 0.14  # numbers this far beyond the pointer's tip (m, display)
+POINTER_X = 0.75  # the gimbal's pointer stands just inside the case's +x wall
+#: The indicator (display units): its centre lies this far to the left of the look-at point across the default
+#: view and this far above it, clear of the turntable (radius 1.25) and of the labels, which run to the right.
+INDICATOR_SIDE = 2.05
+INDICATOR_LIFT = 0.15
+DIAL_RADIUS = 0.55
+#: The indicator's needle: its tip sweeps the scale's inner edge; ticks run 0.07 beyond it, numbers SCALE_LABEL_GAP.
+NEEDLE_LENGTH = 0.4
+SCALE_LABEL_GAP = 0.12
 SCALE_LABEL_SIZE = 1.0
+#: Needle, ticks and numbers lie this far in front of the dial's face (the indicator's x points away from the camera).
+DIAL_FACE_X = -0.03
+DIAL_FACE_X_VECTOR = np.array([DIAL_FACE_X, 0.0, 0.0])
 H_ARROW_LENGTH = 0.95
 RATE_ARROW_MAX = 0.7
 MOMENT_ARROW_MAX = 0.6
 MAX_SCALE_RAD = math.radians(60.0)
+#: The numbered ends of the scale are at least this far from zero on the dial, so "0" and "+1 rad/s" stay apart.
+MIN_SCALE_RAD = math.radians(15.0)
 #: Label texts (numbers) are refreshed every this many frames (5 Hz): each assignment is sent to the browser.
 LABEL_TEXT_EVERY = 6
 RATE_ARROW_TAIL = np.array([0.0, 0.0, 0.5 * CASE_SIZE[2] + 0.25])
@@ -48,6 +63,25 @@ def hold_time_s(params) -> float:
     """How long the turntable runs (and then rests) in the step demonstration: ~6 time constants, 3–20 s."""
     decay = physics.damping_ratio(params) * physics.natural_frequency_rad_s(params)
     return float(np.clip(6.0 / decay, 3.0, 20.0)) if decay > 0.0 else 10.0
+
+
+def indicator_pose(camera_position, camera_look_at) -> tuple[np.ndarray, np.ndarray]:
+    """``(position (3,), wxyz (4,))`` of the indicator, fixed in the world frame: beside the turntable, its face square
+    to the line of sight from ``camera_position``. The indicator's x axis points from the camera through the dial's
+    centre, its z axis is the world's up as seen on the face, so a turn of +β about x swings the needle clockwise on
+    the screen, as the gimbal turns +β about the case's x."""
+    camera, look_at = np.asarray(camera_position, float), np.asarray(camera_look_at, float)
+    across = np.cross(look_at - camera, [0.0, 0.0, 1.0])
+    centre = look_at - INDICATOR_SIDE * across / np.linalg.norm(across) + np.array([0.0, 0.0, INDICATOR_LIFT])
+    x_axis = (centre - camera) / np.linalg.norm(centre - camera)
+    z_axis = np.array([0.0, 0.0, 1.0]) - x_axis[2] * x_axis
+    z_axis /= np.linalg.norm(z_axis)
+    return centre, quaternion_from_matrix(np.column_stack([x_axis, np.cross(z_axis, x_axis), z_axis]))
+
+
+def needle_direction(beta_rad: float) -> np.ndarray:
+    """Unit vector (3,), indicator frame, along the needle turned by ``beta_rad`` about x from straight up."""
+    return np.array([0.0, -math.sin(beta_rad), math.cos(beta_rad)])
 
 
 def nice_step(value: float) -> float:
@@ -99,15 +133,31 @@ class RateGyroScene(Scene):
         scene.add_mesh_simple("/table/gimbal/ring", vertices, faces, color=(40, 160, 160), flat_shading=False)
         scene.add_box(
             "/table/gimbal/pointer", color=(200, 40, 40), dimensions=(0.02, 0.02, POINTER_LENGTH),
-            position=(SCALE_X - 0.03, 0.0, 0.5 * POINTER_LENGTH),
+            position=(POINTER_X, 0.0, 0.5 * POINTER_LENGTH),
         )
         self.rotor = add_rotor(scene, "/table/gimbal/rotor", radius=ROTOR_RADIUS, thickness=0.12, axle_length=2 * GIMBAL_RADIUS)
+        self._build_indicator()
         self.scale_nodes: list = []
         self.arrows = scene.add_arrows(
             "/table/vectors", np.zeros((3, 2, 3), np.float32), np.array([COLOR_H, COLOR_RATE, COLOR_TORQUE], np.uint8),
             shaft_radius=0.016, head_radius=0.04, head_length=0.09,
         )
         self.labels = {name: scene.add_label(f"/table/vectors/{name}", "", anchor="bottom-left") for name in ("H", "rate", "moment")}
+
+    def _build_indicator(self) -> None:
+        """The dial, its needle and its caption, fixed in space (the scale's ticks and numbers follow the parameters)."""
+        scene = self.client.scene
+        centre, wxyz = indicator_pose(*self.camera_view())
+        scene.add_frame("/indicator", show_axes=False, position=tuple(centre), wxyz=tuple(wxyz))
+        face_normal = np.array([math.cos(math.pi / 4), 0.0, math.sin(math.pi / 4), 0.0])  # cylinder axis z → x
+        scene.add_cylinder("/indicator/dial", radius=DIAL_RADIUS, height=0.03, color=(245, 245, 240), wxyz=face_normal, radial_segments=48)
+        scene.add_cylinder("/indicator/hub", radius=0.03, height=0.02, color=(60, 60, 60), position=tuple(1.2 * DIAL_FACE_X_VECTOR), wxyz=face_normal)
+        self.needle = scene.add_frame("/indicator/needle", show_axes=False)
+        scene.add_box(
+            "/indicator/needle/bar", color=(200, 40, 40), dimensions=(0.01, 0.02, NEEDLE_LENGTH),
+            position=(DIAL_FACE_X, 0.0, 0.5 * NEEDLE_LENGTH),
+        )
+        scene.add_label("/indicator/caption", "indicator: β read as Ω", position=(DIAL_FACE_X, 0.0, -DIAL_RADIUS - 0.04), anchor="top-center")
 
     def update(self) -> None:
         params = self.params
@@ -124,29 +174,34 @@ class RateGyroScene(Scene):
         self._draw()
 
     def _draw_scale(self) -> None:
-        """Ticks on the case wall at β = G Ω for round input rates Ω (every half of |Ω₀|, up to ±2|Ω₀| and at most
-        ±60° of deflection). Only the two ends ("+1 rad/s") and zero are numbered, in full-size type: numbers on
-        every other tick of so short an arc ran into each other and could not be read."""
+        """Ticks on the indicator's dial at β = G Ω for round input rates Ω (every half of |Ω₀|, up to ±2|Ω₀| and at
+        most ±60° of deflection). Only the two ends ("+1 rad/s") and zero are numbered, in full-size type: numbers on
+        every other tick of so short an arc ran into each other and could not be read. The end numbers run outwards
+        from their ticks (left of the left one, right of the right one), so they stay clear of the "0"; where the
+        ends would fall within MIN_SCALE_RAD of zero (a small gain) the scale is widened to four round steps
+        reaching at least that far, and the needle then uses only the middle of it."""
         for node in self.scale_nodes:
             node.remove()
         scene = self.client.scene
         full_rate = abs(self.params["input_rate_rad_s"]) or 1.0
         step = nice_step(0.5 * full_rate)
         count = int(min(2.0 * full_rate / step, MAX_SCALE_RAD / (abs(self._gain) * step), 8))
+        if count * step * abs(self._gain) < MIN_SCALE_RAD:
+            step, count = nice_step(MIN_SCALE_RAD / (4.0 * abs(self._gain))), 4  # at most 2 MIN_SCALE_RAD < MAX_SCALE_RAD
         segments, nodes = [], []
         for k in range(-count, count + 1):
             beta = self._gain * k * step
-            # The pointer turns about +x by β: its tip goes to (0, −sin β, cos β)·L.
-            direction = np.array([0.0, -math.sin(beta), math.cos(beta)])
-            segments.append([SCALE_X_VECTOR + direction * POINTER_LENGTH, SCALE_X_VECTOR + direction * (POINTER_LENGTH + 0.07)])
+            direction = needle_direction(beta)  # where the needle's tip stops for this Ω
+            segments.append([DIAL_FACE_X_VECTOR + direction * NEEDLE_LENGTH, DIAL_FACE_X_VECTOR + direction * (NEEDLE_LENGTH + 0.07)])
             if k in (-count, 0, count):
                 rate = k * step
                 text = "0" if k == 0 else f"{rate:+g} rad/s".replace("-", "−")
+                anchor = "bottom-center" if k == 0 else ("bottom-left" if direction[1] < 0.0 else "bottom-right")  # −y is the screen's right
                 nodes.append(scene.add_label(
-                    f"/table/scale/t{k + count}", text, position=tuple(SCALE_X_VECTOR + direction * (POINTER_LENGTH + SCALE_LABEL_GAP)),
-                    anchor="bottom-center", font_screen_scale=SCALE_LABEL_SIZE,
+                    f"/indicator/scale/t{k + count}", text, position=tuple(DIAL_FACE_X_VECTOR + direction * (NEEDLE_LENGTH + SCALE_LABEL_GAP)),
+                    anchor=anchor, font_screen_scale=SCALE_LABEL_SIZE,
                 ))  # fmt: skip
-        nodes.append(scene.add_line_segments("/table/scale/ticks", np.asarray(segments, np.float32), (40, 40, 40), thickness=2.0, thickness_units="screen"))
+        nodes.append(scene.add_line_segments("/indicator/scale/ticks", np.asarray(segments, np.float32), (40, 40, 40), thickness=2.0, thickness_units="screen"))
         self.scale_nodes = nodes
 
     def demonstration(self, t_s: float) -> tuple[float, float, float, float]:
@@ -176,7 +231,9 @@ class RateGyroScene(Scene):
             first = self._outside_model[0] if self._outside_model else self.t_s
             self._outside_model = (first, max(abs(beta), self._outside_model[1] if self._outside_model else 0.0))
         self.table.wxyz = np.array([math.cos(0.5 * angle), 0.0, 0.0, math.sin(0.5 * angle)])
-        self.gimbal.wxyz = np.array([math.cos(0.5 * beta), math.sin(0.5 * beta), 0.0, 0.0])
+        deflection = np.array([math.cos(0.5 * beta), math.sin(0.5 * beta), 0.0, 0.0])  # a turn of β about x
+        self.gimbal.wxyz = deflection
+        self.needle.wxyz = deflection  # the pickoff repeats β on the indicator
         self.rotor.wxyz = spin_quaternion(drawn_spin_angle(self.params["spin_rad_s"], self.t_s))
         params = self.params
         spin_axis = np.array([0.0, math.cos(beta), math.sin(beta)])  # gimbal y in case components
