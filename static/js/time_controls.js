@@ -136,24 +136,14 @@
   if (new URLSearchParams(location.search).has("room")) return; // a room's scene is the instructor's
   const scene = lesson.scene;
   const session = lesson.session;
-  const group = document.createElement("div");
-  group.className = "recording-controls";
-  group.setAttribute("role", "group");
-  group.setAttribute("aria-label", "Save a recording");
-  const save = document.createElement("button");
-  save.type = "button";
-  save.className = "rec-save";
-  save.textContent = scene.animated ? "Save recording" : "Save recording (a still)";
-  const seconds = document.createElement("select");
-  seconds.className = "rec-seconds";
-  seconds.setAttribute("aria-label", "Recording length: the last seconds shown");
+  const el = window.dynlabElement;
+  const group = el("div", { class: "recording-controls", role: "group", "aria-label": "Save a recording" });
+  const save = el("button", { type: "button", class: "rec-save", text: scene.animated ? "Save recording" : "Save recording (a still)" });
+  const seconds = el("select", { class: "rec-seconds", "aria-label": "Recording length: the last seconds shown" });
   for (const s of [5, 10, 30, 60]) seconds.add(new Option(`last ${s} s`, String(s)));
   seconds.value = "10";
   seconds.hidden = !scene.animated;
-  const status = document.createElement("span");
-  status.className = "rec-status";
-  status.setAttribute("role", "status");
-  status.textContent = "One HTML file that plays offline in any browser, with no server.";
+  const status = el("span", { class: "rec-status", role: "status", text: "One HTML file that plays offline in any browser, with no server." });
   group.append(save, seconds, status);
   (document.querySelector(".time-controls") || document.getElementById("viewer-wrap")).after(group);
 
