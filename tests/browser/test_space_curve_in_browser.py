@@ -81,7 +81,9 @@ def test_typed_helix_gives_the_closed_form_curvature_and_torsion(browser, live_s
     _type(page, "x_of_t", "2*cos(t")
     page.wait_for_function("() => !document.getElementById('control-error').hidden", timeout=10_000)
     message = page.text_content("#control-error")
-    assert "x_of_t" in message and "never closed" in message and "character 6" in message, message
+    # The page names the formula as its control does (its label and unit), never by its parameter name.
+    assert message.startswith("x(t) (m):") and "x_of_t" not in message, message
+    assert "never closed" in message and "character 6" in message, message
     assert "invalid" in (page.get_attribute('.control[data-name="x_of_t"]', "class") or "")
     page.wait_for_timeout(1500)
     assert host.instances(session_id)[0].params == before
@@ -91,7 +93,7 @@ def test_typed_helix_gives_the_closed_form_curvature_and_torsion(browser, live_s
     # Something that is not mathematics at all is refused the same way.
     _type(page, "x_of_t", "__import__('os').system('ls')")
     page.wait_for_function("() => document.getElementById('control-error').textContent.includes('underscores are not allowed')", timeout=10_000)
-    assert "x_of_t" in page.text_content("#control-error")
+    assert page.text_content("#control-error").startswith("x(t) (m):")  # named as the control is, not x_of_t
     assert host.instances(session_id)[0].params == before
     assert not errors, errors
     context.close()
