@@ -86,7 +86,7 @@ def test_the_graph_is_the_models_series_invariants_and_energies_on_the_kept_stat
     np.testing.assert_array_equal(answer["t_s"], t_s)
     assert answer["span_s"] == [t_s[0], t_s[-1]] and np.all(np.diff(t_s) > 0)
     scene = page.client.app.state.scene_host.instances(page.session_id)[0]
-    model, params = scene._model_instance, scene.physical_params()
+    model, params = scene.run_model, scene.physical_params()
     expected = {
         **model.series(params, t_s, states),
         **model.invariants(params, states),

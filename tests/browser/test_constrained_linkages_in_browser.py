@@ -91,7 +91,7 @@ def test_four_bar_pin_forces_and_the_controls_reach_the_scene(browser, live_serv
 
     wait_until(scene_took_the_controls, 15, what="the scene to take the method, integrator and gain")
     scene = host.instances(session_id)[0]
-    assert scene._model_instance.algorithm() == "baumgarte"
+    assert scene.run_model.algorithm() == "baumgarte"
     page.wait_for_function(
         "() => (document.querySelector('#readout .readout-message').textContent || '').includes('α = 12/s')", timeout=20_000
     )

@@ -30,7 +30,6 @@ SCALE_SAMPLES = 200
 NEAR_LOCK_DEG = 10.0
 ARROW_COLORS = {"turn1": TURN_COLORS[0], "turn2": TURN_COLORS[1], "turn3": TURN_COLORS[2], "omega": (60, 60, 60), "alpha": (215, 80, 150)}
 ARROW_LABELS = {"turn1": "θ̇1 n1", "turn2": "θ̇2 n2", "turn3": "θ̇3 n3", "omega": "ω", "alpha": "α"}
-#: Frames between moves of the arrow labels (2: at 15 Hz).
 #: Frames evaluated per vectorised call (about 40 µs of physics per frame instead of 1 ms).
 BATCH_FRAMES = 30
 
@@ -41,7 +40,6 @@ class AngleRatesScene(ReplayedScene):
     chapter = 3
     model = physics.AngleRates
     controls = DISPLAY_PARAMETERS
-    #: Body attitude, the turn axes, one batch of arrows, and five labels moved at 15 Hz.
     camera_position = (1.55, -2.05, 1.35)
     camera_look_at = (0.0, 0.0, 0.25)
     presets = (

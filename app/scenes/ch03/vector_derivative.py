@@ -35,7 +35,6 @@ class VectorDerivativeScene(ReplayedScene):
     chapter = 3
     model = physics.VectorDerivative
     controls = DISPLAY_PARAMETERS
-    #: The frame's attitude, one batch of arrows, and five labels moved at 15 Hz.
     camera_position = (1.6, -2.2, 1.5)
     camera_look_at = (0.0, 0.0, 0.3)
     presets = (

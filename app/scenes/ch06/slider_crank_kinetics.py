@@ -111,7 +111,7 @@ class SliderCrankKineticsScene(IntegratedScene):
         self._draw()
 
     def _forces_now(self) -> physics.PinForces:
-        return self._model_instance.forces(self.physical_params(), self.run.y)
+        return self.run_model.forces(self.physical_params(), self.run.y)
 
     def _draw(self) -> None:
         y = self.run.y
@@ -142,7 +142,7 @@ class SliderCrankKineticsScene(IntegratedScene):
     def readout(self) -> Readout:
         params = self.physical_params()
         motion, forces = self._state
-        kinetic, potential = self._model_instance.energies(params, self.run.y)
+        kinetic, potential = self.run_model.energies(params, self.run.y)
         residual = self.current_invariants()["work_energy_residual"]
         guide = float(forces.guide_force_N[0])
         quantities = [

@@ -73,7 +73,7 @@ class BeadOnHoopScene(DerivedSystemScene):
     def readout(self) -> Readout:
         params = self.physical_params()
         t = np.array([self.run.t_s])
-        energy, jacobi = self._model_instance.energy_and_jacobi_J(params, t, self.run.y[None, :])
+        energy, jacobi = self.run_model.energy_and_jacobi_J(params, t, self.run.y[None, :])
         critical = critical_spin_rad_s(params)
         equilibria = hoop_equilibria(params)
         off_bottom = [e for e in equilibria if e.theta_rad > 0.0 and e.theta_rad < math.pi]
@@ -97,5 +97,5 @@ class BeadOnHoopScene(DerivedSystemScene):
 
     def restart(self) -> None:
         super().restart()
-        energy, _ = self._model_instance.energy_and_jacobi_J(self.physical_params(), np.zeros(1), self.run.y[None, :])
+        energy, _ = self.run_model.energy_and_jacobi_J(self.physical_params(), np.zeros(1), self.run.y[None, :])
         self._energy0 = float(energy[0])

@@ -32,7 +32,7 @@ class DerivedSystemScene(IntegratedScene):
     def formulation_agreement(self) -> dict[str, float]:
         """Per formulation, |ẏ_f − ẏ_running| / |ẏ_running| on the current state (sampled, see module doc)."""
         if self._frames - self._agreement_frame >= AGREEMENT_EVERY_FRAMES:
-            self._agreement = self._model_instance.agreement(self.physical_params(), self.run.y, self.run.t_s)
+            self._agreement = self.run_model.agreement(self.physical_params(), self.run.y, self.run.t_s)
             self._agreement_frame = self._frames
         return self._agreement
 

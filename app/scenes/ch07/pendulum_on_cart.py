@@ -75,14 +75,14 @@ class PendulumOnCartScene(DerivedSystemScene):
         update_node(self.spring, points=spring_zigzag(self._wall_x, x - 0.15, width=0.05))
         update_node(self.rod, points=np.array([[[x, 0.0, 0.0], bob]], np.float32))
         move_node(self.bob, position=bob)
-        force = float(drive_force_N(self._model_instance.parameter_array(self.physical_params()), self.run.t_s))
+        force = float(drive_force_N(self.run_model.parameter_array(self.physical_params()), self.run.t_s))
         update_node(self.drive, points=arrow_segments(np.array([[x + 0.15, 0.0, 0.12]]), np.array([[force, 0.0, 0.0]]), 0.1 * length))
 
     def readout(self) -> Readout:
         params = self.physical_params()
         y = self.run.y
-        force = float(drive_force_N(self._model_instance.parameter_array(params), self.run.t_s))
-        energy = float(self._model_instance.energy_J(params, np.array([self.run.t_s]), y[None, :])[0])
+        force = float(drive_force_N(self.run_model.parameter_array(params), self.run.t_s))
+        energy = float(self.run_model.energy_J(params, np.array([self.run.t_s]), y[None, :])[0])
         work = float(y[WORK_SLOT])
         quantities = [
             Quantity("t_s", "time t", self.run.t_s, "s"),
@@ -103,4 +103,4 @@ class PendulumOnCartScene(DerivedSystemScene):
 
     def restart(self) -> None:
         super().restart()
-        self._energy0 = float(self._model_instance.energy_J(self.physical_params(), np.zeros(1), self.run.y[None, :])[0])
+        self._energy0 = float(self.run_model.energy_J(self.physical_params(), np.zeros(1), self.run.y[None, :])[0])

@@ -213,13 +213,13 @@ class TypedLagrangianScene(DerivedSystemScene):
         self._draw()
 
     def derivation_status(self) -> str:
-        prepared = self._model_instance.prepared(self.physical_params())
+        prepared = self.run_model.prepared(self.physical_params())
         derived_text = "from the derivation cache" if prepared.cached else f"derived by sympy in {prepared.derive_s:.2f} s"
         return f"Lagrange's equations {derived_text}, in a bounded process; compiled by numba in {prepared.compile_s:.2f} s"
 
     def readout(self) -> Readout:
         params = self.physical_params()
-        model = self._model_instance
+        model = self.run_model
         prepared = model.prepared(params)
         n = len(prepared.system.coordinates)
         y, t_s = self.run.y, self.run.t_s

@@ -79,9 +79,6 @@ class CartesianPendulumScene(IntegratedScene):
         self.trail.clear()
         self._draw()
 
-    @property
-    def run_model(self) -> CartesianPendulum:
-        return self._model_instance
 
     def state(self) -> np.ndarray:
         """The bob's (x, y, ẋ, ẏ) (m, m/s) now, whatever the algorithm integrates."""

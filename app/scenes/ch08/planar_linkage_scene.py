@@ -62,7 +62,7 @@ class PlanarLinkageScene(IntegratedScene):
     def update(self) -> None:
         params = self.physical_params()
         self.restart()
-        model = self._model_instance
+        model = self.run_model
         self._linkage = model.linkage(params)
         self._speed_limit = model.speed_limit_rad_s(params)
         low, high = model.crank_travel_rad(params)
@@ -97,11 +97,11 @@ class PlanarLinkageScene(IntegratedScene):
         return np.array(ends)
 
     def _full_state(self) -> np.ndarray:
-        return self._model_instance.constrained_view(self.physical_params(), self.run.y)[0]
+        return self.run_model.constrained_view(self.physical_params(), self.run.y)[0]
 
     def _draw(self) -> None:
         params = self.physical_params()
-        model = self._model_instance
+        model = self.run_model
         state = self._full_state()
         multipliers = model_multipliers(model, params, self.run.t_s, state)
         self._now = (state, multipliers)
@@ -128,7 +128,7 @@ class PlanarLinkageScene(IntegratedScene):
 
     def readout(self) -> Readout:
         params = self.physical_params()
-        model = self._model_instance
+        model = self.run_model
         state, multipliers = self._now
         system = model.constrained_system(params)
         invariants = self.current_invariants()

@@ -65,9 +65,6 @@ class UnsteadyRollingDiskScene(IntegratedScene):
         self.disk = scene.add_line_segments("/disk", np.zeros(colors.shape, np.float32), colors, thickness=DISK_LINE_PX, thickness_units="screen")
         self.trail = Trail(scene, "/contact-path", color=(235, 120, 20), chunk_frames=TRAIL_CHUNK_FRAMES, max_chunks=TRAIL_CHUNKS)
 
-    @property
-    def run_model(self) -> UnsteadyRollingDisk:
-        return self._model_instance
 
     def update(self) -> None:
         self.restart()

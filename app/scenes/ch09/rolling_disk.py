@@ -52,7 +52,7 @@ class RollingDiskScene(DerivedSystemScene):
         self.restart()
         self._radius_m = float(self.params["radius_m"])
         self._outline = disk_outline_segments(self._radius_m)
-        self._critical_spin = self._model_instance.upright_critical_spin_rad_s(self.physical_params())
+        self._critical_spin = self.run_model.upright_critical_spin_rad_s(self.physical_params())
         self.trail.clear()
         self._draw()
 

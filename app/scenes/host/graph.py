@@ -108,6 +108,7 @@ def motion_graph(
     quantities: list[dict[str, str]] = []
     values: dict[str, list[float | None]] = {}
     t_s = np.array([t for t, _ in frames], dtype=float)
+    budget: Mapping[str, np.ndarray] | None = None
     with np.errstate(all="ignore"):
         if frames:
             states = np.array([np.asarray(motion["y"], dtype=float) for _, motion in frames])
@@ -121,28 +122,27 @@ def motion_graph(
                 for name, series in named.items():
                     quantities.append({"name": name, "label": labels.get(name) or readable_label(name), "unit": units.get(name, ""), "kind": kind})
                     values[name] = _finite_list(np.broadcast_to(np.asarray(series, dtype=float), t_s.shape)[keep])
-            budget = model.energy_budget(params, states, t_s=t_s) or {}
-            for key, energy in budget.items():
+            budget = model.energy_budget(params, states, t_s=t_s)
+            for key, energy in (budget or {}).items():
                 name = ENERGY_PREFIX + key
                 quantities.append({"name": name, "label": ENERGY_LABELS.get(key, readable_label(key)), "unit": "J", "kind": "energy"})
                 values[name] = _finite_list(np.asarray(energy)[keep])
             t_s = t_s[keep]
-        energy = None if latest is None else _energy_bars(model, params, latest)
+        if not frames and latest is not None:  # nothing new: the bars still show the last kept frame
+            latest_t_s, latest_motion = latest
+            budget = model.energy_budget(params, np.asarray(latest_motion["y"], dtype=float)[None, :], t_s=np.array([latest_t_s]))
+        energy = None if budget is None else _energy_bars(model, params, budget)
     span = [float(t_s[0]), float(t_s[-1])] if len(t_s) else None
     return {"scene_id": scene_id, "t_s": t_s.tolist(), "quantities": quantities, "values": values, "energy": energy, "span_s": span, "note": None}
 
 
-def _energy_bars(model: IntegratedModel, params: Mapping[str, Any], latest: tuple[float, Mapping[str, Any]]) -> dict[str, Any] | None:
-    """The energy bars at one frame: parts in :data:`ENERGY_BAR_ORDER`, the total and the model's note."""
-    t_s, motion = latest
-    budget = model.energy_budget(params, np.asarray(motion["y"], dtype=float)[None, :], t_s=np.array([t_s]))
-    if budget is None:
-        return None
+def _energy_bars(model: IntegratedModel, params: Mapping[str, Any], budget: Mapping[str, np.ndarray]) -> dict[str, Any]:
+    """The energy bars at the budget's last frame: parts in :data:`ENERGY_BAR_ORDER`, the total and the model's note."""
     parts = [
-        {"name": ENERGY_PREFIX + key, "label": ENERGY_LABELS[key], "value_J": _finite(float(budget[key][0]))}
+        {"name": ENERGY_PREFIX + key, "label": ENERGY_LABELS[key], "value_J": _finite(float(budget[key][-1]))}
         for key in ENERGY_BAR_ORDER if key in budget
     ]  # fmt: skip
-    return {"parts": parts, "total_J": _finite(float(budget["total_J"][0])), "note": model.energy_note(params)}
+    return {"parts": parts, "total_J": _finite(float(budget["total_J"][-1])), "note": model.energy_note(params)}
 
 
 def graph_csv(answer: Mapping[str, Any]) -> str:

@@ -563,7 +563,7 @@ class SceneHost:
             frames = history.since(since_s)
             span = history.span_s()
             latest = frames[-1] if frames else (span[1], history.at(span[1])) if span is not None else None
-            model, params = scene._model_instance, scene.physical_params()  # type: ignore[attr-defined]
+            model, params = scene.run_model, scene.physical_params()  # type: ignore[attr-defined]  # an IntegratedScene: no_graph_note said so
         return motion_graph(session.scene_id, model, params, frames, latest, max_points=max_points)
 
     def viewer_count(self, session_id: str | None = None) -> int:

@@ -52,6 +52,8 @@ class IntegratedScene(Scene):
     """A scene driven by an :class:`IntegratedModel`; subclasses draw :attr:`run`'s state."""
 
     model: ClassVar[type[IntegratedModel]]
+    #: The model instance the running integration was built from (a constrained model's algorithm choice included).
+    run_model: IntegratedModel
     animated = True
 
     def physical_params(self) -> dict[str, Any]:
@@ -84,7 +86,7 @@ class IntegratedScene(Scene):
         integrator, self.accuracy = model.choose_integrator(
             params, controls, frame_dt, run_pilots=False, max_frame_cpu_s=LIVE_PHYSICS_BUDGET_S
         )
-        self._model_instance = model
+        self.run_model = model
         self.run = self.new_run(model.system(params), integrator, model.initial_state(params))
         self.description = self.describe(integrator)
         self._generation = getattr(self, "_generation", 0) + 1
@@ -202,7 +204,7 @@ class IntegratedScene(Scene):
 
     def _sample_reference_error(self) -> None:
         """The error of the current state against the model's reference at this time (target's unit), if it has one."""
-        model = self._model_instance
+        model = self.run_model
         if not model.reference_error_series:
             return
         error = model.reference_error(self.physical_params(), np.array([self.run.t_s]), self.run.y[None, :])
@@ -217,7 +219,7 @@ class IntegratedScene(Scene):
         if self.accuracy is not None:
             fields = self.accuracy.as_dict() | {"status": self.accuracy.status, "note": self.accuracy.note}
             out["accuracy"] = {k: None if isinstance(v, float) and not np.isfinite(v) else v for k, v in fields.items()}
-        model = self._model_instance
+        model = self.run_model
         if self._reference_error is not None:
             unit = model.accuracy_target.unit if model.accuracy_target is not None else ""
             out["reference_error"] = {
@@ -227,7 +229,7 @@ class IntegratedScene(Scene):
         return out
 
     def current_invariants(self) -> dict[str, float]:
-        values = self._model_instance.invariants(self.physical_params(), self.run.y[None, :])
+        values = self.run_model.invariants(self.physical_params(), self.run.y[None, :])
         return {k: float(v[0]) for k, v in values.items()}
 
     def current_drift(self) -> dict[str, float]:
@@ -236,7 +238,7 @@ class IntegratedScene(Scene):
 
     def live_readout(self) -> dict[str, Any]:
         """Numbers for the lesson page: time, method, invariants and their drift, cost."""
-        model = self._model_instance
+        model = self.run_model
         now = self.current_invariants()
         drift = self.current_drift()
         return {
