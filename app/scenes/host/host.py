@@ -30,7 +30,6 @@ stage's one stream out to every student following it.
 from __future__ import annotations
 
 import contextlib
-import io
 import logging
 import math
 import re
@@ -50,8 +49,10 @@ from app.scenes.host.viser_compat import (
     BatchedWakeups,
     BroadcastViewer,
     connection_path,
+    quiet_server,
     share_prop_hints,
     start_callback_threads,
+    stop_quietly,
     viewer_count,
 )
 from app.scenes.kit import Scene
@@ -188,10 +189,8 @@ class SceneHost:
     # -- life cycle ---------------------------------------------------------------
     def start(self) -> None:
         share_prop_hints()
-        with contextlib.redirect_stdout(io.StringIO()):  # viser prints its loopback URL unconditionally
-            server = viser.ViserServer(host=self._host, port=0, verbose=False)
+        server = quiet_server(host=self._host)
         log.info("scene server listening on loopback port %d (reached only through the relay)", server.get_port())
-        server.gui.configure_theme(show_share_button=False, show_logo=False)
         start_callback_threads(server)  # a constant thread count, so a soak can tell a leak from a growing pool
         server.on_client_connect(self._on_connect)
         server.on_client_disconnect(self._on_disconnect)
@@ -206,8 +205,7 @@ class SceneHost:
         with self._lock:
             stages = [session.stage for session in self._sessions.values() if session.stage is not None]
         for stage in stages:
-            with contextlib.redirect_stdout(io.StringIO()):  # viser prints "Server stopped"
-                stage.stop()
+            stop_quietly(stage)
         self._recorder.stop()
         if self._server is not None:
             self._server.stop()
@@ -427,7 +425,7 @@ class SceneHost:
             if session is None or session.stage is None:
                 if session is not None:
                     self._close_instances(session)
-                session = Session(scene_id, params, stage=self._start_stage_server())
+                session = Session(scene_id, params, stage=quiet_server(host=self._host))
                 self._sessions[session_id] = session
             session.last_used_s = time.monotonic()
         with session.lock:
@@ -445,12 +443,6 @@ class SceneHost:
             session.add_instance(BroadcastViewer.client_id, scene)
             return {"params": dict(params), "viewer_url": self.stage_viewer_url(session_id)}
 
-    def _start_stage_server(self) -> viser.ViserServer:
-        with contextlib.redirect_stdout(io.StringIO()):
-            server = viser.ViserServer(host=self._host, port=0, verbose=False)
-        server.gui.configure_theme(show_share_button=False, show_logo=False)
-        return server
-
     def close_stage(self, session_id: str) -> None:
         """Stop a stage's scene and its viser server (its viewers are disconnected); unknown ids are ignored."""
         with self._lock:
@@ -462,8 +454,7 @@ class SceneHost:
             for scene in session.instances.values():
                 scene.close()
             session.instances.clear()
-        with contextlib.redirect_stdout(io.StringIO()):
-            session.stage.stop()
+        stop_quietly(session.stage)
 
     def stage_viewer_url(self, session_id: str) -> str | None:
         """The loopback websocket address of a stage's viser server, or None if there is no such stage."""

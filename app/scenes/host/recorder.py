@@ -30,7 +30,6 @@ from __future__ import annotations
 
 import contextlib
 import html
-import io
 import logging
 import math
 import re
@@ -40,7 +39,7 @@ from typing import Any
 
 import viser
 
-from app.scenes.host.viser_compat import BroadcastViewer
+from app.scenes.host.viser_compat import BroadcastViewer, quiet_server, stop_quietly
 from app.scenes.kit import Scene
 
 log = logging.getLogger(__name__)
@@ -110,15 +109,12 @@ class SceneRecorder:
     def stop(self) -> None:
         with self._lock:
             if self._server is not None:
-                with contextlib.redirect_stdout(io.StringIO()):  # viser prints "Server stopped"
-                    self._server.stop()
+                stop_quietly(self._server)
                 self._server = None
 
     def _ready_server(self) -> viser.ViserServer:
         if self._server is None:
-            with contextlib.redirect_stdout(io.StringIO()):  # viser prints its loopback URL unconditionally
-                self._server = viser.ViserServer(host=self._host, port=0, verbose=False)
-            self._server.gui.configure_theme(show_share_button=False, show_logo=False)
+            self._server = quiet_server(host=self._host)
         return self._server
 
     def record_html(

@@ -20,6 +20,7 @@ touch a ``_websock*`` attribute (a test greps for it).
 from __future__ import annotations
 
 import contextlib
+import io
 import threading
 import typing
 from collections.abc import Iterator
@@ -33,6 +34,20 @@ from viser._viser import InitialCameraConfig
 
 #: The viser version these private calls were checked against.
 CHECKED_VISER_VERSION = "1.1.1"
+
+
+def quiet_server(*, host: str) -> viser.ViserServer:
+    """A viser server on a free port of ``host`` without the URL viser prints, its share button or its logo."""
+    with contextlib.redirect_stdout(io.StringIO()):  # viser prints its URL unconditionally
+        server = viser.ViserServer(host=host, port=0, verbose=False)
+    server.gui.configure_theme(show_share_button=False, show_logo=False)
+    return server
+
+
+def stop_quietly(server: viser.ViserServer) -> None:
+    """Stop ``server`` without the "Server stopped" viser prints."""
+    with contextlib.redirect_stdout(io.StringIO()):
+        server.stop()
 
 
 def set_initial_camera(
