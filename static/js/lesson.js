@@ -754,6 +754,8 @@
   window.dynlabLesson = {
     session, schedule, scene, specs, defaults, ownViewer, shared,
     setValues, lock, onChange, showViewer, startPolling, stopPolling,
+    // The session's time controls and camera (PUT …/playback with the session key); rejects with the server's message.
+    setPlayback: (body) => call("PUT", `/api/scenes/${scene.id}/sessions/${session.id}/playback`, body),
     renderReadout, renderLive: (data) => { if (scene && scene.integrated && data.invariants) renderLive(data); },
   };
   if (!inRoom) schedule();

@@ -66,13 +66,11 @@
   document.addEventListener("dynlab:live", (event) => { if (event.detail && event.detail.playback) show(event.detail.playback); });
 
   async function send(body) {
-    const response = await fetch(`/api/scenes/${scene.id}/sessions/${session.id}/playback`, {
-      method: "PUT", headers: { "Content-Type": "application/json", "X-Session-Key": session.key }, body: JSON.stringify(body),
-    });
-    const data = await response.json().catch(() => ({}));
-    if (!response.ok) {
-      const detail = Array.isArray(data.detail) ? data.detail[0].msg : data.detail || response.statusText;
-      error.textContent = detail;
+    let data;
+    try {
+      data = await lesson.setPlayback(body);
+    } catch (err) {
+      error.textContent = err.message;
       error.hidden = false;
       return null;
     }

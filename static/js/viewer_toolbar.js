@@ -20,11 +20,8 @@
   const viewerWindow = () => { try { return frame.contentWindow; } catch (e) { return null; } };
   async function resetView() {
     if (ownViewer()) {
-      const response = await fetch(`/api/scenes/${lesson.scene.id}/sessions/${lesson.session.id}/playback`, {
-        method: "PUT", headers: { "Content-Type": "application/json", "X-Session-Key": lesson.session.key },
-        body: JSON.stringify({ reset_camera: true }),
-      }).catch(() => null);
-      say(response && response.ok ? "View reset" : "The view could not be reset: the scene is not connected");
+      const done = await lesson.setPlayback({ reset_camera: true }).then(() => true, () => false);
+      say(done ? "View reset" : "The view could not be reset: the scene is not connected");
       return;
     }
     const viewer = viewerWindow() && viewerWindow().__viserMutable;
