@@ -635,15 +635,17 @@ class SceneHost:
                 sessions = [sess for sess in self._sessions.values() if sess.instances]
             wakeups = BatchedWakeups()  # viser's sender is woken once for every viewer's frame, not once per viewer
             for session in sessions:
-                if not session.playing:
-                    continue
-                # time_scale frames per displayed frame on average: 0.5 advances every other frame, 2 twice a frame.
-                session.frame_credit += session.time_scale
-                frames = int(session.frame_credit)
-                if frames == 0:
-                    continue
-                session.frame_credit -= frames
+                # Play state is read under the session's lock, the one set_playback holds while it changes it, so a
+                # pause that has returned is never followed by one more frame already decided on before it.
                 with session.lock:
+                    if not session.playing:
+                        continue
+                    # time_scale frames per displayed frame on average: 0.5 advances every other frame, 2 twice a frame.
+                    session.frame_credit += session.time_scale
+                    frames = int(session.frame_credit)
+                    if frames == 0:
+                        continue
+                    session.frame_credit -= frames
                     for client_id, scene in list(session.instances.items()):
                         history = session.histories.get(client_id)
                         for _ in range(frames):
