@@ -5,6 +5,36 @@ from __future__ import annotations
 import time
 from collections.abc import Callable
 
+import pytest
+
+from xdist.scheduler import LoadScopeScheduling
+
+BROWSER_TESTS = "tests/browser/"
+
+
+class BrowserTestsTogether(LoadScopeScheduling):
+    """README's test command runs the suite on two xdist workers (``-n 2``). The real-browser tests are one unit of
+    work, sent first and kept serial on one worker (one server, one Chromium, as before), while the other worker runs
+    every other test one at a time. (xdist's own ``--dist loadgroup`` does the same with a marker, but it marks a
+    test by rewriting ``Item._nodeid``, which pytest 9.2 no longer reads.)"""
+
+    def _split_scope(self, nodeid: str) -> str:
+        return BROWSER_TESTS if nodeid.startswith(BROWSER_TESTS) else nodeid
+
+
+def pytest_collection_finish(session: pytest.Session) -> None:
+    """Refuse a collection with two tests under one id: xdist hands out tests by id, so all but one would silently
+    not run (pytest 9.2 did this to schemathesis's per-operation tests; pyproject pins pytest below it)."""
+    seen: set[str] = set()
+    repeated = sorted({item.nodeid for item in session.items if item.nodeid in seen or seen.add(item.nodeid)})
+    if repeated:
+        raise pytest.UsageError(f"{len(repeated)} test ids are shared by more than one test, e.g. {repeated[:3]}")
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_xdist_make_scheduler(config: pytest.Config, log) -> LoadScopeScheduling:
+    return BrowserTestsTogether(config, log)
+
 
 def wait_until(predicate: Callable[[], bool], timeout_s: float = 30.0, interval_s: float = 0.05, what: str = "condition") -> None:
     """Poll ``predicate`` every ``interval_s`` seconds until it holds; AssertionError naming ``what`` after ``timeout_s``."""

@@ -13,4 +13,4 @@ if [ ! -x /usr/bin/chromium ]; then
   $SUDO apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq chromium >/dev/null
 fi
-exec python3 -m uv run --group test --group bench pytest "$@"
+exec python3 -m uv run --group test --group bench pytest -n 2 "$@"

@@ -19,6 +19,8 @@ from PIL import Image
 from tests.browser.conftest import dismiss_webgl_notice, open_lesson, screenshot
 from tests.conftest import wait_until
 
+pytestmark = pytest.mark.browser
+
 LESSON = "/lessons/1-1-vector-operations"  # the robot-arm cable: a scene that is not animated
 SCENE = "robot-arm-cable"
 CONTROL_PANEL_TAB = '[data-dock-tab="viser-control-panel"]'
