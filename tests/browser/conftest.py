@@ -77,6 +77,44 @@ def live_server() -> Iterator[LiveServer]:
         yield server
 
 
+#: Frames per second the 3D viewer may draw in a test (see :class:`ViewerFramesLimited`).
+VIEWER_TEST_FPS = 2
+#: In the viewer's own page (a lesson's /viewer/… frame or a room's /room-viewer/…), requestAnimationFrame waits
+#: 1/VIEWER_TEST_FPS s; every other page keeps the browser's own frames.
+LIMIT_VIEWER_FRAMES = """(() => {
+  if (!/^\\/(room-)?viewer\\//.test(location.pathname)) return;
+  const period = 1000 / %d;
+  window.requestAnimationFrame = (draw) => setTimeout(() => draw(performance.now()), period);
+  window.cancelAnimationFrame = (id) => clearTimeout(id);
+})();""" % VIEWER_TEST_FPS
+
+
+class ViewerFramesLimited:
+    """The session's Chromium, whose new contexts let viser's viewer draw at most :data:`VIEWER_TEST_FPS` frames a
+    second (unless screenshots are kept).
+
+    Software WebGL (SwiftShader; there is no GPU here) spends 200–300 ms of CPU on each of viser's frames whatever
+    the canvas size, so one open viewer asking for 60 frames a second keeps 1.7 of the machine's 2 cores busy at
+    about 8 frames a second (measured with ps on the GPU process: 17 CPU-s in 10 s; 6 CPU-s at 2 frames a second).
+    The tests read the scene's state from the server and the page, never a frame rate, so drawing fewer frames
+    changes no assertion and leaves the CPU to the server under test and the other xdist worker.
+    """
+
+    def __init__(self, browser) -> None:
+        self._browser = browser
+
+    def new_context(self, *, viewer_frames_limited: bool = True, **options):
+        """A new context (Playwright's ``options``); ``viewer_frames_limited=False`` for a test of what the viewer does
+        frame by frame (viser moves the camera a step a frame while a key is held)."""
+        context = self._browser.new_context(**options)
+        if viewer_frames_limited and not keeping_screenshots():
+            context.add_init_script(LIMIT_VIEWER_FRAMES)
+        return context
+
+    def __getattr__(self, name: str):
+        return getattr(self._browser, name)
+
+
 @pytest.fixture(scope="session")
 def browser():
     if not Path(CHROMIUM).exists():
@@ -85,7 +123,7 @@ def browser():
 
     with sync_playwright() as playwright:
         browser = playwright.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_ARGS)
-        yield browser
+        yield ViewerFramesLimited(browser)
         browser.close()
 
 
@@ -108,14 +146,18 @@ def screenshot(target, path: Path) -> None:
         target.screenshot(path=str(path))
 
 
-def open_lesson(browser, live_server, path: str, *, viewport=(1500, 1000), context=None, viewer: bool = True, timeout_s: float = 40.0):
+def open_lesson(
+    browser, live_server, path: str, *, viewport=(1500, 1000), context=None, viewer: bool = True, timeout_s: float = 40.0,
+    viewer_frames_limited: bool = True,
+):
     """Open ``path`` (e.g. ``/lessons/3-1-rotation-sequences``) in a new page; returns ``(context, page, session_id, errors)``.
 
-    A new browser context of ``viewport`` (width, height) px is made unless ``context`` is given.
+    A new browser context of ``viewport`` (width, height) px is made unless ``context`` is given (its viewer draws
+    :data:`VIEWER_TEST_FPS` frames a second unless ``viewer_frames_limited`` is false).
     ``errors`` collects the page's uncaught JavaScript errors. With ``viewer`` it waits on the
     server's own client list until the lesson's 3D viewer has connected through the relay.
     """
-    context = context or browser.new_context(viewport={"width": viewport[0], "height": viewport[1]})
+    context = context or browser.new_context(viewport={"width": viewport[0], "height": viewport[1]}, viewer_frames_limited=viewer_frames_limited)
     page = context.new_page()
     errors: list[str] = []
     page.on("pageerror", lambda exc: errors.append(str(exc)))
