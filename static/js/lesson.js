@@ -428,6 +428,7 @@
       if (scene && !changeHook) {
         const reply = await call("PUT", `/api/scenes/${scene.id}/sessions/${session.id}`, { params: values });
         Object.assign(values, reply.params);
+        pollSoon();
       }
       const rendered = [];
       for (const example of examples) {
@@ -467,11 +468,14 @@
   const live = document.getElementById("live");
   const readoutBox = document.getElementById("readout");
   let pollTimer = null;
-  // Live numbers exist once the page's viewer has connected (about 2 s after it starts): until then the poll asks
-  // the session's playback, which counts its viewers, instead of asking /live into a 404.
+  // Live numbers exist once the page's viewer has connected (about 1 s after it starts): until then the poll asks
+  // the session's playback (a small answer), every quarter second, which counts its viewers, instead of asking
+  // /live into a 404.
   let viewerConnected = false;
+  let pollInFlight = false, pollAgain = false;
   async function pollLive() {
     pollTimer = null;
+    pollInFlight = true;
     try {
       if (!viewerConnected) {
         const playback = await fetch(`/api/scenes/${scene.id}/sessions/${session.id}/playback`);
@@ -487,14 +491,24 @@
         } else if (response.status === 404) viewerConnected = false; // the viewer went (a reconnect): wait for it again
       }
     } catch (e) { /* the next poll retries */ }
-    if (polling) pollTimer = setTimeout(pollLive, document.hidden ? 3000 : viewerConnected ? 1000 : 500);
+    pollInFlight = false;
+    if (polling) pollTimer = setTimeout(pollLive, pollAgain ? 0 : document.hidden ? 3000 : viewerConnected ? 1000 : 250);
+    pollAgain = false;
+  }
+  // A control the student changed has reached the scene: ask for its numbers now, so the readout answers the change
+  // at once rather than at the next second's poll (a poll already on its way is followed straight away by another).
+  function pollSoon() {
+    if (!polling) return;
+    if (pollInFlight) { pollAgain = true; return; }
+    clearTimeout(pollTimer);
+    pollTimer = setTimeout(pollLive, 0);
   }
   let polling = false;
   function startPolling() {
     if (polling || !scene || !(scene.integrated || scene.readout)) return;
     polling = true;
     viewerConnected = false;
-    pollTimer = setTimeout(pollLive, 1000);
+    pollTimer = setTimeout(pollLive, 250);  // the first numbers follow the viewer's connection within a quarter second
   }
   function stopPolling() {
     polling = false;
