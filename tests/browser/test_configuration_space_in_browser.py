@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from app.physics.systems.ch07 import configuration_space as physics
-from tests.browser.conftest import open_lesson, readout_values, show_scene_and_keep_screenshot
+from tests.browser.conftest import let_webgl_draw, open_lesson, readout_values, show_scene_and_keep_screenshot
 from tests.conftest import wait_until
 
 pytestmark = pytest.mark.browser
@@ -56,7 +56,7 @@ def test_lesson_readouts_match_the_three_constraints_and_the_knife_edge_parks_si
     assert values["sideways_drift_leading_m"] == pytest.approx(0.41888, abs=1e-5)
     assert values["bracket_out_of_plane"] == pytest.approx(1.0, abs=1e-15)
     assert abs(values["slip_rate_m_s"]) < 1e-12
-    page.wait_for_timeout(2500)  # into the manoeuvre, so the screenshot shows the blade away from its start
+    let_webgl_draw(page, 2500)  # into the manoeuvre, so the screenshot shows the blade away from its start
     show_scene_and_keep_screenshot(page, shots / f"lesson-{LESSON}.png")
     assert not errors, errors
     context.close()

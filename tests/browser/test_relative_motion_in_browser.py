@@ -88,7 +88,8 @@ def test_foucault_lesson_measures_the_swing_plane_turning(browser, live_server, 
     context, page, session_id, errors = _open(browser, live_server, "3-6-rotating-earth")
     predicted = math.degrees(1000.0 * earth.vertical_earth_rate_rad_s(48.85))  # deg/s at the default ×1000
     assert _readout_value(page, "scene_rate_deg_s") == pytest.approx(predicted, rel=1e-12)
-    # Three turning points take about 10 s of swinging (period 6.3 s); let the rosette grow a little longer.
+    # Six turning points take about 19 s of swinging (period 6.3 s): the time controls' 4× gets there in about 5 s.
+    page.evaluate("window.dynlabLesson.setPlayback({time_scale: 4})")
     _wait_for_readout(page, live_server, "turning_points", "value >= 6", timeout_ms=90_000)
     measured = _readout_value(page, "measured_rate_deg_s")
     assert measured == pytest.approx(predicted, rel=0.02)  # a fit over ~6 turning points; the lag from a/L = 0.1 is 0.4 %

@@ -11,7 +11,7 @@ import math
 
 import pytest
 
-from tests.browser.conftest import open_lesson, readout_values, screenshot, show_scene_and_keep_screenshot
+from tests.browser.conftest import let_webgl_draw, open_lesson, readout_values, screenshot, show_scene_and_keep_screenshot
 from tests.browser.test_rotation_sequence_in_browser import _wait_for_quantity
 from tests.conftest import wait_until
 
@@ -44,7 +44,7 @@ def test_rigid_body_points_lesson(browser, live_server, shots):
     _press_preset(page, host, session_id, "steady", lambda p: p["turntable_acceleration_rad_s2"] == 0.0 and p["shaft_elevation_deg"] == 0.0)
     _wait_for_quantity(page, "omega_cross_r_magnitude", "v > 0")
     _wait_for_quantity(page, "v_A_magnitude", f"Math.abs(v - {1.2 * 0.8!r}) < 1e-12")
-    page.wait_for_timeout(1500)
+    let_webgl_draw(page, 1500)
     show_scene_and_keep_screenshot(page, shots / "lesson-4-1-general-equations.png")
     assert not errors, errors
     context.close()
@@ -62,7 +62,7 @@ def test_eulerian_angles_lesson(browser, live_server, shots):
     assert values["angular_acceleration"] == pytest.approx(0.8 * 4.0 * math.sin(math.radians(35.0)), abs=1e-12)
     assert values["nutation_deg"] == pytest.approx(35.0, abs=1e-9)
     assert "away from the singularity" in page.text_content("#readout .readout-message")
-    page.wait_for_timeout(1500)
+    let_webgl_draw(page, 1500)
     show_scene_and_keep_screenshot(page, shots / "lesson-4-2-eulerian-angles.png")
 
     _press_preset(page, host, session_id, "singular", lambda p: p["nutation_deg"] == 0.0 and p["nutation_rate_rad_s"] == 0.0)

@@ -12,7 +12,7 @@ import math
 import pytest
 from scipy.spatial.transform import Rotation
 
-from tests.browser.conftest import open_lesson, readout_values, show_scene_and_keep_screenshot
+from tests.browser.conftest import let_webgl_draw, open_lesson, readout_values, show_scene_and_keep_screenshot
 from tests.browser.test_rotation_sequence_in_browser import _wait_for_quantity
 from tests.conftest import wait_until
 
@@ -43,7 +43,7 @@ def test_finite_rotation_lesson(browser, live_server, shots):
     assert values["b_then_a_angle_deg"] == pytest.approx(math.degrees((a * b).magnitude()), abs=1e-9)
     assert values["a_then_b_axis"] == "(+0.5774, +0.5774, +0.5774)" and values["b_then_a_axis"] == "(+0.5774, -0.5774, +0.5774)"
     assert "do not commute" in page.text_content("#readout .readout-message")
-    page.wait_for_timeout(4500)  # both copies through their first turn and into the second
+    let_webgl_draw(page, 4500)  # both copies through their first turn and into the second
     show_scene_and_keep_screenshot(page, shots / "lesson-3-2-displacement.png")
     assert not errors, errors
     context.close()

@@ -43,6 +43,7 @@ def test_poinsot_lesson_readout_presets_and_ghost(browser, live_server, shots):
         and host.instances(session_id)[0].params["omega0_rad_s"] == [0.1, 4.0, 0.1],
         15, what="the scene to take the preset and the ghost",
     )
+    page.evaluate("window.dynlabLesson.setPlayback({time_scale: 4})")  # 5.5 s of the flip in about 1.4 s
     page.wait_for_function(
         "() => { const c = document.querySelector('#readout [data-quantity=\"t_s\"]'); return c && JSON.parse(c.dataset.value) > 5.5; }",
         timeout=30_000,
