@@ -294,7 +294,8 @@
       } else {
         const v = Number(input.value);
         if (input.value === "" || !Number.isFinite(v)) {
-          showError(spec.name, `body ${index + 1}: ${name} needs a number`, [spec.name, index, name]);
+          const fieldLabel = input.closest("label").querySelector("span").textContent;  // e.g. "radius (m)", as the server words it
+          showError(spec.name, `${spec.label}, body ${index + 1}, ${fieldLabel}: needs a number`, [spec.name, index, name]);
           return;
         }
         if (input.dataset.component !== undefined) record[name][Number(input.dataset.component)] = v;

@@ -53,7 +53,7 @@ def test_inertia_lesson_readout_body_editor_and_refused_entry(browser, live_serv
     page.wait_for_selector('.body-row[data-index="3"].invalid [data-field="radius_m"].invalid', timeout=10_000)
     assert page.locator(".body-row.invalid").count() == 1
     message = page.locator("#control-error").text_content()
-    assert "bodies → 3 → radius_m" in message and "100" in message, message
+    assert message.startswith("bodies, body 4, radius (m):") and "100" in message, message  # the editor's own words
     assert live_server.host.session_params(session_id) == before
     page.wait_for_timeout(1500)  # a readout poll or two later, the scene still shows the 4-body composite
     assert readout_quantity(page, "mass") == pytest.approx(expected_mass, rel=1e-12)

@@ -191,6 +191,43 @@ def test_refusals_of_combinations_name_inputs_as_the_controls_do():
     assert not offenders, "\n".join(offenders)
 
 
+def _bad_body(edit) -> list[dict]:
+    from app.physics.systems.ch05.composite_body import DEFAULT_BODIES
+
+    bodies = [{**body, "position_m": list(body["position_m"]), "angles_deg": list(body["angles_deg"])} for body in DEFAULT_BODIES]
+    edit(bodies)
+    return bodies
+
+
+#: One bad entry for each field of the body editor, what the editor calls that spot, and the API's path to it.
+BODY_EDITOR_REFUSALS = [
+    (lambda b: b[2].__setitem__("length_m", 200.0), "body 3, length (m)", ("bodies", 2, "length_m")),
+    (lambda b: b[1].__setitem__("radius_m", -1.0), "body 2, radius (m)", ("bodies", 1, "radius_m")),
+    (lambda b: b[0].__setitem__("mass_kg", 0.0), "body 1, mass (kg)", ("bodies", 0, "mass_kg")),
+    (lambda b: b[0]["position_m"].__setitem__(2, 1e9), "body 1, z (m)", ("bodies", 0, "position_m", 2)),
+    (lambda b: b[2]["angles_deg"].__setitem__(1, 1000.0), "body 3, angle 2 (deg)", ("bodies", 2, "angles_deg", 1)),
+    (lambda b: b[0].__setitem__("hole", "yes"), "body 1, hole", ("bodies", 0, "hole")),
+    (lambda b: b[1].__setitem__("position_m", [0.3, 0.2, 0.0]), "body 2", ("bodies", 1)),  # the hole off the plate's edge
+]
+
+
+@pytest.mark.parametrize(("edit", "place", "path"), BODY_EDITOR_REFUSALS, ids=[r[1] for r in BODY_EDITOR_REFUSALS])
+def test_a_bad_body_is_refused_by_the_words_of_the_body_editor(edit, place, path):
+    """The editor labels its rows "body 1, body 2, …" and its fields "radius (m)", "z (m)", "angle 2 (deg)": a refusal
+    names the spot the same way (it used to say "bodies → 2 → length_m", a raw name and a row counted from 0), while
+    its path, the API's loc, keeps the API's names; the words survive the scene worker's boundary too."""
+    scene = SCENES["inertia-explorer"]
+    with pytest.raises(ParameterError) as refused:
+        scene.parameters.validate({"bodies": _bad_body(edit)})
+    error = refused.value
+    assert error.path == path and error.field == "bodies"
+    assert str(error).startswith(f"bodies, {place}: "), str(error)
+    assert not re.search(r"\w_(m|kg|deg)\b", str(error)), str(error)  # no radius_m, mass_kg, angles_deg
+    with pytest.raises(ParameterError) as again:
+        raise_answer(encode_error(error))
+    assert str(again.value) == str(error) and again.value.path == path
+
+
 def test_a_refusal_keeps_its_display_name_across_the_scene_workers_boundary():
     with pytest.raises(ParameterError) as refused:
         SCENES["heavy-top"].parameters.validate({"precession_rate0_rad_s": 1e9})

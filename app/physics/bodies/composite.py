@@ -10,7 +10,8 @@ positive definite).
 
 :func:`parts_from_records` turns request data (a list of dicts, as the API and
 the scenes receive it) into parts, raising :class:`ParameterError` whose path
-names the offending entry and field (``bodies → 2 → radius_m``).
+names the offending entry and field (``bodies → 2 → radius_m``; :func:`body_place` words it as the page's
+body editor does).
 """
 
 from __future__ import annotations
@@ -219,7 +220,7 @@ def _check_holes(parts: Sequence[Part]) -> None:
         hosts = [p for p in parts if not p.hole and p.shape.extent == part.shape.extent and np.all(p.contains(points))]
         if not hosts:
             raise ParameterError(
-                "bodies", f"hole {index} ({part.shape.name}) does not lie inside any solid {part.shape.extent} part: a hole must be "
+                "bodies", f"this hole (a {part.shape.name}) does not lie inside any solid {part.shape.extent} part: a hole must be "
                 "cut from a body of the same kind (a solid from a solid, a flat shape from a plate or disk, a rod from a rod)",
                 path=("bodies", index),
             )
@@ -227,7 +228,7 @@ def _check_holes(parts: Sequence[Part]) -> None:
         if part.density > host.density * (1.0 + 1e-6):
             largest = host.density * part.shape.measure(*part.size_args)
             raise ParameterError(
-                "bodies", f"hole {index} removes {part.mass_kg:.6g} kg, more than the {largest:.6g} kg the body it is cut from has "
+                "bodies", f"this hole removes {part.mass_kg:.6g} kg, more than the {largest:.6g} kg the body it is cut from has "
                 "in that space (same density)", path=("bodies", index, "mass_kg"),
             )
 
@@ -315,6 +316,26 @@ def validate_record(raw: Any, index: int, *, name: str = "bodies") -> dict[str, 
         raise ParameterError(name, "must be true or false", path=(*here, "hole"))
     out["hole"] = hole
     return out
+
+
+def body_place(path: tuple[str | int, ...]) -> str:
+    """Where a refusal points in the page's body editor, in the editor's own words: ``(3, "radius_m")`` →
+    ``"body 4, radius (m)"``, ``(0, "position_m", 2)`` → ``"body 1, z (m)"`` (rows count from 1 there)."""
+    index, *inside = path
+    words = [f"body {index + 1}" if isinstance(index, int) else str(index)]
+    if inside:
+        field, component = inside[0], inside[1] if len(inside) > 1 else None
+        if field == "position_m":
+            words.append(f"{'xyz'[component]} (m)" if isinstance(component, int) else "position (m)")
+        elif field == "angles_deg":
+            words.append(f"angle {component + 1} (deg)" if isinstance(component, int) else "angles (deg)")
+        elif field == "mass_kg":
+            words.append("mass (kg)")
+        elif isinstance(field, str) and field.endswith("_m"):
+            words.append(f"{field.removesuffix('_m').replace('_', ' ')} (m)")
+        else:
+            words.append(str(field))
+    return ", ".join(words)
 
 
 def validate_records(raw: Any, *, name: str = "bodies") -> list[dict[str, Any]]:

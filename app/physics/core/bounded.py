@@ -125,7 +125,8 @@ def _answer(function: Callable[..., Any], args: tuple[Any, ...]) -> tuple[str, A
     try:
         return ("result", function(*args))
     except ParameterError as exc:
-        return ("parameter_error", (exc.field, exc.message[:MAX_MESSAGE_CHARS], exc.path, exc.label))
+        field, message, *where = exc.carried()
+        return ("parameter_error", (field, message[:MAX_MESSAGE_CHARS], *where))
     except ValueError as exc:
         return ("value_error", str(exc)[:MAX_MESSAGE_CHARS])
     except MemoryError:
@@ -294,8 +295,7 @@ def _outcome(kind: str, payload: Any, *, memory_mb: float, what: str) -> Any:
     if kind == "result":
         return payload
     if kind == "parameter_error":
-        field, message, path, label = payload
-        raise ParameterError(field, message, path=path, label=label)
+        raise ParameterError.from_carried(payload)
     if kind == "value_error":
         raise ValueError(payload)
     if kind == "memory":

@@ -23,20 +23,39 @@ class ParameterError(ValueError):
     defaults to ``(field,)``. ``label`` is what the page calls the input (its
     :meth:`Parameter.display_name`, e.g. ``"φ̇₀ (rad/s)"``): where given, the
     text a student reads, ``str(error)``, starts with it instead of the field's
-    name, which stays in ``field`` and ``path`` for the API.
+    name, which stays in ``field`` and ``path`` for the API. ``place`` is how
+    the page names the spot inside a structured input (``"body 4, radius
+    (m)"``); without it the rest of the path is written out (``→ 3 → radius_m``).
     """
 
-    def __init__(self, field: str, message: str, *, path: Sequence[str | int] | None = None, label: str = "") -> None:
+    def __init__(
+        self, field: str, message: str, *, path: Sequence[str | int] | None = None, label: str = "", place: str = ""
+    ) -> None:
         self.path: tuple[str | int, ...] = tuple(path) if path else (field,)
-        subject = (label or str(self.path[0]), *(str(p) for p in self.path[1:]))
-        super().__init__(f"{' → '.join(subject)}: {message}")
+        subject = label or str(self.path[0])
+        if place:
+            subject = f"{subject}, {place}"
+        elif len(self.path) > 1:
+            subject = " → ".join((subject, *(str(p) for p in self.path[1:])))
+        super().__init__(f"{subject}: {message}")
         self.field = field
         self.message = message
         self.label = label
+        self.place = place
 
-    def named(self, label: str) -> ParameterError:
-        """This error with ``label`` as the name a student reads (the one it has, if it has one)."""
-        return self if self.label else ParameterError(self.field, self.message, path=self.path, label=label)
+    def carried(self) -> tuple[str, str, tuple[str | int, ...], str, str]:
+        """This error as plain data that crosses a process boundary (the scene workers, bounded work)."""
+        return (self.field, self.message, self.path, self.label, self.place)
+
+    @classmethod
+    def from_carried(cls, data: Sequence[Any]) -> ParameterError:
+        """The error :meth:`carried` describes, to raise again on this side of the boundary."""
+        field, message, path, label, place = data
+        return cls(field, message, path=path, label=label, place=place)
+
+    def named(self, label: str, place: str = "") -> ParameterError:
+        """This error with ``label`` (and ``place``) as the name a student reads (the one it has, if it has one)."""
+        return self if self.label else ParameterError(self.field, self.message, path=self.path, label=label, place=place)
 
 
 def _is_finite_float(value: int | float) -> bool:
@@ -80,6 +99,9 @@ class Parameter:
     max_length: int = 200
     parse: Callable[[Any], Any] | None = field(default=None, compare=False, repr=False)
     item_schema: Any = None
+    #: For a list: how the page names a spot inside it, from an error path after the parameter's name
+    #: (``(3, "radius_m")`` → ``"body 4, radius (m)"``), so a refusal reads as the editor is labelled.
+    item_place: Callable[[tuple[str | int, ...]], str] | None = field(default=None, compare=False, repr=False)
 
     def __post_init__(self) -> None:
         if self.kind == "choice":
@@ -131,7 +153,8 @@ class Parameter:
             try:
                 return self.parse(value)
             except ParameterError as exc:
-                raise exc.named(self.display_name()) from None
+                inside = exc.path[1:]
+                raise exc.named(self.display_name(), self.item_place(inside) if self.item_place and inside else "") from None
         if self.kind == "vector":
             return self._validate_vector(value)
         if isinstance(value, bool) or not isinstance(value, (int, float)):

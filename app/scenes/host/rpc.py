@@ -31,7 +31,7 @@ class WorkerUnavailableError(RuntimeError):
 def encode_error(exc: BaseException) -> Answer:
     """An exception raised by the host, as data that crosses a process boundary."""
     if isinstance(exc, ParameterError):
-        return ("parameter_error", exc.field, exc.message, tuple(exc.path), exc.label)
+        return ("parameter_error", *exc.carried())
     if isinstance(exc, UnknownSceneError):
         return ("unknown_scene", exc.args[0] if exc.args else "")
     if isinstance(exc, ValueError):
@@ -45,8 +45,7 @@ def raise_answer(answer: Answer) -> Any:
     if kind == "ok":
         return answer[1]
     if kind == "parameter_error":
-        _, field, message, path, label = answer
-        raise ParameterError(field, message, path=path, label=label)
+        raise ParameterError.from_carried(answer[1:])
     if kind == "unknown_scene":
         raise UnknownSceneError(answer[1])
     if kind == "value_error":

@@ -18,7 +18,9 @@ from typing import Any
 import numpy as np
 
 from app.physics.bodies import inertia
-from app.physics.bodies.composite import MAX_PARTS, CompositeBody, combine, parts_from_records, shapes_schema, validate_records
+from app.physics.bodies.composite import (
+    MAX_PARTS, CompositeBody, body_place, combine, parts_from_records, shapes_schema, validate_records,
+)
 from app.physics.core.parameters import Parameter, ParameterSet
 from app.physics.core.solution import Solution, Step, WorkedExample
 from app.physics.math.rotations import SEQUENCES
@@ -44,7 +46,7 @@ BODY_FIELDS = {
 
 BODIES = Parameter(
     "bodies", "", DEFAULT_BODIES, description="The primitive bodies (and holes) the composite is built from", label="bodies",
-    kind="list", parse=validate_records,
+    kind="list", parse=validate_records, item_place=body_place,
     item_schema={"fields": BODY_FIELDS, "shapes": shapes_schema(), "sequences": list(SEQUENCES), "max_items": MAX_PARTS},
 )
 
