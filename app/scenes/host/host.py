@@ -187,7 +187,10 @@ class SceneHost:
         self._recorder = SceneRecorder(host=host)
 
     # -- life cycle ---------------------------------------------------------------
-    def start(self) -> None:
+    def start(self, *, frame_loop: bool = True) -> None:
+        """Start the viser server and, unless ``frame_loop`` is false, the thread that calls :meth:`run_frame`
+        ``frame_rate_hz`` times a second (without it, time moves only when :meth:`run_frame` is called: a test
+        that steps the frames itself)."""
         share_prop_hints()
         server = quiet_server(host=self._host)
         log.info("scene server listening on loopback port %d (reached only through the relay)", server.get_port())
@@ -195,8 +198,9 @@ class SceneHost:
         server.on_client_connect(self._on_connect)
         server.on_client_disconnect(self._on_disconnect)
         self._server = server
-        self._thread = threading.Thread(target=self._frame_loop, name="scene-frames", daemon=True)
-        self._thread.start()
+        if frame_loop:
+            self._thread = threading.Thread(target=self._frame_loop, name="scene-frames", daemon=True)
+            self._thread.start()
 
     def stop(self) -> None:
         self._stop.set()
@@ -631,29 +635,34 @@ class SceneHost:
             now = time.perf_counter()
             dt, last = now - last, now
             deadline = deadline + period if now - deadline < period else now + period
-            with self._lock:
-                sessions = [sess for sess in self._sessions.values() if sess.instances]
-            wakeups = BatchedWakeups()  # viser's sender is woken once for every viewer's frame, not once per viewer
-            for session in sessions:
-                # Play state is read under the session's lock, the one set_playback holds while it changes it, so a
-                # pause that has returned is never followed by one more frame already decided on before it.
-                with session.lock:
-                    if not session.playing:
-                        continue
-                    # time_scale frames per displayed frame on average: 0.5 advances every other frame, 2 twice a frame.
-                    session.frame_credit += session.time_scale
-                    frames = int(session.frame_credit)
-                    if frames == 0:
-                        continue
-                    session.frame_credit -= frames
-                    for client_id, scene in list(session.instances.items()):
-                        history = session.histories.get(client_id)
-                        for _ in range(frames):
-                            if scene.animated and not scene.status:
-                                self._advance(scene, dt, wakeups)
-                                if history is not None:
-                                    history.record(scene.motion_state())
-            wakeups.flush()
+            self.run_frame(dt)
+
+    def run_frame(self, dt_s: float) -> None:
+        """One displayed frame: every playing session's scenes advance ``time_scale`` steps of ``dt_s`` (s) on average
+        (the fraction carried to the next frame), and each step is kept in its history for the scrubber."""
+        with self._lock:
+            sessions = [sess for sess in self._sessions.values() if sess.instances]
+        wakeups = BatchedWakeups()  # viser's sender is woken once for every viewer's frame, not once per viewer
+        for session in sessions:
+            # Play state is read under the session's lock, the one set_playback holds while it changes it, so a
+            # pause that has returned is never followed by one more frame already decided on before it.
+            with session.lock:
+                if not session.playing:
+                    continue
+                # time_scale frames per displayed frame on average: 0.5 advances every other frame, 2 twice a frame.
+                session.frame_credit += session.time_scale
+                frames = int(session.frame_credit)
+                if frames == 0:
+                    continue
+                session.frame_credit -= frames
+                for client_id, scene in list(session.instances.items()):
+                    history = session.histories.get(client_id)
+                    for _ in range(frames):
+                        if scene.animated and not scene.status:
+                            self._advance(scene, dt_s, wakeups)
+                            if history is not None:
+                                history.record(scene.motion_state())
+        wakeups.flush()
 
     @staticmethod
     def _advance(scene: Scene, dt_s: float, wakeups: BatchedWakeups) -> None:
