@@ -38,11 +38,13 @@ def _template(name: str) -> Template:
 #: The lesson page carries the controls, so viser's own control panel is hidden: on a wide viewer its floating
 #: dock window (the one holding the "viser-control-panel" tab: the "Connected" pill, and when expanded the
 #: websocket URL, dev settings, scene tree and share button), on a viewer under 576 px wide its bottom sheet (the
-#: panel outside the dock root, a Paper around a ScrollArea). Selectors from viser 1.1.1's client
+#: panel outside the dock root, a Paper around a ScrollArea). Every floating window is hidden, not only the one
+#: holding the tab: viser draws the panel's window a second or more before the tab exists (a flash of the websocket
+#: pill on every load), and our scenes add no GUI of their own, so no other window is lost. Selectors from viser 1.1.1's client
 #: (ControlPanelDock.tsx, ControlPanel.tsx, BottomPanel.tsx), pinned by tests/browser/test_viewer_controls_in_browser.py.
 #: Add viewer styling (label sizes, projector mode) here.
 VIEWER_CSS = """
-[data-floating-window]:has([data-dock-tab="viser-control-panel"]),
+[data-floating-window],
 [data-dock-leaf]:has([data-dock-tab="viser-control-panel"]),
 #root .mantine-Paper-root:not([data-floating-window]):has(> div > .mantine-ScrollArea-root) { display: none !important; }
 """

@@ -63,9 +63,16 @@ def hold(page, key: str, milliseconds: int) -> None:
 def test_viser_panel_is_hidden_and_the_scene_shows(browser, live_server, shots):
     context, page, session_id, errors = open_lesson(browser, live_server, LESSON)
     frame = viewer_frame(page)
-    frame.wait_for_selector(CANVAS)
     tab = frame.locator(CONTROL_PANEL_TAB)
-    wait_until(lambda: tab.count() == 1, 15, what="viser's control panel tab, found by VIEWER_CSS's selector")
+    panel_shown: list[bool] = []  # viser draws its floating panel a second or more before the panel's tab exists
+
+    def tab_found() -> bool:
+        panel_shown.append(frame.get_by_text("Connected").is_visible())
+        return tab.count() == 1
+
+    wait_until(tab_found, 15, interval_s=0.02, what="viser's control panel tab, found by VIEWER_CSS's selector")
+    assert not any(panel_shown), f"viser's panel showed in {sum(panel_shown)} of {len(panel_shown)} looks before its tab appeared"
+    frame.wait_for_selector(CANVAS)
     assert not tab.is_visible() and not frame.get_by_text("Connected").is_visible()
     box = frame.locator(CANVAS).bounding_box()
     assert frame.locator(CANVAS).is_visible() and box["width"] > 300 and box["height"] > 200
