@@ -1,12 +1,13 @@
-"""Helpers shared by more than one test folder (import them: ``from tests.conftest import wait_until``)."""
+"""Helpers shared by more than one test folder (import them: ``from tests.conftest import wait_until``), and how the
+suite is shared between README's two xdist workers."""
 
 from __future__ import annotations
 
 import time
+from collections import Counter
 from collections.abc import Callable
 
 import pytest
-
 from xdist.scheduler import LoadScopeScheduling
 
 BROWSER_TESTS = "tests/browser/"
@@ -25,8 +26,7 @@ class BrowserTestsTogether(LoadScopeScheduling):
 def pytest_collection_finish(session: pytest.Session) -> None:
     """Refuse a collection with two tests under one id: xdist hands out tests by id, so all but one would silently
     not run (pytest 9.2 did this to schemathesis's per-operation tests; pyproject pins pytest below it)."""
-    seen: set[str] = set()
-    repeated = sorted({item.nodeid for item in session.items if item.nodeid in seen or seen.add(item.nodeid)})
+    repeated = sorted(nodeid for nodeid, count in Counter(item.nodeid for item in session.items).items() if count > 1)
     if repeated:
         raise pytest.UsageError(f"{len(repeated)} test ids are shared by more than one test, e.g. {repeated[:3]}")
 
