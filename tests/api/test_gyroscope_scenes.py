@@ -142,7 +142,9 @@ def test_live_free_gyroscope_reads_out_the_closed_form(client):
     with live_viewer(client, "free-gyroscope", sid) as scene:
         wait_until(lambda: scene.t_s > 0.3)
         with host.inspect(sid):  # the frame loop waits while the drawn state is read
-            t_drawn, drawn_outer = scene.t_s, np.asarray(scene.outer.wxyz)
+            # A copy: viser updates a node's wxyz array in place, so a view would show a later frame by the time it is
+            # compared (the rare failure with the ring one frame ahead of the clock).
+            t_drawn, drawn_outer = scene.t_s, np.array(scene.outer.wxyz)
         values, _ = _readout(client, "free-gyroscope", sid)  # one readout is one consistent instant
         t_s = values["t_s"]
         # Yaw at 0.5 rad/s: the outer ring turns back by the heading change, the inner ring stays level.
