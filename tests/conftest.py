@@ -55,3 +55,13 @@ HEAVY_TOP_BENCH_SETUP = {
     "reference": "quadrature (elliptic) solution",
     "target_error": 1e-6,
 }
+
+
+@pytest.fixture(scope="session")
+def served():
+    """``dynlab serve`` as README starts it (its own process, the default scene workers), shared by a test worker's
+    tests: see :mod:`tests.served`."""
+    from tests.served import ServedApp
+
+    with ServedApp() as app:
+        yield app

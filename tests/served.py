@@ -1,0 +1,154 @@
+"""The app as a user runs it: ``dynlab serve`` in its own process, with its scene workers (one per core).
+
+API, fuzz and browser tests talk to it over HTTP and websockets on loopback, exactly as a browser does; nothing
+here reaches into the server's memory. :class:`ServedApp` starts one on a free port, waits until it answers
+``/api/health`` and stops it with Ctrl+C (SIGINT) as a user would, then kills whatever is left of its process tree.
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import socket
+import subprocess
+import sys
+import time
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+import httpx
+
+RESULTS = Path(__file__).resolve().parents[1] / "test-results"
+#: The instructor's secret the served apps of the tests are started with.
+INSTRUCTOR_KEY = "served-tests-instructor-key"
+#: A cold numba cache (a fresh clone) compiles every kernel in each worker: allow for it.
+START_TIMEOUT_S = 240.0
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def dynlab_command() -> list[str]:
+    """The ``dynlab`` console script of this environment (what ``uv run dynlab`` runs)."""
+    script = Path(sys.executable).with_name("dynlab")
+    return [str(script)] if script.exists() else [sys.executable, "-m", "app.cli"]
+
+
+def children_of(pid: int) -> list[int]:
+    """Process ids whose parent is ``pid`` (from /proc)."""
+    found = []
+    for entry in Path("/proc").iterdir():
+        if not entry.name.isdigit():
+            continue
+        try:
+            stat = (entry / "stat").read_text()
+        except OSError:
+            continue
+        # pid (comm) state ppid …: comm may hold spaces and parentheses, so split after the last ')'.
+        fields = stat.rsplit(")", 1)[1].split()
+        if int(fields[1]) == pid:
+            found.append(int(entry.name))
+    return found
+
+
+class ServedApp:
+    """``dynlab serve --host 127.0.0.1 --port <free>`` with the default scene workers, and an HTTP client for it."""
+
+    def __init__(self, *, name: str = "served", env: Mapping[str, str] | None = None, args: tuple[str, ...] = ()) -> None:
+        self.port = free_port()
+        self.instructor_key = INSTRUCTOR_KEY
+        self.name = name
+        self.log_path = RESULTS / f"{name}-{os.getpid()}-{self.port}.log"
+        # Whatever this shell sets, the default is what README's command gets: no DYNLAB_* but ours.
+        inherited = {k: v for k, v in os.environ.items() if not k.startswith("DYNLAB_")}
+        self._env = {**inherited, "DYNLAB_INSTRUCTOR_KEY": INSTRUCTOR_KEY, **(env or {})}
+        self._args = args
+        self.process: subprocess.Popen[bytes] | None = None
+        self.client = httpx.Client(base_url=self.url, timeout=60.0)
+
+    @property
+    def url(self) -> str:
+        return f"http://127.0.0.1:{self.port}"
+
+    @property
+    def instructor_link(self) -> str:
+        return f"{self.url}/instructor?key={self.instructor_key}"
+
+    @property
+    def instructor_headers(self) -> dict[str, str]:
+        return {"X-Instructor-Key": self.instructor_key}
+
+    def start(self) -> "ServedApp":
+        RESULTS.mkdir(parents=True, exist_ok=True)
+        log = self.log_path.open("wb")
+        command = [*dynlab_command(), "serve", "--host", "127.0.0.1", "--port", str(self.port), "--log-level", "warning", *self._args]
+        self.process = subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT, env=self._env, start_new_session=True)
+        log.close()
+        self.wait_healthy(START_TIMEOUT_S)
+        return self
+
+    def wait_healthy(self, timeout_s: float) -> None:
+        deadline = time.monotonic() + timeout_s
+        while True:
+            assert self.process is not None
+            if self.process.poll() is not None:
+                raise RuntimeError(f"dynlab serve exited with {self.process.returncode}; its log: {self.log_path}\n{self.log_tail()}")
+            try:
+                if httpx.get(f"{self.url}/api/health", timeout=2.0).status_code == 200:
+                    return
+            except httpx.HTTPError:
+                pass
+            if time.monotonic() > deadline:
+                raise RuntimeError(f"dynlab serve did not answer within {timeout_s:.0f} s; its log: {self.log_path}\n{self.log_tail()}")
+            time.sleep(0.1)
+
+    def log_tail(self, lines: int = 40) -> str:
+        try:
+            return "\n".join(self.log_path.read_text(errors="replace").splitlines()[-lines:])
+        except OSError:
+            return ""
+
+    def worker_pids(self) -> list[int]:
+        """The scene workers' process ids (the front's children that run a worker)."""
+        assert self.process is not None
+        pids = []
+        for pid in children_of(self.process.pid):
+            try:
+                cmdline = Path(f"/proc/{pid}/cmdline").read_bytes()
+            except OSError:
+                continue
+            if b"spawn_main" in cmdline:
+                pids.append(pid)
+        return sorted(pids)
+
+    def stop(self, *, timeout_s: float = 15.0) -> float:
+        """Ctrl+C, as a user stops it; returns the seconds it took to exit. Anything left of the tree is killed."""
+        if self.process is None:
+            return 0.0
+        started = time.monotonic()
+        tree = [self.process.pid, *self.worker_pids()]
+        if self.process.poll() is None:
+            self.process.send_signal(signal.SIGINT)
+            try:
+                self.process.wait(timeout=timeout_s)
+            except subprocess.TimeoutExpired:
+                pass
+        took = time.monotonic() - started
+        for pid in tree:
+            try:
+                os.killpg(pid, signal.SIGKILL) if pid == self.process.pid else os.kill(pid, signal.SIGKILL)
+            except (ProcessLookupError, PermissionError):
+                pass
+        self.process.wait(timeout=5)
+        self.client.close()
+        return took
+
+    def __enter__(self) -> "ServedApp":
+        return self.start()
+
+    def __exit__(self, *exc: Any) -> None:
+        self.stop()
