@@ -117,7 +117,7 @@ class WorkerPool:
     def _launch(self, index: int) -> tuple[Any, Connection]:
         front_end, worker_end = self._context.Pipe()
         process = self._context.Process(
-            target=run_worker, args=(index, worker_end, self._authkey, self._options), name=f"dynlab-scene-worker-{index}", daemon=True
+            target=run_worker, args=(index, worker_end, self._authkey, self._options), name=f"dynlab-scene-worker-{index}", daemon=False
         )
         process.start()
         worker_end.close()
