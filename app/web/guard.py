@@ -197,17 +197,21 @@ class RequestGuard:
             return f"cross-origin request from {origin[:100]!r} refused (add it to DYNLAB_ALLOWED_ORIGINS if it should pass)"
         return None
 
-    def _client_key(self, scope: Scope, headers: Headers) -> str | None:
-        if self.trust_forwarded_for:
-            forwarded = headers.get("x-forwarded-for", "").rsplit(",", 1)[-1].strip()
-            if _is_ip(forwarded):
-                return forwarded
-        client = scope.get("client")
-        return client[0] if client and _is_ip(client[0]) else None
-
     def _wait_s(self, limit: TokenBuckets, scope: Scope, headers: Headers) -> float:
-        key = self._client_key(scope, headers)
+        key = client_address(scope, trust_forwarded_for=self.trust_forwarded_for)
         return 0.0 if key is None else limit.take(key)
+
+
+def client_address(scope: Scope, *, trust_forwarded_for: bool) -> str | None:
+    """The client's IP address, the key of every per-client limit: the last ``X-Forwarded-For`` entry when
+    ``trust_forwarded_for`` (behind a reverse proxy that sets it), else the peer's address; None for a peer with no
+    IP address (a unix socket, an in-process test client), which has nothing to key on."""
+    if trust_forwarded_for:
+        forwarded = Headers(scope=scope).get("x-forwarded-for", "").rsplit(",", 1)[-1].strip()
+        if _is_ip(forwarded):
+            return forwarded
+    client = scope.get("client")
+    return client[0] if client and _is_ip(client[0]) else None
 
 
 def refusals(method: str, path: str, *, reads_body: bool) -> dict[int, str]:
