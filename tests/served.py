@@ -55,6 +55,17 @@ def children_of(pid: int) -> list[int]:
     return found
 
 
+class DeviceClient(httpx.Client):
+    """An HTTP client whose connections leave from ``address`` (a loopback address: one device of a class)."""
+
+    def __init__(self, address: str, **options: Any) -> None:
+        super().__init__(transport=httpx.HTTPTransport(local_address=address), **options)
+        self.address = address
+
+    def websocket_url(self, path: str) -> str:
+        return str(self.base_url).replace("http://", "ws://").rstrip("/") + path
+
+
 class ServedApp:
     """``dynlab serve --host 127.0.0.1 --port <free>`` with the default scene workers, and an HTTP client for it."""
 
@@ -81,6 +92,16 @@ class ServedApp:
     @property
     def instructor_headers(self) -> dict[str, str]:
         return {"X-Instructor-Key": self.instructor_key}
+
+    def new_client(self, *, timeout_s: float = 60.0) -> httpx.Client:
+        """An HTTP client from a loopback address of its own (127.1.x.y; Linux routes all of 127/8 to lo), as a
+        different device would be: the server's per-client limits see one student per client."""
+        ServedApp._addresses += 1
+        n = ServedApp._addresses
+        address = f"127.1.{n // 250 % 250}.{n % 250 + 1}"
+        return DeviceClient(address, base_url=self.url, timeout=timeout_s)
+
+    _addresses = 0
 
     def start(self) -> "ServedApp":
         RESULTS.mkdir(parents=True, exist_ok=True)

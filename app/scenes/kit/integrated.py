@@ -192,7 +192,7 @@ class IntegratedScene(Scene):
         self._applied = self._generation  # read by _take_measured_choice as "already applied"
         try:
             for _ in range(frames):
-                if not self.step_motion(FRAME_DT_S):
+                if not self.step_motion(FRAME_DT_S) or not self.pace():
                     break
         finally:
             if self._applied == self._generation:
