@@ -40,11 +40,12 @@ SessionKey = Annotated[
 ]
 _UNKNOWN_SCENE = "No scene has this id"
 #: What the session doors answer besides 404/422 (:mod:`app.api.access`).
+_RETRY_AFTER = {"Retry-After": {"description": "Seconds to wait before retrying", "schema": {"type": "integer"}}}
 _SESSION_DOOR = {
     403: {"model": ErrorDetail, "description": "The session belongs to another page (its X-Session-Key is missing or wrong), or it is a classroom room's shared scene (changed only by its instructor); nothing changed"},
-    429: {"model": ErrorDetail, "description": "Too many new scenes from this device; Retry-After says when to try again", "headers": {"Retry-After": {"schema": {"type": "integer"}}}},
-    503: {"model": ErrorDetail, "description": "The session's scene worker is busy or restarting; Retry-After says when to try again", "headers": {"Retry-After": {"schema": {"type": "integer"}}}},
+    503: {"model": ErrorDetail, "description": "The session's scene worker is busy or restarting; Retry-After says when to try again", "headers": _RETRY_AFTER},
 }
+_TOO_MANY_SESSIONS = {429: {"model": ErrorDetail, "description": "Too many new scenes from this device; Retry-After says when to try again", "headers": _RETRY_AFTER}}
 
 
 def _scene_class(host: SceneHostDep, scene_id: str) -> type[Scene]:
@@ -84,6 +85,7 @@ def session_params(scene_id: str, session_id: SessionId, host: SceneHostDep) -> 
             unprocessable="A parameter is unknown, not finite or out of range, or the session id or key is malformed; nothing changed",
         ),
         **_SESSION_DOOR,
+        **_TOO_MANY_SESSIONS,
     },
 )
 def set_session_params(

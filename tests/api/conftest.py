@@ -48,8 +48,11 @@ def viewer_count(client, scene_id: str, session_id: str) -> int:
 def live_viewer(client, scene_id: str, session_id: str) -> Iterator:
     """Connect a viewer to a session's scene as a browser does, until the host counts it.
 
-    On the served app (an httpx client) it is a real websocket whose frames are read and dropped, and it yields
-    None; on ``inprocess_client`` it yields the scene instance the host built for it."""
+    As a lesson page does, the session is opened first (its parameters, the defaults unless the test set some): a
+    viewer never creates a session. On the served app (an httpx client) it is a real websocket whose frames are read
+    and dropped, and it yields None; on ``inprocess_client`` it yields the scene instance the host built for it."""
+    if client.get(f"/api/scenes/{scene_id}/sessions/{session_id}").status_code == 404:
+        assert client.put(f"/api/scenes/{scene_id}/sessions/{session_id}", json={"params": {}}).status_code == 200
     if isinstance(client, TestClient):
         host = client.app.state.scene_host
         with client.websocket_connect(f"/viewer/{scene_id}/{session_id}", subprotocols=["viser-v" + viser.__version__]) as ws:
