@@ -44,9 +44,9 @@ def _serve(args: argparse.Namespace) -> int:
         port=settings.port,
         log_level=args.log_level,
         http=http_protocol,
-        # Ctrl+C: requests in flight get 2 s to finish, then the scene workers are stopped (app/scenes/host/pool.py),
+        # Ctrl+C: requests in flight get 1.5 s to finish, then the scene workers are stopped (app/scenes/host/pool.py),
         # so the server exits within about 5 s whatever is in flight.
-        timeout_graceful_shutdown=2,
+        timeout_graceful_shutdown=1.5,
         # A viewer sends only camera and GUI messages (< 1 kB); scene data is already zstd-compressed by viser,
         # so per-message deflate would spend CPU on every frame of every student for nothing.
         ws_max_size=1024 * 1024,

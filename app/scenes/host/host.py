@@ -182,8 +182,10 @@ class Session:
     shares: dict[int, ViewerShare] = field(default_factory=dict)
 
     def playback(self) -> dict[str, Any]:
-        """Play state, time scale, the first scene's simulated time and the span of motion kept for scrubbing."""
-        out: dict[str, Any] = {"playing": self.playing, "time_scale": self.time_scale, "t_s": None, "history_s": None}
+        """Play state, time scale, the first scene's simulated time (or, before a viewer, the time the next one resumes
+        at) and the span of motion kept for scrubbing."""
+        waiting_t_s = self.resume_motion.get("t_s") if self.resume_motion is not None else self.go_to_s
+        out: dict[str, Any] = {"playing": self.playing, "time_scale": self.time_scale, "t_s": waiting_t_s, "history_s": None}
         for client_id, scene in self.instances.items():
             motion = scene.motion_state()
             out["t_s"] = None if motion is None else motion["t_s"]
@@ -354,6 +356,8 @@ class SceneHost:
         with self._lock:
             session = self._session(scene_id, session_id)
         with session.lock:
+            if params != session.params:  # a new motion: what a reconnecting viewer would have resumed is void
+                session.resume_motion = None
             session.params = params
             for scene in session.instances.values():
                 scene.set_params(params)
@@ -416,6 +420,8 @@ class SceneHost:
                 session.playing = playing
             if time_scale is not None:
                 session.time_scale = float(time_scale)
+            if reset or go_to_s is not None:
+                session.resume_motion = session.go_to_s = None  # a viewer that connects later starts from the new motion
             if reset:
                 for scene in session.instances.values():
                     with scene.client.atomic():
@@ -489,12 +495,19 @@ class SceneHost:
             )
 
     def camera(self, session_id: str) -> dict[str, list[float]] | None:
-        """The first viewer's camera now (m, world frame), as its browser last reported it; None without a viewer."""
-        with self.inspect(session_id) as scenes:
-            for scene in scenes:
+        """The first viewer's camera now (m, world frame), as its browser last reported it; before a viewer, the one the
+        next viewer starts from (a share link's, or a restored one); else None."""
+        with self._lock:
+            session = self._sessions.get(session_id)
+        if session is None:
+            return None
+        with session.lock:
+            for scene in session.instances.values():
                 camera = viewer_camera(scene.client)
                 if camera is not None:
                     return camera
+            if not session.instances and session.camera is not None:
+                return {k: list(v) for k, v in session.camera.items()}
         return None
 
     def playback(self, session_id: str) -> dict[str, Any] | None:
@@ -813,8 +826,15 @@ class SceneHost:
             session = self._sessions.get(session_id) if session_id else None
         if session is not None:
             with session.lock:
-                session.remove_instance(client.client_id)
+                scene = session.remove_instance(client.client_id)
                 session.last_used_s = time.monotonic()
+                if scene is not None and not session.instances:
+                    # The last viewer went (a lost connection, a phone asleep, a reload): the next one continues
+                    # from here, seen from the same camera, instead of starting the motion again.
+                    session.resume_motion = scene.motion_state()
+                    camera = viewer_camera(client)
+                    if camera is not None:
+                        session.camera = {k: tuple(v) for k, v in camera.items()}  # type: ignore[misc]
 
     def _close_instances(self, session: Session) -> None:
         """Close a replaced session's scenes (caller holds the host lock; this takes the session's)."""

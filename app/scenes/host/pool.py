@@ -63,7 +63,7 @@ PING_TIMEOUT_S = 1.0
 #: Longest a read or write on a call's connection may make no progress (s), once its answer has begun.
 IO_TIMEOUT_S = 10.0
 #: Longest ``stop`` waits for the workers to exit by themselves before killing them (s).
-STOP_TIMEOUT_S = 2.5
+STOP_TIMEOUT_S = 2.0
 
 
 @dataclass
