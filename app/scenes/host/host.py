@@ -50,14 +50,16 @@ from typing import Any
 import viser
 
 from app.scenes.host.fair_share import (
-    CLIENT_FRAME_SHARE_S,
+    FRAME_LOOP_SHARE,
     REQUEST_COMPUTE_S,
     FrameCost,
     Pace,
     RequestTooCostly,
+    allowances,
     check_request_cost,
     slowdown_note,
 )
+from app.scenes.host.interface import HostBusy
 from app.scenes.host.graph import DEFAULT_MAX_POINTS, check_graph_request, empty_graph, motion_graph, no_graph_note
 from app.scenes.host.history import MotionHistory
 from app.scenes.host.recorder import SceneRecorder, checked_seconds, frames_for
@@ -204,6 +206,10 @@ class Session:
         self.histories[client_id].record(scene.motion_state())
         self.shares[client_id] = ViewerShare(client)
 
+    def first_share(self) -> ViewerShare:
+        """The first viewer's share (the session has a viewer)."""
+        return next(iter(self.shares.values()))
+
     def clear_instances(self) -> None:
         """Forget every viewer's scene (the caller has closed them)."""
         self.instances.clear()
@@ -214,11 +220,6 @@ class Session:
         self.histories.pop(client_id, None)
         self.shares.pop(client_id, None)
         return self.instances.pop(client_id, None)
-
-    def first_frame_cost_s(self) -> float:
-        """The measured cost of one frame of the first viewer's scene (s; 0 before it has run)."""
-        share = next(iter(self.shares.values()), None)
-        return 0.0 if share is None else share.cost.mean_s
 
     def snapshot(self) -> dict[str, Any]:
         """What a restarted worker needs to show this session as it is (caller holds its lock): scene, parameters,
@@ -266,6 +267,7 @@ class SceneHost:
         self._server: viser.ViserServer | None = None
         self._thread: threading.Thread | None = None
         self._recorder = SceneRecorder(host=host)
+        self._long_request = threading.Lock()
 
     # -- life cycle ---------------------------------------------------------------
     def start(self, *, frame_loop: bool = True) -> None:
@@ -405,15 +407,16 @@ class SceneHost:
         session = self._existing(session_id)
         if (go_to_s is not None or step or seek_s is not None) and not self.scene_class(session.scene_id).animated:
             raise ValueError(f"{session.scene_id} is not animated: it has no time to step, scrub or go to")
-        with session.lock:
-            # What the request will compute, checked against its share before anything moves (the scenes' measured
+        with self._one_long_request(bool(step) or go_to_s is not None), session.lock:
+            # What the request will compute, checked against its limit before anything moves (the scenes' measured
             # cost a frame; a session without a viewer computes its jump when one connects, paced the same way).
-            frame_cost_s = session.first_frame_cost_s() * max(1, len(session.instances))
             if step:
-                check_request_cost("step", frames=step, frame_cost_s=frame_cost_s, what=f"stepping {step} frames")
+                drawn_s = sum(share.cost.seconds for share in session.shares.values())
+                check_request_cost("step", frames=step, frame_cost_s=drawn_s, what=f"stepping {step} frames")
             if go_to_s is not None and session.instances:
+                stepped_s = sum(scene.motion_cost_s() or 0.0 for scene in session.instances.values())
                 frames = math.ceil(float(go_to_s) * self.frame_rate_hz)
-                check_request_cost("go_to_s", frames=frames, frame_cost_s=frame_cost_s, what=f"computing the motion to {go_to_s:g} s")
+                check_request_cost("go_to_s", frames=frames, frame_cost_s=stepped_s, what=f"computing the motion to {go_to_s:g} s")
             if seek_s is not None:  # checked against every viewer's kept motion before anything moves
                 motions = {cid: session.histories[cid].at(seek_s) for cid in session.instances if cid in session.histories}
             if playing is not None:
@@ -460,10 +463,26 @@ class SceneHost:
                         session.histories[client_id].forget_after(motion["t_s"])
             return session.playback()
 
+    @contextlib.contextmanager
+    def _one_long_request(self, long: bool) -> Iterator[None]:
+        """Requests that compute (step, go to a time) run one at a time in a worker, so that together they never take
+        more than one paced thread from the frame loop; one that cannot start within a second is answered 503."""
+        if not long:
+            yield
+            return
+        if not self._long_request.acquire(timeout=1.0):
+            raise HostBusy("another student's long computation is running on this scene worker; try again in a moment", retry_after_s=2)
+        try:
+            yield
+        finally:
+            self._long_request.release()
+
     def _step(self, session: Session, frames: int) -> None:
         """Advance every animated scene of the session ``frames`` displayed frames now (caller holds its lock), paced
-        so the frame loop keeps drawing everyone else meanwhile, and stopped at the request's compute limit."""
+        so the frame loop keeps drawing everyone else meanwhile. If it runs over the request's compute limit (its
+        cost was not known yet) every scene is put back where it was and ``RequestTooCostly`` says so."""
         pace = Pace()
+        before = {client_id: scene.motion_state() for client_id, scene in session.instances.items()}
         wakeups = BatchedWakeups()
         for client_id, scene in list(session.instances.items()):
             for _ in range(frames):
@@ -473,6 +492,16 @@ class SceneHost:
                 if not pace():
                     break
         wakeups.flush()
+        if pace.exhausted:
+            for client_id, scene in session.instances.items():
+                if before.get(client_id) is not None:
+                    scene.resume_from(before[client_id])  # type: ignore[arg-type]
+                    scene.redraw()
+            session.restarted()
+            raise RequestTooCostly(
+                f"step: {frames} frames of this scene take more than the {REQUEST_COMPUTE_S:g} s of computing one request "
+                f"may use while a class shares the server; step fewer frames, or use fewer steps per frame"
+            )
 
     @staticmethod
     def _paced_go_to(scene: Scene, t_s: float) -> None:
@@ -812,9 +841,10 @@ class SceneHost:
             if session.go_to_s is not None:
                 go_to_s, session.go_to_s = session.go_to_s, None
                 try:
-                    self._paced_go_to(scene, go_to_s)
-                except RequestTooCostly as exc:
-                    scene.status = str(exc).removeprefix("go_to_s: ")
+                    with self._one_long_request(True):
+                        self._paced_go_to(scene, go_to_s)
+                except (RequestTooCostly, HostBusy) as exc:  # the motion starts at t = 0 and the scene says why
+                    scene.status = f"the motion at {go_to_s:g} s was not computed: {str(exc).removeprefix('go_to_s: ')}"
             if session.camera is not None:
                 place_camera(client, **session.camera)
                 session.camera = None
@@ -863,17 +893,21 @@ class SceneHost:
         """One displayed frame: every playing session's scenes advance ``time_scale`` steps of ``dt_s`` (s) on average
         (the fraction carried to the next frame), and each step is kept in its history for the scrubber.
 
-        Fair shares (:mod:`.fair_share`): a viewer whose scene costs more than its share a frame, or whose client's
-        viewers together cost more than theirs, advances on only that fraction of frames; a session busy with a
-        request (its lock held) misses this frame rather than making everyone wait."""
+        Fair shares (:mod:`.fair_share`): when the viewers' measured costs do not fit in the frame loop's share of the
+        frame, the frame is shared max-min fairly by client, and a client over its allowance has its viewers advance
+        on only that fraction of frames. A session busy with a request (its lock held) misses this frame rather than
+        making everyone wait."""
         with self._lock:
             sessions = [sess for sess in self._sessions.values() if sess.instances]
-        client_cost: dict[str, float] = {}
+        demand: dict[str, float] = {}
+        viewers: dict[str, int] = {}
         for session in sessions:
             if session.playing:
                 for share in list(session.shares.values()):
                     if share.client is not None:
-                        client_cost[share.client] = client_cost.get(share.client, 0.0) + share.cost.mean_s * session.time_scale
+                        demand[share.client] = demand.get(share.client, 0.0) + share.cost.seconds * session.time_scale
+                        viewers[share.client] = viewers.get(share.client, 0) + 1
+        allowed = allowances(demand, capacity_s=FRAME_LOOP_SHARE * dt_s) if demand else {}
         wakeups = BatchedWakeups()  # viser's sender is woken once for every viewer's frame, not once per viewer
         for session in sessions:
             # Play state is read under the session's lock, the one set_playback holds while it changes it, so a
@@ -882,25 +916,28 @@ class SceneHost:
                 continue
             try:
                 if session.playing:
-                    self._advance_session(session, dt_s, client_cost, wakeups)
+                    self._advance_session(session, dt_s, demand, allowed, viewers, wakeups)
             finally:
                 session.lock.release()
         wakeups.flush()
 
-    def _advance_session(self, session: Session, dt_s: float, client_cost: Mapping[str, float], wakeups: BatchedWakeups) -> None:
+    def _advance_session(
+        self, session: Session, dt_s: float, demand: Mapping[str, float], allowed: Mapping[str, float],
+        viewers: Mapping[str, int], wakeups: BatchedWakeups,
+    ) -> None:  # fmt: skip
         """Advance each viewer's scene of a playing session by the frames it is owed (caller holds the session's lock)."""
         for client_id, scene in list(session.instances.items()):
             share = session.shares.get(client_id)
             history = session.histories.get(client_id)
             if share is None:
                 continue
-            rate = share.cost.rate()
-            by_client = client_cost.get(share.client or "", 0.0)
-            client_rate = 1.0 if by_client <= CLIENT_FRAME_SHARE_S else CLIENT_FRAME_SHARE_S / by_client
-            if client_rate < rate:
-                share.rate, share.note = client_rate, slowdown_note(client_rate, by_client, client=True)
+            allowance = allowed.get(share.client or "", math.inf)
+            client_demand = demand.get(share.client or "", 0.0)
+            if client_demand > allowance:
+                share.rate = allowance / client_demand
+                share.note = slowdown_note(share.rate, client_demand, allowance, viewers=viewers.get(share.client or "", 1))
             else:
-                share.rate, share.note = rate, slowdown_note(rate, share.cost.mean_s, client=False) if rate < 1.0 else ""
+                share.rate, share.note = 1.0, ""
             # time_scale frames per displayed frame on average: 0.5 advances every other frame, 2 twice a frame.
             share.credit += session.time_scale * share.rate
             frames = int(share.credit)

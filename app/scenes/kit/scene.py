@@ -296,6 +296,11 @@ class Scene(ABC):
         if rest > 1e-12:
             self.step_motion(rest)
 
+    def motion_cost_s(self) -> float | None:
+        """What stepping this scene's motion one frame without drawing costs (s), as measured; None where it is not
+        measured (a closed form in time costs next to nothing)."""
+        return None
+
     @staticmethod
     def pace() -> bool:
         """Called after each frame of a long computation (:meth:`step_without_drawing`); False stops it there. The
