@@ -38,7 +38,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass, field
 
 from app.scenes.host.host import STAGE_PREFIX
-from app.web.rate_limit import TokenBuckets
+from app.web.rate_limit import InFlight, TokenBuckets
 
 #: 16–128 letters, digits, '-' or '_' (the lesson page sends 32 hex digits from crypto.getRandomValues).
 SESSION_KEY_PATTERN = re.compile(r"^[A-Za-z0-9_-]{16,128}$")
@@ -107,6 +107,7 @@ class SessionDirectory:
         self._viewers_by_client: dict[str, int] = {}
         self._followers_by_client: dict[str, int] = {}
         self._creations = TokenBuckets(burst=CREATE_BURST, rate_per_s=CREATE_RATE_PER_S, max_clients=max_clients, clock=clock)
+        self._heavy_changes = InFlight(limit=1)
         self._lock = threading.Lock()
 
     def __len__(self) -> int:
@@ -202,6 +203,20 @@ class SessionDirectory:
     def sessions_of(self, client: str) -> int:
         with self._lock:
             return len(self._by_client.get(client, ()))
+
+    @contextmanager
+    def heavy_change(self, *, client: str | None) -> Iterator[None]:
+        """Hold the client's one place for a change that compiles what a student typed (a typed Lagrangian's
+        derivation may take its whole 20 s): a second one from the same device meanwhile is :class:`Refused` (429)."""
+        if client is None:
+            yield
+            return
+        if not self._heavy_changes.try_enter(client):
+            raise Refused(429, "your previous change is still being derived: wait for it, then try again", retry_after_s=2)
+        try:
+            yield
+        finally:
+            self._heavy_changes.leave(client)
 
     # -- viewers -------------------------------------------------------------------------------------------
     @contextmanager

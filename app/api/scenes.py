@@ -1,5 +1,6 @@
 from __future__ import annotations
 
+import contextlib
 import math
 from typing import Annotated, Any
 
@@ -105,12 +106,14 @@ def set_session_params(
     (``room-…``) is refused with 403: only its instructor changes it, through the room. Bad input gets a 422
     naming the field and changes nothing.
     """
-    _scene_class(host, scene_id)
+    cls = _scene_class(host, scene_id)
     sessions.check_change(session_id, session_key, client=client)
     start = _explore_start(rooms, request.from_room, scene_id) if request.from_room else None
     raw = {**start["params"], **request.params} if start else request.params
+    typed = any(p.kind == "text" for p in cls.parameters.parameters)  # validating compiles what the student typed
     try:
-        params = host.set_params(scene_id, session_id, raw)
+        with sessions.heavy_change(client=client) if typed else contextlib.nullcontext():
+            params = host.set_params(scene_id, session_id, raw)
     except ParameterError as exc:  # the request's field is `params`: name it, and the path inside it
         raise unprocessable(["body", "params", *exc.path], str(exc)) from None
     except ValueError as exc:  # values that cannot exist together (a linkage that cannot assemble, …)
