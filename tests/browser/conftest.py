@@ -61,6 +61,17 @@ class ServedHost:
     def viewer_count(self, session_id: str) -> int:
         return (self._playback(session_id) or {}).get("viewers", 0)
 
+    def playback(self, session_id: str) -> dict | None:
+        return self._playback(session_id)
+
+    def session_scene(self, session_id: str) -> str | None:
+        return self._scene(session_id)
+
+    def live(self, session_id: str) -> dict | None:
+        """The session's live readout, as the page polls it."""
+        answer = self._http.get(f"/api/scenes/{self._scene(session_id)}/sessions/{session_id}/live")
+        return answer.json() if answer.status_code == 200 else None
+
     def session_params(self, session_id: str) -> dict | None:
         scene_id = self._scene(session_id)
         answer = self._http.get(f"/api/scenes/{scene_id}/sessions/{session_id}") if scene_id else None

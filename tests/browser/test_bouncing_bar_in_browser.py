@@ -45,7 +45,7 @@ def test_bouncing_bar_lesson_counts_impacts_keeps_the_energy_ledger_and_comes_to
     assert httpx.put(url, json={"params": elastic}).status_code == 403
     key = page.evaluate("window.dynlabLesson.session.key")
     assert httpx.put(url, json={"params": elastic}, headers={"X-Session-Key": key}).status_code == 200
-    wait_until(lambda: host.instances(session_id)[0].params["restitution"] == 1.0, 15, what="the scene to take the new parameters")
+    wait_until(lambda: host.session_params(session_id)["restitution"] == 1.0, 15, what="the scene to take the new parameters")
     def bouncing_elastically() -> bool:
         now = readout_values(page)
         return now.get("mode") == "flight" and now.get("impact_count", 0) >= 3

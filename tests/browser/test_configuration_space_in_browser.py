@@ -21,7 +21,7 @@ SCENE = "configuration-space-constraints"
 def _choose(page, host, session_id, constraint: str, shown) -> dict:
     """Pick ``constraint`` and return the first readout for which ``shown(values)`` holds (the table refreshes ~1/s)."""
     page.select_option("#ctl-constraint", constraint)
-    wait_until(lambda: host.instances(session_id)[0].params["constraint"] == constraint, 10, what=f"the scene to show {constraint}")
+    wait_until(lambda: host.session_params(session_id)["constraint"] == constraint, 10, what=f"the scene to show {constraint}")
     found: list[dict] = []
 
     def new_table() -> bool:

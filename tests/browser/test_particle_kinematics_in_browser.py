@@ -36,7 +36,7 @@ def wait_for_quantity(page, name, expected, *, rel=1e-12, abs_=0.0):
 def press_preset(page, host, session_id, preset, expected_params):
     page.click(f'button[data-preset="{preset}"]')
     wait_until(
-        lambda: all(host.instances(session_id)[0].params[k] == v for k, v in expected_params.items()),
+        lambda: all(host.session_params(session_id)[k] == v for k, v in expected_params.items()),
         15,
         what=f"the preset {preset} to reach the scene",
     )
@@ -45,7 +45,7 @@ def press_preset(page, host, session_id, preset, expected_params):
 def test_cartesian_components_lesson_shows_the_projectile_s_constant_acceleration(browser, live_server, shots):
     context, page, session_id, errors = open_lesson(browser, live_server, "/lessons/2-2-rectangular-cartesian")
     host = live_server.host
-    assert host.instances(session_id)[0].id == "cartesian-components"
+    assert host.session_scene(session_id) == "cartesian-components"
     # The default sine slot: ẍ = 0 and ẋ = 0.5 m/s at every instant.
     assert wait_for_quantity(page, "x_dot", 0.5) == pytest.approx(0.5, rel=1e-12)
     assert wait_for_quantity(page, "x_ddot", 0.0, abs_=1e-15) == 0.0
@@ -62,7 +62,7 @@ def test_cartesian_components_lesson_shows_the_projectile_s_constant_acceleratio
 def test_curvilinear_lesson_shows_the_loxodrome_in_spherical_components(browser, live_server, shots):
     context, page, session_id, errors = open_lesson(browser, live_server, "/lessons/2-3-curvilinear-coordinates")
     host = live_server.host
-    assert host.instances(session_id)[0].id == "curvilinear-coordinates"
+    assert host.session_scene(session_id) == "curvilinear-coordinates"
     press_preset(page, host, session_id, "loxodrome", {"path": "loxodrome", "frame": "spherical"})
     # On the sphere: r = 1 m and v_r = 0; the magnitudes from the components equal the Cartesian ones.
     assert wait_for_quantity(page, "r", 1.0) == pytest.approx(1.0, rel=1e-12)
@@ -91,7 +91,7 @@ def test_curvilinear_lesson_shows_the_loxodrome_in_spherical_components(browser,
 def test_mixed_description_lesson_shows_the_rotating_arm_and_its_coriolis_term(browser, live_server, shots):
     context, page, session_id, errors = open_lesson(browser, live_server, "/lessons/2-4-mixed-descriptions")
     host = live_server.host
-    assert host.instances(session_id)[0].id == "rotating-arm"
+    assert host.session_scene(session_id) == "rotating-arm"
     press_preset(page, host, session_id, "fixed-collar", {"collar_amplitude_m": 0.0, "collar_mean_m": 1.0})
     # A clamped collar at r = 1 m on an arm at 1 rad/s: only the centripetal term, −r θ̇² = −1 m/s²; no Coriolis.
     assert wait_for_quantity(page, "a_centripetal", -1.0) == pytest.approx(-1.0, rel=1e-12)

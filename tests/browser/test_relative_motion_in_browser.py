@@ -74,7 +74,7 @@ def test_moving_frame_lesson_reads_out_the_five_terms(browser, live_server, shot
     }
     _set_controls(page, held)
     host = live_server.host
-    wait_until(lambda: host.instances(session_id)[0].params["time_s"] == 2.6, 20, what="the scene to hold t = 2.6 s")
+    wait_until(lambda: host.session_params(session_id)["time_s"] == 2.6, 20, what="the scene to hold t = 2.6 s")
     physical = moving.PARAMETERS.validate({k: v for k, v in held.items() if k in moving.PARAMETERS.by_name})
     terms = moving.MovingFrameMotion.from_params(physical).acceleration_terms(np.array([2.6]))
     expected = float(np.linalg.norm(terms["total"][0]))

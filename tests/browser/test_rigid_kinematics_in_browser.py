@@ -20,7 +20,7 @@ pytestmark = pytest.mark.browser
 
 def _press_preset(page, host, session_id, preset: str, check) -> None:
     page.click(f'button[data-preset="{preset}"]')
-    wait_until(lambda: check(host.instances(session_id)[0].params), 15, what=f"the scene to take the preset {preset}")
+    wait_until(lambda: check(host.session_params(session_id)), 15, what=f"the scene to take the preset {preset}")
 
 
 def test_rigid_body_points_lesson(browser, live_server, shots):

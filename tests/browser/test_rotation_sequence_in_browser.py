@@ -34,7 +34,8 @@ def _screenshot(page, path) -> None:
     screenshot(page, path)
 
 
-def test_rotation_sequences_lesson_readout_and_gimbal_lock(browser, live_server, shots):
+def test_rotation_sequences_lesson_readout_and_gimbal_lock(browser, inprocess_live_server, shots):
+    live_server = inprocess_live_server  # the third turn's drawn label is read from the scene instance
     context, page, session_id, errors = open_lesson(browser, live_server, "/lessons/3-1-rotation-sequences", timeout_s=30)
     host = live_server.host
     _wait_for_quantity(page, "rotation_angle_deg", "true")
@@ -48,12 +49,12 @@ def test_rotation_sequences_lesson_readout_and_gimbal_lock(browser, live_server,
 
     # Hold the finished sequence for the picture: all four frames, three turn axes and arcs.
     page.select_option("#ctl-stage", "after turn 3")
-    wait_until(lambda: host.instances(session_id)[0].params["stage"] == "after turn 3", 10, what="the scene to take the stage")
+    wait_until(lambda: host.session_params(session_id)["stage"] == "after turn 3", 10, what="the scene to take the stage")
     _screenshot(page, shots / "lesson-3-1-rotation-sequences.png")
 
     # Gimbal-lock preset: 3-2-1 at pitch 90°, only yaw − roll is determined.
     page.click('button[data-preset="gimbal-lock"]')
-    wait_until(lambda: host.instances(session_id)[0].params["angle2_deg"] == 90.0, 15, what="the scene to take the preset")
+    wait_until(lambda: host.session_params(session_id)["angle2_deg"] == 90.0, 15, what="the scene to take the preset")
     _wait_for_quantity(page, "rate_gain", 'v === "unbounded"')
     locked = Rotation.from_euler("ZYX", [30.0, 90.0, 10.0], degrees=True)
     assert readout_quantity(page, "rotation_angle_deg") == pytest.approx(math.degrees(locked.magnitude()), abs=1e-9)
@@ -78,7 +79,7 @@ def test_angular_velocity_lesson_rate_gain_near_lock(browser, live_server, shots
         page.dispatch_event(f"#ctl-{name}", "change")
     page.select_option("#ctl-stage", "after turn 3")
     wait_until(
-        lambda: (p := host.instances(session_id)[0].params)["sequence"] == "3-2-1" and p["angle2_deg"] == 85.0 and p["stage"] == "after turn 3",
+        lambda: (p := host.session_params(session_id))["sequence"] == "3-2-1" and p["angle2_deg"] == 85.0 and p["stage"] == "after turn 3",
         15, what="the scene to take 3-2-1 at 85°",
     )
     _wait_for_quantity(page, "gimbal_lock_distance_deg", "Math.abs(v - 5) < 1e-9")

@@ -59,7 +59,7 @@ def test_typed_helix_gives_the_closed_form_curvature_and_torsion(browser, live_s
 
     for name, text in (("x_of_t", "2*cos(t)"), ("y_of_t", "2*sin(t)"), ("z_of_t", "0.5*t")):
         _type(page, name, text)
-    wait_until(lambda: host.instances(session_id)[0].params["z_of_t"] == "0.5*t", 15, what="the scene to take the typed helix")
+    wait_until(lambda: host.session_params(session_id)["z_of_t"] == "0.5*t", 15, what="the scene to take the typed helix")
     # Exact symbolic derivatives: the readout carries the closed form to rounding (1e-12 relative).
     assert _wait_for_quantity(page, "curvature", 2 / 4.25) == pytest.approx(2 / 4.25, rel=1e-12)
     assert _wait_for_quantity(page, "torsion", 0.5 / 4.25) == pytest.approx(0.5 / 4.25, rel=1e-12)
@@ -77,7 +77,7 @@ def test_typed_helix_gives_the_closed_form_curvature_and_torsion(browser, live_s
     assert report["series"]["torsion"] == pytest.approx([0.5 / 4.25] * 31, rel=1e-12)
 
     # A bad formula: inline error naming the character, the control marked, the scene untouched.
-    before = dict(host.instances(session_id)[0].params)
+    before = dict(host.session_params(session_id))
     _type(page, "x_of_t", "2*cos(t")
     page.wait_for_function("() => !document.getElementById('control-error').hidden", timeout=10_000)
     message = page.text_content("#control-error")
@@ -86,7 +86,7 @@ def test_typed_helix_gives_the_closed_form_curvature_and_torsion(browser, live_s
     assert "never closed" in message and "character 6" in message, message
     assert "invalid" in (page.get_attribute('.control[data-name="x_of_t"]', "class") or "")
     page.wait_for_timeout(1500)
-    assert host.instances(session_id)[0].params == before
+    assert host.session_params(session_id) == before
     assert host.session_params(session_id) == before
     assert _wait_for_quantity(page, "curvature", 2 / 4.25) == pytest.approx(2 / 4.25, rel=1e-12)
 
@@ -94,7 +94,7 @@ def test_typed_helix_gives_the_closed_form_curvature_and_torsion(browser, live_s
     _type(page, "x_of_t", "__import__('os').system('ls')")
     page.wait_for_function("() => document.getElementById('control-error').textContent.includes('underscores are not allowed')", timeout=10_000)
     assert page.text_content("#control-error").startswith("x(t) (m):")  # named as the control is, not x_of_t
-    assert host.instances(session_id)[0].params == before
+    assert host.session_params(session_id) == before
     assert not errors, errors
     context.close()
 
@@ -105,7 +105,7 @@ def test_cylindrical_components_of_the_conical_spiral(browser, live_server, shot
     context, page, session_id, errors = _open_lesson(browser, live_server, "/lessons/2-3-curvilinear-coordinates")
     host = live_server.host
     page.click('button[data-preset="conical-spiral"]')
-    wait_until(lambda: host.instances(session_id)[0].params["frame"] == "cylindrical", 15, what="the preset to reach the scene")
+    wait_until(lambda: host.session_params(session_id)["frame"] == "cylindrical", 15, what="the preset to reach the scene")
     assert _wait_for_quantity(page, "v_R", 0.1) == pytest.approx(0.1, rel=1e-12)
     assert _wait_for_quantity(page, "a_theta", 0.4) == pytest.approx(0.4, rel=1e-12)
     assert json.loads(page.get_attribute('#readout [data-quantity="a_z"]', "data-value")) == pytest.approx(0.0, abs=1e-12)

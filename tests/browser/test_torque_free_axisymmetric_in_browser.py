@@ -28,15 +28,14 @@ def test_lesson_scene_readout_matches_the_closed_form_and_presets_switch_the_sen
     assert shown["spin_rate"] == pytest.approx(motion.spin_rate_rad_s, rel=1e-15)
     assert shown["body_cone_half_angle"] + shown["space_cone_half_angle"] == pytest.approx(25.0, rel=1e-13)
     assert shown["sense"] == "direct"
-    scene = host.instances(session_id)[0]
-    wait_until(lambda: scene.t_s > 1.0, 20, what="the scene to animate")
+    wait_until(lambda: (host.playback(session_id) or {}).get("t_s", 0.0) > 1.0, 20, what="the scene to animate")
     page.evaluate("document.getElementById('viewer-wrap').scrollIntoView()")
     let_webgl_draw(page, 3000)
     screenshot(page, shots / "lesson-10-1-axisymmetric-free-motion.png")
 
     # The coin preset: oblate, retrograde, the space cone inside the body cone.
     page.click('button[data-preset="coin"]')
-    wait_until(lambda: host.instances(session_id)[0].params["I_axial"] == 0.99, 15, what="the scene to take the coin preset")
+    wait_until(lambda: host.session_params(session_id)["I_axial"] == 0.99, 15, what="the scene to take the coin preset")
     page.wait_for_function(
         "() => { const c = document.querySelector('#readout [data-quantity=\"sense\"]'); return c && JSON.parse(c.dataset.value) === 'retrograde'; }",
         timeout=45_000,

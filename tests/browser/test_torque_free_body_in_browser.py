@@ -39,8 +39,8 @@ def test_poinsot_lesson_readout_presets_and_ghost(browser, live_server, shots):
     page.click('button[data-preset="tennis-racket"]')
     page.select_option("#ctl-ghost", "on")
     wait_until(
-        lambda: host.instances(session_id)[0].params["ghost"] == "on"
-        and host.instances(session_id)[0].params["omega0_rad_s"] == [0.1, 4.0, 0.1],
+        lambda: host.session_params(session_id)["ghost"] == "on"
+        and host.session_params(session_id)["omega0_rad_s"] == [0.1, 4.0, 0.1],
         15, what="the scene to take the preset and the ghost",
     )
     page.evaluate("window.dynlabLesson.setPlayback({time_scale: 4})")  # 5.5 s of the flip in about 1.4 s
@@ -52,7 +52,7 @@ def test_poinsot_lesson_readout_presets_and_ghost(browser, live_server, shots):
     difference = readout_quantity(page, "ghost_attitude_difference")
     assert 0.0 <= difference < 1e-6  # measured ~1e-9 rad after a few seconds
     next_flip = readout_quantity(page, "next_flip")
-    assert isinstance(next_flip, float) and 0.0 < next_flip <= 0.5 * tfb.motion(host.instances(session_id)[0].params).period_s
+    assert isinstance(next_flip, float) and 0.0 < next_flip <= 0.5 * tfb.motion(host.session_params(session_id)).period_s
     assert "turns over every 4.31 s" in page.text_content("#readout .readout-message")
     page.evaluate("document.getElementById('viewer-wrap').scrollIntoView()")
     let_webgl_draw(page, 1500)

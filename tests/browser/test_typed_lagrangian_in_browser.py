@@ -36,7 +36,7 @@ def test_typing_a_kinetic_energy_rederives_the_equations_and_runs_them(browser, 
     page.fill("#ctl-kinetic_energy", HEAVIER)
     page.press("#ctl-kinetic_energy", "Enter")
     host = live_server.host
-    wait_until(lambda: host.instances(session_id)[0].params["kinetic_energy"] == HEAVIER, 60, what="the scene to take the typed T")
+    wait_until(lambda: host.session_params(session_id)["kinetic_energy"] == HEAVIER, 60, what="the scene to take the typed T")
     # Doubling T doubles every inertia term: the first equation now starts 4 l² m q̈₁.
     page.wait_for_function("() => (document.querySelector('#readout .readout-message').dataset.source || '').includes('4 l^{2} m')", timeout=30_000)
     assert page.locator("#readout .readout-equation .katex").count() == 2  # shown as equations, not as LaTeX source
@@ -50,7 +50,7 @@ def test_typing_a_kinetic_energy_rederives_the_equations_and_runs_them(browser, 
     page.press("#ctl-kinetic_energy", "Enter")
     page.wait_for_selector("#control-error:not([hidden])", timeout=30_000)
     assert "singular" in page.locator("#control-error").text_content()
-    assert host.instances(session_id)[0].params["kinetic_energy"] == HEAVIER
+    assert host.session_params(session_id)["kinetic_energy"] == HEAVIER
 
     show_scene_and_keep_screenshot(page, shots / f"lesson-{LESSON}.png")
     assert not errors, errors
