@@ -64,12 +64,15 @@ class KeyRedaction:
 
 
 def install(secret: str) -> KeyRedaction:
-    """From now on, every log record of this process is made through :class:`KeyRedaction` of ``secret``."""
+    """From now on, every log record of this process is made through :class:`KeyRedaction` of ``secret`` (a second
+    call replaces the first one's, never stacks on it)."""
     redaction = KeyRedaction(secret)
-    make: Callable[..., logging.LogRecord] = logging.getLogRecordFactory()
+    current = logging.getLogRecordFactory()
+    make: Callable[..., logging.LogRecord] = getattr(current, "unredacted", current)
 
     def redacted_record(*args: Any, **kwargs: Any) -> logging.LogRecord:
         return redaction.record(make(*args, **kwargs))
 
+    redacted_record.unredacted = make  # type: ignore[attr-defined]
     logging.setLogRecordFactory(redacted_record)
     return redaction

@@ -64,3 +64,16 @@ def test_no_record_carries_the_key(caught):
     assert "ValueError: bad URL http://h/instructor?key=…" in text
     for form in (SECRET, quote(SECRET, safe=""), quote_plus(SECRET), "chalk-and-talk-2025"):
         assert form not in text
+
+
+def test_installing_again_replaces_the_redaction_rather_than_stacking_it():
+    base = logging.getLogRecordFactory()
+    try:
+        log_redaction.install("first-secret-0001")
+        log_redaction.install("second-secret-0002")
+        factory = logging.getLogRecordFactory()
+        assert factory.unredacted is base
+        record = factory("x", logging.INFO, __file__, 1, "%s and %s", ("first-secret-0001", "second-secret-0002"), None)
+        assert record.getMessage() == "first-secret-0001 and …"
+    finally:
+        logging.setLogRecordFactory(base)
