@@ -439,7 +439,7 @@
       inStep = true;
       if (came.lesson && (came.lesson !== config.lesson_id || (came.scene || null) !== pageScene)) {
         panel.offer(came.lesson, came.scene, "This tab was opened on another lesson. The class is on this one, so the tab came here.");
-      }
+      } else panel.offer(null);
       if (lesson && pageScene) applyParams();
     }
     function applyParams() {
@@ -525,6 +525,7 @@
       students: students.render,
       // "Show … to the class": the instructor's explicit choice to move the class to a lesson (or scene).
       async offer(lessonId, sceneId, why, conditions) {
+        if (!lessonId) { offerBox.hidden = true; delete offerBox.dataset.lesson; return; } // nothing to offer (any more)
         if (offerBox.dataset.lesson === `${lessonId}/${sceneId || ""}`) return;
         offerBox.dataset.lesson = `${lessonId}/${sceneId || ""}`;
         const title = await lessonTitle(lessonId, sceneId);

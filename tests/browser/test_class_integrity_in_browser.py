@@ -117,6 +117,18 @@ def test_a_second_instructor_tab_follows_the_class_and_moves_it_only_when_asked(
     assert _room_state(served, room_id)["lesson_id"] != FOUR_BAR_LESSON
     assert not first.errors and not second.errors, (first.errors, second.errors)
     httpx.delete(f"{served.url}/api/rooms/{room_id}", headers=served.instructor_headers)
+
+    # A room that shows no lesson yet (opened from the API): a lesson page offers itself, and nothing moves until asked.
+    empty = httpx.post(f"{served.url}/api/rooms", json={}, headers=served.instructor_headers).json()["room_id"]
+    second.goto(f"{served.url}/lessons/{FOUR_BAR_LESSON}?room={empty}")
+    show = second.get_by_role("button", name=re.compile(r"Show “.*four-bar.*” to the class", re.IGNORECASE))
+    show.wait_for()
+    assert "no lesson yet" in second.text_content(".room-offer") and _room_state(served, empty)["lesson_id"] is None
+    show.click()
+    wait_until(lambda: _room_state(served, empty)["lesson_id"] == FOUR_BAR_LESSON, 10, what="the empty room to show the four-bar")
+    second.wait_for_selector(".room-offer", state="hidden")
+    assert second.url.endswith(f"/lessons/{FOUR_BAR_LESSON}?room={empty}")
+    httpx.delete(f"{served.url}/api/rooms/{empty}", headers=served.instructor_headers)
     context.close()
 
 
