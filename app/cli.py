@@ -37,11 +37,19 @@ def _serve(args: argparse.Namespace) -> int:
     print(f"Dynamics Lab: serving on http://{settings.host}:{settings.port}  ({where}; Ctrl+C to stop)", flush=True)
     base = settings.public_url or f"http://{settings.host}:{settings.port}"
     print(f"Instructor link (keep it to yourself: whoever opens it runs the rooms): {app.state.instructor_key.link(base)}", flush=True)
+    from app.web.slow_clients import GuardedHttpProtocol
+
+    # Behind a reverse proxy every connection comes from the proxy: per-address connection caps belong to it there.
+    http_protocol = type("ServedHttpProtocol", (GuardedHttpProtocol,), {"cap_connections": not settings.trust_forwarded_for})
     uvicorn.run(
         app,
         host=settings.host,
         port=settings.port,
         log_level=args.log_level,
+        http=http_protocol,
+        # Ctrl+C: requests in flight get 1.5 s to finish, then the scene workers are stopped (app/scenes/host/pool.py),
+        # so the server exits within about 5 s whatever is in flight.
+        timeout_graceful_shutdown=1.5,
         # A viewer sends only camera and GUI messages (< 1 kB); scene data is already zstd-compressed by viser,
         # so per-message deflate would spend CPU on every frame of every student for nothing.
         ws_max_size=1024 * 1024,

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import logging
 from collections.abc import AsyncIterator
 from contextlib import asynccontextmanager
 from pathlib import Path
@@ -15,7 +16,7 @@ from app import __version__
 from app.api import bench, chapters, errors, examples, health, rooms, scenes, systems
 from app.api.join_limits import JoinLimits
 from app.api.room_hub import RoomHub
-from app.api.session_keys import SessionKeys
+from app.api.access import SessionDirectory
 from app.course import load_catalogue
 from app.rooms.ready_questions import DEFAULT_READY_QUESTIONS, load_ready_questions
 from app.rooms.registry import Rooms
@@ -26,6 +27,7 @@ from app.scenes.host.pool import WorkerPool
 from app.settings import Settings
 from app.web import guard, pages, relay, room_pages, room_relay
 
+log = logging.getLogger(__name__)
 STATIC_DIR = Path(__file__).resolve().parent.parent / "static"
 
 
@@ -56,7 +58,8 @@ def create_app(settings: Settings | None = None) -> FastAPI:
         redoc_url=None,
     )
     app.state.settings = settings
-    app.state.session_keys = SessionKeys(max_sessions=settings.max_sessions)
+    # Page sessions: owners, viewers, per-client bounds; an evicted session is closed in its scene worker.
+    app.state.sessions = SessionDirectory(max_sessions=settings.max_sessions, close=lambda session_id: _close_evicted(app, session_id))
     # Every lesson reference is checked here: a bad one stops the server before it starts.
     app.state.catalogue = load_catalogue(settings.lessons_dir)
     # The classroom: the instructor's secret, the open rooms, their sockets and the ready poll questions (checked now).
@@ -77,6 +80,14 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     _offline_docs(app)
     app.mount("/static", StaticFiles(directory=STATIC_DIR), name="static")
     return app
+
+
+def _close_evicted(app: FastAPI, session_id: str) -> None:
+    """Close a session the directory evicted in its scene worker (a worker that is restarting forgets it anyway)."""
+    try:
+        app.state.scene_host.close_session(session_id)
+    except Exception as exc:
+        log.warning("closing evicted session %s failed: %s", session_id, exc)
 
 
 def _offline_docs(app: FastAPI) -> None:

@@ -55,6 +55,17 @@ def children_of(pid: int) -> list[int]:
     return found
 
 
+class DeviceClient(httpx.Client):
+    """An HTTP client whose connections leave from ``address`` (a loopback address: one device of a class)."""
+
+    def __init__(self, address: str, **options: Any) -> None:
+        super().__init__(transport=httpx.HTTPTransport(local_address=address), **options)
+        self.address = address
+
+    def websocket_url(self, path: str) -> str:
+        return str(self.base_url).replace("http://", "ws://").rstrip("/") + path
+
+
 class ServedApp:
     """``dynlab serve --host 127.0.0.1 --port <free>`` with the default scene workers, and an HTTP client for it."""
 
@@ -81,6 +92,16 @@ class ServedApp:
     @property
     def instructor_headers(self) -> dict[str, str]:
         return {"X-Instructor-Key": self.instructor_key}
+
+    def new_client(self, *, timeout_s: float = 60.0) -> httpx.Client:
+        """An HTTP client from a loopback address of its own (127.1.x.y; Linux routes all of 127/8 to lo), as a
+        different device would be: the server's per-client limits see one student per client."""
+        ServedApp._addresses += 1
+        n = ServedApp._addresses
+        address = f"127.1.{n // 250 % 250}.{n % 250 + 1}"
+        return DeviceClient(address, base_url=self.url, timeout=timeout_s)
+
+    _addresses = 0
 
     def start(self) -> "ServedApp":
         RESULTS.mkdir(parents=True, exist_ok=True)
@@ -152,3 +173,50 @@ class ServedApp:
 
     def __exit__(self, *exc: Any) -> None:
         self.stop()
+
+
+class Viewer:
+    """A browser's 3D viewer on a served app, in a thread: it connects to ``path`` (``/viewer/<scene>/<session>`` or
+    ``/room-viewer/<room>``) from ``address``, sends the first camera message (``camera``: position, look_at in m),
+    reads every frame, and reconnects half a second after a drop, as viser's client does, until :meth:`close`."""
+
+    def __init__(self, app: ServedApp, path: str, *, address: str = "127.0.0.1", camera: tuple | None = None) -> None:
+        import threading
+
+        self.url = app.url.replace("http://", "ws://") + path
+        self.address = address
+        self.camera = camera
+        self.frames = 0
+        self.connections = 0
+        self.last_frame_s = 0.0
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._run, name=f"viewer {path}", daemon=True)
+        self._thread.start()
+
+    def _run(self) -> None:
+        import viser
+        from websockets.sync.client import connect
+
+        from app.scenes.host.viser_compat import viewer_camera_message
+
+        message = viewer_camera_message(**({"position": self.camera[0], "look_at": self.camera[1]} if self.camera else {}))
+        while not self._stop.is_set():
+            try:
+                with connect(self.url, subprotocols=[f"viser-v{viser.__version__}"], max_size=None, open_timeout=10,  # type: ignore[list-item]
+                             source_address=(self.address, 0)) as ws:  # fmt: skip
+                    self.connections += 1
+                    ws.send(message)
+                    while not self._stop.is_set():
+                        try:
+                            ws.recv(timeout=0.5)
+                        except TimeoutError:
+                            continue
+                        self.frames += 1
+                        self.last_frame_s = time.monotonic()
+            except Exception:
+                pass
+            self._stop.wait(0.5)
+
+    def close(self) -> None:
+        self._stop.set()
+        self._thread.join(timeout=10)

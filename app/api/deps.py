@@ -7,24 +7,30 @@ from typing import Annotated
 from fastapi import Depends
 from starlette.requests import HTTPConnection
 
-from app.api.session_keys import SessionKeys
+from app.api.access import SessionDirectory
 from app.course import Catalogue
-from app.scenes.host.host import SceneHost
-from app.scenes.host.pool import WorkerPool
+from app.scenes.host.interface import SceneHostInterface
 from app.settings import Settings
+from app.web.guard import client_address
 
 
 def get_catalogue(request: HTTPConnection) -> Catalogue:
     return request.app.state.catalogue
 
 
-def get_scene_host(request: HTTPConnection) -> SceneHost | WorkerPool:
+def get_scene_host(request: HTTPConnection) -> SceneHostInterface:
     """The scenes: one in-process host, or the pool of scene workers (``Settings.workers``); same interface."""
     return request.app.state.scene_host
 
 
-def get_session_keys(request: HTTPConnection) -> SessionKeys:
-    return request.app.state.session_keys
+def get_sessions(request: HTTPConnection) -> SessionDirectory:
+    """Page sessions: who owns each, its viewers, the per-client bounds (:mod:`app.api.access`)."""
+    return request.app.state.sessions
+
+
+def get_client(request: HTTPConnection) -> str | None:
+    """The client's address, the key of every per-client limit (None for an in-process caller)."""
+    return client_address(request.scope, trust_forwarded_for=request.app.state.settings.trust_forwarded_for)
 
 
 def get_settings(request: HTTPConnection) -> Settings:
@@ -32,6 +38,7 @@ def get_settings(request: HTTPConnection) -> Settings:
 
 
 CatalogueDep = Annotated[Catalogue, Depends(get_catalogue)]
-SceneHostDep = Annotated[SceneHost | WorkerPool, Depends(get_scene_host)]
+SceneHostDep = Annotated[SceneHostInterface, Depends(get_scene_host)]
 SettingsDep = Annotated[Settings, Depends(get_settings)]
-SessionKeysDep = Annotated[SessionKeys, Depends(get_session_keys)]
+SessionsDep = Annotated[SessionDirectory, Depends(get_sessions)]
+ClientDep = Annotated[str | None, Depends(get_client)]

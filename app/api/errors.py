@@ -27,6 +27,8 @@ from fastapi.responses import JSONResponse, Response
 from app.api.schemas.errors import ErrorDetail
 from app.physics.core.bounded import WorkBusy, WorkRefused
 from app.physics.core.parameters import ParameterError
+from app.api.access import Refused
+from app.scenes.host.interface import HostBusy
 from app.scenes.host.rpc import WorkerUnavailableError
 
 log = logging.getLogger(__name__)
@@ -81,10 +83,22 @@ async def internal_error_handler(request: Request, exc: Exception) -> Response:
     return JSONResponse({"detail": "internal server error: the fault is ours and has been logged"}, status_code=500)
 
 
-async def worker_unavailable_handler(request: Request, exc: Exception) -> Response:
-    log.warning("%s %s: %s", request.method, request.url.path, exc)
-    detail = "the scene worker for this session is restarting; try again in a moment"
-    return JSONResponse({"detail": detail}, status_code=503, headers={"Retry-After": "2"})
+async def host_busy_handler(request: Request, exc: Exception) -> Response:
+    """503 with Retry-After: the scene worker is not answering or restarting, or its recorder is busy."""
+    assert isinstance(exc, HostBusy)
+    if isinstance(exc, WorkerUnavailableError):
+        log.warning("%s %s: %s", request.method, request.url.path, exc)
+        detail = "the scene worker for this session is busy or restarting; try again in a moment"
+    else:
+        detail = str(exc)
+    return JSONResponse({"detail": detail}, status_code=503, headers={"Retry-After": str(exc.retry_after_s)})
+
+
+async def refused_handler(request: Request, exc: Exception) -> Response:
+    """A door of :mod:`app.api.access` said no: its status and words, and Retry-After for 429/503."""
+    assert isinstance(exc, Refused)
+    headers = {"Retry-After": str(exc.retry_after_s)} if exc.retry_after_s is not None else None
+    return JSONResponse({"detail": exc.message}, status_code=exc.status, headers=headers)
 
 
 async def work_refused_handler(request: Request, exc: Exception) -> Response:
@@ -100,7 +114,8 @@ async def work_busy_handler(request: Request, exc: Exception) -> Response:
 def install(app: FastAPI) -> None:
     app.add_exception_handler(RequestValidationError, request_validation_error_handler)
     app.add_exception_handler(ParameterError, parameter_error_handler)
-    app.add_exception_handler(WorkerUnavailableError, worker_unavailable_handler)
+    app.add_exception_handler(HostBusy, host_busy_handler)
+    app.add_exception_handler(Refused, refused_handler)
     app.add_exception_handler(WorkRefused, work_refused_handler)
     app.add_exception_handler(WorkBusy, work_busy_handler)
     app.add_exception_handler(Exception, internal_error_handler)

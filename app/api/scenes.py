@@ -1,19 +1,20 @@
 from __future__ import annotations
 
+import contextlib
 import math
 from typing import Annotated, Any
 
 from fastapi import APIRouter, Header, HTTPException, Path, Query
 from fastapi.responses import JSONResponse, Response
 
-from app.api.deps import SceneHostDep, SessionKeysDep
+from app.api.access import KEY_HEADER as SESSION_KEY_HEADER
+from app.api.access import SESSION_KEY_PATTERN, Refused
+from app.api.deps import ClientDep, SceneHostDep, SessionsDep
 from app.api.examples import ScriptParams, python_file
 from app.api.rooms import RoomsDep
 from app.api.errors import unprocessable
 from app.api.limits import SIMULATIONS, TOO_MANY_RESPONSE
 from app.api.schemas.errors import ErrorDetail, error_responses
-from app.api.session_keys import HEADER as SESSION_KEY_HEADER
-from app.api.session_keys import SESSION_KEY_PATTERN, SessionKeyError
 from app.api.schemas.graph import GraphAnswer
 from app.api.schemas.readout import LiveAnswer
 from app.api.schemas.scenes import PlaybackAnswer, PlaybackRequest, SceneSummary, SessionParamsAnswer, SessionParamsRequest
@@ -28,7 +29,7 @@ from app.rooms.registry import Rooms
 from app.scenes.host.graph import DEFAULT_MAX_POINTS, MAX_POINTS_RANGE, graph_csv
 from app.scenes.host.host import SESSION_ID_PATTERN, UnknownSceneError
 from app.scenes.host.recorder import DEFAULT_RECORDING_S, RECORDING_SECONDS_RANGE
-from app.scenes.host.rpc import WorkerUnavailableError
+from app.scenes.host.interface import HostBusy
 from app.scenes.kit import Scene
 
 router = APIRouter(prefix="/api/scenes", tags=["scenes"])
@@ -36,9 +37,16 @@ router = APIRouter(prefix="/api/scenes", tags=["scenes"])
 SessionId = Annotated[str, Path(pattern=SESSION_ID_PATTERN, description="One page's session: 8–64 letters, digits, '-' or '_'")]
 SessionKey = Annotated[
     str | None,
-    Header(alias=SESSION_KEY_HEADER, pattern=SESSION_KEY_PATTERN, description="The page's secret for its session: 16–128 letters, digits, '-' or '_'"),
+    Header(alias=SESSION_KEY_HEADER, pattern=SESSION_KEY_PATTERN.pattern, description="The page's secret for its session: 16–128 letters, digits, '-' or '_'"),
 ]
 _UNKNOWN_SCENE = "No scene has this id"
+#: What the session doors answer besides 404/422 (:mod:`app.api.access`).
+_RETRY_AFTER = {"Retry-After": {"description": "Seconds to wait before retrying", "schema": {"type": "integer"}}}
+_SESSION_DOOR = {
+    403: {"model": ErrorDetail, "description": "The session belongs to another page (its X-Session-Key is missing or wrong), or it is a classroom room's shared scene (changed only by its instructor); nothing changed"},
+    503: {"model": ErrorDetail, "description": "The session's scene worker is busy or restarting; Retry-After says when to try again", "headers": _RETRY_AFTER},
+}
+_TOO_MANY_SESSIONS = {429: {"model": ErrorDetail, "description": "Too many new scenes from this device; Retry-After says when to try again", "headers": _RETRY_AFTER}}
 
 
 def _scene_class(host: SceneHostDep, scene_id: str) -> type[Scene]:
@@ -55,6 +63,20 @@ def list_scenes(host: SceneHostDep) -> list[dict[str, Any]]:
     return [cls.schema() for cls in host.scenes.values()]
 
 
+@router.get(
+    "/{scene_id}/sessions/{session_id}",
+    response_model=SessionParamsAnswer,
+    responses=error_responses(not_found="No scene has this id, or the session shows none (or another scene)", unprocessable="The session id is malformed"),
+)
+def session_params(scene_id: str, session_id: SessionId, host: SceneHostDep) -> dict[str, Any]:
+    """The session's parameters now and how many viewers are connected to it."""
+    _scene_class(host, scene_id)
+    params = host.session_params(session_id) if host.session_scene(session_id) == scene_id else None
+    if params is None:
+        raise HTTPException(status_code=404, detail=f"session {session_id!r} shows no {scene_id!r} scene")
+    return {"scene_id": scene_id, "session_id": session_id, "params": params, "viewers": host.viewer_count(session_id)}
+
+
 @router.put(
     "/{scene_id}/sessions/{session_id}",
     response_model=SessionParamsAnswer,
@@ -63,7 +85,8 @@ def list_scenes(host: SceneHostDep) -> list[dict[str, Any]]:
             not_found=_UNKNOWN_SCENE,
             unprocessable="A parameter is unknown, not finite or out of range, or the session id or key is malformed; nothing changed",
         ),
-        403: {"model": ErrorDetail, "description": "The session belongs to another page: its X-Session-Key is missing or wrong; nothing changed"},
+        **_SESSION_DOOR,
+        **_TOO_MANY_SESSIONS,
     },
 )
 def set_session_params(
@@ -71,69 +94,82 @@ def set_session_params(
     session_id: SessionId,
     request: SessionParamsRequest,
     host: SceneHostDep,
-    session_keys: SessionKeysDep,
+    sessions: SessionsDep,
+    client: ClientDep,
     rooms: RoomsDep,
     session_key: SessionKey = None,
 ) -> dict[str, Any]:
     """Set the parameters of one page's scene; every viewer of that session redraws.
 
-    The first change that carries an ``X-Session-Key`` claims the session for that
-    key: later changes without it are refused with 403. Bad input gets a 422
+    The first change makes the session (a page's own scene); the first that carries an ``X-Session-Key`` claims
+    it for that key: later changes without it are refused with 403. A classroom room's shared scene
+    (``room-…``) is refused with 403: only its instructor changes it, through the room. Bad input gets a 422
     naming the field and changes nothing.
     """
-    _scene_class(host, scene_id)
-    try:
-        session_keys.check(session_id, session_key)
-    except SessionKeyError as exc:
-        raise HTTPException(status_code=403, detail=str(exc)) from None
+    cls = _scene_class(host, scene_id)
+    sessions.check_change(session_id, session_key, client=client)
     start = _explore_start(rooms, request.from_room, scene_id) if request.from_room else None
     raw = {**start["params"], **request.params} if start else request.params
+    typed = any(p.kind == "text" for p in cls.parameters.parameters)  # validating compiles what the student typed
     try:
-        params = host.set_params(scene_id, session_id, raw)
+        with sessions.heavy_change(client=client) if typed else contextlib.nullcontext():
+            params = host.set_params(scene_id, session_id, raw)
     except ParameterError as exc:  # the request's field is `params`: name it, and the path inside it
         raise unprocessable(["body", "params", *exc.path], str(exc)) from None
     except ValueError as exc:  # values that cannot exist together (a linkage that cannot assemble, …)
         raise unprocessable(["body", "params"], str(exc)) from None
+    sessions.changed(session_id, scene_id, session_key, client=client)
     if start and start["motion"] is not None and params == start["params"]:
         host.resume_from(session_id, start["motion"])  # same parameters: continue the room's motion, not restart it
-    session_keys.claim(session_id, session_key)
     return {"scene_id": scene_id, "session_id": session_id, "params": params, "viewers": host.viewer_count(session_id)}
 
 
 @router.put(
     "/{scene_id}/sessions/{session_id}/playback",
     response_model=PlaybackAnswer,
+    response_model_exclude_unset=True,
     responses={
         **error_responses(
             not_found=_UNKNOWN_SCENE,
-            unprocessable="A field is out of range, the session has no scene yet, or seek_s is outside the kept motion; nothing changed",
+            unprocessable="A field is out of range, the session has no scene yet, seek_s is outside the kept motion, or the request would compute longer than one request may; nothing changed",
         ),
-        403: {"model": ErrorDetail, "description": "The session belongs to another page: its X-Session-Key is missing or wrong; nothing changed"},
+        **_SESSION_DOOR,
     },
 )
 def set_session_playback(
-    scene_id: str, session_id: SessionId, request: PlaybackRequest, host: SceneHostDep, session_keys: SessionKeysDep, session_key: SessionKey = None
+    scene_id: str,
+    session_id: SessionId,
+    request: PlaybackRequest,
+    host: SceneHostDep,
+    sessions: SessionsDep,
+    client: ClientDep,
+    session_key: SessionKey = None,
 ) -> dict[str, Any]:
     """Play, pause, step, scrub, restart or change the speed of one page's scene (the page's time controls);
-    ``go_to_s`` restores the motion at a simulated time (a share link). Owned sessions need their X-Session-Key."""
+    ``go_to_s`` restores the motion at a simulated time (a share link). Owned sessions need their X-Session-Key;
+    a classroom room's shared scene is refused (403)."""
     _scene_class(host, scene_id)
     try:
-        session_keys.check(session_id, session_key)
-    except SessionKeyError as exc:
-        raise HTTPException(status_code=403, detail=str(exc)) from None
-    if host.session_params(session_id) is None:
-        raise unprocessable(["path", "session_id"], f"session {session_id!r} has no scene yet: set its parameters first")
+        sessions.check_change(session_id, session_key, client=client, creating=False)
+    except Refused as exc:
+        if exc.status != 404:
+            raise
+        raise unprocessable(["path", "session_id"], f"session {session_id!r} has no scene yet: set its parameters first") from None
+    if host.session_scene(session_id) != scene_id:
+        raise unprocessable(["path", "session_id"], f"session {session_id!r} shows no {scene_id!r} scene: set its parameters first")
     try:
         answer = host.set_playback(session_id, **request.model_dump(exclude_none=True))
     except ValueError as exc:
         field = str(exc).split(":", 1)[0]
         raise unprocessable(["body", field if field in PlaybackRequest.model_fields else "session_id"], str(exc)) from None
+    sessions.touched(session_id)
     return {**answer, "camera": host.camera(session_id), "viewers": host.viewer_count(session_id)}
 
 
 @router.get(
     "/{scene_id}/sessions/{session_id}/playback",
     response_model=PlaybackAnswer,
+    response_model_exclude_unset=True,
     responses=error_responses(not_found="No scene has this id, or the session has none yet", unprocessable="The session id is malformed"),
 )
 def session_playback(scene_id: str, session_id: SessionId, host: SceneHostDep) -> dict[str, Any]:
@@ -253,15 +289,16 @@ def session_recording(
     """The last ``seconds`` (1–60) of what the session's viewer showed, as one HTML file that plays offline in any
     browser (viser's client and the recording inside it); a still of the scene when it has no kept motion.
 
-    404 for an unknown scene or a session without this scene; 422 for bad ``seconds`` or a file over the size
-    limit; 500 with the reason when the recording fails.
+    404 for an unknown scene or a session without this scene; 422 for bad ``seconds``, a file over the size
+    limit or more computing than one request may take; 503 with Retry-After while another recording is being made
+    in the same worker; 500 with the reason when the recording fails.
     """
     _scene_class(host, scene_id)
     try:
         page = host.recording_html(scene_id, session_id, seconds=seconds)
     except ValueError as exc:
         raise unprocessable(["query", "seconds"], str(exc)) from None
-    except WorkerUnavailableError:
+    except HostBusy:  # the worker's recorder is making another recording, or the worker is not answering: 503
         raise
     except RuntimeError as exc:  # RecordingError in-process; a worker's arrives as "scene worker failed: …"
         raise HTTPException(status_code=500, detail=f"the recording could not be made: {exc}") from None

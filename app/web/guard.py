@@ -8,7 +8,8 @@
   must name this server (:class:`HostPolicy`): otherwise 403, or close 1008 before accept. This
   stops cross-site requests and DNS rebinding; clients without ``Origin`` (scripts) pass.
 - Per-client rate limits (:class:`~app.web.rate_limit.TokenBuckets`): ``POST .../simulate`` and ``POST /api/systems/custom/derive`` get 429
-  with ``Retry-After``; opening a viewer websocket is closed with 1013 "try again later".
+  with ``Retry-After``, and so does a second one from a client whose first is still running
+  (:class:`~app.web.rate_limit.InFlight`); opening a viewer websocket is closed with 1013 "try again later".
 """
 
 from __future__ import annotations
@@ -28,7 +29,7 @@ from starlette.responses import JSONResponse
 from starlette.types import ASGIApp, Receive, Scope, Send
 
 from app.settings import Settings
-from app.web.rate_limit import TokenBuckets
+from app.web.rate_limit import InFlight, TokenBuckets
 
 log = logging.getLogger(__name__)
 
@@ -117,6 +118,7 @@ class RequestGuard:
         self.simulate_limit = TokenBuckets(
             burst=settings.simulate_burst, rate_per_s=settings.simulate_rate_per_s, max_clients=settings.rate_limit_clients, clock=clock
         )
+        self.heavy_in_flight = InFlight(limit=1)
         self.viewer_limit = TokenBuckets(
             burst=settings.viewer_open_burst, rate_per_s=settings.viewer_open_rate_per_s, max_clients=settings.rate_limit_clients, clock=clock
         )
@@ -148,6 +150,19 @@ class RequestGuard:
                 retry_after = max(1, math.ceil(wait_s))
                 detail = f"too many simulate or derive requests from this client: try again in {retry_after} s"
                 await JSONResponse({"detail": detail}, status_code=429, headers={"Retry-After": str(retry_after)})(scope, receive, send)
+                return
+            client = client_address(scope, trust_forwarded_for=self.trust_forwarded_for)
+            if client is not None:
+                # One heavy computation per client at a time: two 20 s derivations from one device would take both of
+                # the server's places for them, and everyone else would wait.
+                if not self.heavy_in_flight.try_enter(client):
+                    detail = "your previous simulation or derivation is still running: wait for its answer, then try again"
+                    await JSONResponse({"detail": detail}, status_code=429, headers={"Retry-After": "2"})(scope, receive, send)
+                    return
+                try:
+                    await self.app(scope, receive, send)
+                finally:
+                    self.heavy_in_flight.leave(client)
                 return
         await self.app(scope, receive, send)
 

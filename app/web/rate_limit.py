@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import threading
 import time
 from collections import OrderedDict
 from collections.abc import Callable
@@ -44,3 +45,31 @@ class TokenBuckets:
         while len(self._buckets) > self.max_clients:
             self._buckets.popitem(last=False)
         return wait_s
+
+
+class InFlight:
+    """How many requests each client has running now, at most ``limit`` each (thread-safe; a client with none is forgotten)."""
+
+    def __init__(self, *, limit: int) -> None:
+        if limit < 1:
+            raise ValueError(f"limit must be >= 1 (got {limit})")
+        self.limit = limit
+        self._running: dict[str, int] = {}
+        self._lock = threading.Lock()
+
+    def try_enter(self, client: str) -> bool:
+        """Count one more request of ``client`` and return True, or False (counting nothing) if it has ``limit``."""
+        with self._lock:
+            running = self._running.get(client, 0)
+            if running >= self.limit:
+                return False
+            self._running[client] = running + 1
+            return True
+
+    def leave(self, client: str) -> None:
+        with self._lock:
+            left = self._running.get(client, 1) - 1
+            if left > 0:
+                self._running[client] = left
+            else:
+                self._running.pop(client, None)

@@ -17,10 +17,14 @@ import logging
 import msgspec
 import websockets
 from fastapi import APIRouter, WebSocket
+from starlette.concurrency import run_in_threadpool
 from starlette.websockets import WebSocketDisconnect
 
-from app.api.deps import SceneHostDep
+from app.api.access import Refused
+from app.api.deps import SceneHostDep, SessionsDep
 from app.scenes.host.host import SESSION_ID_PATTERN
+from app.scenes.host.interface import HostBusy, SceneHostInterface
+from app.web.guard import client_address
 
 log = logging.getLogger(__name__)
 router = APIRouter(tags=["viewer"])
@@ -50,24 +54,43 @@ async def viser_protocol(websocket: WebSocket) -> str | None:
 
 
 @router.websocket("/viewer/{scene_id}/{session_id}")
-async def viewer_relay(websocket: WebSocket, scene_id: str, session_id: str, host: SceneHostDep) -> None:
+async def viewer_relay(websocket: WebSocket, scene_id: str, session_id: str, host: SceneHostDep, sessions: SessionsDep) -> None:
+    """A page's viewer: relayed to the scene worker that holds the session, if :mod:`app.api.access` lets it open."""
     if scene_id not in host.scenes or not SESSION_ID_PATTERN.match(session_id):
         await websocket.close(code=1008, reason="unknown scene or malformed session id")
         return
     protocol = await viser_protocol(websocket)
     if protocol is None:
         return
+    client = client_address(websocket.scope, trust_forwarded_for=websocket.app.state.settings.trust_forwarded_for)
     try:
+        with sessions.viewer(session_id, scene_id, client=client):
+            await _relay(websocket, host, scene_id, session_id, protocol, client)
+    except Refused as exc:
+        await close_refused(websocket, exc)
+
+
+async def close_refused(websocket: WebSocket, exc: Refused) -> None:
+    """Close a websocket before accepting it, as the door said: 1013 (try again later) for 429/503, else 1008."""
+    log.info("refused websocket %s: %s", websocket.url.path, exc.message)
+    with contextlib.suppress(RuntimeError, WebSocketDisconnect):
+        await websocket.close(code=1013 if exc.status in (429, 503) else 1008, reason=exc.message[:120])
+
+
+async def _relay(websocket: WebSocket, host: SceneHostInterface, scene_id: str, session_id: str, protocol: str, client: str | None) -> None:
+    query = f"?client={client}" if client is not None else ""  # the worker gives each client its fair share
+    try:
+        url = await run_in_threadpool(host.viewer_url, session_id)
         upstream = await websockets.connect(
-            f"{host.viewer_url(session_id)}/{scene_id}/{session_id}",
+            f"{url}/{scene_id}/{session_id}{query}",
             subprotocols=[protocol],  # type: ignore[list-item]
             max_size=None,
             compression=None,
             open_timeout=10,
         )
-    except (OSError, websockets.InvalidHandshake, TimeoutError) as exc:
+    except (OSError, websockets.InvalidHandshake, TimeoutError, HostBusy, ValueError) as exc:
         log.warning("scene server unreachable: %s", exc)
-        await websocket.close(code=1011, reason="scene server unreachable")
+        await websocket.close(code=1013, reason="scene server unreachable: try again in a moment")
         return
     await websocket.accept(subprotocol=protocol)
 

@@ -34,9 +34,12 @@ from fastapi import APIRouter, FastAPI, WebSocket
 from starlette.concurrency import run_in_threadpool
 from starlette.websockets import WebSocketDisconnect
 
+from app.api.access import Refused
 from app.api.schemas.rooms import ROOM_ID_PATTERN
+from app.scenes.host.interface import HostBusy
 from app.scenes.host.viser_compat import viewer_camera_message
-from app.web.relay import viser_protocol
+from app.web.guard import client_address
+from app.web.relay import close_refused, viser_protocol
 
 log = logging.getLogger(__name__)
 router = APIRouter(tags=["viewer"])
@@ -221,11 +224,20 @@ async def room_viewer(websocket: WebSocket, room_id: str) -> None:
     if room.scene_id is None:
         await websocket.close(code=1013, reason="the room shows no scene now")
         return
+    client = client_address(websocket.scope, trust_forwarded_for=app.state.settings.trust_forwarded_for)
     try:
-        stream = await _stream_for(app, room_id, room.stage_id, protocol)
-    except (OSError, websockets.InvalidHandshake, TimeoutError) as exc:
+        with app.state.sessions.follower(client=client):
+            await _follow(websocket, app, room_id, room.stage_id, protocol)
+    except Refused as exc:
+        await close_refused(websocket, exc)
+
+
+async def _follow(websocket: WebSocket, app: FastAPI, room_id: str, stage_id: str, protocol: str) -> None:
+    try:
+        stream = await _stream_for(app, room_id, stage_id, protocol)
+    except (OSError, websockets.InvalidHandshake, TimeoutError, HostBusy) as exc:
         log.warning("room %s: its scene is unreachable: %s", room_id, exc)
-        await websocket.close(code=1011, reason="the room's scene is unreachable")
+        await websocket.close(code=1013, reason="the room's scene is unreachable: try again in a moment")
         return
     await websocket.accept(subprotocol=protocol)
     follower = Follower(websocket)

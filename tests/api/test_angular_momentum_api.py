@@ -79,8 +79,8 @@ def test_bad_input_is_a_422_naming_the_field(client, params, field):
 def test_live_readout_states_the_physics_and_the_principal_axis_case(client):
     sid = f"angular-momentum-{next(_ids):04d}"
     url = f"/api/scenes/angular-momentum/sessions/{sid}"
+    assert client.put(url, json={"params": {}}).status_code == 200  # the page opens its scene, then its viewer connects
     with live_viewer(client, "angular-momentum", sid):
-        assert client.put(url, json={"params": {}}).status_code == 200
         readout = client.get(f"{url}/live").json()["readout"]
         values = {q["name"]: q for q in readout["quantities"]}
         assert values["angle_omega_H"]["value"] == pytest.approx(10.605747207331412, rel=1e-12)

@@ -81,7 +81,8 @@ def test_a_method_without_events_is_refused(client):
     assert "method" in response.json()["detail"][0]["loc"]
 
 
-def test_live_readout_counts_impacts_and_says_when_the_bar_rests(client):
+def test_live_readout_counts_impacts_and_says_when_the_bar_rests(inprocess_client):
+    client = inprocess_client  # looks inside the scene instance: the app in this process
     sid = f"bar-session-{next(_ids):04d}"
     assert client.put(f"/api/scenes/{SCENE}/sessions/{sid}", json={"params": {"angle0_deg": 0.0}}).status_code == 200
     with live_viewer(client, SCENE, sid) as scene:

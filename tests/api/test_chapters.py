@@ -24,8 +24,8 @@ CHAPTER_TITLES = [
 
 
 @pytest.fixture(scope="module")
-def chapters(client):
-    response = client.get("/api/chapters")
+def chapters(served):
+    response = served.client.get("/api/chapters")
     assert response.status_code == 200
     return response.json()
 

@@ -49,10 +49,11 @@ class CircleScene(Scene):
 
 
 @pytest.fixture
-def circle(client):
-    scenes = client.app.state.scene_host.scenes
+def circle(inprocess_client):
+    """The app in this process, with a test scene registered in its host."""
+    scenes = inprocess_client.app.state.scene_host.scenes
     scenes[CircleScene.id] = CircleScene
-    yield client
+    yield inprocess_client
     del scenes[CircleScene.id]
 
 

@@ -1,37 +1,39 @@
-"""A bounded property-based fuzz of the whole HTTP API: no request drawn from /openapi.json gets a 5xx.
+"""A bounded property-based fuzz of the whole HTTP API against ``dynlab serve``: no request gets a 5xx.
 
 schemathesis generates requests (valid and invalid) for every operation in the OpenAPI document and
-sends them to the in-process app, its scene host running. The default run is small enough for CI
-(about 20 s on two cores) and derandomized, so a failure reproduces; the long run is
+sends them over HTTP to the served app with its scene workers (tests/served.py), each case from a
+loopback address of its own (a new device: the per-device limits are tested elsewhere; the fuzz is
+for what reaches the routes and the workers). The default run is small enough for CI and
+derandomized, so a failure reproduces; the long run is
 
-    DYNLAB_FUZZ_EXAMPLES=2500 uv run --group test pytest tests/api/test_fuzz.py -p no:cacheprovider
+    DYNLAB_FUZZ_EXAMPLES=2500 python3 -m uv run --group test pytest tests/api/test_fuzz.py -p no:cacheprovider -n 0
 
-(2 500 cases for each of the four operations that take input: over 10 000). The viewer websocket is not in OpenAPI;
-tests/web/test_guard.py covers its refusals.
+(2 500 cases for each operation that takes input: over 10 000 in all). The viewer websocket is not in
+OpenAPI; tests/api/test_access.py and tests/web/test_guard.py cover its refusals.
 """
 
 from __future__ import annotations
 
+import itertools
 import os
-from collections.abc import Iterator
 
 import pytest
+import requests
 import schemathesis
-from fastapi.testclient import TestClient
 from hypothesis import HealthCheck, settings
+from requests.adapters import HTTPAdapter
 from schemathesis.checks import not_a_server_error
 
 from app.main import create_app
 from app.scenes import SCENES
-from app.settings import Settings
 
-#: Cases per operation. Small by default (about 20 s in all); DYNLAB_FUZZ_EXAMPLES for a long run.
-EXAMPLES = int(os.environ.get("DYNLAB_FUZZ_EXAMPLES", "250"))
-#: No simulate rate limit: the fuzz is one client asking many times on purpose (the limit is tested in tests/web).
-APP = create_app(Settings(simulate_burst=0))
-SCHEMA = schemathesis.openapi.from_asgi("/openapi.json", APP)
+#: Cases per operation. Small by default; DYNLAB_FUZZ_EXAMPLES for a long run.
+EXAMPLES = int(os.environ.get("DYNLAB_FUZZ_EXAMPLES", "60"))
+APP = create_app()  # only for its OpenAPI document: the requests go to the served app
+SCHEMA = schemathesis.openapi.from_dict(APP.openapi())
 #: Real ids: the document cannot list them, and a random id only ever meets the 404.
 KNOWN_IDS = {"scene_id": sorted(SCENES), "example_id": sorted(APP.state.catalogue.examples)}
+_devices = itertools.count(1)
 
 
 @SCHEMA.hook("map_path_parameters")
@@ -44,14 +46,32 @@ def real_ids_half_the_time(ctx, path_parameters):
     return path_parameters
 
 
-@pytest.fixture(scope="module", autouse=True)
-def scene_host_running() -> Iterator[None]:
-    """The routes that reach scenes need the app's lifespan (the scene host); schemathesis calls the same app object."""
-    with TestClient(APP):
-        yield
+class SourceAddress(HTTPAdapter):
+    """Connections that leave from one loopback address (one device)."""
+
+    def __init__(self, address: str) -> None:
+        self.address = address
+        super().__init__()
+
+    def init_poolmanager(self, *args, **kwargs):
+        kwargs["source_address"] = (self.address, 0)
+        return super().init_poolmanager(*args, **kwargs)
+
+
+def device_session() -> requests.Session:
+    n = next(_devices)
+    session = requests.Session()
+    session.mount("http://", SourceAddress(f"127.3.{n // 250 % 250}.{n % 250 + 1}"))
+    return session
+
+
+@pytest.fixture(scope="module")
+def served_url(served) -> str:
+    return served.url
 
 
 @SCHEMA.parametrize()
 @settings(max_examples=EXAMPLES, deadline=None, derandomize=True, suppress_health_check=list(HealthCheck))
-def test_no_request_is_a_server_error(case):
-    case.call_and_validate(checks=[not_a_server_error])
+def test_no_request_is_a_server_error(case, served_url):
+    with device_session() as session:
+        case.call_and_validate(base_url=served_url, session=session, checks=[not_a_server_error], timeout=60)

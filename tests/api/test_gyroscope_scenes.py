@@ -135,7 +135,8 @@ def _readout(client, scene_id, sid):
     return {q["name"]: q["value"] for q in quantities}, live.json()
 
 
-def test_live_free_gyroscope_reads_out_the_closed_form(client):
+def test_live_free_gyroscope_reads_out_the_closed_form(inprocess_client):
+    client = inprocess_client  # looks inside the scene instance: the app in this process
     host = client.app.state.scene_host
     sid = new_session()
     assert client.put(f"/api/scenes/free-gyroscope/sessions/{sid}", json={"params": {"vehicle_rate_rad_s": [0.0, 0.0, 0.5]}}).status_code == 200
@@ -160,7 +161,8 @@ def test_live_free_gyroscope_reads_out_the_closed_form(client):
         assert host.instances(sid)[0].params["spin_rad_s"] == 2000.0
 
 
-def test_live_rate_gyro_reads_out_gain_frequency_damping_and_beta(client):
+def test_live_rate_gyro_reads_out_gain_frequency_damping_and_beta(inprocess_client):
+    client = inprocess_client  # looks inside the scene instance: the app in this process
     sid = new_session()
     with live_viewer(client, "rate-gyro", sid) as scene:
         wait_until(lambda: scene.t_s > 0.3)
@@ -176,7 +178,8 @@ def test_live_rate_gyro_reads_out_gain_frequency_damping_and_beta(client):
         assert marks[0]["value"] == pytest.approx(0.1, rel=1e-14)
 
 
-def test_live_gyrocompass_runs_time_scaled_and_reads_out_the_period(client):
+def test_live_gyrocompass_runs_time_scaled_and_reads_out_the_period(inprocess_client):
+    client = inprocess_client  # looks inside the scene instance: the app in this process
     sid = new_session()
     assert client.put(f"/api/scenes/gyrocompass/sessions/{sid}", json={"params": {"time_scale": 50.0}}).status_code == 200
     with live_viewer(client, "gyrocompass", sid) as scene:

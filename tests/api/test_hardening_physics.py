@@ -223,7 +223,8 @@ def test_the_limiter_runs_some_queues_a_few_and_refuses_the_rest():
     assert limiter.admitted == 0
 
 
-def test_a_busy_simulate_is_a_429_with_retry_after(client, monkeypatch):
+def test_a_busy_simulate_is_a_429_with_retry_after(inprocess_client, monkeypatch):
+    client = inprocess_client  # looks inside the scene instance: the app in this process
     limiter = limits.HeavyRequestLimiter(concurrent=1, queued=0, wait_s=0.0, retry_after_s=2)
     monkeypatch.setattr(scenes, "SIMULATIONS", limiter)
     with limiter.slot("simulate"):

@@ -110,19 +110,21 @@ def test_impossible_input_is_a_422_that_says_why(client, scene_id, params, field
     assert client.put(url, json={"params": {}}).json()["params"] == before
 
 
-def test_every_preset_assembles_and_simulates(client):
+def test_every_preset_assembles_and_simulates(served):
     from app.scenes import SCENES
 
     for scene_id in CONTRACT_SERIES:
         for preset in SCENES[scene_id].presets:
-            response = simulate(client, scene_id, dict(preset.values), t_end=2.0)
+            with served.new_client() as student:  # one student per preset: simulate is rate limited per device
+                response = simulate(student, scene_id, dict(preset.values), t_end=2.0)
             assert response.status_code == 200, (scene_id, preset.name, response.text)
 
 
 # ---- live scenes ---------------------------------------------------------------------------------
 
 
-def test_live_four_bar_draws_the_closed_form_and_reads_out_its_numbers(client):
+def test_live_four_bar_draws_the_closed_form_and_reads_out_its_numbers(inprocess_client):
+    client = inprocess_client  # looks inside the scene instance: the app in this process
     sid = new_session()
     host = client.app.state.scene_host
     with live_viewer(client, "four-bar", sid) as scene:
@@ -155,7 +157,8 @@ def test_live_four_bar_draws_the_closed_form_and_reads_out_its_numbers(client):
         assert [m["label"] for m in live["marks"]["crank_angle0_deg"]] == ["toggle", "toggle"]
 
 
-def test_live_rolling_scene_reports_a_computed_zero_contact_velocity(client):
+def test_live_rolling_scene_reports_a_computed_zero_contact_velocity(inprocess_client):
+    client = inprocess_client  # looks inside the scene instance: the app in this process
     sid = new_session()
     host = client.app.state.scene_host
     assert client.put(f"/api/scenes/rolling/sessions/{sid}", json={"params": {"body": "cone", "tilt_deg": 25.0}}).status_code == 200

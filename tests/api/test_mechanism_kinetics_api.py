@@ -99,7 +99,8 @@ def test_every_preset_simulates(client):
         assert response.json()["stats"]["status"] == "ok"
 
 
-def test_live_readout_carries_units_and_the_work_energy_balance(client):
+def test_live_readout_carries_units_and_the_work_energy_balance(inprocess_client):
+    client = inprocess_client  # looks inside the scene instance: the app in this process
     sid = f"kinetics-live-{next(_ids):04d}"
     host = client.app.state.scene_host
     assert client.put(f"/api/scenes/{SCENE}/sessions/{sid}", json={"params": {"drive": "torque"}}).status_code == 200
@@ -122,8 +123,9 @@ def test_live_readout_carries_units_and_the_work_energy_balance(client):
             assert scene.force_labels[1].text.endswith(" N")
 
 
-def test_a_runaway_torque_pauses_the_live_scene_and_says_why(client):
+def test_a_runaway_torque_pauses_the_live_scene_and_says_why(inprocess_client):
     """Frictionless and driven by 100 N·m, the crank speeds up without limit: the scene stops at the speed its step was chosen for."""
+    client = inprocess_client  # looks inside the scene instance: the app in this process
     sid = f"kinetics-runaway-{next(_ids):04d}"
     params = {"drive": "torque", "drive_torque_N_m": 100.0}
     assert client.put(f"/api/scenes/{SCENE}/sessions/{sid}", json={"params": params}).status_code == 200

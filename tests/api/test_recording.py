@@ -19,7 +19,7 @@ def url(scene_id: str, session_id: str, query: str = "") -> str:
     return f"/api/scenes/{scene_id}/sessions/{session_id}/recording.html{query}"
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture
 def four_bar_session(client) -> str:
     assert client.put(f"/api/scenes/four-bar/sessions/{SESSION}", json={"params": {}}).status_code == 200
     return SESSION
@@ -52,7 +52,10 @@ def test_a_malformed_session_id_is_422(client):
     assert client.get(url("four-bar", "bad id!")).status_code == 422
 
 
-def test_a_file_over_the_limit_is_422_and_a_failed_recording_is_500_with_the_reason(client, four_bar_session, monkeypatch):
+def test_a_file_over_the_limit_is_422_and_a_failed_recording_is_500_with_the_reason(inprocess_client, monkeypatch):
+    client = inprocess_client  # the host's answers are replaced: the app in this process
+    four_bar_session = SESSION
+    assert client.put(f"/api/scenes/four-bar/sessions/{SESSION}", json={"params": {}}).status_code == 200
     host = client.app.state.scene_host
 
     def too_large(*args, **kwargs):
@@ -69,3 +72,31 @@ def test_a_file_over_the_limit_is_422_and_a_failed_recording_is_500_with_the_rea
     answer = client.get(url("four-bar", four_bar_session))
     assert answer.status_code == 500
     assert answer.json()["detail"] == "the recording could not be made: four-bar: the recording failed (RuntimeError: boom)"
+
+
+def test_recordings_asked_for_all_at_once_are_made_or_refused_503_with_retry_after_never_500(served):
+    """Found 11: 30 concurrent recording.html of one worker's sessions answered 15 × 500 "recorder is busy"."""
+    import concurrent.futures
+    import secrets
+
+    students = [served.new_client() for _ in range(6)]
+    sessions = []
+    for student in students:
+        sid = "rec-burst-" + secrets.token_hex(6)
+        assert student.put(f"/api/scenes/four-bar/sessions/{sid}", json={"params": {}}).status_code == 200
+        sessions.append((student, sid))
+
+    def record(n: int):
+        student, sid = sessions[n % len(sessions)]
+        return student.get(url("four-bar", sid, "?seconds=5"))
+
+    with concurrent.futures.ThreadPoolExecutor(30) as pool:
+        answers = list(pool.map(record, range(30)))
+    codes = sorted({a.status_code for a in answers})
+    assert set(codes) <= {200, 503}, [(a.status_code, a.text[:200]) for a in answers if a.status_code not in (200, 503)]
+    assert 200 in codes
+    for answer in answers:
+        if answer.status_code == 503:
+            assert int(answer.headers["Retry-After"]) >= 1 and "recording" in answer.json()["detail"]
+    for student in students:
+        student.close()

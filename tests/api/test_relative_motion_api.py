@@ -107,7 +107,8 @@ def _readout(client, scene_id, sid) -> dict:
     return {q["name"]: q["value"] if q["value"] is not None else q["text"] for q in quantities}
 
 
-def test_moving_frame_viewer_holds_an_instant_and_reads_out_its_terms(client):
+def test_moving_frame_viewer_holds_an_instant_and_reads_out_its_terms(inprocess_client):
+    client = inprocess_client  # looks inside the scene instance: the app in this process
     sid = new_session()
     params = {
         "spin_acceleration_rad_s2": 1.0, "tilt_deg": 25.0, "precession_rate_rad_s": 0.6,
@@ -142,7 +143,8 @@ def test_moving_frame_viewer_holds_an_instant_and_reads_out_its_terms(client):
         np.testing.assert_allclose(tail, p + scale * terms["total"], atol=1e-12)  # the chain closes on a_P
 
 
-def test_foucault_viewer_reads_out_the_predicted_rates(client):
+def test_foucault_viewer_reads_out_the_predicted_rates(inprocess_client):
+    client = inprocess_client  # looks inside the scene instance: the app in this process
     sid = new_session()
     with live_viewer(client, "foucault-pendulum", sid) as scene:
         wait_until(lambda: scene.run.t_s > 0.3)
@@ -161,6 +163,7 @@ def test_foucault_viewer_reads_out_the_predicted_rates(client):
 
 def test_eastward_viewer_reads_out_exact_and_series_deflections(client):
     sid = new_session()
+    assert client.put(f"/api/scenes/eastward-deflection/sessions/{sid}", json={"params": {}}).status_code == 200  # the page opens its scene first
     with live_viewer(client, "eastward-deflection", sid):
         values = _readout(client, "eastward-deflection", sid)
         flight = deflection.Flight.from_params(deflection.PARAMETERS.defaults())

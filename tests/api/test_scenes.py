@@ -7,9 +7,11 @@ import itertools
 import msgspec
 import pytest
 import viser
-from starlette.websockets import WebSocketDisconnect
+from websockets.exceptions import InvalidStatus
+from websockets.sync.client import connect
 
 from app.physics.systems.ch01 import projectile, radar_tracking, robot_arm_cable
+from app.scenes.host.viser_compat import viewer_camera_message
 from app.web.relay import is_blocked_message
 
 _ids = itertools.count()
@@ -135,26 +137,32 @@ def test_viewer_page_for_unknown_scene_or_bad_session_is_404(client, path):
 
 def test_relay_accepts_viser_subprotocol_and_forwards_binary_frames(client):
     protocol = "viser-v" + viser.__version__
-    with client.websocket_connect(f"/viewer/robot-arm-cable/{new_session()}", subprotocols=[protocol]) as ws:
-        assert ws.accepted_subprotocol == protocol
-        message = ws.receive()
-        assert message["type"] == "websocket.send"
-        assert isinstance(message.get("bytes"), bytes) and message["bytes"]
+    session_id = new_session()
+    assert client.put(f"/api/scenes/robot-arm-cable/sessions/{session_id}", json={"params": {}}).status_code == 200
+    with connect(client.websocket_url(f"/viewer/robot-arm-cable/{session_id}"), subprotocols=[protocol], open_timeout=20) as ws:  # type: ignore[list-item]
+        assert ws.subprotocol == protocol
+        ws.send(viewer_camera_message())
+        message = ws.recv(timeout=20)
+        assert isinstance(message, bytes) and message
+
+
+def refused_status(client, path: str, subprotocols: list[str] | None) -> int:
+    """The HTTP status of a websocket handshake the server refuses before accepting it."""
+    with pytest.raises(InvalidStatus) as refused:
+        with connect(client.websocket_url(path), subprotocols=subprotocols, open_timeout=20):  # type: ignore[arg-type]
+            pass
+    return refused.value.response.status_code
 
 
 def test_relay_refuses_a_connection_without_the_subprotocol(client):
-    with pytest.raises(WebSocketDisconnect) as info:
-        with client.websocket_connect(f"/viewer/robot-arm-cable/{new_session()}") as ws:
-            ws.receive()
-    assert info.value.code == 1002
+    session_id = new_session()
+    assert client.put(f"/api/scenes/robot-arm-cable/sessions/{session_id}", json={"params": {}}).status_code == 200
+    assert refused_status(client, f"/viewer/robot-arm-cable/{session_id}", None) == 403
 
 
-@pytest.mark.parametrize("path", ["/viewer/no-such-scene/abcdefgh12", "/viewer/robot-arm-cable/x"])
-def test_relay_refuses_unknown_scene_or_bad_session(client, path):
-    with pytest.raises(WebSocketDisconnect) as info:
-        with client.websocket_connect(path, subprotocols=["viser-v" + viser.__version__]) as ws:
-            ws.receive()
-    assert info.value.code == 1008
+@pytest.mark.parametrize("path", ["/viewer/no-such-scene/abcdefgh12", "/viewer/robot-arm-cable/x", "/viewer/robot-arm-cable/never-opened-1234"])
+def test_relay_refuses_unknown_scene_bad_or_unopened_session(client, path):
+    assert refused_status(client, path, ["viser-v" + viser.__version__]) == 403
 
 
 def test_share_url_requests_are_blocked_and_others_pass():

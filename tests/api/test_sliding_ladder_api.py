@@ -80,7 +80,8 @@ def test_bad_input_is_a_422_naming_the_field(client, params, field, words):
     assert detail["loc"][-1] == field and words in detail["msg"], detail
 
 
-def test_live_readout_reports_phase_forces_energy_and_the_closed_form_angle(client):
+def test_live_readout_reports_phase_forces_energy_and_the_closed_form_angle(inprocess_client):
+    client = inprocess_client  # looks inside the scene instance: the app in this process
     sid = "sliding-ladder-api-01"
     assert client.put(f"/api/scenes/sliding-ladder/sessions/{sid}", json={"params": {}}).status_code == 200
     with live_viewer(client, "sliding-ladder", sid) as scene:

@@ -109,7 +109,8 @@ def test_session_put_out_of_slider_range_is_422_and_changes_nothing(client):
     assert client.put(url, json={"params": {}}).json()["params"] == before
 
 
-def test_live_scene_draws_the_closed_form_and_reads_out_its_numbers(client):
+def test_live_scene_draws_the_closed_form_and_reads_out_its_numbers(inprocess_client):
+    client = inprocess_client  # looks inside the scene instance: the app in this process
     host = client.app.state.scene_host
     sid = new_session()
     with live_viewer(client, SCENE, sid) as scene:

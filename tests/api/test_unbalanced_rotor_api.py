@@ -96,7 +96,8 @@ def test_non_finite_json_numbers_are_refused(client):
     assert response.status_code == 422
 
 
-def test_live_balanced_session_reads_the_corrections_and_zero_rotating_force(client):
+def test_live_balanced_session_reads_the_corrections_and_zero_rotating_force(inprocess_client):
+    client = inprocess_client  # looks inside the scene instance: the app in this process
     sid = f"rotor-session-{next(_ids):04d}"
     assert client.put(f"/api/scenes/unbalanced-rotor/sessions/{sid}", json={"params": {"balanced": "on"}}).status_code == 200
     with live_viewer(client, "unbalanced-rotor", sid) as scene:

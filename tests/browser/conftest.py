@@ -1,21 +1,23 @@
-"""A real server on a free loopback port and Debian's Chromium driven by Playwright."""
+"""``dynlab serve`` on a free loopback port (as README starts it, with its scene workers) and Debian's Chromium
+driven by Playwright."""
 
 from __future__ import annotations
 
 import json
 import os
-import socket
 import threading
-import time
 from collections.abc import Iterator
 from pathlib import Path
 
+import httpx
 import pytest
 import uvicorn
 
 from app.main import create_app
 from app.settings import Settings
 from tests.conftest import wait_until
+from tests.served import INSTRUCTOR_KEY as SERVED_INSTRUCTOR_KEY
+from tests.served import ServedApp, free_port
 
 CHROMIUM = "/usr/bin/chromium"
 CHROMIUM_ARGS = (
@@ -26,19 +28,82 @@ RESULTS = Path(__file__).resolve().parents[2] / "test-results"
 SCREENSHOTS = Path(__file__).resolve().parents[2] / "docs" / "screenshots"
 
 
-def _free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
 #: The browser tests' instructor secret (the instructor link is ``{url}/instructor?key={INSTRUCTOR_KEY}``).
-INSTRUCTOR_KEY = "browser-tests-instructor-key"
+INSTRUCTOR_KEY = SERVED_INSTRUCTOR_KEY
+
+
+class ServedHost:
+    """What the browser tests ask of the scene host, asked of the served app over HTTP as a page would (the scenes
+    run in its workers, out of this process's reach)."""
+
+    def __init__(self, app: ServedApp) -> None:
+        self._http = httpx.Client(base_url=app.url, timeout=30.0)
+        self._scene_of: dict[str, str] = {}
+        self._scene_ids: list[str] | None = None
+
+    def remember(self, session_id: str, scene_id: str) -> None:
+        self._scene_of[session_id] = scene_id
+
+    def _scene(self, session_id: str) -> str | None:
+        if session_id not in self._scene_of:
+            if self._scene_ids is None:
+                self._scene_ids = [s["id"] for s in self._http.get("/api/scenes").json()]
+            for scene_id in self._scene_ids:
+                if self._http.get(f"/api/scenes/{scene_id}/sessions/{session_id}").status_code == 200:
+                    self._scene_of[session_id] = scene_id
+                    break
+        return self._scene_of.get(session_id)
+
+    def _playback(self, session_id: str) -> dict | None:
+        answer = self._http.get(f"/api/scenes/{self._scene(session_id) or 'heavy-top'}/sessions/{session_id}/playback")
+        return answer.json() if answer.status_code == 200 else None
+
+    def viewer_count(self, session_id: str) -> int:
+        return (self._playback(session_id) or {}).get("viewers", 0)
+
+    def session_params(self, session_id: str) -> dict | None:
+        scene_id = self._scene(session_id)
+        answer = self._http.get(f"/api/scenes/{scene_id}/sessions/{session_id}") if scene_id else None
+        return answer.json()["params"] if answer is not None and answer.status_code == 200 else None
+
+    def camera(self, session_id: str) -> dict | None:
+        return (self._playback(session_id) or {}).get("camera")
+
+    def motion_state(self, session_id: str) -> dict | None:
+        playback = self._playback(session_id)
+        return None if playback is None or playback.get("t_s") is None else {"t_s": playback["t_s"]}
 
 
 class LiveServer:
+    """``dynlab serve`` as README starts it (its own process, its scene workers), for the browser tests."""
+
     def __init__(self) -> None:
-        self.port = _free_port()
+        self.app = ServedApp(name="browser")
+        self.instructor_key = INSTRUCTOR_KEY
+        self.host = ServedHost(self.app)
+
+    @property
+    def url(self) -> str:
+        return self.app.url
+
+    @property
+    def instructor_link(self) -> str:
+        return self.app.instructor_link
+
+    def __enter__(self) -> "LiveServer":
+        self.app.start()
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.app.stop()
+
+
+class InProcessLiveServer:
+    """The same app in this test process (scenes included), beside the served one, for the few tests that look inside
+    a scene instance (what it drew at one instant)."""
+
+    def __init__(self) -> None:
+        self.port = free_port()
         self.instructor_key = INSTRUCTOR_KEY
         self.app = create_app(Settings(port=self.port, instructor_key=INSTRUCTOR_KEY))
         config = uvicorn.Config(self.app, host="127.0.0.1", port=self.port, log_level="warning")
@@ -50,25 +115,23 @@ class LiveServer:
         return f"http://127.0.0.1:{self.port}"
 
     @property
-    def instructor_link(self) -> str:
-        return f"{self.url}/instructor?key={self.instructor_key}"
-
-    @property
     def host(self):
         return self.app.state.scene_host
 
-    def __enter__(self) -> "LiveServer":
+    def __enter__(self) -> "InProcessLiveServer":
         self.thread.start()
-        deadline = time.monotonic() + 20
-        while not self.server.started:
-            if time.monotonic() > deadline:
-                raise RuntimeError("server did not start within 20 s")
-            time.sleep(0.05)
+        wait_until(lambda: self.server.started, 20, what="the in-process server to start")
         return self
 
     def __exit__(self, *exc: object) -> None:
         self.server.should_exit = True
         self.thread.join(timeout=10)
+
+
+@pytest.fixture(scope="session")
+def inprocess_live_server() -> Iterator[InProcessLiveServer]:
+    with InProcessLiveServer() as server:
+        yield server
 
 
 @pytest.fixture(scope="session")
@@ -164,6 +227,8 @@ def open_lesson(
     page.goto(live_server.url + path)
     page.wait_for_function("window.dynlabLesson !== undefined")
     session_id = page.evaluate("window.dynlabLesson.session.id")
+    if hasattr(live_server.host, "remember"):
+        live_server.host.remember(session_id, page.evaluate("window.dynlabLesson.scene && window.dynlabLesson.scene.id") or "")
     if viewer:
         wait_until(lambda: live_server.host.viewer_count(session_id) == 1, timeout_s, what="the 3D viewer to connect through the relay")
     return context, page, session_id, errors

@@ -67,7 +67,7 @@ def test_slider_crank_readout_shows_chapter_6_pin_forces(browser, live_server, s
     # Under the default 2 N·m the frictionless crank speeds up until the scene pauses at its step's speed limit
     # (after about 4 s); the kept picture shows the mechanism coasting instead, which runs for ever.
     _set_number(page, "drive_torque_N_m", "0")
-    wait_until(lambda: live_server.host.instances(session_id)[0].params["drive_torque_N_m"] == 0.0, 15, what="the scene to coast")
+    wait_until(lambda: live_server.host.session_params(session_id)["drive_torque_N_m"] == 0.0, 15, what="the scene to coast")
     show_scene_and_keep_screenshot(page, shots / f"lesson-{LESSON}.png")
     assert not errors, errors
     json.dumps(readout_values(page))

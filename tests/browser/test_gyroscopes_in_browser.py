@@ -57,8 +57,9 @@ def test_gyrocompass_lesson(browser, live_server, shots):
     _finish(context, page, errors, shots, "10-3-gyrocompass")
 
 
-def test_rate_gyro_lesson(browser, live_server, shots):
+def test_rate_gyro_lesson(browser, inprocess_live_server, shots):
     """Gain, natural frequency and damping ratio in the readout; the critical damping marked on its slider."""
+    live_server = inprocess_live_server  # the readout's β is compared with the scene instance's own demonstration
     context, page, session_id, errors = _open_lesson(browser, live_server, "10-3-rate-gyro")
     values = readout_values(page)
     assert values["steady_gain_s"] == pytest.approx(0.4, rel=1e-15)

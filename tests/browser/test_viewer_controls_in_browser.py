@@ -39,9 +39,12 @@ def camera(live_server, session_id) -> dict:
 
 
 def start_pose(live_server, session_id) -> dict:
-    (scene,) = live_server.host.instances(session_id)
-    position, look_at = scene.camera_view()
-    return {"position": np.array(position), "look_at": np.array(look_at)}
+    """The scene's start pose (its class's: the robot arm's view does not depend on its parameters)."""
+    from app.scenes import SCENES
+
+    scene = SCENES[SCENE]
+    assert "camera_view" not in vars(scene)
+    return {"position": np.array(scene.camera_position), "look_at": np.array(scene.camera_look_at)}
 
 
 def moved_from(pose: dict, live_server, session_id, *, by_m: float = 0.05) -> bool:

@@ -2,9 +2,17 @@
 
 from __future__ import annotations
 
-from pydantic import BaseModel
+from typing import Literal
+
+from pydantic import BaseModel, Field
+
+
+class WorkerState(BaseModel):
+    index: int
+    state: Literal["answering", "not answering", "restarting"]
 
 
 class Health(BaseModel):
     status: str
     version: str
+    workers: list[WorkerState] | None = Field(None, description="Each scene worker's state (absent when the scenes run in the front process)")

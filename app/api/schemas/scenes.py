@@ -51,15 +51,16 @@ class SessionParamsAnswer(BaseModel):
 
 
 class PlaybackRequest(BaseModel):
-    """How the session's motion runs: any of these; fields left out keep their values."""
+    """How the session's motion runs: any of these; fields left out keep their values. Numbers are JSON numbers and
+    switches JSON booleans (no "5" for 5, no true for 1)."""
 
     model_config = ConfigDict(extra="forbid")
     playing: bool | None = Field(None, strict=True, description="Play (true) or pause (false)")
-    time_scale: float | None = Field(None, ge=0.1, le=4.0, allow_inf_nan=False, description="× real time")
+    time_scale: float | None = Field(None, ge=0.1, le=4.0, strict=True, allow_inf_nan=False, description="× real time")
     reset: bool = Field(False, strict=True, description="Start the motion again from t = 0")
     step: int = Field(0, ge=0, le=300, strict=True, description="Advance this many displayed frames (1/30 s each) now, paused")
-    seek_s: float | None = Field(None, ge=0.0, allow_inf_nan=False, description="Go back to a kept instant (s; within history_s), paused")
-    go_to_s: float | None = Field(None, ge=0.0, le=600.0, allow_inf_nan=False, description="Compute the motion at this simulated time from the start (s): a share link")
+    seek_s: float | None = Field(None, ge=0.0, strict=True, allow_inf_nan=False, description="Go back to a kept instant (s; within history_s), paused")
+    go_to_s: float | None = Field(None, ge=0.0, le=600.0, strict=True, allow_inf_nan=False, description="Compute the motion at this simulated time from the start (s): a share link")
     camera: "CameraIn | None" = Field(None, description="Point the viewers' cameras (a share link)")
     reset_camera: bool = Field(False, strict=True, description="Put every viewer's camera back at the scene's start pose (Reset view)")
 
@@ -84,3 +85,9 @@ class PlaybackAnswer(BaseModel):
     history_s: list[float] | None = Field(description="[earliest, latest] simulated time kept for seek_s (s)")
     camera: CameraOut | None = None
     viewers: int | None = Field(None, description="Viewers connected to the session now (0 until its viewer has connected)")
+    slowed: "Slowed | None" = Field(None, description="Present when the first viewer's scene runs slower than the chosen speed to keep within its share of the server")
+
+
+class Slowed(BaseModel):
+    rate: float = Field(description="Fraction of the chosen speed the scene runs at (0–1)")
+    note: str = Field(description="Why, and what to change, in words")

@@ -9,9 +9,16 @@ background thread advances every animated scene at ``frame_rate_hz``.
 
 Locking: the host's lock guards only the session table and is held for
 dictionary operations; each session has its own lock, held while its scenes are
-built, redrawn, advanced or read. So one student's slow redraw (compiling a
-typed curve, rebuilding a mesh) never stalls another student's frames, and a
-readout poll waits for one scene's frame at most. Lock order: host, then session.
+built, redrawn, advanced or read. The frame loop never waits for a session's
+lock: a session busy with a request (a student's slow redraw, a computed jump in
+time) misses that frame, and every other session is drawn on time. Lock order:
+host, then session.
+
+Who may do what is decided in the front (:mod:`app.api.access`); the host keeps
+its own backstops: a viewer is only ever shown an existing session of its own
+scene (a viewer never creates, replaces or re-scenes a session), and every
+viewer, client and request gets a fair share of the worker
+(:mod:`app.scenes.host.fair_share`).
 
 Every session can be paused and its time scaled (:meth:`SceneHost.set_playback`):
 the frame loop advances a scene ``time_scale`` frames per displayed frame on
@@ -42,6 +49,17 @@ from typing import Any
 
 import viser
 
+from app.scenes.host.fair_share import (
+    FRAME_LOOP_SHARE,
+    REQUEST_COMPUTE_S,
+    FrameCost,
+    Pace,
+    RequestTooCostly,
+    allowances,
+    check_request_cost,
+    slowdown_note,
+)
+from app.scenes.host.interface import HostBusy
 from app.scenes.host.graph import DEFAULT_MAX_POINTS, check_graph_request, empty_graph, motion_graph, no_graph_note
 from app.scenes.host.history import MotionHistory
 from app.scenes.host.recorder import SceneRecorder, checked_seconds, frames_for
@@ -68,6 +86,9 @@ TIME_SCALE_RANGE = (0.1, 4.0)
 #: Most frames one step request advances, and the latest simulated time a share link may ask for (s).
 MAX_STEP_FRAMES = 300
 MAX_GO_TO_S = 600.0
+#: Viewers one session may have at once (each is a whole scene computed and streamed; a page has one, a student
+#: with the same lesson in a second tab two). The front refuses more first; this is the host's own backstop.
+MAX_VIEWERS_PER_SESSION = 4
 
 
 def check_session_id(session_id: str, *, stage: bool = False) -> None:
@@ -114,6 +135,29 @@ class UnknownSceneError(KeyError):
 
 
 @dataclass
+class ViewerShare:
+    """One viewer's share of the frames: whose it is (the client's address, from the relay), what its scene costs a
+    frame, the frames it is owed (``time_scale`` × its rate a frame), and how far it is slowed."""
+
+    client: str | None
+    cost: FrameCost = field(default_factory=FrameCost)
+    credit: float = 0.0
+    rate: float = 1.0
+    note: str = ""
+
+
+def viewer_camera(client: Any) -> dict[str, list[float]] | None:
+    """A viewer's camera now (m, world frame: position, look_at) as its browser last reported it; None before its
+    first report, or for a stage (it has no single camera)."""
+    camera = getattr(client, "camera", None)
+    if not isinstance(camera, viser.CameraHandle):
+        return None
+    with contextlib.suppress(AssertionError):  # no camera message from the browser yet
+        return {"position": [float(v) for v in camera.position], "look_at": [float(v) for v in camera.look_at]}
+    return None
+
+
+@dataclass
 class Session:
     """One lesson page's state for one scene: what survives a viewer reconnect."""
 
@@ -126,7 +170,6 @@ class Session:
     #: A paused session is not advanced; ``time_scale`` is the frames advanced per displayed frame, on average.
     playing: bool = True
     time_scale: float = 1.0
-    frame_credit: float = 0.0
     #: A stage's own viser server (its one scene is broadcast to every viewer of it); None for a page's session.
     stage: viser.ViserServer | None = None
     #: Motion the next scene built for this session starts from (``Scene.resume_from``), then forgotten.
@@ -137,23 +180,62 @@ class Session:
     camera: dict[str, tuple[float, float, float]] | None = None
     #: Each viewer's recent motion, for the scrubber (keyed like ``instances``).
     histories: dict[int, MotionHistory] = field(default_factory=dict)
+    #: Each viewer's share of the frames (keyed like ``instances``).
+    shares: dict[int, ViewerShare] = field(default_factory=dict)
 
     def playback(self) -> dict[str, Any]:
-        """Play state, time scale, the first scene's simulated time and the span of motion kept for scrubbing."""
-        out: dict[str, Any] = {"playing": self.playing, "time_scale": self.time_scale, "t_s": None, "history_s": None}
+        """Play state, time scale, the first scene's simulated time (or, before a viewer, the time the next one resumes
+        at) and the span of motion kept for scrubbing."""
+        waiting_t_s = self.resume_motion.get("t_s") if self.resume_motion is not None else self.go_to_s
+        out: dict[str, Any] = {"playing": self.playing, "time_scale": self.time_scale, "t_s": waiting_t_s, "history_s": None}
         for client_id, scene in self.instances.items():
             motion = scene.motion_state()
             out["t_s"] = None if motion is None else motion["t_s"]
             history = self.histories.get(client_id)
             span = history.span_s() if history is not None else None
             out["history_s"] = None if span is None else list(span)
+            share = self.shares.get(client_id)
+            if share is not None and share.rate < 0.99:
+                out["slowed"] = {"rate": share.rate, "note": share.note}
             break
         return out
 
-    def add_instance(self, client_id: int, scene: Scene) -> None:
+    def add_instance(self, client_id: int, scene: Scene, *, client: str | None = None) -> None:
         self.instances[client_id] = scene
         self.histories[client_id] = MotionHistory()
         self.histories[client_id].record(scene.motion_state())
+        self.shares[client_id] = ViewerShare(client)
+
+    def first_share(self) -> ViewerShare:
+        """The first viewer's share (the session has a viewer)."""
+        return next(iter(self.shares.values()))
+
+    def clear_instances(self) -> None:
+        """Forget every viewer's scene (the caller has closed them)."""
+        self.instances.clear()
+        self.histories.clear()
+        self.shares.clear()
+
+    def remove_instance(self, client_id: int) -> Scene | None:
+        self.histories.pop(client_id, None)
+        self.shares.pop(client_id, None)
+        return self.instances.pop(client_id, None)
+
+    def snapshot(self) -> dict[str, Any]:
+        """What a restarted worker needs to show this session as it is (caller holds its lock): scene, parameters,
+        play state, time scale, the first viewer's motion (or the one waiting for a viewer) and camera."""
+        scene = next(iter(self.instances.values()), None)
+        motion = scene.motion_state() if scene is not None else self.resume_motion
+        camera: dict[str, list[float]] | None = None
+        if scene is not None:
+            camera = viewer_camera(scene.client)
+        elif self.camera is not None:
+            camera = {k: list(v) for k, v in self.camera.items()}
+        return {
+            "scene_id": self.scene_id, "params": dict(self.params), "stage": self.stage is not None,
+            "playing": self.playing, "time_scale": self.time_scale, "motion": motion,
+            "go_to_s": self.go_to_s if motion is None else None, "camera": camera,
+        }  # fmt: skip
 
     def restarted(self) -> None:
         """The motion started again (new parameters, a reset, a jump): the kept frames belong to the old one."""
@@ -185,6 +267,7 @@ class SceneHost:
         self._server: viser.ViserServer | None = None
         self._thread: threading.Thread | None = None
         self._recorder = SceneRecorder(host=host)
+        self._long_request = threading.Lock()
 
     # -- life cycle ---------------------------------------------------------------
     def start(self, *, frame_loop: bool = True) -> None:
@@ -250,6 +333,7 @@ class SceneHost:
         return session
 
     def _evict(self) -> None:
+        """A backstop: the front's directory bounds sessions (per client and in all) and closes them here first."""
         while len(self._sessions) > self.max_sessions:
             oldest = next((k for k, s in self._sessions.items() if not s.instances), None)
             if oldest is None:
@@ -274,6 +358,8 @@ class SceneHost:
         with self._lock:
             session = self._session(scene_id, session_id)
         with session.lock:
+            if params != session.params:  # a new motion: what a reconnecting viewer would have resumed is void
+                session.resume_motion = None
             session.params = params
             for scene in session.instances.values():
                 scene.set_params(params)
@@ -321,13 +407,24 @@ class SceneHost:
         session = self._existing(session_id)
         if (go_to_s is not None or step or seek_s is not None) and not self.scene_class(session.scene_id).animated:
             raise ValueError(f"{session.scene_id} is not animated: it has no time to step, scrub or go to")
-        with session.lock:
+        with self._one_long_request(bool(step) or go_to_s is not None), session.lock:
+            # What the request will compute, checked against its limit before anything moves (the scenes' measured
+            # cost a frame; a session without a viewer computes its jump when one connects, paced the same way).
+            if step:
+                drawn_s = sum(share.cost.seconds for share in session.shares.values())
+                check_request_cost("step", frames=step, frame_cost_s=drawn_s, what=f"stepping {step} frames")
+            if go_to_s is not None and session.instances:
+                stepped_s = sum(scene.motion_cost_s() or 0.0 for scene in session.instances.values())
+                frames = math.ceil(float(go_to_s) * self.frame_rate_hz)
+                check_request_cost("go_to_s", frames=frames, frame_cost_s=stepped_s, what=f"computing the motion to {go_to_s:g} s")
             if seek_s is not None:  # checked against every viewer's kept motion before anything moves
                 motions = {cid: session.histories[cid].at(seek_s) for cid in session.instances if cid in session.histories}
             if playing is not None:
                 session.playing = playing
             if time_scale is not None:
                 session.time_scale = float(time_scale)
+            if reset or go_to_s is not None:
+                session.resume_motion = session.go_to_s = None  # a viewer that connects later starts from the new motion
             if reset:
                 for scene in session.instances.values():
                     with scene.client.atomic():
@@ -335,7 +432,7 @@ class SceneHost:
                 session.restarted()
             if go_to_s is not None:
                 for scene in session.instances.values():
-                    scene.go_to(float(go_to_s))
+                    self._paced_go_to(scene, float(go_to_s))
                 session.restarted()
                 if not session.instances:
                     session.go_to_s = float(go_to_s)
@@ -366,24 +463,80 @@ class SceneHost:
                         session.histories[client_id].forget_after(motion["t_s"])
             return session.playback()
 
+    @contextlib.contextmanager
+    def _one_long_request(self, long: bool) -> Iterator[None]:
+        """Requests that compute (step, go to a time) run one at a time in a worker, so that together they never take
+        more than one paced thread from the frame loop; one that cannot start within a second is answered 503."""
+        if not long:
+            yield
+            return
+        if not self._long_request.acquire(timeout=1.0):
+            raise HostBusy("another student's long computation is running on this scene worker; try again in a moment", retry_after_s=2)
+        try:
+            yield
+        finally:
+            self._long_request.release()
+
     def _step(self, session: Session, frames: int) -> None:
-        """Advance every animated scene of the session ``frames`` displayed frames now (caller holds its lock)."""
+        """Advance every animated scene of the session ``frames`` displayed frames now (caller holds its lock), paced
+        so the frame loop keeps drawing everyone else meanwhile. If it runs over the request's compute limit (its
+        cost was not known yet) every scene is put back where it was and ``RequestTooCostly`` says so."""
+        pace = Pace()
+        before = {client_id: scene.motion_state() for client_id, scene in session.instances.items()}
         wakeups = BatchedWakeups()
         for client_id, scene in list(session.instances.items()):
             for _ in range(frames):
                 if scene.animated and not scene.status:
                     self._advance(scene, 1.0 / self.frame_rate_hz, wakeups)
                     session.histories.setdefault(client_id, MotionHistory()).record(scene.motion_state())
+                if not pace():
+                    break
         wakeups.flush()
+        if pace.exhausted:
+            for client_id, scene in session.instances.items():
+                if before.get(client_id) is not None:
+                    scene.resume_from(before[client_id])  # type: ignore[arg-type]
+                    scene.redraw()
+            session.restarted()
+            raise RequestTooCostly(
+                f"step: {frames} frames of this scene take more than the {REQUEST_COMPUTE_S:g} s of computing one request "
+                f"may use while a class shares the server; step fewer frames, or use fewer steps per frame"
+            )
+
+    @staticmethod
+    def _paced_go_to(scene: Scene, t_s: float) -> None:
+        """``scene.go_to(t_s)`` within one request's share of the worker; if it would take longer, the scene is put
+        back where it was and ``RequestTooCostly`` names the limit."""
+        before = scene.motion_state()
+        pace = Pace()
+        scene.pace = pace  # type: ignore[method-assign]  # an instance's own pace, for this computation only
+        try:
+            scene.go_to(t_s)
+        finally:
+            del scene.pace
+        if pace.exhausted:
+            if before is not None:
+                scene.resume_from(before)
+                scene.redraw()
+            raise RequestTooCostly(
+                f"go_to_s: computing the motion to {t_s:g} s takes more than the {REQUEST_COMPUTE_S:g} s of computing one "
+                f"request may use while a class shares the server; ask for an earlier time, or use fewer steps per frame"
+            )
 
     def camera(self, session_id: str) -> dict[str, list[float]] | None:
-        """The first viewer's camera now (m, world frame), as its browser last reported it; None without a viewer."""
-        with self.inspect(session_id) as scenes:
-            for scene in scenes:
-                camera = getattr(scene.client, "camera", None)
-                if isinstance(camera, viser.CameraHandle):
-                    with contextlib.suppress(AssertionError):  # no camera message from the browser yet
-                        return {"position": [float(v) for v in camera.position], "look_at": [float(v) for v in camera.look_at]}
+        """The first viewer's camera now (m, world frame), as its browser last reported it; before a viewer, the one the
+        next viewer starts from (a share link's, or a restored one); else None."""
+        with self._lock:
+            session = self._sessions.get(session_id)
+        if session is None:
+            return None
+        with session.lock:
+            for scene in session.instances.values():
+                camera = viewer_camera(scene.client)
+                if camera is not None:
+                    return camera
+            if not session.instances and session.camera is not None:
+                return {k: list(v) for k, v in session.camera.items()}
         return None
 
     def playback(self, session_id: str) -> dict[str, Any] | None:
@@ -436,10 +589,8 @@ class SceneHost:
             assert session.stage is not None
             for scene in session.instances.values():
                 scene.close()
-            session.instances.clear()
-            session.histories.clear()
+            session.clear_instances()
             session.scene_id, session.params = scene_id, params
-            session.frame_credit = 0.0
             viewer = BroadcastViewer(session.stage)
             scene = cls(viewer, params)  # type: ignore[arg-type]
             position, look_at = scene.camera_view()
@@ -457,7 +608,7 @@ class SceneHost:
         with session.lock:
             for scene in session.instances.values():
                 scene.close()
-            session.instances.clear()
+            session.clear_instances()
         stop_quietly(session.stage)
 
     def stage_viewer_url(self, session_id: str) -> str | None:
@@ -561,25 +712,117 @@ class SceneHost:
             model, params = scene.run_model, scene.physical_params()  # type: ignore[attr-defined]  # an IntegratedScene: no_graph_note said so
         return motion_graph(session.scene_id, model, params, frames, latest, max_points=max_points)
 
-    def viewer_count(self, session_id: str | None = None) -> int:
+    def viewer_count(self, session_id: str) -> int:
         with self._lock:
-            if session_id is None:
-                return len(self._client_session)
             session = self._sessions.get(session_id)
             return 0 if session is None else len(session.instances)
 
+    def total_viewers(self) -> int:
+        with self._lock:
+            return len(self._client_session)
+
+    def session_scene(self, session_id: str) -> str | None:
+        with self._lock:
+            session = self._sessions.get(session_id)
+            return None if session is None else session.scene_id
+
+    def close_session(self, session_id: str) -> None:
+        """Forget a page's session (the front evicted it): its viewers' scenes are closed and their messages say so."""
+        with self._lock:
+            session = self._sessions.get(session_id)
+            if session is None or session.stage is not None:
+                return
+            del self._sessions[session_id]
+            for client_id in session.instances:
+                self._client_session.pop(client_id, None)
+        with session.lock:
+            for scene in list(session.instances.values()):
+                with contextlib.suppress(Exception):
+                    scene.close()
+                    tell_viewer(scene.client, "This scene was closed to make room for others: reload the page.")
+            session.clear_instances()
+
+    def ping(self) -> float:
+        """This host's monotonic clock (s): an answer means the worker is alive and not stopped."""
+        return time.monotonic()
+
+    # -- what survives a worker's restart ----------------------------------------------------
+    def snapshot(self, session_ids: list[str] | None = None) -> dict[str, dict[str, Any]]:
+        """Each session's restorable state (:meth:`Session.snapshot`): every session, or the ones named that exist.
+        A session busy with a long request is skipped this time (the front keeps its previous snapshot)."""
+        with self._lock:
+            wanted = list(self._sessions.items()) if session_ids is None else [
+                (sid, self._sessions[sid]) for sid in session_ids if sid in self._sessions
+            ]
+        out: dict[str, dict[str, Any]] = {}
+        for session_id, session in wanted:
+            if session.lock.acquire(timeout=0.05):
+                try:
+                    out[session_id] = session.snapshot()
+                finally:
+                    session.lock.release()
+        return out
+
+    def restore(self, session_id: str, snapshot: Mapping[str, Any]) -> None:
+        """Make the session as ``snapshot`` (:meth:`Session.snapshot`) describes it: its scene and parameters, play
+        state and time scale, its motion (the next viewer resumes it) and camera. A stage is opened again and resumed
+        at once. Raises ``ValueError`` for a snapshot that does not fit (and restores nothing)."""
+        scene_id = snapshot["scene_id"]
+        motion = snapshot.get("motion")
+        if snapshot.get("stage"):
+            self.open_stage(session_id, scene_id, snapshot["params"])
+            if motion is not None:
+                self.resume_from(session_id, motion)
+        else:
+            self.set_params(scene_id, session_id, snapshot["params"])
+            session = self._existing(session_id)
+            with session.lock:
+                if motion is not None:
+                    if session.instances:
+                        for scene in session.instances.values():
+                            scene.resume_from(motion)
+                            scene.redraw()
+                    else:
+                        session.resume_motion = dict(motion)
+                elif snapshot.get("go_to_s") is not None:
+                    session.go_to_s = float(snapshot["go_to_s"])
+                camera = snapshot.get("camera")
+                if camera is not None:
+                    view = checked_camera(camera)
+                    for scene in session.instances.values():
+                        place_camera(scene.client, **view)
+                    if not session.instances:
+                        session.camera = view
+        self.set_playback(session_id, playing=bool(snapshot.get("playing", True)), time_scale=float(snapshot.get("time_scale", 1.0)))
+
     # -- viser callbacks ------------------------------------------------------------
     def _on_connect(self, client: viser.ClientHandle) -> None:
+        """A viewer connected at ``/{scene_id}/{session_id}[?client=<address>]`` (the relay's path; the address is the
+        browser's, for its fair share). It is shown the session's scene if the session exists and shows that scene;
+        a viewer never creates a session, replaces its scene or takes a stage."""
         assert self._server is not None
         path = connection_path(self._server, client) or ""
-        parts = [p for p in path.split("?")[0].split("/") if p]
+        route, _, query = path.partition("?")
+        parts = [p for p in route.split("/") if p]
+        owner = next((v for k, _, v in (item.partition("=") for item in query.split("&")) if k == "client" and v), None)
         if len(parts) != 2 or parts[0] not in self.scenes or not SESSION_ID_PATTERN.match(parts[1]) or parts[1].startswith(STAGE_PREFIX):
             log.warning("viewer connected with unusable path %r", path)
-            tell_viewer(client, f"No such scene: {path}")
+            tell_viewer(client, f"No such scene: {route}")
             return
         scene_id, session_id = parts
         with self._lock:
-            session = self._session(scene_id, session_id)
+            session = self._sessions.get(session_id)
+            refusal = (
+                "This scene has not been opened by its page yet: reload the page." if session is None
+                else "This viewer is for another scene than its page shows: reload the page." if session.scene_id != scene_id or session.stage is not None
+                else f"This scene already has {MAX_VIEWERS_PER_SESSION} viewers open." if len(session.instances) >= MAX_VIEWERS_PER_SESSION
+                else None
+            )  # fmt: skip
+            if refusal is not None or session is None:
+                log.info("viewer of %s/%s refused: %s", scene_id, session_id, refusal)
+                tell_viewer(client, refusal or "")
+                return
+            session.last_used_s = time.monotonic()
             self._client_session[client.client_id] = session_id
         with session.lock:
             try:
@@ -596,12 +839,16 @@ class SceneHost:
                 except ValueError:
                     log.warning("session %s: the motion handed over does not fit scene %s; it starts at t = 0", session_id, scene_id)
             if session.go_to_s is not None:
-                scene.go_to(session.go_to_s)
-                session.go_to_s = None
+                go_to_s, session.go_to_s = session.go_to_s, None
+                try:
+                    with self._one_long_request(True):
+                        self._paced_go_to(scene, go_to_s)
+                except (RequestTooCostly, HostBusy) as exc:  # the motion starts at t = 0 and the scene says why
+                    scene.status = f"the motion at {go_to_s:g} s was not computed: {str(exc).removeprefix('go_to_s: ')}"
             if session.camera is not None:
                 place_camera(client, **session.camera)
                 session.camera = None
-            session.add_instance(client.client_id, scene)
+            session.add_instance(client.client_id, scene, client=owner)
 
     def _on_disconnect(self, client: viser.ClientHandle) -> None:
         with self._lock:
@@ -609,9 +856,15 @@ class SceneHost:
             session = self._sessions.get(session_id) if session_id else None
         if session is not None:
             with session.lock:
-                session.instances.pop(client.client_id, None)
-                session.histories.pop(client.client_id, None)
+                scene = session.remove_instance(client.client_id)
                 session.last_used_s = time.monotonic()
+                if scene is not None and not session.instances:
+                    # The last viewer went (a lost connection, a phone asleep, a reload): the next one continues
+                    # from here, seen from the same camera, instead of starting the motion again.
+                    session.resume_motion = scene.motion_state()
+                    camera = viewer_camera(client)
+                    if camera is not None:
+                        session.camera = {k: tuple(v) for k, v in camera.items()}  # type: ignore[misc]
 
     def _close_instances(self, session: Session) -> None:
         """Close a replaced session's scenes (caller holds the host lock; this takes the session's)."""
@@ -622,8 +875,7 @@ class SceneHost:
                     scene.close()
                 except Exception:
                     log.exception("closing scene failed")
-            session.instances.clear()
-            session.histories.clear()
+            session.clear_instances()
 
     # -- frame loop -----------------------------------------------------------------
     def _frame_loop(self) -> None:
@@ -639,30 +891,65 @@ class SceneHost:
 
     def run_frame(self, dt_s: float) -> None:
         """One displayed frame: every playing session's scenes advance ``time_scale`` steps of ``dt_s`` (s) on average
-        (the fraction carried to the next frame), and each step is kept in its history for the scrubber."""
+        (the fraction carried to the next frame), and each step is kept in its history for the scrubber.
+
+        Fair shares (:mod:`.fair_share`): when the viewers' measured costs do not fit in the frame loop's share of the
+        frame, the frame is shared max-min fairly by client, and a client over its allowance has its viewers advance
+        on only that fraction of frames. A session busy with a request (its lock held) misses this frame rather than
+        making everyone wait."""
         with self._lock:
             sessions = [sess for sess in self._sessions.values() if sess.instances]
+        demand: dict[str, float] = {}
+        viewers: dict[str, int] = {}
+        for session in sessions:
+            if session.playing:
+                for share in list(session.shares.values()):
+                    if share.client is not None:
+                        demand[share.client] = demand.get(share.client, 0.0) + share.cost.seconds * session.time_scale
+                        viewers[share.client] = viewers.get(share.client, 0) + 1
+        allowed = allowances(demand, capacity_s=FRAME_LOOP_SHARE * dt_s) if demand else {}
         wakeups = BatchedWakeups()  # viser's sender is woken once for every viewer's frame, not once per viewer
         for session in sessions:
             # Play state is read under the session's lock, the one set_playback holds while it changes it, so a
             # pause that has returned is never followed by one more frame already decided on before it.
-            with session.lock:
-                if not session.playing:
-                    continue
-                # time_scale frames per displayed frame on average: 0.5 advances every other frame, 2 twice a frame.
-                session.frame_credit += session.time_scale
-                frames = int(session.frame_credit)
-                if frames == 0:
-                    continue
-                session.frame_credit -= frames
-                for client_id, scene in list(session.instances.items()):
-                    history = session.histories.get(client_id)
-                    for _ in range(frames):
-                        if scene.animated and not scene.status:
-                            self._advance(scene, dt_s, wakeups)
-                            if history is not None:
-                                history.record(scene.motion_state())
+            if not session.lock.acquire(blocking=False):
+                continue
+            try:
+                if session.playing:
+                    self._advance_session(session, dt_s, demand, allowed, viewers, wakeups)
+            finally:
+                session.lock.release()
         wakeups.flush()
+
+    def _advance_session(
+        self, session: Session, dt_s: float, demand: Mapping[str, float], allowed: Mapping[str, float],
+        viewers: Mapping[str, int], wakeups: BatchedWakeups,
+    ) -> None:  # fmt: skip
+        """Advance each viewer's scene of a playing session by the frames it is owed (caller holds the session's lock)."""
+        for client_id, scene in list(session.instances.items()):
+            share = session.shares.get(client_id)
+            history = session.histories.get(client_id)
+            if share is None:
+                continue
+            allowance = allowed.get(share.client or "", math.inf)
+            client_demand = demand.get(share.client or "", 0.0)
+            if client_demand > allowance:
+                share.rate = allowance / client_demand
+                share.note = slowdown_note(share.rate, client_demand, allowance, viewers=viewers.get(share.client or "", 1))
+            else:
+                share.rate, share.note = 1.0, ""
+            # time_scale frames per displayed frame on average: 0.5 advances every other frame, 2 twice a frame.
+            share.credit += session.time_scale * share.rate
+            frames = int(share.credit)
+            share.credit -= frames
+            for _ in range(frames):
+                if not scene.animated or scene.status:
+                    break
+                started = time.perf_counter()
+                self._advance(scene, dt_s, wakeups)
+                share.cost.add(time.perf_counter() - started)
+                if history is not None:
+                    history.record(scene.motion_state())
 
     @staticmethod
     def _advance(scene: Scene, dt_s: float, wakeups: BatchedWakeups) -> None:

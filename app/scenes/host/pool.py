@@ -1,36 +1,50 @@
 """Scene workers: several :class:`SceneHost` processes behind one front, each session pinned to one.
 
 The front process (FastAPI: pages, API, the viewer relay) keeps no scene. A
-session is pinned to one worker the first time the front sees its id — the
-worker with the fewest sessions pinned so far — and keeps it (a bounded table,
-least recently used dropped first), so a session's page, its viewers and its
-parameter changes all meet in one process, and a class that arrives at once is
-spread evenly (hashing ids left one worker with a third more students than the
-other). :class:`WorkerPool` offers the
-in-process host's interface (``set_params``, ``live_readout``, ``viewer_count``,
-``viewer_url``, ``scene_class``, ``scenes``) by calling the pinned worker.
+session is pinned to a worker by the call that creates it (the page's first
+parameters, a room's stage) — the worker with the fewest sessions pinned, so a
+class that arrives at once is spread evenly — and keeps it until it is closed.
+Every call of :class:`~app.scenes.host.interface.SceneHostInterface` that names a
+session goes to its worker; the forwarders are derived from the interface's
+declarations. A call about a session nobody created never reaches a worker.
 
-A worker that dies is restarted by a supervisor thread; the parameters last set
-on each of its sessions are applied again, and its viewers reconnect through the
-relay (the viewer retries by itself), so students see a short pause, not a loss.
+No call waits forever and a sick worker stays sick alone:
+
+* each worker has its own share of the front's threads (:data:`CALLS_PER_WORKER`
+  calls at once; a call that cannot get a place within :data:`PLACE_WAIT_S` is
+  answered 503), so a stopped worker never takes the threads the other worker, the
+  pages and ``/api/health`` need;
+* every call has connect and answer timeouts (:mod:`app.scenes.host.rpc`);
+* a supervisor pings each worker every second; one that does not answer within
+  :data:`PING_TIMEOUT_S` is marked *not answering* and its calls fail at once (503
+  with Retry-After) until it answers again.
+
+Nothing is lost when a worker dies: the supervisor keeps a snapshot of every
+session (parameters, play state, time scale, motion, camera), refreshed every
+second and after every change, and restores each one in the restarted worker
+before it takes calls again; its viewers reconnect through the relay (the viewer
+retries by itself) and find their scene as it was.
 """
 
 from __future__ import annotations
 
+import inspect
 import logging
 import multiprocessing
 import queue
 import secrets
 import threading
+import time
 import zlib
-from collections import OrderedDict
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
-from multiprocessing.connection import Client, Connection
+from multiprocessing import AuthenticationError
+from multiprocessing.connection import Connection
 from typing import Any
 
 from app.scenes.host.host import UnknownSceneError, check_session_id
-from app.scenes.host.rpc import WorkerUnavailableError, raise_answer
+from app.scenes.host.interface import CALLS, RAISE, Call, SceneHostInterface
+from app.scenes.host.rpc import WorkerUnavailableError, connect, raise_answer
 from app.scenes.host.worker import run_worker
 from app.scenes.kit import Scene
 
@@ -38,8 +52,18 @@ log = logging.getLogger(__name__)
 
 #: How long a worker may take to import the scenes and bind its ports (s); a cold numba cache is the slow part.
 START_TIMEOUT_S = 180.0
-#: How long a call may wait for its answer (s); validating a typed curve compiles it, the slowest call.
-CALL_TIMEOUT_S = 30.0
+#: Calls one worker may have in flight from the front at once: its share of the front's threads (AnyIO's pool has 40).
+CALLS_PER_WORKER = 8
+#: Longest a call waits for one of its worker's places before the front answers 503 (s).
+PLACE_WAIT_S = 1.0
+#: The supervisor's period (s): pings, snapshots, restarts.
+SUPERVISE_PERIOD_S = 1.0
+#: A worker that does not answer a ping within this long (s) is marked not answering.
+PING_TIMEOUT_S = 1.0
+#: Longest a read or write on a call's connection may make no progress (s), once its answer has begun.
+IO_TIMEOUT_S = 10.0
+#: Longest ``stop`` waits for the workers to exit by themselves before killing them (s).
+STOP_TIMEOUT_S = 2.0
 
 
 @dataclass
@@ -50,9 +74,12 @@ class _Worker:
     viewer_url: str
     rpc_address: tuple[str, int]
     idle_connections: queue.SimpleQueue = field(default_factory=queue.SimpleQueue)
+    places: threading.BoundedSemaphore = field(default_factory=lambda: threading.BoundedSemaphore(CALLS_PER_WORKER))
+    #: False from a missed ping (or while its sessions are being restored) until it answers again: calls fail fast.
+    answering: bool = False
 
 
-class WorkerPool:
+class WorkerPool(SceneHostInterface):
     """``workers`` scene-worker processes on loopback and the calls that reach them."""
 
     def __init__(
@@ -69,20 +96,19 @@ class WorkerPool:
         self.scenes = dict(scenes)
         self.worker_count = workers
         self.max_sessions = max_sessions
-        self._options = {"frame_rate_hz": frame_rate_hz, "max_sessions": max_sessions, "log_level": log_level}
+        # A worker's own eviction is only a backstop: the front's session directory bounds sessions and closes them.
+        self._options = {"frame_rate_hz": frame_rate_hz, "max_sessions": 2 * max_sessions, "log_level": log_level}
         self._authkey = secrets.token_bytes(32)
         self._context = multiprocessing.get_context("spawn")  # never fork a process that runs threads
         self._workers: list[_Worker | None] = [None] * workers
-        #: Session id -> the worker it is pinned to (least recently used first), and sessions pinned per worker.
-        self._pinned: OrderedDict[str, int] = OrderedDict()
+        self._restarting: set[int] = set()
+        #: Session id -> the worker it is pinned to, and sessions pinned per worker (a creating call pins).
+        self._pinned: dict[str, int] = {}
         self._pinned_count = [0] * workers
         self._pin_lock = threading.Lock()
-        #: The parameters last set on each session (front-side copy, applied again after a worker restart).
-        self._session_params: OrderedDict[str, tuple[str, dict[str, Any]]] = OrderedDict()
-        #: Sessions that are stages (a room's shared scene): opened again, not merely re-parameterised, after a restart.
-        self._stages: set[str] = set()
-        self._params_lock = threading.Lock()
-        self._restart_lock = threading.Lock()
+        #: Sessions a creating call has made (a refused first call pins nothing), and each one's latest snapshot.
+        self._created: set[str] = set()
+        self._snapshots: dict[str, dict[str, Any]] = {}
         self._stopping = threading.Event()
         self._supervisor: threading.Thread | None = None
 
@@ -92,40 +118,43 @@ class WorkerPool:
         launched = [self._launch(index) for index in range(self.worker_count)]
         for index, (process, pipe) in enumerate(launched):
             self._workers[index] = self._await_ready(index, process, pipe)
+            self._workers[index].answering = True  # type: ignore[union-attr]
         self._supervisor = threading.Thread(target=self._supervise, name="scene-worker-supervisor", daemon=True)
         self._supervisor.start()
         log.info("%d scene workers ready", self.worker_count)
 
     def stop(self) -> None:
+        """Stop every worker within :data:`STOP_TIMEOUT_S` (then kill what is left); calls in flight fail at once."""
         self._stopping.set()
-        for worker in self._workers:
-            if worker is None:
-                continue
+        workers = [worker for worker in self._workers if worker is not None]
+        for worker in workers:
+            worker.answering = False
             try:
                 worker.start_pipe.send("stop")
             except (OSError, EOFError):
                 pass
-        for worker in self._workers:
-            if worker is None:
-                continue
-            worker.process.join(timeout=5.0)
+        deadline = time.monotonic() + STOP_TIMEOUT_S
+        for worker in workers:
+            worker.process.join(timeout=max(0.0, deadline - time.monotonic()))
+        for worker in workers:
             if worker.process.is_alive():
-                worker.process.terminate()
-                worker.process.join(timeout=2.0)
+                worker.process.kill()
+                worker.process.join(timeout=1.0)
             self._close_connections(worker)
 
     def _launch(self, index: int) -> tuple[Any, Connection]:
         front_end, worker_end = self._context.Pipe()
         process = self._context.Process(
-            target=run_worker, args=(index, worker_end, self._authkey, self._options), name=f"dynlab-scene-worker-{index}", daemon=False
-        )
+            target=run_worker, args=(index, worker_end, self._authkey, self._options), name=f"dynlab-scene-worker-{index}",
+            daemon=False,  # a worker starts children of its own (a typed Lagrangian's bounded derivation); it ends with the front by its pipe
+        )  # fmt: skip
         process.start()
         worker_end.close()
         return process, front_end
 
     def _await_ready(self, index: int, process: Any, pipe: Connection) -> _Worker:
         if not pipe.poll(START_TIMEOUT_S):
-            process.terminate()
+            process.kill()
             raise RuntimeError(f"scene worker {index} did not start within {START_TIMEOUT_S:.0f} s")
         try:
             ready = pipe.recv()
@@ -133,73 +162,129 @@ class WorkerPool:
             raise RuntimeError(f"scene worker {index} exited while starting (exit code {process.exitcode}); see its log") from None
         return _Worker(index, process, pipe, ready["viewer_url"], tuple(ready["rpc_address"]))
 
+    # -- supervision: pings, snapshots, restarts ----------------------------------------------
     def _supervise(self) -> None:
-        while not self._stopping.wait(1.0):
+        while not self._stopping.wait(SUPERVISE_PERIOD_S):
             for index, worker in enumerate(self._workers):
-                if worker is not None and not worker.process.is_alive() and not self._stopping.is_set():
-                    self._restart(index, worker)
+                if worker is None or index in self._restarting or self._stopping.is_set():
+                    continue
+                if not worker.process.is_alive():
+                    self._restarting.add(index)
+                    threading.Thread(target=self._restart, args=(index, worker), name=f"restart-worker-{index}", daemon=True).start()
+                    continue
+                self._check(worker)
+
+    def _check(self, worker: _Worker) -> None:
+        """Ping the worker (marking it answering or not) and, if it answers, keep its sessions' snapshots."""
+        try:
+            self._call(worker.index, CALLS["ping"], (), {}, checking=True)
+        except WorkerUnavailableError as exc:
+            if worker.answering:
+                log.error("scene worker %d is not answering (%s): its sessions get 503 until it does", worker.index, exc)
+            worker.answering = False
+            return
+        if not worker.answering:
+            log.warning("scene worker %d answers again", worker.index)
+        worker.answering = True
+        try:
+            snapshots = self._call(worker.index, CALLS["snapshot"], (), {})
+        except Exception as exc:
+            log.warning("snapshot of scene worker %d failed: %s", worker.index, exc)
+            return
+        with self._pin_lock:
+            for session_id, snapshot in snapshots.items():
+                if self._pinned.get(session_id) == worker.index:
+                    self._snapshots[session_id] = snapshot
 
     def _restart(self, index: int, dead: _Worker) -> None:
-        with self._restart_lock:
+        """Start a new worker in ``dead``'s place and restore every session pinned to it before it takes calls."""
+        try:
             log.error("scene worker %d exited (code %s): restarting it", index, dead.process.exitcode)
             self._close_connections(dead)
-            try:
-                self._workers[index] = self._await_ready(index, *self._launch(index))
-            except RuntimeError:
-                log.exception("restarting scene worker %d failed; trying again", index)
+            self._workers[index] = None
+            while not self._stopping.is_set():
+                try:
+                    worker = self._await_ready(index, *self._launch(index))
+                    break
+                except RuntimeError:
+                    log.exception("restarting scene worker %d failed; trying again", index)
+            else:
                 return
-        with self._params_lock:
-            pinned = [(sid, scene_id, params) for sid, (scene_id, params) in self._session_params.items() if self.worker_index(sid) == index]
-        for session_id, scene_id, params in pinned:
-            try:
-                self._call(index, "open_stage" if session_id in self._stages else "set_params", *(
-                    (session_id, scene_id, params) if session_id in self._stages else (scene_id, session_id, params)
-                ))
-            except Exception:
-                log.exception("applying session %s's parameters again failed", session_id)
+            worker.answering = False  # calls wait for the restore below (503 meanwhile)
+            self._workers[index] = worker
+            with self._pin_lock:
+                pinned = [(sid, self._snapshots.get(sid)) for sid, where in self._pinned.items() if where == index]
+            restored = 0
+            for session_id, snapshot in pinned:
+                if snapshot is None:
+                    continue
+                try:
+                    self._call(index, CALLS["restore"], (session_id, snapshot), {}, checking=True)
+                    restored += 1
+                except Exception:
+                    log.exception("restoring session %s in scene worker %d failed", session_id, index)
+            worker.answering = True
+            log.warning("scene worker %d restarted; %d of %d sessions restored", index, restored, len(pinned))
+        finally:
+            self._restarting.discard(index)
+
+    def worker_states(self) -> list[dict[str, Any]]:
+        """Each worker's state as the front last saw it (no call is made): for ``/api/health``."""
+        states = []
+        for index, worker in enumerate(self._workers):
+            state = "restarting" if worker is None or index in self._restarting else "answering" if worker.answering else "not answering"
+            states.append({"index": index, "state": state})
+        return states
 
     # -- pinning and calls ----------------------------------------------------------
-    def worker_index(self, session_id: str) -> int:
-        """The worker that serves ``session_id``: pinned on first sight to the least loaded, then always the same."""
+    def worker_index(self, session_id: str, *, create: bool = False) -> int | None:
+        """The worker that holds ``session_id``; with ``create``, a new session is pinned to the least loaded one."""
         with self._pin_lock:
             index = self._pinned.get(session_id)
-            if index is not None:
-                self._pinned.move_to_end(session_id)
+            if index is not None or not create:
                 return index
             fewest = min(self._pinned_count)
             candidates = [i for i, count in enumerate(self._pinned_count) if count == fewest]
             index = candidates[zlib.crc32(session_id.encode()) % len(candidates)]
             self._pinned[session_id] = index
             self._pinned_count[index] += 1
-            while len(self._pinned) > self.max_sessions:
-                _, dropped = self._pinned.popitem(last=False)
-                self._pinned_count[dropped] -= 1
             return index
 
-    def _worker(self, index: int) -> _Worker:
-        worker = self._workers[index]
-        if worker is None:
-            raise WorkerUnavailableError(f"scene worker {index} is not running")
-        return worker
+    def _unpin(self, session_id: str) -> None:
+        with self._pin_lock:
+            index = self._pinned.pop(session_id, None)
+            if index is not None:
+                self._pinned_count[index] -= 1
+            self._created.discard(session_id)
+            self._snapshots.pop(session_id, None)
 
-    def _call(self, index: int, method: str, *args: Any, **kwargs: Any) -> Any:
-        worker = self._worker(index)
+    def _call(self, index: int, call: Call, args: tuple, kwargs: dict, *, checking: bool = False) -> Any:
+        """``call`` in worker ``index``, within its share of places and its answer timeout; ``checking`` calls (the
+        supervisor's) go to a worker not marked answering too."""
+        worker = self._workers[index]
+        if worker is None or not (worker.answering or checking):
+            raise WorkerUnavailableError(f"scene worker {index} is {'restarting' if worker is None else 'not answering'}")
+        if not worker.places.acquire(timeout=PLACE_WAIT_S):
+            raise WorkerUnavailableError(f"scene worker {index} has {CALLS_PER_WORKER} calls waiting already")
         try:
-            connection = worker.idle_connections.get_nowait()
-        except queue.Empty:
             try:
-                connection = Client(worker.rpc_address, authkey=self._authkey)
-            except OSError as exc:
-                raise WorkerUnavailableError(f"scene worker {index} is not answering ({exc})") from None
-        try:
-            connection.send((method, args, kwargs))
-            if not connection.poll(CALL_TIMEOUT_S):
-                raise TimeoutError(f"no answer within {CALL_TIMEOUT_S:.0f} s")
-            answer = connection.recv()
-        except (OSError, EOFError, TimeoutError) as exc:
-            connection.close()
-            raise WorkerUnavailableError(f"scene worker {index} did not answer {method} ({exc})") from None
-        worker.idle_connections.put(connection)
+                connection = worker.idle_connections.get_nowait()
+            except queue.Empty:
+                try:
+                    connection = connect(worker.rpc_address, self._authkey, io_timeout_s=IO_TIMEOUT_S)
+                except (OSError, EOFError, AuthenticationError) as exc:
+                    raise WorkerUnavailableError(f"scene worker {index} is not answering ({exc})") from None
+            try:
+                connection.send((call.name, args, kwargs))
+                if not connection.poll(call.answer_timeout_s):
+                    raise TimeoutError(f"no answer within {call.answer_timeout_s:g} s")
+                answer = connection.recv()
+            except (OSError, EOFError, TimeoutError) as exc:
+                connection.close()
+                raise WorkerUnavailableError(f"scene worker {index} did not answer {call.name} ({exc})") from None
+            worker.idle_connections.put(connection)
+        finally:
+            worker.places.release()
         return raise_answer(answer)
 
     @staticmethod
@@ -210,7 +295,39 @@ class WorkerPool:
             except queue.Empty:
                 return
 
-    # -- the host interface the routes and the relay use ------------------------------
+    def _forward(self, call: Call, session_id: str, args: tuple, kwargs: dict) -> Any:
+        """A session's call, in the worker that holds it; :attr:`Call.unknown` for a session none holds."""
+        index = self.worker_index(session_id, create=call.creates)
+        if index is None:
+            if call.unknown is RAISE:
+                raise ValueError(f"session {session_id!r} has no scene yet: set its parameters first")
+            return call.unknown
+        try:
+            answer = self._call(index, call, args, kwargs)
+        except (ValueError, WorkerUnavailableError):
+            if call.creates and session_id not in self._created:  # refused before it existed: nothing to keep
+                self._unpin(session_id)
+            raise
+        if call.creates:
+            with self._pin_lock:
+                self._created.add(session_id)
+        return answer
+
+    def _keep_snapshot(self, session_id: str) -> None:
+        """After a change: the session's snapshot now, so a restart right after it restores the change."""
+        index = self.worker_index(session_id)
+        if index is None:
+            return
+        try:
+            found = self._call(index, CALLS["snapshot"], ([session_id],), {})
+        except Exception as exc:  # the supervisor's next snapshot will do
+            log.debug("snapshot of %s after a change failed: %s", session_id, exc)
+            return
+        with self._pin_lock:
+            if session_id in found and self._pinned.get(session_id) == index:
+                self._snapshots[session_id] = found[session_id]
+
+    # -- the interface: what is answered here, and what changes the session table ------------------
     def scene_class(self, scene_id: str) -> type[Scene]:
         try:
             return self.scenes[scene_id]
@@ -218,79 +335,94 @@ class WorkerPool:
             raise UnknownSceneError(scene_id) from None
 
     def set_params(self, scene_id: str, session_id: str, raw: Mapping[str, Any], *, stage: bool = False) -> dict[str, Any]:
-        """As :meth:`SceneHost.set_params`, in the session's worker."""
         check_session_id(session_id, stage=stage)
         self.scene_class(scene_id)
-        params = self._call(self.worker_index(session_id), "set_params", scene_id, session_id, dict(raw), stage=stage)
-        self._remember(session_id, scene_id, params)
+        params = self._forward(CALLS["set_params"], session_id, (scene_id, session_id, dict(raw)), {"stage": stage})
+        self._keep_snapshot(session_id)
         return params
 
-    def _remember(self, session_id: str, scene_id: str, params: dict[str, Any]) -> None:
-        with self._params_lock:
-            self._session_params[session_id] = (scene_id, params)
-            self._session_params.move_to_end(session_id)
-            while len(self._session_params) > self.max_sessions:
-                self._session_params.popitem(last=False)
-
     def open_stage(self, session_id: str, scene_id: str, raw: Mapping[str, Any]) -> dict[str, Any]:
-        """As :meth:`SceneHost.open_stage`, in the session's worker (opened again there if the worker restarts)."""
         self.scene_class(scene_id)
-        answer = self._call(self.worker_index(session_id), "open_stage", session_id, scene_id, dict(raw))
-        with self._params_lock:
-            self._stages.add(session_id)
-        self._remember(session_id, scene_id, answer["params"])
+        answer = self._forward(CALLS["open_stage"], session_id, (session_id, scene_id, dict(raw)), {})
+        self._keep_snapshot(session_id)
         return answer
 
-    def close_stage(self, session_id: str) -> None:
-        with self._params_lock:
-            self._stages.discard(session_id)
-            self._session_params.pop(session_id, None)
-        self._call(self.worker_index(session_id), "close_stage", session_id)
-
-    def stage_viewer_url(self, session_id: str) -> str | None:
-        """The stage's loopback websocket address now (it changes when its worker restarts), or None."""
-        return self._call(self.worker_index(session_id), "stage_viewer_url", session_id)
-
     def set_playback(self, session_id: str, **playback: Any) -> dict[str, Any]:
-        return self._call(self.worker_index(session_id), "set_playback", session_id, **playback)
-
-    def playback(self, session_id: str) -> dict[str, Any] | None:
-        return self._call(self.worker_index(session_id), "playback", session_id)
-
-    def graph(self, session_id: str, **options: Any) -> dict[str, Any] | None:
-        return self._call(self.worker_index(session_id), "graph", session_id, **options)
-
-    def stage_viewers(self, session_id: str) -> int:
-        return self._call(self.worker_index(session_id), "stage_viewers", session_id)
-
-    def camera(self, session_id: str) -> dict[str, list[float]] | None:
-        return self._call(self.worker_index(session_id), "camera", session_id)
-
-    def motion_state(self, session_id: str) -> dict[str, Any] | None:
-        return self._call(self.worker_index(session_id), "motion_state", session_id)
+        answer = self._forward(CALLS["set_playback"], session_id, (session_id,), playback)
+        self._keep_snapshot(session_id)
+        return answer
 
     def resume_from(self, session_id: str, motion: Mapping[str, Any]) -> None:
-        self._call(self.worker_index(session_id), "resume_from", session_id, dict(motion))
+        self._forward(CALLS["resume_from"], session_id, (session_id, dict(motion)), {})
+        self._keep_snapshot(session_id)
 
-    def recording_html(self, scene_id: str, session_id: str, *, seconds: float) -> str | None:
-        """As :meth:`SceneHost.recording_html`, in the session's worker (under a second for 60 s of motion, measured)."""
-        return self._call(self.worker_index(session_id), "recording_html", scene_id, session_id, seconds=seconds)
+    def close_session(self, session_id: str) -> None:
+        try:
+            self._forward(CALLS["close_session"], session_id, (session_id,), {})
+        finally:
+            self._unpin(session_id)
 
-    def session_params(self, session_id: str) -> dict[str, Any] | None:
-        return self._call(self.worker_index(session_id), "session_params", session_id)
+    def close_stage(self, session_id: str) -> None:
+        try:
+            self._forward(CALLS["close_stage"], session_id, (session_id,), {})
+        finally:
+            self._unpin(session_id)
 
-    def live_readout(self, scene_id: str, session_id: str) -> dict[str, Any] | None:
-        return self._call(self.worker_index(session_id), "live_readout", scene_id, session_id)
+    def restore(self, session_id: str, snapshot: Mapping[str, Any]) -> None:
+        self._forward(CALLS["restore"], session_id, (session_id, dict(snapshot)), {})
+        self._keep_snapshot(session_id)
 
-    def viewer_count(self, session_id: str | None = None) -> int:
-        if session_id is not None:
-            return self._call(self.worker_index(session_id), "viewer_count", session_id)
-        return sum(self._call(index, "viewer_count") for index in range(self.worker_count))
+    def snapshot(self, session_ids: list[str] | None = None) -> dict[str, dict[str, Any]]:
+        """The snapshots the supervisor keeps (no call is made): every session's, or the ones named."""
+        with self._pin_lock:
+            if session_ids is None:
+                return dict(self._snapshots)
+            return {sid: self._snapshots[sid] for sid in session_ids if sid in self._snapshots}
+
+    def ping(self) -> float:
+        return time.monotonic()
+
+    def total_viewers(self) -> int:
+        """Viewers of every answering worker (a worker not answering counts none)."""
+        total = 0
+        for index, worker in enumerate(self._workers):
+            if worker is not None and worker.answering:
+                try:
+                    total += self._call(index, CALLS["total_viewers"], (), {})
+                except WorkerUnavailableError:
+                    pass
+        return total
 
     def viewer_url(self, session_id: str) -> str:
-        """The loopback websocket address of the worker that serves ``session_id``."""
-        return self._worker(self.worker_index(session_id)).viewer_url
+        """The loopback websocket address of the worker that holds ``session_id`` (503 while it restarts)."""
+        index = self.worker_index(session_id)
+        if index is None:
+            raise ValueError(f"session {session_id!r} has no scene yet: set its parameters first")
+        worker = self._workers[index]
+        if worker is None or not worker.answering:
+            raise WorkerUnavailableError(f"scene worker {index} is not answering")
+        return worker.viewer_url
 
     def worker_pids(self) -> list[int]:
         """Process ids of the running workers (for capacity reports)."""
         return [worker.process.pid for worker in self._workers if worker is not None]
+
+
+def _forwarder(call: Call) -> Callable[..., Any]:
+    """A pool method that sends ``call`` to the worker holding the session its arguments name."""
+    signature = inspect.signature(getattr(SceneHostInterface, call.name))
+
+    def forward(self: WorkerPool, *args: Any, **kwargs: Any) -> Any:
+        session_id = signature.bind(self, *args, **kwargs).arguments["session_id"]
+        return self._forward(call, session_id, args, kwargs)
+
+    forward.__name__ = forward.__qualname__ = call.name
+    forward.__doc__ = f"As ``SceneHost.{call.name}``, in the session's worker."
+    return forward
+
+
+# Every session call the pool does not answer itself goes to the session's worker.
+for _call in CALLS.values():
+    if _call.name not in WorkerPool.__dict__:
+        assert not _call.every_worker, f"{_call.name}: a call to every worker needs its own pool method"
+        setattr(WorkerPool, _call.name, _forwarder(_call))

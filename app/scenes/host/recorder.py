@@ -39,6 +39,8 @@ from typing import Any
 
 import viser
 
+from app.scenes.host.fair_share import REQUEST_COMPUTE_S, Pace, RequestTooCostly
+from app.scenes.host.interface import HostBusy
 from app.scenes.host.viser_compat import BroadcastViewer, quiet_server, stop_quietly
 from app.scenes.kit import Scene
 
@@ -51,12 +53,17 @@ DEFAULT_RECORDING_S = 10.0
 MAX_RECORDING_FRAMES = 1800
 #: Largest recording file (bytes of HTML); the viewer client alone is about 0.8 MB.
 MAX_RECORDING_BYTES = 40 * 1024 * 1024
-#: Longest a recording waits for the one before it in the same worker (s).
-RECORDER_WAIT_S = 10.0
+#: Longest a recording waits for the one before it in the same worker (s); after that the request is answered 503
+#: with Retry-After (a front thread never waits long on a busy recorder).
+RECORDER_WAIT_S = 1.0
 
 
 class RecordingError(RuntimeError):
-    """A recording could not be made (the scene failed to redraw a kept frame, or the recorder stayed busy)."""
+    """A recording could not be made (the scene failed to redraw a kept frame)."""
+
+
+class RecorderBusy(HostBusy):
+    """The worker's recorder is making another recording (one at a time): try again in a moment."""
 
 
 def checked_seconds(seconds: Any) -> float:
@@ -129,13 +136,14 @@ class SceneRecorder:
         (``(t_s, motion)``, oldest first, at most :data:`MAX_RECORDING_FRAMES`), each shown ``frame_period_s`` s;
         a still of the scene's first drawing when ``frames`` is empty.
 
-        Raises ``ValueError`` for a recording over :data:`MAX_RECORDING_BYTES` (``seconds: …``) and
-        :class:`RecordingError` when the scene cannot draw a kept frame or the recorder stays busy.
+        Raises ``ValueError`` for a recording over :data:`MAX_RECORDING_BYTES` or its compute limit (``seconds: …``),
+        :class:`RecorderBusy` while another recording is being made, and :class:`RecordingError` when the scene
+        cannot draw a kept frame.
         """
         if len(frames) > MAX_RECORDING_FRAMES:
             raise ValueError(f"seconds: at most {MAX_RECORDING_FRAMES} frames in one recording, not {len(frames)}")
         if not self._lock.acquire(timeout=RECORDER_WAIT_S):
-            raise RecordingError("the recorder is busy with other recordings; try again in a moment")
+            raise RecorderBusy("another recording is being made on this scene worker; try again in a few seconds", retry_after_s=3)
         try:
             page = self._record_locked(scene_class, params, frames, frame_period_s=frame_period_s)
         finally:
@@ -162,13 +170,21 @@ class SceneRecorder:
             serializer = server.get_scene_serializer()  # the first drawing, nodes and initial camera included
             if frames:
                 serializer.insert_sleep(frame_period_s)
+                pace = Pace()  # the frame loop keeps drawing everyone while this replays
                 with _trails_kept(scene):
                     for _, motion in frames[1:]:
                         scene.resume_from(motion)
                         scene.redraw()
                         serializer.insert_sleep(frame_period_s)
+                        if not pace():
+                            raise RequestTooCostly(
+                                f"seconds: drawing {len(frames)} frames of this scene again takes more than the "
+                                f"{REQUEST_COMPUTE_S:g} s of computing one request may use; record fewer seconds"
+                            )
             viewer_html, serializer = serializer.as_html(), None
             return offline_page(viewer_html, title=f"{scene_class.title} — a Dynamics Lab recording")
+        except RequestTooCostly:
+            raise
         except ValueError as exc:  # a kept motion the scene refuses: the history and the scene disagree
             raise RecordingError(f"{scene_class.id}: a kept frame could not be drawn again ({exc})") from None
         except Exception as exc:  # a scene that fails to build or draw: a clear error, the worker goes on

@@ -1,11 +1,13 @@
 """A scene worker: one process running a :class:`SceneHost` for the sessions pinned to it.
 
 The front process (FastAPI, the relay) starts workers with :func:`run_worker`
-as the target of a ``spawn`` process. Each worker binds its viser server and an
-RPC listener on loopback, reports both addresses on its start pipe, then answers
-calls (:mod:`app.scenes.host.rpc`) from one thread per connection. It exits when
-told to, or by itself when the front process's end of the start pipe closes (the
-front died), so no worker outlives its server.
+as the target of a ``spawn`` process. Each worker binds its viser server and a
+call listener on loopback, reports both addresses on its start pipe, then answers
+the calls of :mod:`app.scenes.host.interface` (over :mod:`app.scenes.host.rpc`)
+from one thread per connection. It exits when told to, or by itself when the
+front process's end of the start pipe closes (the front died), so no worker
+outlives its server. Workers are not daemonic processes: a worker starts
+children of its own (the bounded derivation of a typed Lagrangian).
 """
 
 from __future__ import annotations
@@ -13,12 +15,17 @@ from __future__ import annotations
 import gc
 import logging
 import os
+import socket
 import threading
 from multiprocessing import AuthenticationError
-from multiprocessing.connection import Connection, Listener
+from multiprocessing.connection import Connection
 from typing import Any
 
 log = logging.getLogger(__name__)
+
+#: Connections the worker's call listener queues before accepting (each is accepted at once, then authenticated in
+#: its own thread); the front opens at most a few per worker (:data:`app.scenes.host.pool.CALLS_PER_WORKER`).
+CALL_BACKLOG = 128
 
 
 def run_worker(index: int, start_pipe: Connection, authkey: bytes, options: dict[str, Any]) -> None:
@@ -31,18 +38,18 @@ def run_worker(index: int, start_pipe: Connection, authkey: bytes, options: dict
     host.start()
     threading.Thread(target=warm_compiled_models, args=(SCENES,), name="warm-models", daemon=True).start()
     tune_garbage_collection()
-    listener = Listener(("127.0.0.1", 0), authkey=authkey)
+    listener = socket.create_server(("127.0.0.1", 0), backlog=CALL_BACKLOG)
     closing = threading.Event()
-    threading.Thread(target=_accept_calls, args=(listener, host, closing), name="worker-rpc", daemon=True).start()
-    start_pipe.send({"viewer_url": host.url, "rpc_address": listener.address, "pid": os.getpid()})
+    threading.Thread(target=_accept_calls, args=(listener, authkey, host, closing), name="worker-rpc", daemon=True).start()
+    start_pipe.send({"viewer_url": host.url, "rpc_address": listener.getsockname(), "pid": os.getpid()})
     try:
         start_pipe.recv()  # "stop", or EOFError when the front process has gone
     except (EOFError, OSError):
         log.warning("front process gone: worker %d stopping", index)
     finally:
-        host.stop()
         closing.set()
         listener.close()
+        host.stop()
 
 
 def warm_compiled_models(scenes: dict) -> None:
@@ -83,33 +90,43 @@ def tune_garbage_collection() -> None:
     gc.set_threshold(50_000, 20, 20)
 
 
-def _accept_calls(listener: Listener, host: Any, closing: threading.Event) -> None:
+def _accept_calls(listener: socket.socket, authkey: bytes, host: Any, closing: threading.Event) -> None:
+    """Accept callers at once and authenticate each in its own thread: one slow or silent caller holds only itself."""
     while True:
         try:
-            connection = listener.accept()
-        except (OSError, AuthenticationError):  # closed at shutdown, or a caller without the pool's key
+            sock, _ = listener.accept()
+        except OSError:  # closed at shutdown
             if closing.is_set():
                 return
             continue
-        threading.Thread(target=_answer_calls, args=(connection, host), name="worker-call", daemon=True).start()
+        threading.Thread(target=_answer_calls, args=(sock, authkey, host), name="worker-call", daemon=True).start()
 
 
-def _answer_calls(connection: Connection, host: Any) -> None:
-    from app.scenes.host.rpc import WORKER_METHODS, encode_error
+def _answer_calls(sock: socket.socket, authkey: bytes, host: Any) -> None:
+    from app.scenes.host.interface import WORKER_CALLS, HostBusy
+    from app.scenes.host.rpc import accept, encode_error
 
+    try:
+        connection = accept(sock, authkey)
+    except (OSError, EOFError, AuthenticationError):  # a caller without the pool's key, or one that went silent
+        sock.close()
+        return
     with connection:
         while True:
             try:
                 method, args, kwargs = connection.recv()
             except (EOFError, OSError):
                 return
-            if method not in WORKER_METHODS:
-                connection.send(("internal_error", f"no worker method {method!r}"))
-                continue
+            if method not in WORKER_CALLS:
+                answer: tuple[Any, ...] = ("internal_error", f"no worker call {method!r}")
+            else:
+                try:
+                    answer = ("ok", getattr(host, method)(*args, **kwargs))
+                except Exception as exc:  # every error goes back to the caller, which raises it again
+                    if not isinstance(exc, ValueError | KeyError | HostBusy):  # refusals are answers, not faults
+                        log.exception("worker call %s failed", method)
+                    answer = encode_error(exc)
             try:
-                answer = ("ok", getattr(host, method)(*args, **kwargs))
-            except Exception as exc:  # every error goes back to the caller, which raises it again
-                if not isinstance(exc, ValueError | KeyError):
-                    log.exception("worker call %s failed", method)
-                answer = encode_error(exc)
-            connection.send(answer)
+                connection.send(answer)
+            except OSError:  # the front gave up on this call (its answer timeout) and closed the connection
+                return

@@ -184,6 +184,10 @@ class IntegratedScene(Scene):
         self.status = ""
         self.clear_trails()
 
+    def motion_cost_s(self) -> float | None:
+        """The physics of one frame (s), the mean over the frames this run has advanced; None before the first."""
+        return self._physics_s / self._frames if self._frames else None
+
     def step_without_drawing(self, t_s: float) -> None:
         """Step whole frames to the one nearest ``t_s`` (simulated s), keeping the step choice the run started with:
         a pilot's choice arriving meanwhile applies at the next live frame, so the result does not depend on when."""
@@ -192,7 +196,7 @@ class IntegratedScene(Scene):
         self._applied = self._generation  # read by _take_measured_choice as "already applied"
         try:
             for _ in range(frames):
-                if not self.step_motion(FRAME_DT_S):
+                if not self.step_motion(FRAME_DT_S) or not self.pace():
                     break
         finally:
             if self._applied == self._generation:

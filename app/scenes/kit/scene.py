@@ -290,11 +290,23 @@ class Scene(ABC):
         plays them, so loops and replays happen as on screen), then the part of a frame left."""
         frames = math.floor(t_s / FRAME_DT_S + 1e-9)
         for _ in range(frames):
-            if not self.step_motion(FRAME_DT_S):
+            if not self.step_motion(FRAME_DT_S) or not self.pace():
                 return
         rest = t_s - frames * FRAME_DT_S
         if rest > 1e-12:
             self.step_motion(rest)
+
+    def motion_cost_s(self) -> float | None:
+        """What stepping this scene's motion one frame without drawing costs (s), as measured; None where it is not
+        measured (a closed form in time costs next to nothing)."""
+        return None
+
+    @staticmethod
+    def pace() -> bool:
+        """Called after each frame of a long computation (:meth:`step_without_drawing`); False stops it there. The
+        host replaces it on an instance while it computes a request, to keep the request within its share
+        (:class:`app.scenes.host.fair_share.Pace`)."""
+        return True
 
     def readout(self) -> Readout | None:
         """Numbers a student reads beside the scene, polled by the lesson page (None: no readout).

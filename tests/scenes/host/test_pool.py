@@ -1,161 +1,128 @@
-"""Scene workers: an app whose scenes run in two worker processes answers exactly as the in-process one does.
+"""The worker pool's routing, checked without starting a worker: one interface, derived forwarders, pins only by
+calls that create a session, and no call about an unknown session ever reaching a worker.
 
-One app with ``workers=2`` is started for the module (spawning two workers takes
-a few seconds). Checked: sessions are pinned to one worker by their id; setting
-parameters, refusing bad ones, viewers through the relay and live readouts all
-work across the process boundary; a worker that dies is restarted and its
-sessions get their parameters back.
+What the pool does with real workers (restarts that restore, a stopped worker, timeouts, Ctrl+C) is checked against
+``dynlab serve`` itself in tests/api/test_faults.py.
 """
 
 from __future__ import annotations
 
-import os
+import inspect
 import secrets
-import signal
-from collections.abc import Iterator
+import socket
+import time
 
 import pytest
-import viser
-from fastapi.testclient import TestClient
 
-from app.main import create_app
+from app.scenes.host.host import SceneHost
+from app.scenes.host.interface import CALLS, RAISE, SceneHostInterface, WORKER_CALLS
 from app.scenes.host.pool import WorkerPool
-from app.scenes.host.viser_compat import viewer_camera_message
-from app.settings import Settings
-from tests.conftest import wait_until
+from app.scenes.host.rpc import WorkerUnavailableError, connect
 
 
-@pytest.fixture(scope="module")
-def client() -> Iterator[TestClient]:
-    with TestClient(create_app(Settings(workers=2))) as client:
-        yield client
+class Recorder:
+    """Stands in for ``WorkerPool._call``: records (worker, call, args, kwargs) and answers ``answer``."""
+
+    def __init__(self, answer=None) -> None:
+        self.calls: list[tuple] = []
+        self.answer = answer
+
+    def __call__(self, index, call, args, kwargs, *, checking=False):
+        self.calls.append((index, call.name, args, kwargs))
+        return self.answer
 
 
 @pytest.fixture
-def pool(client) -> WorkerPool:
-    host = client.app.state.scene_host
-    assert isinstance(host, WorkerPool) and host.worker_count == 2
-    return host
+def pool(monkeypatch) -> tuple[WorkerPool, Recorder]:
+    from app.scenes import SCENES
+
+    pool = WorkerPool(SCENES, workers=2)  # not started: routing needs no process
+    recorder = Recorder(answer={"params": {}, "viewer_url": "ws://x"})
+    monkeypatch.setattr(pool, "_call", recorder)
+    return pool, recorder
 
 
-def session_on(pool: WorkerPool, worker: int) -> str:
-    """A fresh session id that the pool pins to ``worker``."""
-    while True:
-        session_id = "pool-" + secrets.token_hex(6)
-        if pool.worker_index(session_id) == worker:
-            return session_id
+def test_the_in_process_host_and_the_pool_offer_every_declared_call_with_the_same_signature():
+    for name in CALLS:
+        declared = inspect.signature(getattr(SceneHostInterface, name))
+        implemented = inspect.signature(getattr(SceneHost, name))
+        assert list(declared.parameters) == list(implemented.parameters), name
+        assert callable(getattr(WorkerPool, name)), name
+    assert set(WORKER_CALLS) == set(CALLS)
 
 
-def test_sessions_are_pinned_on_first_sight_and_a_class_is_spread_evenly(pool):
+def test_a_call_about_a_session_nobody_created_never_reaches_a_worker_and_pins_nothing(pool):
+    pool, recorder = pool
+    unknown = "never-made-" + secrets.token_hex(4)
+    for name, call in CALLS.items():
+        if call.creates or call.every_worker:
+            continue
+        args = {"session_id": unknown, "scene_id": "heavy-top", "motion": {"t_s": 0.0}, "seconds": 5.0}
+        bound = [args[p] for p in inspect.signature(getattr(SceneHostInterface, name)).parameters if p in args and p != "seconds"]
+        kwargs = {"seconds": 5.0} if name == "recording_html" else {}
+        if call.unknown is RAISE:
+            with pytest.raises(ValueError, match="has no scene yet"):
+                getattr(pool, name)(*bound, **kwargs)
+        else:
+            assert getattr(pool, name)(*bound, **kwargs) == call.unknown, name
+    assert recorder.calls == [] and pool.worker_index(unknown) is None and sum(pool._pinned_count) == 0
+
+
+def test_sessions_are_pinned_by_the_call_that_creates_them_and_a_class_is_spread_evenly(pool):
+    pool, recorder = pool
     ids = [f"class-{secrets.token_hex(4)}-{n:03d}" for n in range(100)]
-    first = [pool.worker_index(i) for i in ids]
-    assert first == [pool.worker_index(i) for i in reversed(ids)][::-1]  # the same answer every time, in any order
-    assert abs(pool._pinned_count[0] - pool._pinned_count[1]) <= 1  # each new session went to the less loaded worker
-    assert abs(first.count(0) - first.count(1)) <= 2
+    for session_id in ids:
+        pool.set_params("heavy-top", session_id, {})
+    assert sorted(pool._pinned_count) == [50, 50]
+    workers = [pool.worker_index(i) for i in ids]
+    for session_id, worker in zip(ids, workers, strict=True):  # every later call goes to the same worker
+        pool.playback(session_id)
+        assert recorder.calls[-1][:2] == (worker, "playback")
+    pool.close_session(ids[0])
+    assert pool.worker_index(ids[0]) is None and sum(pool._pinned_count) == 99
 
 
-def test_the_pin_table_is_bounded_and_forgets_the_least_recently_used():
-    small = WorkerPool({}, workers=3, max_sessions=5)  # not started: pinning needs no process
-    for n in range(8):
-        small.worker_index(f"session-{n}")
-    assert list(small._pinned) == [f"session-{n}" for n in range(3, 8)] and sum(small._pinned_count) == 5
-    assert sorted(small._pinned_count) == [1, 2, 2]
+def test_a_first_change_refused_by_the_worker_pins_nothing(pool, monkeypatch):
+    pool, _ = pool
+
+    def refuse(index, call, args, kwargs, *, checking=False):
+        raise ValueError("crank_m: must be positive")
+
+    monkeypatch.setattr(pool, "_call", refuse)
+    with pytest.raises(ValueError):
+        pool.set_params("four-bar", "refused-first", {"crank_m": -1})
+    assert pool.worker_index("refused-first") is None and sum(pool._pinned_count) == 0
 
 
-def test_parameters_and_refusals_cross_the_process_boundary(client, pool):
-    for worker in (0, 1):
-        sid = session_on(pool, worker)
-        url = f"/api/scenes/four-bar/sessions/{sid}"
-        assert client.put(url, json={"params": {"crank_m": 0.12}}).json()["params"]["crank_m"] == 0.12
-        bad = client.put(url, json={"params": {"crank_m": -1.0}})
-        assert bad.status_code == 422 and bad.json()["detail"][0]["loc"] == ["body", "params", "crank_m"]
-        impossible = client.put(url, json={"params": {"ground_m": 10.0}})
-        assert impossible.status_code == 422 and "cannot be assembled" in impossible.json()["detail"][0]["msg"]
-        assert client.put(url, json={"params": {}}).json()["params"]["crank_m"] == 0.12  # nothing changed
-
-
-def test_a_viewer_through_the_relay_reaches_its_session_in_its_worker(client, pool):
-    sid = session_on(pool, 1)
-    assert client.put(f"/api/scenes/heavy-top/sessions/{sid}", json={"params": {"spin_rad_s": 75.0}}).status_code == 200
-    with client.websocket_connect(f"/viewer/heavy-top/{sid}", subprotocols=["viser-v" + viser.__version__]) as socket:
-        socket.receive()
-        socket.send_bytes(viewer_camera_message())
-        wait_until(lambda: pool.viewer_count(sid) == 1, what="the worker to count the viewer")
-        for _ in range(10):  # frames keep coming through the relay
-            socket.receive()
-        live = client.get(f"/api/scenes/heavy-top/sessions/{sid}/live")
-        assert live.status_code == 200 and live.json()["viewers"] == 1 and live.json()["t_s"] > 0.0
-        assert pool.viewer_count() >= 1
-    wait_until(lambda: pool.viewer_count(sid) == 0, what="the worker to drop the viewer")
-
-
-def test_a_dead_worker_is_restarted_and_its_sessions_keep_their_parameters(client, pool):
-    sid = session_on(pool, 0)
-    assert client.put(f"/api/scenes/heavy-top/sessions/{sid}", json={"params": {"spin_rad_s": 66.0}}).status_code == 200
-    old_pid = pool.worker_pids()[0]
-    os.kill(old_pid, signal.SIGKILL)
-    wait_until(lambda: pool.worker_pids()[0] != old_pid, timeout_s=60.0, what="the supervisor to restart worker 0")
-    wait_until(lambda: (pool.session_params(sid) or {}).get("spin_rad_s") == 66.0, timeout_s=30.0, what="the session's parameters to come back")
-    assert client.put(f"/api/scenes/heavy-top/sessions/{sid}", json={"params": {"spin_rad_s": 67.0}}).status_code == 200
-
-
-def test_a_rooms_stage_in_a_worker_streams_to_followers_and_survives_a_worker_restart(client, pool):
-    """The room's scene runs in a worker; followers share the front's one stream; a killed worker's stage is opened
-    again with the room's parameters, and a follower arriving after that gets the scene afresh."""
-    from app.web.room_relay import ends_replay
-
-    instructor = {"X-Instructor-Key": client.app.state.instructor_key.secret}
-    lesson = next(l.id for l in client.app.state.catalogue.lessons.values() if "heavy-top" in l.scenes)
-    room = client.post("/api/rooms", json={"lesson_id": lesson, "scene_id": "heavy-top"}, headers=instructor).json()
-    stage = f"room-{room['room_id']}"
-    client.post(f"/api/rooms/{room['room_id']}/state", json={"params": {"spin_rad_s": 71.0}}, headers=instructor)
-
-    def follow_once() -> None:
-        with client.websocket_connect(f"/room-viewer/{room['room_id']}", subprotocols=["viser-v" + viser.__version__]) as socket:
-            socket.send_bytes(viewer_camera_message())
-            window = socket.receive_bytes()
-            while not ends_replay(window):
-                window = socket.receive_bytes()
-            for _ in range(5):
-                socket.receive_bytes()
-
-    follow_once()
-    assert pool.stage_viewers(stage) == 1  # the front's stream stays open for the next follower
-    worker = pool.worker_index(stage)
-    old_pid = pool.worker_pids()[worker]
-    os.kill(old_pid, signal.SIGKILL)
-    wait_until(lambda: pool.worker_pids()[worker] != old_pid, timeout_s=60.0, what="the supervisor to restart the stage's worker")
-    wait_until(lambda: pool.stage_viewer_url(stage) is not None, timeout_s=30.0, what="the stage to be opened again")
-    assert pool.session_params(stage)["spin_rad_s"] == 71.0
-    wait_until(lambda: _follows(follow_once), timeout_s=30.0, what="a follower to get the reopened stage")
-    client.delete(f"/api/rooms/{room['room_id']}", headers=instructor)
-
-
-def _follows(follow_once) -> bool:
+def test_a_worker_that_accepts_but_never_answers_costs_a_caller_a_bounded_wait():
+    """A listener whose process never accepts or answers (a stopped worker): the key handshake times out."""
+    silent = socket.create_server(("127.0.0.1", 0), backlog=8)
     try:
-        follow_once()
-    except Exception:  # the old stream is still closing: the viewer would reconnect, and so does this
-        return False
-    return True
+        started = time.monotonic()
+        with pytest.raises(OSError):
+            connect(silent.getsockname(), b"k" * 32, io_timeout_s=1.0)
+        assert time.monotonic() - started < 5.0
+    finally:
+        silent.close()
 
 
-def test_a_session_whose_worker_is_down_gets_a_503_with_retry_after(client, pool, monkeypatch):
-    sid = session_on(pool, 1)
-    monkeypatch.setattr(pool._workers[1], "rpc_address", ("127.0.0.1", 1))  # nothing listens there: as if the worker were gone
-    monkeypatch.setattr(pool._workers[1], "idle_connections", type(pool._workers[1].idle_connections)())
-    response = client.put(f"/api/scenes/heavy-top/sessions/{sid}", json={"params": {}})
-    assert response.status_code == 503 and response.headers["Retry-After"] == "2"
-    assert "restarting" in response.json()["detail"]
+def test_a_worker_whose_places_are_all_taken_answers_503_at_once_instead_of_queueing(pool, monkeypatch):
+    pool, _ = pool
+    monkeypatch.undo()
+    from app.scenes.host import pool as pool_module
+    from app.scenes.host.pool import CALLS_PER_WORKER, _Worker
 
-
-def test_a_caller_without_the_key_is_refused_and_the_worker_keeps_answering(client, pool):
-    from multiprocessing import AuthenticationError
-    from multiprocessing.connection import Client
-
-    address = pool._workers[0].rpc_address
-    with pytest.raises(AuthenticationError):
-        Client(address, authkey=b"not the pool's key")
-    sid = session_on(pool, 0)
-    assert client.put(f"/api/scenes/four-bar/sessions/{sid}", json={"params": {"crank_m": 0.11}}).status_code == 200
-    pool._close_connections(pool._workers[0])  # a new connection: the listener must still accept
-    assert pool.session_params(sid)["crank_m"] == 0.11
+    worker = _Worker(0, process=None, start_pipe=None, viewer_url="ws://x", rpc_address=("127.0.0.1", 1), answering=True)  # type: ignore[arg-type]
+    pool._workers = [worker, None]
+    pool.worker_index("busy-session-1", create=True)
+    pool._pinned["busy-session-1"] = 0
+    for _ in range(CALLS_PER_WORKER):
+        worker.places.acquire()
+    monkeypatch.setattr(pool_module, "PLACE_WAIT_S", 0.2)
+    started = time.monotonic()
+    with pytest.raises(WorkerUnavailableError, match="calls waiting"):
+        pool.playback("busy-session-1")
+    assert time.monotonic() - started < 1.0
+    worker.answering = False
+    with pytest.raises(WorkerUnavailableError, match="not answering"):
+        pool.playback("busy-session-1")

@@ -19,7 +19,7 @@ import base64
 import re
 import threading
 from collections.abc import Iterator
-from multiprocessing import Pipe
+import socket
 
 import msgspec
 import numpy as np
@@ -34,7 +34,9 @@ from app.scenes.host import recorder
 from app.scenes.host.host import SceneHost, UnknownSceneError
 from app.scenes.host.pool import WorkerPool
 from app.scenes.host.recorder import RecordingError, SceneRecorder
-from app.scenes.host.rpc import WORKER_METHODS, raise_answer
+from app.scenes.host.interface import WORKER_CALLS
+from app.scenes.host.rpc import connect as connect_to_worker
+from app.scenes.host.rpc import raise_answer
 from app.scenes.host.viser_compat import viewer_camera_message
 from app.scenes.host.worker import _answer_calls
 from tests.conftest import wait_until
@@ -177,7 +179,7 @@ def test_a_failed_recording_is_an_error_and_the_recorder_goes_on(monkeypatch):
 def test_a_workers_recording_crosses_the_process_boundary(monkeypatch):
     """The pool forwards the call to the session's worker, the worker's allow-list has it, and a page of a megabyte
     comes back whole over the same kind of connection (a pipe here; loopback in a pool)."""
-    assert "recording_html" in WORKER_METHODS
+    assert "recording_html" in WORKER_CALLS
     page = "<html>" + "x" * 2_000_000 + "</html>"
 
     class Host:
@@ -185,14 +187,18 @@ def test_a_workers_recording_crosses_the_process_boundary(monkeypatch):
             assert (scene_id, session_id, seconds) == ("heavy-top", SESSION, 5.0)
             return page
 
-    front, worker = Pipe()
-    threading.Thread(target=_answer_calls, args=(worker, Host()), daemon=True).start()
+    key = b"k" * 32
+    listener = socket.create_server(("127.0.0.1", 0))
+    threading.Thread(target=lambda: _answer_calls(listener.accept()[0], key, Host()), daemon=True).start()
+    front = connect_to_worker(listener.getsockname(), key, io_timeout_s=10.0)
     front.send(("recording_html", ("heavy-top", SESSION), {"seconds": 5.0}))
     assert raise_answer(front.recv()) == page
     front.close()
+    listener.close()
 
     pool = WorkerPool({}, workers=1)
     calls = []
-    monkeypatch.setattr(pool, "_call", lambda index, method, *args, **kwargs: calls.append((index, method, args, kwargs)) or page)
+    monkeypatch.setattr(pool, "_call", lambda index, call, args, kwargs, **options: calls.append((index, call.name, args, kwargs)) or page)
+    pool._pinned[SESSION], pool._pinned_count[0] = 0, 1  # as the session's first parameters would have pinned it
     assert pool.recording_html("heavy-top", SESSION, seconds=5.0) == page
     assert calls == [(0, "recording_html", ("heavy-top", SESSION), {"seconds": 5.0})]

@@ -1,0 +1,273 @@
+"""Who may change which scene, and how much of the server one client may hold: the rule every door asks.
+
+The doors are the page routes of a session (``PUT /api/scenes/{scene}/sessions/{id}``
+and ``…/playback``) and the viewer websocket (``/viewer/{scene}/{id}``); the room
+routes and the room socket ask :mod:`app.api.rooms`'s instructor rule.
+
+* **A room's shared scene** (a session id beginning ``room-``) is changed only
+  through its room, by the room's instructor: every page route refuses it (403),
+  and no page viewer may open it.
+* **A page's session** is made by the page's first change, which pins it to a
+  scene worker. The first change carrying a key (``X-Session-Key``) claims it: from
+  then on only that key changes it (403 otherwise). A session nobody claimed stays
+  open to keyless changes (scripts, the API's examples).
+* **A viewer** may watch any page session it is given, of the scene that session
+  shows; it never creates, replaces or re-scenes one (a viewer of a session that
+  does not exist, or shows another scene, is refused).
+* **Nothing a flood can evict.** Each client address (:func:`app.web.guard.client_address`)
+  may create :data:`CREATE_BURST` sessions at once and :data:`CREATE_RATE_PER_S` a
+  second after that (429), and hold :data:`MAX_SESSIONS_PER_CLIENT`: beyond that its
+  own least recently used idle session makes room. When the server's table is full,
+  the session idle longest goes; a session whose viewer is connected is never
+  evicted. Viewers are bounded per session and per client; room followers per client.
+
+The directory lives in the front process; a session's scene lives in its worker,
+which the directory tells when it evicts one (``close_session``).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import hmac
+import re
+import threading
+import time
+from collections import OrderedDict
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+from dataclasses import dataclass, field
+
+from app.scenes.host.host import STAGE_PREFIX
+from app.web.rate_limit import InFlight, TokenBuckets
+
+#: 16–128 letters, digits, '-' or '_' (the lesson page sends 32 hex digits from crypto.getRandomValues).
+SESSION_KEY_PATTERN = re.compile(r"^[A-Za-z0-9_-]{16,128}$")
+KEY_HEADER = "X-Session-Key"
+
+#: Sessions one client address may hold (a student who opens every lesson holds about 50); beyond, its own least
+#: recently used session without a viewer makes room.
+MAX_SESSIONS_PER_CLIENT = 64
+#: New sessions one client may create at once, and per second after that (a student opening lessons one after
+#: another never meets it; a script claiming thousands does).
+CREATE_BURST = 60
+CREATE_RATE_PER_S = 2.0
+#: Viewers one session may have open (a page and a copy of its tab), and one client in all (a few tabs).
+MAX_VIEWERS_PER_SESSION = 4
+MAX_VIEWERS_PER_CLIENT = 8
+#: Room followers (``/room-viewer/…``) one client may have open (a student, a projector and a spare tab).
+MAX_FOLLOWERS_PER_CLIENT = 8
+
+
+class Refused(Exception):
+    """A door said no: ``status`` (403 forbidden, 404 no such session, 409 another scene, 429 too many, 503 full),
+    a message naming what to do, and for 429/503 the seconds to wait."""
+
+    def __init__(self, status: int, message: str, *, retry_after_s: int | None = None) -> None:
+        super().__init__(message)
+        self.status = status
+        self.message = message
+        self.retry_after_s = retry_after_s
+
+
+@dataclass
+class SessionEntry:
+    """What the front knows of one page's session."""
+
+    scene_id: str
+    #: The address that created it (None: an in-process caller, not limited per client).
+    client: str | None
+    key_hash: bytes | None = None
+    last_used_s: float = field(default_factory=time.monotonic)
+    viewers: int = 0
+
+
+def _hash(key: str) -> bytes:
+    return hashlib.sha256(key.encode()).digest()
+
+
+class SessionDirectory:
+    """Page sessions by id (thread-safe, bounded): who created and owns each, and its viewers.
+
+    ``close`` is called, outside the directory's lock, with each session the directory evicts (the scene host's
+    ``close_session``)."""
+
+    def __init__(
+        self,
+        *,
+        max_sessions: int = 2000,
+        close: Callable[[str], None] = lambda session_id: None,
+        clock: Callable[[], float] = time.monotonic,
+        max_clients: int = 10_000,
+    ) -> None:
+        self.max_sessions = max_sessions
+        self._close = close
+        self._clock = clock
+        self._entries: OrderedDict[str, SessionEntry] = OrderedDict()  # least recently used first
+        self._by_client: dict[str, OrderedDict[str, None]] = {}
+        self._viewers_by_client: dict[str, int] = {}
+        self._followers_by_client: dict[str, int] = {}
+        self._creations = TokenBuckets(burst=CREATE_BURST, rate_per_s=CREATE_RATE_PER_S, max_clients=max_clients, clock=clock)
+        self._heavy_changes = InFlight(limit=1)
+        self._lock = threading.Lock()
+
+    def __len__(self) -> int:
+        return len(self._entries)
+
+    # -- changes --------------------------------------------------------------------------------------
+    def check_change(self, session_id: str, key: str | None, *, client: str | None, creating: bool = True) -> None:
+        """Raise :class:`Refused` unless a change to ``session_id`` with ``key`` from ``client`` may go ahead.
+
+        ``creating``: the change may create the session (a page's parameters); otherwise it must exist (404)."""
+        if session_id.startswith(STAGE_PREFIX):
+            raise Refused(403, f"session {session_id!r} is a classroom room's shared scene: only its instructor changes it, through the room")
+        with self._lock:
+            entry = self._entries.get(session_id)
+            if entry is None:
+                if not creating:
+                    raise Refused(404, f"session {session_id!r} has no scene yet: set its parameters first")
+                if client is not None:
+                    wait_s = self._creations.take(client)
+                    if wait_s > 0:
+                        retry = max(1, round(wait_s + 0.5))
+                        raise Refused(429, f"too many new scenes from this device: try again in {retry} s", retry_after_s=retry)
+                return
+            if entry.key_hash is None:
+                return
+            if key is None:
+                raise Refused(403, f"session {session_id!r} belongs to another page: changing it needs its {KEY_HEADER} header")
+            if not hmac.compare_digest(entry.key_hash, _hash(key)):
+                raise Refused(403, f"session {session_id!r} belongs to another page: the {KEY_HEADER} does not match")
+
+    def changed(self, session_id: str, scene_id: str, key: str | None, *, client: str | None) -> None:
+        """After a successful change: record the session (created by ``client``), the first key claims it, and make
+        room for it (evicting as the rules say; each evicted session is closed in the host)."""
+        evicted: list[str] = []
+        with self._lock:
+            entry = self._entries.get(session_id)
+            if entry is None:
+                entry = SessionEntry(scene_id, client)
+                self._entries[session_id] = entry
+                if client is not None:
+                    owned = self._by_client.setdefault(client, OrderedDict())
+                    owned[session_id] = None
+                    while len(owned) > MAX_SESSIONS_PER_CLIENT:
+                        oldest = next((sid for sid in owned if sid != session_id and self._entries[sid].viewers == 0), None)
+                        if oldest is None:
+                            break
+                        evicted.append(self._forget_locked(oldest))
+                while len(self._entries) > self.max_sessions:
+                    oldest = next((sid for sid, e in self._entries.items() if sid != session_id and e.viewers == 0), None)
+                    if oldest is None:
+                        break
+                    evicted.append(self._forget_locked(oldest))
+            entry.scene_id = scene_id
+            if entry.key_hash is None and key is not None:
+                entry.key_hash = _hash(key)
+            self._touch_locked(session_id, entry)
+        for old in evicted:
+            self._close(old)
+
+    def touched(self, session_id: str) -> None:
+        """The session was used (a playback change): it is the last to be evicted."""
+        with self._lock:
+            entry = self._entries.get(session_id)
+            if entry is not None:
+                self._touch_locked(session_id, entry)
+
+    def _touch_locked(self, session_id: str, entry: SessionEntry) -> None:
+        entry.last_used_s = self._clock()
+        self._entries.move_to_end(session_id)
+        if entry.client is not None and session_id in self._by_client.get(entry.client, {}):
+            self._by_client[entry.client].move_to_end(session_id)
+
+    def _forget_locked(self, session_id: str) -> str:
+        entry = self._entries.pop(session_id)
+        if entry.client is not None:
+            owned = self._by_client.get(entry.client)
+            if owned is not None:
+                owned.pop(session_id, None)
+                if not owned:
+                    del self._by_client[entry.client]
+        return session_id
+
+    def is_claimed(self, session_id: str) -> bool:
+        with self._lock:
+            entry = self._entries.get(session_id)
+            return entry is not None and entry.key_hash is not None
+
+    def scene_of(self, session_id: str) -> str | None:
+        with self._lock:
+            entry = self._entries.get(session_id)
+            return None if entry is None else entry.scene_id
+
+    def sessions_of(self, client: str) -> int:
+        with self._lock:
+            return len(self._by_client.get(client, ()))
+
+    @contextmanager
+    def heavy_change(self, *, client: str | None) -> Iterator[None]:
+        """Hold the client's one place for a change that compiles what a student typed (a typed Lagrangian's
+        derivation may take its whole 20 s): a second one from the same device meanwhile is :class:`Refused` (429)."""
+        if client is None:
+            yield
+            return
+        if not self._heavy_changes.try_enter(client):
+            raise Refused(429, "your previous change is still being derived: wait for it, then try again", retry_after_s=2)
+        try:
+            yield
+        finally:
+            self._heavy_changes.leave(client)
+
+    # -- viewers -------------------------------------------------------------------------------------------
+    @contextmanager
+    def viewer(self, session_id: str, scene_id: str, *, client: str | None) -> Iterator[None]:
+        """Hold a viewer's place while the block runs; :class:`Refused` if it may not open (stage: 403, no such
+        session: 404, another scene: 409, too many: 429)."""
+        with self._lock:
+            if session_id.startswith(STAGE_PREFIX):
+                raise Refused(403, "a classroom room's shared scene is watched through the room (/room-viewer/…)")
+            entry = self._entries.get(session_id)
+            if entry is None:
+                raise Refused(404, "this scene has not been opened by its page yet (or was closed): reload the page")
+            if entry.scene_id != scene_id:
+                raise Refused(409, f"this session shows {entry.scene_id!r}, not {scene_id!r}: reload the page")
+            if entry.viewers >= MAX_VIEWERS_PER_SESSION:
+                raise Refused(429, f"this scene has {MAX_VIEWERS_PER_SESSION} viewers open already: close a tab", retry_after_s=5)
+            if client is not None and self._viewers_by_client.get(client, 0) >= MAX_VIEWERS_PER_CLIENT:
+                raise Refused(429, f"this device has {MAX_VIEWERS_PER_CLIENT} scenes open already: close a tab", retry_after_s=5)
+            entry.viewers += 1
+            if client is not None:
+                self._viewers_by_client[client] = self._viewers_by_client.get(client, 0) + 1
+            self._touch_locked(session_id, entry)
+        try:
+            yield
+        finally:
+            with self._lock:
+                entry.viewers -= 1
+                entry.last_used_s = self._clock()
+                if client is not None:
+                    left = self._viewers_by_client.get(client, 1) - 1
+                    if left > 0:
+                        self._viewers_by_client[client] = left
+                    else:
+                        self._viewers_by_client.pop(client, None)
+
+    @contextmanager
+    def follower(self, *, client: str | None) -> Iterator[None]:
+        """Hold a room follower's place while the block runs; :class:`Refused` (429) beyond the client's share."""
+        if client is None:
+            yield
+            return
+        with self._lock:
+            if self._followers_by_client.get(client, 0) >= MAX_FOLLOWERS_PER_CLIENT:
+                raise Refused(429, f"this device follows the room in {MAX_FOLLOWERS_PER_CLIENT} tabs already", retry_after_s=5)
+            self._followers_by_client[client] = self._followers_by_client.get(client, 0) + 1
+        try:
+            yield
+        finally:
+            with self._lock:
+                left = self._followers_by_client.get(client, 1) - 1
+                if left > 0:
+                    self._followers_by_client[client] = left
+                else:
+                    self._followers_by_client.pop(client, None)

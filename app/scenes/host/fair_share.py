@@ -1,0 +1,136 @@
+"""A fair share of a scene worker: no client, viewer or request takes the frames of the others.
+
+A worker draws every viewer's scene once a frame (30 frames/s) in one thread. A
+scene whose controls ask for a lot of computing (RK4 at 4096 steps per frame on
+the double pendulum costs about 10 ms a frame) would, left alone, slow the frame
+for everyone in its worker; so would many tabs from one device, or a request that
+computes minutes of motion at once (a share link's ``go_to_s`` of 600 s, 300
+frames of ``step``). The rules:
+
+* **Frames, shared by client.** Each viewer's cost a frame is measured
+  (:class:`FrameCost`: the least of its last few frames, since waiting for the
+  interpreter's lock only ever adds). A client's demand is the sum of its viewers'
+  costs. While all demands fit in :data:`FRAME_LOOP_SHARE` of the frame, nobody is
+  slowed; when they do not, the frame is shared max-min fairly
+  (:func:`allowances`): every client asking less than an equal share gets all it
+  asks, and the rest is split equally among the others. A client over its
+  allowance has its viewers advance on only that fraction of frames: its scenes run
+  slower than real time, each step still the one its controls chose, and the
+  readout says by how much and why (:func:`slowdown_note`). A device alone on a
+  worker is never slowed; a class of students on default scenes never is either
+  (the dearest default scene costs under 2 ms a frame, measured).
+* **Requests** (step, going to a time, a recording) compute at most
+  :data:`REQUEST_COMPUTE_S`: a request estimated to need more is refused before it
+  starts, naming the limit, and one that runs over is stopped and undone. They are
+  paced (:class:`Pace`): after each :data:`SLICE_S` of computing they leave the
+  processor to the frame loop for :data:`PACE_RATIO` times as long.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections import deque
+from collections.abc import Callable, Mapping
+
+#: The part of each frame period the frame loop's scenes may share (the rest is viser's streaming and the calls).
+FRAME_LOOP_SHARE = 0.5
+#: Most computing one request (step, go to a time, a recording) may take (s).
+REQUEST_COMPUTE_S = 2.0
+#: A paced request computes this long (s) ...
+SLICE_S = 4e-3
+#: ... then leaves the processor to the frame loop for this many times as long.
+PACE_RATIO = 3.0
+#: Frames a viewer's cost is taken over (the least of them), and frames measured before it may be slowed.
+COST_WINDOW = 8
+COST_WARM_UP = 3
+
+
+class FrameCost:
+    """What one viewer's scene costs to advance and draw one frame (s): the least of its last :data:`COST_WINDOW`
+    frames (a frame interrupted by another thread only ever looks dearer). Unknown (0) for the first
+    :data:`COST_WARM_UP` frames, which include compiling and first drawings."""
+
+    __slots__ = ("_recent", "frames")
+
+    def __init__(self) -> None:
+        self._recent: deque[float] = deque(maxlen=COST_WINDOW)
+        self.frames = 0
+
+    def add(self, seconds: float) -> None:
+        self.frames += 1
+        if self.frames > 1:  # the first frame after a viewer connects pays for compiling and first drawings
+            self._recent.append(seconds)
+
+    @property
+    def seconds(self) -> float:
+        return min(self._recent) if self.frames >= COST_WARM_UP and self._recent else 0.0
+
+
+def allowances(demands: Mapping[str, float], *, capacity_s: float) -> dict[str, float]:
+    """Max-min fair shares of ``capacity_s`` (s of computing a frame) among clients demanding ``demands`` (s a frame):
+    each client's allowance, ``inf`` for every client when all demands fit."""
+    total = sum(demands.values())
+    if total <= capacity_s or len(demands) < 2:
+        return {client: math.inf for client in demands}
+    out: dict[str, float] = {}
+    left, remaining = capacity_s, sorted(demands.items(), key=lambda item: item[1])
+    while remaining:
+        level = left / len(remaining)
+        client, demand = remaining[0]
+        if demand > level:  # everyone left asks more than an equal share: they get it
+            out.update({c: level for c, _ in remaining})
+            break
+        out[client] = math.inf
+        left -= demand
+        remaining.pop(0)
+    return out
+
+
+def slowdown_note(rate: float, demand_s: float, allowance_s: float, *, viewers: int) -> str:
+    """Why a client's scenes run at ``rate`` × their chosen speed, for the readout."""
+    whose = "this scene costs" if viewers == 1 else f"this device's {viewers} scenes cost"
+    return (
+        f"Running at {rate:.2g}× the chosen speed: {whose} {1e3 * demand_s:.1f} ms of computing a frame, and while a "
+        f"class shares this server each device may use {1e3 * allowance_s:.1f} ms. Fewer steps per frame, the "
+        f"automatic method or fewer open tabs run in real time."
+    )
+
+
+class RequestTooCostly(ValueError):
+    """A request would compute longer than :data:`REQUEST_COMPUTE_S`; the message names the field and the limit."""
+
+
+def check_request_cost(field: str, *, frames: int, frame_cost_s: float, what: str) -> None:
+    """Refuse (``RequestTooCostly``, naming ``field``) ``frames`` frames of ``frame_cost_s`` each (s) over the limit."""
+    estimate_s = frames * frame_cost_s
+    if estimate_s > REQUEST_COMPUTE_S:
+        raise RequestTooCostly(
+            f"{field}: {what} needs {frames} frames at about {1e3 * frame_cost_s:.2g} ms each, about {estimate_s:.0f} s "
+            f"of computing; one request may take at most {REQUEST_COMPUTE_S:g} s while a class shares the server. "
+            f"Ask for less, or use fewer steps per frame."
+        )
+
+
+class Pace:
+    """Called once a frame by a long computation: every :data:`SLICE_S` it sleeps :data:`PACE_RATIO` times as long
+    (the frame loop runs meanwhile), and it stops the computation (returns False) once ``limit_s`` is spent."""
+
+    def __init__(self, *, limit_s: float = REQUEST_COMPUTE_S, clock: Callable[[], float] = time.perf_counter) -> None:
+        self.limit_s = limit_s
+        self.spent_s = 0.0
+        self._clock = clock
+        self._slice_start = clock()
+
+    def __call__(self) -> bool:
+        ran = self._clock() - self._slice_start
+        if ran >= SLICE_S:
+            self.spent_s += ran
+            time.sleep(PACE_RATIO * ran)
+            self._slice_start = self._clock()
+            ran = 0.0
+        return self.spent_s + ran < self.limit_s
+
+    @property
+    def exhausted(self) -> bool:
+        return self.spent_s + (self._clock() - self._slice_start) >= self.limit_s
