@@ -29,6 +29,9 @@ def _serve(args: argparse.Namespace) -> int:
     if not settings.public_url and settings.host in ("0.0.0.0", "::"):
         settings = replace(settings, public_url=f"http://{lan_address()}:{settings.port}")
     app = create_app(settings)
+    from app.web import log_redaction
+
+    log_redaction.install(app.state.instructor_key.secret)  # no log line carries the key (uvicorn's access log would)
     tune_garbage_collection()  # the front relays every frame of every viewer: the same allocation pattern as a worker
     where = f"{settings.workers} scene worker{'s' if settings.workers != 1 else ''}" if settings.workers else "scenes in this process"
     print(f"Dynamics Lab: serving on http://{settings.host}:{settings.port}  ({where}; Ctrl+C to stop)", flush=True)

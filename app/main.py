@@ -14,6 +14,7 @@ from fastapi.staticfiles import StaticFiles
 
 from app import __version__
 from app.api import bench, chapters, errors, examples, health, rooms, scenes, systems
+from app.api.join_limits import JoinLimits
 from app.api.room_hub import RoomHub
 from app.api.access import SessionDirectory
 from app.course import load_catalogue
@@ -64,6 +65,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     # The classroom: the instructor's secret, the open rooms, their sockets and the ready poll questions (checked now).
     app.state.instructor_key = InstructorKey(settings.instructor_key or None)
     app.state.rooms = Rooms()
+    app.state.join_limits = JoinLimits(settings)
     app.state.room_hub = RoomHub(lambda: app.state.scene_host)
     app.state.ready_questions = load_ready_questions(DEFAULT_READY_QUESTIONS, SCENES)
     errors.install(app)

@@ -54,11 +54,19 @@ class Settings:
     #: Take the client's address from the last ``X-Forwarded-For`` entry (only behind a reverse proxy that sets it).
     trust_forwarded_for: bool = False
 
+    # --- Joining a room (app/api/join_limits.py explains the numbers); burst 0 = no limit ---
+    #: Join requests one address may make at once, then per second (a re-join from the same device counts too).
+    join_burst: int = 20
+    join_rate_per_s: float = 0.2
+    #: New students one room admits at once, then per second, whatever their addresses.
+    room_join_burst: int = 150
+    room_join_rate_per_s: float = 2.0
+
     def __post_init__(self) -> None:
-        for name in ("max_body_bytes", "simulate_burst", "viewer_open_burst"):
+        for name in ("max_body_bytes", "simulate_burst", "viewer_open_burst", "join_burst", "room_join_burst"):
             if getattr(self, name) < 0:
                 raise ValueError(f"{name} must be >= 0 (got {getattr(self, name)!r})")
-        for name in ("simulate_rate_per_s", "viewer_open_rate_per_s"):
+        for name in ("simulate_rate_per_s", "viewer_open_rate_per_s", "join_rate_per_s", "room_join_rate_per_s"):
             if not math.isfinite(getattr(self, name)) or getattr(self, name) <= 0:
                 raise ValueError(f"{name} must be a finite rate > 0 per second (got {getattr(self, name)!r})")
         if not 0 <= self.workers <= 64:
@@ -77,7 +85,7 @@ class Settings:
             "workers": os.environ.get("DYNLAB_WORKERS"),
             "instructor_key": os.environ.get("DYNLAB_INSTRUCTOR_KEY"),
             "public_url": os.environ.get("DYNLAB_PUBLIC_URL"),
-            **{name: os.environ.get(f"DYNLAB_{name.upper()}") for name in _GUARD_FIELDS},
+            **{name: os.environ.get(f"DYNLAB_{name.upper()}") for name in (*_GUARD_FIELDS, *_JOIN_FIELDS)},
         }
         values: dict[str, object] = {}
         for name, raw in env.items():
@@ -99,6 +107,8 @@ _GUARD_FIELDS = (
     "rate_limit_clients",
     "trust_forwarded_for",
 )
+#: Joining a room's limits, each read from ``DYNLAB_<NAME>`` (``DYNLAB_JOIN_BURST=0`` turns the per-address one off).
+_JOIN_FIELDS = ("join_burst", "join_rate_per_s", "room_join_burst", "room_join_rate_per_s")
 
 
 def _parse(default: object, raw: str, *, name: str) -> object:

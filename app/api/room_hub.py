@@ -63,8 +63,11 @@ class Member:
     student_token: str | None = None
     queue: asyncio.Queue[str | None] = field(default_factory=lambda: asyncio.Queue(QUEUE_LIMIT))
     sender: asyncio.Task[None] | None = None
-    #: Closed for not reading: nothing more is queued for it.
+    #: Closed for not reading, or dismissed: nothing more is queued for it.
     closing: bool = False
+    #: Set when the server ends the socket after its last queued message (:meth:`RoomHub.dismiss`).
+    close_code: int | None = None
+    close_reason: str = ""
 
     async def send_all(self) -> None:
         while (text := await self.queue.get()) is not None:
@@ -94,6 +97,8 @@ class RoomHub:
         if room.room_id not in self._pumps:
             self._pumps[room.room_id] = asyncio.create_task(self._pump(room))
         self._queue(member, finite_json({"type": "state", "state": room.state()}))
+        if instructor:
+            self._queue(member, finite_json(students_message(room)))
         self._presence_changed.add(room.room_id)
         return member
 
@@ -133,6 +138,32 @@ class RoomHub:
     async def _send(self, member: Member, room_id: str) -> None:
         with contextlib.suppress(Exception):
             await member.send_all()
+            if member.close_code is not None:
+                await member.websocket.close(code=member.close_code, reason=member.close_reason)
+
+    def dismiss(self, member: Member, message: dict[str, Any], *, code: int = 1008, reason: str = "") -> None:
+        """Send ``message`` as the socket's last, then close it with ``code`` (event loop)."""
+        if member.closing:
+            return
+        member.close_code, member.close_reason = code, reason[:120]
+        try:
+            member.queue.put_nowait(finite_json(message))
+            member.queue.put_nowait(None)
+        except asyncio.QueueFull:  # not reading anyway: close it now
+            if member.sender is not None:
+                member.sender.cancel()
+            asyncio.create_task(member.websocket.close(code=code, reason=member.close_reason))
+        member.closing = True
+
+    def dismiss_student(self, room: Room, token: str, message: dict[str, Any]) -> None:
+        """Close every socket of the student holding ``token`` (removed by the instructor), ``message`` last (any thread)."""
+
+        def dismiss_all() -> None:
+            for member in list(self._members.get(room.room_id, ())):
+                if member.student_token == token:
+                    self.dismiss(member, message, reason="removed from the room by the instructor")
+
+        self._in_loop(dismiss_all)
 
     async def _pump(self, room: Room) -> None:
         """While the room has sockets: its readout and (coalesced) presence, every :data:`PUMP_PERIOD_S`."""
@@ -141,6 +172,8 @@ class RoomHub:
                 if room.room_id in self._presence_changed:
                     self._presence_changed.discard(room.room_id)
                     self._deliver(room.room_id, finite_json({"type": "state", "state": room.state()}), False)
+                    if any(member.instructor for member in self._members.get(room.room_id, ())):
+                        self._deliver(room.room_id, finite_json(students_message(room)), True)
                 scene_id = room.scene_id
                 if scene_id is not None:
                     try:
@@ -154,20 +187,25 @@ class RoomHub:
             self._pumps.pop(room.room_id, None)
 
     # -- publishing (any thread) ---------------------------------------------------------------
-    def publish(self, room_id: str, message: dict[str, Any], *, instructors_only: bool = False) -> None:
+    def _in_loop(self, work: Any, *args: Any) -> None:
+        """Run ``work(*args)`` in the sockets' event loop: now if this is it, else soon (thread-safe)."""
         loop = self._loop
-        if loop is None or not self._members.get(room_id):
+        if loop is None:
             return
-        text = finite_json(message)
         try:
             running = asyncio.get_running_loop()
         except RuntimeError:
             running = None
         if running is loop:
-            self._deliver(room_id, text, instructors_only)
+            work(*args)
         else:
             with contextlib.suppress(RuntimeError):  # the loop has closed (shutting down)
-                loop.call_soon_threadsafe(self._deliver, room_id, text, instructors_only)
+                loop.call_soon_threadsafe(work, *args)
+
+    def publish(self, room_id: str, message: dict[str, Any], *, instructors_only: bool = False) -> None:
+        if self._loop is None or not self._members.get(room_id):
+            return
+        self._in_loop(self._deliver, room_id, finite_json(message), instructors_only)
 
     def publish_state(self, room: Room, *, presence_only: bool = False) -> None:
         """The room's state to every page now; ``presence_only`` changes wait for the next pump (coalesced)."""
@@ -181,6 +219,10 @@ class RoomHub:
         self.publish_state(room)
         self.publish_results(room, poll)
 
+    def publish_students(self, room: Room) -> None:
+        """The list of students to the instructor's sockets only (students never see who else is in the room)."""
+        self.publish(room.room_id, students_message(room), instructors_only=True)
+
     def publish_results(self, room: Room, poll: Poll) -> None:
         """A poll's results to the instructor's sockets only (students never see others' answers)."""
         self.publish(room.room_id, {"type": "results", "results": poll.results()}, instructors_only=True)
@@ -192,6 +234,10 @@ class RoomHub:
 
     def socket_count(self, room_id: str) -> int:
         return len(self._members.get(room_id, ()))
+
+
+def students_message(room: Room) -> dict[str, Any]:
+    return {"type": "students", "students": room.student_list()}
 
 
 def get_room_hub(request: HTTPConnection) -> RoomHub:

@@ -8,7 +8,10 @@ page in the room sees it within a frame or two.
 
 from __future__ import annotations
 
+import contextlib
 import json
+import re
+import secrets
 from typing import Annotated, Any
 
 from fastapi import APIRouter, Depends, Header, HTTPException, Path, Request, WebSocket
@@ -20,11 +23,13 @@ from starlette.requests import HTTPConnection
 
 from app.api.deps import CatalogueDep, SceneHostDep, SettingsDep
 from app.api.errors import unprocessable
+from app.api.join_limits import JoinLimits
 from app.api.room_hub import RoomHub, RoomHubDep
 from app.api.schemas.errors import ErrorDetail, error_responses
 from app.api.schemas.rooms import (
     POLL_ID_PATTERN,
     ROOM_ID_PATTERN,
+    STUDENT_ID_PATTERN,
     AnswerAccepted,
     AnswerRequest,
     JoinAnswer,
@@ -40,18 +45,27 @@ from app.api.schemas.rooms import (
     RoomCreateRequest,
     RoomState,
     RoomStateChange,
+    StudentList,
+    StudentRemovedAnswer,
 )
 from app.rooms.polls import PollClosedError, PollError
 from app.rooms.qr import qr_svg
 from app.rooms.ready_questions import ReadyQuestion
 from app.rooms.registry import Rooms
 from app.rooms.roles import InstructorKey
-from app.rooms.room import Room, RoomError
+from app.rooms.room import Room, RoomError, RoomMovedOn, StudentRemoved
 from app.settings import Settings
 
 router = APIRouter(prefix="/api", tags=["rooms"])
 
 STUDENT_HEADER = "X-Student-Token"
+#: The device cookie: set on joining, HttpOnly, sent back only to the join route. A device that joins a room again
+#: (the QR code scanned again, the code typed again) is the student it was, with the same token: one device, one vote.
+DEVICE_COOKIE = "dynlab_device"
+DEVICE_COOKIE_PATH = "/api/rooms/join"
+DEVICE_PATTERN = re.compile(r"^[A-Za-z0-9_-]{16,64}$")
+#: How long a device cookie lasts (s): a school day and then some; rooms do not outlive the server anyway.
+DEVICE_COOKIE_MAX_AGE_S = 24 * 3600
 _FORBIDDEN = {403: {"model": ErrorDetail, "description": "Instructor only (the instructor link's cookie, or X-Instructor-Key); nothing changed"}}
 _NO_ROOM = "No open room has this id"
 
@@ -68,12 +82,18 @@ def get_ready_questions(request: HTTPConnection) -> tuple[ReadyQuestion, ...]:
     return request.app.state.ready_questions
 
 
+def get_join_limits(request: HTTPConnection) -> JoinLimits:
+    return request.app.state.join_limits
+
+
 RoomsDep = Annotated[Rooms, Depends(get_rooms)]
+JoinLimitsDep = Annotated[JoinLimits, Depends(get_join_limits)]
 InstructorKeyDep = Annotated[InstructorKey, Depends(get_instructor_key)]
 ReadyQuestionsDep = Annotated[tuple[ReadyQuestion, ...], Depends(get_ready_questions)]
 RoomId = Annotated[str, Path(pattern=ROOM_ID_PATTERN, description="The room's id (16 hex digits)")]
 PollId = Annotated[str, Path(pattern=POLL_ID_PATTERN, description="A poll of the room: p1, p2, …")]
 StudentToken = Annotated[str | None, Header(alias=STUDENT_HEADER, max_length=64, description="The token the room gave on joining")]
+StudentId = Annotated[str, Path(pattern=STUDENT_ID_PATTERN, description="A student's public id in the room: s1, s2, … (never their token)")]
 
 
 def is_instructor(connection: HTTPConnection) -> bool:
@@ -105,6 +125,9 @@ def join_base(request: Request, settings: Settings) -> str:
 
 
 def room_error(exc: RoomError) -> HTTPException:
+    """A 422 naming the field; a 409 for a change meant for a lesson or scene the room has left."""
+    if isinstance(exc, RoomMovedOn):
+        return HTTPException(status_code=409, detail=exc.message)
     return unprocessable(["body", *exc.field.split(".")], exc.message)
 
 
@@ -154,18 +177,71 @@ def close_room(room: RoomDep, rooms: RoomsDep, host: SceneHostDep, hub: RoomHubD
     return {"closed": room.room_id}
 
 
-@router.post("/rooms/join", response_model=JoinAnswer, responses=error_responses(not_found="No open room has this code", unprocessable="A name too long"))
-def join_room(body: JoinRequest, rooms: RoomsDep) -> dict[str, Any]:
-    """A student joins by the room's code: the answer's token identifies them (keep it; a reconnect reuses it)."""
+@router.post(
+    "/rooms/join",
+    response_model=JoinAnswer,
+    responses={
+        **error_responses(not_found="No open room has this code", unprocessable="A name too long, or the room is full"),
+        403: {"model": ErrorDetail, "description": "The instructor removed this device from the room"},
+        429: {"model": ErrorDetail, "description": "Too many joins from this address, or into this room just now; Retry-After says when to try again"},
+    },
+)
+def join_room(body: JoinRequest, request: Request, response: Response, rooms: RoomsDep, limits: JoinLimitsDep, hub: RoomHubDep) -> dict[str, Any]:
+    """A student joins by the room's code: the answer's token identifies them (keep it; a reconnect reuses it).
+
+    The device cookie this sets makes a device that joins again the same student, with the same token."""
+    limits.check_address(request.scope)
     try:
         room = rooms.by_code(body.code)
     except KeyError as exc:
         raise HTTPException(status_code=404, detail=str(exc.args[0])) from None
+    device = request.cookies.get(DEVICE_COOKIE, "")
+    if not DEVICE_PATTERN.match(device):
+        device = secrets.token_urlsafe(18)
+    if room.student_of_device(device) is None:
+        limits.check_new_student(room.room_id)
     try:
-        token = room.join(body.name)
+        student = room.join(body.name, device=device)
+    except StudentRemoved as exc:
+        raise HTTPException(status_code=403, detail=str(exc)) from None
     except RoomError as exc:
         raise room_error(exc) from None
-    return {"room_id": room.room_id, "student_token": token, "state": room.state()}
+    response.set_cookie(DEVICE_COOKIE, device, max_age=DEVICE_COOKIE_MAX_AGE_S, path=DEVICE_COOKIE_PATH, httponly=True, samesite="strict")
+    hub.publish_state(room, presence_only=True)  # the joined count, and the instructor's list, at the next pump
+    return {"room_id": room.room_id, "student_token": student.token, "student_id": student.student_id, "state": room.state()}
+
+
+@router.get(
+    "/rooms/{room_id}/students",
+    response_model=StudentList,
+    dependencies=[Instructor],
+    responses={**_FORBIDDEN, **error_responses(not_found=_NO_ROOM, unprocessable="A malformed room id")},
+)
+def list_students(room: RoomDep) -> dict[str, Any]:
+    """Every student in the room, in the order they joined (instructor only): public id, name, connected, following."""
+    return {"students": room.student_list()}
+
+
+@router.delete(
+    "/rooms/{room_id}/students/{student_id}",
+    response_model=StudentRemovedAnswer,
+    dependencies=[Instructor],
+    responses={**_FORBIDDEN, **error_responses(not_found="No such room or student", unprocessable="A malformed room or student id")},
+)
+def remove_student(room: RoomDep, student_id: StudentId, hub: RoomHubDep) -> dict[str, str]:
+    """Remove a student (instructor only): their page is told and its socket closed, their token no longer answers,
+    their answers leave every poll's results, and their device cannot join this room again."""
+    try:
+        student = room.remove(student_id)
+    except KeyError as exc:
+        raise HTTPException(status_code=404, detail=str(exc.args[0])) from None
+    hub.dismiss_student(room, student.token, {"type": "removed", "detail": "The instructor removed you from this room."})
+    hub.publish_state(room)
+    hub.publish_students(room)
+    poll = room.polls.get(room.poll_id) if room.poll_id else None
+    if poll is not None:
+        hub.publish_results(room, poll)
+    return {"removed": student.student_id}
 
 
 @router.get("/rooms/{room_id}/state", response_model=RoomState, responses=error_responses(not_found=_NO_ROOM, unprocessable="A malformed room id"))
@@ -178,11 +254,16 @@ def room_state(room: RoomDep) -> dict[str, Any]:
     "/rooms/{room_id}/state",
     response_model=RoomState,
     dependencies=[Instructor],
-    responses={**_FORBIDDEN, **error_responses(not_found=_NO_ROOM, unprocessable="A field is bad (named in loc); nothing changed")},
+    responses={
+        **_FORBIDDEN,
+        **error_responses(not_found=_NO_ROOM, unprocessable="A field is bad (named in loc); nothing changed"),
+        409: {"model": ErrorDetail, "description": "if_lesson_id or if_scene_id no longer what the room shows (a stale page); nothing changed"},
+    },
 )
 def change_room_state(room: RoomDep, body: RoomStateChange, catalogue: CatalogueDep, host: SceneHostDep, hub: RoomHubDep) -> dict[str, Any]:
     """Change what every follower sees (instructor only): lesson, scene, parameters or preset, play/pause,
-    reset, time scale, follow or explore."""
+    reset, time scale, follow or explore. A page sends the lesson and scene it shows as ``if_lesson_id`` and
+    ``if_scene_id``: once the room has moved on, its change is refused (409) instead of reaching another scene."""
     try:
         return change_room(room, body.model_dump(exclude_unset=True), catalogue=catalogue, host=host, hub=hub)
     except RoomError as exc:
@@ -366,7 +447,11 @@ async def _socket_message(websocket: WebSocket, room: Room, member: Any, message
     kind = message.pop("type")
     if kind == "hello":
         token = message.get("student_token")
-        student = room.student(token) if isinstance(token, str) else None
+        try:
+            student = room.student(token) if isinstance(token, str) else None
+        except StudentRemoved as exc:
+            hub.dismiss(member, {"type": "removed", "detail": f"{str(exc)[0].upper()}{str(exc)[1:]}."}, reason="removed from the room by the instructor")
+            return
         if token is not None and student is None:
             hub.reply(member, {"type": "error", "status": 403, "detail": "this student token is not from this room: join again with the code"})
             return
@@ -377,10 +462,11 @@ async def _socket_message(websocket: WebSocket, room: Room, member: Any, message
                 student.following = message.get("following") is not False
         hub.presence_changed(room)
     elif kind == "following":
-        student = room.student(member.student_token)
-        if student is not None and isinstance(message.get("value"), bool):
-            student.following = message["value"]
-            hub.presence_changed(room)
+        with contextlib.suppress(StudentRemoved):  # removed meanwhile: the socket is closing
+            student = room.student(member.student_token)
+            if student is not None and isinstance(message.get("value"), bool):
+                student.following = message["value"]
+                hub.presence_changed(room)
     elif kind in INSTRUCTOR_ACTIONS:
         if not member.instructor:
             hub.reply(member, {"type": "error", "status": 403, "action": kind, "detail": f"{kind}: only the instructor can change the room; nothing changed"})

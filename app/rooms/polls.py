@@ -43,6 +43,8 @@ CREATE_FIELDS = (
     "question", "kind", "choices", "unit", "answer_quantity", "answer_choices", "answer_value", "answer_choice", "show_names",
 )  # fmt: skip
 CSV_HEADER = ("poll_id", "question", "student", "answer", "unit", "answered_at_utc")
+#: What a spreadsheet reads as the start of a formula (OWASP, "CSV Injection"): =, +, -, @, tab, carriage return.
+FORMULA_STARTS = ("=", "+", "-", "@", "\t", "\r")
 
 
 class PollError(ValueError):
@@ -102,6 +104,17 @@ def nice_width(span: float, *, bins: int = TARGET_BINS) -> float:
     return 10.0 * power
 
 
+def spreadsheet_text(text: str) -> str:
+    """A text cell of a CSV file that a spreadsheet shows as the text it is, never runs as a formula.
+
+    OWASP's rule for CSV injection: a cell starting with ``=``, ``+``, ``-``, ``@``, tab or carriage return gets a
+    leading single quote, which spreadsheets read as "this cell is text" (and do not show). Every cell a person typed
+    (a name, a question, a choice, a unit) goes through here; numbers the server writes itself do not (see
+    :meth:`Poll.to_csv`).
+    """
+    return f"'{text}" if text.startswith(FORMULA_STARTS) else text
+
+
 def _finite_number(raw: Any, field_name: str) -> float:
     if isinstance(raw, bool) or not isinstance(raw, (int, float)):
         raise PollError(field_name, f"{field_name}: must be a number (got {raw!r})")
@@ -145,7 +158,9 @@ class Poll:
     show_names: bool
     open: bool = True
     revealed: dict[str, Any] | None = None
+    #: By the student's public id (never their token).
     _answers: dict[str, _Answer] = field(default_factory=dict, repr=False)
+    _answered_ever: int = 0
 
     @classmethod
     def create(cls, raw: Mapping[str, Any], *, poll_id: str) -> Poll:
@@ -234,9 +249,15 @@ class Poll:
         else:
             value = _finite_number(raw["value"], "value")
         earlier = self._answers.get(student_id)
-        number = earlier.number if earlier is not None else len(self._answers) + 1
+        if earlier is None:
+            self._answered_ever += 1  # a running count: a withdrawn answer's number is never given to another student
+        number = earlier.number if earlier is not None else self._answered_ever
         shown_name = name.strip()[:MAX_NAME_CHARS] if isinstance(name, str) else ""
         self._answers[student_id] = _Answer(number, shown_name, choice, value, datetime.now(UTC))
+
+    def withdraw(self, student_id: str) -> None:
+        """Take a student's answer out of the poll (the instructor removed them); nothing if they did not answer."""
+        self._answers.pop(student_id, None)
 
     def close(self) -> None:
         self.open = False
@@ -386,15 +407,22 @@ class Poll:
         ]
 
     def to_csv(self) -> str:
-        """Every answer, one row each, in the order students first answered; anonymous unless names are on."""
+        """Every answer, one row each, in the order students first answered; anonymous unless names are on.
+
+        Text cells are made safe to open in a spreadsheet (:func:`spreadsheet_text`). A number answer is written
+        as the number it is (``-3.2``, ``1e-07``): it comes from a float the server checked, never from text, so it
+        cannot carry a formula, and a quote would turn it into text the instructor could no longer average.
+        """
         buffer = io.StringIO()
         writer = csv.writer(buffer, lineterminator="\n")
         writer.writerow(CSV_HEADER)
+        question, unit = spreadsheet_text(self.question), spreadsheet_text(self.unit)
         for answer in self._in_order():
             if answer.choice is not None:
-                shown = self.choices[answer.choice]
+                shown = spreadsheet_text(self.choices[answer.choice])
             else:
+                assert answer.value is not None and math.isfinite(answer.value)
                 shown = repr(answer.value)
             stamp = answer.answered_at.strftime("%Y-%m-%dT%H:%M:%SZ")
-            writer.writerow((self.poll_id, self.question, self._student_label(answer), shown, self.unit, stamp))
+            writer.writerow((self.poll_id, question, spreadsheet_text(self._student_label(answer)), shown, unit, stamp))
         return buffer.getvalue()

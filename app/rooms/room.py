@@ -26,9 +26,11 @@ from app.scenes.host.host import STAGE_PREFIX, TIME_SCALE_RANGE
 CODE_ALPHABET = "ABCDEFGHJKMNPQRSTUVWXYZ23456789"
 CODE_LENGTH = 6
 MODES = ("follow", "explore")
-#: Fields a state change may carry (``preset`` and ``reset`` are actions, not state).
-STATE_FIELDS = ("lesson_id", "scene_id", "params", "playing", "time_scale", "mode", "preset", "reset")
-#: Students one room admits (a lecture hall's worth, with room for reconnects under new tokens).
+#: Conditions a state change may carry: the lesson and scene the sending page shows (a stale page's change is refused).
+CONDITIONS = ("if_lesson_id", "if_scene_id")
+#: Fields a state change may carry (``preset`` and ``reset`` are actions, not state; the conditions are checks).
+STATE_FIELDS = ("lesson_id", "scene_id", "params", "playing", "time_scale", "mode", "preset", "reset", *CONDITIONS)
+#: Students one room admits (a lecture hall's worth; a device joining again is the same student and takes no seat).
 MAX_STUDENTS = 500
 MAX_NAME_LENGTH = 40
 
@@ -40,6 +42,14 @@ class RoomError(ValueError):
         super().__init__(message)
         self.field = field
         self.message = message
+
+
+class RoomMovedOn(RoomError):
+    """A change meant for a lesson or scene the room no longer shows (a stale instructor tab); nothing changed."""
+
+
+class StudentRemoved(PermissionError):
+    """The instructor removed this student (their token) or this device from the room."""
 
 
 class StageHost(Protocol):
@@ -56,12 +66,20 @@ class StageHost(Protocol):
 
 @dataclass
 class Student:
-    """One student's browser, known by the token it got on joining (kept across reconnects)."""
+    """One student: one device, known to the room by the secret token it got on joining (kept across reconnects
+    and re-joins from that device) and to the instructor by ``student_id``, which reveals nothing of the token."""
 
+    student_id: str
+    token: str
+    device: str | None = None
     name: str = ""
     sockets: int = 0
     following: bool = True
     joined_s: float = field(default_factory=time.time)
+
+    def listing(self) -> dict[str, Any]:
+        """What the instructor's list shows (never the token or the device)."""
+        return {"student_id": self.student_id, "name": self.name, "connected": self.sockets > 0, "following": self.following}
 
 
 @dataclass
@@ -79,7 +97,12 @@ class Room:
     reset_count: int = 0
     #: Where explorers start (set on each switch to explore): scene, parameters and the stage's motion then.
     explore_start: dict[str, Any] | None = None
+    #: By token; ``_by_device`` finds a device's student, the ``_removed_*`` sets remember whom the instructor removed.
     students: dict[str, Student] = field(default_factory=dict)
+    _by_device: dict[str, str] = field(default_factory=dict, repr=False)
+    _removed_tokens: set[str] = field(default_factory=set, repr=False)
+    _removed_devices: set[str] = field(default_factory=set, repr=False)
+    _students_ever: int = 0
     instructor_sockets: int = 0
     polls: dict[str, Poll] = field(default_factory=dict)
     poll_id: str | None = None
@@ -103,7 +126,9 @@ class Room:
                 "lesson_id": self.lesson_id, "scene_id": self.scene_id, "params": dict(self.params),
                 "playing": self.playing, "time_scale": self.time_scale, "mode": self.mode,
                 "revision": self.revision, "reset_count": self.reset_count, "explore_start": self.explore_start,
-                "students": {"connected": sum(1 for s in self.students.values() if s.sockets), "following": following},
+                "students": {
+                    "joined": len(self.students), "connected": sum(1 for s in self.students.values() if s.sockets), "following": following,
+                },
                 "instructor_connected": self.instructor_sockets > 0,
                 "poll": poll.public() if poll is not None else None,
             }  # fmt: skip
@@ -120,8 +145,24 @@ class Room:
             self.last_used_s = time.monotonic()
         return self.state()
 
+    def _check_conditions(self, raw: Mapping[str, Any]) -> None:
+        """:class:`RoomMovedOn` if the change names a lesson or scene (``if_lesson_id``, ``if_scene_id``) that the room
+        no longer shows: its parameters or controls were meant for another scene."""
+        believed = {name: raw[f"if_{name}"] for name in ("lesson_id", "scene_id") if f"if_{name}" in raw}
+        actual = {"lesson_id": self.lesson_id, "scene_id": self.scene_id}
+        stale = [name for name, value in believed.items() if value != actual[name]]
+        if stale:
+            shows = f"lesson {self.lesson_id!r}" + (f", scene {self.scene_id!r}" if self.scene_id else "") if self.lesson_id else "no lesson"
+            thought = ", ".join(f"{name.removesuffix('_id')} {believed[name]!r}" for name in ("lesson_id", "scene_id") if name in believed)
+            raise RoomMovedOn(
+                f"if_{stale[0]}",
+                f"the class has moved on: the room shows {shows}, not {thought} as this page does; nothing changed "
+                "(the page follows the class to its lesson)",
+            )
+
     def _plan(self, raw: Mapping[str, Any], *, catalogue: Catalogue, host: StageHost) -> dict[str, Any]:
         """Everything the change will do, every field checked; raises :class:`RoomError` before any effect."""
+        self._check_conditions(raw)  # first: a stale page's parameters were meant for another scene's inputs
         lesson_id = raw.get("lesson_id", self.lesson_id)
         if lesson_id is None:
             raise RoomError("lesson_id", "lesson_id: the room shows no lesson yet; name one")
@@ -210,21 +251,65 @@ class Room:
                 self.explore_start = None
 
     # -- students --------------------------------------------------------------------
-    def join(self, name: str = "") -> str:
-        """A new student's token (the browser keeps it, so a reconnect is the same student)."""
-        if not isinstance(name, str) or len(name) > MAX_NAME_LENGTH or any(ord(c) < 32 for c in name):
-            raise RoomError("name", f"name: at most {MAX_NAME_LENGTH} printable characters")
+    def student_of_device(self, device: str | None) -> Student | None:
+        """The student this device joined as, if it has (None for no device)."""
         with self.lock:
+            token = self._by_device.get(device) if device else None
+            return self.students.get(token) if token else None
+
+    def join(self, name: str = "", *, device: str | None = None) -> Student:
+        """The device's student: the one it joined as before (a QR code scanned again, a reload, the code typed
+        again), its name updated if one is given; else a new student. :class:`StudentRemoved` for a device the
+        instructor removed."""
+        if not isinstance(name, str) or len(name) > MAX_NAME_LENGTH or any(ord(c) < 32 or 0x7F <= ord(c) < 0xA0 for c in name):
+            raise RoomError("name", f"name: at most {MAX_NAME_LENGTH} printable characters")
+        name = name.strip()
+        with self.lock:
+            self.last_used_s = time.monotonic()
+            if device is not None and device in self._removed_devices:
+                raise StudentRemoved(f"the instructor removed this device from room {self.code}")
+            known = self.student_of_device(device)
+            if known is not None:
+                if name:
+                    known.name = name
+                return known
             if len(self.students) >= MAX_STUDENTS:
                 raise RoomError("code", f"this room is full ({MAX_STUDENTS} students)")
-            token = secrets.token_urlsafe(18)
-            self.students[token] = Student(name=name.strip())
-            self.last_used_s = time.monotonic()
-            return token
+            self._students_ever += 1
+            student = Student(student_id=f"s{self._students_ever}", token=secrets.token_urlsafe(18), device=device, name=name)
+            self.students[student.token] = student
+            if device is not None:
+                self._by_device[device] = student.token
+            return student
 
     def student(self, token: str | None) -> Student | None:
+        """The student holding ``token``; :class:`StudentRemoved` if the instructor removed them."""
         with self.lock:
+            if token in self._removed_tokens:
+                raise StudentRemoved("the instructor removed you from this room")
             return self.students.get(token) if token else None
+
+    def student_list(self) -> list[dict[str, Any]]:
+        """Every student, in the order they joined, as the instructor's list shows them."""
+        with self.lock:
+            return [s.listing() for s in sorted(self.students.values(), key=lambda s: int(s.student_id[1:]))]
+
+    def remove(self, student_id: str) -> Student:
+        """Remove a student: their token stops working, their device cannot join again, and their answers leave
+        every poll's results (KeyError if the room has no such student)."""
+        with self.lock:
+            student = next((s for s in self.students.values() if s.student_id == student_id), None)
+            if student is None:
+                raise KeyError(f"room {self.code} has no student {student_id!r}")
+            del self.students[student.token]
+            self._removed_tokens.add(student.token)
+            if student.device is not None:
+                self._by_device.pop(student.device, None)
+                self._removed_devices.add(student.device)
+            for poll in self.polls.values():
+                poll.withdraw(student.student_id)
+            self.revision += 1
+            return student
 
     # -- polls -------------------------------------------------------------------------
     def open_poll(self, raw: Mapping[str, Any]) -> Poll:
@@ -249,10 +334,10 @@ class Room:
     def answer(self, poll_id: str, token: str | None, raw: Mapping[str, Any]) -> None:
         """A student's answer (one per student, replaced until the poll closes)."""
         with self.lock:
-            student = self.students.get(token) if token else None
+            student = self.student(token)
             if student is None:
                 raise PermissionError("answering needs the X-Student-Token this room gave when you joined")
-            self.poll(poll_id).submit(token, raw, name=student.name)  # type: ignore[arg-type]
+            self.poll(poll_id).submit(student.student_id, raw, name=student.name)
 
     def update_poll(self, poll_id: str, raw: Mapping[str, Any], *, host: Any) -> Poll:
         """Close or reopen a poll, reveal its answer (computed by the room's scene now), show or hide names."""

@@ -27,16 +27,26 @@ def instructor_link(request: Request, key: Annotated[str, Query(max_length=200)]
     return response
 
 
+def _join_page(code: str) -> HTMLResponse:
+    """The join page: the code (typed, or from the QR code's address), an optional name, then Join."""
+    if code:
+        lead = f'You are joining room <strong class="join-room">{esc(code)}</strong>. Give your name if you like, then press Join.'
+    else:
+        lead = "Type the code shown on the projector."
+    body = _template("join.html").substitute(code=esc(code), lead=lead)
+    return _page("Join a room — Dynamics Lab", body, scripts=("/static/js/common.js", "/static/js/join.js"))
+
+
 @router.get("/join", response_class=HTMLResponse)
 def join_page() -> HTMLResponse:
     """A box for the room's code (the projector shows it, and a QR code of /join/<code>)."""
-    return _page("Join a room — Dynamics Lab", _template("join.html").substitute(code=""), scripts=("/static/js/common.js", "/static/js/join.js"))
+    return _join_page("")
 
 
 @router.get("/join/{code}", response_class=HTMLResponse)
 def join_code_page(code: Annotated[str, Path(max_length=12)]) -> HTMLResponse:
-    """The QR code's address: the code filled in; the page joins at once."""
-    return _page("Join a room — Dynamics Lab", _template("join.html").substitute(code=esc(code.upper()[:12])), scripts=("/static/js/common.js", "/static/js/join.js"))
+    """The QR code's address: the room's code shown and filled in; the student may give a name, then joins."""
+    return _join_page(code.upper()[:12])
 
 
 @router.get("/room-viewer/{room_id}")

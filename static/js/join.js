@@ -1,6 +1,8 @@
-// The join page (/join, /join/<code>): a student types the room's code (or opens the QR code's link, which joins
-// at once), keeps the token the room gives in localStorage ("dynlab.room.<room_id>") and goes to the room's lesson;
-// before the instructor has opened one it waits on the room socket.
+// The join page (/join, /join/<code>): a student types the room's code (or opens the QR code's link, which fills it
+// in), may give a name, and joins; keeps the token the room gives in localStorage ("dynlab.room.<room_id>") and goes
+// to the room's lesson; before the instructor has opened one it waits on the room socket. The server knows the
+// device by a cookie, so joining again from it is the same student. Too many joins at once (429): it waits as the
+// server says (Retry-After) and tries again by itself.
 (function () {
   const CODE_LENGTH = 6;
   const form = document.getElementById("join-form");
@@ -9,6 +11,7 @@
   const button = document.getElementById("join-button");
   const errorBox = document.getElementById("join-error");
   const statusBox = document.getElementById("join-status");
+  const NAME_KEY = "dynlab.name"; // the name this device gave last time, offered again
 
   // A code as typed or pasted: a whole join link gives its last part; capitals and digits only.
   const normalise = (text) => {
@@ -41,14 +44,14 @@
       detail = Array.isArray(body.detail) ? body.detail.map((d) => d.msg).join("; ") : String(body.detail || "");
     } catch (e) { /* not JSON: the status says enough */ }
     if (response.status === 404) return `No open room has the code ${code}. Check the code on the projector.`;
+    if (response.status === 403) return `The instructor removed this device from room ${code}, so it cannot join that room again.`;
     if (response.status === 422) return detail ? `That did not work: ${detail}` : "The code or the name is not valid.";
-    if (response.status === 429) return "Too many tries at once: wait a few seconds and join again.";
     return `The server refused to join (${response.status}${detail ? `: ${detail}` : ""}).`;
   }
 
-  let joining = false;
+  let joining = false, retryTimer = null;
   async function join() {
-    if (joining) return;
+    if (joining || retryTimer) return;
     const code = normalise(codeBox.value);
     codeBox.value = code;
     if (code.length !== CODE_LENGTH) {
@@ -65,6 +68,12 @@
         headers: { "Content-Type": "application/json" },
         body: JSON.stringify({ code, name: nameBox.value.trim() }),
       });
+      if (response.status === 429) { // many joining at once: wait as long as the server says, then try again
+        const waitS = Math.max(1, Math.min(60, Number(response.headers.get("Retry-After")) || 5));
+        showStatus(`Many people are joining right now. Trying again in ${waitS} s…`);
+        retryTimer = setTimeout(() => { retryTimer = null; join(); }, waitS * 1000);
+        return;
+      }
       if (!response.ok) {
         showStatus("");
         showError(await refusal(response, code));
@@ -72,6 +81,7 @@
       }
       const joined = await response.json();
       localStorage.setItem(`dynlab.room.${joined.room_id}`, JSON.stringify({ student_token: joined.student_token }));
+      if (nameBox.value.trim()) localStorage.setItem(NAME_KEY, nameBox.value.trim());
       if (joined.state.lesson_id) {
         showStatus(`Joined room ${code}: opening the lesson…`);
         location.assign(lessonUrl(joined.state, joined.room_id));
@@ -84,7 +94,7 @@
       showError("Could not reach the server. Check that you are on the classroom's network and try again.");
     } finally {
       joining = false;
-      button.disabled = false;
+      button.disabled = Boolean(retryTimer);
     }
   }
 
@@ -110,6 +120,9 @@
           stop("The instructor opened a lesson: opening it…");
           socket.close();
           location.assign(lessonUrl(message.state, roomId));
+        } else if (message.type === "removed") {
+          stop(`The instructor removed you from room ${code}.`);
+          localStorage.removeItem(`dynlab.room.${roomId}`);
         } else if (message.type === "closed") {
           stop(`Room ${code} has been closed by the instructor.`);
           socket.close();
@@ -136,7 +149,8 @@
     event.preventDefault();
     join();
   });
-  // The QR code's link (/join/<code>) joins at once.
-  if (codeBox.dataset.fromUrl) join();
+  // The name this device gave before; the QR code's link (/join/<code>) has the code already: the name is next.
+  nameBox.value = localStorage.getItem(NAME_KEY) || "";
+  if (codeBox.dataset.fromUrl) nameBox.focus();
   else codeBox.focus();
 })();

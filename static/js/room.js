@@ -1,6 +1,10 @@
 // Classroom mode of a lesson page (?room=<room_id>): a student follows the instructor's room (controls locked,
 // the room's one shared scene in the viewer, its readout from the room socket) or explores their own copy;
-// the instructor's page drives the room and shows the instructor panel and the polls.
+// the instructor's page drives the room and shows the instructor panel, the students and the polls.
+// An instructor page on another lesson or scene than the room's follows the room there (a second or stale tab never
+// moves the class); the class moves only when the instructor chooses it: the previous/next and scene links, or
+// "Show … to the class". Every change the page sends names the lesson and scene it shows (if_lesson_id,
+// if_scene_id): once the room has moved on, the server refuses it (409) instead of applying it to another scene.
 // Without ?room the page is a plain lesson; the instructor only gets a button to open a room on it.
 (function () {
   const query = new URLSearchParams(location.search);
@@ -60,6 +64,7 @@
         let message;
         try { message = JSON.parse(event.data); } catch (e) { return; }
         if (message.type === "closed") { gone = true; onGone("The instructor closed this room."); }
+        if (message.type === "removed") { gone = true; onGone(message.detail || "The instructor removed you from this room.", { removed: true }); }
         onMessage(message);
         announce(message);
       });
@@ -97,10 +102,16 @@
     if (message.data.readout) lesson.renderReadout(message.data.readout);
     lesson.renderLive(message.data);
   }
-  function goneNotice(text) {
-    const note = el("p", { class: "room-gone error", role: "alert" }, `${text} `, el("a", { href: "/join", text: "Join a room" }));
+  function goneNotice(text, { removed = false } = {}) {
+    // A removed device cannot join this room again: no link back to joining, and the room's scene is no longer shown.
+    const note = el("p", { class: "room-gone error", role: "alert" }, removed ? text : `${text} `, removed ? "" : el("a", { href: "/join", text: "Join a room" }));
     aside.prepend(note);
     if (lesson) lesson.lock(true, text);
+    if (removed) {
+      const viewer = document.getElementById("viewer-wrap");
+      if (viewer) { document.getElementById("viewer").src = "about:blank"; viewer.hidden = true; }
+      for (const line of document.querySelectorAll(".room-status, .room-banner")) line.textContent = "";
+    }
   }
 
   fetch("/api/me")
@@ -173,7 +184,11 @@
     function onMessage(message) {
       if (message.type === "state") onState(message.state);
       else if (message.type === "readout" && mode === "follow") showReadout(message);
-      else if (message.type === "error") {
+      else if (message.type === "removed") {
+        localStorage.removeItem(`dynlab.room.${roomId}`);
+        poll.element.hidden = true;
+        bar.hidden = true;
+      } else if (message.type === "error") {
         if (message.status === 403 && !message.action && token) { // the room does not know this token: join again
           localStorage.removeItem(`dynlab.room.${roomId}`);
           location.replace("/join");
@@ -332,23 +347,46 @@
 
   // ---- the instructor's page: it drives the room -------------------------------------------------------------
   function instructorPage() {
-    for (const link of document.querySelectorAll(".prevnext a, .scene-picker a")) {
-      const url = new URL(link.href, location.href);
-      url.searchParams.set("room", roomId);
-      link.href = url.pathname + url.search;
+    // What this page shows: every change it sends carries it, so a change from a page the room has left is refused.
+    const shows = { if_lesson_id: config.lesson_id, if_scene_id: pageScene };
+    // Opened on another lesson than the room's, this tab went to the room's and offers to show that lesson instead.
+    const came = { lesson: query.get("from"), scene: query.get("from_scene") };
+    if (came.lesson) {
+      const clean = new URL(location.href);
+      clean.searchParams.delete("from");
+      clean.searchParams.delete("from_scene");
+      history.replaceState(history.state, "", clean.pathname + clean.search); // a reload does not offer it again
     }
     const panel = instructorPanel();
     aside.prepend(panel.element);
-    let latest = null, checkedPage = false, lastLocal = 0, pendingApply = null, shownParams = "";
+    let latest = null, inStep = false, leaving = false, lastLocal = 0, pendingApply = null, shownParams = "";
     let pendingParams = {}, lastSent = 0, flushTimer = null;
 
     const socket = roomSocket({ onOpen: () => panel.connected(true), onMessage, onGone: goneNotice });
     window.dynlabRoom = { roomId, role: "instructor", send: (m) => socket.send(m), state: () => latest };
     if (lesson && !pageScene) lesson.schedule(); // worked examples only: the room has no scene to drive
     const send = (message) => {
+      if (message.type === "set_state" && !("if_lesson_id" in message)) Object.assign(message, shows);
       if (!socket.send(message)) panel.error("Not connected to the room: reconnecting, try again in a moment.");
     };
     panel.onAction(send);
+    // Moving the class: its state comes back on the socket, and every page in the room (this one too) goes there.
+    const moveClass = (lessonId, sceneId, conditions) =>
+      send({ type: "set_state", lesson_id: lessonId, scene_id: sceneId || undefined, ...(conditions || shows) });
+    panel.onMove(moveClass);
+
+    // The previous/next and scene links move the class (the instructor chose to); one opened in a new tab only opens.
+    for (const link of document.querySelectorAll(".prevnext a, .scene-picker a")) {
+      const url = new URL(link.href, location.href);
+      url.searchParams.set("room", roomId);
+      link.href = url.pathname + url.search;
+      const target = decodeURIComponent(url.pathname.replace(/^\/lessons\//, ""));
+      link.addEventListener("click", (event) => {
+        if (event.button !== 0 || event.metaKey || event.ctrlKey || event.shiftKey || event.altKey) return;
+        event.preventDefault();
+        moveClass(target, url.searchParams.get("scene"));
+      });
+    }
 
     if (lesson && pageScene) {
       lesson.stopPolling();
@@ -376,17 +414,33 @@
       if (message.type === "state") onState(message.state);
       else if (message.type === "readout") showReadout(message);
       else if (message.type === "results") panel.results(message.results);
-      else if (message.type === "error") panel.error(message.detail);
+      else if (message.type === "students") panel.students(message.students);
+      else if (message.type === "error" && message.status === 409) { // sent from a scene the room had left
+        panel.error("Nothing was changed: the class had already moved on to another lesson or scene, and this tab follows it.");
+      } else if (message.type === "error") panel.error(message.detail);
     }
     function onState(state) {
       latest = state;
+      if (leaving) return; // going to the room's lesson: a second navigation would abort the first
       panel.state(state);
-      const here = state.lesson_id === config.lesson_id && state.scene_id === pageScene;
-      if (!checkedPage) {
-        checkedPage = true;
-        if (!here) { send({ type: "set_state", lesson_id: config.lesson_id, scene_id: pageScene }); return; }
+      if (!state.lesson_id) { // the class sees no lesson yet: this page may show it
+        panel.offer(config.lesson_id, pageScene, "The class sees no lesson yet.", { if_lesson_id: null, if_scene_id: null });
+        return;
       }
-      if (here && lesson && pageScene) applyParams();
+      const here = state.lesson_id === config.lesson_id && state.scene_id === pageScene;
+      if (!here) {
+        // Follow the room: a second tab, or one left behind, never drives an old lesson. A tab opened on another
+        // lesson says which, so the room's page can offer to show it to the class.
+        leaving = true;
+        const from = inStep ? "" : `&from=${encodeURIComponent(config.lesson_id)}` + (pageScene ? `&from_scene=${encodeURIComponent(pageScene)}` : "");
+        location.replace(roomPage(state.lesson_id, state.scene_id, from));
+        return;
+      }
+      inStep = true;
+      if (came.lesson && (came.lesson !== config.lesson_id || (came.scene || null) !== pageScene)) {
+        panel.offer(came.lesson, came.scene, "This tab was opened on another lesson. The class is on this one, so the tab came here.");
+      } else panel.offer(null);
+      if (lesson && pageScene) applyParams();
     }
     function applyParams() {
       // An echo of an older value must not pull a slider back while it is being dragged: wait for a pause.
@@ -403,9 +457,26 @@
     }
   }
 
-  // The instructor panel: how to join, who is here, playback for everyone, follow or explore, the polls.
+  // A lesson's title (from the course outline), to name it in words; its id if the outline cannot be read.
+  let outline = null;
+  async function lessonTitle(lessonId, sceneId) {
+    if (lessonId === config.lesson_id) {
+      const link = [...document.querySelectorAll(".scene-picker a")].find((a) => new URL(a.href, location.href).searchParams.get("scene") === sceneId);
+      if (link) return link.textContent.trim();
+    }
+    try {
+      outline = outline || await api("GET", "/api/chapters");
+      for (const chapter of outline) {
+        const found = (chapter.lessons || []).find((l) => l.id === lessonId);
+        if (found) return `${found.section} ${found.title}`;
+      }
+    } catch (e) { /* offline: the id says enough */ }
+    return lessonId;
+  }
+
+  // The instructor panel: how to join, who is here, playback for everyone, follow or explore, the students, the polls.
   function instructorPanel() {
-    let act = () => {}, current = null;
+    let act = () => {}, move = () => {}, current = null;
     const button = (text, name) => el("button", { type: "button", "data-room": name, text });
     const code = el("p", { class: "room-code", "aria-label": "Room code" });
     const joinUrl = el("a", { class: "room-join-url" });
@@ -417,42 +488,61 @@
     const scale = el("select", { id: "room-time-scale" }, ...TIME_SCALES.map((s) => new Option(scaleText(s), String(s))));
     const mode = button("Let everyone explore", "mode");
     const error = el("p", { class: "room-error error", role: "alert", hidden: true });
+    const offerBox = el("div", { class: "room-offer", role: "status", hidden: true });
     const preview = new URL(location.href);
     preview.searchParams.set("as", "student");
     const polls = instructorPolls((message) => act(message));
+    const students = instructorStudents((text) => showError(text));
     const element = el("aside", { class: "room-panel", "aria-label": "Class room: instructor" },
       el("div", { class: "room-join" }, qr,
         el("div", {}, el("p", { class: "room-code-label", text: "Join with the code" }), code,
           el("p", { class: "room-join-line" }, "or open ", joinUrl))),
-      presence, status,
+      offerBox, presence, status,
       el("div", { class: "room-buttons", role: "group", "aria-label": "Playback for everyone" }, play, restart,
         el("label", { for: "room-time-scale", text: "Time scale " }), scale, mode),
       el("p", { class: "room-links" },
         el("a", { href: `/rooms/${roomId}/projector`, target: "_blank", rel: "noopener", text: "Projector view" }), " · ",
         el("a", { href: preview.pathname + preview.search, target: "_blank", rel: "noopener", text: "Preview as a student" })),
-      error, polls.element);
+      error, students.element, polls.element);
     play.addEventListener("click", () => current && act({ type: "set_state", playing: !current.playing }));
     restart.addEventListener("click", () => act({ type: "set_state", reset: true }));
     scale.addEventListener("change", () => act({ type: "set_state", time_scale: Number(scale.value) }));
     mode.addEventListener("click", () => current && act({ type: "set_state", mode: current.mode === "follow" ? "explore" : "follow" }));
     let errorTimer = null;
+    function showError(text) {
+      error.textContent = text;
+      error.hidden = false;
+      clearTimeout(errorTimer);
+      errorTimer = setTimeout(() => { error.hidden = true; }, 10000);
+    }
     return {
       element,
       onAction(fn) { act = fn; },
+      onMove(fn) { move = fn; },
       connected() { error.hidden = true; },
-      error(text) {
-        error.textContent = text;
-        error.hidden = false;
-        clearTimeout(errorTimer);
-        errorTimer = setTimeout(() => { error.hidden = true; }, 10000);
-      },
+      error: showError,
       results: polls.results,
+      students: students.render,
+      // "Show … to the class": the instructor's explicit choice to move the class to a lesson (or scene).
+      async offer(lessonId, sceneId, why, conditions) {
+        if (!lessonId) { offerBox.hidden = true; delete offerBox.dataset.lesson; return; } // nothing to offer (any more)
+        if (offerBox.dataset.lesson === `${lessonId}/${sceneId || ""}`) return;
+        offerBox.dataset.lesson = `${lessonId}/${sceneId || ""}`;
+        const title = await lessonTitle(lessonId, sceneId);
+        const show = el("button", { type: "button", "data-room": "show-lesson", text: `Show “${title}” to the class` });
+        const dismiss = el("button", { type: "button", class: "room-offer-dismiss", text: "Not now" });
+        show.addEventListener("click", () => { show.disabled = true; move(lessonId, sceneId, conditions); });
+        dismiss.addEventListener("click", () => { offerBox.hidden = true; });
+        offerBox.replaceChildren(el("p", { text: why }), el("div", { class: "room-buttons" }, show, dismiss));
+        offerBox.hidden = false;
+      },
       state(state) {
         current = state;
         code.textContent = state.code;
         joinUrl.textContent = state.join_url;
         joinUrl.href = state.join_url;
         const { connected, following } = state.students;
+        students.count(state.students.joined);
         presence.textContent = `${connected} connected · ${following} following`;
         presence.dataset.connected = String(connected);
         presence.dataset.following = String(following);
@@ -464,6 +554,42 @@
         mode.textContent = state.mode === "follow" ? "Let everyone explore" : "Bring everyone back";
         element.dataset.mode = state.mode;
         polls.state(state);
+      },
+    };
+  }
+
+  // The students in the room, for the instructor: each by the name they gave (or their number), connected or not, and
+  // a button that removes one (their answers leave the results and their device cannot join this room again).
+  function instructorStudents(showError) {
+    const summary = el("summary", { text: "Students (0)" });
+    const list = el("ul", { class: "room-student-list" });
+    const empty = el("p", { class: "muted", text: "Nobody has joined yet." });
+    const element = el("details", { class: "room-students" }, summary, empty, list);
+    const label = (s) => s.name || `Student ${s.student_id.slice(1)} (no name)`;
+    async function remove(student, button) {
+      if (!window.confirm(`Remove ${label(student)} from the room? Their answers are taken out of the results, and this device cannot join the room again.`)) return;
+      button.disabled = true;
+      try {
+        await api("DELETE", `/api/rooms/${roomId}/students/${student.student_id}`);
+      } catch (err) {
+        button.disabled = false;
+        showError(`Could not remove ${label(student)}: ${err.message}`);
+      }
+    }
+    return {
+      element,
+      count(joined) { summary.textContent = `Students (${joined})`; },
+      render(students) {
+        summary.textContent = `Students (${students.length})`;
+        empty.hidden = students.length > 0;
+        list.replaceChildren(...students.map((s) => {
+          const button = el("button", { type: "button", class: "room-remove", "data-student": s.student_id, text: "Remove" });
+          button.addEventListener("click", () => remove(s, button));
+          return el("li", { "data-student": s.student_id, "data-connected": String(s.connected) },
+            el("span", { class: "room-student-name", text: label(s) }),
+            el("span", { class: "room-student-status muted", text: s.connected ? (s.following ? "following" : "exploring") : "not connected" }),
+            button);
+        }));
       },
     };
   }

@@ -232,6 +232,7 @@ DOORS = {
     ("POST", "/api/rooms/{room_id}/state"): "instructor",
     ("POST", "/api/rooms/{room_id}/polls"): "instructor",
     ("POST", "/api/rooms/{room_id}/polls/{poll_id}"): "instructor",
+    ("DELETE", "/api/rooms/{room_id}/students/{student_id}"): "instructor",
     ("POST", "/api/rooms/{room_id}/polls/{poll_id}/answers"): "student-token",
     ("POST", "/api/rooms/join"): "room-code",
     ("WS", "/viewer/{scene_id}/{session_id}"): "watch",
@@ -273,7 +274,7 @@ def test_every_door_refuses_a_caller_without_its_credential_and_nothing_changes(
     state_before = served.client.get(f"/api/rooms/{rid}/state").json()
     tried = set()
     for (method, path), credential in DOORS.items():
-        url = path.format(scene_id="heavy-top", session_id=sid, room_id=rid, poll_id=poll["poll_id"], example_id="1.1", system_id="double-pendulum")
+        url = path.format(scene_id="heavy-top", session_id=sid, room_id=rid, poll_id=poll["poll_id"], example_id="1.1", system_id="double-pendulum", student_id="s1")
         if credential == "session-key":
             body = {"params": {"spin_rad_s": 1.0}} if path.endswith("{session_id}") else {"playing": False}
             for headers in ({}, {"X-Session-Key": secrets.token_hex(16)}):

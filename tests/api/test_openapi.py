@@ -32,6 +32,8 @@ ROOM_ROUTES = {
     ("/api/rooms/{room_id}/polls/{poll_id}", "post"),
     ("/api/rooms/{room_id}/polls/{poll_id}/answers", "post"),
     ("/api/rooms/{room_id}/polls/{poll_id}/results", "get"),
+    ("/api/rooms/{room_id}/students", "get"),
+    ("/api/rooms/{room_id}/students/{student_id}", "delete"),
 }
 #: A page's time controls (issue 15): an unknown scene, or a session without one yet.
 PLAYBACK_ROUTES = {("/api/scenes/{scene_id}/sessions/{session_id}/playback", "put"), ("/api/scenes/{scene_id}/sessions/{session_id}/playback", "get")}
@@ -40,12 +42,18 @@ GRAPH_ROUTES = {("/api/scenes/{scene_id}/sessions/{session_id}/graph", "get")}
 CAN_BE_NOT_FOUND |= ROOM_ROUTES | PLAYBACK_ROUTES | GRAPH_ROUTES
 CAN_BE_UNPROCESSABLE = (CAN_BE_NOT_FOUND - {("/api/bench/work-precision", "get")}) | {("/api/systems/custom/derive", "post"), ("/api/rooms", "post")}
 #: Instructor-only reads: a student gets 403 (app/api/rooms.py require_instructor), as on every state-changing route.
-INSTRUCTOR_ONLY_READS = {("/api/rooms/{room_id}/polls/ready", "get"), ("/api/rooms/{room_id}/polls/{poll_id}/results", "get")}
+INSTRUCTOR_ONLY_READS = {
+    ("/api/rooms/{room_id}/polls/ready", "get"), ("/api/rooms/{room_id}/polls/{poll_id}/results", "get"), ("/api/rooms/{room_id}/students", "get"),
+}  # fmt: skip
 #: Answers the web front's guard gives before any route runs (app/web/guard.py), which FastAPI cannot see by itself.
 WITH_BODY = [(path, method) for path, method, op in OPERATIONS if "requestBody" in op]
 STATE_CHANGING = [(path, method) for path, method, _ in OPERATIONS if method not in ("get", "head", "options")]
-#: Simulations and derivations per device, and new sessions per device (app/api/access.py).
-RATE_LIMITED = [("/api/scenes/{scene_id}/simulate", "post"), ("/api/systems/custom/derive", "post"), ("/api/scenes/{scene_id}/sessions/{session_id}", "put")]
+#: Simulations and derivations per device, and new sessions per device (app/api/access.py); joining a room per address
+#: and per room (app/api/join_limits.py).
+RATE_LIMITED = [
+    ("/api/scenes/{scene_id}/simulate", "post"), ("/api/systems/custom/derive", "post"), ("/api/scenes/{scene_id}/sessions/{session_id}", "put"),
+    ("/api/rooms/join", "post"),
+]  # fmt: skip
 #: Where each error answer may be documented: no route lists one it cannot give.
 CAN_ANSWER = {"404": CAN_BE_NOT_FOUND, "422": CAN_BE_UNPROCESSABLE, "413": set(WITH_BODY), "403": set(STATE_CHANGING) | INSTRUCTOR_ONLY_READS, "429": set(RATE_LIMITED)}
 

@@ -58,7 +58,10 @@ def state_of(client: TestClient, room_id: str) -> dict:
 
 
 def join(client: TestClient, code: str, name: str = "") -> str:
+    """Join from a new device (no device cookie: the one shared client would otherwise be one student)."""
+    client.cookies.clear()
     answer = client.post("/api/rooms/join", json={"code": code.lower(), "name": name})  # codes are case-blind
+    client.cookies.clear()
     assert answer.status_code == 200, answer.text
     return answer.json()["student_token"]
 
@@ -97,6 +100,8 @@ def test_every_instructor_action_from_a_student_is_refused_and_changes_nothing(c
         ("POST", "/api/rooms/{room_id}/polls/{poll_id}"): (f"/api/rooms/{room_id}/polls/{poll['poll_id']}", {"open": False}),
         ("GET", "/api/rooms/{room_id}/polls/{poll_id}/results"): (f"/api/rooms/{room_id}/polls/{poll['poll_id']}/results", None),
         ("GET", "/api/rooms/{room_id}/polls/{poll_id}/results.csv"): (f"/api/rooms/{room_id}/polls/{poll['poll_id']}/results.csv", None),
+        ("GET", "/api/rooms/{room_id}/students"): (f"/api/rooms/{room_id}/students", None),
+        ("DELETE", "/api/rooms/{room_id}/students/{student_id}"): (f"/api/rooms/{room_id}/students/s1", None),
     }
     assert set(tried) == instructor_routes()  # every instructor-only route of the app is tried below
     disguises = [{}, {"X-Student-Token": token}, {"X-Instructor-Key": KEY[:-1] + "x"}, {"Cookie": "dynlab_instructor=" + "0" * 64}]

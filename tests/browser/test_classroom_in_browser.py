@@ -85,6 +85,7 @@ def _student(browser, live_server, code, viewport):
     errors: list[str] = []
     page.on("pageerror", lambda exc: errors.append(str(exc)))
     page.goto(f"{live_server.url}/join/{code}")
+    page.click("#join-button")  # the QR code's address asks for an optional name first
     page.wait_for_url(re.compile(rf"/lessons/{LESSON}\?room=[0-9a-f]{{16}}"))
     page.wait_for_selector('.room-bar[data-mode="follow"]')
     return context, page, errors

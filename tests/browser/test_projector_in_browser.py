@@ -37,7 +37,8 @@ def _student_joins_and_answers(browser, live_server, code: str, room_id: str, po
     errors: list[str] = []
     page.on("pageerror", lambda exc: errors.append(str(exc)))
     page.goto(f"{live_server.url}/join/{code}")
-    # The QR code's link joins at once, keeps the token and goes to the room's lesson and scene.
+    # The QR code's link fills in the code and asks for a name; Join keeps the token and goes to the room's lesson and scene.
+    page.click("#join-button")
     page.wait_for_url(f"**/lessons/{LESSON_ID}?room={room_id}&scene=heavy-top", timeout=15_000)
     kept = json.loads(page.evaluate(f"localStorage.getItem('dynlab.room.{room_id}')"))
     # Answer and stay from a page the server served (Chromium blocks loopback sockets from a stubbed page).

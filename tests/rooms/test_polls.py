@@ -13,7 +13,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from app.physics.core.readout import Quantity, Readout
-from app.rooms.polls import MAX_ANSWER_MAGNITUDE, Poll, PollClosedError, PollError, nice_width
+from app.rooms.polls import MAX_ANSWER_MAGNITUDE, Poll, PollClosedError, PollError, nice_width, spreadsheet_text
 
 CHOICE = {"question": "What does the tip of the axis trace?", "kind": "choice", "choices": ["a circle", "waves", "loops", "cusps"]}
 NUMBER = {"question": "Below what spin does the top stop sleeping?", "kind": "number", "unit": "rad/s"}
@@ -324,3 +324,32 @@ def test_public_never_shows_names_or_answers():
     text = json.dumps(public)
     for secret in ("Ada", "Grace", "123.456", "15.25", "token-"):
         assert secret not in text
+
+
+@pytest.mark.parametrize(
+    ("typed", "cell"),
+    [
+        ('=HYPERLINK("http://e.vil","x")', '\'=HYPERLINK("http://e.vil","x")'),
+        ("=cmd|' /C calc'!A0", "'=cmd|' /C calc'!A0"),
+        ("+SUM(1,2)", "'+SUM(1,2)"),
+        ("-2+3", "'-2+3"),
+        ("-3.2", "'-3.2"),  # typed text that looks like a number is still text a person typed
+        ("@SUM(A1)", "'@SUM(A1)"),
+        ("\t=1", "'\t=1"),
+        ("\r=1", "'\r=1"),
+        ("Ada", "Ada"),
+        ("a=b", "a=b"),  # only the first character can start a formula
+        ("", ""),
+    ],
+)
+def test_a_text_cell_that_could_start_a_formula_gets_a_leading_quote(typed, cell):
+    assert spreadsheet_text(typed) == cell
+
+
+def test_a_withdrawn_answer_leaves_the_results_and_its_number_is_not_reused():
+    p = numbers(1.0, 2.0, 3.0, show_names=True)
+    p.withdraw("token-1")
+    p.withdraw("no-such-student")  # nothing to withdraw: nothing changes
+    assert p.answer_count == 2 and sum(b["count"] for b in p.results()["histogram"]) == 2
+    p.submit("token-9", {"value": 4.0})
+    assert [row[2] for row in rows(p)[1:]] == ["student 1", "student 3", "student 4"]

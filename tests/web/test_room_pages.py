@@ -49,9 +49,14 @@ def test_the_join_page_offers_an_empty_code_box_and_an_optional_name(client):
     assert "/static/js/join.js" in response.text
 
 
-def test_the_qr_codes_address_fills_in_the_code(client):
-    box = code_box(client.get("/join/abc234").text)
+def test_the_qr_codes_address_shows_the_code_and_asks_for_a_name_first(client):
+    """Found 10 (issue 24): /join/<code> joined at once, with no chance to give a name. It shows the room's code and
+    the name box; join.js joins when the student presses Join (tests/browser/test_class_integrity_in_browser.py)."""
+    html = client.get("/join/abc234").text
+    box = code_box(html)
     assert 'value="ABC234"' in box and 'data-from-url="ABC234"' in box
+    assert 'You are joining room <strong class="join-room">ABC234</strong>' in html
+    assert 'id="join-name"' in html and '<button type="submit" id="join-button">Join</button>' in html
 
 
 def test_a_code_in_the_address_is_escaped(client):
@@ -59,6 +64,7 @@ def test_a_code_in_the_address_is_escaped(client):
     assert response.status_code == 200
     assert "<SCRIPT>" not in response.text and "<script>" not in response.text.replace('<script src=', "")
     assert 'value="&lt;SCRIPT&gt;"' in code_box(response.text)
+    assert '<strong class="join-room">&lt;SCRIPT&gt;</strong>' in response.text
     quoted = client.get('/join/"onfocus=x')
     assert 'value="&quot;ONFOCUS=X"' in code_box(quoted.text), "a quote cannot close the attribute"
 

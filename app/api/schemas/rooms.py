@@ -8,6 +8,7 @@ from pydantic import BaseModel, ConfigDict, Field, StrictBool, StrictInt
 
 ROOM_ID_PATTERN = r"^[0-9a-f]{16}$"
 POLL_ID_PATTERN = r"^p[0-9]{1,6}$"
+STUDENT_ID_PATTERN = r"^s[0-9]{1,6}$"
 
 
 class RoomCreateRequest(BaseModel):
@@ -31,8 +32,26 @@ class JoinRequest(BaseModel):
 
 class JoinAnswer(BaseModel):
     room_id: str
-    student_token: str = Field(description="Send as X-Student-Token with answers, and in the room socket's hello")
+    student_token: str = Field(description="Send as X-Student-Token with answers, and in the room socket's hello; the same for a device that joins again")
+    student_id: str = Field(description="This student's public id in the room (s1, s2, …): how the instructor's list names them")
     state: "RoomState"
+
+
+class StudentListed(BaseModel):
+    """One student as the instructor's list shows them: never their token."""
+
+    student_id: str = Field(description="Public id in the room: s1, s2, … in the order they joined")
+    name: str = Field(description="As they gave it on joining (may be empty)")
+    connected: bool = Field(description="Their page has the room open now")
+    following: bool
+
+
+class StudentList(BaseModel):
+    students: list[StudentListed]
+
+
+class StudentRemovedAnswer(BaseModel):
+    removed: str = Field(description="The public id of the student removed")
 
 
 class RoomStateChange(BaseModel):
@@ -47,6 +66,12 @@ class RoomStateChange(BaseModel):
     mode: Literal["follow", "explore"] | None = None
     preset: str | None = Field(None, max_length=100, description="A preset name of the room's scene")
     reset: StrictBool = Field(False, description="Start the motion again from t = 0")
+    if_lesson_id: str | None = Field(
+        None, max_length=100, description="Apply only if the room still shows this lesson (the lesson the sending page shows), else 409"
+    )
+    if_scene_id: str | None = Field(
+        None, max_length=100, description="Apply only if the room still shows this scene (null: no scene), else 409"
+    )
 
 
 class PollRequest(BaseModel):
@@ -140,6 +165,7 @@ class AnswerAccepted(BaseModel):
 
 
 class StudentCounts(BaseModel):
+    joined: int = Field(description="Students in the room (one per device; removed students not counted)")
     connected: int = Field(description="Students with the room open now")
     following: int = Field(description="Of those, following the instructor's scene")
 
