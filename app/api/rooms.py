@@ -245,9 +245,12 @@ def remove_student(room: RoomDep, student_id: StudentId, hub: RoomHubDep) -> dic
 
 
 @router.get("/rooms/{room_id}/state", response_model=RoomState, responses=error_responses(not_found=_NO_ROOM, unprocessable="A malformed room id"))
-def room_state(room: RoomDep) -> dict[str, Any]:
-    """What the room shows now: lesson, scene, parameters, play state, time scale, mode, students, the current poll."""
-    return room.state()
+def room_state(room: RoomDep, request: Request) -> dict[str, Any]:
+    """What the room shows now: lesson, scene, parameters, play state, time scale, mode, students, the current poll,
+    and how many 3D viewers follow its scene."""
+    from app.web.room_relay import follower_count
+
+    return {**room.state(), "followers": follower_count(request.app, room.room_id)}
 
 
 @router.post(

@@ -68,6 +68,12 @@ RESULTS = {
 
 
 @pytest.fixture
+def client(inprocess_client):
+    """These tests point the app's settings at a folder of their own: the app in this process."""
+    return inprocess_client
+
+
+@pytest.fixture
 def use_bench_dir(client) -> Iterator[Callable[[Path], None]]:
     """Point the shared app's settings at another bench folder for one test, then put them back."""
     original = client.app.state.settings

@@ -245,6 +245,11 @@ def open_lesson(
     return context, page, session_id, errors
 
 
+def room_followers(live_server, room_id: str) -> int:
+    """The 3D viewers following a room's scene, as the room's state says."""
+    return httpx.get(f"{live_server.url}/api/rooms/{room_id}/state", timeout=30).json()["followers"]
+
+
 def readout_values(page) -> dict:
     """Every readout cell as {quantity: value}, read in one JavaScript call: the page rebuilds the
     table about once a second, so reading cells one round trip at a time could mix two instants."""

@@ -10,11 +10,11 @@ import re
 import httpx
 import pytest
 
-from app.web.room_relay import follower_count
-from tests.browser.conftest import keeping_screenshots, let_webgl_draw, readout_quantity, screenshot
+from tests.browser.conftest import keeping_screenshots, let_webgl_draw, readout_quantity, room_followers, screenshot
 from tests.conftest import wait_until
 
 pytestmark = pytest.mark.browser
+
 
 LESSON = "10-2-spinning-top"
 SCENE = "heavy-top"
@@ -118,7 +118,7 @@ def test_a_class_follows_explores_and_answers_a_poll(browser, live_server, shots
     t_before = readout_quantity(pages[0], "t_s")
     wait_until(lambda: readout_quantity(pages[0], "t_s") > t_before, 5, what="the room's scene time to advance while playing")
     # Every viewer is connected to the room's one stream: three students and the instructor.
-    wait_until(lambda: follower_count(live_server.app, room_id) == 4, 30, what="four viewers to follow the room's scene")
+    wait_until(lambda: room_followers(live_server, room_id) == 4, 30, what="four viewers to follow the room's scene")
     _screenshot_with_scene(teacher, shots / "classroom-instructor.png")
     _screenshot_with_scene(pages[0], shots / "classroom-student-following.png")
 

@@ -11,11 +11,11 @@ import json
 
 import pytest
 
-from app.web.room_relay import follower_count
-from tests.browser.conftest import let_webgl_draw, screenshot
+from tests.browser.conftest import let_webgl_draw, room_followers, screenshot
 from tests.conftest import wait_until
 
 pytestmark = pytest.mark.browser
+
 
 LESSON_ID = "10-2-spinning-top"
 CHOICES = ["It falls over", "It precesses about the vertical", "It stays still"]
@@ -100,7 +100,7 @@ def test_students_join_by_code_and_the_projector_shows_their_answers(browser, li
     assert page.text_content("#projector-revealed") == f"Answer: {CHOICES[1]} — given by the instructor"
     assert page.eval_on_selector_all("#projector-histogram li", "(els) => els.map((el) => el.classList.contains('is-answer'))") == [False, True, False]
     # The room's scene streams into the projector's viewer and its readout arrives over the socket.
-    wait_until(lambda: follower_count(live_server.app, room_id) >= 1, 30, what="the projector's viewer to follow the room's stream")
+    wait_until(lambda: room_followers(live_server, room_id) >= 1, 30, what="the projector's viewer to follow the room's stream")
     page.wait_for_function("() => document.querySelector('#projector-quantities [data-quantity]') !== null", polling=200, timeout=30_000)
     assert page.text_content("#projector-play").startswith("▶")
 

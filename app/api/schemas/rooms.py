@@ -188,6 +188,7 @@ class RoomState(BaseModel):
     students: StudentCounts
     instructor_connected: bool
     poll: PollPublic | None
+    followers: int | None = Field(None, description="3D viewers showing the room's shared scene now (in the state route's answer)")
 
 
 class RoomClosed(BaseModel):
