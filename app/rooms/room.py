@@ -16,11 +16,12 @@ import threading
 import time
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import Any, Protocol
+from typing import Any
 
 from app.course import Catalogue
 from app.rooms.polls import Poll
 from app.scenes.host.host import STAGE_PREFIX, TIME_SCALE_RANGE
+from app.scenes.host.interface import SceneHostInterface
 
 #: Characters of a room code: capitals and digits a student cannot misread (no I, L, O, 0, 1).
 CODE_ALPHABET = "ABCDEFGHJKMNPQRSTUVWXYZ23456789"
@@ -50,18 +51,6 @@ class RoomMovedOn(RoomError):
 
 class StudentRemoved(PermissionError):
     """The instructor removed this student (their token) or this device from the room."""
-
-
-class StageHost(Protocol):
-    """What a room needs of the scene host (:class:`~app.scenes.host.host.SceneHost` or the worker pool)."""
-
-    scenes: Mapping[str, Any]
-
-    def open_stage(self, session_id: str, scene_id: str, raw: Mapping[str, Any]) -> dict[str, Any]: ...
-    def set_params(self, scene_id: str, session_id: str, raw: Mapping[str, Any], *, stage: bool = False) -> dict[str, Any]: ...
-    def set_playback(self, session_id: str, **playback: Any) -> dict[str, Any]: ...
-    def motion_state(self, session_id: str) -> dict[str, Any] | None: ...
-    def close_stage(self, session_id: str) -> None: ...
 
 
 @dataclass
@@ -133,7 +122,7 @@ class Room:
                 "poll": poll.public() if poll is not None else None,
             }  # fmt: skip
 
-    def change(self, raw: Mapping[str, Any], *, catalogue: Catalogue, host: StageHost) -> dict[str, Any]:
+    def change(self, raw: Mapping[str, Any], *, catalogue: Catalogue, host: SceneHostInterface) -> dict[str, Any]:
         """Apply an instructor's change (any of :data:`STATE_FIELDS`), checked whole first; returns the new state."""
         unknown = sorted(set(raw) - set(STATE_FIELDS))
         if unknown:
@@ -160,7 +149,7 @@ class Room:
                 "(the page follows the class to its lesson)",
             )
 
-    def _plan(self, raw: Mapping[str, Any], *, catalogue: Catalogue, host: StageHost) -> dict[str, Any]:
+    def _plan(self, raw: Mapping[str, Any], *, catalogue: Catalogue, host: SceneHostInterface) -> dict[str, Any]:
         """Everything the change will do, every field checked; raises :class:`RoomError` before any effect."""
         self._check_conditions(raw)  # first: a stale page's parameters were meant for another scene's inputs
         lesson_id = raw.get("lesson_id", self.lesson_id)
@@ -220,7 +209,7 @@ class Room:
             "playing": playing, "time_scale": time_scale, "mode": mode, "reset": reset,
         }  # fmt: skip
 
-    def _apply(self, plan: dict[str, Any], *, host: StageHost) -> None:
+    def _apply(self, plan: dict[str, Any], *, host: SceneHostInterface) -> None:
         scene_id, params = plan["scene_id"], plan["params"]
         if scene_id is not None and plan["new_scene"]:
             params = host.open_stage(self.stage_id, scene_id, params or {})["params"]
