@@ -526,8 +526,7 @@ class SceneHost:
     def camera(self, session_id: str) -> dict[str, list[float]] | None:
         """The first viewer's camera now (m, world frame), as its browser last reported it; before a viewer, the one the
         next viewer starts from (a share link's, or a restored one); else None."""
-        with self._lock:
-            session = self._sessions.get(session_id)
+        session = self._find(session_id)
         if session is None:
             return None
         with session.lock:
@@ -540,13 +539,16 @@ class SceneHost:
         return None
 
     def playback(self, session_id: str) -> dict[str, Any] | None:
-        with self._lock:
-            session = self._sessions.get(session_id)
+        session = self._find(session_id)
         return None if session is None else session.playback()
 
-    def _existing(self, session_id: str) -> Session:
+    def _find(self, session_id: str) -> Session | None:
+        """The session, or None (the table's lock held only to look it up)."""
         with self._lock:
-            session = self._sessions.get(session_id)
+            return self._sessions.get(session_id)
+
+    def _existing(self, session_id: str) -> Session:
+        session = self._find(session_id)
         if session is None:
             raise ValueError(f"session {session_id!r} has no scene yet: set its parameters first")
         return session
@@ -559,8 +561,7 @@ class SceneHost:
         when the recording fails (the worker goes on)."""
         seconds = checked_seconds(seconds)
         cls = self.scene_class(scene_id)
-        with self._lock:
-            session = self._sessions.get(session_id)
+        session = self._find(session_id)
         if session is None or session.scene_id != scene_id:
             return None
         with session.lock:  # a copy of what is kept now; the live scene animates on while the recording is made
@@ -613,14 +614,12 @@ class SceneHost:
 
     def stage_viewer_url(self, session_id: str) -> str | None:
         """The loopback websocket address of a stage's viser server, or None if there is no such stage."""
-        with self._lock:
-            session = self._sessions.get(session_id)
+        session = self._find(session_id)
         return None if session is None or session.stage is None else f"ws://{self._host}:{session.stage.get_port()}"
 
     def stage_viewers(self, session_id: str) -> int:
         """Websockets open on a stage's server (the front's one stream per room, plus any joining)."""
-        with self._lock:
-            session = self._sessions.get(session_id)
+        session = self._find(session_id)
         return 0 if session is None or session.stage is None else viewer_count(session.stage)
 
     # -- a motion handed from one session to another (a room's students exploring) ----------
@@ -639,14 +638,12 @@ class SceneHost:
                 session.resume_motion = dict(motion)
 
     def session_params(self, session_id: str) -> dict[str, Any] | None:
-        with self._lock:
-            session = self._sessions.get(session_id)
-            return None if session is None else dict(session.params)
+        session = self._find(session_id)
+        return None if session is None else dict(session.params)
 
     def instances(self, session_id: str) -> list[Scene]:
         """The live scene instances (one per connected viewer) of a session."""
-        with self._lock:
-            session = self._sessions.get(session_id)
+        session = self._find(session_id)
         if session is None:
             return []
         with session.lock:
@@ -659,8 +656,7 @@ class SceneHost:
         For reading several of a scene's drawn properties at one instant (tests,
         diagnostics); keep the block short: this session's frames wait for it.
         """
-        with self._lock:
-            session = self._sessions.get(session_id)
+        session = self._find(session_id)
         if session is None:
             yield []
             return
@@ -673,8 +669,7 @@ class SceneHost:
         Integrated scenes add their integration readout (method, invariants,
         drift); every scene adds its own ``readout`` when it has one.
         """
-        with self._lock:
-            session = self._sessions.get(session_id)
+        session = self._find(session_id)
         if session is None:
             return None
         with session.lock:
@@ -694,8 +689,7 @@ class SceneHost:
         part against simulated time, at most ``max_points`` frames (:mod:`.graph`); None for a session without a
         scene. ValueError naming the field for a bad ``since_s`` or ``max_points``."""
         check_graph_request(since_s=since_s, max_points=max_points)
-        with self._lock:
-            session = self._sessions.get(session_id)
+        session = self._find(session_id)
         if session is None:
             return None
         note = no_graph_note(self.scene_class(session.scene_id))
@@ -713,18 +707,16 @@ class SceneHost:
         return motion_graph(session.scene_id, model, params, frames, latest, max_points=max_points)
 
     def viewer_count(self, session_id: str) -> int:
-        with self._lock:
-            session = self._sessions.get(session_id)
-            return 0 if session is None else len(session.instances)
+        session = self._find(session_id)
+        return 0 if session is None else len(session.instances)
 
     def total_viewers(self) -> int:
         with self._lock:
             return len(self._client_session)
 
     def session_scene(self, session_id: str) -> str | None:
-        with self._lock:
-            session = self._sessions.get(session_id)
-            return None if session is None else session.scene_id
+        session = self._find(session_id)
+        return None if session is None else session.scene_id
 
     def close_session(self, session_id: str) -> None:
         """Forget a page's session (the front evicted it): its viewers' scenes are closed and their messages say so."""

@@ -50,35 +50,33 @@ def connect(address: tuple[str, int], authkey: bytes, *, io_timeout_s: float) ->
 
     Raises ``OSError`` (a timeout included) or ``multiprocessing.AuthenticationError``."""
     sock = socket.create_connection(address, timeout=CONNECT_TIMEOUT_S)
-    sock.settimeout(None)  # blocking again; the operating system's timeouts bound every read and write
-    set_io_timeout(sock, CONNECT_TIMEOUT_S)
-    connection = Connection(sock.detach())
-    try:
-        answer_challenge(connection, authkey)
-        deliver_challenge(connection, authkey)
-    except BaseException:
-        connection.close()
-        raise
-    with socket.socket(fileno=connection.fileno()) as view:  # the same descriptor, to set its timeouts again
-        set_io_timeout(view, io_timeout_s)
-        view.detach()
-    return connection
+    return _authenticated(sock, authkey, caller=True, io_timeout_s=io_timeout_s)
 
 
 def accept(sock: socket.socket, authkey: bytes) -> Connection:
     """Authenticate a worker-side socket the listener accepted (in the connection's own thread, so one slow caller
     never holds the listener); its reads wait for calls without a limit afterwards. Raises on a bad key or timeout."""
-    sock.settimeout(None)
+    return _authenticated(sock, authkey, caller=False, io_timeout_s=0.0)
+
+
+def _authenticated(sock: socket.socket, authkey: bytes, *, caller: bool, io_timeout_s: float) -> Connection:
+    """``sock`` as a ``multiprocessing`` Connection once both ends proved they hold ``authkey`` (the handshake itself
+    bounded by :data:`CONNECT_TIMEOUT_S`), its reads and writes then bounded by ``io_timeout_s`` (0: unbounded)."""
+    sock.settimeout(None)  # blocking again; the operating system's timeouts bound every read and write
     set_io_timeout(sock, CONNECT_TIMEOUT_S)
     connection = Connection(sock.detach())
     try:
-        deliver_challenge(connection, authkey)
-        answer_challenge(connection, authkey)
+        if caller:  # the caller answers the listener's challenge first, as multiprocessing's Client does
+            answer_challenge(connection, authkey)
+            deliver_challenge(connection, authkey)
+        else:
+            deliver_challenge(connection, authkey)
+            answer_challenge(connection, authkey)
     except BaseException:
         connection.close()
         raise
-    with socket.socket(fileno=connection.fileno()) as view:
-        set_io_timeout(view, 0.0)  # an idle connection waits for the front's next call
+    with socket.socket(fileno=connection.fileno()) as view:  # the same descriptor, to set its timeouts again
+        set_io_timeout(view, io_timeout_s)
         view.detach()
     return connection
 
