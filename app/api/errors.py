@@ -25,7 +25,7 @@ from fastapi.exceptions import RequestValidationError
 from fastapi.responses import JSONResponse, Response
 
 from app.api.schemas.errors import ErrorDetail
-from app.physics.core.bounded import WorkBusy, WorkRefused
+from app.physics.core.bounded import WorkBusy, WorkInterrupted, WorkRefused
 from app.physics.core.parameters import ParameterError
 from app.api.access import Refused
 from app.scenes.host.interface import HostBusy
@@ -111,6 +111,13 @@ async def work_busy_handler(request: Request, exc: Exception) -> Response:
     return JSONResponse({"detail": str(exc)}, status_code=429, headers={"Retry-After": str(exc.retry_after_s)})
 
 
+async def work_interrupted_handler(request: Request, exc: Exception) -> Response:
+    """Bounded work ended from outside (an administrator's or the out-of-memory killer's signal): not the input's fault."""
+    assert isinstance(exc, WorkInterrupted)
+    log.warning("%s %s: %s", request.method, request.url.path, exc)
+    return JSONResponse({"detail": str(exc)}, status_code=503, headers={"Retry-After": str(exc.retry_after_s)})
+
+
 def install(app: FastAPI) -> None:
     app.add_exception_handler(RequestValidationError, request_validation_error_handler)
     app.add_exception_handler(ParameterError, parameter_error_handler)
@@ -118,6 +125,7 @@ def install(app: FastAPI) -> None:
     app.add_exception_handler(Refused, refused_handler)
     app.add_exception_handler(WorkRefused, work_refused_handler)
     app.add_exception_handler(WorkBusy, work_busy_handler)
+    app.add_exception_handler(WorkInterrupted, work_interrupted_handler)
     app.add_exception_handler(Exception, internal_error_handler)
 
 

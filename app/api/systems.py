@@ -76,6 +76,7 @@ def list_systems(catalogue: CatalogueDep) -> list[dict[str, Any]]:
     responses=error_responses(
         unprocessable="A name, value or formula is refused, the derivation exceeded its time or memory bound, or the mass matrix is singular; `loc` names the field",
         busy="Two typed derivations are already running; the `Retry-After` header says when to try again (s)",
+        unavailable="The derivation's process was stopped from outside (not by its limits); the `Retry-After` header says when to try again (s)",
     ),
 )
 def derive_custom(request: CustomDeriveRequest) -> dict[str, Any]:
@@ -102,7 +103,7 @@ def derive_system(system_id: str, request: DeriveRequest, catalogue: CatalogueDe
 @router.post(
     "/{system_id}/rhs",
     response_model=RhsAnswer,
-    responses=error_responses(not_found="No system has this id", unprocessable="The state has the wrong length or is not finite, a parameter is out of range, or the formulation does not apply"),
+    responses=error_responses(not_found="No system has this id", unprocessable="The state has the wrong length or is not finite, a parameter is out of range, the formulation does not apply, or the equations have no finite value at this state or time (`loc` names `state` or `t` and the message says why)"),
 )
 def system_rhs(system_id: str, request: RhsRequest, catalogue: CatalogueDep) -> dict[str, Any]:
     """The state derivative (q̇, q̈) at a state (q, q̇) by one formulation: every formulation answers the same quantity."""
@@ -112,9 +113,33 @@ def system_rhs(system_id: str, request: RhsRequest, catalogue: CatalogueDep) -> 
     if len(request.state) != 2 * n:
         names = [c.name for c in system.coordinates]
         raise ParameterError("state", f"give {2 * n} numbers: {', '.join(names)}, then their rates (got {len(request.state)})")
-    if not all(math.isfinite(x) for x in request.state) or not math.isfinite(request.t):
-        raise ParameterError("state", "every number of the state and t must be finite")
-    derivative = _derived(system, request.formulation).state_derivative(request.t, np.array(request.state), np.array(system.parameter_array(params)))
-    if not np.all(np.isfinite(derivative)):
-        raise ParameterError("state", "the equations are singular at this state (e.g. an Euler-angle singularity or a singular mass matrix)")
+    if not all(math.isfinite(x) for x in request.state):
+        raise ParameterError("state", "every number of the state must be finite")
+    if not math.isfinite(request.t):
+        raise ParameterError("t", "must be a finite time (s)")
+    result, state, p = _derived(system, request.formulation), np.array(request.state), np.array(system.parameter_array(params))
+    derivative, because = result.evaluate(request.t, state, p)
+    if because:
+        raise _not_finite(system, request.formulation, request.t, state, because, finite_at_zero_time=not result.evaluate(0.0, state, p)[1])
     return {"state_derivative": derivative.tolist()}
+
+
+def _not_finite(system: SystemDescription, formulation: str, t_s: float, state: np.ndarray, because: str, *, finite_at_zero_time: bool) -> ParameterError:
+    """The refusal of a state (or a time) where the equations have no finite value: which field, and why.
+
+    The time is to blame when the same state at t = 0 is fine (a drive's angle ω t overflowing); else the state, at the
+    coordinates' own singularity when one of the description's is zero there to within :data:`AT_SINGULARITY`.
+    """
+    if finite_at_zero_time and t_s != 0.0:
+        return ParameterError("t", f"at t = {t_s:g} s the {formulation} equations have no finite value because {because}; this state is fine at t = 0")
+    message = f"at this state the {formulation} equations have no finite value because {because}"
+    values = dict(zip(system.q, state[: len(system.coordinates)].tolist()))
+    for singularity in system.singularities:
+        value = float(singularity.where.subs(values))
+        if abs(value) <= AT_SINGULARITY:
+            return ParameterError("state", f"{message}. It is at the coordinates' singularity, {singularity.label} = {value:.3g}: {singularity.text}")
+    return ParameterError("state", message)
+
+
+#: A singularity's expression this close to zero (its natural scale is 1: a sine or cosine) counts as being at it.
+AT_SINGULARITY = 1e-6

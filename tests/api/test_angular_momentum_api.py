@@ -51,13 +51,16 @@ def test_simulate_returns_the_contract_series_matching_the_physics(client):
     assert body["stats"]["max_invariant_drift"] < 4e-15
 
 
-def test_zero_spin_and_principal_shaft_are_finite_zeros(client):
+def test_zero_spin_and_principal_shaft_are_finite_zeros_but_no_spin_has_no_angle(client):
     for params in ({"spin_rate_rad_s": 0.0}, {"tilt_deg": 0.0}):
         body = simulate(client, params).json()
-        assert body["stats"]["status"] == "ok"
-        assert all(None not in values for values in body["series"].values())
         assert max(body["series"]["bearing_moment_N_m"]) == 0.0
-        assert max(body["series"]["angle_between_omega_and_H"]) == 0.0
+        assert all(None not in values for name, values in body["series"].items() if name != "angle_between_omega_and_H")
+    principal = simulate(client, {"tilt_deg": 0.0}).json()
+    assert principal["stats"]["status"] == "ok" and max(principal["series"]["angle_between_omega_and_H"]) == 0.0
+    still = simulate(client, {"spin_rate_rad_s": 0.0}).json()  # issue 24: was 0.0; ω = 0 and H = 0 have no angle
+    assert set(still["series"]["angle_between_omega_and_H"]) == {None} and still["stats"]["status"] == "undefined"
+    assert still["events"][0]["message"] == f"angle between ω and H_G: {am.NO_SPIN_ANGLE}"
 
 
 @pytest.mark.parametrize(

@@ -29,10 +29,12 @@ class ValidationErrorDetail(BaseModel):
 
 
 def error_responses(
-    *, not_found: str | None = None, unprocessable: str | None = None, busy: str | None = None
+    *, not_found: str | None = None, unprocessable: str | None = None, busy: str | None = None, unavailable: str | None = None
 ) -> dict[int | str, dict[str, Any]]:
-    """OpenAPI ``responses=`` entries for the 404, 422 and 429 answers a route can give, each with its description."""
+    """OpenAPI ``responses=`` entries for the 404, 422, 429 and 503 answers a route can give, each with its description."""
     responses: dict[int | str, dict[str, Any]] = {}
+    if unavailable:
+        responses[503] = {"model": ErrorDetail, "description": unavailable}
     if busy:
         responses[429] = {"model": ErrorDetail, "description": busy}
     if not_found:

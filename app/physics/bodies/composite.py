@@ -5,8 +5,8 @@ position of its own centre of mass and its orientation (a rotation sequence and
 three angles from the reference frame to the shape's own axes). A hole is a
 part whose mass is removed. :func:`combine` adds the parts with the parallel-axis
 theorem and refuses a body that cannot exist (a hole outside every solid part or
-denser than the part it is cut from, no mass left, a tensor that is not
-positive definite).
+denser than the part it is cut from, two holes that overlap, no mass left, a
+tensor that is not positive definite).
 
 :func:`parts_from_records` turns request data (a list of dicts, as the API and
 the scenes receive it) into parts, raising :class:`ParameterError` whose path
@@ -43,7 +43,9 @@ class Shape:
 
     ``measure`` is its volume (m³), area (m²) or length (m); ``contains`` tests
     points (N, 3) in the shape's own axes; ``outline`` gives points on its
-    boundary (own axes) that a hole must keep inside its container.
+    boundary (own axes) that a hole must keep inside its container; ``corner``
+    is the upper corner (3,) of its bounding box in its own axes about its
+    centre of mass (``lower`` the other, by default its mirror image).
     """
 
     name: str
@@ -55,6 +57,13 @@ class Shape:
     outline: Callable[..., np.ndarray]
     symmetry_axis: str
     description: str
+    corner: Callable[..., np.ndarray]
+    lower: Callable[..., np.ndarray] | None = None
+
+    def bounds(self, *size: float) -> tuple[np.ndarray, np.ndarray]:
+        """Lower and upper corners (3,) (3,) of the bounding box in the shape's own axes, m."""
+        upper = np.asarray(self.corner(*size), float)
+        return (np.asarray(self.lower(*size), float) if self.lower is not None else -upper), upper
 
 
 def _circle(radius: float, z: float, n: int = 24) -> np.ndarray:
@@ -89,18 +98,21 @@ SHAPES: dict[str, Shape] = {
             lambda r: 4.0 / 3.0 * math.pi * r**3,
             lambda p, r, tol: np.linalg.norm(p, axis=1) <= r + tol,
             _sphere_points, "any axis", "solid sphere; every axis through its centre is a symmetry axis",
+            lambda r: np.array([r, r, r]),
         ),
         Shape(
             "spherical-shell", ("radius_m",), inertia.spherical_shell, "area",
             lambda r: 4.0 * math.pi * r**2,
             lambda p, r, tol: np.abs(np.linalg.norm(p, axis=1) - r) <= tol,
             _sphere_points, "any axis", "thin spherical shell",
+            lambda r: np.array([r, r, r]),
         ),
         Shape(
             "cylinder", ("radius_m", "length_m"), inertia.solid_cylinder, "volume",
             lambda r, L: math.pi * r**2 * L,
             lambda p, r, L, tol: _in_cylinder(p, r, -L / 2, L / 2, tol),
             lambda r, L: np.vstack([_circle(r, -L / 2), _circle(r, L / 2)]), "z", "solid cylinder, axis along its own z",
+            lambda r, L: np.array([r, r, L / 2]),
         ),
         Shape(
             "tube", ("radius_m", "inner_radius_m", "length_m"), inertia.tube, "volume",
@@ -108,30 +120,35 @@ SHAPES: dict[str, Shape] = {
             lambda p, r, ri, L, tol: _in_cylinder(p, r, -L / 2, L / 2, tol, inner=ri),
             lambda r, ri, L: np.vstack([_circle(r, -L / 2), _circle(r, L / 2), _circle(ri, -L / 2), _circle(ri, L / 2)]),
             "z", "thick-walled tube, axis along its own z",
+            lambda r, ri, L: np.array([r, r, L / 2]),
         ),
         Shape(
             "box", ("length_m", "width_m", "height_m"), inertia.box, "volume",
             lambda a, b, c: a * b * c,
             lambda p, a, b, c, tol: np.all(np.abs(p) <= np.array([a, b, c]) / 2 + tol, axis=1),
             _box_corners, "none", "rectangular block: length along x, width along y, height along z",
+            lambda a, b, c: np.array([a, b, c]) / 2,
         ),
         Shape(
             "rod", ("length_m",), inertia.slender_rod, "line",
             lambda L: L,
             lambda p, L, tol: (np.hypot(p[:, 0], p[:, 1]) <= tol) & (np.abs(p[:, 2]) <= L / 2 + tol),
             lambda L: np.array([[0.0, 0.0, -L / 2], [0.0, 0.0, L / 2]]), "z", "slender rod along its own z",
+            lambda L: np.array([0.0, 0.0, L / 2]),
         ),
         Shape(
             "plate", ("length_m", "width_m"), inertia.thin_plate, "area",
             lambda a, b: a * b,
             lambda p, a, b, tol: _flat(p, tol) & np.all(np.abs(p[:, :2]) <= np.array([a, b]) / 2 + tol, axis=1),
             lambda a, b: _box_corners(a, b, 0.0)[::2], "z (normal)", "thin rectangular plate: length along x, width along y, normal along z",
+            lambda a, b: np.array([a / 2, b / 2, 0.0]),
         ),
         Shape(
             "disk", ("radius_m",), inertia.thin_disk, "area",
             lambda r: math.pi * r**2,
             lambda p, r, tol: _flat(p, tol) & (np.hypot(p[:, 0], p[:, 1]) <= r + tol),
             lambda r: _circle(r, 0.0), "z (normal)", "thin disk, normal along its own z",
+            lambda r: np.array([r, r, 0.0]),
         ),
         Shape(
             "cone", ("radius_m", "height_m"), inertia.solid_cone, "volume",
@@ -141,6 +158,7 @@ SHAPES: dict[str, Shape] = {
             & (np.hypot(p[:, 0], p[:, 1]) <= r * (3 * h / 4 - p[:, 2]) / h + tol),
             lambda r, h: np.vstack([_circle(r, -h / 4), [[0.0, 0.0, 3 * h / 4]]]),
             "z", "solid right circular cone, axis along its own z, apex towards +z; its position is its centre of mass (¼ h above the base)",
+            lambda r, h: np.array([r, r, 3 * h / 4]), lambda r, h: np.array([-r, -r, -h / 4]),
         ),
     )
 }
@@ -233,6 +251,60 @@ def _check_holes(parts: Sequence[Part]) -> None:
             )
 
 
+#: Cells per axis of the lattice whose cell centres sample a hole when holes are checked for overlap (by its extent):
+#: an overlap thinner than about one cell (1/32 of a solid hole's size, 1/64 of a flat one's, 1/256 of a rod) can pass.
+OVERLAP_CELLS: dict[str, int] = {"volume": 32, "area": 64, "line": 256}
+#: Points sampling a spherical shell (a Fibonacci spiral).
+SHELL_SAMPLES = 2000
+
+
+def sample_points(part: Part) -> np.ndarray:
+    """Points (M, 3) of the reference frame spread through ``part``: the centres of a lattice of cells over its bounding
+    box (in its own axes) that lie in it, or a Fibonacci spiral over a spherical shell. Cell centres keep off the box's
+    faces, so two parts that only touch share none."""
+    size = part.size_args
+    if part.shape.name == "spherical-shell":
+        k = np.arange(SHELL_SAMPLES) + 0.5
+        polar, azimuth = np.arccos(1.0 - 2.0 * k / SHELL_SAMPLES), math.pi * (1.0 + math.sqrt(5.0)) * k
+        own = size[0] * np.column_stack([np.sin(polar) * np.cos(azimuth), np.sin(polar) * np.sin(azimuth), np.cos(polar)])
+    else:
+        low, high = part.shape.bounds(*size)
+        cells = OVERLAP_CELLS[part.shape.extent]
+        axes = [np.array([0.0]) if high[i] == low[i] else low[i] + (np.arange(cells) + 0.5) * (high[i] - low[i]) / cells for i in range(3)]
+        own = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, 3)
+        own = own[part.shape.contains(own, *size, 1e-9 * max(size))]
+    return own @ part.rotation.T + part.position_m
+
+
+def _bounding_radius_m(part: Part) -> float:
+    low, high = part.shape.bounds(*part.size_args)
+    return float(max(np.linalg.norm(low), np.linalg.norm(high)))
+
+
+def _check_hole_overlaps(parts: Sequence[Part]) -> None:
+    """Holes may touch but not overlap: material removed twice would be subtracted twice (a body lighter than it is).
+
+    Each pair of holes of the same extent is tested both ways: does any of one's :func:`sample_points` lie in the other?
+    """
+    holes = [(index, part) for index, part in enumerate(parts) if part.hole]
+    samples: dict[int, np.ndarray] = {}
+    for a, (first_index, first) in enumerate(holes):
+        for second_index, second in holes[a + 1 :]:
+            if first.shape.extent != second.shape.extent:
+                continue
+            if np.linalg.norm(first.position_m - second.position_m) > _bounding_radius_m(first) + _bounding_radius_m(second):
+                continue
+            for index in (first_index, second_index):
+                if index not in samples:
+                    samples[index] = sample_points(parts[index])
+            if np.any(second.contains(samples[first_index])) or np.any(first.contains(samples[second_index])):
+                raise ParameterError(
+                    "bodies", f"this hole (a {second.shape.name}) overlaps the hole at body {first_index + 1}: the material they share "
+                    "would be removed twice. Make the holes only touch, or describe the opening as holes that do not overlap",
+                    path=("bodies", second_index),
+                )
+
+
 def combine(parts: Sequence[Part]) -> CompositeBody:
     """Total mass, centre of mass and inertia about it of ``parts`` (holes subtracted); refuses bodies that cannot exist."""
     if not parts:
@@ -240,6 +312,7 @@ def combine(parts: Sequence[Part]) -> CompositeBody:
     if all(p.hole for p in parts):
         raise ParameterError("bodies", "every entry is a hole: give at least one solid body", path=("bodies",))
     _check_holes(parts)
+    _check_hole_overlaps(parts)
     masses = np.array([p.signed_mass_kg for p in parts])
     try:
         centre = inertia.centre_of_mass_m(masses, np.array([p.position_m for p in parts]))

@@ -109,7 +109,9 @@ class ConstrainedModel(IntegratedModel):
     @classmethod
     def controls(cls) -> tuple[Parameter, ...]:
         """``method`` (the DAE algorithm), ``integrator``, ``steps_per_frame``, ``rtol``, ``baumgarte_alpha_1_s``, ``baumgarte_beta_1_s``."""
-        integrator, steps, rtol = integration_parameters(INTEGRATORS, default_method=cls.default_method)
+        integrator, steps, rtol = integration_parameters(
+            INTEGRATORS, default_method=cls.default_method, target=cls.accuracy_target, auto_methods=cls.auto_methods
+        )
         choices = (*cls.algorithms, *((MINIMAL,) if cls.has_minimal() else ()))
         described = "; ".join(f"{ALGORITHMS[a].name}: {ALGORITHMS[a].description}" for a in cls.algorithms)
         if cls.has_minimal():

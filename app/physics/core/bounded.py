@@ -25,7 +25,12 @@ to ``wait_s`` and is then refused with :class:`WorkBusy`. Outcomes:
 * ``ValueError`` with the function's message if it raised one (a ``ParameterError`` keeps
   its field, path and label);
 * :class:`WorkTimeout` / :class:`WorkTooLarge` (both ``ValueError``: the input asked for
-  more than its bounds, a 422 for a route) when the limits stop it;
+  more than its bounds, a 422 for a route) when the limits stop it: the runner's own kill at
+  ``timeout_s``, the CPU limit's SIGXCPU, a ``MemoryError``, or a crash (SIGSEGV, SIGABRT, SIGBUS)
+  within the address-space limit, which is how a C library fails when ``RLIMIT_AS`` refuses it memory;
+* :class:`WorkInterrupted` when the child was ended by a signal the runner did not send and its
+  limits do not raise (SIGTERM, SIGKILL, SIGINT, SIGHUP…: an administrator, the machine's
+  out-of-memory killer, a shutdown): nothing is wrong with the input, so try again (a 503 for a route);
 * :class:`WorkFailed` for anything else (the function's bug: a 500).
 
 Every call joins its child and closes its pipe and sentinel before returning, whatever
@@ -74,6 +79,15 @@ class WorkBusy(RuntimeError):
 
     def __init__(self, message: str, *, retry_after_s: int) -> None:
         super().__init__(message)
+        self.retry_after_s = retry_after_s
+
+
+class WorkInterrupted(RuntimeError):
+    """The child was ended from outside by a signal the runner did not send; ``retry_after_s`` (s): try again then."""
+
+    def __init__(self, message: str, *, signal_number: int, retry_after_s: int = 2) -> None:
+        super().__init__(message)
+        self.signal_number = signal_number
         self.retry_after_s = retry_after_s
 
 
@@ -138,7 +152,12 @@ def _answer(function: Callable[..., Any], args: tuple[Any, ...]) -> tuple[str, A
 
 
 def _child_main(sender: Any, function: Callable[..., Any], args: tuple[Any, ...], memory_bytes: int, cpu_seconds: int) -> None:
-    """The child: set the limits, run, send one pickled ``(kind, payload)`` and exit."""
+    """The child: set the limits, run, send one pickled ``(kind, payload)`` and exit.
+
+    SIGINT ends it as the signal itself (not Python's KeyboardInterrupt, an exit status 1 the runner could not tell
+    from a crash), so an interrupt from outside is reported as one (:class:`WorkInterrupted`).
+    """
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
     _limit_resources(memory_bytes, cpu_seconds)
     kind, payload = _answer(function, args)
     try:
@@ -279,14 +298,25 @@ def _check_limits(timeout_s: float, memory_mb: float) -> None:
         raise ValueError(f"memory_mb: a finite size > 0 MB (got {memory_mb})")
 
 
+#: Signals a child raises on itself when its address-space limit refuses it memory (a C library's failed
+#: allocation aborts or faults): a crash inside the limit is taken as the limit's doing.
+_MEMORY_SIGNALS = (signal.SIGABRT, signal.SIGSEGV, signal.SIGBUS)
+
+
 def _death(process: Any) -> tuple[str, Any]:
-    """``(kind, payload)`` for a child that closed its pipe without answering, from its exit status."""
+    """``(kind, payload)`` for a child that closed its pipe without answering, from its exit status.
+
+    The runner kills a child only after it has given up on it (its timeout), so a child found dead
+    here was ended by its own limits (SIGXCPU, or a memory signal) or from outside (any other signal).
+    """
     process.join(_EXIT_GRACE_S)
     code = process.exitcode
     if code == -signal.SIGXCPU:
         return ("timeout_cpu", "")
-    if code in (-signal.SIGABRT, -signal.SIGSEGV, -signal.SIGBUS, -signal.SIGKILL):
+    if code is not None and code < 0 and -code in _MEMORY_SIGNALS:
         return ("memory_signal", code)
+    if code is not None and code < 0:
+        return ("interrupted", -code)
     return ("died", code)
 
 
@@ -309,6 +339,17 @@ def _outcome(kind: str, payload: Any, *, memory_mb: float, what: str) -> Any:
             f"{what} stopped abnormally (signal {-payload}) within its memory limit of {memory_mb:g} MB, "
             "most likely for want of memory; try something smaller"
         )
+    if kind == "interrupted":
+        raise WorkInterrupted(
+            f"{what} was stopped by the system (signal {_signal_name(payload)}), not by its limits; try again", signal_number=payload
+        )
     if kind == "died":
         raise WorkFailed(f"{what} ended without an answer (exit status {payload})")
     raise WorkFailed(f"{what} failed: {payload}")
+
+
+def _signal_name(number: int) -> str:
+    try:
+        return signal.Signals(number).name
+    except ValueError:
+        return str(number)

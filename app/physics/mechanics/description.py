@@ -166,6 +166,18 @@ class Reaction:
 
 
 @dataclass(frozen=True)
+class Singularity:
+    """Where the coordinates fail though the body does not (gimbal lock): ``where`` (an expression of q) is zero there.
+
+    ``label`` names ``where`` as a page prints it (``sin θ``); ``text`` says what happens there and what to do.
+    """
+
+    where: sympy.Expr
+    label: str
+    text: str
+
+
+@dataclass(frozen=True)
 class SystemDescription:
     """Everything a formulation needs, and nothing about how to derive it."""
 
@@ -197,6 +209,8 @@ class SystemDescription:
     assumptions: str = ""
     #: What each formulation cannot do here, by formulation id (shown instead of equations).
     unavailable: Mapping[str, str] = field(default_factory=dict)
+    #: Where the coordinates are singular (the equations divide by zero there whatever the formulation).
+    singularities: tuple[Singularity, ...] = ()
     #: Where random test states are drawn: coordinate name → (low, high) in its unit; others span ±π rad or ±1 m.
     #: Rates are drawn in ±3 per second. Keep singular configurations (gimbal lock) out.
     state_ranges: Mapping[str, tuple[float, float]] = field(default_factory=dict)

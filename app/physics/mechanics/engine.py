@@ -69,6 +69,29 @@ def cache_directory() -> Path:
     return Path(configured) if configured else Path.home() / ".cache" / "dynlab" / "derivations"
 
 
+#: Why a derivation's right-hand side has no finite value at a state, in words that finish "… because …".
+NOT_FINITE_BECAUSE = {
+    "overflow": "a number overflows (exceeds 1.8e308, the largest double-precision number)",
+    "divide": "it divides by zero",
+    "domain": "a square root, logarithm or other function is taken outside its domain (of a negative or infinite number)",
+    "singular": "the mass matrix is singular there, so the accelerations cannot be solved for",
+    "not_finite": "a value is infinite or undefined",
+}
+
+
+def not_finite_because(error: BaseException) -> str:
+    """Why (:data:`NOT_FINITE_BECAUSE`) for an error plain Python's ``math`` or numpy raised while evaluating
+    (numpy's under ``np.errstate(over="raise", divide="raise", invalid="raise")``)."""
+    text = str(error)
+    if isinstance(error, ZeroDivisionError) or "divide by zero" in text:
+        return NOT_FINITE_BECAUSE["divide"]
+    if isinstance(error, OverflowError) or "overflow" in text or "out of range" in text:
+        return NOT_FINITE_BECAUSE["overflow"]
+    if "domain" in text or "invalid value" in text:
+        return NOT_FINITE_BECAUSE["domain"]
+    return NOT_FINITE_BECAUSE["not_finite"]
+
+
 @dataclass
 class Derived:
     """A derivation ready to use: what the page shows and the generated right-hand side."""
@@ -93,10 +116,30 @@ class Derived:
     _lock: threading.Lock = field(default_factory=threading.Lock, repr=False)
 
     def state_derivative(self, t_s: float, state: np.ndarray, parameters: np.ndarray) -> np.ndarray:
-        """(q̇, q̈) at the state (q, q̇) and time t (plain Python: no compile needed)."""
+        """(q̇, q̈) at the state (q, q̇) and time t (plain Python: no compile needed); NaN where they have no finite
+        value, as the compiled kernel gives (:meth:`evaluate` also says why)."""
+        return self.evaluate(t_s, state, parameters)[0]
+
+    def evaluate(self, t_s: float, state: np.ndarray, parameters: np.ndarray) -> tuple[np.ndarray, str]:
+        """``(derivative, why)``: (q̇, q̈) at the state (q, q̇) and time t, and "" if every component is finite, else
+        why not in words (:data:`NOT_FINITE_BECAUSE`), with the derivative NaN.
+
+        Plain Python's ``math`` raises where the compiled kernel (numpy's error model) gives inf or NaN: an overflow,
+        a division by zero, a square root or logarithm of a negative number. Those errors are the reason given here;
+        numpy's own are raised too (an overflow in a product of numpy scalars), underflow to zero is not an error.
+        """
         out = np.empty(len(state))
-        self.rhs_python(float(t_s), np.ascontiguousarray(state, dtype=float), np.ascontiguousarray(parameters, dtype=float), out)
-        return out
+        try:
+            with np.errstate(over="raise", divide="raise", invalid="raise", under="ignore"):
+                self.rhs_python(float(t_s), np.ascontiguousarray(state, dtype=float), np.ascontiguousarray(parameters, dtype=float), out)
+        except (ArithmeticError, ValueError) as error:
+            out[:] = np.nan
+            return out, not_finite_because(error)
+        if np.all(np.isnan(out)):  # the generated code's singular solve writes NaN everywhere, the rates included
+            return out, NOT_FINITE_BECAUSE["singular"]
+        if not np.all(np.isfinite(out)):
+            return out, NOT_FINITE_BECAUSE["not_finite"]
+        return out, ""
 
     def kernel(self) -> Kernel:
         """The right-hand side as a numba C callback for the integrators (compiled once; numba caches it on disk)."""

@@ -23,8 +23,9 @@ from app.physics.core.bounded import BoundedRunner
 from app.physics.core.parameters import Parameter, ParameterError, ParameterSet
 from app.physics.math.expressions import check_parameter_name, parse_formula
 from app.physics.mechanics.description import TIME, Coordinate, SystemDescription
-from app.physics.mechanics.engine import derived
+from app.physics.mechanics.engine import derived, not_finite_because
 from app.physics.mechanics.lagrange import lagrangian
+from app.physics.mechanics.mass_matrix import mass_matrices, not_positive_definite
 
 #: Names a typed Lagrangian may use for its coordinates, in order.
 COORDINATE_NAMES = ("q1", "q2", "q3")
@@ -101,26 +102,83 @@ def _finite(value: float) -> bool:
 def derive_typed(request: Mapping[str, Any]) -> dict[str, Any]:
     """Derive a typed Lagrangian's equations and check them at one state (run this in a bounded process).
 
-    Returns the derive answer plus ``rhs_check``: the state (q, q̇), t = 0 and
-    the state derivative there. Raises ParameterError for a singular mass matrix.
+    Returns the derive answer plus ``rhs_check``: the state (q, q̇), t = 0 and the state derivative there. Raises
+    ParameterError naming the energy at fault for a mass matrix singular everywhere, an energy (or one of the
+    derivatives Lagrange's equations take of it) with no finite value at the check state, and a kinetic energy not
+    positive definite there.
     """
     system = typed_system(request["coordinates"], request["kinetic_energy"], request["potential_energy"], request["parameters"])
     T, _ = lagrangian(system)
     mass_matrix = sympy.hessian(T, system.qd)
     if sympy.simplify(mass_matrix.det()) == 0:
         raise ParameterError("kinetic_energy", "the mass matrix ∂²T/∂q̇² is singular everywhere: some combination of rates carries no kinetic energy")
-    result = derived(system, "lagrange")
     state = check_state(len(system.coordinates))
-    derivative = result.state_derivative(0.0, state, np.array(system.parameter_array(request["parameters"])))
-    if not np.all(np.isfinite(derivative)):
-        raise ParameterError(
-            "kinetic_energy",
-            f"at the check state q = {state[: len(state) // 2].tolist()} rad, q̇ = {CHECK_RATE_RAD_S} rad/s the mass matrix is singular "
-            "or the equations are not finite there",
-        )
+    parameters = np.array(system.parameter_array(request["parameters"]))
+    where = f"at the check state {describe_state(system, state)}, t = 0"
+    check_energy_terms(system, state, parameters, where=where)
+    check_kinetic_energy(system, state, parameters, where=where)
+    result = derived(system, "lagrange")
+    derivative, because = result.evaluate(0.0, state, parameters)
+    if because:
+        raise ParameterError("kinetic_energy", f"{where} Lagrange's equations have no finite value because {because}")
     answer = result.answer()
     answer["rhs_check"] = {"state": state.tolist(), "t": 0.0, "state_derivative": derivative.tolist()}
     return answer
+
+
+def describe_state(system: SystemDescription, state: np.ndarray) -> str:
+    """``q1 = 0.3, q1d = 0.2`` for a state (q, q̇) of a typed system, in the names the student typed."""
+    n = len(system.coordinates)
+    names = [c.name for c in system.coordinates] + [f"{c.name}d" for c in system.coordinates]
+    return ", ".join(f"{name} = {value:.6g}" for name, value in zip(names, state[: 2 * n]))
+
+
+def energy_terms(system: SystemDescription) -> list[tuple[str, str, sympy.Expr]]:
+    """``(field, what, expression)`` for each energy and each derivative of it that Lagrange's equations use:
+    T, ∂T/∂q̇ᵢ, ∂²T/∂q̇ᵢ∂q̇ⱼ, ∂²T/∂q̇ᵢ∂qⱼ, ∂²T/∂q̇ᵢ∂t, ∂T/∂qᵢ, then V, ∂V/∂qᵢ (in the student's names)."""
+    T, V = system.kinetic_energy, system.extra_potential
+    assert T is not None
+    names = {c.symbol: c.name for c in system.coordinates} | {c.rate: f"{c.name}d" for c in system.coordinates}
+    terms: list[tuple[str, str, sympy.Expr]] = [("kinetic_energy", "the kinetic energy T", T)]
+    for rate in system.qd:
+        momentum = sympy.diff(T, rate)
+        terms.append(("kinetic_energy", f"∂T/∂{names[rate]}", momentum))
+        terms += [("kinetic_energy", f"∂²T/∂{names[rate]}∂{names[other]}", sympy.diff(momentum, other)) for other in (*system.qd, *system.q)]
+        terms.append(("kinetic_energy", f"∂²T/∂{names[rate]}∂t", sympy.diff(momentum, TIME)))
+    terms += [("kinetic_energy", f"∂T/∂{names[q]}", sympy.diff(T, q)) for q in system.q]
+    terms.append(("potential_energy", "the potential energy V", V))
+    terms += [("potential_energy", f"∂V/∂{names[q]}", sympy.diff(V, q)) for q in system.q]
+    return terms
+
+
+def check_energy_terms(system: SystemDescription, state: np.ndarray, parameters: np.ndarray, *, where: str, t_s: float = 0.0) -> None:
+    """Raise ParameterError naming the energy (``kinetic_energy`` or ``potential_energy``) whose value, or a derivative
+    Lagrange's equations take of it, has no finite double-precision value at ``state`` (q, q̇), and why."""
+    n = len(system.coordinates)
+    arguments = [TIME, *system.q, *system.qd, *system.parameter_symbols]
+    values = [float(t_s), *state[: 2 * n], *parameters]
+    for field, what, expression in energy_terms(system):
+        function = sympy.lambdify(arguments, expression, modules="numpy")
+        try:
+            with np.errstate(over="raise", divide="raise", invalid="raise", under="ignore"):
+                value = complex(function(*values))
+        except (ArithmeticError, ValueError) as error:
+            raise ParameterError(field, f"{where} {what} has no finite value because {not_finite_because(error)}") from None
+        if value.imag != 0.0:
+            raise ParameterError(field, f"{where} {what} is not a real number ({value:.4g}): e.g. the square root of a negative number")
+        if not math.isfinite(value.real):
+            raise ParameterError(field, f"{where} {what} is not finite ({value.real})")
+
+
+def check_kinetic_energy(system: SystemDescription, state: np.ndarray, parameters: np.ndarray, *, where: str, t_s: float = 0.0) -> None:
+    """Raise ParameterError naming ``kinetic_energy`` if T is not positive definite in the rates at ``state`` (q, q̇):
+    a mass matrix ∂²T/∂q̇² with a negative or zero eigenvalue (:func:`~app.physics.mechanics.mass_matrix.not_positive_definite`)."""
+    n = len(system.coordinates)
+    kinetic = sympy.lambdify([TIME, system.q, system.qd, system.parameter_symbols], system.kinetic_energy, modules="numpy", cse=True)
+    matrix = mass_matrices(kinetic, np.array([float(t_s)]), state[:n, None], state[n : 2 * n, None], parameters)[0]
+    _, why = not_positive_definite(matrix, [f"{c.name}d" for c in system.coordinates])
+    if why:
+        raise ParameterError("kinetic_energy", f"the kinetic energy must be positive definite in the rates, and {where} it is not: {why}")
 
 
 #: One bounded runner per process for typed derivations (the API's and the typed-Lagrangian scene's): two at once.

@@ -15,7 +15,7 @@ import math
 import time
 from abc import ABC, abstractmethod
 from collections.abc import Hashable, Mapping
-from dataclasses import replace
+from dataclasses import dataclass, replace
 from typing import Any, ClassVar
 
 import numpy as np
@@ -50,7 +50,23 @@ from app.physics.solvers.step_choice import (
 )
 from app.physics.solvers.system import OdeSystem
 
-__all__ = ["IntegratedModel", "SimulationReport", "check_request_bounds", "simulate_model"]
+__all__ = ["IntegratedModel", "ModelLimit", "SimulationReport", "check_request_bounds", "simulate_model"]
+
+
+@dataclass(frozen=True)
+class ModelLimit:
+    """Where a motion leaves what its model describes: the frames kept, the answer's status and the student's message."""
+
+    #: How many leading frames the model still describes (at least 1: the start is always kept, and shown).
+    frames: int
+    #: ``stats.status`` (a word such as ``lift_off``; never "ok").
+    status: str
+    #: What a student reads, with the time and the quantity that broke the model, in units.
+    message: str
+
+    def __post_init__(self) -> None:
+        if self.frames < 1 or self.status in ("", "ok"):
+            raise ValueError(f"a model limit keeps at least one frame and names a status other than ok (got {self.frames}, {self.status!r})")
 
 
 class IntegratedModel(ABC):
@@ -84,7 +100,7 @@ class IntegratedModel(ABC):
 
     @classmethod
     def controls(cls) -> tuple[Parameter, ...]:
-        return integration_parameters(cls.methods, default_method=cls.default_method)
+        return integration_parameters(cls.methods, default_method=cls.default_method, target=cls.accuracy_target, auto_methods=cls.auto_methods)
 
     @abstractmethod
     def system(self, params: Mapping[str, Any]) -> OdeSystem: ...
@@ -262,6 +278,12 @@ class IntegratedModel(ABC):
         """
         return np.all(np.isfinite(states), axis=1)
 
+    def model_limit(self, params: Mapping[str, Any], t_s: np.ndarray, states: np.ndarray) -> ModelLimit | None:
+        """Where along the frames ``states`` (N, n) at ``t_s`` (N,) the model's own assumptions stop holding (a disk
+        whose floor would have to pull, a mass matrix gone singular), or None while they hold. The simulate answer
+        and the live scene both stop there with the limit's status and message."""
+        return None
+
     def stop_message(self, params: Mapping[str, Any], event: EventRecord) -> str:
         """Why a terminal ``event`` stopped the run, in words for the answer's ``message`` ("": the generic text)."""
         return ""
@@ -332,6 +354,38 @@ def simulate_model(
     """
     if request_limits:
         frame_times(t_end_s=t_end_s, frame_rate_hz=frame_rate_hz)  # span and rate checked before anything divides by them
+    run = _integrate(model, params, controls, t_end_s=t_end_s, frame_rate_hz=frame_rate_hz, request_limits=request_limits)
+    if isinstance(run, SimulationReport):
+        return run
+    integrator, choice, result = run
+    limit = model.model_limit(params, result.t_s, result.states)
+    if limit is not None and limit.frames > 1 and choice is not None and _automatic(controls) and limit.frames < len(result.t_s):
+        # The automatic step was chosen over the whole span, its pilots run through where the model broke (which can
+        # look like chaos, or need a far smaller step): choose again over the span the model describes.
+        again = _integrate(model, params, controls, t_end_s=float(result.t_s[limit.frames - 1]), frame_rate_hz=frame_rate_hz,
+                           request_limits=request_limits)
+        if not isinstance(again, SimulationReport) and len(again[2].t_s) == limit.frames:
+            integrator, choice, result = again
+            limit = model.model_limit(params, result.t_s, result.states) or limit
+    if limit is not None:
+        result = result.truncated(min(limit.frames, len(result.t_s)), status=limit.status, message=limit.message)
+    status, message = result.status, result.message
+    if status == "event" and result.events:
+        message = model.stop_message(params, result.events[-1]) or message
+    if choice is not None and choice.status in (REDUCED_ACCURACY, TARGET_MISSED):
+        note = f"{choice.note[0].upper()}{choice.note[1:]}."
+        status, message = (choice.status, note) if status == "ok" else (status, f"{message} {note}")
+    return _report(model, params, result.t_s, result.states, choice=choice, method=result.method, description=result.description,
+                   steps=result.steps, rhs_evals=result.rhs_evals, cpu_s=result.cpu_s, status=status, message=message)
+
+
+def _automatic(controls: Mapping[str, Any]) -> bool:
+    """Whether the controls leave the step to the automatic choice (no steps per frame set by hand)."""
+    return int(controls.get("steps_per_frame", 0) or 0) == 0
+
+
+def _integrate(model: IntegratedModel, params, controls, *, t_end_s: float, frame_rate_hz: float, request_limits: bool):
+    """``(integrator, choice, result)`` of the run over ``t_end_s``, its blow-up cut off; or the exact fallback's report."""
     frame_dt = 1.0 / frame_rate_hz
     integrator, choice = model.choose_integrator(
         params, controls, frame_dt, horizon_s=t_end_s,
@@ -344,20 +398,14 @@ def simulate_model(
             return exact
     if request_limits:
         check_request_bounds(integrator, t_end_s=t_end_s, frame_rate_hz=frame_rate_hz)
-    result = simulate(model.system(params), integrator, model.initial_state(params), t_end_s=t_end_s, frame_rate_hz=frame_rate_hz)
+    system = model.system(params)
+    result = simulate(system, integrator, model.initial_state(params), t_end_s=t_end_s, frame_rate_hz=frame_rate_hz)
     describable = model.describable(params, result.states)
     if not describable.all():  # blew up while staying finite (e.g. an overflowed norm zeroed the quaternion)
         frames = max(int(np.argmin(describable)), 1)
         t_stop = float(result.t_s[frames - 1])
-        result = result.truncated(frames, status="non_finite", message=failure_message("non_finite", t_stop, integrator, frame_dt))
-    status, message = result.status, result.message
-    if status == "event" and result.events:
-        message = model.stop_message(params, result.events[-1]) or message
-    if choice is not None and choice.status in (REDUCED_ACCURACY, TARGET_MISSED):
-        note = f"{choice.note[0].upper()}{choice.note[1:]}."
-        status, message = (choice.status, note) if status == "ok" else (status, f"{message} {note}")
-    return _report(model, params, result.t_s, result.states, choice=choice, method=result.method, description=result.description,
-                   steps=result.steps, rhs_evals=result.rhs_evals, cpu_s=result.cpu_s, status=status, message=message)
+        result = result.truncated(frames, status="non_finite", message=failure_message("non_finite", t_stop, integrator, frame_dt, system=system))
+    return integrator, choice, result
 
 
 def _report(model: IntegratedModel, params, t_s: np.ndarray, states: np.ndarray, *, choice: StepChoice | None, **stats) -> SimulationReport:

@@ -8,7 +8,9 @@ first non-finite state and say so in words instead of returning NaN.
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field, replace
+from typing import Any
 
 import numpy as np
 
@@ -25,15 +27,20 @@ from app.physics.solvers.status import FAILURE_TEXT, SUCCESSFUL
 from app.physics.solvers.system import OdeSystem
 
 
-def failure_message(status: str, t_s: float, integrator: Integrator, frame_dt_s: float) -> str:
-    """A sentence a student can act on."""
+def failure_message(status: str, t_s: float, integrator: Integrator, frame_dt_s: float, *, system: OdeSystem) -> str:
+    """A sentence a student can act on (naming only remedies ``system`` allows: :func:`remedy`)."""
     what = FAILURE_TEXT.get(status, status)
-    advice = (
-        "Loosen the tolerance or check the parameters."
-        if integrator.spec.adaptive
-        else "Use more steps per frame, or the splitting method."
-    )
+    advice = "Loosen the tolerance or check the parameters." if integrator.spec.adaptive else f"{remedy(system)}."
     return f"Stopped at t = {t_s:.3f} s: {what} with {integrator.describe(frame_dt_s)}. {advice}"
+
+
+def remedy(system: OdeSystem) -> str:
+    """"Use more steps per frame", adding a geometric method only where one applies to ``system`` (a rigid body
+    about a fixed point, :attr:`OdeSystem.torque`): a model without one is never told to use it."""
+    geometric = [name for name, spec in METHODS.items() if spec.needs_torque]
+    if system.torque is None or not geometric:
+        return "Use more steps per frame"
+    return f"Use more steps per frame, or a splitting method ({', '.join(geometric)})"
 
 
 @dataclass
@@ -88,7 +95,7 @@ def simulate(
     t = frame_dt * np.arange(done + 1)
     message = ""
     if outcome.status not in SUCCESSFUL:
-        message = failure_message(outcome.status, float(t[-1]), integrator, frame_dt)
+        message = failure_message(outcome.status, float(t[-1]), integrator, frame_dt, system=system)
     return SimulationResult(
         t_s=t,
         states=states[: done + 1],
@@ -112,6 +119,12 @@ class LiveRun:
     a call from Python into a compiled kernel costs far more than a few steps of
     a small model, so batching keeps the physics cost per displayed frame to a
     few microseconds. A failure inside a batch surfaces when playback reaches it.
+
+    ``limit`` (optional) is the model's own edge (:meth:`IntegratedModel.model_limit
+    <app.physics.solvers.integrated_model.IntegratedModel.model_limit>`, its parameters bound): called once per batch
+    with the times (N,) and states (N, n) from the current frame on, it returns None or ``(frames, status, message)``
+    for the leading frames it still describes; playback then stops after them with that status and message, as the
+    simulate answer does.
     """
 
     system: OdeSystem
@@ -122,10 +135,12 @@ class LiveRun:
     message: str = ""
     steps: int = 0
     batch_frames: int = 15
+    limit: Callable[[np.ndarray, np.ndarray], Any] | None = None
     _buffer: np.ndarray = field(init=False, repr=False)
     _ready: int = field(init=False, default=0, repr=False)
     _next: int = field(init=False, default=0, repr=False)
     _pending_status: str = field(init=False, default="ok", repr=False)
+    _pending_message: str = field(init=False, default="", repr=False)
     _frame_dt_s: float = field(init=False, default=0.0, repr=False)
 
     def __post_init__(self) -> None:
@@ -149,6 +164,13 @@ class LiveRun:
         self._pending_status = "ok" if done == self.batch_frames and outcome.status == "ok" else (
             outcome.status if outcome.status != "ok" else "non_finite"
         )
+        self._pending_message = ""
+        if self.limit is not None and done > 0:
+            times = self.t_s + frame_dt_s * np.arange(done + 1)
+            reached = self.limit(times, np.vstack([self.y[None, :], self._buffer[:done]]))
+            if reached is not None and reached.frames - 1 < done:
+                self._ready = reached.frames - 1
+                self._pending_status, self._pending_message = reached.status, reached.message
 
     def advance(self, frame_dt_s: float) -> bool:
         """Advance one frame; on failure keep the last good state, pause and explain. Returns running."""
@@ -171,5 +193,5 @@ class LiveRun:
 
     def _fail(self, frame_dt_s: float) -> bool:
         self.status = self._pending_status if self._pending_status != "ok" else "non_finite"
-        self.message = failure_message(self.status, self.t_s, self.integrator, frame_dt_s)
+        self.message = self._pending_message or failure_message(self.status, self.t_s, self.integrator, frame_dt_s, system=self.system)
         return False

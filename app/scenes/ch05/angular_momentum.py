@@ -208,7 +208,7 @@ class AngularMomentumScene(Scene):
         no_spin = spin.spin_rate_rad_s == 0.0
         angle = Quantity.or_text(
             "angle_omega_H", "angle between ω and H_G", None if no_spin else math.degrees(float(state.angle_between_omega_and_H[0])),
-            "deg", "undefined (no spin: ω = 0 and H = 0)",
+            "deg", physics.NO_SPIN_ANGLE,
         )
         force = float(state.bearing_moment_N_m[0]) / spin.bearing_span_m
         quantities = [

@@ -155,17 +155,5 @@ class BouncingBarScene(IntegratedScene):
             Quantity("energy_lost_J", "energy lost so far (impacts, settling, sliding)", y[physics.LOST], "J"),
             Quantity.word("mode", "state of the model", physics.MODE_NAMES[mode]),
         ]
-        if mode == physics.RESTING:
-            message = (
-                f"Resting: the bounces fell below {physics.REST_SPEED_M_S:g} m/s, so the endless cascade of ever smaller "
-                "bounces is cut off and the bar lies flat on the floor"
-                + (", sliding to a stop under friction." if y[physics.VX] != 0.0 else ".")
-            )
-        elif mode == physics.SETTLED_ON_END:
-            message = (
-                "Settled on one end: the last impact left that end on the floor, tilted. From here the bar would pivot or "
-                "slide down in continuous contact, which this impact model does not follow, so the motion stops here."
-            )
-        else:
-            message = f"In flight between impacts; e = {params['restitution']:g}, μ = {params['friction_coefficient']:g}."
+        message = physics.mode_message(params, y)
         return Readout(quantities, message=message)

@@ -5,9 +5,9 @@ three spokes (red, so the spin shows), posed by R_NB = Rz(ψ) Rx(θ) Ry(φ) abou
 its centre (the chapter-9 drawing); the orange trail is the contact point's path.
 The readout gives the energy drift, the contact point's slip speed |A v| (the
 nonholonomic residual) and whether upright rolling at the start's spin is above
-the critical spin the linearisation finds. A disk leaning past
-:data:`~app.physics.systems.ch08.rolling_disk_constrained_model.FALLEN_LEAN_DEG`
-has fallen and the run stops there with a message; a disk that rolls off the drawn
+the critical spin the linearisation finds, and the floor's normal force. A disk that
+has fallen or would lift off stops there with the model's message (chapter 9's rule,
+:mod:`app.physics.systems.ch09.rolling_disk_contact`); a disk that rolls off the drawn
 floor starts over. Each frame sends at most two
 messages (the disk, a trail chunk every few frames).
 """
@@ -19,8 +19,9 @@ import math
 import numpy as np
 
 from app.physics.constrained.residuals import multipliers
-from app.physics.systems.ch08.rolling_disk_constrained_model import FALLEN, FALLEN_LEAN_DEG, UnsteadyRollingDisk, fallen_message
+from app.physics.systems.ch08.rolling_disk_constrained_model import UnsteadyRollingDisk
 from app.physics.systems.ch08.rolling_disk_stability import stability_sentence
+from app.physics.systems.ch09.rolling_disk_contact import normal_force_N
 from app.physics.systems.ch09.rolling_disk_model import disk_pose
 from app.scenes.kit import IntegratedScene, Preset, Quantity, Readout, Trail, update_node
 from app.scenes.kit.drawing import disk_outline_colors, disk_outline_segments
@@ -50,7 +51,7 @@ class UnsteadyRollingDiskScene(IntegratedScene):
         Preset("stable", "Upright above the threshold", {"radius_m": 0.1, "lean_0_deg": 2.0, "spin_rate_0_rad_s": 12.0, "heading_rate_0_rad_s": 0.0, "lean_rate_0_rad_s": 0.0, "method": "auto"},
                "Ω = 12 rad/s is above the critical spin √(g/(3r)) = 5.72 rad/s (r = 0.1 m): the lean stays between 2.0° and 3.2° and the path is a wide curve (the run starts over when the disk leaves the floor)."),
         Preset("falls", "Below the threshold: it falls over", {"radius_m": 0.1, "lean_0_deg": 2.0, "spin_rate_0_rad_s": 2.0, "heading_rate_0_rad_s": 0.0, "lean_rate_0_rad_s": 0.0, "method": "auto"},
-               "Ω = 2 rad/s is below 5.72 rad/s: the lean grows from 2° to 75° while the path curls tightly. Set the spin to 0 and the disk falls flat: the run stops at 85°."),
+               "Ω = 2 rad/s is below 5.72 rad/s: the lean grows from 2° to 75° while the path curls tightly. Set the spin to 0 and the disk topples: near 60° the floor would have to pull (N < 0), so it lifts off and the run stops."),
         Preset("circle", "Leaning circle", {"radius_m": 0.1, **CIRCLE, "method": "auto"},
                "Leaning 30° at 15 rad/s with ψ̇ = −2.723 rad/s: the steady turn, a circle of radius r φ̇/|ψ̇| = 0.55 m with the lean constant (to 0.001°)."),
         Preset("drift", "Uncorrected, coarse step", {"radius_m": 0.1, "lean_0_deg": 20.0, "spin_rate_0_rad_s": 20.0, "heading_rate_0_rad_s": 5.0,
@@ -82,13 +83,7 @@ class UnsteadyRollingDiskScene(IntegratedScene):
             self.restart()
             self.trail.clear()
             return True
-        if not self.step_physics():
-            return False
-        lean_deg = math.degrees(float(self.run.y[3]))
-        if abs(lean_deg) >= FALLEN_LEAN_DEG:
-            self.run.status = FALLEN
-            self.run.message = self.status = fallen_message(self.run.t_s, FALLEN_LEAN_DEG)
-        return True  # the fallen disk is drawn where it lies
+        return self.step_physics()  # a fall or a lift-off stops the run on the last frame the model describes
 
     def _draw(self) -> None:
         centre, rotation = disk_pose(self._radius_m, self.run.y)
@@ -109,6 +104,7 @@ class UnsteadyRollingDiskScene(IntegratedScene):
             Quantity("heading_rate_rad_s", "heading rate ψ̇", float(y[7]), "rad/s"),
             Quantity("constraint_velocity_m_s", "contact point's slip speed max|A v| (0 when rolling)", now["constraint_velocity"], "m/s"),
             Quantity("friction_N", "floor's friction on the disk |λ| (the multipliers)", float(np.hypot(*friction)), "N"),
+            Quantity("normal_force_N", "floor's normal force N = m (g + z̈_G) (a floor can only push: N ≥ 0)", float(normal_force_N(params, y[None, :])[0]), "N"),
             Quantity("energy_J", "energy T + V (V = 0 with the centre on the floor)", now["energy"], "J"),
             Quantity("energy_drift", "energy drift |ΔE| / scale", self.current_drift()["energy"]),
             Quantity("critical_spin_rad_s", "critical spin Ω_c (linearised upright rolling)", self._critical_spin, "rad/s"),

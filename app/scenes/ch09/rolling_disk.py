@@ -2,9 +2,10 @@
 
 World frame (m, +Z up, floor z = 0), drawn at true scale: the disk is its rim
 and three spokes (so the spin shows), posed by R_NB = Rz(ψ) Rx(θ) Ry(φ) about
-its centre; the orange trail is the contact point's path. A disk that leans
-past :data:`FALLEN_LEAN_DEG` has fallen (the model keeps it on the floor as if
-glued, which a real disk would not be), so the run pauses there. Each frame
+its centre; the orange trail is the contact point's path. A disk that has fallen
+or would lift off (the model keeps it on the floor as if glued, which a real disk
+would not be) stops there with the model's message
+(:mod:`app.physics.systems.ch09.rolling_disk_contact`). Each frame
 sends at most three messages (the disk, a trail chunk, and the pause).
 """
 
@@ -14,12 +15,12 @@ import math
 
 import numpy as np
 
+from app.physics.systems.ch09.rolling_disk_contact import normal_force_N
 from app.physics.systems.ch09.rolling_disk_model import RollingDiskMotion, contact_speed_m_s, disk_pose
 from app.scenes.ch07.derived_system_scene import DerivedSystemScene
 from app.scenes.kit import Preset, Quantity, Readout, Trail, update_node
 from app.scenes.kit.drawing import disk_outline_colors, disk_outline_segments
 
-FALLEN_LEAN_DEG = 85.0
 TRAIL_CHUNK_FRAMES = 3
 TRAIL_CHUNKS = 150  # 15 s of path at 30 Hz
 
@@ -56,13 +57,6 @@ class RollingDiskScene(DerivedSystemScene):
         self.trail.clear()
         self._draw()
 
-    def step_motion(self, dt_s: float) -> bool:
-        running = super().step_motion(dt_s)
-        if running and abs(math.degrees(float(self.run.y[3]))) > FALLEN_LEAN_DEG:
-            self.run.status = "fallen"
-            self.status = f"Paused at t = {self.run.t_s:.2f} s: the disk has fallen (lean past {FALLEN_LEAN_DEG:.0f}°)."
-        return running  # the frame it fell in is drawn
-
     def _draw(self) -> None:
         centre, rotation = disk_pose(self._radius_m, self.run.y)
         update_node(self.disk, points=(centre + self._outline @ rotation.T).astype(np.float32))
@@ -80,6 +74,8 @@ class RollingDiskScene(DerivedSystemScene):
             Quantity("contact_speed_m_s", "contact point's speed |(ẋ, ẏ)|", float(contact_speed_m_s(y[None, :])[0]), "m/s"),
             Quantity("rolling_speed_m_s", "r |φ̇| (equal when rolling without slip)", self._radius_m * abs(spin), "m/s"),
             Quantity("energy_J", "energy T + V (V = 0 with the centre on the floor)", self.current_invariants()["energy"], "J"),
+            Quantity("normal_force_N", "floor's normal force N = m (g + z̈_G) (a floor can only push: N ≥ 0)",
+                     float(normal_force_N(self.physical_params(), y[None, :])[0]), "N"),
             self.drift_quantity("energy", "energy drift |ΔE| / scale"),
             Quantity("critical_spin_rad_s", "upright rolling is stable above |φ̇| = Ω_c (linearised)", self._critical_spin, "rad/s"),
             Quantity.word("upright_stability", "upright rolling at this spin", "stable" if stable else "unstable"),

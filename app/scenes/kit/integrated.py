@@ -28,6 +28,7 @@ from app.physics.solvers import LiveRun
 from app.physics.solvers.controls import CONTROL_NAMES
 from app.physics.solvers.base import Integrator
 from app.physics.solvers.integrated_model import IntegratedModel
+from app.physics.solvers.solve import remedy
 from app.physics.solvers.step_choice import ESTIMATING, PILOT_FAILED, StepChoice
 from app.physics.solvers.system import OdeSystem
 from app.scenes.kit.background_pilots import PILOTS
@@ -70,8 +71,17 @@ class IntegratedScene(Scene):
         return FRAME_DT_S
 
     def new_run(self, system: OdeSystem, integrator: Integrator, y0: np.ndarray) -> LiveRun:
-        """The live run :meth:`step_physics` advances by :data:`FRAME_DT_S` a frame."""
-        return LiveRun(system, integrator, y0)
+        """The live run :meth:`step_physics` advances by :data:`FRAME_DT_S` a frame, stopping where the model's
+        assumptions stop holding (:meth:`~app.physics.solvers.integrated_model.IntegratedModel.model_limit`)."""
+        return LiveRun(system, integrator, y0, limit=self.model_limit())
+
+    def model_limit(self):
+        """The running model's :meth:`model_limit` for the current parameters, or None for a model that has none."""
+        model = getattr(self, "run_model", None) or self.model()
+        if type(model).model_limit is IntegratedModel.model_limit:
+            return None
+        params = self.physical_params()
+        return lambda t_s, states: model.model_limit(params, t_s, states)
 
     def describe(self, integrator: Integrator) -> str:
         """The integration in words for the readout ("RK4, 12 steps/frame")."""
@@ -107,6 +117,10 @@ class IntegratedScene(Scene):
         self.status = ""
         self._reference_error: float | None = None
         self._reference_error_max = 0.0
+        limit = model.model_limit(params, np.array([self.run.t_s]), self.run.y[None, :])
+        if limit is not None:  # the start itself is outside the model (a floor that would have to pull): shown, not run
+            self.run.status, self.run.message = limit.status, limit.message
+            self.status = limit.message
 
     def step_physics(self) -> bool:
         """Advance one frame of simulated time; on blow-up pause with the reason."""
@@ -118,7 +132,7 @@ class IntegratedScene(Scene):
         running = self.run.advance(FRAME_DT_S)
         self._physics_s += time.perf_counter() - start
         self._frames += 1
-        if not running:
+        if not running:  # a blow-up, or the model's own edge (lift-off, a singular mass matrix…) in its words
             self.status = self.run.message
             return False
         if self._frames % REFERENCE_SAMPLE_EVERY == 0:
@@ -133,7 +147,7 @@ class IntegratedScene(Scene):
                 self.status = (
                     f"Paused at t = {self.run.t_s:.2f} s: {worst.replace('_', ' ')} has drifted by "
                     f"{100 * drift[worst]:.0f}% of its scale with {self.description}, so the motion shown is no longer "
-                    f"the physics. Use more steps per frame or the splitting method."
+                    f"the physics. {remedy(self.run.system)}."
                 )
                 return False
         return True

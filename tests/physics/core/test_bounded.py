@@ -19,7 +19,7 @@ from functools import partial
 import pytest
 import sympy
 
-from app.physics.core.bounded import BoundedRunner, WorkBusy, WorkFailed, WorkRefused, WorkTimeout, WorkTooLarge
+from app.physics.core.bounded import BoundedRunner, WorkBusy, WorkFailed, WorkInterrupted, WorkRefused, WorkTimeout, WorkTooLarge
 from app.physics.core.parameters import ParameterError
 from app.physics.math.expressions import parse_formula
 
@@ -252,6 +252,65 @@ def test_runaway_recursion_is_refused(runner):
 def test_child_killed_by_a_signal_is_reported(runner):
     with pytest.raises(WorkTooLarge, match="signal 6"):
         runner.run(signal_self, (signal.SIGABRT,))
+
+
+def _catches(pid: int, number: int) -> bool:
+    """Whether process ``pid`` has a handler for signal ``number`` (its SigCgt mask in /proc); False once it is gone."""
+    try:
+        with open(f"/proc/{pid}/status", encoding="ascii") as status:
+            caught = next(int(line.split()[1], 16) for line in status if line.startswith("SigCgt:"))
+    except (OSError, StopIteration):
+        return False
+    return bool(caught >> (number - 1) & 1)
+
+
+def _running_child(after: set[int]) -> int | None:
+    """The pid of a bounded child started since ``after`` was taken (a child of the forkserver, not ours)."""
+    found = [p[0] for p in _descendants() if p[1] != os.getpid() and p[0] not in after and p[2] != "Z"]
+    return found[0] if found else None
+
+
+@pytest.mark.parametrize("number", [signal.SIGTERM, signal.SIGKILL, signal.SIGINT, signal.SIGHUP])
+def test_a_child_ended_from_outside_is_interrupted_not_blamed_on_its_limits(runner, number):
+    """Issue 24, Found 11: SIGTERM from outside gave a 500 (WorkFailed), SIGKILL a 422 blaming memory (WorkTooLarge).
+    A signal the runner did not send, and its limits do not raise, is WorkInterrupted (a 503 for a route): try again."""
+    before = {p[0] for p in _descendants()}
+    outcome: dict[str, BaseException] = {}
+
+    def call() -> None:
+        try:
+            runner.run(sleep_for, (30.0,), what="deriving these equations")
+        except BaseException as exc:  # noqa: BLE001 - the outcome is what the test reads
+            outcome["error"] = exc
+
+    caller = threading.Thread(target=call)
+    started = time.monotonic()
+    caller.start()
+    assert _wait_for(lambda: _running_child(before) is not None), "no bounded child appeared"
+    pid = _running_child(before)
+    assert pid is not None
+    # Until the child runs its own code it has Python's SIGINT handler (a KeyboardInterrupt, exit status 1): a signal
+    # that early is a crash to the runner. Wait until the child has set SIGINT back to the default (its first act).
+    assert _wait_for(lambda: not _catches(pid, signal.SIGINT)), "the child never took the default SIGINT"
+    os.kill(pid, number)
+    caller.join(10.0)
+    assert not caller.is_alive() and time.monotonic() - started < 10.0  # answered at once, not at the 20 s timeout
+    error = outcome["error"]
+    assert isinstance(error, WorkInterrupted) and not isinstance(error, (ValueError, WorkFailed)), repr(error)
+    assert error.signal_number == number and error.retry_after_s >= 1
+    assert f"signal {signal.Signals(number).name}" in str(error) and "not by its limits; try again" in str(error)
+    assert _wait_for(lambda: not _workers_left(), 5.0), _workers_left()
+    assert runner.running == 0
+
+
+def test_the_three_endings_are_told_apart(runner):
+    """Its own timeout names the time limit, its memory limit names the memory, a crash within it is taken as memory."""
+    with pytest.raises(WorkTimeout, match="limit of 0.3 s"):
+        runner.run(sleep_for, (30.0,), timeout_s=0.3, what="deriving these equations")
+    with pytest.raises(WorkTooLarge, match="memory limit of 64 MB"):
+        runner.run(hold_megabytes, (1024,), memory_mb=64.0, what="deriving these equations")
+    with pytest.raises(WorkTooLarge, match="memory limit of 256 MB"):
+        runner.run(signal_self, (signal.SIGSEGV,), what="deriving these equations")
 
 
 def test_result_too_large_is_refused():

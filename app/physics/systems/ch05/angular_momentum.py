@@ -36,6 +36,7 @@ import numpy as np
 from app.physics.bodies import inertia
 from app.physics.core.closed_form import ClosedFormModel, ClosedFormSolution
 from app.physics.core.parameters import Parameter, ParameterSet
+from app.physics.core.report import Event
 from app.physics.math.rotations import elementary_rotation_matrix, quaternion_from_matrix
 
 BODIES = ("plate", "box", "disk")
@@ -235,7 +236,10 @@ class ShaftSpin:
 
     @property
     def angle_between_omega_and_H(self) -> float:
-        """Angle (rad) between ω and H_G, ``atan2(|ω × H|, ω·H)``: 0 when either vanishes; constant."""
+        """Angle (rad) between ω and H_G, ``atan2(|ω × H|, ω·H)``; constant. NaN without spin: ω = 0 and H_G = 0 have no
+        direction, so there is no angle between them (the report's null, with :data:`NO_SPIN_ANGLE` saying why)."""
+        if self.spin_rate_rad_s == 0.0:
+            return math.nan
         return math.atan2(self.bearing_moment_N_m, self.spin_rate_rad_s * self._sweep[3][2])
 
     @property
@@ -332,6 +336,10 @@ PARAMETERS = ParameterSet(
 )
 
 
+#: Why the angle between ω and H_G is undefined without spin (the readout's text and the simulate answer's event).
+NO_SPIN_ANGLE = "undefined (no spin: ω = 0 and H = 0)"
+
+
 class ShaftSpinModel(ClosedFormModel):
     """A body at constant spin about a fixed shaft through G: H, its rate, the bearing moment and the energy in closed form."""
 
@@ -366,4 +374,5 @@ class ShaftSpinModel(ClosedFormModel):
             "angular_momentum_magnitude_kg_m2_s": np.sqrt(np.sum(h * h, axis=-1)),
             "kinetic_energy_J": state.kinetic_energy_centre_J + 0.5 * motion.spin_rate_rad_s * h[:, 2],
         }
-        return ClosedFormSolution(series, invariants)
+        events = [] if motion.spin_rate_rad_s != 0.0 else [Event(0.0, "undefined", f"angle between ω and H_G: {NO_SPIN_ANGLE}")]
+        return ClosedFormSolution(series, invariants, events=events)

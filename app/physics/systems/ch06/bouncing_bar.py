@@ -69,7 +69,7 @@ from app.physics.bodies.inertia import slender_rod
 from app.physics.core.energy import EnergyParts
 from app.physics.core.parameters import Parameter, ParameterError, ParameterSet
 from app.physics.solvers import Events, OdeSystem
-from app.physics.solvers.integrated_model import IntegratedModel
+from app.physics.solvers.integrated_model import IntegratedModel, ModelLimit
 from app.physics.solvers.step_choice import AccuracyTarget
 from app.physics.solvers.kernels import (
     EVENTS_SIGNATURE,
@@ -433,6 +433,28 @@ def series(params: Mapping[str, Any], states: np.ndarray) -> dict[str, np.ndarra
     }
 
 
+#: ``stats.status`` of a run that ended with the bar settled on one end (where this impact model stops).
+SETTLED = "settled"
+
+
+def mode_message(params: Mapping[str, Any], y: np.ndarray) -> str:
+    """What the model is doing at state ``y`` (16,), in a student's words: the live readout's message, and the simulate
+    answer's where the bar settled on one end."""
+    mode = float(y[MODE])
+    if mode == RESTING:
+        return (
+            f"Resting: the bounces fell below {REST_SPEED_M_S:g} m/s, so the endless cascade of ever smaller "
+            "bounces is cut off and the bar lies flat on the floor" + (", sliding to a stop under friction." if y[VX] != 0.0 else ".")
+        )
+    if mode == SETTLED_ON_END:
+        return (
+            f"Settled on one end at t = {y[LAST_T]:.2f} s: the last impact left that end on the floor, tilted "
+            f"θ = {math.degrees(math.remainder(float(y[THETA]), 2 * math.pi)):.1f}°, at rest. From here the bar would pivot or "
+            "slide down in continuous contact, which this impact model does not follow, so the motion stops here."
+        )
+    return f"In flight between impacts; e = {params['restitution']:g}, μ = {params['friction_coefficient']:g}."
+
+
 class BouncingBar(IntegratedModel):
     parameters = PARAMETERS
     #: Only the adaptive method locates events and applies reset maps.
@@ -455,6 +477,14 @@ class BouncingBar(IntegratedModel):
 
     def series(self, params, t_s, states):
         return series(params, states)
+
+    def model_limit(self, params, t_s, states):
+        """The frame where the bar settled on one end (mode ``SETTLED_ON_END``): status ``settled``, the readout's message."""
+        settled = np.atleast_2d(states)[:, MODE] == SETTLED_ON_END
+        if not settled.any():
+            return None
+        k = int(np.argmax(settled))
+        return ModelLimit(k + 1, SETTLED, mode_message(params, states[k]))
 
     def invariants(self, params, states):
         """Kinetic + potential + everything lost so far (J): constant."""

@@ -28,17 +28,20 @@ from typing import Any
 
 import numpy as np
 
-from app.physics.core.bounded import WorkBusy, WorkRefused
+from app.physics.core.bounded import WorkBusy, WorkInterrupted, WorkRefused
 from app.physics.core.parameters import Parameter, ParameterError, ParameterSet
 from app.physics.math.expressions import check_parameter_name
 from app.physics.mechanics.description import TIME, SystemDescription
 from app.physics.mechanics.engine import Derived, derived
+from app.physics.mechanics.mass_matrix import SingularCrossing, first_singular_crossing, mass_matrices, not_positive_definite
 from app.physics.mechanics.model import DerivedModel, energy_functions
+from app.physics.solvers.integrated_model import ModelLimit
 from app.physics.mechanics.typed import (
     COORDINATE_NAMES,
     MAX_PARAMETER_VALUE,
     MAX_PARAMETERS,
     derive_typed_bounded,
+    describe_state,
     runner,
     typed_system,
 )
@@ -154,7 +157,7 @@ def prepare_typed_lagrangian(request: Mapping[str, Any]) -> PreparedLagrangian:
         compile_s = runner.run(compile_typed_kernel, (dict(request),), what="compiling these equations")
     except ParameterError:
         raise
-    except (WorkRefused, WorkBusy, ValueError) as error:
+    except (WorkRefused, WorkBusy, WorkInterrupted, ValueError) as error:
         raise ParameterError("kinetic_energy", str(error)) from None
     system = typed_system(request["coordinates"], request["kinetic_energy"], request["potential_energy"], request["parameters"])
     result = derived(system, "lagrange")
@@ -178,15 +181,48 @@ def initial_state(params: Mapping[str, Any]) -> np.ndarray:
 
 
 def check_typed_lagrangian(values: Mapping[str, Any]) -> None:
-    """The whole-set check: derive and compile (bounded), then insist the equations are finite at the initial state."""
+    """The whole-set check: derive and compile (bounded), then insist the kinetic energy is positive definite in the
+    rates at the initial state: a negative eigenvalue is the kinetic energy's fault (naming ``kinetic_energy``), a
+    singular mass matrix the start's (naming ``q0_rad``, as are equations with no finite value there)."""
     prepared = prepare_typed_lagrangian(typed_request(values))
     start = initial_state(values)
-    derivative = prepared.derived.state_derivative(0.0, start, np.array(prepared.parameter_values))
-    if not np.all(np.isfinite(derivative)):
-        raise ParameterError(
-            "q0_rad", f"at the initial state q = {start[: len(start) // 2].tolist()}, q̇ = {start[len(start) // 2 :].tolist()} the mass matrix "
-            "∂²T/∂q̇² is singular or the equations are not finite: start somewhere else",
-        )  # fmt: skip
+    where = f"at the initial state {describe_state(prepared.system, start)}"
+    kind, why = not_positive_definite(start_mass_matrix(prepared, start), [f"{c.name}d" for c in prepared.system.coordinates])
+    if kind == "negative":
+        raise ParameterError("kinetic_energy", f"the kinetic energy must be positive definite in the rates, and {where} it is not: {why}")
+    if why:
+        raise ParameterError("q0_rad", f"{where} the mass matrix is not positive definite: {why}; start somewhere else")
+    _, because = prepared.derived.evaluate(0.0, start, np.array(prepared.parameter_values))
+    if because:
+        raise ParameterError("q0_rad", f"{where} Lagrange's equations have no finite value because {because}: start somewhere else")
+
+
+def start_mass_matrix(prepared: PreparedLagrangian, start: np.ndarray) -> np.ndarray:
+    """∂²T/∂q̇² (n, n) at the state (q, q̇) ``start`` and t = 0, from T numerically (:mod:`~app.physics.mechanics.mass_matrix`)."""
+    n = len(prepared.system.coordinates)
+    kinetic, _ = energy_functions(prepared.system)
+    return mass_matrices(kinetic, np.zeros(1), start[:n, None], start[n : 2 * n, None], np.array(prepared.parameter_values))[0]
+
+
+#: ``stats.status`` of a motion stopped where the mass matrix became singular.
+SINGULAR_MASS_MATRIX = "singular_mass_matrix"
+
+
+def singular_message(system: SystemDescription, t_before_s: float, t_after_s: float, crossing: SingularCrossing) -> str:
+    """What a student reads when the motion between two frames meets a singular mass matrix."""
+    n = len(system.coordinates)
+    # Where the parabola puts the point: to rounding (1e-12 of the segment), so what is below 1e-9 is shown as 0.
+    where = ", ".join(f"{c.name} = {value if abs(value) > 1e-9 else 0.0:.3g}" for c, value in zip(system.coordinates, crossing.q[:n]))
+    rate = f"{system.coordinates[crossing.rate_index].name}d"
+    lost = f"stops being positive definite (the inertia along {rate} turns negative)" if crossing.indefinite else (
+        f"becomes singular (the inertia along {rate} vanishes)"
+    )
+    return (
+        f"Stopped at t = {t_before_s:.2f} s: before t = {t_after_s:.2f} s the motion reaches {where}, where the mass matrix "
+        f"∂²T/∂q̇² {lost}. There "
+        f"Lagrange's equations cannot give the accelerations: the coordinates themselves fail (as polar coordinates do at "
+        f"r = 0), and the motion beyond is not this Lagrangian's."
+    )
 
 
 class TypedLagrangianMotion(DerivedModel):
@@ -268,6 +304,33 @@ class TypedLagrangianMotion(DerivedModel):
             note += "; t appears in T or V, so whatever drives that time dependence does work: dissipated shows E(0) − E(t)"
         return note
 
+    def model_limit(self, params: Mapping[str, Any], t_s: np.ndarray, states: np.ndarray) -> ModelLimit | None:
+        """Where the motion meets a singular mass matrix between two frames (status ``singular_mass_matrix``)."""
+        prepared, kinetic, reference = self._singularity_reference(params)
+        if reference is None:
+            return None  # a start the whole-set check refuses; nothing to measure against
+        crossing = first_singular_crossing(kinetic, t_s, states, np.array(prepared.parameter_values), reference=reference)
+        if crossing is None:
+            return None
+        k = crossing.frame
+        after = min(k + 1, len(t_s) - 1)
+        return ModelLimit(k + 1, SINGULAR_MASS_MATRIX, singular_message(prepared.system, float(t_s[k]), float(t_s[after]), crossing))
+
+    def _singularity_reference(self, params: Mapping[str, Any]):
+        """(prepared, T as a numpy function, M at the start or None if it is not positive definite), kept per start: a
+        live scene asks once per batch of frames."""
+        start = initial_state(params)
+        key = (_request_key(typed_request(params)), tuple(start))
+        cached = getattr(self, "_reference_cache", None)
+        if cached is None or cached[0] != key:
+            prepared = self.prepared(params)
+            kinetic, _ = energy_functions(prepared.system)
+            reference = start_mass_matrix(prepared, start)
+            usable = not not_positive_definite(reference, [""] * len(reference))[0]
+            cached = (key, (prepared, kinetic, reference if usable else None))
+            self._reference_cache = cached
+        return cached[1]
+
     def invariants(self, params: Mapping[str, Any], states: np.ndarray) -> dict[str, np.ndarray]:
         """The Jacobi integral h (J) when t does not appear in T or V; nothing otherwise."""
         if self.prepared(params).explicit_time:
@@ -282,7 +345,8 @@ class TypedLagrangianMotion(DerivedModel):
         for i in range(n):
             probes[1 + 2 * i, i] += 1.0
             probes[2 + 2 * i, i] -= 1.0
-        kinetic, potential, _ = self.energies_and_jacobi_J(params, np.zeros(len(probes)), probes)
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):  # a probe may land where V is singular (−k/q1 at 0)
+            kinetic, potential, _ = self.energies_and_jacobi_J(params, np.zeros(len(probes)), probes)
         swings = np.abs(potential - potential[0])
         scale = max(abs(float(kinetic[0])), abs(float(potential[0])), float(np.max(swings[np.isfinite(swings)], initial=0.0)), 1e-12)
         return {"jacobi_integral": scale}

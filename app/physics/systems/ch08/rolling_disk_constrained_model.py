@@ -5,10 +5,9 @@ State ``(x, y, ψ, θ, φ, ẋ, ẏ, ψ̇, θ̇, φ̇)`` (m, rad, m/s, rad/s; se
 independent-speed model, which is its cross-check. The start is built
 consistent: at the origin, heading ψ₀, lean θ₀, the angle rates given, and the
 contact point moving along the heading at r φ̇₀ (so nothing is changed to make
-it consistent). The rolling model holds while the disk stands on its rim: past
-:data:`FALLEN_LEAN_DEG` of lean it has fallen (a real disk would slap down flat
-and slide; the equations would keep it glued to the floor by its edge), and a
-run stops there with a message.
+it consistent). The rolling model holds while the disk stands on its rim and the
+floor pushes: chapter 9's rule (:mod:`app.physics.systems.ch09.rolling_disk_contact`)
+stops a run where the disk has fallen or would lift off, with a message.
 
 The method ``minimal`` integrates chapter 9's equations in the independent speeds
 (Kane's, :class:`~app.physics.systems.ch09.rolling_disk_model.RollingDiskMotion`):
@@ -21,7 +20,6 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -30,7 +28,7 @@ from app.physics.constrained.model import ConstrainedModel
 from app.physics.constrained.initial_conditions import ConsistentStart, consistent_initial_conditions
 from app.physics.constrained.system import ConstrainedSystem
 from app.physics.core.parameters import Parameter, ParameterSet
-from app.physics.core.report import SimulationReport
+from app.physics.solvers.integrated_model import ModelLimit
 from app.physics.solvers.system import OdeSystem
 from app.physics.systems.ch08.rolling_disk_constrained import (
     COORDINATE_NAMES,
@@ -42,12 +40,10 @@ from app.physics.systems.ch08.rolling_disk_constrained import (
 )
 from app.physics.systems.ch08.rolling_disk_stability import critical_spin_rad_s, stability_sentence
 from app.physics.systems.ch09.rolling_disk import SYSTEM as CHAPTER_9_DISK
+from app.physics.systems.ch09.rolling_disk_contact import FALLEN, FALLEN_LEAN_DEG, LIFT_OFF, contact_limit, fallen_message, normal_force_N
 from app.physics.systems.ch09.rolling_disk_model import RollingDiskMotion
 
-#: Lean (deg) past which the disk has fallen and the rolling model no longer describes it.
-FALLEN_LEAN_DEG = 85.0
-#: Status of a run stopped by the fall (``stats.status``).
-FALLEN = "fallen"
+__all__ = ["FALLEN", "FALLEN_LEAN_DEG", "LIFT_OFF", "PARAMETERS", "UnsteadyRollingDisk", "fallen_message"]
 
 _CHAPTER_9_START = RollingDiskMotion.parameters.by_name
 PARAMETERS = ParameterSet((
@@ -71,7 +67,7 @@ class UnsteadyRollingDisk(ConstrainedModel):
     start_parameters = ("heading_0_deg", "lean_0_deg", "heading_rate_0_rad_s", "lean_rate_0_rad_s", "spin_rate_0_rad_s")
     series_units = {
         "x_m": "m", "y_m": "m", "heading_rad": "rad", "lean_rad": "rad", "spin_rate_rad_s": "rad/s", "energy_J": "J",
-        "friction_x_N": "N", "friction_y_N": "N",
+        "friction_x_N": "N", "friction_y_N": "N", "normal_force_N": "N",
     }  # fmt: skip
     invariant_units = {"energy": "J", "constraint_position": "m", "constraint_velocity": "m/s"}
 
@@ -119,7 +115,7 @@ class UnsteadyRollingDisk(ConstrainedModel):
         return {
             "x_m": states[:, 0], "y_m": states[:, 1], "heading_rad": states[:, 2], "lean_rad": states[:, 3],
             "spin_rate_rad_s": states[:, 9], "energy_J": energy_J(params, states),
-            "friction_x_N": multipliers[:, 0], "friction_y_N": multipliers[:, 1],
+            "friction_x_N": multipliers[:, 0], "friction_y_N": multipliers[:, 1], "normal_force_N": normal_force_N(params, states),
         }  # fmt: skip
 
     # --- the minimal method: chapter 9's independent-speed equations ---------------------------------------------
@@ -138,21 +134,9 @@ class UnsteadyRollingDisk(ConstrainedModel):
         return np.atleast_2d(minimal_states)
 
     # --- where the model stops ------------------------------------------------------------------------------
-    def describable(self, params: Mapping[str, Any], states: np.ndarray) -> np.ndarray:
-        """Finite states of a disk still on its rim (|θ| < :data:`FALLEN_LEAN_DEG`); remembers whether the disk fell."""
-        finite = super().describable(params, states)
-        with np.errstate(invalid="ignore"):
-            standing = np.abs(np.degrees(states[:, LEAN])) < FALLEN_LEAN_DEG
-        self._fell = bool(np.any(finite & ~standing))
-        return finite & standing
-
-    def simulate(self, params, controls, *, t_end_s, frame_rate_hz, request_limits=True) -> SimulationReport:
-        """The base's report; a run cut short by the fall says so (status ``fallen``) instead of "blew up"."""
-        self._fell = False
-        report = super().simulate(params, controls, t_end_s=t_end_s, frame_rate_hz=frame_rate_hz, request_limits=request_limits)
-        if not self._fell:
-            return report
-        return replace(report, status=FALLEN, message=fallen_message(float(report.t_s[-1]), FALLEN_LEAN_DEG))
+    def model_limit(self, params: Mapping[str, Any], t_s: np.ndarray, states: np.ndarray) -> ModelLimit | None:
+        """Where the disk has fallen or would lift off (chapter 9's rule, on the (q, v) rows of any algorithm)."""
+        return contact_limit(params, t_s, self.constrained_view(params, states))
 
     # --- stability of upright rolling ---------------------------------------------------------------------------
     def critical_spin_rad_s(self, params: Mapping[str, Any]) -> float:
@@ -162,12 +146,3 @@ class UnsteadyRollingDisk(ConstrainedModel):
     def stability(self, params: Mapping[str, Any]) -> str:
         """'upright rolling at 12.0 rad/s is stable (critical 5.7 rad/s)' for the start's spin."""
         return stability_sentence(float(params["spin_rate_0_rad_s"]), self.critical_spin_rad_s(params))
-
-
-def fallen_message(t_s: float, lean_deg: float) -> str:
-    """What a student reads when the disk has fallen."""
-    return (
-        f"Stopped at t = {t_s:.2f} s: the disk has fallen (lean past {lean_deg:.0f}°). Lying on the floor it is no longer "
-        "a disk rolling on its rim, so the rolling model stops here."
-    )
-

@@ -6,7 +6,8 @@ heading ψ, the lean θ from the vertical and the spin φ about the disk's axis.
 The rolling constraint makes the contact point move along the heading at
 r φ̇, so ẋ and ẏ follow from the angle rates (the generalized speeds). The
 floor's reaction does no work on a disk rolling without slip: T + V is the
-invariant.
+invariant. The model holds while the disk stands on its rim and the floor pushes
+(:mod:`.rolling_disk_contact`): a run stops where it has fallen or would lift off.
 """
 
 from __future__ import annotations
@@ -21,7 +22,9 @@ from scipy.optimize import brentq
 from app.physics.core.parameters import Parameter
 from app.physics.math.rotations import elementary_rotation_matrix
 from app.physics.mechanics.model import DerivedModel, derived_parameters
+from app.physics.solvers.integrated_model import ModelLimit
 from app.physics.systems.ch09.rolling_disk import SYSTEM
+from app.physics.systems.ch09.rolling_disk_contact import contact_limit, normal_force_N
 
 #: Indices into the state of the lean θ, the heading rate ψ̇ and the lean rate θ̇: the linearised lean equations' variables.
 LEAN, HEADING_RATE, LEAN_RATE, SPIN_RATE = 3, 7, 8, 9
@@ -53,7 +56,9 @@ class RollingDiskMotion(DerivedModel):
         Parameter("heading_rate_0_rad_s", "rad/s", 0.0, -20.0, 20.0, "Initial heading rate ψ̇ about the vertical", "ψ̇₀"),
         default_formulation="kane",
     )
-    series_units = {"x_m": "m", "y_m": "m", "heading_rad": "rad", "lean_rad": "rad", "spin_rate_rad_s": "rad/s", "energy_J": "J"}
+    series_units = {
+        "x_m": "m", "y_m": "m", "heading_rad": "rad", "lean_rad": "rad", "spin_rate_rad_s": "rad/s", "energy_J": "J", "normal_force_N": "N",
+    }  # fmt: skip
     invariant_units = {"energy": "J"}
 
     def initial_state(self, params: Mapping[str, Any]) -> np.ndarray:
@@ -71,7 +76,12 @@ class RollingDiskMotion(DerivedModel):
         return {
             "x_m": states[:, 0], "y_m": states[:, 1], "heading_rad": states[:, 2], "lean_rad": states[:, 3],
             "spin_rate_rad_s": states[:, SPIN_RATE], "energy_J": self.energy_J(params, t_s, states),
+            "normal_force_N": normal_force_N(params, states),
         }  # fmt: skip
+
+    def model_limit(self, params: Mapping[str, Any], t_s: np.ndarray, states: np.ndarray) -> ModelLimit | None:
+        """Where the disk has fallen or would lift off (:func:`~.rolling_disk_contact.contact_limit`)."""
+        return contact_limit(params, t_s, states)
 
     def invariants(self, params: Mapping[str, Any], states: np.ndarray) -> dict[str, np.ndarray]:
         return {"energy": self.energy_J(params, np.zeros(len(states)), states)}

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import sympy
 
-from app.physics.mechanics.description import Coordinate, Particle, Reaction, SystemDescription, vector
+from app.physics.mechanics.description import Coordinate, Particle, Reaction, Singularity, SystemDescription, vector
 from app.physics.systems.ch07.simple_pendulum import PENDULUM_PARAMETERS
 
 m, l, g = sympy.symbols("m l g", positive=True)
@@ -30,6 +30,7 @@ SYSTEM = SystemDescription(
     gravity=vector(0, 0, -g),
     reactions=(Reaction("rod", on="bob", point=bob, forces=(-bob / l,)),),
     ignorable=("phi",),
+    singularities=(Singularity(sympy.sin(th), "sin θ", "the angles are singular where sin θ = 0 (the rod vertical): the azimuth φ is undefined there; choose θ strictly between 0 and 180°"),),
     state_ranges={"theta": (0.2, 2.9)},
     assumptions="A point mass on a rigid massless rod, frictionless pivot. The angles are singular at θ = 0 (straight down), where φ is undefined.",
 )  # fmt: skip

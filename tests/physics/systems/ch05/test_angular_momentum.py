@@ -135,15 +135,26 @@ def test_a_principal_shaft_gives_h_parallel_to_omega_and_no_bearing_moment(case)
     assert not spin({**case, "tilt_deg": 30.0}).body.shaft_is_principal
 
 
-def test_zero_spin_gives_zero_everything_and_no_nan():
+def test_zero_spin_gives_zero_everything_and_no_angle():
+    """Issue 24, Found 12: at Ω = 0 the angle between ω and H_G was reported as 0.0. ω = 0 and H_G = 0 have no direction,
+    so the angle is NaN (null in the answer, whose event says why); everything else is a finite zero."""
     motion = spin({"body": "plate", "tilt_deg": 40.0, "spin_rate_rad_s": 0.0})
     state = motion.at(TIMES)
     for name in ("angular_momentum_G", "angular_momentum_O", "bearing_moment", "bearing_force_A", "bearing_force_B",
-                 "kinetic_energy_J", "angle_between_omega_and_H", "bearing_moment_N_m", "spin_angle"):  # fmt: skip
+                 "kinetic_energy_J", "bearing_moment_N_m", "spin_angle"):  # fmt: skip
         values = getattr(state, name)
         assert np.all(np.isfinite(values)) and np.all(values == 0.0), name
+    assert np.all(np.isnan(state.angle_between_omega_and_H))
     report = evaluate_model(am.ShaftSpinModel(), am.PARAMETERS.validate({"spin_rate_rad_s": 0.0}), t_end_s=2.0, frame_rate_hz=30.0)
-    assert report["stats"]["status"] == "ok" and report["stats"]["max_invariant_drift"] == 0.0
+    assert all(value is None for value in report["series"]["angle_between_omega_and_H"])
+    assert report["stats"]["status"] == "undefined" and report["stats"]["max_invariant_drift"] == 0.0
+    assert report["events"] == [{"t_s": 0.0, "kind": "undefined", "message": f"angle between ω and H_G: {am.NO_SPIN_ANGLE}"}]
+
+
+def test_a_principal_shaft_has_omega_and_h_parallel():
+    """tilt 0: the shaft is a principal axis, H_G ∥ ω, and the angle between them is a defined 0."""
+    report = evaluate_model(am.ShaftSpinModel(), am.PARAMETERS.validate({"tilt_deg": 0.0}), t_end_s=2.0, frame_rate_hz=30.0)
+    assert report["stats"]["status"] == "ok" and max(report["series"]["angle_between_omega_and_H"]) == 0.0
 
 
 def test_simulate_report_has_the_contract_series_and_constant_invariants():

@@ -243,6 +243,27 @@ def test_the_compiled_kernels_and_their_python_twins_agree():
     assert [e.index for e in compiled.events] == [e.index for e in python.events]
 
 
+def test_the_simulate_answer_says_the_bar_settled_on_one_end_in_the_readouts_words():
+    """Issue 24, Found 12: e = 0, released at 30°: end A lands at t = √(2 (h − L/2 sin 30°)/g) and stays down, tilted;
+    the answer ran on to 3 s with status ok and no message. It now ends at the frame it settled in, status "settled",
+    with :func:`mode_message` (the live readout's text) for that state."""
+    values = params(restitution=0.0)
+    report = simulate_model(bb.BouncingBar(), values, {}, t_end_s=3.0, frame_rate_hz=60.0)
+    landing_s = math.sqrt(2.0 * (values["drop_height_m"] - values["length_m"] / 2 * math.sin(math.radians(30.0))) / values["g_m_s2"])
+    assert report.status == bb.SETTLED
+    assert report.t_s[-1] == pytest.approx(math.ceil(landing_s * 60.0) / 60.0, abs=1e-12)
+    _, result = run(values, t_end_s=3.0)  # the same motion, whole: its last state is the settled one
+    final = result.states[-1]
+    assert final[bb.MODE] == bb.SETTLED_ON_END
+    assert report.message == bb.mode_message(values, final) and report.message.startswith(f"Settled on one end at t = {landing_s:.2f} s")
+
+
+def test_a_bar_that_comes_to_rest_flat_is_still_ok():
+    """Laid flat by the cut-off, the bar is a body at rest on the floor, which the model describes: no limit is met."""
+    report = simulate_model(bb.BouncingBar(), params(angle0_deg=0.0), {}, t_end_s=5.0, frame_rate_hz=30.0)
+    assert report.status == "ok" and report.t_s[-1] == pytest.approx(5.0)
+
+
 # -- contract and input --------------------------------------------------------------------------
 def test_simulate_model_reports_the_contract_series():
     values = params()

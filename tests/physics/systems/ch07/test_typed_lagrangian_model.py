@@ -151,6 +151,11 @@ def test_the_constants_parser_refuses_anything_else(text, reason):
         ({"potential_energy": "q1d*m"}, "potential_energy", "rates"),
         ({"kinetic_energy": "m*q1d^2 + m*q2d^2", "potential_energy": "os.system(1)"}, "potential_energy", "unexpected 'os' at character 1"),
         ({"coordinates": 1, "kinetic_energy": "q1^2*q1d^2/2", "potential_energy": "q1^2/2", "parameters": "", "q0_rad": [0, 0, 0]}, "q0_rad", "singular"),
+        # Issue 24, Found 12: a negative-definite T derived and simulated "ok".
+        ({"coordinates": 1, "kinetic_energy": "-q1d^2/2", "potential_energy": "q1^2/2", "parameters": ""}, "kinetic_energy", "negative eigenvalue"),
+        # Positive definite at the check state (q1 = 0.3) but not at this start (q1 = −0.5): M = diag(1, q1).
+        ({"coordinates": 2, "kinetic_energy": "q1d^2/2 + q1*q2d^2/2", "potential_energy": "0", "parameters": "", "q0_rad": [-0.5, 0, 0]},
+         "kinetic_energy", "at the initial state q1 = -0.5"),
     ],
 )
 def test_bad_lagrangians_are_refused_naming_their_field(values, field, reason):
@@ -208,3 +213,36 @@ def test_a_good_lagrangian_through_the_api_is_stored(client):
     answer = put(client, session, PENDULUM)
     assert answer.status_code == 200, answer.text
     assert put(client, session, {}).json()["params"]["kinetic_energy"] == PENDULUM["kinetic_energy"]
+
+
+# -- issue 24, Found 12: a motion that meets a singular mass matrix stops there -----------------------------------------
+KEPLER_RADIAL = {
+    "coordinates": 2, "kinetic_energy": "m*(q1d^2 + q1^2*q2d^2)/2", "potential_energy": "-k/q1", "parameters": "m = 1, k = 1",
+    "q0_rad": [1.0, 0.0, 0.0], "qd0_rad_s": [0.0, 0.0, 0.0],
+}  # fmt: skip
+
+
+@pytest.mark.parametrize("controls", [{}, {"method": "rk4", "steps_per_frame": 5}])
+def test_a_radial_kepler_fall_stops_at_r_zero_naming_the_coordinate(controls):
+    """Zero angular momentum: the particle falls straight in from r₀ = 1 and reaches r = 0 (where M = diag(m, m r²) is
+    singular) at t_c = (π/2) √(r₀³ / (2 k/m)) = 1.1107 s. It ran through to r = −140 and called the drift chaos; now the
+    run ends at the last frame before t_c (r > 0 throughout), the message names q1 = 0 and the rate q2d that loses its
+    inertia, and says nothing of chaos — with the automatic step and with a fixed one."""
+    model = TypedLagrangianMotion()
+    params = typed_params(**KEPLER_RADIAL)
+    report = simulate_model(model, params, controls, t_end_s=3.0, frame_rate_hz=60.0)
+    collision_s = math.pi / 2 * math.sqrt(1.0 / 2.0)
+    assert report.status == typed_lagrangian_model.SINGULAR_MASS_MATRIX, report.message
+    assert report.t_s[-1] == pytest.approx(math.floor(collision_s * 60.0) / 60.0, abs=1e-12)
+    assert np.all(report.series["q1_rad"] > 0.0)
+    assert "q1 = 0," in report.message and "along q2d" in report.message and "singular" in report.message
+    assert "chaotic" not in report.message
+
+
+def test_an_orbit_that_keeps_its_distance_runs_to_the_end():
+    """With angular momentum (q̇2 = 1 at r = 1: a circular orbit for k = m = 1) r stays 1 and nothing is singular."""
+    model = TypedLagrangianMotion()
+    params = typed_params(**{**KEPLER_RADIAL, "qd0_rad_s": [0.0, 1.0, 0.0]})
+    report = simulate_model(model, params, {}, t_end_s=3.0, frame_rate_hz=60.0)
+    assert report.status == "ok" and np.allclose(report.series["q1_rad"], 1.0, atol=1e-6)
+

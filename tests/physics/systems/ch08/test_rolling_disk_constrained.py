@@ -331,12 +331,14 @@ def test_above_the_threshold_the_disk_stays_upright_and_below_it_falls_over() ->
 
 
 def test_a_disk_that_falls_flat_stops_the_run_with_a_message() -> None:
-    """No spin, leaning 5°: it topples within a second; the run ends (status "fallen") at the last frame before 85°."""
-    _, report = _run({"lean_0_deg": 5.0, "spin_rate_0_rad_s": 0.0}, {}, t_end_s=5.0)
+    """No spin, leaning 45°: it topples within a second and the floor keeps pushing (N ≥ 0: see
+    tests/physics/systems/ch09/test_rolling_disk_contact.py); the run ends (status "fallen") at the last frame before 85°."""
+    _, report = _run({"lean_0_deg": 45.0, "spin_rate_0_rad_s": 0.0}, {}, t_end_s=5.0)
     assert report.status == FALLEN and "fallen" in report.message and "85°" in report.message
     assert report.t_s[-1] < 1.0
     assert math.degrees(abs(report.series["lean_rad"][-1])) < FALLEN_LEAN_DEG
     assert math.degrees(abs(report.series["lean_rad"][-1])) > 60.0
+    assert np.all(report.series["normal_force_N"] > 0.0)
     body = report.as_dict()
     assert body["stats"]["status"] == FALLEN and len(body["t"]) == len(report.t_s)
 
