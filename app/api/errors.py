@@ -84,14 +84,15 @@ async def internal_error_handler(request: Request, exc: Exception) -> Response:
 
 
 async def host_busy_handler(request: Request, exc: Exception) -> Response:
-    """503 with Retry-After: the scene worker is not answering or restarting, or its recorder is busy."""
+    """503 (or 429 for a full queue) with Retry-After: the scene worker is not answering or restarting, its recorder
+    is busy, or every place for a derivation is taken."""
     assert isinstance(exc, HostBusy)
     if isinstance(exc, WorkerUnavailableError):
         log.warning("%s %s: %s", request.method, request.url.path, exc)
         detail = "the scene worker for this session is busy or restarting; try again in a moment"
     else:
         detail = str(exc)
-    return JSONResponse({"detail": detail}, status_code=503, headers={"Retry-After": str(exc.retry_after_s)})
+    return JSONResponse({"detail": detail}, status_code=exc.status, headers={"Retry-After": str(exc.retry_after_s)})
 
 
 async def refused_handler(request: Request, exc: Exception) -> Response:

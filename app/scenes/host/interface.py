@@ -26,12 +26,14 @@ RAISE = object()
 
 
 class HostBusy(RuntimeError):
-    """The host cannot take this request now (its recorder is making another recording, a worker is not answering):
-    answered 503 with ``Retry-After: retry_after_s``."""
+    """The host cannot take this request now (its recorder is making another recording, a worker is not answering,
+    the derivations' places are taken): answered ``status`` (503, or 429 for a queue that is full) with
+    ``Retry-After: retry_after_s``."""
 
-    def __init__(self, message: str, *, retry_after_s: int = 2) -> None:
+    def __init__(self, message: str, *, retry_after_s: int = 2, status: int = 503) -> None:
         super().__init__(message)
         self.retry_after_s = retry_after_s
+        self.status = status
 
 
 @dataclass(frozen=True)

@@ -21,6 +21,7 @@ import struct
 from multiprocessing.connection import Connection, answer_challenge, deliver_challenge
 from typing import Any
 
+from app.physics.core.bounded import WorkBusy, WorkInterrupted
 from app.physics.core.parameters import ParameterError
 from app.scenes.host.host import UnknownSceneError
 from app.scenes.host.interface import HostBusy
@@ -90,7 +91,11 @@ def encode_error(exc: BaseException) -> Answer:
     if isinstance(exc, ValueError):
         return ("value_error", str(exc))
     if isinstance(exc, HostBusy):
-        return ("busy", str(exc), exc.retry_after_s)
+        return ("busy", str(exc), exc.retry_after_s, exc.status)
+    if isinstance(exc, WorkBusy):  # every place for a bounded derivation is taken: a full queue
+        return ("busy", str(exc), exc.retry_after_s, 429)
+    if isinstance(exc, WorkInterrupted):  # the derivation was stopped from outside: try again
+        return ("busy", str(exc), exc.retry_after_s, 503)
     return ("internal_error", f"{type(exc).__name__}: {exc}")
 
 
@@ -106,5 +111,5 @@ def raise_answer(answer: Answer) -> Any:
     if kind == "value_error":
         raise ValueError(answer[1])
     if kind == "busy":
-        raise HostBusy(answer[1], retry_after_s=answer[2])
+        raise HostBusy(answer[1], retry_after_s=answer[2], status=answer[3])
     raise RuntimeError(f"scene worker failed: {answer[1]}")

@@ -103,6 +103,7 @@ def _accept_calls(listener: socket.socket, authkey: bytes, host: Any, closing: t
 
 
 def _answer_calls(sock: socket.socket, authkey: bytes, host: Any) -> None:
+    from app.physics.core.bounded import WorkBusy, WorkInterrupted
     from app.scenes.host.interface import WORKER_CALLS, HostBusy
     from app.scenes.host.rpc import accept, encode_error
 
@@ -123,7 +124,7 @@ def _answer_calls(sock: socket.socket, authkey: bytes, host: Any) -> None:
                 try:
                     answer = ("ok", getattr(host, method)(*args, **kwargs))
                 except Exception as exc:  # every error goes back to the caller, which raises it again
-                    if not isinstance(exc, ValueError | KeyError | HostBusy):  # refusals are answers, not faults
+                    if not isinstance(exc, ValueError | KeyError | HostBusy | WorkBusy | WorkInterrupted):  # answers, not faults
                         log.exception("worker call %s failed", method)
                     answer = encode_error(exc)
             try:

@@ -145,7 +145,8 @@ def prepare_typed_lagrangian(request: Mapping[str, Any]) -> PreparedLagrangian:
     """Derive (bounded, :func:`derive_typed_bounded`) and compile (bounded) a typed Lagrangian, once per request per process.
 
     Raises ParameterError naming the field for a bad formula, a singular mass matrix or
-    a derivation over its bounds (``kinetic_energy``), as the whole-set check must.
+    a derivation over its bounds (``kinetic_energy``), as the whole-set check must; WorkBusy or WorkInterrupted
+    (answered 429 / 503 with Retry-After) when the server could not derive it now.
     """
     key = _request_key(request)
     with _prepared_lock:
@@ -155,9 +156,9 @@ def prepare_typed_lagrangian(request: Mapping[str, Any]) -> PreparedLagrangian:
     try:
         answer = derive_typed_bounded(request)
         compile_s = runner.run(compile_typed_kernel, (dict(request),), what="compiling these equations")
-    except ParameterError:
+    except (ParameterError, WorkBusy, WorkInterrupted):  # busy or stopped from outside: "try again", not the input's fault
         raise
-    except (WorkRefused, WorkBusy, WorkInterrupted, ValueError) as error:
+    except (WorkRefused, ValueError) as error:
         raise ParameterError("kinetic_energy", str(error)) from None
     system = typed_system(request["coordinates"], request["kinetic_energy"], request["potential_energy"], request["parameters"])
     result = derived(system, "lagrange")
