@@ -38,6 +38,7 @@ from app.bench.capacity import (
     per_client_rates,
     read_report,
     run_load,
+    started_server,
     with_independent_comparison,
     write_report,
 )
@@ -103,6 +104,21 @@ def test_a_tiny_real_run_delivers_frames_to_every_student_and_writes_its_report(
     assert [p.name for p in paths] == ["capacity.json", "capacity.svg"]
     assert read_report(tmp_path / "capacity.json") == json.loads(json.dumps(report))
     assert ET.parse(tmp_path / "capacity.svg").getroot().tag == f"{SVG}svg"
+
+
+def test_students_from_their_own_addresses_each_pass_a_per_address_limit_one_address_does_not(monkeypatch):
+    # A server that lets each client address open one viewer (and refills once in 100 s): a class on one address
+    # gets one viewer through, a class of devices (--distinct-addresses) every one. About 8 s.
+    monkeypatch.setenv("DYNLAB_VIEWER_OPEN_BURST", "1")
+    monkeypatch.setenv("DYNLAB_VIEWER_OPEN_RATE_PER_S", "0.01")
+    with started_server(workers=0) as server:
+        options = {"students": (3,), "seconds": 1.0, "warmup_s": 0.2, "url": server.base_url}
+        (one_address,) = run_load(LoadOptions(**options))["steps"]
+        (own_addresses,) = run_load(LoadOptions(**options, distinct_addresses=True))["steps"]
+    assert one_address["connected"] == 1 and one_address["errors"] == 2
+    assert all("HTTP 403" in error for error in one_address["error_examples"]), one_address["error_examples"]
+    assert own_addresses["connected"] == 3 and own_addresses["errors"] == 0, own_addresses["error_examples"]
+    assert own_addresses["frames_per_s"]["min"] > 0
 
 
 def test_the_plot_is_valid_svg_with_a_line_pair_per_scene_and_both_targets():
