@@ -9,8 +9,8 @@ Each attack is its own coroutine, bounded in count (:class:`AttackBounds`) and c
   and viser's first camera message, one student after another (the attacker knows every student's id: the worst
   case);
 - item 4, **floods**: session claims (``PUT`` of new ids, each with its own key) as fast as the server answers,
-  with a change of a student's session under the attacker's key after every few hundred claims (it should be
-  refused: 403); and anonymous ``GET``s of random session ids (``…/playback`` and ``…/live``);
+  with a change of a student's session under the attacker's key every 2 s meanwhile (it should be refused: 403);
+  and anonymous ``GET``s of random session ids (``…/playback`` and ``…/live``);
 - item 5, **bursts**: 40 concurrent ``GET …/playback`` and, beside them, 40 concurrent ``GET …/recording.html``,
   of the attacker's own session, repeatedly;
 - item 6, **expensive requests**: on its own double-pendulum sessions (rk4, 4096 steps per frame, or the most the
@@ -61,6 +61,8 @@ FIRST_FRAME_S = 2.0
 WINDOW_ENDED = "no answer by the window's end"
 #: Seconds after the window's end the attacker may take to close its sockets and report.
 WIND_DOWN_S = 15.0
+#: Seconds between two tries at changing a student's session under the attacker's key during the claim flood.
+TAKEOVER_PERIOD_S = 2.0
 #: The double pendulum's expensive settings: rk4 with this many steps per frame, else the most the server allows.
 DOUBLE_PENDULUM_STEPS = (4096, 1024, 256, 64)
 #: A kinetic energy whose derivation sympy does not finish in 20 s (q1d² + q2d² + q3d² times powers of periodic
@@ -89,8 +91,8 @@ class AttackBounds:
     #: Item 4: new sessions claimed, over ``claim_connections`` connections at a time.
     claims: int = 2100
     claim_connections: int = 2
-    #: Item 4: claims between two tries at changing a student's session under the attacker's key.
-    claims_per_takeover: int = 300
+    #: Item 4: tries at changing a student's session under the attacker's key, one every TAKEOVER_PERIOD_S.
+    takeovers: int = 100
     #: Item 4: anonymous GETs of random session ids, over ``get_connections`` connections at a time.
     anonymous_gets: int = 2100
     get_connections: int = 2
@@ -121,7 +123,7 @@ class AttackBounds:
 
 #: A smaller attack of every kind, for a quick check of the tool (each attack still runs).
 QUICK_BOUNDS = AttackBounds(
-    room_rounds=3, rescenes=3, claims=40, claims_per_takeover=20, anonymous_gets=40, burst=40, bursts=1, seeks=2,
+    room_rounds=3, rescenes=3, claims=40, takeovers=3, anonymous_gets=40, burst=40, bursts=1, seeks=2,
     steps=10, viewers=10, derivations=1, request_timeout_s=5.0,
 )  # fmt: skip
 
@@ -314,36 +316,41 @@ class Attacker:
     # ---- item 4: floods of claims and of anonymous lookups ----------------------------------------------------
 
     async def claim_flood(self) -> None:
+        """Claims as fast as the server answers and, beside them, a student's session changed under the attacker's
+        key every :data:`TAKEOVER_PERIOD_S` (a flood that evicts the students' claims lets that through)."""
         scene = self.plan.scene_id
         claims = self.record(4, "claim flood", f"PUT /api/scenes/{scene}/sessions/<new id> {{\"params\": {{}}}} with a new key each")
-        takeover = self.record(4, "a student's session under the attacker's key, after the flood",
+        takeover = self.record(4, "a student's session under the attacker's key, during the flood",
                                f"PUT /api/scenes/{scene}/sessions/<a student's session id>/playback {{\"playing\": false}} "
-                               "with the attacker's key, after every few hundred claims")  # fmt: skip
+                               f"with the attacker's key, every {TAKEOVER_PERIOD_S:g} s while the claims go on")  # fmt: skip
         counter = itertools.count()
         victims = itertools.cycle(self.plan.victims) if self.plan.victims else iter(())
         attacker_key = new_session_key()
 
-        async def try_takeover() -> None:
-            victim = next(victims, None)
-            if victim is None:
-                return
-            self.victims_named.add(victim)
-            answer = await self.request("PUT", f"/api/scenes/{scene}/sessions/{victim}/playback", body={"playing": False}, key=attacker_key)
-            if answer is not None:
-                takeover.add_http(answer)
-
         async def claimer() -> None:
-            while self.remaining_s() > 0 and (index := next(counter)) < self.bounds.claims:
-                session_id, key = new_session_id(), new_session_key()
-                answer = await self.request("PUT", f"/api/scenes/{scene}/sessions/{session_id}", body={"params": {}}, key=key)
+            while self.remaining_s() > 0 and next(counter) < self.bounds.claims:
+                answer = await self.request("PUT", f"/api/scenes/{scene}/sessions/{new_session_id()}", body={"params": {}}, key=new_session_key())
                 if answer is None:
                     return
                 claims.add_http(answer)
-                if (index + 1) % self.bounds.claims_per_takeover == 0:
-                    await try_takeover()
 
-        await asyncio.gather(*(claimer() for _ in range(self.bounds.claim_connections)))
-        await try_takeover()
+        async def take_over(_: int) -> bool:
+            await asyncio.sleep(max(0.0, min(TAKEOVER_PERIOD_S, self.remaining_s() / 2)))  # a short window gets one too
+            victim = next(victims, None)
+            if victim is None:
+                return False
+            self.victims_named.add(victim)
+            path = f"/api/scenes/{scene}/sessions/{victim}/playback"
+            answer = await self.request("PUT", path, body={"playing": False}, key=attacker_key)
+            if answer is None:
+                return False
+            takeover.add_http(answer)
+            return True
+
+        await asyncio.gather(
+            *(claimer() for _ in range(self.bounds.claim_connections)),
+            self.until_window_ends(self.bounds.takeovers, take_over),
+        )
 
     async def anonymous_gets(self) -> None:
         scene = self.plan.scene_id

@@ -63,7 +63,7 @@ import numpy as np
 from app.bench.attacks import AttackBounds
 from app.bench.load_client import Classroom, ClassroomSnapshot, HealthLatency, loopback_base, probe_health
 from app.bench.plot import FONT, SVG_NS, _f, _marker, _text
-from app.bench.process_tree import TreeUsage, tree_pids, tree_usage
+from app.bench.process_tree import TreeUsage, process_group_members, tree_pids, tree_usage
 from app.bench.report_file import read_report_file
 from app.rooms.roles import HEADER as INSTRUCTOR_HEADER
 from app.rooms.roles import MIN_KEY_LENGTH
@@ -268,6 +268,10 @@ def stop_process_group(process: subprocess.Popen, *, timeout_s: float) -> Server
     if process.poll() is None:
         process.kill()
         process.wait(timeout=SERVER_STOP_TIMEOUT_S)
+    # SIGKILL takes effect when each process is next scheduled: wait (bounded) until the group is gone.
+    deadline = time.monotonic() + SERVER_STOP_TIMEOUT_S
+    while process_group_members(process.pid) and time.monotonic() < deadline:
+        time.sleep(0.05)
     return ServerStop(seconds=seconds, killed=killed)
 
 

@@ -15,13 +15,12 @@ import copy
 import json
 import time
 import xml.etree.ElementTree as ET
-from pathlib import Path
-
 import pytest
 
 from app.bench.attacks import QUICK_BOUNDS, AttackBounds, AttackPlan
 from app.bench.capacity import LoadOptions, SERVER_START_TIMEOUT_S
 from app.bench.load_client import ATTACKER_ADDRESS, http_request, student_address
+from app.bench.process_tree import process_group_members
 from app.bench.under_attack import (
     ATTACKER_REPORT_S,
     STOP_TIMEOUT_S,
@@ -40,26 +39,12 @@ ATTACKS = {
     "room scene: playing": 2, "room scene: time_scale": 2, "room scene: seek_s": 2, "room scene: go_to_s": 2,
     "room scene: reset": 2, "room scene: camera": 2,
     "viewer re-scenes a student's session": 3,
-    "claim flood": 4, "a student's session under the attacker's key, after the flood": 4,
+    "claim flood": 4, "a student's session under the attacker's key, during the flood": 4,
     "anonymous GETs of random session ids": 4,
     "burst: concurrent GETs of playback": 5, "burst: concurrent GETs of recording.html": 5,
     "viewer flood from one address": 6, "long seek on an expensive session": 6, "repeated steps of 300 frames": 6,
     "two slow typed-Lagrangian derivations at once": 6,
 }  # fmt: skip
-
-
-def _process_group_members(group_id: int) -> list[int]:
-    """Live processes whose process group is ``group_id`` (from /proc)."""
-    members = []
-    for entry in Path("/proc").iterdir():
-        if entry.name.isdigit():
-            try:
-                fields = (entry / "stat").read_text().rsplit(")", 1)[1].split()
-            except OSError:
-                continue
-            if int(fields[2]) == group_id and fields[0] != "Z":
-                members.append(int(entry.name))
-    return members
 
 
 def test_a_tiny_attack_run_measures_both_windows_records_every_attack_and_leaves_nothing_running(tmp_path):
@@ -79,7 +64,7 @@ def test_a_tiny_attack_run_measures_both_windows_records_every_attack_and_leaves
     # scene workers, their derivation children) is left.
     stop = report["server"]["stop_after_ctrl_c"]
     assert stop["seconds"] <= STOP_TIMEOUT_S + 1.0 and isinstance(stop["killed"], bool)
-    assert _process_group_members(report["server"]["measured_pid"]) == []
+    assert process_group_members(report["server"]["measured_pid"]) == []
     assert "127.0.1.1" in report["method"]["addresses"] and ATTACKER_ADDRESS in report["method"]["addresses"]
     before, during = report["windows"]["baseline"], report["windows"]["attack"]
     for window in (before, during):

@@ -14,8 +14,10 @@ lab section.
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import json
 import os
+import signal
 import subprocess
 import sys
 import time
@@ -39,12 +41,13 @@ from app.bench.capacity import (
     read_report,
     run_load,
     started_server,
+    stop_process_group,
     with_independent_comparison,
     write_report,
 )
 from app.bench.load_client import ClassroomSnapshot, loopback_base, new_session_id, viser_messages_in_frame
 from app.cli import main as cli_main
-from app.bench.process_tree import TreeUsage, tree_usage
+from app.bench.process_tree import TreeUsage, process_group_members, tree_usage
 from app.bench.soak import judge_soak, run_soak, wait_until_settled
 from app.scenes.host.host import SESSION_ID_PATTERN
 from app.settings import Settings
@@ -219,6 +222,23 @@ def test_the_process_tree_includes_children_and_refuses_a_missing_pid():
         child.wait()
     with pytest.raises(ValueError, match="^server_pid:"):
         tree_usage(2**22 + 12345)  # above Linux's pid_max limit: never a running process
+
+
+def test_a_started_process_group_is_listed_until_all_of_it_is_gone():
+    # A leader that starts a child and sleeps: both are in its group; the load tool's stop kills the whole group.
+    leader = subprocess.Popen(
+        [sys.executable, "-c", "import subprocess, sys, time; subprocess.Popen([sys.executable, '-c', 'import time; time.sleep(60)']); time.sleep(60)"],
+        start_new_session=True,
+    )  # fmt: skip
+    try:
+        wait_until(lambda: len(process_group_members(leader.pid)) == 2, timeout_s=30.0, what="the leader and its child")
+        assert leader.pid in process_group_members(leader.pid)
+        stopped = stop_process_group(leader, timeout_s=0.5)  # SIGINT ends the leader; the group is killed after it
+        assert process_group_members(leader.pid) == [] and stopped.seconds < 5.0
+    finally:
+        with contextlib.suppress(ProcessLookupError):
+            os.killpg(leader.pid, signal.SIGKILL)
+        leader.wait(timeout=10)
 
 
 def test_the_front_process_cpu_leaves_out_its_children_and_the_machine_total_includes_them():
