@@ -9,7 +9,8 @@ Each attack is its own coroutine, bounded in count (:class:`AttackBounds`) and c
   and viser's first camera message, one student after another (the attacker knows every student's id: the worst
   case);
 - item 4, **floods**: session claims (``PUT`` of new ids, each with its own key) as fast as the server answers,
-  with a change of a student's session under the attacker's key every 2 s meanwhile (it should be refused: 403);
+  with a change of a student's session under the attacker's key every few seconds meanwhile (it should be refused:
+  403);
   and anonymous ``GET``s of random session ids (``…/playback`` and ``…/live``);
 - item 5, **bursts**: 40 concurrent ``GET …/playback`` and, beside them, 40 concurrent ``GET …/recording.html``,
   of the attacker's own session, repeatedly;
@@ -61,8 +62,6 @@ FIRST_FRAME_S = 2.0
 WINDOW_ENDED = "no answer by the window's end"
 #: Seconds after the window's end the attacker may take to close its sockets and report.
 WIND_DOWN_S = 15.0
-#: Seconds between two tries at changing a student's session under the attacker's key during the claim flood.
-TAKEOVER_PERIOD_S = 2.0
 #: The double pendulum's expensive settings: rk4 with this many steps per frame, else the most the server allows.
 DOUBLE_PENDULUM_STEPS = (4096, 1024, 256, 64)
 #: A kinetic energy whose derivation sympy does not finish in 20 s (q1d² + q2d² + q3d² times powers of periodic
@@ -82,7 +81,9 @@ ROOM_CHANGES: tuple[tuple[str, dict], ...] = (
 
 @dataclass(frozen=True)
 class AttackBounds:
-    """The most each attack tries in one window (every loop also stops when the window ends)."""
+    """The most each attack tries in one window (every loop also stops when the window ends). The floods (claims,
+    anonymous GETs, viewers) go as fast as the server answers; every other attack spreads its tries evenly over the
+    window, so it keeps the pressure on however fast it is answered (or refused)."""
 
     #: Item 2: tries of each of the six room changes.
     room_rounds: int = 100
@@ -91,8 +92,8 @@ class AttackBounds:
     #: Item 4: new sessions claimed, over ``claim_connections`` connections at a time.
     claims: int = 2100
     claim_connections: int = 2
-    #: Item 4: tries at changing a student's session under the attacker's key, one every TAKEOVER_PERIOD_S.
-    takeovers: int = 100
+    #: Item 4: tries at changing a student's session under the attacker's key.
+    takeovers: int = 15
     #: Item 4: anonymous GETs of random session ids, over ``get_connections`` connections at a time.
     anonymous_gets: int = 2100
     get_connections: int = 2
@@ -271,8 +272,14 @@ class Attacker:
         return session_id, key
 
     async def until_window_ends(self, count: int, attempt: Callable[[int], Awaitable[bool]]) -> None:
-        """``attempt(0)``, ``attempt(1)``, … up to ``count`` times, until the window ends or an attempt returns False."""
+        """``attempt(0)``, ``attempt(1)``, … up to ``count`` times, spread over the window (attempt ``i`` starts no
+        earlier than ``i / count`` of the way through it, so the attack lasts the whole window however fast the server
+        answers), until the window ends or an attempt returns False."""
+        start = self.deadline - self.plan.seconds
         for index in range(count):
+            wait_s = start + index * self.plan.seconds / count - time.monotonic()
+            if wait_s > 0:
+                await asyncio.sleep(min(wait_s, max(0.0, self.remaining_s())))
             if self.remaining_s() <= 0 or not await attempt(index):
                 return
 
@@ -317,12 +324,12 @@ class Attacker:
 
     async def claim_flood(self) -> None:
         """Claims as fast as the server answers and, beside them, a student's session changed under the attacker's
-        key every :data:`TAKEOVER_PERIOD_S` (a flood that evicts the students' claims lets that through)."""
+        key every so often (a flood that evicts the students' claims lets that through)."""
         scene = self.plan.scene_id
         claims = self.record(4, "claim flood", f"PUT /api/scenes/{scene}/sessions/<new id> {{\"params\": {{}}}} with a new key each")
         takeover = self.record(4, "a student's session under the attacker's key, during the flood",
                                f"PUT /api/scenes/{scene}/sessions/<a student's session id>/playback {{\"playing\": false}} "
-                               f"with the attacker's key, every {TAKEOVER_PERIOD_S:g} s while the claims go on")  # fmt: skip
+                               "with the attacker's key, every few seconds while the claims go on")  # fmt: skip
         counter = itertools.count()
         victims = itertools.cycle(self.plan.victims) if self.plan.victims else iter(())
         attacker_key = new_session_key()
@@ -335,7 +342,6 @@ class Attacker:
                 claims.add_http(answer)
 
         async def take_over(_: int) -> bool:
-            await asyncio.sleep(max(0.0, min(TAKEOVER_PERIOD_S, self.remaining_s() / 2)))  # a short window gets one too
             victim = next(victims, None)
             if victim is None:
                 return False
