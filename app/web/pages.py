@@ -538,7 +538,7 @@ def _attack_row(attack: dict) -> str:
     slowest = f"{latency:,.0f}" if isinstance(latency, (int, float)) and not isinstance(latency, bool) else "—"
     return (
         f'<tr><td class="num">{esc(str(attack.get("item")))}</td><th scope="row">{esc(str(attack.get("name")))}</th>'
-        f'<td>{esc(str(attack.get("request")))}</td><td class="num">{esc(str(attack.get("count")))}</td>'
+        f'<td class="num">{esc(str(attack.get("count")))}</td>'
         f'<td>{answers or "—"}</td><td class="num">{slowest}</td></tr>'
     )
 
@@ -585,9 +585,10 @@ def _attack_note(settings) -> str:
             'and while one client attacks, and what each attack got. The attacks are in the table below." '
             f'width="{under_attack.WIDTH}" height="{under_attack.plot_height(report)}"></a></figure>'
         )
+    # The exact requests are in attack.json and the plot; the table keeps to what fits beside the text.
     table = (
         '<div class="table-wrap"><table class="bench-attacks"><thead><tr><th scope="col">Item</th>'
-        '<th scope="col">Attack</th><th scope="col">Requests</th><th scope="col">Tries</th>'
+        '<th scope="col">Attack</th><th scope="col">Tries</th>'
         '<th scope="col">Answers (count)</th><th scope="col">Slowest answer (ms)</th></tr></thead>'
         f"<tbody>{rows}</tbody></table></div>"
     )

@@ -208,7 +208,7 @@ def test_an_attack_plan_goes_to_the_attacker_process_and_back_unchanged():
 
 def _attack(item: int, name: str, answers: dict[str, int], slowest_ms: float) -> dict:
     return {
-        "item": item, "name": name, "request": f"the request of {name} <b>", "count": sum(answers.values()),
+        "item": item, "name": name, "request": f"the request of {name}", "count": sum(answers.values()),
         "answers": answers, "examples": {}, "latency_ms": {"median": slowest_ms / 2, "p95": slowest_ms, "max": slowest_ms},
     }  # fmt: skip
 
@@ -237,7 +237,7 @@ SYNTHETIC_ATTACK_REPORT = {
     "windows": {"baseline": _window(29.4, 29.9, 27.0), "attack": {**_window(3.5, 12.4, 0.0, dropped=4), "attacker_cpu_cores": 0.3}},
     "attacks": [
         _attack(6, "viewer flood from one address", {"streamed": 200}, 900.0),
-        _attack(2, "room scene: playing", {"200": 55}, 40.0),
+        _attack(2, "room scene: playing <i>", {"200": 55}, 40.0),
         _attack(5, "burst: concurrent GETs of playback", {"200": 22, "timeout": 18}, 10_001.0),
     ],
 }  # fmt: skip
@@ -279,7 +279,7 @@ def test_the_solver_lab_shows_the_attack_figures_beside_the_capacity_figures(tmp
     assert "against 29.4 (median 29.9) just before the attack" in note and "not met" in note
     assert '<img src="/bench/attack.svg"' in note
     assert note.count("<tr>") == 1 + len(SYNTHETIC_ATTACK_REPORT["attacks"])
-    assert "the request of room scene: playing &lt;b&gt;" in note  # escaped
+    assert "<th scope=\"row\">room scene: playing &lt;i&gt;</th>" in note  # escaped
     assert "200 ×22, timeout ×18" in note and "10,001" in note
     assert note in _capacity_section(settings)
     (tmp_path / "attack.json").write_text("{not json", encoding="utf-8")
