@@ -376,9 +376,7 @@ def _notes(report: dict) -> list[str]:
     lines = [
         f"Under attack the 10th percentile is {_number(verdict.get('p10_frames_per_s_under_attack'))} frames/s: "
         + ("the target is met." if verdict.get("meets_target") else f"the target of {TARGET_P10_FRAMES_PER_S:g} is missed."),
-        f"Students whose session id an attack used ({named.get('students', '?')}): 10th percentile "
-        f"{_number((named.get('frames_per_s') or {}).get('p10'))}; the others ({others.get('students', '?')}): "
-        f"{_number((others.get('frames_per_s') or {}).get('p10'))} frames/s.",
+        _split_note(named, others),
         f"Projector (the room's shared scene): {_number(before.get('projector_frames_per_s'))} frames/s before, "
         f"{_number(during.get('projector_frames_per_s'))} under attack.",
         f"Server CPU: {_number(before.get('server_cpu_cores'))} cores before, {_number(during.get('server_cpu_cores'))} under "
@@ -393,6 +391,19 @@ def _notes(report: dict) -> list[str]:
             f"{_number(stop.get('seconds'), ' s')}{' and was killed' if stop.get('killed') else ''}."
         )
     return lines
+
+
+def _split_note(named: dict, others: dict) -> str:
+    """The 10th percentile of the students whose session id an attack used, and of the others (if any)."""
+    p10 = lambda part: _number((part.get("frames_per_s") or {}).get("p10"))  # noqa: E731
+    if not others.get("students"):
+        return f"An attack used every student's session id ({named.get('students', '?')}); their 10th percentile is above."
+    if not named.get("students"):
+        return "No attack used a student's session id."
+    return (
+        f"Students whose session id an attack used ({named['students']}): 10th percentile {p10(named)} frames/s; "
+        f"the others ({others['students']}): {p10(others)} frames/s."
+    )
 
 
 def _wrapped(text: str, width: int) -> list[str]:

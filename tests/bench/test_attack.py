@@ -5,7 +5,8 @@ server it starts, as ``dynlab serve`` runs with its scene workers: it checks the
 arrived, that every attack ran and recorded the answers it got, and that the tool, its attacker and the server were
 all gone within their bounds. No speed is asserted (the machine is shared, and today's server does not yet withstand
 the attack). The rest check the raw HTTP client's answers to refusals, resets and silence, the students' source
-addresses, the option bounds, the plot, and the Solver lab's section with and without a report.
+addresses, the option bounds, the plot, the Solver lab's section with and without a report, and the committed
+report (docs/bench/attack.json): today it is the "before" figure, so the acceptance test on it is a strict xfail.
 """
 
 from __future__ import annotations
@@ -15,6 +16,8 @@ import copy
 import json
 import time
 import xml.etree.ElementTree as ET
+from pathlib import Path
+
 import pytest
 
 from app.bench.attacks import QUICK_BOUNDS, AttackBounds, AttackPlan
@@ -263,6 +266,7 @@ def test_the_plot_shows_both_windows_the_target_and_a_row_per_attack():
     texts = " ".join(t.text or "" for t in root.iter(f"{SVG}text"))
     assert "200 ×22, timeout ×18" in texts and "10,001" in texts
     assert "the target of 28 is missed" in texts and "was killed" in texts
+    assert "used (20): 10th percentile 0.5 frames/s; the others (80): 3.5 frames/s" in texts
     empty = ET.fromstring(attack_svg({"attacks": []}))
     empty_texts = " ".join(t.text or "" for t in empty.iter(f"{SVG}text"))
     assert "no attack recorded an answer" in empty_texts and "not measured" in empty_texts
@@ -288,3 +292,43 @@ def test_the_solver_lab_shows_the_attack_figures_beside_the_capacity_figures(tmp
     del malformed["windows"]["attack"]
     (tmp_path / "attack.json").write_text(json.dumps(malformed), encoding="utf-8")
     assert "measurement under attack is malformed" in _attack_note(settings)
+
+
+# ---- the committed measurement -----------------------------------------------------------------------------------
+
+BENCH_DIR = Path(__file__).resolve().parents[2] / "docs" / "bench"
+
+
+def _committed_attack_report() -> dict:
+    # The report is part of the repository (dynlab load --attack writes it): a missing file fails, it does not skip.
+    report = read_attack_report(BENCH_DIR / "attack.json")
+    assert report is not None, "docs/bench/attack.json is missing: run `dynlab load --attack`"
+    return report
+
+
+def test_the_committed_attack_report_measured_100_students_on_their_own_addresses_against_every_attack():
+    report = _committed_attack_report()
+    assert ET.parse(BENCH_DIR / "attack.svg").getroot().tag == f"{SVG}svg"
+    assert report["mode"] == "attack" and report["scene_id"] == "heavy-top" and report["students"] == 100
+    assert report["server"]["started_by_tool"] is True and report["server"]["workers"] == 2
+    assert "127.0.1.1" in report["method"]["addresses"]
+    before = report["windows"]["baseline"]
+    # Before the attack the class had the machine to itself: every student connected and at the capacity target.
+    assert before["connected"] == 100 and before["errors"] == 0, before["error_examples"]
+    assert before["frames_per_s"]["p10"] >= report["targets"]["p10_frames_per_s"] == 28.0
+    assert {attack["name"]: attack["item"] for attack in report["attacks"]} == ATTACKS
+    assert all(attack["count"] >= 1 for attack in report["attacks"])
+    assert report["attacker"]["failures"] == {}
+
+
+@pytest.mark.xfail(strict=True, reason="the committed report is the 'before' figure, on today's server without the "
+                   "defences of issue 24 (students fell to well under 1 frame/s); remove this mark when the re-run after "
+                   "the defences is committed")  # fmt: skip
+def test_the_committed_attack_report_shows_the_class_keeping_28_frames_per_s_under_attack():
+    # Issue 24, Build 4's acceptance: with one client attacking with everything in items 2-6 of Found, the 100 keep
+    # >= 28 frames/s (10th percentile), counting every student connected when the attack began.
+    report = _committed_attack_report()
+    during = report["windows"]["attack"]
+    assert during["connected"] == 100 and during["dropped"] == 0
+    assert during["frames_per_s"]["p10"] >= 28.0
+    assert report["verdict"]["meets_target"] is True
