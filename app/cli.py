@@ -1,5 +1,5 @@
 """Command line: ``dynlab serve [--host H] [--port P]``, ``dynlab bench [--quick] [--case C]``,
-``dynlab load [--students 10,30] [--scene ID] [--room]``, ``dynlab soak [--students N] [--minutes M]``,
+``dynlab load [--students 10,30] [--scene ID] [--room | --attack]``, ``dynlab soak [--students N] [--minutes M]``,
 ``dynlab derivations [--no-proofs]`` and ``dynlab constrained [--quick] [--case C]``."""
 
 from __future__ import annotations
@@ -121,7 +121,7 @@ def _add_load_and_soak(commands: argparse._SubParsersAction) -> None:
     from app.bench.capacity import add_load_arguments
     from app.bench.soak import add_soak_arguments
 
-    load = commands.add_parser("load", help="classroom capacity: N viewers per scene, or with --room N followers of one room (writes docs/bench/capacity.json or classroom.json, and .svg)")
+    load = commands.add_parser("load", help="classroom capacity: N viewers per scene, with --room N followers of one room, with --attack 100 students before and while one client attacks (writes docs/bench/capacity.json, classroom.json or attack.json, and .svg)")
     add_load_arguments(load)
     load.set_defaults(run=_load, parser=load)
     soak = commands.add_parser("soak", help="N viewers for M minutes, then all gone: resources back to baseline")

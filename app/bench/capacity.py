@@ -25,6 +25,13 @@ same figures are measured per class size (1 to 150 by default), and the report
 is ``classroom.json`` plus ``classroom.svg``: frames/s and server CPU against
 students, following beside the independent viewers of ``capacity.json``, and
 the server's CPU with 1 and with 100 followers (``follow_cost``).
+
+Each student is a lesson page: it claims its own session first (``PUT`` with
+its ``X-Session-Key``), then opens its viewer. With ``--distinct-addresses``
+each connects from its own loopback address (127.0.1.1, 127.0.1.2, …), so the
+server's per-address limits see a class of devices rather than one client.
+``--attack`` measures a class on its own scenes before and while one client
+attacks it (:mod:`app.bench.under_attack`; ``attack.json`` and ``.svg``).
 """
 
 from __future__ import annotations
@@ -53,9 +60,10 @@ from xml.sax.saxutils import escape
 
 import numpy as np
 
-from app.bench.load_client import Classroom, HealthLatency, loopback_base, probe_health
+from app.bench.attacks import AttackBounds
+from app.bench.load_client import Classroom, ClassroomSnapshot, HealthLatency, loopback_base, probe_health
 from app.bench.plot import FONT, SVG_NS, _f, _marker, _text
-from app.bench.process_tree import TreeUsage, tree_pids, tree_usage
+from app.bench.process_tree import TreeUsage, process_group_members, tree_pids, tree_usage
 from app.bench.report_file import read_report_file
 from app.rooms.roles import HEADER as INSTRUCTOR_HEADER
 from app.rooms.roles import MIN_KEY_LENGTH
@@ -69,6 +77,9 @@ CLASSROOM_PLOT_FILE = "classroom.svg"
 ROOM_STUDENTS = (1, 10, 30, 60, 100, 150)
 #: The class size whose server CPU the issue compares with one viewer's.
 FOLLOW_COST_CLASS = 100
+#: An ``--attack`` run's class (students on their own heavy tops) and each of its two windows (s) unless given.
+ATTACK_STUDENTS = 100
+ATTACK_SECONDS = 30.0
 PROJECT_ROOT = Path(__file__).resolve().parents[2]
 DEFAULT_OUT_DIR = PROJECT_ROOT / "docs" / "bench"
 
@@ -102,8 +113,17 @@ class LoadOptions:
     room: bool = False
     #: The server's instructor secret, for opening the room (a server the tool starts gets a random one).
     instructor_key: str | None = None
+    #: Each student connects from its own loopback address (127.0.1.1, 127.0.1.2, …), as a class of devices does;
+    #: None: on for an attack run, off otherwise.
+    distinct_addresses: bool | None = None
+    #: Students on their own scenes, measured before and while one client attacks (app.bench.under_attack).
+    attack: bool = False
+    #: How much the attacker tries (None: everything, :class:`~app.bench.attacks.AttackBounds`'s defaults).
+    attack_bounds: AttackBounds | None = None
 
     def __post_init__(self) -> None:
+        if self.distinct_addresses is None:
+            object.__setattr__(self, "distinct_addresses", self.attack)
         if not self.scenes:
             raise ValueError("scene: give at least one scene id")
         for scene_id in self.scenes:
@@ -126,12 +146,21 @@ class LoadOptions:
         elif self.server_pid is not None:
             raise ValueError("server_pid: only with --url (a server the tool starts is measured by its own pid)")
         if self.instructor_key is not None:
-            if not self.room:
-                raise ValueError("instructor_key: only with --room (it opens the room the students follow)")
+            if not (self.room or self.attack):
+                raise ValueError("instructor_key: only with --room or --attack (it opens the room)")
             if len(self.instructor_key) < MIN_KEY_LENGTH:
                 raise ValueError(f"instructor_key: at least {MIN_KEY_LENGTH} characters, got {len(self.instructor_key)}")
-        elif self.room and self.url is not None:
-            raise ValueError("instructor_key: a --room run against --url needs the server's instructor key")
+        elif (self.room or self.attack) and self.url is not None:
+            raise ValueError(f"instructor_key: a {'--room' if self.room else '--attack'} run against --url needs the server's instructor key")
+        if self.attack:
+            if self.room:
+                raise ValueError("attack: students on their own scenes are attacked; --room and --attack do not go together")
+            if len(self.scenes) != 1 or len(self.students) != 1:
+                raise ValueError("attack: one scene and one class size (the students are measured before and under attack)")
+        elif self.attack_bounds is not None:
+            raise ValueError("attack_bounds: only with --attack")
+        if self.distinct_addresses and self.url is not None and loopback_base(self.url)[0] == "::1":
+            raise ValueError("distinct_addresses: the students' addresses are IPv4 (127.0.1.x); give an http://127.0.0.1 url")
 
 
 def _check_range(name: str, value: float, lo: float, hi: float) -> None:
@@ -209,11 +238,52 @@ def wait_for_health(base_url: str, *, timeout_s: float, process: subprocess.Pope
     raise RuntimeError(f"{base_url}/api/health did not answer within {timeout_s:g} s")
 
 
+@dataclass
+class ServerStop:
+    """How a server the tool started stopped: seconds from Ctrl+C (SIGINT) until it exited (or was killed), and
+    whether it had to be killed after :data:`SERVER_STOP_TIMEOUT_S`; None until it was stopped."""
+
+    seconds: float | None = None
+    killed: bool | None = None
+
+    def as_dict(self) -> dict:
+        return {"seconds": None if self.seconds is None else round(self.seconds, 2), "killed": self.killed}
+
+
+def stop_process_group(process: subprocess.Popen, *, timeout_s: float) -> ServerStop:
+    """Ctrl+C (SIGINT) to ``process`` as a user stops ``dynlab serve``; after ``timeout_s`` SIGKILL its process group
+    (it was started as a group's leader, so its scene workers and their children go too, even once orphaned), as
+    anything of the group left after a clean exit."""
+    started = time.monotonic()
+    killed = False
+    if process.poll() is None:
+        process.send_signal(signal.SIGINT)
+        try:
+            process.wait(timeout=timeout_s)
+        except subprocess.TimeoutExpired:
+            killed = True
+    seconds = time.monotonic() - started
+    with contextlib.suppress(ProcessLookupError, PermissionError):
+        os.killpg(process.pid, signal.SIGKILL)  # whatever is left of the group: a worker stuck in a long request
+    if process.poll() is None:
+        process.kill()
+        process.wait(timeout=SERVER_STOP_TIMEOUT_S)
+    # SIGKILL takes effect when each process is next scheduled: wait (bounded) until the group is gone.
+    deadline = time.monotonic() + SERVER_STOP_TIMEOUT_S
+    while process_group_members(process.pid) and time.monotonic() < deadline:
+        time.sleep(0.05)
+    return ServerStop(seconds=seconds, killed=killed)
+
+
 @contextlib.contextmanager
-def started_server(*, workers: int | None, instructor_key: str | None = None) -> Iterator[ServerUnderTest]:
-    """``python -m app.cli serve`` on a free loopback port, stopped on exit (SIGINT, then kill after a timeout).
+def started_server(
+    *, workers: int | None, instructor_key: str | None = None, stop: ServerStop | None = None,
+    stop_timeout_s: float = SERVER_STOP_TIMEOUT_S,
+) -> Iterator[ServerUnderTest]:
+    """``python -m app.cli serve`` on a free loopback port, stopped on exit (SIGINT, then kill after ``stop_timeout_s``).
 
     ``instructor_key`` becomes the server's ``DYNLAB_INSTRUCTOR_KEY`` (in its environment, not on its command line).
+    ``stop``, if given, is filled in with how the server stopped.
     """
     port = free_loopback_port()
     command = [sys.executable, "-m", "app.cli", "serve", "--port", str(port), "--log-level", "warning"]
@@ -223,7 +293,9 @@ def started_server(*, workers: int | None, instructor_key: str | None = None) ->
     if instructor_key is not None:
         env["DYNLAB_INSTRUCTOR_KEY"] = instructor_key
     with tempfile.TemporaryFile() as log:
-        process = subprocess.Popen(command, cwd=PROJECT_ROOT, stdout=log, stderr=subprocess.STDOUT, env=env)
+        process = subprocess.Popen(
+            command, cwd=PROJECT_ROOT, stdout=log, stderr=subprocess.STDOUT, env=env, start_new_session=True
+        )
         base_url = f"http://127.0.0.1:{port}"
         try:
             try:
@@ -234,22 +306,20 @@ def started_server(*, workers: int | None, instructor_key: str | None = None) ->
                 raise RuntimeError(f"{exc}; its output ends:\n{tail}") from None
             yield ServerUnderTest(base_url=base_url, pid=process.pid, started_by_tool=True, workers=workers)
         finally:
-            if process.poll() is None:
-                process.send_signal(signal.SIGINT)
-                try:
-                    process.wait(timeout=SERVER_STOP_TIMEOUT_S)
-                except subprocess.TimeoutExpired:
-                    process.kill()
-                    process.wait(timeout=SERVER_STOP_TIMEOUT_S)
+            stopped = stop_process_group(process, timeout_s=stop_timeout_s)
+            if stop is not None:
+                stop.seconds, stop.killed = stopped.seconds, stopped.killed
 
 
 @contextlib.contextmanager
 def server_for(
-    options_url: str | None, *, server_pid: int | None, workers: int | None, instructor_key: str | None = None
+    options_url: str | None, *, server_pid: int | None, workers: int | None, instructor_key: str | None = None,
+    stop: ServerStop | None = None, stop_timeout_s: float = SERVER_STOP_TIMEOUT_S,
 ) -> Iterator[ServerUnderTest]:
-    """The running server at ``options_url``, or one the tool starts (with ``instructor_key``) and stops."""
+    """The running server at ``options_url``, or one the tool starts (with ``instructor_key``) and stops (filling in
+    ``stop``; killed after ``stop_timeout_s``)."""
     if options_url is None:
-        with started_server(workers=workers, instructor_key=instructor_key) as server:
+        with started_server(workers=workers, instructor_key=instructor_key, stop=stop, stop_timeout_s=stop_timeout_s) as server:
             yield server
         return
     base_url = options_url.rstrip("/")
@@ -295,6 +365,103 @@ def per_client_rates(start, end, healthy: Sequence[bool]) -> list[float]:
     return [(b - a) / elapsed for a, b, ok in zip(start.frames, end.frames, healthy) if ok]
 
 
+@dataclass(frozen=True)
+class WindowReading:
+    """What one steady window measured: the classroom's counters and the server's usage at both ends, the load
+    tool's CPU, the machine's busy CPU, the health probe, and which viewers were healthy at each end."""
+
+    start: ClassroomSnapshot
+    end: ClassroomSnapshot
+    usage_start: TreeUsage | None
+    usage_end: TreeUsage | None
+    front_start_s: float | None
+    front_end_s: float | None
+    busy_start_s: float | None
+    busy_end_s: float | None
+    tool_cpu_s: float
+    health: HealthLatency
+    healthy_at_start: tuple[bool, ...]
+    healthy_at_end: tuple[bool, ...]
+    errors: tuple[str, ...]
+
+
+async def measure_window(server: ServerUnderTest, classroom: Classroom, seconds: float) -> WindowReading:
+    """Read everything at the start of a steady window of ``seconds``, wait it out (probing ``/api/health``), read
+    it all again. The classroom stays connected."""
+    host, port = server.address
+    stop_health = asyncio.Event()
+    health = HealthLatency()
+    prober = asyncio.create_task(probe_health(host, port, stop_health, health))
+    try:
+        healthy_at_start = tuple(classroom.healthy())
+        busy_start, front_start, usage_start, tool_start, window_start = (
+            machine_busy_cpu_s(), server.front_cpu_s(), server.usage(), time.process_time(), classroom.snapshot()
+        )
+        await asyncio.sleep(seconds)
+        usage_end, tool_end, window_end = server.usage(), time.process_time(), classroom.snapshot()
+        front_end, busy_end = server.front_cpu_s(), machine_busy_cpu_s()
+    finally:
+        stop_health.set()
+        await asyncio.wait({prober}, timeout=5.0)
+    return WindowReading(
+        start=window_start, end=window_end, usage_start=usage_start, usage_end=usage_end, front_start_s=front_start,
+        front_end_s=front_end, busy_start_s=busy_start, busy_end_s=busy_end, tool_cpu_s=tool_end - tool_start,
+        health=health, healthy_at_start=healthy_at_start, healthy_at_end=tuple(classroom.healthy()),
+        errors=tuple(classroom.errors()),
+    )  # fmt: skip
+
+
+def window_figures(reading: WindowReading, *, count_dropped: bool = False) -> dict:
+    """The figures of one window: frames/s per client (10th percentile, median, minimum), server CPU, memory, fds,
+    threads, the tool's and everyone else's CPU, health latency, viser messages and bytes per frame.
+
+    Frames/s are of the viewers healthy at the window's end; with ``count_dropped``, of every viewer healthy at its
+    start, so one cut off during the window counts with the frames it received (``dropped`` says how many)."""
+    elapsed = reading.end.at_s - reading.start.at_s
+    frames = sum(reading.end.frames) - sum(reading.start.frames)
+    decoded = reading.end.decoded_frames - reading.start.decoded_frames
+    counted = reading.healthy_at_start if count_dropped else reading.healthy_at_end
+    figures = {
+        "connected": sum(reading.healthy_at_end),
+        "errors": len(reading.errors),
+        "error_examples": sorted(set(reading.errors))[:3],
+        "window_s": round(elapsed, 2),
+        "frames_per_s": frame_rate_summary(per_client_rates(reading.start, reading.end, counted)),
+        "server_cpu_cores": None,
+        # The front process alone (it relays every frame to every viewer); the rest is the scene workers'.
+        "server_front_cpu_cores": None,
+        "server_rss_mb": None,
+        "server_fds": None,
+        "server_threads": None,
+        "server_processes": None,
+        "load_tool_cpu_cores": round(reading.tool_cpu_s / elapsed, 3),
+        # Everything else the machine ran meanwhile (other people's work on a shared machine); None if unmeasured.
+        "other_cpu_cores": None,
+        "health_ms": latency_summary(reading.health),
+        "messages_per_frame": round((reading.end.decoded_messages - reading.start.decoded_messages) / decoded, 2)
+        if decoded
+        else None,
+        "bytes_per_frame": round((reading.end.frame_bytes - reading.start.frame_bytes) / frames) if frames else None,
+    }
+    if count_dropped:
+        figures["dropped"] = sum(a and not b for a, b in zip(reading.healthy_at_start, reading.healthy_at_end))
+    usage_start, usage_end = reading.usage_start, reading.usage_end
+    if usage_start is not None and usage_end is not None:
+        figures.update(
+            server_cpu_cores=round((usage_end.cpu_s - usage_start.cpu_s) / elapsed, 3),
+            server_rss_mb=round(usage_end.rss_mb, 1),
+            server_fds=usage_end.fds,
+            server_threads=usage_end.threads,
+            server_processes=usage_end.processes,
+        )
+    if reading.front_start_s is not None and reading.front_end_s is not None:
+        figures["server_front_cpu_cores"] = round((reading.front_end_s - reading.front_start_s) / elapsed, 3)
+    if reading.busy_start_s is not None and reading.busy_end_s is not None and figures["server_cpu_cores"] is not None:
+        busy = (reading.busy_end_s - reading.busy_start_s) / elapsed
+        figures["other_cpu_cores"] = round(max(0.0, busy - figures["server_cpu_cores"] - figures["load_tool_cpu_cores"]), 3)
+    return figures
+
+
 async def measure_step(
     server: ServerUnderTest, scene_id: str, students: int, options: LoadOptions, *, viewer_path: str = ""
 ) -> dict:
@@ -304,69 +471,22 @@ async def measure_step(
     session of its own each.
     """
     host, port = server.address
-    classroom = Classroom(host, port, scene_id, students, connect_per_s=options.connect_per_s, path=viewer_path)
-    stop_health = asyncio.Event()
-    health = HealthLatency()
-    prober: asyncio.Task | None = None
+    classroom = Classroom(
+        host, port, scene_id, students, connect_per_s=options.connect_per_s, path=viewer_path,
+        distinct_addresses=options.distinct_addresses,
+    )  # fmt: skip
     try:
         await classroom.open(timeout_s=30.0 + students / options.connect_per_s)
         await asyncio.sleep(options.warmup_s)
-        prober = asyncio.create_task(probe_health(host, port, stop_health, health))
-        busy_start, front_start, usage_start, tool_start, window_start = (
-            machine_busy_cpu_s(), server.front_cpu_s(), server.usage(), time.process_time(), classroom.snapshot()
-        )
-        await asyncio.sleep(options.seconds)
-        usage_end, tool_end, window_end = server.usage(), time.process_time(), classroom.snapshot()
-        front_end, busy_end = server.front_cpu_s(), machine_busy_cpu_s()
+        reading = await measure_window(server, classroom, options.seconds)
     finally:
-        stop_health.set()
-        if prober is not None:
-            await asyncio.wait({prober}, timeout=5.0)
-        healthy = classroom.healthy()
-        errors = classroom.errors()
         await classroom.close()
-    elapsed = window_end.at_s - window_start.at_s
-    frames = sum(window_end.frames) - sum(window_start.frames)
-    decoded = window_end.decoded_frames - window_start.decoded_frames
-    step = {
+    return {
         "scene_id": scene_id,
         "mode": "follow" if viewer_path else "independent",
         "students": students,
-        "connected": sum(healthy),
-        "errors": len(errors),
-        "error_examples": sorted(set(errors))[:3],
-        "window_s": round(elapsed, 2),
-        "frames_per_s": frame_rate_summary(per_client_rates(window_start, window_end, healthy)),
-        "server_cpu_cores": None,
-        # The front process alone (it relays every frame to every viewer); the rest is the scene workers'.
-        "server_front_cpu_cores": None,
-        "server_rss_mb": None,
-        "server_fds": None,
-        "server_threads": None,
-        "server_processes": None,
-        "load_tool_cpu_cores": round((tool_end - tool_start) / elapsed, 3),
-        # Everything else the machine ran meanwhile (other people's work on a shared machine); None if unmeasured.
-        "other_cpu_cores": None,
-        "health_ms": latency_summary(health),
-        "messages_per_frame": round((window_end.decoded_messages - window_start.decoded_messages) / decoded, 2)
-        if decoded
-        else None,
-        "bytes_per_frame": round((window_end.frame_bytes - window_start.frame_bytes) / frames) if frames else None,
+        **window_figures(reading),
     }
-    if usage_start is not None and usage_end is not None:
-        step.update(
-            server_cpu_cores=round((usage_end.cpu_s - usage_start.cpu_s) / elapsed, 3),
-            server_rss_mb=round(usage_end.rss_mb, 1),
-            server_fds=usage_end.fds,
-            server_threads=usage_end.threads,
-            server_processes=usage_end.processes,
-        )
-    if front_start is not None and front_end is not None:
-        step["server_front_cpu_cores"] = round((front_end - front_start) / elapsed, 3)
-    if busy_start is not None and busy_end is not None and step["server_cpu_cores"] is not None:
-        busy = (busy_end - busy_start) / elapsed
-        step["other_cpu_cores"] = round(max(0.0, busy - step["server_cpu_cores"] - step["load_tool_cpu_cores"]), 3)
-    return step
 
 
 def machine_facts() -> dict:
@@ -438,12 +558,14 @@ def check_scenes(base_url: str, scenes: Sequence[str]) -> None:
 # ---- a classroom room for --room ---------------------------------------------------------------
 
 
-def _request_json(url: str, *, method: str = "GET", body: dict | None = None, headers: dict[str, str] | None = None):
+def _request_json(
+    url: str, *, method: str = "GET", body: dict | None = None, headers: dict[str, str] | None = None, timeout_s: float = 30.0
+):
     """One JSON request to the server under test; RuntimeError with the server's answer on an HTTP error."""
     data = None if body is None else json.dumps(body).encode()
     request = urllib.request.Request(url, data=data, method=method, headers={"Content-Type": "application/json", **(headers or {})})
     try:
-        with urllib.request.urlopen(request, timeout=30.0) as answer:
+        with urllib.request.urlopen(request, timeout=timeout_s) as answer:
             raw = answer.read()
     except urllib.error.HTTPError as exc:
         detail = exc.read()[:500].decode(errors="replace")
@@ -470,10 +592,13 @@ def open_room(base_url: str, scene_id: str, *, instructor_key: str) -> dict:
     return {"room_id": created["room_id"], "code": created["code"], "lesson_id": lesson_id, "scene_id": scene_id}
 
 
-def close_room(base_url: str, room_id: str, *, instructor_key: str) -> None:
-    """Close a room the tool opened (its scene stops); a room already gone is fine."""
+def close_room(base_url: str, room_id: str, *, instructor_key: str, timeout_s: float = 30.0) -> None:
+    """Close a room the tool opened (its scene stops); a room already gone, or a server too busy to answer within
+    ``timeout_s``, is fine (the server is stopped next)."""
     with contextlib.suppress(RuntimeError, OSError):
-        _request_json(f"{base_url}/api/rooms/{room_id}", method="DELETE", headers={INSTRUCTOR_HEADER: instructor_key})
+        _request_json(
+            f"{base_url}/api/rooms/{room_id}", method="DELETE", headers={INSTRUCTOR_HEADER: instructor_key}, timeout_s=timeout_s
+        )
 
 
 async def _measure_one_viewer(server: ServerUnderTest, options: LoadOptions) -> list[dict]:
@@ -527,6 +652,8 @@ def run_load(options: LoadOptions) -> dict:
             "seconds": options.seconds,
             "warmup_s": options.warmup_s,
             "connect_per_s": options.connect_per_s,
+            # Each student from its own loopback address (127.0.1.x), or every one from 127.0.0.1.
+            "distinct_addresses": options.distinct_addresses,
             "frame": "one binary websocket message (a viser frame window), counted per client over the steady window",
             "health_period_s": 0.25,
             "health_slow_s": 2.0,
@@ -864,9 +991,13 @@ def add_load_arguments(parser: argparse.ArgumentParser) -> None:
     """The options of ``dynlab load``."""
     parser.add_argument(
         "--students", type=_int_list, default=None,
-        help="class sizes, e.g. 10,30,60,100,150 (the default; with --room 1,10,30,60,100,150)",
+        help="class sizes, e.g. 10,30,60,100,150 (the default; with --room 1,10,30,60,100,150; with --attack one size, 100)",
     )  # fmt: skip
-    parser.add_argument("--seconds", type=float, default=LoadOptions.seconds, help=f"steady window per step (s, ≤ {MAX_STEP_SECONDS:g})")
+    parser.add_argument(
+        "--seconds", type=float, default=None,
+        help=f"steady window per step (s, ≤ {MAX_STEP_SECONDS:g}; default {LoadOptions.seconds:g}, with --attack {ATTACK_SECONDS:g} "
+        "for each of the two windows)",
+    )  # fmt: skip
     parser.add_argument("--warmup", type=float, default=LoadOptions.warmup_s, help="seconds after all connected before measuring")
     parser.add_argument("--connect-rate", type=float, default=LoadOptions.connect_per_s, help="viewers opened per second")
     parser.add_argument(
@@ -874,24 +1005,44 @@ def add_load_arguments(parser: argparse.ArgumentParser) -> None:
         help="the students follow one classroom room on the scene instead of a scene each (writes classroom.json and .svg)",
     )  # fmt: skip
     parser.add_argument(
+        "--attack", action="store_true",
+        help="students on their own scenes, measured first alone and then while one client attacks the class with "
+        "every attack the class-safety issue found (room, sessions, floods, bursts, expensive requests); writes "
+        "attack.json and .svg",
+    )  # fmt: skip
+    parser.add_argument(
+        "--distinct-addresses", action=argparse.BooleanOptionalAction, default=None,
+        help="each student connects from its own loopback address (127.0.1.1, 127.0.1.2, …) as a class of devices "
+        "does, so per-address limits see students, not one client (default: on with --attack, off otherwise)",
+    )  # fmt: skip
+    parser.add_argument(
         "--instructor-key", default=None,
-        help="with --room and --url: the server's instructor secret, to open the room (a server the tool starts gets its own)",
+        help="with --room or --attack and --url: the server's instructor secret, to open the room (a server the tool "
+        "starts gets its own)",
     )  # fmt: skip
     add_server_arguments(parser)
 
 
 def run_load_command(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
     """Measure, print one line per step, write capacity.json and capacity.svg (with ``--room``: classroom.json and
-    classroom.svg, beside the independent figures of the capacity.json in ``--out``); bad options exit through ``parser``."""
-    students = args.students if args.students is not None else ROOM_STUDENTS if args.room else LoadOptions.students
+    classroom.svg, beside the independent figures of the capacity.json in ``--out``; with ``--attack``: attack.json
+    and attack.svg); bad options exit through ``parser``."""
+    default_students = (ATTACK_STUDENTS,) if args.attack else ROOM_STUDENTS if args.room else LoadOptions.students
+    students = args.students if args.students is not None else default_students
+    seconds = args.seconds if args.seconds is not None else ATTACK_SECONDS if args.attack else LoadOptions.seconds
     try:
         options = LoadOptions(
-            scenes=_scene_list(args.scene, LoadOptions.scenes), students=students, seconds=args.seconds,
+            scenes=_scene_list(args.scene, LoadOptions.scenes), students=students, seconds=seconds,
             warmup_s=args.warmup, connect_per_s=args.connect_rate, workers=args.workers, url=args.url,
             server_pid=args.server_pid, room=args.room, instructor_key=args.instructor_key,
+            distinct_addresses=args.distinct_addresses, attack=args.attack,
         )  # fmt: skip
     except ValueError as exc:
         parser.error(str(exc))
+    if options.attack:
+        from app.bench.under_attack import run_attack_command  # it builds on this module
+
+        return run_attack_command(options, out_dir=args.out)
     try:
         report = run_load(options)
     except (RuntimeError, ValueError) as exc:

@@ -1,25 +1,35 @@
 """Simulated students: viewer websockets opened through the relay as a browser's viser client opens them.
 
-A :class:`ViewerClient` connects to ``ws://<host>:<port>/viewer/<scene_id>/<session_id>``
-(a student's own scene), or to another viewer path such as a room's
-``/room-viewer/<room_id>`` (a follower of the room's one shared scene),
-with the ``viser-v<version>`` subprotocol, offering permessage-deflate (the
+A :class:`ViewerClient` is a student's lesson page: it first claims its own session as the
+page does (``PUT /api/scenes/<scene_id>/sessions/<session_id>`` with a random
+``X-Session-Key``: the page's first change creates the session), then connects to
+``ws://<host>:<port>/viewer/<scene_id>/<session_id>``; or it connects to another
+viewer path such as a room's ``/room-viewer/<room_id>`` (a follower of the room's
+one shared scene), with the ``viser-v<version>`` subprotocol, offering permessage-deflate (the
 ``websockets`` default, as browsers do), sends the camera message a browser
 sends first, then counts the binary messages the server streams: one per frame
 window. Every 30th message is decoded (viser's framing: 8 bytes msgpack length,
 8 bytes compressed length, zstd-compressed msgpack ``{"messages": [...]}``) to
 measure viser messages per frame. A :class:`Classroom` is N such clients, each
-with its own random session id, or all on one given viewer path. :func:`probe_health` times ``GET /api/health``
-with a raw HTTP/1.1 request. Loopback only; every loop ends on a stop event, a
-closed connection or a timeout.
+with its own random session id, or all on one given viewer path; with
+``distinct_addresses`` each student connects from its own loopback address
+(:func:`student_address`: 127.0.1.1, 127.0.1.2, …; Linux routes all of
+127.0.0.0/8 to the loopback device, so binding a socket's source address to any
+of them needs no set-up), so the server's per-client limits, keyed on the
+client's IP address, see a class of devices, not one. :func:`http_request` is a
+raw HTTP/1.1 request (from a chosen source address, with a hard time limit);
+:func:`probe_health` times ``GET /api/health`` with it. Loopback only; every
+loop ends on a stop event, a closed connection or a timeout.
 """
 
 from __future__ import annotations
 
 import asyncio
 import contextlib
+import json
 import secrets
 import time
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from urllib.parse import urlsplit
 
@@ -27,6 +37,8 @@ import msgspec
 import viser
 import websockets
 import zstandard
+
+from app.api.session_keys import HEADER as SESSION_KEY_HEADER
 
 #: Hosts a load test may target: it never leaves the machine.
 LOOPBACK_HOSTS = frozenset({"127.0.0.1", "localhost", "::1"})
@@ -40,6 +52,12 @@ CLOSE_TIMEOUT_S = 15.0
 HEALTH_SLOW_S = 2.0
 #: Period of the health probe (s).
 HEALTH_PERIOD_S = 0.25
+#: The source address of an attacking client (the load tool itself and its health probe use 127.0.0.1).
+ATTACKER_ADDRESS = "127.0.0.2"
+#: Students' source addresses are 127.0.<1 + i // 254>.<1 + i % 254>: this many of them.
+MAX_STUDENT_ADDRESSES = 254 * 254
+#: An answer's body is read to its end (its time is part of the latency) but only this much is kept (bytes).
+KEPT_BODY_BYTES = 4096
 
 
 def loopback_base(url: str) -> tuple[str, int]:
@@ -61,6 +79,113 @@ def new_session_id() -> str:
     return secrets.token_urlsafe(16)
 
 
+def new_session_key() -> str:
+    """A random page key for ``X-Session-Key``, matching ``[A-Za-z0-9_-]{16,128}`` (32 characters)."""
+    return secrets.token_urlsafe(24)
+
+
+def student_address(index: int) -> str:
+    """Student ``index``'s own loopback source address: 127.0.1.1, 127.0.1.2, …, 127.0.1.254, 127.0.2.1, …"""
+    if not 0 <= index < MAX_STUDENT_ADDRESSES:
+        raise ValueError(f"students: at most {MAX_STUDENT_ADDRESSES} distinct loopback addresses, asked for number {index}")
+    return f"127.0.{1 + index // 254}.{1 + index % 254}"
+
+
+@dataclass(frozen=True)
+class HttpAnswer:
+    """What one request got: the status (None: no answer), the start of the body, and the time to the answer's end."""
+
+    status: int | None
+    body: bytes
+    elapsed_ms: float
+    #: Why there was no answer ("timeout", "ConnectionRefusedError", …); None when there was one.
+    failure: str | None = None
+
+    @property
+    def label(self) -> str:
+        """The status code as text, or why there was none."""
+        return str(self.status) if self.status is not None else str(self.failure)
+
+    def detail(self) -> str:
+        """A refusal's message as one short line: its ``detail`` (FastAPI's error message), else the start of its
+        body; empty for a success or no answer."""
+        if self.status is None or self.status < 300:
+            return ""
+        text = self.body[:600].decode(errors="replace")
+        with contextlib.suppress(ValueError, TypeError, AttributeError):
+            detail = json.loads(self.body).get("detail", text)
+            text = detail if isinstance(detail, str) else json.dumps(detail)
+        return " ".join(text.split())[:200]
+
+
+def _unchunked(body: bytes) -> bytes:
+    """The payload of a ``Transfer-Encoding: chunked`` body (as much of it as was kept)."""
+    out, rest = bytearray(), body
+    while rest:
+        size_line, _, rest = rest.partition(b"\r\n")
+        try:
+            size = int(size_line.split(b";")[0], 16)
+        except ValueError:
+            break
+        if size == 0:
+            break
+        out += rest[:size]
+        rest = rest[size + 2 :]
+    return bytes(out)
+
+
+async def http_request(
+    host: str,
+    port: int,
+    method: str,
+    path: str,
+    *,
+    body: Mapping | None = None,
+    headers: Mapping[str, str] | None = None,
+    source_address: str | None = None,
+    timeout_s: float,
+) -> HttpAnswer:
+    """One HTTP/1.1 request on a new connection (``Connection: close``), from ``source_address`` if given, with a
+    JSON ``body``; the whole exchange (connect, send, read to the end) is cut off after ``timeout_s``. Never raises
+    for what the server does: a refusal is a status, a reset or a timeout a ``failure``."""
+    started = time.perf_counter()
+    payload = b"" if body is None else json.dumps(body).encode()
+    lines = [f"{method} {path} HTTP/1.1", f"Host: {host}:{port}", "Connection: close"]
+    if body is not None:
+        lines += ["Content-Type: application/json", f"Content-Length: {len(payload)}"]
+    lines += [f"{name}: {value}" for name, value in (headers or {}).items()]
+    writer = None
+    status, kept, failure = None, b"", None
+    try:
+        async with asyncio.timeout(timeout_s):
+            reader, writer = await asyncio.open_connection(
+                host, port, local_addr=(source_address, 0) if source_address else None
+            )
+            writer.write(("\r\n".join(lines) + "\r\n\r\n").encode() + payload)
+            await writer.drain()
+            head = await reader.readuntil(b"\r\n\r\n")
+            status = int(head.split(b" ", 2)[1])
+            while chunk := await reader.read(64 * 1024):  # to the end: the answer's time includes its body
+                if len(kept) < KEPT_BODY_BYTES:
+                    kept += chunk[: KEPT_BODY_BYTES - len(kept)]
+            if b"transfer-encoding: chunked" in head.lower():
+                kept = _unchunked(kept)
+    except TimeoutError:
+        failure = "timeout"
+    except (OSError, asyncio.IncompleteReadError, asyncio.LimitOverrunError, ValueError, IndexError) as exc:
+        failure = type(exc).__name__
+    finally:
+        if writer is not None:
+            writer.close()
+            with contextlib.suppress(OSError, TimeoutError):
+                async with asyncio.timeout(1.0):
+                    await writer.wait_closed()
+    if failure is not None and status is not None:
+        failure = f"{status}, then {failure}"  # the status came, the body did not finish
+        status = None
+    return HttpAnswer(status=status, body=kept, elapsed_ms=1e3 * (time.perf_counter() - started), failure=failure)
+
+
 def viser_messages_in_frame(data: bytes) -> int:
     """How many viser messages one binary frame window carries (its zstd-compressed msgpack header decoded)."""
     if len(data) < 16:
@@ -76,16 +201,29 @@ def viser_messages_in_frame(data: bytes) -> int:
     return len(payload["messages"])
 
 
+def connect_failure(exc: BaseException) -> str:
+    """A short label for why a viewer websocket did not open: ``HTTP 403``, ``timeout``, ``ConnectionRefusedError``, …"""
+    if isinstance(exc, websockets.InvalidStatus):
+        return f"HTTP {exc.response.status_code}"
+    if isinstance(exc, TimeoutError):
+        return "timeout"
+    return type(exc).__name__
+
+
 @dataclass
 class ViewerClient:
     """One student's viewer. ``frames``/``frame_bytes`` count binary messages received since connecting.
 
-    ``path`` is the viewer websocket's path; empty: the student's own session, ``/viewer/<scene_id>/<session_id>``.
+    ``path`` is the viewer websocket's path; empty: the student's own session, ``/viewer/<scene_id>/<session_id>``,
+    which the client first claims with ``session_key`` as the lesson page does. ``source_address``: the loopback
+    address it connects from (None: the system's choice, 127.0.0.1).
     """
 
     scene_id: str
     session_id: str = field(default_factory=new_session_id)
     path: str = ""
+    source_address: str | None = None
+    session_key: str = field(default_factory=new_session_key)
     frames: int = 0
     frame_bytes: int = 0
     decoded_frames: int = 0
@@ -93,16 +231,38 @@ class ViewerClient:
     connected: bool = False
     #: Why the viewer failed to connect or was closed before being told to stop; None while healthy.
     error: str | None = None
+    #: The same as a short label (``claim 403``, ``HTTP 403``, ``close 1008``, ``timeout``, …); None while healthy.
+    outcome: str | None = None
+    #: True when the client opens its own session (and so claims it first).
+    owns_session: bool = field(init=False)
 
     def __post_init__(self) -> None:
+        self.owns_session = not self.path
         if not self.path:
             self.path = f"/viewer/{self.scene_id}/{self.session_id}"
         elif not self.path.startswith("/"):
             raise ValueError(f"path: a viewer websocket path starts with '/', got {self.path!r}")
 
+    async def claim(self, host: str, port: int) -> bool:
+        """The page's first change: ``PUT`` its session (default parameters) with its key; False (and ``error``) if
+        refused. A viewer socket never creates a session, so this comes before :meth:`run` connects."""
+        answer = await http_request(
+            host, port, "PUT", f"/api/scenes/{self.scene_id}/sessions/{self.session_id}", body={"params": {}},
+            headers={SESSION_KEY_HEADER: self.session_key}, source_address=self.source_address, timeout_s=CONNECT_TIMEOUT_S,
+        )  # fmt: skip
+        if answer.status == 200:
+            return True
+        self.outcome = f"claim {answer.label}"
+        self.error = f"claim: {answer.label} {answer.detail()}".rstrip()
+        return False
+
     async def run(self, host: str, port: int, stop: asyncio.Event, camera_message: bytes) -> None:
-        """Connect, send ``camera_message`` as a browser does first, count frames until ``stop`` or the connection ends."""
+        """Claim its own session (if it has one), connect, send ``camera_message`` as a browser does first, count
+        frames until ``stop`` or the connection ends."""
+        if self.owns_session and not await self.claim(host, port):
+            return
         uri = f"ws://{host}:{port}{self.path}"
+        socket_options = {"local_addr": (self.source_address, 0)} if self.source_address else {}
         try:
             connection = await websockets.connect(
                 uri,
@@ -111,8 +271,10 @@ class ViewerClient:
                 open_timeout=CONNECT_TIMEOUT_S,
                 ping_interval=None,  # a browser sends no pings; the server's pings are still answered
                 close_timeout=5,
+                **socket_options,
             )
         except (OSError, websockets.InvalidHandshake, TimeoutError) as exc:
+            self.outcome = connect_failure(exc)
             self.error = f"connect: {type(exc).__name__}: {exc}"
             return
         async def close_on_stop() -> None:
@@ -129,6 +291,7 @@ class ViewerClient:
             pass
         finally:
             if not stop.is_set():
+                self.outcome = f"close {connection.close_code}"
                 self.error = f"closed by the server: code {connection.close_code} {connection.close_reason or ''}".rstrip()
             closer.cancel()
             with contextlib.suppress(OSError, websockets.ConnectionClosed, TimeoutError):
@@ -161,17 +324,24 @@ class ClassroomSnapshot:
 class Classroom:
     """``students`` viewers of one scene on the server at ``host:port``, connected ``connect_per_s`` per second.
 
-    Each viewer opens its own session of the scene, unless ``path`` names one viewer websocket path they all
-    open (a room's followers: ``/room-viewer/<room_id>``).
+    Each viewer claims and opens its own session of the scene, unless ``path`` names one viewer websocket path
+    they all open (a room's followers: ``/room-viewer/<room_id>``). ``distinct_addresses``: each student connects
+    from its own loopback address (:func:`student_address`), as a class of devices does.
     """
 
-    def __init__(self, host: str, port: int, scene_id: str, students: int, *, connect_per_s: float, path: str = "") -> None:
+    def __init__(
+        self, host: str, port: int, scene_id: str, students: int, *, connect_per_s: float, path: str = "",
+        distinct_addresses: bool = False,
+    ) -> None:  # fmt: skip
         # Imported here: importing app.scenes registers every scene (about 2 s), which only a running load needs.
         from app.scenes.host.viser_compat import viewer_camera_message
 
         self.camera_message = viewer_camera_message()
         self.host, self.port = host, port
-        self.clients = [ViewerClient(scene_id, path=path) for _ in range(students)]
+        self.clients = [
+            ViewerClient(scene_id, path=path, source_address=student_address(index) if distinct_addresses else None)
+            for index in range(students)
+        ]
         self.connect_per_s = connect_per_s
         self._stop = asyncio.Event()
         self._tasks: list[asyncio.Task] = []
@@ -228,24 +398,8 @@ class HealthLatency:
 
 async def health_request_ms(host: str, port: int, *, timeout_s: float = HEALTH_SLOW_S) -> tuple[float, bool]:
     """One raw HTTP/1.1 ``GET /api/health``: (elapsed ms, answered 200 within ``timeout_s``)."""
-    started = time.perf_counter()
-    writer = None
-    try:
-        async with asyncio.timeout(timeout_s):
-            reader, writer = await asyncio.open_connection(host, port)
-            writer.write(f"GET /api/health HTTP/1.1\r\nHost: {host}:{port}\r\nConnection: close\r\n\r\n".encode())
-            await writer.drain()
-            status_line = await reader.readline()
-            await reader.read(64 * 1024)  # headers and body, until the server closes
-        ok = status_line.split(b" ")[1:2] == [b"200"]
-    except (OSError, TimeoutError, asyncio.IncompleteReadError):
-        ok = False
-    finally:
-        if writer is not None:
-            writer.close()
-            with contextlib.suppress(OSError):
-                await writer.wait_closed()
-    return 1e3 * (time.perf_counter() - started), ok
+    answer = await http_request(host, port, "GET", "/api/health", timeout_s=timeout_s)
+    return answer.elapsed_ms, answer.status == 200
 
 
 async def probe_health(host: str, port: int, stop: asyncio.Event, into: HealthLatency) -> None:

@@ -3,6 +3,8 @@
 The descendants are found through ``/proc/<pid>/task/<tid>/children``,
 recursively, so a server that runs scene workers as child processes is measured
 whole. A process that exits between two reads is skipped.
+:func:`process_group_members` lists a process group's live members (what is left
+of a server the load tool started, after it was stopped).
 """
 
 from __future__ import annotations
@@ -45,6 +47,22 @@ def tree_pids(root_pid: int) -> list[int]:
             except OSError:
                 continue
     return pids
+
+
+def process_group_members(group_id: int) -> list[int]:
+    """Live processes (not zombies) whose process group is ``group_id``, from /proc."""
+    members = []
+    for entry in PROC.iterdir():
+        if not entry.name.isdigit():
+            continue
+        try:
+            # Fields after comm (which may hold spaces and parentheses): state, ppid, pgrp, …
+            state, _ppid, pgrp = (entry / "stat").read_text().rsplit(")", 1)[1].split()[:3]
+        except (OSError, ValueError):
+            continue
+        if int(pgrp) == group_id and state != "Z":
+            members.append(int(entry.name))
+    return members
 
 
 def _cpu_s(pid: int) -> float:

@@ -17,7 +17,7 @@ from fastapi.responses import HTMLResponse, RedirectResponse, Response
 
 from app.api import bench
 from app.api.deps import CatalogueDep, SceneHostDep, SettingsDep
-from app.bench import capacity
+from app.bench import capacity, under_attack
 from app.course import Catalogue, Chapter, Lesson, render_markdown
 from app.course.lessons import split_front_matter
 from app.physics.mechanics.derivation import FORMULATION_TITLES, FORMULATIONS
@@ -532,9 +532,73 @@ def _classroom_note(settings) -> str:
     return text + figure
 
 
+def _attack_row(attack: dict) -> str:
+    answers = ", ".join(f"{esc(str(answer))} ×{esc(str(count))}" for answer, count in (attack.get("answers") or {}).items())
+    latency = (attack.get("latency_ms") or {}).get("max")
+    slowest = f"{latency:,.0f}" if isinstance(latency, (int, float)) and not isinstance(latency, bool) else "—"
+    return (
+        f'<tr><td class="num">{esc(str(attack.get("item")))}</td><th scope="row">{esc(str(attack.get("name")))}</th>'
+        f'<td class="num">{esc(str(attack.get("count")))}</td>'
+        f'<td>{answers or "—"}</td><td class="num">{slowest}</td></tr>'
+    )
+
+
+def _attack_note(settings) -> str:
+    """What a class on its own scenes received while one client attacked it (``attack.json``, from ``dynlab load
+    --attack``): frames/s before and under attack against the target, the plot, and every attack with the answers it
+    got; a notice saying how to measure it when there is no report."""
+    how = "<code>dynlab load --attack</code> measures it"
+    heading = "<h3>Under attack</h3>"
+    try:
+        report = under_attack.read_attack_report(Path(settings.bench_dir) / under_attack.REPORT_FILE)
+    except ValueError as exc:
+        return f'{heading}<p class="notice">{esc(str(exc))}; {how} again.</p>'
+    if report is None:
+        return (
+            f'{heading}<p class="notice">No measurement under attack yet: {how} (students on their own scenes, first '
+            "alone, then while one client attacks the class).</p>"
+        )
+    try:
+        windows = report["windows"]
+        before, during = windows["baseline"]["frames_per_s"], windows["attack"]["frames_per_s"]
+        target = report["targets"]["p10_frames_per_s"]
+        text = (
+            f"<p>With {esc(str(report['students']))} students each on a {esc(str(report['scene_id']))} session of their "
+            "own, each from its own address, and one client attacking the class from one address (changing the room's "
+            "shared scene without the instructor, turning students' sessions into another scene through the viewer "
+            "socket, flooding session claims and look-ups, bursts of 40 requests at once, long seeks and steps on "
+            "expensive sessions, 200 viewers, two slow derivations at once), the students received "
+            f"{fmt_sig(during['p10'])} frames/s (10th percentile; median {fmt_sig(during['median'])}, slowest "
+            f"{fmt_sig(during['min'])}), against {fmt_sig(before['p10'])} (median {fmt_sig(before['median'])}) just "
+            f"before the attack. The target is {fmt_sig(target)} under attack: "
+            f"{'met' if during['p10'] >= target else 'not met'}. Measured "
+            f"{esc(str(report.get('created') or '')[:16].replace('T', ' '))} UTC (<code>dynlab load --attack</code>).</p>"
+        )
+        rows = "".join(_attack_row(attack) for attack in under_attack.listed_attacks(report))
+    except (AttributeError, TypeError, KeyError, ValueError):
+        return f'{heading}<p class="notice">The measurement under attack is malformed; {how} again.</p>'
+    figure = ""
+    if bench.diagram_path(settings, "attack"):
+        figure = (
+            '<figure class="bench-figure"><a href="/bench/attack.svg" title="Open the plot on its own">'
+            '<img src="/bench/attack.svg" alt="A class under attack: frames per second each student receives before '
+            'and while one client attacks, and what each attack got. The attacks are in the table below." '
+            f'width="{under_attack.WIDTH}" height="{under_attack.plot_height(report)}"></a></figure>'
+        )
+    # The exact requests are in attack.json and the plot; the table keeps to what fits beside the text.
+    table = (
+        '<div class="table-wrap"><table class="bench-attacks"><thead><tr><th scope="col">Item</th>'
+        '<th scope="col">Attack</th><th scope="col">Tries</th>'
+        '<th scope="col">Answers (count)</th><th scope="col">Slowest answer (ms)</th></tr></thead>'
+        f"<tbody>{rows}</tbody></table></div>"
+    )
+    return heading + text + figure + table
+
+
 def _capacity_section(settings) -> str:
-    """The "Classroom capacity" section: the plot and table of ``capacity.json`` (written by ``dynlab load``), and
-    what a class following one room measured (``classroom.json``, from ``dynlab load --room``)."""
+    """The "Classroom capacity" section: the plot and table of ``capacity.json`` (written by ``dynlab load``), what a
+    class following one room measured (``classroom.json``, from ``dynlab load --room``), and what a class received
+    while one client attacked it (``attack.json``, from ``dynlab load --attack``)."""
     how = "<code>dynlab load</code> measures it (real viewer websockets, 10 to 150 students) and writes it"
     try:
         report = capacity.read_report(Path(settings.bench_dir) / capacity.REPORT_FILE)
@@ -551,7 +615,7 @@ def _capacity_section(settings) -> str:
     return (
         '<section class="bench-scene bench-capacity" id="bench-capacity"><h2>Classroom capacity</h2>'
         "<p>How many students the server streams their own live scene to, at how many frames per second.</p>"
-        f"{content}{_classroom_note(settings)}</section>"
+        f"{content}{_classroom_note(settings)}{_attack_note(settings)}</section>"
     )
 
 

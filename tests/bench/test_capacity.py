@@ -14,8 +14,10 @@ lab section.
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import json
 import os
+import signal
 import subprocess
 import sys
 import time
@@ -38,12 +40,14 @@ from app.bench.capacity import (
     per_client_rates,
     read_report,
     run_load,
+    started_server,
+    stop_process_group,
     with_independent_comparison,
     write_report,
 )
 from app.bench.load_client import ClassroomSnapshot, loopback_base, new_session_id, viser_messages_in_frame
 from app.cli import main as cli_main
-from app.bench.process_tree import TreeUsage, tree_usage
+from app.bench.process_tree import TreeUsage, process_group_members, tree_usage
 from app.bench.soak import judge_soak, run_soak, wait_until_settled
 from app.scenes.host.host import SESSION_ID_PATTERN
 from app.settings import Settings
@@ -103,6 +107,21 @@ def test_a_tiny_real_run_delivers_frames_to_every_student_and_writes_its_report(
     assert [p.name for p in paths] == ["capacity.json", "capacity.svg"]
     assert read_report(tmp_path / "capacity.json") == json.loads(json.dumps(report))
     assert ET.parse(tmp_path / "capacity.svg").getroot().tag == f"{SVG}svg"
+
+
+def test_students_from_their_own_addresses_each_pass_a_per_address_limit_one_address_does_not(monkeypatch):
+    # A server that lets each client address open one viewer (and refills once in 100 s): a class on one address
+    # gets one viewer through, a class of devices (--distinct-addresses) every one. About 8 s.
+    monkeypatch.setenv("DYNLAB_VIEWER_OPEN_BURST", "1")
+    monkeypatch.setenv("DYNLAB_VIEWER_OPEN_RATE_PER_S", "0.01")
+    with started_server(workers=0) as server:
+        options = {"students": (3,), "seconds": 1.0, "warmup_s": 0.2, "url": server.base_url}
+        (one_address,) = run_load(LoadOptions(**options))["steps"]
+        (own_addresses,) = run_load(LoadOptions(**options, distinct_addresses=True))["steps"]
+    assert one_address["connected"] == 1 and one_address["errors"] == 2
+    assert all("HTTP 403" in error for error in one_address["error_examples"]), one_address["error_examples"]
+    assert own_addresses["connected"] == 3 and own_addresses["errors"] == 0, own_addresses["error_examples"]
+    assert own_addresses["frames_per_s"]["min"] > 0
 
 
 def test_the_plot_is_valid_svg_with_a_line_pair_per_scene_and_both_targets():
@@ -203,6 +222,23 @@ def test_the_process_tree_includes_children_and_refuses_a_missing_pid():
         child.wait()
     with pytest.raises(ValueError, match="^server_pid:"):
         tree_usage(2**22 + 12345)  # above Linux's pid_max limit: never a running process
+
+
+def test_a_started_process_group_is_listed_until_all_of_it_is_gone():
+    # A leader that starts a child and sleeps: both are in its group; the load tool's stop kills the whole group.
+    leader = subprocess.Popen(
+        [sys.executable, "-c", "import subprocess, sys, time; subprocess.Popen([sys.executable, '-c', 'import time; time.sleep(60)']); time.sleep(60)"],
+        start_new_session=True,
+    )  # fmt: skip
+    try:
+        wait_until(lambda: len(process_group_members(leader.pid)) == 2, timeout_s=30.0, what="the leader and its child")
+        assert leader.pid in process_group_members(leader.pid)
+        stopped = stop_process_group(leader, timeout_s=0.5)  # SIGINT ends the leader; the group is killed after it
+        assert process_group_members(leader.pid) == [] and stopped.seconds < 5.0
+    finally:
+        with contextlib.suppress(ProcessLookupError):
+            os.killpg(leader.pid, signal.SIGKILL)
+        leader.wait(timeout=10)
 
 
 def test_the_front_process_cpu_leaves_out_its_children_and_the_machine_total_includes_them():
