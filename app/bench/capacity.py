@@ -27,9 +27,9 @@ students, following beside the independent viewers of ``capacity.json``, and
 the server's CPU with 1 and with 100 followers (``follow_cost``).
 
 Each student is a lesson page: it claims its own session first (``PUT`` with
-its ``X-Session-Key``), then opens its viewer. With ``--distinct-addresses``
-each connects from its own loopback address (127.0.1.1, 127.0.1.2, …), so the
-server's per-address limits see a class of devices rather than one client.
+its ``X-Session-Key``), then opens its viewer, from a loopback address of its
+own (127.0.1.1, 127.0.1.2, …; ``--no-distinct-addresses`` for one address), so
+the server's per-device limits see a class of devices rather than one client.
 ``--attack`` measures a class on its own scenes before and while one client
 attacks it (:mod:`app.bench.under_attack`; ``attack.json`` and ``.svg``).
 """
@@ -113,8 +113,9 @@ class LoadOptions:
     room: bool = False
     #: The server's instructor secret, for opening the room (a server the tool starts gets a random one).
     instructor_key: str | None = None
-    #: Each student connects from its own loopback address (127.0.1.1, 127.0.1.2, …), as a class of devices does;
-    #: None: on for an attack run, off otherwise.
+    #: Each student connects from its own loopback address (127.0.1.1, 127.0.1.2, …), as a class of devices does (the
+    #: server bounds what one device may open: from one address a class would be refused); None: on unless the url is
+    #: IPv6.
     distinct_addresses: bool | None = None
     #: Students on their own scenes, measured before and while one client attacks (app.bench.under_attack).
     attack: bool = False
@@ -123,7 +124,8 @@ class LoadOptions:
 
     def __post_init__(self) -> None:
         if self.distinct_addresses is None:
-            object.__setattr__(self, "distinct_addresses", self.attack)
+            ipv6 = self.url is not None and loopback_base(self.url)[0] == "::1"
+            object.__setattr__(self, "distinct_addresses", not ipv6)
         if not self.scenes:
             raise ValueError("scene: give at least one scene id")
         for scene_id in self.scenes:
@@ -1013,7 +1015,7 @@ def add_load_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--distinct-addresses", action=argparse.BooleanOptionalAction, default=None,
         help="each student connects from its own loopback address (127.0.1.1, 127.0.1.2, …) as a class of devices "
-        "does, so per-address limits see students, not one client (default: on with --attack, off otherwise)",
+        "does, so per-device limits see students, not one client (default: on; off from one address is refused beyond 8 viewers)",
     )  # fmt: skip
     parser.add_argument(
         "--instructor-key", default=None,

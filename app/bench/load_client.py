@@ -38,7 +38,7 @@ import viser
 import websockets
 import zstandard
 
-from app.api.session_keys import HEADER as SESSION_KEY_HEADER
+from app.api.access import KEY_HEADER as SESSION_KEY_HEADER
 
 #: Hosts a load test may target: it never leaves the machine.
 LOOPBACK_HOSTS = frozenset({"127.0.0.1", "localhost", "::1"})

@@ -177,9 +177,10 @@ def test_attack_options_out_of_bounds_are_refused_naming_the_option(options, fie
         LoadOptions(**options)
 
 
-def test_distinct_addresses_are_on_for_an_attack_and_off_for_a_capacity_run_unless_asked():
+def test_distinct_addresses_are_on_unless_asked_off_or_the_url_is_ipv6():
     assert LoadOptions(attack=True, students=(100,)).distinct_addresses is True
-    assert LoadOptions().distinct_addresses is False
+    assert LoadOptions().distinct_addresses is True
+    assert LoadOptions(url="http://[::1]:8000").distinct_addresses is False
     assert LoadOptions(distinct_addresses=True).distinct_addresses is True
     assert LoadOptions(attack=True, students=(100,), distinct_addresses=False).distinct_addresses is False
 
