@@ -56,6 +56,10 @@ MAX_VIEWERS_PER_SESSION = 4
 MAX_VIEWERS_PER_CLIENT = 8
 #: Room followers (``/room-viewer/…``) one client may have open (a student, a projector and a spare tab).
 MAX_FOLLOWERS_PER_CLIENT = 8
+#: Recordings one client may ask for at once, and one every this many seconds after that (a recording redraws up
+#: to 60 s of frames in the student's scene worker: about a second of its computing).
+RECORDING_BURST = 3
+RECORDING_EVERY_S = 20.0
 
 
 class Refused(Exception):
@@ -108,6 +112,8 @@ class SessionDirectory:
         self._followers_by_client: dict[str, int] = {}
         self._creations = TokenBuckets(burst=CREATE_BURST, rate_per_s=CREATE_RATE_PER_S, max_clients=max_clients, clock=clock)
         self._heavy_changes = InFlight(limit=1)
+        self._recordings = TokenBuckets(burst=RECORDING_BURST, rate_per_s=1.0 / RECORDING_EVERY_S, max_clients=max_clients, clock=clock)
+        self._recording_now = InFlight(limit=1)
         self._lock = threading.Lock()
 
     def __len__(self) -> int:
@@ -217,6 +223,24 @@ class SessionDirectory:
             yield
         finally:
             self._heavy_changes.leave(client)
+
+    @contextmanager
+    def recording(self, *, client: str | None) -> Iterator[None]:
+        """Hold the client's place for a recording: one at a time, :data:`RECORDING_BURST` at once and then one
+        every :data:`RECORDING_EVERY_S`; :class:`Refused` (429, Retry-After) beyond."""
+        if client is None:
+            yield
+            return
+        if not self._recording_now.try_enter(client):
+            raise Refused(429, "your previous recording is still being made: wait for it, then try again", retry_after_s=2)
+        try:
+            wait_s = self._recordings.take(client)
+            if wait_s > 0:
+                retry = max(1, round(wait_s + 0.5))
+                raise Refused(429, f"too many recordings from this device: the next one in {retry} s", retry_after_s=retry)
+            yield
+        finally:
+            self._recording_now.leave(client)
 
     # -- viewers -------------------------------------------------------------------------------------------
     @contextmanager

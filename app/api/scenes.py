@@ -163,7 +163,7 @@ def set_session_playback(
         field = str(exc).split(":", 1)[0]
         raise unprocessable(["body", field if field in PlaybackRequest.model_fields else "session_id"], str(exc)) from None
     sessions.touched(session_id)
-    return {**answer, "camera": host.camera(session_id), "viewers": host.viewer_count(session_id)}
+    return answer
 
 
 @router.get(
@@ -179,7 +179,7 @@ def session_playback(scene_id: str, session_id: SessionId, host: SceneHostDep) -
     answer = host.playback(session_id)
     if answer is None:
         raise HTTPException(status_code=404, detail=f"session {session_id!r} has no scene yet")
-    return {**answer, "camera": host.camera(session_id), "viewers": host.viewer_count(session_id)}
+    return answer
 
 
 def _explore_start(rooms: Rooms, room_id: str, scene_id: str) -> dict[str, Any]:
@@ -284,18 +284,22 @@ def session_recording(
     scene_id: str,
     session_id: SessionId,
     host: SceneHostDep,
+    sessions: SessionsDep,
+    client: ClientDep,
     seconds: Annotated[float, Query(ge=RECORDING_SECONDS_RANGE[0], le=RECORDING_SECONDS_RANGE[1], description="Length (s)")] = DEFAULT_RECORDING_S,
 ) -> Response:
     """The last ``seconds`` (1–60) of what the session's viewer showed, as one HTML file that plays offline in any
     browser (viser's client and the recording inside it); a still of the scene when it has no kept motion.
 
     404 for an unknown scene or a session without this scene; 422 for bad ``seconds``, a file over the size
-    limit or more computing than one request may take; 503 with Retry-After while another recording is being made
-    in the same worker; 500 with the reason when the recording fails.
+    limit or more computing than one request may take; 429 with Retry-After for a device's second recording at
+    once or more than 3 then 1 per 20 s; 503 with Retry-After while another recording is being made in the same
+    worker; 500 with the reason when the recording fails.
     """
     _scene_class(host, scene_id)
     try:
-        page = host.recording_html(scene_id, session_id, seconds=seconds)
+        with sessions.recording(client=client):
+            page = host.recording_html(scene_id, session_id, seconds=seconds)
     except ValueError as exc:
         raise unprocessable(["query", "seconds"], str(exc)) from None
     except HostBusy:  # the worker's recorder is making another recording, or the worker is not answering: 503

@@ -74,7 +74,7 @@ def test_a_file_over_the_limit_is_422_and_a_failed_recording_is_500_with_the_rea
     assert answer.json()["detail"] == "the recording could not be made: four-bar: the recording failed (RuntimeError: boom)"
 
 
-def test_recordings_asked_for_all_at_once_are_made_or_refused_503_with_retry_after_never_500(served):
+def test_recordings_asked_for_all_at_once_are_made_or_refused_with_retry_after_never_500(served):
     """Found 11: 30 concurrent recording.html of one worker's sessions answered 15 × 500 "recorder is busy"."""
     import concurrent.futures
     import secrets
@@ -93,10 +93,12 @@ def test_recordings_asked_for_all_at_once_are_made_or_refused_503_with_retry_aft
     with concurrent.futures.ThreadPoolExecutor(30) as pool:
         answers = list(pool.map(record, range(30)))
     codes = sorted({a.status_code for a in answers})
-    assert set(codes) <= {200, 503}, [(a.status_code, a.text[:200]) for a in answers if a.status_code not in (200, 503)]
+    # Made, or "try again": the device's previous recording is still being made (429), or the worker's recorder is
+    # busy with another device's (503); never a fault.
+    assert set(codes) <= {200, 429, 503}, [(a.status_code, a.text[:200]) for a in answers if a.status_code not in (200, 429, 503)]
     assert 200 in codes
     for answer in answers:
-        if answer.status_code == 503:
+        if answer.status_code in (429, 503):
             assert int(answer.headers["Retry-After"]) >= 1 and "recording" in answer.json()["detail"]
     for student in students:
         student.close()

@@ -42,6 +42,7 @@ from __future__ import annotations
 import math
 import multiprocessing
 import multiprocessing.forkserver
+import os
 import pickle
 import resource
 import signal
@@ -122,8 +123,15 @@ def _address_space_bytes() -> int:
     return 0
 
 
+#: The child's scheduling niceness: work a student typed runs on the processor time the live scenes leave (when the
+#: machine is not busy it runs at full speed; when it is, the class's frames come first).
+CHILD_NICENESS = 10
+
+
 def _limit_resources(memory_bytes: int, cpu_seconds: int) -> None:
-    """In the child: allow ``memory_bytes`` more address space than now and ``cpu_seconds`` of CPU time."""
+    """In the child: allow ``memory_bytes`` more address space than now and ``cpu_seconds`` of CPU time, at a lower
+    priority than the scenes (:data:`CHILD_NICENESS`)."""
+    os.nice(CHILD_NICENESS)
     _, hard_as = resource.getrlimit(resource.RLIMIT_AS)
     limit_as = _address_space_bytes() + memory_bytes
     if hard_as != resource.RLIM_INFINITY:

@@ -188,7 +188,7 @@ class Session:
         at) and the span of motion kept for scrubbing."""
         waiting_t_s = self.resume_motion.get("t_s") if self.resume_motion is not None else self.go_to_s
         out: dict[str, Any] = {"playing": self.playing, "time_scale": self.time_scale, "t_s": waiting_t_s, "history_s": None}
-        for client_id, scene in self.instances.items():
+        for client_id, scene in list(self.instances.items()):
             motion = scene.motion_state()
             out["t_s"] = None if motion is None else motion["t_s"]
             history = self.histories.get(client_id)
@@ -199,6 +199,15 @@ class Session:
                 out["slowed"] = {"rate": share.rate, "note": share.note}
             break
         return out
+
+    def playback_answer(self) -> dict[str, Any]:
+        """:meth:`playback` with the first viewer's camera (or the one the next viewer starts from) and the number of
+        viewers: what the page's time controls read, in one look."""
+        scenes = list(self.instances.values())
+        camera = next((c for c in (viewer_camera(scene.client) for scene in scenes) if c is not None), None)
+        if camera is None and not scenes and self.camera is not None:
+            camera = {k: list(v) for k, v in self.camera.items()}
+        return {**self.playback(), "camera": camera, "viewers": len(scenes)}
 
     def add_instance(self, client_id: int, scene: Scene, *, client: str | None = None) -> None:
         self.instances[client_id] = scene
@@ -461,7 +470,7 @@ class SceneHost:
                     motion = scene.motion_state()
                     if motion is not None and client_id in session.histories:
                         session.histories[client_id].forget_after(motion["t_s"])
-            return session.playback()
+            return session.playback_answer()
 
     @contextlib.contextmanager
     def _one_long_request(self, long: bool) -> Iterator[None]:
@@ -526,21 +535,15 @@ class SceneHost:
     def camera(self, session_id: str) -> dict[str, list[float]] | None:
         """The first viewer's camera now (m, world frame), as its browser last reported it; before a viewer, the one the
         next viewer starts from (a share link's, or a restored one); else None."""
-        session = self._find(session_id)
-        if session is None:
-            return None
-        with session.lock:
-            for scene in session.instances.values():
-                camera = viewer_camera(scene.client)
-                if camera is not None:
-                    return camera
-            if not session.instances and session.camera is not None:
-                return {k: list(v) for k, v in session.camera.items()}
-        return None
+        answer = self.playback(session_id)
+        return None if answer is None else answer["camera"]
 
     def playback(self, session_id: str) -> dict[str, Any] | None:
+        """The session's play state, simulated time, kept span, camera and viewers (:meth:`Session.playback_answer`),
+        read without waiting for a request that holds the session (a page polls this; what it reads are numbers that
+        change a frame at a time)."""
         session = self._find(session_id)
-        return None if session is None else session.playback()
+        return None if session is None else session.playback_answer()
 
     def _find(self, session_id: str) -> Session | None:
         """The session, or None (the table's lock held only to look it up)."""

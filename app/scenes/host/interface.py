@@ -119,6 +119,7 @@ class SceneHostInterface(Protocol):
 
     @call()
     def playback(self, session_id: str) -> dict[str, Any] | None:
+        """Play state, time scale, simulated time, kept span, camera and viewers in one answer; None for no session."""
         ...
 
     @call()
