@@ -49,6 +49,10 @@ class Settings:
     #: 150 from one address at once. Burst 0 = no limit.
     viewer_open_burst: int = 200
     viewer_open_rate_per_s: float = 20.0
+    #: HTTP requests one client may make at once, and per second after that (a lesson page makes a few a second; a
+    #: page load about 25 at once). Burst 0 = no limit.
+    request_burst: int = 200
+    request_rate_per_s: float = 50.0
     #: Clients the rate limits remember; beyond this the least recently seen is forgotten.
     rate_limit_clients: int = 10_000
     #: Take the client's address from the last ``X-Forwarded-For`` entry (only behind a reverse proxy that sets it).
@@ -104,6 +108,8 @@ _GUARD_FIELDS = (
     "simulate_rate_per_s",
     "viewer_open_burst",
     "viewer_open_rate_per_s",
+    "request_burst",
+    "request_rate_per_s",
     "rate_limit_clients",
     "trust_forwarded_for",
 )

@@ -7,7 +7,8 @@
   ``Origin`` must come from the page's own origin (or ``Settings.allowed_origins``) and its ``Host``
   must name this server (:class:`HostPolicy`): otherwise 403, or close 1008 before accept. This
   stops cross-site requests and DNS rebinding; clients without ``Origin`` (scripts) pass.
-- Per-client rate limits (:class:`~app.web.rate_limit.TokenBuckets`): ``POST .../simulate`` and ``POST /api/systems/custom/derive`` get 429
+- Per-client rate limits (:class:`~app.web.rate_limit.TokenBuckets`): every HTTP request (``Settings.request_burst``
+  at once, ``request_rate_per_s`` after), answered 429 before any route runs; ``POST .../simulate`` and ``POST /api/systems/custom/derive`` get 429
   with ``Retry-After``, and so does a second one from a client whose first is still running
   (:class:`~app.web.rate_limit.InFlight`); opening a viewer websocket is closed with 1013 "try again later".
 """
@@ -119,6 +120,9 @@ class RequestGuard:
             burst=settings.simulate_burst, rate_per_s=settings.simulate_rate_per_s, max_clients=settings.rate_limit_clients, clock=clock
         )
         self.heavy_in_flight = InFlight(limit=1)
+        self.request_limit = TokenBuckets(
+            burst=settings.request_burst, rate_per_s=settings.request_rate_per_s, max_clients=settings.rate_limit_clients, clock=clock
+        )
         self.viewer_limit = TokenBuckets(
             burst=settings.viewer_open_burst, rate_per_s=settings.viewer_open_rate_per_s, max_clients=settings.rate_limit_clients, clock=clock
         )
@@ -134,6 +138,12 @@ class RequestGuard:
     async def _http(self, scope: Scope, receive: Receive, send: Send) -> None:
         headers = Headers(scope=scope)
         method = scope["method"]
+        wait_s = self._wait_s(self.request_limit, scope, headers)
+        if wait_s > 0:  # answered here, before any routing: a flood from one device costs the server next to nothing
+            retry_after = max(1, math.ceil(wait_s))
+            detail = f"too many requests from this device: try again in {retry_after} s"
+            await JSONResponse({"detail": detail}, status_code=429, headers={"Retry-After": str(retry_after)})(scope, receive, send)
+            return
         refusal = None if method in SAFE_METHODS else self.origin_refusal(headers)
         if refusal is not None:
             log.warning("refused %s %s: %s", method, scope["path"], refusal)
@@ -231,11 +241,9 @@ def client_address(scope: Scope, *, trust_forwarded_for: bool) -> str | None:
 
 def refusals(method: str, path: str, *, reads_body: bool) -> dict[int, str]:
     """The answers :class:`RequestGuard` can give one route (``path`` as an OpenAPI template): status -> description."""
-    answers: dict[int, str] = {}
+    answers: dict[int, str] = {429: "Too many requests from this client (or too many simulations or derivations); Retry-After says when to try again"}
     if method.upper() not in SAFE_METHODS:
         answers[403] = "Sent from another site's page (Origin), or to a Host that does not name this server"
     if reads_body:
         answers[413] = "The request body is over the server's size limit"
-    if method.upper() == "POST" and SIMULATE_PATH.match(path):
-        answers[429] = "Too many simulations or derivations from this client; Retry-After says when to try again"
     return answers

@@ -48,12 +48,8 @@ INSTRUCTOR_ONLY_READS = {
 #: Answers the web front's guard gives before any route runs (app/web/guard.py), which FastAPI cannot see by itself.
 WITH_BODY = [(path, method) for path, method, op in OPERATIONS if "requestBody" in op]
 STATE_CHANGING = [(path, method) for path, method, _ in OPERATIONS if method not in ("get", "head", "options")]
-#: Simulations and derivations per device, and new sessions per device (app/api/access.py); joining a room per address
-#: and per room (app/api/join_limits.py).
-RATE_LIMITED = [
-    ("/api/scenes/{scene_id}/simulate", "post"), ("/api/systems/custom/derive", "post"), ("/api/scenes/{scene_id}/sessions/{session_id}", "put"),
-    ("/api/rooms/join", "post"),
-]  # fmt: skip
+#: Every request is rate limited per device by the guard (app/web/guard.py), before any route runs.
+RATE_LIMITED = [(path, method) for path, method, _ in OPERATIONS]
 #: Where each error answer may be documented: no route lists one it cannot give.
 CAN_ANSWER = {"404": CAN_BE_NOT_FOUND, "422": CAN_BE_UNPROCESSABLE, "413": set(WITH_BODY), "403": set(STATE_CHANGING) | INSTRUCTOR_ONLY_READS, "429": set(RATE_LIMITED)}
 

@@ -13,12 +13,16 @@ frames of ``step``). The rules:
   costs. While all demands fit in :data:`FRAME_LOOP_SHARE` of the frame, nobody is
   slowed; when they do not, the frame is shared max-min fairly
   (:func:`allowances`): every client asking less than an equal share gets all it
-  asks, and the rest is split equally among the others. A client over its
+  asks, and the rest is split equally among the others. A worker serving a
+  class (:data:`CLASS_DEVICES` devices or more) is busy streaming to all of
+  them whatever the frame loop's share says, so there each device may use at
+  most a few times what the median device uses (never less than
+  :data:`CLASS_FLOOR_S`). A client over its
   allowance has its viewers advance on only that fraction of frames: its scenes run
   slower than real time, each step still the one its controls chose, and the
   readout says by how much and why (:func:`slowdown_note`). A device alone on a
   worker is never slowed; a class of students on default scenes never is either
-  (the dearest default scene costs under 2 ms a frame, measured).
+  (the dearest default scene, rigid-body-points, costs 2.2 ms a frame, measured).
 * **Requests** (step, going to a time, a recording) compute at most
   :data:`REQUEST_COMPUTE_S`: a request estimated to need more is refused before it
   starts, naming the limit, and one that runs over is stopped and undone. They are
@@ -41,6 +45,11 @@ REQUEST_COMPUTE_S = 2.0
 SLICE_S = 4e-3
 #: ... then leaves the processor to the frame loop for this many times as long.
 PACE_RATIO = 3.0
+#: A worker serving this many devices serves a class: each device may then use at most the larger of
+#: :data:`CLASS_FLOOR_S` and :data:`CLASS_MULTIPLE` times the median device's cost a frame, however idle the frame.
+CLASS_DEVICES = 8
+CLASS_FLOOR_S = 2.5e-3
+CLASS_MULTIPLE = 3.0
 #: Frames a viewer's cost is taken over (the least of them), and frames measured before it may be slowed.
 COST_WINDOW = 8
 COST_WARM_UP = 3
@@ -68,8 +77,20 @@ class FrameCost:
 
 
 def allowances(demands: Mapping[str, float], *, capacity_s: float) -> dict[str, float]:
-    """Max-min fair shares of ``capacity_s`` (s of computing a frame) among clients demanding ``demands`` (s a frame):
-    each client's allowance, ``inf`` for every client when all demands fit."""
+    """Each client's allowance (s of computing a frame) given what each demands (s a frame): max-min fair shares of
+    ``capacity_s``, ``inf`` for everyone when all demands fit; and, in a class (:data:`CLASS_DEVICES` or more), at
+    most the larger of :data:`CLASS_FLOOR_S` and :data:`CLASS_MULTIPLE` times the median demand."""
+    out = _max_min_shares(demands, capacity_s=capacity_s)
+    if len(demands) >= CLASS_DEVICES:
+        ordered = sorted(demands.values())
+        middle = len(ordered) // 2
+        median = ordered[middle] if len(ordered) % 2 else 0.5 * (ordered[middle - 1] + ordered[middle])
+        cap = max(CLASS_FLOOR_S, CLASS_MULTIPLE * median)
+        out = {client: min(allowed, cap) for client, allowed in out.items()}
+    return out
+
+
+def _max_min_shares(demands: Mapping[str, float], *, capacity_s: float) -> dict[str, float]:
     total = sum(demands.values())
     if total <= capacity_s or len(demands) < 2:
         return {client: math.inf for client in demands}

@@ -16,7 +16,16 @@ import viser
 from websockets.sync.client import connect
 
 from app.scenes import SCENES
-from app.scenes.host.fair_share import COST_WARM_UP, FRAME_LOOP_SHARE, REQUEST_COMPUTE_S, FrameCost, allowances
+from app.scenes.host.fair_share import (
+    CLASS_DEVICES,
+    CLASS_FLOOR_S,
+    CLASS_MULTIPLE,
+    COST_WARM_UP,
+    FRAME_LOOP_SHARE,
+    REQUEST_COMPUTE_S,
+    FrameCost,
+    allowances,
+)
 from app.scenes.host.host import SceneHost
 from app.scenes.host.viser_compat import viewer_camera_message
 from tests.conftest import wait_until
@@ -156,8 +165,14 @@ def test_max_min_fair_shares():
     assert allowances({"a": 1.0, "b": 2.0}, capacity_s=4.0) == {"a": float("inf"), "b": float("inf")}
     assert allowances({"a": 1.0, "b": 10.0, "c": 10.0}, capacity_s=9.0) == {"a": float("inf"), "b": 4.0, "c": 4.0}
     assert allowances({"solo": 100.0}, capacity_s=1.0) == {"solo": float("inf")}  # alone: never slowed
-    shares = allowances({f"s{n}": 0.3 for n in range(50)} | {"attacker": 12.0}, capacity_s=16.0)
-    assert shares["attacker"] == pytest.approx(16.0 - 50 * 0.3) and shares["s0"] == float("inf")
+    # A worker serving a class: at most the larger of the floor and a few times the median device, however idle.
+    class_of_50 = {f"s{n}": 0.3e-3 for n in range(50)} | {"attacker": 12e-3}
+    shares = allowances(class_of_50, capacity_s=40e-3)  # all of it fits in the frame loop's share ...
+    assert shares["attacker"] == pytest.approx(max(CLASS_FLOOR_S, CLASS_MULTIPLE * 0.3e-3)) and shares["s0"] >= 0.3e-3
+    shares = allowances(class_of_50, capacity_s=16e-3)  # ... and where it does not, the fair share is less still
+    assert shares["attacker"] == pytest.approx(16e-3 - 50 * 0.3e-3)
+    shares = allowances({f"s{n}": 2e-3 for n in range(CLASS_DEVICES - 1)} | {"dear": 12e-3}, capacity_s=40e-3)
+    assert shares["dear"] == pytest.approx(CLASS_MULTIPLE * 2e-3)  # a class on a dearer lesson: its median sets it
 
 
 def test_a_request_over_its_compute_limit_is_refused_before_anything_moves(host):
