@@ -123,15 +123,11 @@ def _address_space_bytes() -> int:
     return 0
 
 
-#: The child's scheduling niceness: work a student typed runs on the processor time the live scenes leave (when the
-#: machine is not busy it runs at full speed; when it is, the class's frames come first).
-CHILD_NICENESS = 10
-
-
 def _limit_resources(memory_bytes: int, cpu_seconds: int) -> None:
-    """In the child: allow ``memory_bytes`` more address space than now and ``cpu_seconds`` of CPU time, at a lower
-    priority than the scenes (:data:`CHILD_NICENESS`)."""
-    os.nice(CHILD_NICENESS)
+    """In the child: allow ``memory_bytes`` more address space than now and ``cpu_seconds`` of CPU time, and run only
+    on processor time nothing else wants (Linux's SCHED_IDLE): work a student typed runs at full speed on a quiet
+    machine and never takes a class's frames on a busy one (its wall-clock limit still holds)."""
+    _run_on_idle_time()
     _, hard_as = resource.getrlimit(resource.RLIMIT_AS)
     limit_as = _address_space_bytes() + memory_bytes
     if hard_as != resource.RLIM_INFINITY:
@@ -140,6 +136,25 @@ def _limit_resources(memory_bytes: int, cpu_seconds: int) -> None:
     _, hard_cpu = resource.getrlimit(resource.RLIMIT_CPU)
     soft_cpu = cpu_seconds if hard_cpu == resource.RLIM_INFINITY else min(cpu_seconds, hard_cpu)
     resource.setrlimit(resource.RLIMIT_CPU, (soft_cpu, hard_cpu))
+
+
+def _run_on_idle_time() -> None:
+    """Let this process take only processor time the server's scenes do not want. Linux shares the processor fairly
+    between sessions before it looks at a session's processes (autogroups), so a child that stayed in the server's
+    session would spend the server's share; it starts a session of its own instead, at the lowest weight, and runs in
+    the idle class. Measured with 100 students on their own heavy tops: a busy loop in the idle class of a session
+    of its own took their frames from 29.7 to 24.7 a second; in a session of its own at autogroup nice 19, 29.2
+    (the loop still used the 0.5 cores they left idle)."""
+    try:
+        os.setsid()
+        with open("/proc/self/autogroup", "w", encoding="ascii") as autogroup:
+            autogroup.write("19")
+    except OSError:  # no autogroups (not Linux, or switched off): the scheduling class below still applies
+        pass
+    try:
+        os.sched_setscheduler(0, os.SCHED_IDLE, os.sched_param(0))
+    except (AttributeError, OSError):  # no SCHED_IDLE (not Linux): a lower priority instead
+        os.nice(10)
 
 
 def _answer(function: Callable[..., Any], args: tuple[Any, ...]) -> tuple[str, Any]:
