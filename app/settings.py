@@ -51,8 +51,8 @@ class Settings:
     viewer_open_rate_per_s: float = 20.0
     #: HTTP requests one client may make at once, and per second after that (a lesson page makes a few a second; a
     #: page load about 25 at once). Burst 0 = no limit.
-    request_burst: int = 200
-    request_rate_per_s: float = 50.0
+    request_burst: int = 120
+    request_rate_per_s: float = 20.0
     #: Clients the rate limits remember; beyond this the least recently seen is forgotten.
     rate_limit_clients: int = 10_000
     #: Take the client's address from the last ``X-Forwarded-For`` entry (only behind a reverse proxy that sets it).

@@ -60,6 +60,11 @@ MAX_FOLLOWERS_PER_CLIENT = 8
 #: to 60 s of frames in the student's scene worker: about a second of its computing).
 RECORDING_BURST = 3
 RECORDING_EVERY_S = 20.0
+#: Long computations (a step of more than :data:`LONG_STEP_FRAMES` frames, a jump to a time) one client may ask for
+#: at once, and one every this many seconds after that (a share link opens with one; the step button steps one frame).
+LONG_STEP_FRAMES = 30
+LONG_REQUEST_BURST = 3
+LONG_REQUEST_EVERY_S = 10.0
 
 
 class Refused(Exception):
@@ -114,6 +119,7 @@ class SessionDirectory:
         self._heavy_changes = InFlight(limit=1)
         self._recordings = TokenBuckets(burst=RECORDING_BURST, rate_per_s=1.0 / RECORDING_EVERY_S, max_clients=max_clients, clock=clock)
         self._recording_now = InFlight(limit=1)
+        self._long_requests = TokenBuckets(burst=LONG_REQUEST_BURST, rate_per_s=1.0 / LONG_REQUEST_EVERY_S, max_clients=max_clients, clock=clock)
         self._lock = threading.Lock()
 
     def __len__(self) -> int:
@@ -241,6 +247,15 @@ class SessionDirectory:
             yield
         finally:
             self._recording_now.leave(client)
+
+    def check_long_request(self, *, client: str | None) -> None:
+        """Count one long computation for the client; :class:`Refused` (429, Retry-After) beyond its share."""
+        if client is None:
+            return
+        wait_s = self._long_requests.take(client)
+        if wait_s > 0:
+            retry = max(1, round(wait_s + 0.5))
+            raise Refused(429, f"too many long steps or jumps from this device: the next one in {retry} s", retry_after_s=retry)
 
     # -- viewers -------------------------------------------------------------------------------------------
     @contextmanager

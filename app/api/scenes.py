@@ -8,7 +8,7 @@ from fastapi import APIRouter, Header, HTTPException, Path, Query
 from fastapi.responses import JSONResponse, Response
 
 from app.api.access import KEY_HEADER as SESSION_KEY_HEADER
-from app.api.access import SESSION_KEY_PATTERN, Refused
+from app.api.access import LONG_STEP_FRAMES, SESSION_KEY_PATTERN, Refused
 from app.api.deps import ClientDep, SceneHostDep, SessionsDep
 from app.api.examples import ScriptParams, python_file
 from app.api.rooms import RoomsDep
@@ -157,6 +157,8 @@ def set_session_playback(
         raise unprocessable(["path", "session_id"], f"session {session_id!r} has no scene yet: set its parameters first") from None
     if host.session_scene(session_id) != scene_id:
         raise unprocessable(["path", "session_id"], f"session {session_id!r} shows no {scene_id!r} scene: set its parameters first")
+    if request.go_to_s is not None or request.step > LONG_STEP_FRAMES:
+        sessions.check_long_request(client=client)
     try:
         answer = host.set_playback(session_id, **request.model_dump(exclude_none=True))
     except ValueError as exc:

@@ -39,12 +39,14 @@ from collections.abc import Callable, Mapping
 
 #: The part of each frame period the frame loop's scenes may share (the rest is viser's streaming and the calls).
 FRAME_LOOP_SHARE = 0.5
-#: Most computing one request (step, go to a time, a recording) may take (s).
-REQUEST_COMPUTE_S = 2.0
+#: Most computing one request (step, go to a time, a recording) may take (s): a share link to 600 s of the heavy
+#: top needs about half of it, a 60 s recording most of it.
+REQUEST_COMPUTE_S = 1.0
 #: A paced request computes this long (s) ...
-SLICE_S = 4e-3
-#: ... then leaves the processor to the frame loop for this many times as long.
-PACE_RATIO = 3.0
+SLICE_S = 2e-3
+#: ... then leaves the processor to the frame loop for this many times as long (a tenth of a worker's time at most:
+#: every slice holds the interpreter's lock, so the frame loop waits a slice at most, then runs).
+PACE_RATIO = 9.0
 #: A worker serving this many devices serves a class: each device may then use at most the larger of
 #: :data:`CLASS_FLOOR_S` and :data:`CLASS_MULTIPLE` times the median device's cost a frame, however idle the frame.
 CLASS_DEVICES = 8
