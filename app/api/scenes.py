@@ -295,7 +295,7 @@ def session_recording(
 
     404 for an unknown scene or a session without this scene; 422 for bad ``seconds``, a file over the size
     limit or more computing than one request may take; 429 with Retry-After for a device's second recording at
-    once or more than 3 then 1 per 20 s; 503 with Retry-After while another recording is being made in the same
+    once or more than 2 then 1 per 30 s; 503 with Retry-After while another recording is being made in the same
     worker; 500 with the reason when the recording fails.
     """
     _scene_class(host, scene_id)

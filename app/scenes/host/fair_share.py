@@ -52,6 +52,8 @@ PACE_RATIO = 9.0
 CLASS_DEVICES = 8
 CLASS_FLOOR_S = 2.5e-3
 CLASS_MULTIPLE = 3.0
+#: Frames a paced computation runs before its whole cost is projected from them.
+PROJECT_AFTER = 10
 #: Frames a viewer's cost is taken over (the least of them), and frames measured before it may be slowed.
 COST_WINDOW = 8
 COST_WARM_UP = 3
@@ -136,24 +138,34 @@ def check_request_cost(field: str, *, frames: int, frame_cost_s: float, what: st
 
 
 class Pace:
-    """Called once a frame by a long computation: every :data:`SLICE_S` it sleeps :data:`PACE_RATIO` times as long
-    (the frame loop runs meanwhile), and it stops the computation (returns False) once ``limit_s`` is spent."""
+    """Called once a frame by a long computation of ``frames`` frames: every :data:`SLICE_S` it sleeps
+    :data:`PACE_RATIO` times as long (the frame loop runs meanwhile), and it stops the computation (returns False) once
+    ``limit_s`` is spent, or as soon as the frames done so far show that the whole would take longer (after
+    :data:`PROJECT_AFTER` of them), so a request whose cost was not known yet is refused for the price of a few frames."""
 
-    def __init__(self, *, limit_s: float = REQUEST_COMPUTE_S, clock: Callable[[], float] = time.perf_counter) -> None:
+    def __init__(self, *, frames: int, limit_s: float = REQUEST_COMPUTE_S, clock: Callable[[], float] = time.perf_counter) -> None:
+        self.frames = frames
         self.limit_s = limit_s
         self.spent_s = 0.0
+        self.done = 0
+        self.over = False
         self._clock = clock
         self._slice_start = clock()
 
     def __call__(self) -> bool:
+        self.done += 1
         ran = self._clock() - self._slice_start
         if ran >= SLICE_S:
             self.spent_s += ran
             time.sleep(PACE_RATIO * ran)
             self._slice_start = self._clock()
             ran = 0.0
-        return self.spent_s + ran < self.limit_s
+        spent = self.spent_s + ran
+        projected = spent / self.done * self.frames if self.done >= PROJECT_AFTER else spent
+        self.over = spent >= self.limit_s or projected > self.limit_s
+        return not self.over
 
     @property
     def exhausted(self) -> bool:
-        return self.spent_s + (self._clock() - self._slice_start) >= self.limit_s
+        """The computation was stopped for its limit (spent, or projected from the frames done)."""
+        return self.over

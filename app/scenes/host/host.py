@@ -74,6 +74,7 @@ from app.scenes.host.viser_compat import (
     viewer_count,
 )
 from app.scenes.kit import Scene
+from app.scenes.kit.scene import FRAME_DT_S
 
 log = logging.getLogger(__name__)
 
@@ -490,7 +491,7 @@ class SceneHost:
         """Advance every animated scene of the session ``frames`` displayed frames now (caller holds its lock), paced
         so the frame loop keeps drawing everyone else meanwhile. If it runs over the request's compute limit (its
         cost was not known yet) every scene is put back where it was and ``RequestTooCostly`` says so."""
-        pace = Pace()
+        pace = Pace(frames=frames * max(1, len(session.instances)))
         before = {client_id: scene.motion_state() for client_id, scene in session.instances.items()}
         wakeups = BatchedWakeups()
         for client_id, scene in list(session.instances.items()):
@@ -517,7 +518,7 @@ class SceneHost:
         """``scene.go_to(t_s)`` within one request's share of the worker; if it would take longer, the scene is put
         back where it was and ``RequestTooCostly`` names the limit."""
         before = scene.motion_state()
-        pace = Pace()
+        pace = Pace(frames=math.ceil(t_s / FRAME_DT_S) + 1)  # a jump steps whole frames of the kit's
         scene.pace = pace  # type: ignore[method-assign]  # an instance's own pace, for this computation only
         try:
             scene.go_to(t_s)

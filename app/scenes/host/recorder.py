@@ -170,7 +170,7 @@ class SceneRecorder:
             serializer = server.get_scene_serializer()  # the first drawing, nodes and initial camera included
             if frames:
                 serializer.insert_sleep(frame_period_s)
-                pace = Pace()  # the frame loop keeps drawing everyone while this replays
+                pace = Pace(frames=len(frames) - 1)  # the frame loop keeps drawing everyone while this replays
                 with _trails_kept(scene):
                     for _, motion in frames[1:]:
                         scene.resume_from(motion)
