@@ -50,8 +50,8 @@ PACE_RATIO = 9.0
 #: A worker serving this many devices serves a class: each device may then use at most the larger of
 #: :data:`CLASS_FLOOR_S` and :data:`CLASS_MULTIPLE` times the median device's cost a frame, however idle the frame.
 CLASS_DEVICES = 8
-CLASS_FLOOR_S = 2.5e-3
-CLASS_MULTIPLE = 3.0
+CLASS_FLOOR_S = 1.0e-3
+CLASS_MULTIPLE = 2.0
 #: Frames a paced computation runs before its whole cost is projected from them.
 PROJECT_AFTER = 10
 #: Frames a viewer's cost is taken over (the least of them), and frames measured before it may be slowed.

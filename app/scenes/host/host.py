@@ -141,10 +141,19 @@ class ViewerShare:
     frame, the frames it is owed (``time_scale`` × its rate a frame), and how far it is slowed."""
 
     client: str | None
+    #: A frame's advance and drawing as measured frame by frame (the least of the recent frames) ...
     cost: FrameCost = field(default_factory=FrameCost)
+    #: ... plus the mean physics a frame (s) where a scene computes its motion in batches of frames (an integrated
+    #: scene computes 15 frames at once, so most of its frames only copy a state and the least of them misses it).
+    physics_s: float = 0.0
     credit: float = 0.0
     rate: float = 1.0
     note: str = ""
+
+    @property
+    def frame_s(self) -> float:
+        """What one frame of this viewer's scene costs (s), 0 while it is not yet measured."""
+        return self.cost.seconds + self.physics_s if self.cost.seconds else 0.0
 
 
 def viewer_camera(client: Any) -> dict[str, list[float]] | None:
@@ -421,7 +430,7 @@ class SceneHost:
             # What the request will compute, checked against its limit before anything moves (the scenes' measured
             # cost a frame; a session without a viewer computes its jump when one connects, paced the same way).
             if step:
-                drawn_s = sum(share.cost.seconds for share in session.shares.values())
+                drawn_s = sum(share.frame_s for share in session.shares.values())
                 check_request_cost("step", frames=step, frame_cost_s=drawn_s, what=f"stepping {step} frames")
             if go_to_s is not None and session.instances:
                 stepped_s = sum(scene.motion_cost_s() or 0.0 for scene in session.instances.values())
@@ -901,7 +910,7 @@ class SceneHost:
             if session.playing:
                 for share in list(session.shares.values()):
                     if share.client is not None:
-                        demand[share.client] = demand.get(share.client, 0.0) + share.cost.seconds * session.time_scale
+                        demand[share.client] = demand.get(share.client, 0.0) + share.frame_s * session.time_scale
                         viewers[share.client] = viewers.get(share.client, 0) + 1
         allowed = allowances(demand, capacity_s=FRAME_LOOP_SHARE * dt_s) if demand else {}
         wakeups = BatchedWakeups()  # viser's sender is woken once for every viewer's frame, not once per viewer
@@ -944,6 +953,7 @@ class SceneHost:
                 started = time.perf_counter()
                 self._advance(scene, dt_s, wakeups)
                 share.cost.add(time.perf_counter() - started)
+                share.physics_s = scene.motion_cost_s() or 0.0
                 if history is not None:
                     history.record(scene.motion_state())
 
