@@ -45,10 +45,10 @@ class Settings:
     #: Simulate requests one client may make at once, and per second after that (token bucket); burst 0 = no limit.
     simulate_burst: int = 10
     simulate_rate_per_s: float = 2.0
-    #: Viewer websockets one client may open at once, and per second after that; a classroom load test opens
-    #: 150 from one address at once. Burst 0 = no limit.
-    viewer_open_burst: int = 200
-    viewer_open_rate_per_s: float = 20.0
+    #: Viewer websockets (a page's viewer, a room's scene, the room socket) one client may open at once, and per second
+    #: after that: a page opens two or three, and each reconnects after a drop. Burst 0 = no limit.
+    viewer_open_burst: int = 30
+    viewer_open_rate_per_s: float = 2.0
     #: HTTP requests one client may make at once, and per second after that (a lesson page makes a few a second; a
     #: page load about 25 at once). Burst 0 = no limit.
     request_burst: int = 120

@@ -190,7 +190,9 @@ class RequestGuard:
             log.warning("refused websocket %s: %s", scope["path"], refusal)
             await self._close_before_accept(receive, send, code=1008, reason=refusal)
             return
-        if scope["path"].startswith(VIEWER_PREFIXES) and self._wait_s(self.viewer_limit, scope, headers) > 0:
+        wait_s = self._wait_s(self.viewer_limit, scope, headers) if scope["path"].startswith(VIEWER_PREFIXES) else 0.0
+        if wait_s > 0:
+            await asyncio.sleep(min(wait_s, MAX_REFUSAL_DELAY_S))  # as for HTTP: a flood of opens is slowed, cheaply
             await self._close_before_accept(receive, send, code=1013, reason="try again later: too many viewers opened from this client")
             return
         await self.app(scope, receive, send)
