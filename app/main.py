@@ -18,6 +18,7 @@ from app.api.join_limits import JoinLimits
 from app.api.room_hub import RoomHub
 from app.api.access import SessionDirectory
 from app.course import load_catalogue
+from app.physics.core.bounded import stop_all_work
 from app.rooms.ready_questions import DEFAULT_READY_QUESTIONS, load_ready_questions
 from app.rooms.registry import Rooms
 from app.rooms.roles import InstructorKey
@@ -46,6 +47,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
         try:
             yield
         finally:
+            stop_all_work()  # a derivation in flight ends now, not at its 20 s bound
             await room_relay.close_streams(app)
             host.stop()
 

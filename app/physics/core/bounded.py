@@ -333,11 +333,25 @@ def _machine_busy(children: int) -> bool:
     return (load - children) / (os.cpu_count() or 1) > BUSY_LOAD_PER_CPU
 
 
+#: Set when the server stops: every wait for a child ends at once (the child is killed), so a stop never waits for
+#: a derivation's 20 s.
+_STOPPING = threading.Event()
+
+
+def stop_all_work() -> None:
+    """The server is stopping: every bounded call running now, or started from now on, ends at once with
+    :class:`WorkInterrupted` and its child is killed."""
+    _STOPPING.set()
+
+
 def _await_answer(receiver: Any, process: Any, timeout_s: float) -> bool:
     """Wait up to ``timeout_s`` (wall clock) for the child's answer; True once it is there. While the machine is busy
-    the child is paused (SIGSTOP, then SIGCONT) for :data:`BUSY_PAUSE_S` after each :data:`BUSY_RUN_S` it runs."""
+    the child is paused (SIGSTOP, then SIGCONT) for :data:`BUSY_PAUSE_S` after each :data:`BUSY_RUN_S` it runs.
+    Raises :class:`WorkInterrupted` when the server stops meanwhile (:func:`stop_all_work`)."""
     deadline = time.monotonic() + timeout_s
     while (left := deadline - time.monotonic()) > 0:
+        if _STOPPING.is_set():
+            raise WorkInterrupted("the server is stopping; try again when it is back", signal_number=signal.SIGTERM)
         if receiver.poll(min(left, BUSY_RUN_S if _machine_busy(children=1) else 0.5)):
             return True
         if not _machine_busy(children=1) or process.pid is None:

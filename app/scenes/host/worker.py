@@ -32,6 +32,7 @@ def run_worker(index: int, start_pipe: Connection, authkey: bytes, options: dict
     """Process entry: serve scenes until ``"stop"`` arrives on ``start_pipe`` or it closes."""
     logging.basicConfig(level=options.get("log_level", "WARNING"), format=f"%(levelname)s worker{index} %(name)s: %(message)s")
     from app.scenes import SCENES  # importing the scenes loads every numba kernel (compiled eagerly, cached on disk)
+    from app.physics.core.bounded import stop_all_work
     from app.scenes.host.host import SceneHost
 
     host = SceneHost(SCENES, frame_rate_hz=options["frame_rate_hz"], max_sessions=options["max_sessions"])
@@ -49,6 +50,7 @@ def run_worker(index: int, start_pipe: Connection, authkey: bytes, options: dict
     finally:
         closing.set()
         listener.close()
+        stop_all_work()
         host.stop()
 
 
