@@ -13,11 +13,12 @@ frames of ``step``). The rules:
   costs. While all demands fit in :data:`FRAME_LOOP_SHARE` of the frame, nobody is
   slowed; when they do not, the frame is shared max-min fairly
   (:func:`allowances`): every client asking less than an equal share gets all it
-  asks, and the rest is split equally among the others. A worker serving a
-  class (:data:`CLASS_DEVICES` devices or more) is busy streaming to all of
-  them whatever the frame loop's share says, so there each device may use at
-  most a few times what the median device uses (never less than
-  :data:`CLASS_FLOOR_S`). A client over its
+  asks, and the rest is split equally among the others; but a client asking
+  no more than a few times the median device (or :data:`CLASS_FLOOR_S`) is never
+  slowed, so a class whose scenes cost alike is never slowed however large. A
+  worker serving a class (:data:`CLASS_DEVICES` devices or more) is busy
+  streaming to all of them whatever the frame loop's share says, so there a
+  dearer device may use at most that much. A client over its
   allowance has its viewers advance on only that fraction of frames: its scenes run
   slower than real time, each step still the one its controls chose, and the
   readout says by how much and why (:func:`slowdown_note`). A device alone on a
@@ -81,17 +82,20 @@ class FrameCost:
 
 
 def allowances(demands: Mapping[str, float], *, capacity_s: float) -> dict[str, float]:
-    """Each client's allowance (s of computing a frame) given what each demands (s a frame): max-min fair shares of
-    ``capacity_s``, ``inf`` for everyone when all demands fit; and, in a class (:data:`CLASS_DEVICES` or more), at
-    most the larger of :data:`CLASS_FLOOR_S` and :data:`CLASS_MULTIPLE` times the median demand."""
-    out = _max_min_shares(demands, capacity_s=capacity_s)
-    if len(demands) >= CLASS_DEVICES:
-        ordered = sorted(demands.values())
-        middle = len(ordered) // 2
-        median = ordered[middle] if len(ordered) % 2 else 0.5 * (ordered[middle - 1] + ordered[middle])
-        cap = max(CLASS_FLOOR_S, CLASS_MULTIPLE * median)
-        out = {client: min(allowed, cap) for client, allowed in out.items()}
-    return out
+    """Each client's allowance (s of computing a frame) given what each demands (s a frame), ``inf`` for no limit.
+
+    A few clients share ``capacity_s`` max-min fairly (unlimited while everything fits). In a class
+    (:data:`CLASS_DEVICES` or more) a client asking no more than the larger of :data:`CLASS_FLOOR_S` and
+    :data:`CLASS_MULTIPLE` times the median is never limited, so a class whose scenes cost alike is never slowed
+    however large it is; a dearer one gets at most that much (or its fair share, if less)."""
+    fair = _max_min_shares(demands, capacity_s=capacity_s)
+    if len(demands) < CLASS_DEVICES:
+        return fair
+    ordered = sorted(demands.values())
+    middle = len(ordered) // 2
+    median = ordered[middle] if len(ordered) % 2 else 0.5 * (ordered[middle - 1] + ordered[middle])
+    typical = max(CLASS_FLOOR_S, CLASS_MULTIPLE * median)
+    return {client: math.inf if demand <= typical else min(fair[client], typical) for client, demand in demands.items()}
 
 
 def _max_min_shares(demands: Mapping[str, float], *, capacity_s: float) -> dict[str, float]:
