@@ -33,8 +33,10 @@
   const share = el("button", { type: "button", class: "tc-share" }, "Share link");
   const shareBox = el("input", { type: "text", class: "tc-share-url", readonly: "", "aria-label": "Share link", hidden: "" });
   const error = el("p", { class: "tc-error error", role: "alert", hidden: "" });
+  // The server says when this scene runs slower than chosen, to keep within this device's share of a busy server.
+  const slowed = el("p", { class: "tc-slowed", role: "status", hidden: "" });
   const bar = el("div", { class: "time-controls", role: "group", "aria-label": "Time controls" },
-    play, step, restart, el("label", { class: "tc-speed-label" }, "Speed ", speed), scrub, clock, share, shareBox, error);
+    play, step, restart, el("label", { class: "tc-speed-label" }, "Speed ", speed), scrub, clock, share, shareBox, slowed, error);
   const wrap = document.getElementById("viewer-wrap");
   wrap.after(bar);
 
@@ -43,8 +45,10 @@
   let shownAt = performance.now();
   let scrubbing = false;
   function show(next) {
-    state = { ...state, ...next };
+    state = { ...state, ...next, slowed: next.slowed || null };
     shownAt = performance.now();
+    slowed.hidden = !state.slowed;
+    slowed.textContent = state.slowed ? state.slowed.note : "";
     play.textContent = state.playing ? "❚❚ Pause" : "▶ Play";
     play.setAttribute("aria-label", state.playing ? "Pause" : "Play");
     play.dataset.playing = String(state.playing);
@@ -59,7 +63,8 @@
   }
   function tick() {
     // Between answers the clock runs on at the time scale while playing (the server's frames do the same).
-    const t = state.t_s === null || state.t_s === undefined ? 0 : state.t_s + (state.playing ? state.time_scale * (performance.now() - shownAt) / 1000 : 0);
+    const rate = state.time_scale * (state.slowed ? state.slowed.rate : 1);
+    const t = state.t_s === null || state.t_s === undefined ? 0 : state.t_s + (state.playing ? rate * (performance.now() - shownAt) / 1000 : 0);
     clock.textContent = `t = ${t.toFixed(2)} s`;
   }
   setInterval(tick, 100);
