@@ -33,7 +33,12 @@ def free_port() -> int:
 
 
 def dynlab_command() -> list[str]:
-    """The ``dynlab`` console script of this environment (what ``uv run dynlab`` runs)."""
+    """The ``dynlab`` console script of this environment (what ``uv run dynlab`` runs); ``DYNLAB_SERVED_CHECKOUT``
+    names another checkout whose own ``.venv/bin/dynlab`` to run instead (to try these tests against another build,
+    such as the commit before a fix: a test of a fix must fail there)."""
+    other = os.environ.get("DYNLAB_SERVED_CHECKOUT")
+    if other:
+        return [str(Path(other) / ".venv" / "bin" / "dynlab")]
     script = Path(sys.executable).with_name("dynlab")
     return [str(script)] if script.exists() else [sys.executable, "-m", "app.cli"]
 
@@ -107,7 +112,9 @@ class ServedApp:
         RESULTS.mkdir(parents=True, exist_ok=True)
         log = self.log_path.open("wb")
         command = [*dynlab_command(), "serve", "--host", "127.0.0.1", "--port", str(self.port), "--log-level", "warning", *self._args]
-        self.process = subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT, env=self._env, start_new_session=True)
+        self.process = subprocess.Popen(
+            command, stdout=log, stderr=subprocess.STDOUT, env=self._env, start_new_session=True, cwd=os.environ.get("DYNLAB_SERVED_CHECKOUT")
+        )
         log.close()
         self.wait_healthy(START_TIMEOUT_S)
         return self

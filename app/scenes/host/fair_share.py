@@ -7,23 +7,25 @@ for everyone in its worker; so would many tabs from one device, or a request tha
 computes minutes of motion at once (a share link's ``go_to_s`` of 600 s, 300
 frames of ``step``). The rules:
 
-* **Frames, shared by client.** Each viewer's cost a frame is measured
-  (:class:`FrameCost`: the least of its last few frames, since waiting for the
-  interpreter's lock only ever adds). A client's demand is the sum of its viewers'
-  costs. While all demands fit in :data:`FRAME_LOOP_SHARE` of the frame, nobody is
-  slowed; when they do not, the frame is shared max-min fairly
-  (:func:`allowances`): every client asking less than an equal share gets all it
-  asks, and the rest is split equally among the others; but a client asking
-  no more than a few times the median device (or :data:`CLASS_FLOOR_S`) is never
-  slowed, so a class whose scenes cost alike is never slowed however large. A
-  worker serving a class (:data:`CLASS_DEVICES` devices or more) is busy
-  streaming to all of them whatever the frame loop's share says, so there a
-  dearer device may use at most that much. A client over its
-  allowance has its viewers advance on only that fraction of frames: its scenes run
-  slower than real time, each step still the one its controls chose, and the
-  readout says by how much and why (:func:`slowdown_note`). A device alone on a
-  worker is never slowed; a class of students on default scenes never is either
-  (the dearest default scene, rigid-body-points, costs 2.2 ms a frame, measured).
+* **Frames, shared by device.** Each viewer's cost a frame is measured
+  (:class:`FrameCost`: the least of its last few drawn frames, since waiting for
+  the interpreter's lock only ever adds, plus the mean of the physics an
+  integrated scene computes in batches of frames). A device's demand is the sum of
+  its viewers' costs. A few devices share :data:`FRAME_LOOP_SHARE` of the frame
+  max-min fairly (:func:`allowances`): while all fits nobody is slowed, and a
+  device alone is never slowed. A worker serving a class (:data:`CLASS_DEVICES`
+  devices or more) streams to all of them whatever the frame loop's share says,
+  so there a device may use at most the larger of :data:`CLASS_FLOOR_S` and
+  :data:`CLASS_MULTIPLE` times the median device's cost: a class whose scenes
+  cost alike is never slowed however large, while a device several times dearer
+  than its class is (RK4 at 4096 steps a frame; also, measured, a default
+  rigid-body-points scene at 2.2 ms a frame among heavy tops at 0.25 ms). A
+  device over its allowance has its viewers advance on only that fraction of
+  frames: its scenes run slower than real time, each step still the one its
+  controls chose, and its time controls say by how much and why
+  (:func:`slowdown_note`). Measured with ``dynlab load --attack``: one device
+  attacking a class of 100 took them from 29.6 to 0.5 frames/s before these
+  rules, 28.3 after (docs/bench/attack.json).
 * **Requests** (step, going to a time, a recording) compute at most
   :data:`REQUEST_COMPUTE_S`: a request estimated to need more is refused before it
   starts, naming the limit, and one that runs over is stopped and undone. They are
