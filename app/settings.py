@@ -53,6 +53,9 @@ class Settings:
     #: page load about 25 at once). Burst 0 = no limit.
     request_burst: int = 120
     request_rate_per_s: float = 20.0
+    #: The same for static files (/static/…: a page's scripts, styles and fonts, about 15 a page, cheap to serve).
+    static_request_burst: int = 600
+    static_request_rate_per_s: float = 100.0
     #: Clients the rate limits remember; beyond this the least recently seen is forgotten.
     rate_limit_clients: int = 10_000
     #: Take the client's address from the last ``X-Forwarded-For`` entry (only behind a reverse proxy that sets it).
@@ -110,6 +113,8 @@ _GUARD_FIELDS = (
     "viewer_open_rate_per_s",
     "request_burst",
     "request_rate_per_s",
+    "static_request_burst",
+    "static_request_rate_per_s",
     "rate_limit_clients",
     "trust_forwarded_for",
 )

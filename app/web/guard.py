@@ -8,7 +8,8 @@
   must name this server (:class:`HostPolicy`): otherwise 403, or close 1008 before accept. This
   stops cross-site requests and DNS rebinding; clients without ``Origin`` (scripts) pass.
 - Per-client rate limits (:class:`~app.web.rate_limit.TokenBuckets`): every HTTP request (``Settings.request_burst``
-  at once, ``request_rate_per_s`` after), answered 429 before any route runs; ``POST .../simulate`` and ``POST /api/systems/custom/derive`` get 429
+  at once, ``request_rate_per_s`` after; static files in a bucket of their own, larger), answered 429 before any
+  route runs, after a wait; ``POST .../simulate`` and ``POST /api/systems/custom/derive`` get 429
   with ``Retry-After``, and so does a second one from a client whose first is still running
   (:class:`~app.web.rate_limit.InFlight`); opening a viewer websocket is closed with 1013 "try again later".
 """
@@ -126,6 +127,9 @@ class RequestGuard:
         self.request_limit = TokenBuckets(
             burst=settings.request_burst, rate_per_s=settings.request_rate_per_s, max_clients=settings.rate_limit_clients, clock=clock
         )
+        self.static_limit = TokenBuckets(
+            burst=settings.static_request_burst, rate_per_s=settings.static_request_rate_per_s, max_clients=settings.rate_limit_clients, clock=clock
+        )
         self.viewer_limit = TokenBuckets(
             burst=settings.viewer_open_burst, rate_per_s=settings.viewer_open_rate_per_s, max_clients=settings.rate_limit_clients, clock=clock
         )
@@ -141,7 +145,7 @@ class RequestGuard:
     async def _http(self, scope: Scope, receive: Receive, send: Send) -> None:
         headers = Headers(scope=scope)
         method = scope["method"]
-        wait_s = self._wait_s(self.request_limit, scope, headers)
+        wait_s = self._wait_s(self.static_limit if scope["path"].startswith("/static/") else self.request_limit, scope, headers)
         if wait_s > 0:
             # Answered here, before any routing, and only after the wait: a device flooding the server over a few
             # connections is slowed to a few refusals a second instead of taking the event loop that relays every

@@ -37,9 +37,13 @@ class ServedHost:
     run in its workers, out of this process's reach)."""
 
     def __init__(self, app: ServedApp) -> None:
-        self._http = httpx.Client(base_url=app.url, timeout=30.0)
+        self._http = app.new_client(timeout_s=30.0)  # the tester's own device: the browser's limits are its own
         self._scene_of: dict[str, str] = {}
         self._scene_ids: list[str] | None = None
+
+    @property
+    def http(self) -> httpx.Client:
+        return self._http
 
     def remember(self, session_id: str, scene_id: str) -> None:
         self._scene_of[session_id] = scene_id
@@ -246,8 +250,8 @@ def open_lesson(
 
 
 def room_followers(live_server, room_id: str) -> int:
-    """The 3D viewers following a room's scene, as the room's state says."""
-    return httpx.get(f"{live_server.url}/api/rooms/{room_id}/state", timeout=30).json()["followers"]
+    """The 3D viewers following a room's scene, as the room's state says (asked from the tester's own device)."""
+    return live_server.host.http.get(f"/api/rooms/{room_id}/state").json()["followers"]
 
 
 def readout_values(page) -> dict:

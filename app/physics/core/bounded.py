@@ -333,15 +333,16 @@ def _machine_busy(children: int) -> bool:
     return (load - children) / (os.cpu_count() or 1) > BUSY_LOAD_PER_CPU
 
 
-#: Set when the server stops: every wait for a child ends at once (the child is killed), so a stop never waits for
-#: a derivation's 20 s.
-_STOPPING = threading.Event()
+#: Counts the server's stops: a wait begun before the latest one ends at once (its child is killed), so a stop never
+#: waits for a derivation's 20 s; calls begun after it run as usual (a test process starts and stops many apps).
+_stops = 0
 
 
 def stop_all_work() -> None:
-    """The server is stopping: every bounded call running now, or started from now on, ends at once with
-    :class:`WorkInterrupted` and its child is killed."""
-    _STOPPING.set()
+    """The server is stopping: every bounded call running now ends at once with :class:`WorkInterrupted` and its child
+    is killed."""
+    global _stops
+    _stops += 1
 
 
 def _await_answer(receiver: Any, process: Any, timeout_s: float) -> bool:
@@ -349,8 +350,9 @@ def _await_answer(receiver: Any, process: Any, timeout_s: float) -> bool:
     the child is paused (SIGSTOP, then SIGCONT) for :data:`BUSY_PAUSE_S` after each :data:`BUSY_RUN_S` it runs.
     Raises :class:`WorkInterrupted` when the server stops meanwhile (:func:`stop_all_work`)."""
     deadline = time.monotonic() + timeout_s
+    stops = _stops
     while (left := deadline - time.monotonic()) > 0:
-        if _STOPPING.is_set():
+        if _stops != stops:
             raise WorkInterrupted("the server is stopping; try again when it is back", signal_number=signal.SIGTERM)
         if receiver.poll(min(left, BUSY_RUN_S if _machine_busy(children=1) else 0.5)):
             return True
