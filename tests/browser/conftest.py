@@ -6,6 +6,7 @@ from __future__ import annotations
 import json
 import os
 import threading
+import time
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -45,21 +46,28 @@ class ServedHost:
     def http(self) -> httpx.Client:
         return self._http
 
+    def _get(self, path: str) -> httpx.Response:
+        """GET as a patient page would: a 429 is waited out (its Retry-After) and asked again, for up to 10 s."""
+        deadline = time.monotonic() + 10.0
+        while (answer := self._http.get(path)).status_code == 429 and time.monotonic() < deadline:
+            time.sleep(float(answer.headers.get("retry-after", "1")))
+        return answer
+
     def remember(self, session_id: str, scene_id: str) -> None:
         self._scene_of[session_id] = scene_id
 
     def _scene(self, session_id: str) -> str | None:
         if session_id not in self._scene_of:
             if self._scene_ids is None:
-                self._scene_ids = [s["id"] for s in self._http.get("/api/scenes").json()]
+                self._scene_ids = [s["id"] for s in self._get("/api/scenes").json()]
             for scene_id in self._scene_ids:
-                if self._http.get(f"/api/scenes/{scene_id}/sessions/{session_id}").status_code == 200:
+                if self._get(f"/api/scenes/{scene_id}/sessions/{session_id}").status_code == 200:
                     self._scene_of[session_id] = scene_id
                     break
         return self._scene_of.get(session_id)
 
     def _playback(self, session_id: str) -> dict | None:
-        answer = self._http.get(f"/api/scenes/{self._scene(session_id) or 'heavy-top'}/sessions/{session_id}/playback")
+        answer = self._get(f"/api/scenes/{self._scene(session_id) or 'heavy-top'}/sessions/{session_id}/playback")
         return answer.json() if answer.status_code == 200 else None
 
     def viewer_count(self, session_id: str) -> int:
@@ -73,12 +81,12 @@ class ServedHost:
 
     def live(self, session_id: str) -> dict | None:
         """The session's live readout, as the page polls it."""
-        answer = self._http.get(f"/api/scenes/{self._scene(session_id)}/sessions/{session_id}/live")
+        answer = self._get(f"/api/scenes/{self._scene(session_id)}/sessions/{session_id}/live")
         return answer.json() if answer.status_code == 200 else None
 
     def session_params(self, session_id: str) -> dict | None:
         scene_id = self._scene(session_id)
-        answer = self._http.get(f"/api/scenes/{scene_id}/sessions/{session_id}") if scene_id else None
+        answer = self._get(f"/api/scenes/{scene_id}/sessions/{session_id}") if scene_id else None
         return answer.json()["params"] if answer is not None and answer.status_code == 200 else None
 
     def camera(self, session_id: str) -> dict | None:
