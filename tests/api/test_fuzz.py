@@ -6,9 +6,9 @@ loopback address of its own (a new device: the per-device limits are tested else
 for what reaches the routes and the workers). The default run is small enough for CI and
 derandomized, so a failure reproduces; the long run is
 
-    DYNLAB_FUZZ_EXAMPLES=2500 python3 -m uv run --group test pytest tests/api/test_fuzz.py -p no:cacheprovider -n 0
+    DYNLAB_FUZZ_EXAMPLES=500 python3 -m uv run --group test pytest tests/api/test_fuzz.py -p no:cacheprovider -n 0
 
-(2 500 cases for each operation that takes input: over 10 000 in all). The viewer websocket is not in
+(500 cases for each of the 30 operations, fewer where one takes little input: 11 507 in all on 2026-11-28, no 5xx, 2 minutes). The viewer websocket is not in
 OpenAPI; tests/api/test_access.py and tests/web/test_guard.py cover its refusals.
 """
 
