@@ -113,8 +113,8 @@ class SessionDirectory:
         self._clock = clock
         self._entries: OrderedDict[str, SessionEntry] = OrderedDict()  # least recently used first
         self._by_client: dict[str, OrderedDict[str, None]] = {}
-        self._viewers_by_client: dict[str, int] = {}
-        self._followers_by_client: dict[str, int] = {}
+        self._viewers_of_client = InFlight(limit=MAX_VIEWERS_PER_CLIENT)
+        self._followers = InFlight(limit=MAX_FOLLOWERS_PER_CLIENT)
         self._creations = TokenBuckets(burst=CREATE_BURST, rate_per_s=CREATE_RATE_PER_S, max_clients=max_clients, clock=clock)
         self._heavy_changes = InFlight(limit=1)
         self._recordings = TokenBuckets(burst=RECORDING_BURST, rate_per_s=1.0 / RECORDING_EVERY_S, max_clients=max_clients, clock=clock)
@@ -272,11 +272,9 @@ class SessionDirectory:
                 raise Refused(409, f"this session shows {entry.scene_id!r}, not {scene_id!r}: reload the page")
             if entry.viewers >= MAX_VIEWERS_PER_SESSION:
                 raise Refused(429, f"this scene has {MAX_VIEWERS_PER_SESSION} viewers open already: close a tab", retry_after_s=5)
-            if client is not None and self._viewers_by_client.get(client, 0) >= MAX_VIEWERS_PER_CLIENT:
+            if client is not None and not self._viewers_of_client.try_enter(client):
                 raise Refused(429, f"this device has {MAX_VIEWERS_PER_CLIENT} scenes open already: close a tab", retry_after_s=5)
             entry.viewers += 1
-            if client is not None:
-                self._viewers_by_client[client] = self._viewers_by_client.get(client, 0) + 1
             self._touch_locked(session_id, entry)
         try:
             yield
@@ -284,12 +282,8 @@ class SessionDirectory:
             with self._lock:
                 entry.viewers -= 1
                 entry.last_used_s = self._clock()
-                if client is not None:
-                    left = self._viewers_by_client.get(client, 1) - 1
-                    if left > 0:
-                        self._viewers_by_client[client] = left
-                    else:
-                        self._viewers_by_client.pop(client, None)
+            if client is not None:
+                self._viewers_of_client.leave(client)
 
     @contextmanager
     def follower(self, *, client: str | None) -> Iterator[None]:
@@ -297,16 +291,9 @@ class SessionDirectory:
         if client is None:
             yield
             return
-        with self._lock:
-            if self._followers_by_client.get(client, 0) >= MAX_FOLLOWERS_PER_CLIENT:
-                raise Refused(429, f"this device follows the room in {MAX_FOLLOWERS_PER_CLIENT} tabs already", retry_after_s=5)
-            self._followers_by_client[client] = self._followers_by_client.get(client, 0) + 1
+        if not self._followers.try_enter(client):
+            raise Refused(429, f"this device follows the room in {MAX_FOLLOWERS_PER_CLIENT} tabs already", retry_after_s=5)
         try:
             yield
         finally:
-            with self._lock:
-                left = self._followers_by_client.get(client, 1) - 1
-                if left > 0:
-                    self._followers_by_client[client] = left
-                else:
-                    self._followers_by_client.pop(client, None)
+            self._followers.leave(client)
