@@ -22,6 +22,7 @@ from websockets.sync.client import connect
 from app.api.access import (
     CREATE_BURST,
     CREATE_RATE_PER_S,
+    MAX_FOLLOWERS_PER_CLIENT,
     MAX_SESSIONS_PER_CLIENT,
     MAX_VIEWERS_PER_CLIENT,
     MAX_VIEWERS_PER_SESSION,
@@ -107,6 +108,32 @@ def test_nobody_drives_a_rooms_shared_scene_through_a_page_route(served, client,
     assert after["t_s"] >= before["t_s"]  # still running, never sent back
     state = served.client.get(f"/api/rooms/{room['room_id']}/state").json()
     assert state["playing"] is True and state["time_scale"] == 1.0
+
+
+def test_one_device_follows_a_room_in_at_most_its_share_of_tabs(client, room):
+    """A room's one stream is shared, but each follower costs the worker a frame message: a device gets
+    MAX_FOLLOWERS_PER_CLIENT tabs on it; the next is refused (a websocket refused before it opens is an HTTP 403) and
+    a tab closed gives its place back."""
+    url = client.websocket_url(f"/room-viewer/{room['room_id']}")
+    opened = []
+    for _ in range(MAX_FOLLOWERS_PER_CLIENT):
+        ws = connect(url, subprotocols=VISER, open_timeout=10, source_address=(client.address, 0))  # type: ignore[list-item]
+        ws.send(viewer_camera_message())
+        opened.append(ws)
+    with pytest.raises(Exception, match="403"):
+        connect(url, subprotocols=VISER, open_timeout=10, source_address=(client.address, 0))  # type: ignore[list-item]
+    opened.pop().close()
+
+    def reopened() -> bool:
+        try:
+            opened.append(connect(url, subprotocols=VISER, open_timeout=10, source_address=(client.address, 0)))  # type: ignore[list-item]
+            return True
+        except Exception:
+            return False
+
+    wait_until(reopened, 10, what="the closed tab's place to be given back")
+    for ws in opened:
+        ws.close()
 
 
 def test_a_page_viewer_cannot_open_a_rooms_shared_scene(client, room):
