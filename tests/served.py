@@ -60,6 +60,18 @@ def children_of(pid: int) -> list[int]:
     return found
 
 
+def children_running(pid: int, marker: bytes) -> list[int]:
+    """The children of ``pid`` whose command line holds ``marker`` (e.g. ``b"forkserver"``), in pid order."""
+    found = []
+    for child in children_of(pid):
+        try:
+            if marker in Path(f"/proc/{child}/cmdline").read_bytes():
+                found.append(child)
+        except OSError:
+            continue
+    return sorted(found)
+
+
 class DeviceClient(httpx.Client):
     """An HTTP client whose connections leave from ``address`` (a loopback address: one device of a class)."""
 
@@ -143,15 +155,7 @@ class ServedApp:
     def worker_pids(self) -> list[int]:
         """The scene workers' process ids (the front's children that run a worker)."""
         assert self.process is not None
-        pids = []
-        for pid in children_of(self.process.pid):
-            try:
-                cmdline = Path(f"/proc/{pid}/cmdline").read_bytes()
-            except OSError:
-                continue
-            if b"spawn_main" in cmdline:
-                pids.append(pid)
-        return sorted(pids)
+        return children_running(self.process.pid, b"spawn_main")
 
     def stop(self, *, timeout_s: float = 15.0) -> float:
         """Ctrl+C, as a user stops it; returns the seconds it took to exit. Anything left of the tree is killed."""

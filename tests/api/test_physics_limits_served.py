@@ -18,7 +18,6 @@ import threading
 import time
 from collections.abc import Iterator
 from contextlib import contextmanager
-from pathlib import Path
 
 import pytest
 import viser
@@ -26,7 +25,7 @@ from websockets.sync.client import connect
 
 from app.scenes.host.viser_compat import viewer_camera_message
 from tests.conftest import wait_until
-from tests.served import children_of
+from tests.served import children_of, children_running
 
 DERIVE = "/api/systems/custom/derive"
 #: A three-coordinate T whose derivation takes far longer than a test waits (over 2 minutes unbounded on this machine):
@@ -138,15 +137,10 @@ def test_the_heavy_top_at_its_euler_angle_singularity_is_a_422_that_says_so(serv
 def _derivation_child(served, before: set[int]) -> int | None:
     """A bounded derivation child of the front started since ``before``: a child of the front's own forkserver (the
     scene workers' forkservers are their children, not the front's)."""
-    for server in children_of(served.process.pid):
-        try:
-            command = Path(f"/proc/{server}/cmdline").read_bytes()
-        except OSError:
-            continue
-        if b"forkserver" in command:
-            found = [pid for pid in children_of(server) if pid not in before]
-            if found:
-                return found[0]
+    for server in children_running(served.process.pid, b"forkserver"):
+        found = [pid for pid in children_of(server) if pid not in before]
+        if found:
+            return found[0]
     return None
 
 
