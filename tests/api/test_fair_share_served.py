@@ -13,7 +13,6 @@ import concurrent.futures
 import secrets
 import time
 
-import pytest
 import viser
 from websockets.sync.client import connect
 

@@ -125,7 +125,7 @@ def test_forty_requests_at_once_right_after_start_are_all_answered_and_ctrl_c_st
             started = time.monotonic()
             try:
                 return devices[n].get(path).status_code, time.monotonic() - started
-            except httpx.HTTPError as exc:
+            except httpx.HTTPError:
                 return -1, time.monotonic() - started
 
         for targets, allowed in ((paths, {200, 404}), (recordings, {200, 503})):

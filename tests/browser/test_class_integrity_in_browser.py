@@ -169,7 +169,7 @@ def test_a_student_names_themself_rejoins_as_the_same_student_and_can_be_removed
     student.wait_for_selector(".room-gone:has-text('The instructor removed you from this room')")
     teacher.wait_for_selector(".room-students summary:has-text('Students (0)')")
     assert _room_state(served, room_id)["students"]["joined"] == 0
-    assert student.locator(f"#ctl-spin_rad_s").is_disabled()
+    assert student.locator("#ctl-spin_rad_s").is_disabled()
 
     # The removed device cannot join again.
     student.goto(f"{served.url}/join/{code}")

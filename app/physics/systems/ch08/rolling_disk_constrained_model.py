@@ -32,7 +32,6 @@ from app.physics.solvers.integrated_model import ModelLimit
 from app.physics.solvers.system import OdeSystem
 from app.physics.systems.ch08.rolling_disk_constrained import (
     COORDINATE_NAMES,
-    LEAN,
     energy_J,
     energy_parts,
     rolling_disk_system,
