@@ -162,7 +162,7 @@ def app():
 def test_a_stopped_worker_delays_neither_the_other_worker_nor_health(app):
     """Found 7: with one worker SIGSTOPped for 20 s, /api/health took 21 s and sessions on the other worker waited 21 s
     (the front's thread pool filled). Now: health stays under 1 s, the other worker's sessions answer at once, and the
-    stopped worker's sessions get 503 with Retry-After within a bounded wait."""
+    stopped worker's sessions get 503 with Retry-After within a bounded wait; pages opened meanwhile work."""
     pages = [Page(app) for _ in range(6)]  # spread over both workers (each new session goes to the less loaded)
     victim_pid = app.worker_pids()[0]
     probe = HealthProbe(app)
@@ -195,6 +195,9 @@ def test_a_stopped_worker_delays_neither_the_other_worker_nor_health(app):
         assert refused.status_code == 503 and int(refused.headers["Retry-After"]) >= 1
         health = app.client.get("/api/health").json()
         assert "not answering" in {w["state"] for w in health["workers"]}
+        newcomers = [Page(app) for _ in range(4)]  # pages opened meanwhile go to the worker that answers
+        assert all(p.playback()["playing"] for p in newcomers)  # (each got 503 before: new sessions went to the stopped one)
+        pages += newcomers
     finally:
         os.kill(victim_pid, signal.SIGCONT)
     wait_until(lambda: all(p.device.get(f"{p.base}/playback").status_code == 200 for p in pages), 20, what="the stopped worker to answer again")

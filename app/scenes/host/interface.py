@@ -71,6 +71,8 @@ def call(*, answer_timeout_s: float = 5.0, creates: bool = False, unknown: Any =
 #: Calls whose work depends on what a student typed: validating a typed curve or Lagrangian compiles it (a derivation
 #: is bounded to 20 s in its own process), and a recording replays up to 60 s of frames.
 SLOW_ANSWER_S = 30.0
+#: A worker that does not answer a ping within this long (s) is marked not answering (its calls get 503).
+PING_TIMEOUT_S = 1.0
 
 
 class SceneHostInterface(Protocol):
@@ -185,7 +187,7 @@ class SceneHostInterface(Protocol):
         """Make the session as ``snapshot`` describes it (after its worker restarted)."""
         ...
 
-    @call(every_worker=True, answer_timeout_s=1.0)
+    @call(every_worker=True, answer_timeout_s=PING_TIMEOUT_S)
     def ping(self) -> float:
         """The worker's monotonic clock (s): it answers, so it is alive and not stopped."""
         ...

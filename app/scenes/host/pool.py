@@ -16,7 +16,7 @@ No call waits forever and a sick worker stays sick alone:
   pages and ``/api/health`` need;
 * every call has connect and answer timeouts (:mod:`app.scenes.host.rpc`);
 * a supervisor pings each worker every second; one that does not answer within
-  :data:`PING_TIMEOUT_S` is marked *not answering* and its calls fail at once (503
+  :data:`~app.scenes.host.interface.PING_TIMEOUT_S` is marked *not answering* and its calls fail at once (503
   with Retry-After) until it answers again.
 
 Nothing is lost when a worker dies: the supervisor keeps a snapshot of every
@@ -58,8 +58,6 @@ CALLS_PER_WORKER = 8
 PLACE_WAIT_S = 1.0
 #: The supervisor's period (s): pings, snapshots, restarts.
 SUPERVISE_PERIOD_S = 1.0
-#: A worker that does not answer a ping within this long (s) is marked not answering.
-PING_TIMEOUT_S = 1.0
 #: Longest a read or write on a call's connection may make no progress (s), once its answer has begun.
 IO_TIMEOUT_S = 10.0
 #: Longest ``stop`` waits for the workers to exit by themselves before killing them (s).
@@ -238,13 +236,16 @@ class WorkerPool(SceneHostInterface):
 
     # -- pinning and calls ----------------------------------------------------------
     def worker_index(self, session_id: str, *, create: bool = False) -> int | None:
-        """The worker that holds ``session_id``; with ``create``, a new session is pinned to the least loaded one."""
+        """The worker that holds ``session_id``; with ``create``, a new session is pinned to the least loaded of the
+        workers answering now (a stopped or restarting worker takes no new page while another answers)."""
         with self._pin_lock:
             index = self._pinned.get(session_id)
             if index is not None or not create:
                 return index
-            fewest = min(self._pinned_count)
-            candidates = [i for i, count in enumerate(self._pinned_count) if count == fewest]
+            open_to_new = [i for i, worker in enumerate(self._workers) if worker is not None and worker.answering and i not in self._restarting]
+            counts = {i: self._pinned_count[i] for i in (open_to_new or range(len(self._workers)))}
+            fewest = min(counts.values())
+            candidates = [i for i, count in counts.items() if count == fewest]
             index = candidates[zlib.crc32(session_id.encode()) % len(candidates)]
             self._pinned[session_id] = index
             self._pinned_count[index] += 1
@@ -260,11 +261,12 @@ class WorkerPool(SceneHostInterface):
 
     def _call(self, index: int, call: Call, args: tuple, kwargs: dict, *, checking: bool = False) -> Any:
         """``call`` in worker ``index``, within its share of places and its answer timeout; ``checking`` calls (the
-        supervisor's) go to a worker not marked answering too."""
+        supervisor's) go to a worker not marked answering too, and take no place: a worker whose places are all held
+        by long calls (paced jumps, recordings, derivations) is busy, not sick, and its ping still answers."""
         worker = self._workers[index]
         if worker is None or not (worker.answering or checking):
             raise WorkerUnavailableError(f"scene worker {index} is {'restarting' if worker is None else 'not answering'}")
-        if not worker.places.acquire(timeout=PLACE_WAIT_S):
+        if not checking and not worker.places.acquire(timeout=PLACE_WAIT_S):
             raise WorkerUnavailableError(f"scene worker {index} has {CALLS_PER_WORKER} calls waiting already")
         try:
             try:
@@ -284,7 +286,8 @@ class WorkerPool(SceneHostInterface):
                 raise WorkerUnavailableError(f"scene worker {index} did not answer {call.name} ({exc})") from None
             worker.idle_connections.put(connection)
         finally:
-            worker.places.release()
+            if not checking:
+                worker.places.release()
         return raise_answer(answer)
 
     @staticmethod
@@ -304,8 +307,8 @@ class WorkerPool(SceneHostInterface):
             return call.unknown
         try:
             answer = self._call(index, call, args, kwargs)
-        except (ValueError, WorkerUnavailableError):
-            if call.creates and session_id not in self._created:  # refused before it existed: nothing to keep
+        except Exception:  # refused (bad input, busy, unreachable) before it existed: nothing to keep
+            if call.creates and session_id not in self._created:
                 self._unpin(session_id)
             raise
         if call.creates:

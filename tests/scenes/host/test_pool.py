@@ -15,7 +15,7 @@ import time
 import pytest
 
 from app.scenes.host.host import SceneHost
-from app.scenes.host.interface import CALLS, RAISE, SceneHostInterface, WORKER_CALLS
+from app.scenes.host.interface import CALLS, RAISE, WORKER_CALLS, HostBusy, SceneHostInterface
 from app.scenes.host.pool import WorkerPool
 from app.scenes.host.rpc import WorkerUnavailableError, connect
 
@@ -82,16 +82,76 @@ def test_sessions_are_pinned_by_the_call_that_creates_them_and_a_class_is_spread
     assert pool.worker_index(ids[0]) is None and sum(pool._pinned_count) == 99
 
 
-def test_a_first_change_refused_by_the_worker_pins_nothing(pool, monkeypatch):
+@pytest.mark.parametrize("refusal", [
+    ValueError("crank_m: must be positive"),
+    HostBusy("the derivations' places are taken", status=429),
+    RuntimeError("scene worker failed"),
+    WorkerUnavailableError("scene worker 0 is not answering"),
+], ids=lambda exc: type(exc).__name__)  # fmt: skip
+def test_a_first_change_refused_by_the_worker_pins_nothing(pool, monkeypatch, refusal):
+    """Whatever refused it (bad input, a busy worker, a failure), a session that never came to exist holds no pin:
+    a device could otherwise leak pins, and skew where new pages go, with refused first changes."""
     pool, _ = pool
 
     def refuse(index, call, args, kwargs, *, checking=False):
-        raise ValueError("crank_m: must be positive")
+        raise refusal
 
     monkeypatch.setattr(pool, "_call", refuse)
-    with pytest.raises(ValueError):
+    with pytest.raises(type(refusal)):
         pool.set_params("four-bar", "refused-first", {"crank_m": -1})
     assert pool.worker_index("refused-first") is None and sum(pool._pinned_count) == 0
+
+
+def _answering_workers(pool, *answering: bool) -> list:
+    from app.scenes.host.pool import _Worker
+
+    pool._workers = [
+        _Worker(n, process=None, start_pipe=None, viewer_url="ws://x", rpc_address=("127.0.0.1", 1), answering=up)  # type: ignore[arg-type]
+        for n, up in enumerate(answering)
+    ]
+    return pool._workers
+
+
+def test_new_pages_go_to_an_answering_worker_while_the_other_is_stopped(pool):
+    """A stopped or restarting worker takes no new session while another answers (every new page got 503 before)."""
+    pool, _ = pool
+    _answering_workers(pool, False, True)
+    assert {pool.worker_index(f"new-page-{n}", create=True) for n in range(20)} == {1}
+    pool._restarting.add(1)
+    pool._workers[0].answering = True
+    assert {pool.worker_index(f"later-page-{n}", create=True) for n in range(20)} == {0}
+
+
+def test_a_ping_needs_no_place_so_a_busy_worker_is_not_taken_for_a_sick_one(pool, monkeypatch):
+    """Eight long calls (paced jumps, recordings, derivations) hold every place of a worker: its ping still goes
+    through, so the supervisor never marks a busy worker "not answering" (which answered 503 to its whole class)."""
+    pool, _ = pool
+    monkeypatch.undo()
+    from app.scenes.host import pool as pool_module
+    from app.scenes.host.pool import CALLS_PER_WORKER
+
+    class Answering:
+        def send(self, message):
+            self.asked = message
+
+        def poll(self, timeout_s):
+            return True
+
+        def recv(self):
+            return ("ok", 12.5)
+
+        def close(self):
+            pass
+
+    (worker,) = _answering_workers(pool, True)
+    for _ in range(CALLS_PER_WORKER):
+        worker.places.acquire()
+    monkeypatch.setattr(pool_module, "connect", lambda *args, **kwargs: Answering())
+    monkeypatch.setattr(pool_module, "PLACE_WAIT_S", 0.2)
+    pool._check(worker)
+    assert worker.answering
+    with pytest.raises(WorkerUnavailableError, match="calls waiting"):  # an ordinary call still waits its turn
+        pool._call(0, CALLS["playback"], ("s",), {})
 
 
 def test_a_worker_that_accepts_but_never_answers_costs_a_caller_a_bounded_wait():
