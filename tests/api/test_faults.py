@@ -8,6 +8,7 @@ for 10 s; the state after recovery must equal the state before, and ``/api/healt
 from __future__ import annotations
 
 import concurrent.futures
+import math
 import os
 import secrets
 import signal
@@ -274,3 +275,26 @@ def test_chaos_a_class_survives_a_killed_worker_and_a_stopped_one_with_every_sta
     for page in pages:
         page.close()
     app.client.delete(f"/api/rooms/{room_id}", headers=app.instructor_headers)
+
+
+def test_a_watchers_unusable_camera_is_never_shown_kept_or_restored(app):
+    """Anyone may watch a session; a watcher's viewer that reports a NaN (or 1e300) camera was kept as the session's
+    camera, answered as ``[null, null, null]``, and on a worker restart failed the session's restore half-way: the
+    victim's paused top at 2.5× came back playing at 1×."""
+    victim = Page(app)
+    victim.playback(playing=False, time_scale=2.5)
+    watcher = Viewer(app, f"/viewer/heavy-top/{victim.session_id}", address="127.2.1.1", camera=((math.nan,) * 3, (0.0, 0.0, 0.0)))
+    wait_until(lambda: victim.playback().get("viewers") == 1, 30, what="the watcher's viewer to connect")
+    victim.open_viewer(camera=((4.0, -3.0, 2.0), (0.0, 0.0, 0.5)))  # the watcher's viewer is the first
+    wait_until(lambda: victim.playback().get("viewers") == 2, 30, what="the victim's viewer to connect")
+    assert victim.playback()["camera"] == {"position": [4.0, -3.0, 2.0], "look_at": [0.0, 0.0, 0.5]}
+    time.sleep(1.5)  # the supervisor's snapshot period is 1 s
+    for pid in app.worker_pids():
+        os.kill(pid, signal.SIGKILL)
+    wait_until(lambda: all(w["state"] == "answering" for w in app.client.get("/api/health").json()["workers"]) and len(app.worker_pids()) == 2,
+               60, what="both workers to be back")  # fmt: skip
+    after = victim.playback()
+    assert (after["playing"], after["time_scale"]) == (False, 2.5), after
+    assert None not in after["camera"]["position"]
+    watcher.close()
+    victim.close()

@@ -158,12 +158,14 @@ class ViewerShare:
 
 def viewer_camera(client: Any) -> dict[str, list[float]] | None:
     """A viewer's camera now (m, world frame: position, look_at) as its browser last reported it; None before its
-    first report, or for a stage (it has no single camera)."""
+    first report, for a stage (it has no single camera), or for a report :func:`checked_camera` refuses (a
+    browser — or anyone watching the session — may send NaN or 1e300: it is never answered, kept or restored)."""
     camera = getattr(client, "camera", None)
     if not isinstance(camera, viser.CameraHandle):
         return None
-    with contextlib.suppress(AssertionError):  # no camera message from the browser yet
-        return {"position": [float(v) for v in camera.position], "look_at": [float(v) for v in camera.look_at]}
+    with contextlib.suppress(AssertionError, ValueError):  # no camera message from the browser yet, or an unusable one
+        view = checked_camera({"position": camera.position, "look_at": camera.look_at})
+        return {name: list(vector) for name, vector in view.items()}
     return None
 
 
@@ -213,21 +215,19 @@ class Session:
     def playback_answer(self) -> dict[str, Any]:
         """:meth:`playback` with the first viewer's camera (or the one the next viewer starts from) and the number of
         viewers: what the page's time controls read, in one look."""
-        scenes = list(self.instances.values())
-        camera = next((c for c in (viewer_camera(scene.client) for scene in scenes) if c is not None), None)
-        if camera is None and not scenes and self.camera is not None:
-            camera = {k: list(v) for k, v in self.camera.items()}
-        return {**self.playback(), "camera": camera, "viewers": len(scenes)}
+        return {**self.playback(), "camera": self.camera_now(), "viewers": len(self.instances)}
+
+    def camera_now(self) -> dict[str, list[float]] | None:
+        """The first usable viewer camera (m, world frame), or without viewers the one the next viewer starts from."""
+        if not self.instances:
+            return None if self.camera is None else {k: list(v) for k, v in self.camera.items()}
+        return next((c for c in (viewer_camera(scene.client) for scene in self.instances.values()) if c is not None), None)
 
     def add_instance(self, client_id: int, scene: Scene, *, client: str | None = None) -> None:
         self.instances[client_id] = scene
         self.histories[client_id] = MotionHistory()
         self.histories[client_id].record(scene.motion_state())
         self.shares[client_id] = ViewerShare(client)
-
-    def first_share(self) -> ViewerShare:
-        """The first viewer's share (the session has a viewer)."""
-        return next(iter(self.shares.values()))
 
     def clear_instances(self) -> None:
         """Forget every viewer's scene (the caller has closed them)."""
@@ -245,11 +245,7 @@ class Session:
         play state, time scale, the first viewer's motion (or the one waiting for a viewer) and camera."""
         scene = next(iter(self.instances.values()), None)
         motion = scene.motion_state() if scene is not None else self.resume_motion
-        camera: dict[str, list[float]] | None = None
-        if scene is not None:
-            camera = viewer_camera(scene.client)
-        elif self.camera is not None:
-            camera = {k: list(v) for k, v in self.camera.items()}
+        camera = self.camera_now()
         return {
             "scene_id": self.scene_id, "params": dict(self.params), "stage": self.stage is not None,
             "playing": self.playing, "time_scale": self.time_scale, "motion": motion,
@@ -771,7 +767,8 @@ class SceneHost:
     def restore(self, session_id: str, snapshot: Mapping[str, Any]) -> None:
         """Make the session as ``snapshot`` (:meth:`Session.snapshot`) describes it: its scene and parameters, play
         state and time scale, its motion (the next viewer resumes it) and camera. A stage is opened again and resumed
-        at once. Raises ``ValueError`` for a snapshot that does not fit (and restores nothing)."""
+        at once. Raises ``ValueError`` for a snapshot whose scene or parameters do not fit (and restores nothing); a kept
+        camera that does not fit is left out (logged), the rest restored."""
         scene_id = snapshot["scene_id"]
         motion = snapshot.get("motion")
         if snapshot.get("stage"):
@@ -791,14 +788,13 @@ class SceneHost:
                         session.resume_motion = dict(motion)
                 elif snapshot.get("go_to_s") is not None:
                     session.go_to_s = float(snapshot["go_to_s"])
-                camera = snapshot.get("camera")
-                if camera is not None:
-                    view = checked_camera(camera)
-                    for scene in session.instances.values():
-                        place_camera(scene.client, **view)
-                    if not session.instances:
-                        session.camera = view
         self.set_playback(session_id, playing=bool(snapshot.get("playing", True)), time_scale=float(snapshot.get("time_scale", 1.0)))
+        camera = snapshot.get("camera")
+        if camera is not None:  # last: a camera that does not fit loses only itself (the viewer starts at the scene's pose)
+            try:
+                self.set_playback(session_id, camera=camera)
+            except ValueError as exc:
+                log.warning("session %s: its kept camera was not restored: %s", session_id, exc)
 
     # -- viser callbacks ------------------------------------------------------------
     def _on_connect(self, client: viser.ClientHandle) -> None:

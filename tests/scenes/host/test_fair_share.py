@@ -126,7 +126,7 @@ def test_a_dear_scene_in_a_class_runs_slower_and_says_so_while_the_cheap_ones_ke
         assert advanced_frames(host, f"share-cheap-{n}", before[f"share-cheap-{n}"]) == pytest.approx(frames, abs=1e-6)
     # The dear one gets what the cheap ones leave of the capacity: its rate is that over its cost, as measured before
     # each frame (the costs of one more frame, below, are the ones the last frame's rate was computed from).
-    costs = {sid: host._sessions[sid].first_share().frame_s for sid in before}
+    costs = {sid: next(iter(host._sessions[sid].shares.values())).frame_s for sid in before}
     host.run_frame(FRAME_S)
     rate = (CAPACITY_S - sum(costs[f"share-cheap-{n}"] for n in range(3))) / costs["share-dear-1"]
     slowed = host.playback("share-dear-1")["slowed"]
@@ -149,7 +149,7 @@ def test_a_device_with_many_tabs_shares_one_allowance_and_the_other_device_keeps
     frames = 30
     for _ in range(frames):
         host.run_frame(FRAME_S)
-    costs = {sid: host._sessions[sid].first_share().frame_s for sid in before}
+    costs = {sid: next(iter(host._sessions[sid].shares.values())).frame_s for sid in before}
     greedy_demand = sum(costs[f"share-greedy-{n}"] for n in range(3))
     expected = allowances({"greedy": greedy_demand, "other": costs["share-other-1"]}, capacity_s=CAPACITY_S)
     assert expected["other"] == float("inf") and expected["greedy"] < greedy_demand
