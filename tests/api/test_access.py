@@ -14,6 +14,7 @@ import secrets
 import time
 from collections.abc import Iterator
 
+import msgspec.msgpack as msgpack
 import pytest
 import viser
 from fastapi.routing import APIRoute, APIWebSocketRoute
@@ -134,6 +135,25 @@ def test_one_device_follows_a_room_in_at_most_its_share_of_tabs(client, room):
     wait_until(reopened, 10, what="the closed tab's place to be given back")
     for ws in opened:
         ws.close()
+
+
+@pytest.mark.parametrize("message", [b"\xff\x00garbage", msgpack.encode({"type": "FileTransferStart", "source_component_id": None})],
+                         ids=["garbage", "unknown-type"])  # fmt: skip
+def test_a_viewer_that_sends_what_viser_cannot_use_ends_its_own_connection_without_a_traceback(served, client, message):
+    """Anyone who may watch a session could make the server log a full traceback twice a second with a malformed
+    frame; now it is one warning line, the sender's connection ends, and the session goes on."""
+    sid = new_session()
+    assert put(client, sid, {}).status_code == 200
+    logged_before = served.log_path.stat().st_size
+    ws = connect(client.websocket_url(f"/viewer/heavy-top/{sid}"), subprotocols=VISER, open_timeout=10, source_address=(client.address, 0))  # type: ignore[list-item]
+    ws.send(viewer_camera_message())
+    wait_until(lambda: client.get(f"/api/scenes/heavy-top/sessions/{sid}/playback").json()["viewers"] == 1, what="the viewer to connect")
+    ws.send(message)
+    wait_until(lambda: client.get(f"/api/scenes/heavy-top/sessions/{sid}/playback").json()["viewers"] == 0, what="the sender's viewer to end")
+    ws.close()
+    wait_until(lambda: "could not use" in served.log_path.read_bytes()[logged_before:].decode(errors="replace"), what="the warning line")
+    assert "Traceback" not in served.log_path.read_bytes()[logged_before:].decode(errors="replace")
+    assert client.get(f"/api/scenes/heavy-top/sessions/{sid}").status_code == 200  # the session itself is untouched
 
 
 def test_a_page_viewer_cannot_open_a_rooms_shared_scene(client, room):

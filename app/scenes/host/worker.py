@@ -28,9 +28,24 @@ log = logging.getLogger(__name__)
 CALL_BACKLOG = 128
 
 
+class ViewerMessageRefused(logging.Filter):
+    """A viewer that sends what viser cannot decode (garbage bytes, a message type it does not take) ends its own
+    connection; websockets logs that with a full traceback, which anyone who may watch a session could make the server
+    write twice a second. Such a record becomes one warning line naming the error."""
+
+    def filter(self, record: logging.LogRecord) -> bool:
+        if record.msg == "connection handler failed" and record.exc_info and record.exc_info[1] is not None:
+            error = record.exc_info[1]
+            record.msg, record.args = "a viewer's connection ended on a message it could not use (%s: %s)", (type(error).__name__, error)
+            record.levelno, record.levelname = logging.WARNING, "WARNING"
+            record.exc_info = record.exc_text = None
+        return True
+
+
 def run_worker(index: int, start_pipe: Connection, authkey: bytes, options: dict[str, Any]) -> None:
     """Process entry: serve scenes until ``"stop"`` arrives on ``start_pipe`` or it closes."""
     logging.basicConfig(level=options.get("log_level", "WARNING"), format=f"%(levelname)s worker{index} %(name)s: %(message)s")
+    logging.getLogger("websockets.server").addFilter(ViewerMessageRefused())
     from app.scenes import SCENES  # importing the scenes loads every numba kernel (compiled eagerly, cached on disk)
     from app.physics.core.bounded import stop_all_work
     from app.scenes.host.host import SceneHost
