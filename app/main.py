@@ -71,7 +71,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     app.state.room_hub = RoomHub(lambda: app.state.scene_host)
     app.state.ready_questions = load_ready_questions(DEFAULT_READY_QUESTIONS, SCENES)
     errors.install(app)
-    app.add_middleware(guard.RequestGuard, settings=settings)
+    app.add_middleware(guard.RequestGuard, settings=settings, heavy_in_flight=app.state.sessions.heavy_work)
     routers = (
         health.router, chapters.router, scenes.router, examples.router, systems.router, bench.router, rooms.router,
         pages.router, room_pages.router, relay.router, room_relay.router,

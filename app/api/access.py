@@ -38,7 +38,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass, field
 
 from app.scenes.host.host import STAGE_PREFIX
-from app.web.rate_limit import InFlight, TokenBuckets
+from app.web.rate_limit import InFlight, TokenBuckets, retry_after_s
 
 #: 16–128 letters, digits, '-' or '_' (the lesson page sends 32 hex digits from crypto.getRandomValues).
 SESSION_KEY_PATTERN = re.compile(r"^[A-Za-z0-9_-]{16,128}$")
@@ -116,7 +116,9 @@ class SessionDirectory:
         self._viewers_of_client = InFlight(limit=MAX_VIEWERS_PER_CLIENT)
         self._followers = InFlight(limit=MAX_FOLLOWERS_PER_CLIENT)
         self._creations = TokenBuckets(burst=CREATE_BURST, rate_per_s=CREATE_RATE_PER_S, max_clients=max_clients, clock=clock)
-        self._heavy_changes = InFlight(limit=1)
+        #: The one long computation a device may have running: a simulation, a derivation (both counted by the request
+        #: guard, :class:`app.web.guard.RequestGuard`, which is given this counter) or a typed scene's change.
+        self.heavy_work = InFlight(limit=1)
         self._recordings = TokenBuckets(burst=RECORDING_BURST, rate_per_s=1.0 / RECORDING_EVERY_S, max_clients=max_clients, clock=clock)
         self._recording_now = InFlight(limit=1)
         self._long_requests = TokenBuckets(burst=LONG_REQUEST_BURST, rate_per_s=1.0 / LONG_REQUEST_EVERY_S, max_clients=max_clients, clock=clock)
@@ -140,7 +142,7 @@ class SessionDirectory:
                 if client is not None:
                     wait_s = self._creations.take(client)
                     if wait_s > 0:
-                        retry = max(1, round(wait_s + 0.5))
+                        retry = retry_after_s(wait_s)
                         raise Refused(429, f"too many new scenes from this device: try again in {retry} s", retry_after_s=retry)
                 return
             if entry.key_hash is None:
@@ -223,12 +225,12 @@ class SessionDirectory:
         if client is None:
             yield
             return
-        if not self._heavy_changes.try_enter(client):
-            raise Refused(429, "your previous change is still being derived: wait for it, then try again", retry_after_s=2)
+        if not self.heavy_work.try_enter(client):
+            raise Refused(429, "your previous change, simulation or derivation is still running: wait for it, then try again", retry_after_s=2)
         try:
             yield
         finally:
-            self._heavy_changes.leave(client)
+            self.heavy_work.leave(client)
 
     @contextmanager
     def recording(self, *, client: str | None) -> Iterator[None]:
@@ -242,7 +244,7 @@ class SessionDirectory:
         try:
             wait_s = self._recordings.take(client)
             if wait_s > 0:
-                retry = max(1, round(wait_s + 0.5))
+                retry = retry_after_s(wait_s)
                 raise Refused(429, f"too many recordings from this device: the next one in {retry} s", retry_after_s=retry)
             yield
         finally:
@@ -254,7 +256,7 @@ class SessionDirectory:
             return
         wait_s = self._long_requests.take(client)
         if wait_s > 0:
-            retry = max(1, round(wait_s + 0.5))
+            retry = retry_after_s(wait_s)
             raise Refused(429, f"too many long steps or jumps from this device: the next one in {retry} s", retry_after_s=retry)
 
     # -- viewers -------------------------------------------------------------------------------------------

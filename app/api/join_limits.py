@@ -21,8 +21,6 @@ A refused join is a 429 with ``Retry-After`` (whole seconds, at least 1).
 
 from __future__ import annotations
 
-import math
-import threading
 
 from fastapi import HTTPException
 from starlette.types import Scope
@@ -30,38 +28,34 @@ from starlette.types import Scope
 from app.rooms.registry import MAX_ROOMS
 from app.settings import Settings
 from app.web.guard import client_address
-from app.web.rate_limit import TokenBuckets
+from app.web.rate_limit import TokenBuckets, retry_after_s
 
 
 class JoinLimits:
-    """The two join limits of one server. Thread-safe: the join route runs in the thread pool, and a bucket's
-    update is several steps (two joins at once must not both see the bucket full)."""
+    """The two join limits of one server (thread-safe, as its buckets are)."""
 
     def __init__(self, settings: Settings) -> None:
         self.trust_forwarded_for = settings.trust_forwarded_for
         self.per_address = TokenBuckets(burst=settings.join_burst, rate_per_s=settings.join_rate_per_s, max_clients=settings.rate_limit_clients)
         # Rooms closed long ago are forgotten first; a few times the open rooms is plenty.
         self.per_room = TokenBuckets(burst=settings.room_join_burst, rate_per_s=settings.room_join_rate_per_s, max_clients=4 * MAX_ROOMS)
-        self._lock = threading.Lock()
 
     def check_address(self, scope: Scope) -> None:
         """429 if this client's address has joined too often (a peer with no IP address is not limited)."""
         address = client_address(scope, trust_forwarded_for=self.trust_forwarded_for)
         if address is None:
             return
-        with self._lock:
-            wait_s = self.per_address.take(address)
+        wait_s = self.per_address.take(address)
         if wait_s > 0:
             raise too_many(wait_s, "too many tries to join from this device or network")
 
     def check_new_student(self, room_id: str) -> None:
         """429 if the room has let in too many new students just now."""
-        with self._lock:
-            wait_s = self.per_room.take(room_id)
+        wait_s = self.per_room.take(room_id)
         if wait_s > 0:
             raise too_many(wait_s, "many students are joining this room at once")
 
 
 def too_many(wait_s: float, why: str) -> HTTPException:
-    retry_after = max(1, math.ceil(wait_s))
+    retry_after = retry_after_s(wait_s)
     return HTTPException(status_code=429, detail=f"{why}: try again in {retry_after} s", headers={"Retry-After": str(retry_after)})

@@ -19,7 +19,6 @@ from __future__ import annotations
 import asyncio
 import ipaddress
 import logging
-import math
 import re
 import socket
 import time
@@ -32,7 +31,7 @@ from starlette.responses import JSONResponse
 from starlette.types import ASGIApp, Receive, Scope, Send
 
 from app.settings import Settings
-from app.web.rate_limit import InFlight, TokenBuckets
+from app.web.rate_limit import InFlight, TokenBuckets, retry_after_s
 
 log = logging.getLogger(__name__)
 
@@ -114,7 +113,9 @@ class RequestGuard:
     in-process test client) has nothing to key on and is not rate limited.
     """
 
-    def __init__(self, app: ASGIApp, *, settings: Settings, clock: Callable[[], float] = time.monotonic) -> None:
+    def __init__(
+        self, app: ASGIApp, *, settings: Settings, heavy_in_flight: InFlight | None = None, clock: Callable[[], float] = time.monotonic
+    ) -> None:
         self.app = RequestBodyLimitMiddleware(app, max_body_size=settings.max_body_bytes)
         self.max_body_bytes = settings.max_body_bytes
         self.hosts = HostPolicy(served_host=settings.host, served_port=settings.port, extra_hosts=settings.allowed_hosts)
@@ -123,7 +124,8 @@ class RequestGuard:
         self.simulate_limit = TokenBuckets(
             burst=settings.simulate_burst, rate_per_s=settings.simulate_rate_per_s, max_clients=settings.rate_limit_clients, clock=clock
         )
-        self.heavy_in_flight = InFlight(limit=1)
+        # One long computation per device, shared with a typed scene's change (SessionDirectory.heavy_work).
+        self.heavy_in_flight = heavy_in_flight if heavy_in_flight is not None else InFlight(limit=1)
         self.request_limit = TokenBuckets(
             burst=settings.request_burst, rate_per_s=settings.request_rate_per_s, max_clients=settings.rate_limit_clients, clock=clock
         )
@@ -151,7 +153,7 @@ class RequestGuard:
             # connections is slowed to a few refusals a second instead of taking the event loop that relays every
             # student's frames (measured: 4 000 refusals as fast as they came cost 100 students 1 frame/s).
             await asyncio.sleep(min(wait_s, MAX_REFUSAL_DELAY_S))
-            retry_after = max(1, math.ceil(wait_s))
+            retry_after = retry_after_s(wait_s)
             detail = f"too many requests from this device: try again in {retry_after} s"
             await JSONResponse({"detail": detail}, status_code=429, headers={"Retry-After": str(retry_after)})(scope, receive, send)
             return
@@ -168,7 +170,7 @@ class RequestGuard:
         if method == "POST" and SIMULATE_PATH.match(scope["path"]):
             wait_s = self._wait_s(self.simulate_limit, scope, headers)
             if wait_s > 0:
-                retry_after = max(1, math.ceil(wait_s))
+                retry_after = retry_after_s(wait_s)
                 detail = f"too many simulate or derive requests from this client: try again in {retry_after} s"
                 await JSONResponse({"detail": detail}, status_code=429, headers={"Retry-After": str(retry_after)})(scope, receive, send)
                 return
@@ -177,7 +179,7 @@ class RequestGuard:
                 # One heavy computation per client at a time: two 20 s derivations from one device would take both of
                 # the server's places for them, and everyone else would wait.
                 if not self.heavy_in_flight.try_enter(client):
-                    detail = "your previous simulation or derivation is still running: wait for its answer, then try again"
+                    detail = "your previous simulation, derivation or change is still running: wait for its answer, then try again"
                     await JSONResponse({"detail": detail}, status_code=429, headers={"Retry-After": "2"})(scope, receive, send)
                     return
                 try:

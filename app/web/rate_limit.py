@@ -25,6 +25,7 @@ class TokenBuckets:
         self.max_clients = max_clients
         self._clock = clock
         self._buckets: OrderedDict[str, tuple[float, float]] = OrderedDict()  # key -> (tokens, clock time of that count)
+        self._lock = threading.Lock()  # routes run in the thread pool: two requests at once must not both take the last token
 
     def __len__(self) -> int:
         return len(self._buckets)
@@ -33,18 +34,24 @@ class TokenBuckets:
         """Take one token for ``client``: 0.0 if granted, else the seconds (> 0) until a token is due."""
         if self.burst == 0:
             return 0.0
-        now = self._clock()
-        tokens, then = self._buckets.pop(client, (float(self.burst), now))
-        tokens = min(float(self.burst), tokens + (now - then) * self.rate_per_s)
-        wait_s = 0.0
-        if tokens >= 1.0:
-            tokens -= 1.0
-        else:
-            wait_s = (1.0 - tokens) / self.rate_per_s
-        self._buckets[client] = (tokens, now)
-        while len(self._buckets) > self.max_clients:
-            self._buckets.popitem(last=False)
+        with self._lock:
+            now = self._clock()
+            tokens, then = self._buckets.pop(client, (float(self.burst), now))
+            tokens = min(float(self.burst), tokens + (now - then) * self.rate_per_s)
+            wait_s = 0.0
+            if tokens >= 1.0:
+                tokens -= 1.0
+            else:
+                wait_s = (1.0 - tokens) / self.rate_per_s
+            self._buckets[client] = (tokens, now)
+            while len(self._buckets) > self.max_clients:
+                self._buckets.popitem(last=False)
         return wait_s
+
+
+def retry_after_s(wait_s: float) -> int:
+    """The ``Retry-After`` (whole seconds, at least 1) for a wait of ``wait_s`` seconds."""
+    return max(1, math.ceil(wait_s))
 
 
 class InFlight:

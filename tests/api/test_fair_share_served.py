@@ -88,6 +88,8 @@ def test_one_device_derives_one_typed_lagrangian_at_a_time_and_another_student_s
         time.sleep(0.3)  # the first is running: what is checked is the second's answer while it runs
         second = pool.submit(derive, 1)
         assert second.result() == 429
+        typed_change = attacker.put(f"/api/scenes/typed-lagrangian/sessions/typed-{secrets.token_hex(6)}", json={"params": {}})
+        assert typed_change.status_code == 429, typed_change.text  # a typed scene's change is the same kind of work
         simple = {"coordinates": ["q1"], "kinetic_energy": "m*q1d^2/2", "potential_energy": "m*g*q1", "parameters": {"m": 1.0, "g": 9.81}}
         answer = student.post("/api/systems/custom/derive", json=simple)
         assert answer.status_code == 200, answer.text
