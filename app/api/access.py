@@ -60,9 +60,8 @@ MAX_FOLLOWERS_PER_CLIENT = 8
 #: to 60 s of frames in the student's scene worker: about a second of its computing).
 RECORDING_BURST = 2
 RECORDING_EVERY_S = 30.0
-#: Long computations (a step of more than :data:`LONG_STEP_FRAMES` frames, a jump to a time) one client may ask for
-#: at once, and one every this many seconds after that (a share link opens with one; the step button steps one frame).
-LONG_STEP_FRAMES = 30
+#: Long computations (:func:`app.scenes.host.fair_share.is_long_request`: a long step, a jump to a time) one client
+#: may ask for at once, and one every this many seconds after that (a share link opens with one).
 LONG_REQUEST_BURST = 3
 LONG_REQUEST_EVERY_S = 10.0
 

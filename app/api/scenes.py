@@ -8,7 +8,7 @@ from fastapi import APIRouter, Header, HTTPException, Path, Query
 from fastapi.responses import JSONResponse, Response
 
 from app.api.access import KEY_HEADER as SESSION_KEY_HEADER
-from app.api.access import LONG_STEP_FRAMES, SESSION_KEY_PATTERN, Refused
+from app.api.access import SESSION_KEY_PATTERN, Refused
 from app.api.deps import ClientDep, SceneHostDep, SessionsDep
 from app.api.examples import ScriptParams, python_file
 from app.api.rooms import RoomsDep
@@ -26,6 +26,7 @@ from app.physics.core.parameters import ParameterError, ParameterSet
 from app.physics.solvers.controls import CONTROL_NAMES
 from app.physics.solvers.integrated_model import simulate_model
 from app.rooms.registry import Rooms
+from app.scenes.host.fair_share import is_long_request
 from app.scenes.host.graph import DEFAULT_MAX_POINTS, MAX_POINTS_RANGE, graph_csv
 from app.scenes.host.host import SESSION_ID_PATTERN, UnknownSceneError
 from app.scenes.host.recorder import DEFAULT_RECORDING_S, RECORDING_SECONDS_RANGE
@@ -157,7 +158,7 @@ def set_session_playback(
         raise unprocessable(["path", "session_id"], f"session {session_id!r} has no scene yet: set its parameters first") from None
     if host.session_scene(session_id) != scene_id:
         raise unprocessable(["path", "session_id"], f"session {session_id!r} shows no {scene_id!r} scene: set its parameters first")
-    if request.go_to_s is not None or request.step > LONG_STEP_FRAMES:
+    if is_long_request(step=request.step, go_to_s=request.go_to_s):
         sessions.check_long_request(client=client)
     try:
         answer = host.set_playback(session_id, **request.model_dump(exclude_none=True))

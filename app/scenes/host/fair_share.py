@@ -47,6 +47,10 @@ FRAME_LOOP_SHARE = 0.5
 REQUEST_COMPUTE_S = 1.0
 #: A paced request computes this long (s) ...
 SLICE_S = 2e-3
+#: A step of more than this many frames, or any jump to a time, is a *long* request: paced, one at a time in a worker,
+#: and counted against the device's share of long requests (:class:`app.api.access.SessionDirectory`). The step
+#: button steps one frame.
+LONG_STEP_FRAMES = 30
 #: ... then leaves the processor to the frame loop for this many times as long (a tenth of a worker's time at most:
 #: every slice holds the interpreter's lock, so the frame loop waits a slice at most, then runs).
 PACE_RATIO = 9.0
@@ -175,3 +179,8 @@ class Pace:
     def exhausted(self) -> bool:
         """The computation was stopped for its limit (spent, or projected from the frames done)."""
         return self.over
+
+
+def is_long_request(*, step: int, go_to_s: float | None) -> bool:
+    """Whether a playback request computes long enough to be paced and counted (:data:`LONG_STEP_FRAMES`)."""
+    return go_to_s is not None or step > LONG_STEP_FRAMES

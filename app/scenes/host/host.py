@@ -57,6 +57,7 @@ from app.scenes.host.fair_share import (
     RequestTooCostly,
     allowances,
     check_request_cost,
+    is_long_request,
     slowdown_note,
 )
 from app.scenes.host.interface import HostBusy
@@ -422,7 +423,7 @@ class SceneHost:
         session = self._existing(session_id)
         if (go_to_s is not None or step or seek_s is not None) and not self.scene_class(session.scene_id).animated:
             raise ValueError(f"{session.scene_id} is not animated: it has no time to step, scrub or go to")
-        with self._one_long_request(bool(step) or go_to_s is not None), session.lock:
+        with self._one_long_request(is_long_request(step=step, go_to_s=go_to_s)), session.lock:
             # What the request will compute, checked against its limit before anything moves (the scenes' measured
             # cost a frame; a session without a viewer computes its jump when one connects, paced the same way).
             if step:

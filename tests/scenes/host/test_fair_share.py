@@ -17,6 +17,7 @@ from websockets.sync.client import connect
 
 from app.scenes import SCENES
 from app.scenes.host.fair_share import (
+    LONG_STEP_FRAMES,
     CLASS_DEVICES,
     CLASS_FLOOR_S,
     CLASS_MULTIPLE,
@@ -27,6 +28,7 @@ from app.scenes.host.fair_share import (
     allowances,
 )
 from app.scenes.host.host import SceneHost
+from app.scenes.host.interface import HostBusy
 from app.scenes.host.viser_compat import viewer_camera_message
 from tests.conftest import wait_until
 
@@ -234,3 +236,20 @@ def test_a_frame_cost_is_the_least_of_the_recent_frames_after_a_warm_up():
     for _ in range(20):
         cost.add(0.001)
     assert cost.seconds == pytest.approx(0.001)
+
+
+def test_the_step_button_never_waits_for_another_students_long_request(host):
+    """Long requests (a jump, a step of more than LONG_STEP_FRAMES frames) run one at a time in a worker; a one-frame
+    step is not one of them: it is answered at once while another student's long jump is running, not 503 after 1 s."""
+    viewer = open_page(host, "step-while-long-1")
+    assert host._long_request.acquire(timeout=5)  # another student's paced jump holds the worker's long place
+    try:
+        started = time.monotonic()
+        answer = host.set_playback("step-while-long-1", step=1)
+        assert time.monotonic() - started < 0.5 and answer["playing"] is False
+        with pytest.raises(HostBusy):
+            host.set_playback("step-while-long-1", step=LONG_STEP_FRAMES + 1)
+    finally:
+        host._long_request.release()
+        viewer.close()
+        host.close_session("step-while-long-1")
