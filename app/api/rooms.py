@@ -54,6 +54,7 @@ from app.rooms.ready_questions import ReadyQuestion
 from app.rooms.registry import Rooms
 from app.rooms.roles import InstructorKey
 from app.rooms.room import Room, RoomError, RoomMovedOn, StudentRemoved
+from app.scenes.host.interface import HostBusy
 from app.settings import Settings
 
 router = APIRouter(prefix="/api", tags=["rooms"])
@@ -482,6 +483,9 @@ async def _socket_message(websocket: WebSocket, room: Room, member: Any, message
         except HTTPException as exc:
             detail = exc.detail[0]["msg"] if isinstance(exc.detail, list) else exc.detail
             hub.reply(member, {"type": "error", "status": exc.status_code, "action": kind, "detail": detail})
+        except HostBusy as exc:  # the room's scene worker is busy or restarting: the instructor's socket stays open
+            detail = f"{kind}: the room's scene is busy or restarting; try again in {exc.retry_after_s} s"
+            hub.reply(member, {"type": "error", "status": exc.status, "action": kind, "retry_after_s": exc.retry_after_s, "detail": detail})
     elif kind == "ping":
         hub.reply(member, {"type": "pong"})
     else:

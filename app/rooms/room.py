@@ -222,13 +222,13 @@ class Room:
             self.params = dict(params)
         elif scene_id is None:
             self.params = {}
-        if plan["playing"] is not None:
-            self.playing = plan["playing"]
-        if plan["time_scale"] is not None:
-            self.time_scale = float(plan["time_scale"])
+        playing = self.playing if plan["playing"] is None else plan["playing"]
+        time_scale = self.time_scale if plan["time_scale"] is None else float(plan["time_scale"])
         if scene_id is not None and (plan["new_scene"] or plan["reset"] or plan["playing"] is not None or plan["time_scale"] is not None):
-            # A new stage starts playing at 1×: apply the room's own playback to it, and any reset.
-            host.set_playback(self.stage_id, playing=self.playing, time_scale=self.time_scale, reset=plan["reset"])
+            # A new stage starts playing at 1×: apply the room's own playback to it, and any reset. First, so that a
+            # worker too busy to take it (HostBusy) leaves the room saying what its stage does.
+            host.set_playback(self.stage_id, playing=playing, time_scale=time_scale, reset=plan["reset"])
+        self.playing, self.time_scale = playing, time_scale
         if plan["reset"]:
             self.reset_count += 1
         if plan["mode"] is not None and plan["mode"] != self.mode:

@@ -8,6 +8,7 @@ for 10 s; the state after recovery must equal the state before, and ``/api/healt
 from __future__ import annotations
 
 import concurrent.futures
+import json
 import math
 import os
 import secrets
@@ -17,6 +18,7 @@ import time
 
 import httpx
 import pytest
+from websockets.sync.client import connect as websocket_connect
 
 from tests.conftest import wait_until
 from tests.served import ServedApp, Viewer
@@ -298,3 +300,34 @@ def test_a_watchers_unusable_camera_is_never_shown_kept_or_restored(app):
     assert None not in after["camera"]["position"]
     watcher.close()
     victim.close()
+
+
+def test_the_instructors_socket_stays_open_and_the_room_unchanged_while_its_scene_worker_is_stopped(app):
+    """An instructor's action over the room socket that its scene worker cannot take now is answered with an error
+    (503, retry_after_s) on the socket, which stays open; the room still says what its stage does. Before, the busy
+    worker's error closed the instructor's socket silently, and the room said paused while its stage played."""
+    room_id = open_room(app, {"spin_rad_s": 95.0})
+    before = app.client.get(f"/api/rooms/{room_id}/state").json()
+    pids = app.worker_pids()
+    with websocket_connect(f"ws://127.0.0.1:{app.port}/api/rooms/{room_id}/socket", additional_headers=app.instructor_headers, open_timeout=30) as socket:
+        for pid in pids:
+            os.kill(pid, signal.SIGSTOP)
+        try:
+            wait_until(lambda: all(w["state"] == "not answering" for w in app.client.get("/api/health").json()["workers"]), 20,
+                       what="both workers to be marked not answering")  # fmt: skip
+            socket.send(json.dumps({"type": "set_state", "playing": False, "time_scale": 0.5}))
+            deadline = time.monotonic() + 15
+            while (reply := json.loads(socket.recv(timeout=max(0.1, deadline - time.monotonic())))).get("type") != "error":
+                pass
+            assert reply["status"] == 503 and reply["action"] == "set_state" and reply["retry_after_s"] >= 1, reply
+        finally:
+            for pid in pids:
+                os.kill(pid, signal.SIGCONT)
+        socket.send(json.dumps({"type": "ping"}))  # the socket is still open
+        deadline = time.monotonic() + 15
+        while json.loads(socket.recv(timeout=max(0.1, deadline - time.monotonic()))).get("type") != "pong":
+            pass
+    after = app.client.get(f"/api/rooms/{room_id}/state").json()
+    assert (after["playing"], after["time_scale"], after["revision"]) == (before["playing"], before["time_scale"], before["revision"])
+    wait_until(lambda: stage_state(app, room_id).get("playing") is True, 30, what="the stage to answer again")
+    app.client.delete(f"/api/rooms/{room_id}", headers=app.instructor_headers)
