@@ -35,7 +35,7 @@ import time
 from collections import OrderedDict
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 from app.scenes.host.host import STAGE_PREFIX
 from app.web.rate_limit import InFlight, TokenBuckets, retry_after_s
@@ -85,7 +85,6 @@ class SessionEntry:
     #: The address that created it (None: an in-process caller, not limited per client).
     client: str | None
     key_hash: bytes | None = None
-    last_used_s: float = field(default_factory=time.monotonic)
     viewers: int = 0
 
 
@@ -188,7 +187,6 @@ class SessionDirectory:
                 self._touch_locked(session_id, entry)
 
     def _touch_locked(self, session_id: str, entry: SessionEntry) -> None:
-        entry.last_used_s = self._clock()
         self._entries.move_to_end(session_id)
         if entry.client is not None and session_id in self._by_client.get(entry.client, {}):
             self._by_client[entry.client].move_to_end(session_id)
@@ -282,7 +280,8 @@ class SessionDirectory:
         finally:
             with self._lock:
                 entry.viewers -= 1
-                entry.last_used_s = self._clock()
+                if self._entries.get(session_id) is entry:  # watched until now: the last to be evicted, not the first
+                    self._touch_locked(session_id, entry)
             if client is not None:
                 self._viewers_of_client.leave(client)
 

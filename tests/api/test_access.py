@@ -242,6 +242,18 @@ def test_the_directory_bounds_each_client_to_its_own_sessions_and_never_evicts_a
     assert refused.value.status == 429 and refused.value.retry_after_s >= 1
 
 
+def test_a_session_watched_until_a_moment_ago_is_evicted_last_not_first():
+    """Closing a viewer counts as use: a session watched for an hour then left was the first in line to go."""
+    closed: list[str] = []
+    directory = SessionDirectory(max_sessions=3, close=closed.append)
+    directory.changed("watched", "heavy-top", None, client="10.0.2.1")
+    with directory.viewer("watched", "heavy-top", client="10.0.2.1"):
+        directory.changed("second", "heavy-top", None, client="10.0.2.2")  # opened while "watched" was being watched
+        directory.changed("third", "heavy-top", None, client="10.0.2.3")
+    directory.changed("fourth", "heavy-top", None, client="10.0.2.4")
+    assert closed == ["second"]
+
+
 def test_viewers_are_bounded_per_session_and_per_client():
     directory = SessionDirectory()
     for n in range(MAX_VIEWERS_PER_CLIENT + 1):
