@@ -37,7 +37,7 @@ from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass
 
-from app.scenes.host.host import STAGE_PREFIX
+from app.scenes.host.host import MAX_VIEWERS_PER_SESSION, STAGE_PREFIX
 from app.web.rate_limit import InFlight, TokenBuckets, retry_after_s
 
 #: 16–128 letters, digits, '-' or '_' (the lesson page sends 32 hex digits from crypto.getRandomValues).
@@ -51,8 +51,8 @@ MAX_SESSIONS_PER_CLIENT = 64
 #: another never meets it; a script claiming thousands does).
 CREATE_BURST = 60
 CREATE_RATE_PER_S = 2.0
-#: Viewers one session may have open (a page and a copy of its tab), and one client in all (a few tabs).
-MAX_VIEWERS_PER_SESSION = 4
+#: Viewers one client may have open in all (a few tabs); one session's are :data:`MAX_VIEWERS_PER_SESSION` (the
+#: scene host's rule, checked here first).
 MAX_VIEWERS_PER_CLIENT = 8
 #: Room followers (``/room-viewer/…``) one client may have open (a student, a projector and a spare tab).
 MAX_FOLLOWERS_PER_CLIENT = 8

@@ -135,6 +135,12 @@ def slowdown_note(rate: float, demand_s: float, allowance_s: float, *, viewers: 
 class RequestTooCostly(ValueError):
     """A request would compute longer than :data:`REQUEST_COMPUTE_S`; the message names the field and the limit."""
 
+    @classmethod
+    def over_limit(cls, field: str, what: str, advice: str) -> RequestTooCostly:
+        """"``field``: ``what`` takes more than the limit …; ``advice``" (the words every such refusal uses)."""
+        return cls(f"{field}: {what} takes more than the {REQUEST_COMPUTE_S:g} s of computing one request may use while a class "
+                   f"shares the server; {advice}")  # fmt: skip
+
 
 def check_request_cost(field: str, *, frames: int, frame_cost_s: float, what: str) -> None:
     """Refuse (``RequestTooCostly``, naming ``field``) ``frames`` frames of ``frame_cost_s`` each (s) over the limit."""

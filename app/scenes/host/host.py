@@ -51,7 +51,6 @@ import viser
 
 from app.scenes.host.fair_share import (
     FRAME_LOOP_SHARE,
-    REQUEST_COMPUTE_S,
     FrameCost,
     Pace,
     RequestTooCostly,
@@ -514,10 +513,7 @@ class SceneHost:
                     scene.resume_from(before[client_id])  # type: ignore[arg-type]
                     scene.redraw()
             session.restarted()
-            raise RequestTooCostly(
-                f"step: {frames} frames of this scene take more than the {REQUEST_COMPUTE_S:g} s of computing one request "
-                f"may use while a class shares the server; step fewer frames, or use fewer steps per frame"
-            )
+            raise RequestTooCostly.over_limit("step", f"stepping {frames} frames of this scene", "step fewer frames, or use fewer steps per frame")
 
     @staticmethod
     def _paced_go_to(scene: Scene, t_s: float) -> None:
@@ -534,10 +530,7 @@ class SceneHost:
             if before is not None:
                 scene.resume_from(before)
                 scene.redraw()
-            raise RequestTooCostly(
-                f"go_to_s: computing the motion to {t_s:g} s takes more than the {REQUEST_COMPUTE_S:g} s of computing one "
-                f"request may use while a class shares the server; ask for an earlier time, or use fewer steps per frame"
-            )
+            raise RequestTooCostly.over_limit("go_to_s", f"computing the motion to {t_s:g} s", "ask for an earlier time, or use fewer steps per frame")
 
     def camera(self, session_id: str) -> dict[str, list[float]] | None:
         """The first viewer's camera now (m, world frame), as its browser last reported it; before a viewer, the one the

@@ -39,7 +39,7 @@ from typing import Any
 
 import viser
 
-from app.scenes.host.fair_share import REQUEST_COMPUTE_S, Pace, RequestTooCostly
+from app.scenes.host.fair_share import Pace, RequestTooCostly
 from app.scenes.host.interface import HostBusy
 from app.scenes.host.viser_compat import BroadcastViewer, quiet_server, stop_quietly
 from app.scenes.kit import Scene
@@ -177,10 +177,7 @@ class SceneRecorder:
                         scene.redraw()
                         serializer.insert_sleep(frame_period_s)
                         if not pace():
-                            raise RequestTooCostly(
-                                f"seconds: drawing {len(frames)} frames of this scene again takes more than the "
-                                f"{REQUEST_COMPUTE_S:g} s of computing one request may use; record fewer seconds"
-                            )
+                            raise RequestTooCostly.over_limit("seconds", f"drawing {len(frames)} frames of this scene again", "record fewer seconds")
             viewer_html, serializer = serializer.as_html(), None
             return offline_page(viewer_html, title=f"{scene_class.title} — a Dynamics Lab recording")
         except RequestTooCostly:
