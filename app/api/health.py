@@ -17,5 +17,5 @@ async def health(request: Request) -> dict[str, Any]:
     Answered on the event loop itself from what the front already knows: it never waits for a thread or a scene
     worker, so it answers at once however busy or stopped a worker is."""
     host = getattr(request.app.state, "scene_host", None)
-    workers = host.worker_states() if hasattr(host, "worker_states") else None
+    workers = host.worker_states() if host is not None else None
     return {"status": "ok", "version": __version__, "workers": workers}

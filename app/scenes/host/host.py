@@ -325,6 +325,10 @@ class SceneHost:
         """The loopback websocket address that serves ``session_id``'s viewers (the relay appends the path)."""
         return self.url
 
+    def worker_states(self) -> list[dict[str, Any]]:
+        """No scene workers: the scenes run in this process."""
+        return []
+
     # -- sessions -----------------------------------------------------------------
     def scene_class(self, scene_id: str) -> type[Scene]:
         try:

@@ -6,7 +6,9 @@ it in this process (``--workers 0``, tests); :class:`~app.scenes.host.pool.Worke
 implements it by calling the scene worker that holds the session. Each call is
 declared once here, with what the pool needs to route it (:class:`Call`): the
 worker's call table (:data:`WORKER_CALLS`) and the pool's forwarders are derived
-from these declarations, never written out again.
+from these declarations, never written out again. Two questions about where the
+scenes run (``viewer_url``, ``worker_states``) are answered by each host itself
+and are declared here without :func:`call`.
 
 Every call that names a session is routed to the worker the session is pinned to.
 A session is pinned only by a call that creates it (``creates``: the page's
@@ -195,6 +197,17 @@ class SceneHostInterface(Protocol):
     @call(every_worker=True, unknown=0)
     def total_viewers(self) -> int:
         """Viewers connected to the host's scenes (every session's)."""
+        ...
+
+    # -- answered by each host itself, never a worker call: where the scenes run -----------------------------------
+    def viewer_url(self, session_id: str) -> str:
+        """The loopback websocket address that serves ``session_id``'s viewers (the relay appends the path);
+        ``ValueError`` for a session with no scene, :class:`HostBusy` while its worker restarts."""
+        ...
+
+    def worker_states(self) -> list[dict[str, Any]]:
+        """Each scene worker's ``{"index", "state"}`` as last seen, without waiting on any ([] when the scenes run in
+        this process): for ``/api/health``."""
         ...
 
 

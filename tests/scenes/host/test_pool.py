@@ -49,6 +49,11 @@ def test_the_in_process_host_and_the_pool_offer_every_declared_call_with_the_sam
         assert list(declared.parameters) == list(implemented.parameters), name
         assert callable(getattr(WorkerPool, name)), name
     assert set(WORKER_CALLS) == set(CALLS)
+    for name in ("viewer_url", "worker_states"):  # answered by each host itself, not worker calls
+        declared = inspect.signature(getattr(SceneHostInterface, name))
+        for host_class in (SceneHost, WorkerPool):
+            assert list(inspect.signature(getattr(host_class, name)).parameters) == list(declared.parameters), (host_class, name)
+        assert name not in CALLS
 
 
 def test_a_call_about_a_session_nobody_created_never_reaches_a_worker_and_pins_nothing(pool):
