@@ -434,7 +434,7 @@ class SceneHost:
                 check_request_cost("step", frames=step, frame_cost_s=drawn_s, what=f"stepping {step} frames")
             if go_to_s is not None and session.instances:
                 stepped_s = sum(scene.motion_cost_s() or 0.0 for scene in session.instances.values())
-                frames = math.ceil(float(go_to_s) * self.frame_rate_hz)
+                frames = math.ceil(float(go_to_s) / FRAME_DT_S)  # a jump steps the kit's frames, as _paced_go_to counts them
                 check_request_cost("go_to_s", frames=frames, frame_cost_s=stepped_s, what=f"computing the motion to {go_to_s:g} s")
             if seek_s is not None:  # checked against every viewer's kept motion before anything moves
                 motions = {cid: session.histories[cid].at(seek_s) for cid in session.instances if cid in session.histories}
