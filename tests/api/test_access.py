@@ -274,6 +274,17 @@ def test_viewers_are_bounded_per_session_and_per_client():
 
 
 # -- numbers are numbers ------------------------------------------------------------------------------------------------
+def test_going_back_in_a_session_with_no_kept_motion_is_a_422_not_a_silent_200(client):
+    """``seek_s`` goes back to a kept instant; a session with no viewer keeps none, and a seek answered 200 while
+    doing nothing (an outside attack found it)."""
+    sid, key = new_session(), secrets.token_hex(16)
+    assert put(client, sid, {}, key).status_code == 200
+    answer = client.put(f"/api/scenes/heavy-top/sessions/{sid}/playback", json={"seek_s": 1.0}, headers={"X-Session-Key": key})
+    assert answer.status_code == 422 and answer.json()["detail"][0]["loc"] == ["body", "seek_s"], answer.text
+    assert "no motion is kept" in answer.json()["detail"][0]["msg"]
+    assert client.get(f"/api/scenes/heavy-top/sessions/{sid}/playback").json()["playing"] is True  # nothing changed
+
+
 @pytest.mark.parametrize("field, value", [("go_to_s", "5"), ("go_to_s", True), ("seek_s", "0"), ("time_scale", "2"), ("time_scale", True), ("step", 1.0), ("playing", 1)])
 def test_a_playback_number_or_switch_of_the_wrong_json_type_is_a_422(client, field, value):
     """Found 10: ``go_to_s`` accepted "5" and true."""

@@ -348,3 +348,19 @@ def test_the_instructor_key_never_reaches_the_log():
     log = "\n".join(line for line in output.splitlines() if not line.startswith("Instructor link"))
     assert key not in log and key[:-1] not in log, "the key (or nearly all of it) is in the log"
     assert re.search(r'"GET /instructor\?key=… HTTP/1\.1" 303', log), log[-2000:]
+
+
+def test_a_number_poll_takes_json_numbers_only(served, room):
+    """A number poll's answer is a JSON number: "1" and true were taken as numbers (an outside attack found it)."""
+    phone = device(served)
+    token = join(phone, room["code"])["student_token"]
+    poll = served.client.post(
+        f"/api/rooms/{room['room_id']}/polls", json={"question": "How fast?", "kind": "number", "unit": "rad/s"}, headers=served.instructor_headers
+    ).json()
+    answers_url = f"/api/rooms/{room['room_id']}/polls/{poll['poll_id']}/answers"
+    for wrong in ("1", True):
+        refused = phone.post(answers_url, json={"value": wrong}, headers={"X-Student-Token": token})
+        assert refused.status_code == 422 and refused.json()["detail"][0]["loc"] == ["body", "value"], refused.text
+    assert phone.post(answers_url, json={"value": 12}, headers={"X-Student-Token": token}).status_code == 200
+    results = served.client.get(f"/api/rooms/{room['room_id']}/polls/{poll['poll_id']}/results", headers=served.instructor_headers).json()
+    assert results["answers"] == 1

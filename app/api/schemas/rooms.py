@@ -102,7 +102,7 @@ class AnswerRequest(BaseModel):
 
     model_config = ConfigDict(extra="forbid")
     choice: StrictInt | None = None
-    value: float | None = Field(None, allow_inf_nan=False)
+    value: float | None = Field(None, strict=True, allow_inf_nan=False)  # a JSON number: not "1", not true
 
 
 # ---- answers ----------------------------------------------------------------------------------------

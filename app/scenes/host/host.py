@@ -438,6 +438,8 @@ class SceneHost:
                 check_request_cost("go_to_s", frames=frames, frame_cost_s=stepped_s, what=f"computing the motion to {go_to_s:g} s")
             if seek_s is not None:  # checked against every viewer's kept motion before anything moves
                 motions = {cid: session.histories[cid].at(seek_s) for cid in session.instances if cid in session.histories}
+                if not motions:
+                    raise ValueError("seek_s: no motion is kept for this session yet (it has no viewer): open its scene, then go back in it")
             if playing is not None:
                 session.playing = playing
             if time_scale is not None:
