@@ -5,8 +5,12 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
+import faulthandler
+import io
 import logging
 import os
+import signal
 import sys
 from dataclasses import replace
 
@@ -16,6 +20,45 @@ from app.settings import Settings
 def default_worker_count() -> int:
     """Scene workers when ``--workers`` is not given: ``DYNLAB_WORKERS``, else one per core."""
     return int(os.environ.get("DYNLAB_WORKERS", os.cpu_count() or 1))
+
+
+#: Ctrl+C ends ``dynlab serve`` within this long (s) whatever is in flight: requests get 1.5 s, the scene workers
+#: up to 3 s more (app/scenes/host/pool.py); anything still holding the process then (a thread blocked on a stopped
+#: worker, an executor's join) is not waited for: the workers are killed and the process exits.
+EXIT_DEADLINE_S = 4.5
+
+
+def _exit_by_deadline(deadline_s: float) -> None:
+    """From now on, the process exits within ``deadline_s`` even if something in it would wait longer."""
+    import multiprocessing
+    import threading
+
+    def force() -> None:
+        logging.getLogger(__name__).warning("still stopping after %.1f s: the scene workers are killed and the server exits", deadline_s)
+        for child in multiprocessing.active_children():
+            child.kill()
+        logging.shutdown()
+        sys.stdout.flush()
+        sys.stderr.flush()
+        os._exit(0)
+
+    timer = threading.Timer(deadline_s, force)
+    timer.daemon = True
+    timer.start()
+
+
+def _stopping_server_class():
+    import uvicorn
+
+    class StoppingServer(uvicorn.Server):
+        """uvicorn's server, with a deadline on stopping (:data:`EXIT_DEADLINE_S`) from the first Ctrl+C or SIGTERM."""
+
+        def handle_exit(self, sig: int, frame: object) -> None:
+            if not self.should_exit:
+                _exit_by_deadline(EXIT_DEADLINE_S)
+            super().handle_exit(sig, frame)  # type: ignore[arg-type]
+
+    return StoppingServer
 
 
 def _serve(args: argparse.Namespace) -> int:
@@ -41,14 +84,17 @@ def _serve(args: argparse.Namespace) -> int:
 
     # Behind a reverse proxy every connection comes from the proxy: per-address connection caps belong to it there.
     http_protocol = type("ServedHttpProtocol", (GuardedHttpProtocol,), {"cap_connections": not settings.trust_forwarded_for})
-    uvicorn.run(
+    # `kill -USR1 <pid>` writes every thread's stack to the log: what a server that will not stop is waiting for.
+    with contextlib.suppress(AttributeError, ValueError, io.UnsupportedOperation):  # a stderr with no file (tests)
+        faulthandler.register(signal.SIGUSR1, all_threads=True)
+    config = uvicorn.Config(
         app,
         host=settings.host,
         port=settings.port,
         log_level=args.log_level,
         http=http_protocol,
-        # Ctrl+C: requests in flight get 1.5 s to finish, then the scene workers are stopped (app/scenes/host/pool.py),
-        # so the server exits within about 5 s whatever is in flight.
+        # Ctrl+C: requests in flight get 1.5 s to finish, then the scene workers are stopped (app/scenes/host/pool.py);
+        # the server exits within EXIT_DEADLINE_S whatever is in flight.
         timeout_graceful_shutdown=1.5,
         # A viewer sends only camera and GUI messages (< 1 kB); scene data is already zstd-compressed by viser,
         # so per-message deflate would spend CPU on every frame of every student for nothing.
@@ -57,7 +103,12 @@ def _serve(args: argparse.Namespace) -> int:
         # Rate limits key on the client's address; only the guard may take it from X-Forwarded-For (trust_forwarded_for).
         proxy_headers=False,
     )
-    return 0
+    server = _stopping_server_class()(config)
+    try:
+        server.run()
+    except KeyboardInterrupt:  # uvicorn raises the captured Ctrl+C again once it has stopped
+        pass
+    return 0 if server.started else 3  # 3: it never started (uvicorn's STARTUP_FAILURE: a port in use, …)
 
 
 def lan_address() -> str:

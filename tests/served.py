@@ -7,6 +7,7 @@ here reaches into the server's memory. :class:`ServedApp` starts one on a free p
 
 from __future__ import annotations
 
+import contextlib
 import os
 import signal
 import socket
@@ -167,8 +168,10 @@ class ServedApp:
             self.process.send_signal(signal.SIGINT)
             try:
                 self.process.wait(timeout=timeout_s)
-            except subprocess.TimeoutExpired:
-                pass
+            except subprocess.TimeoutExpired:  # what it waits for goes to its log (faulthandler), then it is killed
+                self.process.send_signal(signal.SIGUSR1)
+                with contextlib.suppress(subprocess.TimeoutExpired):
+                    self.process.wait(timeout=1.0)
         took = time.monotonic() - started
         for pid in tree:
             try:

@@ -2,9 +2,15 @@
 
 from __future__ import annotations
 
+import subprocess
+import sys
+import time
+from pathlib import Path
+
 import pytest
 
 from app import cli
+from tests.conftest import wait_until
 
 
 def test_bench_options_reach_the_benchmark(monkeypatch):
@@ -27,10 +33,25 @@ def test_the_default_worker_count_is_the_cores_unless_set(monkeypatch):
     assert cli.default_worker_count() == 3
 
 
+def recording_server(served: list):
+    """Stands in for the server ``dynlab serve`` runs: keeps the app it was given, serves nothing."""
+
+    class Server:
+        started = True
+
+        def __init__(self, config) -> None:
+            self.config = config
+
+        def run(self) -> None:
+            served.append(self.config.app)
+
+    return Server
+
+
 def test_serve_prints_the_instructor_link_with_the_key_given_or_a_new_one(monkeypatch, capsys):
     """The link beside the address carries the secret: --instructor-key's, else the environment's, else a random one."""
     served = []
-    monkeypatch.setattr("uvicorn.run", lambda app, **options: served.append(app))
+    monkeypatch.setattr(cli, "_stopping_server_class", lambda: recording_server(served))
     monkeypatch.delenv("DYNLAB_INSTRUCTOR_KEY", raising=False)
     assert cli.main(["serve", "--workers", "0", "--port", "8123", "--instructor-key", "chalk-and-talk-2026"]) == 0
     out = capsys.readouterr().out
@@ -49,8 +70,31 @@ def test_serve_prints_the_instructor_link_with_the_key_given_or_a_new_one(monkey
 
 
 def test_a_lan_server_prints_links_students_can_reach(monkeypatch, capsys):
-    monkeypatch.setattr("uvicorn.run", lambda app, **options: None)
+    monkeypatch.setattr(cli, "_stopping_server_class", lambda: recording_server([]))
     monkeypatch.setattr(cli, "lan_address", lambda: "10.1.2.3")
     monkeypatch.delenv("DYNLAB_PUBLIC_URL", raising=False)
     cli.main(["serve", "--workers", "0", "--host", "0.0.0.0", "--port", "8000", "--instructor-key", "chalk-and-talk-2026"])
     assert "http://10.1.2.3:8000/instructor?key=chalk-and-talk-2026" in capsys.readouterr().out
+
+
+def test_a_stop_past_its_deadline_kills_the_workers_and_exits_whatever_still_waits(tmp_path):
+    """The last guard on "Ctrl+C stops within 5 s": past the deadline a thread that would wait a minute (a call to a
+    stopped worker, an executor's join at exit) is not waited for, and child processes are killed, not orphaned."""
+    script = tmp_path / "hangs.py"
+    script.write_text(
+        "import multiprocessing, threading, time, sys\n"
+        "from app.cli import _exit_by_deadline\n"
+        "if __name__ == '__main__':\n"
+        "    child = multiprocessing.get_context('spawn').Process(target=time.sleep, args=(60,))\n"
+        "    child.start()\n"
+        "    print(child.pid, flush=True)\n"
+        "    _exit_by_deadline(0.5)\n"
+        "    threading.Thread(target=time.sleep, args=(60,)).start()  # not a daemon: exit would wait for it\n"
+    )
+    started = time.monotonic()
+    done = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, timeout=30, cwd=Path(__file__).resolve().parents[1])
+    assert time.monotonic() - started < 10.0 and done.returncode == 0, done.stderr
+    child = int(done.stdout.split()[0])
+    assert "still stopping after 0.5 s" in done.stderr
+    wait_until(lambda: not Path(f"/proc/{child}").exists() or "Z" in Path(f"/proc/{child}/stat").read_text().split()[2], 5,
+               what="the child to be killed")  # fmt: skip

@@ -27,6 +27,9 @@ from app.scenes.host.interface import HostBusy, SceneHostInterface
 from app.web.guard import client_address
 
 log = logging.getLogger(__name__)
+#: Longest a closing relay waits for its scene worker's close frame (s): the worker is on this machine, so a longer
+#: wait means it is stopped or stuck, and a Ctrl+C must not wait websockets' default 10 s for it.
+UPSTREAM_CLOSE_TIMEOUT_S = 1.0
 router = APIRouter(tags=["viewer"])
 
 #: Client-to-server message types that never reach viser.
@@ -87,6 +90,7 @@ async def _relay(websocket: WebSocket, host: SceneHostInterface, scene_id: str, 
             max_size=None,
             compression=None,
             open_timeout=10,
+            close_timeout=UPSTREAM_CLOSE_TIMEOUT_S,
         )
     except (OSError, websockets.InvalidHandshake, TimeoutError, HostBusy, ValueError) as exc:
         log.warning("scene server unreachable: %s", exc)

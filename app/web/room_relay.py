@@ -39,7 +39,7 @@ from app.api.schemas.rooms import ROOM_ID_PATTERN
 from app.scenes.host.interface import HostBusy
 from app.scenes.host.viser_compat import viewer_camera_message
 from app.web.guard import client_address
-from app.web.relay import close_refused, viser_protocol
+from app.web.relay import UPSTREAM_CLOSE_TIMEOUT_S, close_refused, viser_protocol
 
 log = logging.getLogger(__name__)
 router = APIRouter(tags=["viewer"])
@@ -115,7 +115,7 @@ class StageStream:
         self.task: asyncio.Task[None] | None = None
 
     async def connect(self) -> websockets.ClientConnection:
-        upstream = await websockets.connect(self.url, subprotocols=[self.protocol], max_size=None, compression=None, open_timeout=10)  # type: ignore[list-item]
+        upstream = await websockets.connect(self.url, subprotocols=[self.protocol], max_size=None, compression=None, open_timeout=10, close_timeout=UPSTREAM_CLOSE_TIMEOUT_S)  # type: ignore[list-item]
         await upstream.send(viewer_camera_message())  # viser counts a viewer as connected after its first camera message
         return upstream
 

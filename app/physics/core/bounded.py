@@ -193,7 +193,8 @@ def _child_main(sender: Any, function: Callable[..., Any], args: tuple[Any, ...]
         message = pickle.dumps(("memory", ""))
     except Exception as exc:  # noqa: BLE001 - an unpicklable result is the function's bug
         message = pickle.dumps(("error", f"the result could not be pickled: {type(exc).__name__}: {exc}"[:MAX_MESSAGE_CHARS]))
-    sender.send_bytes(message)
+    with contextlib.suppress(BrokenPipeError):  # the caller has gone (the server stopped): nobody to tell
+        sender.send_bytes(message)
     sender.close()
 
 
