@@ -88,6 +88,21 @@ class SessionEntry:
     viewers: int = 0
 
 
+@contextmanager
+def _place(counter: InFlight, client: str | None, refusal: Refused) -> Iterator[None]:
+    """Hold one of ``client``'s places in ``counter`` while the block runs; ``refusal`` is raised if none is free. An
+    in-process caller (no client) is not counted."""
+    if client is None:
+        yield
+        return
+    if not counter.try_enter(client):
+        raise refusal
+    try:
+        yield
+    finally:
+        counter.leave(client)
+
+
 def _hash(key: str) -> bytes:
     return hashlib.sha256(key.encode()).digest()
 
@@ -219,33 +234,21 @@ class SessionDirectory:
     def heavy_change(self, *, client: str | None) -> Iterator[None]:
         """Hold the client's one place for a change that compiles what a student typed (a typed Lagrangian's
         derivation may take its whole 20 s): a second one from the same device meanwhile is :class:`Refused` (429)."""
-        if client is None:
+        busy = Refused(429, "your previous change, simulation or derivation is still running: wait for it, then try again", retry_after_s=2)
+        with _place(self.heavy_work, client, busy):
             yield
-            return
-        if not self.heavy_work.try_enter(client):
-            raise Refused(429, "your previous change, simulation or derivation is still running: wait for it, then try again", retry_after_s=2)
-        try:
-            yield
-        finally:
-            self.heavy_work.leave(client)
 
     @contextmanager
     def recording(self, *, client: str | None) -> Iterator[None]:
         """Hold the client's place for a recording: one at a time, :data:`RECORDING_BURST` at once and then one
         every :data:`RECORDING_EVERY_S`; :class:`Refused` (429, Retry-After) beyond."""
-        if client is None:
-            yield
-            return
-        if not self._recording_now.try_enter(client):
-            raise Refused(429, "your previous recording is still being made: wait for it, then try again", retry_after_s=2)
-        try:
-            wait_s = self._recordings.take(client)
+        busy = Refused(429, "your previous recording is still being made: wait for it, then try again", retry_after_s=2)
+        with _place(self._recording_now, client, busy):
+            wait_s = self._recordings.take(client) if client is not None else 0.0
             if wait_s > 0:
                 retry = retry_after_s(wait_s)
                 raise Refused(429, f"too many recordings from this device: the next one in {retry} s", retry_after_s=retry)
             yield
-        finally:
-            self._recording_now.leave(client)
 
     def check_long_request(self, *, client: str | None) -> None:
         """Count one long computation for the client; :class:`Refused` (429, Retry-After) beyond its share."""
@@ -288,12 +291,5 @@ class SessionDirectory:
     @contextmanager
     def follower(self, *, client: str | None) -> Iterator[None]:
         """Hold a room follower's place while the block runs; :class:`Refused` (429) beyond the client's share."""
-        if client is None:
+        with _place(self._followers, client, Refused(429, f"this device follows the room in {MAX_FOLLOWERS_PER_CLIENT} tabs already", retry_after_s=5)):
             yield
-            return
-        if not self._followers.try_enter(client):
-            raise Refused(429, f"this device follows the room in {MAX_FOLLOWERS_PER_CLIENT} tabs already", retry_after_s=5)
-        try:
-            yield
-        finally:
-            self._followers.leave(client)
