@@ -43,6 +43,7 @@ import time
 from collections import Counter
 from collections.abc import Awaitable, Callable
 from dataclasses import asdict, dataclass, field, fields, replace
+from typing import Any
 
 import numpy as np
 
@@ -232,6 +233,14 @@ class Attacker:
             return replace(answer, failure=WINDOW_ENDED)  # cut off by the window, not by the request timeout
         return answer
 
+    async def recorded(self, record: AttackRecord, method: str, path: str, **request: Any) -> bool:
+        """:meth:`request`, its answer added to ``record``; False (nothing added) once the window has ended."""
+        answer = await self.request(method, path, **request)
+        if answer is None:
+            return False
+        record.add_http(answer)
+        return True
+
     async def open_viewer(self, path: str, *, hold: bool) -> tuple[str, float, ViewerClient, asyncio.Task]:
         """Open a viewer websocket at ``path`` from the attacker's address and send the camera message; wait for its
         first frame (at most :data:`FIRST_FRAME_S`). Returns (what it got, ms, the client, its task); the viewer
@@ -293,11 +302,7 @@ class Attacker:
                              f"{json.dumps(body)}, no credential")  # fmt: skip
 
         async def change(_: int) -> bool:
-            answer = await self.request("PUT", path, body=body)
-            if answer is None:
-                return False
-            record.add_http(answer)
-            return True
+            return await self.recorded(record, "PUT", path, body=body)
 
         await self.until_window_ends(self.bounds.room_rounds, change)
 
@@ -336,10 +341,8 @@ class Attacker:
 
         async def claimer() -> None:
             while self.remaining_s() > 0 and next(counter) < self.bounds.claims:
-                answer = await self.request("PUT", f"/api/scenes/{scene}/sessions/{new_session_id()}", body={"params": {}}, key=new_session_key())
-                if answer is None:
+                if not await self.recorded(claims, "PUT", f"/api/scenes/{scene}/sessions/{new_session_id()}", body={"params": {}}, key=new_session_key()):
                     return
-                claims.add_http(answer)
 
         async def take_over(_: int) -> bool:
             victim = next(victims, None)
@@ -347,11 +350,7 @@ class Attacker:
                 return False
             self.victims_named.add(victim)
             path = f"/api/scenes/{scene}/sessions/{victim}/playback"
-            answer = await self.request("PUT", path, body={"playing": False}, key=attacker_key)
-            if answer is None:
-                return False
-            takeover.add_http(answer)
-            return True
+            return await self.recorded(takeover, "PUT", path, body={"playing": False}, key=attacker_key)
 
         await asyncio.gather(
             *(claimer() for _ in range(self.bounds.claim_connections)),
@@ -367,10 +366,8 @@ class Attacker:
         async def getter() -> None:
             while self.remaining_s() > 0 and (index := next(counter)) < self.bounds.anonymous_gets:
                 what = "playback" if index % 2 == 0 else "live"
-                answer = await self.request("GET", f"/api/scenes/{scene}/sessions/{new_session_id()}/{what}")
-                if answer is None:
+                if not await self.recorded(record, "GET", f"/api/scenes/{scene}/sessions/{new_session_id()}/{what}"):
                     return
-                record.add_http(answer)
 
         await asyncio.gather(*(getter() for _ in range(self.bounds.get_connections)))
 
@@ -445,14 +442,10 @@ class Attacker:
             return
 
         async def seek(_: int) -> bool:
-            answer = await self.request(
-                "PUT", f"/api/scenes/double-pendulum/sessions/{session_id}/playback", body={"go_to_s": 600.0},
+            return await self.recorded(
+                record, "PUT", f"/api/scenes/double-pendulum/sessions/{session_id}/playback", body={"go_to_s": 600.0},
                 key=self._keys[session_id], long=True,
             )  # fmt: skip
-            if answer is None:
-                return False
-            record.add_http(answer)
-            return True
 
         await self.until_window_ends(self.bounds.seeks, seek)
 
@@ -465,14 +458,10 @@ class Attacker:
             return
 
         async def step(_: int) -> bool:
-            answer = await self.request(
-                "PUT", f"/api/scenes/double-pendulum/sessions/{session_id}/playback", body={"step": 300},
+            return await self.recorded(
+                record, "PUT", f"/api/scenes/double-pendulum/sessions/{session_id}/playback", body={"step": 300},
                 key=self._keys[session_id],
             )  # fmt: skip
-            if answer is None:
-                return False
-            record.add_http(answer)
-            return True
 
         await self.until_window_ends(self.bounds.steps, step)
 
@@ -487,11 +476,7 @@ class Attacker:
                 "coordinates": ["q1", "q2", "q3"], "kinetic_energy": SLOW_KINETIC_ENERGY.format(n=next(counter)),
                 "potential_energy": SLOW_POTENTIAL_ENERGY, "parameters": {},
             }  # fmt: skip
-            answer = await self.request("POST", "/api/systems/custom/derive", body=body, long=True)
-            if answer is None:
-                return False
-            record.add_http(answer)
-            return True
+            return await self.recorded(record, "POST", "/api/systems/custom/derive", body=body, long=True)
 
         await asyncio.gather(*(self.until_window_ends(self.bounds.derivations, derive) for _ in range(2)))
 
