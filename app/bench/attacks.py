@@ -433,37 +433,19 @@ class Attacker:
                 return session_id
         return None
 
-    async def long_seeks(self) -> None:
-        record = self.record(6, "long seek on an expensive session",
-                             'PUT /api/scenes/double-pendulum/sessions/<own>/playback {"go_to_s": 600} '
-                             "(rk4, 4096 steps/frame), again when answered")  # fmt: skip
+    async def expensive_playback(self, name: str, body: dict, *, count: int, long: bool) -> None:
+        """``body`` sent to the playback of an expensive session of the attacker's own, again each time it is answered."""
+        record = self.record(6, name, f"PUT /api/scenes/double-pendulum/sessions/<own>/playback {json.dumps(body)} "
+                                      "(rk4, 4096 steps/frame), again when answered")  # fmt: skip
         session_id = await self.expensive_session(record)
         if session_id is None:
             return
 
-        async def seek(_: int) -> bool:
-            return await self.recorded(
-                record, "PUT", f"/api/scenes/double-pendulum/sessions/{session_id}/playback", body={"go_to_s": 600.0},
-                key=self._keys[session_id], long=True,
-            )  # fmt: skip
+        async def ask(_: int) -> bool:
+            path = f"/api/scenes/double-pendulum/sessions/{session_id}/playback"
+            return await self.recorded(record, "PUT", path, body=body, key=self._keys[session_id], long=long)
 
-        await self.until_window_ends(self.bounds.seeks, seek)
-
-    async def repeated_steps(self) -> None:
-        record = self.record(6, "repeated steps of 300 frames",
-                             'PUT /api/scenes/double-pendulum/sessions/<own>/playback {"step": 300} '
-                             "(rk4, 4096 steps/frame), repeatedly")  # fmt: skip
-        session_id = await self.expensive_session(record)
-        if session_id is None:
-            return
-
-        async def step(_: int) -> bool:
-            return await self.recorded(
-                record, "PUT", f"/api/scenes/double-pendulum/sessions/{session_id}/playback", body={"step": 300},
-                key=self._keys[session_id],
-            )  # fmt: skip
-
-        await self.until_window_ends(self.bounds.steps, step)
+        await self.until_window_ends(count, ask)
 
     async def derivations(self) -> None:
         record = self.record(6, "two slow typed-Lagrangian derivations at once",
@@ -491,8 +473,9 @@ class Attacker:
             **{f"room_{name}": self.room_change(name, body) for name, body in ROOM_CHANGES},
             "viewer_rescene": self.viewer_rescene(),
             "claim_flood": self.claim_flood(), "anonymous_gets": self.anonymous_gets(),
-            "own_session_attacks": self.own_session_attacks(), "long_seeks": self.long_seeks(),
-            "repeated_steps": self.repeated_steps(), "derivations": self.derivations(),
+            "own_session_attacks": self.own_session_attacks(), "long_seeks": self.expensive_playback("long seek on an expensive session", {"go_to_s": 600.0}, count=self.bounds.seeks, long=True),
+            "repeated_steps": self.expensive_playback("repeated steps of 300 frames", {"step": 300}, count=self.bounds.steps, long=False),
+            "derivations": self.derivations(),
         }  # fmt: skip
         tasks = {asyncio.create_task(coro): name for name, coro in attacks.items()}
         done, pending = await asyncio.wait(tasks, timeout=self.plan.seconds + WIND_DOWN_S / 3)
