@@ -295,6 +295,7 @@ def test_a_watchers_unusable_camera_is_never_shown_kept_or_restored(app):
         os.kill(pid, signal.SIGKILL)
     wait_until(lambda: all(w["state"] == "answering" for w in app.client.get("/api/health").json()["workers"]) and len(app.worker_pids()) == 2,
                60, what="both workers to be back")  # fmt: skip
+    wait_until(lambda: "playing" in victim.playback(), 30, what="the victim's session to answer again")  # as its page retries a 503
     after = victim.playback()
     assert (after["playing"], after["time_scale"]) == (False, 2.5), after
     assert None not in after["camera"]["position"]

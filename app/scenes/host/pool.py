@@ -16,8 +16,9 @@ No call waits forever and a sick worker stays sick alone:
   pages and ``/api/health`` need;
 * every call has connect and answer timeouts (:mod:`app.scenes.host.rpc`);
 * a supervisor pings each worker every second; one that does not answer within
-  :data:`~app.scenes.host.interface.PING_TIMEOUT_S` is marked *not answering* and its calls fail at once (503
-  with Retry-After) until it answers again.
+  :data:`~app.scenes.host.interface.PING_TIMEOUT_S` twice in a row (:data:`MISSED_PINGS`)
+  is marked *not answering* and its calls fail at once (503 with Retry-After) until
+  it answers again.
 
 Nothing is lost when a worker dies: the supervisor keeps a snapshot of every
 session (parameters, play state, time scale, motion, camera), refreshed every
@@ -58,6 +59,9 @@ CALLS_PER_WORKER = 8
 PLACE_WAIT_S = 1.0
 #: The supervisor's period (s): pings, snapshots, restarts.
 SUPERVISE_PERIOD_S = 1.0
+#: Pings missed in a row before a worker is marked not answering: one slow ping (a freshly restarted worker loading
+#: its compiled kernels on a loaded machine) is not a stopped worker, and marking it so cut its class off with 503s.
+MISSED_PINGS = 2
 #: Longest a read or write on a call's connection may make no progress (s), once its answer has begun.
 IO_TIMEOUT_S = 10.0
 #: Longest ``stop`` waits for the workers to exit by themselves before killing them (s).
@@ -73,8 +77,10 @@ class _Worker:
     rpc_address: tuple[str, int]
     idle_connections: queue.SimpleQueue = field(default_factory=queue.SimpleQueue)
     places: threading.BoundedSemaphore = field(default_factory=lambda: threading.BoundedSemaphore(CALLS_PER_WORKER))
-    #: False from a missed ping (or while its sessions are being restored) until it answers again: calls fail fast.
+    #: False from :data:`MISSED_PINGS` missed pings in a row (or while its sessions are being restored) until it
+    #: answers again: calls fail fast.
     answering: bool = False
+    missed_pings: int = 0
 
 
 class WorkerPool(SceneHostInterface):
@@ -177,10 +183,12 @@ class WorkerPool(SceneHostInterface):
         try:
             self._call(worker.index, CALLS["ping"], (), {}, checking=True)
         except WorkerUnavailableError as exc:
-            if worker.answering:
+            worker.missed_pings += 1
+            if worker.answering and worker.missed_pings >= MISSED_PINGS:
                 log.error("scene worker %d is not answering (%s): its sessions get 503 until it does", worker.index, exc)
-            worker.answering = False
+                worker.answering = False
             return
+        worker.missed_pings = 0
         if not worker.answering:
             log.warning("scene worker %d answers again", worker.index)
         worker.answering = True

@@ -191,3 +191,24 @@ def test_a_worker_whose_places_are_all_taken_answers_503_at_once_instead_of_queu
     worker.answering = False
     with pytest.raises(WorkerUnavailableError, match="not answering"):
         pool.playback("busy-session-1")
+
+
+def test_one_slow_ping_is_not_a_stopped_worker_but_two_in_a_row_are(pool, monkeypatch):
+    """A freshly restarted worker loading its kernels on a loaded machine may miss one ping: marking it not answering
+    then cut its class off with 503s for a moment. Two missed in a row mark it; one answered clears the count."""
+    pool, _ = pool
+    monkeypatch.undo()
+    from app.scenes.host import pool as pool_module
+    from app.scenes.host.pool import MISSED_PINGS
+
+    (worker,) = _answering_workers(pool, True)
+
+    def unreachable(*args, **kwargs):
+        raise OSError("no answer")
+
+    monkeypatch.setattr(pool_module, "connect", unreachable)
+    for _ in range(MISSED_PINGS - 1):
+        pool._check(worker)
+    assert worker.answering
+    pool._check(worker)
+    assert not worker.answering
