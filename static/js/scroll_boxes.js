@@ -36,5 +36,7 @@
       childList: true, subtree: true, attributes: true, attributeFilter: ["open", "hidden", "class"],
     });
     window.addEventListener("resize", schedule);
+    // A web font (KaTeX's) that arrives late widens an equation without any change to the page's elements.
+    if (document.fonts) document.fonts.addEventListener("loadingdone", schedule);
   });
 })();

@@ -71,7 +71,9 @@ def test_a_tiny_attack_run_measures_both_windows_records_every_attack_and_leaves
     assert "127.0.1.1" in report["method"]["addresses"] and ATTACKER_ADDRESS in report["method"]["addresses"]
     before, during = report["windows"]["baseline"], report["windows"]["attack"]
     for window in (before, during):
-        assert window["window_s"] == pytest.approx(seconds, abs=0.5)
+        # The window is measured, not assumed: it ends when the tool's event loop wakes after `seconds`, later on a
+        # loaded machine (3.56 s for 3 s once in CI), and every rate is per the measured length.
+        assert seconds - 0.05 <= window["window_s"] < seconds + 2.0
         assert set(window["frames_per_s"]) == {"p10", "median", "min"}
         assert window["frames_per_s"]["min"] <= window["frames_per_s"]["p10"] <= window["frames_per_s"]["median"]
         assert window["dropped"] >= 0 and window["health_ms"]["requests"] >= 1
