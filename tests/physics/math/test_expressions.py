@@ -175,11 +175,11 @@ def test_deep_nesting_is_refused(text):
     ],
 )
 def test_huge_powers_are_refused_quickly(text):
-    start = time.perf_counter()
+    start = time.thread_time()  # CPU time: a busy machine slows the wall clock, not the work
     with pytest.raises(ValueError, match="limit"):
         parse_expression(text)
     # Measured well under 10 ms; forming 9^(9^9) would take minutes and gigabytes.
-    assert time.perf_counter() - start < 1.0
+    assert time.thread_time() - start < 1.0
 
 
 def test_the_parser_never_evaluates_text():
@@ -197,24 +197,26 @@ def test_the_parser_never_evaluates_text():
 ALPHABET = st.sampled_from(list("t0123456789.+-*/^() eE_,[]{}'\"=;:@%!&|<>~`#$\\\n\t×÷−πxyzsincoqrtaplg") + ["**", "sin(", "import", "__", "lambda", "pi", "exp(", "9^9^9"])
 
 
-@settings(max_examples=400, deadline=1000, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=400, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(st.text(max_size=MAX_LENGTH + 20))
 def test_random_text_gives_a_result_or_a_value_error(text):
+    start = time.thread_time()  # CPU time, not Hypothesis's wall-clock deadline: CI machines are busy
     try:
         parse_expression(text)
     except ValueError:
         pass
+    assert time.thread_time() - start < 1.0
 
 
-@settings(max_examples=400, deadline=1000, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=400, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(st.lists(ALPHABET, max_size=80).map("".join))
 def test_random_token_soup_gives_a_result_or_a_value_error(text):
-    start = time.perf_counter()
+    start = time.thread_time()
     try:
         parse_expression(text)
     except ValueError:
         pass
-    assert time.perf_counter() - start < 1.0
+    assert time.thread_time() - start < 1.0
 
 
 # -- random valid formulas agree with an independent evaluator ----------------------------------
