@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from app.physics.solvers.base import EventRecord, Integrator
+from app.physics.solvers.base import EventRecord, FixedStepIntegrator, Integrator
 from app.physics.solvers.kernels import Backend
 from app.physics.solvers.registry import (  # noqa: F401 - re-exported: the names other modules import from here
     MAX_STEPS_PER_FRAME,
@@ -111,14 +111,28 @@ def simulate(
     )
 
 
+#: About the most integration steps one :class:`LiveRun` batch takes (one kernel call inside a scene worker's
+#: frame loop): 2,048 RK4 steps of the double pendulum take about 1.5 ms. A run of more steps per frame than this
+#: computes one frame per batch.
+STEPS_PER_BATCH = 2048
+
+
 @dataclass
 class LiveRun:
     """A system advanced frame by frame for a live scene (never yields a non-finite state).
 
-    Frames are computed ``batch_frames`` at a time and handed out one per call:
-    a call from Python into a compiled kernel costs far more than a few steps of
-    a small model, so batching keeps the physics cost per displayed frame to a
-    few microseconds. A failure inside a batch surfaces when playback reaches it.
+    Frames are computed up to ``batch_frames`` at a time and handed out one per
+    call: a call from Python into a compiled kernel costs far more than a few
+    steps of a small model, so batching keeps the physics cost per displayed
+    frame to a few microseconds. A batch holds at most about
+    :data:`STEPS_PER_BATCH` steps (at least one frame), judged from the steps per
+    frame of the batch before (a fixed-step integrator's own count for the first;
+    an adaptive one starts with one frame): one costly session's batch must not
+    hold a scene worker's frame loop for more than a few milliseconds (15 frames
+    of 4,096 RK4 steps of the double pendulum took 45 ms, a frame and a half for
+    every student on that worker). The batch sizes follow from the step counts
+    alone, so the same start gives the same motion. A failure inside a batch
+    surfaces when playback reaches it.
 
     ``limit`` (optional) is the model's own edge (:meth:`IntegratedModel.model_limit
     <app.physics.solvers.integrated_model.IntegratedModel.model_limit>`, its parameters bound): called once per batch
@@ -142,10 +156,17 @@ class LiveRun:
     _pending_status: str = field(init=False, default="ok", repr=False)
     _pending_message: str = field(init=False, default="", repr=False)
     _frame_dt_s: float = field(init=False, default=0.0, repr=False)
+    _next_batch: int = field(init=False, default=1, repr=False)
 
     def __post_init__(self) -> None:
         self.y = np.array(self.y, dtype=float)
         self._buffer = np.empty((self.batch_frames, self.y.shape[0]))
+        if isinstance(self.integrator, FixedStepIntegrator):
+            self._next_batch = self._frames_within_budget(self.integrator.steps_per_frame)
+
+    def _frames_within_budget(self, steps_per_frame: float) -> int:
+        """Frames of ``steps_per_frame`` steps that fit in :data:`STEPS_PER_BATCH`: between 1 and ``batch_frames``."""
+        return max(1, min(self.batch_frames, int(STEPS_PER_BATCH // max(steps_per_frame, 1.0))))
 
     @property
     def running(self) -> bool:
@@ -153,15 +174,18 @@ class LiveRun:
 
     def _refill(self, frame_dt_s: float) -> None:
         trial = self.y.copy()
-        outcome = self.integrator.run_frames(self.system, self.t_s, trial, frame_dt_s, self.batch_frames, self._buffer)
+        batch = self._next_batch
+        outcome = self.integrator.run_frames(self.system, self.t_s, trial, frame_dt_s, batch, self._buffer[:batch])
         self.steps += outcome.steps
         done = outcome.frames_done
+        if done:
+            self._next_batch = self._frames_within_budget(outcome.steps / done)
         finite = np.all(np.isfinite(self._buffer[:done]), axis=1)
         if not finite.all():
             done = int(np.argmin(finite))
         self._ready, self._next = done, 0
         self._frame_dt_s = frame_dt_s
-        self._pending_status = "ok" if done == self.batch_frames and outcome.status == "ok" else (
+        self._pending_status = "ok" if done == batch and outcome.status == "ok" else (
             outcome.status if outcome.status != "ok" else "non_finite"
         )
         self._pending_message = ""

@@ -34,7 +34,7 @@ from app.physics.solvers import (
 )
 from app.physics.solvers.controls import integrator_from_controls
 from app.physics.solvers.kernels import EVENTS_SIGNATURE, RHS_SIGNATURE, kernel, no_projection
-from app.physics.solvers.solve import MAX_STEPS_PER_FRAME, STEP_RATIO
+from app.physics.solvers.solve import MAX_STEPS_PER_FRAME, STEP_RATIO, STEPS_PER_BATCH
 from app.physics.systems.ch10 import heavy_top
 
 # --------------------------------------------------------------------------- kernels
@@ -398,6 +398,55 @@ def test_live_run_starts_afresh_when_the_frame_length_changes():
         assert run.advance(1 / 60)
     assert run.advance(1e-6), run.message
     assert run.running and np.all(np.isfinite(run.y))
+
+
+def _batches(run: LiveRun) -> list[int]:
+    """Record the frames each of ``run``'s kernel calls computes (the batch sizes)."""
+    sizes: list[int] = []
+    run_frames = run.integrator.run_frames
+
+    def recording(system, t0_s, y, frame_dt_s, n_frames, y_frames, **kwargs):
+        sizes.append(n_frames)
+        return run_frames(system, t0_s, y, frame_dt_s, n_frames, y_frames, **kwargs)
+
+    run.integrator.run_frames = recording  # an instance attribute shadows the method
+    return sizes
+
+
+@pytest.mark.parametrize("steps_per_frame", [1, 12, 136, 137, 2048, 4096])
+def test_a_live_batch_takes_at_most_its_step_budget_and_the_motion_does_not_depend_on_it(steps_per_frame):
+    """One kernel call holds a scene worker's frame loop: a costly run computes fewer frames per call (one, past
+    the budget), a cheap one the full batch; either way each frame is the state simulate() reaches (same arithmetic)."""
+    frames = 40
+    run = LiveRun(OSCILLATOR, RK4(steps_per_frame=steps_per_frame), OSC_Y0)
+    sizes = _batches(run)
+    states = [run.y.copy()]
+    for _ in range(frames):
+        assert run.advance(1 / FRAME_RATE)
+        states.append(run.y.copy())
+    expected_batch = max(1, min(run.batch_frames, STEPS_PER_BATCH // steps_per_frame))
+    assert set(sizes) == {expected_batch} and sum(sizes) >= frames
+    assert expected_batch * steps_per_frame <= max(STEPS_PER_BATCH, steps_per_frame)
+    reference = simulate(OSCILLATOR, RK4(steps_per_frame=steps_per_frame), OSC_Y0, t_end_s=frames / FRAME_RATE, frame_rate_hz=FRAME_RATE)
+    np.testing.assert_array_equal(np.array(states), reference.states[: frames + 1])
+
+
+def test_an_adaptive_live_run_sizes_its_batches_from_the_steps_it_took():
+    """Dormand–Prince: one frame first (its cost is unknown), then as many as the last batch's steps per frame
+    allow; the batch sizes follow from step counts alone, so two runs from the same start are identical."""
+    motions = []
+    for _ in range(2):
+        run = LiveRun(OSCILLATOR, DormandPrince(rtol=1e-12), OSC_Y0)
+        sizes = _batches(run)
+        states = []
+        for _ in range(60):
+            assert run.advance(1 / FRAME_RATE)
+            states.append(run.y.copy())
+        motions.append(np.array(states))
+        assert sizes[0] == 1 and max(sizes) <= run.batch_frames and len(sizes) > 1
+    np.testing.assert_array_equal(motions[0], motions[1])
+    times = np.arange(1, 61) / FRAME_RATE
+    np.testing.assert_allclose(motions[0], oscillator_exact(times), rtol=0, atol=1e-9)  # the closed form; rtol 1e-12 gives ~1e-11
 
 
 # --------------------------------------------------------------------------- 7. automatic steps
