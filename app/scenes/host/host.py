@@ -67,6 +67,7 @@ from app.scenes.host.viser_compat import (
     BatchedWakeups,
     BroadcastViewer,
     connection_path,
+    make_message_events_thread_safe,
     quiet_server,
     share_prop_hints,
     start_callback_threads,
@@ -290,6 +291,7 @@ class SceneHost:
         ``frame_rate_hz`` times a second (without it, time moves only when :meth:`run_frame` is called: a test
         that steps the frames itself)."""
         share_prop_hints()
+        make_message_events_thread_safe()
         server = quiet_server(host=self._host)
         log.info("scene server listening on loopback port %d (reached only through the relay)", server.get_port())
         start_callback_threads(server)  # a constant thread count, so a soak can tell a leak from a growing pool

@@ -13,13 +13,17 @@ a core). The names of nodes on a
 scene API are read for tests that check a scene removed what it built.
 ``tests/scenes/host/test_viser_compat.py`` pins the version and checks each
 function against a real loopback server: re-check them all when viser is
-upgraded. Nothing else in ``app/`` or ``tests/`` may import ``viser._*`` or
+upgraded. One is a fix: viser's message buffers set an ``asyncio.Event``
+from the frame loop's thread, which is not thread-safe
+(:class:`LoopOnlyEvent`). Nothing else in ``app/`` or ``tests/`` may import ``viser._*`` or
 touch a ``_websock*`` attribute (a test greps for it).
 """
 
 from __future__ import annotations
 
+import asyncio
 import contextlib
+import functools
 import io
 import threading
 import typing
@@ -245,6 +249,46 @@ class BatchedWakeups:
 
             with contextlib.suppress(RuntimeError):  # the server's loop has closed (stopping): nothing to wake
                 loop.call_soon_threadsafe(wake)
+
+
+class LoopOnlyEvent(asyncio.Event):
+    """An ``asyncio.Event`` whose :meth:`set` acts only on its own event loop's thread.
+
+    viser 1.1.1's ``AsyncMessageBuffer.push`` sets the buffer's message event
+    directly from the pushing thread (our frame loop), besides waking the
+    loop with ``call_soon_threadsafe`` (or at the end of an atomic block, or
+    in :meth:`BatchedWakeups.flush`). ``asyncio.Event`` is not thread-safe:
+    that direct ``set`` iterates the waiters while the loop adds or removes
+    one, and under load it raised "deque mutated during iteration" inside a
+    student's frame, which paused that student's scene. Every push is also
+    woken on the loop, so ignoring the direct one loses no wake-up.
+    """
+
+    def __init__(self, loop: asyncio.AbstractEventLoop) -> None:
+        super().__init__()
+        self._owner_loop = loop
+
+    def set(self) -> None:
+        if asyncio._get_running_loop() is self._owner_loop:
+            super().set()
+
+
+def make_message_events_thread_safe() -> None:
+    """Give every viser message buffer created from now on a :class:`LoopOnlyEvent`. Idempotent; called when a
+    scene host starts, before its viser server exists."""
+    from viser.infra._async_message_buffer import AsyncMessageBuffer
+
+    if getattr(AsyncMessageBuffer.__init__, "loop_only_event", False):
+        return
+    original = AsyncMessageBuffer.__init__
+
+    @functools.wraps(original)
+    def init(self: Any, *args: Any, **kwargs: Any) -> None:
+        original(self, *args, **kwargs)
+        self.message_event = LoopOnlyEvent(self.event_loop)
+
+    init.loop_only_event = True  # type: ignore[attr-defined]
+    AsyncMessageBuffer.__init__ = init  # type: ignore[method-assign]
 
 
 def start_callback_threads(server: viser.ViserServer, *, timeout_s: float = 10.0) -> int:

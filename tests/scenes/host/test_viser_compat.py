@@ -190,6 +190,34 @@ def test_batched_wakeups_group_a_clients_messages_and_deliver_them_once_woken():
     assert not [m for m in held if m["type"] == "SceneNodeUpdateMessage"] and updates == ["second"]
 
 
+def test_a_push_from_the_frame_loops_thread_leaves_the_senders_waiters_to_its_loop():
+    """asyncio.Event is not thread-safe, and viser's push set the buffer's event from the pushing thread: under load
+    that raised "deque mutated during iteration" in a student's frame and paused the scene. Now only the loop's
+    thread sets it, and every push is still delivered."""
+    viser_compat.make_message_events_thread_safe()
+    viser_compat.make_message_events_thread_safe()  # idempotent
+    with server_with_viewer("/") as (server, client, socket):
+        buffer = client._websock_connection.get_message_buffer()
+        assert isinstance(buffer.message_event, viser_compat.LoopOnlyEvent)
+        label = client.scene.add_label("/label", "before")
+        received_messages(socket, seconds=0.3)
+        deadline = time.monotonic() + 5.0
+        while not buffer.message_event._waiters:  # the sender has sent everything and waits for a message
+            assert time.monotonic() < deadline, "viser's sender never waited on its message event"
+            time.sleep(0.01)
+        waiting = list(buffer.message_event._waiters)
+        wakeups = viser_compat.BatchedWakeups()
+        with wakeups.atomic(client):
+            label.text = "grouped"  # pushed from this thread, not the loop's: viser set the event (and its waiters) here
+        assert not any(waiter.done() for waiter in waiting)
+        wakeups.flush()
+        grouped = received_messages(socket, seconds=0.5)
+        label.text = "alone"  # outside a group: woken on the loop by viser's own call_soon_threadsafe
+        alone = received_messages(socket, seconds=0.5)
+    texts = [m["updates"]["text"] for m in grouped + alone if m["type"] == "SceneNodeUpdateMessage"]
+    assert texts == ["grouped", "alone"]
+
+
 def test_callback_threads_are_all_started_so_the_count_stays_constant():
     with server_with_viewer("/") as (server, _client, _socket):
         started = viser_compat.start_callback_threads(server)
