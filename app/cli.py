@@ -12,6 +12,7 @@ import logging
 import os
 import signal
 import sys
+from collections.abc import Callable
 from dataclasses import replace
 
 from app.settings import Settings
@@ -47,15 +48,17 @@ def _exit_by_deadline(deadline_s: float) -> None:
     timer.start()
 
 
-def _stopping_server_class():
+def _stopping_server_class(on_stop: Callable[[], None]):
     import uvicorn
 
     class StoppingServer(uvicorn.Server):
-        """uvicorn's server, with a deadline on stopping (:data:`EXIT_DEADLINE_S`) from the first Ctrl+C or SIGTERM."""
+        """uvicorn's server, with a deadline on stopping (:data:`EXIT_DEADLINE_S`) from the first Ctrl+C or SIGTERM,
+        when ``on_stop`` is called first (the requests still waiting get their answer)."""
 
         def handle_exit(self, sig: int, frame: object) -> None:
             if not self.should_exit:
                 _exit_by_deadline(EXIT_DEADLINE_S)
+                on_stop()
             super().handle_exit(sig, frame)  # type: ignore[arg-type]
 
     return StoppingServer
@@ -65,6 +68,7 @@ def _serve(args: argparse.Namespace) -> int:
     import uvicorn
 
     from app.main import create_app
+    from app.physics.core.bounded import stop_all_work
     from app.scenes.host.worker import tune_garbage_collection
 
     workers = args.workers if args.workers is not None else default_worker_count()
@@ -103,7 +107,11 @@ def _serve(args: argparse.Namespace) -> int:
         # Rate limits key on the client's address; only the guard may take it from X-Forwarded-For (trust_forwarded_for).
         proxy_headers=False,
     )
-    server = _stopping_server_class()(config)
+    def on_stop() -> None:
+        stop_all_work()  # a derivation in flight ends now: its request is answered before uvicorn's deadline
+        app.state.requests_in_flight.stop()  # every request still waiting gets a 503 with Retry-After, not a 500
+
+    server = _stopping_server_class(on_stop)(config)
     try:
         server.run()
     except KeyboardInterrupt:  # uvicorn raises the captured Ctrl+C again once it has stopped

@@ -27,6 +27,7 @@ from app.scenes.host.host import SceneHost
 from app.scenes.host.pool import WorkerPool
 from app.settings import Settings
 from app.web import guard, pages, relay, room_pages, room_relay
+from app.web.stopping import AnswerWhenStopping, RequestsInFlight
 
 log = logging.getLogger(__name__)
 STATIC_DIR = Path(__file__).resolve().parent.parent / "static"
@@ -72,6 +73,9 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     app.state.ready_questions = load_ready_questions(DEFAULT_READY_QUESTIONS, SCENES)
     errors.install(app)
     app.add_middleware(guard.RequestGuard, settings=settings, heavy_in_flight=app.state.sessions.heavy_work)
+    # Outermost: on Ctrl+C every request still waiting for its answer gets a 503 at once, not uvicorn's 500 later.
+    app.state.requests_in_flight = RequestsInFlight()
+    app.add_middleware(AnswerWhenStopping, requests=app.state.requests_in_flight)
     routers = (
         health.router, chapters.router, scenes.router, examples.router, systems.router, bench.router, rooms.router,
         pages.router, room_pages.router, relay.router, room_relay.router,

@@ -51,7 +51,7 @@ def recording_server(served: list):
 def test_serve_prints_the_instructor_link_with_the_key_given_or_a_new_one(monkeypatch, capsys):
     """The link beside the address carries the secret: --instructor-key's, else the environment's, else a random one."""
     served = []
-    monkeypatch.setattr(cli, "_stopping_server_class", lambda: recording_server(served))
+    monkeypatch.setattr(cli, "_stopping_server_class", lambda on_stop: recording_server(served))
     monkeypatch.delenv("DYNLAB_INSTRUCTOR_KEY", raising=False)
     assert cli.main(["serve", "--workers", "0", "--port", "8123", "--instructor-key", "chalk-and-talk-2026"]) == 0
     out = capsys.readouterr().out
@@ -70,7 +70,7 @@ def test_serve_prints_the_instructor_link_with_the_key_given_or_a_new_one(monkey
 
 
 def test_a_lan_server_prints_links_students_can_reach(monkeypatch, capsys):
-    monkeypatch.setattr(cli, "_stopping_server_class", lambda: recording_server([]))
+    monkeypatch.setattr(cli, "_stopping_server_class", lambda on_stop: recording_server([]))
     monkeypatch.setattr(cli, "lan_address", lambda: "10.1.2.3")
     monkeypatch.delenv("DYNLAB_PUBLIC_URL", raising=False)
     cli.main(["serve", "--workers", "0", "--host", "0.0.0.0", "--port", "8000", "--instructor-key", "chalk-and-talk-2026"])

@@ -140,14 +140,18 @@ def test_forty_requests_at_once_right_after_start_are_all_answered_and_ctrl_c_st
         pages[0].open_viewer()
         os.kill(app.worker_pids()[0], signal.SIGSTOP)
         in_flight = concurrent.futures.ThreadPoolExecutor(9)
-        for n in range(8):
-            in_flight.submit(get, n, recordings[n % len(recordings)])
+        waiting = [in_flight.submit(get, n, recordings[n % len(recordings)]) for n in range(8)]
         slow = {"coordinates": ["q1"], "kinetic_energy": SLOW_KINETIC, "potential_energy": "0", "parameters": {}}
-        in_flight.submit(devices[39].post, "/api/systems/custom/derive", json=slow)  # runs up to its 20 s bound
+        derivation = in_flight.submit(devices[39].post, "/api/systems/custom/derive", json=slow)  # up to its 20 s bound
         time.sleep(0.5)  # let the requests reach the stopped worker (what is measured is the stop, below)
         took = app.stop(timeout_s=15.0)
         assert took <= 5.0, f"dynlab serve took {took:.1f} s to stop after Ctrl+C\n{app.log_tail()}"
         assert app.process is not None and app.process.returncode is not None
+        # Each request still waiting was answered: "the server is stopping" (503, Retry-After), not uvicorn's 500.
+        answer = derivation.result(timeout=5.0)
+        assert answer.status_code == 503 and "stopping" in answer.json()["detail"] and answer.headers["Retry-After"], answer.text
+        assert {future.result(timeout=5.0)[0] for future in waiting} <= {200, 503}
+        assert "Exception in ASGI application" not in app.log_tail(400)
         in_flight.shutdown(wait=False, cancel_futures=True)
         for device in devices:
             device.close()
