@@ -55,6 +55,7 @@ class RequestsInFlight:
 
     def __init__(self) -> None:
         self._waiting: set[_Waiting] = set()
+        self._answering: set[asyncio.Task] = set()  # the loop keeps only weak references to its tasks
         self._loop: asyncio.AbstractEventLoop | None = None
         self.stopping = False
 
@@ -68,7 +69,12 @@ class RequestsInFlight:
         for waiting in list(self._waiting):
             if not waiting.started and not waiting.answered_by_stop:
                 waiting.answered_by_stop = True
-                loop.call_soon_threadsafe(lambda send=waiting.raw_send: loop.create_task(_answer_stopping(send)))
+                loop.call_soon_threadsafe(self._answer, waiting.raw_send)
+
+    def _answer(self, send: Send) -> None:
+        task = asyncio.get_running_loop().create_task(_answer_stopping(send))
+        self._answering.add(task)
+        task.add_done_callback(self._answering.discard)
 
     async def serve(self, app: ASGIApp, scope: Scope, receive: Receive, send: Send) -> None:
         if self.stopping:
