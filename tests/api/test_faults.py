@@ -20,6 +20,7 @@ import httpx
 import pytest
 from websockets.sync.client import connect as websocket_connect
 
+from app.scenes.host.pool import PLACE_WAIT_S
 from tests.conftest import wait_until
 from tests.served import ServedApp, Viewer
 
@@ -193,7 +194,9 @@ def test_a_stopped_worker_delays_neither_the_other_worker_nor_health(app):
         stuck = [sid for sid, answers in results.items() if any(code == 503 for code, _ in answers)]
         assert healthy and stuck and set(healthy) | set(stuck) == set(results)
         for sid in healthy:
-            assert max(took for _, took in results[sid]) < 1.0, results[sid]
+            # 12 pollers share the healthy worker's CALLS_PER_WORKER places: a poll may wait up to PLACE_WAIT_S for
+            # one (then 503), so an answer takes that wait plus the call (CI measured 1.1 s once); before, 21 s.
+            assert max(took for _, took in results[sid]) < PLACE_WAIT_S + 1.0, results[sid]
         for sid in stuck:
             assert max(took for _, took in results[sid]) < 7.0, results[sid]
             assert {code for code, _ in results[sid]} <= {200, 503}

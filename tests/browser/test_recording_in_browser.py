@@ -17,6 +17,7 @@ import numpy as np
 import pytest
 from PIL import Image
 
+from app.scenes.host.interface import SLOW_ANSWER_S
 from tests.browser.conftest import let_webgl_draw, open_lesson, screenshot
 from tests.conftest import wait_until
 
@@ -40,7 +41,9 @@ def test_a_saved_recording_plays_offline_with_no_server(browser, live_server, tm
     context, page, session_id, errors = open_lesson(browser, live_server, LESSON)
     wait_until(lambda: live_server.host.motion_state(session_id)["t_s"] > SECONDS + 0.5, timeout_s=30, what="the top to play 5 s")
     page.select_option(".rec-seconds", str(int(SECONDS)))
-    with page.expect_download(timeout=30_000) as download_info:
+    # The worker may take up to SLOW_ANSWER_S to answer a recording (then 503): wait for that answer, with room for a
+    # busy browser to turn it into a download (CI timed out once at 30 s with nothing in the server's log).
+    with page.expect_download(timeout=(SLOW_ANSWER_S + 15.0) * 1000) as download_info:
         page.click(".rec-save")
     download = download_info.value
     assert download.suggested_filename == "heavy-top-recording.html"
