@@ -5,8 +5,9 @@ from __future__ import annotations
 import secrets
 import threading
 import time
+from typing import Any
 
-from app.rooms.room import CODE_ALPHABET, CODE_LENGTH, Room, RoomError
+from app.classroom.room import CODE_ALPHABET, CODE_LENGTH, Room, RoomError
 
 #: Rooms one server keeps open at once (each has its own stage: a viser server in a scene worker).
 MAX_ROOMS = 16
@@ -50,6 +51,21 @@ class Rooms:
         if room is None:
             raise KeyError(f"no room {room_id!r} (it may have been closed)")
         return room
+
+    def explore_start(self, room_id: str, scene_id: str) -> dict[str, Any]:
+        """Where the room's explorers start on ``scene_id``: its parameters and motion when exploring began
+        (``explore_start`` of :meth:`Room.state`); ValueError saying why not (no such room, not exploring, another scene).
+        """
+        try:
+            room = self.get(room_id)
+        except KeyError as exc:
+            raise ValueError(exc.args[0]) from None
+        start = room.state()["explore_start"]
+        if start is None:
+            raise ValueError(f"room {room_id} is not exploring: its students follow the instructor's scene")
+        if start["scene_id"] != scene_id:
+            raise ValueError(f"room {room_id} explores {start['scene_id']!r}, not {scene_id!r}")
+        return start
 
     def by_code(self, code: str) -> Room:
         wanted = code.strip().upper()

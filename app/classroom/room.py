@@ -18,8 +18,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
+from app.classroom.polls import Poll
 from app.course import Catalogue
-from app.rooms.polls import Poll
 from app.scenes.host.host import STAGE_PREFIX, TIME_SCALE_RANGE
 from app.scenes.host.interface import SceneHostInterface
 

@@ -8,8 +8,8 @@ from typing import Annotated
 from fastapi import APIRouter, HTTPException, Path, Query, Request
 from fastapi.responses import HTMLResponse, RedirectResponse, Response
 
-from app.api.rooms import RoomId, RoomsDep, is_instructor
-from app.rooms.roles import COOKIE
+from app.classroom.roles import COOKIE
+from app.classroom.routes import RoomId, RoomsDep, is_instructor
 from app.web.pages import _page, _template, viewer_client_html
 
 router = APIRouter(tags=["pages"], include_in_schema=False)
@@ -56,7 +56,7 @@ def room_viewer_redirect(room_id: RoomId) -> RedirectResponse:
 
 @router.get("/room-viewer/{room_id}/")
 def room_viewer_page(room_id: RoomId, rooms: RoomsDep) -> Response:
-    """viser's client, connecting to the room's fanned-out scene (:mod:`app.web.room_relay`)."""
+    """viser's client, connecting to the room's fanned-out scene (:mod:`app.classroom.relay`)."""
     try:
         rooms.get(room_id)
     except KeyError as exc:
