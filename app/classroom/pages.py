@@ -9,6 +9,7 @@ from fastapi import APIRouter, HTTPException, Path, Query, Request
 from fastapi.responses import HTMLResponse, RedirectResponse, Response
 
 from app.classroom.roles import COOKIE
+from app.classroom.room import CODE_LENGTH, MAX_NAME_LENGTH, MAX_TYPED_CODE_LENGTH
 from app.classroom.routes import RoomId, RoomsDep, is_instructor
 from app.web.pages import _page, _template, viewer_client_html
 
@@ -33,7 +34,7 @@ def _join_page(code: str) -> HTMLResponse:
         lead = f'You are joining room <strong class="join-room">{esc(code)}</strong>. Give your name if you like, then press Join.'
     else:
         lead = "Type the code shown on the projector."
-    body = _template("join.html").substitute(code=esc(code), lead=lead)
+    body = _template("join.html").substitute(code=esc(code), lead=lead, code_length=CODE_LENGTH, name_length=MAX_NAME_LENGTH)
     return _page("Join a room — Dynamics Lab", body, scripts=("/static/js/common.js", "/static/js/join.js"))
 
 
@@ -44,9 +45,9 @@ def join_page() -> HTMLResponse:
 
 
 @router.get("/join/{code}", response_class=HTMLResponse)
-def join_code_page(code: Annotated[str, Path(max_length=12)]) -> HTMLResponse:
+def join_code_page(code: Annotated[str, Path(max_length=MAX_TYPED_CODE_LENGTH)]) -> HTMLResponse:
     """The QR code's address: the room's code shown and filled in; the student may give a name, then joins."""
-    return _join_page(code.upper()[:12])
+    return _join_page(code.upper())
 
 
 @router.get("/room-viewer/{room_id}")

@@ -7,6 +7,7 @@ from typing import Any
 from pydantic import BaseModel, ConfigDict, Field
 
 from app.api.schemas.parameters import ParameterSpec, ParameterValue
+from app.scenes.host.host import TIME_SCALE_RANGE
 
 
 class Preset(BaseModel):
@@ -56,7 +57,7 @@ class PlaybackRequest(BaseModel):
 
     model_config = ConfigDict(extra="forbid")
     playing: bool | None = Field(None, strict=True, description="Play (true) or pause (false)")
-    time_scale: float | None = Field(None, ge=0.1, le=4.0, strict=True, allow_inf_nan=False, description="× real time")
+    time_scale: float | None = Field(None, ge=TIME_SCALE_RANGE[0], le=TIME_SCALE_RANGE[1], strict=True, allow_inf_nan=False, description="× real time")
     reset: bool = Field(False, strict=True, description="Start the motion again from t = 0")
     step: int = Field(0, ge=0, le=300, strict=True, description="Advance this many displayed frames (1/30 s each) now, paused")
     seek_s: float | None = Field(None, ge=0.0, strict=True, allow_inf_nan=False, description="Go back to a kept instant (s; within history_s), paused")
