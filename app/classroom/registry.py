@@ -13,6 +13,9 @@ from app.classroom.room import CODE_ALPHABET, CODE_LENGTH, Room, RoomError
 MAX_ROOMS = 16
 #: A room nobody has used for this long (s) is closed when a new one needs its place.
 IDLE_ROOM_S = 6 * 3600.0
+#: A room's id: this many random hex digits (the API's paths and the room viewer's accept only this form).
+ROOM_ID_HEX_DIGITS = 16
+ROOM_ID_PATTERN = rf"^[0-9a-f]{{{ROOM_ID_HEX_DIGITS}}}$"
 
 
 class Rooms:
@@ -33,7 +36,7 @@ class Rooms:
             code = "".join(secrets.choice(CODE_ALPHABET) for _ in range(CODE_LENGTH))
             while code in codes:
                 code = "".join(secrets.choice(CODE_ALPHABET) for _ in range(CODE_LENGTH))
-            room_id = secrets.token_hex(8)
+            room_id = secrets.token_hex(ROOM_ID_HEX_DIGITS // 2)
             room = Room(room_id=room_id, code=code, join_url=f"{join_base.rstrip('/')}/join/{code}")
             self._rooms[room_id] = room
             return room, closed

@@ -29,13 +29,12 @@ from app.classroom.join_limits import JoinLimits
 from app.classroom.polls import PollClosedError, PollError
 from app.classroom.qr import qr_svg
 from app.classroom.ready_questions import ReadyQuestion
-from app.classroom.registry import Rooms
+from app.classroom.registry import ROOM_ID_HEX_DIGITS, ROOM_ID_PATTERN, Rooms
 from app.classroom.relay import follower_count
 from app.classroom.roles import InstructorKey
 from app.classroom.room import Room, RoomError, RoomMovedOn, StudentRemoved
 from app.classroom.schemas import (
     POLL_ID_PATTERN,
-    ROOM_ID_PATTERN,
     STUDENT_ID_PATTERN,
     AnswerAccepted,
     AnswerRequest,
@@ -92,7 +91,7 @@ RoomsDep = Annotated[Rooms, Depends(get_rooms)]
 JoinLimitsDep = Annotated[JoinLimits, Depends(get_join_limits)]
 InstructorKeyDep = Annotated[InstructorKey, Depends(get_instructor_key)]
 ReadyQuestionsDep = Annotated[tuple[ReadyQuestion, ...], Depends(get_ready_questions)]
-RoomId = Annotated[str, Path(pattern=ROOM_ID_PATTERN, description="The room's id (16 hex digits)")]
+RoomId = Annotated[str, Path(pattern=ROOM_ID_PATTERN, description=f"The room's id ({ROOM_ID_HEX_DIGITS} hex digits)")]
 PollId = Annotated[str, Path(pattern=POLL_ID_PATTERN, description="A poll of the room: p1, p2, …")]
 StudentToken = Annotated[str | None, Header(alias=STUDENT_HEADER, max_length=64, description="The token the room gave on joining")]
 StudentId = Annotated[str, Path(pattern=STUDENT_ID_PATTERN, description="A student's public id in the room: s1, s2, … (never their token)")]

@@ -10,7 +10,6 @@ from app.classroom.polls import CHOICES_RANGE, MAX_QUESTION_CHARS, MAX_UNIT_CHAR
 from app.classroom.room import CODE_LENGTH, MAX_NAME_LENGTH, MAX_TYPED_CODE_LENGTH
 from app.scenes.host.host import TIME_SCALE_RANGE
 
-ROOM_ID_PATTERN = r"^[0-9a-f]{16}$"
 POLL_ID_PATTERN = r"^p[0-9]{1,6}$"
 STUDENT_ID_PATTERN = r"^s[0-9]{1,6}$"
 
