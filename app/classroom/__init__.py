@@ -16,6 +16,8 @@ classroom rule once:
 - :mod:`~app.classroom.hub`: the room sockets (every change as it happens, the readout twice a second);
 - :mod:`~app.classroom.relay`: the frame fan-out (the room's one scene, each frame sent unchanged to every follower);
 - :mod:`~app.classroom.pages`: the instructor link, the join, room-viewer and projector pages;
+- :mod:`~app.classroom.page_config`: the classroom's rules the page scripts need (time scales, the room socket's
+  reconnect, poll and name limits), handed to them in the page's configuration.
 
 The room's scene runs on a *stage* of the scene host (:mod:`app.scenes.host.host`); outside the host, only this
 package drives stages.
