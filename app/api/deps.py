@@ -40,7 +40,7 @@ def get_settings(request: HTTPConnection) -> Settings:
 
 def get_explore_start(request: HTTPConnection) -> Callable[[str, str], dict[str, Any]]:
     """Where a classroom room's explorers start, ``(room_id, scene_id) → {"params", "motion", …}`` or a ValueError
-    saying why not: the classroom's :meth:`~app.classroom.registry.Rooms.explore_start` (the API asks, never imports it)."""
+    saying why not: the classroom's :meth:`~app.classroom.registry.Rooms.explore_start` (asked, never imported)."""
     return request.app.state.rooms.explore_start
 
 

@@ -34,7 +34,8 @@ def _join_page(code: str) -> HTMLResponse:
         lead = f'You are joining room <strong class="join-room">{esc(code)}</strong>. Give your name if you like, then press Join.'
     else:
         lead = "Type the code shown on the projector."
-    body = _template("join.html").substitute(code=esc(code), lead=lead, code_length=CODE_LENGTH, name_length=MAX_NAME_LENGTH)
+    fields = {"code": esc(code), "lead": lead, "code_size": CODE_LENGTH, "name_max": MAX_NAME_LENGTH}
+    body = _template("join.html").substitute(fields)
     return _page("Join a room — Dynamics Lab", body, scripts=("/static/js/common.js", "/static/js/join.js"))
 
 

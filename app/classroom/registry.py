@@ -57,7 +57,7 @@ class Rooms:
 
     def explore_start(self, room_id: str, scene_id: str) -> dict[str, Any]:
         """Where the room's explorers start on ``scene_id``: its parameters and motion when exploring began
-        (``explore_start`` of :meth:`Room.state`); ValueError saying why not (no such room, not exploring, another scene).
+        (``explore_start`` of :meth:`Room.state`); ValueError saying why not (no such room, not exploring, other scene).
         """
         try:
             room = self.get(room_id)

@@ -29,7 +29,9 @@ class RoomCreated(BaseModel):
 
 class JoinRequest(BaseModel):
     model_config = ConfigDict(extra="forbid")
-    code: str = Field(min_length=1, max_length=MAX_TYPED_CODE_LENGTH, description="The room's code, as on the projector")
+    code: str = Field(
+        min_length=1, max_length=MAX_TYPED_CODE_LENGTH, description="The room's code, as on the projector"
+    )
     name: str = Field("", max_length=MAX_NAME_LENGTH, description="Shown to the instructor only if names are turned on")
 
 
@@ -65,7 +67,9 @@ class RoomStateChange(BaseModel):
     scene_id: str | None = Field(None, max_length=100)
     params: dict[str, Any] | None = Field(None, description="Parameters to change; others keep their values")
     playing: StrictBool | None = None
-    time_scale: float | None = Field(None, ge=TIME_SCALE_RANGE[0], le=TIME_SCALE_RANGE[1], allow_inf_nan=False, description="× real time")
+    time_scale: float | None = Field(
+        None, ge=TIME_SCALE_RANGE[0], le=TIME_SCALE_RANGE[1], allow_inf_nan=False, description="× real time"
+    )
     mode: Literal["follow", "explore"] | None = None
     preset: str | None = Field(None, max_length=100, description="A preset name of the room's scene")
     reset: StrictBool = Field(False, description="Start the motion again from t = 0")

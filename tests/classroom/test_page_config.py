@@ -20,9 +20,15 @@ CONFIG = classroom_page_config()
 
 def test_it_is_plain_json_with_the_keys_the_scripts_read():
     assert json.loads(json.dumps(CONFIG)) == CONFIG
-    assert set(CONFIG) == {"time_scale_range", "time_scales", "room_socket", "room_code_length", "student_name_max_chars", "poll"}
-    assert set(CONFIG["room_socket"]) == {"reconnect_first_wait_ms", "reconnect_factor", "reconnect_longest_wait_ms", "ping_interval_ms"}
-    assert set(CONFIG["poll"]) == {"question_max_chars", "choice_max_chars", "choices_min", "choices_max", "unit_max_chars"}
+    assert set(CONFIG) == {
+        "time_scale_range", "time_scales", "room_socket", "room_code_length", "student_name_max_chars", "poll"
+    }
+    assert set(CONFIG["room_socket"]) == {
+        "reconnect_first_wait_ms", "reconnect_factor", "reconnect_longest_wait_ms", "ping_interval_ms"
+    }
+    assert set(CONFIG["poll"]) == {
+        "question_max_chars", "choice_max_chars", "choices_min", "choices_max", "unit_max_chars"
+    }
 
 
 def test_the_time_scales_offered_span_the_range_every_door_accepts():
@@ -69,7 +75,8 @@ def test_the_poll_limits_are_the_ones_a_poll_and_its_request_enforce():
     ):
         with pytest.raises(PollError):
             Poll.create(_question(**too_long), poll_id="p1")
-    for too_long in ({"question": "q" * (limits["question_max_chars"] + 1)}, {"choices": [f"c{k}" for k in range(limits["choices_max"] + 1)]}):
+    too_many = [f"c{k}" for k in range(limits["choices_max"] + 1)]
+    for too_long in ({"question": "q" * (limits["question_max_chars"] + 1)}, {"choices": too_many}):
         with pytest.raises(ValidationError):
             PollRequest(**_question(**too_long))
     number = {"question": "How fast, in the end?", "kind": "number"}
