@@ -13,20 +13,23 @@ from fastapi.responses import HTMLResponse
 from fastapi.staticfiles import StaticFiles
 
 from app import __version__
-from app.api import bench, chapters, errors, examples, health, rooms, scenes, systems
-from app.api.join_limits import JoinLimits
-from app.api.room_hub import RoomHub
+from app.api import bench, chapters, errors, examples, health, scenes, systems
 from app.api.access import SessionDirectory
+from app.classroom import pages as room_pages
+from app.classroom import relay as room_relay
+from app.classroom import routes as rooms
+from app.classroom.hub import RoomHub
+from app.classroom.join_limits import JoinLimits
+from app.classroom.ready_questions import DEFAULT_READY_QUESTIONS, load_ready_questions
+from app.classroom.registry import Rooms
+from app.classroom.roles import InstructorKey
 from app.course import load_catalogue
 from app.physics.core.bounded import stop_all_work
-from app.rooms.ready_questions import DEFAULT_READY_QUESTIONS, load_ready_questions
-from app.rooms.registry import Rooms
-from app.rooms.roles import InstructorKey
 from app.scenes import SCENES
 from app.scenes.host.host import SceneHost
 from app.scenes.host.pool import WorkerPool
 from app.settings import Settings
-from app.web import guard, pages, relay, room_pages, room_relay
+from app.web import guard, pages, relay
 from app.web.stopping import AnswerWhenStopping, RequestsInFlight
 
 log = logging.getLogger(__name__)

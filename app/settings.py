@@ -61,7 +61,7 @@ class Settings:
     #: Take the client's address from the last ``X-Forwarded-For`` entry (only behind a reverse proxy that sets it).
     trust_forwarded_for: bool = False
 
-    # --- Joining a room (app/api/join_limits.py explains the numbers); burst 0 = no limit ---
+    # --- Joining a room (app/classroom/join_limits.py explains the numbers); burst 0 = no limit ---
     #: Join requests one address may make at once, then per second (a re-join from the same device counts too).
     join_burst: int = 20
     join_rate_per_s: float = 0.2

@@ -2,7 +2,7 @@
 
 The doors are the page routes of a session (``PUT /api/scenes/{scene}/sessions/{id}``
 and ``…/playback``) and the viewer websocket (``/viewer/{scene}/{id}``); the room
-routes and the room socket ask :mod:`app.api.rooms`'s instructor rule.
+routes and the room socket ask :mod:`app.classroom.routes`'s instructor rule.
 
 * **A room's shared scene** (a session id beginning ``room-``) is changed only
   through its room, by the room's instructor: every page route refuses it (403),

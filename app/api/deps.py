@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from typing import Annotated
+from collections.abc import Callable
+from typing import Annotated, Any
 
 from fastapi import Depends
 from starlette.requests import HTTPConnection
@@ -37,8 +38,15 @@ def get_settings(request: HTTPConnection) -> Settings:
     return request.app.state.settings
 
 
+def get_explore_start(request: HTTPConnection) -> Callable[[str, str], dict[str, Any]]:
+    """Where a classroom room's explorers start, ``(room_id, scene_id) → {"params", "motion", …}`` or a ValueError
+    saying why not: the classroom's :meth:`~app.classroom.registry.Rooms.explore_start` (asked, never imported)."""
+    return request.app.state.rooms.explore_start
+
+
 CatalogueDep = Annotated[Catalogue, Depends(get_catalogue)]
 SceneHostDep = Annotated[SceneHostInterface, Depends(get_scene_host)]
 SettingsDep = Annotated[Settings, Depends(get_settings)]
 SessionsDep = Annotated[SessionDirectory, Depends(get_sessions)]
 ClientDep = Annotated[str | None, Depends(get_client)]
+ExploreStartDep = Annotated[Callable[[str, str], dict[str, Any]], Depends(get_explore_start)]

@@ -9,9 +9,8 @@ from fastapi.responses import JSONResponse, Response
 
 from app.api.access import KEY_HEADER as SESSION_KEY_HEADER
 from app.api.access import SESSION_KEY_PATTERN, Refused
-from app.api.deps import ClientDep, SceneHostDep, SessionsDep
+from app.api.deps import ClientDep, ExploreStartDep, SceneHostDep, SessionsDep
 from app.api.examples import ScriptParams, python_file
-from app.api.rooms import RoomsDep
 from app.api.errors import unprocessable
 from app.api.limits import SIMULATIONS, TOO_MANY_RESPONSE
 from app.api.schemas.errors import ErrorDetail, error_responses
@@ -25,7 +24,6 @@ from app.physics.core.closed_form import ClosedFormModel, evaluate_model
 from app.physics.core.parameters import ParameterError, ParameterSet
 from app.physics.solvers.controls import CONTROL_NAMES
 from app.physics.solvers.integrated_model import simulate_model
-from app.rooms.registry import Rooms
 from app.scenes.host.fair_share import is_long_request
 from app.scenes.host.graph import DEFAULT_MAX_POINTS, MAX_POINTS_RANGE, graph_csv
 from app.scenes.host.host import SESSION_ID_PATTERN, UnknownSceneError
@@ -97,7 +95,7 @@ def set_session_params(
     host: SceneHostDep,
     sessions: SessionsDep,
     client: ClientDep,
-    rooms: RoomsDep,
+    explore_start: ExploreStartDep,
     session_key: SessionKey = None,
 ) -> dict[str, Any]:
     """Set the parameters of one page's scene; every viewer of that session redraws.
@@ -109,7 +107,10 @@ def set_session_params(
     """
     cls = _scene_class(host, scene_id)
     sessions.check_change(session_id, session_key, client=client)
-    start = _explore_start(rooms, request.from_room, scene_id) if request.from_room else None
+    try:  # a student exploring starts from the room's parameters and motion, or a 422 says why not
+        start = explore_start(request.from_room, scene_id) if request.from_room else None
+    except ValueError as exc:
+        raise unprocessable(["body", "from_room"], str(exc)) from None
     raw = {**start["params"], **request.params} if start else request.params
     typed = any(p.kind == "text" for p in cls.parameters.parameters)  # validating compiles what the student typed
     try:
@@ -183,20 +184,6 @@ def session_playback(scene_id: str, session_id: SessionId, host: SceneHostDep) -
     if answer is None:
         raise HTTPException(status_code=404, detail=f"session {session_id!r} has no scene yet")
     return answer
-
-
-def _explore_start(rooms: Rooms, room_id: str, scene_id: str) -> dict[str, Any]:
-    """Where a room's explorers start (its scene's parameters and motion when exploring began), or a 422 saying why not."""
-    try:
-        room = rooms.get(room_id)
-    except KeyError as exc:
-        raise unprocessable(["body", "from_room"], str(exc.args[0])) from None
-    start = room.state()["explore_start"]
-    if start is None:
-        raise unprocessable(["body", "from_room"], f"room {room_id} is not exploring: its students follow the instructor's scene")
-    if start["scene_id"] != scene_id:
-        raise unprocessable(["body", "from_room"], f"room {room_id} explores {start['scene_id']!r}, not {scene_id!r}")
-    return start
 
 
 @router.post(

@@ -65,8 +65,8 @@ from app.bench.load_client import Classroom, ClassroomSnapshot, HealthLatency, l
 from app.bench.plot import FONT, SVG_NS, _f, _marker, _text
 from app.bench.process_tree import TreeUsage, process_group_members, tree_pids, tree_usage
 from app.bench.report_file import read_report_file
-from app.rooms.roles import HEADER as INSTRUCTOR_HEADER
-from app.rooms.roles import MIN_KEY_LENGTH
+from app.classroom.roles import HEADER as INSTRUCTOR_HEADER
+from app.classroom.roles import MIN_KEY_LENGTH
 
 REPORT_FILE = "capacity.json"
 PLOT_FILE = "capacity.svg"

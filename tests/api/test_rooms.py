@@ -21,13 +21,13 @@ from fastapi.routing import APIRoute
 from fastapi.testclient import TestClient
 from starlette.websockets import WebSocketDisconnect
 
-from app.api import rooms as rooms_api
-from app.api.rooms import require_instructor
+from app.classroom import routes as rooms_api
+from app.classroom.relay import ends_replay
+from app.classroom.routes import require_instructor
 from app.main import create_app
 from app.physics.systems.ch10 import heavy_top as heavy_top_physics
 from app.scenes.host.viser_compat import viewer_camera_message
 from app.settings import Settings
-from app.web.room_relay import ends_replay
 from tests.conftest import wait_until
 
 KEY = "test-instructor-key-0123"
@@ -277,7 +277,7 @@ def test_a_page_can_neither_drive_nor_join_a_rooms_stage_by_its_session_id(clien
 
 
 def test_a_follower_that_falls_behind_is_dropped_whole_not_left_with_a_gap():
-    from app.web.room_relay import FOLLOWER_QUEUE, Follower
+    from app.classroom.relay import FOLLOWER_QUEUE, Follower
 
     follower = Follower(websocket=None)  # type: ignore[arg-type]  # queueing needs no socket, nor a running loop
     follower.go_live()

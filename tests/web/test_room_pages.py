@@ -7,8 +7,8 @@ import re
 import pytest
 from fastapi.testclient import TestClient
 
+from app.classroom.roles import COOKIE, HEADER
 from app.main import create_app
-from app.rooms.roles import COOKIE, HEADER
 from app.settings import Settings
 
 KEY = "k" * 16

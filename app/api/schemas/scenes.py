@@ -7,6 +7,7 @@ from typing import Any
 from pydantic import BaseModel, ConfigDict, Field
 
 from app.api.schemas.parameters import ParameterSpec, ParameterValue
+from app.scenes.host.host import MAX_GO_TO_S, MAX_STEP_FRAMES, TIME_SCALE_RANGE
 
 
 class Preset(BaseModel):
@@ -56,11 +57,20 @@ class PlaybackRequest(BaseModel):
 
     model_config = ConfigDict(extra="forbid")
     playing: bool | None = Field(None, strict=True, description="Play (true) or pause (false)")
-    time_scale: float | None = Field(None, ge=0.1, le=4.0, strict=True, allow_inf_nan=False, description="× real time")
+    time_scale: float | None = Field(
+        None, ge=TIME_SCALE_RANGE[0], le=TIME_SCALE_RANGE[1], strict=True, allow_inf_nan=False,
+        description="× real time",
+    )
     reset: bool = Field(False, strict=True, description="Start the motion again from t = 0")
-    step: int = Field(0, ge=0, le=300, strict=True, description="Advance this many displayed frames (1/30 s each) now, paused")
+    step: int = Field(
+        0, ge=0, le=MAX_STEP_FRAMES, strict=True,
+        description="Advance this many displayed frames (1/30 s each) now, paused",
+    )
     seek_s: float | None = Field(None, ge=0.0, strict=True, allow_inf_nan=False, description="Go back to a kept instant (s; within history_s), paused")
-    go_to_s: float | None = Field(None, ge=0.0, le=600.0, strict=True, allow_inf_nan=False, description="Compute the motion at this simulated time from the start (s): a share link")
+    go_to_s: float | None = Field(
+        None, ge=0.0, le=MAX_GO_TO_S, strict=True, allow_inf_nan=False,
+        description="Compute the motion at this simulated time from the start (s): a share link",
+    )
     camera: "CameraIn | None" = Field(None, description="Point the viewers' cameras (a share link)")
     reset_camera: bool = Field(False, strict=True, description="Put every viewer's camera back at the scene's start pose (Reset view)")
 

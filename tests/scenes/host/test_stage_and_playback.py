@@ -18,10 +18,10 @@ import pytest
 import viser
 from websockets.sync.client import connect
 
+from app.classroom.relay import ends_replay
 from app.scenes import SCENES
 from app.scenes.host.host import SceneHost
 from app.scenes.host.viser_compat import viewer_camera_message
-from app.web.room_relay import ends_replay
 from tests.conftest import wait_until
 
 STAGE = "room-0123456789abcdef"

@@ -27,7 +27,6 @@ MAX_QUESTION_CHARS = 300
 MAX_CHOICE_CHARS = 80
 CHOICES_RANGE = (2, 8)
 MAX_UNIT_CHARS = 20
-MAX_NAME_CHARS = 40
 #: Largest magnitude a number answer may have (in the poll's unit).
 MAX_ANSWER_MAGNITUDE = 1e12
 #: About this many bins in a number poll's histogram.
@@ -235,7 +234,8 @@ class Poll:
     # -- answers -----------------------------------------------------------------------------------
     def submit(self, student_id: str, raw: Mapping[str, Any], *, name: str = "") -> None:
         """Take a student's answer — ``{"choice": index}`` or ``{"value": number}`` in the poll's unit —
-        replacing their earlier one; :class:`PollClosedError` once the poll is closed."""
+        replacing their earlier one; :class:`PollClosedError` once the poll is closed. ``name`` is the student's as
+        their room checked it (:meth:`~app.classroom.room.Room.join`): shown only when names are turned on."""
         if not self.open:
             raise PollClosedError("poll", f"poll {self.poll_id} is closed: answers are no longer taken")
         if not isinstance(student_id, str) or not student_id:
@@ -252,7 +252,7 @@ class Poll:
         if earlier is None:
             self._answered_ever += 1  # a running count: a withdrawn answer's number is never given to another student
         number = earlier.number if earlier is not None else self._answered_ever
-        shown_name = name.strip()[:MAX_NAME_CHARS] if isinstance(name, str) else ""
+        shown_name = name.strip() if isinstance(name, str) else ""
         self._answers[student_id] = _Answer(number, shown_name, choice, value, datetime.now(UTC))
 
     def withdraw(self, student_id: str) -> None:

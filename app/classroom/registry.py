@@ -5,13 +5,17 @@ from __future__ import annotations
 import secrets
 import threading
 import time
+from typing import Any
 
-from app.rooms.room import CODE_ALPHABET, CODE_LENGTH, Room, RoomError
+from app.classroom.room import CODE_ALPHABET, CODE_LENGTH, Room, RoomError
 
 #: Rooms one server keeps open at once (each has its own stage: a viser server in a scene worker).
 MAX_ROOMS = 16
 #: A room nobody has used for this long (s) is closed when a new one needs its place.
 IDLE_ROOM_S = 6 * 3600.0
+#: A room's id: this many random hex digits (the API's paths and the room viewer's accept only this form).
+ROOM_ID_HEX_DIGITS = 16
+ROOM_ID_PATTERN = rf"^[0-9a-f]{{{ROOM_ID_HEX_DIGITS}}}$"
 
 
 class Rooms:
@@ -32,7 +36,7 @@ class Rooms:
             code = "".join(secrets.choice(CODE_ALPHABET) for _ in range(CODE_LENGTH))
             while code in codes:
                 code = "".join(secrets.choice(CODE_ALPHABET) for _ in range(CODE_LENGTH))
-            room_id = secrets.token_hex(8)
+            room_id = secrets.token_hex(ROOM_ID_HEX_DIGITS // 2)
             room = Room(room_id=room_id, code=code, join_url=f"{join_base.rstrip('/')}/join/{code}")
             self._rooms[room_id] = room
             return room, closed
@@ -50,6 +54,21 @@ class Rooms:
         if room is None:
             raise KeyError(f"no room {room_id!r} (it may have been closed)")
         return room
+
+    def explore_start(self, room_id: str, scene_id: str) -> dict[str, Any]:
+        """Where the room's explorers start on ``scene_id``: its parameters and motion when exploring began
+        (``explore_start`` of :meth:`Room.state`); ValueError saying why not (no such room, not exploring, other scene).
+        """
+        try:
+            room = self.get(room_id)
+        except KeyError as exc:
+            raise ValueError(exc.args[0]) from None
+        start = room.state()["explore_start"]
+        if start is None:
+            raise ValueError(f"room {room_id} is not exploring: its students follow the instructor's scene")
+        if start["scene_id"] != scene_id:
+            raise ValueError(f"room {room_id} explores {start['scene_id']!r}, not {scene_id!r}")
+        return start
 
     def by_code(self, code: str) -> Room:
         wanted = code.strip().upper()

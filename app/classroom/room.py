@@ -18,14 +18,16 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
+from app.classroom.polls import Poll
 from app.course import Catalogue
-from app.rooms.polls import Poll
 from app.scenes.host.host import STAGE_PREFIX, TIME_SCALE_RANGE
 from app.scenes.host.interface import SceneHostInterface
 
 #: Characters of a room code: capitals and digits a student cannot misread (no I, L, O, 0, 1).
 CODE_ALPHABET = "ABCDEFGHJKMNPQRSTUVWXYZ23456789"
 CODE_LENGTH = 6
+#: Longest code a student may type or the join address may carry (a code with stray spaces); longer is refused.
+MAX_TYPED_CODE_LENGTH = 12
 MODES = ("follow", "explore")
 #: Conditions a state change may carry: the lesson and scene the sending page shows (a stale page's change is refused).
 CONDITIONS = ("if_lesson_id", "if_scene_id")

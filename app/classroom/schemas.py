@@ -6,7 +6,10 @@ from typing import Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, StrictBool, StrictInt
 
-ROOM_ID_PATTERN = r"^[0-9a-f]{16}$"
+from app.classroom.polls import CHOICES_RANGE, MAX_QUESTION_CHARS, MAX_UNIT_CHARS
+from app.classroom.room import CODE_LENGTH, MAX_NAME_LENGTH, MAX_TYPED_CODE_LENGTH
+from app.scenes.host.host import TIME_SCALE_RANGE
+
 POLL_ID_PATTERN = r"^p[0-9]{1,6}$"
 STUDENT_ID_PATTERN = r"^s[0-9]{1,6}$"
 
@@ -19,15 +22,17 @@ class RoomCreateRequest(BaseModel):
 
 class RoomCreated(BaseModel):
     room_id: str
-    code: str = Field(description="What students type to join: 6 capitals and digits")
+    code: str = Field(description=f"What students type to join: {CODE_LENGTH} capitals and digits")
     join_url: str = Field(description="The address students open (also shown as a QR code on the projector)")
     state: "RoomState"
 
 
 class JoinRequest(BaseModel):
     model_config = ConfigDict(extra="forbid")
-    code: str = Field(min_length=1, max_length=12, description="The room's code, as on the projector")
-    name: str = Field("", max_length=40, description="Shown to the instructor only if names are turned on")
+    code: str = Field(
+        min_length=1, max_length=MAX_TYPED_CODE_LENGTH, description="The room's code, as on the projector"
+    )
+    name: str = Field("", max_length=MAX_NAME_LENGTH, description="Shown to the instructor only if names are turned on")
 
 
 class JoinAnswer(BaseModel):
@@ -62,7 +67,9 @@ class RoomStateChange(BaseModel):
     scene_id: str | None = Field(None, max_length=100)
     params: dict[str, Any] | None = Field(None, description="Parameters to change; others keep their values")
     playing: StrictBool | None = None
-    time_scale: float | None = Field(None, ge=0.1, le=4.0, allow_inf_nan=False, description="× real time")
+    time_scale: float | None = Field(
+        None, ge=TIME_SCALE_RANGE[0], le=TIME_SCALE_RANGE[1], allow_inf_nan=False, description="× real time"
+    )
     mode: Literal["follow", "explore"] | None = None
     preset: str | None = Field(None, max_length=100, description="A preset name of the room's scene")
     reset: StrictBool = Field(False, description="Start the motion again from t = 0")
@@ -79,10 +86,10 @@ class PollRequest(BaseModel):
 
     model_config = ConfigDict(extra="forbid")
     ready_id: str | None = Field(None, max_length=100, description="A ready question (GET .../polls/ready); the other fields override it")
-    question: str | None = Field(None, max_length=300)
+    question: str | None = Field(None, max_length=MAX_QUESTION_CHARS)
     kind: Literal["choice", "number"] | None = None
-    choices: list[str] | None = Field(None, max_length=8)
-    unit: str | None = Field(None, max_length=20)
+    choices: list[str] | None = Field(None, max_length=CHOICES_RANGE[1])
+    unit: str | None = Field(None, max_length=MAX_UNIT_CHARS)
     answer_quantity: str | None = Field(None, max_length=100, description="A readout quantity of the room's scene that computes the answer")
     answer_choices: dict[str, StrictInt] | None = Field(None, description="For a word quantity: its value -> the right choice's index")
     answer_value: float | None = Field(None, allow_inf_nan=False)

@@ -16,8 +16,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from app.classroom.polls import Poll, PollError
 from app.physics.core.parameters import ParameterError
-from app.rooms.polls import Poll, PollError
 from app.scenes.kit import Scene
 from app.settings import DEFAULT_LESSONS_DIR
 

@@ -12,8 +12,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from app.classroom.polls import MAX_ANSWER_MAGNITUDE, Poll, PollClosedError, PollError, nice_width, spreadsheet_text
 from app.physics.core.readout import Quantity, Readout
-from app.rooms.polls import MAX_ANSWER_MAGNITUDE, Poll, PollClosedError, PollError, nice_width, spreadsheet_text
 
 CHOICE = {"question": "What does the tip of the axis trace?", "kind": "choice", "choices": ["a circle", "waves", "loops", "cusps"]}
 NUMBER = {"question": "Below what spin does the top stop sleeping?", "kind": "number", "unit": "rad/s"}

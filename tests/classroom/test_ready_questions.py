@@ -16,8 +16,8 @@ from pathlib import Path
 
 import pytest
 
-from app.rooms.polls import Poll
-from app.rooms.ready_questions import DEFAULT_READY_QUESTIONS, ReadyQuestion, load_ready_questions
+from app.classroom.polls import Poll
+from app.classroom.ready_questions import DEFAULT_READY_QUESTIONS, ReadyQuestion, load_ready_questions
 from app.scenes import SCENES, Scene
 from app.scenes.kit import FRAME_DT_S
 from tests.scenes.conftest import HeadlessClient, headless_viewer

@@ -25,7 +25,7 @@ from __future__ import annotations
 from fastapi import HTTPException
 from starlette.types import Scope
 
-from app.rooms.registry import MAX_ROOMS
+from app.classroom.registry import MAX_ROOMS
 from app.settings import Settings
 from app.web.guard import client_address
 from app.web.rate_limit import TokenBuckets, retry_after_s

@@ -35,7 +35,7 @@ from starlette.concurrency import run_in_threadpool
 from starlette.websockets import WebSocketDisconnect
 
 from app.api.access import Refused
-from app.api.schemas.rooms import ROOM_ID_PATTERN
+from app.classroom.registry import ROOM_ID_PATTERN
 from app.scenes.host.interface import HostBusy
 from app.scenes.host.viser_compat import viewer_camera_message
 from app.web.guard import client_address

@@ -8,8 +8,9 @@ from typing import Annotated
 from fastapi import APIRouter, HTTPException, Path, Query, Request
 from fastapi.responses import HTMLResponse, RedirectResponse, Response
 
-from app.api.rooms import RoomId, RoomsDep, is_instructor
-from app.rooms.roles import COOKIE
+from app.classroom.roles import COOKIE
+from app.classroom.room import CODE_LENGTH, MAX_NAME_LENGTH, MAX_TYPED_CODE_LENGTH
+from app.classroom.routes import RoomId, RoomsDep, is_instructor
 from app.web.pages import _page, _template, viewer_client_html
 
 router = APIRouter(tags=["pages"], include_in_schema=False)
@@ -33,7 +34,8 @@ def _join_page(code: str) -> HTMLResponse:
         lead = f'You are joining room <strong class="join-room">{esc(code)}</strong>. Give your name if you like, then press Join.'
     else:
         lead = "Type the code shown on the projector."
-    body = _template("join.html").substitute(code=esc(code), lead=lead)
+    fields = {"code": esc(code), "lead": lead, "code_size": CODE_LENGTH, "name_max": MAX_NAME_LENGTH}
+    body = _template("join.html").substitute(fields)
     return _page("Join a room — Dynamics Lab", body, scripts=("/static/js/common.js", "/static/js/join.js"))
 
 
@@ -44,9 +46,9 @@ def join_page() -> HTMLResponse:
 
 
 @router.get("/join/{code}", response_class=HTMLResponse)
-def join_code_page(code: Annotated[str, Path(max_length=12)]) -> HTMLResponse:
+def join_code_page(code: Annotated[str, Path(max_length=MAX_TYPED_CODE_LENGTH)]) -> HTMLResponse:
     """The QR code's address: the room's code shown and filled in; the student may give a name, then joins."""
-    return _join_page(code.upper()[:12])
+    return _join_page(code.upper())
 
 
 @router.get("/room-viewer/{room_id}")
@@ -56,7 +58,7 @@ def room_viewer_redirect(room_id: RoomId) -> RedirectResponse:
 
 @router.get("/room-viewer/{room_id}/")
 def room_viewer_page(room_id: RoomId, rooms: RoomsDep) -> Response:
-    """viser's client, connecting to the room's fanned-out scene (:mod:`app.web.room_relay`)."""
+    """viser's client, connecting to the room's fanned-out scene (:mod:`app.classroom.relay`)."""
     try:
         rooms.get(room_id)
     except KeyError as exc:

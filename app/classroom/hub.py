@@ -25,8 +25,8 @@ from fastapi import Depends, WebSocket
 from starlette.concurrency import run_in_threadpool
 from starlette.requests import HTTPConnection
 
-from app.rooms.polls import Poll
-from app.rooms.room import Room
+from app.classroom.polls import Poll
+from app.classroom.room import Room
 
 log = logging.getLogger(__name__)
 

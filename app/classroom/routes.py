@@ -2,7 +2,7 @@
 
 Every instructor-only route depends on :func:`require_instructor`, which answers
 403 before the route runs, so a student's request changes nothing. Each change
-is published at once on the room's socket (:mod:`app.api.room_hub`), so every
+is published at once on the room's socket (:mod:`app.classroom.hub`), so every
 page in the room sees it within a frame or two.
 """
 
@@ -23,12 +23,18 @@ from starlette.requests import HTTPConnection
 
 from app.api.deps import CatalogueDep, SceneHostDep, SettingsDep
 from app.api.errors import unprocessable
-from app.api.join_limits import JoinLimits
-from app.api.room_hub import RoomHub, RoomHubDep
 from app.api.schemas.errors import ErrorDetail, error_responses
-from app.api.schemas.rooms import (
+from app.classroom.hub import RoomHub, RoomHubDep
+from app.classroom.join_limits import JoinLimits
+from app.classroom.polls import PollClosedError, PollError
+from app.classroom.qr import qr_svg
+from app.classroom.ready_questions import ReadyQuestion
+from app.classroom.registry import ROOM_ID_HEX_DIGITS, ROOM_ID_PATTERN, Rooms
+from app.classroom.relay import follower_count
+from app.classroom.roles import InstructorKey
+from app.classroom.room import Room, RoomError, RoomMovedOn, StudentRemoved
+from app.classroom.schemas import (
     POLL_ID_PATTERN,
-    ROOM_ID_PATTERN,
     STUDENT_ID_PATTERN,
     AnswerAccepted,
     AnswerRequest,
@@ -48,12 +54,6 @@ from app.api.schemas.rooms import (
     StudentList,
     StudentRemovedAnswer,
 )
-from app.rooms.polls import PollClosedError, PollError
-from app.rooms.qr import qr_svg
-from app.rooms.ready_questions import ReadyQuestion
-from app.rooms.registry import Rooms
-from app.rooms.roles import InstructorKey
-from app.rooms.room import Room, RoomError, RoomMovedOn, StudentRemoved
 from app.scenes.host.interface import HostBusy
 from app.settings import Settings
 
@@ -91,7 +91,7 @@ RoomsDep = Annotated[Rooms, Depends(get_rooms)]
 JoinLimitsDep = Annotated[JoinLimits, Depends(get_join_limits)]
 InstructorKeyDep = Annotated[InstructorKey, Depends(get_instructor_key)]
 ReadyQuestionsDep = Annotated[tuple[ReadyQuestion, ...], Depends(get_ready_questions)]
-RoomId = Annotated[str, Path(pattern=ROOM_ID_PATTERN, description="The room's id (16 hex digits)")]
+RoomId = Annotated[str, Path(pattern=ROOM_ID_PATTERN, description=f"The room's id ({ROOM_ID_HEX_DIGITS} hex digits)")]
 PollId = Annotated[str, Path(pattern=POLL_ID_PATTERN, description="A poll of the room: p1, p2, …")]
 StudentToken = Annotated[str | None, Header(alias=STUDENT_HEADER, max_length=64, description="The token the room gave on joining")]
 StudentId = Annotated[str, Path(pattern=STUDENT_ID_PATTERN, description="A student's public id in the room: s1, s2, … (never their token)")]
@@ -249,8 +249,6 @@ def remove_student(room: RoomDep, student_id: StudentId, hub: RoomHubDep) -> dic
 def room_state(room: RoomDep, request: Request) -> dict[str, Any]:
     """What the room shows now: lesson, scene, parameters, play state, time scale, mode, students, the current poll,
     and how many 3D viewers follow its scene."""
-    from app.web.room_relay import follower_count
-
     return {**room.state(), "followers": follower_count(request.app, room.room_id)}
 
 

@@ -1,1 +1,0 @@
-"""The classroom: rooms, roles and polls."""
