@@ -243,7 +243,7 @@ def run_attack(options: LoadOptions) -> dict:
     scene_id = options.scenes[0]
     # The attacker's process and this one's scene registry (for the viewers' first camera message) load while the
     # server starts.
-    preload = threading.Thread(target=importlib.import_module, args=("app.scenes.host.viser_compat",), daemon=True)
+    preload = threading.Thread(target=importlib.import_module, args=("app.scenes.viser_boundary",), daemon=True)
     with AttackerProcess() as attacker:
         preload.start()
         with server_for(
