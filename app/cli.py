@@ -15,12 +15,7 @@ import sys
 from collections.abc import Callable
 from dataclasses import replace
 
-from app.settings import Settings
-
-
-def default_worker_count() -> int:
-    """Scene workers when ``--workers`` is not given: ``DYNLAB_WORKERS``, else one per core."""
-    return int(os.environ.get("DYNLAB_WORKERS", os.cpu_count() or 1))
+from app.settings import Settings, default_worker_count
 
 
 #: Ctrl+C ends ``dynlab serve`` within this long (s) whatever is in flight: requests get 1.5 s, the scene workers
