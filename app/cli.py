@@ -172,10 +172,11 @@ _OWN_OPTIONS = {
                     "options (see dynlab derivations --help)"),
     "constrained": (_constrained, "work-precision of the DAE algorithms and scipy Radau/BDF (writes docs/bench/constrained_precision.json and .svg)",
                     "options (see dynlab constrained --help)"),
-    "load": (_load, "classroom capacity: N viewers per scene, with --room N followers of one room, with --attack 100 students "
-                    "before and while one client attacks (writes docs/bench/capacity.json, classroom.json or attack.json, and .svg)",
-             "options (see dynlab load --help)"),
-    "soak": (_soak, "N viewers for M minutes, then all gone: resources back to baseline", "options (see dynlab soak --help)"),
+    "load": (_load, "classroom capacity: N viewers per scene, with --room N followers of one room, with --attack 100 "
+             "students before and while one client attacks (writes docs/bench/capacity.json, classroom.json or "
+             "attack.json, and .svg)", "options (see dynlab load --help)"),
+    "soak": (_soak, "N viewers for M minutes, then all gone: resources back to baseline",
+             "options (see dynlab soak --help)"),
 }  # fmt: skip
 
 

@@ -64,7 +64,8 @@ def _statements(tree: ast.AST) -> Iterator[tuple[ast.Import | ast.ImportFrom, bo
         for child in ast.iter_child_nodes(node):
             if isinstance(child, (ast.Import, ast.ImportFrom)):
                 yield child, in_function
-            yield from visit(child, in_function or isinstance(child, (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda)))
+            inside = in_function or isinstance(child, (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda))
+            yield from visit(child, inside)
 
     yield from visit(tree, False)
 
@@ -182,7 +183,7 @@ def scene_rule_breaks(app_dir: Path) -> list[str]:
             continue
         where = f"{found.path.relative_to(app_dir.parent)}:{found.line} imports {found.module}"
         if source.startswith("ch") and target.startswith("ch"):
-            problems.append(f"{where}: a chapter's scenes import another chapter's (shared drawing belongs in scenes/kit)")
+            problems.append(f"{where}: a chapter's scenes import another chapter's (shared drawing goes in scenes/kit)")
         elif source == "kit" and (target == "host" or target.startswith("ch")):
             problems.append(f"{where}: the kit sits below the host and the chapters")
     return problems
@@ -258,7 +259,9 @@ def test_relative_imports_and_subpackages_of_the_split_packages_are_nodes(tmp_pa
         "scenes/host/host.py": "from app.scenes.kit import scene\n",
     })  # fmt: skip
     edges = import_graph(app_dir)
-    assert set(edges) == {("scenes.kit", "scenes.viser_boundary"), ("scenes.viser_boundary", "scenes.host"), ("scenes.host", "scenes.kit")}
+    assert set(edges) == {
+        ("scenes.kit", "scenes.viser_boundary"), ("scenes.viser_boundary", "scenes.host"), ("scenes.host", "scenes.kit")
+    }
     assert circles(edges) == [["scenes.host", "scenes.kit", "scenes.viser_boundary"]]
 
 
@@ -284,7 +287,9 @@ def test_only_the_clis_command_functions_may_import_bench(tmp_path):
         "cli.py": "from app.bench import capacity\n\ndef load():\n    from app.bench.capacity import run\n",
         "web/pages.py": "from app.bench import capacity\n",
     })  # fmt: skip
-    assert bench_importers(app_dir) == ["app/cli.py:1 imports app.bench.capacity", "app/web/pages.py:1 imports app.bench.capacity"]
+    assert bench_importers(app_dir) == [
+        "app/cli.py:1 imports app.bench.capacity", "app/web/pages.py:1 imports app.bench.capacity"
+    ]
 
 
 if __name__ == "__main__":  # print the graph: python -m tests.test_import_layers

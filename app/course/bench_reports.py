@@ -37,7 +37,8 @@ class BenchResultsError(Exception):
 
 
 def read_report_file(path: Path, *, list_key: str, shown_as: str) -> dict[str, Any] | None:
-    """The parsed report at ``path``; ``None`` if there is no file; ``ValueError`` if it cannot be read or has no ``list_key`` list.
+    """The parsed report at ``path``; ``None`` if there is no file; ``ValueError`` if it cannot be read or has no
+    ``list_key`` list.
 
     ``shown_as`` is how messages name the file (a path relative to the project, or just its name).
     """
@@ -89,7 +90,7 @@ def diagram_path(settings: Settings, scene_id: str) -> Path | None:
 
 
 def diagram_size(path: Path) -> tuple[str, str] | None:
-    """The ``width`` and ``height`` (px) the SVG at ``path`` declares, or ``None`` if it declares none or is unreadable."""
+    """The ``width`` and ``height`` (px) the SVG at ``path`` declares; ``None`` if it declares none or is unreadable."""
     try:
         root = ET.parse(path).getroot()
     except (OSError, ET.ParseError):

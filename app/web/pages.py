@@ -389,7 +389,8 @@ def _scene_section(scene: dict, settings) -> str:
             f'<img src="/bench/{safe_id}.svg" alt="{esc(alt)}" width="760" height="480"></a></figure>'
         )
     else:
-        figure = f'<p class="notice">The diagram for this scene is missing; {_esc_code(bench_reports.HOW_TO_MEASURE)}.</p>'
+        how = _esc_code(bench_reports.HOW_TO_MEASURE)
+        figure = f'<p class="notice">The diagram for this scene is missing; {how}.</p>'
     ratios = "".join(f"<li>{_ratio_sentence(r, scene)}</li>" for r in scene.get("ratios") or ())
     anchor = f' id="bench-{safe_id}"' if safe_id else ""
     return (
@@ -583,8 +584,8 @@ def _attack_note(settings) -> str:
         figure = (
             '<figure class="bench-figure"><a href="/bench/attack.svg" title="Open the plot on its own">'
             '<img src="/bench/attack.svg" alt="A class under attack: frames per second each student receives before '
-            f'and while one client attacks, and what each attack got. The attacks are in the table below."{size_attributes}>'
-            "</a></figure>"
+            'and while one client attacks, and what each attack got. The attacks are in the table below."'
+            f"{size_attributes}></a></figure>"
         )
     # The exact requests are in attack.json and the plot; the table keeps to what fits beside the text.
     table = (

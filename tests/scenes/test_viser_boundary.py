@@ -33,7 +33,7 @@ PRIVATE_USE = re.compile(r"\bviser\._(?!_)|from viser import _|\._websock")
 
 def test_viser_is_the_version_the_private_calls_were_checked_against():
     assert viser.__version__ == viser_boundary.CHECKED_VISER_VERSION == "1.1.1", (
-        f"viser {viser.__version__} is installed: app/scenes/viser_boundary.py reaches into viser's private API and was "
+        f"viser {viser.__version__} is installed: app/scenes/viser_boundary.py uses viser's private API and was "
         "checked against 1.1.1 only; re-check every function there (and its tests) against the new version, then update the pin."
     )
 

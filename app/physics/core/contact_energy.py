@@ -33,4 +33,8 @@ class ContactEnergyBudget:
 
     def parts(self) -> EnergyParts:
         """The mechanical energies, for the model's energy budget (friction and impacts show up as dissipated)."""
-        return EnergyParts(self.potential_J, translational_kinetic_J=self.translational_kinetic_J, rotational_kinetic_J=self.rotational_kinetic_J)
+        return EnergyParts(
+            self.potential_J,
+            translational_kinetic_J=self.translational_kinetic_J,
+            rotational_kinetic_J=self.rotational_kinetic_J,
+        )

@@ -25,7 +25,8 @@ class LabelledArrows:
         self._serial = 0
         self._style: dict[str, float] = {}
         self._labels = {
-            key: scene.add_label(f"{name}_labels/{key}", text, anchor="center-left", font_screen_scale=0.85) for key, text in labels.items()
+            key: scene.add_label(f"{name}_labels/{key}", text, anchor="center-left", font_screen_scale=0.85)
+            for key, text in labels.items()
         }
         self._label_visible = {key: True for key in labels}
 
@@ -33,13 +34,16 @@ class LabelledArrows:
         self._style = dict(shaft_radius=shaft_radius, head_radius=head_radius, head_length=head_length)
         self._drawn = None  # rebuild with the new sizes on the next draw
 
-    def draw(self, segments: dict[str, tuple[np.ndarray, np.ndarray]], *, label_at: float = 0.6, move_labels: bool = True) -> None:
+    def draw(
+        self, segments: dict[str, tuple[np.ndarray, np.ndarray]], *, label_at: float = 0.6, move_labels: bool = True
+    ) -> None:
         """``segments``: key -> (tail, head) in scene units; labels sit ``label_at`` of the way along.
 
         ``move_labels=False`` leaves the labels where they are this frame (they are still shown or
         hidden with their arrows): the scene moves them every other frame, half the messages.
         """
-        keep = [k for k, (tail, head) in segments.items() if np.linalg.norm(head - tail) > 0.6 * self._style["head_length"]]
+        shortest = 0.6 * self._style["head_length"]
+        keep = [k for k, (tail, head) in segments.items() if np.linalg.norm(head - tail) > shortest]
         for key, (tail, head) in segments.items():
             visible = key in keep
             if visible and (move_labels or visible != self._label_visible[key]):

@@ -1,4 +1,5 @@
-"""A spinning rotor and its gimbal rings (display units, local frames): the gyroscopes' and the unbalanced rotor's drawing.
+"""A spinning rotor and its gimbal rings (display units, local frames), as the gyroscopes and the unbalanced rotor
+draw them.
 
 The rotor spins about its frame's local +y; its spin is drawn slowed to at most
 :data:`DRAWN_SPIN_RAD_S`, and the drawn angle depends on the scene's time alone.
@@ -16,7 +17,9 @@ from app.physics.math.rotations import quaternion_from_axis_angle
 DRAWN_SPIN_RAD_S = 6.0
 
 
-def ring_mesh(radius: float, tube: float, *, normal: str, segments: int = 64, sides: int = 10) -> tuple[np.ndarray, np.ndarray]:
+def ring_mesh(
+    radius: float, tube: float, *, normal: str, segments: int = 64, sides: int = 10
+) -> tuple[np.ndarray, np.ndarray]:
     """A torus of centre-line ``radius`` and tube radius ``tube`` (display units) about the local ``normal`` axis."""
     u = np.linspace(0.0, 2.0 * math.pi, segments, endpoint=False)
     v = np.linspace(0.0, 2.0 * math.pi, sides, endpoint=False)

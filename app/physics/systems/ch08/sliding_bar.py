@@ -276,7 +276,8 @@ def energy_budget(params: Mapping[str, Any], states: np.ndarray) -> ContactEnerg
     vx = states[:, U] + half * np.sin(theta) * omega
     vz = half * np.cos(theta) * omega
     translational, rotational = 0.5 * mass * (vx**2 + vz**2), 0.5 * inertia * omega**2
-    return ContactEnergyBudget(translational, rotational, mass * g * half * np.sin(theta), states[:, FRICTION_WORK].copy(), np.zeros_like(rotational))
+    potential, friction_work = mass * g * half * np.sin(theta), states[:, FRICTION_WORK].copy()
+    return ContactEnergyBudget(translational, rotational, potential, friction_work, np.zeros_like(rotational))
 
 
 def end_positions_m(params: Mapping[str, Any], state: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
