@@ -21,6 +21,7 @@ Layers inside ``app/physics`` are checked by ``tests/physics/test_layering.py``.
 from __future__ import annotations
 
 import ast
+import re
 from collections.abc import Iterator
 from dataclasses import dataclass
 from functools import cache
@@ -33,6 +34,7 @@ APP = Path(__file__).resolve().parents[1] / "app"
 SPLIT_PACKAGES = ("physics", "scenes")
 #: The one module outside app/bench that may import it (lazily, in its command functions).
 BENCH_ENTRY = "app.cli"
+CHAPTER = re.compile(r"ch\d+")
 
 
 @dataclass(frozen=True)
@@ -182,9 +184,9 @@ def scene_rule_breaks(app_dir: Path) -> list[str]:
         if source is None or target is None or source == target:
             continue
         where = f"{found.path.relative_to(app_dir.parent)}:{found.line} imports {found.module}"
-        if source.startswith("ch") and target.startswith("ch"):
+        if CHAPTER.fullmatch(source) and CHAPTER.fullmatch(target):
             problems.append(f"{where}: a chapter's scenes import another chapter's (shared drawing goes in scenes/kit)")
-        elif source == "kit" and (target == "host" or target.startswith("ch")):
+        elif source == "kit" and (target == "host" or CHAPTER.fullmatch(target)):
             problems.append(f"{where}: the kit sits below the host and the chapters")
     return problems
 
