@@ -15,12 +15,7 @@ import sys
 from collections.abc import Callable
 from dataclasses import replace
 
-from app.settings import Settings
-
-
-def default_worker_count() -> int:
-    """Scene workers when ``--workers`` is not given: ``DYNLAB_WORKERS``, else one per core."""
-    return int(os.environ.get("DYNLAB_WORKERS", os.cpu_count() or 1))
+from app.settings import Settings, default_worker_count
 
 
 #: Ctrl+C ends ``dynlab serve`` within this long (s) whatever is in flight: requests get 1.5 s, the scene workers
@@ -152,7 +147,24 @@ def _constrained(args: argparse.Namespace) -> int:
     return constrained_main(args.bench_args)
 
 
-#: Commands that parse their own options: name → (runner, help, help of the options).
+def _load(args: argparse.Namespace) -> int:
+    from app.bench.capacity import add_load_arguments, run_load_command
+
+    parser = argparse.ArgumentParser(prog="dynlab load", description=_OWN_OPTIONS["load"][1])
+    add_load_arguments(parser)
+    return run_load_command(parser.parse_args(args.bench_args), parser)
+
+
+def _soak(args: argparse.Namespace) -> int:
+    from app.bench.soak import add_soak_arguments, run_soak_command
+
+    parser = argparse.ArgumentParser(prog="dynlab soak", description=_OWN_OPTIONS["soak"][1])
+    add_soak_arguments(parser)
+    return run_soak_command(parser.parse_args(args.bench_args), parser)
+
+
+#: Commands that parse their own options: name → (runner, help, help of the options). Each runner imports its tool
+#: (app.bench) only when it runs: nothing else of the app imports the tools.
 _OWN_OPTIONS = {
     "bench": (_bench, "measure speed against error (writes docs/bench/work_precision.json and plots)",
               "options of the benchmark (see dynlab bench --help)"),
@@ -160,32 +172,12 @@ _OWN_OPTIONS = {
                     "options (see dynlab derivations --help)"),
     "constrained": (_constrained, "work-precision of the DAE algorithms and scipy Radau/BDF (writes docs/bench/constrained_precision.json and .svg)",
                     "options (see dynlab constrained --help)"),
+    "load": (_load, "classroom capacity: N viewers per scene, with --room N followers of one room, with --attack 100 "
+             "students before and while one client attacks (writes docs/bench/capacity.json, classroom.json or "
+             "attack.json, and .svg)", "options (see dynlab load --help)"),
+    "soak": (_soak, "N viewers for M minutes, then all gone: resources back to baseline",
+             "options (see dynlab soak --help)"),
 }  # fmt: skip
-
-
-def _load(args: argparse.Namespace) -> int:
-    from app.bench.capacity import run_load_command
-
-    return run_load_command(args, args.parser)
-
-
-def _soak(args: argparse.Namespace) -> int:
-    from app.bench.soak import run_soak_command
-
-    return run_soak_command(args, args.parser)
-
-
-def _add_load_and_soak(commands: argparse._SubParsersAction) -> None:
-    """``dynlab load`` (classroom capacity) and ``dynlab soak`` (a long class, then resources back to baseline)."""
-    from app.bench.capacity import add_load_arguments
-    from app.bench.soak import add_soak_arguments
-
-    load = commands.add_parser("load", help="classroom capacity: N viewers per scene, with --room N followers of one room, with --attack 100 students before and while one client attacks (writes docs/bench/capacity.json, classroom.json or attack.json, and .svg)")
-    add_load_arguments(load)
-    load.set_defaults(run=_load, parser=load)
-    soak = commands.add_parser("soak", help="N viewers for M minutes, then all gone: resources back to baseline")
-    add_soak_arguments(soak)
-    soak.set_defaults(run=_soak, parser=soak)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -211,7 +203,6 @@ def main(argv: list[str] | None = None) -> int:
         command = commands.add_parser(name, help=help_text, add_help=False)
         command.add_argument("bench_args", nargs=argparse.REMAINDER, help=options_help)
         command.set_defaults(run=run)
-    _add_load_and_soak(commands)
     args = parser.parse_args(argv)
     logging.basicConfig(level=getattr(logging, getattr(args, "log_level", "warning").upper()), format="%(levelname)s %(name)s: %(message)s")
     return args.run(args)

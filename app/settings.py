@@ -13,6 +13,11 @@ DEFAULT_BENCH_DIR = Path(__file__).resolve().parent.parent / "docs" / "bench"
 DEFAULT_LESSONS_DIR = Path(__file__).resolve().parent.parent / "lessons"
 
 
+def default_worker_count() -> int:
+    """Scene workers ``dynlab serve`` runs when ``--workers`` is not given: ``DYNLAB_WORKERS``, else one per core."""
+    return int(os.environ.get("DYNLAB_WORKERS", os.cpu_count() or 1))
+
+
 @dataclass(frozen=True)
 class Settings:
     host: str = "127.0.0.1"

@@ -211,7 +211,7 @@ class Viewer:
         import viser
         from websockets.sync.client import connect
 
-        from app.scenes.host.viser_compat import viewer_camera_message
+        from app.scenes.viser_boundary import viewer_camera_message
 
         message = viewer_camera_message(**({"position": self.camera[0], "look_at": self.camera[1]} if self.camera else {}))
         while not self._stop.is_set():

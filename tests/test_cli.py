@@ -10,6 +10,7 @@ from pathlib import Path
 import pytest
 
 from app import cli
+from app.settings import default_worker_count
 from tests.conftest import wait_until
 
 
@@ -28,9 +29,9 @@ def test_serve_refuses_an_unknown_option():
 def test_the_default_worker_count_is_the_cores_unless_set(monkeypatch):
     monkeypatch.delenv("DYNLAB_WORKERS", raising=False)
     monkeypatch.setattr("os.cpu_count", lambda: 6)
-    assert cli.default_worker_count() == 6
+    assert default_worker_count() == 6
     monkeypatch.setenv("DYNLAB_WORKERS", "3")
-    assert cli.default_worker_count() == 3
+    assert default_worker_count() == 3
 
 
 def recording_server(served: list):

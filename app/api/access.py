@@ -14,7 +14,7 @@ routes and the room socket ask :mod:`app.classroom.routes`'s instructor rule.
 * **A viewer** may watch any page session it is given, of the scene that session
   shows; it never creates, replaces or re-scenes one (a viewer of a session that
   does not exist, or shows another scene, is refused).
-* **Nothing a flood can evict.** Each client address (:func:`app.web.guard.client_address`)
+* **Nothing a flood can evict.** Each client address (:func:`app.api.rate_limit.client_address`)
   may create :data:`CREATE_BURST` sessions at once and :data:`CREATE_RATE_PER_S` a
   second after that (429), and hold :data:`MAX_SESSIONS_PER_CLIENT`: beyond that its
   own least recently used idle session makes room. When the server's table is full,
@@ -37,8 +37,8 @@ from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass
 
+from app.api.rate_limit import InFlight, TokenBuckets, retry_after_s
 from app.scenes.host.host import MAX_VIEWERS_PER_SESSION, STAGE_PREFIX
-from app.web.rate_limit import InFlight, TokenBuckets, retry_after_s
 
 #: 16–128 letters, digits, '-' or '_' (the lesson page sends 32 hex digits from crypto.getRandomValues).
 SESSION_KEY_PATTERN = re.compile(r"^[A-Za-z0-9_-]{16,128}$")

@@ -1,15 +1,11 @@
 """Benchmark results for the Solver lab page: ``work_precision.json`` and one SVG diagram per scene.
 
 ``dynlab bench`` writes both into ``Settings.bench_dir`` (``docs/bench`` unless
-``DYNLAB_BENCH_DIR`` says otherwise). The files are read on each request, so a
-new benchmark run shows up without restarting the server.
+``DYNLAB_BENCH_DIR`` says otherwise); :mod:`app.course.bench_reports` reads them,
+on each request, so a new benchmark run shows up without restarting the server.
 """
 
 from __future__ import annotations
-
-import re
-from pathlib import Path
-from typing import Any
 
 from fastapi import APIRouter, HTTPException
 from fastapi.responses import FileResponse
@@ -17,60 +13,16 @@ from fastapi.responses import FileResponse
 from app.api.deps import SettingsDep
 from app.api.schemas.bench import WorkPrecisionReport
 from app.api.schemas.errors import error_responses
-from app.bench.report_file import read_report_file
-from app.settings import Settings
+from app.course.bench_reports import HOW_TO_MEASURE, SCENE_ID_PATTERN, diagram_path, missing_message, results_path
 
 router = APIRouter(tags=["bench"])
 
-RESULTS_FILE = "work_precision.json"
-#: Scene ids that may name a diagram file; anything else (dots, slashes, capitals, or a name longer than
-#: any scene id and than a file name may be) is refused.
-SCENE_ID_PATTERN = re.compile(r"[a-z0-9-]{1,64}")
-HOW_TO_MEASURE = "run `uv run --group bench dynlab bench` to measure the integrators and write it"
 _SVG_HEADERS = {
     "Cache-Control": "no-cache",
     "X-Content-Type-Options": "nosniff",
     # The diagrams are plain drawings: no scripts, no external loads, even when opened directly.
     "Content-Security-Policy": "default-src 'none'; style-src 'unsafe-inline'",
 }
-
-
-class BenchResultsError(Exception):
-    """work_precision.json exists but cannot be used."""
-
-
-def results_path(settings: Settings) -> Path:
-    return Path(settings.bench_dir) / RESULTS_FILE
-
-
-def missing_message(settings: Settings) -> str:
-    return f"No benchmark results: `{_shown(results_path(settings))}` does not exist; {HOW_TO_MEASURE}."
-
-
-def _shown(path: Path) -> str:
-    """The path as a reader should see it: relative to the project when it lies inside it."""
-    root = Path(__file__).resolve().parents[2]
-    try:
-        return str(path.resolve().relative_to(root))
-    except ValueError:
-        return str(path)
-
-
-def load_results(settings: Settings) -> dict[str, Any] | None:
-    """The parsed results, ``None`` if the file is missing; ``BenchResultsError`` if it is unreadable."""
-    path = results_path(settings)
-    try:
-        return read_report_file(path, list_key="scenes", shown_as=f"`{_shown(path)}`")
-    except ValueError as exc:
-        raise BenchResultsError(str(exc)) from None
-
-
-def diagram_path(settings: Settings, scene_id: str) -> Path | None:
-    """The SVG for a scene, or ``None`` if the id is not a safe file name or the file is missing."""
-    if not isinstance(scene_id, str) or not SCENE_ID_PATTERN.fullmatch(scene_id):
-        return None
-    path = Path(settings.bench_dir) / f"{scene_id}.svg"
-    return path if path.is_file() else None
 
 
 @router.get(

@@ -9,10 +9,10 @@ from fastapi import Depends
 from starlette.requests import HTTPConnection
 
 from app.api.access import SessionDirectory
+from app.api.rate_limit import client_address
 from app.course import Catalogue
 from app.scenes.host.interface import SceneHostInterface
 from app.settings import Settings
-from app.web.guard import client_address
 
 
 def get_catalogue(request: HTTPConnection) -> Catalogue:

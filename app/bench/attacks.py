@@ -193,7 +193,7 @@ class Attacker:
     """Runs every attack of a plan at once for ``plan.seconds``; :meth:`run` returns the records' summaries."""
 
     def __init__(self, plan: AttackPlan) -> None:
-        from app.scenes.host.viser_compat import viewer_camera_message  # registers every scene: only a run needs it
+        from app.scenes.viser_boundary import viewer_camera_message  # registers every scene: only a run needs it
 
         self.plan = plan
         self.bounds = plan.bounds
@@ -508,7 +508,7 @@ class Attacker:
 def main() -> int:
     """``python -m app.bench.attacks``: load everything and say ``ready``; the next line on stdin is the plan (JSON),
     and it starts the window at once; the result comes back as one JSON line. End of input before a plan: exit."""
-    from app.scenes.host.viser_compat import viewer_camera_message  # noqa: F401  (the slow import, before "ready")
+    from app.scenes.viser_boundary import viewer_camera_message  # noqa: F401  (the slow import, before "ready")
 
     print("ready", flush=True)
     line = sys.stdin.readline()

@@ -64,19 +64,20 @@ from app.bench.attacks import AttackBounds
 from app.bench.load_client import Classroom, ClassroomSnapshot, HealthLatency, loopback_base, probe_health
 from app.bench.plot import FONT, SVG_NS, _f, _marker, _text
 from app.bench.process_tree import TreeUsage, process_group_members, tree_pids, tree_usage
-from app.bench.report_file import read_report_file
 from app.classroom.roles import HEADER as INSTRUCTOR_HEADER
 from app.classroom.roles import MIN_KEY_LENGTH
+from app.course.bench_reports import (
+    CAPACITY_REPORT,
+    CLASSROOM_REPORT,
+    FOLLOW_COST_CLASS,
+    describe_workers,
+    read_capacity_report,
+)
 
-REPORT_FILE = "capacity.json"
 PLOT_FILE = "capacity.svg"
-#: The report of a ``--room`` run: students following one room's shared scene.
-CLASSROOM_REPORT_FILE = "classroom.json"
 CLASSROOM_PLOT_FILE = "classroom.svg"
 #: Class sizes of a ``--room`` run unless ``--students`` gives others (1: what one viewer costs).
 ROOM_STUDENTS = (1, 10, 30, 60, 100, 150)
-#: The class size whose server CPU the issue compares with one viewer's.
-FOLLOW_COST_CLASS = 100
 #: An ``--attack`` run's class (students on their own heavy tops) and each of its two windows (s) unless given.
 ATTACK_STUDENTS = 100
 ATTACK_SECONDS = 30.0
@@ -503,8 +504,7 @@ def utc_now() -> str:
 
 
 def server_facts(server: ServerUnderTest) -> dict:
-    from app.cli import default_worker_count
-    from app.settings import Settings
+    from app.settings import Settings, default_worker_count
 
     return {
         "url": server.base_url,
@@ -698,7 +698,7 @@ def follow_cost(steps: Sequence[dict], *, one_viewer: Sequence[dict] = (), scene
     }
 
 
-def with_independent_comparison(report: dict, independent: dict | None, *, source: str = REPORT_FILE) -> dict:
+def with_independent_comparison(report: dict, independent: dict | None, *, source: str = CAPACITY_REPORT) -> dict:
     """A follow report with, per step, the independent viewers' figures at the same scene and class size
     (from a ``capacity.json`` report; ``independent`` None: none to compare) under ``"independent"``."""
     steps = (independent or {}).get("steps") or []
@@ -730,11 +730,6 @@ MODE_NAMES = {"follow": "following one room's scene", "independent": "a scene ea
 
 def _nice_ceiling(value: float, step: float) -> float:
     return step * max(1, math.ceil(value / step - 1e-9))
-
-
-def describe_workers(workers: object) -> str:
-    """The report's ``server.workers`` in words: serve's default (None), none (0: one process), or the count."""
-    return "serve's default" if workers is None else "none (one process)" if workers == 0 else str(workers)
 
 
 @dataclass(frozen=True)
@@ -949,7 +944,7 @@ def write_report(report: dict, out_dir: Path, *, name: str | None = None, plot: 
     """
     follow = report.get("mode") == "follow"
     out_dir.mkdir(parents=True, exist_ok=True)
-    path = out_dir / (name or (CLASSROOM_REPORT_FILE if follow else REPORT_FILE))
+    path = out_dir / (name or (CLASSROOM_REPORT if follow else CAPACITY_REPORT))
     path.write_text(json.dumps(report, indent=2, allow_nan=False) + "\n", encoding="utf-8")
     written = [path]
     if plot:
@@ -957,11 +952,6 @@ def write_report(report: dict, out_dir: Path, *, name: str | None = None, plot: 
         svg.write_text(classroom_svg(report) if follow else capacity_svg(report), encoding="utf-8")
         written.append(svg)
     return written
-
-
-def read_report(path: Path) -> dict | None:
-    """A saved capacity report, None if the file is missing; ValueError if it is unreadable or has no steps."""
-    return read_report_file(path, list_key="steps", shown_as=path.name)
 
 
 # ---- command line ----------------------------------------------------------------------------
@@ -1052,7 +1042,7 @@ def run_load_command(args: argparse.Namespace, parser: argparse.ArgumentParser) 
         return 1
     if options.room:
         try:
-            independent = read_report(args.out / REPORT_FILE)
+            independent = read_capacity_report(args.out / CAPACITY_REPORT)
         except ValueError as exc:
             print(f"dynlab load: no comparison with independent viewers: {exc}", file=sys.stderr)
             independent = None

@@ -334,7 +334,7 @@ class Classroom:
         distinct_addresses: bool = False,
     ) -> None:  # fmt: skip
         # Imported here: importing app.scenes registers every scene (about 2 s), which only a running load needs.
-        from app.scenes.host.viser_compat import viewer_camera_message
+        from app.scenes.viser_boundary import viewer_camera_message
 
         self.camera_message = viewer_camera_message()
         self.host, self.port = host, port

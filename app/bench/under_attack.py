@@ -51,7 +51,6 @@ from app.bench.capacity import (
     WindowReading,
     check_scenes,
     close_room,
-    describe_workers,
     frame_rate_summary,
     machine_facts,
     measure_window,
@@ -64,9 +63,8 @@ from app.bench.capacity import (
 from app.bench.load_client import ATTACKER_ADDRESS, Classroom, ClassroomSnapshot
 from app.bench.plot import FONT, SVG_NS, _f, _text
 from app.bench.process_tree import tree_usage
-from app.bench.report_file import read_report_file
+from app.course.bench_reports import ATTACK_REPORT, describe_workers, listed_attacks
 
-REPORT_FILE = "attack.json"
 PLOT_FILE = "attack.svg"
 #: The scene of the attacker's expensive sessions (item 6) and of item 3's re-scening, unless the class is on it.
 EXPENSIVE_SCENE = "double-pendulum"
@@ -243,7 +241,7 @@ def run_attack(options: LoadOptions) -> dict:
     scene_id = options.scenes[0]
     # The attacker's process and this one's scene registry (for the viewers' first camera message) load while the
     # server starts.
-    preload = threading.Thread(target=importlib.import_module, args=("app.scenes.host.viser_compat",), daemon=True)
+    preload = threading.Thread(target=importlib.import_module, args=("app.scenes.viser_boundary",), daemon=True)
     with AttackerProcess() as attacker:
         preload.start()
         with server_for(
@@ -298,16 +296,11 @@ def run_attack(options: LoadOptions) -> dict:
 def write_attack_report(report: dict, out_dir: Path) -> list[Path]:
     """``attack.json`` and ``attack.svg`` in ``out_dir``; returns the paths written."""
     out_dir.mkdir(parents=True, exist_ok=True)
-    path = out_dir / REPORT_FILE
+    path = out_dir / ATTACK_REPORT
     path.write_text(json.dumps(report, indent=2, allow_nan=False) + "\n", encoding="utf-8")
     svg = out_dir / PLOT_FILE
     svg.write_text(attack_svg(report), encoding="utf-8")
     return [path, svg]
-
-
-def read_attack_report(path: Path) -> dict | None:
-    """A saved attack report, None if the file is missing; ValueError if it is unreadable or has no attacks list."""
-    return read_report_file(path, list_key="attacks", shown_as=path.name)
 
 
 def summary_line(report: dict) -> str:
@@ -415,11 +408,6 @@ def _wrapped(text: str, width: int) -> list[str]:
         else:
             line = f"{line} {word}".strip()
     return lines + ([line] if line else [])
-
-
-def listed_attacks(report: dict) -> list[dict]:
-    """The report's attacks in the order of their items of "Found" (the order they ran in within an item)."""
-    return sorted((a for a in report.get("attacks") or () if isinstance(a, dict)), key=lambda a: str(a.get("item")))
 
 
 def plot_height(report: dict) -> int:

@@ -1,6 +1,6 @@
 """How fast students may join rooms: per client address, and per room.
 
-Two token buckets (:class:`~app.web.rate_limit.TokenBuckets`), numbers in :class:`~app.settings.Settings`:
+Two token buckets (:class:`~app.api.rate_limit.TokenBuckets`), numbers in :class:`~app.settings.Settings`:
 
 **Per address: 20 join requests at once, then one every 5 s** (``join_burst``, ``join_rate_per_s``). Every request
 counts, a wrong code too. A real device joins once per QR scan or typed code: a student who re-scans, reloads and
@@ -25,10 +25,9 @@ from __future__ import annotations
 from fastapi import HTTPException
 from starlette.types import Scope
 
+from app.api.rate_limit import TokenBuckets, client_address, retry_after_s
 from app.classroom.registry import MAX_ROOMS
 from app.settings import Settings
-from app.web.guard import client_address
-from app.web.rate_limit import TokenBuckets, retry_after_s
 
 
 class JoinLimits:

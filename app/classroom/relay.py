@@ -35,10 +35,10 @@ from starlette.concurrency import run_in_threadpool
 from starlette.websockets import WebSocketDisconnect
 
 from app.api.access import Refused
+from app.api.rate_limit import client_address
 from app.classroom.registry import ROOM_ID_PATTERN
 from app.scenes.host.interface import HostBusy
-from app.scenes.host.viser_compat import viewer_camera_message
-from app.web.guard import client_address
+from app.scenes.viser_boundary import viewer_camera_message
 from app.web.relay import UPSTREAM_CLOSE_TIMEOUT_S, close_refused, viser_protocol
 
 log = logging.getLogger(__name__)

@@ -7,17 +7,16 @@
   ``Origin`` must come from the page's own origin (or ``Settings.allowed_origins``) and its ``Host``
   must name this server (:class:`HostPolicy`): otherwise 403, or close 1008 before accept. This
   stops cross-site requests and DNS rebinding; clients without ``Origin`` (scripts) pass.
-- Per-client rate limits (:class:`~app.web.rate_limit.TokenBuckets`): every HTTP request (``Settings.request_burst``
+- Per-client rate limits (:class:`~app.api.rate_limit.TokenBuckets`): every HTTP request (``Settings.request_burst``
   at once, ``request_rate_per_s`` after; static files in a bucket of their own, larger), answered 429 before any
   route runs, after a wait; ``POST .../simulate`` and ``POST /api/systems/custom/derive`` get 429
   with ``Retry-After``, and so does a second one from a client whose first is still running
-  (:class:`~app.web.rate_limit.InFlight`); opening a viewer websocket is closed with 1013 "try again later".
+  (:class:`~app.api.rate_limit.InFlight`); opening a viewer websocket is closed with 1013 "try again later".
 """
 
 from __future__ import annotations
 
 import asyncio
-import ipaddress
 import logging
 import re
 import socket
@@ -30,8 +29,8 @@ from starlette.middleware.body_limit import RequestBodyLimitMiddleware
 from starlette.responses import JSONResponse
 from starlette.types import ASGIApp, Receive, Scope, Send
 
+from app.api.rate_limit import InFlight, TokenBuckets, client_address, is_ip_address, retry_after_s
 from app.settings import Settings
-from app.web.rate_limit import InFlight, TokenBuckets, retry_after_s
 
 log = logging.getLogger(__name__)
 
@@ -46,14 +45,6 @@ VIEWER_PREFIXES = ("/viewer/", "/room-viewer/", "/api/rooms/")
 MAX_REFUSAL_DELAY_S = 1.0
 LOOPBACK_NAMES = frozenset({"127.0.0.1", "localhost", "::1"})
 _DEFAULT_PORTS = {"http": 80, "https": 443, "ws": 80, "wss": 443}
-
-
-def _is_ip(text: str) -> bool:
-    try:
-        ipaddress.ip_address(text)
-    except ValueError:
-        return False
-    return True
 
 
 def _split_authority(authority: str) -> tuple[str, int | None] | None:
@@ -102,7 +93,7 @@ class HostPolicy:
             return True
         if self.served_port is not None:
             return name in self.names and port == self.served_port
-        return name in self.names or (self.any_ip and _is_ip(name))
+        return name in self.names or (self.any_ip and is_ip_address(name))
 
 
 class RequestGuard:
@@ -240,18 +231,6 @@ class RequestGuard:
     def _wait_s(self, limit: TokenBuckets, scope: Scope, headers: Headers) -> float:
         key = client_address(scope, trust_forwarded_for=self.trust_forwarded_for)
         return 0.0 if key is None else limit.take(key)
-
-
-def client_address(scope: Scope, *, trust_forwarded_for: bool) -> str | None:
-    """The client's IP address, the key of every per-client limit: the last ``X-Forwarded-For`` entry when
-    ``trust_forwarded_for`` (behind a reverse proxy that sets it), else the peer's address; None for a peer with no
-    IP address (a unix socket, an in-process test client), which has nothing to key on."""
-    if trust_forwarded_for:
-        forwarded = Headers(scope=scope).get("x-forwarded-for", "").rsplit(",", 1)[-1].strip()
-        if _is_ip(forwarded):
-            return forwarded
-    client = scope.get("client")
-    return client[0] if client and _is_ip(client[0]) else None
 
 
 def refusals(method: str, path: str, *, reads_body: bool) -> dict[int, str]:

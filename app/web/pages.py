@@ -15,10 +15,8 @@ import viser
 from fastapi import APIRouter, HTTPException
 from fastapi.responses import HTMLResponse, RedirectResponse, Response
 
-from app.api import bench
 from app.api.deps import CatalogueDep, SceneHostDep, SettingsDep
-from app.bench import capacity, under_attack
-from app.course import Catalogue, Chapter, Lesson, render_markdown
+from app.course import Catalogue, Chapter, Lesson, bench_reports, render_markdown
 from app.course.lessons import split_front_matter
 from app.physics.mechanics.derivation import FORMULATION_TITLES, FORMULATIONS
 from app.physics.mechanics.engine import available_formulations
@@ -365,7 +363,7 @@ def _default_paragraph(scene: dict) -> str:
 
 def _scene_section(scene: dict, settings) -> str:
     scene_id = str(scene.get("scene_id", ""))
-    safe_id = scene_id if bench.SCENE_ID_PATTERN.fullmatch(scene_id) else ""
+    safe_id = scene_id if bench_reports.SCENE_ID_PATTERN.fullmatch(scene_id) else ""
     title = esc(str(scene.get("title") or scene_id))
     unit = str(scene.get("error_unit") or "")
     meta = []
@@ -380,7 +378,7 @@ def _scene_section(scene: dict, settings) -> str:
         meta.append(f"{fmt_setting(t_end)} s of motion at {fmt_setting(rate)} frames per second.")
     if isinstance(scene.get("target_error"), (int, float)):
         meta.append(f"Target error {_with_unit(fmt_setting(scene['target_error']), unit)}.")
-    if safe_id and bench.diagram_path(settings, safe_id):
+    if safe_id and bench_reports.diagram_path(settings, safe_id):
         methods = ", ".join(str(m.get("label") or m.get("method")) for m in scene.get("methods") or ())
         alt = (
             f"Work-precision diagram for {scene.get('title') or scene_id}: CPU time against error, both on log scales, "
@@ -391,7 +389,8 @@ def _scene_section(scene: dict, settings) -> str:
             f'<img src="/bench/{safe_id}.svg" alt="{esc(alt)}" width="760" height="480"></a></figure>'
         )
     else:
-        figure = f'<p class="notice">The diagram for this scene is missing; {_esc_code(bench.HOW_TO_MEASURE)}.</p>'
+        how = _esc_code(bench_reports.HOW_TO_MEASURE)
+        figure = f'<p class="notice">The diagram for this scene is missing; {how}.</p>'
     ratios = "".join(f"<li>{_ratio_sentence(r, scene)}</li>" for r in scene.get("ratios") or ())
     anchor = f' id="bench-{safe_id}"' if safe_id else ""
     return (
@@ -424,7 +423,7 @@ def _run_summary(results: dict) -> str:
     toc = " · ".join(
         f'<a href="#bench-{esc(str(s.get("scene_id")))}">{esc(str(s.get("title") or s.get("scene_id")))}</a>'
         for s in scenes
-        if bench.SCENE_ID_PATTERN.fullmatch(str(s.get("scene_id", "")))
+        if bench_reports.SCENE_ID_PATTERN.fullmatch(str(s.get("scene_id", "")))
     )
     return (
         '<section class="bench-run"><h2>Measured results</h2>'
@@ -445,7 +444,7 @@ def _guarded(render, item, *args) -> str:
         what = f"The entry for {esc(str(name))}" if name else "An entry"
         return (
             f'<section class="bench-scene notice"><p>{what} in the benchmark results is malformed; '
-            f"{_esc_code(bench.HOW_TO_MEASURE)} again.</p></section>"
+            f"{_esc_code(bench_reports.HOW_TO_MEASURE)} again.</p></section>"
         )
 
 
@@ -473,13 +472,13 @@ def _capacity_table(report: dict, settings) -> str:
     lines = (
         f"Measured {created} UTC on {esc(str(machine.get('cores', '?')))} cores "
         f"({esc(str(machine.get('cpu') or 'unknown CPU'))}); scene workers: "
-        f"{esc(capacity.describe_workers(server.get('workers')))}; each student a real viewer "
+        f"{esc(bench_reports.describe_workers(server.get('workers')))}; each student a real viewer "
         f"websocket on its own scene. Targets: 100 students at ≥ {fmt_sig(targets.get('p10_frames_per_s'))} frames/s "
         f"for 9 students in 10 (10th percentile); 150 students with every one at ≥ "
         f"{fmt_sig(targets.get('min_frames_per_s_degraded'))} frames/s."
     )
     figure = ""
-    if bench.diagram_path(settings, "capacity"):
+    if bench_reports.diagram_path(settings, "capacity"):
         figure = (
             '<figure class="bench-figure"><a href="/bench/capacity.svg" title="Open the plot on its own">'
             '<img src="/bench/capacity.svg" alt="Classroom capacity: frames per second each student receives '
@@ -502,14 +501,14 @@ def _classroom_note(settings) -> str:
     """What a class following one room's scene measured (``classroom.json``, from ``dynlab load --room``): the frame
     rate of 100 followers and the server's CPU with 1 and 100 of them, and the plot; empty if there is no report."""
     try:
-        report = capacity.read_report(Path(settings.bench_dir) / capacity.CLASSROOM_REPORT_FILE)
+        report = bench_reports.read_capacity_report(Path(settings.bench_dir) / bench_reports.CLASSROOM_REPORT)
     except ValueError as exc:
         return f'<p class="notice">{esc(str(exc))}; <code>dynlab load --room</code> measures it again.</p>'
     if report is None:
         return ""
     try:
         cost = report["follow_cost"]
-        size = capacity.FOLLOW_COST_CLASS
+        size = bench_reports.FOLLOW_COST_CLASS
         step = next(s for s in report["steps"] if s["students"] == size)
         fps = step["frames_per_s"]
         text = (
@@ -522,7 +521,7 @@ def _classroom_note(settings) -> str:
     except (AttributeError, TypeError, KeyError, ValueError, StopIteration):
         return '<p class="notice">The measurement of a class following one room is malformed; <code>dynlab load --room</code> measures it again.</p>'
     figure = ""
-    if bench.diagram_path(settings, "classroom"):
+    if bench_reports.diagram_path(settings, "classroom"):
         figure = (
             '<figure class="bench-figure"><a href="/bench/classroom.svg" title="Open the plot on its own">'
             '<img src="/bench/classroom.svg" alt="A class following one room: frames per second each student receives '
@@ -550,7 +549,7 @@ def _attack_note(settings) -> str:
     how = "<code>dynlab load --attack</code> measures it"
     heading = "<h3>Under attack</h3>"
     try:
-        report = under_attack.read_attack_report(Path(settings.bench_dir) / under_attack.REPORT_FILE)
+        report = bench_reports.read_attack_report(Path(settings.bench_dir) / bench_reports.ATTACK_REPORT)
     except ValueError as exc:
         return f'{heading}<p class="notice">{esc(str(exc))}; {how} again.</p>'
     if report is None:
@@ -574,16 +573,19 @@ def _attack_note(settings) -> str:
             f"{'met' if during['p10'] >= target else 'not met'}. Measured "
             f"{esc(str(report.get('created') or '')[:16].replace('T', ' '))} UTC (<code>dynlab load --attack</code>).</p>"
         )
-        rows = "".join(_attack_row(attack) for attack in under_attack.listed_attacks(report))
+        rows = "".join(_attack_row(attack) for attack in bench_reports.listed_attacks(report))
     except (AttributeError, TypeError, KeyError, ValueError):
         return f'{heading}<p class="notice">The measurement under attack is malformed; {how} again.</p>'
     figure = ""
-    if bench.diagram_path(settings, "attack"):
+    plot = bench_reports.diagram_path(settings, "attack")
+    if plot:
+        size = bench_reports.diagram_size(plot)
+        size_attributes = f' width="{esc(size[0])}" height="{esc(size[1])}"' if size else ""
         figure = (
             '<figure class="bench-figure"><a href="/bench/attack.svg" title="Open the plot on its own">'
             '<img src="/bench/attack.svg" alt="A class under attack: frames per second each student receives before '
-            'and while one client attacks, and what each attack got. The attacks are in the table below." '
-            f'width="{under_attack.WIDTH}" height="{under_attack.plot_height(report)}"></a></figure>'
+            'and while one client attacks, and what each attack got. The attacks are in the table below."'
+            f"{size_attributes}></a></figure>"
         )
     # The exact requests are in attack.json and the plot; the table keeps to what fits beside the text.
     table = (
@@ -601,7 +603,7 @@ def _capacity_section(settings) -> str:
     while one client attacked it (``attack.json``, from ``dynlab load --attack``)."""
     how = "<code>dynlab load</code> measures it (real viewer websockets, 10 to 150 students) and writes it"
     try:
-        report = capacity.read_report(Path(settings.bench_dir) / capacity.REPORT_FILE)
+        report = bench_reports.read_capacity_report(Path(settings.bench_dir) / bench_reports.CAPACITY_REPORT)
     except ValueError as exc:
         content = f'<p class="notice">{esc(str(exc))}; {how} again.</p>'
     else:
@@ -623,17 +625,17 @@ def _capacity_section(settings) -> str:
 def solver_lab_page(settings: SettingsDep) -> HTMLResponse:
     meta, prose = _solver_lab_text(Path(settings.lessons_dir))
     try:
-        results = bench.load_results(settings)
-    except bench.BenchResultsError as exc:
+        results = bench_reports.load_results(settings)
+    except bench_reports.BenchResultsError as exc:
         results_html = (
             '<section class="bench-run notice" role="status"><h2>Measured results</h2>'
-            f"<p>{_esc_code(str(exc))}; {_esc_code(bench.HOW_TO_MEASURE)} again.</p></section>"
+            f"<p>{_esc_code(str(exc))}; {_esc_code(bench_reports.HOW_TO_MEASURE)} again.</p></section>"
         )
     else:
         if results is None:
             results_html = (
                 '<section class="bench-run notice" role="status"><h2>No measurements yet</h2>'
-                f"<p>{_esc_code(bench.missing_message(settings))}</p>"
+                f"<p>{_esc_code(bench_reports.missing_message(settings))}</p>"
                 "<p>Then reload this page: <code>uv run --group bench dynlab bench</code> writes <code>work_precision.json</code> "
                 "and one diagram per scene into the benchmark folder.</p></section>"
             )

@@ -22,9 +22,9 @@ from starlette.websockets import WebSocketDisconnect
 
 from app.api.access import Refused
 from app.api.deps import SceneHostDep, SessionsDep
+from app.api.rate_limit import client_address
 from app.scenes.host.host import SESSION_ID_PATTERN
 from app.scenes.host.interface import HostBusy, SceneHostInterface
-from app.web.guard import client_address
 
 log = logging.getLogger(__name__)
 #: Longest a closing relay waits for its scene worker's close frame (s): the worker is on this machine, so a longer

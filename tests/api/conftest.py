@@ -34,7 +34,7 @@ def inprocess_client() -> Iterator[TestClient]:
 
 def first_camera_message() -> bytes:
     """What a browser's viewer sends first over the viewer websocket; viser counts a client as connected only after it."""
-    from app.scenes.host.viser_compat import viewer_camera_message
+    from app.scenes.viser_boundary import viewer_camera_message
 
     return viewer_camera_message()
 

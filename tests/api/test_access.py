@@ -31,7 +31,7 @@ from app.api.access import (
     SessionDirectory,
 )
 from app.main import create_app
-from app.scenes.host.viser_compat import viewer_camera_message
+from app.scenes.viser_boundary import viewer_camera_message
 from tests.api.conftest import live_viewer
 from tests.conftest import wait_until
 

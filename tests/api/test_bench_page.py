@@ -14,8 +14,8 @@ from pathlib import Path
 
 import pytest
 
-from app.api.bench import diagram_path
 from app.bench.plot import work_precision_svg
+from app.course.bench_reports import diagram_path
 from app.settings import Settings
 from app.web.pages import fmt_setting, fmt_sig
 from tests.conftest import HEAVY_TOP_BENCH_SETUP

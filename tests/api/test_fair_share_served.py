@@ -18,7 +18,7 @@ from websockets.sync.client import connect
 
 from app.api.access import MAX_VIEWERS_PER_CLIENT
 from app.scenes.host.fair_share import REQUEST_COMPUTE_S
-from app.scenes.host.viser_compat import viewer_camera_message
+from app.scenes.viser_boundary import viewer_camera_message
 from tests.conftest import wait_until
 from tests.served import Viewer
 

@@ -22,7 +22,7 @@ import viser
 from fastapi.testclient import TestClient
 
 from app.main import create_app
-from app.scenes.host.viser_compat import viewer_camera_message
+from app.scenes.viser_boundary import viewer_camera_message
 from app.settings import Settings
 from tests.conftest import wait_until
 

@@ -23,7 +23,7 @@ import pytest
 import viser
 from websockets.sync.client import connect
 
-from app.scenes.host.viser_compat import viewer_camera_message
+from app.scenes.viser_boundary import viewer_camera_message
 from tests.conftest import wait_until
 from tests.served import children_of, children_running
 

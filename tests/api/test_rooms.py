@@ -26,7 +26,7 @@ from app.classroom.relay import ends_replay
 from app.classroom.routes import require_instructor
 from app.main import create_app
 from app.physics.systems.ch10 import heavy_top as heavy_top_physics
-from app.scenes.host.viser_compat import viewer_camera_message
+from app.scenes.viser_boundary import viewer_camera_message
 from app.settings import Settings
 from tests.conftest import wait_until
 

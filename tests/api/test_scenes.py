@@ -11,7 +11,7 @@ from websockets.exceptions import InvalidStatus
 from websockets.sync.client import connect
 
 from app.physics.systems.ch01 import projectile, radar_tracking, robot_arm_cable
-from app.scenes.host.viser_compat import viewer_camera_message
+from app.scenes.viser_boundary import viewer_camera_message
 from app.web.relay import is_blocked_message
 
 _ids = itertools.count()

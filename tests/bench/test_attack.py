@@ -28,11 +28,11 @@ from app.bench.under_attack import (
     ATTACKER_REPORT_S,
     STOP_TIMEOUT_S,
     attack_svg,
-    read_attack_report,
     run_attack,
     write_attack_report,
 )
 from app.cli import main as cli_main
+from app.course.bench_reports import read_attack_report
 from app.settings import Settings
 from app.web.pages import _attack_note, _capacity_section
 

@@ -38,7 +38,6 @@ from app.bench.capacity import (
     lesson_showing,
     machine_busy_cpu_s,
     per_client_rates,
-    read_report,
     run_load,
     started_server,
     stop_process_group,
@@ -47,6 +46,7 @@ from app.bench.capacity import (
 )
 from app.bench.load_client import ClassroomSnapshot, loopback_base, new_session_id, viser_messages_in_frame
 from app.cli import main as cli_main
+from app.course.bench_reports import read_capacity_report
 from app.bench.process_tree import TreeUsage, process_group_members, tree_usage
 from app.bench.soak import judge_soak, run_soak, wait_until_settled
 from app.scenes.host.host import SESSION_ID_PATTERN
@@ -105,7 +105,7 @@ def test_a_tiny_real_run_delivers_frames_to_every_student_and_writes_its_report(
     assert report["targets"] == {"p10_frames_per_s": 28.0, "min_frames_per_s_degraded": 15.0}
     paths = write_report(report, tmp_path)
     assert [p.name for p in paths] == ["capacity.json", "capacity.svg"]
-    assert read_report(tmp_path / "capacity.json") == json.loads(json.dumps(report))
+    assert read_capacity_report(tmp_path / "capacity.json") == json.loads(json.dumps(report))
     assert ET.parse(tmp_path / "capacity.svg").getroot().tag == f"{SVG}svg"
 
 
@@ -403,7 +403,7 @@ def test_a_follow_report_is_written_as_classroom_json_with_its_two_panel_plot(tm
     )
     paths = write_report(report, tmp_path)
     assert [p.name for p in paths] == ["classroom.json", "classroom.svg"]
-    assert read_report(tmp_path / "classroom.json") == report
+    assert read_capacity_report(tmp_path / "classroom.json") == report
     root = ET.parse(tmp_path / "classroom.svg").getroot()
     series = root.findall(f".//{SVG}g[@class='series']")
     assert [g.get("data-mode") for g in series] == ["independent", "follow"]
@@ -417,7 +417,7 @@ def test_a_follow_report_is_written_as_classroom_json_with_its_two_panel_plot(tm
 
 def test_the_committed_classroom_report_shows_100_followers_of_one_heavy_top_demo_at_the_target_rate():
     # The report is part of the repository (dynlab load --room writes it): a missing file fails, it does not skip.
-    report = read_report(BENCH_DIR / "classroom.json")
+    report = read_capacity_report(BENCH_DIR / "classroom.json")
     assert report is not None, "docs/bench/classroom.json is missing: run `dynlab load --room`"
     assert ET.parse(BENCH_DIR / "classroom.svg").getroot().tag == f"{SVG}svg"
     assert report["mode"] == "follow" and report["scene_id"] == "heavy-top"

@@ -18,7 +18,7 @@ import pytest
 
 from app.physics.core.readout import Readout
 from app.scenes import SCENES
-from app.scenes.host.viser_compat import scene_node_names
+from app.scenes.viser_boundary import scene_node_names
 from app.scenes.kit import FRAME_DT_S
 from tests.scenes.conftest import assert_finite
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 import pytest
 
 from app.scenes import SCENES
-from app.scenes.host.viser_compat import count_outgoing_messages
+from app.scenes.viser_boundary import count_outgoing_messages
 from app.scenes.kit import FRAME_DT_S
 
 WARM_UP_FRAMES = 30

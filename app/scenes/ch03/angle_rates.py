@@ -16,10 +16,11 @@ import numpy as np
 
 from app.physics.systems.ch03 import angle_rates as physics
 from app.scenes.ch03.labelled_axes import add_labelled_axes, components_text
-from app.scenes.ch03.moving_frame import LabelledArrows, _nice_scale
+from app.scenes.ch03.moving_frame import _nice_scale
 from app.scenes.ch03.replayed import DISPLAY_PARAMETERS, ReplayedScene
 from app.scenes.ch03.rotation_sequence import LOCK_COLOR, TURN_COLORS
 from app.scenes.kit import FRAME_DT_S, Mark, Preset, Quantity, Readout, move_node, update_node
+from app.scenes.kit.arrows import LabelledArrows
 
 FIXED_AXIS_LENGTH = 1.3
 BODY_AXIS_LENGTH = 0.75

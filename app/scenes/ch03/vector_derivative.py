@@ -15,9 +15,10 @@ import numpy as np
 
 from app.physics.systems.ch03 import vector_derivative as physics
 from app.scenes.ch03.labelled_axes import add_labelled_axes, components_text
-from app.scenes.ch03.moving_frame import LabelledArrows, _nice_scale
+from app.scenes.ch03.moving_frame import _nice_scale
 from app.scenes.ch03.replayed import DISPLAY_PARAMETERS, ReplayedScene
 from app.scenes.kit import Preset, Quantity, Readout, circle_segments, move_node
+from app.scenes.kit.arrows import LabelledArrows
 
 COLORS = {"vector": (25, 25, 25), "relative": (30, 110, 220), "transport": (240, 140, 20), "fixed": (190, 30, 40), "omega": (120, 120, 120)}
 LABELS = {"vector": "A", "relative": "(dA/dt)_rel", "transport": "ω × A", "fixed": "(dA/dt)_fixed", "omega": "ω"}

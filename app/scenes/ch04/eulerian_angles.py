@@ -18,9 +18,9 @@ import numpy as np
 
 from app.physics.math.rotations import wrap_angle_rad
 from app.physics.systems.ch04 import eulerian_angles as physics
-from app.scenes.ch03.moving_frame import LabelledArrows
 from app.scenes.ch04.cycling import CyclingScene
 from app.scenes.kit import Preset, Quantity, Readout, move_node, update_node
+from app.scenes.kit.arrows import LabelledArrows
 
 CYCLE_S = 8.0
 SCALE_SAMPLES = 81

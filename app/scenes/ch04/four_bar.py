@@ -16,6 +16,7 @@ import numpy as np
 
 from app.physics.systems.ch04 import four_bar as physics
 from app.scenes.kit import Mark, Preset, Quantity, Readout, Scene, update_node
+from app.scenes.kit.planar import polyline_segments, to_world
 
 LINK_COLORS = np.array([[40, 100, 220], [40, 150, 70], [210, 70, 50], [120, 190, 130], [120, 190, 130]], np.uint8)
 GHOST_COLOR = (175, 175, 185)
@@ -23,21 +24,6 @@ CURVE_COLOR = (235, 140, 30)
 #: Transmission angles outside [40°, 140°] transmit force poorly (a common design rule).
 GOOD_TRANSMISSION_DEG = (40.0, 140.0)
 TOGGLE_WINDOW_DEG = 3.0
-
-
-def to_world(points_xy: np.ndarray) -> np.ndarray:
-    """Planar (…, 2) points (m) to world (…, 3): x → x, y → z, on the plane y = 0."""
-    p = np.asarray(points_xy, dtype=float)
-    return np.stack([p[..., 0], np.zeros(p.shape[:-1]), p[..., 1]], axis=-1)
-
-
-def polyline_segments(points_xy: np.ndarray) -> np.ndarray:
-    """(N−1, 2, 3) float32 segments joining consecutive finite planar points."""
-    world = to_world(points_xy)
-    segments = np.stack([world[:-1], world[1:]], axis=1)
-    keep = np.all(np.isfinite(segments), axis=(1, 2))
-    out = segments[keep]
-    return out.astype(np.float32) if len(out) else np.zeros((1, 2, 3), np.float32)
 
 
 class FourBarScene(Scene):

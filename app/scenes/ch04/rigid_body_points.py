@@ -20,9 +20,9 @@ import numpy as np
 from app.physics.core.parameters import Parameter
 from app.physics.math.rotations import quaternion_conjugate, quaternion_multiply
 from app.physics.systems.ch04 import rigid_body_points as physics
-from app.scenes.ch03.moving_frame import LabelledArrows
 from app.scenes.ch04.cycling import CyclingScene
 from app.scenes.kit import Preset, Quantity, Readout, move_node, quaternion_z_to
+from app.scenes.kit.arrows import LabelledArrows
 
 #: The motion replays from t = 0 after this long (s).
 CYCLE_S = 6.0

@@ -14,8 +14,8 @@ import math
 import numpy as np
 
 from app.physics.systems.ch04 import slider_crank as physics
-from app.scenes.ch04.four_bar import polyline_segments, to_world
 from app.scenes.kit import Preset, Quantity, Readout, Scene
+from app.scenes.kit.planar import polyline_segments, to_world
 
 LINK_COLORS = np.array([[40, 100, 220], [40, 150, 70]], np.uint8)
 

@@ -15,8 +15,8 @@ import math
 import numpy as np
 
 from app.physics.systems.ch06 import planar_collision as physics
-from app.scenes.ch04.four_bar import to_world
 from app.scenes.kit import Preset, Quantity, Readout, Scene, arrow_segments, circle_segments
+from app.scenes.kit.planar import to_world
 
 DISK_COLORS = ((40, 100, 220), (230, 130, 30))
 ARROW_COLORS = np.array([[150, 180, 240], [245, 195, 140], [30, 70, 180], [200, 100, 10], [215, 40, 40]], np.uint8)

@@ -19,8 +19,9 @@ import math
 import numpy as np
 
 from app.physics.systems.ch06 import mechanism_kinetics as physics
-from app.scenes.ch04.four_bar import to_world
 from app.scenes.kit import IntegratedScene, Preset, Quantity, Readout, arrow_segments, circle_segments, move_node, update_node
+from app.scenes.kit.crank_speed_limit import paused_at_crank_speed_limit
+from app.scenes.kit.planar import to_world
 
 LINK_COLORS = np.array([[40, 100, 220], [40, 150, 70]], np.uint8)
 FORCE_COLORS = np.array([[130, 60, 180], [230, 130, 20], [210, 40, 40], [20, 150, 150]], np.uint8)
@@ -29,21 +30,6 @@ FORCE_NAMES = ("O", "A", "B", "N")
 FORCE_ARROW_SPAN = 0.35
 #: The force labels' numbers are rewritten at 10 Hz (every 3rd frame): still readable, a third of the messages.
 LABEL_TEXT_EVERY_FRAMES = 3
-
-
-def paused_at_crank_speed_limit(scene: IntegratedScene, crank_speed_rad_s: float, limit_rad_s: float) -> bool:
-    """Pause ``scene`` with the reason once its crank turns faster than ``limit_rad_s`` (rad/s), the speed its step
-    was chosen for (a frictionless crank under a constant torque speeds up without limit); True when paused."""
-    speed = abs(crank_speed_rad_s)
-    if speed <= limit_rad_s:
-        return False
-    scene.run.status = "speed_limit"
-    scene.status = (
-        f"Paused at t = {scene.run.t_s:.2f} s: the crank has reached {speed:.0f} rad/s. With no friction "
-        f"a constant torque speeds the crank up without limit; the step was chosen for speeds up to "
-        f"{limit_rad_s:.0f} rad/s. Change a control to start again."
-    )
-    return True
 
 
 class SliderCrankKineticsScene(IntegratedScene):

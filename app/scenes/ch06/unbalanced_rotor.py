@@ -17,7 +17,6 @@ import numpy as np
 
 from app.physics.math.rotations.axis_angle import quaternion_from_axis_angle
 from app.physics.systems.ch06 import unbalanced_rotor as physics
-from app.scenes.ch10.free_gyroscope import DRAWN_SPIN_RAD_S, drawn_spin_angle
 from app.scenes.kit import (
     Preset,
     Quantity,
@@ -27,6 +26,7 @@ from app.scenes.kit import (
     circle_segments,
     quaternion_z_to,
 )
+from app.scenes.kit.rotor import DRAWN_SPIN_RAD_S, drawn_spin_angle
 
 AXIS_X = np.array([1.0, 0.0, 0.0])
 COLOR_A = (220, 50, 40)

@@ -14,8 +14,8 @@ import math
 import numpy as np
 
 from app.physics.systems.ch07.bead_on_hoop_model import BeadOnHoopMotion, critical_spin_rad_s, hoop_equilibria
-from app.scenes.ch07.derived_system_scene import DerivedSystemScene
 from app.scenes.kit import Preset, Quantity, Readout, circle_segments, move_node
+from app.scenes.kit.derived_system_scene import DerivedSystemScene
 
 STABLE_COLOR, UNSTABLE_COLOR = (30, 160, 60), (210, 40, 40)
 

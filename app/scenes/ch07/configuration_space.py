@@ -27,8 +27,8 @@ import numpy as np
 
 from app.physics.core.parameters import Parameter
 from app.physics.systems.ch07 import configuration_space as physics
-from app.scenes.ch04.four_bar import polyline_segments, to_world
 from app.scenes.kit import Preset, Quantity, Readout, Scene, arrow_segments, move_node, update_node
+from app.scenes.kit.planar import polyline_segments, to_world
 
 CONSTRAINTS = ("scleronomic", "rheonomic", "nonholonomic")
 WIRE_COLOR = (90, 100, 170)

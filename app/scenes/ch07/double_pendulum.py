@@ -14,8 +14,8 @@ import math
 import numpy as np
 
 from app.physics.systems.ch07.double_pendulum_model import DoublePendulumMotion, normal_mode_frequencies_rad_s
-from app.scenes.ch07.derived_system_scene import DerivedSystemScene
 from app.scenes.kit import Preset, Quantity, Readout, Trail, move_node, update_node
+from app.scenes.kit.derived_system_scene import DerivedSystemScene
 
 TORUS_CENTER = np.array([2.9, 0.0, -0.1])
 #: The pendulum's full reach l1 + l2 is drawn this many display units long.

@@ -14,8 +14,8 @@ import math
 import numpy as np
 
 from app.physics.systems.ch07.pendulum_on_cart_model import WORK_SLOT, CartPendulumMotion, drive_force_N
-from app.scenes.ch07.derived_system_scene import DerivedSystemScene
 from app.scenes.kit import Preset, Quantity, Readout, arrow_segments, move_node, update_node
+from app.scenes.kit.derived_system_scene import DerivedSystemScene
 
 WALL_OFFSET_M = 1.2  # in rod lengths
 SPRING_COILS = 10

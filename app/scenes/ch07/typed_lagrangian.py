@@ -27,8 +27,8 @@ from app.physics.systems.ch07.typed_lagrangian_model import (
     TypedLagrangianMotion,
     initial_state,
 )
-from app.scenes.ch07.derived_system_scene import DerivedSystemScene
 from app.scenes.kit import Preset, Quantity, Readout, Trail, circle_segments, move_node, update_node
+from app.scenes.kit.derived_system_scene import DerivedSystemScene
 
 DIAL_RADIUS = 0.45
 DIAL_SPACING = 1.1

@@ -21,8 +21,8 @@ import numpy as np
 
 from app.physics.core.parameters import Parameter
 from app.physics.systems.ch07 import virtual_work as physics
-from app.scenes.ch04.four_bar import to_world
 from app.scenes.kit import Preset, Quantity, Readout, Scene, arrow_segments
+from app.scenes.kit.planar import to_world
 
 BAR_COLORS = np.array([[40, 100, 220], [40, 150, 70]], np.uint8)
 GHOST_COLOR = (185, 185, 195)

@@ -10,9 +10,9 @@ from __future__ import annotations
 import numpy as np
 
 from app.physics.systems.ch08.massive_four_bar import MassiveFourBar
-from app.scenes.ch04.four_bar import to_world
 from app.scenes.ch08.planar_linkage_scene import PlanarLinkageScene
 from app.scenes.kit import Preset
+from app.scenes.kit.planar import to_world
 
 
 class FourBarDaeScene(PlanarLinkageScene):

@@ -22,9 +22,9 @@ import numpy as np
 
 from app.physics.constrained.residuals import multipliers
 from app.physics.systems.ch08.planar_linkages_model import PlanarLinkageModel, pin_force_series_name
-from app.scenes.ch04.four_bar import to_world
-from app.scenes.ch06.slider_crank_kinetics import paused_at_crank_speed_limit
 from app.scenes.kit import IntegratedScene, Quantity, Readout, arrow_segments, move_node, update_node
+from app.scenes.kit.crank_speed_limit import paused_at_crank_speed_limit
+from app.scenes.kit.planar import to_world
 
 LINK_COLORS = np.array([[40, 100, 220], [40, 150, 70], [120, 120, 130]], np.uint8)
 FORCE_COLOR = (210, 60, 40)

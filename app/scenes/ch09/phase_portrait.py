@@ -22,8 +22,8 @@ from app.physics.systems.ch09.pendulum_phase_model import (
     level_set_momentum_kg_m2_s,
     separatrix_energy_J,
 )
-from app.scenes.ch07.derived_system_scene import DerivedSystemScene
 from app.scenes.kit import Preset, Quantity, Readout, move_node, update_node
+from app.scenes.kit.derived_system_scene import DerivedSystemScene
 
 PENDULUM_REACH = 1.0
 PLANE_CENTER = np.array([2.9, 0.0, 0.0])

@@ -17,8 +17,8 @@ import numpy as np
 
 from app.physics.systems.ch09.rolling_disk_contact import normal_force_N
 from app.physics.systems.ch09.rolling_disk_model import RollingDiskMotion, contact_speed_m_s, disk_pose
-from app.scenes.ch07.derived_system_scene import DerivedSystemScene
 from app.scenes.kit import Preset, Quantity, Readout, Trail, update_node
+from app.scenes.kit.derived_system_scene import DerivedSystemScene
 from app.scenes.kit.drawing import disk_outline_colors, disk_outline_segments
 
 TRAIL_CHUNK_FRAMES = 3

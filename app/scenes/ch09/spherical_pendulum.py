@@ -23,8 +23,8 @@ from app.physics.systems.ch09.spherical_pendulum_model import (
     effective_potential_J,
     turning_angles_rad,
 )
-from app.scenes.ch07.derived_system_scene import DerivedSystemScene
 from app.scenes.kit import Preset, Quantity, Readout, Trail, move_node, update_node
+from app.scenes.kit.derived_system_scene import DerivedSystemScene
 
 PIVOT = np.array([0.0, 0.0, 1.1])
 PENDULUM_REACH = 1.0

@@ -24,17 +24,9 @@ import numpy as np
 from app.physics.core.parameters import Parameter
 from app.physics.solvers import LiveRun
 from app.physics.systems.ch10 import gyrocompass as physics
-from app.scenes.ch10.free_gyroscope import (
-    COLOR_H,
-    COLOR_PRECESSION,
-    COLOR_RATE,
-    COLOR_TORQUE,
-    add_rotor,
-    drawn_spin_angle,
-    ring_mesh,
-    spin_quaternion,
-)
+from app.scenes.ch10.free_gyroscope import COLOR_H, COLOR_PRECESSION, COLOR_RATE, COLOR_TORQUE
 from app.scenes.kit import FRAME_DT_S, IntegratedScene, Preset, Quantity, Readout, arrow_segments
+from app.scenes.kit.rotor import add_rotor, drawn_spin_angle, ring_mesh, spin_quaternion
 
 CARD_RADIUS = 1.3
 HOUSING_RADIUS = 0.72

@@ -27,8 +27,9 @@ import numpy as np
 
 from app.physics.math.rotations import quaternion_from_matrix
 from app.physics.systems.ch10 import rate_gyro as physics
-from app.scenes.ch10.free_gyroscope import COLOR_H, COLOR_RATE, COLOR_TORQUE, add_rotor, drawn_spin_angle, ring_mesh, spin_quaternion
+from app.scenes.ch10.free_gyroscope import COLOR_H, COLOR_RATE, COLOR_TORQUE
 from app.scenes.kit import Mark, Preset, Quantity, Readout, Scene, arrow_segments
+from app.scenes.kit.rotor import add_rotor, drawn_spin_angle, ring_mesh, spin_quaternion
 
 GIMBAL_RADIUS = 0.55
 ROTOR_RADIUS = 0.34

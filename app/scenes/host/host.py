@@ -63,7 +63,7 @@ from app.scenes.host.interface import HostBusy
 from app.scenes.host.graph import DEFAULT_MAX_POINTS, check_graph_request, empty_graph, motion_graph, no_graph_note
 from app.scenes.host.history import MotionHistory
 from app.scenes.host.recorder import SceneRecorder, checked_seconds, frames_for
-from app.scenes.host.viser_compat import (
+from app.scenes.viser_boundary import (
     BatchedWakeups,
     BroadcastViewer,
     connection_path,

@@ -41,7 +41,7 @@ import viser
 
 from app.scenes.host.fair_share import Pace, RequestTooCostly
 from app.scenes.host.interface import HostBusy
-from app.scenes.host.viser_compat import BroadcastViewer, quiet_server, stop_quietly
+from app.scenes.viser_boundary import BroadcastViewer, quiet_server, stop_quietly
 from app.scenes.kit import Scene
 
 log = logging.getLogger(__name__)

@@ -6,7 +6,7 @@ from app.physics.core.readout import Mark, Quantity, Readout
 from app.scenes.kit.integrated import IntegratedScene
 from app.scenes.kit.scene import FRAME_DT_S, GO_TO_MAX_S, Preset, Scene, checked_go_to_time, motion_numbers
 from app.scenes.kit.trail import Trail
-from app.scenes.host.viser_compat import move_node, update_node
+from app.scenes.viser_boundary import move_node, update_node
 
 __all__ = [
     "FRAME_DT_S",

@@ -21,7 +21,7 @@ from app.physics.core.parameters import Parameter, ParameterSet
 from app.physics.core.readout import Readout
 from app.physics.core.solution import WorkedExample
 from app.physics.solvers.integrated_model import IntegratedModel
-from app.scenes.host.viser_compat import set_initial_camera
+from app.scenes.viser_boundary import set_initial_camera
 from app.scenes.kit.trail import Trail
 
 #: Simulated seconds per displayed frame (the host draws at 30 Hz).

@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 import viser
 
-from app.scenes.host.viser_compat import update_node
+from app.scenes.viser_boundary import update_node
 
 
 class Trail:

@@ -29,7 +29,7 @@ from app.scenes.host.fair_share import (
 )
 from app.scenes.host.host import SceneHost
 from app.scenes.host.interface import HostBusy
-from app.scenes.host.viser_compat import viewer_camera_message
+from app.scenes.viser_boundary import viewer_camera_message
 from tests.conftest import wait_until
 
 FRAME_S = 1.0 / 30.0

@@ -37,7 +37,7 @@ from app.scenes.host.recorder import RecordingError, SceneRecorder
 from app.scenes.host.interface import WORKER_CALLS
 from app.scenes.host.rpc import connect as connect_to_worker
 from app.scenes.host.rpc import raise_answer
-from app.scenes.host.viser_compat import viewer_camera_message
+from app.scenes.viser_boundary import viewer_camera_message
 from app.scenes.host.worker import _answer_calls
 from tests.conftest import wait_until
 

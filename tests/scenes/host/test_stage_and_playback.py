@@ -21,7 +21,7 @@ from websockets.sync.client import connect
 from app.classroom.relay import ends_replay
 from app.scenes import SCENES
 from app.scenes.host.host import SceneHost
-from app.scenes.host.viser_compat import viewer_camera_message
+from app.scenes.viser_boundary import viewer_camera_message
 from tests.conftest import wait_until
 
 STAGE = "room-0123456789abcdef"

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from app.scenes.host.viser_compat import count_outgoing_messages, scene_node_names
+from app.scenes.viser_boundary import count_outgoing_messages, scene_node_names
 from app.scenes.kit import Trail
 
 

@@ -50,7 +50,7 @@ import numpy as np
 from numba.extending import register_jitable
 
 from app.physics.bodies.inertia import slender_rod
-from app.physics.core.energy import EnergyParts
+from app.physics.core.contact_energy import ContactEnergyBudget
 from app.physics.core.parameters import Parameter, ParameterSet
 from app.physics.solvers import DormandPrince, Events, OdeSystem, simulate
 from app.physics.solvers.integrated_model import IntegratedModel
@@ -323,32 +323,7 @@ def contact_forces(params: Mapping[str, Any], states: np.ndarray) -> np.ndarray:
     return out
 
 
-@dataclass(frozen=True)
-class EnergyBudget:
-    """Energies along N states (J, arrays (N,)): their sum ``total_J`` stays at the initial energy.
-
-    Kinetic energy split as ½ m v_G² (translational) and ½ I_G ω² (rotational)."""
-
-    translational_kinetic_J: np.ndarray
-    rotational_kinetic_J: np.ndarray
-    potential_J: np.ndarray
-    friction_work_J: np.ndarray
-    impact_loss_J: np.ndarray
-
-    @property
-    def kinetic_J(self) -> np.ndarray:
-        return self.translational_kinetic_J + self.rotational_kinetic_J
-
-    @property
-    def total_J(self) -> np.ndarray:
-        return self.kinetic_J + self.potential_J + self.friction_work_J + self.impact_loss_J
-
-    def parts(self) -> EnergyParts:
-        """The mechanical energies, for the model's energy budget (friction and impacts show up as dissipated)."""
-        return EnergyParts(self.potential_J, translational_kinetic_J=self.translational_kinetic_J, rotational_kinetic_J=self.rotational_kinetic_J)
-
-
-def energy_budget(params: Mapping[str, Any], states: np.ndarray) -> EnergyBudget:
+def energy_budget(params: Mapping[str, Any], states: np.ndarray) -> ContactEnergyBudget:
     """Kinetic, potential (floor level zero), friction work and impact loss along ``states`` (N, 8)."""
     states = np.atleast_2d(states)
     length, mass, g = params["length_m"], params["mass_kg"], params["g_m_s2"]
@@ -359,7 +334,7 @@ def energy_budget(params: Mapping[str, Any], states: np.ndarray) -> EnergyBudget
     vx = np.where(phase == WALL_AND_FLOOR, -half * np.sin(theta) * omega, states[:, VX])
     vx = np.where(phase == FLOOR_STUCK, half * np.sin(theta) * omega, vx)
     vz = half * np.cos(theta) * omega
-    return EnergyBudget(
+    return ContactEnergyBudget(
         0.5 * mass * (vx**2 + vz**2), 0.5 * inertia * omega**2, mass * g * half * np.sin(theta), states[:, FRICTION_WORK], states[:, IMPACT_LOSS]
     )
 

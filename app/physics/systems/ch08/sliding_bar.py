@@ -49,12 +49,12 @@ import numpy as np
 from numba.extending import register_jitable
 
 from app.physics.bodies.inertia import slender_rod
+from app.physics.core.contact_energy import ContactEnergyBudget
 from app.physics.core.parameters import Parameter, ParameterSet
 from app.physics.solvers import DormandPrince, EventRecord, Events, OdeSystem, simulate
 from app.physics.solvers.integrated_model import IntegratedModel
 from app.physics.solvers.step_choice import AccuracyTarget
 from app.physics.solvers.kernels import EVENTS_SIGNATURE, RESET_SIGNATURE, RHS_SIGNATURE, kernel
-from app.physics.systems.ch06.sliding_ladder import EnergyBudget
 
 #: State slots: x of the lower end B (m), angle from the floor (rad), ẋ_B (m/s), θ̇ (rad/s),
 #: friction work so far (J, ≥ 0), phase code, sliding direction σ (±1), time the contact jammed (s).
@@ -266,7 +266,7 @@ def contact_forces(params: Mapping[str, Any], states: np.ndarray) -> np.ndarray:
     return out
 
 
-def energy_budget(params: Mapping[str, Any], states: np.ndarray) -> EnergyBudget:
+def energy_budget(params: Mapping[str, Any], states: np.ndarray) -> ContactEnergyBudget:
     """Kinetic, potential (floor level zero) and friction work along ``states`` (N, 8); the ladder's budget
     (chapter 6) with no impact: the run stops before any landing."""
     states = np.atleast_2d(states)
@@ -276,7 +276,8 @@ def energy_budget(params: Mapping[str, Any], states: np.ndarray) -> EnergyBudget
     vx = states[:, U] + half * np.sin(theta) * omega
     vz = half * np.cos(theta) * omega
     translational, rotational = 0.5 * mass * (vx**2 + vz**2), 0.5 * inertia * omega**2
-    return EnergyBudget(translational, rotational, mass * g * half * np.sin(theta), states[:, FRICTION_WORK].copy(), np.zeros_like(rotational))
+    potential, friction_work = mass * g * half * np.sin(theta), states[:, FRICTION_WORK].copy()
+    return ContactEnergyBudget(translational, rotational, potential, friction_work, np.zeros_like(rotational))
 
 
 def end_positions_m(params: Mapping[str, Any], state: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from app.web.rate_limit import TokenBuckets
+from app.api.rate_limit import TokenBuckets
 
 
 def buckets(*, burst=3, rate_per_s=2.0, max_clients=100):

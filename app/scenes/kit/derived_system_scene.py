@@ -10,8 +10,9 @@ from __future__ import annotations
 
 from abc import abstractmethod
 
+from app.physics.core.readout import Quantity
 from app.physics.mechanics.derivation import FORMULATIONS
-from app.scenes.kit import IntegratedScene, Quantity
+from app.scenes.kit.integrated import IntegratedScene
 
 #: The agreement is re-evaluated at 2 Hz (every 15th frame at 30 Hz).
 AGREEMENT_EVERY_FRAMES = 15

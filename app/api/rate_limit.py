@@ -1,12 +1,17 @@
-"""Per-client token buckets: a burst allowed at once, then a steady rate per second."""
+"""Per-client limits: who a client is (:func:`client_address`, the key of every limit) and token buckets keyed on it
+(a burst allowed at once, then a steady rate per second)."""
 
 from __future__ import annotations
 
+import ipaddress
 import math
 import threading
 import time
 from collections import OrderedDict
 from collections.abc import Callable
+
+from starlette.datastructures import Headers
+from starlette.types import Scope
 
 
 class TokenBuckets:
@@ -80,3 +85,24 @@ class InFlight:
                 self._running[client] = left
             else:
                 self._running.pop(client, None)
+
+
+def is_ip_address(text: str) -> bool:
+    """Whether ``text`` is an IPv4 or IPv6 address."""
+    try:
+        ipaddress.ip_address(text)
+    except ValueError:
+        return False
+    return True
+
+
+def client_address(scope: Scope, *, trust_forwarded_for: bool) -> str | None:
+    """The client's IP address, the key of every per-client limit: the last ``X-Forwarded-For`` entry when
+    ``trust_forwarded_for`` (behind a reverse proxy that sets it), else the peer's address; None for a peer with no
+    IP address (a unix socket, an in-process test client), which has nothing to key on."""
+    if trust_forwarded_for:
+        forwarded = Headers(scope=scope).get("x-forwarded-for", "").rsplit(",", 1)[-1].strip()
+        if is_ip_address(forwarded):
+            return forwarded
+    client = scope.get("client")
+    return client[0] if client and is_ip_address(client[0]) else None

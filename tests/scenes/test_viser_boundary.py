@@ -19,21 +19,21 @@ import viser
 import zstandard
 from websockets.sync.client import connect
 
-from app.scenes.host import viser_compat
-from app.scenes.host.viser_compat import (
+from app.scenes import viser_boundary
+from app.scenes.viser_boundary import (
     connection_path,
     scene_node_names,
     set_initial_camera,
     viewer_camera_message,
 )
 
-ROOT = Path(__file__).resolve().parents[3]
+ROOT = Path(__file__).resolve().parents[2]
 PRIVATE_USE = re.compile(r"\bviser\._(?!_)|from viser import _|\._websock")
 
 
 def test_viser_is_the_version_the_private_calls_were_checked_against():
-    assert viser.__version__ == viser_compat.CHECKED_VISER_VERSION == "1.1.1", (
-        f"viser {viser.__version__} is installed: app/scenes/host/viser_compat.py reaches into viser's private API and was "
+    assert viser.__version__ == viser_boundary.CHECKED_VISER_VERSION == "1.1.1", (
+        f"viser {viser.__version__} is installed: app/scenes/viser_boundary.py uses viser's private API and was "
         "checked against 1.1.1 only; re-check every function there (and its tests) against the new version, then update the pin."
     )
 
@@ -43,11 +43,11 @@ def test_no_other_module_uses_viser_private_api():
         f"{path.relative_to(ROOT)}:{number}"
         for folder in ("app", "tests")
         for path in sorted((ROOT / folder).rglob("*.py"))
-        if path.name not in ("viser_compat.py", "test_viser_compat.py")
+        if path.name not in ("viser_boundary.py", "test_viser_boundary.py")
         for number, line in enumerate(path.read_text(encoding="utf-8").splitlines(), start=1)
         if PRIVATE_USE.search(line)
     ]
-    assert offenders == [], "viser's private API is used outside app/scenes/host/viser_compat.py: " + ", ".join(offenders)
+    assert offenders == [], "viser's private API is used outside app/scenes/viser_boundary.py: " + ", ".join(offenders)
 
 
 @contextlib.contextmanager
@@ -124,13 +124,13 @@ def test_move_node_sends_what_the_setters_send_and_skips_unchanged_values():
         frame = client.scene.add_frame("/body", show_axes=False)
         received_messages(socket, seconds=0.3)
         with client.atomic():
-            viser_compat.move_node(frame, position=(1.0, 2.0, 3.0), wxyz=(0.0, 1.0, 0.0, 0.0))
+            viser_boundary.move_node(frame, position=(1.0, 2.0, 3.0), wxyz=(0.0, 1.0, 0.0, 0.0))
         moved = received_messages(socket, seconds=0.5)
-        viser_compat.move_node(frame, position=np.array([1.0, 2.0, 3.0]), wxyz=(0.0, 1.0, 0.0, 0.0))  # unchanged
+        viser_boundary.move_node(frame, position=np.array([1.0, 2.0, 3.0]), wxyz=(0.0, 1.0, 0.0, 0.0))  # unchanged
         unchanged = received_messages(socket, seconds=0.3)
         frame.remove()
         with pytest.raises(RuntimeError, match="removed"):
-            viser_compat.move_node(frame, position=(0.0, 0.0, 0.0))
+            viser_boundary.move_node(frame, position=(0.0, 0.0, 0.0))
     by_type = {m["type"]: m for m in moved}
     assert by_type["SetPositionMessage"]["name"] == "/body" and by_type["SetPositionMessage"]["position"] == [1.0, 2.0, 3.0]
     assert by_type["SetOrientationMessage"]["wxyz"] == [0.0, 1.0, 0.0, 0.0]
@@ -144,13 +144,13 @@ def test_update_node_sends_changed_properties_in_one_message_with_the_stored_dty
         label = client.scene.add_label("/label", "before")
         received_messages(socket, seconds=0.3)
         points = np.arange(18, dtype=float).reshape(3, 2, 3)
-        viser_compat.update_node(segments, points=points)
+        viser_boundary.update_node(segments, points=points)
         points[:] = -1.0  # the caller's buffer may be reused at once
-        viser_compat.update_node(label, text="after")
-        viser_compat.update_node(label, text="after")  # unchanged: nothing sent
+        viser_boundary.update_node(label, text="after")
+        viser_boundary.update_node(label, text="after")  # unchanged: nothing sent
         messages = [m for m in received_messages(socket, seconds=0.5) if m["type"] == "SceneNodeUpdateMessage"]
         with pytest.raises(TypeError, match="no property 'pionts'"):
-            viser_compat.update_node(segments, pionts=points)
+            viser_boundary.update_node(segments, pionts=points)
     assert segments.points.dtype == np.float32 and np.array_equal(segments.points, np.arange(18).reshape(3, 2, 3))
     assert label.text == "after"
     assert [(m["name"], sorted(m["updates"])) for m in messages] == [("/path", ["points"]), ("/label", ["text"])]
@@ -161,8 +161,8 @@ def test_shared_prop_hints_give_every_handle_what_viser_computes_for_it():
 
     with server_with_viewer("/") as (_, client, _socket):
         before = client.scene.add_line_segments("/a", np.zeros((1, 2, 3), np.float32), (255, 0, 0))
-        viser_compat.share_prop_hints()
-        viser_compat.share_prop_hints()  # idempotent
+        viser_boundary.share_prop_hints()
+        viser_boundary.share_prop_hints()  # idempotent
         handles = [
             before,
             client.scene.add_line_segments("/b", np.zeros((1, 2, 3), np.float32), (255, 0, 0)),
@@ -179,7 +179,7 @@ def test_batched_wakeups_group_a_clients_messages_and_deliver_them_once_woken():
     with server_with_viewer("/") as (server, client, socket):
         label = client.scene.add_label("/label", "before")
         received_messages(socket, seconds=0.3)
-        wakeups = viser_compat.BatchedWakeups()
+        wakeups = viser_boundary.BatchedWakeups()
         with wakeups.atomic(client):
             label.text = "first"
             label.text = "second"  # grouped: only the last value of a property is sent
@@ -194,11 +194,11 @@ def test_a_push_from_the_frame_loops_thread_leaves_the_senders_waiters_to_its_lo
     """asyncio.Event is not thread-safe, and viser's push set the buffer's event from the pushing thread: under load
     that raised "deque mutated during iteration" in a student's frame and paused the scene. Now only the loop's
     thread sets it, and every push is still delivered."""
-    viser_compat.make_message_events_thread_safe()
-    viser_compat.make_message_events_thread_safe()  # idempotent
+    viser_boundary.make_message_events_thread_safe()
+    viser_boundary.make_message_events_thread_safe()  # idempotent
     with server_with_viewer("/") as (server, client, socket):
         buffer = client._websock_connection.get_message_buffer()
-        assert isinstance(buffer.message_event, viser_compat.LoopOnlyEvent)
+        assert isinstance(buffer.message_event, viser_boundary.LoopOnlyEvent)
         label = client.scene.add_label("/label", "before")
         received_messages(socket, seconds=0.3)
         deadline = time.monotonic() + 5.0
@@ -206,7 +206,7 @@ def test_a_push_from_the_frame_loops_thread_leaves_the_senders_waiters_to_its_lo
             assert time.monotonic() < deadline, "viser's sender never waited on its message event"
             time.sleep(0.01)
         waiting = list(buffer.message_event._waiters)
-        wakeups = viser_compat.BatchedWakeups()
+        wakeups = viser_boundary.BatchedWakeups()
         with wakeups.atomic(client):
             label.text = "grouped"  # pushed from this thread, not the loop's: viser set the event (and its waiters) here
         assert not any(waiter.done() for waiter in waiting)
@@ -220,7 +220,7 @@ def test_a_push_from_the_frame_loops_thread_leaves_the_senders_waiters_to_its_lo
 
 def test_callback_threads_are_all_started_so_the_count_stays_constant():
     with server_with_viewer("/") as (server, _client, _socket):
-        started = viser_compat.start_callback_threads(server)
+        started = viser_boundary.start_callback_threads(server)
         assert started == server._thread_executor._max_workers == 32
         for _ in range(50):  # overlapping callbacks reuse the started threads
             server._thread_executor.submit(time.sleep, 0.001)

@@ -11,7 +11,7 @@ quarter of their cost (the setters validate and compare with ``np.allclose``
 on every call, about 60 µs, which at 30 frames/s for 100 students is most of
 a core). The names of nodes on a
 scene API are read for tests that check a scene removed what it built.
-``tests/scenes/host/test_viser_compat.py`` pins the version and checks each
+``tests/scenes/test_viser_boundary.py`` pins the version and checks each
 function against a real loopback server: re-check them all when viser is
 upgraded. One is a fix: viser's message buffers set an ``asyncio.Event``
 from the frame loop's thread, which is not thread-safe
