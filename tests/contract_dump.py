@@ -42,6 +42,9 @@ SIMULATE_VARIANTS: tuple[dict[str, Any], ...] = (
 
 SESSION_ID = "c0ffee00c0ffee00"
 
+#: How often a 429/503 is asked again (a typed derivation keeps answering 429 on a machine busy for minutes).
+RETRIES = 4
+
 
 class _VisibleText(HTMLParser):
     """The text a reader sees: no scripts, styles or tags."""
@@ -90,7 +93,7 @@ class _PatientClient(httpx.Client):
     """Asks again after a 429/503's Retry-After (a busy machine is not a difference between versions)."""
 
     def request(self, *args: Any, **kwargs: Any) -> httpx.Response:  # type: ignore[override]
-        for _ in range(20):
+        for _ in range(RETRIES):
             response = super().request(*args, **kwargs)
             if response.status_code not in (429, 503):
                 return response
