@@ -32,7 +32,7 @@ from typing import Any
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from app.physics.bodies.rigid_body import RigidBody
+from app.physics.bodies.rigid_body import PivotedBody
 from app.physics.math.rotations import rotate_vector
 from app.physics.solvers import METHODS, make_integrator, simulate
 from app.physics.solvers.integrated_model import simulate_model
@@ -66,7 +66,7 @@ class Case:
 
     id: str
     title: str
-    body: RigidBody
+    body: PivotedBody
     y0: np.ndarray
     t_end_s: float
     frame_rate_hz: float
@@ -153,7 +153,7 @@ def sleeping_top_case() -> Case:
 def free_body_case() -> Case:
     inertia = (1e-3, 2e-3, 3e-3)
     omega0 = np.array([0.01, 10.0, 0.01])
-    body = RigidBody(inertia)
+    body = PivotedBody(inertia)
     y0 = np.concatenate([[1.0, 0.0, 0.0, 0.0], omega0])
 
     def reference(t: np.ndarray) -> np.ndarray:
@@ -251,7 +251,7 @@ def _timed(fn: Callable[[], Any], *, repeats: int = TIMING_REPEATS) -> tuple[Any
     return _best_cpu(run, repeats=repeats)
 
 
-def numpy_rhs(body: RigidBody) -> Callable[[float, np.ndarray], np.ndarray]:
+def numpy_rhs(body: PivotedBody) -> Callable[[float, np.ndarray], np.ndarray]:
     """The rigid body's right-hand side written with numpy, as a scipy user would."""
     inertia = np.asarray(body.inertia_pivot_kg_m2)
     mgl = body.gravity_moment_N_m

@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from app.physics.bodies.rigid_body import RigidBody
+from app.physics.bodies.rigid_body import PivotedBody
 from app.physics.solvers import make_integrator, simulate
 from app.physics.solvers.integrated_model import simulate_model
 from app.physics.solvers.step_choice import TARGET_MISSED
@@ -214,7 +214,7 @@ def test_direct_313_integration_pays_for_the_singularity():
 )
 def test_degenerate_inertia_does_not_blow_up(inertia, omega0):
     """Limits of the triangle inequality: default method, 10 s, finite, energy and |L| kept to 1e-8."""
-    body = RigidBody(inertia)
+    body = PivotedBody(inertia)
     y0 = np.concatenate([[1.0, 0.0, 0.0, 0.0], omega0])
     integrator = make_integrator("splitting4", steps_per_frame=8)
     result = simulate(body.system(), integrator, y0, t_end_s=10.0, frame_rate_hz=60.0)
@@ -236,7 +236,7 @@ def test_degenerate_inertia_does_not_blow_up(inertia, omega0):
 )
 def test_invalid_inertia_rejected_with_a_clear_message(inertia, message):
     with pytest.raises(ValueError, match=message):
-        RigidBody(inertia)
+        PivotedBody(inertia)
 
 
 # ---- the intermediate-axis (Dzhanibekov) flips ------------------------------------------
@@ -258,7 +258,7 @@ def _flip_times(t: np.ndarray, omega_intermediate: np.ndarray) -> np.ndarray:
 def _dzhanibekov_run(t_end_s: float):
     from app.physics.systems.ch10.free_body_elliptic import free_body_elliptic
 
-    body = RigidBody(DZHANIBEKOV_INERTIA)
+    body = PivotedBody(DZHANIBEKOV_INERTIA)
     y0 = np.concatenate([[1.0, 0.0, 0.0, 0.0], DZHANIBEKOV_OMEGA0])
     # The default a scene would use: splitting4 with the automatic step at 60 frames/s.
     integrator = make_integrator("splitting4", fastest_rate_rad_s=body.fastest_rate_rad_s(y0), frame_dt_s=1 / 60)
