@@ -17,7 +17,6 @@ from scipy.integrate import solve_ivp
 
 from app.physics.bodies.rigid_body import PivotedBody
 from app.physics.solvers import make_integrator, simulate
-from app.physics.solvers.integrated_model import simulate_model
 from app.physics.solvers.step_choice import TARGET_MISSED
 from app.physics.systems.ch10 import heavy_top
 
@@ -66,7 +65,7 @@ def test_quadrature_reference_matches_a_tight_integration():
     params = dict(DEFAULTS)
     u1, u2, _ = released_top_roots(params)
     period, _ = quadrature_period_and_precession(params)
-    report = simulate_model(MODEL, params, {"method": "dopri5", "rtol": 1e-12}, t_end_s=2.0 * period, frame_rate_hz=4000, request_limits=False)
+    report = MODEL.simulate(params, {"method": "dopri5", "rtol": 1e-12}, t_end_s=2.0 * period, frame_rate_hz=4000, request_limits=False)
     theta = report.series["theta"]
     assert theta.max() == pytest.approx(math.acos(u1), rel=1e-6)
     assert theta.min() == pytest.approx(math.acos(u2), rel=1e-9)
@@ -87,7 +86,7 @@ def test_sleeping_top_threshold_max_tilt_within_1_percent(factor):
     theta_max = math.acos(u1)
     period, _ = quadrature_period_and_precession(params)
     frame_rate = 400.0 / period  # 400 samples per nutation period: sampling error ≪ 1%
-    report = simulate_model(MODEL, params, {}, t_end_s=1.5 * period, frame_rate_hz=frame_rate, request_limits=False)
+    report = MODEL.simulate(params, {}, t_end_s=1.5 * period, frame_rate_hz=frame_rate, request_limits=False)
     assert report.status == "ok"
     measured = float(report.series["theta"].max())
     assert measured == pytest.approx(theta_max, rel=0.01)
@@ -101,7 +100,7 @@ def test_fast_spin_slow_precession_mean_rate_within_0p1_percent():
     params = dict(DEFAULTS, spin_rad_s=1000.0)
     period, mean_rate = quadrature_period_and_precession(params)
     assert period < 1.0 / 60.0
-    report = simulate_model(MODEL, params, {}, t_end_s=60.0, frame_rate_hz=60.0)
+    report = MODEL.simulate(params, {}, t_end_s=60.0, frame_rate_hz=60.0)
     assert report.status == "ok"
     phi = report.series["phi"]
     measured = (phi[-1] - phi[0]) / report.t_s[-1]
@@ -111,7 +110,7 @@ def test_fast_spin_slow_precession_mean_rate_within_0p1_percent():
 @pytest.mark.parametrize("frame_rate_hz", [30.0, 60.0])
 def test_one_step_per_frame_stays_physical(frame_rate_hz):
     """Default method, 1 step per frame, 60 s: no NaN, |ΔE|/E < 1%, |q| = 1 to 1e-12."""
-    report = simulate_model(MODEL, DEFAULTS, {"steps_per_frame": 1}, t_end_s=60.0, frame_rate_hz=frame_rate_hz)
+    report = MODEL.simulate(DEFAULTS, {"steps_per_frame": 1}, t_end_s=60.0, frame_rate_hz=frame_rate_hz)
     # One step per frame is coarser than the 1e-6 rad attitude target needs: the run completes and says so.
     assert report.status == TARGET_MISSED and "misses the target" in report.message
     energy = report.invariants["energy"]
@@ -186,8 +185,8 @@ def test_gimbal_lock_313_angles_finite_and_cost_within_2x(excess):
     Euler angles are only read off it.
     """
     controls = {"method": "dopri5", "rtol": 1e-9}
-    near = simulate_model(MODEL, _vertical_pass_params(excess), controls, t_end_s=2.0, frame_rate_hz=240.0)
-    far = simulate_model(MODEL, dict(DEFAULTS, theta0_deg=10.0), controls, t_end_s=2.0, frame_rate_hz=240.0)
+    near = MODEL.simulate(_vertical_pass_params(excess), controls, t_end_s=2.0, frame_rate_hz=240.0)
+    far = MODEL.simulate(dict(DEFAULTS, theta0_deg=10.0), controls, t_end_s=2.0, frame_rate_hz=240.0)
     for name in ("theta", "phi", "psi"):
         assert np.all(np.isfinite(near.series[name])), name
     assert near.series["theta"].min() < math.radians(0.5)  # it does get to (nearly) gimbal lock
