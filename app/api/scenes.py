@@ -19,11 +19,8 @@ from app.api.schemas.readout import LiveAnswer
 from app.api.schemas.scenes import PlaybackAnswer, PlaybackRequest, SceneSummary, SessionParamsAnswer, SessionParamsRequest
 from app.api.schemas.simulation import SimulateRequest, SimulationAnswer
 from app.course.scripts import scene_script, script_file_name, script_values
-from app.physics.constrained.model import ConstrainedModel
-from app.physics.core.closed_form import ClosedFormModel, evaluate_model
-from app.physics.core.parameters import ParameterError, ParameterSet
+from app.physics.core.parameters import ParameterError
 from app.physics.solvers.controls import CONTROL_NAMES
-from app.physics.solvers.integrated_model import simulate_model
 from app.scenes.host.fair_share import is_long_request
 from app.scenes.host.graph import DEFAULT_MAX_POINTS, MAX_POINTS_RANGE, graph_csv
 from app.scenes.host.host import SESSION_ID_PATTERN, UnknownSceneError
@@ -218,37 +215,21 @@ def simulate_scene(scene_id: str, request: SimulateRequest, host: SceneHostDep) 
             raise unprocessable(["body", "params", *exc.path], str(exc)) from None
         except ValueError as exc:  # a combination of values that cannot exist together
             raise unprocessable(["body", "params"], str(exc)) from None
-        if issubclass(model_cls, ClosedFormModel):
-            out = _closed_form_report(model_cls, params, request)
-        else:
-            raw_controls = {name: value for name in CONTROL_NAMES if (value := getattr(request, name)) is not None}
-            try:
-                controls = ParameterSet(model_cls.controls()).validate(raw_controls)
-                if issubclass(model_cls, ConstrainedModel):  # method = the DAE algorithm; the report says what the start changed
-                    report = model_cls().simulate(params, controls, t_end_s=request.t_end, frame_rate_hz=request.frame_rate)
-                else:
-                    report = simulate_model(model_cls(), params, controls, t_end_s=request.t_end, frame_rate_hz=request.frame_rate)
-                out = report.as_dict()
-            except ParameterError as exc:
-                raise unprocessable(["body", exc.field], str(exc)) from None
+        raw_controls = {name: value for name in CONTROL_NAMES if (value := getattr(request, name)) is not None}
+        try:
+            controls = model_cls.validate_controls(raw_controls)
+            report = model_cls().simulate(params, controls, t_end_s=request.t_end, frame_rate_hz=request.frame_rate)
+        except ParameterError as exc:  # a control, a request field (t_end, frame_rate), a parameter failing over this span
+            where = ["body", "params", *exc.path] if exc.field in params else ["body", exc.field]
+            raise unprocessable(where, str(exc)) from None
+        except ValueError as exc:  # no motion for these values (e.g. a linkage that cannot assemble)
+            raise unprocessable(["body", "params"], str(exc)) from None
+        out = report.as_dict()
         out["params"] = params
         invariant_units = {k: v for k, v in model_cls.invariant_units.items() if k in out["invariants"]}  # e.g. |L| only without gravity
         out["units"] = {"t": "s", **model_cls.series_units, **{f"invariants.{k}": v for k, v in invariant_units.items()}}
         # Encoded here, inside the slot, as FastAPI would after it: the encoding is half the answer's memory.
         return JSONResponse(SimulationAnswer.model_validate(out).model_dump(mode="json", exclude_unset=True))
-
-
-def _closed_form_report(model_cls: type[ClosedFormModel], params: dict[str, Any], request: SimulateRequest) -> dict[str, Any]:
-    for name in CONTROL_NAMES:
-        if getattr(request, name) not in (None, "auto", "closed-form", 0):
-            raise unprocessable(["body", name], "this scene's motion is a closed form in time: there is no integrator to control")
-    try:
-        return evaluate_model(model_cls(), params, t_end_s=request.t_end, frame_rate_hz=request.frame_rate)
-    except ParameterError as exc:  # a request field (t_end, frame_rate), or a parameter that fails over this span
-        where = ["body", "params", *exc.path] if exc.field in params else ["body", exc.field]
-        raise unprocessable(where, str(exc)) from None
-    except ValueError as exc:  # the formula has no solution for these values (e.g. a linkage that cannot assemble)
-        raise unprocessable(["body", "params"], str(exc)) from None
 
 
 @router.get(

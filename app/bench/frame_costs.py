@@ -104,9 +104,10 @@ def scene_frame_cost_us(cls) -> tuple[float, float]:
 def live_run_cost_us(cls) -> tuple[float, Any]:
     """µs one frame of an integrated scene's compiled live run takes (physics only), and the integrator used."""
     from app.physics.solvers import LiveRun
+    from app.physics.solvers.step_policy import choose_integrator
 
     model = cls.model()
     params = model.parameters.defaults()
-    integrator = model.integrator(params, {}, FRAME_DT_S)
+    integrator, _ = choose_integrator(model, params, {}, FRAME_DT_S)
     run = LiveRun(model.system(params), integrator, model.initial_state(params))
     return 1e6 * _time_frames(run.advance, 3000), integrator

@@ -32,10 +32,9 @@ from typing import Any
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from app.physics.bodies.rigid_body import RigidBody
+from app.physics.bodies.rigid_body import PivotedBody
 from app.physics.math.rotations import rotate_vector
 from app.physics.solvers import METHODS, make_integrator, simulate
-from app.physics.solvers.integrated_model import simulate_model
 from app.physics.solvers.step_choice import AccuracyTarget, StepChoice, choose
 from app.physics.systems.ch10 import heavy_top
 
@@ -66,7 +65,7 @@ class Case:
 
     id: str
     title: str
-    body: RigidBody
+    body: PivotedBody
     y0: np.ndarray
     t_end_s: float
     frame_rate_hz: float
@@ -153,7 +152,7 @@ def sleeping_top_case() -> Case:
 def free_body_case() -> Case:
     inertia = (1e-3, 2e-3, 3e-3)
     omega0 = np.array([0.01, 10.0, 0.01])
-    body = RigidBody(inertia)
+    body = PivotedBody(inertia)
     y0 = np.concatenate([[1.0, 0.0, 0.0, 0.0], omega0])
 
     def reference(t: np.ndarray) -> np.ndarray:
@@ -251,7 +250,7 @@ def _timed(fn: Callable[[], Any], *, repeats: int = TIMING_REPEATS) -> tuple[Any
     return _best_cpu(run, repeats=repeats)
 
 
-def numpy_rhs(body: RigidBody) -> Callable[[float, np.ndarray], np.ndarray]:
+def numpy_rhs(body: PivotedBody) -> Callable[[float, np.ndarray], np.ndarray]:
     """The rigid body's right-hand side written with numpy, as a scipy user would."""
     inertia = np.asarray(body.inertia_pivot_kg_m2)
     mgl = body.gravity_moment_N_m
@@ -389,8 +388,6 @@ def live_frame_costs() -> list[dict[str, Any]]:
     of solving it again when a control changes.
     """
     from app.bench.frame_costs import FRAME_DT_S, live_run_cost_us, scene_frame_cost_us
-    from app.physics.core.closed_form import ClosedFormModel, evaluate_model
-    from app.physics.solvers.integrated_model import IntegratedModel
     from app.scenes import SCENES
 
     out = []
@@ -399,20 +396,23 @@ def live_frame_costs() -> list[dict[str, Any]]:
         model_cls = cls.model
         scene_us, scene_physics_us = scene_frame_cost_us(cls) if cls.animated else (0.0, 0.0)
         drift = None
-        if isinstance(model_cls, type) and issubclass(model_cls, IntegratedModel):
-            physics_us, integrator = live_run_cost_us(cls)
+        if model_cls is not None:
+            # Stepped live: its compiled run's cost per frame, with the integrator a scene uses (measured first, as a
+            # scene would choose it); a formula evaluated at each frame's time: its share of the scene's own frame.
+            live = live_run_cost_us(cls) if model_cls.integrated else None
             model = model_cls()
-            params = model.parameters.defaults()
-            drift = simulate_model(model, params, {}, t_end_s=60.0, frame_rate_hz=30.0).max_invariant_drift
-            entry.update(method=integrator.name, description=integrator.describe(FRAME_DT_S), physics_us_per_frame=physics_us)
-        elif isinstance(model_cls, type) and issubclass(model_cls, ClosedFormModel):
-            model = model_cls()
-            params = model.parameters.defaults()
-            drift = evaluate_model(model, params, t_end_s=60.0, frame_rate_hz=30.0)["stats"]["max_invariant_drift"]
-            entry.update(
-                method="closed-form", physics_us_per_frame=scene_physics_us,
-                description=f"{model.description}, evaluated at each frame's time",
-            )
+            report = model.simulate(model.parameters.defaults(), {}, t_end_s=60.0, frame_rate_hz=30.0)
+            drift = report.max_invariant_drift
+            if live is not None:
+                physics_us, integrator = live
+                entry.update(
+                    method=integrator.name, description=integrator.describe(FRAME_DT_S), physics_us_per_frame=physics_us
+                )
+            else:
+                entry.update(
+                    method=report.method, physics_us_per_frame=scene_physics_us,
+                    description=f"{report.description}, evaluated at each frame's time",
+                )
         elif cls.example is not None:
             example = cls.example
             inputs = example.inputs.defaults()

@@ -3,11 +3,10 @@
 Beside each worked solution and each scene the lesson page offers a script that
 uses this project's own package to reproduce the numbers the page shows, for the
 values the page had. :func:`example_script` writes one for a worked example (its
-outputs and every step's values), :func:`scene_script` one for a scene: a
-closed-form model is evaluated with ``evaluate_model``, an integrated one run
-with ``simulate_model`` (a constrained one with its own ``simulate``) over
-:data:`SCRIPT_T_END_S`, printing the last frame's series, the invariants and the
-drift; a scene that draws a worked example prints that example; the scenes
+outputs and every step's values), :func:`scene_script` one for a scene: its
+model's ``simulate`` (the one path of every model, closed-form or integrated)
+over :data:`SCRIPT_T_END_S`, printing the last frame's series, the invariants
+and the drift; a scene that draws a worked example prints that example; the scenes
 drawn from formulas of their own (rotation sequences, configuration space, the
 toggle press, finite rotations) print their readout's numbers from the same physics functions.
 
@@ -26,11 +25,8 @@ import math
 from collections.abc import Callable, Mapping
 from typing import Any
 
-from app.physics.constrained.model import ConstrainedModel
-from app.physics.core.closed_form import ClosedFormModel
 from app.physics.core.parameters import ParameterError, ParameterSet
 from app.physics.core.solution import WorkedExample
-from app.physics.solvers.integrated_model import IntegratedModel
 from app.physics.systems import system_modules
 from app.scenes.kit import Scene
 
@@ -198,38 +194,27 @@ for number, step in enumerate(solution.steps, start=1):
 
 
 def _model_script(scene: type[Scene], params: Mapping[str, Any]) -> str:
-    """A scene drawing a closed-form or integrated model: evaluate or integrate it and print the last frame."""
+    """A scene drawing a model: simulate it, as the simulate route does, and print the last frame."""
     model = scene.model
     assert model is not None
     module, name = _importable(model)
     physical = {k: v for k, v in params.items() if k in model.parameters.by_name}
-    integrated = issubclass(model, IntegratedModel)
-    control_names = {p.name for p in model.controls()} if integrated else set()
+    control_names = {p.name for p in model.controls()}
     controls = {k: v for k, v in params.items() if k in control_names}
     display = {k: v for k, v in params.items() if k not in physical and k not in controls}
     file = script_file_name(scene.id)
-    if integrated:
-        imports = "from app.physics.core.parameters import ParameterSet\n"
-        if issubclass(model, ConstrainedModel):
-            imports += f"from {module} import {name}\n"
-            run = f"{name}().simulate(params, controls, t_end_s=T_END_S, frame_rate_hz=FRAME_RATE_HZ).as_dict()"
-            how = "integrates its model in constrained coordinates (method: the DAE algorithm)"
-        else:
-            imports += f"from app.physics.solvers.integrated_model import simulate_model\nfrom {module} import {name}\n"
-            run = f"simulate_model({name}(), params, controls, t_end_s=T_END_S, frame_rate_hz=FRAME_RATE_HZ).as_dict()"
-            how = "integrates its model"
-        values = (
-            f"{_dict_block('params', physical)}\n"
+    imports = f"from {module} import {name}\n"
+    how = model.how_computed
+    values = f"{_dict_block('params', physical)}\n"
+    check = f"params = {name}.parameters.validate(params)\n"
+    if control_names:  # how the motion is found: an integrator's method, steps and tolerance (a formula has none)
+        values += (
             "# How the page integrates: the method, steps per frame (0: chosen to meet the accuracy target), the tolerance.\n"
             f"{_dict_block('controls', controls)}\n"
         )
-        check = f"params = {name}.parameters.validate(params)\ncontrols = ParameterSet({name}.controls()).validate(controls)\n"
-    else:
-        imports = f"from app.physics.core.closed_form import evaluate_model\nfrom {module} import {name}\n"
-        run = f"evaluate_model({name}(), params, t_end_s=T_END_S, frame_rate_hz=FRAME_RATE_HZ)"
-        how = "evaluates its model's formula (no integration)"
-        values = f"{_dict_block('params', physical)}\n"
-        check = f"params = {name}.parameters.validate(params)\n"
+        check += f"controls = {name}.validate_controls(controls)\n"
+    controls_argument = "controls" if control_names else "{}"
+    run = f"{name}().simulate(params, {controls_argument}, t_end_s=T_END_S, frame_rate_hz=FRAME_RATE_HZ).as_dict()"
     return f'''"""{scene.title} (scene {scene.id}, chapter {scene.chapter}): the page's numbers.
 
 {how[0].upper()}{how[1:]} with the project's own package for the values the page had, over
@@ -462,7 +447,7 @@ def scene_script(scene: type[Scene], params: Mapping[str, Any]) -> str:
 
     Raises ``ValueError`` for a scene this module cannot write a script for.
     """
-    if scene.model is not None and issubclass(scene.model, (ClosedFormModel, IntegratedModel)):
+    if scene.model is not None:
         return _model_script(scene, params)
     if scene.example is not None:
         example = scene.example

@@ -8,7 +8,6 @@ import math
 import numpy as np
 import pytest
 
-from app.physics.solvers.integrated_model import simulate_model
 from app.physics.systems.ch06 import bouncing_bar
 from tests.api.conftest import live_viewer
 from tests.conftest import wait_until
@@ -40,7 +39,7 @@ def test_simulate_returns_the_series_and_keeps_the_energy_ledger(client):
     assert body["stats"]["method"] == "dopri5" and body["stats"]["status"] == "ok"
     # The same run as the physics module gives (JSON carries doubles exactly).
     params = bouncing_bar.PARAMETERS.validate({"angle0_deg": 45.0})
-    report = simulate_model(bouncing_bar.BouncingBar(), params, {}, t_end_s=6.0, frame_rate_hz=30.0)
+    report = bouncing_bar.BouncingBar().simulate(params, {}, t_end_s=6.0, frame_rate_hz=30.0)
     for name in SERIES:
         assert np.array_equal(np.array(body["series"][name]), report.series[name])
     energy = np.array(body["series"]["energy_J"]) + np.array(body["series"]["energy_lost_J"])

@@ -90,5 +90,5 @@ def test_systems_import_downwards_is_allowed(tmp_path):
     fake_physics = tmp_path / "app" / "physics"
     path = fake_physics / "systems" / "ch05" / "x.py"
     path.parent.mkdir(parents=True)
-    path.write_text("from app.physics.bodies.rigid_body import RigidBody\nfrom app.physics.math.rotations import rotate_vector\n")
+    path.write_text("from app.physics.bodies.rigid_body import PivotedBody\nfrom app.physics.math.rotations import rotate_vector\n")
     assert violations(path, physics_dir=fake_physics) == []

@@ -19,6 +19,7 @@ from app.physics.solvers.integrated_model import IntegratedModel
 from app.physics.solvers.registry import METHODS
 from app.physics.solvers.solve import remedy
 from app.physics.solvers.step_choice import REDUCED_ACCURACY
+from app.physics.solvers.step_policy import choose_integrator
 from app.scenes import SCENES
 
 FRAME_DT_S = 1.0 / 60.0
@@ -46,7 +47,7 @@ def test_auto_picks_what_the_description_names(scene_id):
     model, params, controls, descriptions = _defaults(scene_id)
     method_control = "integrator" if isinstance(model, ConstrainedModel) else "method"
     described = descriptions[method_control]
-    integrator, choice = model.choose_integrator(params, {**controls, method_control: AUTO, "steps_per_frame": 0}, FRAME_DT_S)
+    integrator, choice = choose_integrator(model, params, {**controls, method_control: AUTO, "steps_per_frame": 0}, FRAME_DT_S)
     target = model.accuracy_target
     if target is None:
         assert f"({AUTO} = {model.default_method})" in described
@@ -67,7 +68,7 @@ def test_auto_picks_what_the_description_names(scene_id):
 def test_a_constrained_scenes_auto_algorithm_is_the_one_it_names(scene_id):
     model, params, controls, descriptions = _defaults(scene_id)
     assert f"({AUTO} = {model.default_algorithm})" in descriptions["method"]
-    model.choose_integrator(params, {**controls, "method": AUTO}, FRAME_DT_S)
+    choose_integrator(model, params, {**controls, "method": AUTO}, FRAME_DT_S)
     assert model.algorithm() == model.default_algorithm
 
 

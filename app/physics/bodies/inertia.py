@@ -115,7 +115,7 @@ def rotate_tensor(inertia_kg_m2: np.ndarray, rotation: np.ndarray) -> np.ndarray
     return R @ np.asarray(inertia_kg_m2, dtype=float) @ R.T
 
 
-def moment_about_axis(inertia_kg_m2: np.ndarray, axis: np.ndarray) -> float:
+def inertia_about_axis(inertia_kg_m2: np.ndarray, axis: np.ndarray) -> float:
     """Moment of inertia about the line through the tensor's point along ``axis`` (kg·m²): ``eᵀ I e``."""
     e = np.asarray(axis, dtype=float)
     e = e / np.linalg.norm(e)

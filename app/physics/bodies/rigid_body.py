@@ -26,8 +26,8 @@ STATE_NAMES = ("q_w", "q_x", "q_y", "q_z", "omega1", "omega2", "omega3")
 
 
 @dataclass(frozen=True)
-class RigidBody:
-    """Principal moments about the fixed point (kg·m²) and the gravity load."""
+class PivotedBody:
+    """A rigid body turning about a fixed point (its pivot): principal moments about it (kg·m²), the gravity load."""
 
     inertia_pivot_kg_m2: tuple[float, float, float]
     mass_kg: float = 0.0

@@ -8,11 +8,11 @@ invariants every chapter-8 scene shows — ``constraint_position`` (max |g|),
 ``constraint_velocity`` (max |C v|) and ``energy`` — and the simulate report with
 the algorithm, the integrator and what the start had to change.
 
-:meth:`ConstrainedModel.integrator` records the algorithm and gains from the
+:meth:`ConstrainedModel.integration_controls` records the algorithm and gains from the
 controls; :meth:`~ConstrainedModel.system`, :meth:`~ConstrainedModel.initial_state`,
 :meth:`~ConstrainedModel.series` and :meth:`~ConstrainedModel.invariants` then follow
-it (the simulate route and the live scenes call ``integrator`` first, on a fresh
-model instance). A system whose minimal-coordinate equations exist offers the
+it (the step policy asks it first, on a fresh model instance, for a simulate
+answer and a live scene alike). A system whose minimal-coordinate equations exist offers the
 method ``minimal`` by implementing the three ``minimal_*`` hooks.
 """
 
@@ -25,15 +25,15 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from app.physics.constrained.algorithms import ALGORITHMS, algorithm_system, repartition_count
+from app.physics.constrained.algorithms import ALGORITHMS, algorithm_kernels, algorithm_system, repartition_count
 from app.physics.constrained.initial_conditions import ConsistentStart, consistent_initial_conditions
 from app.physics.constrained.residuals import constraint_residuals, multipliers
 from app.physics.constrained.system import ConstrainedSystem
 from app.physics.core.energy import EnergyParts
 from app.physics.core.parameters import Parameter
 from app.physics.core.report import SimulationReport
-from app.physics.solvers.controls import AUTO, integration_parameters, integrator_from_controls
-from app.physics.solvers.integrated_model import IntegratedModel, simulate_model
+from app.physics.solvers.controls import AUTO, integration_parameters
+from app.physics.solvers.integrated_model import IntegratedModel
 from app.physics.solvers.step_choice import AccuracyTarget
 from app.physics.solvers.system import OdeSystem
 
@@ -54,6 +54,7 @@ class ConstrainedModel(IntegratedModel):
 
     methods = INTEGRATORS
     default_method = "rk4"
+    how_computed = "integrates its model in constrained coordinates (method: the DAE algorithm)"
     #: The DAE algorithms a student may pick (``minimal`` is added when :meth:`has_minimal`), and what ``auto`` means.
     algorithms: ClassVar[tuple[str, ...]] = tuple(ALGORITHMS)
     default_algorithm: ClassVar[str] = "projection"
@@ -130,30 +131,26 @@ class ConstrainedModel(IntegratedModel):
         )  # fmt: skip
 
     def algorithm(self) -> str:
-        """The algorithm recorded by :meth:`integrator` (``auto`` resolved); the default before any."""
+        """The algorithm recorded by :meth:`integration_controls` (``auto`` resolved); the default before any."""
         return getattr(self, "_algorithm", self.default_algorithm)
 
-    def integrator(self, params: Mapping[str, Any], controls: Mapping[str, Any], frame_dt_s: float):
+    def integration_controls(self, params: Mapping[str, Any], controls: Mapping[str, Any]) -> dict[str, Any]:
+        """Records (and checks) the DAE algorithm ``method`` names and the Baumgarte gains; the ``integrator``
+        control's method, with ``steps_per_frame`` and ``rtol``, are the integrator's."""
         method = controls.get("method", AUTO)
         self._algorithm = self.default_algorithm if method == AUTO else method
         if self._algorithm not in (*self.algorithms, MINIMAL) or (self._algorithm == MINIMAL and not self.has_minimal()):
             raise ValueError(f"method: {method!r} is not an algorithm of this model")
         alpha, beta = self.default_baumgarte_1_s
         self._gains_1_s = (float(controls.get("baumgarte_alpha_1_s", alpha)), float(controls.get("baumgarte_beta_1_s", beta)))
-        start = self.consistent_start(params)
-        return integrator_from_controls(
-            {"method": controls.get("integrator", AUTO), "steps_per_frame": controls.get("steps_per_frame", 0), "rtol": controls.get("rtol")},
-            default_method=self.default_method, fastest_rate_rad_s=self.fastest_rate_rad_s(params, start.state), frame_dt_s=frame_dt_s,
-        )  # fmt: skip
+        return {
+            "method": controls.get("integrator", AUTO),
+            "steps_per_frame": controls.get("steps_per_frame", 0),
+            "rtol": controls.get("rtol"),
+        }
 
     # --- the accuracy target (each algorithm's pilot is its own: the key holds the algorithm and the gains) ------------
     accuracy_target = AccuracyTarget(1e-6, "", "state (q, v): largest component error relative to the largest component")
-
-    def choose_integrator(self, params: Mapping[str, Any], controls: Mapping[str, Any], frame_dt_s: float, **options: Any):
-        """The ``integrator`` control's method and step meeting :attr:`accuracy_target`, for the algorithm ``method`` names."""
-        self.integrator(params, controls, frame_dt_s)  # records the algorithm and the gains (and checks them)
-        integration = {"method": controls.get("integrator", AUTO), "steps_per_frame": controls.get("steps_per_frame", 0), "rtol": controls.get("rtol")}
-        return super().choose_integrator(params, integration, frame_dt_s, **options)
 
     def pilot_key(self, params: Mapping[str, Any]):
         return (super().pilot_key(params), self.algorithm(), getattr(self, "_gains_1_s", self.default_baumgarte_1_s))
@@ -172,6 +169,12 @@ class ConstrainedModel(IntegratedModel):
         )
 
     # --- IntegratedModel ----------------------------------------------------------------------------------------
+    def prepare(self, params: Mapping[str, Any]) -> None:
+        """Compile the system's right-hand-side and after-step callbacks, which are built per system at run time."""
+        system = self.constrained_system(params)
+        n, holonomic, constraints = system.n_coordinates, system.n_holonomic, system.n_constraints
+        algorithm_kernels(system.dynamics, system.constraints, n, holonomic, constraints)
+
     def system(self, params: Mapping[str, Any]) -> OdeSystem:
         if self.algorithm() == MINIMAL:
             minimal = self.minimal_system(params)
@@ -215,8 +218,10 @@ class ConstrainedModel(IntegratedModel):
     def simulate(
         self, params: Mapping[str, Any], controls: Mapping[str, Any], *, t_end_s: float, frame_rate_hz: float, request_limits: bool = True
     ) -> SimulationReport:
-        """:func:`simulate_model`, with ``stats.method`` the algorithm, ``stats.integrator`` and ``stats.initial_conditions``."""
-        report = simulate_model(self, params, controls, t_end_s=t_end_s, frame_rate_hz=frame_rate_hz, request_limits=request_limits)
+        """The integrated answer, with ``stats.method`` the algorithm, ``stats.integrator``, ``stats.initial_conditions``."""
+        report = super().simulate(
+            params, controls, t_end_s=t_end_s, frame_rate_hz=frame_rate_hz, request_limits=request_limits
+        )
         start = self.consistent_start(params)
         algorithm = self.algorithm()
         label = ALGORITHMS[algorithm].label if algorithm in ALGORITHMS else "minimal coordinates"

@@ -1,1 +1,2 @@
-"""What every model and example shares: parameters, closed-form models, reports, worked solutions."""
+"""What every model and example shares: the model contract, parameters, closed-form models, reports, worked
+solutions."""

@@ -1,31 +1,35 @@
 """Models whose motion is a closed form in time: evaluated, never integrated.
 
-A :class:`ClosedFormModel` states its parameters, the unit of each series and
-invariant, and evaluates all of them at any array of times. The simulate API
-samples it on the same frame grid as an integrated model and returns the same
-report shape (``t``, ``series``, ``invariants``, ``stats``), with ``stats.method``
-``"closed-form"`` and zero steps. Singular instants the formula passes through
-(a linkage's toggle position, say) are reported as :class:`Event`\\ s rather
-than crossed silently.
+A :class:`ClosedFormModel` keeps the :class:`~app.physics.core.model.Model`
+contract by evaluating its series and invariants at any array of times: its
+:meth:`~ClosedFormModel.simulate` samples them on the same frame grid as an
+integrated model and returns the same report shape (``t``, ``series``,
+``invariants``, ``stats``), with ``stats.method`` ``"closed-form"`` and zero steps.
+Singular instants the formula passes through (a linkage's toggle position, say)
+are reported as :class:`Event`\\ s rather than crossed silently. It has no
+controls: a request that sets an integrator's is refused.
 """
 
 from __future__ import annotations
 
 import time
-from abc import ABC, abstractmethod
+from abc import abstractmethod
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any, ClassVar
 
 import numpy as np
 
-from app.physics.core.parameters import ParameterSet
+from app.physics.core.model import Model
+from app.physics.core.parameters import ParameterError
 from app.physics.core.report import Event, SimulationReport, frame_times
 
-__all__ = ["OUTSIDE_MODEL", "ClosedFormModel", "ClosedFormSolution", "Event", "evaluate_model", "frame_times"]
+__all__ = ["OUTSIDE_MODEL", "ClosedFormModel", "ClosedFormSolution", "Event", "frame_times"]
 
 #: ``stats.status`` of a result that is finite but outside the model's assumptions (``message`` says which).
 OUTSIDE_MODEL = "outside_model"
+#: Control values that ask for nothing (what a page or a script sends for an integrator left alone).
+_NO_CONTROL = (None, "auto", "closed-form", 0)
 
 
 @dataclass
@@ -43,16 +47,12 @@ class ClosedFormSolution:
     warning: str = ""
 
 
-class ClosedFormModel(ABC):
+class ClosedFormModel(Model):
     """A model evaluated from a formula at any time (no integration)."""
 
-    #: Physical parameters (names are API contracts).
-    parameters: ClassVar[ParameterSet]
-    #: Unit of each series / invariant, by name.
-    series_units: ClassVar[Mapping[str, str]]
-    invariant_units: ClassVar[Mapping[str, str]] = {}
     #: What the formula is, for the report (e.g. "Jacobi elliptic functions").
     description: ClassVar[str]
+    how_computed = "evaluates its model's formula (no integration)"
 
     @abstractmethod
     def evaluate(self, params: Mapping[str, Any], t_s: np.ndarray) -> ClosedFormSolution:
@@ -62,27 +62,40 @@ class ClosedFormModel(ABC):
         """Scale per invariant for the drift report (default: its initial magnitude, at least 1e-300)."""
         return {name: max(abs(float(values[0])), 1e-300) for name, values in invariants.items()}
 
+    @classmethod
+    def validate_controls(cls, controls: Mapping[str, Any]) -> dict[str, Any]:
+        """No controls: ParameterError naming the first control set to anything but "leave it" (auto, 0)."""
+        for name, value in controls.items():
+            if value not in _NO_CONTROL:  # (the label starts the text a student reads: the reason, then the refusal)
+                reason = "this scene's motion is a closed form in time"
+                raise ParameterError(name, "there is no integrator to control", label=reason)
+        return {}
 
-def evaluate_model(model: ClosedFormModel, params: Mapping[str, Any], *, t_end_s: float, frame_rate_hz: float) -> dict[str, Any]:
-    """The simulate report for a closed-form model (same shape as an integrated one)."""
-    t_s = frame_times(t_end_s=t_end_s, frame_rate_hz=frame_rate_hz)
-    start = time.process_time()
-    solution = model.evaluate(params, t_s)
-    cpu_s = time.process_time() - start
-    scales = model.invariant_scales(params, solution.invariants)
-    drift = [float(np.max(np.abs(v - v[0])) / scales[k]) for k, v in solution.invariants.items()]
-    finite = all(np.all(np.isfinite(v)) for v in (*solution.series.values(), *solution.invariants.values()))
-    return SimulationReport(
-        t_s=t_s,
-        series=solution.series,
-        invariants=solution.invariants,
-        events=list(solution.events),
-        method="closed-form",
-        description=model.description,
-        steps=0,
-        rhs_evals=0,
-        cpu_s=cpu_s,
-        max_invariant_drift=max(drift, default=0.0),
-        status="undefined" if not finite else OUTSIDE_MODEL if solution.warning else "ok",
-        message=" ".join(m for m in ("" if finite else "the formula is undefined at some frames (see events)", solution.warning) if m),
-    ).as_dict()
+    def simulate(
+        self, params: Mapping[str, Any], controls: Mapping[str, Any], *, t_end_s: float, frame_rate_hz: float,
+        request_limits: bool = True,
+    ) -> SimulationReport:
+        """The formula at the frame times (the span and frame bounds always apply: the frames are a formula's only
+        cost, so ``request_limits`` changes nothing)."""
+        t_s = frame_times(t_end_s=t_end_s, frame_rate_hz=frame_rate_hz)
+        start = time.process_time()
+        solution = self.evaluate(params, t_s)
+        cpu_s = time.process_time() - start
+        scales = self.invariant_scales(params, solution.invariants)
+        drift = [float(np.max(np.abs(v - v[0])) / scales[k]) for k, v in solution.invariants.items()]
+        finite = all(np.all(np.isfinite(v)) for v in (*solution.series.values(), *solution.invariants.values()))
+        undefined = "" if finite else "the formula is undefined at some frames (see events)"
+        return SimulationReport(
+            t_s=t_s,
+            series=solution.series,
+            invariants=solution.invariants,
+            events=list(solution.events),
+            method="closed-form",
+            description=self.description,
+            steps=0,
+            rhs_evals=0,
+            cpu_s=cpu_s,
+            max_invariant_drift=max(drift, default=0.0),
+            status="undefined" if not finite else OUTSIDE_MODEL if solution.warning else "ok",
+            message=" ".join(m for m in (undefined, solution.warning) if m),
+        )

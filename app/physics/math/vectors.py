@@ -22,7 +22,7 @@ def moment_about_point(point_on_line: np.ndarray, force: np.ndarray, about: np.n
     return np.cross(np.asarray(point_on_line) - np.asarray(about), force)
 
 
-def moment_about_axis(
+def force_moment_about_axis(
     point_on_line: np.ndarray, force: np.ndarray, axis_point: np.ndarray, axis_direction: np.ndarray
 ) -> float:
     """Signed moment (N·m) of ``force`` about the axis through ``axis_point`` along ``axis_direction``.

@@ -101,6 +101,10 @@ class DerivedModel(IntegratedModel):
     def derived(self, params: Mapping[str, Any]) -> Derived:
         return derived(self.description, params.get("formulation", "lagrange"))
 
+    def prepare(self, params: Mapping[str, Any]) -> None:
+        """Derive (or load from the disk cache) and compile the equations of the formulation ``params`` name."""
+        self.derived(params).kernel()
+
     def system(self, params: Mapping[str, Any]) -> OdeSystem:
         names = [c.name for c in self.description.coordinates]
         return OdeSystem(

@@ -8,7 +8,12 @@
 * :mod:`.system` — the contract a model fills: right-hand side, events with
   reset maps, constraints, the rigid-body torque capability;
 * :mod:`.constraints` — projection onto ``g(q) = 0`` and Lagrange multipliers;
-* :mod:`.solve` — the one place a model, an integrator and a step choice meet.
+* :mod:`.solve` — the one place a model, an integrator and a step choice meet;
+* :mod:`.step_choice` — pilot runs that measure a method's error constant;
+* :mod:`.step_policy` — which integrator and step answer a model's controls
+  (the controller, apart from the model and the integrators);
+* :mod:`.integrated_model` — the model contract of :mod:`app.physics.core.model`
+  for motion found by integration.
 
 Hot loops are numba kernels (cached on disk, warmed at server start) with a
 pure-Python twin of the same source (:mod:`.kernels`).

@@ -27,9 +27,9 @@ def integration_parameters(
     """``method`` (with ``auto``), ``steps_per_frame`` (0 = automatic) and ``rtol``, described as the code chooses.
 
     Without an accuracy ``target``, ``auto`` is ``default_method`` and 0 steps per frame follow the fixed ratio h·ω_max
-    (:func:`integrator_from_controls`). With one (:meth:`IntegratedModel.choose_integrator
-    <app.physics.solvers.integrated_model.IntegratedModel.choose_integrator>`), ``auto`` is the cheapest of
-    ``auto_methods`` (default: ``methods``) meeting it, and 0 steps per frame the fewest that meet it.
+    (:func:`integrator_from_controls`). With one (:func:`~app.physics.solvers.step_policy.choose_integrator`),
+    ``auto`` is the cheapest of ``auto_methods`` (default: ``methods``) meeting it, and 0 steps per frame the fewest
+    that meet it.
     """
     unknown = set(methods) - set(METHODS)
     if unknown:

@@ -1,56 +1,44 @@
-"""Integrated models and the simulation report the API and the scenes share.
+"""Integrated models: the :class:`~app.physics.core.model.Model` contract for motion found by stepping.
 
 An :class:`IntegratedModel` says what to integrate (its compiled system and
 initial state), how fast it moves (the automatic step's starting guess), what a
 student reads off it (named series), what it conserves (named invariants with
 the scale their drift is measured against) and, where it states one, the error
 its default must meet (:mod:`.step_choice`) and the reference it is checked
-against. :func:`simulate_model` runs one with the integration controls and
-reports series, invariants, counters and the accuracy reached.
+against. Its :meth:`~IntegratedModel.simulate` runs it with the integrator the
+step policy (:mod:`.step_policy`) takes for the controls and reports series,
+invariants, counters and the accuracy reached.
 """
 
 from __future__ import annotations
 
 import math
 import time
-from abc import ABC, abstractmethod
+from abc import abstractmethod
 from collections.abc import Hashable, Mapping
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from typing import Any, ClassVar
 
 import numpy as np
 
 from app.physics.core.energy import EnergyParts, energy_budget
-from app.physics.core.parameters import Parameter, ParameterError, ParameterSet
+from app.physics.core.model import Model
+from app.physics.core.parameters import Parameter, ParameterError
 from app.physics.core.report import (
     MAX_ADAPTIVE_STEPS,
     MAX_FIXED_STEP_WORK,
     SimulationReport,
     frame_times,
 )
-from app.physics.solvers.base import EventRecord, FixedStepIntegrator, Integrator
-from app.physics.solvers.controls import (
-    AUTO,
-    integration_parameters,
-    integrator_from_controls,
-)
+from app.physics.solvers.base import EventRecord, FixedStepIntegrator
+from app.physics.solvers.controls import integration_parameters
 from app.physics.solvers.dormand_prince import DormandPrince
-from app.physics.solvers.registry import METHODS, make_integrator
 from app.physics.solvers.solve import failure_message, simulate
-from app.physics.solvers.step_choice import (
-    EXACT_FALLBACK,
-    REDUCED_ACCURACY,
-    TARGET_MISSED,
-    AccuracyTarget,
-    PilotPending,
-    StepChoice,
-    choose,
-    error_model,
-    usable_methods,
-)
+from app.physics.solvers.step_choice import EXACT_FALLBACK, REDUCED_ACCURACY, TARGET_MISSED, AccuracyTarget, StepChoice
+from app.physics.solvers.step_policy import choose_integrator
 from app.physics.solvers.system import OdeSystem
 
-__all__ = ["IntegratedModel", "ModelLimit", "SimulationReport", "check_request_bounds", "simulate_model"]
+__all__ = ["IntegratedModel", "ModelLimit", "SimulationReport", "check_request_bounds"]
 
 
 @dataclass(frozen=True)
@@ -69,18 +57,15 @@ class ModelLimit:
             raise ValueError(f"a model limit keeps at least one frame and names a status other than ok (got {self.frames}, {self.status!r})")
 
 
-class IntegratedModel(ABC):
+class IntegratedModel(Model):
     """A model whose motion is found by numerical integration."""
 
-    #: Physical parameters (names are API contracts).
-    parameters: ClassVar[ParameterSet]
+    integrated = True
+    how_computed = "integrates its model"
     #: Methods a student may pick; ``auto`` means the cheapest of them at the accuracy target
     #: (``default_method`` when the model states no target, and in the method menu's text).
     methods: ClassVar[tuple[str, ...]]
     default_method: ClassVar[str]
-    #: Unit of each series, by name.
-    series_units: ClassVar[Mapping[str, str]]
-    invariant_units: ClassVar[Mapping[str, str]]
     #: The error the automatic choice must meet, measured by :meth:`solution_error`; None: the
     #: fixed ratio h·ω_max ≤ the method's ``step_ratio`` (a model that states no target).
     accuracy_target: ClassVar[AccuracyTarget | None] = None
@@ -94,13 +79,15 @@ class IntegratedModel(ABC):
     #: and what that reference is; empty for a model without one.
     reference_error_series: ClassVar[str] = ""
     reference_name: ClassVar[str] = ""
-    #: What a student reads for a series or invariant whose name is cryptic (a symbol: ``"θ"``, ``"ω₃"``), by name;
-    #: a name not here is shown in a readable form of itself.
-    series_labels: ClassVar[Mapping[str, str]] = {}
 
     @classmethod
     def controls(cls) -> tuple[Parameter, ...]:
         return integration_parameters(cls.methods, default_method=cls.default_method, target=cls.accuracy_target, auto_methods=cls.auto_methods)
+
+    def integration_controls(self, params: Mapping[str, Any], controls: Mapping[str, Any]) -> Mapping[str, Any]:
+        """The integrator's controls (``method``, ``steps_per_frame``, ``rtol``) in ``controls``: the step policy
+        asks this first, and a model with controls of its own (a constrained model's DAE algorithm) takes them here."""
+        return controls
 
     @abstractmethod
     def system(self, params: Mapping[str, Any]) -> OdeSystem: ...
@@ -168,108 +155,6 @@ class IntegratedModel(ABC):
         values = tuple(sorted((k, tuple(np.ravel(v).tolist()) if isinstance(v, (list, tuple, np.ndarray)) else v) for k, v in params.items()))
         return (type(self).__module__, type(self).__qualname__, values)
 
-    def choose_integrator(
-        self, params: Mapping[str, Any], controls: Mapping[str, Any], frame_dt_s: float, *,
-        horizon_s: float | None = None, max_fixed_work: int | None = None, max_adaptive_steps: float = math.inf,
-        run_pilots: bool = True, max_frame_cpu_s: float = math.inf,
-    ) -> tuple[Integrator, StepChoice | None]:
-        """The integrator the controls ask for, and the step choice behind it (None without an accuracy target).
-
-        With automatic steps (``steps_per_frame`` 0) and a target, each candidate
-        method (``auto``: every usable method of :attr:`methods`) gets the fewest
-        steps meeting the target over ``horizon_s`` (default: the target's), and
-        ``auto`` takes the cheapest. ``max_fixed_work`` (sub-steps over the
-        horizon) and ``max_adaptive_steps`` are a request's limits: a choice
-        that would exceed them is capped, its lowered accuracy stated, as is one over a
-        live scene's physics budget per frame ``max_frame_cpu_s`` (s).
-
-        ``run_pilots=False`` (a live restart, which must not wait): where a pilot
-        is not cached yet, the fixed-ratio integrator with a choice of status
-        :data:`~.step_choice.ESTIMATING`; the same call with pilots (in the
-        background) then gives the measured one.
-        """
-        target = self.accuracy_target
-        steps = int(controls.get("steps_per_frame", 0) or 0)
-        method = controls.get("method", AUTO)
-        y0 = self.initial_state(params)
-        rate = self.starting_rate_rad_s(params)
-        explicit_adaptive = method != AUTO and method in self.methods and _is_adaptive(method)
-        if method == AUTO and _is_adaptive(self.default_method) and controls.get("rtol") not in (None, _default_rtol(self)):
-            explicit_adaptive = True  # a tolerance set by hand for a model whose default method is adaptive
-        ratio_rule = integrator_from_controls(controls, default_method=self.default_method, fastest_rate_rad_s=rate, frame_dt_s=frame_dt_s)
-        if target is None:
-            return ratio_rule, None
-        horizon = target.horizon_s if horizon_s is None else horizon_s
-        try:
-            if steps > 0 or explicit_adaptive:
-                return ratio_rule, self._estimate_for(params, ratio_rule, frame_dt_s, horizon, run_pilot=run_pilots)
-            chosen = choose(
-                self.system(params), y0, (self.auto_methods or self.methods) if method == AUTO else (method,), target=target, frame_dt_s=frame_dt_s,
-                horizon_s=horizon, fastest_rate_rad_s=rate, error=lambda a, b: self.solution_error(params, a, b),
-                cache_key=self.pilot_key(params), max_fixed_work=max_fixed_work, max_adaptive_steps=max_adaptive_steps,
-                run_pilots=run_pilots, max_frame_cpu_s=max_frame_cpu_s,
-            )
-        except PilotPending:
-            fixed = isinstance(ratio_rule, FixedStepIntegrator)
-            return ratio_rule, StepChoice.pending(
-                ratio_rule.name, ratio_rule.steps_per_frame if fixed else None, None if fixed else ratio_rule.rtol, target,
-                horizon_s=horizon, frame_dt_s=frame_dt_s,
-            )
-        if chosen is None:  # no pilot finished: every run blew up or ran out of steps
-            return self._unmeasured(controls, target, rate, frame_dt_s, horizon, max_fixed_work)
-        integrator = make_integrator(chosen.method, steps_per_frame=chosen.steps_per_frame, rtol=chosen.rtol)
-        return integrator, chosen
-
-    def _unmeasured(self, controls, target: AccuracyTarget, rate: float, frame_dt_s: float, horizon_s: float,
-                    max_fixed_work: int | None) -> tuple[Integrator, StepChoice]:
-        """No pilot finished (a motion too stiff or too fast for every method): the fixed ratio, capped by the
-        request limit, with the error stated as unknown; the run itself then says where it stopped."""
-        integrator = integrator_from_controls(controls, default_method=self.default_method, fastest_rate_rad_s=rate, frame_dt_s=frame_dt_s)
-        note = "no pilot run of any method finished (the motion is too stiff or too fast for the steps tried), so the error is unknown"
-        if isinstance(integrator, FixedStepIntegrator) and max_fixed_work is not None:
-            cap = max(int(max_fixed_work // max(math.ceil(horizon_s / frame_dt_s) * integrator.spec.substeps_per_step, 1)), 1)
-            if integrator.steps_per_frame > cap:
-                integrator = make_integrator(integrator.name, steps_per_frame=cap)
-                note += f"; {cap} steps/frame is the most the request limit of {max_fixed_work} sub-steps allows"
-        setting = dict(steps_per_frame=integrator.steps_per_frame, rtol=None) if isinstance(integrator, FixedStepIntegrator) else dict(steps_per_frame=None, rtol=integrator.rtol)
-        return integrator, StepChoice(integrator.name, target=target, horizon_s=horizon_s, frame_dt_s=frame_dt_s, estimated_error=math.nan,
-                                      cost_s=math.nan, status=REDUCED_ACCURACY, note=note, **setting)
-
-    def _estimate_for(self, params, integrator: Integrator, frame_dt_s: float, horizon: float, *, run_pilot: bool) -> StepChoice | None:
-        """The estimated error of a setting the student chose (from the same cached pilot as the automatic choice)."""
-        target = self.accuracy_target
-        assert target is not None
-        spec = integrator.spec
-        system = self.system(params)
-        if not usable_methods(system, (spec.name,)):
-            return None
-        y0 = self.initial_state(params)
-        start = spec.automatic_steps_per_frame(self.starting_rate_rad_s(params), frame_dt_s) if not spec.adaptive else 1
-        model = error_model(
-            system, y0, spec, target=target, start_steps=start, frame_dt_s=frame_dt_s,
-            error=lambda a, b: self.solution_error(params, a, b), cache_key=self.pilot_key(params), run_pilot=run_pilot,
-            horizon_s=horizon,
-        )
-        if model is None:
-            return None
-        if spec.adaptive:
-            setting = dict(steps_per_frame=None, rtol=integrator.rtol)
-            error = model.error_adaptive(integrator.rtol, horizon)
-        else:
-            setting = dict(steps_per_frame=integrator.steps_per_frame, rtol=None)
-            error = model.error_fixed(frame_dt_s / integrator.steps_per_frame, horizon)
-        chosen = StepChoice(spec.name, target=target, horizon_s=horizon, frame_dt_s=frame_dt_s, estimated_error=error,
-                            cost_s=math.nan, **setting)
-        if chosen.meets_target:
-            return chosen
-        note = (f"the chosen setting misses the target of {target.format(target.error)} over {horizon:g} s: estimated "
-                f"{target.format(error)} (automatic steps meet it)")
-        return replace(chosen, status=TARGET_MISSED, note=note)
-
-    def integrator(self, params: Mapping[str, Any], controls: Mapping[str, Any], frame_dt_s: float) -> Integrator:
-        """The integrator the controls ask for (automatic steps: see :meth:`choose_integrator`)."""
-        return self.choose_integrator(params, controls, frame_dt_s)[0]
-
     def describable(self, params: Mapping[str, Any], states: np.ndarray) -> np.ndarray:
         """(N,) bool: whether the model can describe each of ``states`` (N, n); by default, every component finite.
 
@@ -306,15 +191,44 @@ class IntegratedModel(ABC):
             return None
         return np.asarray(self.solution_error(params, states, reference), dtype=float)
 
+    def simulate(
+        self, params: Mapping[str, Any], controls: Mapping[str, Any], *, t_end_s: float, frame_rate_hz: float,
+        request_limits: bool = True,
+    ) -> SimulationReport:
+        """Integrate for ``t_end_s`` and sample at ``frame_rate_hz`` (t = 0 included).
 
-def _default_rtol(model: IntegratedModel) -> float | None:
-    """The ``rtol`` control's default value (what validated controls carry when no one set it)."""
-    return next((c.default for c in model.controls() if c.name == "rtol"), None)
-
-
-def _is_adaptive(method: str) -> bool:
-    spec = METHODS.get(method)
-    return spec is not None and spec.adaptive
+        ``request_limits`` applies the per-request bounds (:func:`check_request_bounds`). Automatic
+        steps meet the model's accuracy target over ``t_end_s``; where that would
+        exceed the bounds, the model's exact solution answers if it has one
+        (status :data:`~.step_choice.EXACT_FALLBACK`), else the most work allowed
+        runs with its estimated error stated (status :data:`~.step_choice.REDUCED_ACCURACY`).
+        Explicit steps over the bounds are refused, naming the limit.
+        """
+        if request_limits:
+            frame_times(t_end_s=t_end_s, frame_rate_hz=frame_rate_hz)  # span and rate checked before anything divides by them
+        run = _integrate(self, params, controls, t_end_s=t_end_s, frame_rate_hz=frame_rate_hz, request_limits=request_limits)
+        if isinstance(run, SimulationReport):
+            return run
+        integrator, choice, result = run
+        limit = self.model_limit(params, result.t_s, result.states)
+        if limit is not None and limit.frames > 1 and choice is not None and _automatic(controls) and limit.frames < len(result.t_s):
+            # The automatic step was chosen over the whole span, its pilots run through where the model broke (which can
+            # look like chaos, or need a far smaller step): choose again over the span the model describes.
+            again = _integrate(self, params, controls, t_end_s=float(result.t_s[limit.frames - 1]), frame_rate_hz=frame_rate_hz,
+                               request_limits=request_limits)
+            if not isinstance(again, SimulationReport) and len(again[2].t_s) == limit.frames:
+                integrator, choice, result = again
+                limit = self.model_limit(params, result.t_s, result.states) or limit
+        if limit is not None:
+            result = result.truncated(min(limit.frames, len(result.t_s)), status=limit.status, message=limit.message)
+        status, message = result.status, result.message
+        if status == "event" and result.events:
+            message = self.stop_message(params, result.events[-1]) or message
+        if choice is not None and choice.status in (REDUCED_ACCURACY, TARGET_MISSED):
+            note = f"{choice.note[0].upper()}{choice.note[1:]}."
+            status, message = (choice.status, note) if status == "ok" else (status, f"{message} {note}")
+        return _report(self, params, result.t_s, result.states, choice=choice, method=result.method, description=result.description,
+                       steps=result.steps, rhs_evals=result.rhs_evals, cpu_s=result.cpu_s, status=status, message=message)
 
 
 def check_request_bounds(integrator, *, t_end_s: float, frame_rate_hz: float) -> None:
@@ -333,52 +247,6 @@ def check_request_bounds(integrator, *, t_end_s: float, frame_rate_hz: float) ->
         integrator.max_steps = MAX_ADAPTIVE_STEPS
 
 
-def simulate_model(
-    model: IntegratedModel,
-    params: Mapping[str, Any],
-    controls: Mapping[str, Any],
-    *,
-    t_end_s: float,
-    frame_rate_hz: float,
-    request_limits: bool = True,
-) -> SimulationReport:
-    """Integrate ``model`` for ``t_end_s`` and sample it at ``frame_rate_hz`` (t = 0 included).
-
-    ``request_limits`` applies the per-request bounds (:func:`check_request_bounds`);
-    tests and benchmarks that need longer or denser runs switch it off. Automatic
-    steps meet the model's accuracy target over ``t_end_s``; where that would
-    exceed the bounds, the model's exact solution answers if it has one
-    (status :data:`~.step_choice.EXACT_FALLBACK`), else the most work allowed
-    runs with its estimated error stated (status :data:`~.step_choice.REDUCED_ACCURACY`).
-    Explicit steps over the bounds are refused, naming the limit.
-    """
-    if request_limits:
-        frame_times(t_end_s=t_end_s, frame_rate_hz=frame_rate_hz)  # span and rate checked before anything divides by them
-    run = _integrate(model, params, controls, t_end_s=t_end_s, frame_rate_hz=frame_rate_hz, request_limits=request_limits)
-    if isinstance(run, SimulationReport):
-        return run
-    integrator, choice, result = run
-    limit = model.model_limit(params, result.t_s, result.states)
-    if limit is not None and limit.frames > 1 and choice is not None and _automatic(controls) and limit.frames < len(result.t_s):
-        # The automatic step was chosen over the whole span, its pilots run through where the model broke (which can
-        # look like chaos, or need a far smaller step): choose again over the span the model describes.
-        again = _integrate(model, params, controls, t_end_s=float(result.t_s[limit.frames - 1]), frame_rate_hz=frame_rate_hz,
-                           request_limits=request_limits)
-        if not isinstance(again, SimulationReport) and len(again[2].t_s) == limit.frames:
-            integrator, choice, result = again
-            limit = model.model_limit(params, result.t_s, result.states) or limit
-    if limit is not None:
-        result = result.truncated(min(limit.frames, len(result.t_s)), status=limit.status, message=limit.message)
-    status, message = result.status, result.message
-    if status == "event" and result.events:
-        message = model.stop_message(params, result.events[-1]) or message
-    if choice is not None and choice.status in (REDUCED_ACCURACY, TARGET_MISSED):
-        note = f"{choice.note[0].upper()}{choice.note[1:]}."
-        status, message = (choice.status, note) if status == "ok" else (status, f"{message} {note}")
-    return _report(model, params, result.t_s, result.states, choice=choice, method=result.method, description=result.description,
-                   steps=result.steps, rhs_evals=result.rhs_evals, cpu_s=result.cpu_s, status=status, message=message)
-
-
 def _automatic(controls: Mapping[str, Any]) -> bool:
     """Whether the controls leave the step to the automatic choice (no steps per frame set by hand)."""
     return int(controls.get("steps_per_frame", 0) or 0) == 0
@@ -387,8 +255,8 @@ def _automatic(controls: Mapping[str, Any]) -> bool:
 def _integrate(model: IntegratedModel, params, controls, *, t_end_s: float, frame_rate_hz: float, request_limits: bool):
     """``(integrator, choice, result)`` of the run over ``t_end_s``, its blow-up cut off; or the exact fallback's report."""
     frame_dt = 1.0 / frame_rate_hz
-    integrator, choice = model.choose_integrator(
-        params, controls, frame_dt, horizon_s=t_end_s,
+    integrator, choice = choose_integrator(
+        model, params, controls, frame_dt, horizon_s=t_end_s,
         max_fixed_work=MAX_FIXED_STEP_WORK if request_limits else None,
         max_adaptive_steps=MAX_ADAPTIVE_STEPS if request_limits else math.inf,
     )

@@ -85,7 +85,7 @@ def no_graph_note(scene_cls: type[Scene]) -> str | None:
     if not scene_cls.animated:
         return "this scene does not move in time: there is nothing to graph against time (its numbers are in the readout)"
     model = scene_cls.model
-    if not (isinstance(model, type) and issubclass(model, IntegratedModel)):
+    if model is None or not model.integrated:
         return "this scene's motion is a closed form in time, not integrated: its graph is not kept (its numbers are in the readout)"
     return None
 

@@ -77,18 +77,11 @@ def warm_compiled_models(scenes: dict) -> None:
     per system, numba about half a second); chapter 8 compiles each constrained system's right-hand-side and
     after-step callbacks, which are built per system at run time (0.1–0.25 s each with a warm disk cache).
     """
-    from app.physics.constrained.algorithms import algorithm_kernels
-    from app.physics.constrained.model import ConstrainedModel
-    from app.physics.mechanics.model import DerivedModel
-
     for scene in scenes.values():
         model = getattr(scene, "model", None)
         try:
-            if isinstance(model, type) and issubclass(model, DerivedModel):
-                model().derived(scene.parameters.defaults()).kernel()
-            elif isinstance(model, type) and issubclass(model, ConstrainedModel):
-                system = model().constrained_system(model.parameters.defaults())
-                algorithm_kernels(system.dynamics, system.constraints, system.n_coordinates, system.n_holonomic, system.n_constraints)
+            if model is not None:
+                model().prepare(scene.parameters.defaults())  # (nothing for a model that builds nothing at run time)
         except Exception:  # a failure here only means the first viewer compiles it, and sees the error then
             log.exception("warming %s failed", scene.id)
 

@@ -30,6 +30,7 @@ from app.physics.solvers.base import Integrator
 from app.physics.solvers.integrated_model import IntegratedModel
 from app.physics.solvers.solve import remedy
 from app.physics.solvers.step_choice import ESTIMATING, PILOT_FAILED, StepChoice
+from app.physics.solvers.step_policy import choose_integrator
 from app.physics.solvers.system import OdeSystem
 from app.scenes.kit.background_pilots import PILOTS
 from app.scenes.kit.scene import FRAME_DT_S, Scene, motion_numbers
@@ -93,8 +94,8 @@ class IntegratedScene(Scene):
         params = self.physical_params()
         controls = self.integration_controls()
         frame_dt = self.frame_dt_s
-        integrator, self.accuracy = model.choose_integrator(
-            params, controls, frame_dt, run_pilots=False, max_frame_cpu_s=LIVE_PHYSICS_BUDGET_S
+        integrator, self.accuracy = choose_integrator(
+            model, params, controls, frame_dt, run_pilots=False, max_frame_cpu_s=LIVE_PHYSICS_BUDGET_S
         )
         self.run_model = model
         self.run = self.new_run(model.system(params), integrator, model.initial_state(params))
@@ -105,7 +106,8 @@ class IntegratedScene(Scene):
         if self.accuracy is not None and self.accuracy.status == ESTIMATING:
             generation = self._generation
             PILOTS.submit(
-                id(self), lambda: self.model().choose_integrator(params, controls, frame_dt, max_frame_cpu_s=LIVE_PHYSICS_BUDGET_S),
+                id(self),
+                lambda: choose_integrator(self.model(), params, controls, frame_dt, max_frame_cpu_s=LIVE_PHYSICS_BUDGET_S),
                 lambda chosen: setattr(self, "_measured", (generation, chosen)),
             )
         self._scales = model.invariant_scales(params, self.run.y)

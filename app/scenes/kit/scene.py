@@ -17,10 +17,10 @@ from typing import Any, ClassVar
 
 import viser
 
+from app.physics.core.model import Model
 from app.physics.core.parameters import Parameter, ParameterSet
 from app.physics.core.readout import Readout
 from app.physics.core.solution import WorkedExample
-from app.physics.solvers.integrated_model import IntegratedModel
 from app.scenes.viser_boundary import set_initial_camera
 from app.scenes.kit.trail import Trail
 
@@ -71,14 +71,14 @@ class Preset:
 
 def compose_parameters(
     *,
-    model: type | None,
+    model: type[Model] | None,
     example: WorkedExample | None,
     controls: tuple[Parameter, ...],
     slider_ranges: Mapping[str, tuple[float, float, float]],
     check_controls: Callable[[Mapping[str, Any]], None] | None,
 ) -> ParameterSet:
     """A scene's parameters: the model's (or the worked example's inputs), the scene's own controls,
-    then the integration controls of an integrated model.
+    then the model's controls (an integrated model's integration controls; none for a closed form).
 
     ``slider_ranges`` narrows named parameters to ``(min, max, step)`` on a linear
     slider. The whole-set check is the model's (or example's), followed by
@@ -87,7 +87,7 @@ def compose_parameters(
     if model is not None and example is not None:
         raise TypeError("a scene shows either a model or a worked example, not both")
     physical = model.parameters if model is not None else example.inputs if example is not None else ParameterSet(())
-    integration = tuple(model.controls()) if isinstance(model, type) and issubclass(model, IntegratedModel) else ()
+    integration = tuple(model.controls()) if model is not None else ()
     parameters = (*physical.parameters, *controls, *integration)
     unknown = set(slider_ranges) - {p.name for p in parameters}
     if unknown:
@@ -128,8 +128,8 @@ class Scene(ABC):
     id: ClassVar[str]
     title: ClassVar[str]
     chapter: ClassVar[int]
-    #: The model drawn (a ClosedFormModel or IntegratedModel class), or None.
-    model: ClassVar[type | None] = None
+    #: The model drawn (a :class:`~app.physics.core.model.Model` class: closed-form or integrated), or None.
+    model: ClassVar[type[Model] | None] = None
     #: The worked example whose inputs the scene draws (instead of a model), or None.
     example: ClassVar[WorkedExample | None] = None
     #: Scene-only parameters (display options, time scale, …), after the model's.
@@ -175,7 +175,7 @@ class Scene(ABC):
             "chapter": cls.chapter,
             "animated": cls.animated,
             # Integrated scenes publish live invariants at /api/scenes/{id}/sessions/{sid}/live.
-            "integrated": cls.model is not None and issubclass(cls.model, IntegratedModel),
+            "integrated": cls.model is not None and cls.model.integrated,
             # Scenes with live numbers (readouts, marks on controls) for the lesson page.
             "readout": cls.readout is not Scene.readout,
             "parameters": cls.parameters.schema(),

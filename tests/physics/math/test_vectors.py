@@ -7,7 +7,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from app.physics.math.vectors import moment_about_axis, moment_about_point, unit_vector
+from app.physics.math.vectors import force_moment_about_axis, moment_about_point, unit_vector
 
 finite = st.floats(-100.0, 100.0, allow_nan=False, allow_infinity=False)
 vec3 = st.tuples(finite, finite, finite).map(np.array)
@@ -28,8 +28,8 @@ def test_moment_of_a_hand_worked_case():
     M = moment_about_point(np.array([2.0, 0.0, 0.0]), np.array([0.0, 10.0, 0.0]), np.zeros(3))
     assert M.tolist() == [0.0, 0.0, 20.0]
     # About the z axis it is +20 N·m, about -z it is -20 N·m (right-hand rule).
-    assert moment_about_axis([2.0, 0, 0], [0, 10.0, 0], np.zeros(3), [0, 0, 5.0]) == 20.0
-    assert moment_about_axis([2.0, 0, 0], [0, 10.0, 0], np.zeros(3), [0, 0, -1.0]) == -20.0
+    assert force_moment_about_axis([2.0, 0, 0], [0, 10.0, 0], np.zeros(3), [0, 0, 5.0]) == 20.0
+    assert force_moment_about_axis([2.0, 0, 0], [0, 10.0, 0], np.zeros(3), [0, 0, -1.0]) == -20.0
 
 
 @settings(max_examples=60, deadline=None)
@@ -45,7 +45,7 @@ def test_moment_does_not_depend_on_where_on_the_line_of_action(point, force, abo
 
 @settings(max_examples=60, deadline=None)
 @given(vec3, vec3, vec3, vec3)
-def test_moment_about_axis_is_a_scalar_triple_product(point, force, axis_point, axis_direction):
+def test_force_moment_about_axis_is_a_scalar_triple_product(point, force, axis_point, axis_direction):
     # Independent formula: det[e, r, F] with e = direction/|direction|, r = point - axis_point.
     norm = np.linalg.norm(axis_direction)
     if norm < 1e-6:
@@ -53,7 +53,7 @@ def test_moment_about_axis_is_a_scalar_triple_product(point, force, axis_point, 
     e = axis_direction / norm
     with np.errstate(divide="ignore", invalid="ignore"):  # LU of a singular matrix warns
         expected = np.linalg.det(np.array([e, point - axis_point, force]))
-    got = moment_about_axis(point, force, axis_point, axis_direction)
+    got = force_moment_about_axis(point, force, axis_point, axis_direction)
     # 1e-11 of |r||F|: det by LU and cross-then-dot differ by a few roundings of that size.
     scale = (np.linalg.norm(point - axis_point) + 1.0) * (np.linalg.norm(force) + 1.0)
     assert abs(got - expected) <= 1e-11 * scale

@@ -22,6 +22,7 @@ from app.physics.mechanics.model import DerivedModel
 from app.physics.solvers.registry import make_integrator
 from app.physics.solvers.solve import simulate
 from app.physics.solvers.step_choice import REDUCED_ACCURACY
+from app.physics.solvers.step_policy import choose_integrator
 from app.physics.systems.ch03.foucault_pendulum import FoucaultPendulum
 from app.physics.systems.ch06.bouncing_bar import BouncingBar
 from app.physics.systems.ch06.mechanism_kinetics import MechanismKinetics
@@ -40,7 +41,7 @@ CHAOTIC = {"theta1_0_deg": 120.0, "theta2_0_deg": -30.0, "theta2_rate_0_deg_s": 
 def _default_choice(cls, raw=None):
     model = cls()
     params = cls.parameters.validate(raw or {})
-    integrator, choice = model.choose_integrator(params, {}, FRAME_DT_S)
+    integrator, choice = choose_integrator(model, params, {}, FRAME_DT_S)
     assert choice is not None, f"{cls.__name__} states no accuracy target"
     return model, params, integrator, choice
 
@@ -105,10 +106,9 @@ def test_the_chaotic_double_pendulum_states_its_predictability_horizon_and_meets
 
 
 def test_a_simulate_answer_of_the_chaotic_swing_says_so_instead_of_ok():
-    from app.physics.solvers.integrated_model import simulate_model
 
     model = DoublePendulumMotion()
-    report = simulate_model(model, DoublePendulumMotion.parameters.validate(CHAOTIC), {}, t_end_s=30.0, frame_rate_hz=30.0)
+    report = model.simulate(DoublePendulumMotion.parameters.validate(CHAOTIC), {}, t_end_s=30.0, frame_rate_hz=30.0)
     assert report.status == REDUCED_ACCURACY and "chaotic" in report.message.lower()
     assert report.accuracy["error_horizon_s"] < 30.0
 
@@ -116,8 +116,8 @@ def test_a_simulate_answer_of_the_chaotic_swing_says_so_instead_of_ok():
 def test_a_live_physics_budget_caps_the_choice_and_the_note_says_so():
     """Below the budget nothing changes; a budget too small for the target lowers the accuracy, stated, not hidden."""
     model, params, _, free = _default_choice(MechanismKinetics)  # RK4 (its auto method): the budget caps its steps
-    _, roomy = model.choose_integrator(params, {}, FRAME_DT_S, max_frame_cpu_s=1.0)
+    _, roomy = choose_integrator(model, params, {}, FRAME_DT_S, max_frame_cpu_s=1.0)
     assert (roomy.method, roomy.steps_per_frame, roomy.rtol, roomy.status) == (free.method, free.steps_per_frame, free.rtol, "ok")
-    _, capped = model.choose_integrator(params, {}, FRAME_DT_S, max_frame_cpu_s=1e-7)
+    _, capped = choose_integrator(model, params, {}, FRAME_DT_S, max_frame_cpu_s=1e-7)
     assert capped.status == REDUCED_ACCURACY and "physics budget" in capped.note
     assert capped.steps_per_frame == 1 and capped.estimated_error > capped.target.error

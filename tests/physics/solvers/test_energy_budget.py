@@ -18,11 +18,11 @@ import math
 import numpy as np
 import pytest
 
-from app.physics.constrained.model import ConstrainedModel
 from app.physics.core.parameters import ParameterSet
 from app.physics.math.rotations import rotation_matrix
 from app.physics.solvers import DormandPrince, simulate
 from app.physics.solvers.integrated_model import IntegratedModel
+from app.physics.solvers.step_policy import choose_integrator
 from app.physics.systems.ch06 import mechanism_kinetics as mk
 from app.scenes import SCENES
 
@@ -57,9 +57,9 @@ def run(scene_id: str, *, t_end_s: float = 2.0, rtol: float | None = None, overr
     params = {k: v for k, v in cls.parameters.defaults().items() if k in cls.model.parameters.by_name} | (overrides or {})
     params = cls.model.parameters.validate(params)
     controls = ParameterSet(cls.model.controls()).validate({})
-    integrator = model.integrator(params, controls, 1.0 / 30.0) if rtol is None else DormandPrince(rtol=rtol)
-    if isinstance(model, ConstrainedModel) and rtol is not None:
-        model.integrator(params, controls, 1.0 / 30.0)
+    integrator = choose_integrator(model, params, controls, 1.0 / 30.0)[0] if rtol is None else DormandPrince(rtol=rtol)
+    if rtol is not None:
+        model.integration_controls(params, controls)  # (a constrained model records its DAE algorithm here)
     result = simulate(model.system(params), integrator, model.initial_state(params), t_end_s=t_end_s, frame_rate_hz=30.0)
     return model, params, result.t_s, result.states
 

@@ -15,9 +15,8 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from app.physics.bodies.rigid_body import RigidBody
+from app.physics.bodies.rigid_body import PivotedBody
 from app.physics.solvers import make_integrator, simulate
-from app.physics.solvers.integrated_model import simulate_model
 from app.physics.solvers.step_choice import TARGET_MISSED
 from app.physics.systems.ch10 import heavy_top
 
@@ -66,7 +65,7 @@ def test_quadrature_reference_matches_a_tight_integration():
     params = dict(DEFAULTS)
     u1, u2, _ = released_top_roots(params)
     period, _ = quadrature_period_and_precession(params)
-    report = simulate_model(MODEL, params, {"method": "dopri5", "rtol": 1e-12}, t_end_s=2.0 * period, frame_rate_hz=4000, request_limits=False)
+    report = MODEL.simulate(params, {"method": "dopri5", "rtol": 1e-12}, t_end_s=2.0 * period, frame_rate_hz=4000, request_limits=False)
     theta = report.series["theta"]
     assert theta.max() == pytest.approx(math.acos(u1), rel=1e-6)
     assert theta.min() == pytest.approx(math.acos(u2), rel=1e-9)
@@ -87,7 +86,7 @@ def test_sleeping_top_threshold_max_tilt_within_1_percent(factor):
     theta_max = math.acos(u1)
     period, _ = quadrature_period_and_precession(params)
     frame_rate = 400.0 / period  # 400 samples per nutation period: sampling error ≪ 1%
-    report = simulate_model(MODEL, params, {}, t_end_s=1.5 * period, frame_rate_hz=frame_rate, request_limits=False)
+    report = MODEL.simulate(params, {}, t_end_s=1.5 * period, frame_rate_hz=frame_rate, request_limits=False)
     assert report.status == "ok"
     measured = float(report.series["theta"].max())
     assert measured == pytest.approx(theta_max, rel=0.01)
@@ -101,7 +100,7 @@ def test_fast_spin_slow_precession_mean_rate_within_0p1_percent():
     params = dict(DEFAULTS, spin_rad_s=1000.0)
     period, mean_rate = quadrature_period_and_precession(params)
     assert period < 1.0 / 60.0
-    report = simulate_model(MODEL, params, {}, t_end_s=60.0, frame_rate_hz=60.0)
+    report = MODEL.simulate(params, {}, t_end_s=60.0, frame_rate_hz=60.0)
     assert report.status == "ok"
     phi = report.series["phi"]
     measured = (phi[-1] - phi[0]) / report.t_s[-1]
@@ -111,7 +110,7 @@ def test_fast_spin_slow_precession_mean_rate_within_0p1_percent():
 @pytest.mark.parametrize("frame_rate_hz", [30.0, 60.0])
 def test_one_step_per_frame_stays_physical(frame_rate_hz):
     """Default method, 1 step per frame, 60 s: no NaN, |ΔE|/E < 1%, |q| = 1 to 1e-12."""
-    report = simulate_model(MODEL, DEFAULTS, {"steps_per_frame": 1}, t_end_s=60.0, frame_rate_hz=frame_rate_hz)
+    report = MODEL.simulate(DEFAULTS, {"steps_per_frame": 1}, t_end_s=60.0, frame_rate_hz=frame_rate_hz)
     # One step per frame is coarser than the 1e-6 rad attitude target needs: the run completes and says so.
     assert report.status == TARGET_MISSED and "misses the target" in report.message
     energy = report.invariants["energy"]
@@ -186,8 +185,8 @@ def test_gimbal_lock_313_angles_finite_and_cost_within_2x(excess):
     Euler angles are only read off it.
     """
     controls = {"method": "dopri5", "rtol": 1e-9}
-    near = simulate_model(MODEL, _vertical_pass_params(excess), controls, t_end_s=2.0, frame_rate_hz=240.0)
-    far = simulate_model(MODEL, dict(DEFAULTS, theta0_deg=10.0), controls, t_end_s=2.0, frame_rate_hz=240.0)
+    near = MODEL.simulate(_vertical_pass_params(excess), controls, t_end_s=2.0, frame_rate_hz=240.0)
+    far = MODEL.simulate(dict(DEFAULTS, theta0_deg=10.0), controls, t_end_s=2.0, frame_rate_hz=240.0)
     for name in ("theta", "phi", "psi"):
         assert np.all(np.isfinite(near.series[name])), name
     assert near.series["theta"].min() < math.radians(0.5)  # it does get to (nearly) gimbal lock
@@ -214,7 +213,7 @@ def test_direct_313_integration_pays_for_the_singularity():
 )
 def test_degenerate_inertia_does_not_blow_up(inertia, omega0):
     """Limits of the triangle inequality: default method, 10 s, finite, energy and |L| kept to 1e-8."""
-    body = RigidBody(inertia)
+    body = PivotedBody(inertia)
     y0 = np.concatenate([[1.0, 0.0, 0.0, 0.0], omega0])
     integrator = make_integrator("splitting4", steps_per_frame=8)
     result = simulate(body.system(), integrator, y0, t_end_s=10.0, frame_rate_hz=60.0)
@@ -236,7 +235,7 @@ def test_degenerate_inertia_does_not_blow_up(inertia, omega0):
 )
 def test_invalid_inertia_rejected_with_a_clear_message(inertia, message):
     with pytest.raises(ValueError, match=message):
-        RigidBody(inertia)
+        PivotedBody(inertia)
 
 
 # ---- the intermediate-axis (Dzhanibekov) flips ------------------------------------------
@@ -258,7 +257,7 @@ def _flip_times(t: np.ndarray, omega_intermediate: np.ndarray) -> np.ndarray:
 def _dzhanibekov_run(t_end_s: float):
     from app.physics.systems.ch10.free_body_elliptic import free_body_elliptic
 
-    body = RigidBody(DZHANIBEKOV_INERTIA)
+    body = PivotedBody(DZHANIBEKOV_INERTIA)
     y0 = np.concatenate([[1.0, 0.0, 0.0, 0.0], DZHANIBEKOV_OMEGA0])
     # The default a scene would use: splitting4 with the automatic step at 60 frames/s.
     integrator = make_integrator("splitting4", fastest_rate_rad_s=body.fastest_rate_rad_s(y0), frame_dt_s=1 / 60)

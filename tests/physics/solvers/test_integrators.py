@@ -35,6 +35,7 @@ from app.physics.solvers import (
 from app.physics.solvers.controls import integrator_from_controls
 from app.physics.solvers.kernels import EVENTS_SIGNATURE, RHS_SIGNATURE, kernel, no_projection
 from app.physics.solvers.solve import MAX_STEPS_PER_FRAME, STEP_RATIO, STEPS_PER_BATCH
+from app.physics.solvers.step_policy import choose_integrator
 from app.physics.systems.ch10 import heavy_top
 
 # --------------------------------------------------------------------------- kernels
@@ -520,7 +521,7 @@ def test_auto_means_the_models_default():
         assert integrator.steps_per_frame == automatic_steps_per_frame("splitting4", 60.0, 1 / 60)
     # A model with an accuracy target: auto is the cheapest of its methods meeting the target (measured, see
     # tests/physics/solvers/test_step_choice.py), no longer always default_method — a splitting method here.
-    integrator, choice = model.choose_integrator(TOP_PARAMS, {"method": "auto", "steps_per_frame": 0}, 1 / 60)
+    integrator, choice = choose_integrator(model, TOP_PARAMS, {"method": "auto", "steps_per_frame": 0}, 1 / 60)
     assert isinstance(integrator, RigidBodySplitting) and integrator.name in model.methods
     assert choice.method == integrator.name and choice.estimated_error <= model.accuracy_target.error
     # An explicit choice wins over the default; steps_per_frame = 0 means automatic.

@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from app.physics.bodies.rigid_body import RigidBody, rigid_body_rhs
+from app.physics.bodies.rigid_body import PivotedBody, rigid_body_rhs
 from app.physics.solvers import METHODS, OdeSystem, make_integrator, simulate
 from app.physics.solvers.kernels import Kernel
 from app.physics.solvers.registry import STEP_RATIO, method_spec
@@ -21,7 +21,7 @@ from app.physics.systems.ch10.free_body_elliptic import free_body_elliptic
 INERTIA = (2e-3, 3e-3, 4e-3)  # kg·m²
 OMEGA0 = np.array([1.0, 4.0, 2.0])  # rad/s, body frame: |ω| ≈ 4.6 rad/s, well away from the separatrix
 Y0 = np.concatenate([[1.0, 0.0, 0.0, 0.0], OMEGA0])
-BODY = RigidBody(INERTIA)
+BODY = PivotedBody(INERTIA)
 SYSTEM = BODY.system()
 T_END, RATE = 2.0, 30.0  # s, Hz
 FRAMES_T = np.arange(int(T_END * RATE) + 1) / RATE

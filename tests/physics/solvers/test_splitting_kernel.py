@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from app.physics.bodies.rigid_body import RigidBody
+from app.physics.bodies.rigid_body import PivotedBody
 from app.physics.solvers import OdeSystem, make_integrator, simulate
 from app.physics.solvers.kernels import TORQUE_SIGNATURE, kernel
 from app.physics.solvers.splitting import COMPOSITIONS
@@ -82,7 +82,7 @@ TOP_Y0 = heavy_top.initial_state(PARAMS)
 MOTOR_PARAMETERS = np.array([2e-3, 3e-3, 4e-3, 0.05, 2e-3])
 MOTOR_Y0 = np.concatenate([Rotation.from_euler("x", 0.4).as_quat()[[3, 0, 1, 2]], [1.0, -2.0, 30.0]])
 MOTOR_SYSTEM = OdeSystem(
-    rhs=RigidBody((2e-3, 3e-3, 4e-3)).system().rhs, parameters=MOTOR_PARAMETERS, state_names=TOP.system().state_names,
+    rhs=PivotedBody((2e-3, 3e-3, 4e-3)).system().rhs, parameters=MOTOR_PARAMETERS, state_names=TOP.system().state_names,
     torque=gravity_and_spin_motor_torque,
 )
 

@@ -15,11 +15,11 @@ import math
 import numpy as np
 import pytest
 
-from app.physics.bodies.rigid_body import RigidBody
+from app.physics.bodies.rigid_body import PivotedBody
 from app.physics.core.parameters import ParameterError, ParameterSet
 from app.physics.core.report import MAX_FIXED_STEP_WORK
 from app.physics.solvers import METHODS, make_integrator, simulate
-from app.physics.solvers.integrated_model import check_request_bounds, simulate_model
+from app.physics.solvers.integrated_model import check_request_bounds
 from app.physics.solvers.step_choice import (
     EXACT_FALLBACK,
     PILOT_CACHE,
@@ -30,6 +30,7 @@ from app.physics.solvers.step_choice import (
     _pilot_frames,
     choose,
 )
+from app.physics.solvers.step_policy import choose_integrator
 from app.physics.systems.ch10 import gyrocompass, heavy_top
 from app.physics.systems.ch10.free_body_elliptic import free_body_elliptic
 from app.physics.systems.ch10.torque_free_body import attitude_difference_rad
@@ -53,7 +54,7 @@ FREE_OMEGA0 = np.array([0.01, 10.0, 0.01])
 
 
 def _free_body_error(steps_per_frame: int | None, method: str, *, t_end_s: float, frame_rate_hz: float, rtol: float | None = None) -> float:
-    body = RigidBody(FREE_INERTIA)
+    body = PivotedBody(FREE_INERTIA)
     y0 = np.concatenate([[1.0, 0.0, 0.0, 0.0], FREE_OMEGA0])
     result = simulate(body.system(), make_integrator(method, steps_per_frame=steps_per_frame, rtol=rtol), y0,
                       t_end_s=t_end_s, frame_rate_hz=frame_rate_hz)
@@ -63,7 +64,7 @@ def _free_body_error(steps_per_frame: int | None, method: str, *, t_end_s: float
 
 def test_the_free_body_default_now_meets_the_target_the_lab_states():
     """Old rule: splitting4 at 1 step/frame, 1.75e-4 rad over the lab's 10 s. New: ≤ 1e-6 rad over 60 s."""
-    body = RigidBody(FREE_INERTIA)
+    body = PivotedBody(FREE_INERTIA)
     y0 = np.concatenate([[1.0, 0.0, 0.0, 0.0], FREE_OMEGA0])
     frame_dt = 1 / 60
     old = make_integrator("splitting4", fastest_rate_rad_s=body.fastest_rate_rad_s(y0), frame_dt_s=frame_dt)
@@ -86,7 +87,7 @@ def test_the_free_body_default_now_meets_the_target_the_lab_states():
 def test_the_heavy_top_default_meets_its_target_against_the_quadrature():
     model = heavy_top.HeavyTop()
     params = heavy_top.PARAMETERS.defaults()
-    report = simulate_model(model, params, {}, t_end_s=60.0, frame_rate_hz=30.0, request_limits=False)
+    report = model.simulate(params, {}, t_end_s=60.0, frame_rate_hz=30.0, request_limits=False)
     assert report.status == "ok"
     assert report.accuracy["estimated_error"] <= TARGET_RAD
     # The phase error against the quadrature, not only the drift: reported as a series and in the stats.
@@ -103,20 +104,20 @@ def test_the_auto_choice_is_the_cheapest_measured_and_each_method_meets_the_targ
     assert model.methods == tuple(METHODS)  # new registered methods (higher-order splittings) join by their spec
     costs = {}
     for method in ("splitting4", "rk4"):
-        integrator, choice = model.choose_integrator(params, {"method": method}, 1 / 30, horizon_s=10.0)
-        report = simulate_model(model, params, {"method": method}, t_end_s=10.0, frame_rate_hz=30.0, request_limits=False)
+        integrator, choice = choose_integrator(model, params, {"method": method}, 1 / 30, horizon_s=10.0)
+        report = model.simulate(params, {"method": method}, t_end_s=10.0, frame_rate_hz=30.0, request_limits=False)
         assert report.accuracy["max_reference_error"] <= TARGET_RAD, (method, choice.text())
         costs[method] = choice.cost_s
-    _, auto = model.choose_integrator(params, {}, 1 / 30, horizon_s=10.0)
+    _, auto = choose_integrator(model, params, {}, 1 / 30, horizon_s=10.0)
     assert auto.cost_s <= min(costs.values())
 
 
 def test_the_pilot_is_cached_per_model_parameters_and_method():
     model = heavy_top.HeavyTop()
     params = heavy_top.PARAMETERS.validate({"spin_rad_s": 75.0})
-    model.choose_integrator(params, {}, 1 / 30)
+    choose_integrator(model, params, {}, 1 / 30)
     before = PILOT_CACHE.pilots_run
-    again, _ = model.choose_integrator(params, {}, 1 / 30)
+    again, _ = choose_integrator(model, params, {}, 1 / 30)
     assert PILOT_CACHE.pilots_run == before and again is not None
 
 
@@ -135,14 +136,14 @@ def test_the_fast_top_over_600_s_is_answered_not_refused():
     old = make_integrator("splitting4", fastest_rate_rad_s=body.fastest_rate_rad_s(heavy_top.initial_state(FAST_TOP)), frame_dt_s=1 / 30)
     with pytest.raises(ParameterError, match="steps_per_frame"):
         check_request_bounds(old, t_end_s=600.0, frame_rate_hz=30.0)
-    report = simulate_model(model, FAST_TOP, _controls(model, {}), t_end_s=600.0, frame_rate_hz=30.0)
+    report = model.simulate(FAST_TOP, _controls(model, {}), t_end_s=600.0, frame_rate_hz=30.0)
     assert report.status in ("ok", EXACT_FALLBACK)
     assert report.accuracy["max_reference_error"] <= TARGET_RAD
 
 
 def test_a_method_that_cannot_reach_the_target_within_the_limit_falls_back_to_the_quadrature():
     model = heavy_top.HeavyTop()
-    report = simulate_model(model, FAST_TOP, _controls(model, {"method": "rk4"}), t_end_s=600.0, frame_rate_hz=30.0)
+    report = model.simulate(FAST_TOP, _controls(model, {"method": "rk4"}), t_end_s=600.0, frame_rate_hz=30.0)
     assert report.status == EXACT_FALLBACK and report.method == "exact" and "exact solution" in report.message
     assert report.max_invariant_drift < 1e-12  # energy, L_z and spin are constant by construction of the states
     assert report.accuracy["max_reference_error"] < 1e-12
@@ -151,7 +152,7 @@ def test_a_method_that_cannot_reach_the_target_within_the_limit_falls_back_to_th
 def test_explicit_steps_over_the_limit_are_still_refused_naming_the_limit():
     model = heavy_top.HeavyTop()
     with pytest.raises(ParameterError, match=str(MAX_FIXED_STEP_WORK)):
-        simulate_model(model, FAST_TOP, _controls(model, {"method": "rk4", "steps_per_frame": 4096}), t_end_s=600.0, frame_rate_hz=30.0)
+        model.simulate(FAST_TOP, _controls(model, {"method": "rk4", "steps_per_frame": 4096}), t_end_s=600.0, frame_rate_hz=30.0)
 
 
 def test_the_fast_gyrocompass_is_answered_at_a_stated_lower_accuracy_not_refused():
@@ -159,7 +160,7 @@ def test_the_fast_gyrocompass_is_answered_at_a_stated_lower_accuracy_not_refused
     old = make_integrator("rk4", fastest_rate_rad_s=model.fastest_rate_rad_s(FAST_COMPASS, model.initial_state(FAST_COMPASS)), frame_dt_s=1 / 30)
     with pytest.raises(ParameterError, match="steps_per_frame"):
         check_request_bounds(old, t_end_s=600.0, frame_rate_hz=30.0)
-    report = simulate_model(model, FAST_COMPASS, _controls(model, {}), t_end_s=600.0, frame_rate_hz=30.0)
+    report = model.simulate(FAST_COMPASS, _controls(model, {}), t_end_s=600.0, frame_rate_hz=30.0)
     assert report.status == REDUCED_ACCURACY and "accuracy lowered" in report.message.lower()
     assert report.accuracy["estimated_error"] > TARGET_RAD and len(report.t_s) == 18001
     assert "request limit" in report.message
@@ -169,8 +170,8 @@ def test_the_gyrocompass_default_meets_its_target_against_a_tight_run():
     """Defaults (a 98 s north-seeking period): α against Dormand–Prince at rtol 1e-12 (error ≲ 1e-10 rad)."""
     model = gyrocompass.Gyrocompass()
     params = gyrocompass.PARAMETERS.defaults()
-    report = simulate_model(model, params, {}, t_end_s=60.0, frame_rate_hz=30.0, request_limits=False)
-    tight = simulate_model(model, params, {"method": "dopri5", "rtol": 1e-12}, t_end_s=60.0, frame_rate_hz=30.0, request_limits=False)
+    report = model.simulate(params, {}, t_end_s=60.0, frame_rate_hz=30.0, request_limits=False)
+    tight = model.simulate(params, {"method": "dopri5", "rtol": 1e-12}, t_end_s=60.0, frame_rate_hz=30.0, request_limits=False)
     assert report.accuracy["estimated_error"] <= TARGET_RAD
     assert float(np.max(np.abs(report.series["alpha_rad"] - tight.series["alpha_rad"]))) <= TARGET_RAD
 
@@ -181,7 +182,7 @@ def test_the_gyrocompass_default_meets_its_target_against_a_tight_run():
 def test_psi_is_unwrapped_from_the_integrated_rates_not_from_frame_samples():
     """Spin 2000 rad/s at 30 frames/s turns ψ by 67 rad a frame: samples alone alias it (the issue's 492 rad/s)."""
     model = heavy_top.HeavyTop()
-    report = simulate_model(model, FAST_TOP, {}, t_end_s=2.0, frame_rate_hz=30.0, request_limits=False)
+    report = model.simulate(FAST_TOP, {}, t_end_s=2.0, frame_rate_hz=30.0, request_limits=False)
     t = report.t_s
     aliased_rate = np.polyfit(t, heavy_top.euler_angles(heavy_top.quadrature_states(FAST_TOP, t))["psi"], 1)[0]
     assert abs(aliased_rate - 2000.0) > 100.0  # the old unwrap from samples

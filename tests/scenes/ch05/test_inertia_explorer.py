@@ -61,7 +61,7 @@ def test_turning_the_frame_changes_the_components_but_not_the_principal_moments(
         # Independently: the moment about a turned axis is eᵀ I e, the product about two is −eᵀ I f.
         axes = matrix_from_angles(np.radians(angles), sequence).T
         for i in range(3):
-            assert turned[i, i] == pytest.approx(inertia.moment_about_axis(I_G, axes[i]), abs=RELATIVE * scale)
+            assert turned[i, i] == pytest.approx(inertia.inertia_about_axis(I_G, axes[i]), abs=RELATIVE * scale)
         for i, j, _ in PRODUCTS:
             assert turned[i, j] == pytest.approx(float(axes[i] @ I_G @ axes[j]), abs=RELATIVE * scale)
         assert np.max(np.abs(turned - start)) > 1e-3 * scale, "the components must change as the frame turns"

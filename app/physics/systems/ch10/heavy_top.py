@@ -29,7 +29,7 @@ from typing import Any
 import numpy as np
 
 from app.physics.bodies.inertia import centroidal_from_point
-from app.physics.bodies.rigid_body import RigidBody
+from app.physics.bodies.rigid_body import PivotedBody
 from app.physics.core.energy import EnergyParts
 from app.physics.core.parameters import Parameter, ParameterError, ParameterSet
 from app.physics.math.rotations import body_rates_from_euler_313_rates, euler_313_from_quaternion, quaternion_from_euler_313
@@ -74,14 +74,18 @@ PARAMETERS = ParameterSet(
 )
 
 
-def rigid_body(params: Mapping[str, Any]) -> RigidBody:
+def rigid_body(params: Mapping[str, Any]) -> PivotedBody:
     """The top as a body about its pivot (checked once per set of values: frames ask for it every 1/30 s)."""
     return _rigid_body(params["I_transverse_pivot"], params["I_axial"], params["mass_kg"], params["cg_distance_m"], params["g_m_s2"])
 
 
 @functools.lru_cache(maxsize=256)
-def _rigid_body(I_transverse: float, I_axial: float, mass_kg: float, cg_distance_m: float, g_m_s2: float) -> RigidBody:
-    return RigidBody((I_transverse, I_transverse, I_axial), mass_kg=mass_kg, cg_distance_m=cg_distance_m, g_m_s2=g_m_s2)
+def _rigid_body(
+    I_transverse: float, I_axial: float, mass_kg: float, cg_distance_m: float, g_m_s2: float
+) -> PivotedBody:
+    return PivotedBody(
+        (I_transverse, I_transverse, I_axial), mass_kg=mass_kg, cg_distance_m=cg_distance_m, g_m_s2=g_m_s2
+    )
 
 
 def initial_state(params: Mapping[str, Any]) -> np.ndarray:

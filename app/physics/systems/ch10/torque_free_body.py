@@ -37,7 +37,7 @@ from typing import Any
 import numpy as np
 
 from app.physics.bodies.inertia import check_principal_inertia
-from app.physics.bodies.rigid_body import RigidBody
+from app.physics.bodies.rigid_body import PivotedBody
 from app.physics.core.closed_form import ClosedFormModel, ClosedFormSolution, Event
 from app.physics.core.parameters import Parameter, ParameterError, ParameterSet
 from app.physics.math.rotations import quaternion_conjugate, quaternion_multiply, rotate_vector
@@ -330,7 +330,7 @@ class IntegratedTwin:
     """
 
     def __init__(self, body: FreeBodyElliptic, *, frame_dt_s: float, step_ratio: float = GHOST_STEP_RATIO) -> None:
-        self.rigid_body = RigidBody(tuple(float(v) for v in body.inertia))
+        self.rigid_body = PivotedBody(tuple(float(v) for v in body.inertia))
         rate = float(np.linalg.norm(omega_amplitudes_rad_s(body)))
         steps = max(1, min(4096, math.ceil(rate * frame_dt_s / step_ratio - 1e-9)))
         integrator = make_integrator("rk4", steps_per_frame=steps)

@@ -21,7 +21,6 @@ import numpy as np
 import pytest
 import sympy
 
-from app.physics.core.closed_form import evaluate_model
 from app.physics.core.parameters import ParameterError
 from app.physics.systems.ch02 import cartesian_components, coordinate_paths, rotating_arm
 from app.physics.systems.ch02.coordinate_paths import CoordinatePath
@@ -83,9 +82,9 @@ def test_the_report_says_when_the_projectile_would_be_below_the_ground():
     model = cartesian_components.CartesianParticle()
     params = model.parameters.validate({"motion": "projectile"})
     flight = cartesian_components.cartesian_motion(params).run_s
-    inside = evaluate_model(model, params, t_end_s=0.9 * flight, frame_rate_hz=30.0)
+    inside = model.simulate(params, {}, t_end_s=0.9 * flight, frame_rate_hz=30.0).as_dict()
     assert inside["stats"]["status"] == "ok"
-    beyond = evaluate_model(model, params, t_end_s=2.0 * flight, frame_rate_hz=30.0)
+    beyond = model.simulate(params, {}, t_end_s=2.0 * flight, frame_rate_hz=30.0).as_dict()
     assert beyond["stats"]["status"] == "outside_model" and "below the ground" in beyond["stats"]["message"]
     assert beyond["series"]["z_ddot"] == pytest.approx([-9.81] * len(beyond["t"]))
 
@@ -216,7 +215,7 @@ def test_a_path_angle_a_path_cannot_take_is_refused_naming_beta(path, beta):
 def test_the_path_report_has_both_descriptions_and_finite_series():
     model = coordinate_paths.ParticleOnCoordinatePath()
     params = model.parameters.validate({"path": "loxodrome", "path_angle_deg": 75.0})
-    report = evaluate_model(model, params, t_end_s=10.0, frame_rate_hz=20.0)
+    report = model.simulate(params, {}, t_end_s=10.0, frame_rate_hz=20.0).as_dict()
     assert report["stats"]["status"] == "ok"
     assert report["series"]["r"] == pytest.approx([1.0] * len(report["t"]), rel=1e-12)
     assert report["series"]["v_r"] == pytest.approx([0.0] * len(report["t"]), abs=1e-12)

@@ -16,7 +16,6 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from app.physics.core.closed_form import evaluate_model
 from app.physics.core.parameters import ParameterError
 from app.physics.math.curvilinear import cylindrical, spherical
 from app.physics.systems.ch02 import space_curve as sc
@@ -236,7 +235,7 @@ def test_axis_and_origin_leave_the_singular_directions_undefined():
 
 def test_model_series_for_the_helix():
     params = sc.INPUTS.validate({"x_of_t": "2*cos(t)", "y_of_t": "2*sin(t)", "z_of_t": "0.5*t"})
-    report = evaluate_model(sc.ParticleOnCurve(), params, t_end_s=6.0, frame_rate_hz=10.0)
+    report = sc.ParticleOnCurve().simulate(params, {}, t_end_s=6.0, frame_rate_hz=10.0).as_dict()
     series = {k: np.array(v, dtype=float) for k, v in report["series"].items()}
     t = np.array(report["t"])
     assert set(series) == set(sc.ParticleOnCurve.series_units)
@@ -252,7 +251,7 @@ def test_model_series_for_the_helix():
 
 def test_model_reports_degenerate_instants_as_events():
     params = sc.INPUTS.validate({"x_of_t": "t^3", "y_of_t": "t^2", "z_of_t": "0"})
-    report = evaluate_model(sc.ParticleOnCurve(), params, t_end_s=1.0, frame_rate_hz=10.0)
+    report = sc.ParticleOnCurve().simulate(params, {}, t_end_s=1.0, frame_rate_hz=10.0).as_dict()
     assert [(e["t_s"], e["kind"]) for e in report["events"]] == [(0.0, "at-rest")]
     assert report["series"]["curvature"][0] is None and report["series"]["speed"][0] == 0.0
 

@@ -7,7 +7,6 @@ import tracemalloc
 import numpy as np
 import pytest
 
-from app.physics.core.closed_form import evaluate_model
 from app.physics.core.parameters import ParameterError
 from app.physics.systems.ch02 import space_curve as sc
 from app.scenes.ch02.space_curve import SpaceCurveScene, table_times
@@ -66,7 +65,7 @@ def test_worst_case_simulate_evaluation_memory_is_bounded():
     sc.compile_curve(*HEAVY)  # compiled (and cached) outside the measurement
     tracemalloc.start()
     try:
-        report = evaluate_model(sc.ParticleOnCurve(), dict(zip(sc.COMPONENTS, HEAVY)), t_end_s=600.0, frame_rate_hz=60.0)
+        report = sc.ParticleOnCurve().simulate(dict(zip(sc.COMPONENTS, HEAVY)), {}, t_end_s=600.0, frame_rate_hz=60.0).as_dict()
         _, peak = tracemalloc.get_traced_memory()
     finally:
         tracemalloc.stop()

@@ -13,7 +13,6 @@ import math
 import numpy as np
 import pytest
 
-from app.physics.core.closed_form import evaluate_model
 from app.physics.math.rotations import SEQUENCES, matrix_from_angles
 from app.physics.systems.ch03 import angle_rates as physics
 
@@ -98,12 +97,12 @@ def test_at_gimbal_lock_the_rates_cannot_be_recovered(sequence, theta2_deg, comb
     motion = physics.AngleMotion.from_params(params)
     R = attitude(motion, 3.0)
     assert np.abs(k.omega_world_rad_s[1] - vee(matrix_rate(motion, 3.0) @ R.T)).max() < RELATIVE_TOL * 2.0
-    report = evaluate_model(physics.AngleRates(), params, t_end_s=1.0, frame_rate_hz=10.0)
+    report = physics.AngleRates().simulate(params, {}, t_end_s=1.0, frame_rate_hz=10.0).as_dict()
     assert report["stats"]["status"] == "ok"
     assert [(e["t_s"], e["kind"]) for e in report["events"]] == [(0.0, "gimbal_lock")]
 
 
 def test_simulate_report_names_every_series():
-    report = evaluate_model(physics.AngleRates(), physics.PARAMETERS.defaults(), t_end_s=2.0, frame_rate_hz=30.0)
+    report = physics.AngleRates().simulate(physics.PARAMETERS.defaults(), {}, t_end_s=2.0, frame_rate_hz=30.0).as_dict()
     assert set(report["series"]) == set(physics.AngleRates.series_units) and report["events"] == []
     assert all(np.all(np.isfinite(v)) for v in report["series"].values())

@@ -17,7 +17,6 @@ from scipy.integrate import solve_ivp
 from scipy.linalg import expm
 
 from app.physics.core.parameters import ParameterError
-from app.physics.solvers.integrated_model import simulate_model
 from app.physics.systems import earth
 from app.physics.systems.ch03 import eastward_deflection as deflection
 from app.physics.systems.ch03 import foucault_pendulum as foucault
@@ -27,7 +26,7 @@ MODEL = foucault.FoucaultPendulum()
 
 def run_pendulum(overrides: dict, *, t_end_s: float, frame_rate_hz: float = 240.0, method: str = "rk4", **controls):
     params = foucault.PARAMETERS.validate(overrides)
-    report = simulate_model(MODEL, params, {"method": method, **controls}, t_end_s=t_end_s, frame_rate_hz=frame_rate_hz, request_limits=False)
+    report = MODEL.simulate(params, {"method": method, **controls}, t_end_s=t_end_s, frame_rate_hz=frame_rate_hz, request_limits=False)
     assert report.status == "ok", report.message
     return params, report
 

@@ -12,7 +12,6 @@ import math
 import numpy as np
 import pytest
 
-from app.physics.core.closed_form import evaluate_model
 from app.physics.core.parameters import ParameterError
 from app.physics.math.rotations import quaternion_from_axis_angle, rotation_matrix
 from app.physics.systems.ch03 import vector_derivative as physics
@@ -81,7 +80,7 @@ def test_turning_back_as_fast_as_the_frame_holds_a_still():
 
 
 def test_simulate_report_and_bad_input():
-    report = evaluate_model(physics.VectorDerivative(), physics.PARAMETERS.defaults(), t_end_s=2.0, frame_rate_hz=30.0)
+    report = physics.VectorDerivative().simulate(physics.PARAMETERS.defaults(), {}, t_end_s=2.0, frame_rate_hz=30.0).as_dict()
     assert report["stats"]["method"] == "closed-form" and report["stats"]["status"] == "ok"
     assert set(report["series"]) == set(physics.VectorDerivative.series_units)
     with pytest.raises(ParameterError) as info:

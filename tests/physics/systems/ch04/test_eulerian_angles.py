@@ -15,7 +15,6 @@ import math
 import numpy as np
 import pytest
 
-from app.physics.core.closed_form import evaluate_model
 from app.physics.systems.ch04 import eulerian_angles as physics
 
 H_S = 1e-3
@@ -119,7 +118,7 @@ def test_omega_passes_smoothly_through_theta_zero():
 
 def test_simulate_report_names_every_series_and_is_finite():
     model = physics.EulerianAngleKinematics()
-    report = evaluate_model(model, physics.PARAMETERS.defaults(), t_end_s=8.0, frame_rate_hz=30.0)
+    report = model.simulate(physics.PARAMETERS.defaults(), {}, t_end_s=8.0, frame_rate_hz=30.0).as_dict()
     assert report["stats"]["status"] == "ok"
     assert set(report["series"]) == set(model.series_units)
     assert all(np.all(np.isfinite(v)) for v in report["series"].values())

@@ -24,7 +24,6 @@ from scipy.integrate import quad
 from scipy.optimize import brentq, fsolve
 from scipy.spatial.transform import Rotation
 
-from app.physics.core.closed_form import evaluate_model
 from app.physics.systems.ch04 import cardan_joint, four_bar, slider_crank
 from app.physics.systems.ch04.crank_drive import CrankDrive
 from app.physics.systems.ch04.four_bar import FourBar, FourBarLinkage, FourBarMotion
@@ -275,8 +274,8 @@ def test_the_simulate_report_shows_undefined_rates_as_null_with_the_events():
     motion = non_grashof_motion()
     first = motion.events(5.0)[0].t_s
     # A frame rate that lands a frame exactly on the first toggle instant.
-    report = evaluate_model(FourBarLinkage(), dict(four_bar.PARAMETERS.defaults(), ground_m=1.2, crank_m=0.9, coupler_m=0.7, rocker_m=0.6,
-                                                   crank_angle0_deg=0.0, crank_speed_rad_s=1.5), t_end_s=2.0, frame_rate_hz=1.0 / first)
+    report = FourBarLinkage().simulate(dict(four_bar.PARAMETERS.defaults(), ground_m=1.2, crank_m=0.9, coupler_m=0.7, rocker_m=0.6,
+                                                   crank_angle0_deg=0.0, crank_speed_rad_s=1.5), {}, t_end_s=2.0, frame_rate_hz=1.0 / first).as_dict()
     assert report["series"]["rocker_rate"][1] is None and report["series"]["rocker_angle"][1] is not None
     assert report["stats"]["status"] == "undefined" and report["events"][0]["kind"] == "toggle"
     assert report["invariants"]["loop_closure_residual"][1] < 1e-12
@@ -532,8 +531,8 @@ def test_the_disk_instantaneous_axis_passes_through_o_prime():
 
 
 def test_rolling_model_report_and_refusals():
-    report = evaluate_model(SteadyRollingMotion(), {"body": "cone", "rim_radius_m": 0.4, "tilt_deg": 20.0, "path_radius_m": 1.5, "speed_m_s": 0.8},
-                            t_end_s=5.0, frame_rate_hz=30.0)
+    report = SteadyRollingMotion().simulate({"body": "cone", "rim_radius_m": 0.4, "tilt_deg": 20.0, "path_radius_m": 1.5, "speed_m_s": 0.8}, {},
+                            t_end_s=5.0, frame_rate_hz=30.0).as_dict()
     assert max(report["series"]["contact_point_speed"]) < 1e-15
     assert report["stats"]["status"] == "ok"
     with pytest.raises(ValueError, match="half-angle"):

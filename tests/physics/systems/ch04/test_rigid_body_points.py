@@ -15,7 +15,6 @@ import math
 import numpy as np
 import pytest
 
-from app.physics.core.closed_form import evaluate_model
 from app.physics.core.parameters import ParameterError
 from app.physics.systems.ch04 import rigid_body_points as physics
 
@@ -111,7 +110,7 @@ def test_bad_inputs_name_the_field():
 
 
 def test_simulate_report_names_every_series_and_is_finite():
-    report = evaluate_model(physics.DiskOnTurntableMotion(), physics.PARAMETERS.defaults(), t_end_s=6.0, frame_rate_hz=30.0)
+    report = physics.DiskOnTurntableMotion().simulate(physics.PARAMETERS.defaults(), {}, t_end_s=6.0, frame_rate_hz=30.0).as_dict()
     assert report["stats"]["status"] == "ok"
     assert set(report["series"]) == set(physics.DiskOnTurntableMotion.series_units)
     assert all(np.all(np.isfinite(v)) for v in report["series"].values())

@@ -18,7 +18,6 @@ from hypothesis import strategies as st
 
 from app.physics.core.parameters import ParameterError
 from app.physics.solvers import DormandPrince, simulate
-from app.physics.solvers.integrated_model import simulate_model
 from app.physics.systems.ch06 import bouncing_bar as bb
 
 FLOOR_EVENTS = (bb.EVENT_END_A, bb.EVENT_END_B)
@@ -248,7 +247,7 @@ def test_the_simulate_answer_says_the_bar_settled_on_one_end_in_the_readouts_wor
     the answer ran on to 3 s with status ok and no message. It now ends at the frame it settled in, status "settled",
     with :func:`mode_message` (the live readout's text) for that state."""
     values = params(restitution=0.0)
-    report = simulate_model(bb.BouncingBar(), values, {}, t_end_s=3.0, frame_rate_hz=60.0)
+    report = bb.BouncingBar().simulate(values, {}, t_end_s=3.0, frame_rate_hz=60.0)
     landing_s = math.sqrt(2.0 * (values["drop_height_m"] - values["length_m"] / 2 * math.sin(math.radians(30.0))) / values["g_m_s2"])
     assert report.status == bb.SETTLED
     assert report.t_s[-1] == pytest.approx(math.ceil(landing_s * 60.0) / 60.0, abs=1e-12)
@@ -260,14 +259,14 @@ def test_the_simulate_answer_says_the_bar_settled_on_one_end_in_the_readouts_wor
 
 def test_a_bar_that_comes_to_rest_flat_is_still_ok():
     """Laid flat by the cut-off, the bar is a body at rest on the floor, which the model describes: no limit is met."""
-    report = simulate_model(bb.BouncingBar(), params(angle0_deg=0.0), {}, t_end_s=5.0, frame_rate_hz=30.0)
+    report = bb.BouncingBar().simulate(params(angle0_deg=0.0), {}, t_end_s=5.0, frame_rate_hz=30.0)
     assert report.status == "ok" and report.t_s[-1] == pytest.approx(5.0)
 
 
 # -- contract and input --------------------------------------------------------------------------
-def test_simulate_model_reports_the_contract_series():
+def test_simulate_reports_the_contract_series():
     values = params()
-    report = simulate_model(bb.BouncingBar(), values, {}, t_end_s=5.0, frame_rate_hz=30.0)
+    report = bb.BouncingBar().simulate(values, {}, t_end_s=5.0, frame_rate_hz=30.0)
     assert report.status == "ok"
     assert set(report.series) == {"angle", "centre_height_m", "energy_J", "impact_count", "energy_lost_J"}
     assert report.series["angle"][0] == pytest.approx(math.radians(30.0))

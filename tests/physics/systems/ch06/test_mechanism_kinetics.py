@@ -9,7 +9,6 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from app.physics.core.parameters import ParameterError, ParameterSet
-from app.physics.solvers.integrated_model import simulate_model
 from app.physics.systems.ch06 import mechanism_kinetics as mk
 
 CASES = {
@@ -172,7 +171,7 @@ def test_torque_drive_agrees_with_scipy_and_accounts_for_energy(case):
     model = mk.MechanismKinetics()
     controls = ParameterSet(model.controls()).validate({})
     t_end = 3.0
-    report = simulate_model(model, values, controls, t_end_s=t_end, frame_rate_hz=30.0)
+    report = model.simulate(values, controls, t_end_s=t_end, frame_rate_hz=30.0)
     assert report.status == "ok"
     y0 = model.initial_state(values)
     reference = solve_ivp(equation_of_motion(values), (0.0, t_end), y0, method="DOP853", rtol=1e-12, atol=1e-12, t_eval=report.t_s)
@@ -189,7 +188,7 @@ def test_free_coasting_conserves_mechanical_energy():
     """Zero torque, gravity on: T + V is constant (W stays 0) to 1e-6 of the energy over 20 s of the RK4 run."""
     values = params(drive="torque", drive_torque_N_m=0.0, crank_speed_rad_s=6.0)
     model = mk.MechanismKinetics()
-    report = simulate_model(model, values, ParameterSet(model.controls()).validate({}), t_end_s=20.0, frame_rate_hz=30.0)
+    report = model.simulate(values, ParameterSet(model.controls()).validate({}), t_end_s=20.0, frame_rate_hz=30.0)
     links = links_of(values)
     theta, omega = report.series["crank_angle"], report.series["crank_speed_rad_s"]
     energy = mechanical_energy_J(links, theta, omega)
@@ -201,7 +200,7 @@ def test_speed_drive_work_equals_energy_change_over_a_run():
     """Constant speed: ω stays exact, and the integrated motor work matches ΔV (ΔT = 0 after whole turns) to 1e-8 of the scale."""
     values = params(offset_m=0.2, rod_m=0.7)
     model = mk.MechanismKinetics()
-    report = simulate_model(model, values, ParameterSet(model.controls()).validate({}), t_end_s=5.0, frame_rate_hz=30.0)
+    report = model.simulate(values, ParameterSet(model.controls()).validate({}), t_end_s=5.0, frame_rate_hz=30.0)
     assert np.all(report.series["crank_speed_rad_s"] == values["crank_speed_rad_s"])
     assert np.max(np.abs(report.series["work_energy_residual_J"])) < 1e-8 * mk.energy_scale_J(values)
     assert np.ptp(report.series["driving_torque_N_m"]) > 1.0  # the motor's torque does vary over a turn

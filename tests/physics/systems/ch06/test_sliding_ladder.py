@@ -17,7 +17,6 @@ from scipy.integrate import quad, solve_ivp
 
 from app.physics.core.parameters import ParameterError
 from app.physics.solvers import DormandPrince, simulate
-from app.physics.solvers.integrated_model import simulate_model
 from app.physics.systems.ch06 import sliding_ladder as sl
 from app.physics.systems.ch06.impact import resolve_impact
 
@@ -27,7 +26,7 @@ def ladder(**values):
 
 
 def run(params, *, t_end_s, frame_rate_hz=100.0, rtol=1e-10):
-    return simulate_model(sl.SlidingLadder(), params, {"rtol": rtol}, t_end_s=t_end_s, frame_rate_hz=frame_rate_hz, request_limits=False)
+    return sl.SlidingLadder().simulate(params, {"rtol": rtol}, t_end_s=t_end_s, frame_rate_hz=frame_rate_hz, request_limits=False)
 
 
 def separation_time_by_quadrature(params) -> float:

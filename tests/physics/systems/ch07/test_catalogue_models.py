@@ -19,6 +19,7 @@ from scipy.integrate import simpson
 
 from app.physics.mechanics.engine import available_formulations
 from app.physics.solvers import simulate
+from app.physics.solvers.step_policy import choose_integrator
 from app.physics.systems.ch07.bead_on_hoop_model import BeadOnHoopMotion, critical_spin_rad_s, hoop_equilibria
 from app.physics.systems.ch07.double_pendulum_model import DoublePendulumMotion, normal_mode_frequencies_rad_s
 from app.physics.systems.ch07.pendulum_on_cart_model import CartPendulumMotion, drive_force_N
@@ -52,7 +53,7 @@ def oscillation_frequencies(model, params, state) -> np.ndarray:
 
 
 def run(model, params, t_end_s: float = 10.0, frame_rate_hz: float = 30.0):
-    return simulate(model.system(params), model.integrator(params, TIGHT, 1.0 / frame_rate_hz), model.initial_state(params),
+    return simulate(model.system(params), choose_integrator(model, params, TIGHT, 1.0 / frame_rate_hz)[0], model.initial_state(params),
                     t_end_s=t_end_s, frame_rate_hz=frame_rate_hz)  # fmt: skip
 
 

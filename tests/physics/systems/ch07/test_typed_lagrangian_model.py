@@ -21,7 +21,6 @@ from app.physics.core.bounded import WorkTimeout
 from app.physics.core.parameters import ParameterError
 from app.physics.mechanics.engine import derived
 from app.physics.solvers import OdeSystem, simulate
-from app.physics.solvers.integrated_model import simulate_model
 from app.physics.solvers.registry import make_integrator
 from app.physics.systems.ch07 import simple_pendulum, typed_lagrangian_model
 from app.physics.systems.ch07.double_pendulum_model import DoublePendulumMotion
@@ -43,7 +42,7 @@ def typed_params(**values) -> dict:
 
 def test_a_typed_pendulum_moves_as_the_catalogue_simple_pendulum():
     params = typed_params(**PENDULUM)
-    typed = simulate_model(TypedLagrangianMotion(), params, SAME_STEP, t_end_s=2.0, frame_rate_hz=FRAME_RATE_HZ)
+    typed = TypedLagrangianMotion().simulate(params, SAME_STEP, t_end_s=2.0, frame_rate_hz=FRAME_RATE_HZ)
     catalogue = derived(simple_pendulum.SYSTEM, "lagrange")
     system = OdeSystem(rhs=catalogue.kernel(), parameters=np.array([1.5, 0.8, 9.81]), state_names=("theta", "theta_rate"))
     integrator = make_integrator("rk4", steps_per_frame=20, frame_dt_s=1.0 / FRAME_RATE_HZ)
@@ -56,12 +55,12 @@ def test_a_typed_pendulum_moves_as_the_catalogue_simple_pendulum():
 
 def test_a_typed_double_pendulum_equals_the_catalogue_double_pendulum():
     params = typed_params()  # the defaults: m = 1 kg, l = 0.5 m, g = 9.81 m/s², q = (1, 0) rad at rest
-    typed = simulate_model(TypedLagrangianMotion(), params, SAME_STEP, t_end_s=2.0, frame_rate_hz=FRAME_RATE_HZ)
+    typed = TypedLagrangianMotion().simulate(params, SAME_STEP, t_end_s=2.0, frame_rate_hz=FRAME_RATE_HZ)
     catalogue_model = DoublePendulumMotion()
     catalogue_params = DoublePendulumMotion.parameters.validate(
         {"m1_kg": 1.0, "m2_kg": 1.0, "l1_m": 0.5, "l2_m": 0.5, "g_m_s2": 9.81, "theta1_0_deg": math.degrees(1.0), "theta2_0_deg": 0.0}
     )
-    catalogue = simulate_model(catalogue_model, catalogue_params, SAME_STEP, t_end_s=2.0, frame_rate_hz=FRAME_RATE_HZ)
+    catalogue = catalogue_model.simulate(catalogue_params, SAME_STEP, t_end_s=2.0, frame_rate_hz=FRAME_RATE_HZ)
     for typed_name, catalogue_name in (("q1_rad", "theta1_rad"), ("q2_rad", "theta2_rad"), ("q1_rate_rad_s", "theta1_rate_rad_s"), ("q2_rate_rad_s", "theta2_rate_rad_s")):
         assert np.max(np.abs(typed.series[typed_name] - catalogue.series[catalogue_name])) < SAME_MOTION_RAD, typed_name
     # T + V (V = 0 at the pivot on both sides) is the same number too, to rounding of a few J.
@@ -89,7 +88,7 @@ def test_the_jacobi_integral_is_the_energy_function_not_t_plus_v():
     kinetic, _, jacobi = model.energies_and_jacobi_J(params, np.zeros(3), states)
     np.testing.assert_allclose(jacobi, (states[:, 1] ** 2 - 9.0 * states[:, 0] ** 2), rtol=1e-14, atol=1e-14)
     np.testing.assert_allclose(kinetic, (states[:, 1] ** 2 + 9.0 * states[:, 0] ** 2), rtol=1e-14)
-    report = simulate_model(model, params, {"method": "dopri5", "rtol": 1e-11}, t_end_s=2.0, frame_rate_hz=FRAME_RATE_HZ)
+    report = model.simulate(params, {"method": "dopri5", "rtol": 1e-11}, t_end_s=2.0, frame_rate_hz=FRAME_RATE_HZ)
     energy = report.series["energy_J"]
     assert energy[-1] > 100 * energy[0]  # the motor that spins the wire pours energy in …
     assert report.max_invariant_drift < 1e-8  # … while h stays put (dopri5 at 1e-11: global error ≪ 1e-8 of h's scale)
@@ -105,7 +104,7 @@ def test_explicit_time_in_v_runs_the_forced_motion_and_reports_no_invariant():
     params = typed_params(coordinates=1, kinetic_energy="m*(q1d^2 + w^2*q1^2)/2", potential_energy="m*g*q1*sin(w*t)",
                           parameters=f"m = 1, w = {w}, g = {g}", q0_rad=[0, 0, 0], qd0_rad_s=[g / (2 * w), 0, 0])  # fmt: skip
     model = TypedLagrangianMotion()
-    report = simulate_model(model, params, {"method": "dopri5", "rtol": 1e-11}, t_end_s=1.0, frame_rate_hz=FRAME_RATE_HZ)
+    report = model.simulate(params, {"method": "dopri5", "rtol": 1e-11}, t_end_s=1.0, frame_rate_hz=FRAME_RATE_HZ)
     np.testing.assert_allclose(report.series["q1_rad"], g / (2 * w * w) * np.sin(w * report.t_s), atol=1e-9)
     assert model.invariants(params, np.zeros((2, 2))) == {}
     assert report.max_invariant_drift == 0.0
@@ -230,7 +229,7 @@ def test_a_radial_kepler_fall_stops_at_r_zero_naming_the_coordinate(controls):
     inertia, and says nothing of chaos — with the automatic step and with a fixed one."""
     model = TypedLagrangianMotion()
     params = typed_params(**KEPLER_RADIAL)
-    report = simulate_model(model, params, controls, t_end_s=3.0, frame_rate_hz=60.0)
+    report = model.simulate(params, controls, t_end_s=3.0, frame_rate_hz=60.0)
     collision_s = math.pi / 2 * math.sqrt(1.0 / 2.0)
     assert report.status == typed_lagrangian_model.SINGULAR_MASS_MATRIX, report.message
     assert report.t_s[-1] == pytest.approx(math.floor(collision_s * 60.0) / 60.0, abs=1e-12)
@@ -243,6 +242,6 @@ def test_an_orbit_that_keeps_its_distance_runs_to_the_end():
     """With angular momentum (q̇2 = 1 at r = 1: a circular orbit for k = m = 1) r stays 1 and nothing is singular."""
     model = TypedLagrangianMotion()
     params = typed_params(**{**KEPLER_RADIAL, "qd0_rad_s": [0.0, 1.0, 0.0]})
-    report = simulate_model(model, params, {}, t_end_s=3.0, frame_rate_hz=60.0)
+    report = model.simulate(params, {}, t_end_s=3.0, frame_rate_hz=60.0)
     assert report.status == "ok" and np.allclose(report.series["q1_rad"], 1.0, atol=1e-6)
 

@@ -10,7 +10,6 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from app.physics.core.closed_form import evaluate_model
 from app.physics.core.parameters import ParameterError
 from app.physics.systems.ch06 import mechanism_kinetics as mk
 from app.physics.systems.ch07 import virtual_work as vw
@@ -173,7 +172,7 @@ def test_worked_numbers_of_the_lesson_at_the_defaults():
 
 def test_the_closed_form_model_reports_agreeing_torques_over_ten_seconds():
     params = vw.PARAMETERS.defaults()
-    report = evaluate_model(vw.SliderCrankVirtualWork(), params, t_end_s=10.0, frame_rate_hz=30.0)
+    report = vw.SliderCrankVirtualWork().simulate(params, {}, t_end_s=10.0, frame_rate_hz=30.0).as_dict()
     assert report["stats"]["status"] == "ok"
     assert report["stats"]["max_invariant_drift"] < AGREEMENT
     series = report["series"]

@@ -18,7 +18,6 @@ import sympy as sp
 from scipy.integrate import quad, solve_ivp
 from scipy.optimize import brentq
 
-from app.physics.solvers.integrated_model import simulate_model
 from app.physics.systems.ch08 import sliding_bar as sb
 
 
@@ -27,7 +26,7 @@ def bar(**values):
 
 
 def run(params, *, t_end_s=3.0, frame_rate_hz=200.0):
-    return simulate_model(sb.SlidingBar(), params, {"rtol": 1e-10}, t_end_s=t_end_s, frame_rate_hz=frame_rate_hz, request_limits=False)
+    return sb.SlidingBar().simulate(params, {"rtol": 1e-10}, t_end_s=t_end_s, frame_rate_hz=frame_rate_hz, request_limits=False)
 
 
 # -- the contact force against sympy ------------------------------------------------------------------

@@ -16,7 +16,6 @@ import pytest
 
 from app.physics.core.parameters import ParameterError
 from app.physics.solvers import DormandPrince, LiveRun
-from app.physics.solvers.integrated_model import simulate_model
 from app.physics.systems.ch08 import stick_slip_belt as belt
 
 
@@ -107,7 +106,7 @@ def test_limit_cycle_durations_match_the_chained_closed_form():
 @pytest.mark.parametrize("case", sorted(CASES))
 def test_energy_budget_is_constant_and_friction_stays_within_its_limit(case):
     params = belt_params(**CASES[case])
-    report = simulate_model(belt.StickSlipBelt(), params, {"rtol": 1e-10}, t_end_s=8.0, frame_rate_hz=200.0, request_limits=False)
+    report = belt.StickSlipBelt().simulate(params, {"rtol": 1e-10}, t_end_s=8.0, frame_rate_hz=200.0, request_limits=False)
     assert report.status == "ok"
     # Kinetic + spring + dissipated − belt work: observed drift ≤ 6e-10 of the stored-energy scale at rtol 1e-10;
     # 1e-8 leaves room for the event restarts (each costs one located dense-output state).

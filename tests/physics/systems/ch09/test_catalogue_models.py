@@ -17,6 +17,7 @@ import pytest
 from app.physics.mechanics.engine import available_formulations, derived
 from app.physics.solvers import simulate
 from app.physics.solvers.controls import integrator_from_controls
+from app.physics.solvers.step_policy import choose_integrator
 from app.physics.solvers.system import OdeSystem
 from app.physics.systems.ch09.heavy_top import SYSTEM as HEAVY_TOP
 from app.physics.systems.ch09.pendulum_phase_model import PendulumPhaseMotion, hamiltonian_J, level_set_momentum_kg_m2_s
@@ -39,7 +40,7 @@ def formulations(description) -> list[str]:
 
 
 def run(model, params, *, t_end_s: float = 10.0, frame_rate_hz: float = 30.0, controls=TIGHT):
-    return simulate(model.system(params), model.integrator(params, controls, 1.0 / frame_rate_hz), model.initial_state(params),
+    return simulate(model.system(params), choose_integrator(model, params, controls, 1.0 / frame_rate_hz)[0], model.initial_state(params),
                     t_end_s=t_end_s, frame_rate_hz=frame_rate_hz)  # fmt: skip
 
 

@@ -9,7 +9,6 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from app.physics.core.closed_form import evaluate_model
 from app.physics.core.parameters import ParameterError
 from app.physics.systems.ch09 import ritz_beam as physics
 
@@ -140,13 +139,13 @@ def test_ritz_mode_shapes_approach_the_exact_ones_and_the_energy_is_constant():
 
 def test_simulate_answer_matches_the_closed_form_and_flags_the_failing_basis():
     model = physics.RitzCantileverModel()
-    report = evaluate_model(model, physics.PARAMETERS.defaults(), t_end_s=1.0, frame_rate_hz=30.0)
+    report = model.simulate(physics.PARAMETERS.defaults(), {}, t_end_s=1.0, frame_rate_hz=30.0).as_dict()
     assert report["stats"]["status"] == "ok" and list(report["series"]) == list(model.series_units)
     omega = physics.RitzCantilever.from_params(physics.PARAMETERS.defaults()).ritz_omega_rad_s[0]
     np.testing.assert_allclose(report["series"]["tip_deflection_m"], 0.2 * np.cos(omega * np.array(report["t"])), rtol=0, atol=1e-15)
     assert report["stats"]["max_invariant_drift"] < 1e-12
     failing = physics.PARAMETERS.validate({"basis": "monomial", "terms": 14, "mode": 14})
-    report = evaluate_model(model, failing, t_end_s=1.0, frame_rate_hz=30.0)
+    report = model.simulate(failing, {}, t_end_s=1.0, frame_rate_hz=30.0).as_dict()
     assert report["stats"]["status"] in ("undefined", "outside_model") and "Do not trust" in report["stats"]["message"]
 
 

@@ -16,7 +16,6 @@ import numpy as np
 import pytest
 
 from app.physics.mechanics.engine import derived
-from app.physics.solvers.integrated_model import simulate_model
 from app.physics.systems.ch08.rolling_disk_constrained_model import UnsteadyRollingDisk
 from app.physics.systems.ch09.rolling_disk import SYSTEM
 from app.physics.systems.ch09.rolling_disk_contact import (
@@ -79,7 +78,7 @@ def test_the_normal_force_along_a_run_is_m_g_plus_m_times_the_centres_vertical_a
     the 1e-3 N (1e-4 of m g) bound, which a dropped term of N (θ̇² cos θ alone is ~0.3 N here) breaks by 300×."""
     model = RollingDiskMotion()
     params = model.parameters.validate({**PARAMS, "lean_0_deg": 20.0, "spin_rate_0_rad_s": 20.0, "heading_rate_0_rad_s": 5.0})
-    report = simulate_model(model, params, {"method": "dopri5", "rtol": 1e-12}, t_end_s=1.0, frame_rate_hz=2000.0, request_limits=False)
+    report = model.simulate(params, {"method": "dopri5", "rtol": 1e-12}, t_end_s=1.0, frame_rate_hz=2000.0, request_limits=False)
     assert report.status == "ok"
     h = 1.0 / 2000.0
     z = PARAMS["radius_m"] * np.cos(report.series["lean_rad"])
@@ -97,7 +96,7 @@ def test_a_disk_toppling_from_near_upright_lifts_off_where_the_closed_form_says(
     lean_0 = math.radians(5.0)
     params = model.parameters.validate({**PARAMS, "lean_0_deg": 5.0, "spin_rate_0_rad_s": 0.0})
     report = model.simulate(params, {}, t_end_s=3.0, frame_rate_hz=240.0) if hasattr(model, "simulate") else (
-        simulate_model(model, params, {}, t_end_s=3.0, frame_rate_hz=240.0))
+        model.simulate(params, {}, t_end_s=3.0, frame_rate_hz=240.0))
     assert report.status == LIFT_OFF and "floor would have to pull" in report.message, report.message
     lean = np.abs(report.series["lean_rad"])
     np.testing.assert_allclose(report.series["normal_force_N"], toppling_normal_force_N(lean_0, lean), rtol=0, atol=1e-6 * 9.81 * 1.3)
@@ -116,7 +115,7 @@ def test_a_disk_falling_from_sixty_degrees_stops_as_fallen_in_both_models(model_
     model = model_class()
     params = model.parameters.validate({**PARAMS, "lean_0_deg": 60.0, "spin_rate_0_rad_s": 0.0})
     report = model.simulate(params, {}, t_end_s=3.0, frame_rate_hz=60.0) if hasattr(model, "simulate") else (
-        simulate_model(model, params, {}, t_end_s=3.0, frame_rate_hz=60.0))
+        model.simulate(params, {}, t_end_s=3.0, frame_rate_hz=60.0))
     assert report.status == FALLEN and "85°" in report.message
     assert np.all(np.degrees(np.abs(report.series["lean_rad"])) < FALLEN_LEAN_DEG) and report.t_s[-1] < 0.5
 

@@ -28,7 +28,6 @@ from scipy.integrate import solve_ivp
 from scipy.special import ellipk
 
 from app.physics.core.parameters import ParameterError
-from app.physics.solvers.integrated_model import simulate_model
 from app.physics.systems.ch10 import free_gyroscope as fg
 from app.physics.systems.ch10 import gyrocompass as gc
 from app.physics.systems.ch10 import rate_gyro as rg
@@ -205,7 +204,7 @@ def test_gyrocompass_equation_matches_full_rigid_body_equations():
     exact = solve_ivp(exact_constrained_rhs(params, transverse_excess=ROTOR_TRANSVERSE), (0.0, t_end), y0[::2], t_eval=t, **TIGHT)
     assert exact.success
     assert np.max(np.abs(swing - exact.y[0])) < 1e-9
-    reduced = simulate_model(gc.Gyrocompass(), params, {"method": "dopri5", "rtol": 1e-12}, t_end_s=t_end, frame_rate_hz=400 / t_end, request_limits=False)
+    reduced = gc.Gyrocompass().simulate(params, {"method": "dopri5", "rtol": 1e-12}, t_end_s=t_end, frame_rate_hz=400 / t_end, request_limits=False)
     assert reduced.status == "ok"
     difference = np.max(np.abs(reduced.series["alpha_rad"] - swing))
     bound = 2 * math.pi * periods * 0.5 * epsilon * math.radians(30.0)
@@ -235,7 +234,7 @@ def test_reduced_model_integrators_match_a_tight_reference():
     k, i_t, c = gc.restoring_moment_N_m(params), params["vertical_inertia_kg_m2"], params["damping_N_m_s_rad"]
     reference = solve_ivp(lambda _, y: [y[1], (-k * math.sin(y[0]) - c * y[1]) / i_t], (0.0, t_end), [math.radians(30.0), 0.0], t_eval=t, **TIGHT)
     for controls, tolerance in (({"method": "rk4"}, 1e-5), ({"method": "dopri5", "rtol": 1e-10}, 1e-7)):
-        report = simulate_model(gc.Gyrocompass(), params, controls, t_end_s=t_end, frame_rate_hz=rate)
+        report = gc.Gyrocompass().simulate(params, controls, t_end_s=t_end, frame_rate_hz=rate)
         assert report.status == "ok"
         error = np.max(np.abs(report.series["alpha_rad"] - reference.y[0]))
         assert error < tolerance, (controls, error)
@@ -246,7 +245,7 @@ def test_reduced_model_integrators_match_a_tight_reference():
 def _measured_period_s(params, *, swings=3, rate_hz=50.0):
     """Period from the times α̇ changes sign downward (maxima of α), by linear interpolation; dopri5 at 1e-12."""
     t_end = (swings + 0.6) * gc.large_amplitude_period_s(params, gc.amplitude_rad(params))
-    report = simulate_model(gc.Gyrocompass(), params, {"method": "dopri5", "rtol": 1e-12}, t_end_s=t_end, frame_rate_hz=rate_hz, request_limits=False)
+    report = gc.Gyrocompass().simulate(params, {"method": "dopri5", "rtol": 1e-12}, t_end_s=t_end, frame_rate_hz=rate_hz, request_limits=False)
     alpha, rate = report.series["alpha_rad"], report.series["alpha_rate_rad_s"]
     t = report.t_s
     # α̇ crosses zero from + to − at maxima of α; released at rest at its maximum, so skip the start.

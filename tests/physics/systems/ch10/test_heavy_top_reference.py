@@ -14,7 +14,6 @@ import math
 import numpy as np
 import pytest
 
-from app.physics.solvers.integrated_model import simulate_model
 from app.physics.systems.ch10 import heavy_top
 from app.scenes.kit import FRAME_DT_S
 
@@ -23,7 +22,7 @@ DEFAULTS = heavy_top.PARAMETERS.defaults()
 
 
 def scene_run(params: dict, t_end_s: float, frame_rate_hz: float = 1.0 / FRAME_DT_S):
-    return simulate_model(MODEL, params, {}, t_end_s=t_end_s, frame_rate_hz=frame_rate_hz, request_limits=False)
+    return MODEL.simulate(params, {}, t_end_s=t_end_s, frame_rate_hz=frame_rate_hz, request_limits=False)
 
 
 @pytest.mark.parametrize("spin_rad_s, precession0", [(60.0, 0.0), (25.0, 0.0), (40.0, 1.5), (40.0, -1.5)])

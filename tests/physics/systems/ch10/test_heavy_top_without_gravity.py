@@ -12,7 +12,6 @@ import math
 import numpy as np
 
 from app.physics.core.parameters import ParameterSet
-from app.physics.solvers.integrated_model import simulate_model
 from app.physics.systems.ch10 import heavy_top as ht
 
 FREE = ht.PARAMETERS.validate({"g_m_s2": 0.0, "nutation_rate0_rad_s": 2.0})
@@ -29,7 +28,7 @@ def test_invariant_scales_cover_every_invariant_with_and_without_gravity():
 def test_torque_free_top_conserves_angular_momentum_and_its_direction():
     model = ht.HeavyTop()
     controls = ParameterSet(model.controls()).validate({})
-    report = simulate_model(model, FREE, controls, t_end_s=5.0, frame_rate_hz=30.0)
+    report = model.simulate(FREE, controls, t_end_s=5.0, frame_rate_hz=30.0)
     assert report.status == "ok"
     momentum = report.invariants["angular_momentum"]
     # Splitting with the exact free flow: |L| is kept to round-off (1e-12 relative is 1e4 × eps, far below real drift).
@@ -55,7 +54,7 @@ def test_a_run_that_zeroes_the_quaternion_stops_with_a_status():
     model = ht.HeavyTop()
     params = ht.PARAMETERS.validate({"spin_rad_s": 2000, "I_axial": 1e-5, "I_transverse_pivot": 100, "mass_kg": 100, "cg_distance_m": 0.001})
     controls = ParameterSet(model.controls()).validate({"method": "rk4", "steps_per_frame": 1})
-    report = simulate_model(model, params, controls, t_end_s=600.0, frame_rate_hz=1.0)
+    report = model.simulate(params, controls, t_end_s=600.0, frame_rate_hz=1.0)
     assert report.status == "non_finite" and report.message.startswith("Stopped at t = ")
     assert len(report.t_s) < 601
     assert model.describable(params, np.array([[0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0]])).tolist() == [False]

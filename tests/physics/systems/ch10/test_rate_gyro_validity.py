@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from app.physics.core.closed_form import OUTSIDE_MODEL, evaluate_model
+from app.physics.core.closed_form import OUTSIDE_MODEL
 from app.physics.systems.ch10 import rate_gyro as rg
 
 RESONANT = rg.PARAMETERS.validate(
@@ -66,11 +66,11 @@ def test_frequency_response_at_resonance_is_unbounded_not_a_division_by_zero():
 
 
 def test_report_warns_where_beta_leaves_the_small_angle_model():
-    report = evaluate_model(rg.RateGyro(), RESONANT, t_end_s=20.0, frame_rate_hz=60.0)
+    report = rg.RateGyro().simulate(RESONANT, {}, t_end_s=20.0, frame_rate_hz=60.0).as_dict()
     beta = np.array(report["series"]["beta_rad"])
     first = float(np.array(report["t"])[np.argmax(np.abs(beta) > rg.SMALL_ANGLE_LIMIT_RAD)])
     assert report["stats"]["status"] == OUTSIDE_MODEL
     assert f"t = {first:.4g} s" in report["stats"]["message"]
     assert report["events"] == [{"t_s": first, "kind": "outside-model", "message": report["stats"]["message"]}]
-    calm = evaluate_model(rg.RateGyro(), rg.PARAMETERS.validate({}), t_end_s=20.0, frame_rate_hz=60.0)
+    calm = rg.RateGyro().simulate(rg.PARAMETERS.validate({}), {}, t_end_s=20.0, frame_rate_hz=60.0).as_dict()
     assert calm["stats"]["status"] == "ok" and calm["events"] == []
