@@ -99,7 +99,7 @@ def _serve(args: argparse.Namespace) -> int:
         http=http_protocol,
         # Ctrl+C: requests in flight get 1.5 s to finish, then the scene workers are stopped (app/scenes/host/pool.py);
         # the server exits within EXIT_DEADLINE_S whatever is in flight.
-        timeout_graceful_shutdown=1.5,
+        timeout_graceful_shutdown=1.5,  # type: ignore[arg-type]  # annotated int, but asyncio.wait_for takes a float
         # A viewer sends only camera and GUI messages (< 1 kB); scene data is already zstd-compressed by viser,
         # so per-message deflate would spend CPU on every frame of every student for nothing.
         ws_max_size=1024 * 1024,

@@ -4,8 +4,10 @@ from __future__ import annotations
 
 import math
 import os
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
+from typing import cast
 
 #: Where ``dynlab bench`` writes work_precision.json and one <scene_id>.svg per scene.
 DEFAULT_BENCH_DIR = Path(__file__).resolve().parent.parent / "docs" / "bench"
@@ -131,7 +133,8 @@ def _parse(default: object, raw: str, *, name: str) -> object:
         return word in ("1", "true", "yes", "on")
     if isinstance(default, tuple):
         return tuple(item.strip() for item in raw.split(",") if item.strip())
+    parse_as = cast("Callable[[str], object]", type(default))  # str, int, float or Path: each parses its text
     try:
-        return type(default)(raw)
+        return parse_as(raw)
     except ValueError:
         raise ValueError(f"DYNLAB_{name.upper()} must be a {type(default).__name__} (got {raw!r})") from None

@@ -22,6 +22,7 @@ from collections import OrderedDict
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import numba
 import numpy as np
@@ -145,7 +146,10 @@ class Derived:
         """The right-hand side as a numba C callback for the integrators (compiled once; numba caches it on disk)."""
         with self._lock:
             if self._kernel is None:
-                compiled = numba.cfunc(RHS_SIGNATURE, cache=True, nopython=True, error_model="numpy")(self.rhs_python)
+                # numba's stubs leave out nopython, which cfunc still reads: without it object mode is allowed.
+                compiled = numba.cfunc(  # type: ignore[call-arg]
+                    RHS_SIGNATURE, cache=True, nopython=True, error_model="numpy"
+                )(self.rhs_python)
                 self._kernel = Kernel(compiled=compiled, python=self.rhs_python)
             return self._kernel
 
@@ -259,7 +263,7 @@ def _derive_and_store(system: SystemDescription, formulation: str, directory: Pa
     start = time.perf_counter()
     rhs = load_recipe(system, derivation.recipe, formulation=formulation, path=source_path)
     compile_s = time.perf_counter() - start
-    shown = {
+    shown: dict[str, Any] = {
         "system_id": system.id,
         "formulation": formulation,
         "coordinates": [c.name for c in system.coordinates],

@@ -11,7 +11,7 @@ derived and compiled once per process (and cached on disk), never per frame.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import Any, ClassVar
+from typing import Any
 
 import numpy as np
 import sympy
@@ -89,7 +89,8 @@ class DerivedModel(IntegratedModel):
     abstract methods of :class:`IntegratedModel`: initial_state, series, invariants, invariant_scales.
     """
 
-    description: ClassVar[SystemDescription]
+    # Set on the class by a catalogue system; the typed Lagrangian sets its own on each instance.
+    description: SystemDescription
     methods = ("rk4", "dopri5")
     default_method = "rk4"
     accuracy_target = AccuracyTarget(1e-6, "", "state (q, q̇): largest component error relative to the largest component")

@@ -15,12 +15,12 @@ import sympy
 
 from app.physics.mechanics.algebra import linear_parts, tidy
 from app.physics.mechanics.derivation import Derivation, FormulationUnavailable, Solve, Step, latex_printer, linear_equations_latex
-from app.physics.mechanics.description import SystemDescription
+from app.physics.mechanics.description import Reaction, SystemDescription
 from app.physics.mechanics.kinematics import body_motions, inertia_torque_body, speed_motion, spring_force_on_b
 from app.physics.mechanics.speeds import recipe_through_speeds
 
 
-def reaction_symbols(system: SystemDescription) -> list[tuple[sympy.Symbol, object, str, int]]:
+def reaction_symbols(system: SystemDescription) -> list[tuple[sympy.Symbol, Reaction, str, int]]:
     """(magnitude symbol, reaction, "force" | "moment", index) for every unknown reaction component."""
     found = []
     for reaction in system.reactions:

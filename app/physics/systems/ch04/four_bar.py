@@ -115,7 +115,7 @@ class FourBar:
             if not (math.isfinite(length) and length > 0.0):
                 raise ValueError(f"the {name} link must have a positive length (got {length!r} m)")
         links = self.links
-        longest = max(links, key=links.get)
+        longest = max(links, key=links.__getitem__)
         others = sum(links.values()) - links[longest]
         if links[longest] >= others * (1.0 - LENGTH_RTOL):
             raise ValueError(
@@ -130,7 +130,7 @@ class FourBar:
     def grashof(self) -> GrashofClass:
         """Grashof class from the shortest (s), longest (l) and other two (p, q) lengths."""
         links = self.links
-        s_name = min(links, key=links.get)
+        s_name = min(links, key=links.__getitem__)
         s, l = links[s_name], max(links.values())
         pq = sum(links.values()) - s - l
         if s + l > pq * (1.0 + LENGTH_RTOL):
@@ -170,6 +170,7 @@ class FourBar:
             return CrankRange(True, (), tuple(singular))
         if hi - lo < 1e-10:
             raise ValueError("these links close only at a single crank angle, so the linkage cannot move")
+        arcs: tuple[tuple[float, float], ...]
         if lo == -1.0:
             arcs = ((math.acos(hi), TWO_PI - math.acos(hi)),)
         elif hi == 1.0:
@@ -326,7 +327,7 @@ class FourBarMotion:
     def _reference(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, float, float]:
         """Dense crank grid over one travel with unwrapped coupler and rocker angles, and their
         windings (turns) per crank turn: the reference that makes the angles continuous in time."""
-        if self.drive.turns_fully:
+        if self.drive.limits_rad is None:  # the crank turns fully
             grid = self.drive.angle0_rad + np.linspace(0.0, TWO_PI, 4097)
         else:
             grid = np.linspace(*self.drive.limits_rad, 4097)
@@ -397,7 +398,7 @@ class FourBarMotion:
 
     def travel_positions(self, branch: str | None = None, samples: int = 721) -> FourBarPositions:
         """Configurations at ``samples`` crank angles spanning the crank's whole travel, in ``branch``."""
-        if self.drive.turns_fully:
+        if self.drive.limits_rad is None:  # the crank turns fully
             grid = np.linspace(0.0, TWO_PI, samples)
         else:
             grid = np.linspace(*self.drive.limits_rad, samples)

@@ -76,7 +76,7 @@ class MountedBody:
             raise ValueError(f"body must be one of {', '.join(BODIES)} (got {shape!r})")
         mounting = elementary_rotation_matrix(0, math.radians(params["tilt_deg"]))
         tensor.flags.writeable = mounting.flags.writeable = False  # shared by every user of a cached motion
-        return cls(shape, mass, tuple(float(d) for d in dims), tensor, mounting)
+        return cls(shape, mass, (float(dims[0]), float(dims[1]), float(dims[2])), tensor, mounting)
 
     @cached_property
     def inertia_world0_kg_m2(self) -> np.ndarray:

@@ -157,7 +157,9 @@ def _normal(angle: np.ndarray) -> np.ndarray:
     return np.stack([-np.sin(angle), np.cos(angle)], axis=-1)
 
 
-def link_motion(links: SliderCrankLinks, theta: np.ndarray, omega: np.ndarray, alpha: np.ndarray) -> LinkMotion:
+def link_motion(
+    links: SliderCrankLinks, theta: np.ndarray | float, omega: np.ndarray | float, alpha: np.ndarray | float
+) -> LinkMotion:
     """Every link's motion from the crank's angle θ (rad), speed ω (rad/s) and acceleration α (rad/s²), each (N,),
     by the chapter-4 loop closure (:class:`~app.physics.systems.ch04.slider_crank.SliderCrank`)."""
     mech = links.mechanism
@@ -220,7 +222,7 @@ def potential_energy_J(links: SliderCrankLinks, motion: LinkMotion) -> np.ndarra
     return links.g_m_s2 * heights
 
 
-def generalized_inertia_kg_m2(links: SliderCrankLinks, theta: np.ndarray) -> np.ndarray:
+def generalized_inertia_kg_m2(links: SliderCrankLinks, theta: np.ndarray | float) -> np.ndarray:
     """M(θ) = 2T/θ̇² (kg·m²), shape (N,): the inertia the crank feels, from the kinetic energy at unit crank speed."""
     theta = np.atleast_1d(np.asarray(theta, dtype=float))
     motion = link_motion(links, theta, np.ones_like(theta), np.zeros_like(theta))
@@ -281,7 +283,7 @@ def newton_euler(
     theta: np.ndarray,
     omega: np.ndarray,
     *,
-    crank_acceleration_rad_s2: np.ndarray | None = None,
+    crank_acceleration_rad_s2: np.ndarray | float | None = None,
     drive_torque_N_m: np.ndarray | None = None,
 ) -> PinForces:
     """Pin forces, guide force and the torque or the crank acceleration, by one 8×8 linear solve per instant.

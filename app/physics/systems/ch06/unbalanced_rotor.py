@@ -34,7 +34,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any, Literal
 
 import numpy as np
@@ -273,6 +273,8 @@ class SteadyLoads:
     mass_moment_kg_m: np.ndarray
     bearing_A_rotating_rotor_N: np.ndarray
     bearing_B_rotating_rotor_N: np.ndarray
+    #: K (13, 3), rows A, B rotating; A, B total; T: set on construction from the fields above.
+    _coefficients: np.ndarray = field(init=False, repr=False, compare=False)
 
     @property
     def weight_shares_N(self) -> tuple[float, float]:

@@ -50,7 +50,10 @@ def motion_with_work_kernel(formulation: str) -> Kernel:
 
         return rhs
 
-    compiled = numba.cfunc(RHS_SIGNATURE, nopython=True, error_model="numpy")(with_work(motion_compiled))
+    # numba's stubs leave out nopython, which cfunc still reads: without it object mode is allowed.
+    compiled = numba.cfunc(RHS_SIGNATURE, nopython=True, error_model="numpy")(  # type: ignore[call-arg]
+        with_work(motion_compiled)
+    )
     return Kernel(compiled=compiled, python=with_work(motion_python))
 
 

@@ -161,6 +161,7 @@ def prepare_typed_lagrangian(request: Mapping[str, Any]) -> PreparedLagrangian:
     except (WorkRefused, ValueError) as error:
         raise ParameterError("kinetic_energy", str(error)) from None
     system = typed_system(request["coordinates"], request["kinetic_energy"], request["potential_energy"], request["parameters"])
+    assert system.kinetic_energy is not None  # typed_system always gives T as typed
     result = derived(system, "lagrange")
     result.kernel()
     prepared = PreparedLagrangian(

@@ -235,7 +235,9 @@ def crank_inertia_about_centre_kg_m2(links: kinetics.SliderCrankLinks) -> float:
     return float(slender_rod(links.crank_mass_kg, links.mechanism.crank_m)[0, 0])
 
 
-def dynamic_virtual_work(links: kinetics.SliderCrankLinks, theta: np.ndarray, omega: np.ndarray, alpha: np.ndarray) -> DynamicVirtualWork:
+def dynamic_virtual_work(
+    links: kinetics.SliderCrankLinks, theta: np.ndarray, omega: np.ndarray | float, alpha: np.ndarray | float
+) -> DynamicVirtualWork:
     """Every term of ``τ δθ + Σ(F − m a)·δr − Σ I α δφ = 0`` per unit δθ at crank angles θ (rad), speeds ω (rad/s)
     and accelerations α (rad/s²), each (N,) or scalars broadcast to θ's shape.
 

@@ -193,6 +193,6 @@ class MassiveFourBar(PlanarLinkageModel):
 
     def crank_travel_rad(self, params: Mapping[str, Any]) -> tuple[float, float]:
         motion = four_bar_motion(params)
-        if motion.drive.turns_fully:
+        if motion.drive.limits_rad is None:  # the crank turns fully
             return 0.0, 2.0 * math.pi
         return motion.drive.limits_rad

@@ -69,7 +69,9 @@ def slider_crank_linkage(params: Mapping[str, Any]) -> PlanarLinkage:
     return PlanarLinkage(bodies, joints, links.g_m_s2, float(params["drive_torque_N_m"]), driven=0)
 
 
-def slider_crank_absolute_motion(params: Mapping[str, Any], theta: np.ndarray, omega: np.ndarray, alpha: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def slider_crank_absolute_motion(
+    params: Mapping[str, Any], theta: np.ndarray | float, omega: np.ndarray | float, alpha: np.ndarray | float
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Absolute coordinates, rates and accelerations, each (N, 9), from the crank's θ (rad), ω (rad/s), α (rad/s²)
     (N,), by chapter 4's loop closure through :func:`~app.physics.systems.ch06.mechanism_kinetics.link_motion`."""
     motion = kinetics.link_motion(chapter6_links(params), theta, omega, alpha)

@@ -145,7 +145,7 @@ def solve(inputs: Mapping[str, Any]) -> Solution:
         "moon_rate_arcsec_per_year": result.moon_rate_rad_s * per_year,
         "rate_rad_s": total,
     }
-    steps = (
+    steps: tuple[Step, ...] = (
         Step(
             "Moment of a distant mass on the oblate Earth, averaged over an orbit",
             r"\langle M \rangle = \frac{3GM}{2a^3(1-e^2)^{3/2}}\,(C-A)\sin\varepsilon\cos\varepsilon\;P_2(\cos i)",

@@ -183,7 +183,7 @@ def closest_approaches_to_lock(params: Mapping[str, Any], t_end_s: float) -> lis
     if amplitude < 1e-12:
         return []
     theta_star = math.atan2(c, b)
-    out = []
+    out: list[tuple[float, float]] = []
     theta_end = rate * t_end_s
     for offset, extreme in ((0.0, a + amplitude), (math.pi, a - amplitude)):
         angle = 0.5 * math.pi - math.asin(min(1.0, abs(extreme)))

@@ -52,7 +52,8 @@ FLIP_CONE_RAD = math.pi / 4.0
 
 
 def _check(values: Mapping[str, Any]) -> None:
-    inertia = tuple(float(values[name]) for name in INERTIA_NAMES)
+    first, second, third = (float(values[name]) for name in INERTIA_NAMES)
+    inertia = (first, second, third)
     try:
         check_principal_inertia(inertia, about="the centre of mass")
     except ValueError as exc:
@@ -330,7 +331,7 @@ class IntegratedTwin:
     """
 
     def __init__(self, body: FreeBodyElliptic, *, frame_dt_s: float, step_ratio: float = GHOST_STEP_RATIO) -> None:
-        self.rigid_body = RigidBody(tuple(float(v) for v in body.inertia))
+        self.rigid_body = RigidBody((float(body.inertia[0]), float(body.inertia[1]), float(body.inertia[2])))
         rate = float(np.linalg.norm(omega_amplitudes_rad_s(body)))
         steps = max(1, min(4096, math.ceil(rate * frame_dt_s / step_ratio - 1e-9)))
         integrator = make_integrator("rk4", steps_per_frame=steps)
