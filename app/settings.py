@@ -84,7 +84,7 @@ class Settings:
             raise ValueError(f"rate_limit_clients must be >= 1 (got {self.rate_limit_clients!r})")
 
     @classmethod
-    def from_env(cls, **overrides: object) -> "Settings":
+    def from_env(cls, **overrides: object) -> Settings:
         env = {
             "host": os.environ.get("DYNLAB_HOST"),
             "port": os.environ.get("DYNLAB_PORT"),

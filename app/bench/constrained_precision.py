@@ -31,7 +31,7 @@ import json
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from datetime import datetime, timezone
+from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any
 
@@ -268,7 +268,7 @@ def run_benchmark(case_ids: Sequence[str] | None = None, *, quick: bool = False)
     runs = sum(len(s[4]) for case_sweeps in sweeps.values() for s in case_sweeps) + len(cases) * sum(len(s[2]) for s in scipy_sweeps)
     progress = Progress(runs)
     report: dict[str, Any] = {
-        "created": datetime.now(timezone.utc).isoformat(timespec="seconds"), "machine": _machine(),
+        "created": datetime.now(UTC).isoformat(timespec="seconds"), "machine": _machine(),
         "error_measure": "largest |q − q_ref| over all coordinates at the final time, in each coordinate's unit (m or rad)",
         "residuals": "position_residual: largest |g(q)| (m, or rad for angle constraints); velocity_residual: largest |C v| (m/s or rad/s), both at the final time",
         "cases": [],

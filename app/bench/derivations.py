@@ -32,7 +32,12 @@ import numpy as np
 
 from app.physics.core.bounded import BoundedRunner, WorkRefused
 from app.physics.mechanics import engine
-from app.physics.mechanics.agreement import formulation_agreement, proves_same_equations, random_states, reference_formulation
+from app.physics.mechanics.agreement import (
+    formulation_agreement,
+    proves_same_equations,
+    random_states,
+    reference_formulation,
+)
 from app.physics.mechanics.engine import available_formulations
 from app.physics.solvers import RK4, LiveRun, automatic_steps_per_frame
 from app.physics.solvers.system import OdeSystem

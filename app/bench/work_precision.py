@@ -25,7 +25,7 @@ import sys
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from datetime import datetime, timezone
+from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any
 
@@ -494,7 +494,7 @@ def run_benchmark(case_ids: Sequence[str] | None = None, *, include_mujoco: bool
 
     study_runs = list(PHASE_DRIFT_RUNS[:2] if quick else PHASE_DRIFT_RUNS)
     progress = Progress(sum(len(s[4]) for case in cases for s in case_sweeps(case)) + len(study_runs) + 1)
-    report: dict[str, Any] = {"created": datetime.now(timezone.utc).isoformat(timespec="seconds"), "machine": _machine(), "scenes": []}
+    report: dict[str, Any] = {"created": datetime.now(UTC).isoformat(timespec="seconds"), "machine": _machine(), "scenes": []}
     for case in cases:
         frames_t = np.arange(int(round(case.t_end_s * case.frame_rate_hz)) + 1) / case.frame_rate_hz
         reference = case.reference_quaternion(frames_t)

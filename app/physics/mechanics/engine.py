@@ -39,6 +39,7 @@ from app.physics.mechanics.newton_euler import derive_newton_euler
 from app.physics.mechanics.routh import derive_routh
 from app.physics.solvers.kernels import RHS_SIGNATURE, Kernel
 
+
 def _source_digest() -> str:
     """A hash of this package's source: any change to a formulation or the generator makes new cache keys."""
     digest = hashlib.sha256()

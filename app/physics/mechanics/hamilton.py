@@ -11,7 +11,15 @@ from __future__ import annotations
 import sympy
 
 from app.physics.mechanics.algebra import solve_exactly, tidy
-from app.physics.mechanics.derivation import Assign, Derivation, FormulationUnavailable, Recipe, Solve, Step, latex_printer
+from app.physics.mechanics.derivation import (
+    Assign,
+    Derivation,
+    FormulationUnavailable,
+    Recipe,
+    Solve,
+    Step,
+    latex_printer,
+)
 from app.physics.mechanics.description import TIME, SystemDescription
 from app.physics.mechanics.kinematics import coordinate_motion, generalized_forces, jacobian_of
 from app.physics.mechanics.lagrange import lagrangian

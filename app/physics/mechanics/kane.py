@@ -13,7 +13,14 @@ from __future__ import annotations
 import sympy
 
 from app.physics.mechanics.algebra import linear_parts, tidy
-from app.physics.mechanics.derivation import Derivation, FormulationUnavailable, Solve, Step, latex_printer, linear_equations_latex
+from app.physics.mechanics.derivation import (
+    Derivation,
+    FormulationUnavailable,
+    Solve,
+    Step,
+    latex_printer,
+    linear_equations_latex,
+)
 from app.physics.mechanics.description import SystemDescription
 from app.physics.mechanics.kinematics import body_motions, inertia_torque_body, speed_motion, spring_force_on_b
 from app.physics.mechanics.speeds import conservative_share, recipe_through_speeds

@@ -12,7 +12,15 @@ import sympy
 from sympy.physics.mechanics import LagrangesMethod, dynamicsymbols
 
 from app.physics.mechanics.algebra import tidy
-from app.physics.mechanics.derivation import Derivation, FormulationUnavailable, Recipe, Solve, Step, latex_printer, linear_equations_latex
+from app.physics.mechanics.derivation import (
+    Derivation,
+    FormulationUnavailable,
+    Recipe,
+    Solve,
+    Step,
+    latex_printer,
+    linear_equations_latex,
+)
 from app.physics.mechanics.description import TIME, SystemDescription
 from app.physics.mechanics.kinematics import coordinate_motion, generalized_forces, kinetic_energy, potential_energy
 

@@ -28,12 +28,12 @@ import numpy as np
 from app.physics.core.parameters import Parameter
 from app.physics.math.rotations import (
     SEQUENCES,
-    rotate_vector,
     angle_rate_matrix_body,
     angles_from_matrix,
     axis_angle_from_quaternion,
     intermediate_frames,
     quaternion_multiply,
+    rotate_vector,
     rotation_sequence,
 )
 from app.scenes.kit import Mark, Preset, Quantity, Readout, Scene

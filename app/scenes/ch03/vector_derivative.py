@@ -10,7 +10,6 @@ where the orange arrow ends. The motion replays from t = 0 every ``replay_s``.
 
 from __future__ import annotations
 
-
 import numpy as np
 
 from app.physics.systems.ch03 import vector_derivative as physics

@@ -20,7 +20,16 @@ import numpy as np
 
 from app.physics.systems.ch06 import mechanism_kinetics as physics
 from app.scenes.ch04.four_bar import to_world
-from app.scenes.kit import IntegratedScene, Preset, Quantity, Readout, arrow_segments, circle_segments, move_node, update_node
+from app.scenes.kit import (
+    IntegratedScene,
+    Preset,
+    Quantity,
+    Readout,
+    arrow_segments,
+    circle_segments,
+    move_node,
+    update_node,
+)
 
 LINK_COLORS = np.array([[40, 100, 220], [40, 150, 70]], np.uint8)
 FORCE_COLORS = np.array([[130, 60, 180], [230, 130, 20], [210, 40, 40], [20, 150, 150]], np.uint8)

@@ -158,7 +158,7 @@ class StickSlipBeltScene(IntegratedScene):
                 f"Sticking: the block rides with the belt at {params['belt_speed_m_s']:g} m/s; friction holds the spring, "
                 f"|F| = {abs(self._friction):.3f} N ≤ μ_s N = {self._limit:.3f} N."
             )
-        words = "Slipping: friction is μ_k N = {:.3f} N against the relative velocity".format(self._limit)
+        words = f"Slipping: friction is μ_k N = {self._limit:.3f} N against the relative velocity"
         if last is not None:
             words += f" (since t = {last.t_s:.4f} s: {last.words})"
         return words + "."

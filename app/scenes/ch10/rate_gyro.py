@@ -27,7 +27,15 @@ import numpy as np
 
 from app.physics.math.rotations import quaternion_from_matrix
 from app.physics.systems.ch10 import rate_gyro as physics
-from app.scenes.ch10.free_gyroscope import COLOR_H, COLOR_RATE, COLOR_TORQUE, add_rotor, drawn_spin_angle, ring_mesh, spin_quaternion
+from app.scenes.ch10.free_gyroscope import (
+    COLOR_H,
+    COLOR_RATE,
+    COLOR_TORQUE,
+    add_rotor,
+    drawn_spin_angle,
+    ring_mesh,
+    spin_quaternion,
+)
 from app.scenes.kit import Mark, Preset, Quantity, Readout, Scene, arrow_segments
 
 GIMBAL_RADIUS = 0.55

@@ -37,8 +37,8 @@ import numpy as np
 from app.physics.core.energy import EnergyParts
 from app.physics.core.parameters import Parameter, ParameterError, ParameterSet
 from app.physics.solvers.integrated_model import IntegratedModel
-from app.physics.solvers.step_choice import AccuracyTarget
 from app.physics.solvers.kernels import PROJECT_SIGNATURE, RHS_SIGNATURE, kernel
+from app.physics.solvers.step_choice import AccuracyTarget
 from app.physics.solvers.system import OdeSystem
 from app.physics.systems.earth import (
     EARTH_RATE_RAD_S,

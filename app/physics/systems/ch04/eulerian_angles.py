@@ -24,7 +24,12 @@ import numpy as np
 
 from app.physics.core.closed_form import ClosedFormModel, ClosedFormSolution
 from app.physics.core.parameters import Parameter, ParameterSet
-from app.physics.math.rotations import GIMBAL_LOCK_TOLERANCE_RAD, gimbal_lock_distance_rad, intermediate_frames, rotation_sequence
+from app.physics.math.rotations import (
+    GIMBAL_LOCK_TOLERANCE_RAD,
+    gimbal_lock_distance_rad,
+    intermediate_frames,
+    rotation_sequence,
+)
 from app.physics.systems.ch03.angle_rates import AngleKinematics, AngleMotion
 
 EULER_SEQUENCE = "3-1-3"

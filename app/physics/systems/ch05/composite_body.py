@@ -19,7 +19,13 @@ import numpy as np
 
 from app.physics.bodies import inertia
 from app.physics.bodies.composite import (
-    MAX_PARTS, CompositeBody, body_place, combine, parts_from_records, shapes_schema, validate_records,
+    MAX_PARTS,
+    CompositeBody,
+    body_place,
+    combine,
+    parts_from_records,
+    shapes_schema,
+    validate_records,
 )
 from app.physics.core.parameters import Parameter, ParameterSet
 from app.physics.core.solution import Solution, Step, WorkedExample

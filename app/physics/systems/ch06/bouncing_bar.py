@@ -70,13 +70,13 @@ from app.physics.core.energy import EnergyParts
 from app.physics.core.parameters import Parameter, ParameterError, ParameterSet
 from app.physics.solvers import Events, OdeSystem
 from app.physics.solvers.integrated_model import IntegratedModel, ModelLimit
-from app.physics.solvers.step_choice import AccuracyTarget
 from app.physics.solvers.kernels import (
     EVENTS_SIGNATURE,
     RESET_SIGNATURE,
     RHS_SIGNATURE,
     kernel,
 )
+from app.physics.solvers.step_choice import AccuracyTarget
 from app.physics.systems.ch06.impact import (
     IMPACT_OUT_SIZE,
     OUT_ENERGY_LOSS,

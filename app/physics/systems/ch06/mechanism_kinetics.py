@@ -43,8 +43,8 @@ from app.physics.bodies.inertia import parallel_axis, slender_rod
 from app.physics.core.energy import EnergyParts
 from app.physics.core.parameters import Parameter, ParameterSet
 from app.physics.solvers.integrated_model import IntegratedModel
-from app.physics.solvers.step_choice import AccuracyTarget
 from app.physics.solvers.kernels import RHS_SIGNATURE, kernel
+from app.physics.solvers.step_choice import AccuracyTarget
 from app.physics.solvers.system import OdeSystem
 from app.physics.systems.ch04 import slider_crank as kinematics
 from app.physics.systems.earth import STANDARD_GRAVITY_M_S2

@@ -33,9 +33,13 @@ from app.physics.core.parameters import Parameter, ParameterError, ParameterSet
 from app.physics.math.expressions import check_parameter_name
 from app.physics.mechanics.description import TIME, SystemDescription
 from app.physics.mechanics.engine import Derived, derived
-from app.physics.mechanics.mass_matrix import SingularCrossing, first_singular_crossing, mass_matrices, not_positive_definite
+from app.physics.mechanics.mass_matrix import (
+    SingularCrossing,
+    first_singular_crossing,
+    mass_matrices,
+    not_positive_definite,
+)
 from app.physics.mechanics.model import DerivedModel, energy_functions
-from app.physics.solvers.integrated_model import ModelLimit
 from app.physics.mechanics.typed import (
     COORDINATE_NAMES,
     MAX_PARAMETER_VALUE,
@@ -45,6 +49,7 @@ from app.physics.mechanics.typed import (
     runner,
     typed_system,
 )
+from app.physics.solvers.integrated_model import ModelLimit
 
 #: The defaults: a double pendulum of two equal bobs m on two equal rods l (q1, q2 from the downward vertical).
 DEFAULT_KINETIC_ENERGY = "m*l^2*(2*q1d^2 + q2d^2 + 2*cos(q1 - q2)*q1d*q2d)/2"

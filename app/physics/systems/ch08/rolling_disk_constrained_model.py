@@ -24,8 +24,8 @@ from typing import Any
 
 import numpy as np
 
-from app.physics.constrained.model import ConstrainedModel
 from app.physics.constrained.initial_conditions import ConsistentStart, consistent_initial_conditions
+from app.physics.constrained.model import ConstrainedModel
 from app.physics.constrained.system import ConstrainedSystem
 from app.physics.core.parameters import Parameter, ParameterSet
 from app.physics.solvers.integrated_model import ModelLimit
@@ -39,7 +39,14 @@ from app.physics.systems.ch08.rolling_disk_constrained import (
 )
 from app.physics.systems.ch08.rolling_disk_stability import critical_spin_rad_s, stability_sentence
 from app.physics.systems.ch09.rolling_disk import SYSTEM as CHAPTER_9_DISK
-from app.physics.systems.ch09.rolling_disk_contact import FALLEN, FALLEN_LEAN_DEG, LIFT_OFF, contact_limit, fallen_message, normal_force_N
+from app.physics.systems.ch09.rolling_disk_contact import (
+    FALLEN,
+    FALLEN_LEAN_DEG,
+    LIFT_OFF,
+    contact_limit,
+    fallen_message,
+    normal_force_N,
+)
 from app.physics.systems.ch09.rolling_disk_model import RollingDiskMotion
 
 __all__ = ["FALLEN", "FALLEN_LEAN_DEG", "LIFT_OFF", "PARAMETERS", "UnsteadyRollingDisk", "fallen_message"]

@@ -29,8 +29,8 @@ import numpy as np
 
 from app.physics.constrained.system import ConstrainedSystem
 from app.physics.core.parameters import ParameterSet
-from app.physics.systems.ch06 import mechanism_kinetics as kinetics
 from app.physics.solvers.system import OdeSystem
+from app.physics.systems.ch06 import mechanism_kinetics as kinetics
 from app.physics.systems.ch08.planar_linkages import PlanarLinkage, RigidLink, fixed_angle, ground_pin, guide, pin
 from app.physics.systems.ch08.planar_linkages_model import PlanarLinkageModel, linkage_series_units
 

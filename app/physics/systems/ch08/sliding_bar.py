@@ -52,8 +52,8 @@ from app.physics.bodies.inertia import slender_rod
 from app.physics.core.parameters import Parameter, ParameterSet
 from app.physics.solvers import DormandPrince, EventRecord, Events, OdeSystem, simulate
 from app.physics.solvers.integrated_model import IntegratedModel
-from app.physics.solvers.step_choice import AccuracyTarget
 from app.physics.solvers.kernels import EVENTS_SIGNATURE, RESET_SIGNATURE, RHS_SIGNATURE, kernel
+from app.physics.solvers.step_choice import AccuracyTarget
 from app.physics.systems.ch06.sliding_ladder import EnergyBudget
 
 #: State slots: x of the lower end B (m), angle from the floor (rad), ẋ_B (m/s), θ̇ (rad/s),

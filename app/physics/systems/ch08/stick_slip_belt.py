@@ -42,8 +42,8 @@ from app.physics.core.energy import EnergyParts
 from app.physics.core.parameters import Parameter, ParameterError, ParameterSet
 from app.physics.solvers import DormandPrince, Events, OdeSystem, simulate
 from app.physics.solvers.integrated_model import IntegratedModel
-from app.physics.solvers.step_choice import AccuracyTarget
 from app.physics.solvers.kernels import EVENTS_SIGNATURE, RESET_SIGNATURE, RHS_SIGNATURE, kernel
+from app.physics.solvers.step_choice import AccuracyTarget
 
 #: State slots: position (m), velocity (m/s), energy dissipated by friction (J, ≥ 0), work done by the
 #: belt through friction (J), mode code, slip direction sign(v_rel) (±1, meaningful in slip).

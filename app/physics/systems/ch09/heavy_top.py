@@ -13,7 +13,15 @@ from __future__ import annotations
 import sympy
 
 from app.physics.core.parameters import ParameterSet
-from app.physics.mechanics.description import Coordinate, Reaction, RigidBody, Singularity, SystemDescription, parameter, vector
+from app.physics.mechanics.description import (
+    Coordinate,
+    Reaction,
+    RigidBody,
+    Singularity,
+    SystemDescription,
+    parameter,
+    vector,
+)
 from app.physics.mechanics.kinematics import simple_rotation
 
 m, l, I_t, I_a, g = sympy.symbols("m l I_t I_a g", positive=True)

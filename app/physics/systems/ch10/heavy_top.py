@@ -32,7 +32,11 @@ from app.physics.bodies.inertia import centroidal_from_point
 from app.physics.bodies.rigid_body import RigidBody
 from app.physics.core.energy import EnergyParts
 from app.physics.core.parameters import Parameter, ParameterError, ParameterSet
-from app.physics.math.rotations import body_rates_from_euler_313_rates, euler_313_from_quaternion, quaternion_from_euler_313
+from app.physics.math.rotations import (
+    body_rates_from_euler_313_rates,
+    euler_313_from_quaternion,
+    quaternion_from_euler_313,
+)
 from app.physics.solvers.integrated_model import IntegratedModel
 from app.physics.solvers.registry import METHODS
 from app.physics.solvers.step_choice import AccuracyTarget
