@@ -160,7 +160,7 @@ _OWN_OPTIONS = {
                     "options (see dynlab derivations --help)"),
     "constrained": (_constrained, "work-precision of the DAE algorithms and scipy Radau/BDF (writes docs/bench/constrained_precision.json and .svg)",
                     "options (see dynlab constrained --help)"),
-}  # fmt: skip
+}
 
 
 def _load(args: argparse.Namespace) -> int:
@@ -200,11 +200,11 @@ def main(argv: list[str] | None = None) -> int:
     serve.add_argument(
         "--workers", type=int, default=None,
         help="scene-worker processes (default: one per core, or DYNLAB_WORKERS); 0 runs the scenes in the front process",
-    )  # fmt: skip
+    )
     serve.add_argument(
         "--instructor-key", default=None,
         help="the instructor's secret in the printed instructor link (default: DYNLAB_INSTRUCTOR_KEY, else a new random one each start)",
-    )  # fmt: skip
+    )
     serve.add_argument("--log-level", default="info", choices=["critical", "error", "warning", "info", "debug"])
     serve.set_defaults(run=_serve)
     for name, (run, help_text, options_help) in _OWN_OPTIONS.items():

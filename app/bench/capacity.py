@@ -410,7 +410,7 @@ async def measure_window(server: ServerUnderTest, classroom: Classroom, seconds:
         front_end_s=front_end, busy_start_s=busy_start, busy_end_s=busy_end, tool_cpu_s=tool_end - tool_start,
         health=health, healthy_at_start=healthy_at_start, healthy_at_end=tuple(classroom.healthy()),
         errors=tuple(classroom.errors()),
-    )  # fmt: skip
+    )
 
 
 def window_figures(reading: WindowReading, *, count_dropped: bool = False) -> dict:
@@ -476,7 +476,7 @@ async def measure_step(
     classroom = Classroom(
         host, port, scene_id, students, connect_per_s=options.connect_per_s, path=viewer_path,
         distinct_addresses=options.distinct_addresses,
-    )  # fmt: skip
+    )
     try:
         await classroom.open(timeout_s=30.0 + students / options.connect_per_s)
         await asyncio.sleep(options.warmup_s)
@@ -590,7 +590,7 @@ def open_room(base_url: str, scene_id: str, *, instructor_key: str) -> dict:
     created = _request_json(
         f"{base_url}/api/rooms", method="POST", body={"lesson_id": lesson_id, "scene_id": scene_id},
         headers={INSTRUCTOR_HEADER: instructor_key},
-    )  # fmt: skip
+    )
     return {"room_id": created["room_id"], "code": created["code"], "lesson_id": lesson_id, "scene_id": scene_id}
 
 
@@ -709,7 +709,7 @@ def with_independent_comparison(report: dict, independent: dict | None, *, sourc
             rows.append({
                 "scene_id": step["scene_id"], "students": step["students"], "frames_per_s": match["frames_per_s"],
                 "server_cpu_cores": match.get("server_cpu_cores"), "server_rss_mb": match.get("server_rss_mb"),
-            })  # fmt: skip
+            })
     comparison = {"source": source, "created": (independent or {}).get("created"), "steps": rows}
     cost = dict(report.get("follow_cost") or {})
     if cost:
@@ -773,7 +773,7 @@ class _Panel:
             f'height="{_f(self.bottom - self.top)}" fill="none" stroke="#9aa3b2"/>',
             _text((self.left + self.right) / 2, self.bottom + 42, x_label, size=13, anchor="middle", weight="600"),
             _text(label_x, cy, y_label, size=13, anchor="middle", weight="600", extra=f'transform="rotate(-90 {_f(label_x)} {_f(cy)})"'),
-        ])  # fmt: skip
+        ])
 
     def target(self, value: float, label: str = "") -> str:
         """A dashed horizontal target line, labelled (unless ``label`` is empty) at its left end, under the line."""
@@ -845,7 +845,7 @@ def capacity_svg(report: dict) -> str:
     out = _svg_open(
         WIDTH, HEIGHT, "Classroom capacity: frames per second delivered to each student against the number of students",
         "Classroom capacity: frames/s each student receives", _subtitle(report),
-    )  # fmt: skip
+    )
     out.append(panel.frame(x_label="Students (one viewer and one scene each)", y_label="Frames per second per student", y_step=5))
     # At the left end, under its line: small classes sit at 30 frames/s, above both lines, so nothing is hidden.
     out.append(panel.target(TARGET_P10_FRAMES_PER_S, f"target: 10th percentile at 100 students ({TARGET_P10_FRAMES_PER_S:g})"))
@@ -890,7 +890,7 @@ def classroom_svg(report: dict) -> str:
         CLASSROOM_WIDTH, CLASSROOM_HEIGHT,
         "Classroom following one scene: frames per second each student receives and the server's CPU, against students",
         f"Classroom following one {scene} demo: frames/s each student receives, server CPU", _subtitle(report),
-    )  # fmt: skip
+    )
     out.append(rates.frame(x_label="Students", y_label="Frames per second per student", y_step=5))
     out.append(rates.target(TARGET_P10_FRAMES_PER_S))  # labelled in the legend: the lines cross it
     out.append(cpu.frame(x_label="Students", y_label="Server CPU (cores, all its processes)", y_step=0.25 if cpu_max <= 2 else 0.5))
@@ -915,7 +915,7 @@ def classroom_svg(report: dict) -> str:
     )
     legend_y += 22
     out.append(_text(LEFT, legend_y, "Frames/s: solid, filled: 10th percentile; dashed, open: median. Server CPU: the "
-                     "server process and its scene workers.", size=11, fill="#5b6475"))  # fmt: skip
+                     "server process and its scene workers.", size=11, fill="#5b6475"))
     note = _follow_cost_note(cost)
     if note:
         out.append(_text(LEFT, legend_y + 26, note, size=12))
@@ -937,7 +937,7 @@ def _follow_cost_note(cost: dict) -> str:
             ("one_viewer_cpu_cores", "1 viewer on its own scene"),
             (f"independent_cpu_cores_{FOLLOW_COST_CLASS}", f"{FOLLOW_COST_CLASS} on their own scenes"),
         ) if cores(key) is not None
-    ]  # fmt: skip
+    ]
     return f"Server CPU (cores): {'; '.join(parts)}" if parts else ""
 
 
@@ -994,34 +994,34 @@ def add_load_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--students", type=_int_list, default=None,
         help="class sizes, e.g. 10,30,60,100,150 (the default; with --room 1,10,30,60,100,150; with --attack one size, 100)",
-    )  # fmt: skip
+    )
     parser.add_argument(
         "--seconds", type=float, default=None,
         help=f"steady window per step (s, ≤ {MAX_STEP_SECONDS:g}; default {LoadOptions.seconds:g}, with --attack {ATTACK_SECONDS:g} "
         "for each of the two windows)",
-    )  # fmt: skip
+    )
     parser.add_argument("--warmup", type=float, default=LoadOptions.warmup_s, help="seconds after all connected before measuring")
     parser.add_argument("--connect-rate", type=float, default=LoadOptions.connect_per_s, help="viewers opened per second")
     parser.add_argument(
         "--room", action="store_true",
         help="the students follow one classroom room on the scene instead of a scene each (writes classroom.json and .svg)",
-    )  # fmt: skip
+    )
     parser.add_argument(
         "--attack", action="store_true",
         help="students on their own scenes, measured first alone and then while one client attacks the class with "
         "every attack the class-safety issue found (room, sessions, floods, bursts, expensive requests); writes "
         "attack.json and .svg",
-    )  # fmt: skip
+    )
     parser.add_argument(
         "--distinct-addresses", action=argparse.BooleanOptionalAction, default=None,
         help="each student connects from its own loopback address (127.0.1.1, 127.0.1.2, …) as a class of devices "
         "does, so per-device limits see students, not one client (default: on; off from one address is refused beyond 8 viewers)",
-    )  # fmt: skip
+    )
     parser.add_argument(
         "--instructor-key", default=None,
         help="with --room or --attack and --url: the server's instructor secret, to open the room (a server the tool "
         "starts gets its own)",
-    )  # fmt: skip
+    )
     add_server_arguments(parser)
 
 
@@ -1038,7 +1038,7 @@ def run_load_command(args: argparse.Namespace, parser: argparse.ArgumentParser) 
             warmup_s=args.warmup, connect_per_s=args.connect_rate, workers=args.workers, url=args.url,
             server_pid=args.server_pid, room=args.room, instructor_key=args.instructor_key,
             distinct_addresses=args.distinct_addresses, attack=args.attack,
-        )  # fmt: skip
+        )
     except ValueError as exc:
         parser.error(str(exc))
     if options.attack:

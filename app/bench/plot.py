@@ -26,7 +26,7 @@ import math
 import sys
 from collections.abc import Iterable, Sequence
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeGuard
 from xml.sax.saxutils import escape, quoteattr
 
 SVG_NS = "http://www.w3.org/2000/svg"
@@ -52,7 +52,7 @@ STROKE_WIDTH = {"dynlab": 2.6, "scipy": 1.8, "mujoco": 2.0, "other": 1.8}
 MARKERS = ("circle", "square", "triangle", "diamond", "triangle-down", "pentagon", "plus", "cross", "star", "hexagon")
 
 
-def _finite_positive(value: Any) -> bool:
+def _finite_positive(value: Any) -> TypeGuard[float]:
     return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value) and value > 0
 
 
@@ -284,12 +284,12 @@ def work_precision_svg(scene: dict) -> str:
     for axis, vertical in ((ax, True), (ay, False)):
         decades = axis.hi - axis.lo
         label_every = max(1, math.ceil(decades / (8 if vertical else 7)))
-        line = _vline if vertical else _hline
+        grid_line = _vline if vertical else _hline
         if decades <= 8:
-            grid.extend(line(axis(m * 10.0**k), "#eef0f4") for k in range(axis.lo, axis.hi) for m in range(2, 10))
+            grid.extend(grid_line(axis(m * 10.0**k), "#eef0f4") for k in range(axis.lo, axis.hi) for m in range(2, 10))
         for k in range(axis.lo, axis.hi + 1):
             c = axis(10.0**k)
-            grid.append(line(c, "#d5dae3"))
+            grid.append(grid_line(c, "#d5dae3"))
             if (k - axis.lo) % label_every == 0:
                 labels.append(
                     _text(c, PLOT_BOTTOM + 18, tick_label(k), anchor="middle")

@@ -135,7 +135,7 @@ async def _soak(server: ServerUnderTest, scene_id: str, students: int, minutes: 
                 "frames_per_s": frame_rate_summary(per_client_rates(previous, current, classroom.healthy())),
                 "connected": sum(classroom.healthy()),
                 **{f"server_{k}": v for k, v in _usage_dict(usage).items() if k != "cpu_s"},
-            })  # fmt: skip
+            })
             print(f"soak minute {samples[-1]['minute']}: {samples[-1]}", flush=True)
             previous = current
     finally:
@@ -173,7 +173,7 @@ def _fields(usage: TreeUsage) -> tuple:
 
 
 def run_soak(scene_id: str, students: int, minutes: float, *, workers: int | None = None, url: str | None = None,
-             server_pid: int | None = None, connect_per_s: float = 50.0) -> dict:  # fmt: skip
+             server_pid: int | None = None, connect_per_s: float = 50.0) -> dict:
     """Run the soak (see the module docstring) and return its report."""
     if not 1 <= students <= MAX_STUDENTS:
         raise ValueError(f"students: must be 1..{MAX_STUDENTS}, got {students}")
@@ -202,7 +202,7 @@ def run_soak_command(args: argparse.Namespace, parser: argparse.ArgumentParser) 
         parser.error(f"scene: a soak runs one scene, got {', '.join(scenes)}")
     try:
         report = run_soak(scenes[0], args.students, args.minutes, workers=args.workers, url=args.url,
-                          server_pid=args.server_pid)  # fmt: skip
+                          server_pid=args.server_pid)
     except ValueError as exc:
         parser.error(str(exc))
     except RuntimeError as exc:

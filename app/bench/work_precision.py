@@ -296,7 +296,7 @@ def run_mujoco(case: Case, method: str, steps_per_frame: int, frames_t: np.ndarr
     from app.bench.mujoco_models import simulate_rigid_body_mujoco
 
     body = case.body
-    kwargs = dict(
+    kwargs: dict[str, Any] = dict(
         inertia_pivot=body.inertia_pivot_kg_m2, mass_kg=body.mass_kg if body.mass_kg > 0 else 1.0,
         cg_distance_m=body.cg_distance_m, g_m_s2=body.g_m_s2, q0=case.y0[:4], omega0_body=case.y0[4:],
         t_end_s=case.t_end_s, frame_rate_hz=case.frame_rate_hz, steps_per_frame=int(steps_per_frame),
@@ -329,7 +329,7 @@ def mujoco_batch_check(case: Case) -> dict[str, Any]:
 
     body = case.body
     frames = int(round(case.t_end_s * case.frame_rate_hz))
-    body_kwargs = dict(inertia_pivot=body.inertia_pivot_kg_m2, mass_kg=body.mass_kg, cg_distance_m=body.cg_distance_m,
+    body_kwargs: dict[str, Any] = dict(inertia_pivot=body.inertia_pivot_kg_m2, mass_kg=body.mass_kg, cg_distance_m=body.cg_distance_m,
                        g_m_s2=body.g_m_s2)
     model, data = build_rigid_body_model(**body_kwargs, timestep_s=1.0 / case.frame_rate_hz, integrator="RK4")
     model.opt.enableflags &= ~int(mujoco.mjtEnableBit.mjENBL_ENERGY)
@@ -338,7 +338,7 @@ def mujoco_batch_check(case: Case) -> dict[str, Any]:
     spec = mujoco.mjtState.mjSTATE_FULLPHYSICS
     initial = np.empty(mujoco.mj_stateSize(model, spec))
     mujoco.mj_getState(model, data, initial, spec)
-    loop_kwargs = dict(**body_kwargs, q0=case.y0[:4], omega0_body=case.y0[4:], t_end_s=case.t_end_s,
+    loop_kwargs: dict[str, Any] = dict(**body_kwargs, q0=case.y0[:4], omega0_body=case.y0[4:], t_end_s=case.t_end_s,
                        frame_rate_hz=case.frame_rate_hz, steps_per_frame=1, integrator="RK4")
     loop_cpu = batch_cpu = math.inf
     # Alternated, so a change in the machine's load between them falls on both.

@@ -163,4 +163,4 @@ def curvilinear_series(
         "r": sph.coordinates[:, 0], "phi": sph.coordinates[:, 1],
         "v_r": sph.velocity[:, 0], "v_phi": sph.velocity[:, 1],
         "a_r": sph.acceleration[:, 0], "a_phi": sph.acceleration[:, 1],
-    }  # fmt: skip
+    }

@@ -63,4 +63,4 @@ def derive_gibbs_appell(system: SystemDescription) -> Derivation:
         system_id=system.id, formulation="gibbs-appell", variables="q, u",
         mass_matrix=M, forcing=forcing, equations_latex=equations, steps=tuple(steps),
         recipe=recipe_through_speeds(system, Solve(M, forcing, tuple(ud))), latex_names=names,
-    )  # fmt: skip
+    )

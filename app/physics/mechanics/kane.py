@@ -74,4 +74,4 @@ def derive_kane(system: SystemDescription) -> Derivation:
         system_id=system.id, formulation="kane", variables="q, u",
         mass_matrix=M, forcing=forcing, equations_latex=equations, steps=tuple(steps),
         recipe=recipe_through_speeds(system, Solve(M, forcing, tuple(ud))), latex_names=names,
-    )  # fmt: skip
+    )

@@ -75,4 +75,4 @@ def derive_lagrange(system: SystemDescription) -> Derivation:
         mass_matrix=mass_matrix, forcing=forcing, equations_latex=equations, steps=tuple(steps),
         recipe=Recipe(stages=(Solve(mass_matrix, forcing, tuple(system.qdd)),), outputs=(*system.qd, *system.qdd)),
         latex_names=names,
-    )  # fmt: skip
+    )

@@ -32,7 +32,7 @@ def formulation_parameter(system: SystemDescription, *, default: str = "lagrange
     return Parameter(
         "formulation", "", default if default in choices else choices[0], kind="choice", choices=choices,
         label="formulation", description="Which derivation's equations drive the motion (all agree to rounding)",
-    )  # fmt: skip
+    )
 
 
 def derived_parameters(
@@ -107,7 +107,7 @@ class DerivedModel(IntegratedModel):
         return OdeSystem(
             rhs=self.derived(params).kernel(), parameters=self.parameter_array(params),
             state_names=(*names, *(f"{n}_rate" for n in names)),
-        )  # fmt: skip
+        )
 
     def fastest_rate_rad_s(self, params: Mapping[str, Any], state: np.ndarray) -> float:
         """The largest eigenvalue magnitude of the linearised flow at ``state`` plus the fastest rate (rad/s), at least 1.

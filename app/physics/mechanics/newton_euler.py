@@ -103,4 +103,4 @@ def derive_newton_euler(system: SystemDescription) -> Derivation:
         system_id=system.id, formulation="newton-euler", variables="q, u, reactions",
         mass_matrix=A, forcing=b, equations_latex=equations, steps=tuple(steps),
         recipe=recipe_through_speeds(system, Solve(A, b, tuple(unknowns))), latex_names=names,
-    )  # fmt: skip
+    )

@@ -89,7 +89,7 @@ def typed_system(
         id="custom", title="Typed Lagrangian", chapter=7, coordinates=coords,
         parameters=ParameterSet(tuple(Parameter(name, "", float(value), min=-MAX_PARAMETER_VALUE, max=MAX_PARAMETER_VALUE, label=name) for name, value in parameters.items())),
         symbols=constants, kinetic_energy=T, extra_potential=V,
-    )  # fmt: skip
+    )
 
 
 def _finite(value: float) -> bool:
@@ -185,7 +185,7 @@ def check_kinetic_energy(system: SystemDescription, state: np.ndarray, parameter
 runner = BoundedRunner(
     max_jobs=2, timeout_s=DERIVE_TIMEOUT_S, memory_mb=DERIVE_MEMORY_MB, wait_s=2.0,
     preload=("app.physics.core.bounded", "numpy", "sympy", __name__),
-)  # fmt: skip
+)
 
 
 def derive_typed_bounded(request: Mapping[str, Any]) -> dict[str, Any]:

@@ -37,7 +37,7 @@ class CartesianComponentsScene(ParticleRunScene):
                "a = −g K all the way: ẋ and ẏ never change, ż falls by 9.81 m/s every second"),
         Preset("straight-up", "Thrown straight up", {"motion": "projectile", "launch_speed_m_s": 6.0, "launch_angle_deg": 90.0, "gravity_m_s2": 9.81},
                "At the top (t = 0.61 s) the speed is 0 while a is still 9.81 m/s² downward"),
-    )  # fmt: skip
+    )
 
     def run_s(self) -> float:
         return self.motion.run_s

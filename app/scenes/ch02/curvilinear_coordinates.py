@@ -57,7 +57,7 @@ PATH_ANGLE_MEANING = {
 CONTROLS = (
     Parameter("frame", "", "cylindrical", kind="choice", choices=physics.FRAMES, label="unit vectors",
               description="The unit vectors riding on the particle: cylindrical (e_R, e_θ, e_z) or spherical (e_r, e_φ, e_θ)"),
-)  # fmt: skip
+)
 
 
 class CurvilinearCoordinatesScene(ParticleRunScene):
@@ -79,7 +79,7 @@ class CurvilinearCoordinatesScene(ParticleRunScene):
                "Crosses every meridian at 75° from north: v_φ / v_θ = −cot 75° throughout, while the speed falls toward the poles"),
         Preset("on-the-pole", "On the pole (φ = 0)", {"path": "latitude-circle", "size_m": 1.0, "path_angle_deg": 0.0, "frame": "spherical"},
                "A circle of zero radius: the particle sits on the Z axis, where θ, e_φ and e_θ have no value"),
-    )  # fmt: skip
+    )
 
     def build(self) -> None:
         super().build()
@@ -111,7 +111,7 @@ class CurvilinearCoordinatesScene(ParticleRunScene):
         for k, text in enumerate(TRIAD_LABELS[self.params["frame"]]):
             tip = length * np.eye(3)[k]
             nodes.append(scene.add_arrows(f"/particle/e{k}", np.array([[np.zeros(3), tip]], np.float32), TRIAD_COLORS[k],
-                                          shaft_radius=shaft, head_radius=2.5 * shaft, head_length=5.0 * shaft))  # fmt: skip
+                                          shaft_radius=shaft, head_radius=2.5 * shaft, head_length=5.0 * shaft))
             nodes.append(scene.add_label(f"/particle/e{k}/label", text, position=tuple(1.1 * tip), anchor="center-left", font_screen_scale=0.9))
         self._triad_nodes = nodes
         self._triad_shown = (True, True, True)

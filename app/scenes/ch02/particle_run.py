@@ -116,7 +116,7 @@ class ParticleRunScene(Scene):
             scene.add_frame("/world_axes", axes_length=axes, axes_radius=0.005 * size),
             *(scene.add_label(f"/world_axes/{name}", name, position=tuple(1.08 * axes * np.eye(3)[k]), font_screen_scale=0.8)
               for k, name in enumerate("XYZ")),
-        ]  # fmt: skip
+        ]
         self.ball.scale = 0.02 * size
         shaft = 0.009 * size
         self.arrows.shaft_radius, self.arrows.head_radius, self.arrows.head_length = shaft, 2.5 * shaft, 6.0 * shaft

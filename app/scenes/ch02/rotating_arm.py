@@ -45,7 +45,7 @@ class RotatingArmScene(ParticleRunScene):
                "r swings from −1.2 m to 1.2 m: at the pivot the arm's e_r and e_θ are still defined, and a is all Coriolis"),
         Preset("speeding-up", "Arm speeding up (α)", {"arm_rate_rad_s": 0.3, "arm_acceleration_rad_s2": 0.1, "collar_mean_m": 1.0, "collar_amplitude_m": 0.0},
                "θ̈ = 0.1 rad/s²: the transverse term rθ̈ = 0.1 m/s² stays while −rθ̇² grows"),
-    )  # fmt: skip
+    )
 
     def build(self) -> None:
         super().build()

@@ -344,7 +344,7 @@ class SpaceCurveScene(Scene):
             arrow = scene.add_arrows(
                 f"/particle/e{k}", np.array([[np.zeros(3), tip]], np.float32), TRIAD_COLORS[k],
                 shaft_radius=shaft, head_radius=2.5 * shaft, head_length=6.0 * shaft,
-            )  # fmt: skip
+            )
             label = scene.add_label(
                 f"/particle/e{k}/label", TRIAD_LABELS[self.params["frame"]][k], position=tuple(1.06 * tip), anchor="center-left", font_screen_scale=0.9
             )

@@ -59,7 +59,7 @@ class AngleRatesScene(ReplayedScene):
             "sequence": "3-1-3", "angle1_deg": 0.0, "angle2_deg": 20.0, "angle3_deg": 0.0,
             "rate1_rad_s": 0.3, "rate2_rad_s": 0.1, "rate3_rad_s": 0.5, "accel1_rad_s2": 0.0, "accel2_rad_s2": 0.0, "accel3_rad_s2": 0.4,
         }, "θ̈3 = 0.4 rad/s² adds a part of α along n3; the cross products add the rest"),
-    )  # fmt: skip
+    )
 
     # -- building -----------------------------------------------------------------------------------
     def build(self) -> None:
@@ -155,7 +155,7 @@ class AngleRatesScene(ReplayedScene):
             Quantity("gimbal_lock_distance_deg", "distance to gimbal lock", math.degrees(float(k.lock_distance_rad[i])), "deg"),
             Quantity("omega_arrow_scale", "ω arrows", self.omega_scale, "display units per rad/s"),
             Quantity("alpha_arrow_scale", "α arrow", self.alpha_scale, "display units per rad/s²"),
-        ]  # fmt: skip
+        ]
         marks = {"angle2_deg": [Mark(math.degrees(a), "gimbal lock") for a in seq.lock_angles_rad]}
         return Readout(quantities, marks=marks, message=self.message())
 

@@ -30,7 +30,7 @@ CONTROLS = (
               description="Fixed axis of the second turn B"),
     Parameter("second_angle_deg", "deg", 0.0, -180.0, 180.0, label="β", step=1.0,
               description="Angle of the second turn B about its fixed axis (0: no second turn, Euler's theorem alone)"),
-)  # fmt: skip
+)
 
 BODY_AXIS_LENGTH = 0.7
 FIXED_AXIS_LENGTH = 1.2

@@ -49,7 +49,7 @@ class VectorDerivativeScene(ReplayedScene):
             "frame_rate_rad_s": 0.8, "frame_axis_tilt_deg": 0.0, "length_m": 1.0, "stretch_amplitude_m": 0.0,
             "relative_turn_rate_rad_s": -0.8, "elevation_deg": 20.0,
         }, "ψ̇ = −Ω about the same axis: the two terms cancel and A stands still in XYZ"),
-    )  # fmt: skip
+    )
 
     def build(self) -> None:
         scene = self.client.scene

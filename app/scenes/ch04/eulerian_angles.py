@@ -56,15 +56,15 @@ class EulerianAnglesScene(CyclingScene):
     presets = (
         Preset("steady-precession", "Steady precession", {"nutation_rate_rad_s": 0.0, "precession_acceleration_rad_s2": 0.0,
                "nutation_acceleration_rad_s2": 0.0, "spin_acceleration_rad_s2": 0.0},
-               "θ fixed, φ̇ and ψ̇ constant: ω keeps its length but turns with the line of nodes, so α = φ̇K × ω is not zero."),  # fmt: skip
+               "θ fixed, φ̇ and ψ̇ constant: ω keeps its length but turns with the line of nodes, so α = φ̇K × ω is not zero."),
         Preset("nutation-only", "Nutation only", {"precession_rate_rad_s": 0.0, "spin_rate_rad_s": 0.0, "nutation_rate_rad_s": 0.5},
-               "Only θ changes: ω lies along the line of nodes."),  # fmt: skip
+               "Only θ changes: ω lies along the line of nodes."),
         Preset("singular", "At θ = 0", {"nutation_deg": 0.0, "nutation_rate_rad_s": 0.0, "nutation_acceleration_rad_s2": 0.0},
-               "The spin axis on Z: φ and ψ turn about one line, and only φ̇ + ψ̇ can be read from ω."),  # fmt: skip
+               "The spin axis on Z: φ and ψ turn about one line, and only φ̇ + ψ̇ can be read from ω."),
         Preset("through-singular", "Passing θ = 0", {"nutation_deg": 20.0, "nutation_rate_rad_s": -0.4, "nutation_acceleration_rad_s2": 0.0},
-               "θ runs down through 0 at t ≈ 0.87 s: ω stays smooth, the angles' description does not."),  # fmt: skip
+               "θ runs down through 0 at t ≈ 0.87 s: ω stays smooth, the angles' description does not."),
         Preset("spinning-up", "Spinning up", {"spin_acceleration_rad_s2": 3.0, "nutation_rate_rad_s": 0.0},
-               "ψ̈ adds ψ̈ k to α."),  # fmt: skip
+               "ψ̈ adds ψ̈ k to α."),
     )
 
     def camera_view(self):
@@ -84,7 +84,7 @@ class EulerianAnglesScene(CyclingScene):
         scene.add_line_segments(
             "/nutation/line_of_nodes", np.array([[(a, 0, 0), (a + 0.06, 0, 0)] for a in dashes], np.float32), (190, 60, 200),
             thickness=2.5, thickness_units="screen",
-        )  # fmt: skip
+        )
         scene.add_line_segments("/nutation/y_prime", np.array([[(0, 0, 0), (0, 0.8, 0)]], np.float32), (190, 60, 200), thickness=1.0, thickness_units="screen")
         scene.add_label("/nutation/line_of_nodes_label", "x′ line of nodes", position=(1.3, 0, 0), anchor="center-left")
         scene.add_label("/nutation/y_prime_label", "y′", position=(0, 0.85, 0), anchor="center-left")
@@ -104,7 +104,7 @@ class EulerianAnglesScene(CyclingScene):
             "/angle_arcs", np.zeros((3 * ARC_SEGMENTS, 2, 3), np.float32),
             np.repeat(np.array([RATE_COLORS[k] for k in ("precession", "nutation", "spin")], np.uint8), ARC_SEGMENTS, axis=0)[:, None, :].repeat(2, axis=1),
             thickness=2.5, thickness_units="screen",
-        )  # fmt: skip
+        )
         self.arrows = LabelledArrows(scene, "/rates", RATE_COLORS, RATE_LABELS)
         self.arrows.set_style(shaft_radius=0.012, head_radius=0.032, head_length=0.06)
         self.legend = scene.add_label("/legend", "", position=(0.3, -1.8, 0.0), anchor="top-center", font_screen_scale=0.85)
@@ -132,7 +132,7 @@ class EulerianAnglesScene(CyclingScene):
             _arc(np.array([1.0, 0.0, 0.0]), K, phi, ARC_RADII["precession"]),
             _arc(K, nodes, theta, ARC_RADII["nutation"]),
             _arc(nodes, spin_axis, psi, ARC_RADII["spin"]) + SHAFT_LENGTH * spin_axis,
-        ])  # fmt: skip
+        ])
         update_node(self.arcs, points=arcs)
         s = self.omega_scale
         O = np.zeros(3)
@@ -163,11 +163,11 @@ class EulerianAnglesScene(CyclingScene):
             Quantity("spin_rate", "spin rate ψ̇", float(rates[2]), "rad/s"),
             Quantity("omega_body", "ω on the body axes (x, y, z)", None, "rad/s", _components(k.omega_body_rad_s[0], ("x", "y", "z"))),
             Quantity("omega_nutation", "ω on the nutation frame (x′ = line of nodes, y′, z′ = z)", None, "rad/s",
-                     _components(state.angular_velocity_nutation[0], ("x′", "y′", "z′"))),  # fmt: skip
+                     _components(state.angular_velocity_nutation[0], ("x′", "y′", "z′"))),
             Quantity("angular_speed", "|ω|", float(np.linalg.norm(k.omega_world_rad_s[0])), "rad/s"),
             Quantity("alpha_body", "α on the body axes (x, y, z)", None, "rad/s²", _components(k.alpha_body_rad_s2[0], ("x", "y", "z"))),
             Quantity("alpha_nutation", "α on the nutation frame (x′, y′, z′)", None, "rad/s²",
-                     _components(state.angular_acceleration_nutation[0], ("x′", "y′", "z′"))),  # fmt: skip
+                     _components(state.angular_acceleration_nutation[0], ("x′", "y′", "z′"))),
             Quantity("angular_acceleration", "|α|", float(np.linalg.norm(k.alpha_world_rad_s2[0])), "rad/s²"),
             Quantity("singularity_distance", "θ's distance from 0 or 180° (the singular nutation)", math.degrees(float(k.lock_distance_rad[0])), "deg"),
         ]

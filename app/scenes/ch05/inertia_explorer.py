@@ -66,7 +66,7 @@ SHOW_ELLIPSOID = Parameter(
 def _record(shape: str, mass_kg: float, position_m, angles_deg=(0.0, 0.0, 0.0), **dimensions_m: float) -> dict[str, Any]:
     """One solid body of a preset (3-2-1 angles in deg, m, kg)."""
     return {"shape": shape, "mass_kg": mass_kg, **dimensions_m, "position_m": list(position_m),
-            "sequence": "3-2-1", "angles_deg": list(angles_deg), "hole": False}  # fmt: skip
+            "sequence": "3-2-1", "angles_deg": list(angles_deg), "hole": False}
 
 
 #: 3-2-1 angles (deg) that turn a shape's own z onto the reference x and y axes.

@@ -124,7 +124,7 @@ class PlanarCollisionScene(Scene):
         self.spokes.points = np.array(spokes, np.float32)
         (d1, d2), (a1, a2) = c.before, c.after
         tails = np.array([to_world(d1.centre_m[:2]), to_world(d2.centre_m[:2]), to_world(placed[0][0][:2]), to_world(placed[1][0][:2]),
-                          to_world(c.contact_point_m[:2])])  # fmt: skip
+                          to_world(c.contact_point_m[:2])])
         vectors = np.array([to_world(v[:2]) for v in (d1.momentum_N_s, d2.momentum_N_s, a1.momentum_N_s, a2.momentum_N_s, c.impulse_N_s)])
         self.arrows.points = arrow_segments(tails, vectors, self._arrow_scale)
         after = self.t_s >= 0.0

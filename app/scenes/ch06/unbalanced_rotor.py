@@ -67,7 +67,7 @@ class UnbalancedRotorScene(Scene):
                "Without gravity the balanced rotor loads its bearings not at all."),
         Preset("at-rest", "At rest", {"shaft_speed_rad_s": 0.0, "eccentricity_m": 0.002, "skew_deg": 2.0, "balanced": "off"},
                "No speed: only the weight, and the drive holds the rotor against gravity's moment m g e."),
-    )  # fmt: skip
+    )
 
     def build(self) -> None:
         scene = self.client.scene
@@ -94,7 +94,7 @@ class UnbalancedRotorScene(Scene):
         self.arrows = scene.add_arrows(
             "/reactions", np.zeros((2, 2, 3), np.float32), np.array([COLOR_A, COLOR_B], np.uint8),
             shaft_radius=0.008, head_radius=0.02, head_length=0.04,
-        )  # fmt: skip
+        )
         self.force_labels = [scene.add_label(f"/reactions/{name}", "", anchor="bottom-left") for name in ("A", "B")]
         self.legend = scene.add_label("/legend", "", anchor="top-center")
 
@@ -172,14 +172,14 @@ class UnbalancedRotorScene(Scene):
             Quantity.word("imbalance_class", "imbalance", model.imbalance),
             Quantity("static_imbalance_kg_m", "static imbalance m e (disk)", float(np.hypot(*physics.first_moment_kg_m(parts))), "kg·m"),
             Quantity("couple_imbalance_kg_m2", "couple imbalance |I_xy, I_xz| at G (disk)",
-                     float(np.hypot(*physics.couple_imbalance_kg_m2(parts))), "kg·m²"),  # fmt: skip
+                     float(np.hypot(*physics.couple_imbalance_kg_m2(parts))), "kg·m²"),
         ]
         for index, (mass, angle) in enumerate(zip(correction.masses_kg, correction.angles_rad, strict=True), start=1):
             needed = mass > NEGLIGIBLE_CORRECTION * disk.disk_mass_kg
             quantities.append(Quantity(f"correction_mass_{index}_kg", f"correction mass {index}", float(mass), "kg"))
             quantities.append(
                 Quantity.or_text(f"correction_angle_{index}_deg", "its angle from G's direction (about +X)",
-                                 math.degrees(angle) if needed else None, "deg", "none needed")  # fmt: skip
+                                 math.degrees(angle) if needed else None, "deg", "none needed")
             )
         return Readout(quantities, message=self._message())
 

@@ -67,7 +67,7 @@ class DoublePendulumScene(DerivedSystemScene):
         Preset("chaotic", "Large swing (chaotic)", {"theta1_0_deg": 120.0, "theta2_0_deg": -30.0, "theta1_rate_0_deg_s": 0.0,
                "theta2_rate_0_deg_s": 200.0, "steps_per_frame": 0},
                "Far from the bottom the motion never repeats: the point wanders over the whole torus, and the energy stays put."),
-    )  # fmt: skip
+    )
 
     def build(self) -> None:
         scene = self.client.scene

@@ -115,7 +115,7 @@ class StickSlipBeltScene(IntegratedScene):
             [[0.0, 0.0, z + 0.012], [s * friction, 0.0, z + 0.012]],
             [[0.0, 0.0, z - 0.012], [s * friction, 0.0, z - 0.012]],
             [[0.0, 0.0, z - 0.03], [0.0, 0.0, z + 0.03]],
-        ], np.float32)  # fmt: skip
+        ], np.float32)
         colors = np.array([[150, 150, 150], [210, 40, 40], [210, 40, 40], color, color, [60, 60, 60]], np.uint8)
         update_node(self.gauge, points=segments, colors=np.repeat(colors[:, None, :], 2, axis=1))
         move_node(self.mode_label, position=(x, 0.0, BLOCK_M + 0.05))

@@ -57,7 +57,7 @@ class UnsteadyRollingDiskScene(IntegratedScene):
         Preset("drift", "Uncorrected, coarse step", {"radius_m": 0.1, "lean_0_deg": 20.0, "spin_rate_0_rad_s": 20.0, "heading_rate_0_rad_s": 5.0,
                "method": "uncorrected", "integrator": "rk4", "steps_per_frame": 4},
                "Index reduction alone with 4 RK4 steps per frame: the contact point's slip speed |A v| (about 5e-5 m/s) is never fed back; pick projection and it drops to round-off."),
-    )  # fmt: skip
+    )
 
     def build(self) -> None:
         scene = self.client.scene
@@ -109,5 +109,5 @@ class UnsteadyRollingDiskScene(IntegratedScene):
             Quantity("energy_drift", "energy drift |ΔE| / scale", self.current_drift()["energy"]),
             Quantity("critical_spin_rad_s", "critical spin Ω_c (linearised upright rolling)", self._critical_spin, "rad/s"),
             Quantity.word("upright_stability", "at the start's spin", self._stability),
-        ]  # fmt: skip
+        ]
         return Readout(quantities, message=self.status)

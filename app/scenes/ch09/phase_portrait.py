@@ -55,7 +55,7 @@ class PhasePortraitScene(DerivedSystemScene):
                "Released 5° from upright: the orbit hugs the separatrix and lingers near θ = ±180°; the period grows without bound as the release nears 180°."),
         Preset("over-the-top", "Going over the top", {"theta_0_deg": 0.0, "theta_rate_0_deg_s": 420.0},
                "θ̇₀ = 420°/s at the bottom exceeds 2√(g/l) = 359°/s (l = 1 m): H > m g l, the pendulum rotates and p_θ never changes sign."),
-    )  # fmt: skip
+    )
 
     def build(self) -> None:
         scene = self.client.scene

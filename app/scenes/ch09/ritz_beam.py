@@ -57,7 +57,7 @@ class RitzCantileverScene(Scene):
                "The orthogonal basis at N = 14: every frequency an upper bound, the first four within 2e-10 of the exact ones."),
         Preset("monomials-fail", "Monomials, 14 terms", {"terms": 14, "mode": 3, "basis": "monomial"},
                "The same space spanned by ξ², ξ³, …: cond(M) ≈ 1e18, the upper bound breaks and some ω² turn negative."),
-    )  # fmt: skip
+    )
 
     def build(self) -> None:
         scene = self.client.scene

@@ -40,7 +40,7 @@ class RollingDiskScene(DerivedSystemScene):
                "Ω = 4 rad/s is below 5.72 rad/s: upright rolling is unstable, the lean grows to tens of degrees and the path curls tightly."),
         Preset("turning", "Leaning into a turn", {"lean_0_deg": 20.0, "spin_rate_0_rad_s": 20.0, "heading_rate_0_rad_s": 5.0},
                "A large lean with a heading rate: the contact point runs round loops while the energy stays constant."),
-    )  # fmt: skip
+    )
 
     def build(self) -> None:
         scene = self.client.scene
@@ -80,5 +80,5 @@ class RollingDiskScene(DerivedSystemScene):
             Quantity("critical_spin_rad_s", "upright rolling is stable above |φ̇| = Ω_c (linearised)", self._critical_spin, "rad/s"),
             Quantity.word("upright_stability", "upright rolling at this spin", "stable" if stable else "unstable"),
             *self.agreement_quantities(),
-        ]  # fmt: skip
+        ]
         return Readout(quantities, message=self.status)

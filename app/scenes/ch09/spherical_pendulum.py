@@ -52,7 +52,7 @@ class SphericalPendulumScene(DerivedSystemScene):
                "Started level with the pivot and a slow sweep: the bob dips far below and climbs back, θ between the two crossings of E with V_eff."),
         Preset("above-pivot", "Swinging above the pivot", {"theta_0_deg": 135.0, "theta_rate_0_deg_s": 0.0, "phi_rate_0_deg_s": 400.0},
                "Fast enough that the bob stays above the pivot part of the time: V_eff keeps θ away from 180°, however high it goes."),
-    )  # fmt: skip
+    )
 
     def build(self) -> None:
         scene = self.client.scene
@@ -131,5 +131,5 @@ class SphericalPendulumScene(DerivedSystemScene):
             Quantity.or_text("conical_rate_rad_s", "steady cone's φ̇ at this θ, √(g/(l cos θ))", conical, "rad/s",
                              "none: no steady cone at or above the pivot's level"),
             *self.agreement_quantities(),
-        ]  # fmt: skip
+        ]
         return Readout(quantities, message=self.status)

@@ -208,7 +208,7 @@ class RateGyroScene(Scene):
                 nodes.append(scene.add_label(
                     f"/indicator/scale/t{k + count}", text, position=tuple(DIAL_FACE_X_VECTOR + direction * (NEEDLE_LENGTH + SCALE_LABEL_GAP)),
                     anchor=anchor, font_screen_scale=SCALE_LABEL_SIZE,
-                ))  # fmt: skip
+                ))
         nodes.append(scene.add_line_segments("/indicator/scale/ticks", np.asarray(segments, np.float32), (40, 40, 40), thickness=2.0, thickness_units="screen"))
         self.scale_nodes = nodes
 

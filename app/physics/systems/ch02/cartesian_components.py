@@ -127,7 +127,7 @@ PARAMETERS = ParameterSet(
         Parameter("launch_heading_deg", "deg", 30.0, -180.0, 180.0, "Projectile: heading ψ of the launch, from +X toward +Y", "ψ", step=1),
         Parameter("gravity_m_s2", "m/s²", 9.81, 0.5, 30.0, "Projectile: gravitational acceleration g, along −Z", "g", step=0.01),
     )
-)  # fmt: skip
+)
 
 
 class CartesianParticle(ClosedFormModel):
@@ -139,7 +139,7 @@ class CartesianParticle(ClosedFormModel):
         "x_dot": "m/s", "y_dot": "m/s", "z_dot": "m/s",
         "x_ddot": "m/s^2", "y_ddot": "m/s^2", "z_ddot": "m/s^2",
         "speed": "m/s", "acceleration_magnitude": "m/s^2",
-    }  # fmt: skip
+    }
     description = "x(t), y(t), z(t) and their derivatives in closed form (sine slot at constant ẋ, or a projectile without air)"
 
     def evaluate(self, params: Mapping[str, Any], t_s: np.ndarray) -> ClosedFormSolution:

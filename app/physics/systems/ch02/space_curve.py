@@ -352,7 +352,7 @@ class ParticleOnCurve(ClosedFormModel):
         "a_tangential": "m/s^2", "a_normal": "m/s^2",
         "R": "m", "theta": "rad", "v_R": "m/s", "v_theta": "m/s", "v_z": "m/s", "a_R": "m/s^2", "a_theta": "m/s^2", "a_z": "m/s^2",
         "r": "m", "phi": "rad", "v_r": "m/s", "v_phi": "m/s", "a_r": "m/s^2", "a_phi": "m/s^2",
-    }  # fmt: skip
+    }
     description = (
         "the typed curve differentiated symbolically (sympy) and evaluated at each frame; "
         "arc length by composite 8-point Gauss–Legendre quadrature"
@@ -372,7 +372,7 @@ class ParticleOnCurve(ClosedFormModel):
             "curvature": path.curvature_1_m, "torsion": path.torsion_1_m,
             "a_tangential": path.a_tangential_m_s2, "a_normal": path.a_normal_m_s2,
             **curvilinear_series(path.position_m, path.velocity_m_s, path.acceleration_m_s2, length_scale_m=scales.length_m),
-        }  # fmt: skip
+        }
         return ClosedFormSolution(series=series, events=_degenerate_events(path))
 
 

@@ -209,5 +209,5 @@ class AngleRates(ClosedFormModel):
                 "but the rates cannot be recovered from ω here",
             )
             for i in starts
-        ]  # fmt: skip
+        ]
         return ClosedFormSolution(series=series, events=events)

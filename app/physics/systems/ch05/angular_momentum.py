@@ -274,7 +274,7 @@ class ShaftSpin:
             angle_between_omega_and_H=np.full(n, self.angle_between_omega_and_H),
             kinetic_energy_centre_J=np.full(n, t_centre),
             kinetic_energy_about_centre_J=np.full(n, self.kinetic_energy_about_centre_J),
-        )  # fmt: skip
+        )
 
     def particles_at(self, state: SpinState) -> ParticleState:
         """The equivalent particles (:func:`equivalent_particles`) moving with the body in ``state``."""

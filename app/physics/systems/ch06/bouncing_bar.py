@@ -123,7 +123,7 @@ STATE_NAMES = (
     "x_m", "z_m", "theta_rad", "vx_m_s", "vz_m_s", "theta_dot_rad_s",
     "mode", "impact_count", "energy_lost_J", "last_energy_loss_J", "last_impact_t_s",
     "impulse_normal_a_N_s", "impulse_tangential_a_N_s", "impulse_normal_b_N_s", "impulse_tangential_b_N_s", "slip_state",
-)  # fmt: skip
+)
 #: Values of the ``mode`` slot.
 FLIGHT, RESTING, SETTLED_ON_END = 0.0, 1.0, 2.0
 MODE_NAMES = {FLIGHT: "flight", RESTING: "resting", SETTLED_ON_END: "settled on one end"}
@@ -230,7 +230,7 @@ def energy_parts(y: np.ndarray, p: np.ndarray) -> EnergyParts:
     return EnergyParts(
         _potential_J(y[:, Z], p), translational_kinetic_J=_translational_kinetic_J(y[:, VX], y[:, VZ], p),
         rotational_kinetic_J=_rotational_kinetic_J(y[:, OMEGA], p),
-    )  # fmt: skip
+    )
 
 
 def angular_momentum_about_point(y: np.ndarray, p: np.ndarray, point_m: np.ndarray) -> float:

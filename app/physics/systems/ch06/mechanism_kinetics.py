@@ -123,7 +123,7 @@ class SliderCrankLinks:
                 self.crank_mass_kg, self.rod_mass_kg, self.slider_mass_kg, self.g_m_s2, drive_torque_N_m,
                 self.crank_inertia_about_pivot_kg_m2, self.rod_inertia_about_centre_kg_m2,
             ]
-        )  # fmt: skip
+        )
 
 
 @dataclass(frozen=True)

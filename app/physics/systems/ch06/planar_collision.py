@@ -138,7 +138,7 @@ def collide(inputs: Mapping[str, Any]) -> DiskCollision:
     impact = resolve_impact(
         inverse_effective_mass=W, contact_velocity_m_s=v_contact,
         restitution=inputs["restitution"], friction_coefficient=inputs["friction_coefficient"],
-    )  # fmt: skip
+    )
     impulse = impact.impulse_N_s[0] * normal + impact.impulse_N_s[1] * tangent
     after = (disk1.after_impulse(-impulse, contact), disk2.after_impulse(impulse, contact))
     return DiskCollision((disk1, disk2), after, normal, tangent, contact, W, v_contact, impact)

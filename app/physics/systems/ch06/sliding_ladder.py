@@ -389,7 +389,7 @@ def ladder_system(params: Mapping[str, Any]) -> OdeSystem:
             # put several checks inside every phase.
             max_step_s=0.02,
         ),
-    )  # fmt: skip
+    )
 
 
 @dataclass(frozen=True)

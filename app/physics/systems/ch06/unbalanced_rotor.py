@@ -200,7 +200,7 @@ class UnbalancedRotor:
         disk = DiskOnShaft(
             params["disk_mass_kg"], params["disk_radius_m"], params["eccentricity_m"], math.radians(params["skew_deg"]),
             params["bearing_span_m"], params["disk_position_m"],
-        )  # fmt: skip
+        )
         span = disk.bearing_span_m
         planes = (params["correction_plane_1_m"], params["correction_plane_2_m"])
         for name, x in zip(("correction_plane_1_m", "correction_plane_2_m"), planes, strict=True):
@@ -328,7 +328,7 @@ PARAMETERS = ParameterSet(
         Parameter("correction_plane_2_m", "m", 0.55, 0.0, 5.0, "Position x₂ of the second correction plane from A", "plane 2 x₂", step=0.01),
         Parameter("correction_radius_m", "m", 0.15, 0.01, 2.0, "Radius ρ at which the correction masses are fixed", "correction radius ρ", step=0.01),
         Parameter("balanced", "", "off", kind="choice", choices=("off", "on"), label="correction masses",
-                  description="Fit the two correction masses that balance the rotor"),  # fmt: skip
+                  description="Fit the two correction masses that balance the rotor"),
     ),
     check=_check,
 )

@@ -173,7 +173,7 @@ def prepare_typed_lagrangian(request: Mapping[str, Any]) -> PreparedLagrangian:
         system=system, derived=result, parameter_values=tuple(system.parameter_array(request["parameters"])),
         explicit_time=bool(system.kinetic_energy.has(TIME) or system.extra_potential.has(TIME)),
         derive_s=float(answer["derive_s"]), cached=bool(answer["cached"]), compile_s=float(compile_s),
-    )  # fmt: skip
+    )
     with _prepared_lock:
         _prepared[key] = prepared
         while len(_prepared) > PREPARED_ENTRIES:
@@ -254,11 +254,11 @@ class TypedLagrangianMotion(DerivedModel):
             Parameter("qd0_rad_s", "rad/s", [0.0, 0.0, 0.0], -1000.0, 1000.0, "Initial rates q̇1, q̇2, q̇3 (only the first n are used)", "q̇₀", kind="vector"),
         ),
         check=check_typed_lagrangian,
-    )  # fmt: skip
+    )
     series_units = {
         **{f"{q}_rad": "rad" for q in COORDINATE_NAMES}, **{f"{q}_rate_rad_s": "rad/s" for q in COORDINATE_NAMES},
         "kinetic_energy_J": "J", "potential_energy_J": "J", "energy_J": "J", "jacobi_integral_J": "J",
-    }  # fmt: skip
+    }
     invariant_units = {"jacobi_integral": "J"}
 
     def prepared(self, params: Mapping[str, Any]) -> PreparedLagrangian:

@@ -95,7 +95,7 @@ class TogglePress:
         return cls(
             params["bar_AB_m"], params["bar_BC_m"], math.radians(params["angle_deg"]),
             params["load_B_N"], params["weight_AB_N"], params["weight_BC_N"],
-        )  # fmt: skip
+        )
 
     @property
     def _bc_reach_m(self) -> float:

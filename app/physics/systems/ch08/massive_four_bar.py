@@ -120,7 +120,7 @@ def centre_motion(
     for level, angle_terms in enumerate(((t2, t3, t4), (w2, w3, w4), (al2, al3, al4))):
         columns.append(np.column_stack([
             crank_centre[level], angle_terms[0], coupler_centre[level], angle_terms[1], rocker_centre[level], angle_terms[2],
-        ]))  # fmt: skip
+        ]))
     return columns[0], columns[1], columns[2]
 
 

@@ -92,7 +92,7 @@ class Joint:
         return [
             float(JOINT_KINDS.index(self.kind)), float(self.body), self.at_m, float(self.other), self.other_at_m,
             self.ground_m[0], self.ground_m[1], self.angle_rad,
-        ]  # fmt: skip
+        ]
 
 
 def ground_pin(name: str, body: int, at_m: float, ground_m: tuple[float, float]) -> Joint:

@@ -59,7 +59,7 @@ PARAMETERS = ParameterSet((
     _CHAPTER_9_START["heading_rate_0_rad_s"],
     Parameter("heading_0_deg", "deg", 0.0, -180.0, 180.0, "Initial heading ψ of the rolling direction from +x", "ψ₀"),
     Parameter("lean_rate_0_rad_s", "rad/s", 0.0, -20.0, 20.0, "Initial lean rate θ̇", "θ̇₀"),
-))  # fmt: skip
+))
 
 
 def _mass_radius_g(params: Mapping[str, Any]) -> tuple[float, float, float]:
@@ -74,7 +74,7 @@ class UnsteadyRollingDisk(ConstrainedModel):
     series_units = {
         "x_m": "m", "y_m": "m", "heading_rad": "rad", "lean_rad": "rad", "spin_rate_rad_s": "rad/s", "energy_J": "J",
         "friction_x_N": "N", "friction_y_N": "N", "normal_force_N": "N",
-    }  # fmt: skip
+    }
     invariant_units = {"energy": "J", "constraint_position": "m", "constraint_velocity": "m/s"}
 
     def constrained_system(self, params: Mapping[str, Any]) -> ConstrainedSystem:
@@ -122,7 +122,7 @@ class UnsteadyRollingDisk(ConstrainedModel):
             "x_m": states[:, 0], "y_m": states[:, 1], "heading_rad": states[:, 2], "lean_rad": states[:, 3],
             "spin_rate_rad_s": states[:, 9], "energy_J": energy_J(params, states),
             "friction_x_N": multipliers[:, 0], "friction_y_N": multipliers[:, 1], "normal_force_N": normal_force_N(params, states),
-        }  # fmt: skip
+        }
 
     # --- the minimal method: chapter 9's independent-speed equations ---------------------------------------------
     def minimal_system(self, params: Mapping[str, Any]) -> OdeSystem:

@@ -85,7 +85,7 @@ def slider_crank_absolute_motion(
     a = stack(
         motion.crank_centre_acceleration, motion.crank_acceleration_rad_s2, motion.rod_centre_acceleration,
         motion.rod_acceleration, motion.slider_acceleration,
-    )  # fmt: skip
+    )
     return q, v, a
 
 

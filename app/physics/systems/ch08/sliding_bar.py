@@ -61,7 +61,7 @@ from app.physics.systems.ch06.sliding_ladder import EnergyBudget
 STATE_NAMES = (
     "x_contact_m", "angle_rad", "contact_speed_m_s", "angle_rate_rad_s", "friction_work_J", "phase", "slip_direction",
     "jam_time_s",
-)  # fmt: skip
+)
 X, THETA, U, OMEGA, FRICTION_WORK, PHASE, SLIP, JAM_TIME = range(8)
 #: Kernel parameters p: [L (m), m (kg), g (m/s²), μ, I about G (kg·m²)].
 P_LENGTH, P_MASS, P_G, P_MU, P_INERTIA = range(5)
@@ -295,7 +295,7 @@ def bar_system(params: Mapping[str, Any]) -> OdeSystem:
             # √(L/g) ≥ 0.03 s over the parameter ranges: 0.005 s steps put several checks in every phase.
             max_step_s=0.005,
         ),
-    )  # fmt: skip
+    )
 
 
 def stop_message(params: Mapping[str, Any], event: EventRecord) -> str:
@@ -340,7 +340,7 @@ class SlidingBar(IntegratedModel):
     series_units = {
         "angle_rad": "rad", "contact_speed_m_s": "m/s", "normal_force_N": "N", "friction_force_N": "N",
         "friction_limit_N": "N", "phase": "", "painleve_factor": "",
-    }  # fmt: skip
+    }
     invariant_units = {"energy_budget_J": "J"}
 
     def system(self, params):

@@ -166,7 +166,7 @@ def belt_system(params: Mapping[str, Any]) -> OdeSystem:
             # so a slip phase that starts and ends inside one step is still seen at the step's middle.
             max_step_s=0.02,
         ),
-    )  # fmt: skip
+    )
 
 
 def friction_forces(params: Mapping[str, Any], states: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -197,7 +197,7 @@ def energy_budget(params: Mapping[str, Any], states: np.ndarray) -> EnergyBudget
     return EnergyBudget(
         0.5 * params["mass_kg"] * states[:, V] ** 2, 0.5 * params["stiffness_N_m"] * states[:, X] ** 2,
         states[:, DISSIPATED].copy(), states[:, BELT_WORK].copy(),
-    )  # fmt: skip
+    )
 
 
 @dataclass(frozen=True)
@@ -253,7 +253,7 @@ def limit_cycle(params: Mapping[str, Any]) -> LimitCycle | None:
     return LimitCycle(
         stick_s=abs(x_break - x_stick) / abs(speed), slip_s=(math.pi + 2.0 * math.atan(abs(speed) / (omega * d))) / omega,
         stick_from_m=x_stick, stick_to_m=x_break,
-    )  # fmt: skip
+    )
 
 
 class StickSlipBelt(IntegratedModel):
@@ -265,7 +265,7 @@ class StickSlipBelt(IntegratedModel):
     accuracy_components = (X, V)
     series_units = {
         "x_m": "m", "v_m_s": "m/s", "friction_force_N": "N", "friction_limit_N": "N", "mode": "", "dissipated_J": "J",
-    }  # fmt: skip
+    }
     invariant_units = {"energy_budget_J": "J"}
 
     def system(self, params):

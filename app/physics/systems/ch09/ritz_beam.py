@@ -414,7 +414,7 @@ PARAMETERS = ParameterSet(
                   description="Admissible functions: 'orthogonal' (second derivatives are shifted Legendre polynomials) or 'monomial' (ξ², ξ³, …)"),
         Parameter("mode", "", 1, 1, MAX_TERMS, "Which Ritz mode n to animate (at most N)", "mode n", kind="int", step=1),
         Parameter("amplitude_m", "m", 0.2, 0.0, 10.0, "Tip amplitude of the animated mode (linear theory: frequencies do not depend on it)", "tip amplitude", step=0.01),
-    ),  # fmt: skip
+    ),
     check=_check,
 )
 
@@ -449,7 +449,7 @@ class RitzCantileverModel(ClosedFormModel):
             return ClosedFormSolution(series, {"energy_J": ritz.modal_energy_J(mode, amplitude, t)}, warning=warning)
         undefined = np.full(t.shape, np.nan)
         series = {"tip_deflection_m": undefined, "exact_tip_deflection_m": exact_tip, "root_bending_moment_N_m": undefined,
-                  "exact_root_bending_moment_N_m": exact_moment}  # fmt: skip
+                  "exact_root_bending_moment_N_m": exact_moment}
         message = f"Ritz mode {mode} has no real frequency. {warning}"
         return ClosedFormSolution(series, {"energy_J": undefined}, [Event(0.0, "ritz-failed", message)], warning=message)
 

@@ -62,4 +62,4 @@ SYSTEM = SystemDescription(
     singularities=(Singularity(sympy.cos(th), "cos θ", "the angles are singular where cos θ = 0 (the disk flat, lean ±90°): heading and spin turn about one axis there; choose a lean strictly between −90° and 90°"),),
     state_ranges={"theta": (-1.0, 1.0)},
     assumptions="A uniform thin disk (a knife edge) rolling without slipping or pivoting friction on a rigid floor; it never loses contact.",
-)  # fmt: skip
+)

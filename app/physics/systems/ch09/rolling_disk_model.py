@@ -58,7 +58,7 @@ class RollingDiskMotion(DerivedModel):
     )
     series_units = {
         "x_m": "m", "y_m": "m", "heading_rad": "rad", "lean_rad": "rad", "spin_rate_rad_s": "rad/s", "energy_J": "J", "normal_force_N": "N",
-    }  # fmt: skip
+    }
     invariant_units = {"energy": "J"}
 
     def initial_state(self, params: Mapping[str, Any]) -> np.ndarray:
@@ -77,7 +77,7 @@ class RollingDiskMotion(DerivedModel):
             "x_m": states[:, 0], "y_m": states[:, 1], "heading_rad": states[:, 2], "lean_rad": states[:, 3],
             "spin_rate_rad_s": states[:, SPIN_RATE], "energy_J": self.energy_J(params, t_s, states),
             "normal_force_N": normal_force_N(params, states),
-        }  # fmt: skip
+        }
 
     def model_limit(self, params: Mapping[str, Any], t_s: np.ndarray, states: np.ndarray) -> ModelLimit | None:
         """Where the disk has fallen or would lift off (:func:`~.rolling_disk_contact.contact_limit`)."""

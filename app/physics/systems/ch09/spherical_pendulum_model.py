@@ -104,7 +104,7 @@ class SphericalPendulumMotion(DerivedModel):
         return {
             "theta_rad": states[:, 0], "phi_rad": states[:, 1],
             "beta_kg_m2_s": azimuthal_momentum_kg_m2_s(params, states), "energy_J": energy_J(params, states),
-        }  # fmt: skip
+        }
 
     def invariants(self, params: Mapping[str, Any], states: np.ndarray) -> dict[str, np.ndarray]:
         return {"energy": energy_J(params, states), "azimuthal_momentum": azimuthal_momentum_kg_m2_s(params, states)}
