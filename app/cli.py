@@ -104,7 +104,8 @@ def _serve(args: argparse.Namespace) -> int:
         # so per-message deflate would spend CPU on every frame of every student for nothing.
         ws_max_size=1024 * 1024,
         ws_per_message_deflate=False,
-        # Rate limits key on the client's address; only the guard may take it from X-Forwarded-For (trust_forwarded_for).
+        # Rate limits key on the client's address; only the guard may take it from X-Forwarded-For
+        # (trust_forwarded_for).
         proxy_headers=False,
     )
     def on_stop() -> None:

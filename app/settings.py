@@ -125,7 +125,8 @@ _JOIN_FIELDS = ("join_burst", "join_rate_per_s", "room_join_burst", "room_join_r
 
 
 def _parse(default: object, raw: str, *, name: str) -> object:
-    """An environment variable's text as the type of the field's default: tuples comma separated, booleans 1/0, true/false, yes/no."""
+    """An environment variable's text as the type of the field's default: tuples comma separated, booleans 1/0,
+    true/false, yes/no."""
     if isinstance(default, bool):
         word = raw.strip().lower()
         if word not in ("1", "true", "yes", "on", "0", "false", "no", "off", ""):

@@ -434,7 +434,8 @@ class Attacker:
         return None
 
     async def expensive_playback(self, name: str, body: dict, *, count: int, long: bool) -> None:
-        """``body`` sent to the playback of an expensive session of the attacker's own, again each time it is answered."""
+        """``body`` sent to the playback of an expensive session of the attacker's own, again each time it is
+        answered."""
         record = self.record(6, name, f"PUT /api/scenes/double-pendulum/sessions/<own>/playback {json.dumps(body)} "
                                       "(rk4, 4096 steps/frame), again when answered")
         session_id = await self.expensive_session(record)

@@ -282,7 +282,8 @@ def started_server(
     *, workers: int | None, instructor_key: str | None = None, stop: ServerStop | None = None,
     stop_timeout_s: float = SERVER_STOP_TIMEOUT_S,
 ) -> Iterator[ServerUnderTest]:
-    """``python -m app.cli serve`` on a free loopback port, stopped on exit (SIGINT, then kill after ``stop_timeout_s``).
+    """``python -m app.cli serve`` on a free loopback port, stopped on exit (SIGINT, then kill after
+    ``stop_timeout_s``).
 
     ``instructor_key`` becomes the server's ``DYNLAB_INSTRUCTOR_KEY`` (in its environment, not on its command line).
     ``stop``, if given, is filled in with how the server stopped.

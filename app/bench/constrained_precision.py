@@ -146,7 +146,8 @@ CASES: dict[str, Callable[[], ConstrainedCase]] = {
 
 
 def index1_rhs(system: ConstrainedSystem) -> Callable[[float, np.ndarray], np.ndarray]:
-    """``y = (q, v)`` (2n,) ↦ ``(v, v̇)`` from ``[M −Cᵀ; C 0] [v̇; λ] = [f; c]`` with numpy, as a scipy user would write it."""
+    """``y = (q, v)`` (2n,) ↦ ``(v, v̇)`` from ``[M −Cᵀ; C 0] [v̇; λ] = [f; c]`` with numpy, as a scipy user would write
+    it."""
     n, m = system.n_coordinates, system.n_constraints
 
     def rhs(t: float, y: np.ndarray) -> np.ndarray:
@@ -190,7 +191,8 @@ class Run:
 
 
 def run_ours(case: ConstrainedCase, algorithm: str, integrator_name: str, setting: float, *, repeats: int = 3) -> Run:
-    """One of our DAE algorithms with a compiled integrator; best process CPU time of the integration over ``repeats``."""
+    """One of our DAE algorithms with a compiled integrator; best process CPU time of the integration over
+    ``repeats``."""
     if integrator_name == "rk4":
         integrator = make_integrator("rk4", steps_per_frame=int(setting))
     else:

@@ -203,7 +203,8 @@ def viser_messages_in_frame(data: bytes) -> int:
 
 
 def connect_failure(exc: BaseException) -> str:
-    """A short label for why a viewer websocket did not open: ``HTTP 403``, ``timeout``, ``ConnectionRefusedError``, …"""
+    """A short label for why a viewer websocket did not open: ``HTTP 403``, ``timeout``, ``ConnectionRefusedError``,
+    …"""
     if isinstance(exc, websockets.InvalidStatus):
         return f"HTTP {exc.response.status_code}"
     if isinstance(exc, TimeoutError):
@@ -348,7 +349,8 @@ class Classroom:
         self._tasks: list[asyncio.Task] = []
 
     async def open(self, *, timeout_s: float) -> None:
-        """Start every viewer, ``1/connect_per_s`` apart; return once all connected or failed, or after ``timeout_s``."""
+        """Start every viewer, ``1/connect_per_s`` apart; return once all connected or failed, or after
+        ``timeout_s``."""
         for client in self.clients:
             self._tasks.append(asyncio.create_task(client.run(self.host, self.port, self._stop, self.camera_message)))
             await asyncio.sleep(1.0 / self.connect_per_s)

@@ -499,7 +499,8 @@ def phase_drift_svg(study: dict) -> str:
     return "\n".join(out) + "\n"
 
 
-#: Physics time one displayed frame may take (µs): a fraction of the 33 ms frame that leaves room for 100 students on two cores.
+#: Physics time one displayed frame may take (µs): a fraction of the 33 ms frame that leaves room for 100 students on
+#: two cores.
 FRAME_BUDGET_US = 50.0
 
 

@@ -8,7 +8,8 @@ from typing import Any
 
 
 def read_report_file(path: Path, *, list_key: str, shown_as: str) -> dict[str, Any] | None:
-    """The parsed report at ``path``; ``None`` if there is no file; ``ValueError`` if it cannot be read or has no ``list_key`` list.
+    """The parsed report at ``path``; ``None`` if there is no file; ``ValueError`` if it cannot be read or has no
+    ``list_key`` list.
 
     ``shown_as`` is how messages name the file (a path relative to the project, or just its name).
     """

@@ -581,7 +581,8 @@ def _error_span(points: Sequence[dict]) -> tuple[float, float] | None:
 
 
 def best_ratios(methods: Sequence[dict], errors: Sequence[float] = RATIO_ERRORS) -> list[dict[str, Any]]:
-    """At each error, the cheapest of our methods against each baseline of :data:`REQUIRED_RATIO` (ratio = theirs / ours).
+    """At each error, the cheapest of our methods against each baseline of :data:`REQUIRED_RATIO` (ratio = theirs /
+    ours).
 
     Costs are interpolated along each curve (:func:`cost_at_error`). A baseline whose sweep does not
     reach down to the error gives no ratio; one whose largest error is already below it is costed at its
@@ -617,7 +618,8 @@ def best_ratios(methods: Sequence[dict], errors: Sequence[float] = RATIO_ERRORS)
 
 
 def ratio_summary(scenes: Sequence[dict]) -> dict[str, Any]:
-    """Per heavy-top case, the best-of-ours ratios at :data:`RATIO_ERRORS` against each baseline, and whether all meet the ask."""
+    """Per heavy-top case, the best-of-ours ratios at :data:`RATIO_ERRORS` against each baseline, and whether all meet
+    the ask."""
     cases: dict[str, Any] = {}
     for scene in scenes:
         if not str(scene["scene_id"]).startswith("heavy-top"):
@@ -651,7 +653,8 @@ def _setting_text(integrator, steps_per_frame: int | None) -> str:
 
 def phase_drift_study(runs: Sequence[tuple[str, int | None]] = PHASE_DRIFT_RUNS, *,
                       progress: Progress | None = None) -> dict[str, Any]:
-    """The sleeping top over 600 s at 60 frames/s: each run's largest relative energy drift beside its attitude error (rad).
+    """The sleeping top over 600 s at 60 frames/s: each run's largest relative energy drift beside its attitude error
+    (rad).
 
     The attitude error (rotation angle, spin phase included) is against the quadrature solution. A
     symplectic method keeps the energy error bounded and small while its phase error grows with time.

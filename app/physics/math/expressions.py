@@ -500,7 +500,8 @@ def parse_formula(
 
 
 def _check_constants(expr: sympy.Expr) -> None:
-    """Refuse a formula any of whose constant parts (``1e9*1e9``, ``1/exp(-1e9)``) exceeds :data:`MAX_FORMULA_CONSTANT`."""
+    """Refuse a formula any of whose constant parts (``1e9*1e9``, ``1/exp(-1e9)``) exceeds
+    :data:`MAX_FORMULA_CONSTANT`."""
     for node in sympy.preorder_traversal(expr):
         if node.free_symbols or not isinstance(node, sympy.Expr):
             continue

@@ -110,7 +110,8 @@ class DerivedModel(IntegratedModel):
         )
 
     def fastest_rate_rad_s(self, params: Mapping[str, Any], state: np.ndarray) -> float:
-        """The largest eigenvalue magnitude of the linearised flow at ``state`` plus the fastest rate (rad/s), at least 1.
+        """The largest eigenvalue magnitude of the linearised flow at ``state`` plus the fastest rate (rad/s), at least
+        1.
 
         The Jacobian is taken by central differences of the generated right-hand side.
         """

@@ -172,7 +172,8 @@ def check_energy_terms(system: SystemDescription, state: np.ndarray, parameters:
 
 def check_kinetic_energy(system: SystemDescription, state: np.ndarray, parameters: np.ndarray, *, where: str, t_s: float = 0.0) -> None:
     """Raise ParameterError naming ``kinetic_energy`` if T is not positive definite in the rates at ``state`` (q, q̇):
-    a mass matrix ∂²T/∂q̇² with a negative or zero eigenvalue (:func:`~app.physics.mechanics.mass_matrix.not_positive_definite`)."""
+    a mass matrix ∂²T/∂q̇² with a negative or zero eigenvalue
+    (:func:`~app.physics.mechanics.mass_matrix.not_positive_definite`)."""
     n = len(system.coordinates)
     kinetic = sympy.lambdify([TIME, system.q, system.qd, system.parameter_symbols], system.kinetic_energy, modules="numpy", cse=True)
     matrix = mass_matrices(kinetic, np.array([float(t_s)]), state[:n, None], state[n : 2 * n, None], parameters)[0]

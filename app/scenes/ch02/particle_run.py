@@ -154,7 +154,8 @@ class ParticleRunScene(Scene):
         self.client.camera.look_at = look_at
 
     def step_motion(self, dt_s: float) -> bool:
-        """The clock only grows (so the scrubber's history is one run after another); :meth:`_draw` takes it modulo a run."""
+        """The clock only grows (so the scrubber's history is one run after another); :meth:`_draw` takes it modulo a
+        run."""
         self.clock_s += dt_s
         return True
 

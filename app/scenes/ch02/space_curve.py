@@ -60,7 +60,8 @@ def table_times(t_end_s: float) -> np.ndarray:
 
 
 def _check_playback(values: Mapping[str, Any]) -> None:
-    """The start lies in the loop, and the curve stays drawable over the whole loop (checked before anything is stored)."""
+    """The start lies in the loop, and the curve stays drawable over the whole loop (checked before anything is
+    stored)."""
     if values["t_start_s"] > values["t_end_s"]:
         raise ParameterError("t_start_s", f"must not exceed the loop's end, t end = {values['t_end_s']:g} s")
     curve = physics.compile_curve(*(values[name] for name in physics.COMPONENTS))

@@ -38,7 +38,8 @@ EQUIVALENT_AXIS_HALF_LENGTH = 1.4
 BODY_DIMENSIONS = (0.8, 0.5, 0.12)
 AXIS_A_COLOR, AXIS_B_COLOR = (240, 140, 20), (190, 60, 200)
 BODY_COLOR = (90, 120, 170)
-#: Where the two copies stand when B is shown: ∓ this, across the initial view (A then B on the left, B then A on the right).
+#: Where the two copies stand when B is shown: ∓ this, across the initial view (A then B on the left, B then A on the
+#: right).
 ORDER_OFFSET = np.array([0.95, 0.7, 0.0])
 ARC_SAMPLES = 48
 # Animation (s): rest, first turn, pause, second turn, hold. A drawing device only.
@@ -174,7 +175,8 @@ class FiniteRotationScene(Scene):
             self._arc_paths.append(paths)
 
     def _attitude(self, turns, done: tuple[float, float]) -> np.ndarray:
-        """``wxyz`` after the fractions ``done`` of the copy's two turns (about fixed axes: each composes on the left)."""
+        """``wxyz`` after the fractions ``done`` of the copy's two turns (about fixed axes: each composes on the
+        left)."""
         q = np.array([1.0, 0.0, 0.0, 0.0])
         for (axis, angle), fraction in zip(turns, done):
             q = quaternion_multiply(quaternion_from_axis_angle(axis, fraction * angle), q)

@@ -115,7 +115,8 @@ SIDE_OFFSETS = np.array(
 
 
 def text_box(point_px: np.ndarray, size_px: tuple[float, float], anchor: str) -> np.ndarray:
-    """``[left, bottom, right, top]`` px of a text of ``size_px`` whose ``anchor`` corner (or edge) is at ``point_px``."""
+    """``[left, bottom, right, top]`` px of a text of ``size_px`` whose ``anchor`` corner (or edge) is at
+    ``point_px``."""
     return side_boxes(point_px, size_px)[LABEL_SIDES.index(anchor)]
 
 
@@ -126,7 +127,8 @@ def side_boxes(point_px: np.ndarray, size_px: tuple[float, float]) -> np.ndarray
 
 
 def boxes_overlap(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Area (px²) shared by ``[left, bottom, right, top]`` boxes ``a`` (..., 4) and ``b`` (..., 4), broadcast (0 when apart)."""
+    """Area (px²) shared by ``[left, bottom, right, top]`` boxes ``a`` (..., 4) and ``b`` (..., 4), broadcast (0 when
+    apart)."""
     a, b = np.asarray(a, float), np.asarray(b, float)
     width = np.minimum(a[..., 2], b[..., 2]) - np.maximum(a[..., 0], b[..., 0])
     height = np.minimum(a[..., 3], b[..., 3]) - np.maximum(a[..., 1], b[..., 1])

@@ -4,7 +4,8 @@ The ladder's plane is the world x–z plane at y = 0, seen from −y: the wall i
 the plane x = 0 (drawn as a grey slab at x < 0), the floor z = 0 (a slab below
 it). The bar is drawn in metres. Arrows: the whole contact force (normal plus
 friction) on the top end (blue) and on the bottom end (orange; drawn at the centre
-once the bar lies flat), and the weight pointing down onto the centre (grey), all on one scale: m·g is drawn 0.3 L long. The fall replays
+once the bar lies flat), and the weight pointing down onto the centre (grey), all on one scale: m·g is drawn 0.3 L long.
+The fall replays
 from the start 2.5 s after the landing (on a smooth floor the ladder would slide
 out of view).
 """

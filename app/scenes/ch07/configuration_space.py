@@ -151,7 +151,8 @@ class ConfigurationSpaceScene(Scene):
         if isinstance(self._system, physics.SlidingHoop):
             scene.add_box("/physical/wire/centre", color=(150, 150, 160), dimensions=(0.06 * span, 0.03 * span, 0.03 * span))
         self.bead = self._add(scene.add_icosphere("/physical/bead", radius=0.03 * span, color=BEAD_COLOR))
-        # Configuration space: axes, the curve g = 0 (moving for the hoop), the curve Δt later, the point and the arrows.
+        # Configuration space: axes, the curve g = 0 (moving for the hoop), the curve Δt later, the point and the
+        # arrows.
         axes = np.array([[[-half_width - 0.15 * span, 0.0], [half_width + 0.15 * span, 0.0]], [[0.0, -half_height - 0.15 * span], [0.0, half_height + 0.15 * span]]])
         self._add(scene.add_line_segments("/config/axes", (to_world(axes) + right).astype(np.float32), (170, 170, 170), thickness=0.003 * span))
         self._add(scene.add_label("/config/x", "x", position=tuple(right + to_world(np.array([half_width + 0.17 * span, 0.0]))), anchor="center-left"))

@@ -128,7 +128,8 @@ class VirtualWorkFrameScene(Scene):
         largest = float(np.max(np.linalg.norm(forces, axis=-1)))
         scale = FORCE_ARROW_SPAN * self._span / max(largest, 1e-12)
         displacements = press.virtual_displacements()
-        # Loads end at their points (they push on them), Q too (the workpiece beyond C pushes back); δr start at their points.
+        # Loads end at their points (they push on them), Q too (the workpiece beyond C pushes back); δr start at their
+        # points.
         tails = np.array([points[name] for name in ("B", "G1", "G2", "C")]) - scale * forces
         shift_tails = np.array([points[name] for name in ("B", "G1", "G2", "C")])
         shifts = delta_rad * np.array([displacements[name] for name in ("B", "G1", "G2", "C")])

@@ -33,7 +33,8 @@ class StickSlipBeltScene(IntegratedScene):
     title = "Stick–slip: a block on a moving belt"
     chapter = 8
     model = physics.StickSlipBelt
-    #: Block, spring, belt ticks, gauge, friction arrow and the mode label's position each frame; its text only when the mode changes.
+    #: Block, spring, belt ticks, gauge, friction arrow and the mode label's position each frame; its text only when the
+    #: mode changes.
     frame_message_budget = 7.0
     presets = (
         Preset("stick-slip", "Stick–slip cycle", {"belt_speed_m_s": 0.5, "mu_static": 0.6, "mu_kinetic": 0.4, "x0_m": 0.0, "v0_m_s": 0.0},

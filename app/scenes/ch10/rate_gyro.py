@@ -153,7 +153,8 @@ class RateGyroScene(Scene):
         self.labels = {name: scene.add_label(f"/table/vectors/{name}", "", anchor="bottom-left") for name in ("H", "rate", "moment")}
 
     def _build_indicator(self) -> None:
-        """The dial, its needle and its caption, fixed in space (the scale's ticks and numbers follow the parameters)."""
+        """The dial, its needle and its caption, fixed in space (the scale's ticks and numbers follow the
+        parameters)."""
         scene = self.client.scene
         centre, wxyz = indicator_pose(*self.camera_view())
         scene.add_frame("/indicator", show_axes=False, position=tuple(centre), wxyz=tuple(wxyz))

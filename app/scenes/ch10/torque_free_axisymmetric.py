@@ -49,7 +49,8 @@ SLIDER_RANGES: Mapping[str, tuple[float, float, float]] = {
 
 
 def spheroid_sectors(*, axial: float, transverse: float, sectors: int = 8, rings: int = 24, segments: int = 64) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """A spheroid about +z (semi-axes ``transverse``, ``transverse``, ``axial``) as one vertex array and two face arrays.
+    """A spheroid about +z (semi-axes ``transverse``, ``transverse``, ``axial``) as one vertex array and two face
+    arrays.
 
     The faces are split into ``sectors`` alternating longitude sectors so that the two
     halves can be drawn in two colours and the spin is visible.

@@ -176,7 +176,8 @@ class TorqueFreeBodyScene(Scene):
         # name stays in space instead, just outside the ellipsoid on the camera's right, level with the centre: the
         # herpolhode's is on the left and below, on the plane, so the two never meet.
         self.polhode_label.position = tuple((ELLIPSOID_SIZE + 0.08) * POLHODE_LABEL_SIDE / np.linalg.norm(POLHODE_LABEL_SIDE))
-        # The herpolhode stays within its largest radius of the foot of L: its label goes just outside, to the viewer's left.
+        # The herpolhode stays within its largest radius of the foot of L: its label goes just outside, to the viewer's
+        # left.
         _, widest = physics.herpolhode_radii_rad_s(self.body)
         self.herpolhode_label.position = tuple((widest * self.scale + 0.06) * HERPOLHODE_LABEL_SIDE + np.array([0.0, 0.0, plane_z]))
         self._setup_ghost(sides)

@@ -140,7 +140,8 @@ def landing_and_apex(t, y, p, g_out):
 
 
 def simulate(inputs: Mapping[str, Any], samples: int = 241) -> ProjectileTrajectory:
-    """Integrate launch to landing (Dormand–Prince 5(4), rtol 1e-11, landing as an event) and sample ``samples`` instants."""
+    """Integrate launch to landing (Dormand–Prince 5(4), rtol 1e-11, landing as an event) and sample ``samples``
+    instants."""
     m, g = inputs["mass_kg"], inputs["g_m_s2"]
     b, c = inputs["linear_drag_kg_s"], inputs["quadratic_drag_kg_m"]
     r0 = np.array([0.0, 0.0, inputs["height0_m"]])

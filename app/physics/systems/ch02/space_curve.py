@@ -140,7 +140,8 @@ def compile_curve(x_text: str, y_text: str, z_text: str) -> SpaceCurve:
 
 
 def check_curve_span(curve: SpaceCurve, t_s: np.ndarray) -> None:
-    """Raise :class:`CurveError` if a component of r or a derivative exceeds :data:`MAX_CURVE_MAGNITUDE` at any of ``t_s`` (s).
+    """Raise :class:`CurveError` if a component of r or a derivative exceeds :data:`MAX_CURVE_MAGNITUDE` at any of
+    ``t_s`` (s).
 
     The error names the component and the first time it happens. Instants where a
     formula has no value (a pole, the root of a negative number) are not refused:

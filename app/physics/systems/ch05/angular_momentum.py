@@ -149,7 +149,8 @@ class SpinState:
 
 @dataclass(frozen=True)
 class ParticleState:
-    """The equivalent particles at N instants: masses (P,) kg, positions and velocities (N, P, 3) in m and m/s (world)."""
+    """The equivalent particles at N instants: masses (P,) kg, positions and velocities (N, P, 3) in m and m/s
+    (world)."""
 
     masses_kg: np.ndarray
     positions_m: np.ndarray
@@ -202,7 +203,8 @@ class ShaftSpin:
         return float(w), float(x), float(y), float(z)
 
     def attitude_wxyz(self, t_s: float) -> tuple[float, float, float, float]:
-        """The attitude of :meth:`attitude` at one time as a ``wxyz`` quaternion: the turn Ω t about Z composed with the mounting."""
+        """The attitude of :meth:`attitude` at one time as a ``wxyz`` quaternion: the turn Ω t about Z composed with the
+        mounting."""
         half = 0.5 * self.spin_rate_rad_s * t_s
         c, s = math.cos(half), math.sin(half)
         w, x, y, z = self._mounting_wxyz
@@ -341,7 +343,8 @@ NO_SPIN_ANGLE = "undefined (no spin: ω = 0 and H = 0)"
 
 
 class ShaftSpinModel(ClosedFormModel):
-    """A body at constant spin about a fixed shaft through G: H, its rate, the bearing moment and the energy in closed form."""
+    """A body at constant spin about a fixed shaft through G: H, its rate, the bearing moment and the energy in closed
+    form."""
 
     parameters = PARAMETERS
     series_units = {

@@ -115,7 +115,8 @@ class SliderCrankLinks:
         return float(slender_rod(self.rod_mass_kg, self.mechanism.rod_m)[0, 0])
 
     def kernel_parameters(self, *, drive: str, drive_torque_N_m: float) -> np.ndarray:
-        """``p = [torque drive (0/1), r, l, e, m_crank, m_rod, m_slider, g, τ, I_O, I_G₂]`` for :func:`mechanism_rhs`."""
+        """``p = [torque drive (0/1), r, l, e, m_crank, m_rod, m_slider, g, τ, I_O, I_G₂]`` for
+        :func:`mechanism_rhs`."""
         mech = self.mechanism
         return np.array(
             [
@@ -372,7 +373,8 @@ def speed_limit_rad_s(params: Mapping[str, Any]) -> float:
 
 
 def energy_scale_J(params: Mapping[str, Any]) -> float:
-    """Energy in play (J): the initial kinetic energy, the potential's range over a turn and one turn of the torque's work."""
+    """Energy in play (J): the initial kinetic energy, the potential's range over a turn and one turn of the torque's
+    work."""
     links = SliderCrankLinks.from_params(params)
     theta = np.linspace(0.0, 2.0 * math.pi, 73)
     potential = potential_energy_J(links, link_motion(links, theta, np.zeros_like(theta), np.zeros_like(theta)))
@@ -405,7 +407,8 @@ class MechanismKinetics(IntegratedModel):
     auto_methods = ("rk4",)  # the simulate contract answers with RK4; the target sets its step
 
     def solution_error(self, params: Mapping[str, Any], states: np.ndarray, reference: np.ndarray) -> np.ndarray:
-        """(N,) largest of |Δθ|/2π, |Δω|/ω_scale and |ΔW|/E_scale between ``states`` and ``reference`` (N, 3), dimensionless."""
+        """(N,) largest of |Δθ|/2π, |Δω|/ω_scale and |ΔW|/E_scale between ``states`` and ``reference`` (N, 3),
+        dimensionless."""
         difference = np.abs(np.asarray(states, dtype=float) - np.asarray(reference, dtype=float))
         scales = np.array([2.0 * math.pi, max(speed_limit_rad_s(params), 1e-12), energy_scale_J(params)])
         return np.max(difference / scales, axis=1)

@@ -36,7 +36,8 @@ APPROACH_ROUND_OFF = 1e-12
 
 @dataclass(frozen=True)
 class Disk:
-    """A uniform disk in the plane: mass (kg), radius (m), its centre's position and velocity (m, m/s, (3,)), spin (rad/s about z)."""
+    """A uniform disk in the plane: mass (kg), radius (m), its centre's position and velocity (m, m/s, (3,)), spin
+    (rad/s about z)."""
 
     mass_kg: float
     radius_m: float
@@ -68,7 +69,8 @@ class Disk:
         return self.velocity_m_s + self.spin_rad_s * np.array([-arm[1], arm[0], 0.0])
 
     def after_impulse(self, impulse_N_s: np.ndarray, at_m: np.ndarray) -> Disk:
-        """The disk just after an impulse (N·s, (3,)) applied at ``at_m``: ``Δv = P/m``, ``Δω = ((r − r_G) × P)_z / I``."""
+        """The disk just after an impulse (N·s, (3,)) applied at ``at_m``: ``Δv = P/m``,
+        ``Δω = ((r − r_G) × P)_z / I``."""
         arm = np.asarray(at_m, dtype=float) - self.centre_m
         spin_change = float(arm[0] * impulse_N_s[1] - arm[1] * impulse_N_s[0]) / self.inertia_kg_m2
         return Disk(self.mass_kg, self.radius_m, self.centre_m, self.velocity_m_s + impulse_N_s / self.mass_kg, self.spin_rad_s + spin_change)

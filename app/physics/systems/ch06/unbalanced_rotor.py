@@ -158,7 +158,8 @@ def couple_imbalance_kg_m2(parts: tuple[RotorPart, ...]) -> np.ndarray:
 
 def imbalance_class(parts: tuple[RotorPart, ...], *, mass_kg: float, radius_m: float) -> ImbalanceClass:
     """Which imbalance the parts have: ``static`` (G off the shaft, the shaft a principal axis at G), ``dynamic``
-    (G on the shaft, products of inertia with it at G), ``both``, or ``balanced``; judged against ``m r`` and ``m r²``."""
+    (G on the shaft, products of inertia with it at G), ``both``, or ``balanced``; judged against ``m r`` and
+    ``m r²``."""
     static = float(np.hypot(*first_moment_kg_m(parts))) > BALANCED_BELOW * mass_kg * radius_m
     dynamic = float(np.hypot(*couple_imbalance_kg_m2(parts))) > BALANCED_BELOW * mass_kg * radius_m**2
     return "both" if static and dynamic else "static" if static else "dynamic" if dynamic else "balanced"
@@ -253,7 +254,8 @@ class UnbalancedRotor:
 
 
 def harmonic_coefficients(vector_rotor: np.ndarray) -> np.ndarray:
-    """(3, 3) matrix K with world components ``K @ (1, cos φ, sin φ)`` of a rotor-frame vector (shape (3,)) at spin φ."""
+    """(3, 3) matrix K with world components ``K @ (1, cos φ, sin φ)`` of a rotor-frame vector (shape (3,)) at spin
+    φ."""
     x, y, z = vector_rotor
     return np.array([[x, 0.0, 0.0], [0.0, y, -z], [0.0, z, y]])
 

@@ -1,4 +1,5 @@
-"""The simple pendulum: a point mass on a massless rod in a vertical plane (x horizontal, z up; θ from the downward vertical)."""
+"""The simple pendulum: a point mass on a massless rod in a vertical plane (x horizontal, z up; θ from the downward
+vertical)."""
 
 from __future__ import annotations
 

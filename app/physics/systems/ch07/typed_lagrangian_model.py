@@ -147,7 +147,8 @@ def _request_key(request: Mapping[str, Any]) -> str:
 
 
 def prepare_typed_lagrangian(request: Mapping[str, Any]) -> PreparedLagrangian:
-    """Derive (bounded, :func:`derive_typed_bounded`) and compile (bounded) a typed Lagrangian, once per request per process.
+    """Derive (bounded, :func:`derive_typed_bounded`) and compile (bounded) a typed Lagrangian, once per request per
+    process.
 
     Raises ParameterError naming the field for a bad formula, a singular mass matrix or
     a derivation over its bounds (``kinetic_energy``), as the whole-set check must; WorkBusy or WorkInterrupted
@@ -205,7 +206,8 @@ def check_typed_lagrangian(values: Mapping[str, Any]) -> None:
 
 
 def start_mass_matrix(prepared: PreparedLagrangian, start: np.ndarray) -> np.ndarray:
-    """∂²T/∂q̇² (n, n) at the state (q, q̇) ``start`` and t = 0, from T numerically (:mod:`~app.physics.mechanics.mass_matrix`)."""
+    """∂²T/∂q̇² (n, n) at the state (q, q̇) ``start`` and t = 0, from T numerically
+    (:mod:`~app.physics.mechanics.mass_matrix`)."""
     n = len(prepared.system.coordinates)
     kinetic, _ = energy_functions(prepared.system)
     return mass_matrices(kinetic, np.zeros(1), start[:n, None], start[n : 2 * n, None], np.array(prepared.parameter_values))[0]
@@ -262,7 +264,8 @@ class TypedLagrangianMotion(DerivedModel):
     invariant_units = {"jacobi_integral": "J"}
 
     def prepared(self, params: Mapping[str, Any]) -> PreparedLagrangian:
-        """The prepared Lagrangian for ``params`` (from this process's cache after the check); sets :attr:`description`."""
+        """The prepared Lagrangian for ``params`` (from this process's cache after the check); sets
+        :attr:`description`."""
         prepared = prepare_typed_lagrangian(typed_request(params))
         self.description = prepared.system
         return prepared

@@ -113,7 +113,8 @@ class TogglePress:
     def virtual_displacements(self) -> dict[str, np.ndarray]:
         """δr/δθ (m per rad, (2,)) of B, C, G₁, G₂ for the mechanism left when C's hold along AC is released.
 
-        ``B′ = a(−sin θ, cos θ)``; ``x_C′ = −a sin θ − a² sin θ cos θ / √(b² − a² sin²θ)``; midpoints average their ends.
+        ``B′ = a(−sin θ, cos θ)``; ``x_C′ = −a sin θ − a² sin θ cos θ / √(b² − a² sin²θ)``; midpoints average their
+        ends.
         """
         a, theta = self.bar_AB_m, self.angle_rad
         knee = a * np.array([-math.sin(theta), math.cos(theta)])
@@ -155,7 +156,8 @@ def holding_force_by_virtual_work(press: TogglePress) -> float:
 
 @dataclass(frozen=True)
 class ToggleForces:
-    """Member-by-member equilibrium (N): A ground on AB, B bar AB on bar BC, C_y the guide on BC (up), Q on C (along −x)."""
+    """Member-by-member equilibrium (N): A ground on AB, B bar AB on bar BC, C_y the guide on BC (up), Q on C (along
+    −x)."""
 
     pin_A_N: np.ndarray
     pin_B_N: np.ndarray

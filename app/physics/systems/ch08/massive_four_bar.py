@@ -145,7 +145,8 @@ def massive_four_bar_system(params: Mapping[str, Any]) -> ConstrainedSystem:
 
 
 def massive_four_bar_initial_state(params: Mapping[str, Any]) -> tuple[np.ndarray, np.ndarray]:
-    """Consistent ``(q, v)`` (9,) each from ``crank_angle0_deg`` and ``crank_speed_rad_s`` by chapter 4's loop closure."""
+    """Consistent ``(q, v)`` (9,) each from ``crank_angle0_deg`` and ``crank_speed_rad_s`` by chapter 4's loop
+    closure."""
     motion = four_bar_motion(params)
     state = motion.at(np.zeros(1))
     q, v, _ = centre_motion(

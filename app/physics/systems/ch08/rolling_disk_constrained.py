@@ -117,7 +117,8 @@ def rolling_disk_system(params: Mapping[str, Any]) -> ConstrainedSystem:
 
 
 def rolling_state(*, radius_m: float, heading_rad: float, lean_rad: float, heading_rate_rad_s: float, lean_rate_rad_s: float, spin_rate_rad_s: float) -> np.ndarray:
-    """A consistent state (q, v) (10,) at the origin: the contact point moves along the heading at r φ̇ (A v = 0 exactly)."""
+    """A consistent state (q, v) (10,) at the origin: the contact point moves along the heading at r φ̇ (A v = 0
+    exactly)."""
     return np.array([
         0.0, 0.0, heading_rad, lean_rad, 0.0,
         radius_m * spin_rate_rad_s * math.cos(heading_rad), radius_m * spin_rate_rad_s * math.sin(heading_rad),
@@ -150,7 +151,8 @@ def energy_parts(params: Mapping[str, Any], states: np.ndarray) -> EnergyParts:
 
 
 def contact_velocity_m_s(params: Mapping[str, Any], states: np.ndarray) -> np.ndarray:
-    """A(q) v (N, 2) (m/s): the material contact point's horizontal velocity along ``states`` (N, 10); zero when rolling."""
+    """A(q) v (N, 2) (m/s): the material contact point's horizontal velocity along ``states`` (N, 10); zero when
+    rolling."""
     states = np.atleast_2d(states)
     r = float(params["radius_m"])
     heading, spin_rate = states[:, HEADING], states[:, 5 + SPIN]

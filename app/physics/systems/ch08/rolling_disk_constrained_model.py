@@ -67,7 +67,8 @@ def _mass_radius_g(params: Mapping[str, Any]) -> tuple[float, float, float]:
 
 
 class UnsteadyRollingDisk(ConstrainedModel):
-    """The disk rolling without slip from any lean, spin and heading, its no-slip rows kept by the chosen DAE algorithm."""
+    """The disk rolling without slip from any lean, spin and heading, its no-slip rows kept by the chosen DAE
+    algorithm."""
 
     parameters = PARAMETERS
     start_parameters = ("heading_0_deg", "lean_0_deg", "heading_rate_0_rad_s", "lean_rate_0_rad_s", "spin_rate_0_rad_s")
@@ -106,12 +107,14 @@ class UnsteadyRollingDisk(ConstrainedModel):
         return max(m * g * r, float(abs(energy_J(params, state[None, :])[0])), 1e-12)
 
     def residual_scales(self, params: Mapping[str, Any]) -> tuple[float, float]:
-        """r (m; there are no position rows) and the rolling speed r·max(|φ̇₀|, √(g/r)) (m/s) for the contact velocity."""
+        """r (m; there are no position rows) and the rolling speed r·max(|φ̇₀|, √(g/r)) (m/s) for the contact
+        velocity."""
         _, r, g = _mass_radius_g(params)
         return r, r * max(abs(float(params["spin_rate_0_rad_s"])), math.sqrt(g / r) if g > 0 else 0.0, 1e-6)
 
     def fastest_rate_rad_s(self, params: Mapping[str, Any], state: np.ndarray) -> float:
-        """The wobble's 2|φ̇| (axial over transverse moment times the spin), the fall's √(g/r) and the heading and lean rates (rad/s)."""
+        """The wobble's 2|φ̇| (axial over transverse moment times the spin), the fall's √(g/r) and the heading and lean
+        rates (rad/s)."""
         _, r, g = _mass_radius_g(params)
         heading_rate, lean_rate, spin_rate = (abs(float(value)) for value in state[7:10])
         return max(2.0 * spin_rate + heading_rate + lean_rate + math.sqrt(g / r), 1.0)

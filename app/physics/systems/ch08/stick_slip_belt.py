@@ -179,7 +179,8 @@ def friction_forces(params: Mapping[str, Any], states: np.ndarray) -> tuple[np.n
 
 @dataclass(frozen=True)
 class EnergyBudget:
-    """Energies along N states (J, arrays (N,)): ``total_J`` = kinetic + spring + dissipated − belt work stays constant."""
+    """Energies along N states (J, arrays (N,)): ``total_J`` = kinetic + spring + dissipated − belt work stays
+    constant."""
 
     kinetic_J: np.ndarray
     spring_J: np.ndarray

@@ -1,4 +1,5 @@
-"""The Ritz series for a uniform Euler–Bernoulli cantilever: natural frequencies from above, and the basis's conditioning.
+"""The Ritz series for a uniform Euler–Bernoulli cantilever: natural frequencies from above, and the basis's
+conditioning.
 
 Frame and names (m, s): the beam lies along x from the clamp (x = 0) to the free
 end (x = L); its deflection w(x, t) is transverse (drawn along +Z). ``ξ = x/L``

@@ -55,7 +55,8 @@ def lean_acceleration_rad_s2(params: Mapping[str, Any], states: np.ndarray) -> n
 
 
 def normal_force_N(params: Mapping[str, Any], states: np.ndarray) -> np.ndarray:
-    """The floor's normal force on the disk N = m (g − r (θ̈ sin θ + θ̇² cos θ)) (N, up; (N,)) along ``states`` (N, 10)."""
+    """The floor's normal force on the disk N = m (g − r (θ̈ sin θ + θ̇² cos θ)) (N, up; (N,)) along ``states`` (N,
+    10)."""
     m, r, g = _mass_radius_g(params)
     states = np.atleast_2d(states)
     lean, lean_rate = states[:, LEAN], states[:, LEAN_RATE]

@@ -26,9 +26,11 @@ from app.physics.solvers.integrated_model import ModelLimit
 from app.physics.systems.ch09.rolling_disk import SYSTEM
 from app.physics.systems.ch09.rolling_disk_contact import contact_limit, normal_force_N
 
-#: Indices into the state of the lean θ, the heading rate ψ̇ and the lean rate θ̇: the linearised lean equations' variables.
+#: Indices into the state of the lean θ, the heading rate ψ̇ and the lean rate θ̇: the linearised lean equations'
+#: variables.
 LEAN, HEADING_RATE, LEAN_RATE, SPIN_RATE = 3, 7, 8, 9
-#: Central-difference step (rad, rad/s) of the lean equations' Jacobian: truncation ~h², rounding ~ε/h, both < 1e-10 relative.
+#: Central-difference step (rad, rad/s) of the lean equations' Jacobian: truncation ~h², rounding ~ε/h, both < 1e-10
+#: relative.
 JACOBIAN_STEP = 1e-5
 
 
@@ -46,7 +48,8 @@ def contact_speed_m_s(states: np.ndarray) -> np.ndarray:
 
 
 class RollingDiskMotion(DerivedModel):
-    """The disk started upright-ish from the lean, spin and heading rate the controls give (default: Kane's equations)."""
+    """The disk started upright-ish from the lean, spin and heading rate the controls give (default: Kane's
+    equations)."""
 
     description = SYSTEM
     parameters = derived_parameters(
@@ -100,7 +103,8 @@ class RollingDiskMotion(DerivedModel):
         return state
 
     def lean_jacobian(self, params: Mapping[str, Any], spin_rate_rad_s: float) -> np.ndarray:
-        """∂(θ̇, θ̈, ψ̈)/∂(θ, θ̇, ψ̇) (3, 3) of the derived equations at upright rolling with spin Ω, by central differences."""
+        """∂(θ̇, θ̈, ψ̈)/∂(θ, θ̇, ψ̇) (3, 3) of the derived equations at upright rolling with spin Ω, by central
+        differences."""
         derivation, p = self.derived(params), self.parameter_array(params)
         state = self.upright_state(params, spin_rate_rad_s)
         variables = (LEAN, LEAN_RATE, HEADING_RATE)

@@ -89,7 +89,8 @@ def _rigid_body(I_transverse: float, I_axial: float, mass_kg: float, cg_distance
 
 
 def initial_state(params: Mapping[str, Any]) -> np.ndarray:
-    """``[q, ω_body]`` at t = 0 with φ0 = ψ0 = 0 (the axis tilts towards −Y... see :func:`quaternion_from_euler_313`)."""
+    """``[q, ω_body]`` at t = 0 with φ0 = ψ0 = 0 (the axis tilts towards −Y... see
+    :func:`quaternion_from_euler_313`)."""
     theta0 = math.radians(params["theta0_deg"])
     q0 = quaternion_from_euler_313(0.0, theta0, 0.0)
     omega = body_rates_from_euler_313_rates(theta0, 0.0, params["precession_rate0_rad_s"], params["nutation_rate0_rad_s"], 0.0)

@@ -55,7 +55,8 @@ def resonant(params: Mapping[str, Any]) -> bool:
 
 
 def small_angle_excess(t_s: np.ndarray, beta_rad: np.ndarray) -> tuple[float, float] | None:
-    """``(first time (s), largest |β| (rad))`` if |β| exceeds :data:`SMALL_ANGLE_LIMIT_RAD` at any of ``t_s``, else None."""
+    """``(first time (s), largest |β| (rad))`` if |β| exceeds :data:`SMALL_ANGLE_LIMIT_RAD` at any of ``t_s``, else
+    None."""
     over = np.flatnonzero(np.abs(beta_rad) > SMALL_ANGLE_LIMIT_RAD)
     if over.size == 0:
         return None
@@ -191,7 +192,8 @@ def gimbal_response(params: Mapping[str, Any], t_s: np.ndarray | float) -> Gimba
     gain = steady_gain_s(params)
     rate = params["input_rate_rad_s"]
     if resonant(params):
-        # β̈ + ω_n² β = G Ω₀ ω_n² sin ω_n t from rest: β = (G Ω₀ / 2)(sin ω_n t − ω_n t cos ω_n t), growing linearly in t.
+        # β̈ + ω_n² β = G Ω₀ ω_n² sin ω_n t from rest: β = (G Ω₀ / 2)(sin ω_n t − ω_n t cos ω_n t), growing linearly in
+        # t.
         phase = omega_n * t
         beta = 0.5 * gain * rate * (np.sin(phase) - phase * np.cos(phase))
         beta_rate = 0.5 * gain * rate * omega_n * phase * np.sin(phase)
