@@ -83,7 +83,7 @@ def _serve(args: argparse.Namespace) -> int:
     where = f"{settings.workers} scene worker{'s' if settings.workers != 1 else ''}" if settings.workers else "scenes in this process"
     print(f"Dynamics Lab: serving on http://{settings.host}:{settings.port}  ({where}; Ctrl+C to stop)", flush=True)
     base = settings.public_url or f"http://{settings.host}:{settings.port}"
-    print(f"Instructor link (keep it to yourself: whoever opens it runs the rooms): {app.state.instructor_key.link(base)}", flush=True)
+    print("Instructor link (keep it to yourself: whoever opens it runs the rooms): " f"{app.state.instructor_key.link(base)}", flush=True)
     from app.web.slow_clients import GuardedHttpProtocol
 
     # Behind a reverse proxy every connection comes from the proxy: per-address connection caps belong to it there.
@@ -159,7 +159,7 @@ _OWN_OPTIONS = {
               "options of the benchmark (see dynlab bench --help)"),
     "derivations": (_derivations, "derivation engine: derive and compile times, agreement, proofs (writes docs/bench/derivations.json and .svg)",
                     "options (see dynlab derivations --help)"),
-    "constrained": (_constrained, "work-precision of the DAE algorithms and scipy Radau/BDF (writes docs/bench/constrained_precision.json and .svg)",
+    "constrained": (_constrained, "work-precision of the DAE algorithms and scipy Radau/BDF (writes docs/bench/constrained_precision.json " "and .svg)",
                     "options (see dynlab constrained --help)"),
 }
 
@@ -181,7 +181,7 @@ def _add_load_and_soak(commands: argparse._SubParsersAction) -> None:
     from app.bench.capacity import add_load_arguments
     from app.bench.soak import add_soak_arguments
 
-    load = commands.add_parser("load", help="classroom capacity: N viewers per scene, with --room N followers of one room, with --attack 100 students before and while one client attacks (writes docs/bench/capacity.json, classroom.json or attack.json, and .svg)")
+    load = commands.add_parser("load", help=("classroom capacity: N viewers per scene, with --room N followers of one room, with --attack 100 " "students before and while one client attacks (writes docs/bench/capacity.json, classroom.json or " "attack.json, and .svg)"))
     add_load_arguments(load)
     load.set_defaults(run=_load, parser=load)
     soak = commands.add_parser("soak", help="N viewers for M minutes, then all gone: resources back to baseline")
@@ -200,11 +200,11 @@ def main(argv: list[str] | None = None) -> int:
     serve.add_argument("--port", type=int, default=None, help="port (default 8000)")
     serve.add_argument(
         "--workers", type=int, default=None,
-        help="scene-worker processes (default: one per core, or DYNLAB_WORKERS); 0 runs the scenes in the front process",
+        help=("scene-worker processes (default: one per core, or DYNLAB_WORKERS); 0 runs the scenes in the front " "process"),
     )
     serve.add_argument(
         "--instructor-key", default=None,
-        help="the instructor's secret in the printed instructor link (default: DYNLAB_INSTRUCTOR_KEY, else a new random one each start)",
+        help=("the instructor's secret in the printed instructor link (default: DYNLAB_INSTRUCTOR_KEY, else a new " "random one each start)"),
     )
     serve.add_argument("--log-level", default="info", choices=["critical", "error", "warning", "info", "debug"])
     serve.set_defaults(run=_serve)

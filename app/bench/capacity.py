@@ -153,7 +153,7 @@ class LoadOptions:
             if len(self.instructor_key) < MIN_KEY_LENGTH:
                 raise ValueError(f"instructor_key: at least {MIN_KEY_LENGTH} characters, got {len(self.instructor_key)}")
         elif (self.room or self.attack) and self.url is not None:
-            raise ValueError(f"instructor_key: a {'--room' if self.room else '--attack'} run against --url needs the server's instructor key")
+            raise ValueError(f"instructor_key: a {'--room' if self.room else '--attack'} run against --url needs the server's " "instructor key")
         if self.attack:
             if self.room:
                 raise ValueError("attack: students on their own scenes are attacked; --room and --attack do not go together")
@@ -541,7 +541,7 @@ def step_line(step: dict) -> str:
     fps = step["frames_per_s"] or {}
     cpu = step["server_cpu_cores"]
     return (
-        f"{step['scene_id']:>28} {step['students']:4d} {'followers' if step.get('mode') == 'follow' else 'students '}: frames/s p10 {fps.get('p10', '—')} median "
+        f"{step['scene_id']:>28} {step['students']:4d} " f"{'followers' if step.get('mode') == 'follow' else 'students '}: frames/s p10 {fps.get('p10', '—')} " "median "
         f"{fps.get('median', '—')} min {fps.get('min', '—')}; server {cpu if cpu is not None else '—'} cores, "
         f"{step['server_rss_mb'] or '—'} MB; front {_or_dash(step.get('server_front_cpu_cores'))}; tool "
         f"{step['load_tool_cpu_cores']} cores; others {_or_dash(step.get('other_cpu_cores'))}; health p95 "
@@ -765,7 +765,7 @@ class _Panel:
             grid.append(_text(self.x(n), self.bottom + 18, f"{n:g}", anchor="middle"))
         for k in range(int(self.max_y / y_step + 1e-9) + 1):
             value = k * y_step
-            grid.append(f'<line x1="{_f(self.left)}" x2="{_f(self.right)}" y1="{_f(self.y(value))}" y2="{_f(self.y(value))}" stroke="#eef0f4"/>')
+            grid.append(f'<line x1="{_f(self.left)}" x2="{_f(self.right)}" y1="{_f(self.y(value))}" ' f'y2="{_f(self.y(value))}" stroke="#eef0f4"/>')
             grid.append(_text(self.left - 7, self.y(value) + 4, f"{value:g}", anchor="end"))
         cy, label_x = (self.top + self.bottom) / 2, self.left - 52
         return "".join([
@@ -857,7 +857,7 @@ def capacity_svg(report: dict) -> str:
         points = sorted((s["students"], s["frames_per_s"]) for s in steps if s["scene_id"] == scene_id)
         out.append(f'<g class="series" data-scene="{escape(scene_id)}">{_rate_lines(panel, points, colour)}</g>')
         out.append(
-            f'<line x1="{RIGHT + 16}" x2="{RIGHT + 44}" y1="{legend_y}" y2="{legend_y}" stroke="{colour}" stroke-width="2.2"/>'
+            f'<line x1="{RIGHT + 16}" x2="{RIGHT + 44}" y1="{legend_y}" y2="{legend_y}" stroke="{colour}" ' 'stroke-width="2.2"/>'
             + _text(RIGHT + 52, legend_y + 4, scene_id)
         )
         legend_y += 20
@@ -907,11 +907,11 @@ def classroom_svg(report: dict) -> str:
     for index, mode in enumerate(("follow", "independent")):
         x0 = LEFT + 300 * index
         out.append(
-            f'<line x1="{x0}" x2="{x0 + 28}" y1="{legend_y}" y2="{legend_y}" stroke="{MODE_COLOURS[mode]}" stroke-width="2.2"/>'
+            f'<line x1="{x0}" x2="{x0 + 28}" y1="{legend_y}" y2="{legend_y}" stroke="{MODE_COLOURS[mode]}" ' 'stroke-width="2.2"/>'
             + _text(x0 + 36, legend_y + 4, MODE_NAMES[mode])
         )
     out.append(
-        f'<line x1="{LEFT + 600}" x2="{LEFT + 628}" y1="{legend_y}" y2="{legend_y}" stroke="#1d2330" stroke-width="1.3" '
+        f'<line x1="{LEFT + 600}" x2="{LEFT + 628}" y1="{legend_y}" y2="{legend_y}" stroke="#1d2330" ' 'stroke-width="1.3" '
         f'stroke-dasharray="6 4"/>' + _text(LEFT + 636, legend_y + 4, f"target: 10th percentile at 100 ({TARGET_P10_FRAMES_PER_S:g})")
     )
     legend_y += 22
@@ -994,18 +994,18 @@ def add_load_arguments(parser: argparse.ArgumentParser) -> None:
     """The options of ``dynlab load``."""
     parser.add_argument(
         "--students", type=_int_list, default=None,
-        help="class sizes, e.g. 10,30,60,100,150 (the default; with --room 1,10,30,60,100,150; with --attack one size, 100)",
+        help=("class sizes, e.g. 10,30,60,100,150 (the default; with --room 1,10,30,60,100,150; with --attack one " "size, 100)"),
     )
     parser.add_argument(
         "--seconds", type=float, default=None,
-        help=f"steady window per step (s, ≤ {MAX_STEP_SECONDS:g}; default {LoadOptions.seconds:g}, with --attack {ATTACK_SECONDS:g} "
+        help=f"steady window per step (s, ≤ {MAX_STEP_SECONDS:g}; default {LoadOptions.seconds:g}, with --attack " f"{ATTACK_SECONDS:g} "
         "for each of the two windows)",
     )
     parser.add_argument("--warmup", type=float, default=LoadOptions.warmup_s, help="seconds after all connected before measuring")
     parser.add_argument("--connect-rate", type=float, default=LoadOptions.connect_per_s, help="viewers opened per second")
     parser.add_argument(
         "--room", action="store_true",
-        help="the students follow one classroom room on the scene instead of a scene each (writes classroom.json and .svg)",
+        help=("the students follow one classroom room on the scene instead of a scene each (writes classroom.json " "and .svg)"),
     )
     parser.add_argument(
         "--attack", action="store_true",
@@ -1016,7 +1016,7 @@ def add_load_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--distinct-addresses", action=argparse.BooleanOptionalAction, default=None,
         help="each student connects from its own loopback address (127.0.1.1, 127.0.1.2, …) as a class of devices "
-        "does, so per-device limits see students, not one client (default: on; off from one address is refused beyond 8 viewers)",
+        "does, so per-device limits see students, not one client (default: on; off from one address is refused " "beyond 8 viewers)",
     )
     parser.add_argument(
         "--instructor-key", default=None,

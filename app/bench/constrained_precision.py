@@ -90,7 +90,7 @@ def cartesian_pendulum_case() -> ConstrainedCase:
     return ConstrainedCase(
         id="cartesian-pendulum", title="Cartesian pendulum, unit problem, 1 s",
         system=pendulum_system(1.0, 1.0, 1.0), positions0=q0, rates0=v0, t_end_s=t_end, frame_rate_hz=60.0,
-        reference_positions=exact[:2], reference_name="the exact motion released at rest from the horizontal, m = 1 kg, L = 1 m, g = 1 m/s² (Jacobi elliptic functions, scipy.special.ellipj)",
+        reference_positions=exact[:2], reference_name=("the exact motion released at rest from the horizontal, m = 1 kg, L = 1 m, g = 1 m/s² " "(Jacobi elliptic functions, scipy.special.ellipj)"),
         error_unit="m", reference_floor=1e-14, rk4_steps_per_frame=(1, 2, 4, 8, 16, 32, 64), baumgarte_1_s=5.0,
     )
 
@@ -117,7 +117,7 @@ def massive_four_bar_case() -> ConstrainedCase:
         id="massive-four-bar", title=f"Massive four-bar, {t_end:g} s (9 coordinates, 8 constraints)",
         system=massive_four_bar_system(params), positions0=q0, rates0=v0, t_end_s=t_end, frame_rate_hz=60.0,
         reference_positions=q_ref[0],
-        reference_name="the one-degree-of-freedom equation in the crank angle (DOP853, rtol 1e-13) through chapter 4's loop closure",
+        reference_name=("the one-degree-of-freedom equation in the crank angle (DOP853, rtol 1e-13) through " "chapter 4's loop closure"),
         error_unit="m or rad", reference_floor=1e-10, rk4_steps_per_frame=(1, 2, 4, 8, 16, 32, 64), baumgarte_1_s=10.0, angle_coordinates=(2, 5, 8),
     )
 
@@ -345,5 +345,5 @@ def main(argv: Sequence[str] | None = None) -> int:
         for method in case["methods"]:
             best = min((p for p in method["points"] if p["error"] is not None), key=lambda p: p["error"], default=None)
             if best is not None:
-                print(f"  {method['label']:<44} best error {best['error']:.1e} {case['error_unit']} in {best['cpu_s'] * 1e3:.3g} ms")
+                print(f"  {method['label']:<44} best error {best['error']:.1e} {case['error_unit']} in " f"{best['cpu_s'] * 1e3:.3g} ms")
     return 0

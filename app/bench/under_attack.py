@@ -379,7 +379,7 @@ def _notes(report: dict) -> list[str]:
         _split_note(named, others),
         f"Projector (the room's shared scene): {_number(before.get('projector_frames_per_s'))} frames/s before, "
         f"{_number(during.get('projector_frames_per_s'))} under attack.",
-        f"Server CPU: {_number(before.get('server_cpu_cores'))} cores before, {_number(during.get('server_cpu_cores'))} under "
+        f"Server CPU: {_number(before.get('server_cpu_cores'))} cores before, " f"{_number(during.get('server_cpu_cores'))} under "
         f"attack; health p95 {_number((before.get('health_ms') or {}).get('p95'), ' ms')} and "
         f"{_number((during.get('health_ms') or {}).get('p95'), ' ms')}.",
         f"The attacking client's own CPU: {_number(during.get('attacker_cpu_cores'))} cores; everything else on the "
@@ -443,7 +443,7 @@ def attack_svg(report: dict) -> str:
     machine, server = report.get("machine") or {}, report.get("server") or {}
     seconds = (report.get("method") or {}).get("seconds")
     subtitle = (
-        f"{report.get('students', '?')} students, each on a {report.get('scene_id', '?')} session of their own; one attacking "
+        f"{report.get('students', '?')} students, each on a {report.get('scene_id', '?')} session of their own; " "one attacking "
         f"client; {machine.get('cores', '?')} cores; scene workers: {describe_workers(server.get('workers'))}; "
         f"{_number(seconds, ' s')} per window; {str(report.get('created', ''))[:10]}"
     )
@@ -461,7 +461,7 @@ def attack_svg(report: dict) -> str:
         out.append(f'<line x1="{BAR_LEFT}" x2="{BAR_RIGHT}" y1="{_f(y(5 * k))}" y2="{_f(y(5 * k))}" stroke="#eef0f4"/>')
         out.append(_text(BAR_LEFT - 7, y(5 * k) + 4, f"{5 * k:g}", anchor="end"))
     out.append("</g>")
-    out.append(f'<rect x="{BAR_LEFT}" y="{BAR_TOP}" width="{BAR_RIGHT - BAR_LEFT}" height="{BAR_BOTTOM - BAR_TOP}" fill="none" stroke="#9aa3b2"/>')
+    out.append(f'<rect x="{BAR_LEFT}" y="{BAR_TOP}" width="{BAR_RIGHT - BAR_LEFT}" height="{BAR_BOTTOM - BAR_TOP}" ' 'fill="none" stroke="#9aa3b2"/>')
     cy = (BAR_TOP + BAR_BOTTOM) / 2
     out.append(_text(BAR_LEFT - 40, cy, "Frames per second per student", size=13, anchor="middle", weight="600",
                      extra=f'transform="rotate(-90 {_f(BAR_LEFT - 40)} {_f(cy)})"'))
@@ -496,7 +496,7 @@ def attack_svg(report: dict) -> str:
     for offset, (text, colour) in enumerate((("10th percentile", P10_COLOUR), ("median", MEDIAN_COLOUR))):
         x = BAR_LEFT + 120 * offset
         out.append(f'<rect x="{x}" y="{legend_y - 9}" width="12" height="10" fill="{colour}"/>' + _text(x + 17, legend_y, text, size=11))
-    out.append(f'<line x1="{BAR_LEFT + 200}" x2="{BAR_LEFT + 224}" y1="{legend_y - 4}" y2="{legend_y - 4}" stroke="{SLOWEST_COLOUR}" '
+    out.append(f'<line x1="{BAR_LEFT + 200}" x2="{BAR_LEFT + 224}" y1="{legend_y - 4}" y2="{legend_y - 4}" ' f'stroke="{SLOWEST_COLOUR}" '
                f'stroke-width="2"/>' + _text(BAR_LEFT + 230, legend_y, "slowest student", size=11))
     out.append(f'<line x1="{BAR_LEFT}" x2="{BAR_LEFT + 24}" y1="{legend_y + 14}" y2="{legend_y + 14}" stroke="#1d2330" '
                f'stroke-width="1.3" stroke-dasharray="6 4"/>'
@@ -517,7 +517,7 @@ def attack_svg(report: dict) -> str:
                           ("slowest", "slowest answer (ms)")):
         out.append(_text(COLUMN_X[column], header_y, title, size=11, weight="600",
                          anchor="end" if column in ("tries", "slowest") else "start"))
-    out.append(f'<line x1="{COLUMN_X["item"]}" x2="{COLUMN_X["slowest"]}" y1="{header_y + 5}" y2="{header_y + 5}" stroke="#9aa3b2"/>')
+    out.append(f'<line x1="{COLUMN_X["item"]}" x2="{COLUMN_X["slowest"]}" y1="{header_y + 5}" y2="{header_y + 5}" ' 'stroke="#9aa3b2"/>')
     for row, attack in enumerate(attacks):
         ry = header_y + ROW_H * (row + 1) + 2
         latency = (attack.get("latency_ms") or {}).get("max")

@@ -117,7 +117,7 @@ def _heavy_top_case(case_id: str, title: str, overrides: dict[str, float], *, er
     return Case(
         id=case_id, scene_id=scene_id, title=title, body=heavy_top.rigid_body(params), y0=heavy_top.initial_state(params),
         t_end_s=10.0, frame_rate_hz=60.0, error_measure=measure,
-        reference_name="quadrature solution (Jacobi elliptic functions for θ, elliptic integrals of the third kind for φ and ψ)",
+        reference_name=("quadrature solution (Jacobi elliptic functions for θ, elliptic integrals of the third " "kind for φ and ψ)"),
         reference_quaternion=heavy_top.quadrature(params).quaternion, error_kind=error_kind, baselines=baselines,
     )
 
@@ -355,7 +355,7 @@ def mujoco_batch_check(case: Case) -> dict[str, Any]:
         "case": case.id, "method": "mujoco-RK4", "steps_per_frame": 1, "loop_cpu_s": loop_cpu, "rollout_cpu_s": batch_cpu,
         "same_states": same, "rollout_saving": saving,
         "text": f"MuJoCo RK4, 1 step/frame, {case.id}: {loop_cpu * 1e3:.3g} ms with one mj_step call per frame, "
-                f"{batch_cpu * 1e3:.3g} ms in one mujoco.rollout call ({100 * abs(saving):.0f}% {'less' if saving >= 0 else 'more'})"
+                f"{batch_cpu * 1e3:.3g} ms in one mujoco.rollout call ({100 * abs(saving):.0f}% " f"{'less' if saving >= 0 else 'more'})"
                 f"{'' if same else ' (states differ!)'}.",
     }
 
@@ -610,7 +610,7 @@ def best_ratios(methods: Sequence[dict], errors: Sequence[float] = RATIO_ERRORS)
                 ratio = theirs / our_cpu
                 entry.update(
                     ratio=ratio, theirs_cpu_s=theirs, bracketed=bool(span and span[1] >= error), meets_requirement=ratio >= required,
-                    text=f"At {error:.0e} rad, the cheapest of ours ({our_method}) needs {our_cpu * 1e3:.3g} ms of CPU; "
+                    text=f"At {error:.0e} rad, the cheapest of ours ({our_method}) needs {our_cpu * 1e3:.3g} ms " "of CPU; "
                          f"{base['label']} needs {theirs * 1e3:.3g} ms: {ratio:.0f}× more (asked: ≥ {required:.0f}×).",
                 )
             out.append(entry)
@@ -718,7 +718,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     if "mujoco_batch_check" in report["timing"]:
         print(report["timing"]["mujoco_batch_check"]["text"])
     summary = report["ratio_summary"]
-    print(f"best of ours against {', '.join(summary['required'])} at {', '.join(f'{e:.0e}' for e in summary['errors'])} rad"
+    print(f"best of ours against {', '.join(summary['required'])} at " f"{', '.join(f'{e:.0e}' for e in summary['errors'])} rad"
           f" (all asked ratios met: {summary['all_met']}):")
     for case_id, table in summary["cases"].items():
         for baseline, rows in table.items():

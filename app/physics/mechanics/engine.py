@@ -289,7 +289,7 @@ def available_formulations(system: SystemDescription) -> dict[str, str]:
         reason = system.unavailable.get(formulation, "")
         if not reason:
             if formulation in ("lagrange", "hamilton", "routh") and not system.holonomic:
-                reason = "needs independent coordinates; the rolling constraints restrict velocities only (chapter 8's multipliers)"
+                reason = ("needs independent coordinates; the rolling constraints restrict velocities only " "(chapter 8's multipliers)")
             elif formulation == "routh" and not system.ignorable:
                 reason = "no ignorable coordinate"
             elif formulation == "newton-euler" and (not system.reactions or system.kinetic_energy is not None or system.extra_potential != 0):

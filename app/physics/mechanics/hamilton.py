@@ -94,7 +94,7 @@ def derive_hamilton(system: SystemDescription) -> Derivation:
     equations = []
     for c, p, q_j, r, e_q, e_p in zip(system.coordinates, P, q, qd, qd_hamilton, pd_hamilton):
         equations.append(f"{names[r]} = \\frac{{\\partial H}}{{\\partial {names[p]}}} = {latex(e_q)}")
-        equations.append(f"\\dot{{p}}_{{{c.latex}}} = -\\frac{{\\partial H}}{{\\partial {names[q_j]}}} + Q_{{{c.latex}}} = {latex(e_p)}")
+        equations.append(f"\\dot{{p}}_{{{c.latex}}} = -\\frac{{\\partial H}}{{\\partial {names[q_j]}}} + Q_{{{c.latex}}} = " f"{latex(e_p)}")
     n = len(q)
     pd_symbols = sympy.Matrix(pd_h)
     return Derivation(

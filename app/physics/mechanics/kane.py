@@ -63,9 +63,9 @@ def derive_kane(system: SystemDescription) -> Derivation:
     steps = []
     for item in items:
         for u_r, speed in zip(u, system.speed_list):
-            steps.append(Step(f"Partial velocity of {item.name} for {speed.name}", f"\\frac{{\\partial \\mathbf v_{{{item.name}}}}}{{\\partial {names[u_r]}}} = {latex(tidy(item.velocity.diff(u_r)).T)}"))
+            steps.append(Step(f"Partial velocity of {item.name} for {speed.name}", f"\\frac{{\\partial \\mathbf v_{{{item.name}}}}}{{\\partial {names[u_r]}}} = " f"{latex(tidy(item.velocity.diff(u_r)).T)}"))
             if item.angular_velocity is not None:
-                steps.append(Step(f"Partial angular velocity of {item.name} for {speed.name}", f"\\frac{{\\partial \\boldsymbol\\omega_{{{item.name}}}}}{{\\partial {names[u_r]}}} = {latex(tidy(item.angular_velocity.diff(u_r)).T)}"))
+                steps.append(Step(f"Partial angular velocity of {item.name} for {speed.name}", f"\\frac{{\\partial \\boldsymbol\\omega_{{{item.name}}}}}{{\\partial {names[u_r]}}} = " f"{latex(tidy(item.angular_velocity.diff(u_r)).T)}"))
     for speed, F_r, Fs_r in zip(system.speed_list, active, inertia):
         steps.append(Step(f"Generalized active force for {speed.name}", f"F_{{{speed.latex}}} = {latex(tidy(F_r))}"))
         steps.append(Step(f"Generalized inertia force for {speed.name}", f"F^*_{{{speed.latex}}} = {latex(tidy(Fs_r))}"))

@@ -96,7 +96,7 @@ def derive_newton_euler(system: SystemDescription) -> Derivation:
             steps.append(Step(f"{item.name}: I α + ω × I ω = ΣM_G (N components)", f"{latex(moment.T)}^T"))
     unknowns = [*system.ud, *(s for s, *_ in unknown_reactions)]
     if len(rows) != len(unknowns):
-        raise ValueError(f"{system.id}: Newton–Euler has {len(rows)} equations for {len(unknowns)} unknowns; declare the reactions fully")
+        raise ValueError(f"{system.id}: Newton–Euler has {len(rows)} equations for {len(unknowns)} unknowns; declare the " "reactions fully")
     A, b = linear_parts(rows, unknowns)
     equations = linear_equations_latex(A, unknowns, b, latex, tidy=tidy, tidy_left=True)
     return Derivation(

@@ -84,7 +84,7 @@ def typed_system(
         raise ParameterError("potential_energy", "the potential energy may not depend on the rates q1d…q3d")
     for c in coords:
         if not T.has(c.rate):
-            raise ParameterError("kinetic_energy", f"the kinetic energy does not contain {c.name}d, so {c.name} has no inertia and its equation cannot be solved for its acceleration")
+            raise ParameterError("kinetic_energy", f"the kinetic energy does not contain {c.name}d, so {c.name} has no inertia and its equation " "cannot be solved for its acceleration")
     return SystemDescription(
         id="custom", title="Typed Lagrangian", chapter=7, coordinates=coords,
         parameters=ParameterSet(tuple(Parameter(name, "", float(value), min=-MAX_PARAMETER_VALUE, max=MAX_PARAMETER_VALUE, label=name) for name, value in parameters.items())),

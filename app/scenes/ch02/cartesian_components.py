@@ -75,7 +75,7 @@ class CartesianComponentsScene(ParticleRunScene):
             Quantity("grid_cell", "side of a grid square", self.grid_cell_m, "m"),
         ]
         if isinstance(self.motion, physics.SineSlot):
-            message = "The pin is driven at constant ẋ, so ẍ = 0: all of a is ÿ J, across the drive. The controls h, L and ẋ set this motion."
+            message = ("The pin is driven at constant ẋ, so ẍ = 0: all of a is ÿ J, across the drive. The " "controls h, L and ẋ set this motion.")
         else:
-            message = "Gravity is the only acceleration: ẍ = ÿ = 0 and z̈ = −g throughout, while v turns. The controls v₀, α, ψ and g set this motion."
+            message = ("Gravity is the only acceleration: ẍ = ÿ = 0 and z̈ = −g throughout, while v turns. The " "controls v₀, α, ψ and g set this motion.")
         return Readout(quantities, message=message)

@@ -83,7 +83,7 @@ CONTROLS = (
             kind="choice",
             choices=("frenet", "cylindrical", "spherical"),
             label="unit vectors",
-            description="Which unit vectors ride on the particle: path (T, N, B), cylindrical (e_R, e_θ, e_z) or spherical (e_r, e_φ, e_θ)",
+            description=("Which unit vectors ride on the particle: path (T, N, B), cylindrical (e_R, e_θ, e_z) or " "spherical (e_r, e_φ, e_θ)"),
         ),
 )
 
@@ -104,7 +104,7 @@ PRESETS = (
         "figure-eight",
         "Figure eight",
         {"x_of_t": "cos(t)", "y_of_t": "sin(2*t)/2", "z_of_t": "0.3*sin(t)", "t_end_s": 6.283, "frame": "frenet"},
-        "A figure eight bent out of its plane: fastest and nearly straight at the crossing, where the torsion swings negative",
+        "A figure eight bent out of its plane: fastest and nearly straight at the crossing, where the torsion " "swings negative",
     ),
     Preset(
         "viviani",

@@ -46,7 +46,7 @@ class AngleRatesScene(ReplayedScene):
         Preset("steady-top", "Top: steady precession and spin (3-1-3)", {
             "sequence": "3-1-3", "angle1_deg": 0.0, "angle2_deg": 30.0, "angle3_deg": 0.0,
             "rate1_rad_s": 0.8, "rate2_rad_s": 0.0, "rate3_rad_s": 2.0, "accel1_rad_s2": 0.0, "accel2_rad_s2": 0.0, "accel3_rad_s2": 0.0,
-        }, "Constant φ̇ = 0.8 rad/s and ψ̇ = 2 rad/s at θ = 30°: every θ̈ is zero, yet α = φ̇ψ̇ n1 × n3 has magnitude 0.8 rad/s²"),
+        }, "Constant φ̇ = 0.8 rad/s and ψ̇ = 2 rad/s at θ = 30°: every θ̈ is zero, yet α = φ̇ψ̇ n1 × n3 has " "magnitude 0.8 rad/s²"),
         Preset("euler-lock", "3-1-3 at θ = 0: rates lost", {
             "sequence": "3-1-3", "angle1_deg": 20.0, "angle2_deg": 0.0, "angle3_deg": 40.0,
             "rate1_rad_s": 0.5, "rate2_rad_s": 0.0, "rate3_rad_s": 1.0, "accel1_rad_s2": 0.0, "accel2_rad_s2": 0.0, "accel3_rad_s2": 0.0,
@@ -54,7 +54,7 @@ class AngleRatesScene(ReplayedScene):
         Preset("aircraft-pull-up", "Aircraft pulling up to the vertical (3-2-1)", {
             "sequence": "3-2-1", "angle1_deg": 30.0, "angle2_deg": 0.0, "angle3_deg": 10.0,
             "rate1_rad_s": 0.0, "rate2_rad_s": -0.3, "rate3_rad_s": 0.0, "accel1_rad_s2": 0.0, "accel2_rad_s2": 0.0, "accel3_rad_s2": 0.0,
-        }, "Level, nose pitching up at θ̇2 = −0.3 rad/s (Z up): at t = 5.24 s the nose points straight up (θ2 = −90°), where yaw and roll rates cannot be told apart"),
+        }, "Level, nose pitching up at θ̇2 = −0.3 rad/s (Z up): at t = 5.24 s the nose points straight up (θ2 = " "−90°), where yaw and roll rates cannot be told apart"),
         Preset("spin-up", "Spinning up while tilting (3-1-3)", {
             "sequence": "3-1-3", "angle1_deg": 0.0, "angle2_deg": 20.0, "angle3_deg": 0.0,
             "rate1_rad_s": 0.3, "rate2_rad_s": 0.1, "rate3_rad_s": 0.5, "accel1_rad_s2": 0.0, "accel2_rad_s2": 0.0, "accel3_rad_s2": 0.4,
@@ -169,7 +169,7 @@ class AngleRatesScene(ReplayedScene):
                 "Any split of that combination between θ̇1 and θ̇3 gives the same ω."
             )
         lock_deg = math.degrees(float(k.lock_distance_rad[i]))
-        text = "ω = θ̇1 n1 + θ̇2 n2 + θ̇3 n3: the coloured arrows add head to tail to ω. α adds Σ θ̈k nk and the cross products of turning axes."
+        text = ("ω = θ̇1 n1 + θ̇2 n2 + θ̇3 n3: the coloured arrows add head to tail to ω. α adds Σ θ̈k nk and the " "cross products of turning axes.")
         if lock_deg < NEAR_LOCK_DEG:
-            text += f" Near gimbal lock ({lock_deg:.3g}° away): recovering the rates from ω needs up to {k.rate_gain(i):.3g} rad/s of rate per rad/s of |ω|."
+            text += (f" Near gimbal lock ({lock_deg:.3g}° away): recovering the rates from ω needs up to " f"{k.rate_gain(i):.3g} rad/s of rate per rad/s of |ω|.")
         return text

@@ -136,7 +136,7 @@ class FiniteRotationScene(Scene):
                 if angle == 0.0 or (name == "A" and a.angle_rad < NO_TURN_RAD):
                     continue
                 segments.append([pivot - EQUIVALENT_AXIS_HALF_LENGTH * axis, pivot + EQUIVALENT_AXIS_HALF_LENGTH * axis])
-                labels.append((pivot + EQUIVALENT_AXIS_HALF_LENGTH * axis, f"{name}: {math.degrees(angle):.4g}° about {'n' if name == 'A' else self.params['second_axis']}"))
+                labels.append((pivot + EQUIVALENT_AXIS_HALF_LENGTH * axis, f"{name}: {math.degrees(angle):.4g}° about " f"{'n' if name == 'A' else self.params['second_axis']}"))
         points = np.array(segments, np.float32).reshape(-1, 2, 3) if segments else np.zeros((1, 2, 3), np.float32)
         colors = np.array([AXIS_A_COLOR if text.startswith("A") else AXIS_B_COLOR for _, text in labels] or [AXIS_A_COLOR], np.uint8)
         self.axes.points = points
@@ -234,13 +234,13 @@ class FiniteRotationScene(Scene):
             text = "A is no turn at all: the body stays as the fixed frame, and the axis n is undefined."
         else:
             text = (
-                f"Euler's theorem: the {r.sequence.name} turns end where one turn of φ = {math.degrees(a.angle_rad):.2f}° "
-                f"about n = {components_text(a.axis_world, 4)} ends; Rodrigues' formula with that n and φ gives [R] again."
+                f"Euler's theorem: the {r.sequence.name} turns end where one turn of φ = " f"{math.degrees(a.angle_rad):.2f}° "
+                f"about n = {components_text(a.axis_world, 4)} ends; Rodrigues' formula with that n and φ gives " "[R] again."
             )
         if self.compare:
             gap = math.degrees(r.order_gap_rad)
             if gap < 1e-7:
-                text += " A then B and B then A end in the same attitude: these two turns commute (they share an axis, or one is no turn)."
+                text += (" A then B and B then A end in the same attitude: these two turns commute (they share an " "axis, or one is no turn).")
             else:
                 text += f" A then B and B then A end {gap:.4g}° apart: finite rotations do not commute."
         return text

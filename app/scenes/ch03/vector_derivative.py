@@ -118,7 +118,7 @@ class VectorDerivativeScene(ReplayedScene):
         if relative == 0.0:
             message = "A is fixed in the turning frame: (dA/dt)_rel = 0, so the rate seen from XYZ is ω × A alone."
         elif fixed <= 1e-12 * relative:
-            message = "(dA/dt)_rel and ω × A cancel: A turns back in the frame exactly as fast as the frame turns, so it stands still in XYZ."
+            message = ("(dA/dt)_rel and ω × A cancel: A turns back in the frame exactly as fast as the frame " "turns, so it stands still in XYZ.")
         else:
             message = "(dA/dt)_fixed = (dA/dt)_rel + ω × A: the blue and orange arrows add head to tail to the red one."
         return Readout(quantities, message=message + " Arrows shorter than their head are listed here but not drawn.")

@@ -56,7 +56,7 @@ class EulerianAnglesScene(CyclingScene):
     presets = (
         Preset("steady-precession", "Steady precession", {"nutation_rate_rad_s": 0.0, "precession_acceleration_rad_s2": 0.0,
                "nutation_acceleration_rad_s2": 0.0, "spin_acceleration_rad_s2": 0.0},
-               "θ fixed, φ̇ and ψ̇ constant: ω keeps its length but turns with the line of nodes, so α = φ̇K × ω is not zero."),
+               "θ fixed, φ̇ and ψ̇ constant: ω keeps its length but turns with the line of nodes, so α = φ̇K × ω is " "not zero."),
         Preset("nutation-only", "Nutation only", {"precession_rate_rad_s": 0.0, "spin_rate_rad_s": 0.0, "nutation_rate_rad_s": 0.5},
                "Only θ changes: ω lies along the line of nodes."),
         Preset("singular", "At θ = 0", {"nutation_deg": 0.0, "nutation_rate_rad_s": 0.0, "nutation_acceleration_rad_s2": 0.0},
@@ -115,7 +115,7 @@ class EulerianAnglesScene(CyclingScene):
         rates_sum = np.abs(whole.rates_rad_s).sum(axis=-1)  # the tip-to-tail chain is at most this long
         self.omega_scale = float(f"{1.3 / max(float(rates_sum.max()), 1e-9):.2g}")
         self.alpha_scale = float(f"{0.9 / max(float(np.linalg.norm(whole.alpha_world_rad_s2, axis=-1).max()), 1e-9):.2g}")
-        self.legend.text = f"ω = φ̇K + θ̇i′ + ψ̇k, tip to tail from O · 1 rad/s ↦ {self.omega_scale:g} · α: 1 rad/s² ↦ {self.alpha_scale:g}"
+        self.legend.text = (f"ω = φ̇K + θ̇i′ + ψ̇k, tip to tail from O · 1 rad/s ↦ {self.omega_scale:g} · α: 1 " f"rad/s² ↦ {self.alpha_scale:g}")
         self.t_s = 0.0
         self._draw(move_labels=True)
 

@@ -41,7 +41,7 @@ ACCELERATION_LABELS = {"center": "a_A", "tangential": "α × r_B/A", "centripeta
 CONTROLS = (
     Parameter(
         "arrows", "", "velocity", kind="choice", choices=VIEWS, label="arrows",
-        description="Which formula's terms are drawn at B: velocity (v_A, ω × r_B/A, v_B) or acceleration (a_A, α × r_B/A, ω × (ω × r_B/A), a_B)",
+        description=("Which formula's terms are drawn at B: velocity (v_A, ω × r_B/A, v_B) or acceleration (a_A, " "α × r_B/A, ω × (ω × r_B/A), a_B)"),
     ),
 )
 
@@ -130,9 +130,9 @@ class RigidBodyPointsScene(CyclingScene):
         view = self.params["arrows"]
         self.legend.position = (0.3 * self._size, 0.0, L * math.sin(beta) + R + 0.35 * self._size)
         if view == "velocity":
-            self.legend.text = f"v_B = v_A + ω × r_B/A, tip to tail at B · 1 m/s ↦ {self.velocity_scale:g} m · ω: 1 rad/s ↦ {self.omega_scale:g} m"
+            self.legend.text = (f"v_B = v_A + ω × r_B/A, tip to tail at B · 1 m/s ↦ {self.velocity_scale:g} m · " f"ω: 1 rad/s ↦ {self.omega_scale:g} m")
         else:
-            self.legend.text = f"a_B = a_A + α × r_B/A + ω × (ω × r_B/A) at B · 1 m/s² ↦ {self.acceleration_scale:g} m · α: 1 rad/s² ↦ {self.alpha_scale:g} m"
+            self.legend.text = ("a_B = a_A + α × r_B/A + ω × (ω × r_B/A) at B · 1 m/s² ↦ " f"{self.acceleration_scale:g} m · α: 1 rad/s² ↦ {self.alpha_scale:g} m")
         # The other view's arrows and labels are hidden (all of zero length) until it is chosen.
         other, keys = (self.acceleration_arrows, ACCELERATION_LABELS) if view == "velocity" else (self.velocity_arrows, VELOCITY_LABELS)
         other.draw(dict.fromkeys(keys, (np.zeros(3), np.zeros(3))))

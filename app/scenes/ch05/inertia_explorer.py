@@ -324,7 +324,7 @@ class InertiaExplorerScene(Scene):
         if pair is not None:
             i, j, gap = pair
             return (
-                f"distinct, but I{SUBSCRIPTS[i]} and I{SUBSCRIPTS[j]} are nearly equal (they differ by {gap:.1e} of I₃): "
+                f"distinct, but I{SUBSCRIPTS[i]} and I{SUBSCRIPTS[j]} are nearly equal (they differ by {gap:.1e} " "of I₃): "
                 f"axes {i + 1} and {j + 1} are well defined, yet swing far for tiny changes of the body"
             )
         return "three distinct moments: the principal axes are unique"

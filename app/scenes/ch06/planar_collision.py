@@ -46,7 +46,7 @@ class PlanarCollisionScene(Scene):
         Preset("plastic", "Plastic (e = 0)", {"restitution": 0.0},
                "The contact points leave with no normal separation speed: the most energy the normal impulse can take."),
         Preset("oblique-sticks", "Oblique, high friction", {"line_of_centres_deg": 60.0, "friction_coefficient": 1.5},
-               "Friction is strong enough to stop the sliding during the impact: the contact sticks and both disks spin up."),
+               "Friction is strong enough to stop the sliding during the impact: the contact sticks and both disks " "spin up."),
         Preset("spin-kick", "A spinning disk", {"line_of_centres_deg": 0.0, "omega2_rad_s": 30.0, "friction_coefficient": 0.3},
                "A head-on hit, but disk 2 spins: friction turns spin into sideways motion of both disks."),
         Preset("grazing", "Grazing", {"line_of_centres_deg": 88.0, "friction_coefficient": 0.3},
@@ -186,7 +186,7 @@ class PlanarCollisionScene(Scene):
         message = words[c.impact.slip_state]
         if -vn < GRAZING_RATIO * math.hypot(vn, vt):
             message += (
-                f" Grazing: the normal approach speed is only {100 * -vn / math.hypot(vn, vt):.2g}% of the contact speed. "
-                "A rigid-body impact assumes the contact lasts an instant; for real bodies this glancing a touch may roll or rub instead."
+                f" Grazing: the normal approach speed is only {100 * -vn / math.hypot(vn, vt):.2g}% of the " "contact speed. "
+                "A rigid-body impact assumes the contact lasts an instant; for real bodies this glancing a touch " "may roll or rub instead."
             )
         return Readout(quantities, message=message)

@@ -170,7 +170,7 @@ class SliderCrankKineticsScene(IntegratedScene):
         ]
         notes = ["The guide is frictionless (guide friction is out of scope)."]
         if guide < 0.0:
-            notes.append("The guide force points down: the guide must hold the slider down here; a slider resting on a one-sided guide would lift off.")
+            notes.append("The guide force points down: the guide must hold the slider down here; a slider resting on a " "one-sided guide would lift off.")
         if params["drive"] == "speed" and forces.driving_torque_N_m[0] * self.run.y[1] < 0.0:
             notes.append("The torque opposes the motion: the motor is braking to hold the speed constant.")
         message = self.status or " ".join(notes)

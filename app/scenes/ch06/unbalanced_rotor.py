@@ -56,7 +56,7 @@ class UnbalancedRotorScene(Scene):
     }
     presets = (
         Preset("static", "Static imbalance", {"eccentricity_m": 0.002, "skew_deg": 0.0, "balanced": "off"},
-               "Centre of mass 2 mm off the shaft, disk square to it: each bearing carries its beam share of m e ω² plus the weight."),
+               "Centre of mass 2 mm off the shaft, disk square to it: each bearing carries its beam share of m e ω² " "plus the weight."),
         Preset("dynamic", "Dynamic imbalance", {"eccentricity_m": 0.0, "skew_deg": 3.0, "balanced": "off"},
                "Centre of mass on the shaft, disk tilted 3°: a turning couple, equal and opposite forces at A and B."),
         Preset("both", "Both", {"eccentricity_m": 0.001, "skew_deg": 2.0, "balanced": "off"},
@@ -193,14 +193,14 @@ class UnbalancedRotorScene(Scene):
                 "the drive must cancel it to keep the speed constant, and it averages to zero over a turn."
             )
         else:
-            torque = "The drive torque is zero: at constant speed, with the centre of mass on the shaft or no gravity, a rigid rotor needs none (no friction is modelled)."
+            torque = ("The drive torque is zero: at constant speed, with the centre of mass on the shaft or no " "gravity, a rigid rotor needs none (no friction is modelled).")
         if speed == 0.0:
             return "At rest: the bearings carry only the weight. " + torque
         parts = [torque]
         rotating = float(np.linalg.norm(steady.bearing_A_rotating_rotor_N))
         weight_share = steady.weight_shares_N[0]
         if rotating > weight_share > 0.0:
-            parts.append("At A the rotating force exceeds the weight: the reaction turns right round once a turn (a bearing with play would knock).")
+            parts.append("At A the rotating force exceeds the weight: the reaction turns right round once a turn (a " "bearing with play would knock).")
         if abs(speed) > DRAWN_SPIN_RAD_S:
             parts.append(f"The spin is drawn slowed to {DRAWN_SPIN_RAD_S:g} rad/s; the forces are those at ω = {speed:g} rad/s.")
         return " ".join(parts)

@@ -90,9 +90,9 @@ class ConfigurationSpaceScene(Scene):
         Preset("parked-hoop", "Hoop at rest (A = 0)", {"constraint": "rheonomic", "hoop_amplitude_m": 0.0},
                "With the hoop held still the constraint is scleronomic again, and dr falls back along δr."),
         Preset("parallel-park", "Parallel parking", {"constraint": "nonholonomic", "drive_distance_m": 0.8, "turn_angle_deg": 30.0},
-               "s = 0.8 m, α = 30°: each manoeuvre moves the knife edge s sin α = 0.4 m sideways, which no admissible velocity does directly."),
+               "s = 0.8 m, α = 30°: each manoeuvre moves the knife edge s sin α = 0.4 m sideways, which no " "admissible velocity does directly."),
         Preset("small-manoeuvre", "Small manoeuvre", {"constraint": "nonholonomic", "drive_distance_m": 0.2, "turn_angle_deg": 10.0},
-               "s = 0.2 m, α = 10°: the sideways step 0.03473 m is s α = 0.03491 m to leading order: second order in the size of the manoeuvre."),
+               "s = 0.2 m, α = 10°: the sideways step 0.03473 m is s α = 0.03491 m to leading order: second order " "in the size of the manoeuvre."),
     )
 
     def build(self) -> None:
@@ -291,9 +291,9 @@ class ConfigurationSpaceScene(Scene):
             Quantity("angle_dr_virtual_deg", "angle between dr and δr", snap.angle_between_deg, "deg"),
         ]
         if isinstance(self._system, physics.FixedEllipse):
-            message = "The wire does not move: g has no ∂g/∂t, so the actual dr obeys the same condition ∇g·dr = 0 as every δr, and lies along it."
+            message = ("The wire does not move: g has no ∂g/∂t, so the actual dr obeys the same condition ∇g·dr = " "0 as every δr, and lies along it.")
         else:
-            message = ("The hoop moves: δr (time frozen) is tangent to the hoop as it is now, but dr = ṙ dt also carries the hoop's "
+            message = ("The hoop moves: δr (time frozen) is tangent to the hoop as it is now, but dr = ṙ dt also " "carries the hoop's "
                        "own motion, so ∇g·dr = −∂g/∂t dt and the two arrows part.")
         return Readout(quantities, message=message)
 
@@ -314,6 +314,6 @@ class ConfigurationSpaceScene(Scene):
             Quantity("forward_drift_m", "forward step per manoeuvre, s (1 − cos α)", park.forward_drift_m, "m"),
             Quantity("sideways_so_far_m", "sideways from the start so far", sideways_so_far, "m"),
         ]
-        message = ("Every velocity the knife edge can have lies in the square spanned by drive and turn, so it never slips sideways; "
-                   "yet drive, turn, reverse, turn back ends s sin α to the side, along the bracket [drive, turn], which leaves the square.")
+        message = ("Every velocity the knife edge can have lies in the square spanned by drive and turn, so it never " "slips sideways; "
+                   "yet drive, turn, reverse, turn back ends s sin α to the side, along the bracket [drive, turn], " "which leaves the square.")
         return Readout(quantities, message=message)

@@ -60,13 +60,13 @@ class DoublePendulumScene(DerivedSystemScene):
     presets = (
         Preset("slow-mode", "Slow normal mode", {"m1_kg": 1.0, "m2_kg": 1.0, "l1_m": 1.0, "l2_m": 1.0, "theta1_0_deg": 5.0,
                "theta2_0_deg": round(5.0 * SLOW_MODE_RATIO, 4), "theta1_rate_0_deg_s": 0.0, "theta2_rate_0_deg_s": 0.0},
-               "θ₂ = √2 θ₁, in step: both rods swing together at ω = √((2 − √2) g/l); the point draws one closed loop on the torus."),
+               "θ₂ = √2 θ₁, in step: both rods swing together at ω = √((2 − √2) g/l); the point draws one closed " "loop on the torus."),
         Preset("fast-mode", "Fast normal mode", {"m1_kg": 1.0, "m2_kg": 1.0, "l1_m": 1.0, "l2_m": 1.0, "theta1_0_deg": 5.0,
                "theta2_0_deg": round(-5.0 * SLOW_MODE_RATIO, 4), "theta1_rate_0_deg_s": 0.0, "theta2_rate_0_deg_s": 0.0},
                "θ₂ = −√2 θ₁, opposed: ω = √((2 + √2) g/l), 2.4 times the slow mode's frequency."),
         Preset("chaotic", "Large swing (chaotic)", {"theta1_0_deg": 120.0, "theta2_0_deg": -30.0, "theta1_rate_0_deg_s": 0.0,
                "theta2_rate_0_deg_s": 200.0, "steps_per_frame": 0},
-               "Far from the bottom the motion never repeats: the point wanders over the whole torus, and the energy stays put."),
+               "Far from the bottom the motion never repeats: the point wanders over the whole torus, and the " "energy stays put."),
     )
 
     def build(self) -> None:

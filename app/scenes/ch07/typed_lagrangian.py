@@ -97,7 +97,7 @@ class TypedLagrangianScene(DerivedSystemScene):
         Preset("spring-pendulum", "Spring pendulum", SPRING_PENDULUM,
                "q₁ = stretch (m), q₂ = angle: the spring and the swing trade energy; T + V stays put."),
         Preset("spun-wire", "Bead on a spun wire (t explicit)", SPUN_WIRE,
-               "A wire turning at w in a vertical plane: V holds t, so the energy is not conserved. Started on the bounded "
+               "A wire turning at w in a vertical plane: V holds t, so the energy is not conserved. Started on the " "bounded "
                "solution q₁ = g/(2w²) sin wt, rounding slowly throws the bead off it."),
         Preset("lissajous", "Three springs (3 coordinates)", LISSAJOUS,
                "Three independent oscillators at 1, 2 and 3 rad/s: the point draws a Lissajous curve in the cube."),
@@ -215,7 +215,7 @@ class TypedLagrangianScene(DerivedSystemScene):
     def derivation_status(self) -> str:
         prepared = self.run_model.prepared(self.physical_params())
         derived_text = "from the derivation cache" if prepared.cached else f"derived by sympy in {prepared.derive_s:.2f} s"
-        return f"Lagrange's equations {derived_text}, in a bounded process; compiled by numba in {prepared.compile_s:.2f} s"
+        return (f"Lagrange's equations {derived_text}, in a bounded process; compiled by numba in " f"{prepared.compile_s:.2f} s")
 
     def readout(self) -> Readout:
         params = self.physical_params()

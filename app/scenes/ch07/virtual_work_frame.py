@@ -165,7 +165,7 @@ class VirtualWorkFrameScene(Scene):
             Quantity.or_text("guide_force_C_N", "guide force C_y on the slider (+ up)", None if check is None else check.guide_C_N, "N", "singular at the toggle position"),
         ]
         message = self._refusal or (
-            "The pins at A and B and the guide at C do no virtual work (A does not move, the two sides of B move together, "
+            "The pins at A and B and the guide at C do no virtual work (A does not move, the two sides of B move " "together, "
             "and C moves along its guide), so only the loads and Q enter δW = 0."
         )
         return Readout(quantities, message=message)

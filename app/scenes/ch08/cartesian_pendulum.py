@@ -49,7 +49,7 @@ class CartesianPendulumScene(IntegratedScene):
                "baumgarte_alpha_1_s": 200.0, "baumgarte_beta_1_s": 200.0},
                "h·α = 6.7 with h = 33 ms: the error's own dynamics are too fast for the step and the run blows up."),
         Preset("inconsistent", "Inconsistent start", {**UNIT, "g_m_s2": 9.81, "x0_m": 1.2, "y0_m": 0.4, "vx0_m_s": 1.0, "vy0_m_s": 1.0, "method": "auto"},
-               "(1.2, 0.4) m is off the circle and the velocity has a part along the rod: the nearest consistent start is used."),
+               "(1.2, 0.4) m is off the circle and the velocity has a part along the rod: the nearest consistent " "start is used."),
     )
 
     def build(self) -> None:

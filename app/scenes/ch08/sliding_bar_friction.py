@@ -45,9 +45,9 @@ class SlidingBarFrictionScene(IntegratedScene):
         Preset("stick-then-slip", "Pivots, then breaks loose", {"angle0_deg": 60.0, "slide_speed0_m_s": 0.0, "mu": 0.5},
                "Released at rest: B sticks and the bar pivots until |F| reaches μN at 31.8° (t = 0.345 s), then B slides."),
         Preset("near-jam", "Braked towards the band", {"angle0_deg": 45.0, "slide_speed0_m_s": 3.0, "mu": 1.5},
-               "μ = 1.5: friction tips the bar up towards the Painlevé band (50.6°–73.0°); N peaks at 49.5 N (5 m g) and B stops at 47.3°, short of it."),
+               "μ = 1.5: friction tips the bar up towards the Painlevé band (50.6°–73.0°); N peaks at 49.5 N (5 m " "g) and B stops at 47.3°, short of it."),
         Preset("painleve", "Painlevé's paradox", {"angle0_deg": 63.4, "slide_speed0_m_s": 1.0, "mu": 1.5},
-               "Sliding away from the lean at tan θ ≈ 2 with μ = 1.5 > 4/3: no contact force N ≥ 0 fits — detected and stopped."),
+               "Sliding away from the lean at tan θ ≈ 2 with μ = 1.5 > 4/3: no contact force N ≥ 0 fits — detected " "and stopped."),
         Preset("painleve-reversed", "Same, sliding the other way", {"angle0_deg": 63.4, "slide_speed0_m_s": -1.0, "mu": 1.5},
                "The same bar and angle with B sliding towards the lean: D > 0, the motion is consistent."),
     )

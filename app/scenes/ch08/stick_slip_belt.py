@@ -156,7 +156,7 @@ class StickSlipBeltScene(IntegratedScene):
             return self.status
         if mode == physics.STICK:
             return (
-                f"Sticking: the block rides with the belt at {params['belt_speed_m_s']:g} m/s; friction holds the spring, "
+                f"Sticking: the block rides with the belt at {params['belt_speed_m_s']:g} m/s; friction holds " "the spring, "
                 f"|F| = {abs(self._friction):.3f} N ≤ μ_s N = {self._limit:.3f} N."
             )
         words = f"Slipping: friction is μ_k N = {self._limit:.3f} N against the relative velocity"

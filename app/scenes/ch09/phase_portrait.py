@@ -52,9 +52,9 @@ class PhasePortraitScene(DerivedSystemScene):
         Preset("small-swing", "Small swing", {"theta_0_deg": 15.0, "theta_rate_0_deg_s": 0.0},
                "H = −m g l cos 15°: the state goes round a small, nearly elliptical level set (a harmonic oscillator)."),
         Preset("near-separatrix", "Near the separatrix", {"theta_0_deg": 175.0, "theta_rate_0_deg_s": 0.0},
-               "Released 5° from upright: the orbit hugs the separatrix and lingers near θ = ±180°; the period grows without bound as the release nears 180°."),
+               "Released 5° from upright: the orbit hugs the separatrix and lingers near θ = ±180°; the period " "grows without bound as the release nears 180°."),
         Preset("over-the-top", "Going over the top", {"theta_0_deg": 0.0, "theta_rate_0_deg_s": 420.0},
-               "θ̇₀ = 420°/s at the bottom exceeds 2√(g/l) = 359°/s (l = 1 m): H > m g l, the pendulum rotates and p_θ never changes sign."),
+               "θ̇₀ = 420°/s at the bottom exceeds 2√(g/l) = 359°/s (l = 1 m): H > m g l, the pendulum rotates and " "p_θ never changes sign."),
     )
 
     def build(self) -> None:

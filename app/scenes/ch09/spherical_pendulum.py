@@ -47,11 +47,11 @@ class SphericalPendulumScene(DerivedSystemScene):
     presets = (
         Preset("conical", "Steady cone", {"mass_kg": 1.0, "length_m": 1.0, "g_m_s2": 9.81, "theta_0_deg": 60.0, "theta_rate_0_deg_s": 0.0,
                "phi_rate_0_deg_s": round(math.degrees(math.sqrt(9.81 / math.cos(math.radians(60.0)))), 4)},
-               "φ̇₀ = √(g/(l cos θ₀)) = 6.26 rad/s at 60°: θ sits at the bottom of V_eff and the bob draws a horizontal circle."),
+               "φ̇₀ = √(g/(l cos θ₀)) = 6.26 rad/s at 60°: θ sits at the bottom of V_eff and the bob draws a " "horizontal circle."),
         Preset("wide-band", "Wide band", {"theta_0_deg": 90.0, "theta_rate_0_deg_s": 0.0, "phi_rate_0_deg_s": 60.0},
-               "Started level with the pivot and a slow sweep: the bob dips far below and climbs back, θ between the two crossings of E with V_eff."),
+               "Started level with the pivot and a slow sweep: the bob dips far below and climbs back, θ between " "the two crossings of E with V_eff."),
         Preset("above-pivot", "Swinging above the pivot", {"theta_0_deg": 135.0, "theta_rate_0_deg_s": 0.0, "phi_rate_0_deg_s": 400.0},
-               "Fast enough that the bob stays above the pivot part of the time: V_eff keeps θ away from 180°, however high it goes."),
+               "Fast enough that the bob stays above the pivot part of the time: V_eff keeps θ away from 180°, " "however high it goes."),
     )
 
     def build(self) -> None:

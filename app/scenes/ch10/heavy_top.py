@@ -225,14 +225,14 @@ class HeavyTopScene(IntegratedScene):
             # Without gravity nothing pulls an upright top over: there is no threshold to cross.
             quantities.append(Quantity.word("critical_spin_rad_s", "sleeping threshold |ω₃|", "none: no gravity"))
             message = self.reference_message or (
-                "g = 0: no gravity, so no torque about the pivot; the top moves as a torque-free body and any spin, even none, keeps an upright top up."
+                "g = 0: no gravity, so no torque about the pivot; the top moves as a torque-free body and any " "spin, even none, keeps an upright top up."
             )
             return Readout(quantities, marks={}, message=message)
         quantities.append(Quantity("critical_spin_rad_s", "sleeping threshold |ω₃|", critical, "rad/s"))
         message = self.reference_message or (
-            f"|ω₃| = {spin:.4g} rad/s is above the sleeping threshold {critical:.4g} rad/s: started upright, this top would stay up."
+            f"|ω₃| = {spin:.4g} rad/s is above the sleeping threshold {critical:.4g} rad/s: started upright, " "this top would stay up."
             if spin > critical
-            else f"|ω₃| = {spin:.4g} rad/s is below the sleeping threshold {critical:.4g} rad/s: an upright start is unstable."
+            else f"|ω₃| = {spin:.4g} rad/s is below the sleeping threshold {critical:.4g} rad/s: an upright " "start is unstable."
         )
         marks = {"spin_rad_s": [Mark(critical, "sleeping threshold"), Mark(-critical, "sleeping threshold")]}
         return Readout(quantities, marks=marks, message=message)

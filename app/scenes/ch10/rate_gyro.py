@@ -283,9 +283,9 @@ class RateGyroScene(Scene):
                 Quantity("phase_lag_deg", "phase lag of β behind Ω", math.degrees(lag), "deg"),
             ]
             message = (
-                "Undamped and driven at its natural frequency: resonance. β = (G Ω₀/2)(sin ω_n t − ω_n t cos ω_n t) grows in proportion to t."
+                "Undamped and driven at its natural frequency: resonance. β = (G Ω₀/2)(sin ω_n t − ω_n t cos ω_n " "t) grows in proportion to t."
                 if physics.resonant(params)
-                else "The case rocks at the input frequency; after the start-up transient β is a sine with the gain and lag above."
+                else "The case rocks at the input frequency; after the start-up transient β is a sine with the " "gain and lag above."
             )
         else:
             quantities.append(Quantity("hold_s", "turntable runs, then rests, for", self._hold_s, "s"))

@@ -60,7 +60,7 @@ PRESETS = (
     Preset(
         "tennis-racket", "Tennis racket: spin about the intermediate axis",
         {**_BOOK, "omega0_rad_s": [0.1, 4.0, 0.1]},
-        "The book spun about axis 2 (the middle moment) with a tiny wobble: it turns over every few seconds (Dzhanibekov effect).",
+        "The book spun about axis 2 (the middle moment) with a tiny wobble: it turns over every few seconds " "(Dzhanibekov effect).",
     ),
     Preset(
         "major-axis", "Near the major axis (stable)",
@@ -309,12 +309,12 @@ class TorqueFreeBodyScene(Scene):
         if self.ghost_status:
             return f"Ghost stopped: {self.ghost_status}"
         if body.kind == "steady":
-            return "Steady rotation about a principal axis: ω and L are parallel, the polhode and herpolhode are single points."
+            return ("Steady rotation about a principal axis: ω and L are parallel, the polhode and herpolhode are " "single points.")
         if body.kind == "separatrix":
             return "Exactly on the separatrix: ω creeps towards the intermediate axis and never quite arrives."
         if next_flip is not None:
             return (
-                f"Intermediate-axis tumble: axis {body.intermediate_axis + 1} turns over every {0.5 * body.period_s:.3g} s "
+                f"Intermediate-axis tumble: axis {body.intermediate_axis + 1} turns over every " f"{0.5 * body.period_s:.3g} s "
                 "while |L| and T stay fixed."
             )
         if body.circled_axis is not None:

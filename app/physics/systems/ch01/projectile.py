@@ -277,13 +277,13 @@ def solve(inputs: Mapping[str, Any]) -> Solution:
         ),
         Step(
             "Work–energy: kinetic energy change equals the work done",
-            r"T_2 - T_1 = \underbrace{-mg(z_2 - z_1)}_{W_g} + \underbrace{\int_{t_1}^{t_2} \bar F_d\cdot\bar v\,dt}_{W_d}",
+            r"T_2 - T_1 = \underbrace{-mg(z_2 - z_1)}_{W_g} + \underbrace{\int_{t_1}^{t_2} \bar F_d\cdot\bar " r"v\,dt}_{W_d}",
             {"T1": traj.kinetic_energy_J[0], "T2": traj.kinetic_energy_J[-1], "W_g": Wg, "W_d": Wd, "residual": energy_residual},
             {"T1": "J", "T2": "J", "W_g": "J", "W_d": "J", "residual": "J"},
         ),
         Step(
             "Impulse–momentum: momentum change equals the impulse",
-            r"m\bar v_2 - m\bar v_1 = \underbrace{-mg\,t\,\bar k}_{\bar I_g} + \underbrace{\int_{t_1}^{t_2}\bar F_d\,dt}_{\bar I_d}",
+            r"m\bar v_2 - m\bar v_1 = \underbrace{-mg\,t\,\bar k}_{\bar I_g} + \underbrace{\int_{t_1}^{t_2}\bar " r"F_d\,dt}_{\bar I_d}",
             {"m_dv": dp, "I_g": Ig, "I_d": Id, "residual": momentum_residual},
             {"m_dv": "N·s", "I_g": "N·s", "I_d": "N·s", "residual": "N·s"},
         ),

@@ -159,5 +159,5 @@ class CartesianParticle(ClosedFormModel):
                 "the ground, where a real one would have stopped."
             )
         elif isinstance(motion, SineSlot) and t_s[-1] > motion.run_s:
-            warning = f"The slot is one wavelength long (x ≤ 2L = {2 * motion.half_wavelength_m:g} m, reached at t = {motion.run_s:.4g} s); after that the formula follows the slot's sine on past its end."
+            warning = (f"The slot is one wavelength long (x ≤ 2L = {2 * motion.half_wavelength_m:g} m, reached at " f"t = {motion.run_s:.4g} s); after that the formula follows the slot's sine on past its " "end.")
         return ClosedFormSolution(series=series, warning=warning)

@@ -158,7 +158,7 @@ def _check(values: Mapping[str, Any]) -> None:
     if reach > ARM_HALF_LENGTH_M:
         raise ParameterError(
             "collar_amplitude_m",
-            f"the collar would slide off the arm: |r₀| + b = {reach:g} m, but the arm reaches {ARM_HALF_LENGTH_M:g} m each side of the pivot",
+            f"the collar would slide off the arm: |r₀| + b = {reach:g} m, but the arm reaches " f"{ARM_HALF_LENGTH_M:g} m each side of the pivot",
         )
 
 
@@ -184,7 +184,7 @@ class CollarOnRotatingArm(ClosedFormModel):
         "a_sliding": "m/s^2", "a_centripetal": "m/s^2", "a_angular": "m/s^2", "a_coriolis": "m/s^2",
         "speed": "m/s", "a_tangential": "m/s^2", "a_normal": "m/s^2",
     }
-    description = "θ = Ω t + α t²/2 and r = r₀ + b sin(ω_c t) in closed form; v and a from the polar formulas on the arm's unit vectors"
+    description = ("θ = Ω t + α t²/2 and r = r₀ + b sin(ω_c t) in closed form; v and a from the polar formulas on " "the arm's unit vectors")
 
     def evaluate(self, params: Mapping[str, Any], t_s: np.ndarray) -> ClosedFormSolution:
         state = RotatingArm.from_params(params).at(t_s)
@@ -199,5 +199,5 @@ class CollarOnRotatingArm(ClosedFormModel):
         }
         warning = ""
         if np.any(np.isnan(a_t)):
-            warning = "The collar is momentarily at rest at some frames: a_t and a_n (the path variables) are undefined there (null)."
+            warning = ("The collar is momentarily at rest at some frames: a_t and a_n (the path variables) are " "undefined there (null).")
         return ClosedFormSolution(series=series, warning=warning)

@@ -161,7 +161,7 @@ def check_curve_span(curve: SpaceCurve, t_s: np.ndarray) -> None:
     raise CurveError(
         COMPONENTS[axis],
         f"{what} reaches {value:.3g} at t = {t[index]:.4g} s, beyond the bound of {MAX_CURVE_MAGNITUDE:g} (SI units) "
-        f"within the span 0 to {t[-1]:.4g} s it is drawn over: shorten the span or type a formula that grows more slowly",
+        f"within the span 0 to {t[-1]:.4g} s it is drawn over: shorten the span or type a formula that grows " "more slowly",
     )
 
 

@@ -85,7 +85,7 @@ class CrankRange:
                 if lo - 1e-9 <= angle_rad <= hi + 1e-9:
                     return lo, hi
         raise ValueError(
-            f"the loop cannot close with the crank at {math.degrees(angle_rad):.1f}°: with these lengths {self.describe()}"
+            f"the loop cannot close with the crank at {math.degrees(angle_rad):.1f}°: with these lengths " f"{self.describe()}"
         )
 
 
@@ -383,15 +383,15 @@ class FourBarMotion:
         events = []
         for t, angle in self.drive.reversal_times(t_end_s):
             events.append(Event(t, "toggle", (
-                f"toggle position at crank angle {math.degrees(angle):.1f}°: the coupler and rocker are in line, so the "
-                f"rocker rate is unbounded here; the crank cannot turn further, so it reverses and the linkage stays "
+                f"toggle position at crank angle {math.degrees(angle):.1f}°: the coupler and rocker are " "in line, so the "
+                "rocker rate is unbounded here; the crank cannot turn further, so it reverses and the " "linkage stays "
                 f"in the {self.branch} assembly"
             )))
         for angle in self.crank_range.singular_angles_rad:
             for t in self.drive.times_at_angle(angle, t_end_s):
                 events.append(Event(t, "change-point", (
-                    f"change point at crank angle {math.degrees(angle):.1f}°: all four links are in line, so the coupler "
-                    f"and rocker rates are undefined (0/0) and the linkage could switch assembly; this motion stays in "
+                    f"change point at crank angle {math.degrees(angle):.1f}°: all four links are in " "line, so the coupler "
+                    "and rocker rates are undefined (0/0) and the linkage could switch assembly; this " "motion stays in "
                     f"the {self.branch} assembly"
                 )))
         return sorted(events, key=lambda e: e.t_s)
@@ -462,7 +462,7 @@ class FourBarLinkage(ClosedFormModel):
         "coupler_point_y": "m",
     }
     invariant_units = {"loop_closure_residual": "m"}
-    description = "loop closure (two-circle intersection) for positions; differentiated loop equations (2×2 linear solves) for rates"
+    description = ("loop closure (two-circle intersection) for positions; differentiated loop equations (2×2 " "linear solves) for rates")
 
     def evaluate(self, params: Mapping[str, Any], t_s: np.ndarray) -> ClosedFormSolution:
         motion = FourBarMotion.from_params(params)

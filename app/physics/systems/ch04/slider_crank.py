@@ -188,7 +188,7 @@ class SliderCrankMechanism(ClosedFormModel):
         "rod_acceleration": "rad/s²",
     }
     invariant_units = {"loop_closure_residual": "m"}
-    description = "loop closure for the slider position; differentiated loop equations (2×2 linear solves) for velocity and acceleration"
+    description = ("loop closure for the slider position; differentiated loop equations (2×2 linear solves) for " "velocity and acceleration")
 
     def evaluate(self, params: Mapping[str, Any], t_s: np.ndarray) -> ClosedFormSolution:
         motion = SliderCrankMotion.from_params(params)

@@ -98,8 +98,8 @@ def _check(values: Mapping[str, Any]) -> None:
     if lowest < START_CLEARANCE_M:
         raise ParameterError(
             "drop_height_m",
-            f"must put the lower end at least {START_CLEARANCE_M * 1e3:g} mm above the floor: with L = {values['length_m']:g} m "
-            f"at {values['angle0_deg']:g}° the centre needs h₀ ≥ {values['drop_height_m'] - lowest + START_CLEARANCE_M:.4g} m",
+            f"must put the lower end at least {START_CLEARANCE_M * 1e3:g} mm above the floor: with L = " f"{values['length_m']:g} m "
+            f"at {values['angle0_deg']:g}° the centre needs h₀ ≥ " f"{values['drop_height_m'] - lowest + START_CLEARANCE_M:.4g} m",
         )
 
 
@@ -455,7 +455,7 @@ def mode_message(params: Mapping[str, Any], y: np.ndarray) -> str:
     if mode == SETTLED_ON_END:
         return (
             f"Settled on one end at t = {y[LAST_T]:.2f} s: the last impact left that end on the floor, tilted "
-            f"θ = {math.degrees(math.remainder(float(y[THETA]), 2 * math.pi)):.1f}°, at rest. From here the bar would pivot or "
+            f"θ = {math.degrees(math.remainder(float(y[THETA]), 2 * math.pi)):.1f}°, at rest. From here the bar " "would pivot or "
             "slide down in continuous contact, which this impact model does not follow, so the motion stops here."
         )
     return f"In flight between impacts; e = {params['restitution']:g}, μ = {params['friction_coefficient']:g}."

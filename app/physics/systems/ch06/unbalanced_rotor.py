@@ -81,11 +81,11 @@ class DiskOnShaft:
         if not 0.0 <= self.disk_position_m <= self.bearing_span_m:
             raise ParameterError(
                 "disk_position_m",
-                f"the disk ({self.disk_position_m:g} m from A) must sit between the bearings (0 to {self.bearing_span_m:g} m)",
+                f"the disk ({self.disk_position_m:g} m from A) must sit between the bearings (0 to " f"{self.bearing_span_m:g} m)",
             )
         if not 0.0 <= self.eccentricity_m < self.disk_radius_m:
             raise ParameterError(
-                "eccentricity_m", f"the eccentricity ({self.eccentricity_m:g} m) must be less than the disk's radius ({self.disk_radius_m:g} m)"
+                "eccentricity_m", f"the eccentricity ({self.eccentricity_m:g} m) must be less than the disk's radius " f"({self.disk_radius_m:g} m)"
             )
 
     @property
@@ -210,7 +210,7 @@ class UnbalancedRotor:
         if abs(planes[1] - planes[0]) < MIN_PLANE_SEPARATION * span:
             raise ParameterError(
                 "correction_plane_2_m",
-                f"the two correction planes must be at least {MIN_PLANE_SEPARATION * span:g} m apart (2% of the bearing span)",
+                f"the two correction planes must be at least {MIN_PLANE_SEPARATION * span:g} m apart (2% of the " "bearing span)",
             )
         correction = two_plane_correction((disk.part(),), planes_m=planes, radius_m=params["correction_radius_m"])
         return cls(disk, params["shaft_speed_rad_s"], params["g_m_s2"], correction, params["balanced"] == "on")
@@ -341,7 +341,7 @@ class UnbalancedRotorModel(ClosedFormModel):
 
     parameters = PARAMETERS
     series_units = {"spin_angle": "rad", "bearing_A_force_N": "N", "bearing_B_force_N": "N", "driving_torque_Nm": "N·m"}
-    description = "Newton–Euler for a rigid rotor at constant speed: the inertial loads are fixed in the rotor frame (closed form)"
+    description = ("Newton–Euler for a rigid rotor at constant speed: the inertial loads are fixed in the rotor " "frame (closed form)")
 
     def evaluate(self, params: Mapping[str, Any], t_s: np.ndarray) -> ClosedFormSolution:
         loads = UnbalancedRotor.from_params(params).at(t_s)

@@ -227,9 +227,9 @@ def singular_message(system: SystemDescription, t_before_s: float, t_after_s: fl
         f"becomes singular (the inertia along {rate} vanishes)"
     )
     return (
-        f"Stopped at t = {t_before_s:.2f} s: before t = {t_after_s:.2f} s the motion reaches {where}, where the mass matrix "
+        f"Stopped at t = {t_before_s:.2f} s: before t = {t_after_s:.2f} s the motion reaches {where}, where the " "mass matrix "
         f"∂²T/∂q̇² {lost}. There "
-        f"Lagrange's equations cannot give the accelerations: the coordinates themselves fail (as polar coordinates do at "
+        "Lagrange's equations cannot give the accelerations: the coordinates themselves fail (as polar " "coordinates do at "
         f"r = 0), and the motion beyond is not this Lagrangian's."
     )
 
@@ -242,7 +242,7 @@ class TypedLagrangianMotion(DerivedModel):
             Parameter("coordinates", "", 2, 1, 3, "How many generalized coordinates: q1, q1…q2 or q1…q3", "n", kind="int", step=1),
             Parameter(
                 "kinetic_energy", "J", DEFAULT_KINETIC_ENERGY, kind="text", max_length=MAX_ENERGY_LENGTH, label="T",
-                description="Kinetic energy in q1…q3, their rates q1d…q3d, t and your constants; + - * / ^ ( ) sqrt sin cos tan exp log pi",
+                description=("Kinetic energy in q1…q3, their rates q1d…q3d, t and your constants; + - * / ^ ( ) " "sqrt sin cos tan exp log pi"),
             ),
             Parameter(
                 "potential_energy", "J", DEFAULT_POTENTIAL_ENERGY, kind="text", max_length=MAX_ENERGY_LENGTH, label="V",
@@ -250,7 +250,7 @@ class TypedLagrangianMotion(DerivedModel):
             ),
             Parameter(
                 "parameters", "", DEFAULT_PARAMETERS, kind="text", max_length=200, label="constants", parse=parse_constants,
-                description=f"Named constants, comma-separated: name = number (at most {MAX_PARAMETERS}), e.g. m = 1, l = 0.5, g = 9.81",
+                description=(f"Named constants, comma-separated: name = number (at most {MAX_PARAMETERS}), e.g. m " "= 1, l = 0.5, g = 9.81"),
             ),
             Parameter("q0_rad", "rad", [1.0, 0.0, 0.0], -100.0, 100.0, "Initial q1, q2, q3 (only the first n are used)", "q₀", kind="vector"),
             Parameter("qd0_rad_s", "rad/s", [0.0, 0.0, 0.0], -1000.0, 1000.0, "Initial rates q̇1, q̇2, q̇3 (only the first n are used)", "q̇₀", kind="vector"),

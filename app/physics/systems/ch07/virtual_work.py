@@ -86,8 +86,8 @@ class TogglePress:
         if self._bc_reach_m < LEAST_BC_COSINE * b:
             raise ParameterError(
                 "bar_BC_m",
-                f"bar BC (b = {b:g} m) must reach line AC well clear of the vertical: b cos(BC's angle) ≥ {LEAST_BC_COSINE:g} b "
-                f"needs b ≥ {a * math.sin(theta) / math.sqrt(1.0 - LEAST_BC_COSINE**2):.4g} m at a = {a:g} m and θ = {math.degrees(theta):g}°",
+                f"bar BC (b = {b:g} m) must reach line AC well clear of the vertical: b cos(BC's angle) ≥ " f"{LEAST_BC_COSINE:g} b "
+                f"needs b ≥ {a * math.sin(theta) / math.sqrt(1.0 - LEAST_BC_COSINE**2):.4g} m at a = {a:g} m and " f"θ = {math.degrees(theta):g}°",
             )
 
     @classmethod
@@ -147,7 +147,7 @@ def holding_force_by_virtual_work(press: TogglePress) -> float:
                 "the virtual-work equation holds for every Q, so it does not fix Q"
             )
         raise TogglePositionError(
-            f"θ (deg): at θ = {math.degrees(press.angle_rad):g}° the bars lie in line (the toggle position): δx_C = 0 for "
+            f"θ (deg): at θ = {math.degrees(press.angle_rad):g}° the bars lie in line (the toggle position): " "δx_C = 0 for "
             f"every δθ, so Q does no virtual work while the loads do {loads:.4g} N·m per rad; no finite Q holds them "
             "(the force needed grows like 1/θ as θ → 0)"
         )
@@ -348,7 +348,7 @@ class SliderCrankVirtualWork(ClosedFormModel):
         "constraint_virtual_work_N_m": "N·m",
     }
     invariant_units = {"torque_difference": "N·m"}
-    description = "dynamic virtual work τ = Σ(m a − F)·r′ + Σ I α φ′ with the chapter-4 kinematic coefficients, against the 8×8 Newton–Euler solve"
+    description = ("dynamic virtual work τ = Σ(m a − F)·r′ + Σ I α φ′ with the chapter-4 kinematic coefficients, " "against the 8×8 Newton–Euler solve")
 
     def evaluate(self, params: Mapping[str, Any], t_s: np.ndarray) -> ClosedFormSolution:
         links = kinetics.SliderCrankLinks.from_params(params)

@@ -306,7 +306,7 @@ def stop_message(params: Mapping[str, Any], event: EventRecord) -> str:
     if event.index == LIFT_OFF:
         return f"The lower end leaves the floor (N = 0) {where}: free flight is not modelled, so the run stops here."
     if event.index == LANDS:
-        return f"The bar lands flat {where}: the landing impact is not modelled here (see the sliding ladder, 6.2); the run stops."
+        return (f"The bar lands flat {where}: the landing impact is not modelled here (see the sliding ladder, " "6.2); the run stops.")
     if event.index != JAM_STOP:
         return ""
     forces = contact_forces(params, state)[0]
@@ -317,10 +317,10 @@ def stop_message(params: Mapping[str, Any], event: EventRecord) -> str:
     elif numerator > 0.0:
         why = f"sliding would need N = m(g − (L/2)θ̇² sin θ)/D < 0 with D = {factor:.3f}: no contact force N ≥ 0 fits"
     else:
-        why = f"with D = {factor:.3f} and a negative numerator both sliding with N > 0 and lifting off fit: the motion is not unique"
+        why = (f"with D = {factor:.3f} and a negative numerator both sliding with N > 0 and lifting off fit: the " "motion is not unique")
     return (
         f"No consistent contact force: Painlevé's paradox at θ = {theta_deg:.2f}°, μ = {params['mu']:.2f} "
-        f"(t = {event.t_s:.4f} s, B sliding {direction} the side the bar leans to): {why}. The run stops here, not integrated further."
+        f"(t = {event.t_s:.4f} s, B sliding {direction} the side the bar leans to): {why}. The run stops here, " "not integrated further."
     )
 
 

@@ -63,7 +63,7 @@ def _check(values: Mapping[str, Any]) -> None:
     if values["mu_kinetic"] > values["mu_static"]:
         raise ParameterError(
             "mu_kinetic",
-            f"the kinetic coefficient ({values['mu_kinetic']:g}) may not exceed the static one ({values['mu_static']:g})",
+            f"the kinetic coefficient ({values['mu_kinetic']:g}) may not exceed the static one " f"({values['mu_static']:g})",
         )
 
 

@@ -43,7 +43,7 @@ RESONANCE_TOLERANCE = 1e-9
 
 def _check(values: Mapping[str, Any]) -> None:
     if values["spin_rad_s"] == 0.0:
-        raise ParameterError("spin_rad_s", "must be non-zero: without spin the rotor has no angular momentum and the gimbal cannot sense rate (the gain I_a ω_s / k would be zero)")
+        raise ParameterError("spin_rad_s", "must be non-zero: without spin the rotor has no angular momentum and the gimbal cannot sense rate " "(the gain I_a ω_s / k would be zero)")
 
 
 def resonant(params: Mapping[str, Any]) -> bool:
@@ -66,9 +66,9 @@ def small_angle_excess(t_s: np.ndarray, beta_rad: np.ndarray) -> tuple[float, fl
 def small_angle_warning(first_t_s: float, largest_beta_rad: float) -> str:
     """The sentence a student reads when the response leaves the small-angle model."""
     return (
-        f"Outside the model: from t = {first_t_s:.4g} s the gimbal deflection |β| exceeds {SMALL_ANGLE_LIMIT_RAD:g} rad "
-        f"({math.degrees(SMALL_ANGLE_LIMIT_RAD):.0f}°), reaching {largest_beta_rad:.3g} rad; the output equation assumes a small β "
-        "(sin β ≈ β), so the numbers beyond it are the linear model's, not a real gyro's (a real gimbal hits its stops)."
+        f"Outside the model: from t = {first_t_s:.4g} s the gimbal deflection |β| exceeds " f"{SMALL_ANGLE_LIMIT_RAD:g} rad "
+        f"({math.degrees(SMALL_ANGLE_LIMIT_RAD):.0f}°), reaching {largest_beta_rad:.3g} rad; the output equation " "assumes a small β "
+        "(sin β ≈ β), so the numbers beyond it are the linear model's, not a real gyro's (a real gimbal hits its " "stops)."
     )
 
 

@@ -219,7 +219,7 @@ def check_inputs(*, I_transverse: float, I_axial: float, spin_rad_s: float, nuta
     if not (math.isfinite(nutation_deg) and 0.0 <= nutation_deg <= MAX_NUTATION_DEG):
         raise ParameterError(
             "nutation_deg",
-            f"must lie between 0° and {MAX_NUTATION_DEG:g}°: at 90° the axis is perpendicular to L and L = I_a·ω₃/cos θ is undefined",
+            f"must lie between 0° and {MAX_NUTATION_DEG:g}°: at 90° the axis is perpendicular to L and L = " "I_a·ω₃/cos θ is undefined",
         )
 
 
