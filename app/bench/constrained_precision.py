@@ -271,8 +271,13 @@ def run_benchmark(case_ids: Sequence[str] | None = None, *, quick: bool = False)
     progress = Progress(runs)
     report: dict[str, Any] = {
         "created": datetime.now(UTC).isoformat(timespec="seconds"), "machine": _machine(),
-        "error_measure": "largest |q − q_ref| over all coordinates at the final time, in each coordinate's unit (m or rad)",
-        "residuals": "position_residual: largest |g(q)| (m, or rad for angle constraints); velocity_residual: largest |C v| (m/s or rad/s), both at the final time",
+        "error_measure": (
+            "largest |q − q_ref| over all coordinates at the final time, in each coordinate's unit (m or rad)"
+        ),
+        "residuals": (
+            "position_residual: largest |g(q)| (m, or rad for angle constraints); "
+            "velocity_residual: largest |C v| (m/s or rad/s), both at the final time"
+        ),
         "cases": [],
     }
     for case in cases:

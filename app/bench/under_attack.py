@@ -281,7 +281,9 @@ def run_attack(options: LoadOptions) -> dict:
             ),
             "windows": "before the attack, then under attack, on the same connected students, each of `seconds`",
             "frame": "one binary websocket message (a viser frame window), counted per client over the window",
-            "counted": "every student connected at the window's start; one cut off meanwhile counts with what it received",
+            "counted": (
+                "every student connected at the window's start; one cut off meanwhile counts with what it received"
+            ),
             "health_period_s": 0.25,
             "health_slow_s": 2.0,
         },

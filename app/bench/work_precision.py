@@ -543,8 +543,8 @@ def run_benchmark(case_ids: Sequence[str] | None = None, *, include_mujoco: bool
             ratio = theirs / ours
             ratios.append({"baseline": baseline, "at_error": case.target_error, "ratio": ratio, "ours_cpu_s": ours, "theirs_cpu_s": theirs,
                            "ours": case.default_method,
-                           "text": f"At {case.target_error:.0e} {'rad'} error, {case.default_method} needs {ours * 1e3:.3g} ms of CPU; "
-                                   f"{base['label']} needs {theirs * 1e3:.3g} ms: {ratio:.0f}× more."})
+                           "text": f"At {case.target_error:.0e} {'rad'} error, {case.default_method} needs "
+                                   f"{ours * 1e3:.3g} ms of CPU; {base['label']} needs {theirs * 1e3:.3g} ms: {ratio:.0f}× more."})
         ratios.extend(best_ratios(methods))
         report["scenes"].append(
             {
@@ -556,10 +556,14 @@ def run_benchmark(case_ids: Sequence[str] | None = None, *, include_mujoco: bool
         )
     report["ratio_summary"] = ratio_summary(report["scenes"])
     report["timing"] = {
-        "rule": f"every run warm; least process CPU time of up to {TIMING_REPEATS} runs, stopping once the runs have used "
-                f"{TIMING_BUDGET_S:g} s (at least {TIMING_MIN_REPEATS} runs); the same rule for ours, scipy and MuJoCo",
-        "mujoco": "compiled model, contacts, constraints and the energy computation off; one mj_step(model, data, nstep) call per "
-                  "frame, model compilation not timed",
+        "rule": (
+            f"every run warm; least process CPU time of up to {TIMING_REPEATS} runs, stopping once the runs have used "
+            f"{TIMING_BUDGET_S:g} s (at least {TIMING_MIN_REPEATS} runs); the same rule for ours, scipy and MuJoCo"
+        ),
+        "mujoco": (
+            "compiled model, contacts, constraints and the energy computation off; "
+            "one mj_step(model, data, nstep) call per frame, model compilation not timed"
+        ),
     }
     if include_mujoco and "heavy-top-slow" in (case_ids or CASES):
         report["timing"]["mujoco_batch_check"] = mujoco_batch_check(CASES["heavy-top-slow"]())

@@ -75,7 +75,9 @@ def cache_directory() -> Path:
 NOT_FINITE_BECAUSE = {
     "overflow": "a number overflows (exceeds 1.8e308, the largest double-precision number)",
     "divide": "it divides by zero",
-    "domain": "a square root, logarithm or other function is taken outside its domain (of a negative or infinite number)",
+    "domain": (
+        "a square root, logarithm or other function is taken outside its domain (of a negative or infinite number)"
+    ),
     "singular": "the mass matrix is singular there, so the accelerations cannot be solved for",
     "not_finite": "a value is infinite or undefined",
 }

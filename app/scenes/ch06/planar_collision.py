@@ -180,7 +180,9 @@ class PlanarCollisionScene(Scene):
         ]
         words = {
             "slid throughout": "The contact points slid over each other for the whole impact; friction took μ Pₙ.",
-            "stuck": "Friction stopped the sliding during the impact and the contact points then moved together (stuck).",
+            "stuck": (
+                "Friction stopped the sliding during the impact and the contact points then moved together (stuck)."
+            ),
             "reversed": "The sliding stopped and started again the other way.",
         }
         message = words[c.impact.slip_state]
