@@ -44,8 +44,8 @@ SPEED_TOLERANCE = 1e-9
 CURVATURE_TOLERANCE = 1e-9
 #: Largest expression tree (nodes) allowed for r', r'' and r''' in turn: each
 #: order can multiply the size, and sympy's time to differentiate grows faster
-#: than the size. With these limits the slowest formulas we found compile in
-#: well under a second; typical curves take 10-50 ms.
+#: than the size. These limits keep the slowest formulas we found compiling in
+#: well under a second.
 MAX_DERIVATIVE_NODES = (300, 600, 3000)
 #: Largest component of r, r', r'' or r''' (m, m/s, m/s², m/s³) a curve may reach over the span it is
 #: drawn on. The viewer draws in float32 (largest 3.4e38), and the path variables raise these to at most

@@ -308,9 +308,9 @@ class TorqueFreeBody(ClosedFormModel):
 
 # ---- the same body integrated numerically ("ghost") -------------------------------------------
 
-#: The ghost's RK4 step: h · max|ω| ≤ this. RK4's classical rule is 0.1; at 0.02 the
-#: attitude error over 20 s of the tennis-racket preset is ~1e-8 rad (measured in the
-#: tests) for ~1 µs of physics per frame: steps here are nearly free, so spend them.
+#: The ghost's RK4 step: h · max|ω| ≤ this. RK4's classical rule is 0.1; 0.02 keeps the
+#: tennis-racket preset's attitude error tiny (the tests bound it) while the physics of a frame
+#: stays a small share of the budget (docs/bench/live-frame-costs.svg): steps here are nearly free.
 GHOST_STEP_RATIO = 0.02
 
 
