@@ -128,7 +128,9 @@ class ParticleRunScene(Scene):
 
     def camera_view(self) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
         c, size = self._center, self._size
-        return (float(c[0] + 0.38 * size), float(c[1] - 0.6 * size), float(c[2] + 0.36 * size)), tuple(float(v) for v in c)
+        return (float(c[0] + 0.38 * size), float(c[1] - 0.6 * size), float(c[2] + 0.36 * size)), (
+            float(c[0]), float(c[1]), float(c[2])
+        )
 
     def _draw(self) -> None:
         if self._reframe_pending:

@@ -207,7 +207,7 @@ class SpaceCurveScene(Scene):
     def camera_view(self) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
         c, size = self._center, self._size
         # About one curve-size away (size = the bounding box's diagonal), from the front right, above.
-        return (c[0] + 0.5 * size, c[1] - 0.72 * size, c[2] + 0.42 * size), tuple(float(v) for v in c)
+        return (c[0] + 0.5 * size, c[1] - 0.72 * size, c[2] + 0.42 * size), (float(c[0]), float(c[1]), float(c[2]))
 
     def _curve_moved(self, old_center: np.ndarray, old_size: float) -> bool:
         """Whether a new curve is a different size or elsewhere (then this viewer's camera follows it).

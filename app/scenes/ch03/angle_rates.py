@@ -85,7 +85,7 @@ class AngleRatesScene(ReplayedScene):
         alpha_max = max(float(np.linalg.norm(whole.alpha_world_rad_s2, axis=-1).max()), 1e-9)
         self.alpha_scale = _nice_scale(min(ARROW_REACH / alpha_max, 1e3))
         self._locked_drawn = None
-        self._batch = None
+        self._batch: physics.AngleKinematics | None = None
         self._step_s = float(self.params["playback_speed"]) * FRAME_DT_S
         self.start_clock()
         self._draw()
@@ -100,7 +100,7 @@ class AngleRatesScene(ReplayedScene):
         if batch is not None:
             hits = np.flatnonzero(np.abs(batch.t_s - self.t_s) < 1e-9)
             if hits.size:
-                self.i = int(hits[0])
+                self.i: int = int(hits[0])
                 return
         times = np.mod(self.t_s + self._step_s * np.arange(BATCH_FRAMES), float(self.params["replay_s"]))
         self._batch = self.kinematics = self.motion.kinematics(times)

@@ -119,6 +119,8 @@ class FiniteRotationScene(Scene):
         a = self.result.turn_a
         b_axis = np.eye(3)[physics.fixed_axis_index(self.params["second_axis"])]
         # Each copy: pivot, then its two turns (axis, angle) about fixed lines, in order.
+        finals: tuple[physics.EquivalentTurn, ...]
+        titles: tuple[str, ...]
         if self.compare:
             self.copies = [
                 (-ORDER_OFFSET, [(a.axis_world, a.angle_rad), (b_axis, math.radians(self.params["second_angle_deg"]))]),

@@ -97,8 +97,8 @@ class EulerianAnglesScene(CyclingScene):
         axes = np.array([[(0, 0, SHAFT_LENGTH), (0.6, 0, SHAFT_LENGTH)], [(0, 0, SHAFT_LENGTH), (0, 0.6, SHAFT_LENGTH)], [(0, 0, SHAFT_LENGTH), (0, 0, SHAFT_LENGTH + 0.35)]], np.float32)
         colors = np.array([[[220, 40, 40]] * 2, [[40, 160, 60]] * 2, [[40, 80, 220]] * 2], np.uint8)
         scene.add_line_segments("/body/axes", axes, colors, thickness=3.0, thickness_units="screen")
-        for name, position in (("x", (0.63, 0, SHAFT_LENGTH)), ("y", (0, 0.63, SHAFT_LENGTH)), ("z", (0, 0, SHAFT_LENGTH + 0.38))):
-            scene.add_label(f"/body/label_{name}", name, position=position, anchor="center-left")
+        for name, tip in (("x", (0.63, 0, SHAFT_LENGTH)), ("y", (0, 0.63, SHAFT_LENGTH)), ("z", (0, 0, SHAFT_LENGTH + 0.38))):
+            scene.add_label(f"/body/label_{name}", name, position=tip, anchor="center-left")
         scene.add_label("/body/psi_label", "ψ", position=(ARC_RADII["spin"] + 0.03, 0.0, SHAFT_LENGTH), anchor="top-left")
         self.arcs = scene.add_line_segments(
             "/angle_arcs", np.zeros((3 * ARC_SEGMENTS, 2, 3), np.float32),

@@ -156,7 +156,7 @@ class FourBarScene(Scene):
             Quantity.or_text("coupler_rate", "coupler rate ω₃", float(state.coupler_rate[0]), "rad/s", "undefined"),
         ]
         marks: dict[str, list[Mark]] = {}
-        if not motion.drive.turns_fully:
+        if motion.drive.limits_rad is not None:  # the crank rocks between two limits
             lower, upper = motion.drive.limits_rad
             marks["crank_angle0_deg"] = [Mark(math.degrees(math.remainder(angle, 2 * math.pi)), "toggle") for angle in (lower, upper)]
         if bool(state.singular[0]) or min(mu, 180.0 - mu) < TOGGLE_WINDOW_DEG:

@@ -79,7 +79,7 @@ class PlanarCollisionScene(Scene):
         c = self.collision
         (d1, d2), (a1, a2) = c.before, c.after
         reach = d1.radius_m + d2.radius_m
-        speeds = [np.linalg.norm(d.velocity_m_s) for d in (d1, d2, a1, a2)]
+        speeds = [float(np.linalg.norm(d.velocity_m_s)) for d in (d1, d2, a1, a2)]
         # Show the time window in which the fastest disk moves one sum of radii.
         self._window_s = reach / max(max(speeds), 1e-9)
         self.elapsed_s = 0.0
@@ -98,7 +98,7 @@ class PlanarCollisionScene(Scene):
         self.contact.points = to_world(c.contact_point_m[:2])[None, :].astype(np.float32)
         self.contact.point_size = 0.02 * span
         momenta = [d.momentum_N_s for d in (d1, d2, a1, a2)]
-        largest = max(max(np.linalg.norm(p) for p in momenta), float(np.linalg.norm(c.impulse_N_s)), 1e-12)
+        largest = max(max(float(np.linalg.norm(p)) for p in momenta), float(np.linalg.norm(c.impulse_N_s)), 1e-12)
         self._arrow_scale = 0.9 * reach / largest  # m of arrow per N·s
         self.arrows.shaft_radius = 0.005 * span
         self.arrows.head_radius = 0.012 * span

@@ -146,7 +146,7 @@ class ConfigurationSpaceScene(Scene):
             rail = np.array([[[-amplitude - 0.1 * span, 0.0], [amplitude + 0.1 * span, 0.0]]])
             self._add(scene.add_line_segments("/physical/rail", (to_world(rail) + left).astype(np.float32), (150, 150, 150), thickness=0.004 * span))
         # Physical side: the wire (a frame that the hoop's motion carries), its centre block, the bead.
-        self.wire_frame = self._add(scene.add_frame("/physical/wire", show_axes=False, position=tuple(left)))
+        self.wire_frame = self._add(scene.add_frame("/physical/wire", show_axes=False, position=left))
         scene.add_line_segments("/physical/wire/curve", polyline_segments(shape), WIRE_COLOR, thickness=0.012 * span)
         if isinstance(self._system, physics.SlidingHoop):
             scene.add_box("/physical/wire/centre", color=(150, 150, 160), dimensions=(0.06 * span, 0.03 * span, 0.03 * span))
@@ -157,11 +157,11 @@ class ConfigurationSpaceScene(Scene):
         self._add(scene.add_line_segments("/config/axes", (to_world(axes) + right).astype(np.float32), (170, 170, 170), thickness=0.003 * span))
         self._add(scene.add_label("/config/x", "x", position=tuple(right + to_world(np.array([half_width + 0.17 * span, 0.0]))), anchor="center-left"))
         self._add(scene.add_label("/config/y", "y", position=tuple(right + to_world(np.array([0.0, half_height + 0.17 * span]))), anchor="bottom-center"))
-        self.curve_frame = self._add(scene.add_frame("/config/curve", show_axes=False, position=tuple(right)))
+        self.curve_frame = self._add(scene.add_frame("/config/curve", show_axes=False, position=right))
         scene.add_line_segments("/config/curve/line", polyline_segments(shape), CURVE_COLOR, thickness=0.004 * span)
         self.later_frame = None
         if isinstance(self._system, physics.SlidingHoop):
-            self.later_frame = self._add(scene.add_frame("/config/later", show_axes=False, position=tuple(right)))
+            self.later_frame = self._add(scene.add_frame("/config/later", show_axes=False, position=right))
             scene.add_line_segments("/config/later/line", polyline_segments(shape), GHOST_COLOR, thickness=0.003 * span)
         self.point = self._add(scene.add_icosphere("/config/point", radius=0.018 * span, color=(20, 20, 20)))
         colors = np.array([GRADIENT_COLOR, VIRTUAL_COLOR, ACTUAL_COLOR], np.uint8)

@@ -74,7 +74,7 @@ class DoublePendulumScene(DerivedSystemScene):
         segments, colors = torus_wireframe()
         self.torus = scene.add_line_segments("/torus", segments, colors, thickness=1.2, thickness_units="screen")
         self.torus_label = scene.add_label("/torus/label", "configuration space: θ₁ round the ring, θ₂ round the tube", anchor="bottom-center")
-        self.torus_label.position = tuple(float(v) for v in TORUS_CENTER + np.array([0.0, 0.0, TORUS_MAJOR + TORUS_MINOR + 0.12]))
+        self.torus_label.position = TORUS_CENTER + np.array([0.0, 0.0, TORUS_MAJOR + TORUS_MINOR + 0.12])
         self.pivot = scene.add_icosphere("/pivot", radius=0.035, color=(40, 40, 40))
         self.rods = scene.add_line_segments("/rods", np.zeros((2, 2, 3), np.float32), np.array([[[40, 100, 220]] * 2, [[40, 150, 70]] * 2], np.uint8), thickness=0.02)
         self.bobs = scene.add_point_cloud("/bobs", np.zeros((2, 3), np.float32), np.array([[40, 100, 220], [40, 150, 70]], np.uint8), point_size=0.09, point_shape="circle")

@@ -141,11 +141,11 @@ class TypedLagrangianScene(DerivedSystemScene):
         ]
         for i in range(n):
             label = scene.add_label(f"/dials/name{i}", COORDINATE_NAMES[i], anchor="top-center")
-            label.position = tuple(float(v) for v in dial_center(i) + np.array([0.0, 0.0, -DIAL_RADIUS - 0.08]))
+            label.position = dial_center(i) + np.array([0.0, 0.0, -DIAL_RADIUS - 0.08])
             self._fixed.append(label)
         title = "phase plane (q1, q1d)" if n == 1 else "configuration space (" + ", ".join(COORDINATE_NAMES[:n]) + ")"
         heading = scene.add_label("/box/title", title, anchor="bottom-center")
-        heading.position = tuple(float(v) for v in BOX_CENTER + np.array([0.0, 0.0, BOX_HALF + 0.1]))
+        heading.position = BOX_CENTER + np.array([0.0, 0.0, BOX_HALF + 0.1])
         self._fixed.append(heading)
         axes = ["q1", "q1d"] if n == 1 else list(COORDINATE_NAMES[:n])
         places = [np.array([0.0, -BOX_HALF if n == 3 else 0.0, -BOX_HALF - 0.08]), np.array([-BOX_HALF - 0.08, 0.0, 0.0])]
@@ -155,7 +155,7 @@ class TypedLagrangianScene(DerivedSystemScene):
         self._range_labels = []
         for k, (axis, place) in enumerate(zip(axes, places, strict=True)):
             label = scene.add_label(f"/box/axis{k}", axis, anchor=anchors[k])
-            label.position = tuple(float(v) for v in BOX_CENTER + place)
+            label.position = BOX_CENTER + place
             self._range_labels.append(label)
         self._fixed += self._range_labels
         self._dimensions = n

@@ -57,7 +57,7 @@ class CartesianPendulumScene(IntegratedScene):
         self.circle = scene.add_line_segments("/constraint", circle_segments(radius=PENDULUM_REACH, center=tuple(PIVOT), normal=(0.0, 1.0, 0.0)).astype(np.float32),
                                               (200, 200, 200), thickness=1.5, thickness_units="screen")
         self.pivot = scene.add_icosphere("/pivot", radius=0.035, color=(40, 40, 40))
-        self.pivot.position = tuple(float(v) for v in PIVOT)
+        self.pivot.position = PIVOT
         self.rod = scene.add_line_segments("/rod", np.zeros((1, 2, 3), np.float32), ROD_COLOR, thickness=0.015)
         self.dots = scene.add_point_cloud(
             "/bob", np.zeros((2, 3), np.float32), np.array([GHOST_COLOR, BOB_COLOR], np.uint8), point_size=0.12, point_shape="circle"

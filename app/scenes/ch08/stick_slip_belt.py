@@ -100,12 +100,12 @@ class StickSlipBeltScene(IntegratedScene):
         heights[1:-1] += 0.03 * np.where(np.arange(1, along.size - 1) % 2 == 1, 1.0, -1.0)
         nodes = np.stack([along, np.zeros_like(along), heights], axis=1)
         update_node(self.spring, points=np.stack([nodes[:-1], nodes[1:]], axis=1).astype(np.float32))
-        friction, limit = physics.friction_forces(params, y)
-        friction, limit = float(friction[0]), float(limit[0])
+        friction_N, limit_N = physics.friction_forces(params, y)
+        friction, limit = float(friction_N[0]), float(limit_N[0])
         self._friction, self._limit = friction, limit
         mode = int(y[physics.MODE])
         color = np.array(MODE_COLORS[mode], np.uint8)
-        update_node(self.friction_arrow, points=arrow_segments([x, 0.0, 0.01], [friction, 0.0, 0.0], 0.5 * self._gauge_scale))
+        update_node(self.friction_arrow, points=arrow_segments(np.array([x, 0.0, 0.01]), np.array([friction, 0.0, 0.0]), 0.5 * self._gauge_scale))
         # Gauge: scale line, the two mode-limit ticks, the force bar, and its zero tick.
         s, z = self._gauge_scale, GAUGE_HEIGHT_M
         full = GAUGE_HALF_WIDTH_M

@@ -61,7 +61,7 @@ class PhasePortraitScene(DerivedSystemScene):
         scene = self.client.scene
         self.levels = scene.add_line_segments("/phase/levels", np.zeros((1, 2, 3), np.float32), np.zeros((1, 2, 3), np.uint8), thickness=1.5, thickness_units="screen")
         self.plane_label = scene.add_label("/phase/label", "phase plane: θ across (−180° to 180°), p_θ up; red: separatrix H = m g l", anchor="bottom-center")
-        self.plane_label.position = tuple(float(v) for v in PLANE_CENTER + np.array([0.0, 0.0, PLANE_HALF_HEIGHT + 0.12]))
+        self.plane_label.position = PLANE_CENTER + np.array([0.0, 0.0, PLANE_HALF_HEIGHT + 0.12])
         self.pivot = scene.add_icosphere("/pivot", radius=0.035, color=(40, 40, 40))
         self.rod = scene.add_line_segments("/rod", np.zeros((1, 2, 3), np.float32), np.array([[[40, 100, 220]] * 2], np.uint8), thickness=0.02)
         self.bob = scene.add_point_cloud("/bob", np.zeros((1, 3), np.float32), np.array([[40, 100, 220]], np.uint8), point_size=0.14, point_shape="circle")

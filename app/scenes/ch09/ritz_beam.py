@@ -130,7 +130,7 @@ class RitzCantileverScene(Scene):
         ]
         colors = [np.full((2, 2, 3), AXIS_COLOR)]
         marks = []
-        for basis, color in (("orthogonal", RITZ_COLOR), ("monomial", MONOMIAL_COLOR)):
+        for basis, color in zip(physics.BASES, (RITZ_COLOR, MONOMIAL_COLOR)):  # orthogonal, then monomial
             rows = [row for row in physics.convergence_table(self.ritz.beam, basis=basis) if row.terms >= mode]
             terms = np.array([row.terms for row in rows], dtype=float)
             errors = np.array([row.relative_error[mode - 1] for row in rows])

@@ -62,7 +62,7 @@ class SphericalPendulumScene(DerivedSystemScene):
         self.turning = scene.add_point_cloud("/veff/turning", np.zeros((2, 3), np.float32), np.full((2, 3), 120, np.uint8), point_size=0.07, point_shape="circle")
         self.marker = scene.add_icosphere("/veff/theta", radius=0.045, color=(235, 120, 20))
         self.pivot = scene.add_icosphere("/pivot", radius=0.035, color=(40, 40, 40))
-        self.pivot.position = tuple(float(v) for v in PIVOT)
+        self.pivot.position = PIVOT
         self.rod = scene.add_line_segments("/rod", np.zeros((1, 2, 3), np.float32), np.array([[[40, 100, 220]] * 2], np.uint8), thickness=0.02)
         self.bob = scene.add_point_cloud("/bob", np.zeros((1, 3), np.float32), np.array([[40, 100, 220]], np.uint8), point_size=0.14, point_shape="circle")
         self.trail = Trail(scene, "/path", color=(235, 120, 20), chunk_frames=TRAIL_CHUNK_FRAMES, max_chunks=TRAIL_CHUNKS)

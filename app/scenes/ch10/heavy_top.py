@@ -20,6 +20,7 @@ import numpy as np
 
 from app.physics.math.rotations import rotation_matrix
 from app.physics.systems.ch10 import heavy_top as physics
+from app.physics.systems.ch10.heavy_top_quadrature import HeavyTopQuadrature
 from app.scenes.kit import (
     FRAME_DT_S,
     IntegratedScene,
@@ -138,7 +139,7 @@ class HeavyTopScene(IntegratedScene):
     def _update_reference(self, params) -> None:
         """Quadrature solution for these parameters: nutation band rings and the reference tip."""
         try:
-            self.reference = physics.quadrature(params)
+            self.reference: HeavyTopQuadrature | None = physics.quadrature(params)
             self.reference_message = ""
         except ValueError as exc:
             self.reference = None

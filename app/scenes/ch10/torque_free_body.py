@@ -137,7 +137,8 @@ class TorqueFreeBodyScene(Scene):
         sides = np.maximum(sides, THINNEST_SIDE * sides.max())
         sides *= BOX_FILL / math.sqrt(float(np.sum((0.5 * sides / shown_axes) ** 2)))
         scene.add_box("/body/box", color=(70, 100, 165), dimensions=tuple(sides), flat_shading=True)
-        self.ellipsoid.scale = tuple(float(a) for a in shown_axes)
+        semi_a, semi_b, semi_c = shown_axes
+        self.ellipsoid.scale = (float(semi_a), float(semi_b), float(semi_c))
         ends = np.zeros((3, 2, 3), np.float32)
         for k in range(3):
             ends[k, 0, k], ends[k, 1, k] = -1.12 * shown_axes[k], 1.12 * shown_axes[k]
@@ -258,6 +259,7 @@ class TorqueFreeBodyScene(Scene):
                 raise ValueError(f"motion: ghost_y must be the ghost's {self.ghost.run.y.size} finite state numbers")
         super().resume_from(motion)
         if self.ghost is not None:
+            assert ghost_y is not None  # read above, where there was a ghost
             old = self.ghost.run
             self.ghost.run = LiveRun(old.system, old.integrator, ghost_y)
             self.ghost.run.t_s = self.t_s
@@ -266,8 +268,10 @@ class TorqueFreeBodyScene(Scene):
     # -- numbers beside the scene --------------------------------------------------------------
     def ghost_attitude_difference_rad(self) -> float:
         """Angle (rad) between the ghost's attitude and the closed form's at the ghost's time."""
-        exact = self.body.quaternion(np.array([self.ghost.t_s]))[0]
-        return float(physics.attitude_difference_rad(exact, self.ghost.q_world_body))
+        ghost = self.ghost
+        assert ghost is not None  # asked only while a ghost runs
+        exact = self.body.quaternion(np.array([ghost.t_s]))[0]
+        return float(physics.attitude_difference_rad(exact, ghost.q_world_body))
 
     def readout(self) -> Readout:
         body = self.body

@@ -63,7 +63,7 @@ class SineSlot:
         """Time (s) to cross one wavelength, 0 ≤ x ≤ 2L."""
         return 2.0 * self.half_wavelength_m / self.drive_speed_m_s
 
-    def at(self, t_s: np.ndarray) -> CartesianState:
+    def at(self, t_s: np.ndarray | float) -> CartesianState:
         t = np.atleast_1d(np.asarray(t_s, dtype=float))
         h, u, k = self.amplitude_m, self.drive_speed_m_s, math.pi / self.half_wavelength_m
         x = u * t
@@ -88,7 +88,7 @@ class Projectile:
         """Time of flight (s) until it is back on z = 0."""
         return 2.0 * self.speed_m_s * math.sin(self.elevation_rad) / self.gravity_m_s2
 
-    def at(self, t_s: np.ndarray) -> CartesianState:
+    def at(self, t_s: np.ndarray | float) -> CartesianState:
         t = np.atleast_1d(np.asarray(t_s, dtype=float))
         v0, g = self.speed_m_s, self.gravity_m_s2
         horizontal = v0 * math.cos(self.elevation_rad)

@@ -165,7 +165,7 @@ def input_rate(params: Mapping[str, Any], t_s: np.ndarray) -> np.ndarray:
     return params["input_rate_rad_s"] * np.sin(params["input_frequency_rad_s"] * t)
 
 
-def case_angle_rad(params: Mapping[str, Any], t_s: np.ndarray) -> np.ndarray:
+def case_angle_rad(params: Mapping[str, Any], t_s: np.ndarray | float) -> np.ndarray:
     """Turn of the case about the input axis since t = 0, ``∫₀ᵗ Ω dt`` (rad)."""
     t = np.asarray(t_s, dtype=float)
     rate = params["input_rate_rad_s"]
