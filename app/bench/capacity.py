@@ -52,10 +52,11 @@ import tempfile
 import time
 import urllib.error
 import urllib.request
-from collections.abc import Iterator, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from datetime import UTC, datetime
 from pathlib import Path
+from typing import Any
 from xml.sax.saxutils import escape
 
 import numpy as np
@@ -424,7 +425,7 @@ def window_figures(reading: WindowReading, *, count_dropped: bool = False) -> di
     frames = sum(reading.end.frames) - sum(reading.start.frames)
     decoded = reading.end.decoded_frames - reading.start.decoded_frames
     counted = reading.healthy_at_start if count_dropped else reading.healthy_at_end
-    figures = {
+    figures: dict[str, Any] = {
         "connected": sum(reading.healthy_at_end),
         "errors": len(reading.errors),
         "error_examples": sorted(set(reading.errors))[:3],
@@ -476,7 +477,7 @@ async def measure_step(
     host, port = server.address
     classroom = Classroom(
         host, port, scene_id, students, connect_per_s=options.connect_per_s, path=viewer_path,
-        distinct_addresses=options.distinct_addresses,
+        distinct_addresses=bool(options.distinct_addresses),  # set on construction of the options
     )
     try:
         await classroom.open(timeout_s=30.0 + students / options.connect_per_s)
@@ -520,7 +521,7 @@ def server_facts(server: ServerUnderTest) -> dict:
 
 async def _measure_all(server: ServerUnderTest, options: LoadOptions, rooms: dict[str, dict] | None = None) -> list[dict]:
     """Every step; with ``rooms`` (scene id -> the room opened on it) the viewers follow that scene's room."""
-    steps = []
+    steps: list[dict] = []
     for scene_id in options.scenes:
         path = f"/room-viewer/{rooms[scene_id]['room_id']}" if rooms is not None else ""
         for students in options.students:
@@ -675,7 +676,7 @@ def run_load(options: LoadOptions) -> dict:
     return report
 
 
-def _step_at(steps: Sequence[dict], scene_id: str, students: int) -> dict | None:
+def _step_at(steps: Sequence[dict], scene_id: str | None, students: int) -> dict | None:
     return next((s for s in steps if s.get("scene_id") == scene_id and s.get("students") == students), None)
 
 
@@ -819,7 +820,7 @@ def _subtitle(report: dict) -> str:
     )
 
 
-def _measured(steps: object) -> list[dict]:
+def _measured(steps: Iterable[object] | None) -> list[dict]:
     return [s for s in steps or () if isinstance(s, dict) and isinstance(s.get("frames_per_s"), dict)]
 
 

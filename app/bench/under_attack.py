@@ -111,7 +111,8 @@ class AttackerProcess:
             self.process.wait(timeout=10.0)
         for stream in (self.process.stdin, self.process.stdout):
             with contextlib.suppress(OSError):
-                stream.close()
+                if stream is not None:  # both are pipes, opened with the process
+                    stream.close()
         self.log.close()
 
     async def _line(self, timeout_s: float) -> str:
@@ -191,7 +192,8 @@ async def _baseline_then_attack(
     host, port = server.address
     scene_id, students = options.scenes[0], options.students[0]
     classroom = Classroom(
-        host, port, scene_id, students, connect_per_s=options.connect_per_s, distinct_addresses=options.distinct_addresses
+        host, port, scene_id, students, connect_per_s=options.connect_per_s,
+        distinct_addresses=bool(options.distinct_addresses),  # set on construction of the options
     )
     projector = Classroom(host, port, scene_id, 1, connect_per_s=options.connect_per_s, path=f"/room-viewer/{room_id}")
     plan = AttackPlan(

@@ -199,14 +199,14 @@ def our_sweeps() -> list[tuple[str, str, str, str, list[float]]]:
 
 # Sweeps: (method id, family, label, setting name, settings).
 OUR_SWEEPS = our_sweeps()
-SCIPY_SWEEPS = [
+SCIPY_SWEEPS: list[tuple[str, str, str, str, list[float]]] = [
     ("scipy-RK45", "scipy", "scipy RK45 (numpy RHS)", "rtol", [1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9]),
     # From 1e-3: the ratios at 1e-3 rad need a DOP853 point on each side of that error.
     ("scipy-DOP853", "scipy", "scipy DOP853 (numpy RHS)", "rtol", [1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12]),
     ("scipy-LSODA", "scipy", "scipy LSODA (numpy RHS)", "rtol", [1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10]),
     ("scipy-Radau", "scipy", "scipy Radau (numpy RHS)", "rtol", [1e-4, 1e-5, 1e-6, 1e-7]),
 ]
-MUJOCO_SWEEPS = [
+MUJOCO_SWEEPS: list[tuple[str, str, str, str, list[float]]] = [
     # To 256 steps per frame: the ratios at 1e-9 rad need a point below that error.
     ("mujoco-RK4", "mujoco", "MuJoCo RK4 (ball joint)", "steps_per_frame", [1, 2, 4, 8, 16, 32, 64, 128, 256]),
     ("mujoco-Euler", "mujoco", "MuJoCo Euler, its default (ball joint)", "steps_per_frame", [4, 16, 64]),
@@ -515,6 +515,7 @@ def run_benchmark(case_ids: Sequence[str] | None = None, *, include_mujoco: bool
             raise RuntimeError(f"{case.id}: no pilot run of any method finished; the automatic choice is undefined")
         adaptive = choice.steps_per_frame is None
         setting = choice.rtol if adaptive else choice.steps_per_frame
+        assert setting is not None  # a choice sets rtol or steps_per_frame
         default_integrator = make_integrator(choice.method, rtol=choice.rtol) if adaptive else make_integrator(
             choice.method, steps_per_frame=choice.steps_per_frame)
         q_default, cpu_default, _, _ = run_ours(case, choice.method, setting, frames_t)
@@ -596,10 +597,10 @@ def best_ratios(methods: Sequence[dict], errors: Sequence[float] = RATIO_ERRORS)
     out = []
     for error in errors:
         costs = [(cost_at_error(m["points"], error), m["method"]) for m in ours]
-        costs = [(c, name) for c, name in costs if c is not None]
-        if not costs:
+        reached = [(c, name) for c, name in costs if c is not None]
+        if not reached:
             continue
-        our_cpu, our_method = min(costs)
+        our_cpu, our_method = min(reached)
         for baseline, required in REQUIRED_RATIO.items():
             base = next((m for m in methods if m["method"] == baseline), None)
             if base is None:
