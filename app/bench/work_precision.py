@@ -286,7 +286,10 @@ def run_ours(case: Case, method: str, setting: float, frames_t: np.ndarray) -> t
 def run_scipy(case: Case, method: str, rtol: float, frames_t: np.ndarray) -> tuple[np.ndarray, float, int, str]:
     rhs = numpy_rhs(case.body)
     name = method.split("-", 1)[1]
-    run = lambda: solve_ivp(rhs, (0.0, case.t_end_s), case.y0, method=name, rtol=rtol, atol=rtol * 1e-3, t_eval=frames_t)  # noqa: E731
+
+    def run():
+        return solve_ivp(rhs, (0.0, case.t_end_s), case.y0, method=name, rtol=rtol, atol=rtol * 1e-3, t_eval=frames_t)
+
     solution, cpu = _timed(run)
     status = "ok" if solution.success else "failed"
     return solution.y[:4].T, cpu, int(solution.nfev), status
