@@ -87,9 +87,9 @@ class SlidingBarFrictionScene(IntegratedScene):
         self._held_s = 0.0
         self._clock_s = 0.0
         self._shown = self.run.y
-        self._draw(self.run.y)
+        self._draw_state(self.run.y)
 
-    def _draw(self, y: np.ndarray) -> None:
+    def _draw_state(self, y: np.ndarray) -> None:
         params = self.physical_params()
         self._shown = y
         bottom, top = physics.end_positions_m(params, y)
@@ -126,7 +126,7 @@ class SlidingBarFrictionScene(IntegratedScene):
         return running
 
     def redraw(self) -> None:
-        self._draw(self.stop.state if self._held_s > 0.0 and self.stop is not None else self.run.y)
+        self._draw_state(self.stop.state if self._held_s > 0.0 and self.stop is not None else self.run.y)
 
     def motion_state(self) -> dict[str, Any]:
         """The run's state ``y``, ``held_s`` (how long the bar has been held at the stop, s) and ``t_s``: the
@@ -150,7 +150,7 @@ class SlidingBarFrictionScene(IntegratedScene):
         band = physics.painleve_band_deg(params["mu"])
         band_text = "none: μ < 4/3, sliding is always consistent"
         quantities = [
-            Quantity("t_s", "time t", self.stop.t_s if self._held_s > 0.0 else self.run.t_s, "s"),
+            Quantity("t_s", "time t", self.stop.t_s if self._held_s > 0.0 and self.stop is not None else self.run.t_s, "s"),
             Quantity.word("phase", "phase", physics.PHASE_WORDS[phase]),
             Quantity("angle_deg", "angle from the floor θ", math.degrees(y[physics.THETA]), "deg"),
             Quantity("contact_speed_m_s", "sliding speed of B, u", float(y[physics.U]), "m/s"),

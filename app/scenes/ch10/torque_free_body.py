@@ -182,7 +182,7 @@ class TorqueFreeBodyScene(Scene):
         _, widest = physics.herpolhode_radii_rad_s(self.body)
         self.herpolhode_label.position = tuple((widest * self.scale + 0.06) * HERPOLHODE_LABEL_SIDE + np.array([0.0, 0.0, plane_z]))
         self._setup_ghost(sides)
-        self._draw(0)
+        self._draw_frame(0)
 
     def _setup_ghost(self, sides: np.ndarray) -> None:
         self.ghost = None
@@ -220,7 +220,7 @@ class TorqueFreeBodyScene(Scene):
             offset = 0
         return self._batch.q_world_body[offset], self._batch.omega_body[offset], self._batch.omega_world[offset]
 
-    def _draw(self, index: int) -> None:
+    def _draw_frame(self, index: int) -> None:
         q, omega_body, omega_world = self._state(index)
         tip = omega_world * self.scale
         self.body_frame.wxyz = q
@@ -240,7 +240,7 @@ class TorqueFreeBodyScene(Scene):
         return True
 
     def redraw(self) -> None:
-        self._draw(self.frame_index)
+        self._draw_frame(self.frame_index)
         if self.ghost is not None and not self.ghost_status:
             self.ghost_frame.wxyz = self.ghost.q_world_body
 
