@@ -78,7 +78,7 @@ def _serve(args: argparse.Namespace) -> int:
     where = f"{settings.workers} scene worker{'s' if settings.workers != 1 else ''}" if settings.workers else "scenes in this process"
     print(f"Dynamics Lab: serving on http://{settings.host}:{settings.port}  ({where}; Ctrl+C to stop)", flush=True)
     base = settings.public_url or f"http://{settings.host}:{settings.port}"
-    print(f"Instructor link (keep it to yourself: whoever opens it runs the rooms): {app.state.instructor_key.link(base)}", flush=True)
+    print("Instructor link (keep it to yourself: whoever opens it runs the rooms): " f"{app.state.instructor_key.link(base)}", flush=True)
     from app.web.slow_clients import GuardedHttpProtocol
 
     # Behind a reverse proxy every connection comes from the proxy: per-address connection caps belong to it there.
@@ -94,12 +94,13 @@ def _serve(args: argparse.Namespace) -> int:
         http=http_protocol,
         # Ctrl+C: requests in flight get 1.5 s to finish, then the scene workers are stopped (app/scenes/host/pool.py);
         # the server exits within EXIT_DEADLINE_S whatever is in flight.
-        timeout_graceful_shutdown=1.5,
+        timeout_graceful_shutdown=1.5,  # type: ignore[arg-type]  # annotated int, but asyncio.wait_for takes a float
         # A viewer sends only camera and GUI messages (< 1 kB); scene data is already zstd-compressed by viser,
         # so per-message deflate would spend CPU on every frame of every student for nothing.
         ws_max_size=1024 * 1024,
         ws_per_message_deflate=False,
-        # Rate limits key on the client's address; only the guard may take it from X-Forwarded-For (trust_forwarded_for).
+        # Rate limits key on the client's address; only the guard may take it from X-Forwarded-For
+        # (trust_forwarded_for).
         proxy_headers=False,
     )
     def on_stop() -> None:
@@ -170,14 +171,14 @@ _OWN_OPTIONS = {
               "options of the benchmark (see dynlab bench --help)"),
     "derivations": (_derivations, "derivation engine: derive and compile times, agreement, proofs (writes docs/bench/derivations.json and .svg)",
                     "options (see dynlab derivations --help)"),
-    "constrained": (_constrained, "work-precision of the DAE algorithms and scipy Radau/BDF (writes docs/bench/constrained_precision.json and .svg)",
+    "constrained": (_constrained, "work-precision of the DAE algorithms and scipy Radau/BDF (writes docs/bench/constrained_precision.json " "and .svg)",
                     "options (see dynlab constrained --help)"),
     "load": (_load, "classroom capacity: N viewers per scene, with --room N followers of one room, with --attack 100 "
              "students before and while one client attacks (writes docs/bench/capacity.json, classroom.json or "
              "attack.json, and .svg)", "options (see dynlab load --help)"),
     "soak": (_soak, "N viewers for M minutes, then all gone: resources back to baseline",
              "options (see dynlab soak --help)"),
-}  # fmt: skip
+}
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -191,12 +192,12 @@ def main(argv: list[str] | None = None) -> int:
     serve.add_argument("--port", type=int, default=None, help="port (default 8000)")
     serve.add_argument(
         "--workers", type=int, default=None,
-        help="scene-worker processes (default: one per core, or DYNLAB_WORKERS); 0 runs the scenes in the front process",
-    )  # fmt: skip
+        help=("scene-worker processes (default: one per core, or DYNLAB_WORKERS); 0 runs the scenes in the front " "process"),
+    )
     serve.add_argument(
         "--instructor-key", default=None,
-        help="the instructor's secret in the printed instructor link (default: DYNLAB_INSTRUCTOR_KEY, else a new random one each start)",
-    )  # fmt: skip
+        help=("the instructor's secret in the printed instructor link (default: DYNLAB_INSTRUCTOR_KEY, else a new " "random one each start)"),
+    )
     serve.add_argument("--log-level", default="info", choices=["critical", "error", "warning", "info", "debug"])
     serve.set_defaults(run=_serve)
     for name, (run, help_text, options_help) in _OWN_OPTIONS.items():

@@ -4,8 +4,10 @@ from __future__ import annotations
 
 import math
 import os
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
+from typing import cast
 
 #: Where ``dynlab bench`` writes work_precision.json and one <scene_id>.svg per scene.
 DEFAULT_BENCH_DIR = Path(__file__).resolve().parent.parent / "docs" / "bench"
@@ -87,7 +89,7 @@ class Settings:
             raise ValueError(f"rate_limit_clients must be >= 1 (got {self.rate_limit_clients!r})")
 
     @classmethod
-    def from_env(cls, **overrides: object) -> "Settings":
+    def from_env(cls, **overrides: object) -> Settings:
         env = {
             "host": os.environ.get("DYNLAB_HOST"),
             "port": os.environ.get("DYNLAB_PORT"),
@@ -128,7 +130,8 @@ _JOIN_FIELDS = ("join_burst", "join_rate_per_s", "room_join_burst", "room_join_r
 
 
 def _parse(default: object, raw: str, *, name: str) -> object:
-    """An environment variable's text as the type of the field's default: tuples comma separated, booleans 1/0, true/false, yes/no."""
+    """An environment variable's text as the type of the field's default: tuples comma separated, booleans 1/0,
+    true/false, yes/no."""
     if isinstance(default, bool):
         word = raw.strip().lower()
         if word not in ("1", "true", "yes", "on", "0", "false", "no", "off", ""):
@@ -136,7 +139,8 @@ def _parse(default: object, raw: str, *, name: str) -> object:
         return word in ("1", "true", "yes", "on")
     if isinstance(default, tuple):
         return tuple(item.strip() for item in raw.split(",") if item.strip())
+    parse_as = cast("Callable[[str], object]", type(default))  # str, int, float or Path: each parses its text
     try:
-        return type(default)(raw)
+        return parse_as(raw)
     except ValueError:
         raise ValueError(f"DYNLAB_{name.upper()} must be a {type(default).__name__} (got {raw!r})") from None

@@ -127,7 +127,7 @@ class AttackBounds:
 QUICK_BOUNDS = AttackBounds(
     room_rounds=3, rescenes=3, claims=40, takeovers=3, anonymous_gets=40, burst=40, bursts=1, seeks=2,
     steps=10, viewers=10, derivations=1, request_timeout_s=5.0,
-)  # fmt: skip
+)
 
 
 @dataclass
@@ -228,7 +228,7 @@ class Attacker:
         answer = await http_request(
             self.plan.host, self.plan.port, method, path, body=body,
             headers={SESSION_KEY_HEADER: key} if key else None, source_address=self.plan.address, timeout_s=limit,
-        )  # fmt: skip
+        )
         if answer.failure == "timeout" and (long or limit < self.bounds.request_timeout_s):
             return replace(answer, failure=WINDOW_ENDED)  # cut off by the window, not by the request timeout
         return answer
@@ -299,7 +299,7 @@ class Attacker:
         that hangs does not keep the others from being tried)."""
         path = f"/api/scenes/{self.plan.scene_id}/sessions/room-{self.plan.room_id}/playback"
         record = self.record(2, f"room scene: {name}", f"PUT /api/scenes/{self.plan.scene_id}/sessions/room-<room>/playback "
-                             f"{json.dumps(body)}, no credential")  # fmt: skip
+                             f"{json.dumps(body)}, no credential")
 
         async def change(_: int) -> bool:
             return await self.recorded(record, "PUT", path, body=body)
@@ -311,7 +311,7 @@ class Attacker:
     async def viewer_rescene(self) -> None:
         other = self.plan.other_scene_id
         record = self.record(3, "viewer re-scenes a student's session",
-                             f"websocket /viewer/{other}/<a student's session id>, then viser's first camera message")  # fmt: skip
+                             f"websocket /viewer/{other}/<a student's session id>, then viser's first camera message")
         victims = itertools.cycle(self.plan.victims) if self.plan.victims else iter(())
 
         async def visit(_: int) -> bool:
@@ -334,7 +334,7 @@ class Attacker:
         claims = self.record(4, "claim flood", f"PUT /api/scenes/{scene}/sessions/<new id> {{\"params\": {{}}}} with a new key each")
         takeover = self.record(4, "a student's session under the attacker's key, during the flood",
                                f"PUT /api/scenes/{scene}/sessions/<a student's session id>/playback {{\"playing\": false}} "
-                               "with the attacker's key, every few seconds while the claims go on")  # fmt: skip
+                               "with the attacker's key, every few seconds while the claims go on")
         counter = itertools.count()
         victims = itertools.cycle(self.plan.victims) if self.plan.victims else iter(())
         attacker_key = new_session_key()
@@ -360,7 +360,7 @@ class Attacker:
     async def anonymous_gets(self) -> None:
         scene = self.plan.scene_id
         record = self.record(4, "anonymous GETs of random session ids",
-                             f"GET /api/scenes/{scene}/sessions/<random id>/playback and …/live, alternately")  # fmt: skip
+                             f"GET /api/scenes/{scene}/sessions/<random id>/playback and …/live, alternately")
         counter = itertools.count()
 
         async def getter() -> None:
@@ -378,7 +378,7 @@ class Attacker:
         and flood it with viewers, both at once."""
         scene = self.plan.scene_id
         viewers = self.record(6, "viewer flood from one address",
-                              f"up to {self.bounds.viewers} websockets /viewer/{scene}/<own session>, held open")  # fmt: skip
+                              f"up to {self.bounds.viewers} websockets /viewer/{scene}/<own session>, held open")
         session_id, _key = await self.claim(scene, {}, viewers, prefix="claim own session: ")
         await asyncio.gather(self.bursts(session_id), self.viewer_flood(session_id, viewers))
 
@@ -422,7 +422,7 @@ class Attacker:
             answer = await self.request(
                 "PUT", f"/api/scenes/double-pendulum/sessions/{session_id}",
                 body={"params": {"method": "rk4", "steps_per_frame": steps}}, key=key,
-            )  # fmt: skip
+            )
             if answer is None:
                 return None
             record.add_http(answer, prefix=f"setup ({steps} steps/frame): ")
@@ -434,9 +434,10 @@ class Attacker:
         return None
 
     async def expensive_playback(self, name: str, body: dict, *, count: int, long: bool) -> None:
-        """``body`` sent to the playback of an expensive session of the attacker's own, again each time it is answered."""
+        """``body`` sent to the playback of an expensive session of the attacker's own, again each time it is
+        answered."""
         record = self.record(6, name, f"PUT /api/scenes/double-pendulum/sessions/<own>/playback {json.dumps(body)} "
-                                      "(rk4, 4096 steps/frame), again when answered")  # fmt: skip
+                                      "(rk4, 4096 steps/frame), again when answered")
         session_id = await self.expensive_session(record)
         if session_id is None:
             return
@@ -450,14 +451,14 @@ class Attacker:
     async def derivations(self) -> None:
         record = self.record(6, "two slow typed-Lagrangian derivations at once",
                              "POST /api/systems/custom/derive, three coordinates, a kinetic energy sympy cannot finish "
-                             "in 20 s (new text each time), two at once, repeatedly")  # fmt: skip
+                             "in 20 s (new text each time), two at once, repeatedly")
         counter = itertools.count(2 + secrets.randbelow(10**6))  # a new constant per request: no cache answers
 
         async def derive(_: int) -> bool:
             body = {
                 "coordinates": ["q1", "q2", "q3"], "kinetic_energy": SLOW_KINETIC_ENERGY.format(n=next(counter)),
                 "potential_energy": SLOW_POTENTIAL_ENERGY, "parameters": {},
-            }  # fmt: skip
+            }
             return await self.recorded(record, "POST", "/api/systems/custom/derive", body=body, long=True)
 
         await asyncio.gather(*(self.until_window_ends(self.bounds.derivations, derive) for _ in range(2)))
@@ -476,7 +477,7 @@ class Attacker:
             "own_session_attacks": self.own_session_attacks(), "long_seeks": self.expensive_playback("long seek on an expensive session", {"go_to_s": 600.0}, count=self.bounds.seeks, long=True),
             "repeated_steps": self.expensive_playback("repeated steps of 300 frames", {"step": 300}, count=self.bounds.steps, long=False),
             "derivations": self.derivations(),
-        }  # fmt: skip
+        }
         tasks = {asyncio.create_task(coro): name for name, coro in attacks.items()}
         done, pending = await asyncio.wait(tasks, timeout=self.plan.seconds + WIND_DOWN_S / 3)
         for task in pending:  # only a bug keeps an attack past the window: each request is cut off at its end

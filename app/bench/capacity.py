@@ -52,10 +52,11 @@ import tempfile
 import time
 import urllib.error
 import urllib.request
-from collections.abc import Iterator, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
-from datetime import datetime, timezone
+from datetime import UTC, datetime
 from pathlib import Path
+from typing import Any
 from xml.sax.saxutils import escape
 
 import numpy as np
@@ -154,7 +155,7 @@ class LoadOptions:
             if len(self.instructor_key) < MIN_KEY_LENGTH:
                 raise ValueError(f"instructor_key: at least {MIN_KEY_LENGTH} characters, got {len(self.instructor_key)}")
         elif (self.room or self.attack) and self.url is not None:
-            raise ValueError(f"instructor_key: a {'--room' if self.room else '--attack'} run against --url needs the server's instructor key")
+            raise ValueError(f"instructor_key: a {'--room' if self.room else '--attack'} run against --url needs the server's " "instructor key")
         if self.attack:
             if self.room:
                 raise ValueError("attack: students on their own scenes are attacked; --room and --attack do not go together")
@@ -283,7 +284,8 @@ def started_server(
     *, workers: int | None, instructor_key: str | None = None, stop: ServerStop | None = None,
     stop_timeout_s: float = SERVER_STOP_TIMEOUT_S,
 ) -> Iterator[ServerUnderTest]:
-    """``python -m app.cli serve`` on a free loopback port, stopped on exit (SIGINT, then kill after ``stop_timeout_s``).
+    """``python -m app.cli serve`` on a free loopback port, stopped on exit (SIGINT, then kill after
+    ``stop_timeout_s``).
 
     ``instructor_key`` becomes the server's ``DYNLAB_INSTRUCTOR_KEY`` (in its environment, not on its command line).
     ``stop``, if given, is filled in with how the server stopped.
@@ -411,7 +413,7 @@ async def measure_window(server: ServerUnderTest, classroom: Classroom, seconds:
         front_end_s=front_end, busy_start_s=busy_start, busy_end_s=busy_end, tool_cpu_s=tool_end - tool_start,
         health=health, healthy_at_start=healthy_at_start, healthy_at_end=tuple(classroom.healthy()),
         errors=tuple(classroom.errors()),
-    )  # fmt: skip
+    )
 
 
 def window_figures(reading: WindowReading, *, count_dropped: bool = False) -> dict:
@@ -424,7 +426,7 @@ def window_figures(reading: WindowReading, *, count_dropped: bool = False) -> di
     frames = sum(reading.end.frames) - sum(reading.start.frames)
     decoded = reading.end.decoded_frames - reading.start.decoded_frames
     counted = reading.healthy_at_start if count_dropped else reading.healthy_at_end
-    figures = {
+    figures: dict[str, Any] = {
         "connected": sum(reading.healthy_at_end),
         "errors": len(reading.errors),
         "error_examples": sorted(set(reading.errors))[:3],
@@ -476,8 +478,8 @@ async def measure_step(
     host, port = server.address
     classroom = Classroom(
         host, port, scene_id, students, connect_per_s=options.connect_per_s, path=viewer_path,
-        distinct_addresses=options.distinct_addresses,
-    )  # fmt: skip
+        distinct_addresses=bool(options.distinct_addresses),  # set on construction of the options
+    )
     try:
         await classroom.open(timeout_s=30.0 + students / options.connect_per_s)
         await asyncio.sleep(options.warmup_s)
@@ -500,7 +502,7 @@ def machine_facts() -> dict:
 
 
 def utc_now() -> str:
-    return datetime.now(timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
+    return datetime.now(UTC).strftime("%Y-%m-%dT%H:%M:%SZ")
 
 
 def server_facts(server: ServerUnderTest) -> dict:
@@ -519,7 +521,7 @@ def server_facts(server: ServerUnderTest) -> dict:
 
 async def _measure_all(server: ServerUnderTest, options: LoadOptions, rooms: dict[str, dict] | None = None) -> list[dict]:
     """Every step; with ``rooms`` (scene id -> the room opened on it) the viewers follow that scene's room."""
-    steps = []
+    steps: list[dict] = []
     for scene_id in options.scenes:
         path = f"/room-viewer/{rooms[scene_id]['room_id']}" if rooms is not None else ""
         for students in options.students:
@@ -540,7 +542,7 @@ def step_line(step: dict) -> str:
     fps = step["frames_per_s"] or {}
     cpu = step["server_cpu_cores"]
     return (
-        f"{step['scene_id']:>28} {step['students']:4d} {'followers' if step.get('mode') == 'follow' else 'students '}: frames/s p10 {fps.get('p10', '—')} median "
+        f"{step['scene_id']:>28} {step['students']:4d} " f"{'followers' if step.get('mode') == 'follow' else 'students '}: frames/s p10 {fps.get('p10', '—')} " "median "
         f"{fps.get('median', '—')} min {fps.get('min', '—')}; server {cpu if cpu is not None else '—'} cores, "
         f"{step['server_rss_mb'] or '—'} MB; front {_or_dash(step.get('server_front_cpu_cores'))}; tool "
         f"{step['load_tool_cpu_cores']} cores; others {_or_dash(step.get('other_cpu_cores'))}; health p95 "
@@ -590,7 +592,7 @@ def open_room(base_url: str, scene_id: str, *, instructor_key: str) -> dict:
     created = _request_json(
         f"{base_url}/api/rooms", method="POST", body={"lesson_id": lesson_id, "scene_id": scene_id},
         headers={INSTRUCTOR_HEADER: instructor_key},
-    )  # fmt: skip
+    )
     return {"room_id": created["room_id"], "code": created["code"], "lesson_id": lesson_id, "scene_id": scene_id}
 
 
@@ -674,7 +676,7 @@ def run_load(options: LoadOptions) -> dict:
     return report
 
 
-def _step_at(steps: Sequence[dict], scene_id: str, students: int) -> dict | None:
+def _step_at(steps: Sequence[dict], scene_id: str | None, students: int) -> dict | None:
     return next((s for s in steps if s.get("scene_id") == scene_id and s.get("students") == students), None)
 
 
@@ -709,7 +711,7 @@ def with_independent_comparison(report: dict, independent: dict | None, *, sourc
             rows.append({
                 "scene_id": step["scene_id"], "students": step["students"], "frames_per_s": match["frames_per_s"],
                 "server_cpu_cores": match.get("server_cpu_cores"), "server_rss_mb": match.get("server_rss_mb"),
-            })  # fmt: skip
+            })
     comparison = {"source": source, "created": (independent or {}).get("created"), "steps": rows}
     cost = dict(report.get("follow_cost") or {})
     if cost:
@@ -759,7 +761,7 @@ class _Panel:
             grid.append(_text(self.x(n), self.bottom + 18, f"{n:g}", anchor="middle"))
         for k in range(int(self.max_y / y_step + 1e-9) + 1):
             value = k * y_step
-            grid.append(f'<line x1="{_f(self.left)}" x2="{_f(self.right)}" y1="{_f(self.y(value))}" y2="{_f(self.y(value))}" stroke="#eef0f4"/>')
+            grid.append(f'<line x1="{_f(self.left)}" x2="{_f(self.right)}" y1="{_f(self.y(value))}" ' f'y2="{_f(self.y(value))}" stroke="#eef0f4"/>')
             grid.append(_text(self.left - 7, self.y(value) + 4, f"{value:g}", anchor="end"))
         cy, label_x = (self.top + self.bottom) / 2, self.left - 52
         return "".join([
@@ -768,7 +770,7 @@ class _Panel:
             f'height="{_f(self.bottom - self.top)}" fill="none" stroke="#9aa3b2"/>',
             _text((self.left + self.right) / 2, self.bottom + 42, x_label, size=13, anchor="middle", weight="600"),
             _text(label_x, cy, y_label, size=13, anchor="middle", weight="600", extra=f'transform="rotate(-90 {_f(label_x)} {_f(cy)})"'),
-        ])  # fmt: skip
+        ])
 
     def target(self, value: float, label: str = "") -> str:
         """A dashed horizontal target line, labelled (unless ``label`` is empty) at its left end, under the line."""
@@ -813,7 +815,7 @@ def _subtitle(report: dict) -> str:
     )
 
 
-def _measured(steps: object) -> list[dict]:
+def _measured(steps: Iterable[object] | None) -> list[dict]:
     return [s for s in steps or () if isinstance(s, dict) and isinstance(s.get("frames_per_s"), dict)]
 
 
@@ -840,7 +842,7 @@ def capacity_svg(report: dict) -> str:
     out = _svg_open(
         WIDTH, HEIGHT, "Classroom capacity: frames per second delivered to each student against the number of students",
         "Classroom capacity: frames/s each student receives", _subtitle(report),
-    )  # fmt: skip
+    )
     out.append(panel.frame(x_label="Students (one viewer and one scene each)", y_label="Frames per second per student", y_step=5))
     # At the left end, under its line: small classes sit at 30 frames/s, above both lines, so nothing is hidden.
     out.append(panel.target(TARGET_P10_FRAMES_PER_S, f"target: 10th percentile at 100 students ({TARGET_P10_FRAMES_PER_S:g})"))
@@ -851,7 +853,7 @@ def capacity_svg(report: dict) -> str:
         points = sorted((s["students"], s["frames_per_s"]) for s in steps if s["scene_id"] == scene_id)
         out.append(f'<g class="series" data-scene="{escape(scene_id)}">{_rate_lines(panel, points, colour)}</g>')
         out.append(
-            f'<line x1="{RIGHT + 16}" x2="{RIGHT + 44}" y1="{legend_y}" y2="{legend_y}" stroke="{colour}" stroke-width="2.2"/>'
+            f'<line x1="{RIGHT + 16}" x2="{RIGHT + 44}" y1="{legend_y}" y2="{legend_y}" stroke="{colour}" ' 'stroke-width="2.2"/>'
             + _text(RIGHT + 52, legend_y + 4, scene_id)
         )
         legend_y += 20
@@ -885,7 +887,7 @@ def classroom_svg(report: dict) -> str:
         CLASSROOM_WIDTH, CLASSROOM_HEIGHT,
         "Classroom following one scene: frames per second each student receives and the server's CPU, against students",
         f"Classroom following one {scene} demo: frames/s each student receives, server CPU", _subtitle(report),
-    )  # fmt: skip
+    )
     out.append(rates.frame(x_label="Students", y_label="Frames per second per student", y_step=5))
     out.append(rates.target(TARGET_P10_FRAMES_PER_S))  # labelled in the legend: the lines cross it
     out.append(cpu.frame(x_label="Students", y_label="Server CPU (cores, all its processes)", y_step=0.25 if cpu_max <= 2 else 0.5))
@@ -901,16 +903,16 @@ def classroom_svg(report: dict) -> str:
     for index, mode in enumerate(("follow", "independent")):
         x0 = LEFT + 300 * index
         out.append(
-            f'<line x1="{x0}" x2="{x0 + 28}" y1="{legend_y}" y2="{legend_y}" stroke="{MODE_COLOURS[mode]}" stroke-width="2.2"/>'
+            f'<line x1="{x0}" x2="{x0 + 28}" y1="{legend_y}" y2="{legend_y}" stroke="{MODE_COLOURS[mode]}" ' 'stroke-width="2.2"/>'
             + _text(x0 + 36, legend_y + 4, MODE_NAMES[mode])
         )
     out.append(
-        f'<line x1="{LEFT + 600}" x2="{LEFT + 628}" y1="{legend_y}" y2="{legend_y}" stroke="#1d2330" stroke-width="1.3" '
+        f'<line x1="{LEFT + 600}" x2="{LEFT + 628}" y1="{legend_y}" y2="{legend_y}" stroke="#1d2330" ' 'stroke-width="1.3" '
         f'stroke-dasharray="6 4"/>' + _text(LEFT + 636, legend_y + 4, f"target: 10th percentile at 100 ({TARGET_P10_FRAMES_PER_S:g})")
     )
     legend_y += 22
     out.append(_text(LEFT, legend_y, "Frames/s: solid, filled: 10th percentile; dashed, open: median. Server CPU: the "
-                     "server process and its scene workers.", size=11, fill="#5b6475"))  # fmt: skip
+                     "server process and its scene workers.", size=11, fill="#5b6475"))
     note = _follow_cost_note(cost)
     if note:
         out.append(_text(LEFT, legend_y + 26, note, size=12))
@@ -932,7 +934,7 @@ def _follow_cost_note(cost: dict) -> str:
             ("one_viewer_cpu_cores", "1 viewer on its own scene"),
             (f"independent_cpu_cores_{FOLLOW_COST_CLASS}", f"{FOLLOW_COST_CLASS} on their own scenes"),
         ) if cores(key) is not None
-    ]  # fmt: skip
+    ]
     return f"Server CPU (cores): {'; '.join(parts)}" if parts else ""
 
 
@@ -983,35 +985,35 @@ def add_load_arguments(parser: argparse.ArgumentParser) -> None:
     """The options of ``dynlab load``."""
     parser.add_argument(
         "--students", type=_int_list, default=None,
-        help="class sizes, e.g. 10,30,60,100,150 (the default; with --room 1,10,30,60,100,150; with --attack one size, 100)",
-    )  # fmt: skip
+        help=("class sizes, e.g. 10,30,60,100,150 (the default; with --room 1,10,30,60,100,150; with --attack one " "size, 100)"),
+    )
     parser.add_argument(
         "--seconds", type=float, default=None,
-        help=f"steady window per step (s, ≤ {MAX_STEP_SECONDS:g}; default {LoadOptions.seconds:g}, with --attack {ATTACK_SECONDS:g} "
+        help=f"steady window per step (s, ≤ {MAX_STEP_SECONDS:g}; default {LoadOptions.seconds:g}, with --attack " f"{ATTACK_SECONDS:g} "
         "for each of the two windows)",
-    )  # fmt: skip
+    )
     parser.add_argument("--warmup", type=float, default=LoadOptions.warmup_s, help="seconds after all connected before measuring")
     parser.add_argument("--connect-rate", type=float, default=LoadOptions.connect_per_s, help="viewers opened per second")
     parser.add_argument(
         "--room", action="store_true",
-        help="the students follow one classroom room on the scene instead of a scene each (writes classroom.json and .svg)",
-    )  # fmt: skip
+        help=("the students follow one classroom room on the scene instead of a scene each (writes classroom.json " "and .svg)"),
+    )
     parser.add_argument(
         "--attack", action="store_true",
         help="students on their own scenes, measured first alone and then while one client attacks the class with "
         "every attack the class-safety issue found (room, sessions, floods, bursts, expensive requests); writes "
         "attack.json and .svg",
-    )  # fmt: skip
+    )
     parser.add_argument(
         "--distinct-addresses", action=argparse.BooleanOptionalAction, default=None,
         help="each student connects from its own loopback address (127.0.1.1, 127.0.1.2, …) as a class of devices "
-        "does, so per-device limits see students, not one client (default: on; off from one address is refused beyond 8 viewers)",
-    )  # fmt: skip
+        "does, so per-device limits see students, not one client (default: on; off from one address is refused " "beyond 8 viewers)",
+    )
     parser.add_argument(
         "--instructor-key", default=None,
         help="with --room or --attack and --url: the server's instructor secret, to open the room (a server the tool "
         "starts gets its own)",
-    )  # fmt: skip
+    )
     add_server_arguments(parser)
 
 
@@ -1028,7 +1030,7 @@ def run_load_command(args: argparse.Namespace, parser: argparse.ArgumentParser) 
             warmup_s=args.warmup, connect_per_s=args.connect_rate, workers=args.workers, url=args.url,
             server_pid=args.server_pid, room=args.room, instructor_key=args.instructor_key,
             distinct_addresses=args.distinct_addresses, attack=args.attack,
-        )  # fmt: skip
+        )
     except ValueError as exc:
         parser.error(str(exc))
     if options.attack:

@@ -31,7 +31,7 @@ import json
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from datetime import datetime, timezone
+from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any
 
@@ -90,9 +90,9 @@ def cartesian_pendulum_case() -> ConstrainedCase:
     return ConstrainedCase(
         id="cartesian-pendulum", title="Cartesian pendulum, unit problem, 1 s",
         system=pendulum_system(1.0, 1.0, 1.0), positions0=q0, rates0=v0, t_end_s=t_end, frame_rate_hz=60.0,
-        reference_positions=exact[:2], reference_name="the exact motion released at rest from the horizontal, m = 1 kg, L = 1 m, g = 1 m/s² (Jacobi elliptic functions, scipy.special.ellipj)",
+        reference_positions=exact[:2], reference_name=("the exact motion released at rest from the horizontal, m = 1 kg, L = 1 m, g = 1 m/s² " "(Jacobi elliptic functions, scipy.special.ellipj)"),
         error_unit="m", reference_floor=1e-14, rk4_steps_per_frame=(1, 2, 4, 8, 16, 32, 64), baumgarte_1_s=5.0,
-    )  # fmt: skip
+    )
 
 
 def massive_four_bar_case() -> ConstrainedCase:
@@ -110,16 +110,16 @@ def massive_four_bar_case() -> ConstrainedCase:
     crank = solve_ivp(
         lambda _t, y: np.array([y[1], float(crank_acceleration_rad_s2(params, np.array([y[0]]), np.array([y[1]]))[0])]),
         (0.0, t_end), np.array([q0[2], v0[2]]), method="DOP853", rtol=1e-13, atol=1e-13,
-    )  # fmt: skip
+    )
     theta, omega = crank.y[:, -1]
     q_ref, _, _ = four_bar_absolute_motion(params, np.array([theta]), np.array([omega]), np.zeros(1))
     return ConstrainedCase(
         id="massive-four-bar", title=f"Massive four-bar, {t_end:g} s (9 coordinates, 8 constraints)",
         system=massive_four_bar_system(params), positions0=q0, rates0=v0, t_end_s=t_end, frame_rate_hz=60.0,
         reference_positions=q_ref[0],
-        reference_name="the one-degree-of-freedom equation in the crank angle (DOP853, rtol 1e-13) through chapter 4's loop closure",
+        reference_name=("the one-degree-of-freedom equation in the crank angle (DOP853, rtol 1e-13) through " "chapter 4's loop closure"),
         error_unit="m or rad", reference_floor=1e-10, rk4_steps_per_frame=(1, 2, 4, 8, 16, 32, 64), baumgarte_1_s=10.0, angle_coordinates=(2, 5, 8),
-    )  # fmt: skip
+    )
 
 
 def andrews_case() -> ConstrainedCase:
@@ -137,7 +137,7 @@ def andrews_case() -> ConstrainedCase:
         reference_positions=REFERENCE_POSITIONS_RAD,
         reference_name="the published solution of the IVP test set (PSIDE, rtol = atol = 1e-14)", error_unit="rad",
         reference_floor=2e-9, rk4_steps_per_frame=(4, 8, 16, 32, 64, 128, 256), baumgarte_1_s=500.0,
-    )  # fmt: skip
+    )
 
 
 CASES: dict[str, Callable[[], ConstrainedCase]] = {
@@ -146,7 +146,8 @@ CASES: dict[str, Callable[[], ConstrainedCase]] = {
 
 
 def index1_rhs(system: ConstrainedSystem) -> Callable[[float, np.ndarray], np.ndarray]:
-    """``y = (q, v)`` (2n,) ↦ ``(v, v̇)`` from ``[M −Cᵀ; C 0] [v̇; λ] = [f; c]`` with numpy, as a scipy user would write it."""
+    """``y = (q, v)`` (2n,) ↦ ``(v, v̇)`` from ``[M −Cᵀ; C 0] [v̇; λ] = [f; c]`` with numpy, as a scipy user would write
+    it."""
     n, m = system.n_coordinates, system.n_constraints
 
     def rhs(t: float, y: np.ndarray) -> np.ndarray:
@@ -190,7 +191,8 @@ class Run:
 
 
 def run_ours(case: ConstrainedCase, algorithm: str, integrator_name: str, setting: float, *, repeats: int = 3) -> Run:
-    """One of our DAE algorithms with a compiled integrator; best process CPU time of the integration over ``repeats``."""
+    """One of our DAE algorithms with a compiled integrator; best process CPU time of the integration over
+    ``repeats``."""
     if integrator_name == "rk4":
         integrator = make_integrator("rk4", steps_per_frame=int(setting))
     else:
@@ -255,7 +257,7 @@ def _point(case: ConstrainedCase, setting: float, run: Run) -> dict[str, Any]:
     point.update(
         error=case.position_error(run.positions), position_residual=float(position_residual[0]),
         velocity_residual=float(velocity_residual[0]), status="ok",
-    )  # fmt: skip
+    )
     return point
 
 
@@ -268,11 +270,16 @@ def run_benchmark(case_ids: Sequence[str] | None = None, *, quick: bool = False)
     runs = sum(len(s[4]) for case_sweeps in sweeps.values() for s in case_sweeps) + len(cases) * sum(len(s[2]) for s in scipy_sweeps)
     progress = Progress(runs)
     report: dict[str, Any] = {
-        "created": datetime.now(timezone.utc).isoformat(timespec="seconds"), "machine": _machine(),
-        "error_measure": "largest |q − q_ref| over all coordinates at the final time, in each coordinate's unit (m or rad)",
-        "residuals": "position_residual: largest |g(q)| (m, or rad for angle constraints); velocity_residual: largest |C v| (m/s or rad/s), both at the final time",
+        "created": datetime.now(UTC).isoformat(timespec="seconds"), "machine": _machine(),
+        "error_measure": (
+            "largest |q − q_ref| over all coordinates at the final time, in each coordinate's unit (m or rad)"
+        ),
+        "residuals": (
+            "position_residual: largest |g(q)| (m, or rad for angle constraints); "
+            "velocity_residual: largest |C v| (m/s or rad/s), both at the final time"
+        ),
         "cases": [],
-    }  # fmt: skip
+    }
     for case in cases:
         methods = []
         for method, integrator, label, setting_name, settings in sweeps[case.id]:
@@ -285,7 +292,7 @@ def run_benchmark(case_ids: Sequence[str] | None = None, *, quick: bool = False)
                 "label": label, "setting_name": setting_name, "baumgarte_1_s": case.baumgarte_1_s if method == "baumgarte" else None,
                 "projection": _PROJECTION[method],
                 "points": points,
-            })  # fmt: skip
+            })
         for method, label, settings in scipy_sweeps:
             points = []
             for rtol in settings:
@@ -294,7 +301,7 @@ def run_benchmark(case_ids: Sequence[str] | None = None, *, quick: bool = False)
             methods.append({
                 "method": method, "algorithm": "index-1", "integrator": method.split("-", 1)[1], "family": "scipy", "label": label,
                 "setting_name": "rtol", "projection": "none", "points": points,
-            })  # fmt: skip
+            })
         report["cases"].append(_case_entry(case, methods))
     return report
 
@@ -311,7 +318,7 @@ def _case_entry(case: ConstrainedCase, methods: list[dict[str, Any]]) -> dict[st
         "error_unit": case.error_unit, "reference": case.reference_name,
         "reference_positions": [float(x) for x in case.reference_positions], "reference_floor": case.reference_floor,
         "cpu_s_at_error": cost, "methods": methods, "plot": f"{SVG_PREFIX}{case.id}.svg",
-    }  # fmt: skip
+    }
 
 
 def write_report(report: dict[str, Any], out_dir: Path = OUT_DIR) -> list[Path]:
@@ -343,5 +350,5 @@ def main(argv: Sequence[str] | None = None) -> int:
         for method in case["methods"]:
             best = min((p for p in method["points"] if p["error"] is not None), key=lambda p: p["error"], default=None)
             if best is not None:
-                print(f"  {method['label']:<44} best error {best['error']:.1e} {case['error_unit']} in {best['cpu_s'] * 1e3:.3g} ms")
+                print(f"  {method['label']:<44} best error {best['error']:.1e} {case['error_unit']} in " f"{best['cpu_s'] * 1e3:.3g} ms")
     return 0

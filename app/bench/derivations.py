@@ -32,7 +32,12 @@ import numpy as np
 
 from app.physics.core.bounded import BoundedRunner, WorkRefused
 from app.physics.mechanics import engine
-from app.physics.mechanics.agreement import formulation_agreement, proves_same_equations, random_states, reference_formulation
+from app.physics.mechanics.agreement import (
+    formulation_agreement,
+    proves_same_equations,
+    random_states,
+    reference_formulation,
+)
 from app.physics.mechanics.engine import available_formulations
 from app.physics.solvers import RK4, LiveRun, automatic_steps_per_frame
 from app.physics.solvers.system import OdeSystem
@@ -99,10 +104,10 @@ def measure(*, prove: bool = True) -> dict[str, Any]:
                     "derive_s": result.derive_s, "code_s": result.compile_s, "numba_s": numba_s,
                     "second_request_ms": statistics.median(timings), "second_request_max_ms": max(timings),
                     "frame_us": frame_us, "steps_per_frame": steps, "symbolic": symbolic,
-                }  # fmt: skip
+                }
                 rows.append(row)
-                print(f"{system_id:22s} {formulation:13s} derive {result.derive_s:6.2f} s  code {result.compile_s:5.2f} s  numba {numba_s:5.2f} s  "
-                      f"again {row['second_request_ms']:5.1f} ms  frame {frame_us:6.1f} µs  {symbolic}", flush=True)  # fmt: skip
+                print(f"{system_id:22s} {formulation:13s} derive {result.derive_s:6.2f} s  code " f"{result.compile_s:5.2f} s  numba {numba_s:5.2f} s  "
+                      f"again {row['second_request_ms']:5.1f} ms  frame {frame_us:6.1f} µs  {symbolic}", flush=True)
             agreement = formulation_agreement(system, params, states)
             for row in rows:
                 if row["system"] == system_id:
@@ -120,8 +125,8 @@ def write_svg(report: dict[str, Any], path: Path) -> None:
     def x(seconds: float) -> float:
         return left + width * (min(max(np.log10(max(seconds, 1e-3)), lo), hi) - lo) / (hi - lo)
 
-    parts = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{left + width + 240}" height="{height + 30}" font-family="sans-serif" font-size="11">',
-             f'<text x="{left}" y="14">derivation time (blue) and a second request (orange), log scale, 1 ms … 100 s</text>']  # fmt: skip
+    parts = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{left + width + 240}" height="{height + 30}" ' 'font-family="sans-serif" font-size="11">',
+             f'<text x="{left}" y="14">derivation time (blue) and a second request (orange), log scale, 1 ms … 100 s</text>']
     for k in range(lo, hi + 1):
         parts.append(f'<line x1="{x(10.0**k):.1f}" y1="20" x2="{x(10.0**k):.1f}" y2="{height}" stroke="#ddd"/>')
         parts.append(f'<text x="{x(10.0**k):.1f}" y="{height + 14}" text-anchor="middle">{10.0**k:g} s</text>')
@@ -129,8 +134,8 @@ def write_svg(report: dict[str, Any], path: Path) -> None:
         y = 24 + 16 * i
         parts.append(f'<text x="{left - 6}" y="{y + 10}" text-anchor="end">{row["system"]} · {row["formulation"]}</text>')
         parts.append(f'<rect x="{left}" y="{y + 1}" width="{x(row["derive_s"]) - left:.1f}" height="6" fill="#3b6fb6"/>')
-        parts.append(f'<rect x="{left}" y="{y + 8}" width="{x(row["second_request_ms"] / 1e3) - left:.1f}" height="6" fill="#e08a2c"/>')
-        parts.append(f'<text x="{left + width + 6}" y="{y + 10}">{row["derive_s"]:.2f} s / {row["second_request_ms"]:.1f} ms · {row["symbolic"]}</text>')
+        parts.append(f'<rect x="{left}" y="{y + 8}" width="{x(row["second_request_ms"] / 1e3) - left:.1f}" height="6" ' 'fill="#e08a2c"/>')
+        parts.append(f'<text x="{left + width + 6}" y="{y + 10}">{row["derive_s"]:.2f} s / {row["second_request_ms"]:.1f} ' f'ms · {row["symbolic"]}</text>')
     parts.append("</svg>")
     path.write_text("\n".join(parts), encoding="utf-8")
 

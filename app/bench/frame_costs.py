@@ -87,7 +87,8 @@ def _physics_fraction(profile: cProfile.Profile) -> float:
 
 
 def scene_frame_cost_us(cls) -> tuple[float, float]:
-    """µs per ``advance`` of a scene at its defaults on a :class:`NullClient`: the whole frame, and its physics share."""
+    """µs per ``advance`` of a scene at its defaults on a :class:`NullClient`: the whole frame, and its physics
+    share."""
     scene = cls(NullClient(), cls.parameters.defaults())
     try:
         frame_us = 1e6 * _time_frames(scene.advance, TIMED_FRAMES)

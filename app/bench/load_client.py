@@ -31,6 +31,7 @@ import secrets
 import time
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from typing import Any
 from urllib.parse import urlsplit
 
 import msgspec
@@ -202,7 +203,8 @@ def viser_messages_in_frame(data: bytes) -> int:
 
 
 def connect_failure(exc: BaseException) -> str:
-    """A short label for why a viewer websocket did not open: ``HTTP 403``, ``timeout``, ``ConnectionRefusedError``, …"""
+    """A short label for why a viewer websocket did not open: ``HTTP 403``, ``timeout``, ``ConnectionRefusedError``,
+    …"""
     if isinstance(exc, websockets.InvalidStatus):
         return f"HTTP {exc.response.status_code}"
     if isinstance(exc, TimeoutError):
@@ -249,7 +251,7 @@ class ViewerClient:
         answer = await http_request(
             host, port, "PUT", f"/api/scenes/{self.scene_id}/sessions/{self.session_id}", body={"params": {}},
             headers={SESSION_KEY_HEADER: self.session_key}, source_address=self.source_address, timeout_s=CONNECT_TIMEOUT_S,
-        )  # fmt: skip
+        )
         if answer.status == 200:
             return True
         self.outcome = f"claim {answer.label}"
@@ -262,7 +264,7 @@ class ViewerClient:
         if self.owns_session and not await self.claim(host, port):
             return
         uri = f"ws://{host}:{port}{self.path}"
-        socket_options = {"local_addr": (self.source_address, 0)} if self.source_address else {}
+        socket_options: dict[str, Any] = {"local_addr": (self.source_address, 0)} if self.source_address else {}
         try:
             connection = await websockets.connect(
                 uri,
@@ -332,7 +334,7 @@ class Classroom:
     def __init__(
         self, host: str, port: int, scene_id: str, students: int, *, connect_per_s: float, path: str = "",
         distinct_addresses: bool = False,
-    ) -> None:  # fmt: skip
+    ) -> None:
         # Imported here: importing app.scenes registers every scene (about 2 s), which only a running load needs.
         from app.scenes.viser_boundary import viewer_camera_message
 
@@ -347,7 +349,8 @@ class Classroom:
         self._tasks: list[asyncio.Task] = []
 
     async def open(self, *, timeout_s: float) -> None:
-        """Start every viewer, ``1/connect_per_s`` apart; return once all connected or failed, or after ``timeout_s``."""
+        """Start every viewer, ``1/connect_per_s`` apart; return once all connected or failed, or after
+        ``timeout_s``."""
         for client in self.clients:
             self._tasks.append(asyncio.create_task(client.run(self.host, self.port, self._stop, self.camera_message)))
             await asyncio.sleep(1.0 / self.connect_per_s)

@@ -26,7 +26,7 @@ import math
 import sys
 from collections.abc import Iterable, Sequence
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeGuard
 from xml.sax.saxutils import escape, quoteattr
 
 SVG_NS = "http://www.w3.org/2000/svg"
@@ -52,7 +52,7 @@ STROKE_WIDTH = {"dynlab": 2.6, "scipy": 1.8, "mujoco": 2.0, "other": 1.8}
 MARKERS = ("circle", "square", "triangle", "diamond", "triangle-down", "pentagon", "plus", "cross", "star", "hexagon")
 
 
-def _finite_positive(value: Any) -> bool:
+def _finite_positive(value: Any) -> TypeGuard[float]:
     return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value) and value > 0
 
 
@@ -284,12 +284,12 @@ def work_precision_svg(scene: dict) -> str:
     for axis, vertical in ((ax, True), (ay, False)):
         decades = axis.hi - axis.lo
         label_every = max(1, math.ceil(decades / (8 if vertical else 7)))
-        line = _vline if vertical else _hline
+        grid_line = _vline if vertical else _hline
         if decades <= 8:
-            grid.extend(line(axis(m * 10.0**k), "#eef0f4") for k in range(axis.lo, axis.hi) for m in range(2, 10))
+            grid.extend(grid_line(axis(m * 10.0**k), "#eef0f4") for k in range(axis.lo, axis.hi) for m in range(2, 10))
         for k in range(axis.lo, axis.hi + 1):
             c = axis(10.0**k)
-            grid.append(line(c, "#d5dae3"))
+            grid.append(grid_line(c, "#d5dae3"))
             if (k - axis.lo) % label_every == 0:
                 labels.append(
                     _text(c, PLOT_BOTTOM + 18, tick_label(k), anchor="middle")
@@ -465,18 +465,18 @@ def phase_drift_svg(study: dict) -> str:
     axis = _Axis(lo, hi, left, right)
     colours = {"energy_drift": "#7d8894", "attitude_error_rad": "#d0202e"}
     out = [
-        f'<svg xmlns="{SVG_NS}" width="{WIDTH}" height="{height}" viewBox="0 0 {WIDTH} {height}" role="img" font-family="{FONT}">',
+        f'<svg xmlns="{SVG_NS}" width="{WIDTH}" height="{height}" viewBox="0 0 {WIDTH} {height}" role="img" ' f'font-family="{FONT}">',
         f"<title>{escape(str(study.get('title', 'Energy drift beside attitude error')))}</title>",
         f'<rect width="{WIDTH}" height="{height}" fill="#ffffff"/>',
         _text(16, 26, str(study.get("title", "Energy drift beside attitude error")), size=16, weight="600"),
         _text(16, 44, "Grey: largest relative energy drift |E(t) − E(0)|/|E(0)|. Red: largest attitude error (rad) against the",
               size=11, fill="#5b6475"),
-        _text(16, 58, "exact (quadrature) solution, at 60 frames/s; under each name its step (auto: what a live scene picks). Log scale.",
+        _text(16, 58, "exact (quadrature) solution, at 60 frames/s; under each name its step (auto: what a live scene " "picks). Log scale.",
               size=11, fill="#5b6475"),
     ]
     for k in range(lo, hi + 1):
         x = axis(10.0**k)
-        out.append(f'<line x1="{_f(x)}" x2="{_f(x)}" y1="{top - 8}" y2="{top + row_h * len(rows)}" stroke="#e3e6ec" stroke-width="1"/>')
+        out.append(f'<line x1="{_f(x)}" x2="{_f(x)}" y1="{top - 8}" y2="{top + row_h * len(rows)}" stroke="#e3e6ec" ' 'stroke-width="1"/>')
         if (k - lo) % 2 == 0:
             out.append(_text(x, top + row_h * len(rows) + 18, tick_label(k), size=11, anchor="middle"))
     for i, row in enumerate(rows):
@@ -499,7 +499,8 @@ def phase_drift_svg(study: dict) -> str:
     return "\n".join(out) + "\n"
 
 
-#: Physics time one displayed frame may take (µs): a fraction of the 33 ms frame that leaves room for 100 students on two cores.
+#: Physics time one displayed frame may take (µs): a fraction of the 33 ms frame that leaves room for 100 students on
+#: two cores.
 FRAME_BUDGET_US = 50.0
 
 
@@ -511,21 +512,21 @@ def frame_cost_svg(live_scenes: Sequence[dict]) -> str:
     top_value = max([FRAME_BUDGET_US * 1.2, *(float(s["physics_us_per_frame"]) for s in rows)])
     x = lambda v: left + (right - left) * v / top_value  # noqa: E731
     out = [
-        f'<svg xmlns="{SVG_NS}" width="{WIDTH}" height="{height}" viewBox="0 0 {WIDTH} {height}" font-family="{escape(FONT)}">',
+        f'<svg xmlns="{SVG_NS}" width="{WIDTH}" height="{height}" viewBox="0 0 {WIDTH} {height}" ' f'font-family="{escape(FONT)}">',
         f'<rect width="{WIDTH}" height="{height}" fill="#ffffff"/>',
         _text(16, 28, "Physics time per displayed frame, each animated scene at its defaults", size=15, weight="600"),
-        _text(16, 46, "µs of CPU per frame at 30 frames/s: the physics share of a closed-form scene's frame (profiled), one frame of an integrated live run", size=11, fill="#555"),
+        _text(16, 46, "µs of CPU per frame at 30 frames/s: the physics share of a closed-form scene's frame (profiled), " "one frame of an integrated live run", size=11, fill="#555"),
     ]
     for i, scene in enumerate(rows):
         value = float(scene["physics_us_per_frame"])
         y = top + i * row_h
         colour = "#1b8a3a" if value <= FRAME_BUDGET_US else "#d0202e"
         out.append(_text(left - 8, y + 15, str(scene["scene_id"]), size=12, anchor="end"))
-        out.append(f'<rect x="{left}" y="{y + 4}" width="{_f(max(x(value) - left, 1.0))}" height="{row_h - 8}" fill="{colour}"/>')
+        out.append(f'<rect x="{left}" y="{y + 4}" width="{_f(max(x(value) - left, 1.0))}" height="{row_h - 8}" ' f'fill="{colour}"/>')
         out.append(_text(x(value) + 6, y + 15, f"{value:.3g} µs ({scene['method']})", size=11))
     bottom = top + row_h * len(rows)
     budget = x(FRAME_BUDGET_US)
-    out.append(f'<line x1="{_f(budget)}" x2="{_f(budget)}" y1="{top - 4}" y2="{bottom + 4}" stroke="#d0202e" stroke-width="1.5" stroke-dasharray="5 3"/>')
+    out.append(f'<line x1="{_f(budget)}" x2="{_f(budget)}" y1="{top - 4}" y2="{bottom + 4}" stroke="#d0202e" ' 'stroke-width="1.5" stroke-dasharray="5 3"/>')
     out.append(_text(budget, bottom + 20, f"budget {FRAME_BUDGET_US:g} µs", size=11, anchor="middle", fill="#d0202e"))
     out.append(f'<line x1="{left}" x2="{right}" y1="{bottom + 4}" y2="{bottom + 4}" stroke="#888" stroke-width="1"/>')
     out.append("</svg>")

@@ -30,7 +30,7 @@ class TreeUsage:
 
 def tree_pids(root_pid: int) -> list[int]:
     """``root_pid`` followed by every live descendant (breadth first)."""
-    pids, queue, seen = [], [root_pid], set()
+    pids, queue, seen = [], [root_pid], set[int]()
     while queue and len(seen) < 10_000:  # bounded: a fork bomb must not hang the load tool
         pid = queue.pop(0)
         if pid in seen or not (PROC / str(pid)).is_dir():

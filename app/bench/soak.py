@@ -25,6 +25,7 @@ import time
 from collections.abc import Awaitable, Callable
 from dataclasses import asdict
 from pathlib import Path
+from typing import Any
 
 from app.bench.capacity import (
     PAUSE_BETWEEN_STEPS_S,
@@ -67,7 +68,7 @@ def settled(baseline: TreeUsage, now: TreeUsage) -> bool:
 def judge_soak(baseline: TreeUsage, end: TreeUsage, *, errors: int) -> dict:
     """The soak's verdict: each check with its figures, and ``passed`` only if all hold."""
     rss_ratio = end.rss_mb / baseline.rss_mb if baseline.rss_mb > 0 else math.inf
-    checks = {
+    checks: dict[str, dict[str, Any]] = {
         "no_errors": {"passed": errors == 0, "errors": errors},
         "rss_within_10_percent": {
             "passed": rss_ratio <= 1.0 + RSS_TOLERANCE,
@@ -102,13 +103,21 @@ async def wait_until_settled(
     return now
 
 
+def _usage_now(server: ServerUnderTest) -> TreeUsage:
+    """The server's process tree now; the soak always runs a server of its own, so there is one to measure."""
+    usage = server.usage()
+    if usage is None:
+        raise RuntimeError("soak: the server under test has no process to measure")
+    return usage
+
+
 def _usage_dict(usage: TreeUsage) -> dict:
     return {key: round(value, 1) if isinstance(value, float) else value for key, value in asdict(usage).items()}
 
 
 async def _soak(server: ServerUnderTest, scene_id: str, students: int, minutes: float, connect_per_s: float) -> dict:
     host, port = server.address
-    cold = server.usage()
+    cold = _usage_now(server)
     warmup = Classroom(host, port, scene_id, students, connect_per_s=connect_per_s)
     try:
         await warmup.open(timeout_s=30.0 + students / connect_per_s)
@@ -117,7 +126,7 @@ async def _soak(server: ServerUnderTest, scene_id: str, students: int, minutes: 
         await warmup.close()
     await asyncio.sleep(PAUSE_BETWEEN_STEPS_S)
     await health_request_ms(host, port)  # the web server retires idle pool threads only when a request arrives
-    baseline = server.usage()
+    baseline = _usage_now(server)
     peak = baseline
     samples = []
     classroom = Classroom(host, port, scene_id, students, connect_per_s=connect_per_s)
@@ -128,21 +137,21 @@ async def _soak(server: ServerUnderTest, scene_id: str, students: int, minutes: 
         previous = classroom.snapshot()
         while (remaining := end_at - time.monotonic()) > 0:
             await asyncio.sleep(min(SAMPLE_PERIOD_S, remaining))
-            current, usage = classroom.snapshot(), server.usage()
+            current, usage = classroom.snapshot(), _usage_now(server)
             peak = TreeUsage(*(max(a, b) for a, b in zip(_fields(peak), _fields(usage))))
             samples.append({
                 "minute": round((current.at_s - started) / 60.0, 2),
                 "frames_per_s": frame_rate_summary(per_client_rates(previous, current, classroom.healthy())),
                 "connected": sum(classroom.healthy()),
                 **{f"server_{k}": v for k, v in _usage_dict(usage).items() if k != "cpu_s"},
-            })  # fmt: skip
+            })
             print(f"soak minute {samples[-1]['minute']}: {samples[-1]}", flush=True)
             previous = current
     finally:
         errors = classroom.errors()
         await classroom.close()
     end = await wait_until_settled(
-        server.usage, baseline, timeout_s=SETTLE_TIMEOUT_S, poke=lambda: health_request_ms(host, port)
+        lambda: _usage_now(server), baseline, timeout_s=SETTLE_TIMEOUT_S, poke=lambda: health_request_ms(host, port)
     )
     verdict = judge_soak(baseline, end, errors=len(errors))
     return {
@@ -173,7 +182,7 @@ def _fields(usage: TreeUsage) -> tuple:
 
 
 def run_soak(scene_id: str, students: int, minutes: float, *, workers: int | None = None, url: str | None = None,
-             server_pid: int | None = None, connect_per_s: float = 50.0) -> dict:  # fmt: skip
+             server_pid: int | None = None, connect_per_s: float = 50.0) -> dict:
     """Run the soak (see the module docstring) and return its report."""
     if not 1 <= students <= MAX_STUDENTS:
         raise ValueError(f"students: must be 1..{MAX_STUDENTS}, got {students}")
@@ -202,7 +211,7 @@ def run_soak_command(args: argparse.Namespace, parser: argparse.ArgumentParser) 
         parser.error(f"scene: a soak runs one scene, got {', '.join(scenes)}")
     try:
         report = run_soak(scenes[0], args.students, args.minutes, workers=args.workers, url=args.url,
-                          server_pid=args.server_pid)  # fmt: skip
+                          server_pid=args.server_pid)
     except ValueError as exc:
         parser.error(str(exc))
     except RuntimeError as exc:

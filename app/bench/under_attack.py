@@ -97,7 +97,7 @@ class AttackerProcess:
         self.process = subprocess.Popen(
             [sys.executable, "-m", "app.bench.attacks"], cwd=PROJECT_ROOT, stdin=subprocess.PIPE, stdout=subprocess.PIPE,
             stderr=self.log, text=True,
-        )  # fmt: skip
+        )
 
     def __enter__(self) -> AttackerProcess:
         return self
@@ -109,7 +109,8 @@ class AttackerProcess:
             self.process.wait(timeout=10.0)
         for stream in (self.process.stdin, self.process.stdout):
             with contextlib.suppress(OSError):
-                stream.close()
+                if stream is not None:  # both are pipes, opened with the process
+                    stream.close()
         self.log.close()
 
     async def _line(self, timeout_s: float) -> str:
@@ -164,7 +165,7 @@ def _rates_of(reading: WindowReading, chosen: Sequence[bool]) -> dict | None:
         (b - a) / elapsed
         for a, b, ok, pick in zip(reading.start.frames, reading.end.frames, reading.healthy_at_start, chosen)
         if ok and pick
-    ])  # fmt: skip
+    ])
 
 
 def _projector_rate(start: ClassroomSnapshot, end: ClassroomSnapshot) -> float | None:
@@ -189,13 +190,14 @@ async def _baseline_then_attack(
     host, port = server.address
     scene_id, students = options.scenes[0], options.students[0]
     classroom = Classroom(
-        host, port, scene_id, students, connect_per_s=options.connect_per_s, distinct_addresses=options.distinct_addresses
+        host, port, scene_id, students, connect_per_s=options.connect_per_s,
+        distinct_addresses=bool(options.distinct_addresses),  # set on construction of the options
     )
     projector = Classroom(host, port, scene_id, 1, connect_per_s=options.connect_per_s, path=f"/room-viewer/{room_id}")
     plan = AttackPlan(
         host=host, port=port, scene_id=scene_id, room_id=room_id, victims=tuple(c.session_id for c in classroom.clients),
         seconds=options.seconds, bounds=options.attack_bounds or AttackBounds(), other_scene_id=rescene_target(scene_id),
-    )  # fmt: skip
+    )
     try:
         await projector.open(timeout_s=30.0)
         await classroom.open(timeout_s=30.0 + students / options.connect_per_s)
@@ -227,7 +229,7 @@ async def _baseline_then_attack(
         "attacker": {
             "address": ATTACKER_ADDRESS, "students_named": len(named_ids), "failures": result.get("failures") or {},
             "ran_s": result.get("ran_s"), "bounds": asdict(plan.bounds), "rescene_to": plan.other_scene_id,
-        },  # fmt: skip
+        },
     }
 
 
@@ -247,7 +249,7 @@ def run_attack(options: LoadOptions) -> dict:
         with server_for(
             options.url, server_pid=options.server_pid, workers=options.workers,
             instructor_key=key if options.url is None else None, stop=stop, stop_timeout_s=STOP_TIMEOUT_S,
-        ) as server:  # fmt: skip
+        ) as server:
             check_scenes(server.base_url, [scene_id, rescene_target(scene_id), EXPENSIVE_SCENE])
             room = open_room(server.base_url, scene_id, instructor_key=key)
             try:
@@ -276,10 +278,12 @@ def run_attack(options: LoadOptions) -> dict:
                 f"{ATTACKER_ADDRESS}, the tool's health probe and projector from 127.0.0.1"
                 if options.distinct_addresses else
                 f"every student from 127.0.0.1 (--no-distinct-addresses), the attacker from {ATTACKER_ADDRESS}"
-            ),  # fmt: skip
+            ),
             "windows": "before the attack, then under attack, on the same connected students, each of `seconds`",
             "frame": "one binary websocket message (a viser frame window), counted per client over the window",
-            "counted": "every student connected at the window's start; one cut off meanwhile counts with what it received",
+            "counted": (
+                "every student connected at the window's start; one cut off meanwhile counts with what it received"
+            ),
             "health_period_s": 0.25,
             "health_slow_s": 2.0,
         },
@@ -311,7 +315,7 @@ def summary_line(report: dict) -> str:
         fps = (windows.get(name) or {}).get("frames_per_s") or {}
         dropped = (windows.get(name) or {}).get("dropped")
         parts.append(f"{label}: p10 {fps.get('p10', '—')}, median {fps.get('median', '—')}, slowest {fps.get('min', '—')}"
-                     f" frames/s, {dropped} dropped")  # fmt: skip
+                     f" frames/s, {dropped} dropped")
     verdict = "meets" if (report.get("verdict") or {}).get("meets_target") else "misses"
     return (
         f"{report.get('students')} students on {report.get('scene_id')}: " + "; ".join(parts)
@@ -372,7 +376,7 @@ def _notes(report: dict) -> list[str]:
         _split_note(named, others),
         f"Projector (the room's shared scene): {_number(before.get('projector_frames_per_s'))} frames/s before, "
         f"{_number(during.get('projector_frames_per_s'))} under attack.",
-        f"Server CPU: {_number(before.get('server_cpu_cores'))} cores before, {_number(during.get('server_cpu_cores'))} under "
+        f"Server CPU: {_number(before.get('server_cpu_cores'))} cores before, " f"{_number(during.get('server_cpu_cores'))} under "
         f"attack; health p95 {_number((before.get('health_ms') or {}).get('p95'), ' ms')} and "
         f"{_number((during.get('health_ms') or {}).get('p95'), ' ms')}.",
         f"The attacking client's own CPU: {_number(during.get('attacker_cpu_cores'))} cores; everything else on the "
@@ -425,13 +429,13 @@ def attack_svg(report: dict) -> str:
     values = [
         v for name, _ in WINDOW_NAMES for v in ((windows.get(name) or {}).get("frames_per_s") or {}).values()
         if isinstance(v, (int, float))
-    ]  # fmt: skip
+    ]
     top = 5.0 * max(7, int(max(values + [TARGET_P10_FRAMES_PER_S]) // 5) + 1)
     y = lambda v: BAR_BOTTOM - (BAR_BOTTOM - BAR_TOP) * v / top  # noqa: E731
     machine, server = report.get("machine") or {}, report.get("server") or {}
     seconds = (report.get("method") or {}).get("seconds")
     subtitle = (
-        f"{report.get('students', '?')} students, each on a {report.get('scene_id', '?')} session of their own; one attacking "
+        f"{report.get('students', '?')} students, each on a {report.get('scene_id', '?')} session of their own; " "one attacking "
         f"client; {machine.get('cores', '?')} cores; scene workers: {describe_workers(server.get('workers'))}; "
         f"{_number(seconds, ' s')} per window; {str(report.get('created', ''))[:10]}"
     )
@@ -449,10 +453,10 @@ def attack_svg(report: dict) -> str:
         out.append(f'<line x1="{BAR_LEFT}" x2="{BAR_RIGHT}" y1="{_f(y(5 * k))}" y2="{_f(y(5 * k))}" stroke="#eef0f4"/>')
         out.append(_text(BAR_LEFT - 7, y(5 * k) + 4, f"{5 * k:g}", anchor="end"))
     out.append("</g>")
-    out.append(f'<rect x="{BAR_LEFT}" y="{BAR_TOP}" width="{BAR_RIGHT - BAR_LEFT}" height="{BAR_BOTTOM - BAR_TOP}" fill="none" stroke="#9aa3b2"/>')
+    out.append(f'<rect x="{BAR_LEFT}" y="{BAR_TOP}" width="{BAR_RIGHT - BAR_LEFT}" height="{BAR_BOTTOM - BAR_TOP}" ' 'fill="none" stroke="#9aa3b2"/>')
     cy = (BAR_TOP + BAR_BOTTOM) / 2
     out.append(_text(BAR_LEFT - 40, cy, "Frames per second per student", size=13, anchor="middle", weight="600",
-                     extra=f'transform="rotate(-90 {_f(BAR_LEFT - 40)} {_f(cy)})"'))  # fmt: skip
+                     extra=f'transform="rotate(-90 {_f(BAR_LEFT - 40)} {_f(cy)})"'))
     group_w = (BAR_RIGHT - BAR_LEFT) / len(WINDOW_NAMES)
     for index, (name, label) in enumerate(WINDOW_NAMES):
         window = windows.get(name) or {}
@@ -465,30 +469,30 @@ def attack_svg(report: dict) -> str:
             if isinstance(value, (int, float)):
                 x = x0 + offset * bar_w
                 out.append(f'<rect class="bar" data-stat="{key}" data-value="{value:g}" x="{_f(x + 3)}" y="{_f(y(value))}" '
-                           f'width="{_f(bar_w - 6)}" height="{_f(BAR_BOTTOM - y(value))}" fill="{colour}"/>')  # fmt: skip
+                           f'width="{_f(bar_w - 6)}" height="{_f(BAR_BOTTOM - y(value))}" fill="{colour}"/>')
                 out.append(_text(x + bar_w / 2, y(value) - 6, f"{value:g}", size=11, anchor="middle", halo=True))
         slowest = fps.get("min")
         if isinstance(slowest, (int, float)):
             out.append(f'<line class="slowest" data-value="{slowest:g}" x1="{_f(x0)}" x2="{_f(x0 + 2 * bar_w)}" '
-                       f'y1="{_f(y(slowest))}" y2="{_f(y(slowest))}" stroke="{SLOWEST_COLOUR}" stroke-width="2"/>')  # fmt: skip
+                       f'y1="{_f(y(slowest))}" y2="{_f(y(slowest))}" stroke="{SLOWEST_COLOUR}" stroke-width="2"/>')
         if not fps:
             out.append(_text(x0 + bar_w, cy, "not measured", size=12, anchor="middle", fill=SLOWEST_COLOUR))
         out.append(_text(x0 + bar_w, BAR_BOTTOM + 18, label, anchor="middle", weight="600"))
         out.append(_text(x0 + bar_w, BAR_BOTTOM + 34, f"{_number(window.get('connected'))} connected, "
-                         f"{_number(window.get('dropped'))} cut off", size=11, anchor="middle", fill="#5b6475"))  # fmt: skip
+                         f"{_number(window.get('dropped'))} cut off", size=11, anchor="middle", fill="#5b6475"))
         out.append("</g>")
     target_y = _f(y(TARGET_P10_FRAMES_PER_S))
     out.append(f'<g class="target"><line x1="{BAR_LEFT}" x2="{BAR_RIGHT}" y1="{target_y}" y2="{target_y}" stroke="#1d2330" '
-               f'stroke-width="1.3" stroke-dasharray="6 4"/></g>')  # fmt: skip
+               f'stroke-width="1.3" stroke-dasharray="6 4"/></g>')
     legend_y = BAR_BOTTOM + 60
     for offset, (text, colour) in enumerate((("10th percentile", P10_COLOUR), ("median", MEDIAN_COLOUR))):
         x = BAR_LEFT + 120 * offset
         out.append(f'<rect x="{x}" y="{legend_y - 9}" width="12" height="10" fill="{colour}"/>' + _text(x + 17, legend_y, text, size=11))
-    out.append(f'<line x1="{BAR_LEFT + 200}" x2="{BAR_LEFT + 224}" y1="{legend_y - 4}" y2="{legend_y - 4}" stroke="{SLOWEST_COLOUR}" '
-               f'stroke-width="2"/>' + _text(BAR_LEFT + 230, legend_y, "slowest student", size=11))  # fmt: skip
+    out.append(f'<line x1="{BAR_LEFT + 200}" x2="{BAR_LEFT + 224}" y1="{legend_y - 4}" y2="{legend_y - 4}" ' f'stroke="{SLOWEST_COLOUR}" '
+               f'stroke-width="2"/>' + _text(BAR_LEFT + 230, legend_y, "slowest student", size=11))
     out.append(f'<line x1="{BAR_LEFT}" x2="{BAR_LEFT + 24}" y1="{legend_y + 14}" y2="{legend_y + 14}" stroke="#1d2330" '
                f'stroke-width="1.3" stroke-dasharray="6 4"/>'
-               + _text(BAR_LEFT + 30, legend_y + 18, f"target: 10th percentile ≥ {TARGET_P10_FRAMES_PER_S:g} frames/s under attack", size=11))  # fmt: skip
+               + _text(BAR_LEFT + 30, legend_y + 18, f"target: 10th percentile ≥ {TARGET_P10_FRAMES_PER_S:g} frames/s under attack", size=11))
     note_y = BAR_TOP + 8
     out.append('<g class="notes">')
     for note in _notes(report):
@@ -500,12 +504,12 @@ def attack_svg(report: dict) -> str:
     header_y = TABLE_TOP
     out.append('<g class="attacks">')
     out.append(_text(COLUMN_X["item"], header_y - 22, "Every attack (one client, from one address) and every answer it got",
-                     size=14, weight="600"))  # fmt: skip
+                     size=14, weight="600"))
     for column, title in (("item", "item"), ("attack", "attack"), ("tries", "tries"), ("answers", "answers (count)"),
-                          ("slowest", "slowest answer (ms)")):  # fmt: skip
+                          ("slowest", "slowest answer (ms)")):
         out.append(_text(COLUMN_X[column], header_y, title, size=11, weight="600",
-                         anchor="end" if column in ("tries", "slowest") else "start"))  # fmt: skip
-    out.append(f'<line x1="{COLUMN_X["item"]}" x2="{COLUMN_X["slowest"]}" y1="{header_y + 5}" y2="{header_y + 5}" stroke="#9aa3b2"/>')
+                         anchor="end" if column in ("tries", "slowest") else "start"))
+    out.append(f'<line x1="{COLUMN_X["item"]}" x2="{COLUMN_X["slowest"]}" y1="{header_y + 5}" y2="{header_y + 5}" ' 'stroke="#9aa3b2"/>')
     for row, attack in enumerate(attacks):
         ry = header_y + ROW_H * (row + 1) + 2
         latency = (attack.get("latency_ms") or {}).get("max")

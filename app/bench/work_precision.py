@@ -25,7 +25,7 @@ import sys
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from datetime import datetime, timezone
+from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any
 
@@ -116,7 +116,7 @@ def _heavy_top_case(case_id: str, title: str, overrides: dict[str, float], *, er
     return Case(
         id=case_id, scene_id=scene_id, title=title, body=heavy_top.rigid_body(params), y0=heavy_top.initial_state(params),
         t_end_s=10.0, frame_rate_hz=60.0, error_measure=measure,
-        reference_name="quadrature solution (Jacobi elliptic functions for θ, elliptic integrals of the third kind for φ and ψ)",
+        reference_name=("quadrature solution (Jacobi elliptic functions for θ, elliptic integrals of the third " "kind for φ and ψ)"),
         reference_quaternion=heavy_top.quadrature(params).quaternion, error_kind=error_kind, baselines=baselines,
     )
 
@@ -198,14 +198,14 @@ def our_sweeps() -> list[tuple[str, str, str, str, list[float]]]:
 
 # Sweeps: (method id, family, label, setting name, settings).
 OUR_SWEEPS = our_sweeps()
-SCIPY_SWEEPS = [
+SCIPY_SWEEPS: list[tuple[str, str, str, str, list[float]]] = [
     ("scipy-RK45", "scipy", "scipy RK45 (numpy RHS)", "rtol", [1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9]),
     # From 1e-3: the ratios at 1e-3 rad need a DOP853 point on each side of that error.
     ("scipy-DOP853", "scipy", "scipy DOP853 (numpy RHS)", "rtol", [1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12]),
     ("scipy-LSODA", "scipy", "scipy LSODA (numpy RHS)", "rtol", [1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10]),
     ("scipy-Radau", "scipy", "scipy Radau (numpy RHS)", "rtol", [1e-4, 1e-5, 1e-6, 1e-7]),
 ]
-MUJOCO_SWEEPS = [
+MUJOCO_SWEEPS: list[tuple[str, str, str, str, list[float]]] = [
     # To 256 steps per frame: the ratios at 1e-9 rad need a point below that error.
     ("mujoco-RK4", "mujoco", "MuJoCo RK4 (ball joint)", "steps_per_frame", [1, 2, 4, 8, 16, 32, 64, 128, 256]),
     ("mujoco-Euler", "mujoco", "MuJoCo Euler, its default (ball joint)", "steps_per_frame", [4, 16, 64]),
@@ -285,7 +285,10 @@ def run_ours(case: Case, method: str, setting: float, frames_t: np.ndarray) -> t
 def run_scipy(case: Case, method: str, rtol: float, frames_t: np.ndarray) -> tuple[np.ndarray, float, int, str]:
     rhs = numpy_rhs(case.body)
     name = method.split("-", 1)[1]
-    run = lambda: solve_ivp(rhs, (0.0, case.t_end_s), case.y0, method=name, rtol=rtol, atol=rtol * 1e-3, t_eval=frames_t)  # noqa: E731
+
+    def run():
+        return solve_ivp(rhs, (0.0, case.t_end_s), case.y0, method=name, rtol=rtol, atol=rtol * 1e-3, t_eval=frames_t)
+
     solution, cpu = _timed(run)
     status = "ok" if solution.success else "failed"
     return solution.y[:4].T, cpu, int(solution.nfev), status
@@ -295,7 +298,7 @@ def run_mujoco(case: Case, method: str, steps_per_frame: int, frames_t: np.ndarr
     from app.bench.mujoco_models import simulate_rigid_body_mujoco
 
     body = case.body
-    kwargs = dict(
+    kwargs: dict[str, Any] = dict(
         inertia_pivot=body.inertia_pivot_kg_m2, mass_kg=body.mass_kg if body.mass_kg > 0 else 1.0,
         cg_distance_m=body.cg_distance_m, g_m_s2=body.g_m_s2, q0=case.y0[:4], omega0_body=case.y0[4:],
         t_end_s=case.t_end_s, frame_rate_hz=case.frame_rate_hz, steps_per_frame=int(steps_per_frame),
@@ -328,7 +331,7 @@ def mujoco_batch_check(case: Case) -> dict[str, Any]:
 
     body = case.body
     frames = int(round(case.t_end_s * case.frame_rate_hz))
-    body_kwargs = dict(inertia_pivot=body.inertia_pivot_kg_m2, mass_kg=body.mass_kg, cg_distance_m=body.cg_distance_m,
+    body_kwargs: dict[str, Any] = dict(inertia_pivot=body.inertia_pivot_kg_m2, mass_kg=body.mass_kg, cg_distance_m=body.cg_distance_m,
                        g_m_s2=body.g_m_s2)
     model, data = build_rigid_body_model(**body_kwargs, timestep_s=1.0 / case.frame_rate_hz, integrator="RK4")
     model.opt.enableflags &= ~int(mujoco.mjtEnableBit.mjENBL_ENERGY)
@@ -337,7 +340,7 @@ def mujoco_batch_check(case: Case) -> dict[str, Any]:
     spec = mujoco.mjtState.mjSTATE_FULLPHYSICS
     initial = np.empty(mujoco.mj_stateSize(model, spec))
     mujoco.mj_getState(model, data, initial, spec)
-    loop_kwargs = dict(**body_kwargs, q0=case.y0[:4], omega0_body=case.y0[4:], t_end_s=case.t_end_s,
+    loop_kwargs: dict[str, Any] = dict(**body_kwargs, q0=case.y0[:4], omega0_body=case.y0[4:], t_end_s=case.t_end_s,
                        frame_rate_hz=case.frame_rate_hz, steps_per_frame=1, integrator="RK4")
     loop_cpu = batch_cpu = math.inf
     # Alternated, so a change in the machine's load between them falls on both.
@@ -354,7 +357,7 @@ def mujoco_batch_check(case: Case) -> dict[str, Any]:
         "case": case.id, "method": "mujoco-RK4", "steps_per_frame": 1, "loop_cpu_s": loop_cpu, "rollout_cpu_s": batch_cpu,
         "same_states": same, "rollout_saving": saving,
         "text": f"MuJoCo RK4, 1 step/frame, {case.id}: {loop_cpu * 1e3:.3g} ms with one mj_step call per frame, "
-                f"{batch_cpu * 1e3:.3g} ms in one mujoco.rollout call ({100 * abs(saving):.0f}% {'less' if saving >= 0 else 'more'})"
+                f"{batch_cpu * 1e3:.3g} ms in one mujoco.rollout call ({100 * abs(saving):.0f}% " f"{'less' if saving >= 0 else 'more'})"
                 f"{'' if same else ' (states differ!)'}.",
     }
 
@@ -494,7 +497,7 @@ def run_benchmark(case_ids: Sequence[str] | None = None, *, include_mujoco: bool
 
     study_runs = list(PHASE_DRIFT_RUNS[:2] if quick else PHASE_DRIFT_RUNS)
     progress = Progress(sum(len(s[4]) for case in cases for s in case_sweeps(case)) + len(study_runs) + 1)
-    report: dict[str, Any] = {"created": datetime.now(timezone.utc).isoformat(timespec="seconds"), "machine": _machine(), "scenes": []}
+    report: dict[str, Any] = {"created": datetime.now(UTC).isoformat(timespec="seconds"), "machine": _machine(), "scenes": []}
     for case in cases:
         frames_t = np.arange(int(round(case.t_end_s * case.frame_rate_hz)) + 1) / case.frame_rate_hz
         reference = case.reference_quaternion(frames_t)
@@ -515,6 +518,7 @@ def run_benchmark(case_ids: Sequence[str] | None = None, *, include_mujoco: bool
             raise RuntimeError(f"{case.id}: no pilot run of any method finished; the automatic choice is undefined")
         adaptive = choice.steps_per_frame is None
         setting = choice.rtol if adaptive else choice.steps_per_frame
+        assert setting is not None  # a choice sets rtol or steps_per_frame
         default_integrator = make_integrator(choice.method, rtol=choice.rtol) if adaptive else make_integrator(
             choice.method, steps_per_frame=choice.steps_per_frame)
         q_default, cpu_default, _, _ = run_ours(case, choice.method, setting, frames_t)
@@ -543,8 +547,8 @@ def run_benchmark(case_ids: Sequence[str] | None = None, *, include_mujoco: bool
             ratio = theirs / ours
             ratios.append({"baseline": baseline, "at_error": case.target_error, "ratio": ratio, "ours_cpu_s": ours, "theirs_cpu_s": theirs,
                            "ours": case.default_method,
-                           "text": f"At {case.target_error:.0e} {'rad'} error, {case.default_method} needs {ours * 1e3:.3g} ms of CPU; "
-                                   f"{base['label']} needs {theirs * 1e3:.3g} ms: {ratio:.0f}× more."})
+                           "text": f"At {case.target_error:.0e} {'rad'} error, {case.default_method} needs "
+                                   f"{ours * 1e3:.3g} ms of CPU; {base['label']} needs {theirs * 1e3:.3g} ms: {ratio:.0f}× more."})
         ratios.extend(best_ratios(methods))
         report["scenes"].append(
             {
@@ -556,10 +560,14 @@ def run_benchmark(case_ids: Sequence[str] | None = None, *, include_mujoco: bool
         )
     report["ratio_summary"] = ratio_summary(report["scenes"])
     report["timing"] = {
-        "rule": f"every run warm; least process CPU time of up to {TIMING_REPEATS} runs, stopping once the runs have used "
-                f"{TIMING_BUDGET_S:g} s (at least {TIMING_MIN_REPEATS} runs); the same rule for ours, scipy and MuJoCo",
-        "mujoco": "compiled model, contacts, constraints and the energy computation off; one mj_step(model, data, nstep) call per "
-                  "frame, model compilation not timed",
+        "rule": (
+            f"every run warm; least process CPU time of up to {TIMING_REPEATS} runs, stopping once the runs have used "
+            f"{TIMING_BUDGET_S:g} s (at least {TIMING_MIN_REPEATS} runs); the same rule for ours, scipy and MuJoCo"
+        ),
+        "mujoco": (
+            "compiled model, contacts, constraints and the energy computation off; "
+            "one mj_step(model, data, nstep) call per frame, model compilation not timed"
+        ),
     }
     if include_mujoco and "heavy-top-slow" in (case_ids or CASES):
         report["timing"]["mujoco_batch_check"] = mujoco_batch_check(CASES["heavy-top-slow"]())
@@ -581,7 +589,8 @@ def _error_span(points: Sequence[dict]) -> tuple[float, float] | None:
 
 
 def best_ratios(methods: Sequence[dict], errors: Sequence[float] = RATIO_ERRORS) -> list[dict[str, Any]]:
-    """At each error, the cheapest of our methods against each baseline of :data:`REQUIRED_RATIO` (ratio = theirs / ours).
+    """At each error, the cheapest of our methods against each baseline of :data:`REQUIRED_RATIO` (ratio = theirs /
+    ours).
 
     Costs are interpolated along each curve (:func:`cost_at_error`). A baseline whose sweep does not
     reach down to the error gives no ratio; one whose largest error is already below it is costed at its
@@ -591,10 +600,10 @@ def best_ratios(methods: Sequence[dict], errors: Sequence[float] = RATIO_ERRORS)
     out = []
     for error in errors:
         costs = [(cost_at_error(m["points"], error), m["method"]) for m in ours]
-        costs = [(c, name) for c, name in costs if c is not None]
-        if not costs:
+        reached = [(c, name) for c, name in costs if c is not None]
+        if not reached:
             continue
-        our_cpu, our_method = min(costs)
+        our_cpu, our_method = min(reached)
         for baseline, required in REQUIRED_RATIO.items():
             base = next((m for m in methods if m["method"] == baseline), None)
             if base is None:
@@ -609,7 +618,7 @@ def best_ratios(methods: Sequence[dict], errors: Sequence[float] = RATIO_ERRORS)
                 ratio = theirs / our_cpu
                 entry.update(
                     ratio=ratio, theirs_cpu_s=theirs, bracketed=bool(span and span[1] >= error), meets_requirement=ratio >= required,
-                    text=f"At {error:.0e} rad, the cheapest of ours ({our_method}) needs {our_cpu * 1e3:.3g} ms of CPU; "
+                    text=f"At {error:.0e} rad, the cheapest of ours ({our_method}) needs {our_cpu * 1e3:.3g} ms " "of CPU; "
                          f"{base['label']} needs {theirs * 1e3:.3g} ms: {ratio:.0f}× more (asked: ≥ {required:.0f}×).",
                 )
             out.append(entry)
@@ -617,7 +626,8 @@ def best_ratios(methods: Sequence[dict], errors: Sequence[float] = RATIO_ERRORS)
 
 
 def ratio_summary(scenes: Sequence[dict]) -> dict[str, Any]:
-    """Per heavy-top case, the best-of-ours ratios at :data:`RATIO_ERRORS` against each baseline, and whether all meet the ask."""
+    """Per heavy-top case, the best-of-ours ratios at :data:`RATIO_ERRORS` against each baseline, and whether all meet
+    the ask."""
     cases: dict[str, Any] = {}
     for scene in scenes:
         if not str(scene["scene_id"]).startswith("heavy-top"):
@@ -651,7 +661,8 @@ def _setting_text(integrator, steps_per_frame: int | None) -> str:
 
 def phase_drift_study(runs: Sequence[tuple[str, int | None]] = PHASE_DRIFT_RUNS, *,
                       progress: Progress | None = None) -> dict[str, Any]:
-    """The sleeping top over 600 s at 60 frames/s: each run's largest relative energy drift beside its attitude error (rad).
+    """The sleeping top over 600 s at 60 frames/s: each run's largest relative energy drift beside its attitude error
+    (rad).
 
     The attitude error (rotation angle, spin phase included) is against the quadrature solution. A
     symplectic method keeps the energy error bounded and small while its phase error grows with time.
@@ -715,7 +726,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     if "mujoco_batch_check" in report["timing"]:
         print(report["timing"]["mujoco_batch_check"]["text"])
     summary = report["ratio_summary"]
-    print(f"best of ours against {', '.join(summary['required'])} at {', '.join(f'{e:.0e}' for e in summary['errors'])} rad"
+    print(f"best of ours against {', '.join(summary['required'])} at " f"{', '.join(f'{e:.0e}' for e in summary['errors'])} rad"
           f" (all asked ratios met: {summary['all_met']}):")
     for case_id, table in summary["cases"].items():
         for baseline, rows in table.items():

@@ -100,7 +100,7 @@ def _reference_problems(lesson: Lesson, outline: tuple[Chapter, ...], registries
     problems: list[str] = []
     chapter = next((ch for ch in outline if ch.number == lesson.chapter), None)
     if chapter is None:
-        problems.append(f"{lesson.source}: chapter {lesson.chapter} is not in course.toml (known: {', '.join(str(ch.number) for ch in outline)})")
+        problems.append(f"{lesson.source}: chapter {lesson.chapter} is not in course.toml (known: " f"{', '.join(str(ch.number) for ch in outline)})")
     elif lesson.section not in {s.number for s in chapter.sections}:
         known = ", ".join(s.number for s in chapter.sections)
         problems.append(f"{lesson.source}: section {lesson.section!r} is not a section of chapter {chapter.number} (known: {known})")

@@ -153,7 +153,8 @@ def curvilinear_series(
     position_m: np.ndarray, velocity_m_s: np.ndarray, acceleration_m_s2: np.ndarray, *, length_scale_m: float
 ) -> dict[str, np.ndarray]:
     """A path's cylindrical and spherical description as simulate series, by the names the scenes use:
-    R, theta (unwrapped), v_R, v_theta, v_z, a_R, a_theta, a_z and r, phi, v_r, v_phi, a_r, a_phi (m, rad, m/s, m/s²)."""
+    R, theta (unwrapped), v_R, v_theta, v_z, a_R, a_theta, a_z and r, phi, v_r, v_phi, a_r, a_phi (m, rad, m/s,
+    m/s²)."""
     cyl = cylindrical(position_m, velocity_m_s, acceleration_m_s2, length_scale_m=length_scale_m)
     sph = spherical(position_m, velocity_m_s, acceleration_m_s2, length_scale_m=length_scale_m)
     return {
@@ -163,4 +164,4 @@ def curvilinear_series(
         "r": sph.coordinates[:, 0], "phi": sph.coordinates[:, 1],
         "v_r": sph.velocity[:, 0], "v_phi": sph.velocity[:, 1],
         "a_r": sph.acceleration[:, 0], "a_phi": sph.acceleration[:, 1],
-    }  # fmt: skip
+    }

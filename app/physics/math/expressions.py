@@ -494,13 +494,14 @@ def parse_formula(
     expr = _Parser(_scan(text, vocabulary), len(text), vocabulary).parse()
     operations = sympy.count_ops(expr)
     if operations > max_operations:
-        raise ValueError(f"the formula has {operations} operations; the limit is {max_operations}: write it shorter, or with fewer terms")
+        raise ValueError(f"the formula has {operations} operations; the limit is {max_operations}: write it shorter, or with " "fewer terms")
     _check_constants(expr)
     return expr
 
 
 def _check_constants(expr: sympy.Expr) -> None:
-    """Refuse a formula any of whose constant parts (``1e9*1e9``, ``1/exp(-1e9)``) exceeds :data:`MAX_FORMULA_CONSTANT`."""
+    """Refuse a formula any of whose constant parts (``1e9*1e9``, ``1/exp(-1e9)``) exceeds
+    :data:`MAX_FORMULA_CONSTANT`."""
     for node in sympy.preorder_traversal(expr):
         if node.free_symbols or not isinstance(node, sympy.Expr):
             continue
@@ -530,7 +531,7 @@ def check_parameter_name(name: str) -> None:
         raise ValueError(f"the parameter name {name!r} is a function (sqrt sin cos tan exp log); choose another")
     if re.fullmatch(r"q\d+d*", name) or name in COORDINATE_NAMES or name in RATE_NAMES:  # q4 or q1dd would mislead too
         raise ValueError(
-            f"the parameter name {name!r} is kept for the coordinates {', '.join(COORDINATE_NAMES)} and rates {', '.join(RATE_NAMES)}; choose another"
+            f"the parameter name {name!r} is kept for the coordinates {', '.join(COORDINATE_NAMES)} and rates " f"{', '.join(RATE_NAMES)}; choose another"
         )
     if name in _RESERVED_NAMES:
         raise ValueError(f"the parameter name {name!r} is kept for pi, e, time t or a numeric module; choose another")

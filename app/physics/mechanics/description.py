@@ -24,6 +24,7 @@ from __future__ import annotations
 import hashlib
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from typing import TypeAlias
 
 import sympy
 
@@ -32,7 +33,7 @@ from app.physics.core.parameters import Parameter, ParameterSet
 #: Time, s.
 TIME = sympy.Symbol("t", real=True)
 
-Vector = sympy.Matrix  # (3, 1), N components
+Vector: TypeAlias = sympy.Matrix  # (3, 1), N components
 
 
 def vector(x: sympy.Expr | float, y: sympy.Expr | float, z: sympy.Expr | float) -> sympy.Matrix:

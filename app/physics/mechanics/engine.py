@@ -22,6 +22,7 @@ from collections import OrderedDict
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import numba
 import numpy as np
@@ -37,6 +38,7 @@ from app.physics.mechanics.lagrange import derive_lagrange
 from app.physics.mechanics.newton_euler import derive_newton_euler
 from app.physics.mechanics.routh import derive_routh
 from app.physics.solvers.kernels import RHS_SIGNATURE, Kernel
+
 
 def _source_digest() -> str:
     """A hash of this package's source: any change to a formulation or the generator makes new cache keys."""
@@ -73,7 +75,9 @@ def cache_directory() -> Path:
 NOT_FINITE_BECAUSE = {
     "overflow": "a number overflows (exceeds 1.8e308, the largest double-precision number)",
     "divide": "it divides by zero",
-    "domain": "a square root, logarithm or other function is taken outside its domain (of a negative or infinite number)",
+    "domain": (
+        "a square root, logarithm or other function is taken outside its domain (of a negative or infinite number)"
+    ),
     "singular": "the mass matrix is singular there, so the accelerations cannot be solved for",
     "not_finite": "a value is infinite or undefined",
 }
@@ -145,7 +149,10 @@ class Derived:
         """The right-hand side as a numba C callback for the integrators (compiled once; numba caches it on disk)."""
         with self._lock:
             if self._kernel is None:
-                compiled = numba.cfunc(RHS_SIGNATURE, cache=True, nopython=True, error_model="numpy")(self.rhs_python)
+                # numba's stubs leave out nopython, which cfunc still reads: without it object mode is allowed.
+                compiled = numba.cfunc(  # type: ignore[call-arg]
+                    RHS_SIGNATURE, cache=True, nopython=True, error_model="numpy"
+                )(self.rhs_python)
                 self._kernel = Kernel(compiled=compiled, python=self.rhs_python)
             return self._kernel
 
@@ -259,7 +266,7 @@ def _derive_and_store(system: SystemDescription, formulation: str, directory: Pa
     start = time.perf_counter()
     rhs = load_recipe(system, derivation.recipe, formulation=formulation, path=source_path)
     compile_s = time.perf_counter() - start
-    shown = {
+    shown: dict[str, Any] = {
         "system_id": system.id,
         "formulation": formulation,
         "coordinates": [c.name for c in system.coordinates],
@@ -284,7 +291,7 @@ def available_formulations(system: SystemDescription) -> dict[str, str]:
         reason = system.unavailable.get(formulation, "")
         if not reason:
             if formulation in ("lagrange", "hamilton", "routh") and not system.holonomic:
-                reason = "needs independent coordinates; the rolling constraints restrict velocities only (chapter 8's multipliers)"
+                reason = ("needs independent coordinates; the rolling constraints restrict velocities only " "(chapter 8's multipliers)")
             elif formulation == "routh" and not system.ignorable:
                 reason = "no ignorable coordinate"
             elif formulation == "newton-euler" and (not system.reactions or system.kinetic_energy is not None or system.extra_potential != 0):

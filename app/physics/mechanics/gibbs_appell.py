@@ -12,7 +12,14 @@ from __future__ import annotations
 import sympy
 
 from app.physics.mechanics.algebra import linear_parts, tidy
-from app.physics.mechanics.derivation import Derivation, FormulationUnavailable, Solve, Step, latex_printer, linear_equations_latex
+from app.physics.mechanics.derivation import (
+    Derivation,
+    FormulationUnavailable,
+    Solve,
+    Step,
+    latex_printer,
+    linear_equations_latex,
+)
 from app.physics.mechanics.description import SystemDescription
 from app.physics.mechanics.kinematics import body_motions, generalized_forces, potential_energy, speed_motion
 from app.physics.mechanics.speeds import conservative_share, recipe_through_speeds
@@ -56,4 +63,4 @@ def derive_gibbs_appell(system: SystemDescription) -> Derivation:
         system_id=system.id, formulation="gibbs-appell", variables="q, u",
         mass_matrix=M, forcing=forcing, equations_latex=equations, steps=tuple(steps),
         recipe=recipe_through_speeds(system, Solve(M, forcing, tuple(ud))), latex_names=names,
-    )  # fmt: skip
+    )

@@ -11,7 +11,15 @@ from __future__ import annotations
 import sympy
 
 from app.physics.mechanics.algebra import solve_exactly, tidy
-from app.physics.mechanics.derivation import Assign, Derivation, FormulationUnavailable, Recipe, Solve, Step, latex_printer
+from app.physics.mechanics.derivation import (
+    Assign,
+    Derivation,
+    FormulationUnavailable,
+    Recipe,
+    Solve,
+    Step,
+    latex_printer,
+)
 from app.physics.mechanics.description import TIME, SystemDescription
 from app.physics.mechanics.kinematics import coordinate_motion, generalized_forces, jacobian_of
 from app.physics.mechanics.lagrange import lagrangian
@@ -82,11 +90,11 @@ def derive_hamilton(system: SystemDescription) -> Derivation:
           for c, p, r, e in zip(system.coordinates, P, qd, p_of_rates)),
         *(Step(f"Rate of {c.name} in terms of the momenta", f"{names[r]} = {latex(e)}") for c, r, e in zip(system.coordinates, qd, rates_of_p)),
         Step("Hamiltonian", f"H = \\sum_j p_j \\dot q_j - L = {latex(H)}"),
-    ]  # fmt: skip
+    ]
     equations = []
     for c, p, q_j, r, e_q, e_p in zip(system.coordinates, P, q, qd, qd_hamilton, pd_hamilton):
         equations.append(f"{names[r]} = \\frac{{\\partial H}}{{\\partial {names[p]}}} = {latex(e_q)}")
-        equations.append(f"\\dot{{p}}_{{{c.latex}}} = -\\frac{{\\partial H}}{{\\partial {names[q_j]}}} + Q_{{{c.latex}}} = {latex(e_p)}")
+        equations.append(f"\\dot{{p}}_{{{c.latex}}} = -\\frac{{\\partial H}}{{\\partial {names[q_j]}}} + Q_{{{c.latex}}} = " f"{latex(e_p)}")
     n = len(q)
     pd_symbols = sympy.Matrix(pd_h)
     return Derivation(
@@ -94,4 +102,4 @@ def derive_hamilton(system: SystemDescription) -> Derivation:
         mass_matrix=sympy.eye(2 * n), forcing=sympy.Matrix([*qd_hamilton, *pd_hamilton]),
         equations_latex=tuple(equations), steps=tuple(steps), recipe=recipe,
         latex_names={**names, **{s: f"\\dot{{p}}_{{{c.latex}}}" for s, c in zip(pd_symbols, system.coordinates)}},
-    )  # fmt: skip
+    )

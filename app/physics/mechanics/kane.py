@@ -13,7 +13,14 @@ from __future__ import annotations
 import sympy
 
 from app.physics.mechanics.algebra import linear_parts, tidy
-from app.physics.mechanics.derivation import Derivation, FormulationUnavailable, Solve, Step, latex_printer, linear_equations_latex
+from app.physics.mechanics.derivation import (
+    Derivation,
+    FormulationUnavailable,
+    Solve,
+    Step,
+    latex_printer,
+    linear_equations_latex,
+)
 from app.physics.mechanics.description import SystemDescription
 from app.physics.mechanics.kinematics import body_motions, inertia_torque_body, speed_motion, spring_force_on_b
 from app.physics.mechanics.speeds import conservative_share, recipe_through_speeds
@@ -56,9 +63,9 @@ def derive_kane(system: SystemDescription) -> Derivation:
     steps = []
     for item in items:
         for u_r, speed in zip(u, system.speed_list):
-            steps.append(Step(f"Partial velocity of {item.name} for {speed.name}", f"\\frac{{\\partial \\mathbf v_{{{item.name}}}}}{{\\partial {names[u_r]}}} = {latex(tidy(item.velocity.diff(u_r)).T)}"))
+            steps.append(Step(f"Partial velocity of {item.name} for {speed.name}", f"\\frac{{\\partial \\mathbf v_{{{item.name}}}}}{{\\partial {names[u_r]}}} = " f"{latex(tidy(item.velocity.diff(u_r)).T)}"))
             if item.angular_velocity is not None:
-                steps.append(Step(f"Partial angular velocity of {item.name} for {speed.name}", f"\\frac{{\\partial \\boldsymbol\\omega_{{{item.name}}}}}{{\\partial {names[u_r]}}} = {latex(tidy(item.angular_velocity.diff(u_r)).T)}"))
+                steps.append(Step(f"Partial angular velocity of {item.name} for {speed.name}", f"\\frac{{\\partial \\boldsymbol\\omega_{{{item.name}}}}}{{\\partial {names[u_r]}}} = " f"{latex(tidy(item.angular_velocity.diff(u_r)).T)}"))
     for speed, F_r, Fs_r in zip(system.speed_list, active, inertia):
         steps.append(Step(f"Generalized active force for {speed.name}", f"F_{{{speed.latex}}} = {latex(tidy(F_r))}"))
         steps.append(Step(f"Generalized inertia force for {speed.name}", f"F^*_{{{speed.latex}}} = {latex(tidy(Fs_r))}"))
@@ -67,4 +74,4 @@ def derive_kane(system: SystemDescription) -> Derivation:
         system_id=system.id, formulation="kane", variables="q, u",
         mass_matrix=M, forcing=forcing, equations_latex=equations, steps=tuple(steps),
         recipe=recipe_through_speeds(system, Solve(M, forcing, tuple(ud))), latex_names=names,
-    )  # fmt: skip
+    )

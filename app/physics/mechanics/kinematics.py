@@ -119,6 +119,8 @@ def body_motions(system: SystemDescription, motion: Motion) -> list[BodyMotion]:
 def inertia_torque_body(item: BodyMotion, motion: Motion) -> sympy.Matrix:
     """I_G α + ω × I_G ω in body components (N·m): what a body's moment about its mass centre must supply."""
     omega, inertia = item.angular_velocity, item.inertia
+    if omega is None or inertia is None:
+        raise ValueError(f"{item.name} is a particle: it has no angular velocity or inertia")
     return inertia * motion.derivative(omega) + omega.cross(inertia * omega)
 
 

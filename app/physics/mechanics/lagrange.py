@@ -12,7 +12,15 @@ import sympy
 from sympy.physics.mechanics import LagrangesMethod, dynamicsymbols
 
 from app.physics.mechanics.algebra import tidy
-from app.physics.mechanics.derivation import Derivation, FormulationUnavailable, Recipe, Solve, Step, latex_printer, linear_equations_latex
+from app.physics.mechanics.derivation import (
+    Derivation,
+    FormulationUnavailable,
+    Recipe,
+    Solve,
+    Step,
+    latex_printer,
+    linear_equations_latex,
+)
 from app.physics.mechanics.description import TIME, SystemDescription
 from app.physics.mechanics.kinematics import coordinate_motion, generalized_forces, kinetic_energy, potential_energy
 
@@ -58,7 +66,7 @@ def derive_lagrange(system: SystemDescription) -> Derivation:
     for c, q_j, qd_j, Q_j in zip(system.coordinates, system.q, system.qd, Q):
         momentum = sympy.diff(L, qd_j)
         steps.append(Step(f"Coordinate {c.name}: ∂L/∂q̇", f"\\frac{{\\partial L}}{{\\partial {names[qd_j]}}} = {latex(tidy(momentum))}"))
-        steps.append(Step(f"Coordinate {c.name}: d/dt of it", f"\\frac{{d}}{{dt}}\\frac{{\\partial L}}{{\\partial {names[qd_j]}}} = {latex(tidy(motion.derivative(momentum)))}"))
+        steps.append(Step(f"Coordinate {c.name}: d/dt of it", f"\\frac{{d}}{{dt}}\\frac{{\\partial L}}{{\\partial {names[qd_j]}}} = " f"{latex(tidy(motion.derivative(momentum)))}"))
         steps.append(Step(f"Coordinate {c.name}: ∂L/∂q", f"\\frac{{\\partial L}}{{\\partial {names[q_j]}}} = {latex(tidy(sympy.diff(L, q_j)))}"))
         steps.append(Step(f"Coordinate {c.name}: generalized force", f"Q_{{{names[q_j]}}} = {latex(Q_j)}"))
     equations = linear_equations_latex(mass_matrix, system.qdd, forcing, latex, tidy=tidy)
@@ -67,4 +75,4 @@ def derive_lagrange(system: SystemDescription) -> Derivation:
         mass_matrix=mass_matrix, forcing=forcing, equations_latex=equations, steps=tuple(steps),
         recipe=Recipe(stages=(Solve(mass_matrix, forcing, tuple(system.qdd)),), outputs=(*system.qd, *system.qdd)),
         latex_names=names,
-    )  # fmt: skip
+    )

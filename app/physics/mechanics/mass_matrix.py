@@ -36,7 +36,8 @@ Kinetic = Callable[[np.ndarray, np.ndarray, np.ndarray, np.ndarray], np.ndarray]
 
 
 def mass_matrices(kinetic: Kinetic, t_s: np.ndarray, q: np.ndarray, qd: np.ndarray, p: np.ndarray) -> np.ndarray:
-    """M = ∂²T/∂q̇² (N, n, n) at N states: times ``t_s`` (N,) s, coordinates ``q`` and rates ``qd`` (n, N), parameters ``p``.
+    """M = ∂²T/∂q̇² (N, n, n) at N states: times ``t_s`` (N,) s, coordinates ``q`` and rates ``qd`` (n, N), parameters
+    ``p``.
 
     Entries are in T's units over the rates' squared (kg·m², kg, …); a non-finite T gives non-finite entries.
     """
@@ -72,7 +73,8 @@ def relative_inertia(matrices: np.ndarray, reference: np.ndarray) -> np.ndarray:
 
 def _relative(matrices: np.ndarray, reference: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(smallest eigenvalue, product of the eigenvalues = det M / det M₀) of M v = λ M₀ v, each (N,); NaN where M is not
-    finite. The product is smooth where the smallest eigenvalue is not (min(1, r²) for a polar particle: r² for both)."""
+    finite. The product is smooth where the smallest eigenvalue is not (min(1, r²) for a polar particle: r² for
+    both)."""
     matrices = np.asarray(matrices, dtype=float)
     finite = np.all(np.isfinite(matrices), axis=(1, 2))
     smallest, product = np.full(len(matrices), np.nan), np.full(len(matrices), np.nan)
@@ -84,7 +86,8 @@ def _relative(matrices: np.ndarray, reference: np.ndarray) -> tuple[np.ndarray, 
 
 
 def not_positive_definite(matrix: np.ndarray, rate_names: Sequence[str]) -> tuple[str, str]:
-    """``(kind, why)`` for a mass matrix (n, n) that is not positive definite: ``kind`` is "negative" (an eigenvalue below
+    """``(kind, why)`` for a mass matrix (n, n) that is not positive definite: ``kind`` is "negative" (an eigenvalue
+    below
     zero: no mass can have that kinetic energy), "singular" (one at zero, to :data:`SINGULAR_RATIO` of the largest) or
     "not_finite"; ``why`` says so in words, naming the rate its eigenvector points along most. ``("", "")`` if it is."""
     matrix = np.asarray(matrix, dtype=float)
@@ -111,7 +114,8 @@ class SingularCrossing:
     frame: int
     #: Coordinates (n,) at the closest approach, on the straight segment between the two frames.
     q: np.ndarray
-    #: The lower of :func:`relative_inertia` at the samples and the estimated least det M / det M₀ (≤ :data:`SINGULAR_FALL`;
+    #: The lower of :func:`relative_inertia` at the samples and the estimated least det M / det M₀ (≤
+    #: :data:`SINGULAR_FALL`;
     #: the estimate may dip a little below 0 where M only touches singularity).
     inertia: float
     #: Whether M is not positive definite at a sampled point (a negative eigenvalue, not only a vanishing one).
@@ -123,7 +127,8 @@ class SingularCrossing:
 def first_singular_crossing(
     kinetic: Kinetic, t_s: np.ndarray, states: np.ndarray, p: np.ndarray, *, reference: np.ndarray
 ) -> SingularCrossing | None:
-    """The first pair of consecutive frames (``states`` (N, 2n) = (q, q̇) at ``t_s`` (N,)) between which M becomes singular.
+    """The first pair of consecutive frames (``states`` (N, 2n) = (q, q̇) at ``t_s`` (N,)) between which M becomes
+    singular.
 
     ``reference`` is M at the start (n, n), positive definite. Along the straight segment between two frames' states
     (q, q̇ and t linear in s ∈ [0, 1]) M is found at :data:`SEGMENT_SAMPLES` points. The motion has met a singular M
@@ -169,7 +174,8 @@ def first_singular_crossing(
 
 
 def _parabola_minima(s: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Per row of ``values`` (P, K) at equally spaced ``s`` (K,): the lowest value (P,) of the parabola through the row's
+    """Per row of ``values`` (P, K) at equally spaced ``s`` (K,): the lowest value (P,) of the parabola through the
+    row's
     lowest sample and its two neighbours (the first or last three at an end), its vertex kept inside them, and where it
     is (P,); the lowest sample itself where the parabola opens downwards; −inf where a value is not finite."""
     count, width = values.shape

@@ -11,7 +11,7 @@ derived and compiled once per process (and cached on disk), never per frame.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import Any, ClassVar
+from typing import Any
 
 import numpy as np
 import sympy
@@ -32,7 +32,7 @@ def formulation_parameter(system: SystemDescription, *, default: str = "lagrange
     return Parameter(
         "formulation", "", default if default in choices else choices[0], kind="choice", choices=choices,
         label="formulation", description="Which derivation's equations drive the motion (all agree to rounding)",
-    )  # fmt: skip
+    )
 
 
 def derived_parameters(
@@ -89,7 +89,8 @@ class DerivedModel(IntegratedModel):
     abstract methods of :class:`IntegratedModel`: initial_state, series, invariants, invariant_scales.
     """
 
-    description: ClassVar[SystemDescription]
+    # Set on the class by a catalogue system; the typed Lagrangian sets its own on each instance.
+    description: SystemDescription
     methods = ("rk4", "dopri5")
     default_method = "rk4"
     accuracy_target = AccuracyTarget(1e-6, "", "state (q, q̇): largest component error relative to the largest component")
@@ -110,10 +111,11 @@ class DerivedModel(IntegratedModel):
         return OdeSystem(
             rhs=self.derived(params).kernel(), parameters=self.parameter_array(params),
             state_names=(*names, *(f"{n}_rate" for n in names)),
-        )  # fmt: skip
+        )
 
     def fastest_rate_rad_s(self, params: Mapping[str, Any], state: np.ndarray) -> float:
-        """The largest eigenvalue magnitude of the linearised flow at ``state`` plus the fastest rate (rad/s), at least 1.
+        """The largest eigenvalue magnitude of the linearised flow at ``state`` plus the fastest rate (rad/s), at least
+        1.
 
         The Jacobian is taken by central differences of the generated right-hand side.
         """

@@ -14,13 +14,20 @@ from __future__ import annotations
 import sympy
 
 from app.physics.mechanics.algebra import linear_parts, tidy
-from app.physics.mechanics.derivation import Derivation, FormulationUnavailable, Solve, Step, latex_printer, linear_equations_latex
-from app.physics.mechanics.description import SystemDescription
+from app.physics.mechanics.derivation import (
+    Derivation,
+    FormulationUnavailable,
+    Solve,
+    Step,
+    latex_printer,
+    linear_equations_latex,
+)
+from app.physics.mechanics.description import Reaction, SystemDescription
 from app.physics.mechanics.kinematics import body_motions, inertia_torque_body, speed_motion, spring_force_on_b
 from app.physics.mechanics.speeds import recipe_through_speeds
 
 
-def reaction_symbols(system: SystemDescription) -> list[tuple[sympy.Symbol, object, str, int]]:
+def reaction_symbols(system: SystemDescription) -> list[tuple[sympy.Symbol, Reaction, str, int]]:
     """(magnitude symbol, reaction, "force" | "moment", index) for every unknown reaction component."""
     found = []
     for reaction in system.reactions:
@@ -89,11 +96,11 @@ def derive_newton_euler(system: SystemDescription) -> Derivation:
             steps.append(Step(f"{item.name}: I α + ω × I ω = ΣM_G (N components)", f"{latex(moment.T)}^T"))
     unknowns = [*system.ud, *(s for s, *_ in unknown_reactions)]
     if len(rows) != len(unknowns):
-        raise ValueError(f"{system.id}: Newton–Euler has {len(rows)} equations for {len(unknowns)} unknowns; declare the reactions fully")
+        raise ValueError(f"{system.id}: Newton–Euler has {len(rows)} equations for {len(unknowns)} unknowns; declare the " "reactions fully")
     A, b = linear_parts(rows, unknowns)
     equations = linear_equations_latex(A, unknowns, b, latex, tidy=tidy, tidy_left=True)
     return Derivation(
         system_id=system.id, formulation="newton-euler", variables="q, u, reactions",
         mass_matrix=A, forcing=b, equations_latex=equations, steps=tuple(steps),
         recipe=recipe_through_speeds(system, Solve(A, b, tuple(unknowns))), latex_names=names,
-    )  # fmt: skip
+    )

@@ -92,9 +92,9 @@ def derive_routh(system: SystemDescription) -> Derivation:
         Step("Routhian", f"R = L - \\sum \\beta \\dot q_C = {latex(R)}"),
         *(Step(f"Ignorable rate {c.name}", f"{names[c.rate]} = -\\frac{{\\partial R}}{{\\partial {names[b]}}} = {latex(e)}")
           for c, b, e in zip(cyclic, beta, cyclic_rates)),
-    ]  # fmt: skip
+    ]
     equations = linear_equations_latex(M, qdd_K, forcing, latex) + tuple(f"{names[c.rate]} = {latex(e)}" for c, e in zip(cyclic, cyclic_rates))
     return Derivation(
         system_id=system.id, formulation="routh", variables="q_K, q̇_K, β",
         mass_matrix=M, forcing=forcing, equations_latex=equations, steps=tuple(steps), recipe=recipe, latex_names=names,
-    )  # fmt: skip
+    )

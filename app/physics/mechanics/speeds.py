@@ -22,6 +22,7 @@ def recipe_through_speeds(system: SystemDescription, solve: Solve) -> Recipe:
     accelerations = [motion.derivative(r) for r in rates]
     stages: list[Assign | Solve] = []
     if not system.holonomic:
+        assert system.speeds_from_rates is not None  # a description with speeds names them (checked on construction)
         stages.append(Assign(tuple(system.u), tuple(system.speeds_from_rates)))
     stages.append(solve)
     if system.holonomic:

@@ -84,12 +84,12 @@ def typed_system(
         raise ParameterError("potential_energy", "the potential energy may not depend on the rates q1d…q3d")
     for c in coords:
         if not T.has(c.rate):
-            raise ParameterError("kinetic_energy", f"the kinetic energy does not contain {c.name}d, so {c.name} has no inertia and its equation cannot be solved for its acceleration")
+            raise ParameterError("kinetic_energy", f"the kinetic energy does not contain {c.name}d, so {c.name} has no inertia and its equation " "cannot be solved for its acceleration")
     return SystemDescription(
         id="custom", title="Typed Lagrangian", chapter=7, coordinates=coords,
         parameters=ParameterSet(tuple(Parameter(name, "", float(value), min=-MAX_PARAMETER_VALUE, max=MAX_PARAMETER_VALUE, label=name) for name, value in parameters.items())),
         symbols=constants, kinetic_energy=T, extra_potential=V,
-    )  # fmt: skip
+    )
 
 
 def _finite(value: float) -> bool:
@@ -172,7 +172,8 @@ def check_energy_terms(system: SystemDescription, state: np.ndarray, parameters:
 
 def check_kinetic_energy(system: SystemDescription, state: np.ndarray, parameters: np.ndarray, *, where: str, t_s: float = 0.0) -> None:
     """Raise ParameterError naming ``kinetic_energy`` if T is not positive definite in the rates at ``state`` (q, q̇):
-    a mass matrix ∂²T/∂q̇² with a negative or zero eigenvalue (:func:`~app.physics.mechanics.mass_matrix.not_positive_definite`)."""
+    a mass matrix ∂²T/∂q̇² with a negative or zero eigenvalue
+    (:func:`~app.physics.mechanics.mass_matrix.not_positive_definite`)."""
     n = len(system.coordinates)
     kinetic = sympy.lambdify([TIME, system.q, system.qd, system.parameter_symbols], system.kinetic_energy, modules="numpy", cse=True)
     matrix = mass_matrices(kinetic, np.array([float(t_s)]), state[:n, None], state[n : 2 * n, None], parameters)[0]
@@ -185,7 +186,7 @@ def check_kinetic_energy(system: SystemDescription, state: np.ndarray, parameter
 runner = BoundedRunner(
     max_jobs=2, timeout_s=DERIVE_TIMEOUT_S, memory_mb=DERIVE_MEMORY_MB, wait_s=2.0,
     preload=("app.physics.core.bounded", "numpy", "sympy", __name__),
-)  # fmt: skip
+)
 
 
 def derive_typed_bounded(request: Mapping[str, Any]) -> dict[str, Any]:

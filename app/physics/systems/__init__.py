@@ -25,7 +25,8 @@ def system_modules() -> list[str]:
 
 @cache
 def worked_examples() -> dict[str, WorkedExample]:
-    """Every worked example by id, ordered by chapter then id: the ``EXAMPLE`` a system module declares (found, not listed)."""
+    """Every worked example by id, ordered by chapter then id: the ``EXAMPLE`` a system module declares (found, not
+    listed)."""
     examples: dict[str, WorkedExample] = {}
     for name in system_modules():
         example = getattr(importlib.import_module(name), "EXAMPLE", None)

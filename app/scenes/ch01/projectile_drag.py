@@ -19,7 +19,7 @@ VELOCITY_SCALE = 0.25  # m of arrow per m/s
 PAUSE_AT_LANDING_S = 1.5
 #: A baseball hit hard: 145 g at 40 m/s, 35° up, quadratic drag c = 7.6e-4 kg/m (the defaults).
 BASEBALL = {"mass_kg": 0.145, "speed0_m_s": 40.0, "elevation_deg": 35.0, "height0_m": 0.0,
-            "linear_drag_kg_s": 0.0, "quadratic_drag_kg_m": 7.6e-4, "g_m_s2": 9.807}  # fmt: skip
+            "linear_drag_kg_s": 0.0, "quadratic_drag_kg_m": 7.6e-4, "g_m_s2": 9.807}
 
 
 class ProjectileDragScene(Scene):
@@ -33,7 +33,7 @@ class ProjectileDragScene(Scene):
                "145 g at 40 m/s, 35° up, with quadratic drag: it carries about 100 m, two thirds of the vacuum range."),
         Preset("vacuum", "The same hit in a vacuum", {**BASEBALL, "quadratic_drag_kg_m": 0.0},
                "No drag: the parabola, range v₀² sin 2α / g = 153 m; the climb and the fall take equally long."),
-    )  # fmt: skip
+    )
 
     def camera_view(self):
         span = max(self._span_m, 10.0)

@@ -37,7 +37,7 @@ class CartesianComponentsScene(ParticleRunScene):
                "a = −g K all the way: ẋ and ẏ never change, ż falls by 9.81 m/s every second"),
         Preset("straight-up", "Thrown straight up", {"motion": "projectile", "launch_speed_m_s": 6.0, "launch_angle_deg": 90.0, "gravity_m_s2": 9.81},
                "At the top (t = 0.61 s) the speed is 0 while a is still 9.81 m/s² downward"),
-    )  # fmt: skip
+    )
 
     def run_s(self) -> float:
         return self.motion.run_s
@@ -75,7 +75,7 @@ class CartesianComponentsScene(ParticleRunScene):
             Quantity("grid_cell", "side of a grid square", self.grid_cell_m, "m"),
         ]
         if isinstance(self.motion, physics.SineSlot):
-            message = "The pin is driven at constant ẋ, so ẍ = 0: all of a is ÿ J, across the drive. The controls h, L and ẋ set this motion."
+            message = ("The pin is driven at constant ẋ, so ẍ = 0: all of a is ÿ J, across the drive. The " "controls h, L and ẋ set this motion.")
         else:
-            message = "Gravity is the only acceleration: ẍ = ÿ = 0 and z̈ = −g throughout, while v turns. The controls v₀, α, ψ and g set this motion."
+            message = ("Gravity is the only acceleration: ẍ = ÿ = 0 and z̈ = −g throughout, while v turns. The " "controls v₀, α, ψ and g set this motion.")
         return Readout(quantities, message=message)

@@ -116,7 +116,7 @@ class ParticleRunScene(Scene):
             scene.add_frame("/world_axes", axes_length=axes, axes_radius=0.005 * size),
             *(scene.add_label(f"/world_axes/{name}", name, position=tuple(1.08 * axes * np.eye(3)[k]), font_screen_scale=0.8)
               for k, name in enumerate("XYZ")),
-        ]  # fmt: skip
+        ]
         self.ball.scale = 0.02 * size
         shaft = 0.009 * size
         self.arrows.shaft_radius, self.arrows.head_radius, self.arrows.head_length = shaft, 2.5 * shaft, 6.0 * shaft
@@ -128,7 +128,9 @@ class ParticleRunScene(Scene):
 
     def camera_view(self) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
         c, size = self._center, self._size
-        return (float(c[0] + 0.38 * size), float(c[1] - 0.6 * size), float(c[2] + 0.36 * size)), tuple(float(v) for v in c)
+        return (float(c[0] + 0.38 * size), float(c[1] - 0.6 * size), float(c[2] + 0.36 * size)), (
+            float(c[0]), float(c[1]), float(c[2])
+        )
 
     def _draw(self) -> None:
         if self._reframe_pending:
@@ -154,7 +156,8 @@ class ParticleRunScene(Scene):
         self.client.camera.look_at = look_at
 
     def step_motion(self, dt_s: float) -> bool:
-        """The clock only grows (so the scrubber's history is one run after another); :meth:`_draw` takes it modulo a run."""
+        """The clock only grows (so the scrubber's history is one run after another); :meth:`_draw` takes it modulo a
+        run."""
         self.clock_s += dt_s
         return True
 

@@ -42,10 +42,10 @@ class RotatingArmScene(ParticleRunScene):
         Preset("arm-held", "Arm held still (Ω = 0)", {"arm_rate_rad_s": 0.0, "arm_acceleration_rad_s2": 0.0, "collar_mean_m": 0.8, "collar_amplitude_m": 0.6, "collar_frequency_rad_s": 1.5},
                "θ̇ = 0: the collar only slides back and forth, and a = r̈ e_r"),
         Preset("through-the-pivot", "Through the pivot", {"arm_rate_rad_s": 0.6, "arm_acceleration_rad_s2": 0.0, "collar_mean_m": 0.0, "collar_amplitude_m": 1.2, "collar_frequency_rad_s": 1.0},
-               "r swings from −1.2 m to 1.2 m: at the pivot the arm's e_r and e_θ are still defined, and a is all Coriolis"),
+               "r swings from −1.2 m to 1.2 m: at the pivot the arm's e_r and e_θ are still defined, and a is all " "Coriolis"),
         Preset("speeding-up", "Arm speeding up (α)", {"arm_rate_rad_s": 0.3, "arm_acceleration_rad_s2": 0.1, "collar_mean_m": 1.0, "collar_amplitude_m": 0.0},
                "θ̈ = 0.1 rad/s²: the transverse term rθ̈ = 0.1 m/s² stays while −rθ̇² grows"),
-    )  # fmt: skip
+    )
 
     def build(self) -> None:
         super().build()
@@ -113,9 +113,9 @@ class RotatingArmScene(ParticleRunScene):
             Quantity.or_text("a_normal", "path: a_n = |v × a|/|v|", a_n, "m/s²", at_rest),
         ]
         if abs(r) < 0.01:
-            message = "The collar is passing the pivot (r ≈ 0). The arm's e_r and e_θ are still defined, so every term is; only the collar's own polar angle, atan2(y, x), would jump here."
+            message = ("The collar is passing the pivot (r ≈ 0). The arm's e_r and e_θ are still defined, so " "every term is; only the collar's own polar angle, atan2(y, x), would jump here.")
         elif r < 0:
-            message = "r < 0: the collar is on the arm's other half, beyond the pivot. e_r still points along the arm, so the same formulas hold."
+            message = ("r < 0: the collar is on the arm's other half, beyond the pivot. e_r still points along " "the arm, so the same formulas hold.")
         else:
             message = ""
         if not math.isfinite(a_t):

@@ -60,7 +60,8 @@ def table_times(t_end_s: float) -> np.ndarray:
 
 
 def _check_playback(values: Mapping[str, Any]) -> None:
-    """The start lies in the loop, and the curve stays drawable over the whole loop (checked before anything is stored)."""
+    """The start lies in the loop, and the curve stays drawable over the whole loop (checked before anything is
+    stored)."""
     if values["t_start_s"] > values["t_end_s"]:
         raise ParameterError("t_start_s", f"must not exceed the loop's end, t end = {values['t_end_s']:g} s")
     curve = physics.compile_curve(*(values[name] for name in physics.COMPONENTS))
@@ -82,7 +83,7 @@ CONTROLS = (
             kind="choice",
             choices=("frenet", "cylindrical", "spherical"),
             label="unit vectors",
-            description="Which unit vectors ride on the particle: path (T, N, B), cylindrical (e_R, e_θ, e_z) or spherical (e_r, e_φ, e_θ)",
+            description=("Which unit vectors ride on the particle: path (T, N, B), cylindrical (e_R, e_θ, e_z) or " "spherical (e_r, e_φ, e_θ)"),
         ),
 )
 
@@ -103,7 +104,7 @@ PRESETS = (
         "figure-eight",
         "Figure eight",
         {"x_of_t": "cos(t)", "y_of_t": "sin(2*t)/2", "z_of_t": "0.3*sin(t)", "t_end_s": 6.283, "frame": "frenet"},
-        "A figure eight bent out of its plane: fastest and nearly straight at the crossing, where the torsion swings negative",
+        "A figure eight bent out of its plane: fastest and nearly straight at the crossing, where the torsion " "swings negative",
     ),
     Preset(
         "viviani",
@@ -206,7 +207,7 @@ class SpaceCurveScene(Scene):
     def camera_view(self) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
         c, size = self._center, self._size
         # About one curve-size away (size = the bounding box's diagonal), from the front right, above.
-        return (c[0] + 0.5 * size, c[1] - 0.72 * size, c[2] + 0.42 * size), tuple(float(v) for v in c)
+        return (c[0] + 0.5 * size, c[1] - 0.72 * size, c[2] + 0.42 * size), (float(c[0]), float(c[1]), float(c[2]))
 
     def _curve_moved(self, old_center: np.ndarray, old_size: float) -> bool:
         """Whether a new curve is a different size or elsewhere (then this viewer's camera follows it).
@@ -344,7 +345,7 @@ class SpaceCurveScene(Scene):
             arrow = scene.add_arrows(
                 f"/particle/e{k}", np.array([[np.zeros(3), tip]], np.float32), TRIAD_COLORS[k],
                 shaft_radius=shaft, head_radius=2.5 * shaft, head_length=6.0 * shaft,
-            )  # fmt: skip
+            )
             label = scene.add_label(
                 f"/particle/e{k}/label", TRIAD_LABELS[self.params["frame"]][k], position=tuple(1.06 * tip), anchor="center-left", font_screen_scale=0.9
             )

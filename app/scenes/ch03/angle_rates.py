@@ -31,7 +31,7 @@ SCALE_SAMPLES = 200
 NEAR_LOCK_DEG = 10.0
 ARROW_COLORS = {"turn1": TURN_COLORS[0], "turn2": TURN_COLORS[1], "turn3": TURN_COLORS[2], "omega": (60, 60, 60), "alpha": (215, 80, 150)}
 ARROW_LABELS = {"turn1": "θ̇1 n1", "turn2": "θ̇2 n2", "turn3": "θ̇3 n3", "omega": "ω", "alpha": "α"}
-#: Frames evaluated per vectorised call (about 40 µs of physics per frame instead of 1 ms).
+#: Frames evaluated per vectorised call, so the per-call overhead is shared (docs/bench/live-frame-costs.svg).
 BATCH_FRAMES = 30
 
 
@@ -47,7 +47,7 @@ class AngleRatesScene(ReplayedScene):
         Preset("steady-top", "Top: steady precession and spin (3-1-3)", {
             "sequence": "3-1-3", "angle1_deg": 0.0, "angle2_deg": 30.0, "angle3_deg": 0.0,
             "rate1_rad_s": 0.8, "rate2_rad_s": 0.0, "rate3_rad_s": 2.0, "accel1_rad_s2": 0.0, "accel2_rad_s2": 0.0, "accel3_rad_s2": 0.0,
-        }, "Constant φ̇ = 0.8 rad/s and ψ̇ = 2 rad/s at θ = 30°: every θ̈ is zero, yet α = φ̇ψ̇ n1 × n3 has magnitude 0.8 rad/s²"),
+        }, "Constant φ̇ = 0.8 rad/s and ψ̇ = 2 rad/s at θ = 30°: every θ̈ is zero, yet α = φ̇ψ̇ n1 × n3 has " "magnitude 0.8 rad/s²"),
         Preset("euler-lock", "3-1-3 at θ = 0: rates lost", {
             "sequence": "3-1-3", "angle1_deg": 20.0, "angle2_deg": 0.0, "angle3_deg": 40.0,
             "rate1_rad_s": 0.5, "rate2_rad_s": 0.0, "rate3_rad_s": 1.0, "accel1_rad_s2": 0.0, "accel2_rad_s2": 0.0, "accel3_rad_s2": 0.0,
@@ -55,12 +55,12 @@ class AngleRatesScene(ReplayedScene):
         Preset("aircraft-pull-up", "Aircraft pulling up to the vertical (3-2-1)", {
             "sequence": "3-2-1", "angle1_deg": 30.0, "angle2_deg": 0.0, "angle3_deg": 10.0,
             "rate1_rad_s": 0.0, "rate2_rad_s": -0.3, "rate3_rad_s": 0.0, "accel1_rad_s2": 0.0, "accel2_rad_s2": 0.0, "accel3_rad_s2": 0.0,
-        }, "Level, nose pitching up at θ̇2 = −0.3 rad/s (Z up): at t = 5.24 s the nose points straight up (θ2 = −90°), where yaw and roll rates cannot be told apart"),
+        }, "Level, nose pitching up at θ̇2 = −0.3 rad/s (Z up): at t = 5.24 s the nose points straight up (θ2 = " "−90°), where yaw and roll rates cannot be told apart"),
         Preset("spin-up", "Spinning up while tilting (3-1-3)", {
             "sequence": "3-1-3", "angle1_deg": 0.0, "angle2_deg": 20.0, "angle3_deg": 0.0,
             "rate1_rad_s": 0.3, "rate2_rad_s": 0.1, "rate3_rad_s": 0.5, "accel1_rad_s2": 0.0, "accel2_rad_s2": 0.0, "accel3_rad_s2": 0.4,
         }, "θ̈3 = 0.4 rad/s² adds a part of α along n3; the cross products add the rest"),
-    )  # fmt: skip
+    )
 
     # -- building -----------------------------------------------------------------------------------
     def build(self) -> None:
@@ -86,7 +86,7 @@ class AngleRatesScene(ReplayedScene):
         alpha_max = max(float(np.linalg.norm(whole.alpha_world_rad_s2, axis=-1).max()), 1e-9)
         self.alpha_scale = _nice_scale(min(ARROW_REACH / alpha_max, 1e3))
         self._locked_drawn = None
-        self._batch = None
+        self._batch: physics.AngleKinematics | None = None
         self._step_s = float(self.params["playback_speed"]) * FRAME_DT_S
         self.start_clock()
         self._draw()
@@ -101,7 +101,7 @@ class AngleRatesScene(ReplayedScene):
         if batch is not None:
             hits = np.flatnonzero(np.abs(batch.t_s - self.t_s) < 1e-9)
             if hits.size:
-                self.i = int(hits[0])
+                self.i: int = int(hits[0])
                 return
         times = np.mod(self.t_s + self._step_s * np.arange(BATCH_FRAMES), float(self.params["replay_s"]))
         self._batch = self.kinematics = self.motion.kinematics(times)
@@ -156,7 +156,7 @@ class AngleRatesScene(ReplayedScene):
             Quantity("gimbal_lock_distance_deg", "distance to gimbal lock", math.degrees(float(k.lock_distance_rad[i])), "deg"),
             Quantity("omega_arrow_scale", "ω arrows", self.omega_scale, "display units per rad/s"),
             Quantity("alpha_arrow_scale", "α arrow", self.alpha_scale, "display units per rad/s²"),
-        ]  # fmt: skip
+        ]
         marks = {"angle2_deg": [Mark(math.degrees(a), "gimbal lock") for a in seq.lock_angles_rad]}
         return Readout(quantities, marks=marks, message=self.message())
 
@@ -170,7 +170,7 @@ class AngleRatesScene(ReplayedScene):
                 "Any split of that combination between θ̇1 and θ̇3 gives the same ω."
             )
         lock_deg = math.degrees(float(k.lock_distance_rad[i]))
-        text = "ω = θ̇1 n1 + θ̇2 n2 + θ̇3 n3: the coloured arrows add head to tail to ω. α adds Σ θ̈k nk and the cross products of turning axes."
+        text = ("ω = θ̇1 n1 + θ̇2 n2 + θ̇3 n3: the coloured arrows add head to tail to ω. α adds Σ θ̈k nk and the " "cross products of turning axes.")
         if lock_deg < NEAR_LOCK_DEG:
-            text += f" Near gimbal lock ({lock_deg:.3g}° away): recovering the rates from ω needs up to {k.rate_gain(i):.3g} rad/s of rate per rad/s of |ω|."
+            text += (f" Near gimbal lock ({lock_deg:.3g}° away): recovering the rates from ω needs up to " f"{k.rate_gain(i):.3g} rad/s of rate per rad/s of |ω|.")
         return text

@@ -53,7 +53,7 @@ class EastwardDeflectionScene(Scene):
         Preset("drop-100m", "Drop 100 m at 45°", {"height_m": 100.0, "latitude_deg": 45.0, "launch_velocity_m_s": [0.0, 0.0, 0.0]},
                "About 15 mm east; the second-order southward part is about 2 µm."),
         Preset("reich-mine", "Mine shaft, 158 m at 51° N", {"height_m": 158.0, "latitude_deg": 50.9, "launch_velocity_m_s": [0.0, 0.0, 0.0]},
-               "The depth of the Freiberg mine shaft where Ferdinand Reich measured the deflection in 1831; this model gives 27.5 mm."),
+               "The depth of the Freiberg mine shaft where Ferdinand Reich measured the deflection in 1831; this " "model gives 27.5 mm."),
         Preset("equator", "Equator, 100 m", {"height_m": 100.0, "latitude_deg": 0.0, "launch_velocity_m_s": [0.0, 0.0, 0.0]},
                "cos λ = 1: the largest eastward deflection, and no southward part."),
         Preset("pole", "North Pole, 100 m", {"height_m": 100.0, "latitude_deg": 90.0, "launch_velocity_m_s": [0.0, 0.0, 0.0]},
@@ -170,7 +170,7 @@ class EastwardDeflectionScene(Scene):
             Quantity("earth_rate", "Earth's rotation rate Ω", EARTH_RATE_RAD_S, "rad/s"),
         ]
         message = (
-            f"At latitude {lam:g}° the Earth turns about the local vertical at Ω sin λ and about the north axis at Ω cos λ; "
+            f"At latitude {lam:g}° the Earth turns about the local vertical at Ω sin λ and about the north axis " "at Ω cos λ; "
             "only the north part acts on a vertical fall, which is why the deflection goes as cos λ."
         )
         return Readout(quantities, message=message)

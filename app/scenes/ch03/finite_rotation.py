@@ -30,7 +30,7 @@ CONTROLS = (
               description="Fixed axis of the second turn B"),
     Parameter("second_angle_deg", "deg", 0.0, -180.0, 180.0, label="β", step=1.0,
               description="Angle of the second turn B about its fixed axis (0: no second turn, Euler's theorem alone)"),
-)  # fmt: skip
+)
 
 BODY_AXIS_LENGTH = 0.7
 FIXED_AXIS_LENGTH = 1.2
@@ -38,7 +38,8 @@ EQUIVALENT_AXIS_HALF_LENGTH = 1.4
 BODY_DIMENSIONS = (0.8, 0.5, 0.12)
 AXIS_A_COLOR, AXIS_B_COLOR = (240, 140, 20), (190, 60, 200)
 BODY_COLOR = (90, 120, 170)
-#: Where the two copies stand when B is shown: ∓ this, across the initial view (A then B on the left, B then A on the right).
+#: Where the two copies stand when B is shown: ∓ this, across the initial view (A then B on the left, B then A on the
+#: right).
 ORDER_OFFSET = np.array([0.95, 0.7, 0.0])
 ARC_SAMPLES = 48
 # Animation (s): rest, first turn, pause, second turn, hold. A drawing device only.
@@ -118,6 +119,8 @@ class FiniteRotationScene(Scene):
         a = self.result.turn_a
         b_axis = np.eye(3)[physics.fixed_axis_index(self.params["second_axis"])]
         # Each copy: pivot, then its two turns (axis, angle) about fixed lines, in order.
+        finals: tuple[physics.EquivalentTurn, ...]
+        titles: tuple[str, ...]
         if self.compare:
             self.copies = [
                 (-ORDER_OFFSET, [(a.axis_world, a.angle_rad), (b_axis, math.radians(self.params["second_angle_deg"]))]),
@@ -135,7 +138,7 @@ class FiniteRotationScene(Scene):
                 if angle == 0.0 or (name == "A" and a.angle_rad < NO_TURN_RAD):
                     continue
                 segments.append([pivot - EQUIVALENT_AXIS_HALF_LENGTH * axis, pivot + EQUIVALENT_AXIS_HALF_LENGTH * axis])
-                labels.append((pivot + EQUIVALENT_AXIS_HALF_LENGTH * axis, f"{name}: {math.degrees(angle):.4g}° about {'n' if name == 'A' else self.params['second_axis']}"))
+                labels.append((pivot + EQUIVALENT_AXIS_HALF_LENGTH * axis, f"{name}: {math.degrees(angle):.4g}° about " f"{'n' if name == 'A' else self.params['second_axis']}"))
         points = np.array(segments, np.float32).reshape(-1, 2, 3) if segments else np.zeros((1, 2, 3), np.float32)
         colors = np.array([AXIS_A_COLOR if text.startswith("A") else AXIS_B_COLOR for _, text in labels] or [AXIS_A_COLOR], np.uint8)
         self.axes.points = points
@@ -174,7 +177,8 @@ class FiniteRotationScene(Scene):
             self._arc_paths.append(paths)
 
     def _attitude(self, turns, done: tuple[float, float]) -> np.ndarray:
-        """``wxyz`` after the fractions ``done`` of the copy's two turns (about fixed axes: each composes on the left)."""
+        """``wxyz`` after the fractions ``done`` of the copy's two turns (about fixed axes: each composes on the
+        left)."""
         q = np.array([1.0, 0.0, 0.0, 0.0])
         for (axis, angle), fraction in zip(turns, done):
             q = quaternion_multiply(quaternion_from_axis_angle(axis, fraction * angle), q)
@@ -232,13 +236,13 @@ class FiniteRotationScene(Scene):
             text = "A is no turn at all: the body stays as the fixed frame, and the axis n is undefined."
         else:
             text = (
-                f"Euler's theorem: the {r.sequence.name} turns end where one turn of φ = {math.degrees(a.angle_rad):.2f}° "
-                f"about n = {components_text(a.axis_world, 4)} ends; Rodrigues' formula with that n and φ gives [R] again."
+                f"Euler's theorem: the {r.sequence.name} turns end where one turn of φ = " f"{math.degrees(a.angle_rad):.2f}° "
+                f"about n = {components_text(a.axis_world, 4)} ends; Rodrigues' formula with that n and φ gives " "[R] again."
             )
         if self.compare:
             gap = math.degrees(r.order_gap_rad)
             if gap < 1e-7:
-                text += " A then B and B then A end in the same attitude: these two turns commute (they share an axis, or one is no turn)."
+                text += (" A then B and B then A end in the same attitude: these two turns commute (they share an " "axis, or one is no turn).")
             else:
                 text += f" A then B and B then A end {gap:.4g}° apart: finite rotations do not commute."
         return text

@@ -15,7 +15,12 @@ import math
 import numpy as np
 
 from app.physics.systems.ch03 import foucault_pendulum as physics
-from app.physics.systems.earth import EARTH_RATE_RAD_S, SECONDS_PER_HOUR, direction_from_bearing, vertical_earth_rate_rad_s
+from app.physics.systems.earth import (
+    EARTH_RATE_RAD_S,
+    SECONDS_PER_HOUR,
+    direction_from_bearing,
+    vertical_earth_rate_rad_s,
+)
 from app.scenes.kit import IntegratedScene, Mark, Preset, Quantity, Readout, Trail
 
 TRAIL_CHUNK_FRAMES = 15

@@ -44,7 +44,7 @@ PATH_SAMPLES = 400
 #: The table's top face is drawn this far below the plane of P's motion, so arrows lying in that plane are not
 #: hidden inside the disc (the slider box is tall enough to sit in the groove).
 DISC_TOP_BELOW_P_M = 0.04
-BATCH_FRAMES = 30  # frames evaluated per vectorised call (about 20 µs of physics per frame instead of 350)
+BATCH_FRAMES = 30  # frames evaluated per vectorised call: the per-call overhead shared (docs/bench/live-frame-costs.svg)
 
 DISPLAY_PARAMETERS = (
     Parameter("time_s", "s", 0.0, 0.0, 60.0, "Instant shown when the playback speed is 0 (and where playback starts)", "instant t", step=0.05),

@@ -2,7 +2,8 @@
 
 The scene's clock ``t_s`` (s of simulated time) advances by ``playback_speed × dt`` each frame and
 wraps at ``replay_s``; a playback speed of 0 holds the instant ``time_s``. The time controls are the
-moving-frame scene's (one definition). Subclasses draw the instant ``self.t_s`` in ``_draw`` (the kit's :meth:`~app.scenes.kit.Scene.redraw`).
+moving-frame scene's (one definition). Subclasses draw the instant ``self.t_s`` in ``_draw`` (the kit's
+:meth:`~app.scenes.kit.Scene.redraw`).
 """
 
 from __future__ import annotations

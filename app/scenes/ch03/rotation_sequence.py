@@ -28,12 +28,12 @@ import numpy as np
 from app.physics.core.parameters import Parameter
 from app.physics.math.rotations import (
     SEQUENCES,
-    rotate_vector,
     angle_rate_matrix_body,
     angles_from_matrix,
     axis_angle_from_quaternion,
     intermediate_frames,
     quaternion_multiply,
+    rotate_vector,
     rotation_sequence,
 )
 from app.scenes.kit import Mark, Preset, Quantity, Readout, Scene
@@ -44,14 +44,14 @@ NEAR_LOCK_DEG = 10.0
 CONTROLS = (
         Parameter(
             "sequence", "", "3-1-3", kind="choice", choices=tuple(SEQUENCES), label="Sequence",
-            description="Axes of the three body-fixed turns (1 = x, 2 = y, 3 = z): proper Euler (first axis repeated) or Tait–Bryan (all three)",
+            description=("Axes of the three body-fixed turns (1 = x, 2 = y, 3 = z): proper Euler (first axis " "repeated) or Tait–Bryan (all three)"),
         ),
         Parameter("angle1_deg", "deg", 80.0, -180.0, 180.0, label="θ1", step=1.0, description="First turn, about axis a1 of the fixed frame XYZ"),
         Parameter("angle2_deg", "deg", 35.0, -180.0, 180.0, label="θ2", step=1.0, description="Second turn, about axis a2 of the once-turned frame x′y′z′"),
         Parameter("angle3_deg", "deg", 60.0, -180.0, 180.0, label="θ3", step=1.0, description="Third turn, about axis a3 of the twice-turned frame x″y″z″"),
         Parameter(
             "stage", "", "animate", kind="choice", choices=STAGES, label="Stage",
-            description="animate: sweep θ1, then θ2, then θ3, hold and repeat; or hold the frame reached after one, two or all three turns",
+            description=("animate: sweep θ1, then θ2, then θ3, hold and repeat; or hold the frame reached after one, " "two or all three turns"),
         ),
 )
 
@@ -115,7 +115,8 @@ SIDE_OFFSETS = np.array(
 
 
 def text_box(point_px: np.ndarray, size_px: tuple[float, float], anchor: str) -> np.ndarray:
-    """``[left, bottom, right, top]`` px of a text of ``size_px`` whose ``anchor`` corner (or edge) is at ``point_px``."""
+    """``[left, bottom, right, top]`` px of a text of ``size_px`` whose ``anchor`` corner (or edge) is at
+    ``point_px``."""
     return side_boxes(point_px, size_px)[LABEL_SIDES.index(anchor)]
 
 
@@ -126,7 +127,8 @@ def side_boxes(point_px: np.ndarray, size_px: tuple[float, float]) -> np.ndarray
 
 
 def boxes_overlap(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Area (px²) shared by ``[left, bottom, right, top]`` boxes ``a`` (..., 4) and ``b`` (..., 4), broadcast (0 when apart)."""
+    """Area (px²) shared by ``[left, bottom, right, top]`` boxes ``a`` (..., 4) and ``b`` (..., 4), broadcast (0 when
+    apart)."""
     a, b = np.asarray(a, float), np.asarray(b, float)
     width = np.minimum(a[..., 2], b[..., 2]) - np.maximum(a[..., 0], b[..., 0])
     height = np.minimum(a[..., 3], b[..., 3]) - np.maximum(a[..., 1], b[..., 1])
@@ -339,14 +341,14 @@ class RotationSequenceScene(Scene):
             value = math.degrees(self.angles[0] + s * self.angles[2])
             value = (value + 180.0) % 360.0 - 180.0
             text += (
-                f" Gimbal lock: θ2 = {degrees[1]:g}° puts the third turn's axis {seq.axis_label(3)} on the line of the first "
-                f"turn's axis {seq.axis_label(1)}, so the first and third turns act about the same line. Only {combination} "
-                f"= {value:.6g}° is determined; every pair with that {'sum' if s > 0 else 'difference'} gives the same [R], "
+                f" Gimbal lock: θ2 = {degrees[1]:g}° puts the third turn's axis {seq.axis_label(3)} on the line " "of the first "
+                f"turn's axis {seq.axis_label(1)}, so the first and third turns act about the same line. Only " f"{combination} "
+                f"= {value:.6g}° is determined; every pair with that {'sum' if s > 0 else 'difference'} gives " "the same [R], "
                 "and the angle rates can no longer be found from ω."
             )
         elif lock_deg < NEAR_LOCK_DEG:
             text += (
-                f" Near gimbal lock ({lock_deg:.3g}° away): small changes of attitude need large, opposite changes of θ1 and θ3, "
+                f" Near gimbal lock ({lock_deg:.3g}° away): small changes of attitude need large, opposite " "changes of θ1 and θ3, "
                 "and the angle rates for a given ω grow like 1/sin of that distance."
             )
         return text

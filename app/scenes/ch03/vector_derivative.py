@@ -10,7 +10,6 @@ where the orange arrow ends. The motion replays from t = 0 every ``replay_s``.
 
 from __future__ import annotations
 
-
 import numpy as np
 
 from app.physics.systems.ch03 import vector_derivative as physics
@@ -51,7 +50,7 @@ class VectorDerivativeScene(ReplayedScene):
             "frame_rate_rad_s": 0.8, "frame_axis_tilt_deg": 0.0, "length_m": 1.0, "stretch_amplitude_m": 0.0,
             "relative_turn_rate_rad_s": -0.8, "elevation_deg": 20.0,
         }, "ψ̇ = −Ω about the same axis: the two terms cancel and A stands still in XYZ"),
-    )  # fmt: skip
+    )
 
     def build(self) -> None:
         scene = self.client.scene
@@ -120,7 +119,7 @@ class VectorDerivativeScene(ReplayedScene):
         if relative == 0.0:
             message = "A is fixed in the turning frame: (dA/dt)_rel = 0, so the rate seen from XYZ is ω × A alone."
         elif fixed <= 1e-12 * relative:
-            message = "(dA/dt)_rel and ω × A cancel: A turns back in the frame exactly as fast as the frame turns, so it stands still in XYZ."
+            message = ("(dA/dt)_rel and ω × A cancel: A turns back in the frame exactly as fast as the frame " "turns, so it stands still in XYZ.")
         else:
             message = "(dA/dt)_fixed = (dA/dt)_rel + ω × A: the blue and orange arrows add head to tail to the red one."
         return Readout(quantities, message=message + " Arrows shorter than their head are listed here but not drawn.")

@@ -146,4 +146,4 @@ class CardanJointScene(Scene):
             Quantity("speed_ratio_min", "smallest ratio, cos β", float(low), ""),
             Quantity("speed_ratio_max", "largest ratio, 1/cos β", float(high), ""),
             Quantity("output_rate", "output speed ω₂", float(state.output_rate[0]), "rad/s"),
-        ])  # fmt: skip
+        ])

@@ -142,13 +142,13 @@ class FourBarScene(Scene):
             Quantity.or_text("coupler_rate", "coupler rate ω₃", float(state.coupler_rate[0]), "rad/s", "undefined"),
         ]
         marks: dict[str, list[Mark]] = {}
-        if not motion.drive.turns_fully:
+        if motion.drive.limits_rad is not None:  # the crank rocks between two limits
             lower, upper = motion.drive.limits_rad
             marks["crank_angle0_deg"] = [Mark(math.degrees(math.remainder(angle, 2 * math.pi)), "toggle") for angle in (lower, upper)]
         if bool(state.singular[0]) or min(mu, 180.0 - mu) < TOGGLE_WINDOW_DEG:
             message = "toggle position: rocker rate is unbounded here (coupler and rocker are in line)"
         elif not GOOD_TRANSMISSION_DEG[0] <= mu <= GOOD_TRANSMISSION_DEG[1]:
-            message = f"poor transmission: μ = {mu:.0f}°, so a push along the coupler mostly loads the rocker's pivot instead of turning it"
+            message = (f"poor transmission: μ = {mu:.0f}°, so a push along the coupler mostly loads the rocker's " "pivot instead of turning it")
         elif not motion.drive.turns_fully:
             message = f"The crank cannot turn fully ({motion.crank_range.describe()}); it reverses at each toggle position."
         else:

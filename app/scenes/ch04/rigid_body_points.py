@@ -35,15 +35,15 @@ VELOCITY_COLORS = {"center": (40, 100, 220), "relative": (230, 120, 20), "total"
 VELOCITY_LABELS = {"center": "v_A", "relative": "ω × r_B/A", "total": "v_B", "omega": "ω"}
 ACCELERATION_COLORS = {
     "center": (40, 100, 220), "tangential": (230, 120, 20), "centripetal": (30, 160, 80), "total": (200, 30, 60), "alpha": (140, 60, 200),
-}  # fmt: skip
+}
 ACCELERATION_LABELS = {"center": "a_A", "tangential": "α × r_B/A", "centripetal": "ω × (ω × r_B/A)", "total": "a_B", "alpha": "α"}
 
 CONTROLS = (
     Parameter(
         "arrows", "", "velocity", kind="choice", choices=VIEWS, label="arrows",
-        description="Which formula's terms are drawn at B: velocity (v_A, ω × r_B/A, v_B) or acceleration (a_A, α × r_B/A, ω × (ω × r_B/A), a_B)",
+        description=("Which formula's terms are drawn at B: velocity (v_A, ω × r_B/A, v_B) or acceleration (a_A, " "α × r_B/A, ω × (ω × r_B/A), a_B)"),
     ),
-)  # fmt: skip
+)
 
 
 def _components(vector: np.ndarray) -> str:
@@ -67,13 +67,13 @@ class RigidBodyPointsScene(CyclingScene):
     frame_message_budget = 6.0
     presets = (
         Preset("steady", "Steady rates", {"turntable_acceleration_rad_s2": 0.0, "spin_acceleration_rad_s2": 0.0, "shaft_elevation_deg": 0.0},
-               "Constant ω₁ and ω₂ on a horizontal shaft: α = ω₁K × ω₂n̂ is still not zero, because the spin axis turns."),  # fmt: skip
+               "Constant ω₁ and ω₂ on a horizontal shaft: α = ω₁K × ω₂n̂ is still not zero, because the spin axis turns."),
         Preset("spin-only", "Turntable stopped", {"turntable_rate_rad_s": 0.0, "turntable_acceleration_rad_s2": 0.0, "spin_acceleration_rad_s2": 0.0},
-               "Only the spin: A is at rest and B moves on a circle about the shaft."),  # fmt: skip
+               "Only the spin: A is at rest and B moves on a circle about the shaft."),
         Preset("centre-point", "B at the centre", {"point_radius_fraction": 0.0},
-               "r_B/A = 0: B moves exactly like A, whatever the disk's ω and α."),  # fmt: skip
+               "r_B/A = 0: B moves exactly like A, whatever the disk's ω and α."),
         Preset("spinning-up", "Both spinning up", {"turntable_acceleration_rad_s2": 1.0, "spin_acceleration_rad_s2": 3.0, "arrows": "acceleration"},
-               "Large ω̇₁ and ω̇₂: the tangential term α × r_B/A grows beside the centripetal one."),  # fmt: skip
+               "Large ω̇₁ and ω̇₂: the tangential term α × r_B/A grows beside the centripetal one."),
     )
 
     def camera_view(self):
@@ -130,9 +130,9 @@ class RigidBodyPointsScene(CyclingScene):
         view = self.params["arrows"]
         self.legend.position = (0.3 * self._size, 0.0, L * math.sin(beta) + R + 0.35 * self._size)
         if view == "velocity":
-            self.legend.text = f"v_B = v_A + ω × r_B/A, tip to tail at B · 1 m/s ↦ {self.velocity_scale:g} m · ω: 1 rad/s ↦ {self.omega_scale:g} m"
+            self.legend.text = (f"v_B = v_A + ω × r_B/A, tip to tail at B · 1 m/s ↦ {self.velocity_scale:g} m · " f"ω: 1 rad/s ↦ {self.omega_scale:g} m")
         else:
-            self.legend.text = f"a_B = a_A + α × r_B/A + ω × (ω × r_B/A) at B · 1 m/s² ↦ {self.acceleration_scale:g} m · α: 1 rad/s² ↦ {self.alpha_scale:g} m"
+            self.legend.text = ("a_B = a_A + α × r_B/A + ω × (ω × r_B/A) at B · 1 m/s² ↦ " f"{self.acceleration_scale:g} m · α: 1 rad/s² ↦ {self.alpha_scale:g} m")
         # The other view's arrows and labels are hidden (all of zero length) until it is chosen.
         other, keys = (self.acceleration_arrows, ACCELERATION_LABELS) if view == "velocity" else (self.velocity_arrows, VELOCITY_LABELS)
         other.draw(dict.fromkeys(keys, (np.zeros(3), np.zeros(3))))
@@ -160,7 +160,7 @@ class RigidBodyPointsScene(CyclingScene):
             ),
             # The disk: body x is the shaft, so its cylinder (axis local z) is turned onto x.
             scene.add_cylinder("/turntable/disk/plate", radius=R, height=0.02 * R + 0.004, color=(120, 170, 220), opacity=0.55,
-                               wxyz=tuple(quaternion_z_to(np.array([1.0, 0.0, 0.0])))),  # fmt: skip
+                               wxyz=tuple(quaternion_z_to(np.array([1.0, 0.0, 0.0])))),
         ]
         spokes = np.linspace(0.0, math.pi, 3, endpoint=False)
         ends = R * np.stack([np.zeros(3), np.cos(spokes), np.sin(spokes)], axis=-1)

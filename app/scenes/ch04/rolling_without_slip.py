@@ -201,5 +201,5 @@ class RollingScene(Scene):
         if rolling.body == "cone":
             message = "ω lies along the line of contact: every point of the cone touching the ground is momentarily at rest."
         else:
-            message = f"The instantaneous axis runs from C through O′, {rolling.axis_point[2]:.3f} m up the vertical through the centre of the path."
+            message = (f"The instantaneous axis runs from C through O′, {rolling.axis_point[2]:.3f} m up the " "vertical through the centre of the path.")
         return Readout(quantities, message=message)

@@ -129,5 +129,5 @@ class SliderCrankScene(Scene):
         message = ""
         if mech.offset_m != 0.0:
             sense = "counterclockwise" if counterclockwise else "clockwise"
-            message = f"With the offset the strokes take unequal times: turning {sense}, the outward stroke lasts {ratio:.3f} times the return stroke."
+            message = (f"With the offset the strokes take unequal times: turning {sense}, the outward stroke " f"lasts {ratio:.3f} times the return stroke.")
         return Readout(quantities, message=message)

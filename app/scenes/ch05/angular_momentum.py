@@ -248,13 +248,13 @@ class AngularMomentumScene(Scene):
             words.append("No spin: ω = 0, so H = 0, T = ½ m v_G² and the bearings carry nothing.")
         elif not spin.body.shaft_is_principal:
             words.append(
-                f"H_G leans {math.degrees(spin.angle_between_omega_and_H):.2f}° off the shaft and sweeps a cone once a turn; "
+                f"H_G leans {math.degrees(spin.angle_between_omega_and_H):.2f}° off the shaft and sweeps a cone " "once a turn; "
                 f"the bearings must supply dH/dt = ω × H_G, two forces of {force_N:.4g} N turning with the body."
             )
         if self.particles_view:
             masses = self._particles.masses_kg
             words.append(
-                f"The body is drawn as {len(masses)} point masses of {masses[0]:.4g} kg with its mass, centre and inertia. "
+                f"The body is drawn as {len(masses)} point masses of {masses[0]:.4g} kg with its mass, centre " "and inertia. "
                 "The shaft travels at constant v_G: p, H_O and T change with v_G, the bearing forces do not."
             )
         words.append("Gravity is left out: on a vertical shaft the weight is an axial thrust and changes none of these moments.")

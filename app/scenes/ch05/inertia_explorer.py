@@ -22,7 +22,7 @@ Nothing is integrated: the composite is recomputed only when ``bodies`` or
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import Any, TypedDict
 
 import numpy as np
 
@@ -44,6 +44,16 @@ ROUNDING_NOISE = 1e-12
 
 SOLID_COLOR = (110, 140, 190)
 HOLE_COLOR = (225, 50, 50)
+
+
+class _PartStyle(TypedDict):
+    """What every part's mesh shares: its colour, orientation (wxyz, world from part) and position (m, world)."""
+
+    color: tuple[int, int, int]
+    wxyz: np.ndarray
+    position: np.ndarray
+
+
 AXIS_COLORS = np.array([[215, 50, 40], [40, 160, 60], [40, 90, 220]], np.uint8)
 TURNED_FRAME_COLORS = np.array([[235, 130, 40], [150, 200, 40], [40, 190, 210]], np.uint8)
 SUBSCRIPTS = "₁₂₃"
@@ -66,7 +76,7 @@ SHOW_ELLIPSOID = Parameter(
 def _record(shape: str, mass_kg: float, position_m, angles_deg=(0.0, 0.0, 0.0), **dimensions_m: float) -> dict[str, Any]:
     """One solid body of a preset (3-2-1 angles in deg, m, kg)."""
     return {"shape": shape, "mass_kg": mass_kg, **dimensions_m, "position_m": list(position_m),
-            "sequence": "3-2-1", "angles_deg": list(angles_deg), "hole": False}  # fmt: skip
+            "sequence": "3-2-1", "angles_deg": list(angles_deg), "hole": False}
 
 
 #: 3-2-1 angles (deg) that turn a shape's own z onto the reference x and y axes.
@@ -225,7 +235,7 @@ class InertiaExplorerScene(Scene):
         scene = self.client.scene
         size = dict(part.dimensions_m)
         proud = 1.6 if part.hole else 1.0
-        style = {"color": HOLE_COLOR if part.hole else SOLID_COLOR, "wxyz": quaternion_from_matrix(part.rotation), "position": part.position_m}
+        style: _PartStyle = {"color": HOLE_COLOR if part.hole else SOLID_COLOR, "wxyz": quaternion_from_matrix(part.rotation), "position": part.position_m}
         if part.hole:
             # Slightly larger than the material it removes, so it shows through both faces.
             size = {k: v * 1.01 if k != "inner_radius_m" else v * 0.99 for k, v in size.items()}
@@ -266,7 +276,8 @@ class InertiaExplorerScene(Scene):
             label.text = f"{k + 1}: I{SUBSCRIPTS[k]} = {principal.moments_kg_m2[k]:.4g} kg·m²"
         self.ellipsoid.position = tuple(G)
         self.ellipsoid.wxyz = quaternion_from_matrix(principal.axes.T)
-        self.ellipsoid.scale = tuple(float(s) for s in inertia.inertia_ellipsoid_semi_axes_m(principal.moments_kg_m2, size_m=0.5 * span))
+        semi_a, semi_b, semi_c = inertia.inertia_ellipsoid_semi_axes_m(principal.moments_kg_m2, size_m=0.5 * span)
+        self.ellipsoid.scale = (float(semi_a), float(semi_b), float(semi_c))
         reference = 0.35 * span * np.eye(3)
         self.reference_axes.points = np.stack([np.zeros((3, 3)), reference], axis=1).astype(np.float32)
         for label, tip in zip(self.reference_labels, reference * 1.15):
@@ -324,7 +335,7 @@ class InertiaExplorerScene(Scene):
         if pair is not None:
             i, j, gap = pair
             return (
-                f"distinct, but I{SUBSCRIPTS[i]} and I{SUBSCRIPTS[j]} are nearly equal (they differ by {gap:.1e} of I₃): "
+                f"distinct, but I{SUBSCRIPTS[i]} and I{SUBSCRIPTS[j]} are nearly equal (they differ by {gap:.1e} " "of I₃): "
                 f"axes {i + 1} and {j + 1} are well defined, yet swing far for tiny changes of the body"
             )
         return "three distinct moments: the principal axes are unique"

@@ -56,7 +56,7 @@ class BouncingBarScene(IntegratedScene):
                "No tangential impulse: the centre of mass only moves up and down."),
         Preset("rough", "Rough floor", {"angle0_deg": 30.0, "restitution": 0.6, "friction_coefficient": 1.0},
                "Friction grips the striking end: the impacts stick and the bar is thrown sideways."),
-    )  # fmt: skip
+    )
 
     def camera_view(self):
         height = self.params["drop_height_m"]

@@ -46,7 +46,7 @@ class PlanarCollisionScene(Scene):
         Preset("plastic", "Plastic (e = 0)", {"restitution": 0.0},
                "The contact points leave with no normal separation speed: the most energy the normal impulse can take."),
         Preset("oblique-sticks", "Oblique, high friction", {"line_of_centres_deg": 60.0, "friction_coefficient": 1.5},
-               "Friction is strong enough to stop the sliding during the impact: the contact sticks and both disks spin up."),
+               "Friction is strong enough to stop the sliding during the impact: the contact sticks and both disks " "spin up."),
         Preset("spin-kick", "A spinning disk", {"line_of_centres_deg": 0.0, "omega2_rad_s": 30.0, "friction_coefficient": 0.3},
                "A head-on hit, but disk 2 spins: friction turns spin into sideways motion of both disks."),
         Preset("grazing", "Grazing", {"line_of_centres_deg": 88.0, "friction_coefficient": 0.3},
@@ -79,7 +79,7 @@ class PlanarCollisionScene(Scene):
         c = self.collision
         (d1, d2), (a1, a2) = c.before, c.after
         reach = d1.radius_m + d2.radius_m
-        speeds = [np.linalg.norm(d.velocity_m_s) for d in (d1, d2, a1, a2)]
+        speeds = [float(np.linalg.norm(d.velocity_m_s)) for d in (d1, d2, a1, a2)]
         # Show the time window in which the fastest disk moves one sum of radii.
         self._window_s = reach / max(max(speeds), 1e-9)
         self.elapsed_s = 0.0
@@ -98,7 +98,7 @@ class PlanarCollisionScene(Scene):
         self.contact.points = to_world(c.contact_point_m[:2])[None, :].astype(np.float32)
         self.contact.point_size = 0.02 * span
         momenta = [d.momentum_N_s for d in (d1, d2, a1, a2)]
-        largest = max(max(np.linalg.norm(p) for p in momenta), float(np.linalg.norm(c.impulse_N_s)), 1e-12)
+        largest = max(max(float(np.linalg.norm(p)) for p in momenta), float(np.linalg.norm(c.impulse_N_s)), 1e-12)
         self._arrow_scale = 0.9 * reach / largest  # m of arrow per N·s
         self.arrows.shaft_radius = 0.005 * span
         self.arrows.head_radius = 0.012 * span
@@ -124,7 +124,7 @@ class PlanarCollisionScene(Scene):
         self.spokes.points = np.array(spokes, np.float32)
         (d1, d2), (a1, a2) = c.before, c.after
         tails = np.array([to_world(d1.centre_m[:2]), to_world(d2.centre_m[:2]), to_world(placed[0][0][:2]), to_world(placed[1][0][:2]),
-                          to_world(c.contact_point_m[:2])])  # fmt: skip
+                          to_world(c.contact_point_m[:2])])
         vectors = np.array([to_world(v[:2]) for v in (d1.momentum_N_s, d2.momentum_N_s, a1.momentum_N_s, a2.momentum_N_s, c.impulse_N_s)])
         self.arrows.points = arrow_segments(tails, vectors, self._arrow_scale)
         after = self.t_s >= 0.0
@@ -180,13 +180,15 @@ class PlanarCollisionScene(Scene):
         ]
         words = {
             "slid throughout": "The contact points slid over each other for the whole impact; friction took μ Pₙ.",
-            "stuck": "Friction stopped the sliding during the impact and the contact points then moved together (stuck).",
+            "stuck": (
+                "Friction stopped the sliding during the impact and the contact points then moved together (stuck)."
+            ),
             "reversed": "The sliding stopped and started again the other way.",
         }
         message = words[c.impact.slip_state]
         if -vn < GRAZING_RATIO * math.hypot(vn, vt):
             message += (
-                f" Grazing: the normal approach speed is only {100 * -vn / math.hypot(vn, vt):.2g}% of the contact speed. "
-                "A rigid-body impact assumes the contact lasts an instant; for real bodies this glancing a touch may roll or rub instead."
+                f" Grazing: the normal approach speed is only {100 * -vn / math.hypot(vn, vt):.2g}% of the " "contact speed. "
+                "A rigid-body impact assumes the contact lasts an instant; for real bodies this glancing a touch " "may roll or rub instead."
             )
         return Readout(quantities, message=message)

@@ -19,7 +19,16 @@ import math
 import numpy as np
 
 from app.physics.systems.ch06 import mechanism_kinetics as physics
-from app.scenes.kit import IntegratedScene, Preset, Quantity, Readout, arrow_segments, circle_segments, move_node, update_node
+from app.scenes.kit import (
+    IntegratedScene,
+    Preset,
+    Quantity,
+    Readout,
+    arrow_segments,
+    circle_segments,
+    move_node,
+    update_node,
+)
 from app.scenes.kit.crank_speed_limit import paused_at_crank_speed_limit
 from app.scenes.kit.planar import to_world
 
@@ -147,7 +156,7 @@ class SliderCrankKineticsScene(IntegratedScene):
         ]
         notes = ["The guide is frictionless (guide friction is out of scope)."]
         if guide < 0.0:
-            notes.append("The guide force points down: the guide must hold the slider down here; a slider resting on a one-sided guide would lift off.")
+            notes.append("The guide force points down: the guide must hold the slider down here; a slider resting on a " "one-sided guide would lift off.")
         if params["drive"] == "speed" and forces.driving_torque_N_m[0] * self.run.y[1] < 0.0:
             notes.append("The torque opposes the motion: the motor is braking to hold the speed constant.")
         message = self.status or " ".join(notes)

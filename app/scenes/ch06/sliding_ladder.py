@@ -4,7 +4,8 @@ The ladder's plane is the world x–z plane at y = 0, seen from −y: the wall i
 the plane x = 0 (drawn as a grey slab at x < 0), the floor z = 0 (a slab below
 it). The bar is drawn in metres. Arrows: the whole contact force (normal plus
 friction) on the top end (blue) and on the bottom end (orange; drawn at the centre
-once the bar lies flat), and the weight pointing down onto the centre (grey), all on one scale: m·g is drawn 0.3 L long. The fall replays
+once the bar lies flat), and the weight pointing down onto the centre (grey), all on one scale: m·g is drawn 0.3 L long.
+The fall replays
 from the start 2.5 s after the landing (on a smooth floor the ladder would slide
 out of view).
 """
@@ -160,11 +161,11 @@ class SlidingLadderScene(IntegratedScene):
                 f"equally between the two ends (statics alone cannot split them)."
             )
         if forces[physics.C_FLOOR_N] < 0.0:
-            return "The floor would have to pull the bottom end down: the model's contact assumption fails here (it would lift off)."
+            return ("The floor would have to pull the bottom end down: the model's contact assumption fails here " "(it would lift off).")
         words = {
             physics.WALL_AND_FLOOR: "Both ends slide: the wall force falls as the ladder speeds up.",
-            physics.FLOOR_SLIDING: "The wall force reached zero: the top end has left the wall and the ladder slides on the floor alone.",
-            physics.FLOOR_STUCK: "The bottom end has stopped sliding: friction holds it, and the ladder pivots about it.",
+            physics.FLOOR_SLIDING: ("The wall force reached zero: the top end has left the wall and the ladder " "slides on the floor alone."),
+            physics.FLOOR_STUCK: ("The bottom end has stopped sliding: friction holds it, and the ladder pivots " "about it."),
             physics.LYING: "The ladder has landed flat (a plastic impact, e = 0) and "
             + ("slides on the floor until friction stops it." if params["mu_floor"] > 0.0
                else "slides on at constant speed: the floor is smooth, so nothing stops it."),

@@ -56,7 +56,7 @@ class UnbalancedRotorScene(Scene):
     }
     presets = (
         Preset("static", "Static imbalance", {"eccentricity_m": 0.002, "skew_deg": 0.0, "balanced": "off"},
-               "Centre of mass 2 mm off the shaft, disk square to it: each bearing carries its beam share of m e ω² plus the weight."),
+               "Centre of mass 2 mm off the shaft, disk square to it: each bearing carries its beam share of m e ω² " "plus the weight."),
         Preset("dynamic", "Dynamic imbalance", {"eccentricity_m": 0.0, "skew_deg": 3.0, "balanced": "off"},
                "Centre of mass on the shaft, disk tilted 3°: a turning couple, equal and opposite forces at A and B."),
         Preset("both", "Both", {"eccentricity_m": 0.001, "skew_deg": 2.0, "balanced": "off"},
@@ -67,7 +67,7 @@ class UnbalancedRotorScene(Scene):
                "Without gravity the balanced rotor loads its bearings not at all."),
         Preset("at-rest", "At rest", {"shaft_speed_rad_s": 0.0, "eccentricity_m": 0.002, "skew_deg": 2.0, "balanced": "off"},
                "No speed: only the weight, and the drive holds the rotor against gravity's moment m g e."),
-    )  # fmt: skip
+    )
 
     def build(self) -> None:
         scene = self.client.scene
@@ -94,7 +94,7 @@ class UnbalancedRotorScene(Scene):
         self.arrows = scene.add_arrows(
             "/reactions", np.zeros((2, 2, 3), np.float32), np.array([COLOR_A, COLOR_B], np.uint8),
             shaft_radius=0.008, head_radius=0.02, head_length=0.04,
-        )  # fmt: skip
+        )
         self.force_labels = [scene.add_label(f"/reactions/{name}", "", anchor="bottom-left") for name in ("A", "B")]
         self.legend = scene.add_label("/legend", "", anchor="top-center")
 
@@ -172,14 +172,14 @@ class UnbalancedRotorScene(Scene):
             Quantity.word("imbalance_class", "imbalance", model.imbalance),
             Quantity("static_imbalance_kg_m", "static imbalance m e (disk)", float(np.hypot(*physics.first_moment_kg_m(parts))), "kg·m"),
             Quantity("couple_imbalance_kg_m2", "couple imbalance |I_xy, I_xz| at G (disk)",
-                     float(np.hypot(*physics.couple_imbalance_kg_m2(parts))), "kg·m²"),  # fmt: skip
+                     float(np.hypot(*physics.couple_imbalance_kg_m2(parts))), "kg·m²"),
         ]
         for index, (mass, angle) in enumerate(zip(correction.masses_kg, correction.angles_rad, strict=True), start=1):
             needed = mass > NEGLIGIBLE_CORRECTION * disk.disk_mass_kg
             quantities.append(Quantity(f"correction_mass_{index}_kg", f"correction mass {index}", float(mass), "kg"))
             quantities.append(
                 Quantity.or_text(f"correction_angle_{index}_deg", "its angle from G's direction (about +X)",
-                                 math.degrees(angle) if needed else None, "deg", "none needed")  # fmt: skip
+                                 math.degrees(angle) if needed else None, "deg", "none needed")
             )
         return Readout(quantities, message=self._message())
 
@@ -193,14 +193,14 @@ class UnbalancedRotorScene(Scene):
                 "the drive must cancel it to keep the speed constant, and it averages to zero over a turn."
             )
         else:
-            torque = "The drive torque is zero: at constant speed, with the centre of mass on the shaft or no gravity, a rigid rotor needs none (no friction is modelled)."
+            torque = ("The drive torque is zero: at constant speed, with the centre of mass on the shaft or no " "gravity, a rigid rotor needs none (no friction is modelled).")
         if speed == 0.0:
             return "At rest: the bearings carry only the weight. " + torque
         parts = [torque]
         rotating = float(np.linalg.norm(steady.bearing_A_rotating_rotor_N))
         weight_share = steady.weight_shares_N[0]
         if rotating > weight_share > 0.0:
-            parts.append("At A the rotating force exceeds the weight: the reaction turns right round once a turn (a bearing with play would knock).")
+            parts.append("At A the rotating force exceeds the weight: the reaction turns right round once a turn (a " "bearing with play would knock).")
         if abs(speed) > DRAWN_SPIN_RAD_S:
             parts.append(f"The spin is drawn slowed to {DRAWN_SPIN_RAD_S:g} rad/s; the forces are those at ω = {speed:g} rad/s.")
         return " ".join(parts)

@@ -43,7 +43,7 @@ class BeadOnHoopScene(DerivedSystemScene):
                "Started at θ* (R = 0.5 m, g = 9.81 m/s²): the bead stays put on the hoop while the hoop carries it round."),
         Preset("over-the-top", "Over the top", {"hoop_speed_rad_s": 6.0, "theta_0_deg": 0.0, "theta_rate_0_deg_s": 700.0},
                "Launched fast, the bead goes all the way round the hoop; its energy rises and falls, h does not move."),
-    )  # fmt: skip
+    )
 
     def build(self) -> None:
         scene = self.client.scene
@@ -62,7 +62,7 @@ class BeadOnHoopScene(DerivedSystemScene):
                 f"/hoop/equilibrium_{k}", radius=0.035, color=STABLE_COLOR if e.stable else UNSTABLE_COLOR, position=on_hoop(e.theta_rad)
             )
             for k, e in enumerate(hoop_equilibria(self.physical_params()))
-        ]  # fmt: skip
+        ]
         self._draw()
 
     def _draw(self) -> None:
@@ -92,7 +92,7 @@ class BeadOnHoopScene(DerivedSystemScene):
                              math.degrees(off_bottom[0].theta_rad) if off_bottom else None, "deg",
                              f"none: Ω = {spin:.2f} rad/s is below √(g/R) = {critical:.2f} rad/s"),
             *self.agreement_quantities(),
-        ]  # fmt: skip
+        ]
         return Readout(quantities, message=self.status)
 
     def restart(self) -> None:

@@ -80,7 +80,7 @@ class ConfigurationSpaceScene(Scene):
         Parameter("hoop_rate_rad_s", "rad/s", 1.5, 0.0, 5.0, "Circular frequency Ω of the hoop centre's motion (rheonomic)", "Ω", step=0.05),
         Parameter("drive_distance_m", "m", 0.8, 0.05, 2.0, "Distance s driven forward and then back in each manoeuvre (nonholonomic)", "s", step=0.05),
         Parameter("turn_angle_deg", "deg", 30.0, 1.0, 90.0, "Angle α turned on the spot, and back, in each manoeuvre (nonholonomic)", "α", step=1),
-    )  # fmt: skip
+    )
     check_controls = _check_controls
     presets = (
         Preset("fixed-wire", "Fixed wire", {"constraint": "scleronomic"},
@@ -90,10 +90,10 @@ class ConfigurationSpaceScene(Scene):
         Preset("parked-hoop", "Hoop at rest (A = 0)", {"constraint": "rheonomic", "hoop_amplitude_m": 0.0},
                "With the hoop held still the constraint is scleronomic again, and dr falls back along δr."),
         Preset("parallel-park", "Parallel parking", {"constraint": "nonholonomic", "drive_distance_m": 0.8, "turn_angle_deg": 30.0},
-               "s = 0.8 m, α = 30°: each manoeuvre moves the knife edge s sin α = 0.4 m sideways, which no admissible velocity does directly."),
+               "s = 0.8 m, α = 30°: each manoeuvre moves the knife edge s sin α = 0.4 m sideways, which no " "admissible velocity does directly."),
         Preset("small-manoeuvre", "Small manoeuvre", {"constraint": "nonholonomic", "drive_distance_m": 0.2, "turn_angle_deg": 10.0},
-               "s = 0.2 m, α = 10°: the sideways step 0.03473 m is s α = 0.03491 m to leading order: second order in the size of the manoeuvre."),
-    )  # fmt: skip
+               "s = 0.2 m, α = 10°: the sideways step 0.03473 m is s α = 0.03491 m to leading order: second order " "in the size of the manoeuvre."),
+    )
 
     def build(self) -> None:
         self._nodes: list = []
@@ -146,21 +146,22 @@ class ConfigurationSpaceScene(Scene):
             rail = np.array([[[-amplitude - 0.1 * span, 0.0], [amplitude + 0.1 * span, 0.0]]])
             self._add(scene.add_line_segments("/physical/rail", (to_world(rail) + left).astype(np.float32), (150, 150, 150), thickness=0.004 * span))
         # Physical side: the wire (a frame that the hoop's motion carries), its centre block, the bead.
-        self.wire_frame = self._add(scene.add_frame("/physical/wire", show_axes=False, position=tuple(left)))
+        self.wire_frame = self._add(scene.add_frame("/physical/wire", show_axes=False, position=left))
         scene.add_line_segments("/physical/wire/curve", polyline_segments(shape), WIRE_COLOR, thickness=0.012 * span)
         if isinstance(self._system, physics.SlidingHoop):
             scene.add_box("/physical/wire/centre", color=(150, 150, 160), dimensions=(0.06 * span, 0.03 * span, 0.03 * span))
         self.bead = self._add(scene.add_icosphere("/physical/bead", radius=0.03 * span, color=BEAD_COLOR))
-        # Configuration space: axes, the curve g = 0 (moving for the hoop), the curve Δt later, the point and the arrows.
+        # Configuration space: axes, the curve g = 0 (moving for the hoop), the curve Δt later, the point and the
+        # arrows.
         axes = np.array([[[-half_width - 0.15 * span, 0.0], [half_width + 0.15 * span, 0.0]], [[0.0, -half_height - 0.15 * span], [0.0, half_height + 0.15 * span]]])
         self._add(scene.add_line_segments("/config/axes", (to_world(axes) + right).astype(np.float32), (170, 170, 170), thickness=0.003 * span))
         self._add(scene.add_label("/config/x", "x", position=tuple(right + to_world(np.array([half_width + 0.17 * span, 0.0]))), anchor="center-left"))
         self._add(scene.add_label("/config/y", "y", position=tuple(right + to_world(np.array([0.0, half_height + 0.17 * span]))), anchor="bottom-center"))
-        self.curve_frame = self._add(scene.add_frame("/config/curve", show_axes=False, position=tuple(right)))
+        self.curve_frame = self._add(scene.add_frame("/config/curve", show_axes=False, position=right))
         scene.add_line_segments("/config/curve/line", polyline_segments(shape), CURVE_COLOR, thickness=0.004 * span)
         self.later_frame = None
         if isinstance(self._system, physics.SlidingHoop):
-            self.later_frame = self._add(scene.add_frame("/config/later", show_axes=False, position=tuple(right)))
+            self.later_frame = self._add(scene.add_frame("/config/later", show_axes=False, position=right))
             scene.add_line_segments("/config/later/line", polyline_segments(shape), GHOST_COLOR, thickness=0.003 * span)
         self.point = self._add(scene.add_icosphere("/config/point", radius=0.018 * span, color=(20, 20, 20)))
         colors = np.array([GRADIENT_COLOR, VIRTUAL_COLOR, ACTUAL_COLOR], np.uint8)
@@ -169,9 +170,9 @@ class ConfigurationSpaceScene(Scene):
         )
         top = half_height + 0.3 * span
         self._add(scene.add_label("/physical/title", "the bead on its wire" if kind == "scleronomic" else "the bead on the sliding hoop",
-                                  position=tuple(left + to_world(np.array([0.0, top]))), anchor="bottom-center"))  # fmt: skip
+                                  position=tuple(left + to_world(np.array([0.0, top]))), anchor="bottom-center"))
         self._add(scene.add_label("/config/title", "configuration space (x, y)",
-                                  position=tuple(right + to_world(np.array([0.0, top]))), anchor="bottom-center"))  # fmt: skip
+                                  position=tuple(right + to_world(np.array([0.0, top]))), anchor="bottom-center"))
 
     def _snapshot(self) -> physics.HolonomicSnapshot:
         return self._system.snapshot(self.t_s)
@@ -222,18 +223,18 @@ class ConfigurationSpaceScene(Scene):
         self._add(scene.add_line_segments("/config/floor", np.stack([base, np.roll(base, -1, axis=0)], axis=1).astype(np.float32), (190, 190, 190), thickness=0.003 * span))
         top = self._right + np.array([ground[0, 0], ground[0, 1], 0.0])
         self._add(scene.add_line_segments("/config/psi_axis", np.array([[top, top + np.array([0.0, 0.0, 1.2 * self._heading_scale * park.turn_angle_rad])]], np.float32),
-                                          (170, 170, 170), thickness=0.003 * span))  # fmt: skip
+                                          (170, 170, 170), thickness=0.003 * span))
         self.point = self._add(scene.add_icosphere("/config/point", radius=0.02 * span, color=(20, 20, 20)))
         self._square_size = 0.18 * span
         self.square = self._add(scene.add_mesh_simple("/config/square", np.zeros((4, 3), np.float32), np.array([[0, 1, 2], [0, 2, 3]], np.uint32),
-                                                      color=(120, 170, 230), opacity=0.45, side="double"))  # fmt: skip
+                                                      color=(120, 170, 230), opacity=0.45, side="double"))
         colors = np.array([DRIVE_COLOR, TURN_COLOR, BRACKET_COLOR], np.uint8)
         self.arrows = self._add(
             scene.add_arrows("/config/arrows", np.zeros((3, 2, 3), np.float32), colors, shaft_radius=0.005 * span, head_radius=0.014 * span, head_length=0.03 * span)
         )
         self._add(scene.add_label("/physical/title", "the knife edge on the ground", position=tuple(self._left + np.array([0.0, float(ground[1, 1]), 0.0])), anchor="bottom-center"))
         self._add(scene.add_label("/config/title", "configuration space (x, y, ψ − 90° up)",
-                                  position=tuple(top + np.array([0.0, 0.0, 1.25 * self._heading_scale * park.turn_angle_rad])), anchor="bottom-left"))  # fmt: skip
+                                  position=tuple(top + np.array([0.0, 0.0, 1.25 * self._heading_scale * park.turn_angle_rad])), anchor="bottom-left"))
 
     def _config_points(self, q: np.ndarray) -> np.ndarray:
         """World points (…, 3) of configurations q (…, 3): x, y about the path's centre, ψ upward."""
@@ -253,7 +254,7 @@ class ConfigurationSpaceScene(Scene):
         self._q = q
         heading = float(q[2])
         move_node(self.blade, position=self._left + np.array([*(q[:2] - self._centre), 0.04 * self._span]),
-                  wxyz=(math.cos(0.5 * heading), 0.0, 0.0, math.sin(0.5 * heading)))  # fmt: skip
+                  wxyz=(math.cos(0.5 * heading), 0.0, 0.0, math.sin(0.5 * heading)))
         point = self._config_points(q)
         move_node(self.point, position=point)
         half = 0.5 * self._square_size
@@ -290,10 +291,10 @@ class ConfigurationSpaceScene(Scene):
             Quantity("angle_dr_virtual_deg", "angle between dr and δr", snap.angle_between_deg, "deg"),
         ]
         if isinstance(self._system, physics.FixedEllipse):
-            message = "The wire does not move: g has no ∂g/∂t, so the actual dr obeys the same condition ∇g·dr = 0 as every δr, and lies along it."
+            message = ("The wire does not move: g has no ∂g/∂t, so the actual dr obeys the same condition ∇g·dr = " "0 as every δr, and lies along it.")
         else:
-            message = ("The hoop moves: δr (time frozen) is tangent to the hoop as it is now, but dr = ṙ dt also carries the hoop's "
-                       "own motion, so ∇g·dr = −∂g/∂t dt and the two arrows part.")  # fmt: skip
+            message = ("The hoop moves: δr (time frozen) is tangent to the hoop as it is now, but dr = ṙ dt also " "carries the hoop's "
+                       "own motion, so ∇g·dr = −∂g/∂t dt and the two arrows part.")
         return Readout(quantities, message=message)
 
     def _knife_readout(self) -> Readout:
@@ -313,6 +314,6 @@ class ConfigurationSpaceScene(Scene):
             Quantity("forward_drift_m", "forward step per manoeuvre, s (1 − cos α)", park.forward_drift_m, "m"),
             Quantity("sideways_so_far_m", "sideways from the start so far", sideways_so_far, "m"),
         ]
-        message = ("Every velocity the knife edge can have lies in the square spanned by drive and turn, so it never slips sideways; "
-                   "yet drive, turn, reverse, turn back ends s sin α to the side, along the bracket [drive, turn], which leaves the square.")  # fmt: skip
+        message = ("Every velocity the knife edge can have lies in the square spanned by drive and turn, so it never " "slips sideways; "
+                   "yet drive, turn, reverse, turn back ends s sin α to the side, along the bracket [drive, turn], " "which leaves the square.")
         return Readout(quantities, message=message)

@@ -161,7 +161,7 @@ class DynamicVirtualWorkScene(Scene):
             Quantity("generalized_inertia_kg_m2", "generalized inertia M(θ)", float(kinetics.generalized_inertia_kg_m2(links, theta)[0]), "kg·m²"),
         ]
         message = (
-            "Each pin force does virtual work on one link and the opposite amount on the other (both ends move together), "
-            "and the guide force is normal to δr_B: all of it cancels, so τ follows from the weights and the inertia forces alone."
+            "Each pin force does virtual work on one link and the opposite amount on the other (both ends move " "together), "
+            "and the guide force is normal to δr_B: all of it cancels, so τ follows from the weights and the " "inertia forces alone."
         )
         return Readout(quantities, message=message)

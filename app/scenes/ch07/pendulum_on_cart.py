@@ -46,7 +46,7 @@ class PendulumOnCartScene(DerivedSystemScene):
                "F₀ = 5 N at 2 rad/s: watch the work W grow and the energy follow it, ΔE = W."),
         Preset("cart-kick", "Cart pulled aside", {"force_amplitude_N": 0.0, "x0_m": 0.4, "theta_0_deg": 0.0},
                "The cart released 0.4 m from its rest: the spring's oscillation sets the bob swinging."),
-    )  # fmt: skip
+    )
 
     def build(self) -> None:
         scene = self.client.scene

@@ -48,7 +48,7 @@ def typed_values(kinetic_energy: str, potential_energy: str, constants: str, q0:
     return {
         "coordinates": n, "kinetic_energy": kinetic_energy, "potential_energy": potential_energy,
         "parameters": constants, "q0_rad": [*q0, *pad], "qd0_rad_s": [*qd0, *pad],
-    }  # fmt: skip
+    }
 
 
 PENDULUM = typed_values("m*l^2*q1d^2/2", "-m*g*l*cos(q1)", "m = 1, l = 1, g = 9.81", [1.0], [0.0])
@@ -93,15 +93,15 @@ class TypedLagrangianScene(DerivedSystemScene):
     camera_look_at = (2.1, 0.0, -0.05)
     presets = (
         Preset("pendulum", "Pendulum", PENDULUM, "T = ½ m l² q̇₁², V = −m g l cos q₁: expect m l² q̈₁ = −m g l sin q₁."),
-        Preset("double-pendulum", "Double pendulum", DOUBLE_PENDULUM, "Two equal bobs on equal rods: the catalogue's double pendulum with m₁ = m₂ = m and l₁ = l₂ = l."),  # fmt: skip
+        Preset("double-pendulum", "Double pendulum", DOUBLE_PENDULUM, "Two equal bobs on equal rods: the catalogue's double pendulum with m₁ = m₂ = m and l₁ = l₂ = l."),
         Preset("spring-pendulum", "Spring pendulum", SPRING_PENDULUM,
                "q₁ = stretch (m), q₂ = angle: the spring and the swing trade energy; T + V stays put."),
         Preset("spun-wire", "Bead on a spun wire (t explicit)", SPUN_WIRE,
-               "A wire turning at w in a vertical plane: V holds t, so the energy is not conserved. Started on the bounded "
+               "A wire turning at w in a vertical plane: V holds t, so the energy is not conserved. Started on the " "bounded "
                "solution q₁ = g/(2w²) sin wt, rounding slowly throws the bead off it."),
         Preset("lissajous", "Three springs (3 coordinates)", LISSAJOUS,
                "Three independent oscillators at 1, 2 and 3 rad/s: the point draws a Lissajous curve in the cube."),
-    )  # fmt: skip
+    )
 
     def build(self) -> None:
         scene = self.client.scene
@@ -138,14 +138,14 @@ class TypedLagrangianScene(DerivedSystemScene):
             scene.add_line_segments("/dials/rings", rings, (150, 150, 150), thickness=1.5, thickness_units="screen"),
             scene.add_point_cloud("/dials/hubs", np.array([dial_center(i) for i in range(n)], np.float32), (40, 40, 40), point_size=0.07, point_shape="circle"),
             scene.add_line_segments("/box/edges", box_edges(n), (120, 120, 120), thickness=1.5, thickness_units="screen"),
-        ]  # fmt: skip
+        ]
         for i in range(n):
             label = scene.add_label(f"/dials/name{i}", COORDINATE_NAMES[i], anchor="top-center")
-            label.position = tuple(float(v) for v in dial_center(i) + np.array([0.0, 0.0, -DIAL_RADIUS - 0.08]))
+            label.position = dial_center(i) + np.array([0.0, 0.0, -DIAL_RADIUS - 0.08])
             self._fixed.append(label)
         title = "phase plane (q1, q1d)" if n == 1 else "configuration space (" + ", ".join(COORDINATE_NAMES[:n]) + ")"
         heading = scene.add_label("/box/title", title, anchor="bottom-center")
-        heading.position = tuple(float(v) for v in BOX_CENTER + np.array([0.0, 0.0, BOX_HALF + 0.1]))
+        heading.position = BOX_CENTER + np.array([0.0, 0.0, BOX_HALF + 0.1])
         self._fixed.append(heading)
         axes = ["q1", "q1d"] if n == 1 else list(COORDINATE_NAMES[:n])
         places = [np.array([0.0, -BOX_HALF if n == 3 else 0.0, -BOX_HALF - 0.08]), np.array([-BOX_HALF - 0.08, 0.0, 0.0])]
@@ -155,7 +155,7 @@ class TypedLagrangianScene(DerivedSystemScene):
         self._range_labels = []
         for k, (axis, place) in enumerate(zip(axes, places, strict=True)):
             label = scene.add_label(f"/box/axis{k}", axis, anchor=anchors[k])
-            label.position = tuple(float(v) for v in BOX_CENTER + place)
+            label.position = BOX_CENTER + place
             self._range_labels.append(label)
         self._fixed += self._range_labels
         self._dimensions = n
@@ -215,7 +215,7 @@ class TypedLagrangianScene(DerivedSystemScene):
     def derivation_status(self) -> str:
         prepared = self.run_model.prepared(self.physical_params())
         derived_text = "from the derivation cache" if prepared.cached else f"derived by sympy in {prepared.derive_s:.2f} s"
-        return f"Lagrange's equations {derived_text}, in a bounded process; compiled by numba in {prepared.compile_s:.2f} s"
+        return (f"Lagrange's equations {derived_text}, in a bounded process; compiled by numba in " f"{prepared.compile_s:.2f} s")
 
     def readout(self) -> Readout:
         params = self.physical_params()

@@ -128,7 +128,8 @@ class VirtualWorkFrameScene(Scene):
         largest = float(np.max(np.linalg.norm(forces, axis=-1)))
         scale = FORCE_ARROW_SPAN * self._span / max(largest, 1e-12)
         displacements = press.virtual_displacements()
-        # Loads end at their points (they push on them), Q too (the workpiece beyond C pushes back); δr start at their points.
+        # Loads end at their points (they push on them), Q too (the workpiece beyond C pushes back); δr start at their
+        # points.
         tails = np.array([points[name] for name in ("B", "G1", "G2", "C")]) - scale * forces
         shift_tails = np.array([points[name] for name in ("B", "G1", "G2", "C")])
         shifts = delta_rad * np.array([displacements[name] for name in ("B", "G1", "G2", "C")])
@@ -164,7 +165,7 @@ class VirtualWorkFrameScene(Scene):
             Quantity.or_text("guide_force_C_N", "guide force C_y on the slider (+ up)", None if check is None else check.guide_C_N, "N", "singular at the toggle position"),
         ]
         message = self._refusal or (
-            "The pins at A and B and the guide at C do no virtual work (A does not move, the two sides of B move together, "
+            "The pins at A and B and the guide at C do no virtual work (A does not move, the two sides of B move " "together, "
             "and C moves along its guide), so only the loads and Q enter δW = 0."
         )
         return Readout(quantities, message=message)

@@ -49,15 +49,15 @@ class CartesianPendulumScene(IntegratedScene):
                "baumgarte_alpha_1_s": 200.0, "baumgarte_beta_1_s": 200.0},
                "h·α = 6.7 with h = 33 ms: the error's own dynamics are too fast for the step and the run blows up."),
         Preset("inconsistent", "Inconsistent start", {**UNIT, "g_m_s2": 9.81, "x0_m": 1.2, "y0_m": 0.4, "vx0_m_s": 1.0, "vy0_m_s": 1.0, "method": "auto"},
-               "(1.2, 0.4) m is off the circle and the velocity has a part along the rod: the nearest consistent start is used."),
-    )  # fmt: skip
+               "(1.2, 0.4) m is off the circle and the velocity has a part along the rod: the nearest consistent " "start is used."),
+    )
 
     def build(self) -> None:
         scene = self.client.scene
         self.circle = scene.add_line_segments("/constraint", circle_segments(radius=PENDULUM_REACH, center=tuple(PIVOT), normal=(0.0, 1.0, 0.0)).astype(np.float32),
-                                              (200, 200, 200), thickness=1.5, thickness_units="screen")  # fmt: skip
+                                              (200, 200, 200), thickness=1.5, thickness_units="screen")
         self.pivot = scene.add_icosphere("/pivot", radius=0.035, color=(40, 40, 40))
-        self.pivot.position = tuple(float(v) for v in PIVOT)
+        self.pivot.position = PIVOT
         self.rod = scene.add_line_segments("/rod", np.zeros((1, 2, 3), np.float32), ROD_COLOR, thickness=0.015)
         self.dots = scene.add_point_cloud(
             "/bob", np.zeros((2, 3), np.float32), np.array([GHOST_COLOR, BOB_COLOR], np.uint8), point_size=0.12, point_shape="circle"
@@ -107,7 +107,7 @@ class CartesianPendulumScene(IntegratedScene):
         x, y, vx, vy = (float(v) for v in self.state())
         now = self.current_invariants()
         series = self.run_model.constrained_series(params, np.array([self.run.t_s]), self.state()[None, :],
-                                                   self._multipliers())  # fmt: skip
+                                                   self._multipliers())
         exact = self.exact_state()
         algorithm = self.run_model.algorithm()
         quantities = [
@@ -126,7 +126,7 @@ class CartesianPendulumScene(IntegratedScene):
                              math.hypot(x - exact[0], y - exact[1]) if exact is not None else None, "m",
                              "no closed form: the bob goes over the top (or g = 0)"),
             Quantity.word("start", "start", self._start.summary()),
-        ]  # fmt: skip
+        ]
         if algorithm == "partitioning":
             names = ("x", "y")
             dependent, _ = current_partition(self.run.system.parameters, 2, 1)

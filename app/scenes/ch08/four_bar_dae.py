@@ -1,4 +1,5 @@
-"""Scene: the four-bar with link masses in absolute coordinates (9 coordinates, 8 constraints), every DAE algorithm live.
+"""Scene: the four-bar with link masses in absolute coordinates (9 coordinates, 8 constraints), every DAE algorithm
+live.
 
 Crank blue, coupler green, rocker grey; the arrows are the multipliers of the
 pins O₂, A, B and O₄ (ground on crank, crank on coupler, coupler on rocker,

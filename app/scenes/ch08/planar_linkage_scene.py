@@ -150,7 +150,7 @@ class PlanarLinkageScene(IntegratedScene):
         ]
         algorithm = model.algorithm()
         if algorithm == "baumgarte":
-            algorithm += f" (α = {float(self.params['baumgarte_alpha_1_s']):g}/s, β = {float(self.params['baumgarte_beta_1_s']):g}/s)"
+            algorithm += (f" (α = {float(self.params['baumgarte_alpha_1_s']):g}/s, β = " f"{float(self.params['baumgarte_beta_1_s']):g}/s)")
         quantities.append(Quantity.word("algorithm", "DAE algorithm", algorithm))
         notes = [f"{algorithm}: {self.description}."]
         notes += self.notes(params)

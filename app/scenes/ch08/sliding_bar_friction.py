@@ -45,9 +45,9 @@ class SlidingBarFrictionScene(IntegratedScene):
         Preset("stick-then-slip", "Pivots, then breaks loose", {"angle0_deg": 60.0, "slide_speed0_m_s": 0.0, "mu": 0.5},
                "Released at rest: B sticks and the bar pivots until |F| reaches μN at 31.8° (t = 0.345 s), then B slides."),
         Preset("near-jam", "Braked towards the band", {"angle0_deg": 45.0, "slide_speed0_m_s": 3.0, "mu": 1.5},
-               "μ = 1.5: friction tips the bar up towards the Painlevé band (50.6°–73.0°); N peaks at 49.5 N (5 m g) and B stops at 47.3°, short of it."),
+               "μ = 1.5: friction tips the bar up towards the Painlevé band (50.6°–73.0°); N peaks at 49.5 N (5 m " "g) and B stops at 47.3°, short of it."),
         Preset("painleve", "Painlevé's paradox", {"angle0_deg": 63.4, "slide_speed0_m_s": 1.0, "mu": 1.5},
-               "Sliding away from the lean at tan θ ≈ 2 with μ = 1.5 > 4/3: no contact force N ≥ 0 fits — detected and stopped."),
+               "Sliding away from the lean at tan θ ≈ 2 with μ = 1.5 > 4/3: no contact force N ≥ 0 fits — detected " "and stopped."),
         Preset("painleve-reversed", "Same, sliding the other way", {"angle0_deg": 63.4, "slide_speed0_m_s": -1.0, "mu": 1.5},
                "The same bar and angle with B sliding towards the lean: D > 0, the motion is consistent."),
     )
@@ -87,9 +87,9 @@ class SlidingBarFrictionScene(IntegratedScene):
         self._held_s = 0.0
         self._clock_s = 0.0
         self._shown = self.run.y
-        self._draw(self.run.y)
+        self._draw_state(self.run.y)
 
-    def _draw(self, y: np.ndarray) -> None:
+    def _draw_state(self, y: np.ndarray) -> None:
         params = self.physical_params()
         self._shown = y
         bottom, top = physics.end_positions_m(params, y)
@@ -126,7 +126,7 @@ class SlidingBarFrictionScene(IntegratedScene):
         return running
 
     def redraw(self) -> None:
-        self._draw(self.stop.state if self._held_s > 0.0 and self.stop is not None else self.run.y)
+        self._draw_state(self.stop.state if self._held_s > 0.0 and self.stop is not None else self.run.y)
 
     def motion_state(self) -> dict[str, Any]:
         """The run's state ``y``, ``held_s`` (how long the bar has been held at the stop, s) and ``t_s``: the
@@ -150,7 +150,7 @@ class SlidingBarFrictionScene(IntegratedScene):
         band = physics.painleve_band_deg(params["mu"])
         band_text = "none: μ < 4/3, sliding is always consistent"
         quantities = [
-            Quantity("t_s", "time t", self.stop.t_s if self._held_s > 0.0 else self.run.t_s, "s"),
+            Quantity("t_s", "time t", self.stop.t_s if self._held_s > 0.0 and self.stop is not None else self.run.t_s, "s"),
             Quantity.word("phase", "phase", physics.PHASE_WORDS[phase]),
             Quantity("angle_deg", "angle from the floor θ", math.degrees(y[physics.THETA]), "deg"),
             Quantity("contact_speed_m_s", "sliding speed of B, u", float(y[physics.U]), "m/s"),

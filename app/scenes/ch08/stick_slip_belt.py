@@ -33,7 +33,8 @@ class StickSlipBeltScene(IntegratedScene):
     title = "Stick–slip: a block on a moving belt"
     chapter = 8
     model = physics.StickSlipBelt
-    #: Block, spring, belt ticks, gauge, friction arrow and the mode label's position each frame; its text only when the mode changes.
+    #: Block, spring, belt ticks, gauge, friction arrow and the mode label's position each frame; its text only when the
+    #: mode changes.
     frame_message_budget = 7.0
     presets = (
         Preset("stick-slip", "Stick–slip cycle", {"belt_speed_m_s": 0.5, "mu_static": 0.6, "mu_kinetic": 0.4, "x0_m": 0.0, "v0_m_s": 0.0},
@@ -99,12 +100,12 @@ class StickSlipBeltScene(IntegratedScene):
         heights[1:-1] += 0.03 * np.where(np.arange(1, along.size - 1) % 2 == 1, 1.0, -1.0)
         nodes = np.stack([along, np.zeros_like(along), heights], axis=1)
         update_node(self.spring, points=np.stack([nodes[:-1], nodes[1:]], axis=1).astype(np.float32))
-        friction, limit = physics.friction_forces(params, y)
-        friction, limit = float(friction[0]), float(limit[0])
+        friction_N, limit_N = physics.friction_forces(params, y)
+        friction, limit = float(friction_N[0]), float(limit_N[0])
         self._friction, self._limit = friction, limit
         mode = int(y[physics.MODE])
         color = np.array(MODE_COLORS[mode], np.uint8)
-        update_node(self.friction_arrow, points=arrow_segments([x, 0.0, 0.01], [friction, 0.0, 0.0], 0.5 * self._gauge_scale))
+        update_node(self.friction_arrow, points=arrow_segments(np.array([x, 0.0, 0.01]), np.array([friction, 0.0, 0.0]), 0.5 * self._gauge_scale))
         # Gauge: scale line, the two mode-limit ticks, the force bar, and its zero tick.
         s, z = self._gauge_scale, GAUGE_HEIGHT_M
         full = GAUGE_HALF_WIDTH_M
@@ -115,7 +116,7 @@ class StickSlipBeltScene(IntegratedScene):
             [[0.0, 0.0, z + 0.012], [s * friction, 0.0, z + 0.012]],
             [[0.0, 0.0, z - 0.012], [s * friction, 0.0, z - 0.012]],
             [[0.0, 0.0, z - 0.03], [0.0, 0.0, z + 0.03]],
-        ], np.float32)  # fmt: skip
+        ], np.float32)
         colors = np.array([[150, 150, 150], [210, 40, 40], [210, 40, 40], color, color, [60, 60, 60]], np.uint8)
         update_node(self.gauge, points=segments, colors=np.repeat(colors[:, None, :], 2, axis=1))
         move_node(self.mode_label, position=(x, 0.0, BLOCK_M + 0.05))
@@ -155,10 +156,10 @@ class StickSlipBeltScene(IntegratedScene):
             return self.status
         if mode == physics.STICK:
             return (
-                f"Sticking: the block rides with the belt at {params['belt_speed_m_s']:g} m/s; friction holds the spring, "
+                f"Sticking: the block rides with the belt at {params['belt_speed_m_s']:g} m/s; friction holds " "the spring, "
                 f"|F| = {abs(self._friction):.3f} N ≤ μ_s N = {self._limit:.3f} N."
             )
-        words = "Slipping: friction is μ_k N = {:.3f} N against the relative velocity".format(self._limit)
+        words = f"Slipping: friction is μ_k N = {self._limit:.3f} N against the relative velocity"
         if last is not None:
             words += f" (since t = {last.t_s:.4f} s: {last.words})"
         return words + "."

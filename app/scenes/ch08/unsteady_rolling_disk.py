@@ -49,15 +49,15 @@ class UnsteadyRollingDiskScene(IntegratedScene):
     camera_look_at = (0.0, -1.0, 0.0)
     presets = (
         Preset("stable", "Upright above the threshold", {"radius_m": 0.1, "lean_0_deg": 2.0, "spin_rate_0_rad_s": 12.0, "heading_rate_0_rad_s": 0.0, "lean_rate_0_rad_s": 0.0, "method": "auto"},
-               "Ω = 12 rad/s is above the critical spin √(g/(3r)) = 5.72 rad/s (r = 0.1 m): the lean stays between 2.0° and 3.2° and the path is a wide curve (the run starts over when the disk leaves the floor)."),
+               "Ω = 12 rad/s is above the critical spin √(g/(3r)) = 5.72 rad/s (r = 0.1 m): the lean stays between " "2.0° and 3.2° and the path is a wide curve (the run starts over when the disk leaves the floor)."),
         Preset("falls", "Below the threshold: it falls over", {"radius_m": 0.1, "lean_0_deg": 2.0, "spin_rate_0_rad_s": 2.0, "heading_rate_0_rad_s": 0.0, "lean_rate_0_rad_s": 0.0, "method": "auto"},
-               "Ω = 2 rad/s is below 5.72 rad/s: the lean grows from 2° to 75° while the path curls tightly. Set the spin to 0 and the disk topples: near 60° the floor would have to pull (N < 0), so it lifts off and the run stops."),
+               "Ω = 2 rad/s is below 5.72 rad/s: the lean grows from 2° to 75° while the path curls tightly. Set " "the spin to 0 and the disk topples: near 60° the floor would have to pull (N < 0), so it lifts off " "and the run stops."),
         Preset("circle", "Leaning circle", {"radius_m": 0.1, **CIRCLE, "method": "auto"},
-               "Leaning 30° at 15 rad/s with ψ̇ = −2.723 rad/s: the steady turn, a circle of radius r φ̇/|ψ̇| = 0.55 m with the lean constant (to 0.001°)."),
+               "Leaning 30° at 15 rad/s with ψ̇ = −2.723 rad/s: the steady turn, a circle of radius r φ̇/|ψ̇| = " "0.55 m with the lean constant (to 0.001°)."),
         Preset("drift", "Uncorrected, coarse step", {"radius_m": 0.1, "lean_0_deg": 20.0, "spin_rate_0_rad_s": 20.0, "heading_rate_0_rad_s": 5.0,
                "method": "uncorrected", "integrator": "rk4", "steps_per_frame": 4},
-               "Index reduction alone with 4 RK4 steps per frame: the contact point's slip speed |A v| (about 5e-5 m/s) is never fed back; pick projection and it drops to round-off."),
-    )  # fmt: skip
+               "Index reduction alone with 4 RK4 steps per frame: the contact point's slip speed |A v| (about 5e-5 " "m/s) is never fed back; pick projection and it drops to round-off."),
+    )
 
     def build(self) -> None:
         scene = self.client.scene
@@ -109,5 +109,5 @@ class UnsteadyRollingDiskScene(IntegratedScene):
             Quantity("energy_drift", "energy drift |ΔE| / scale", self.current_drift()["energy"]),
             Quantity("critical_spin_rad_s", "critical spin Ω_c (linearised upright rolling)", self._critical_spin, "rad/s"),
             Quantity.word("upright_stability", "at the start's spin", self._stability),
-        ]  # fmt: skip
+        ]
         return Readout(quantities, message=self.status)

@@ -52,16 +52,16 @@ class PhasePortraitScene(DerivedSystemScene):
         Preset("small-swing", "Small swing", {"theta_0_deg": 15.0, "theta_rate_0_deg_s": 0.0},
                "H = −m g l cos 15°: the state goes round a small, nearly elliptical level set (a harmonic oscillator)."),
         Preset("near-separatrix", "Near the separatrix", {"theta_0_deg": 175.0, "theta_rate_0_deg_s": 0.0},
-               "Released 5° from upright: the orbit hugs the separatrix and lingers near θ = ±180°; the period grows without bound as the release nears 180°."),
+               "Released 5° from upright: the orbit hugs the separatrix and lingers near θ = ±180°; the period " "grows without bound as the release nears 180°."),
         Preset("over-the-top", "Going over the top", {"theta_0_deg": 0.0, "theta_rate_0_deg_s": 420.0},
-               "θ̇₀ = 420°/s at the bottom exceeds 2√(g/l) = 359°/s (l = 1 m): H > m g l, the pendulum rotates and p_θ never changes sign."),
-    )  # fmt: skip
+               "θ̇₀ = 420°/s at the bottom exceeds 2√(g/l) = 359°/s (l = 1 m): H > m g l, the pendulum rotates and " "p_θ never changes sign."),
+    )
 
     def build(self) -> None:
         scene = self.client.scene
         self.levels = scene.add_line_segments("/phase/levels", np.zeros((1, 2, 3), np.float32), np.zeros((1, 2, 3), np.uint8), thickness=1.5, thickness_units="screen")
         self.plane_label = scene.add_label("/phase/label", "phase plane: θ across (−180° to 180°), p_θ up; red: separatrix H = m g l", anchor="bottom-center")
-        self.plane_label.position = tuple(float(v) for v in PLANE_CENTER + np.array([0.0, 0.0, PLANE_HALF_HEIGHT + 0.12]))
+        self.plane_label.position = PLANE_CENTER + np.array([0.0, 0.0, PLANE_HALF_HEIGHT + 0.12])
         self.pivot = scene.add_icosphere("/pivot", radius=0.035, color=(40, 40, 40))
         self.rod = scene.add_line_segments("/rod", np.zeros((1, 2, 3), np.float32), np.array([[[40, 100, 220]] * 2], np.uint8), thickness=0.02)
         self.bob = scene.add_point_cloud("/bob", np.zeros((1, 3), np.float32), np.array([[40, 100, 220]], np.uint8), point_size=0.14, point_shape="circle")

@@ -54,10 +54,10 @@ class RitzCantileverScene(Scene):
         Preset("highest-mode", "Highest mode is poor", {"terms": 6, "mode": 6, "basis": "orthogonal"},
                "The Nth Ritz mode is always the worst: watch it drift out of phase with the exact one."),
         Preset("many-terms", "Fourteen terms", {"terms": 14, "mode": 3, "basis": "orthogonal"},
-               "The orthogonal basis at N = 14: every frequency an upper bound, the first four within 2e-10 of the exact ones."),
+               "The orthogonal basis at N = 14: every frequency an upper bound, the first four within 2e-10 of the " "exact ones."),
         Preset("monomials-fail", "Monomials, 14 terms", {"terms": 14, "mode": 3, "basis": "monomial"},
                "The same space spanned by ξ², ξ³, …: cond(M) ≈ 1e18, the upper bound breaks and some ω² turn negative."),
-    )  # fmt: skip
+    )
 
     def build(self) -> None:
         scene = self.client.scene
@@ -130,7 +130,7 @@ class RitzCantileverScene(Scene):
         ]
         colors = [np.full((2, 2, 3), AXIS_COLOR)]
         marks = []
-        for basis, color in (("orthogonal", RITZ_COLOR), ("monomial", MONOMIAL_COLOR)):
+        for basis, color in zip(physics.BASES, (RITZ_COLOR, MONOMIAL_COLOR)):  # orthogonal, then monomial
             rows = [row for row in physics.convergence_table(self.ritz.beam, basis=basis) if row.terms >= mode]
             terms = np.array([row.terms for row in rows], dtype=float)
             errors = np.array([row.relative_error[mode - 1] for row in rows])
@@ -201,7 +201,7 @@ class RitzCantileverScene(Scene):
         ]
         warning = ritz.warning()
         message = f"Warning: {warning}" if warning else (
-            f"Every Ritz frequency is above the exact one (Rayleigh–Ritz upper bound); cond(M) = {ritz.modes.condition_mass:.2g} "
+            "Every Ritz frequency is above the exact one (Rayleigh–Ritz upper bound); cond(M) = " f"{ritz.modes.condition_mass:.2g} "
             f"costs at most about {max(0.0, math.log10(ritz.modes.condition_mass)):.0f} of the 16 digits."
         )
         return Readout(quantities, message=message)

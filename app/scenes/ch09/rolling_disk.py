@@ -35,12 +35,12 @@ class RollingDiskScene(DerivedSystemScene):
     camera_look_at = (0.0, -0.7, 0.0)
     presets = (
         Preset("fast-upright", "Fast and nearly upright", {"radius_m": 0.1, "lean_0_deg": 3.0, "spin_rate_0_rad_s": 20.0, "heading_rate_0_rad_s": 0.0},
-               "Ω = 20 rad/s is far above the threshold √(g/(3r)) = 5.72 rad/s (r = 0.1 m): the lean wobbles by a few degrees and the path is a gentle curve."),
+               "Ω = 20 rad/s is far above the threshold √(g/(3r)) = 5.72 rad/s (r = 0.1 m): the lean wobbles by a " "few degrees and the path is a gentle curve."),
         Preset("slow-wobble", "Below the threshold", {"radius_m": 0.1, "lean_0_deg": 3.0, "spin_rate_0_rad_s": 4.0, "heading_rate_0_rad_s": 0.0},
-               "Ω = 4 rad/s is below 5.72 rad/s: upright rolling is unstable, the lean grows to tens of degrees and the path curls tightly."),
+               "Ω = 4 rad/s is below 5.72 rad/s: upright rolling is unstable, the lean grows to tens of degrees and " "the path curls tightly."),
         Preset("turning", "Leaning into a turn", {"lean_0_deg": 20.0, "spin_rate_0_rad_s": 20.0, "heading_rate_0_rad_s": 5.0},
                "A large lean with a heading rate: the contact point runs round loops while the energy stays constant."),
-    )  # fmt: skip
+    )
 
     def build(self) -> None:
         scene = self.client.scene
@@ -80,5 +80,5 @@ class RollingDiskScene(DerivedSystemScene):
             Quantity("critical_spin_rad_s", "upright rolling is stable above |φ̇| = Ω_c (linearised)", self._critical_spin, "rad/s"),
             Quantity.word("upright_stability", "upright rolling at this spin", "stable" if stable else "unstable"),
             *self.agreement_quantities(),
-        ]  # fmt: skip
+        ]
         return Readout(quantities, message=self.status)

@@ -47,12 +47,12 @@ class SphericalPendulumScene(DerivedSystemScene):
     presets = (
         Preset("conical", "Steady cone", {"mass_kg": 1.0, "length_m": 1.0, "g_m_s2": 9.81, "theta_0_deg": 60.0, "theta_rate_0_deg_s": 0.0,
                "phi_rate_0_deg_s": round(math.degrees(math.sqrt(9.81 / math.cos(math.radians(60.0)))), 4)},
-               "φ̇₀ = √(g/(l cos θ₀)) = 6.26 rad/s at 60°: θ sits at the bottom of V_eff and the bob draws a horizontal circle."),
+               "φ̇₀ = √(g/(l cos θ₀)) = 6.26 rad/s at 60°: θ sits at the bottom of V_eff and the bob draws a " "horizontal circle."),
         Preset("wide-band", "Wide band", {"theta_0_deg": 90.0, "theta_rate_0_deg_s": 0.0, "phi_rate_0_deg_s": 60.0},
-               "Started level with the pivot and a slow sweep: the bob dips far below and climbs back, θ between the two crossings of E with V_eff."),
+               "Started level with the pivot and a slow sweep: the bob dips far below and climbs back, θ between " "the two crossings of E with V_eff."),
         Preset("above-pivot", "Swinging above the pivot", {"theta_0_deg": 135.0, "theta_rate_0_deg_s": 0.0, "phi_rate_0_deg_s": 400.0},
-               "Fast enough that the bob stays above the pivot part of the time: V_eff keeps θ away from 180°, however high it goes."),
-    )  # fmt: skip
+               "Fast enough that the bob stays above the pivot part of the time: V_eff keeps θ away from 180°, " "however high it goes."),
+    )
 
     def build(self) -> None:
         scene = self.client.scene
@@ -62,7 +62,7 @@ class SphericalPendulumScene(DerivedSystemScene):
         self.turning = scene.add_point_cloud("/veff/turning", np.zeros((2, 3), np.float32), np.full((2, 3), 120, np.uint8), point_size=0.07, point_shape="circle")
         self.marker = scene.add_icosphere("/veff/theta", radius=0.045, color=(235, 120, 20))
         self.pivot = scene.add_icosphere("/pivot", radius=0.035, color=(40, 40, 40))
-        self.pivot.position = tuple(float(v) for v in PIVOT)
+        self.pivot.position = PIVOT
         self.rod = scene.add_line_segments("/rod", np.zeros((1, 2, 3), np.float32), np.array([[[40, 100, 220]] * 2], np.uint8), thickness=0.02)
         self.bob = scene.add_point_cloud("/bob", np.zeros((1, 3), np.float32), np.array([[40, 100, 220]], np.uint8), point_size=0.14, point_shape="circle")
         self.trail = Trail(scene, "/path", color=(235, 120, 20), chunk_frames=TRAIL_CHUNK_FRAMES, max_chunks=TRAIL_CHUNKS)
@@ -131,5 +131,5 @@ class SphericalPendulumScene(DerivedSystemScene):
             Quantity.or_text("conical_rate_rad_s", "steady cone's φ̇ at this θ, √(g/(l cos θ))", conical, "rad/s",
                              "none: no steady cone at or above the pivot's level"),
             *self.agreement_quantities(),
-        ]  # fmt: skip
+        ]
         return Readout(quantities, message=self.status)

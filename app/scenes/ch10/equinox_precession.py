@@ -175,7 +175,7 @@ class EquinoxPrecessionScene(Scene):
                 m
                 for m in (
                     physics.averaged_model_warning(self.params, result),
-                    f"Time runs {self.params['years_per_second']:g} years per second; the daily spin and the yearly orbit are far too fast to show and appear as their averages.",
+                    f"Time runs {self.params['years_per_second']:g} years per second; the daily spin and the " "yearly orbit are far too fast to show and appear as their averages.",
                 )
                 if m
             ),

@@ -157,7 +157,7 @@ class FreeGyroscopeScene(Scene):
             needed = float(motion.outer_rate_rad_s[0])
             needed_text = f"{abs(needed):.3g} rad/s" if math.isfinite(needed) else "an unbounded rate"
             message = (
-                f"Near gimbal lock: the spin axis is {lock_deg:.1f}° from the outer gimbal axis, so the two rings are almost "
+                f"Near gimbal lock: the spin axis is {lock_deg:.1f}° from the outer gimbal axis, so the two " "rings are almost "
                 f"in one plane; the outer ring must turn at {needed_text} to keep the rotor free of torque."
             )
         return Readout(quantities, message=message)

@@ -75,7 +75,7 @@ class GyrocompassScene(IntegratedScene):
         Preset("high-latitude", "Near the pole", {"latitude_deg": 80.0, "damping_N_m_s_rad": 0.0, "alpha0_deg": 40.0},
                "At 80° latitude Ω cos λ is small: the compass is weak and slow."),
         Preset("large", "Released 170° off", {"alpha0_deg": 170.0, "damping_N_m_s_rad": 0.0, "latitude_deg": 45.0},
-               "Almost pointing south: the swing lingers near the top and the period is far longer than the small-angle one."),
+               "Almost pointing south: the swing lingers near the top and the period is far longer than the " "small-angle one."),
     )
 
     # -- integration with a time scale -----------------------------------------------------

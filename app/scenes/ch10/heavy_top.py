@@ -20,6 +20,7 @@ import numpy as np
 
 from app.physics.math.rotations import rotation_matrix
 from app.physics.systems.ch10 import heavy_top as physics
+from app.physics.systems.ch10.heavy_top_quadrature import HeavyTopQuadrature
 from app.scenes.kit import (
     FRAME_DT_S,
     IntegratedScene,
@@ -138,7 +139,7 @@ class HeavyTopScene(IntegratedScene):
     def _update_reference(self, params) -> None:
         """Quadrature solution for these parameters: nutation band rings and the reference tip."""
         try:
-            self.reference = physics.quadrature(params)
+            self.reference: HeavyTopQuadrature | None = physics.quadrature(params)
             self.reference_message = ""
         except ValueError as exc:
             self.reference = None
@@ -225,14 +226,14 @@ class HeavyTopScene(IntegratedScene):
             # Without gravity nothing pulls an upright top over: there is no threshold to cross.
             quantities.append(Quantity.word("critical_spin_rad_s", "sleeping threshold |ω₃|", "none: no gravity"))
             message = self.reference_message or (
-                "g = 0: no gravity, so no torque about the pivot; the top moves as a torque-free body and any spin, even none, keeps an upright top up."
+                "g = 0: no gravity, so no torque about the pivot; the top moves as a torque-free body and any " "spin, even none, keeps an upright top up."
             )
             return Readout(quantities, marks={}, message=message)
         quantities.append(Quantity("critical_spin_rad_s", "sleeping threshold |ω₃|", critical, "rad/s"))
         message = self.reference_message or (
-            f"|ω₃| = {spin:.4g} rad/s is above the sleeping threshold {critical:.4g} rad/s: started upright, this top would stay up."
+            f"|ω₃| = {spin:.4g} rad/s is above the sleeping threshold {critical:.4g} rad/s: started upright, " "this top would stay up."
             if spin > critical
-            else f"|ω₃| = {spin:.4g} rad/s is below the sleeping threshold {critical:.4g} rad/s: an upright start is unstable."
+            else f"|ω₃| = {spin:.4g} rad/s is below the sleeping threshold {critical:.4g} rad/s: an upright " "start is unstable."
         )
         marks = {"spin_rad_s": [Mark(critical, "sleeping threshold"), Mark(-critical, "sleeping threshold")]}
         return Readout(quantities, marks=marks, message=message)

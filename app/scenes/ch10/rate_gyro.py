@@ -146,7 +146,8 @@ class RateGyroScene(Scene):
         self.labels = {name: scene.add_label(f"/table/vectors/{name}", "", anchor="bottom-left") for name in ("H", "rate", "moment")}
 
     def _build_indicator(self) -> None:
-        """The dial, its needle and its caption, fixed in space (the scale's ticks and numbers follow the parameters)."""
+        """The dial, its needle and its caption, fixed in space (the scale's ticks and numbers follow the
+        parameters)."""
         scene = self.client.scene
         centre, wxyz = indicator_pose(*self.camera_view())
         scene.add_frame("/indicator", show_axes=False, position=tuple(centre), wxyz=tuple(wxyz))
@@ -201,7 +202,7 @@ class RateGyroScene(Scene):
                 nodes.append(scene.add_label(
                     f"/indicator/scale/t{k + count}", text, position=tuple(DIAL_FACE_X_VECTOR + direction * (NEEDLE_LENGTH + SCALE_LABEL_GAP)),
                     anchor=anchor, font_screen_scale=SCALE_LABEL_SIZE,
-                ))  # fmt: skip
+                ))
         nodes.append(scene.add_line_segments("/indicator/scale/ticks", np.asarray(segments, np.float32), (40, 40, 40), thickness=2.0, thickness_units="screen"))
         self.scale_nodes = nodes
 
@@ -275,9 +276,9 @@ class RateGyroScene(Scene):
                 Quantity("phase_lag_deg", "phase lag of β behind Ω", math.degrees(lag), "deg"),
             ]
             message = (
-                "Undamped and driven at its natural frequency: resonance. β = (G Ω₀/2)(sin ω_n t − ω_n t cos ω_n t) grows in proportion to t."
+                "Undamped and driven at its natural frequency: resonance. β = (G Ω₀/2)(sin ω_n t − ω_n t cos ω_n " "t) grows in proportion to t."
                 if physics.resonant(params)
-                else "The case rocks at the input frequency; after the start-up transient β is a sine with the gain and lag above."
+                else "The case rocks at the input frequency; after the start-up transient β is a sine with the " "gain and lag above."
             )
         else:
             quantities.append(Quantity("hold_s", "turntable runs, then rests, for", self._hold_s, "s"))

@@ -49,7 +49,8 @@ SLIDER_RANGES: Mapping[str, tuple[float, float, float]] = {
 
 
 def spheroid_sectors(*, axial: float, transverse: float, sectors: int = 8, rings: int = 24, segments: int = 64) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """A spheroid about +z (semi-axes ``transverse``, ``transverse``, ``axial``) as one vertex array and two face arrays.
+    """A spheroid about +z (semi-axes ``transverse``, ``transverse``, ``axial``) as one vertex array and two face
+    arrays.
 
     The faces are split into ``sectors`` alternating longitude sectors so that the two
     halves can be drawn in two colours and the spin is visible.
@@ -105,25 +106,25 @@ class TorqueFreeAxisymmetricScene(Scene):
             "football",
             "Football (prolate)",
             {"I_transverse": 1.0, "I_axial": 0.4, "spin_rad_s": 3.0, "nutation_deg": 25.0},
-            "A spheroid twice as long as it is wide, I_a/I_t = 0.4: direct precession, the body cone rolls round the outside of the space cone.",
+            "A spheroid twice as long as it is wide, I_a/I_t = 0.4: direct precession, the body cone rolls round " "the outside of the space cone.",
         ),
         Preset(
             "pencil",
             "Tumbling rod (prolate)",
             {"I_transverse": 2.0, "I_axial": 0.1, "spin_rad_s": 4.0, "nutation_deg": 65.0},
-            "A slender body, I_a/I_t = 0.05, thrown with its axis far from L: a thin body cone rolls round a wide space cone.",
+            "A slender body, I_a/I_t = 0.05, thrown with its axis far from L: a thin body cone rolls round a " "wide space cone.",
         ),
         Preset(
             "coin",
             "Wobbling coin (oblate)",
             {"I_transverse": 0.5, "I_axial": 0.99, "spin_rad_s": 1.0, "nutation_deg": 15.0},
-            "A thin disc, I_a/I_t = 1.98: retrograde precession nearly twice as fast as the spin; the space cone sits inside the body cone.",
+            "A thin disc, I_a/I_t = 1.98: retrograde precession nearly twice as fast as the spin; the space cone " "sits inside the body cone.",
         ),
         Preset(
             "near-sphere",
             "Nearly a sphere (oblate)",
             {"I_transverse": 0.95, "I_axial": 1.0, "spin_rad_s": 2.0, "nutation_deg": 20.0},
-            "I_a/I_t = 1.053, like a slightly flattened planet: ω stays within about 1° of L and circles the axis slowly, seen from the body.",
+            "I_a/I_t = 1.053, like a slightly flattened planet: ω stays within about 1° of L and circles the " "axis slowly, seen from the body.",
         ),
     )
     camera_position = (1.6, -2.0, 1.65)

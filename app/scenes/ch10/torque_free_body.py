@@ -60,7 +60,7 @@ PRESETS = (
     Preset(
         "tennis-racket", "Tennis racket: spin about the intermediate axis",
         {**_BOOK, "omega0_rad_s": [0.1, 4.0, 0.1]},
-        "The book spun about axis 2 (the middle moment) with a tiny wobble: it turns over every few seconds (Dzhanibekov effect).",
+        "The book spun about axis 2 (the middle moment) with a tiny wobble: it turns over every few seconds " "(Dzhanibekov effect).",
     ),
     Preset(
         "major-axis", "Near the major axis (stable)",
@@ -137,7 +137,8 @@ class TorqueFreeBodyScene(Scene):
         sides = np.maximum(sides, THINNEST_SIDE * sides.max())
         sides *= BOX_FILL / math.sqrt(float(np.sum((0.5 * sides / shown_axes) ** 2)))
         scene.add_box("/body/box", color=(70, 100, 165), dimensions=tuple(sides), flat_shading=True)
-        self.ellipsoid.scale = tuple(float(a) for a in shown_axes)
+        semi_a, semi_b, semi_c = shown_axes
+        self.ellipsoid.scale = (float(semi_a), float(semi_b), float(semi_c))
         ends = np.zeros((3, 2, 3), np.float32)
         for k in range(3):
             ends[k, 0, k], ends[k, 1, k] = -1.12 * shown_axes[k], 1.12 * shown_axes[k]
@@ -176,11 +177,12 @@ class TorqueFreeBodyScene(Scene):
         # name stays in space instead, just outside the ellipsoid on the camera's right, level with the centre: the
         # herpolhode's is on the left and below, on the plane, so the two never meet.
         self.polhode_label.position = tuple((ELLIPSOID_SIZE + 0.08) * POLHODE_LABEL_SIDE / np.linalg.norm(POLHODE_LABEL_SIDE))
-        # The herpolhode stays within its largest radius of the foot of L: its label goes just outside, to the viewer's left.
+        # The herpolhode stays within its largest radius of the foot of L: its label goes just outside, to the viewer's
+        # left.
         _, widest = physics.herpolhode_radii_rad_s(self.body)
         self.herpolhode_label.position = tuple((widest * self.scale + 0.06) * HERPOLHODE_LABEL_SIDE + np.array([0.0, 0.0, plane_z]))
         self._setup_ghost(sides)
-        self._draw(0)
+        self._draw_frame(0)
 
     def _setup_ghost(self, sides: np.ndarray) -> None:
         self.ghost = None
@@ -218,7 +220,7 @@ class TorqueFreeBodyScene(Scene):
             offset = 0
         return self._batch.q_world_body[offset], self._batch.omega_body[offset], self._batch.omega_world[offset]
 
-    def _draw(self, index: int) -> None:
+    def _draw_frame(self, index: int) -> None:
         q, omega_body, omega_world = self._state(index)
         tip = omega_world * self.scale
         self.body_frame.wxyz = q
@@ -238,7 +240,7 @@ class TorqueFreeBodyScene(Scene):
         return True
 
     def redraw(self) -> None:
-        self._draw(self.frame_index)
+        self._draw_frame(self.frame_index)
         if self.ghost is not None and not self.ghost_status:
             self.ghost_frame.wxyz = self.ghost.q_world_body
 
@@ -257,6 +259,7 @@ class TorqueFreeBodyScene(Scene):
                 raise ValueError(f"motion: ghost_y must be the ghost's {self.ghost.run.y.size} finite state numbers")
         super().resume_from(motion)
         if self.ghost is not None:
+            assert ghost_y is not None  # read above, where there was a ghost
             old = self.ghost.run
             self.ghost.run = LiveRun(old.system, old.integrator, ghost_y)
             self.ghost.run.t_s = self.t_s
@@ -265,8 +268,10 @@ class TorqueFreeBodyScene(Scene):
     # -- numbers beside the scene --------------------------------------------------------------
     def ghost_attitude_difference_rad(self) -> float:
         """Angle (rad) between the ghost's attitude and the closed form's at the ghost's time."""
-        exact = self.body.quaternion(np.array([self.ghost.t_s]))[0]
-        return float(physics.attitude_difference_rad(exact, self.ghost.q_world_body))
+        ghost = self.ghost
+        assert ghost is not None  # asked only while a ghost runs
+        exact = self.body.quaternion(np.array([ghost.t_s]))[0]
+        return float(physics.attitude_difference_rad(exact, ghost.q_world_body))
 
     def readout(self) -> Readout:
         body = self.body
@@ -308,12 +313,12 @@ class TorqueFreeBodyScene(Scene):
         if self.ghost_status:
             return f"Ghost stopped: {self.ghost_status}"
         if body.kind == "steady":
-            return "Steady rotation about a principal axis: ω and L are parallel, the polhode and herpolhode are single points."
+            return ("Steady rotation about a principal axis: ω and L are parallel, the polhode and herpolhode are " "single points.")
         if body.kind == "separatrix":
             return "Exactly on the separatrix: ω creeps towards the intermediate axis and never quite arrives."
         if next_flip is not None:
             return (
-                f"Intermediate-axis tumble: axis {body.intermediate_axis + 1} turns over every {0.5 * body.period_s:.3g} s "
+                f"Intermediate-axis tumble: axis {body.intermediate_axis + 1} turns over every " f"{0.5 * body.period_s:.3g} s "
                 "while |L| and T stay fixed."
             )
         if body.circled_axis is not None:

@@ -44,7 +44,7 @@ class DerivedSystemScene(IntegratedScene):
         rows = [
             Quantity(f"agreement_{f.replace('-', '_')}", f"{f} vs {running}: relative difference of ẏ", agreement[f])
             for f in FORMULATIONS if f in agreement and f != running
-        ]  # fmt: skip
+        ]
         worst = max((agreement[f] for f in agreement if f != running), default=0.0)
         return [Quantity("formulation_agreement", "largest difference between formulations", worst), *rows]
 

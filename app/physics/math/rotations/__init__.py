@@ -36,7 +36,11 @@ from app.physics.math.rotations.axis_angle import (
     matrix_from_axis_angle,
     quaternion_from_axis_angle,
 )
-from app.physics.math.rotations.euler_313 import body_rates_from_euler_313_rates, euler_313_from_quaternion, quaternion_from_euler_313
+from app.physics.math.rotations.euler_313 import (
+    body_rates_from_euler_313_rates,
+    euler_313_from_quaternion,
+    quaternion_from_euler_313,
+)
 from app.physics.math.rotations.quaternions import (
     check_rotation_matrix,
     quaternion_conjugate,

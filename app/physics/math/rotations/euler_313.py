@@ -15,7 +15,9 @@ from app.physics.math.rotations.sequences import angles_from_quaternion, quatern
 EULER_313 = "3-1-3"
 
 
-def quaternion_from_euler_313(phi_rad: float, theta_rad: float, psi_rad: float) -> np.ndarray:
+def quaternion_from_euler_313(
+    phi_rad: float | np.ndarray, theta_rad: float | np.ndarray, psi_rad: float | np.ndarray
+) -> np.ndarray:
     """``q_world_body`` (``wxyz``) for 3-1-3 angles: ``Rz(phi) Rx(theta) Rz(psi)``; broadcasts."""
     angles = np.stack(np.broadcast_arrays(phi_rad, theta_rad, psi_rad), axis=-1)
     return quaternion_from_angles(angles, EULER_313)
@@ -34,7 +36,11 @@ def euler_313_from_quaternion(q: np.ndarray) -> np.ndarray:
 
 
 def body_rates_from_euler_313_rates(
-    theta_rad: float, psi_rad: float, phi_dot: float, theta_dot: float, psi_dot: float
+    theta_rad: float | np.ndarray,
+    psi_rad: float | np.ndarray,
+    phi_dot: float | np.ndarray,
+    theta_dot: float | np.ndarray,
+    psi_dot: float | np.ndarray,
 ) -> np.ndarray:
     """Body-frame angular velocity (rad/s) from 3-1-3 angle rates (it does not depend on ``phi``)."""
     angles = np.stack(np.broadcast_arrays(0.0, theta_rad, psi_rad), axis=-1)

@@ -82,11 +82,12 @@ class RotationSequence:
         """One sentence per angle saying which axis it turns about."""
         names = COMMON_NAMES.get(self.name, ("", "", ""))
         frames = ("the fixed frame XYZ", "the once-turned frame x′y′z′", "the twice-turned frame x″y″z″")
-        return tuple(
+        first, second, third = (
             f"θ{k}{' (' + names[k - 1] + ')' if names[k - 1] else ''}: turn about {self.axis_label(k)}, "
             f"axis {self.axes[k - 1] + 1} of {frames[k - 1]}"
             for k in (1, 2, 3)
         )
+        return first, second, third
 
     def lock_combination_sign(self, theta2_rad: float | np.ndarray) -> np.ndarray:
         """``s`` such that only ``θ1 + s·θ3`` is determined at the gimbal lock nearest ``θ2``.
@@ -129,7 +130,7 @@ def _angles_array(angles_rad: np.ndarray) -> np.ndarray:
     return angles
 
 
-def elementary_rotation_matrix(axis: int, angle_rad: np.ndarray) -> np.ndarray:
+def elementary_rotation_matrix(axis: int, angle_rad: float | np.ndarray) -> np.ndarray:
     """``R_axis(angle)`` (shape angle.shape + (3, 3)): right-handed turn about coordinate axis ``axis`` (0 = x)."""
     angle = np.asarray(angle_rad)
     c, s = np.cos(angle), np.sin(angle)

@@ -140,7 +140,8 @@ def landing_and_apex(t, y, p, g_out):
 
 
 def simulate(inputs: Mapping[str, Any], samples: int = 241) -> ProjectileTrajectory:
-    """Integrate launch to landing (Dormand–Prince 5(4), rtol 1e-11, landing as an event) and sample ``samples`` instants."""
+    """Integrate launch to landing (Dormand–Prince 5(4), rtol 1e-11, landing as an event) and sample ``samples``
+    instants."""
     m, g = inputs["mass_kg"], inputs["g_m_s2"]
     b, c = inputs["linear_drag_kg_s"], inputs["quadratic_drag_kg_m"]
     r0 = np.array([0.0, 0.0, inputs["height0_m"]])
@@ -276,13 +277,13 @@ def solve(inputs: Mapping[str, Any]) -> Solution:
         ),
         Step(
             "Work–energy: kinetic energy change equals the work done",
-            r"T_2 - T_1 = \underbrace{-mg(z_2 - z_1)}_{W_g} + \underbrace{\int_{t_1}^{t_2} \bar F_d\cdot\bar v\,dt}_{W_d}",
+            r"T_2 - T_1 = \underbrace{-mg(z_2 - z_1)}_{W_g} + \underbrace{\int_{t_1}^{t_2} \bar F_d\cdot\bar " r"v\,dt}_{W_d}",
             {"T1": traj.kinetic_energy_J[0], "T2": traj.kinetic_energy_J[-1], "W_g": Wg, "W_d": Wd, "residual": energy_residual},
             {"T1": "J", "T2": "J", "W_g": "J", "W_d": "J", "residual": "J"},
         ),
         Step(
             "Impulse–momentum: momentum change equals the impulse",
-            r"m\bar v_2 - m\bar v_1 = \underbrace{-mg\,t\,\bar k}_{\bar I_g} + \underbrace{\int_{t_1}^{t_2}\bar F_d\,dt}_{\bar I_d}",
+            r"m\bar v_2 - m\bar v_1 = \underbrace{-mg\,t\,\bar k}_{\bar I_g} + \underbrace{\int_{t_1}^{t_2}\bar " r"F_d\,dt}_{\bar I_d}",
             {"m_dv": dp, "I_g": Ig, "I_d": Id, "residual": momentum_residual},
             {"m_dv": "N·s", "I_g": "N·s", "I_d": "N·s", "residual": "N·s"},
         ),

@@ -185,7 +185,7 @@ def solve(inputs: Mapping[str, Any]) -> Solution:
         ),
         Step(
             "Error of the finite difference",
-            r"|\bar v_{fd} - \bar v| \approx \frac{\Delta t^2}{6}\left|\dddot{\bar r}\right| + \frac{\varepsilon\,|\bar r|}{\Delta t},"
+            r"|\bar v_{fd} - \bar v| \approx \frac{\Delta t^2}{6}\left|\dddot{\bar r}\right| + " r"\frac{\varepsilon\,|\bar r|}{\Delta t},"
             r"\quad \Delta t^{*} \approx \left(\frac{3\varepsilon|\bar r|}{|\dddot{\bar r}|}\right)^{1/3}",
             {"error": error, "third_derivative": third_norm, "optimal_dt_model": optimal_dt, "optimal_dt_measured": float(sweep_dt[best])},
             {"error": "m/s", "third_derivative": "m/s³", "optimal_dt_model": "s", "optimal_dt_measured": "s"},

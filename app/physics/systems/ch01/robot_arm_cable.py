@@ -116,7 +116,7 @@ def solve(inputs: Mapping[str, Any]) -> Solution:
         Step(
             "Positions of B, C and D",
             r"\bar r_{B} = AB(\cos\theta\,\bar i + \sin\theta\,\bar j),\quad "
-            r"\bar r_{C} = \bar r_{B} + BC(\cos\gamma\cos\theta\,\bar i + \cos\gamma\sin\theta\,\bar j + \sin\gamma\,\bar k),\quad "
+            r"\bar r_{C} = \bar r_{B} + BC(\cos\gamma\cos\theta\,\bar i + \cos\gamma\sin\theta\,\bar j + " r"\sin\gamma\,\bar k),\quad "
             r"\bar r_{D} = x_D\,\bar i",
             {"r_B": g.B, "r_C": g.C, "r_D": g.D},
             {"r_B": "m", "r_C": "m", "r_D": "m"},

@@ -63,7 +63,7 @@ class SineSlot:
         """Time (s) to cross one wavelength, 0 ≤ x ≤ 2L."""
         return 2.0 * self.half_wavelength_m / self.drive_speed_m_s
 
-    def at(self, t_s: np.ndarray) -> CartesianState:
+    def at(self, t_s: np.ndarray | float) -> CartesianState:
         t = np.atleast_1d(np.asarray(t_s, dtype=float))
         h, u, k = self.amplitude_m, self.drive_speed_m_s, math.pi / self.half_wavelength_m
         x = u * t
@@ -88,7 +88,7 @@ class Projectile:
         """Time of flight (s) until it is back on z = 0."""
         return 2.0 * self.speed_m_s * math.sin(self.elevation_rad) / self.gravity_m_s2
 
-    def at(self, t_s: np.ndarray) -> CartesianState:
+    def at(self, t_s: np.ndarray | float) -> CartesianState:
         t = np.atleast_1d(np.asarray(t_s, dtype=float))
         v0, g = self.speed_m_s, self.gravity_m_s2
         horizontal = v0 * math.cos(self.elevation_rad)
@@ -127,7 +127,7 @@ PARAMETERS = ParameterSet(
         Parameter("launch_heading_deg", "deg", 30.0, -180.0, 180.0, "Projectile: heading ψ of the launch, from +X toward +Y", "ψ", step=1),
         Parameter("gravity_m_s2", "m/s²", 9.81, 0.5, 30.0, "Projectile: gravitational acceleration g, along −Z", "g", step=0.01),
     )
-)  # fmt: skip
+)
 
 
 class CartesianParticle(ClosedFormModel):
@@ -139,7 +139,7 @@ class CartesianParticle(ClosedFormModel):
         "x_dot": "m/s", "y_dot": "m/s", "z_dot": "m/s",
         "x_ddot": "m/s^2", "y_ddot": "m/s^2", "z_ddot": "m/s^2",
         "speed": "m/s", "acceleration_magnitude": "m/s^2",
-    }  # fmt: skip
+    }
     description = "x(t), y(t), z(t) and their derivatives in closed form (sine slot at constant ẋ, or a projectile without air)"
 
     def evaluate(self, params: Mapping[str, Any], t_s: np.ndarray) -> ClosedFormSolution:
@@ -159,5 +159,5 @@ class CartesianParticle(ClosedFormModel):
                 "the ground, where a real one would have stopped."
             )
         elif isinstance(motion, SineSlot) and t_s[-1] > motion.run_s:
-            warning = f"The slot is one wavelength long (x ≤ 2L = {2 * motion.half_wavelength_m:g} m, reached at t = {motion.run_s:.4g} s); after that the formula follows the slot's sine on past its end."
+            warning = (f"The slot is one wavelength long (x ≤ 2L = {2 * motion.half_wavelength_m:g} m, reached at " f"t = {motion.run_s:.4g} s); after that the formula follows the slot's sine on past its " "end.")
         return ClosedFormSolution(series=series, warning=warning)

@@ -146,15 +146,15 @@ def _check(values: Mapping[str, Any]) -> None:
 PARAMETERS = ParameterSet(
     (
         Parameter("path", "", "helix", kind="choice", choices=PATHS, label="path",
-                  description="The path: a helix, a spiral on a cone, a circle of latitude on a sphere, or a loxodrome (rhumb line) on a sphere"),
+                  description=("The path: a helix, a spiral on a cone, a circle of latitude on a sphere, or a loxodrome " "(rhumb line) on a sphere")),
         Parameter("size_m", "m", 1.0, 0.1, 3.0,
                   "a: the helix's radius, the spiral's growth of R per turn (and its starting R), or the sphere's radius", "a", step=0.01),
         Parameter("azimuth_rate_rad_s", "rad/s", 1.0, 0.1, 3.0, "θ̇: the constant rate at which the azimuth θ turns about Z", "θ̇", step=0.05),
         Parameter("path_angle_deg", "deg", 15.0, 0.0, 90.0,
-                  "β: the helix's climb angle, the cone's half-angle, the circle's polar angle φ, or the loxodrome's bearing from north", "β", step=1),
+                  "β: the helix's climb angle, the cone's half-angle, the circle's polar angle φ, or the loxodrome's " "bearing from north", "β", step=1),
     ),
     check=_check,
-)  # fmt: skip
+)
 
 
 class ParticleOnCoordinatePath(ClosedFormModel):
@@ -165,8 +165,8 @@ class ParticleOnCoordinatePath(ClosedFormModel):
         "x": "m", "y": "m", "z": "m", "speed": "m/s", "acceleration_magnitude": "m/s^2",
         "R": "m", "theta": "rad", "v_R": "m/s", "v_theta": "m/s", "v_z": "m/s", "a_R": "m/s^2", "a_theta": "m/s^2", "a_z": "m/s^2",
         "r": "m", "phi": "rad", "v_r": "m/s", "v_phi": "m/s", "a_r": "m/s^2", "a_phi": "m/s^2",
-    }  # fmt: skip
-    description = "x, y, z of the path in closed form, differentiated exactly (sympy); cylindrical and spherical components from R = √(x²+y²), θ = atan2(y, x), r = |r|, φ = atan2(R, z) and their rates"
+    }
+    description = ("x, y, z of the path in closed form, differentiated exactly (sympy); cylindrical and spherical " "components from R = √(x²+y²), θ = atan2(y, x), r = |r|, φ = atan2(R, z) and their rates")
 
     def evaluate(self, params: Mapping[str, Any], t_s: np.ndarray) -> ClosedFormSolution:
         path = CoordinatePath.from_params(params)
@@ -175,7 +175,7 @@ class ParticleOnCoordinatePath(ClosedFormModel):
             "x": position[:, 0], "y": position[:, 1], "z": position[:, 2],
             "speed": np.linalg.norm(velocity, axis=1), "acceleration_magnitude": np.linalg.norm(acceleration, axis=1),
             **curvilinear_series(position, velocity, acceleration, length_scale_m=path.length_scale_m),
-        }  # fmt: skip
+        }
         warning = ""
         if t_s[-1] > path.run_s:
             warning = f"One run along the path lasts {path.run_s:.4g} s; after it the formulas go on past the path's end."

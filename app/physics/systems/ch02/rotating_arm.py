@@ -131,7 +131,7 @@ class RotatingArm:
         return cls(
             params["arm_rate_rad_s"], params["arm_acceleration_rad_s2"],
             params["collar_mean_m"], params["collar_amplitude_m"], params["collar_frequency_rad_s"],
-        )  # fmt: skip
+        )
 
     def at(self, t_s: np.ndarray | float) -> ArmState:
         t = np.atleast_1d(np.asarray(t_s, dtype=float))
@@ -158,7 +158,7 @@ def _check(values: Mapping[str, Any]) -> None:
     if reach > ARM_HALF_LENGTH_M:
         raise ParameterError(
             "collar_amplitude_m",
-            f"the collar would slide off the arm: |r₀| + b = {reach:g} m, but the arm reaches {ARM_HALF_LENGTH_M:g} m each side of the pivot",
+            f"the collar would slide off the arm: |r₀| + b = {reach:g} m, but the arm reaches " f"{ARM_HALF_LENGTH_M:g} m each side of the pivot",
         )
 
 
@@ -171,7 +171,7 @@ PARAMETERS = ParameterSet(
         Parameter("collar_frequency_rad_s", "rad/s", 1.5, 0.0, 5.0, "ω_c: the angular frequency of the collar's sliding, r = r₀ + b sin(ω_c t)", "ω_c", step=0.05),
     ),
     check=_check,
-)  # fmt: skip
+)
 
 
 class CollarOnRotatingArm(ClosedFormModel):
@@ -183,8 +183,8 @@ class CollarOnRotatingArm(ClosedFormModel):
         "v_r": "m/s", "v_theta": "m/s", "a_r": "m/s^2", "a_theta": "m/s^2",
         "a_sliding": "m/s^2", "a_centripetal": "m/s^2", "a_angular": "m/s^2", "a_coriolis": "m/s^2",
         "speed": "m/s", "a_tangential": "m/s^2", "a_normal": "m/s^2",
-    }  # fmt: skip
-    description = "θ = Ω t + α t²/2 and r = r₀ + b sin(ω_c t) in closed form; v and a from the polar formulas on the arm's unit vectors"
+    }
+    description = ("θ = Ω t + α t²/2 and r = r₀ + b sin(ω_c t) in closed form; v and a from the polar formulas on " "the arm's unit vectors")
 
     def evaluate(self, params: Mapping[str, Any], t_s: np.ndarray) -> ClosedFormSolution:
         state = RotatingArm.from_params(params).at(t_s)
@@ -196,8 +196,8 @@ class CollarOnRotatingArm(ClosedFormModel):
             "a_sliding": state.sliding_m_s2, "a_centripetal": state.centripetal_m_s2,
             "a_angular": state.angular_m_s2, "a_coriolis": state.coriolis_m_s2,
             "speed": speed, "a_tangential": a_t, "a_normal": a_n,
-        }  # fmt: skip
+        }
         warning = ""
         if np.any(np.isnan(a_t)):
-            warning = "The collar is momentarily at rest at some frames: a_t and a_n (the path variables) are undefined there (null)."
+            warning = ("The collar is momentarily at rest at some frames: a_t and a_n (the path variables) are " "undefined there (null).")
         return ClosedFormSolution(series=series, warning=warning)

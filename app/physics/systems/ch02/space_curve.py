@@ -44,8 +44,8 @@ SPEED_TOLERANCE = 1e-9
 CURVATURE_TOLERANCE = 1e-9
 #: Largest expression tree (nodes) allowed for r', r'' and r''' in turn: each
 #: order can multiply the size, and sympy's time to differentiate grows faster
-#: than the size. With these limits the slowest formulas we found compile in
-#: well under a second; typical curves take 10-50 ms.
+#: than the size. These limits keep the slowest formulas we found compiling in
+#: well under a second.
 MAX_DERIVATIVE_NODES = (300, 600, 3000)
 #: Largest component of r, r', r'' or r''' (m, m/s, m/s², m/s³) a curve may reach over the span it is
 #: drawn on. The viewer draws in float32 (largest 3.4e38), and the path variables raise these to at most
@@ -140,7 +140,8 @@ def compile_curve(x_text: str, y_text: str, z_text: str) -> SpaceCurve:
 
 
 def check_curve_span(curve: SpaceCurve, t_s: np.ndarray) -> None:
-    """Raise :class:`CurveError` if a component of r or a derivative exceeds :data:`MAX_CURVE_MAGNITUDE` at any of ``t_s`` (s).
+    """Raise :class:`CurveError` if a component of r or a derivative exceeds :data:`MAX_CURVE_MAGNITUDE` at any of
+    ``t_s`` (s).
 
     The error names the component and the first time it happens. Instants where a
     formula has no value (a pole, the root of a negative number) are not refused:
@@ -160,7 +161,7 @@ def check_curve_span(curve: SpaceCurve, t_s: np.ndarray) -> None:
     raise CurveError(
         COMPONENTS[axis],
         f"{what} reaches {value:.3g} at t = {t[index]:.4g} s, beyond the bound of {MAX_CURVE_MAGNITUDE:g} (SI units) "
-        f"within the span 0 to {t[-1]:.4g} s it is drawn over: shorten the span or type a formula that grows more slowly",
+        f"within the span 0 to {t[-1]:.4g} s it is drawn over: shorten the span or type a formula that grows " "more slowly",
     )
 
 
@@ -352,7 +353,7 @@ class ParticleOnCurve(ClosedFormModel):
         "a_tangential": "m/s^2", "a_normal": "m/s^2",
         "R": "m", "theta": "rad", "v_R": "m/s", "v_theta": "m/s", "v_z": "m/s", "a_R": "m/s^2", "a_theta": "m/s^2", "a_z": "m/s^2",
         "r": "m", "phi": "rad", "v_r": "m/s", "v_phi": "m/s", "a_r": "m/s^2", "a_phi": "m/s^2",
-    }  # fmt: skip
+    }
     description = (
         "the typed curve differentiated symbolically (sympy) and evaluated at each frame; "
         "arc length by composite 8-point Gauss–Legendre quadrature"
@@ -372,7 +373,7 @@ class ParticleOnCurve(ClosedFormModel):
             "curvature": path.curvature_1_m, "torsion": path.torsion_1_m,
             "a_tangential": path.a_tangential_m_s2, "a_normal": path.a_normal_m_s2,
             **curvilinear_series(path.position_m, path.velocity_m_s, path.acceleration_m_s2, length_scale_m=scales.length_m),
-        }  # fmt: skip
+        }
         return ClosedFormSolution(series=series, events=_degenerate_events(path))
 
 

@@ -60,7 +60,7 @@ PARAMETERS = ParameterSet(
     (
         Parameter(
             "sequence", "", "3-1-3", kind="choice", choices=tuple(SEQUENCES), label="Sequence",
-            description="Axes of the three body-fixed turns (1 = x, 2 = y, 3 = z): proper Euler (first axis repeated) or Tait–Bryan (all three)",
+            description=("Axes of the three body-fixed turns (1 = x, 2 = y, 3 = z): proper Euler (first axis " "repeated) or Tait–Bryan (all three)"),
         ),
         *_angle_parameters(),
     )
@@ -170,8 +170,8 @@ class AngleKinematics:
             seq = self.sequence
             combination = "θ̇1 + θ̇3" if float(seq.lock_combination_sign(self.angles_rad[i, 1])) > 0 else "θ̇1 − θ̇3"
             return None, (
-                f"the rates cannot be recovered here: θ2 = {math.degrees(float(self.angles_rad[i, 1])):.4g}° puts the third "
-                f"turn's axis {seq.axis_label(3)} on the line of {seq.axis_label(1)} (gimbal lock), so ω fixes only {combination}"
+                f"the rates cannot be recovered here: θ2 = {math.degrees(float(self.angles_rad[i, 1])):.4g}° " "puts the third "
+                f"turn's axis {seq.axis_label(3)} on the line of {seq.axis_label(1)} (gimbal lock), so ω fixes " f"only {combination}"
             )
 
 
@@ -209,5 +209,5 @@ class AngleRates(ClosedFormModel):
                 "but the rates cannot be recovered from ω here",
             )
             for i in starts
-        ]  # fmt: skip
+        ]
         return ClosedFormSolution(series=series, events=events)

@@ -142,7 +142,7 @@ class Flight:
     g_m_s2: float
 
     @classmethod
-    def from_params(cls, params: Mapping[str, Any], *, earth_rate_rad_s: float = EARTH_RATE_RAD_S) -> "Flight":
+    def from_params(cls, params: Mapping[str, Any], *, earth_rate_rad_s: float = EARTH_RATE_RAD_S) -> Flight:
         return cls(
             r0_m=np.array([0.0, 0.0, params["height_m"]]),
             v0_m_s=np.asarray(params["launch_velocity_m_s"], dtype=float),

@@ -37,8 +37,8 @@ import numpy as np
 from app.physics.core.energy import EnergyParts
 from app.physics.core.parameters import Parameter, ParameterError, ParameterSet
 from app.physics.solvers.integrated_model import IntegratedModel
-from app.physics.solvers.step_choice import AccuracyTarget
 from app.physics.solvers.kernels import PROJECT_SIGNATURE, RHS_SIGNATURE, kernel
+from app.physics.solvers.step_choice import AccuracyTarget
 from app.physics.solvers.system import OdeSystem
 from app.physics.systems.earth import (
     EARTH_RATE_RAD_S,
@@ -279,7 +279,7 @@ class FoucaultPendulum(IntegratedModel):
         return EnergyParts(gravity_potential_J_kg(params, states), translational_kinetic_J=kinetic, rotational_kinetic_J=np.zeros_like(kinetic))
 
     def energy_note(self, params):
-        return "energies of a 1 kg bob (the motion does not depend on its mass), with its speed measured against the turning ground"
+        return ("energies of a 1 kg bob (the motion does not depend on its mass), with its speed measured against " "the turning ground")
 
     def invariant_scales(self, params, state):
         # The swing's energy above the rest position (the Jacobi integral is zero there).

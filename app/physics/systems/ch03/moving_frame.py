@@ -95,7 +95,7 @@ class MovingFrameMotion:
     cart_frequency_hz: float
 
     @classmethod
-    def from_params(cls, params: Mapping[str, Any]) -> "MovingFrameMotion":
+    def from_params(cls, params: Mapping[str, Any]) -> MovingFrameMotion:
         return cls(
             spin_rate_rad_s=params["spin_rate_rad_s"],
             spin_acceleration_rad_s2=params["spin_acceleration_rad_s2"],
@@ -177,7 +177,7 @@ class MovingFrameMotion:
         r_body, _, _ = self.relative_body(t_s)
         return r_origin + np.einsum("nij,nj->ni", self.attitude(t_s), r_body)
 
-    def kinematics(self, t_s: np.ndarray) -> "Kinematics":
+    def kinematics(self, t_s: np.ndarray) -> Kinematics:
         """Everything about P and the body at times ``t_s``, each quantity computed once."""
         t = np.atleast_1d(np.asarray(t_s, dtype=float))
         angles = self.euler_313_angles(t)

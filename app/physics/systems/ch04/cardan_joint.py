@@ -78,12 +78,12 @@ class CardanJoint:
         beta = self.shaft_angle_rad
         return np.array([math.cos(beta), math.sin(beta), 0.0])
 
-    def input_pin(self, input_angle_rad: np.ndarray) -> np.ndarray:
+    def input_pin(self, input_angle_rad: np.ndarray | float) -> np.ndarray:
         """Unit vector(s) u along the input yoke's pin of the cross, shape (..., 3) (world)."""
         phi1 = np.asarray(input_angle_rad, dtype=float)
         return np.stack([np.zeros_like(phi1), np.cos(phi1), np.sin(phi1)], axis=-1)
 
-    def output_pin(self, output_angle_rad: np.ndarray) -> np.ndarray:
+    def output_pin(self, output_angle_rad: np.ndarray | float) -> np.ndarray:
         """Unit vector(s) v along the output yoke's pin of the cross, shape (..., 3) (world)."""
         phi2 = np.asarray(output_angle_rad, dtype=float)
         across = np.cross(self.output_axis, [0.0, 0.0, 1.0])  # e₂ × ẑ, horizontal

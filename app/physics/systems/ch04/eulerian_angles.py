@@ -24,7 +24,12 @@ import numpy as np
 
 from app.physics.core.closed_form import ClosedFormModel, ClosedFormSolution
 from app.physics.core.parameters import Parameter, ParameterSet
-from app.physics.math.rotations import GIMBAL_LOCK_TOLERANCE_RAD, gimbal_lock_distance_rad, intermediate_frames, rotation_sequence
+from app.physics.math.rotations import (
+    GIMBAL_LOCK_TOLERANCE_RAD,
+    gimbal_lock_distance_rad,
+    intermediate_frames,
+    rotation_sequence,
+)
 from app.physics.systems.ch03.angle_rates import AngleKinematics, AngleMotion
 
 EULER_SEQUENCE = "3-1-3"
@@ -90,15 +95,15 @@ def singularity_note(nutation_rad: float) -> str:
     theta = math.degrees(nutation_rad)
     if distance <= math.degrees(GIMBAL_LOCK_TOLERANCE_RAD):
         return (
-            f"θ = {theta:.1f}°: the spin axis z lies on Z, so φ and ψ turn about the same line. The attitude fixes only "
-            "φ ± ψ, the line of nodes is undefined, and ω cannot be turned back into φ̇ and ψ̇ (the angles are singular, the body is not)."
+            f"θ = {theta:.1f}°: the spin axis z lies on Z, so φ and ψ turn about the same line. The attitude " "fixes only "
+            "φ ± ψ, the line of nodes is undefined, and ω cannot be turned back into φ̇ and ψ̇ (the angles are " "singular, the body is not)."
         )
     if distance < NEAR_SINGULAR_DEG:
         return (
             f"θ = {theta:.1f}° is {distance:.2f}° from the singularity at θ = 0 or 180°: recovering φ̇ and ψ̇ from ω "
             f"divides by sin θ = {math.sin(nutation_rad):.4f}, so small errors in ω become large errors in the rates."
         )
-    return f"θ = {theta:.1f}°, {distance:.1f}° away from the singularity at θ = 0 or 180° (where z lies on Z and only φ ± ψ is defined)."
+    return (f"θ = {theta:.1f}°, {distance:.1f}° away from the singularity at θ = 0 or 180° (where z lies on Z and " "only φ ± ψ is defined).")
 
 
 PARAMETERS = ParameterSet(

@@ -85,7 +85,7 @@ class CrankRange:
                 if lo - 1e-9 <= angle_rad <= hi + 1e-9:
                     return lo, hi
         raise ValueError(
-            f"the loop cannot close with the crank at {math.degrees(angle_rad):.1f}°: with these lengths {self.describe()}"
+            f"the loop cannot close with the crank at {math.degrees(angle_rad):.1f}°: with these lengths " f"{self.describe()}"
         )
 
 
@@ -115,7 +115,7 @@ class FourBar:
             if not (math.isfinite(length) and length > 0.0):
                 raise ValueError(f"the {name} link must have a positive length (got {length!r} m)")
         links = self.links
-        longest = max(links, key=links.get)
+        longest = max(links, key=links.__getitem__)
         others = sum(links.values()) - links[longest]
         if links[longest] >= others * (1.0 - LENGTH_RTOL):
             raise ValueError(
@@ -130,7 +130,7 @@ class FourBar:
     def grashof(self) -> GrashofClass:
         """Grashof class from the shortest (s), longest (l) and other two (p, q) lengths."""
         links = self.links
-        s_name = min(links, key=links.get)
+        s_name = min(links, key=links.__getitem__)
         s, l = links[s_name], max(links.values())
         pq = sum(links.values()) - s - l
         if s + l > pq * (1.0 + LENGTH_RTOL):
@@ -170,6 +170,7 @@ class FourBar:
             return CrankRange(True, (), tuple(singular))
         if hi - lo < 1e-10:
             raise ValueError("these links close only at a single crank angle, so the linkage cannot move")
+        arcs: tuple[tuple[float, float], ...]
         if lo == -1.0:
             arcs = ((math.acos(hi), TWO_PI - math.acos(hi)),)
         elif hi == 1.0:
@@ -326,7 +327,7 @@ class FourBarMotion:
     def _reference(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, float, float]:
         """Dense crank grid over one travel with unwrapped coupler and rocker angles, and their
         windings (turns) per crank turn: the reference that makes the angles continuous in time."""
-        if self.drive.turns_fully:
+        if self.drive.limits_rad is None:  # the crank turns fully
             grid = self.drive.angle0_rad + np.linspace(0.0, TWO_PI, 4097)
         else:
             grid = np.linspace(*self.drive.limits_rad, 4097)
@@ -382,22 +383,22 @@ class FourBarMotion:
         events = []
         for t, angle in self.drive.reversal_times(t_end_s):
             events.append(Event(t, "toggle", (
-                f"toggle position at crank angle {math.degrees(angle):.1f}°: the coupler and rocker are in line, so the "
-                f"rocker rate is unbounded here; the crank cannot turn further, so it reverses and the linkage stays "
+                f"toggle position at crank angle {math.degrees(angle):.1f}°: the coupler and rocker are " "in line, so the "
+                "rocker rate is unbounded here; the crank cannot turn further, so it reverses and the " "linkage stays "
                 f"in the {self.branch} assembly"
             )))
         for angle in self.crank_range.singular_angles_rad:
             for t in self.drive.times_at_angle(angle, t_end_s):
                 events.append(Event(t, "change-point", (
-                    f"change point at crank angle {math.degrees(angle):.1f}°: all four links are in line, so the coupler "
-                    f"and rocker rates are undefined (0/0) and the linkage could switch assembly; this motion stays in "
+                    f"change point at crank angle {math.degrees(angle):.1f}°: all four links are in " "line, so the coupler "
+                    "and rocker rates are undefined (0/0) and the linkage could switch assembly; this " "motion stays in "
                     f"the {self.branch} assembly"
                 )))
         return sorted(events, key=lambda e: e.t_s)
 
     def travel_positions(self, branch: str | None = None, samples: int = 721) -> FourBarPositions:
         """Configurations at ``samples`` crank angles spanning the crank's whole travel, in ``branch``."""
-        if self.drive.turns_fully:
+        if self.drive.limits_rad is None:  # the crank turns fully
             grid = np.linspace(0.0, TWO_PI, samples)
         else:
             grid = np.linspace(*self.drive.limits_rad, samples)
@@ -461,7 +462,7 @@ class FourBarLinkage(ClosedFormModel):
         "coupler_point_y": "m",
     }
     invariant_units = {"loop_closure_residual": "m"}
-    description = "loop closure (two-circle intersection) for positions; differentiated loop equations (2×2 linear solves) for rates"
+    description = ("loop closure (two-circle intersection) for positions; differentiated loop equations (2×2 " "linear solves) for rates")
 
     def evaluate(self, params: Mapping[str, Any], t_s: np.ndarray) -> ClosedFormSolution:
         motion = FourBarMotion.from_params(params)

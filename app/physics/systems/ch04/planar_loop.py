@@ -17,12 +17,12 @@ TWO_PI = 2.0 * np.pi
 
 
 def solve_2x2(
-    m11: np.ndarray,
-    m12: np.ndarray,
-    m21: np.ndarray,
-    m22: np.ndarray,
-    r1: np.ndarray,
-    r2: np.ndarray,
+    m11: np.ndarray | float,
+    m12: np.ndarray | float,
+    m21: np.ndarray | float,
+    m22: np.ndarray | float,
+    r1: np.ndarray | float,
+    r2: np.ndarray | float,
     *,
     singular_below: np.ndarray | float,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

@@ -93,9 +93,9 @@ class DiskOnTurntable:
 
     def __post_init__(self) -> None:
         if not (self.shaft_length_m > 0.0 and self.disk_radius_m > 0.0):
-            raise ValueError(f"the shaft length L and disk radius R must be positive (got L = {self.shaft_length_m:g} m, R = {self.disk_radius_m:g} m)")
+            raise ValueError(f"the shaft length L and disk radius R must be positive (got L = {self.shaft_length_m:g} m, R = " f"{self.disk_radius_m:g} m)")
         if not abs(self.shaft_elevation_rad) < 0.5 * math.pi:
-            raise ValueError(f"the shaft elevation β must lie strictly between −90° and 90° (got {math.degrees(self.shaft_elevation_rad):g}°)")
+            raise ValueError("the shaft elevation β must lie strictly between −90° and 90° (got " f"{math.degrees(self.shaft_elevation_rad):g}°)")
         if not 0.0 <= self.point_radius_fraction <= 1.0:
             raise ValueError(f"ρ/R must lie in [0, 1]: the point B is on the disk (got {self.point_radius_fraction:g})")
 

@@ -74,7 +74,8 @@ class SliderCrank:
         return r * np.cos(theta) + l * cos_phi, np.arctan2(sin_phi, cos_phi)
 
     def rates(self, theta: np.ndarray, phi: np.ndarray, omega: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Slider velocity ẋ (m/s) and rod rate φ̇ (rad/s): ``[-1, -l sinφ; 0, l cosφ] [ẋ, φ̇] = [r ω sinθ, -r ω cosθ]``."""
+        """Slider velocity ẋ (m/s) and rod rate φ̇ (rad/s):
+        ``[-1, -l sinφ; 0, l cosφ] [ẋ, φ̇] = [r ω sinθ, -r ω cosθ]``."""
         r, l = self.crank_m, self.rod_m
         xdot, phidot, _ = solve_2x2(
             -1.0, -l * np.sin(phi), 0.0, l * np.cos(phi),
@@ -86,7 +87,8 @@ class SliderCrank:
     def accelerations(
         self, theta: np.ndarray, phi: np.ndarray, omega: np.ndarray, phidot: np.ndarray, alpha: np.ndarray
     ) -> tuple[np.ndarray, np.ndarray]:
-        """Slider acceleration ẍ (m/s²) and rod acceleration φ̈ (rad/s²): same matrix, centripetal terms on the right."""
+        """Slider acceleration ẍ (m/s²) and rod acceleration φ̈ (rad/s²): same matrix, centripetal terms on the
+        right."""
         r, l = self.crank_m, self.rod_m
         r1 = r * alpha * np.sin(theta) + r * omega**2 * np.cos(theta) + l * phidot**2 * np.cos(phi)
         r2 = -r * alpha * np.cos(theta) + r * omega**2 * np.sin(theta) + l * phidot**2 * np.sin(phi)
@@ -186,7 +188,7 @@ class SliderCrankMechanism(ClosedFormModel):
         "rod_acceleration": "rad/s²",
     }
     invariant_units = {"loop_closure_residual": "m"}
-    description = "loop closure for the slider position; differentiated loop equations (2×2 linear solves) for velocity and acceleration"
+    description = ("loop closure for the slider position; differentiated loop equations (2×2 linear solves) for " "velocity and acceleration")
 
     def evaluate(self, params: Mapping[str, Any], t_s: np.ndarray) -> ClosedFormSolution:
         motion = SliderCrankMotion.from_params(params)

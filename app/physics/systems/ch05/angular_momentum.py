@@ -76,7 +76,7 @@ class MountedBody:
             raise ValueError(f"body must be one of {', '.join(BODIES)} (got {shape!r})")
         mounting = elementary_rotation_matrix(0, math.radians(params["tilt_deg"]))
         tensor.flags.writeable = mounting.flags.writeable = False  # shared by every user of a cached motion
-        return cls(shape, mass, tuple(float(d) for d in dims), tensor, mounting)
+        return cls(shape, mass, (float(dims[0]), float(dims[1]), float(dims[2])), tensor, mounting)
 
     @cached_property
     def inertia_world0_kg_m2(self) -> np.ndarray:
@@ -149,7 +149,8 @@ class SpinState:
 
 @dataclass(frozen=True)
 class ParticleState:
-    """The equivalent particles at N instants: masses (P,) kg, positions and velocities (N, P, 3) in m and m/s (world)."""
+    """The equivalent particles at N instants: masses (P,) kg, positions and velocities (N, P, 3) in m and m/s
+    (world)."""
 
     masses_kg: np.ndarray
     positions_m: np.ndarray
@@ -202,7 +203,8 @@ class ShaftSpin:
         return float(w), float(x), float(y), float(z)
 
     def attitude_wxyz(self, t_s: float) -> tuple[float, float, float, float]:
-        """The attitude of :meth:`attitude` at one time as a ``wxyz`` quaternion: the turn Ω t about Z composed with the mounting."""
+        """The attitude of :meth:`attitude` at one time as a ``wxyz`` quaternion: the turn Ω t about Z composed with the
+        mounting."""
         half = 0.5 * self.spin_rate_rad_s * t_s
         c, s = math.cos(half), math.sin(half)
         w, x, y, z = self._mounting_wxyz
@@ -274,7 +276,7 @@ class ShaftSpin:
             angle_between_omega_and_H=np.full(n, self.angle_between_omega_and_H),
             kinetic_energy_centre_J=np.full(n, t_centre),
             kinetic_energy_about_centre_J=np.full(n, self.kinetic_energy_about_centre_J),
-        )  # fmt: skip
+        )
 
     def particles_at(self, state: SpinState) -> ParticleState:
         """The equivalent particles (:func:`equivalent_particles`) moving with the body in ``state``."""
@@ -341,7 +343,8 @@ NO_SPIN_ANGLE = "undefined (no spin: ω = 0 and H = 0)"
 
 
 class ShaftSpinModel(ClosedFormModel):
-    """A body at constant spin about a fixed shaft through G: H, its rate, the bearing moment and the energy in closed form."""
+    """A body at constant spin about a fixed shaft through G: H, its rate, the bearing moment and the energy in closed
+    form."""
 
     parameters = PARAMETERS
     series_units = {

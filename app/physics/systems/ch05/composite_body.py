@@ -19,7 +19,13 @@ import numpy as np
 
 from app.physics.bodies import inertia
 from app.physics.bodies.composite import (
-    MAX_PARTS, CompositeBody, body_place, combine, parts_from_records, shapes_schema, validate_records,
+    MAX_PARTS,
+    CompositeBody,
+    body_place,
+    combine,
+    parts_from_records,
+    shapes_schema,
+    validate_records,
 )
 from app.physics.core.parameters import Parameter, ParameterSet
 from app.physics.core.solution import Solution, Step, WorkedExample
@@ -96,14 +102,14 @@ def solve(inputs: Mapping[str, Any]) -> Solution:
         Step(
             "Parallel-axis theorem to the common centre of mass",
             _tensor_latex(r"\mathbf{I}_G")
-            + r" = \sum_k \left[\mathbf{I}_{G_k} + m_k\left(|\mathbf{d}_k|^2\,\mathbf{1} - \mathbf{d}_k\mathbf{d}_k^{\mathsf T}\right)\right],"
+            + r" = \sum_k \left[\mathbf{I}_{G_k} + m_k\left(|\mathbf{d}_k|^2\,\mathbf{1} - " r"\mathbf{d}_k\mathbf{d}_k^{\mathsf T}\right)\right],"
             r"\quad \mathbf{d}_k = \mathbf{r}_{G_k} - \mathbf{r}_G",
             {"I_G": body.inertia_cm_kg_m2},
             {"I_G": "kg·m²"},
         ),
         Step(
             "Inertia about the point P",
-            r"\mathbf{I}_P = \mathbf{I}_G + m\left(|\mathbf{d}|^2\,\mathbf{1} - \mathbf{d}\mathbf{d}^{\mathsf T}\right),"
+            r"\mathbf{I}_P = \mathbf{I}_G + m\left(|\mathbf{d}|^2\,\mathbf{1} - \mathbf{d}\mathbf{d}^{\mathsf " r"T}\right),"
             r"\quad \mathbf{d} = \mathbf{r}_G - \mathbf{r}_P",
             {"r_P": point, "I_P": inertia_point},
             {"r_P": "m", "I_P": "kg·m²"},

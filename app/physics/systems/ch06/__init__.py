@@ -1,4 +1,5 @@
-"""Chapter 6, Newton–Euler equations: bearing reactions of an unbalanced rotor, a mechanism's kinetics, the sliding ladder and impacts.
+"""Chapter 6, Newton–Euler equations: bearing reactions of an unbalanced rotor, a mechanism's kinetics, the sliding
+ladder and impacts.
 
 One concept per module: :mod:`.unbalanced_rotor`, :mod:`.mechanism_kinetics`,
 :mod:`.sliding_ladder`, :mod:`.impact` (the impulse law) with

@@ -42,7 +42,8 @@ order of two nearly simultaneous strikes matters).
 
 The Zeno cascade (ever shorter bounces in finite time) is cut off: when a
 struck end approaches or rebounds slower than :data:`REST_SPEED_M_S` and the bar is
-nearly flat (raised end at most :data:`FLAT_FRACTION` of L up), it is laid flat on the floor (mode ``RESTING``) and slides to a
+nearly flat (raised end at most :data:`FLAT_FRACTION` of L up), it is laid flat on the floor (mode ``RESTING``) and
+slides to a
 stop under Coulomb friction; if it is still tilted, the model stops there
 (mode ``SETTLED_ON_END``: staying in contact on one end, pivoting or sliding,
 is a continuous-contact motion this impact model does not follow). Every joule
@@ -70,13 +71,13 @@ from app.physics.core.energy import EnergyParts
 from app.physics.core.parameters import Parameter, ParameterError, ParameterSet
 from app.physics.solvers import Events, OdeSystem
 from app.physics.solvers.integrated_model import IntegratedModel, ModelLimit
-from app.physics.solvers.step_choice import AccuracyTarget
 from app.physics.solvers.kernels import (
     EVENTS_SIGNATURE,
     RESET_SIGNATURE,
     RHS_SIGNATURE,
     kernel,
 )
+from app.physics.solvers.step_choice import AccuracyTarget
 from app.physics.systems.ch06.impact import (
     IMPACT_OUT_SIZE,
     OUT_ENERGY_LOSS,
@@ -97,8 +98,8 @@ def _check(values: Mapping[str, Any]) -> None:
     if lowest < START_CLEARANCE_M:
         raise ParameterError(
             "drop_height_m",
-            f"must put the lower end at least {START_CLEARANCE_M * 1e3:g} mm above the floor: with L = {values['length_m']:g} m "
-            f"at {values['angle0_deg']:g}° the centre needs h₀ ≥ {values['drop_height_m'] - lowest + START_CLEARANCE_M:.4g} m",
+            f"must put the lower end at least {START_CLEARANCE_M * 1e3:g} mm above the floor: with L = " f"{values['length_m']:g} m "
+            f"at {values['angle0_deg']:g}° the centre needs h₀ ≥ " f"{values['drop_height_m'] - lowest + START_CLEARANCE_M:.4g} m",
         )
 
 
@@ -123,7 +124,7 @@ STATE_NAMES = (
     "x_m", "z_m", "theta_rad", "vx_m_s", "vz_m_s", "theta_dot_rad_s",
     "mode", "impact_count", "energy_lost_J", "last_energy_loss_J", "last_impact_t_s",
     "impulse_normal_a_N_s", "impulse_tangential_a_N_s", "impulse_normal_b_N_s", "impulse_tangential_b_N_s", "slip_state",
-)  # fmt: skip
+)
 #: Values of the ``mode`` slot.
 FLIGHT, RESTING, SETTLED_ON_END = 0.0, 1.0, 2.0
 MODE_NAMES = {FLIGHT: "flight", RESTING: "resting", SETTLED_ON_END: "settled on one end"}
@@ -190,7 +191,8 @@ def contact_velocity_m_s(y: np.ndarray, r: np.ndarray) -> np.ndarray:
 
 @register_jitable
 def inverse_effective_mass(mass_kg: float, inertia_kg_m2: float, r: np.ndarray) -> np.ndarray:
-    """(2, 2) W (1/kg) of the point at lever arm ``r`` in [normal, tangent]: ``(1/m) 1 + q qᵀ / I``, ``q = (r_x, −r_z)``."""
+    """(2, 2) W (1/kg) of the point at lever arm ``r`` in [normal, tangent]: ``(1/m) 1 + q qᵀ / I``,
+    ``q = (r_x, −r_z)``."""
     q = np.array([r[0], -r[1]])
     return np.eye(2) / mass_kg + np.outer(q, q) / inertia_kg_m2
 
@@ -215,7 +217,8 @@ def _potential_J(z_m, p):
 
 @register_jitable
 def _kinetic_plus_potential_J(vx_m_s, vz_m_s, omega_rad_s, z_m, p):
-    """Kinetic + potential energy (J, floor at z = 0) from the velocities and centre height (scalars or arrays alike)."""
+    """Kinetic + potential energy (J, floor at z = 0) from the velocities and centre height (scalars or arrays
+    alike)."""
     return _translational_kinetic_J(vx_m_s, vz_m_s, p) + _rotational_kinetic_J(omega_rad_s, p) + _potential_J(z_m, p)
 
 
@@ -230,7 +233,7 @@ def energy_parts(y: np.ndarray, p: np.ndarray) -> EnergyParts:
     return EnergyParts(
         _potential_J(y[:, Z], p), translational_kinetic_J=_translational_kinetic_J(y[:, VX], y[:, VZ], p),
         rotational_kinetic_J=_rotational_kinetic_J(y[:, OMEGA], p),
-    )  # fmt: skip
+    )
 
 
 def angular_momentum_about_point(y: np.ndarray, p: np.ndarray, point_m: np.ndarray) -> float:
@@ -298,7 +301,8 @@ def _end_height_and_approach(y, length_m, end):
 
 @register_jitable
 def floor_impacts(y, p, t_s, end):
-    """The reset map at the floor: resolve the impact(s) starting at ``end`` and update the ledger in ``y`` (16,) in place.
+    """The reset map at the floor: resolve the impact(s) starting at ``end`` and update the ledger in ``y`` (16,) in
+    place.
 
     After the striking end, the other end is checked too (it may be touching and now
     approaching); at most a few rounds. An impact that comes in or leaves slower than
@@ -371,7 +375,8 @@ def _settle(y, p):
 # -- compiled kernels --------------------------------------------------------------------
 @kernel(RHS_SIGNATURE)
 def bar_rhs(t, y, p, dydt):
-    """Flight: free fall and constant spin. Resting: sliding on the floor, μ g deceleration, friction work in the ledger."""
+    """Flight: free fall and constant spin. Resting: sliding on the floor, μ g deceleration, friction work in the
+    ledger."""
     for i in range(y.shape[0]):
         dydt[i] = 0.0
     if y[6] == 0.0:  # FLIGHT
@@ -398,7 +403,8 @@ def bar_events(t, y, p, g_out):
 
 @register_jitable
 def reset_state(y, p, t_s, index):
-    """Event ``index``: an end reaches the floor (impacts), or the resting bar stops sliding (ẋ = 0); ``y`` (16,) in place."""
+    """Event ``index``: an end reaches the floor (impacts), or the resting bar stops sliding (ẋ = 0); ``y`` (16,) in
+    place."""
     if index == EVENT_STOPS_SLIDING:
         y[VX] = 0.0
     else:
@@ -449,7 +455,7 @@ def mode_message(params: Mapping[str, Any], y: np.ndarray) -> str:
     if mode == SETTLED_ON_END:
         return (
             f"Settled on one end at t = {y[LAST_T]:.2f} s: the last impact left that end on the floor, tilted "
-            f"θ = {math.degrees(math.remainder(float(y[THETA]), 2 * math.pi)):.1f}°, at rest. From here the bar would pivot or "
+            f"θ = {math.degrees(math.remainder(float(y[THETA]), 2 * math.pi)):.1f}°, at rest. From here the bar " "would pivot or "
             "slide down in continuous contact, which this impact model does not follow, so the motion stops here."
         )
     return f"In flight between impacts; e = {params['restitution']:g}, μ = {params['friction_coefficient']:g}."
@@ -479,7 +485,8 @@ class BouncingBar(IntegratedModel):
         return series(params, states)
 
     def model_limit(self, params, t_s, states):
-        """The frame where the bar settled on one end (mode ``SETTLED_ON_END``): status ``settled``, the readout's message."""
+        """The frame where the bar settled on one end (mode ``SETTLED_ON_END``): status ``settled``, the readout's
+        message."""
         settled = np.atleast_2d(states)[:, MODE] == SETTLED_ON_END
         if not settled.any():
             return None

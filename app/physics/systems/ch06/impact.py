@@ -68,7 +68,7 @@ def _check_inputs(W: np.ndarray, v: np.ndarray, restitution: float, friction_coe
     if not (math.isfinite(friction_coefficient) and friction_coefficient >= 0.0):
         raise ValueError(f"friction_coefficient: must be a finite number ≥ 0 (got {friction_coefficient!r})")
     if not v[0] < 0.0:
-        raise ValueError(f"contact_velocity_m_s: the bodies are not approaching at the contact (vn = {v[0]:g} m/s ≥ 0), so there is no impact")
+        raise ValueError(f"contact_velocity_m_s: the bodies are not approaching at the contact (vn = {v[0]:g} m/s ≥ 0), so " "there is no impact")
 
 
 @register_jitable

@@ -43,8 +43,8 @@ from app.physics.bodies.inertia import parallel_axis, slender_rod
 from app.physics.core.energy import EnergyParts
 from app.physics.core.parameters import Parameter, ParameterSet
 from app.physics.solvers.integrated_model import IntegratedModel
-from app.physics.solvers.step_choice import AccuracyTarget
 from app.physics.solvers.kernels import RHS_SIGNATURE, kernel
+from app.physics.solvers.step_choice import AccuracyTarget
 from app.physics.solvers.system import OdeSystem
 from app.physics.systems.ch04 import slider_crank as kinematics
 from app.physics.systems.earth import STANDARD_GRAVITY_M_S2
@@ -115,7 +115,8 @@ class SliderCrankLinks:
         return float(slender_rod(self.rod_mass_kg, self.mechanism.rod_m)[0, 0])
 
     def kernel_parameters(self, *, drive: str, drive_torque_N_m: float) -> np.ndarray:
-        """``p = [torque drive (0/1), r, l, e, m_crank, m_rod, m_slider, g, τ, I_O, I_G₂]`` for :func:`mechanism_rhs`."""
+        """``p = [torque drive (0/1), r, l, e, m_crank, m_rod, m_slider, g, τ, I_O, I_G₂]`` for
+        :func:`mechanism_rhs`."""
         mech = self.mechanism
         return np.array(
             [
@@ -123,7 +124,7 @@ class SliderCrankLinks:
                 self.crank_mass_kg, self.rod_mass_kg, self.slider_mass_kg, self.g_m_s2, drive_torque_N_m,
                 self.crank_inertia_about_pivot_kg_m2, self.rod_inertia_about_centre_kg_m2,
             ]
-        )  # fmt: skip
+        )
 
 
 @dataclass(frozen=True)
@@ -157,7 +158,9 @@ def _normal(angle: np.ndarray) -> np.ndarray:
     return np.stack([-np.sin(angle), np.cos(angle)], axis=-1)
 
 
-def link_motion(links: SliderCrankLinks, theta: np.ndarray, omega: np.ndarray, alpha: np.ndarray) -> LinkMotion:
+def link_motion(
+    links: SliderCrankLinks, theta: np.ndarray | float, omega: np.ndarray | float, alpha: np.ndarray | float
+) -> LinkMotion:
     """Every link's motion from the crank's angle θ (rad), speed ω (rad/s) and acceleration α (rad/s²), each (N,),
     by the chapter-4 loop closure (:class:`~app.physics.systems.ch04.slider_crank.SliderCrank`)."""
     mech = links.mechanism
@@ -220,7 +223,7 @@ def potential_energy_J(links: SliderCrankLinks, motion: LinkMotion) -> np.ndarra
     return links.g_m_s2 * heights
 
 
-def generalized_inertia_kg_m2(links: SliderCrankLinks, theta: np.ndarray) -> np.ndarray:
+def generalized_inertia_kg_m2(links: SliderCrankLinks, theta: np.ndarray | float) -> np.ndarray:
     """M(θ) = 2T/θ̇² (kg·m²), shape (N,): the inertia the crank feels, from the kinetic energy at unit crank speed."""
     theta = np.atleast_1d(np.asarray(theta, dtype=float))
     motion = link_motion(links, theta, np.ones_like(theta), np.zeros_like(theta))
@@ -281,7 +284,7 @@ def newton_euler(
     theta: np.ndarray,
     omega: np.ndarray,
     *,
-    crank_acceleration_rad_s2: np.ndarray | None = None,
+    crank_acceleration_rad_s2: np.ndarray | float | None = None,
     drive_torque_N_m: np.ndarray | None = None,
 ) -> PinForces:
     """Pin forces, guide force and the torque or the crank acceleration, by one 8×8 linear solve per instant.
@@ -370,7 +373,8 @@ def speed_limit_rad_s(params: Mapping[str, Any]) -> float:
 
 
 def energy_scale_J(params: Mapping[str, Any]) -> float:
-    """Energy in play (J): the initial kinetic energy, the potential's range over a turn and one turn of the torque's work."""
+    """Energy in play (J): the initial kinetic energy, the potential's range over a turn and one turn of the torque's
+    work."""
     links = SliderCrankLinks.from_params(params)
     theta = np.linspace(0.0, 2.0 * math.pi, 73)
     potential = potential_energy_J(links, link_motion(links, theta, np.zeros_like(theta), np.zeros_like(theta)))
@@ -403,7 +407,8 @@ class MechanismKinetics(IntegratedModel):
     auto_methods = ("rk4",)  # the simulate contract answers with RK4; the target sets its step
 
     def solution_error(self, params: Mapping[str, Any], states: np.ndarray, reference: np.ndarray) -> np.ndarray:
-        """(N,) largest of |Δθ|/2π, |Δω|/ω_scale and |ΔW|/E_scale between ``states`` and ``reference`` (N, 3), dimensionless."""
+        """(N,) largest of |Δθ|/2π, |Δω|/ω_scale and |ΔW|/E_scale between ``states`` and ``reference`` (N, 3),
+        dimensionless."""
         difference = np.abs(np.asarray(states, dtype=float) - np.asarray(reference, dtype=float))
         scales = np.array([2.0 * math.pi, max(speed_limit_rad_s(params), 1e-12), energy_scale_J(params)])
         return np.max(difference / scales, axis=1)

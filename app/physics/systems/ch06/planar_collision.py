@@ -36,7 +36,8 @@ APPROACH_ROUND_OFF = 1e-12
 
 @dataclass(frozen=True)
 class Disk:
-    """A uniform disk in the plane: mass (kg), radius (m), its centre's position and velocity (m, m/s, (3,)), spin (rad/s about z)."""
+    """A uniform disk in the plane: mass (kg), radius (m), its centre's position and velocity (m, m/s, (3,)), spin
+    (rad/s about z)."""
 
     mass_kg: float
     radius_m: float
@@ -68,7 +69,8 @@ class Disk:
         return self.velocity_m_s + self.spin_rad_s * np.array([-arm[1], arm[0], 0.0])
 
     def after_impulse(self, impulse_N_s: np.ndarray, at_m: np.ndarray) -> Disk:
-        """The disk just after an impulse (N·s, (3,)) applied at ``at_m``: ``Δv = P/m``, ``Δω = ((r − r_G) × P)_z / I``."""
+        """The disk just after an impulse (N·s, (3,)) applied at ``at_m``: ``Δv = P/m``,
+        ``Δω = ((r − r_G) × P)_z / I``."""
         arm = np.asarray(at_m, dtype=float) - self.centre_m
         spin_change = float(arm[0] * impulse_N_s[1] - arm[1] * impulse_N_s[0]) / self.inertia_kg_m2
         return Disk(self.mass_kg, self.radius_m, self.centre_m, self.velocity_m_s + impulse_N_s / self.mass_kg, self.spin_rad_s + spin_change)
@@ -138,7 +140,7 @@ def collide(inputs: Mapping[str, Any]) -> DiskCollision:
     impact = resolve_impact(
         inverse_effective_mass=W, contact_velocity_m_s=v_contact,
         restitution=inputs["restitution"], friction_coefficient=inputs["friction_coefficient"],
-    )  # fmt: skip
+    )
     impulse = impact.impulse_N_s[0] * normal + impact.impulse_N_s[1] * tangent
     after = (disk1.after_impulse(-impulse, contact), disk2.after_impulse(impulse, contact))
     return DiskCollision((disk1, disk2), after, normal, tangent, contact, W, v_contact, impact)
@@ -153,7 +155,7 @@ def _check(values: Mapping[str, Any]) -> None:
     if not vn < -APPROACH_ROUND_OFF * math.hypot(vn, vt):
         raise ParameterError(
             "v2_m_s",
-            f"the disks are not approaching at contact: (v2 − v1)·n = {vn:.4g} m/s, not below zero along the line of centres, "
+            f"the disks are not approaching at contact: (v2 − v1)·n = {vn:.4g} m/s, not below zero along the " "line of centres, "
             "so there is no impact; make v2 − v1 point against n",
         )
 
@@ -186,7 +188,7 @@ def solve(inputs: Mapping[str, Any]) -> Solution:
     steps = (
         Step(
             "Contact frame and contact point",
-            r"\bar n = \cos\beta\,\bar i + \sin\beta\,\bar j,\quad \bar t = \bar k\times\bar n,\quad \bar r_C = r_1\,\bar n",
+            r"\bar n = \cos\beta\,\bar i + \sin\beta\,\bar j,\quad \bar t = \bar k\times\bar n,\quad \bar r_C = " r"r_1\,\bar n",
             {"n": c.normal, "t": c.tangent, "r_C": c.contact_point_m},
             {"n": "", "t": "", "r_C": "m"},
         ),
@@ -200,13 +202,13 @@ def solve(inputs: Mapping[str, Any]) -> Solution:
         Step(
             "Inverse effective mass at the contact (I = ½ m r²)",
             r"\Delta\begin{bmatrix}v_n\\v_t\end{bmatrix} = W\begin{bmatrix}P_n\\P_t\end{bmatrix},\quad "
-            r"W = \begin{bmatrix}\frac1{m_1}+\frac1{m_2} & 0\\ 0 & \frac1{m_1}+\frac1{m_2}+\frac{r_1^2}{I_1}+\frac{r_2^2}{I_2}\end{bmatrix}",
+            r"W = \begin{bmatrix}\frac1{m_1}+\frac1{m_2} & 0\\ 0 & " r"\frac1{m_1}+\frac1{m_2}+\frac{r_1^2}{I_1}+\frac{r_2^2}{I_2}\end{bmatrix}",
             {"I_1": d1.inertia_kg_m2, "I_2": d2.inertia_kg_m2, "W_nn": W[0, 0], "W_tt": W[1, 1]},
             {"I_1": "kg·m²", "I_2": "kg·m²", "W_nn": "1/kg", "W_tt": "1/kg"},
         ),
         Step(
             "Impulse (energetic restitution; friction stops the slip or caps Pt at μ Pn)",
-            r"P_n = (1+e)\,\frac{-v_n}{W_{nn}},\quad P_t = -\operatorname{sign}(v_t)\,\min\!\left(\mu P_n,\ \frac{|v_t|}{W_{tt}}\right)",
+            r"P_n = (1+e)\,\frac{-v_n}{W_{nn}},\quad P_t = -\operatorname{sign}(v_t)\,\min\!\left(\mu " r"P_n,\ \frac{|v_t|}{W_{tt}}\right)",
             {"e": e, "mu": mu, "P_n": p_n, "P_t": p_t, "P": c.impulse_N_s},
             {"e": "", "mu": "", "P_n": "N·s", "P_t": "N·s", "P": "N·s"},
         ),

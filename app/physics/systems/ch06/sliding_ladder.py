@@ -54,13 +54,13 @@ from app.physics.core.contact_energy import ContactEnergyBudget
 from app.physics.core.parameters import Parameter, ParameterSet
 from app.physics.solvers import DormandPrince, Events, OdeSystem, simulate
 from app.physics.solvers.integrated_model import IntegratedModel
-from app.physics.solvers.step_choice import AccuracyTarget
 from app.physics.solvers.kernels import (
     EVENTS_SIGNATURE,
     RESET_SIGNATURE,
     RHS_SIGNATURE,
     kernel,
 )
+from app.physics.solvers.step_choice import AccuracyTarget
 
 #: State slots: centre of mass x (m), angle from the floor (rad), their rates (m/s, rad/s),
 #: friction work done so far (J, ≥ 0), impact loss so far (J, ≥ 0), phase code, sliding direction of B (±1).
@@ -364,7 +364,7 @@ def ladder_system(params: Mapping[str, Any]) -> OdeSystem:
             # put several checks inside every phase.
             max_step_s=0.02,
         ),
-    )  # fmt: skip
+    )
 
 
 @dataclass(frozen=True)

@@ -34,7 +34,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any, Literal
 
 import numpy as np
@@ -81,11 +81,11 @@ class DiskOnShaft:
         if not 0.0 <= self.disk_position_m <= self.bearing_span_m:
             raise ParameterError(
                 "disk_position_m",
-                f"the disk ({self.disk_position_m:g} m from A) must sit between the bearings (0 to {self.bearing_span_m:g} m)",
+                f"the disk ({self.disk_position_m:g} m from A) must sit between the bearings (0 to " f"{self.bearing_span_m:g} m)",
             )
         if not 0.0 <= self.eccentricity_m < self.disk_radius_m:
             raise ParameterError(
-                "eccentricity_m", f"the eccentricity ({self.eccentricity_m:g} m) must be less than the disk's radius ({self.disk_radius_m:g} m)"
+                "eccentricity_m", f"the eccentricity ({self.eccentricity_m:g} m) must be less than the disk's radius " f"({self.disk_radius_m:g} m)"
             )
 
     @property
@@ -158,7 +158,8 @@ def couple_imbalance_kg_m2(parts: tuple[RotorPart, ...]) -> np.ndarray:
 
 def imbalance_class(parts: tuple[RotorPart, ...], *, mass_kg: float, radius_m: float) -> ImbalanceClass:
     """Which imbalance the parts have: ``static`` (G off the shaft, the shaft a principal axis at G), ``dynamic``
-    (G on the shaft, products of inertia with it at G), ``both``, or ``balanced``; judged against ``m r`` and ``m r²``."""
+    (G on the shaft, products of inertia with it at G), ``both``, or ``balanced``; judged against ``m r`` and
+    ``m r²``."""
     static = float(np.hypot(*first_moment_kg_m(parts))) > BALANCED_BELOW * mass_kg * radius_m
     dynamic = float(np.hypot(*couple_imbalance_kg_m2(parts))) > BALANCED_BELOW * mass_kg * radius_m**2
     return "both" if static and dynamic else "static" if static else "dynamic" if dynamic else "balanced"
@@ -200,7 +201,7 @@ class UnbalancedRotor:
         disk = DiskOnShaft(
             params["disk_mass_kg"], params["disk_radius_m"], params["eccentricity_m"], math.radians(params["skew_deg"]),
             params["bearing_span_m"], params["disk_position_m"],
-        )  # fmt: skip
+        )
         span = disk.bearing_span_m
         planes = (params["correction_plane_1_m"], params["correction_plane_2_m"])
         for name, x in zip(("correction_plane_1_m", "correction_plane_2_m"), planes, strict=True):
@@ -209,7 +210,7 @@ class UnbalancedRotor:
         if abs(planes[1] - planes[0]) < MIN_PLANE_SEPARATION * span:
             raise ParameterError(
                 "correction_plane_2_m",
-                f"the two correction planes must be at least {MIN_PLANE_SEPARATION * span:g} m apart (2% of the bearing span)",
+                f"the two correction planes must be at least {MIN_PLANE_SEPARATION * span:g} m apart (2% of the " "bearing span)",
             )
         correction = two_plane_correction((disk.part(),), planes_m=planes, radius_m=params["correction_radius_m"])
         return cls(disk, params["shaft_speed_rad_s"], params["g_m_s2"], correction, params["balanced"] == "on")
@@ -253,7 +254,8 @@ class UnbalancedRotor:
 
 
 def harmonic_coefficients(vector_rotor: np.ndarray) -> np.ndarray:
-    """(3, 3) matrix K with world components ``K @ (1, cos φ, sin φ)`` of a rotor-frame vector (shape (3,)) at spin φ."""
+    """(3, 3) matrix K with world components ``K @ (1, cos φ, sin φ)`` of a rotor-frame vector (shape (3,)) at spin
+    φ."""
     x, y, z = vector_rotor
     return np.array([[x, 0.0, 0.0], [0.0, y, -z], [0.0, z, y]])
 
@@ -273,6 +275,8 @@ class SteadyLoads:
     mass_moment_kg_m: np.ndarray
     bearing_A_rotating_rotor_N: np.ndarray
     bearing_B_rotating_rotor_N: np.ndarray
+    #: K (13, 3), rows A, B rotating; A, B total; T: set on construction from the fields above.
+    _coefficients: np.ndarray = field(init=False, repr=False, compare=False)
 
     @property
     def weight_shares_N(self) -> tuple[float, float]:
@@ -326,7 +330,7 @@ PARAMETERS = ParameterSet(
         Parameter("correction_plane_2_m", "m", 0.55, 0.0, 5.0, "Position x₂ of the second correction plane from A", "plane 2 x₂", step=0.01),
         Parameter("correction_radius_m", "m", 0.15, 0.01, 2.0, "Radius ρ at which the correction masses are fixed", "correction radius ρ", step=0.01),
         Parameter("balanced", "", "off", kind="choice", choices=("off", "on"), label="correction masses",
-                  description="Fit the two correction masses that balance the rotor"),  # fmt: skip
+                  description="Fit the two correction masses that balance the rotor"),
     ),
     check=_check,
 )
@@ -337,7 +341,7 @@ class UnbalancedRotorModel(ClosedFormModel):
 
     parameters = PARAMETERS
     series_units = {"spin_angle": "rad", "bearing_A_force_N": "N", "bearing_B_force_N": "N", "driving_torque_Nm": "N·m"}
-    description = "Newton–Euler for a rigid rotor at constant speed: the inertial loads are fixed in the rotor frame (closed form)"
+    description = ("Newton–Euler for a rigid rotor at constant speed: the inertial loads are fixed in the rotor " "frame (closed form)")
 
     def evaluate(self, params: Mapping[str, Any], t_s: np.ndarray) -> ClosedFormSolution:
         loads = UnbalancedRotor.from_params(params).at(t_s)

@@ -38,4 +38,4 @@ SYSTEM = SystemDescription(
         Reaction("hoop", on="bead", point=bead, forces=(-bead / R, vector(-sympy.sin(angle), sympy.cos(angle), 0))),
     ),
     assumptions="A frictionless bead (a particle) on a rigid hoop whose spin is held at Ω whatever the bead does.",
-)  # fmt: skip
+)

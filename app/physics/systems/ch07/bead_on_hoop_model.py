@@ -87,7 +87,7 @@ class BeadOnHoopMotion(DerivedModel):
     def energy_note(self, params: Mapping[str, Any]) -> str | None:
         if float(params["hoop_speed_rad_s"]) == 0.0:
             return None
-        return "the motor that holds the hoop's spin does work that is not tracked: dissipated shows E(0) − E(t), not a loss"
+        return ("the motor that holds the hoop's spin does work that is not tracked: dissipated shows E(0) − " "E(t), not a loss")
 
     def invariants(self, params: Mapping[str, Any], states: np.ndarray) -> dict[str, np.ndarray]:
         """The Jacobi integral (J); T and V do not depend on t itself here, so t = 0 is used."""

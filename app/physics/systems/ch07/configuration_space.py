@@ -270,7 +270,8 @@ class ParallelParking:
         return q + (progress - leg) * velocity, velocity
 
     def net_displacement(self, heading_rad: float) -> np.ndarray:
-        """End minus start (3,) (m, m, rad) of one manoeuvre begun at heading ψ₀: s (cos ψ₀ − cos(ψ₀+α), sin ψ₀ − sin(ψ₀+α), 0)."""
+        """End minus start (3,) (m, m, rad) of one manoeuvre begun at heading ψ₀: s (cos ψ₀ − cos(ψ₀+α), sin ψ₀ −
+        sin(ψ₀+α), 0)."""
         s, alpha = self.drive_distance_m, self.turn_angle_rad
         return s * np.array([math.cos(heading_rad) - math.cos(heading_rad + alpha), math.sin(heading_rad) - math.sin(heading_rad + alpha), 0.0])
 
@@ -285,5 +286,6 @@ class ParallelParking:
         return self.drive_distance_m * (1.0 - math.cos(self.turn_angle_rad))
 
     def leading_order_displacement(self, heading_rad: float) -> np.ndarray:
-        """s α [drive, turn](q₀) (3,): the net motion to second order; with s = L ε and α = ε it is ε² L [drive, turn]."""
+        """s α [drive, turn](q₀) (3,): the net motion to second order; with s = L ε and α = ε it is ε² L [drive,
+        turn]."""
         return self.drive_distance_m * self.turn_angle_rad * drive_turn_bracket(np.array([0.0, 0.0, heading_rad]))

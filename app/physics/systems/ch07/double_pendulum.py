@@ -43,4 +43,4 @@ SYSTEM = SystemDescription(
         Reaction("planeB", on="B", point=second, forces=(plane_normal,)),
     ),
     assumptions="Point masses on rigid massless rods, frictionless pins, motion in one vertical plane.",
-)  # fmt: skip
+)

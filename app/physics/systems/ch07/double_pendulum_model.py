@@ -62,7 +62,7 @@ class DoublePendulumMotion(DerivedModel):
             "theta1_rad": states[:, 0], "theta2_rad": states[:, 1],
             "theta1_rate_rad_s": states[:, 2], "theta2_rate_rad_s": states[:, 3],
             "energy_J": self.energy_J(params, t_s, states),
-        }  # fmt: skip
+        }
 
     def invariants(self, params: Mapping[str, Any], states: np.ndarray) -> dict[str, np.ndarray]:
         return {"energy": self.energy_J(params, np.zeros(len(states)), states)}

@@ -55,4 +55,4 @@ SYSTEM = SystemDescription(
         Reaction("plane", on="bob", point=bob, forces=(ey,)),
     ),
     assumptions="Frictionless rail and pin, massless rod, the cart and the bob as particles, a linear spring.",
-)  # fmt: skip
+)

@@ -50,7 +50,10 @@ def motion_with_work_kernel(formulation: str) -> Kernel:
 
         return rhs
 
-    compiled = numba.cfunc(RHS_SIGNATURE, nopython=True, error_model="numpy")(with_work(motion_compiled))
+    # numba's stubs leave out nopython, which cfunc still reads: without it object mode is allowed.
+    compiled = numba.cfunc(RHS_SIGNATURE, nopython=True, error_model="numpy")(  # type: ignore[call-arg]
+        with_work(motion_compiled)
+    )
     return Kernel(compiled=compiled, python=with_work(motion_python))
 
 
@@ -69,20 +72,20 @@ class CartPendulumMotion(DerivedModel):
     series_units = {
         "x_m": "m", "theta_rad": "rad", "x_rate_m_s": "m/s", "theta_rate_rad_s": "rad/s",
         "force_N": "N", "force_work_J": "J", "energy_J": "J",
-    }  # fmt: skip
+    }
     invariant_units = {"energy_balance": "J"}
 
     def initial_state(self, params: Mapping[str, Any]) -> np.ndarray:
         return np.array([
             float(params["x0_m"]), math.radians(float(params["theta_0_deg"])),
             float(params["x_rate_0_m_s"]), math.radians(float(params["theta_rate_0_deg_s"])), 0.0,
-        ])  # fmt: skip
+        ])
 
     def system(self, params: Mapping[str, Any]) -> OdeSystem:
         return OdeSystem(
             rhs=motion_with_work_kernel(params.get("formulation", "lagrange")), parameters=self.parameter_array(params),
             state_names=("x", "theta", "x_rate", "theta_rate", "force_work"),
-        )  # fmt: skip
+        )
 
     def fastest_rate_rad_s(self, params: Mapping[str, Any], state: np.ndarray) -> float:
         """The motion's fastest rate (the work slot adds none), at least the drive's Ω (rad/s)."""
@@ -102,7 +105,7 @@ class CartPendulumMotion(DerivedModel):
             "x_m": states[:, 0], "theta_rad": states[:, 1], "x_rate_m_s": states[:, 2], "theta_rate_rad_s": states[:, 3],
             "force_N": np.asarray(drive_force_N(self.parameter_array(params), t_s), dtype=float) * np.ones(len(t_s)),
             "force_work_J": states[:, WORK_SLOT], "energy_J": self.energy_J(params, t_s, states),
-        }  # fmt: skip
+        }
 
     def drive_work_J(self, params: Mapping[str, Any], states: np.ndarray) -> np.ndarray:
         """W (J): the work of the force on the cart, integrated in the state."""

@@ -1,4 +1,5 @@
-"""The simple pendulum: a point mass on a massless rod in a vertical plane (x horizontal, z up; θ from the downward vertical)."""
+"""The simple pendulum: a point mass on a massless rod in a vertical plane (x horizontal, z up; θ from the downward
+vertical)."""
 
 from __future__ import annotations
 
@@ -15,7 +16,7 @@ PENDULUM_PARAMETERS = ParameterSet((
     parameter("mass_kg", "kg", 1.0, low=0.01, high=100.0, label="m", description="Mass of the bob"),
     parameter("length_m", "m", 1.0, low=0.05, high=10.0, label="l", description="Length of the rod"),
     parameter("g_m_s2", "m/s²", 9.81, low=0.0, high=100.0, label="g", description="Gravitational acceleration"),
-))  # fmt: skip
+))
 
 SYSTEM = SystemDescription(
     id="simple-pendulum",
@@ -31,4 +32,4 @@ SYSTEM = SystemDescription(
         Reaction("plane", on="bob", point=bob, forces=(vector(0, 1, 0),)),
     ),
     assumptions="A point mass on a rigid massless rod, frictionless pivot, motion in one vertical plane.",
-)  # fmt: skip
+)

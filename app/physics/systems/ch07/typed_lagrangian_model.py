@@ -33,9 +33,13 @@ from app.physics.core.parameters import Parameter, ParameterError, ParameterSet
 from app.physics.math.expressions import check_parameter_name
 from app.physics.mechanics.description import TIME, SystemDescription
 from app.physics.mechanics.engine import Derived, derived
-from app.physics.mechanics.mass_matrix import SingularCrossing, first_singular_crossing, mass_matrices, not_positive_definite
+from app.physics.mechanics.mass_matrix import (
+    SingularCrossing,
+    first_singular_crossing,
+    mass_matrices,
+    not_positive_definite,
+)
 from app.physics.mechanics.model import DerivedModel, energy_functions
-from app.physics.solvers.integrated_model import ModelLimit
 from app.physics.mechanics.typed import (
     COORDINATE_NAMES,
     MAX_PARAMETER_VALUE,
@@ -45,6 +49,7 @@ from app.physics.mechanics.typed import (
     runner,
     typed_system,
 )
+from app.physics.solvers.integrated_model import ModelLimit
 
 #: The defaults: a double pendulum of two equal bobs m on two equal rods l (q1, q2 from the downward vertical).
 DEFAULT_KINETIC_ENERGY = "m*l^2*(2*q1d^2 + q2d^2 + 2*cos(q1 - q2)*q1d*q2d)/2"
@@ -142,7 +147,8 @@ def _request_key(request: Mapping[str, Any]) -> str:
 
 
 def prepare_typed_lagrangian(request: Mapping[str, Any]) -> PreparedLagrangian:
-    """Derive (bounded, :func:`derive_typed_bounded`) and compile (bounded) a typed Lagrangian, once per request per process.
+    """Derive (bounded, :func:`derive_typed_bounded`) and compile (bounded) a typed Lagrangian, once per request per
+    process.
 
     Raises ParameterError naming the field for a bad formula, a singular mass matrix or
     a derivation over its bounds (``kinetic_energy``), as the whole-set check must; WorkBusy or WorkInterrupted
@@ -161,13 +167,14 @@ def prepare_typed_lagrangian(request: Mapping[str, Any]) -> PreparedLagrangian:
     except (WorkRefused, ValueError) as error:
         raise ParameterError("kinetic_energy", str(error)) from None
     system = typed_system(request["coordinates"], request["kinetic_energy"], request["potential_energy"], request["parameters"])
+    assert system.kinetic_energy is not None  # typed_system always gives T as typed
     result = derived(system, "lagrange")
     result.kernel()
     prepared = PreparedLagrangian(
         system=system, derived=result, parameter_values=tuple(system.parameter_array(request["parameters"])),
         explicit_time=bool(system.kinetic_energy.has(TIME) or system.extra_potential.has(TIME)),
         derive_s=float(answer["derive_s"]), cached=bool(answer["cached"]), compile_s=float(compile_s),
-    )  # fmt: skip
+    )
     with _prepared_lock:
         _prepared[key] = prepared
         while len(_prepared) > PREPARED_ENTRIES:
@@ -199,7 +206,8 @@ def check_typed_lagrangian(values: Mapping[str, Any]) -> None:
 
 
 def start_mass_matrix(prepared: PreparedLagrangian, start: np.ndarray) -> np.ndarray:
-    """∂²T/∂q̇² (n, n) at the state (q, q̇) ``start`` and t = 0, from T numerically (:mod:`~app.physics.mechanics.mass_matrix`)."""
+    """∂²T/∂q̇² (n, n) at the state (q, q̇) ``start`` and t = 0, from T numerically
+    (:mod:`~app.physics.mechanics.mass_matrix`)."""
     n = len(prepared.system.coordinates)
     kinetic, _ = energy_functions(prepared.system)
     return mass_matrices(kinetic, np.zeros(1), start[:n, None], start[n : 2 * n, None], np.array(prepared.parameter_values))[0]
@@ -219,9 +227,9 @@ def singular_message(system: SystemDescription, t_before_s: float, t_after_s: fl
         f"becomes singular (the inertia along {rate} vanishes)"
     )
     return (
-        f"Stopped at t = {t_before_s:.2f} s: before t = {t_after_s:.2f} s the motion reaches {where}, where the mass matrix "
+        f"Stopped at t = {t_before_s:.2f} s: before t = {t_after_s:.2f} s the motion reaches {where}, where the " "mass matrix "
         f"∂²T/∂q̇² {lost}. There "
-        f"Lagrange's equations cannot give the accelerations: the coordinates themselves fail (as polar coordinates do at "
+        "Lagrange's equations cannot give the accelerations: the coordinates themselves fail (as polar " "coordinates do at "
         f"r = 0), and the motion beyond is not this Lagrangian's."
     )
 
@@ -234,7 +242,7 @@ class TypedLagrangianMotion(DerivedModel):
             Parameter("coordinates", "", 2, 1, 3, "How many generalized coordinates: q1, q1…q2 or q1…q3", "n", kind="int", step=1),
             Parameter(
                 "kinetic_energy", "J", DEFAULT_KINETIC_ENERGY, kind="text", max_length=MAX_ENERGY_LENGTH, label="T",
-                description="Kinetic energy in q1…q3, their rates q1d…q3d, t and your constants; + - * / ^ ( ) sqrt sin cos tan exp log pi",
+                description=("Kinetic energy in q1…q3, their rates q1d…q3d, t and your constants; + - * / ^ ( ) " "sqrt sin cos tan exp log pi"),
             ),
             Parameter(
                 "potential_energy", "J", DEFAULT_POTENTIAL_ENERGY, kind="text", max_length=MAX_ENERGY_LENGTH, label="V",
@@ -242,21 +250,22 @@ class TypedLagrangianMotion(DerivedModel):
             ),
             Parameter(
                 "parameters", "", DEFAULT_PARAMETERS, kind="text", max_length=200, label="constants", parse=parse_constants,
-                description=f"Named constants, comma-separated: name = number (at most {MAX_PARAMETERS}), e.g. m = 1, l = 0.5, g = 9.81",
+                description=(f"Named constants, comma-separated: name = number (at most {MAX_PARAMETERS}), e.g. m " "= 1, l = 0.5, g = 9.81"),
             ),
             Parameter("q0_rad", "rad", [1.0, 0.0, 0.0], -100.0, 100.0, "Initial q1, q2, q3 (only the first n are used)", "q₀", kind="vector"),
             Parameter("qd0_rad_s", "rad/s", [0.0, 0.0, 0.0], -1000.0, 1000.0, "Initial rates q̇1, q̇2, q̇3 (only the first n are used)", "q̇₀", kind="vector"),
         ),
         check=check_typed_lagrangian,
-    )  # fmt: skip
+    )
     series_units = {
         **{f"{q}_rad": "rad" for q in COORDINATE_NAMES}, **{f"{q}_rate_rad_s": "rad/s" for q in COORDINATE_NAMES},
         "kinetic_energy_J": "J", "potential_energy_J": "J", "energy_J": "J", "jacobi_integral_J": "J",
-    }  # fmt: skip
+    }
     invariant_units = {"jacobi_integral": "J"}
 
     def prepared(self, params: Mapping[str, Any]) -> PreparedLagrangian:
-        """The prepared Lagrangian for ``params`` (from this process's cache after the check); sets :attr:`description`."""
+        """The prepared Lagrangian for ``params`` (from this process's cache after the check); sets
+        :attr:`description`."""
         prepared = prepare_typed_lagrangian(typed_request(params))
         self.description = prepared.system
         return prepared

@@ -86,8 +86,8 @@ class TogglePress:
         if self._bc_reach_m < LEAST_BC_COSINE * b:
             raise ParameterError(
                 "bar_BC_m",
-                f"bar BC (b = {b:g} m) must reach line AC well clear of the vertical: b cos(BC's angle) ≥ {LEAST_BC_COSINE:g} b "
-                f"needs b ≥ {a * math.sin(theta) / math.sqrt(1.0 - LEAST_BC_COSINE**2):.4g} m at a = {a:g} m and θ = {math.degrees(theta):g}°",
+                f"bar BC (b = {b:g} m) must reach line AC well clear of the vertical: b cos(BC's angle) ≥ " f"{LEAST_BC_COSINE:g} b "
+                f"needs b ≥ {a * math.sin(theta) / math.sqrt(1.0 - LEAST_BC_COSINE**2):.4g} m at a = {a:g} m and " f"θ = {math.degrees(theta):g}°",
             )
 
     @classmethod
@@ -95,7 +95,7 @@ class TogglePress:
         return cls(
             params["bar_AB_m"], params["bar_BC_m"], math.radians(params["angle_deg"]),
             params["load_B_N"], params["weight_AB_N"], params["weight_BC_N"],
-        )  # fmt: skip
+        )
 
     @property
     def _bc_reach_m(self) -> float:
@@ -113,7 +113,8 @@ class TogglePress:
     def virtual_displacements(self) -> dict[str, np.ndarray]:
         """δr/δθ (m per rad, (2,)) of B, C, G₁, G₂ for the mechanism left when C's hold along AC is released.
 
-        ``B′ = a(−sin θ, cos θ)``; ``x_C′ = −a sin θ − a² sin θ cos θ / √(b² − a² sin²θ)``; midpoints average their ends.
+        ``B′ = a(−sin θ, cos θ)``; ``x_C′ = −a sin θ − a² sin θ cos θ / √(b² − a² sin²θ)``; midpoints average their
+        ends.
         """
         a, theta = self.bar_AB_m, self.angle_rad
         knee = a * np.array([-math.sin(theta), math.cos(theta)])
@@ -146,7 +147,7 @@ def holding_force_by_virtual_work(press: TogglePress) -> float:
                 "the virtual-work equation holds for every Q, so it does not fix Q"
             )
         raise TogglePositionError(
-            f"θ (deg): at θ = {math.degrees(press.angle_rad):g}° the bars lie in line (the toggle position): δx_C = 0 for "
+            f"θ (deg): at θ = {math.degrees(press.angle_rad):g}° the bars lie in line (the toggle position): " "δx_C = 0 for "
             f"every δθ, so Q does no virtual work while the loads do {loads:.4g} N·m per rad; no finite Q holds them "
             "(the force needed grows like 1/θ as θ → 0)"
         )
@@ -155,7 +156,8 @@ def holding_force_by_virtual_work(press: TogglePress) -> float:
 
 @dataclass(frozen=True)
 class ToggleForces:
-    """Member-by-member equilibrium (N): A ground on AB, B bar AB on bar BC, C_y the guide on BC (up), Q on C (along −x)."""
+    """Member-by-member equilibrium (N): A ground on AB, B bar AB on bar BC, C_y the guide on BC (up), Q on C (along
+    −x)."""
 
     pin_A_N: np.ndarray
     pin_B_N: np.ndarray
@@ -235,7 +237,9 @@ def crank_inertia_about_centre_kg_m2(links: kinetics.SliderCrankLinks) -> float:
     return float(slender_rod(links.crank_mass_kg, links.mechanism.crank_m)[0, 0])
 
 
-def dynamic_virtual_work(links: kinetics.SliderCrankLinks, theta: np.ndarray, omega: np.ndarray, alpha: np.ndarray) -> DynamicVirtualWork:
+def dynamic_virtual_work(
+    links: kinetics.SliderCrankLinks, theta: np.ndarray, omega: np.ndarray | float, alpha: np.ndarray | float
+) -> DynamicVirtualWork:
     """Every term of ``τ δθ + Σ(F − m a)·δr − Σ I α δφ = 0`` per unit δθ at crank angles θ (rad), speeds ω (rad/s)
     and accelerations α (rad/s²), each (N,) or scalars broadcast to θ's shape.
 
@@ -344,7 +348,7 @@ class SliderCrankVirtualWork(ClosedFormModel):
         "constraint_virtual_work_N_m": "N·m",
     }
     invariant_units = {"torque_difference": "N·m"}
-    description = "dynamic virtual work τ = Σ(m a − F)·r′ + Σ I α φ′ with the chapter-4 kinematic coefficients, against the 8×8 Newton–Euler solve"
+    description = ("dynamic virtual work τ = Σ(m a − F)·r′ + Σ I α φ′ with the chapter-4 kinematic coefficients, " "against the 8×8 Newton–Euler solve")
 
     def evaluate(self, params: Mapping[str, Any], t_s: np.ndarray) -> ClosedFormSolution:
         links = kinetics.SliderCrankLinks.from_params(params)

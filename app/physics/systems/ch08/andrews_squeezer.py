@@ -62,7 +62,7 @@ INITIAL_POSITIONS_RAD = np.array([
     0.487364979543842550225598953530,
     -0.222668390165885884674473185609,
     1.23054744454982119249735015568,
-])  # fmt: skip
+])
 #: Initial accelerations (rad/s²) of the test set, consistent with the positions above at rest.
 INITIAL_ACCELERATIONS_RAD_S2 = np.array([14222.4439199541138705911625887, -10666.8329399655854029433719415, 0.0, 0.0, 0.0, 0.0, 0.0])
 #: Initial multipliers in the test set's sign (M q̈ = f − Gᵀλ, N); ours are their negatives.
@@ -73,12 +73,12 @@ REFERENCE_TIME_S = 0.03
 REFERENCE_POSITIONS_RAD = np.array([
     0.1581077119629904e2, -0.1575637105984298e2, 0.4082224013073101e-1, -0.5347301163226948e0,
     0.5244099658805304e0, 0.5347301163226948e0, 0.1048080741042263e1,
-])  # fmt: skip
+])
 #: ... and rates (rad/s).
 REFERENCE_RATES_RAD_S = np.array([
     0.1139920302151208e4, -0.1424379294994111e4, 0.1103291221937134e2, 0.1929337464421385e2,
     0.5735699284790808e0, -0.1929337464421385e2, 0.3231791658026955e0,
-])  # fmt: skip
+])
 
 
 @dataclass(frozen=True)
@@ -259,7 +259,7 @@ def andrews_system(params: AndrewsParameters | None = None) -> ConstrainedSystem
     return ConstrainedSystem(
         dynamics=andrews_dynamics, constraints=andrews_constraints, parameters=params.array(),
         coordinate_names=COORDINATE_NAMES, n_holonomic=6,
-    )  # fmt: skip
+    )
 
 
 def andrews_initial_state() -> tuple[np.ndarray, np.ndarray]:

@@ -54,7 +54,7 @@ def pendulum_system(mass_kg: float, length_m: float, g_m_s2: float) -> Constrain
     return ConstrainedSystem(
         dynamics=pendulum_dynamics, constraints=pendulum_constraint,
         parameters=np.array([mass_kg, length_m, g_m_s2], dtype=float), coordinate_names=("x", "y"), n_holonomic=1,
-    )  # fmt: skip
+    )
 
 
 def angle_and_rate(length_m: float, states: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -48,11 +48,11 @@ class CartesianPendulum(ConstrainedModel):
             Parameter("vy0_m_s", "m/s", 0.0, -50.0, 50.0, "Requested start: vertical velocity (its part along the rod is removed)", "ẏ₀"),
         ),
         check=_start_is_consistent,
-    )  # fmt: skip
+    )
     start_parameters = ("x0_m", "y0_m", "vx0_m_s", "vy0_m_s")
     series_units = {
         "x_m": "m", "y_m": "m", "vx_m_s": "m/s", "vy_m_s": "m/s", "multiplier": "N/m", "theta_rad": "rad", "tension_N": "N",
-    }  # fmt: skip
+    }
     invariant_units = {"energy": "J", "constraint_position": "m²", "constraint_velocity": "m²/s"}
 
     def constrained_system(self, params: Mapping[str, Any]):
@@ -101,14 +101,14 @@ class CartesianPendulum(ConstrainedModel):
         return {
             "x_m": states[:, 0], "y_m": states[:, 1], "vx_m_s": states[:, 2], "vy_m_s": states[:, 3],
             "multiplier": multipliers[:, 0], "theta_rad": theta, "tension_N": multipliers[:, 0] * l,
-        }  # fmt: skip
+        }
 
     # --- the chapter 7 engine's simple pendulum as the minimal-coordinate reference ---------------------------
     def minimal_system(self, params: Mapping[str, Any]) -> OdeSystem | None:
         return OdeSystem(
             rhs=derived(SIMPLE_PENDULUM, "lagrange").kernel(),
             parameters=np.array(SIMPLE_PENDULUM.parameter_array(params), dtype=float), state_names=("theta", "theta_rate"),
-        )  # fmt: skip
+        )
 
     def minimal_state(self, params: Mapping[str, Any], state: np.ndarray) -> np.ndarray:
         theta, rate = angle_and_rate(float(params["length_m"]), state[None, :])

@@ -120,7 +120,7 @@ def centre_motion(
     for level, angle_terms in enumerate(((t2, t3, t4), (w2, w3, w4), (al2, al3, al4))):
         columns.append(np.column_stack([
             crank_centre[level], angle_terms[0], coupler_centre[level], angle_terms[1], rocker_centre[level], angle_terms[2],
-        ]))  # fmt: skip
+        ]))
     return columns[0], columns[1], columns[2]
 
 
@@ -145,7 +145,8 @@ def massive_four_bar_system(params: Mapping[str, Any]) -> ConstrainedSystem:
 
 
 def massive_four_bar_initial_state(params: Mapping[str, Any]) -> tuple[np.ndarray, np.ndarray]:
-    """Consistent ``(q, v)`` (9,) each from ``crank_angle0_deg`` and ``crank_speed_rad_s`` by chapter 4's loop closure."""
+    """Consistent ``(q, v)`` (9,) each from ``crank_angle0_deg`` and ``crank_speed_rad_s`` by chapter 4's loop
+    closure."""
     motion = four_bar_motion(params)
     state = motion.at(np.zeros(1))
     q, v, _ = centre_motion(
@@ -193,6 +194,6 @@ class MassiveFourBar(PlanarLinkageModel):
 
     def crank_travel_rad(self, params: Mapping[str, Any]) -> tuple[float, float]:
         motion = four_bar_motion(params)
-        if motion.drive.turns_fully:
+        if motion.drive.limits_rad is None:  # the crank turns fully
             return 0.0, 2.0 * math.pi
         return motion.drive.limits_rad

@@ -92,7 +92,7 @@ class Joint:
         return [
             float(JOINT_KINDS.index(self.kind)), float(self.body), self.at_m, float(self.other), self.other_at_m,
             self.ground_m[0], self.ground_m[1], self.angle_rad,
-        ]  # fmt: skip
+        ]
 
 
 def ground_pin(name: str, body: int, at_m: float, ground_m: tuple[float, float]) -> Joint:
@@ -106,7 +106,8 @@ def pin(name: str, body: int, at_m: float, other: int, other_at_m: float) -> Joi
 
 
 def guide(name: str, body: int, at_m: float, through_m: tuple[float, float], angle_rad: float) -> Joint:
-    """Body's point kept on the fixed line through ``through_m`` at ``angle_rad``; λ = guide force along the normal (N)."""
+    """Body's point kept on the fixed line through ``through_m`` at ``angle_rad``; λ = guide force along the normal
+    (N)."""
     return Joint(name, "guide", body, at_m, ground_m=through_m, angle_rad=angle_rad)
 
 
@@ -145,7 +146,8 @@ def linkage_dynamics(t, q, v, p, M_out, f_out):
 
 @kernel(MULTIPLIER_CONSTRAINTS_SIGNATURE)
 def linkage_constraints(q, v, p, g_out, C_out, c_out):
-    """Rows of every joint in order (module docstring): ``g`` (m), ``C`` (m, 3 n_bodies), ``c = −Ċ v`` (m/s², rad/s²)."""
+    """Rows of every joint in order (module docstring): ``g`` (m), ``C`` (m, 3 n_bodies), ``c = −Ċ v`` (m/s²,
+    rad/s²)."""
     n_bodies = int(p[3])
     start = _HEADER + 3 * n_bodies
     n_joints = int(p[start])

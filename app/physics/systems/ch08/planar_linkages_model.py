@@ -80,7 +80,8 @@ class PlanarLinkageModel(ConstrainedModel):
         return linkage.kinetic_energy_J(v) + linkage.potential_energy_J(q) - linkage.torque_work_J(q, q0)
 
     def constrained_energy_parts(self, params: Mapping[str, Any], states: np.ndarray) -> EnergyParts:
-        """Each link's ½ I_G φ̇² (rotational) and ½ m v_G² (the rest of T), gravity, and the torque's work τ (θ − θ₀)."""
+        """Each link's ½ I_G φ̇² (rotational) and ½ m v_G² (the rest of T), gravity, and the torque's work τ (θ −
+        θ₀)."""
         states = np.atleast_2d(states)
         linkage = self.linkage(params)
         q0, _ = self.loop_closure_start(params)
@@ -122,12 +123,14 @@ class PlanarLinkageModel(ConstrainedModel):
         return sharpness * self.speed_limit_rad_s(params)
 
     def residual_scales(self, params: Mapping[str, Any]) -> tuple[float, float]:
-        """Position residuals against the shortest link (m), velocity residuals against it times the speed limit (m/s)."""
+        """Position residuals against the shortest link (m), velocity residuals against it times the speed limit
+        (m/s)."""
         shortest = min(link.length_m for link in self.linkage(params).links)
         return shortest, shortest * self.speed_limit_rad_s(params)
 
     def pin_forces_N(self, params: Mapping[str, Any], multipliers: np.ndarray) -> dict[str, np.ndarray]:
-        """Each pin's force components (N, 2) (N) from the multipliers (N, 8), by joint name (signs: :mod:`.planar_linkages`)."""
+        """Each pin's force components (N, 2) (N) from the multipliers (N, 8), by joint name (signs:
+        :mod:`.planar_linkages`)."""
         rows = self.linkage(params).multiplier_rows()
         multipliers = np.atleast_2d(multipliers)
         return {name: multipliers[:, rows[name]] for name in self.pin_joints}

@@ -117,12 +117,13 @@ def rolling_disk_system(params: Mapping[str, Any]) -> ConstrainedSystem:
 
 
 def rolling_state(*, radius_m: float, heading_rad: float, lean_rad: float, heading_rate_rad_s: float, lean_rate_rad_s: float, spin_rate_rad_s: float) -> np.ndarray:
-    """A consistent state (q, v) (10,) at the origin: the contact point moves along the heading at r φ̇ (A v = 0 exactly)."""
+    """A consistent state (q, v) (10,) at the origin: the contact point moves along the heading at r φ̇ (A v = 0
+    exactly)."""
     return np.array([
         0.0, 0.0, heading_rad, lean_rad, 0.0,
         radius_m * spin_rate_rad_s * math.cos(heading_rad), radius_m * spin_rate_rad_s * math.sin(heading_rad),
         heading_rate_rad_s, lean_rate_rad_s, spin_rate_rad_s,
-    ])  # fmt: skip
+    ])
 
 
 def energy_J(params: Mapping[str, Any], states: np.ndarray) -> np.ndarray:
@@ -142,7 +143,7 @@ def energy_parts(params: Mapping[str, Any], states: np.ndarray) -> EnergyParts:
         x_rate + r * (c_psi * s_th * heading_rate + s_psi * c_th * lean_rate),
         y_rate + r * (s_psi * s_th * heading_rate - c_psi * c_th * lean_rate),
         -r * s_th * lean_rate,
-    ], axis=1)  # fmt: skip
+    ], axis=1)
     transverse, axial = 0.25 * m * r * r, 0.5 * m * r * r
     # Body rates in the lean frame Rz(ψ) Rx(θ) (the disk is symmetric about its axis): (θ̇, φ̇ + ψ̇ sθ, ψ̇ cθ).
     rotation = transverse * (lean_rate**2 + (heading_rate * c_th) ** 2) + axial * (spin_rate + heading_rate * s_th) ** 2
@@ -150,7 +151,8 @@ def energy_parts(params: Mapping[str, Any], states: np.ndarray) -> EnergyParts:
 
 
 def contact_velocity_m_s(params: Mapping[str, Any], states: np.ndarray) -> np.ndarray:
-    """A(q) v (N, 2) (m/s): the material contact point's horizontal velocity along ``states`` (N, 10); zero when rolling."""
+    """A(q) v (N, 2) (m/s): the material contact point's horizontal velocity along ``states`` (N, 10); zero when
+    rolling."""
     states = np.atleast_2d(states)
     r = float(params["radius_m"])
     heading, spin_rate = states[:, HEADING], states[:, 5 + SPIN]

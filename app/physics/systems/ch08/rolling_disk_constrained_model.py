@@ -24,8 +24,8 @@ from typing import Any
 
 import numpy as np
 
-from app.physics.constrained.model import ConstrainedModel
 from app.physics.constrained.initial_conditions import ConsistentStart, consistent_initial_conditions
+from app.physics.constrained.model import ConstrainedModel
 from app.physics.constrained.system import ConstrainedSystem
 from app.physics.core.parameters import Parameter, ParameterSet
 from app.physics.solvers.integrated_model import ModelLimit
@@ -39,7 +39,14 @@ from app.physics.systems.ch08.rolling_disk_constrained import (
 )
 from app.physics.systems.ch08.rolling_disk_stability import critical_spin_rad_s, stability_sentence
 from app.physics.systems.ch09.rolling_disk import SYSTEM as CHAPTER_9_DISK
-from app.physics.systems.ch09.rolling_disk_contact import FALLEN, FALLEN_LEAN_DEG, LIFT_OFF, contact_limit, fallen_message, normal_force_N
+from app.physics.systems.ch09.rolling_disk_contact import (
+    FALLEN,
+    FALLEN_LEAN_DEG,
+    LIFT_OFF,
+    contact_limit,
+    fallen_message,
+    normal_force_N,
+)
 from app.physics.systems.ch09.rolling_disk_model import RollingDiskMotion
 
 __all__ = ["FALLEN", "FALLEN_LEAN_DEG", "LIFT_OFF", "PARAMETERS", "UnsteadyRollingDisk", "fallen_message"]
@@ -52,7 +59,7 @@ PARAMETERS = ParameterSet((
     _CHAPTER_9_START["heading_rate_0_rad_s"],
     Parameter("heading_0_deg", "deg", 0.0, -180.0, 180.0, "Initial heading ψ of the rolling direction from +x", "ψ₀"),
     Parameter("lean_rate_0_rad_s", "rad/s", 0.0, -20.0, 20.0, "Initial lean rate θ̇", "θ̇₀"),
-))  # fmt: skip
+))
 
 
 def _mass_radius_g(params: Mapping[str, Any]) -> tuple[float, float, float]:
@@ -60,14 +67,15 @@ def _mass_radius_g(params: Mapping[str, Any]) -> tuple[float, float, float]:
 
 
 class UnsteadyRollingDisk(ConstrainedModel):
-    """The disk rolling without slip from any lean, spin and heading, its no-slip rows kept by the chosen DAE algorithm."""
+    """The disk rolling without slip from any lean, spin and heading, its no-slip rows kept by the chosen DAE
+    algorithm."""
 
     parameters = PARAMETERS
     start_parameters = ("heading_0_deg", "lean_0_deg", "heading_rate_0_rad_s", "lean_rate_0_rad_s", "spin_rate_0_rad_s")
     series_units = {
         "x_m": "m", "y_m": "m", "heading_rad": "rad", "lean_rad": "rad", "spin_rate_rad_s": "rad/s", "energy_J": "J",
         "friction_x_N": "N", "friction_y_N": "N", "normal_force_N": "N",
-    }  # fmt: skip
+    }
     invariant_units = {"energy": "J", "constraint_position": "m", "constraint_velocity": "m/s"}
 
     def constrained_system(self, params: Mapping[str, Any]) -> ConstrainedSystem:
@@ -99,12 +107,14 @@ class UnsteadyRollingDisk(ConstrainedModel):
         return max(m * g * r, float(abs(energy_J(params, state[None, :])[0])), 1e-12)
 
     def residual_scales(self, params: Mapping[str, Any]) -> tuple[float, float]:
-        """r (m; there are no position rows) and the rolling speed r·max(|φ̇₀|, √(g/r)) (m/s) for the contact velocity."""
+        """r (m; there are no position rows) and the rolling speed r·max(|φ̇₀|, √(g/r)) (m/s) for the contact
+        velocity."""
         _, r, g = _mass_radius_g(params)
         return r, r * max(abs(float(params["spin_rate_0_rad_s"])), math.sqrt(g / r) if g > 0 else 0.0, 1e-6)
 
     def fastest_rate_rad_s(self, params: Mapping[str, Any], state: np.ndarray) -> float:
-        """The wobble's 2|φ̇| (axial over transverse moment times the spin), the fall's √(g/r) and the heading and lean rates (rad/s)."""
+        """The wobble's 2|φ̇| (axial over transverse moment times the spin), the fall's √(g/r) and the heading and lean
+        rates (rad/s)."""
         _, r, g = _mass_radius_g(params)
         heading_rate, lean_rate, spin_rate = (abs(float(value)) for value in state[7:10])
         return max(2.0 * spin_rate + heading_rate + lean_rate + math.sqrt(g / r), 1.0)
@@ -115,7 +125,7 @@ class UnsteadyRollingDisk(ConstrainedModel):
             "x_m": states[:, 0], "y_m": states[:, 1], "heading_rad": states[:, 2], "lean_rad": states[:, 3],
             "spin_rate_rad_s": states[:, 9], "energy_J": energy_J(params, states),
             "friction_x_N": multipliers[:, 0], "friction_y_N": multipliers[:, 1], "normal_force_N": normal_force_N(params, states),
-        }  # fmt: skip
+        }
 
     # --- the minimal method: chapter 9's independent-speed equations ---------------------------------------------
     def minimal_system(self, params: Mapping[str, Any]) -> OdeSystem:

@@ -27,7 +27,8 @@ LINEARISED = (LEAN, 5 + LEAN, 5 + HEADING)
 
 
 def constrained_accelerations(system: ConstrainedSystem, state: np.ndarray) -> np.ndarray:
-    """q̈ (5,) at ``state`` = (q, v) (10,) from [M Aᵀ; A 0] [q̈; λ] = [f; c] (the rolling rows imposed on accelerations)."""
+    """q̈ (5,) at ``state`` = (q, v) (10,) from [M Aᵀ; A 0] [q̈; λ] = [f; c] (the rolling rows imposed on
+    accelerations)."""
     n, m = system.n_coordinates, system.n_constraints
     q, v = state[:n], state[n:]
     mass, forces = system.mass_and_forces(0.0, q, v)
@@ -64,7 +65,8 @@ def upright_eigenvalues(system: ConstrainedSystem, spin_rate_rad_s: float) -> np
 
 
 def lean_stiffness_1_s2(system: ConstrainedSystem, spin_rate_rad_s: float) -> float:
-    """k = −½ Σ λ² (1/s²): positive where upright rolling at Ω is stable to first order, negative where the lean grows."""
+    """k = −½ Σ λ² (1/s²): positive where upright rolling at Ω is stable to first order, negative where the lean
+    grows."""
     return float(-0.5 * np.sum(upright_eigenvalues(system, spin_rate_rad_s) ** 2).real)
 
 
@@ -76,7 +78,7 @@ def critical_spin_rad_s(system: ConstrainedSystem) -> float:
     # Bracket: spin energy ~ m r² Ω² against the fall's m g r, with a factor 100 of room.
     high = 10.0 * np.sqrt(g_m_s2 / radius_m)
     if lean_stiffness_1_s2(system, high) <= 0.0:
-        raise ValueError(f"no spin below {high:.3g} rad/s steadies the upright disk (mass_kg = {mass_kg}, radius_m = {radius_m}, g_m_s2 = {g_m_s2})")
+        raise ValueError(f"no spin below {high:.3g} rad/s steadies the upright disk (mass_kg = {mass_kg}, radius_m = " f"{radius_m}, g_m_s2 = {g_m_s2})")
     return float(brentq(lambda spin: lean_stiffness_1_s2(system, spin), 0.0, high, xtol=1e-13, rtol=1e-14))
 
 

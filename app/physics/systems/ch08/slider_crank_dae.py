@@ -29,8 +29,8 @@ import numpy as np
 
 from app.physics.constrained.system import ConstrainedSystem
 from app.physics.core.parameters import ParameterSet
-from app.physics.systems.ch06 import mechanism_kinetics as kinetics
 from app.physics.solvers.system import OdeSystem
+from app.physics.systems.ch06 import mechanism_kinetics as kinetics
 from app.physics.systems.ch08.planar_linkages import PlanarLinkage, RigidLink, fixed_angle, ground_pin, guide, pin
 from app.physics.systems.ch08.planar_linkages_model import PlanarLinkageModel, linkage_series_units
 
@@ -69,7 +69,9 @@ def slider_crank_linkage(params: Mapping[str, Any]) -> PlanarLinkage:
     return PlanarLinkage(bodies, joints, links.g_m_s2, float(params["drive_torque_N_m"]), driven=0)
 
 
-def slider_crank_absolute_motion(params: Mapping[str, Any], theta: np.ndarray, omega: np.ndarray, alpha: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def slider_crank_absolute_motion(
+    params: Mapping[str, Any], theta: np.ndarray | float, omega: np.ndarray | float, alpha: np.ndarray | float
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Absolute coordinates, rates and accelerations, each (N, 9), from the crank's θ (rad), ω (rad/s), α (rad/s²)
     (N,), by chapter 4's loop closure through :func:`~app.physics.systems.ch06.mechanism_kinetics.link_motion`."""
     motion = kinetics.link_motion(chapter6_links(params), theta, omega, alpha)
@@ -83,7 +85,7 @@ def slider_crank_absolute_motion(params: Mapping[str, Any], theta: np.ndarray, o
     a = stack(
         motion.crank_centre_acceleration, motion.crank_acceleration_rad_s2, motion.rod_centre_acceleration,
         motion.rod_acceleration, motion.slider_acceleration,
-    )  # fmt: skip
+    )
     return q, v, a
 
 

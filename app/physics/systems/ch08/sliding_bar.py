@@ -53,15 +53,15 @@ from app.physics.core.contact_energy import ContactEnergyBudget
 from app.physics.core.parameters import Parameter, ParameterSet
 from app.physics.solvers import DormandPrince, EventRecord, Events, OdeSystem, simulate
 from app.physics.solvers.integrated_model import IntegratedModel
-from app.physics.solvers.step_choice import AccuracyTarget
 from app.physics.solvers.kernels import EVENTS_SIGNATURE, RESET_SIGNATURE, RHS_SIGNATURE, kernel
+from app.physics.solvers.step_choice import AccuracyTarget
 
 #: State slots: x of the lower end B (m), angle from the floor (rad), ẋ_B (m/s), θ̇ (rad/s),
 #: friction work so far (J, ≥ 0), phase code, sliding direction σ (±1), time the contact jammed (s).
 STATE_NAMES = (
     "x_contact_m", "angle_rad", "contact_speed_m_s", "angle_rate_rad_s", "friction_work_J", "phase", "slip_direction",
     "jam_time_s",
-)  # fmt: skip
+)
 X, THETA, U, OMEGA, FRICTION_WORK, PHASE, SLIP, JAM_TIME = range(8)
 #: Kernel parameters p: [L (m), m (kg), g (m/s²), μ, I about G (kg·m²)].
 P_LENGTH, P_MASS, P_G, P_MU, P_INERTIA = range(5)
@@ -296,7 +296,7 @@ def bar_system(params: Mapping[str, Any]) -> OdeSystem:
             # √(L/g) ≥ 0.03 s over the parameter ranges: 0.005 s steps put several checks in every phase.
             max_step_s=0.005,
         ),
-    )  # fmt: skip
+    )
 
 
 def stop_message(params: Mapping[str, Any], event: EventRecord) -> str:
@@ -307,7 +307,7 @@ def stop_message(params: Mapping[str, Any], event: EventRecord) -> str:
     if event.index == LIFT_OFF:
         return f"The lower end leaves the floor (N = 0) {where}: free flight is not modelled, so the run stops here."
     if event.index == LANDS:
-        return f"The bar lands flat {where}: the landing impact is not modelled here (see the sliding ladder, 6.2); the run stops."
+        return (f"The bar lands flat {where}: the landing impact is not modelled here (see the sliding ladder, " "6.2); the run stops.")
     if event.index != JAM_STOP:
         return ""
     forces = contact_forces(params, state)[0]
@@ -318,10 +318,10 @@ def stop_message(params: Mapping[str, Any], event: EventRecord) -> str:
     elif numerator > 0.0:
         why = f"sliding would need N = m(g − (L/2)θ̇² sin θ)/D < 0 with D = {factor:.3f}: no contact force N ≥ 0 fits"
     else:
-        why = f"with D = {factor:.3f} and a negative numerator both sliding with N > 0 and lifting off fit: the motion is not unique"
+        why = (f"with D = {factor:.3f} and a negative numerator both sliding with N > 0 and lifting off fit: the " "motion is not unique")
     return (
         f"No consistent contact force: Painlevé's paradox at θ = {theta_deg:.2f}°, μ = {params['mu']:.2f} "
-        f"(t = {event.t_s:.4f} s, B sliding {direction} the side the bar leans to): {why}. The run stops here, not integrated further."
+        f"(t = {event.t_s:.4f} s, B sliding {direction} the side the bar leans to): {why}. The run stops here, " "not integrated further."
     )
 
 
@@ -341,7 +341,7 @@ class SlidingBar(IntegratedModel):
     series_units = {
         "angle_rad": "rad", "contact_speed_m_s": "m/s", "normal_force_N": "N", "friction_force_N": "N",
         "friction_limit_N": "N", "phase": "", "painleve_factor": "",
-    }  # fmt: skip
+    }
     invariant_units = {"energy_budget_J": "J"}
 
     def system(self, params):

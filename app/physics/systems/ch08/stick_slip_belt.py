@@ -42,8 +42,8 @@ from app.physics.core.energy import EnergyParts
 from app.physics.core.parameters import Parameter, ParameterError, ParameterSet
 from app.physics.solvers import DormandPrince, Events, OdeSystem, simulate
 from app.physics.solvers.integrated_model import IntegratedModel
-from app.physics.solvers.step_choice import AccuracyTarget
 from app.physics.solvers.kernels import EVENTS_SIGNATURE, RESET_SIGNATURE, RHS_SIGNATURE, kernel
+from app.physics.solvers.step_choice import AccuracyTarget
 
 #: State slots: position (m), velocity (m/s), energy dissipated by friction (J, ≥ 0), work done by the
 #: belt through friction (J), mode code, slip direction sign(v_rel) (±1, meaningful in slip).
@@ -63,7 +63,7 @@ def _check(values: Mapping[str, Any]) -> None:
     if values["mu_kinetic"] > values["mu_static"]:
         raise ParameterError(
             "mu_kinetic",
-            f"the kinetic coefficient ({values['mu_kinetic']:g}) may not exceed the static one ({values['mu_static']:g})",
+            f"the kinetic coefficient ({values['mu_kinetic']:g}) may not exceed the static one " f"({values['mu_static']:g})",
         )
 
 
@@ -166,7 +166,7 @@ def belt_system(params: Mapping[str, Any]) -> OdeSystem:
             # so a slip phase that starts and ends inside one step is still seen at the step's middle.
             max_step_s=0.02,
         ),
-    )  # fmt: skip
+    )
 
 
 def friction_forces(params: Mapping[str, Any], states: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -179,7 +179,8 @@ def friction_forces(params: Mapping[str, Any], states: np.ndarray) -> tuple[np.n
 
 @dataclass(frozen=True)
 class EnergyBudget:
-    """Energies along N states (J, arrays (N,)): ``total_J`` = kinetic + spring + dissipated − belt work stays constant."""
+    """Energies along N states (J, arrays (N,)): ``total_J`` = kinetic + spring + dissipated − belt work stays
+    constant."""
 
     kinetic_J: np.ndarray
     spring_J: np.ndarray
@@ -197,7 +198,7 @@ def energy_budget(params: Mapping[str, Any], states: np.ndarray) -> EnergyBudget
     return EnergyBudget(
         0.5 * params["mass_kg"] * states[:, V] ** 2, 0.5 * params["stiffness_N_m"] * states[:, X] ** 2,
         states[:, DISSIPATED].copy(), states[:, BELT_WORK].copy(),
-    )  # fmt: skip
+    )
 
 
 @dataclass(frozen=True)
@@ -253,7 +254,7 @@ def limit_cycle(params: Mapping[str, Any]) -> LimitCycle | None:
     return LimitCycle(
         stick_s=abs(x_break - x_stick) / abs(speed), slip_s=(math.pi + 2.0 * math.atan(abs(speed) / (omega * d))) / omega,
         stick_from_m=x_stick, stick_to_m=x_break,
-    )  # fmt: skip
+    )
 
 
 class StickSlipBelt(IntegratedModel):
@@ -265,7 +266,7 @@ class StickSlipBelt(IntegratedModel):
     accuracy_components = (X, V)
     series_units = {
         "x_m": "m", "v_m_s": "m/s", "friction_force_N": "N", "friction_limit_N": "N", "mode": "", "dissipated_J": "J",
-    }  # fmt: skip
+    }
     invariant_units = {"energy_budget_J": "J"}
 
     def system(self, params):

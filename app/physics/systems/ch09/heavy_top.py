@@ -13,7 +13,15 @@ from __future__ import annotations
 import sympy
 
 from app.physics.core.parameters import ParameterSet
-from app.physics.mechanics.description import Coordinate, Reaction, RigidBody, Singularity, SystemDescription, parameter, vector
+from app.physics.mechanics.description import (
+    Coordinate,
+    Reaction,
+    RigidBody,
+    Singularity,
+    SystemDescription,
+    parameter,
+    vector,
+)
 from app.physics.mechanics.kinematics import simple_rotation
 
 m, l, I_t, I_a, g = sympy.symbols("m l I_t I_a g", positive=True)
@@ -43,7 +51,7 @@ SYSTEM = SystemDescription(
     gravity=vector(0, 0, -g),
     reactions=(Reaction("pivot", on="top", point=pivot, forces=(vector(1, 0, 0), vector(0, 1, 0), vector(0, 0, 1))),),
     ignorable=("phi", "psi"),
-    singularities=(Singularity(sympy.sin(theta.symbol), "sin θ", "the Euler angles are singular where sin θ = 0 (θ = 0 or 180°): φ and ψ turn about one axis there and cannot be told apart; choose θ strictly between 0 and 180°"),),
+    singularities=(Singularity(sympy.sin(theta.symbol), "sin θ", "the Euler angles are singular where sin θ = 0 (θ = 0 or 180°): φ and ψ turn about one axis there " "and cannot be told apart; choose θ strictly between 0 and 180°"),),
     state_ranges={"theta": (0.2, 2.9)},
-    assumptions="A rigid axisymmetric body on a frictionless fixed pivot. The Euler angles are singular at θ = 0 and 180°.",
-)  # fmt: skip
+    assumptions=("A rigid axisymmetric body on a frictionless fixed pivot. The Euler angles are singular at θ = 0 " "and 180°."),
+)

@@ -24,13 +24,15 @@ def _m_l_g(params: Mapping[str, Any]) -> tuple[float, float, float]:
     return float(params["mass_kg"]), float(params["length_m"]), float(params["g_m_s2"])
 
 
-def conjugate_momentum_kg_m2_s(params: Mapping[str, Any], theta_rate_rad_s: np.ndarray) -> np.ndarray:
+def conjugate_momentum_kg_m2_s(params: Mapping[str, Any], theta_rate_rad_s: np.ndarray | float) -> np.ndarray:
     """p_θ = m l² θ̇ (kg·m²/s) for rates θ̇ (any shape, rad/s)."""
     m, l, _ = _m_l_g(params)
     return m * l * l * np.asarray(theta_rate_rad_s, dtype=float)
 
 
-def hamiltonian_J(params: Mapping[str, Any], theta_rad: np.ndarray, p_theta_kg_m2_s: np.ndarray) -> np.ndarray:
+def hamiltonian_J(
+    params: Mapping[str, Any], theta_rad: np.ndarray | float, p_theta_kg_m2_s: np.ndarray | float
+) -> np.ndarray:
     """H(θ, p_θ) = p_θ²/(2 m l²) − m g l cos θ (J), elementwise."""
     m, l, g = _m_l_g(params)
     return np.asarray(p_theta_kg_m2_s) ** 2 / (2.0 * m * l * l) - m * g * l * np.cos(theta_rad)

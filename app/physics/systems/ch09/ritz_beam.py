@@ -1,4 +1,5 @@
-"""The Ritz series for a uniform Euler–Bernoulli cantilever: natural frequencies from above, and the basis's conditioning.
+"""The Ritz series for a uniform Euler–Bernoulli cantilever: natural frequencies from above, and the basis's
+conditioning.
 
 Frame and names (m, s): the beam lies along x from the clamp (x = 0) to the free
 end (x = L); its deflection w(x, t) is transverse (drawn along +Z). ``ξ = x/L``
@@ -353,16 +354,16 @@ class RitzCantilever:
         conditioning = f"cond(M) = {modes.condition_mass:.1e}"
         if not modes.factorized:
             return (
-                f"The {self.basis.name} basis with {self.terms} terms failed: the Cholesky factor of K could not be formed "
+                f"The {self.basis.name} basis with {self.terms} terms failed: the Cholesky factor of K could not " "be formed "
                 f"({conditioning}, cond(K) = {modes.condition_stiffness:.1e}). No Ritz frequencies."
             )
         words = []
         if modes.nonphysical:
-            words.append(f"{modes.nonphysical} computed ω² came out negative (imaginary frequencies), which exact arithmetic forbids.")
+            words.append(f"{modes.nonphysical} computed ω² came out negative (imaginary frequencies), which exact " "arithmetic forbids.")
         below = np.flatnonzero(self.below_exact) + 1
         if below.size:
             listed = ", ".join(str(n) for n in below)
-            words.append(f"Mode{'s' if below.size > 1 else ''} {listed} fell below the exact frequency: the Ritz upper bound is broken.")
+            words.append(f"Mode{'s' if below.size > 1 else ''} {listed} fell below the exact frequency: the Ritz upper " "bound is broken.")
         if words or self.rounding_estimate > TRUSTED_ROUNDING:
             digits = max(0, int(math.floor(-math.log10(self.rounding_estimate)))) if self.rounding_estimate < 1.0 else 0
             words.append(
@@ -411,10 +412,10 @@ PARAMETERS = ParameterSet(
         Parameter("mass_per_length_kg_m", "kg/m", 1.0, 1e-3, 1e4, "Mass per unit length ρA", "mass per length ρA", scale="log"),
         Parameter("terms", "", 6, 1, MAX_TERMS, "Number N of admissible functions in the Ritz series", "Ritz terms N", kind="int", step=1),
         Parameter("basis", "", "orthogonal", kind="choice", choices=BASES, label="basis",
-                  description="Admissible functions: 'orthogonal' (second derivatives are shifted Legendre polynomials) or 'monomial' (ξ², ξ³, …)"),
+                  description=("Admissible functions: 'orthogonal' (second derivatives are shifted Legendre " "polynomials) or 'monomial' (ξ², ξ³, …)")),
         Parameter("mode", "", 1, 1, MAX_TERMS, "Which Ritz mode n to animate (at most N)", "mode n", kind="int", step=1),
         Parameter("amplitude_m", "m", 0.2, 0.0, 10.0, "Tip amplitude of the animated mode (linear theory: frequencies do not depend on it)", "tip amplitude", step=0.01),
-    ),  # fmt: skip
+    ),
     check=_check,
 )
 
@@ -425,7 +426,7 @@ class RitzCantileverModel(ClosedFormModel):
     parameters = PARAMETERS
     series_units = {"tip_deflection_m": "m", "exact_tip_deflection_m": "m", "root_bending_moment_N_m": "N·m", "exact_root_bending_moment_N_m": "N·m"}
     invariant_units = {"energy_J": "J"}
-    description = "Ritz series (Hamilton's principle on N admissible functions): one mode, w = a φ_n(x) cos ω_n t, beside the exact mode"
+    description = ("Ritz series (Hamilton's principle on N admissible functions): one mode, w = a φ_n(x) cos ω_n " "t, beside the exact mode")
 
     def evaluate(self, params: Mapping[str, Any], t_s: np.ndarray) -> ClosedFormSolution:
         ritz = RitzCantilever.from_params(params)
@@ -449,7 +450,7 @@ class RitzCantileverModel(ClosedFormModel):
             return ClosedFormSolution(series, {"energy_J": ritz.modal_energy_J(mode, amplitude, t)}, warning=warning)
         undefined = np.full(t.shape, np.nan)
         series = {"tip_deflection_m": undefined, "exact_tip_deflection_m": exact_tip, "root_bending_moment_N_m": undefined,
-                  "exact_root_bending_moment_N_m": exact_moment}  # fmt: skip
+                  "exact_root_bending_moment_N_m": exact_moment}
         message = f"Ritz mode {mode} has no real frequency. {warning}"
         return ClosedFormSolution(series, {"energy_J": undefined}, [Event(0.0, "ritz-failed", message)], warning=message)
 

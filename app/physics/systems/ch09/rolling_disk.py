@@ -59,7 +59,7 @@ SYSTEM = SystemDescription(
     coordinate_rates=rates,
     speeds_from_rates=(psi.rate, theta.rate, phi.rate),
     reactions=(Reaction("floor", on="disk", point=contact, forces=(vector(1, 0, 0), vector(0, 1, 0), vector(0, 0, 1))),),
-    singularities=(Singularity(sympy.cos(th), "cos θ", "the angles are singular where cos θ = 0 (the disk flat, lean ±90°): heading and spin turn about one axis there; choose a lean strictly between −90° and 90°"),),
+    singularities=(Singularity(sympy.cos(th), "cos θ", "the angles are singular where cos θ = 0 (the disk flat, lean ±90°): heading and spin turn about one " "axis there; choose a lean strictly between −90° and 90°"),),
     state_ranges={"theta": (-1.0, 1.0)},
-    assumptions="A uniform thin disk (a knife edge) rolling without slipping or pivoting friction on a rigid floor; it never loses contact.",
-)  # fmt: skip
+    assumptions=("A uniform thin disk (a knife edge) rolling without slipping or pivoting friction on a rigid " "floor; it never loses contact."),
+)

@@ -55,7 +55,8 @@ def lean_acceleration_rad_s2(params: Mapping[str, Any], states: np.ndarray) -> n
 
 
 def normal_force_N(params: Mapping[str, Any], states: np.ndarray) -> np.ndarray:
-    """The floor's normal force on the disk N = m (g − r (θ̈ sin θ + θ̇² cos θ)) (N, up; (N,)) along ``states`` (N, 10)."""
+    """The floor's normal force on the disk N = m (g − r (θ̈ sin θ + θ̇² cos θ)) (N, up; (N,)) along ``states`` (N,
+    10)."""
     m, r, g = _mass_radius_g(params)
     states = np.atleast_2d(states)
     lean, lean_rate = states[:, LEAN], states[:, LEAN_RATE]
@@ -85,7 +86,7 @@ def contact_limit(params: Mapping[str, Any], t_s: np.ndarray, states: np.ndarray
 def fallen_message(t_s: float, lean_deg: float) -> str:
     """What a student reads when the disk has fallen."""
     return (
-        f"Stopped at t = {t_s:.2f} s: the disk has fallen (lean past {lean_deg:.0f}°). Lying on the floor it is no longer "
+        f"Stopped at t = {t_s:.2f} s: the disk has fallen (lean past {lean_deg:.0f}°). Lying on the floor it is " "no longer "
         "a disk rolling on its rim, so the rolling model stops here."
     )
 
@@ -94,7 +95,7 @@ def lift_off_message(t_s: float, normal_N: float, lean_deg: float, lean_rate_rad
     """What a student reads when the floor would have to pull the disk down."""
     when = "At the start" if t_s == 0.0 else f"Stopped at t = {t_s:.2f} s"
     return (
-        f"{when}: the floor would have to pull the disk down (normal force N = {normal_N:.3g} N, at lean {lean_deg:.1f}° "
-        f"and lean rate {lean_rate_rad_s:.3g} rad/s). A floor can only push: to stay on its rim the centre would have to "
+        f"{when}: the floor would have to pull the disk down (normal force N = {normal_N:.3g} N, at lean " f"{lean_deg:.1f}° "
+        f"and lean rate {lean_rate_rad_s:.3g} rad/s). A floor can only push: to stay on its rim the centre would " "have to "
         "drop faster than gravity can make it, so the disk leaves the floor, which the rolling model cannot describe."
     )

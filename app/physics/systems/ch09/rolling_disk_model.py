@@ -26,9 +26,11 @@ from app.physics.solvers.integrated_model import ModelLimit
 from app.physics.systems.ch09.rolling_disk import SYSTEM
 from app.physics.systems.ch09.rolling_disk_contact import contact_limit, normal_force_N
 
-#: Indices into the state of the lean θ, the heading rate ψ̇ and the lean rate θ̇: the linearised lean equations' variables.
+#: Indices into the state of the lean θ, the heading rate ψ̇ and the lean rate θ̇: the linearised lean equations'
+#: variables.
 LEAN, HEADING_RATE, LEAN_RATE, SPIN_RATE = 3, 7, 8, 9
-#: Central-difference step (rad, rad/s) of the lean equations' Jacobian: truncation ~h², rounding ~ε/h, both < 1e-10 relative.
+#: Central-difference step (rad, rad/s) of the lean equations' Jacobian: truncation ~h², rounding ~ε/h, both < 1e-10
+#: relative.
 JACOBIAN_STEP = 1e-5
 
 
@@ -46,7 +48,8 @@ def contact_speed_m_s(states: np.ndarray) -> np.ndarray:
 
 
 class RollingDiskMotion(DerivedModel):
-    """The disk started upright-ish from the lean, spin and heading rate the controls give (default: Kane's equations)."""
+    """The disk started upright-ish from the lean, spin and heading rate the controls give (default: Kane's
+    equations)."""
 
     description = SYSTEM
     parameters = derived_parameters(
@@ -58,7 +61,7 @@ class RollingDiskMotion(DerivedModel):
     )
     series_units = {
         "x_m": "m", "y_m": "m", "heading_rad": "rad", "lean_rad": "rad", "spin_rate_rad_s": "rad/s", "energy_J": "J", "normal_force_N": "N",
-    }  # fmt: skip
+    }
     invariant_units = {"energy": "J"}
 
     def initial_state(self, params: Mapping[str, Any]) -> np.ndarray:
@@ -77,7 +80,7 @@ class RollingDiskMotion(DerivedModel):
             "x_m": states[:, 0], "y_m": states[:, 1], "heading_rad": states[:, 2], "lean_rad": states[:, 3],
             "spin_rate_rad_s": states[:, SPIN_RATE], "energy_J": self.energy_J(params, t_s, states),
             "normal_force_N": normal_force_N(params, states),
-        }  # fmt: skip
+        }
 
     def model_limit(self, params: Mapping[str, Any], t_s: np.ndarray, states: np.ndarray) -> ModelLimit | None:
         """Where the disk has fallen or would lift off (:func:`~.rolling_disk_contact.contact_limit`)."""
@@ -100,7 +103,8 @@ class RollingDiskMotion(DerivedModel):
         return state
 
     def lean_jacobian(self, params: Mapping[str, Any], spin_rate_rad_s: float) -> np.ndarray:
-        """∂(θ̇, θ̈, ψ̈)/∂(θ, θ̇, ψ̇) (3, 3) of the derived equations at upright rolling with spin Ω, by central differences."""
+        """∂(θ̇, θ̈, ψ̈)/∂(θ, θ̇, ψ̇) (3, 3) of the derived equations at upright rolling with spin Ω, by central
+        differences."""
         derivation, p = self.derived(params), self.parameter_array(params)
         state = self.upright_state(params, spin_rate_rad_s)
         variables = (LEAN, LEAN_RATE, HEADING_RATE)

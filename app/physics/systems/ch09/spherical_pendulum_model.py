@@ -31,7 +31,9 @@ def azimuthal_momentum_kg_m2_s(params: Mapping[str, Any], states: np.ndarray) ->
     return m * l * l * np.sin(states[:, 0]) ** 2 * states[:, 3]
 
 
-def effective_potential_J(params: Mapping[str, Any], beta_kg_m2_s: float, theta_rad: np.ndarray) -> np.ndarray:
+def effective_potential_J(
+    params: Mapping[str, Any], beta_kg_m2_s: float, theta_rad: np.ndarray | float
+) -> np.ndarray:
     """V_eff(θ) = β²/(2 m l² sin²θ) − m g l cos θ (J) over ``theta_rad`` (any shape, 0 < θ < π)."""
     m, l, g = _m_l_g(params)
     theta = np.asarray(theta_rad, dtype=float)
@@ -104,7 +106,7 @@ class SphericalPendulumMotion(DerivedModel):
         return {
             "theta_rad": states[:, 0], "phi_rad": states[:, 1],
             "beta_kg_m2_s": azimuthal_momentum_kg_m2_s(params, states), "energy_J": energy_J(params, states),
-        }  # fmt: skip
+        }
 
     def invariants(self, params: Mapping[str, Any], states: np.ndarray) -> dict[str, np.ndarray]:
         return {"energy": energy_J(params, states), "azimuthal_momentum": azimuthal_momentum_kg_m2_s(params, states)}

@@ -91,7 +91,7 @@ def averaged_model_warning(inputs: Mapping[str, Any], result: EquinoxPrecession)
         return ""
     return (
         f"Outside the model: the precession rate is {ratio:.3g} times the spin rate. The gyroscopic, orbit-averaged "
-        f"model assumes precession far slower than spin (Ω/ω below {GYROSCOPIC_RATIO_LIMIT:g}), so these numbers are the "
+        f"model assumes precession far slower than spin (Ω/ω below {GYROSCOPIC_RATIO_LIMIT:g}), so these numbers " "are the "
         "formula's, not the motion such a body would have."
     )
 
@@ -145,7 +145,7 @@ def solve(inputs: Mapping[str, Any]) -> Solution:
         "moon_rate_arcsec_per_year": result.moon_rate_rad_s * per_year,
         "rate_rad_s": total,
     }
-    steps = (
+    steps: tuple[Step, ...] = (
         Step(
             "Moment of a distant mass on the oblate Earth, averaged over an orbit",
             r"\langle M \rangle = \frac{3GM}{2a^3(1-e^2)^{3/2}}\,(C-A)\sin\varepsilon\cos\varepsilon\;P_2(\cos i)",
@@ -154,19 +154,19 @@ def solve(inputs: Mapping[str, Any]) -> Solution:
         ),
         Step(
             "GM/a³ from Kepler's third law (no G, no masses needed)",
-            r"\frac{GM_\odot}{a_\odot^3} = n_\odot^2, \qquad \frac{GM_{☾}}{a_{☾}^3} = n_{☾}^2\,\frac{\mu}{1+\mu}, \qquad n = \frac{2\pi}{T}",
+            r"\frac{GM_\odot}{a_\odot^3} = n_\odot^2, \qquad \frac{GM_{☾}}{a_{☾}^3} = " r"n_{☾}^2\,\frac{\mu}{1+\mu}, \qquad n = \frac{2\pi}{T}",
             {"n_sun": n_sun, "n_moon": n_moon, "μ/(1+μ)": mu / (1.0 + mu)},
             {"n_sun": "rad/s", "n_moon": "rad/s", "μ/(1+μ)": ""},
         ),
         Step(
             "Gyroscopic precession: the moment turns the spin angular momentum Cω about the ecliptic normal",
-            r"\Omega = \frac{\langle M\rangle}{C\,\omega\sin\varepsilon} = \frac{3}{2}\,\frac{GM}{a^3}\,\frac{H}{\omega}\cos\varepsilon\;\frac{P_2(\cos i)}{(1-e^2)^{3/2}}",
+            r"\Omega = \frac{\langle M\rangle}{C\,\omega\sin\varepsilon} = " r"\frac{3}{2}\,\frac{GM}{a^3}\,\frac{H}{\omega}\cos\varepsilon\;\frac{P_2(\cos i)}{(1-e^2)^{3/2}}",
             {"Ω_sun": result.sun_rate_rad_s, "Ω_moon": result.moon_rate_rad_s, "ω": omega},
             {"Ω_sun": "rad/s", "Ω_moon": "rad/s", "ω": "rad/s"},
         ),
         Step(
             "Per year, and the time for the axis to sweep its whole cone",
-            r"\Omega_{\mathrm{yr}} = (\Omega_\odot + \Omega_{☾})\times 365.25\,\mathrm{d} \times 206265''/\mathrm{rad}, \qquad T = \frac{1296000''}{\Omega_{\mathrm{yr}}}",
+            r"\Omega_{\mathrm{yr}} = (\Omega_\odot + \Omega_{☾})\times 365.25\,\mathrm{d} \times " r"206265''/\mathrm{rad}, \qquad T = \frac{1296000''}{\Omega_{\mathrm{yr}}}",
             {"Ω": outputs["rate_arcsec_per_year"], "T": outputs["period_years"], "Sun's share": outputs["sun_share"], "Moon's share": outputs["moon_share"]},
             {"Ω": "arcsec/yr", "T": "yr", "Sun's share": "", "Moon's share": ""},
         ),

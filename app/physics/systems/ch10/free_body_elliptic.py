@@ -143,7 +143,7 @@ def elliptic_f_from_sn_cn(sn: float, cn: float, *, m: float, mc: float, K: float
 
 
 def elliptic_pi_reduced(
-    sin_r: np.ndarray, cos2_r: np.ndarray, *, n: float, one_minus_n: float, m: float, mc: float,
+    sin_r: np.ndarray | float, cos2_r: np.ndarray | float, *, n: float, one_minus_n: float, m: float, mc: float,
     dn2: np.ndarray | None = None,
 ) -> np.ndarray:
     """Π(n; r | m) = ∫₀^r dθ / ((1 − n sin²θ) √(1 − m sin²θ)) for |r| ≤ π/2, Carlson form.
@@ -176,7 +176,7 @@ def check_inertia(inertia: tuple[float, float, float] | np.ndarray) -> np.ndarra
     values = np.asarray(inertia, dtype=float)
     if values.shape != (3,):
         raise ValueError(f"inertia must be three principal moments (I1, I2, I3) in kg·m², got shape {values.shape}")
-    check_principal_inertia(tuple(float(v) for v in values), about="the centre of mass")
+    check_principal_inertia((float(values[0]), float(values[1]), float(values[2])), about="the centre of mass")
     return values
 
 

@@ -183,7 +183,7 @@ def closest_approaches_to_lock(params: Mapping[str, Any], t_end_s: float) -> lis
     if amplitude < 1e-12:
         return []
     theta_star = math.atan2(c, b)
-    out = []
+    out: list[tuple[float, float]] = []
     theta_end = rate * t_end_s
     for offset, extreme in ((0.0, a + amplitude), (math.pi, a - amplitude)):
         angle = 0.5 * math.pi - math.asin(min(1.0, abs(extreme)))
@@ -254,5 +254,5 @@ def _lock_message(params: Mapping[str, Any], t_s: float, angle_rad: float) -> st
     outer_rate = abs(float(gimbal_motion(params, t_s).outer_rate_rad_s[0]))
     return (
         f"At t = {t_s:.3f} s the spin axis passes {math.degrees(angle_rad):.2f}° from the outer gimbal axis "
-        f"(near gimbal lock): the outer ring must turn at {outer_rate:.3g} rad/s there to keep the rotor free of torque."
+        f"(near gimbal lock): the outer ring must turn at {outer_rate:.3g} rad/s there to keep the rotor free of " "torque."
     )

@@ -62,13 +62,13 @@ def _check(values: Mapping[str, Any]) -> None:
     if abs(latitude) > MAX_LATITUDE_DEG:
         raise ParameterError(
             "latitude_deg",
-            f"must lie within ±{MAX_LATITUDE_DEG:g}° (got {latitude:g}°): at a pole the Earth's rotation axis is vertical, "
+            f"must lie within ±{MAX_LATITUDE_DEG:g}° (got {latitude:g}°): at a pole the Earth's rotation axis is " "vertical, "
             "so its horizontal component Ω cos λ, the only part a horizontal spin axis can feel, vanishes and there is "
             "no north for the gyrocompass to seek",
         )
     if values["spin_rad_s"] == 0.0:
         raise ParameterError(
-            "spin_rad_s", "must be non-zero: without spin there is no angular momentum, no north-seeking torque and the period would be infinite"
+            "spin_rad_s", "must be non-zero: without spin there is no angular momentum, no north-seeking torque and the period " "would be infinite"
         )
     ratio = reduction_ratio(values)
     if ratio > MAX_REDUCTION_RATIO:

@@ -32,7 +32,11 @@ from app.physics.bodies.inertia import centroidal_from_point
 from app.physics.bodies.rigid_body import PivotedBody
 from app.physics.core.energy import EnergyParts
 from app.physics.core.parameters import Parameter, ParameterError, ParameterSet
-from app.physics.math.rotations import body_rates_from_euler_313_rates, euler_313_from_quaternion, quaternion_from_euler_313
+from app.physics.math.rotations import (
+    body_rates_from_euler_313_rates,
+    euler_313_from_quaternion,
+    quaternion_from_euler_313,
+)
 from app.physics.solvers.integrated_model import IntegratedModel
 from app.physics.solvers.registry import METHODS
 from app.physics.solvers.step_choice import AccuracyTarget
@@ -89,7 +93,8 @@ def _rigid_body(
 
 
 def initial_state(params: Mapping[str, Any]) -> np.ndarray:
-    """``[q, ω_body]`` at t = 0 with φ0 = ψ0 = 0 (the axis tilts towards −Y... see :func:`quaternion_from_euler_313`)."""
+    """``[q, ω_body]`` at t = 0 with φ0 = ψ0 = 0 (the axis tilts towards −Y... see
+    :func:`quaternion_from_euler_313`)."""
     theta0 = math.radians(params["theta0_deg"])
     q0 = quaternion_from_euler_313(0.0, theta0, 0.0)
     omega = body_rates_from_euler_313_rates(theta0, 0.0, params["precession_rate0_rad_s"], params["nutation_rate0_rad_s"], 0.0)

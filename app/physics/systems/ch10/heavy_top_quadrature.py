@@ -76,7 +76,7 @@ def critical_spin_rad_s(I_transverse: float, I_axial: float, mgl: float) -> floa
     return math.sqrt(4.0 * mgl * I_transverse) / I_axial
 
 
-def _theta_from(one_minus_u: np.ndarray, one_plus_u: np.ndarray) -> np.ndarray:
+def _theta_from(one_minus_u: np.ndarray | float, one_plus_u: np.ndarray | float) -> np.ndarray:
     """θ = 2 atan2(√(1 − u), √(1 + u)): full precision near both poles."""
     return 2.0 * np.arctan2(np.sqrt(np.maximum(one_minus_u, 0.0)), np.sqrt(np.maximum(one_plus_u, 0.0)))
 

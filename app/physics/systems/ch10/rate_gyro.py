@@ -43,7 +43,7 @@ RESONANCE_TOLERANCE = 1e-9
 
 def _check(values: Mapping[str, Any]) -> None:
     if values["spin_rad_s"] == 0.0:
-        raise ParameterError("spin_rad_s", "must be non-zero: without spin the rotor has no angular momentum and the gimbal cannot sense rate (the gain I_a ω_s / k would be zero)")
+        raise ParameterError("spin_rad_s", "must be non-zero: without spin the rotor has no angular momentum and the gimbal cannot sense rate " "(the gain I_a ω_s / k would be zero)")
 
 
 def resonant(params: Mapping[str, Any]) -> bool:
@@ -55,7 +55,8 @@ def resonant(params: Mapping[str, Any]) -> bool:
 
 
 def small_angle_excess(t_s: np.ndarray, beta_rad: np.ndarray) -> tuple[float, float] | None:
-    """``(first time (s), largest |β| (rad))`` if |β| exceeds :data:`SMALL_ANGLE_LIMIT_RAD` at any of ``t_s``, else None."""
+    """``(first time (s), largest |β| (rad))`` if |β| exceeds :data:`SMALL_ANGLE_LIMIT_RAD` at any of ``t_s``, else
+    None."""
     over = np.flatnonzero(np.abs(beta_rad) > SMALL_ANGLE_LIMIT_RAD)
     if over.size == 0:
         return None
@@ -65,9 +66,9 @@ def small_angle_excess(t_s: np.ndarray, beta_rad: np.ndarray) -> tuple[float, fl
 def small_angle_warning(first_t_s: float, largest_beta_rad: float) -> str:
     """The sentence a student reads when the response leaves the small-angle model."""
     return (
-        f"Outside the model: from t = {first_t_s:.4g} s the gimbal deflection |β| exceeds {SMALL_ANGLE_LIMIT_RAD:g} rad "
-        f"({math.degrees(SMALL_ANGLE_LIMIT_RAD):.0f}°), reaching {largest_beta_rad:.3g} rad; the output equation assumes a small β "
-        "(sin β ≈ β), so the numbers beyond it are the linear model's, not a real gyro's (a real gimbal hits its stops)."
+        f"Outside the model: from t = {first_t_s:.4g} s the gimbal deflection |β| exceeds " f"{SMALL_ANGLE_LIMIT_RAD:g} rad "
+        f"({math.degrees(SMALL_ANGLE_LIMIT_RAD):.0f}°), reaching {largest_beta_rad:.3g} rad; the output equation " "assumes a small β "
+        "(sin β ≈ β), so the numbers beyond it are the linear model's, not a real gyro's (a real gimbal hits its " "stops)."
     )
 
 
@@ -164,7 +165,7 @@ def input_rate(params: Mapping[str, Any], t_s: np.ndarray) -> np.ndarray:
     return params["input_rate_rad_s"] * np.sin(params["input_frequency_rad_s"] * t)
 
 
-def case_angle_rad(params: Mapping[str, Any], t_s: np.ndarray) -> np.ndarray:
+def case_angle_rad(params: Mapping[str, Any], t_s: np.ndarray | float) -> np.ndarray:
     """Turn of the case about the input axis since t = 0, ``∫₀ᵗ Ω dt`` (rad)."""
     t = np.asarray(t_s, dtype=float)
     rate = params["input_rate_rad_s"]
@@ -191,7 +192,8 @@ def gimbal_response(params: Mapping[str, Any], t_s: np.ndarray | float) -> Gimba
     gain = steady_gain_s(params)
     rate = params["input_rate_rad_s"]
     if resonant(params):
-        # β̈ + ω_n² β = G Ω₀ ω_n² sin ω_n t from rest: β = (G Ω₀ / 2)(sin ω_n t − ω_n t cos ω_n t), growing linearly in t.
+        # β̈ + ω_n² β = G Ω₀ ω_n² sin ω_n t from rest: β = (G Ω₀ / 2)(sin ω_n t − ω_n t cos ω_n t), growing linearly in
+        # t.
         phase = omega_n * t
         beta = 0.5 * gain * rate * (np.sin(phase) - phase * np.cos(phase))
         beta_rate = 0.5 * gain * rate * omega_n * phase * np.sin(phase)

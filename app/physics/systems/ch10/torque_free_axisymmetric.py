@@ -181,7 +181,8 @@ class AxisymmetricFreeMotion:
 
 
 def spheroid_aspect_ratio(inertia_ratio: float) -> float:
-    """Semi-axis along the symmetry axis over the transverse semi-axis of the uniform solid spheroid with ``I_a / I_t = inertia_ratio``.
+    """Semi-axis along the symmetry axis over the transverse semi-axis of the uniform solid spheroid with
+    ``I_a / I_t = inertia_ratio``.
 
     For semi-axes ``a`` (axial) and ``b``: ``I_a = (2/5) m b²`` and ``I_t = (1/5) m (a² + b²)``,
     so ``I_a / I_t = 2 b² / (a² + b²)`` and ``a / b = √(2 / ratio − 1)``: 2 for a rugby ball
@@ -218,7 +219,7 @@ def check_inputs(*, I_transverse: float, I_axial: float, spin_rad_s: float, nuta
     if not (math.isfinite(nutation_deg) and 0.0 <= nutation_deg <= MAX_NUTATION_DEG):
         raise ParameterError(
             "nutation_deg",
-            f"must lie between 0° and {MAX_NUTATION_DEG:g}°: at 90° the axis is perpendicular to L and L = I_a·ω₃/cos θ is undefined",
+            f"must lie between 0° and {MAX_NUTATION_DEG:g}°: at 90° the axis is perpendicular to L and L = " "I_a·ω₃/cos θ is undefined",
         )
 
 
