@@ -53,6 +53,10 @@ VIEWER_CSS = """
 #: "+" and "−" zoom (the camera moves towards or away from the point it looks at, 15 % a press) and "R" puts the camera
 #: back at the scene's start pose (viser's "Reset View": the initial camera each scene sets). Should viser's hook
 #: be missing, "R" asks the page around the viewer to reset it (a lesson page does so through the session's playback).
+#: A viewer opened with ``wait`` (a lesson page preloads its own while it makes the session) starts viser's client at
+#: once but opens the websocket only when the page says the session exists ("dynlab:session-ready"; it asks with
+#: "dynlab:viewer-waiting" in case it was told before it listened): viser 1.1.1's client keeps its websocket in a
+#: web worker and connects when told the server's address, so every message to its workers waits until then.
 VIEWER_SCRIPT = """
 document.addEventListener("keydown", (event) => {
   const target = event.target instanceof Element ? event.target : null;
@@ -68,6 +72,17 @@ document.addEventListener("keydown", (event) => {
     else if (window.parent !== window) window.parent.postMessage({ type: "dynlab:reset-view" }, location.origin);
   }
 });
+if (new URLSearchParams(location.search).has("wait") && window.parent !== window) {
+  const ready = new Promise((resolve) => window.addEventListener("message", (event) => {
+    const data = event.origin === location.origin && event.source === window.parent ? event.data : null;
+    if (data && data.type === "dynlab:session-ready") resolve();
+  }));
+  const NativeWorker = window.Worker;
+  window.Worker = class extends NativeWorker {
+    postMessage(...args) { ready.then(() => super.postMessage(...args)); }
+  };
+  window.parent.postMessage({ type: "dynlab:viewer-waiting" }, location.origin);
+}
 """
 
 _VIEWER_HEAD_END = b"</title>"

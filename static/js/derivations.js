@@ -13,6 +13,13 @@ import { katexInto } from "./katex.js";
 
   const seconds = (s) => (s < 0.01 ? `${(1000 * s).toFixed(1)} ms` : `${s.toFixed(2)} s`);
 
+  // Derived once the page's scene has started (its first live numbers, or after SCENE_FIRST_MS): the columns sit
+  // below the scene, and their answers' equations would otherwise compete with the viewer's start for the page's thread.
+  const SCENE_FIRST_MS = 4000;
+  const sceneFirst = !config.scene ? Promise.resolve() : new Promise((resolve) => {
+    document.addEventListener("dynlab:live", resolve, { once: true });
+    setTimeout(resolve, SCENE_FIRST_MS);
+  });
   const derive = (systemId, formulation) => api("POST", `/api/systems/${encodeURIComponent(systemId)}/derive`, { formulation });
 
   function column(system, formulation) {
@@ -34,7 +41,7 @@ import { katexInto } from "./katex.js";
     status.className = "status";
     status.textContent = "deriving…";
     col.appendChild(status);
-    derive(system.id, formulation.id).then((answer) => {
+    sceneFirst.then(() => derive(system.id, formulation.id)).then((answer) => {
       status.textContent = `in ${answer.variables} · ${answer.cached ? "from the cache" : `derived in ${seconds(answer.derive_s)}`}, code ${seconds(answer.compile_s)}`;
       const equations = document.createElement("div");
       equations.className = "equations";

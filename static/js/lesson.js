@@ -415,6 +415,8 @@ export const lesson = (function () {
         const reply = await call("PUT", `/api/scenes/${scene.id}/sessions/${session.id}`, { params: values });
         Object.assign(values, reply.params);
         pollSoon();
+        sessionExists();
+        if (!viewerStarted && !inRoom) startViewer(); // the worked examples below need not hold the scene back
       }
       const rendered = [];
       for (const example of examples) {
@@ -432,7 +434,6 @@ export const lesson = (function () {
       showError(null, "");
       showPythonLinks(values);
       sessionStorage.setItem(storageKey, JSON.stringify(session));
-      if (scene && !viewerStarted && !inRoom) startViewer();
     } catch (err) {
       showError(err.field, err.message, err.loc);
     }
@@ -694,11 +695,30 @@ export const lesson = (function () {
     showViewer(ownViewer);
   }
   const ownViewer = scene ? `/viewer/${scene.id}/${session.id}/?hideViserLogo` : null;
+  // The page's own viewer, preloaded: it loads and starts viser's client while the page renders and makes its
+  // session, and opens its websocket when told the session exists (app/web/pages.py VIEWER_SCRIPT, `wait`): a
+  // viewer may not open a session its page has not made. It is the own viewer, so showing that keeps it.
+  const preloadedViewer = scene ? `${ownViewer}&wait` : null;
+  let sessionMade = false;
+  const viewerFrame = document.getElementById("viewer");
+  const tellViewer = () => viewerFrame.contentWindow.postMessage({ type: "dynlab:session-ready" }, location.origin);
+  function sessionExists() {
+    sessionMade = true;
+    if (viewerFrame.getAttribute("src") === preloadedViewer) tellViewer();
+  }
+  window.addEventListener("message", (event) => {
+    if (event.origin !== location.origin || event.source !== viewerFrame.contentWindow) return;
+    if (event.data && event.data.type === "dynlab:viewer-waiting" && sessionMade) tellViewer();
+  });
+  const showsOwnViewer = () => ownViewer !== null && [ownViewer, preloadedViewer].includes(viewerFrame.getAttribute("src"));
   function showViewer(src) {
     viewerStarted = true;
     document.getElementById("viewer-wrap").hidden = false;
-    const frame = document.getElementById("viewer");
-    if (frame.getAttribute("src") !== src) frame.src = src;
+    if (viewerFrame.getAttribute("src") !== src && !(src === ownViewer && showsOwnViewer())) viewerFrame.src = src;
+  }
+  function preloadViewer() {
+    document.getElementById("viewer-wrap").hidden = false;
+    viewerFrame.src = preloadedViewer;
   }
 
   // ---- what room.js drives: values shown without sending, locked controls, the viewer, the readout ------
@@ -753,11 +773,14 @@ export const lesson = (function () {
 
   const lesson = {
     session, schedule, scene, specs, defaults, ownViewer, shared,
-    setValues, lock, onChange, showViewer, startPolling, stopPolling,
+    setValues, lock, onChange, showViewer, showsOwnViewer, startPolling, stopPolling,
     // The session's time controls and camera (PUT …/playback with the session key); rejects with the server's message.
     setPlayback: (body) => call("PUT", `/api/scenes/${scene.id}/sessions/${session.id}/playback`, body),
     renderReadout, renderLive: (data) => { if (scene && scene.integrated && data.invariants) renderLive(data); },
   };
-  if (!inRoom) schedule();
+  if (!inRoom) {
+    if (scene) preloadViewer();
+    schedule();
+  }
   return lesson;
 })();

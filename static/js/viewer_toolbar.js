@@ -17,7 +17,7 @@ import { lesson } from "./lesson.js";
 
   // The page's own viewer (its session): the server puts every viewer of the session back at the start pose.
   // A room's viewer is the room's: this browser's camera alone goes back, inside the viewer.
-  const ownViewer = () => lesson.session && lesson.ownViewer && frame.getAttribute("src") === lesson.ownViewer;
+  const ownViewer = () => lesson.session && lesson.showsOwnViewer();
   const viewerWindow = () => { try { return frame.contentWindow; } catch (e) { return null; } };
   async function resetView() {
     if (ownViewer()) {
