@@ -56,8 +56,8 @@ def _instructor_on(browser, served, lesson_id: str):
     page.goto(f"{served.url}/lessons/{lesson_id}")
     page.get_by_role("button", name="Start a class room here").click()
     page.wait_for_url(re.compile(r"\?room=[0-9a-f]{16}"))
-    page.wait_for_function("async () => (await import('/static/js/room.js')).classroom?.state()")
-    return context, page, page.evaluate("async () => (await import('/static/js/room.js')).classroom.roomId")
+    page.wait_for_function("() => document.querySelector('.room-code')?.textContent")  # the room's state arrived
+    return context, page, re.search(r"room=([0-9a-f]{16})", page.url).group(1)
 
 
 def _set_control(page, name: str, value: str) -> None:
@@ -90,7 +90,7 @@ def test_a_second_instructor_tab_follows_the_class_and_moves_it_only_when_asked(
     offer.click()
     for page in (first, second):
         page.wait_for_url(re.compile(rf"/lessons/{FOUR_BAR_LESSON}\?room={room_id}&scene=four-bar$"))
-        page.wait_for_function("async () => (await import('/static/js/room.js')).classroom?.state()")
+        page.wait_for_function("() => document.querySelector('.room-code')?.textContent")  # the room's state arrived
     state = _room_state(served, room_id)
     assert (state["lesson_id"], state["scene_id"]) == (FOUR_BAR_LESSON, "four-bar")
 

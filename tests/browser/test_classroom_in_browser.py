@@ -73,8 +73,8 @@ def _instructor(browser, live_server):
     page.goto(f"{live_server.url}/lessons/{LESSON}")
     page.get_by_role("button", name="Start a class room here").click()
     page.wait_for_url(re.compile(r"\?room=[0-9a-f]{16}"))
-    page.wait_for_function("async () => (await import('/static/js/room.js')).classroom?.state()")
-    room_id = page.evaluate("async () => (await import('/static/js/room.js')).classroom.roomId")
+    page.wait_for_function("() => document.querySelector('.room-code')?.textContent")  # the room's state arrived
+    room_id = re.search(r"room=([0-9a-f]{16})", page.url).group(1)
     code = page.text_content(".room-code")
     return context, page, errors, room_id, code
 
