@@ -39,7 +39,8 @@ def _bar(y: float, marks: dict, x, height: float) -> list[str]:
         if end is None:
             continue
         if end > start:
-            out.append(f'<rect x="{_f(x(start))}" y="{_f(y)}" width="{_f(x(end) - x(start))}" height="{height}" fill="{colour}"/>')
+            width = _f(x(end) - x(start))
+            out.append(f'<rect x="{_f(x(start))}" y="{_f(y)}" width="{width}" height="{height}" fill="{colour}"/>')
             start = end
     return out
 
@@ -56,9 +57,11 @@ def first_frame_svg(report: dict) -> str:
     height = top + row_h * len(sides) * len(lessons) + 8 * len(lessons) + 90
     x = lambda ms: left + (right - left) * ms / top_ms  # noqa: E731
     out = [
-        f'<svg xmlns="{SVG_NS}" width="{WIDTH}" height="{height}" viewBox="0 0 {WIDTH} {height}" font-family="{escape(FONT)}">',
+        f'<svg xmlns="{SVG_NS}" width="{WIDTH}" height="{height}" viewBox="0 0 {WIDTH} {height}" '
+        f'font-family="{escape(FONT)}">',
         f'<rect width="{WIDTH}" height="{height}" fill="#ffffff"/>',
-        _text(16, 28, "A lesson's first frame: from opening the page to the viewer's first frame of its scene", size=15, weight="600"),
+        _text(16, 28, "A lesson's first frame: from opening the page to the viewer's first frame of its scene",
+              size=15, weight="600"),
         _text(16, 46, "Median of each mark over the loads, ms after the page's navigation started; "
               "each load a new browser context (nothing cached, a new scene)", size=11, fill="#555"),
     ]
@@ -75,17 +78,22 @@ def first_frame_svg(report: dict) -> str:
             out.append(_text(left - 8, y + 13, f"{lesson_id} ({side})", size=11, anchor="end"))
             out.extend(_bar(y, marks, x, bar_h))
             if "first_frame_ms" in marks:
-                out.append(_text(x(marks["first_frame_ms"]) + 6, y + 13, f"{marks['first_frame_ms'] / 1000:.2f} s", size=11))
+                first_s = marks["first_frame_ms"] / 1000
+                out.append(_text(x(marks["first_frame_ms"]) + 6, y + 13, f"{first_s:.2f} s", size=11))
             y += row_h
         y += 8
     out.append(f'<line x1="{left}" x2="{right}" y1="{y}" y2="{y}" stroke="#888" stroke-width="1"/>')
     for second in range(int(top_ms // 1000) + 1):
         out.append(_text(x(1000.0 * second), y + 16, f"{second} s", size=11, anchor="middle"))
     target = x(TARGET_MS)
-    out.append(f'<line x1="{_f(target)}" x2="{_f(target)}" y1="{top - 6}" y2="{y + 4}" stroke="#d0202e" stroke-width="1.5" stroke-dasharray="5 3"/>')
+    out.append(
+        f'<line x1="{_f(target)}" x2="{_f(target)}" y1="{top - 6}" y2="{y + 4}" '
+        'stroke="#d0202e" stroke-width="1.5" stroke-dasharray="5 3"/>'
+    )
     out.append(_text(target, y + 32, f"target {TARGET_MS / 1000:g} s", size=11, anchor="middle", fill="#d0202e"))
     loads = ", ".join(
-        f"{side}: load average {report[side]['load_average_before'][0]:.1f} → {report[side]['load_average_after'][0]:.1f}"
+        f"{side}: load average {report[side]['load_average_before'][0]:.1f} → "
+        f"{report[side]['load_average_after'][0]:.1f}"
         for side in sides
     )
     out.append(_text(16, height - 12, loads, size=11, fill="#555"))

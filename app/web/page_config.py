@@ -12,7 +12,7 @@ from app.scenes.host.host import TIME_SCALE_RANGE
 
 #: The speeds (× real time) a page offers: the time controls' menu and the instructor's in a room.
 TIME_SCALES = (0.1, 0.25, 0.5, 1.0, 2.0, 4.0)
-assert all(TIME_SCALE_RANGE[0] <= scale <= TIME_SCALE_RANGE[1] for scale in TIME_SCALES), "a time scale the host refuses"
+assert all(TIME_SCALE_RANGE[0] <= scale <= TIME_SCALE_RANGE[1] for scale in TIME_SCALES), "a scale the host refuses"
 
 #: How a page's websocket to the app reconnects when it drops (``static/js/socket.js``): the first wait (ms), the
 #: factor each further try multiplies it by, and the longest wait (ms); an open socket starts again at the first.

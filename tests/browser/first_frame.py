@@ -21,7 +21,8 @@ LESSONS = (
 )
 
 #: Added to every frame of the measuring context. In the viewer's frame: when the client opened its websocket, when
-#: it opened and brought the first message (the socket lives in a web worker: its messages to the page), and the first frame drawn once the scene's own nodes are in viser's scene
+#: it opened and brought the first message (the socket lives in a web worker: its messages to the page), and the
+#: first frame drawn once the scene's own nodes are in viser's scene
 #: tree (a node beyond the ones viser's client always has), checked after each of the client's animation frames.
 MARKS_SCRIPT = """(() => {
   if (!/^\\/(room-)?viewer\\//.test(location.pathname)) return;
@@ -36,7 +37,9 @@ MARKS_SCRIPT = """(() => {
       this.addEventListener("message", (event) => {
         const type = event.data && event.data.type;
         if (type === "connected") { if (marks.socket_open === undefined) marks.socket_open = now(); }
-        else if (type !== "closed" && marks.socket_open !== undefined && marks.first_message === undefined) marks.first_message = now();
+        else if (type !== "closed" && marks.socket_open !== undefined && marks.first_message === undefined) {
+          marks.first_message = now();
+        }
       });
     }
   };
@@ -62,7 +65,8 @@ READ_MARKS = """() => {
   const at = (epoch) => (typeof epoch === "number" ? epoch - origin : null);
   const paint = performance.getEntriesByType("paint").find((e) => e.name === "first-contentful-paint");
   const nav = performance.getEntriesByType("navigation")[0];
-  const put = performance.getEntriesByType("resource").find((e) => /\\/api\\/scenes\\/[^/]+\\/sessions\\/[^/]+$/.test(e.name));
+  const session = /\\/api\\/scenes\\/[^/]+\\/sessions\\/[^/]+$/;
+  const put = performance.getEntriesByType("resource").find((e) => session.test(e.name));
   const frame = document.getElementById("viewer");
   const marks = (frame && frame.contentWindow && frame.contentWindow.__firstFrameMarks) || {};
   const viewerNav = frame && frame.contentWindow && frame.contentWindow.performance.getEntriesByType("navigation")[0];
@@ -87,19 +91,6 @@ WAIT_FIRST_FRAME = """() => {
   const marks = frame && frame.contentWindow && frame.contentWindow.__firstFrameMarks;
   return Boolean(marks && marks.first_frame !== undefined);
 }"""
-
-#: The phases, in order, as (name, the mark it ends at): each phase's length is its mark minus the previous one's.
-PHASES = (
-    ("page paint", "page_paint_ms"),
-    ("page scripts and the session's first PUT", "session_put_end_ms"),
-    ("viewer frame opened", "viewer_start_ms"),
-    ("viewer HTML loaded", "viewer_html_ms"),
-    ("viewer client started (JS)", "socket_created_ms"),
-    ("websocket open", "socket_open_ms"),
-    ("first message (scene built in the worker)", "first_message_ms"),
-    ("first frame drawn", "first_frame_ms"),
-)
-
 
 def measure_once(browser, url: str, lesson_id: str, *, timeout_s: float = 30.0) -> dict:
     """Open ``/lessons/<lesson_id>`` in a new context (1366×768, the viewer drawing at the browser's own rate) and
@@ -153,6 +144,8 @@ def measure(browser, url: str, *, lessons=LESSONS, loads: int = 3) -> dict:
         measure_once(browser, url, lesson_id)
     before = load_average()
     started = time.time()
-    results = [summarise(lesson_id, [measure_once(browser, url, lesson_id) for _ in range(loads)]) for lesson_id in lessons]
-    return {"load_average_before": before, "load_average_after": load_average(), "seconds": round(time.time() - started, 1),
-            "lessons": results}
+    results = [
+        summarise(lesson_id, [measure_once(browser, url, lesson_id) for _ in range(loads)]) for lesson_id in lessons
+    ]
+    return {"load_average_before": before, "load_average_after": load_average(),
+            "seconds": round(time.time() - started, 1), "lessons": results}

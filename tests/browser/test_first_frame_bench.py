@@ -22,7 +22,9 @@ from tests.browser import first_frame
 
 pytestmark = [
     pytest.mark.browser,
-    pytest.mark.skipif(os.environ.get("DYNLAB_BENCH_FIRST_FRAME") != "1", reason="a benchmark: DYNLAB_BENCH_FIRST_FRAME=1"),
+    pytest.mark.skipif(
+        os.environ.get("DYNLAB_BENCH_FIRST_FRAME") != "1", reason="a benchmark: DYNLAB_BENCH_FIRST_FRAME=1"
+    ),
 ]
 
 BENCH_DIR = Path(__file__).resolve().parents[2] / "docs" / "bench"
