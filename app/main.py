@@ -20,6 +20,7 @@ from app.classroom import relay as room_relay
 from app.classroom import routes as rooms
 from app.classroom.hub import RoomHub
 from app.classroom.join_limits import JoinLimits
+from app.classroom.page_config import classroom_page_config
 from app.classroom.ready_questions import DEFAULT_READY_QUESTIONS, load_ready_questions
 from app.classroom.registry import Rooms
 from app.classroom.roles import InstructorKey
@@ -30,6 +31,7 @@ from app.scenes.host.host import SceneHost
 from app.scenes.host.pool import WorkerPool
 from app.settings import Settings
 from app.web import guard, pages, relay
+from app.web.page_config import add_page_config_section
 from app.web.stopping import AnswerWhenStopping, RequestsInFlight
 
 log = logging.getLogger(__name__)
@@ -38,6 +40,7 @@ STATIC_DIR = Path(__file__).resolve().parent.parent / "static"
 
 def create_app(settings: Settings | None = None) -> FastAPI:
     settings = settings or Settings.from_env()
+    add_page_config_section("classroom", classroom_page_config())  # the web layer hands it on, never imports it
 
     @asynccontextmanager
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:

@@ -36,7 +36,7 @@ def _join_page(code: str) -> HTMLResponse:
         lead = "Type the code shown on the projector."
     fields = {"code": esc(code), "lead": lead, "code_size": CODE_LENGTH, "name_max": MAX_NAME_LENGTH}
     body = _template("join.html").substitute(fields)
-    return _page("Join a room — Dynamics Lab", body, scripts=("/static/js/common.js", "/static/js/join.js"))
+    return _page("Join a room — Dynamics Lab", body, scripts=("/static/js/join.js",))
 
 
 @router.get("/join", response_class=HTMLResponse)
@@ -87,4 +87,4 @@ def projector_page(room_id: RoomId, request: Request, rooms: RoomsDep) -> HTMLRe
         return _notice_page(404, "No such room", "No open room has this address; it may have been closed. Open a room from a lesson page.")
     join_address = room.join_url.removesuffix(f"/{room.code}").removeprefix("http://")  # as a student types it
     body = _template("projector.html").substitute(room_id=room.room_id, code=esc(room.code), join_url=esc(join_address))
-    return _page(f"Room {room.code}: projector — Dynamics Lab", body, scripts=("/static/js/common.js", "/static/js/projector.js"))
+    return _page(f"Room {room.code}: projector — Dynamics Lab", body, scripts=("/static/js/projector.js",))

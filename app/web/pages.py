@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import html
-import json
 import math
 import re
 from datetime import datetime
@@ -21,6 +20,7 @@ from app.course.lessons import split_front_matter
 from app.physics.mechanics.derivation import FORMULATION_TITLES, FORMULATIONS
 from app.physics.mechanics.engine import available_formulations
 from app.scenes.host.host import SESSION_ID_PATTERN
+from app.web.page_config import config_script, page_config
 
 router = APIRouter(tags=["pages"], include_in_schema=False)
 TEMPLATES = Path(__file__).resolve().parent / "templates"
@@ -51,6 +51,10 @@ VIEWER_CSS = """
 #: "+" and "−" zoom (the camera moves towards or away from the point it looks at, 15 % a press) and "R" puts the camera
 #: back at the scene's start pose (viser's "Reset View": the initial camera each scene sets). Should viser's hook
 #: be missing, "R" asks the page around the viewer to reset it (a lesson page does so through the session's playback).
+#: A viewer opened with ``wait`` (a lesson page preloads its own while it makes the session) starts viser's client at
+#: once but opens the websocket only when the page says the session exists ("dynlab:session-ready"; it asks with
+#: "dynlab:viewer-waiting" in case it was told before it listened): viser 1.1.1's client keeps its websocket in a
+#: web worker and connects when told the server's address, so every message to its workers waits until then.
 VIEWER_SCRIPT = """
 document.addEventListener("keydown", (event) => {
   const target = event.target instanceof Element ? event.target : null;
@@ -66,6 +70,17 @@ document.addEventListener("keydown", (event) => {
     else if (window.parent !== window) window.parent.postMessage({ type: "dynlab:reset-view" }, location.origin);
   }
 });
+if (new URLSearchParams(location.search).has("wait") && window.parent !== window) {
+  const ready = new Promise((resolve) => window.addEventListener("message", (event) => {
+    const data = event.origin === location.origin && event.source === window.parent ? event.data : null;
+    if (data && data.type === "dynlab:session-ready") resolve();
+  }));
+  const NativeWorker = window.Worker;
+  window.Worker = class extends NativeWorker {
+    postMessage(...args) { ready.then(() => super.postMessage(...args)); }
+  };
+  window.parent.postMessage({ type: "dynlab:viewer-waiting" }, location.origin);
+}
 """
 
 _VIEWER_HEAD_END = b"</title>"
@@ -83,10 +98,13 @@ def viewer_client_html() -> bytes:
     return client[:title_start] + "<title>3D scene — Dynamics Lab</title>".encode() + added + client[client.index(_VIEWER_HEAD_END) + len(_VIEWER_HEAD_END):]
 
 
-def _page(title: str, body: str, *, scripts: tuple[str, ...] = ()) -> HTMLResponse:
+def _page(title: str, body: str, *, scripts: tuple[str, ...] = (), config: dict | None = None) -> HTMLResponse:
+    """A page: ``body`` in the site's frame, its configuration (:func:`page_config` with ``config``) and its
+    ``scripts``, each an ES module that imports what it needs (so their order is no one's concern)."""
+    modules = "".join(f'<script type="module" src="{src}"></script>' for src in scripts)
     return HTMLResponse(
         _template("page.html").substitute(
-            title=esc(title), body=body, scripts="".join(f'<script src="{src}" defer></script>' for src in scripts)
+            title=esc(title), body=body, config=config_script(page_config(**(config or {}))), scripts=modules
         )
     )
 
@@ -185,7 +203,6 @@ def lesson_page(lesson_id: str, catalogue: CatalogueDep, scene: str | None = Non
         f'<a class="{cls}" href="{esc(l.url)}">{arrow} {esc(l.section)} {esc(l.title)}</a>' if l else "<span></span>"
         for l, cls, arrow in ((previous, "prev", "←"), (following, "next", "→"))
     )
-    config = json.dumps(_lesson_config(lesson, catalogue, shown)).replace("</", "<\\/")
     body = _template("lesson.html").substitute(
         chapter_number=chapter.number,
         chapter_title=esc(chapter.title),
@@ -194,14 +211,14 @@ def lesson_page(lesson_id: str, catalogue: CatalogueDep, scene: str | None = Non
         summary=esc(lesson.summary),
         lesson_html=lesson.body_html,
         nav=nav,
-        config=config,
         scene_picker=_scene_picker(lesson, catalogue, shown),
         has_scene="has-scene" if lesson.scene or lesson.examples else "no-scene",
     )
     return _page(
         f"{lesson.section} {lesson.title} — Dynamics Lab",
         body,
-        scripts=("/static/vendor/katex/katex.min.js", "/static/js/common.js", "/static/js/plot.js", "/static/js/lesson.js", "/static/js/room.js", "/static/js/time_controls.js", "/static/js/viewer_toolbar.js", "/static/js/graphs.js", "/static/js/derivations.js"),
+        scripts=("/static/js/lesson_page.js",),
+        config=_lesson_config(lesson, catalogue, shown),
     )
 
 
@@ -650,9 +667,7 @@ def solver_lab_page(settings: SettingsDep) -> HTMLResponse:
         results=results_html,
         capacity=_capacity_section(settings),
     )
-    return _page(
-        "Solver lab — Dynamics Lab", body, scripts=("/static/vendor/katex/katex.min.js", "/static/js/common.js")
-    )
+    return _page("Solver lab — Dynamics Lab", body, scripts=("/static/js/solver_lab.js",))
 
 
 @router.get("/viewer/{scene_id}/{session_id}")

@@ -1,16 +1,6 @@
-// Shared by every page: projector (large text) mode, remembered per browser, and dynlabElement (below).
-
-// An element: attributes set as given ("text" sets its text; null, undefined or false leave one out; true sets it
-// empty), then the children (nodes or strings) appended.
-window.dynlabElement = function (tag, attrs = {}, ...children) {
-  const node = document.createElement(tag);
-  for (const [name, value] of Object.entries(attrs)) {
-    if (name === "text") node.textContent = value;
-    else if (value !== null && value !== undefined && value !== false) node.setAttribute(name, value === true ? "" : value);
-  }
-  node.append(...children);
-  return node;
-};
+// Shared by every page (each page's script imports it): projector (large text) mode, remembered per browser, and
+// the keyboard access to boxes that scroll sideways.
+import "./scroll_boxes.js";
 
 (function () {
   const root = document.documentElement;
@@ -25,16 +15,8 @@ window.dynlabElement = function (tag, attrs = {}, ...children) {
     localStorage.setItem("dynlab.large", on ? "1" : "0");
     apply(on);
   };
-  document.addEventListener("DOMContentLoaded", () => {
-    apply(localStorage.getItem("dynlab.large") === "1");
-    const button = document.getElementById("large-text");
-    if (button) button.addEventListener("click", toggle);
-    document.querySelectorAll(".math").forEach((el) => {
-      if (window.katex) {
-        katex.render(el.textContent, el, { displayMode: el.classList.contains("math-display"), throwOnError: false });
-      }
-    });
-  });
+  const button = document.getElementById("large-text");
+  if (button) button.addEventListener("click", toggle);
   document.addEventListener("keydown", (e) => {
     if (e.altKey && (e.key === "l" || e.key === "L")) { e.preventDefault(); toggle(); }
   });

@@ -1,29 +1,26 @@
 // Lesson page: the equations of motion of a catalogue system by every formulation, side by side.
 // Each column asks POST /api/systems/{id}/derive (cached on the server after the first time) and
 // renders the equations and the steps with KaTeX; a formulation that does not apply says why.
+import { api } from "./api.js";
+import { config } from "./config.js";
+import { katexInto } from "./katex.js";
+
 (function () {
-  const config = JSON.parse(document.getElementById("lesson-config").textContent);
   const systems = config.derivations || [];
   const section = document.getElementById("derivations");
   if (!systems.length || !section) return;
   section.hidden = false;
 
-  const katexInto = (el, latex, display) => {
-    if (window.katex) katex.render(latex, el, { displayMode: display, throwOnError: false });
-    else el.textContent = latex;
-  };
   const seconds = (s) => (s < 0.01 ? `${(1000 * s).toFixed(1)} ms` : `${s.toFixed(2)} s`);
 
-  async function derive(systemId, formulation) {
-    const response = await fetch(`/api/systems/${encodeURIComponent(systemId)}/derive`, {
-      method: "POST",
-      headers: { "Content-Type": "application/json" },
-      body: JSON.stringify({ formulation }),
-    });
-    const body = await response.json();
-    if (!response.ok) throw new Error(Array.isArray(body.detail) ? body.detail.map((d) => d.msg).join("; ") : body.detail);
-    return body;
-  }
+  // Derived once the page's scene has started (its first live numbers, or after SCENE_FIRST_MS): the columns sit
+  // below the scene, and their answers' equations would otherwise compete with the viewer's start for the page's thread.
+  const SCENE_FIRST_MS = 4000;
+  const sceneFirst = !config.scene ? Promise.resolve() : new Promise((resolve) => {
+    document.addEventListener("dynlab:live", resolve, { once: true });
+    setTimeout(resolve, SCENE_FIRST_MS);
+  });
+  const derive = (systemId, formulation) => api("POST", `/api/systems/${encodeURIComponent(systemId)}/derive`, { formulation });
 
   function column(system, formulation) {
     const col = document.createElement("article");
@@ -44,7 +41,7 @@
     status.className = "status";
     status.textContent = "deriving…";
     col.appendChild(status);
-    derive(system.id, formulation.id).then((answer) => {
+    sceneFirst.then(() => derive(system.id, formulation.id)).then((answer) => {
       status.textContent = `in ${answer.variables} · ${answer.cached ? "from the cache" : `derived in ${seconds(answer.derive_s)}`}, code ${seconds(answer.compile_s)}`;
       const equations = document.createElement("div");
       equations.className = "equations";
@@ -72,7 +69,7 @@
       col.dataset.ready = "true";
     }).catch((error) => {
       status.className = "status error";
-      status.textContent = `Could not derive: ${error.message}`;
+      status.textContent = `Could not derive: ${error.details ? error.details.map((d) => d.msg).join("; ") : error.message}`;
     });
     return col;
   }

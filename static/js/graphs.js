@@ -3,8 +3,12 @@
 // Polls GET /api/scenes/{scene}/sessions/{sid}/graph about 4 times a second, only while the section is open and
 // the tab visible, asking for the frames after the last time received (since_s) and keeping the last 60 s.
 // Time going back (restart, new parameters, play on from a scrubbed instant) starts the graph again.
+import { element as el } from "./dom.js";
+import { formatNumber } from "./format.js";
+import { lesson } from "./lesson.js";
+import { renderPlot } from "./plot.js";
+
 (function () {
-  const lesson = window.dynlabLesson;
   const section = document.getElementById("graphs");
   if (!lesson || !section || !lesson.scene || !lesson.scene.animated) return;
   if (new URLSearchParams(location.search).has("room")) return; // a room's scene is the instructor's (room.js)
@@ -21,13 +25,8 @@
   const SAME_FRAME_S = 1e-9;
   const TURN = { rad: 2 * Math.PI, deg: 360, "°": 360 }; // one whole turn, by the unit an angle is given in
 
-  const el = window.dynlabElement;
   // Four significant figures, trailing zeros kept (18.00 J says how precisely it is shown).
-  const fmt = (v) => {
-    if (v === 0) return "0";
-    const a = Math.abs(v);
-    return a >= 1e4 || a < 1e-3 ? v.toExponential(3).replace("e+", "e") : v.toPrecision(4);
-  };
+  const fmt = (v) => formatNumber(v, { digits: 4, expDigits: 3, large: 1e4, keepZeros: true });
 
   // ---- the panel ---------------------------------------------------------------------------------------------
   const note = el("p", { class: "graphs-note" }, "Waiting for the scene to start…");
@@ -215,7 +214,7 @@
     });
     const description = `${xName === TIME ? "Time graph" : "Phase plot"} of ${what} against ${against}: ` +
       `${ts.length} instants from t = ${ts[0].toFixed(2)} s to ${ts[ts.length - 1].toFixed(2)} s; ${ranges.join("; ")}.`;
-    window.DynPlot.render(plotBox, {
+    renderPlot(plotBox, {
       title: `${yNames.map(labelOf).join(", ")} against ${labelOf(xName)}`,
       x_label: against,
       y_label: yNames.length === 1 ? withUnit(yNames[0]) : yNames.map((n) => unitOf(n) || "–").filter((u, i, all) => all.indexOf(u) === i).join(", "),

@@ -3,8 +3,12 @@
 // to the room's lesson; before the instructor has opened one it waits on the room socket. The server knows the
 // device by a cookie, so joining again from it is the same student. Too many joins at once (429): it waits as the
 // server says (Retry-After) and tries again by itself.
+import "./common.js";
+import { config } from "./config.js";
+import { reconnectingSocket } from "./socket.js";
+
 (function () {
-  const CODE_LENGTH = 6;
+  const CODE_LENGTH = config.classroom.room_code_length;
   const form = document.getElementById("join-form");
   const codeBox = document.getElementById("join-code");
   const nameBox = document.getElementById("join-name");
@@ -101,21 +105,15 @@
   // Joined, no lesson yet: the room socket says when the instructor opens one (reconnecting if it drops).
   function wait(roomId, token, code) {
     const waiting = `Joined room ${code} — waiting for the instructor to open a lesson`;
-    let retryMs = 1000;
     let done = false;
     const stop = (message) => { done = true; showStatus(message); };
     showStatus(waiting);
-    const open = () => {
-      const scheme = location.protocol === "https:" ? "wss:" : "ws:";
-      const socket = new WebSocket(`${scheme}//${location.host}/api/rooms/${encodeURIComponent(roomId)}/socket`);
-      socket.addEventListener("open", () => {
-        retryMs = 1000;
+    const socket = reconnectingSocket(`/api/rooms/${encodeURIComponent(roomId)}/socket`, {
+      onOpen() {
         showStatus(waiting);
-        socket.send(JSON.stringify({ type: "hello", student_token: token, following: true }));
-      });
-      socket.addEventListener("message", (event) => {
-        let message;
-        try { message = JSON.parse(event.data); } catch (e) { return; }
+        socket.send({ type: "hello", student_token: token, following: true });
+      },
+      onMessage(message) {
         if (message.type === "state" && message.state && message.state.lesson_id) {
           stop("The instructor opened a lesson: opening it…");
           socket.close();
@@ -133,16 +131,14 @@
           form.hidden = false;
           showError("The room no longer knows this device: join again with the code.");
         }
-      });
-      socket.addEventListener("close", (event) => {
-        if (done) return;
-        if (event.code === 1008) { stop(`Room ${code} is closed.`); return; }  // the room is gone
+      },
+      onClose(event) {
+        if (done) return false;
+        if (event.code === 1008) { stop(`Room ${code} is closed.`); return false; }  // the room is gone
         showStatus(`Reconnecting to room ${code}…`);
-        setTimeout(open, retryMs);
-        retryMs = Math.min(2 * retryMs, 10000);
-      });
-    };
-    open();
+        return true;
+      },
+    });
   }
 
   form.addEventListener("submit", (event) => {

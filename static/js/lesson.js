@@ -1,10 +1,16 @@
 // Lesson page: controls generated from the scene's parameter schema, the live
-// viewer (one scene per page session) and the worked-solution panel.
-(function () {
-  const config = JSON.parse(document.getElementById("lesson-config").textContent);
+// viewer (one scene per page session) and the worked-solution panel. `lesson` is what the page's other scripts drive
+// (null on a lesson with neither a scene nor worked examples); the browser tests read it too, by importing this module.
+import { api } from "./api.js";
+import { config } from "./config.js";
+import { formatNumber } from "./format.js";
+import { katexInto } from "./katex.js";
+import { renderPlot } from "./plot.js";
+
+export const lesson = (function () {
   const scene = config.scene;
   const examples = config.examples;
-  if (!scene && !examples.length) return;
+  if (!scene && !examples.length) return null;
   // In a classroom room (?room=…) static/js/room.js decides what the viewer shows and where changes go.
   const inRoom = new URLSearchParams(location.search).has("room");
 
@@ -30,13 +36,7 @@
   if (shared) Object.assign(session.values, shared.params);
 
   // ---- number formatting (significant figures, units shown beside) -------------
-  const fmt = (v) => {
-    if (typeof v !== "number") return String(v);
-    if (v === 0) return "0";
-    const a = Math.abs(v);
-    if (a >= 1e6 || a < 1e-3) return v.toExponential(4).replace("e+", "e");
-    return String(+v.toPrecision(6));
-  };
+  const fmt = (v) => (typeof v === "number" ? formatNumber(v) : String(v));
   const fmtValue = (v) => Array.isArray(v) ? `[${v.map(fmt).join(", ")}]` : fmt(v);
 
   // ---- controls -------------------------------------------------------------------
@@ -321,26 +321,11 @@
     };
   }
 
-  async function call(method, url, body) {
-    const headers = { "Content-Type": "application/json", "X-Session-Key": session.key };
-    const response = await fetch(url, { method, headers, body: JSON.stringify(body) });
-    const data = await response.json().catch(() => ({}));
-    if (!response.ok) {
-      const d = Array.isArray(data.detail) ? data.detail[0] : { msg: data.detail || response.statusText, loc: [] };
-      const err = new Error(d.msg);
-      err.field = d.loc ? d.loc[d.loc.length - 1] : null;
-      err.loc = d.loc || [];
-      throw err;
-    }
-    return data;
-  }
+  // A change to this page's scene or a solve, with the session's key: nobody who only learns its id may change it.
+  const call = (method, url, body) => api(method, url, body, { "X-Session-Key": session.key });
 
   // ---- solution panel ---------------------------------------------------------------
   const panel = document.getElementById("solution");
-  function katexInto(el, latex, display) {
-    if (window.katex) katex.render(latex, el, { displayMode: display, throwOnError: false });
-    else el.textContent = latex;
-  }
   function renderSolution(example, result) {
     const box = document.createElement("div");
     box.className = "example";
@@ -387,7 +372,7 @@
     }
     for (const plot of result.plots || []) {
       const div = document.createElement("div");
-      window.DynPlot.render(div, plot);
+      renderPlot(div, plot);
       box.appendChild(div);
     }
     return box;
@@ -430,6 +415,8 @@
         const reply = await call("PUT", `/api/scenes/${scene.id}/sessions/${session.id}`, { params: values });
         Object.assign(values, reply.params);
         pollSoon();
+        sessionExists();
+        if (!viewerStarted && !inRoom) startViewer(); // the worked examples below need not hold the scene back
       }
       const rendered = [];
       for (const example of examples) {
@@ -447,7 +434,6 @@
       showError(null, "");
       showPythonLinks(values);
       sessionStorage.setItem(storageKey, JSON.stringify(session));
-      if (scene && !viewerStarted && !inRoom) startViewer();
     } catch (err) {
       showError(err.field, err.message, err.loc);
     }
@@ -522,7 +508,7 @@
   const motionLine = document.querySelector(".motion-description");
   const MOTION_EVERY_MS = 5000;
   const motion = { t_s: null, status: "", readout: null, shownAt: -Infinity, timer: null, toldMessage: "" };
-  const spoken = (v) => (v !== 0 && (Math.abs(v) >= 1e4 || Math.abs(v) < 1e-3) ? v.toExponential(2) : String(+v.toPrecision(3)));
+  const spoken = (v) => formatNumber(v, { digits: 3, expDigits: 2, large: 1e4 });
   const withoutEquations = (text) => text.split("$$").filter((_, i) => i % 2 === 0).join(" ").replace(/\s+/g, " ").trim();
   function motionSentence() {
     const items = (motion.readout && motion.readout.quantities) || [];
@@ -661,7 +647,7 @@
     const h = data.drift_history;
     const points = h.t_s.map((t, i) => [t, Math.max(h.max_relative_drift[i], 1e-17)]);
     if (points.length > 1) {
-      window.DynPlot.render(q("plot"), {
+      renderPlot(q("plot"), {
         title: "Largest invariant drift (relative)", x_label: "t (s)", y_label: "|ΔI| / scale", log_x: false, log_y: true,
         series: [{ name: "max drift", x: points.map((p) => p[0]), y: points.map((p) => p[1]) }],
       });
@@ -709,11 +695,30 @@
     showViewer(ownViewer);
   }
   const ownViewer = scene ? `/viewer/${scene.id}/${session.id}/?hideViserLogo` : null;
+  // The page's own viewer, preloaded: it loads and starts viser's client while the page renders and makes its
+  // session, and opens its websocket when told the session exists (app/web/pages.py VIEWER_SCRIPT, `wait`): a
+  // viewer may not open a session its page has not made. It is the own viewer, so showing that keeps it.
+  const preloadedViewer = scene ? `${ownViewer}&wait` : null;
+  let sessionMade = false;
+  const viewerFrame = document.getElementById("viewer");
+  const tellViewer = () => viewerFrame.contentWindow.postMessage({ type: "dynlab:session-ready" }, location.origin);
+  function sessionExists() {
+    sessionMade = true;
+    if (viewerFrame.getAttribute("src") === preloadedViewer) tellViewer();
+  }
+  window.addEventListener("message", (event) => {
+    if (event.origin !== location.origin || event.source !== viewerFrame.contentWindow) return;
+    if (event.data && event.data.type === "dynlab:viewer-waiting" && sessionMade) tellViewer();
+  });
+  const showsOwnViewer = () => ownViewer !== null && [ownViewer, preloadedViewer].includes(viewerFrame.getAttribute("src"));
   function showViewer(src) {
     viewerStarted = true;
     document.getElementById("viewer-wrap").hidden = false;
-    const frame = document.getElementById("viewer");
-    if (frame.getAttribute("src") !== src) frame.src = src;
+    if (viewerFrame.getAttribute("src") !== src && !(src === ownViewer && showsOwnViewer())) viewerFrame.src = src;
+  }
+  function preloadViewer() {
+    document.getElementById("viewer-wrap").hidden = false;
+    viewerFrame.src = preloadedViewer;
   }
 
   // ---- what room.js drives: values shown without sending, locked controls, the viewer, the readout ------
@@ -766,12 +771,16 @@
     };
   }
 
-  window.dynlabLesson = {
+  const lesson = {
     session, schedule, scene, specs, defaults, ownViewer, shared,
-    setValues, lock, onChange, showViewer, startPolling, stopPolling,
+    setValues, lock, onChange, showViewer, showsOwnViewer, startPolling, stopPolling,
     // The session's time controls and camera (PUT …/playback with the session key); rejects with the server's message.
     setPlayback: (body) => call("PUT", `/api/scenes/${scene.id}/sessions/${session.id}/playback`, body),
     renderReadout, renderLive: (data) => { if (scene && scene.integrated && data.invariants) renderLive(data); },
   };
-  if (!inRoom) schedule();
+  if (!inRoom) {
+    if (scene) preloadViewer();
+    schedule();
+  }
+  return lesson;
 })();

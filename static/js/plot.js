@@ -1,6 +1,8 @@
-// A small SVG line plot (linear or log axes) for solution panels and the graphs panel. No dependencies.
+// renderPlot(container, plot): a small SVG line plot (linear or log axes) for solution panels and the graphs panel. No dependencies.
 // plot: {title, x_label, y_label, log_x, log_y, series: [{name, x, y}], description?}; non-finite points are skipped.
-window.DynPlot = (function () {
+import { formatNumber } from "./format.js";
+
+export const renderPlot = (function () {
   const COLORS = ["#1f5eea", "#d1495b", "#2e8b57", "#8e44ad", "#e08e0b", "#555"];
   const NS = "http://www.w3.org/2000/svg";
   const W = 640, H = 360, M = { l: 74, r: 16, t: 30, b: 50 };
@@ -23,11 +25,8 @@ window.DynPlot = (function () {
     return ticks;
   }
 
-  function fmt(v) {
-    if (v === 0) return "0";
-    const a = Math.abs(v);
-    return a >= 1e4 || a < 1e-2 ? v.toExponential(0).replace("e+", "e") : String(+v.toPrecision(4));
-  }
+  // A tick's label: short, an exponent alone beyond 10^4 or under 10^-2.
+  const fmt = (v) => formatNumber(v, { digits: 4, expDigits: 0, large: 1e4, small: 1e-2 });
 
   function axis(values, log) {
     const finite = values.filter((v) => Number.isFinite(v) && (!log || v > 0));
@@ -88,5 +87,5 @@ window.DynPlot = (function () {
     container.appendChild(legend);
   }
 
-  return { render };
+  return render;
 })();

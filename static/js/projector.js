@@ -2,6 +2,11 @@
 // the back row, how to join, the readout, the play state and the current poll's anonymous histogram. It has no
 // controls: it reads the room socket (an instructor socket, opened with the instructor's cookie, so it also gets
 // poll results) and reconnects when the socket drops.
+import "./common.js";
+import { config } from "./config.js";
+import { formatNumber } from "./format.js";
+import { reconnectingSocket } from "./socket.js";
+
 (function () {
   const root = document.getElementById("projector");
   const roomId = root.dataset.roomId;
@@ -10,13 +15,7 @@
   const MAX_QUANTITIES = 6;
 
   // ---- numbers: about four significant figures, an exponent only when very large or small ----------
-  const fmt = (v) => {
-    if (typeof v !== "number" || !Number.isFinite(v)) return "—";
-    if (v === 0) return "0";
-    const a = Math.abs(v);
-    if (a >= 1e6 || a < 1e-3) return v.toExponential(2).replace("e+", "e");
-    return String(+v.toPrecision(4));
-  };
+  const fmt = (v) => (typeof v === "number" && Number.isFinite(v) ? formatNumber(v, { digits: 4 }) : "—");
   // The join address as a student types it: without its code (they type that in the box) or an "http://".
   const joinAddress = (state) => {
     const url = state.join_url.endsWith(`/${state.code}`) ? state.join_url.slice(0, -state.code.length - 1) : state.join_url;
@@ -167,40 +166,35 @@
     list.hidden = bins.length === 0;
   }
 
-  // ---- the room socket, reconnecting ------------------------------------------------------------------
+  // ---- the room socket, reconnecting by the page's one rule ----------------------------------------------
   const connection = $("projector-connection");
-  let retryMs = 1000;
   let closed = false;
   let dropped = false;
+  let ping = null;
   function connect() {
-    const scheme = location.protocol === "https:" ? "wss:" : "ws:";
-    const socket = new WebSocket(`${scheme}//${location.host}/api/rooms/${roomId}/socket`);
-    let ping = null;
-    socket.addEventListener("open", () => {
-      retryMs = 1000;
-      connection.textContent = "";
-      if (dropped) viewer.src = `/room-viewer/${roomId}/?hideViserLogo`;  // the server may have restarted the stream
-      dropped = false;
-      ping = setInterval(() => socket.send(JSON.stringify({ type: "ping" })), 20000);
-    });
-    socket.addEventListener("message", (event) => {
-      let message;
-      try { message = JSON.parse(event.data); } catch (e) { return; }
-      if (message.type === "state") renderState(message.state);
-      else if (message.type === "readout" && state && message.scene_id === state.scene_id) renderReadout(message.data);
-      else if (message.type === "results") { results = message.results; renderPoll(); }
-      else if (message.type === "closed") { closed = true; connection.textContent = "The instructor closed this room."; }
-    });
-    socket.addEventListener("close", (event) => {
-      clearInterval(ping);
-      if (closed || event.code === 1008) {
-        connection.textContent = "This room is closed.";
-        return;
-      }
-      dropped = true;
-      connection.textContent = "Connection lost: reconnecting…";
-      setTimeout(connect, retryMs);
-      retryMs = Math.min(2 * retryMs, 10000);
+    const socket = reconnectingSocket(`/api/rooms/${roomId}/socket`, {
+      onOpen() {
+        connection.textContent = "";
+        if (dropped) viewer.src = `/room-viewer/${roomId}/?hideViserLogo`;  // the server may have restarted the stream
+        dropped = false;
+        ping = setInterval(() => socket.send({ type: "ping" }), config.classroom.socket_ping_interval_ms);
+      },
+      onMessage(message) {
+        if (message.type === "state") renderState(message.state);
+        else if (message.type === "readout" && state && message.scene_id === state.scene_id) renderReadout(message.data);
+        else if (message.type === "results") { results = message.results; renderPoll(); }
+        else if (message.type === "closed") { closed = true; connection.textContent = "The instructor closed this room."; }
+      },
+      onClose(event) {
+        clearInterval(ping);
+        if (closed || event.code === 1008) {
+          connection.textContent = "This room is closed.";
+          return false;
+        }
+        dropped = true;
+        connection.textContent = "Connection lost: reconnecting…";
+        return true;
+      },
     });
   }
 

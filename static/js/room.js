@@ -6,90 +6,51 @@
 // "Show … to the class". Every change the page sends names the lesson and scene it shows (if_lesson_id,
 // if_scene_id): once the room has moved on, the server refuses it (409) instead of applying it to another scene.
 // Without ?room the page is a plain lesson; the instructor only gets a button to open a room on it.
+// `classroom` is this page's place in its room once it has one (null before): the browser tests read it by importing
+// this module, and drive the room through its socket with `send`.
+import { api } from "./api.js";
+import { config } from "./config.js";
+import { element as el } from "./dom.js";
+import { formatNumber } from "./format.js";
+import { lesson } from "./lesson.js"; // null on a lesson page without a scene or examples
+import { reconnectingSocket } from "./socket.js";
+
+export let classroom = null;
+
 (function () {
   const query = new URLSearchParams(location.search);
   const roomId = query.get("room");
-  const config = JSON.parse(document.getElementById("lesson-config").textContent);
-  const lesson = window.dynlabLesson || null; // absent on a lesson page without a scene or examples
   const pageScene = config.scene ? config.scene.id : null;
   const aside = document.querySelector(".lesson-live");
   if (!aside) return;
 
-  const TIME_SCALES = [0.1, 0.25, 0.5, 1, 2, 4];
   const THROTTLE_MS = 67; // about 15 changes a second while a slider is dragged; the last value is always sent
   const FOLLOW_TEXT = "Following the instructor — the controls show what the class sees";
   const EXPLORE_TEXT = "Exploring on your own — the instructor can bring everyone back";
 
-  const el = (tag, attrs = {}, ...children) => {
-    const node = document.createElement(tag);
-    for (const [name, value] of Object.entries(attrs)) {
-      if (name === "text") node.textContent = value;
-      else if (name === "class") node.className = value;
-      else if (value !== null && value !== undefined && value !== false) node.setAttribute(name, value === true ? "" : value);
-    }
-    node.append(...children);
-    return node;
-  };
-  const fmt = (v) => (typeof v === "number" ? String(+v.toPrecision(4)) : String(v));
+  const fmt = (v) => (typeof v === "number" ? formatNumber(v, { digits: 4, large: Infinity, small: 0 }) : String(v));
   const scaleText = (s) => `${fmt(s)}×`;
   const announce = (message) => document.dispatchEvent(new CustomEvent("dynlab:room", { detail: message }));
   const roomPage = (lessonId, sceneId, extra) =>
     `/lessons/${encodeURIComponent(lessonId)}?room=${roomId}` + (sceneId ? `&scene=${encodeURIComponent(sceneId)}` : "") + (extra || "");
 
-  async function api(method, url, body, headers = {}) {
-    const response = await fetch(url, {
-      method,
-      headers: { "Content-Type": "application/json", ...headers },
-      body: body === undefined ? undefined : JSON.stringify(body),
-    });
-    const data = await response.json().catch(() => ({}));
-    if (!response.ok) {
-      const detail = Array.isArray(data.detail) ? data.detail[0].msg : data.detail || response.statusText;
-      const err = new Error(detail);
-      err.status = response.status;
-      throw err;
-    }
-    return data;
-  }
-
-  // ---- the room socket: reconnects with a growing wait when it drops (a phone that slept) -------------
+  // ---- the room socket: reconnects by the page's one rule when it drops (a phone that slept) ------------------
   function roomSocket({ onOpen, onMessage, onGone }) {
-    let socket = null, attempts = 0, timer = null, gone = false;
-    function connect() {
-      timer = null;
-      const scheme = location.protocol === "https:" ? "wss" : "ws";
-      socket = new WebSocket(`${scheme}://${location.host}/api/rooms/${roomId}/socket`);
-      socket.addEventListener("open", () => { attempts = 0; onOpen(); });
-      socket.addEventListener("message", (event) => {
-        let message;
-        try { message = JSON.parse(event.data); } catch (e) { return; }
+    let gone = false;
+    return reconnectingSocket(`/api/rooms/${roomId}/socket`, {
+      onOpen,
+      onMessage(message) {
         if (message.type === "closed") { gone = true; onGone("The instructor closed this room."); }
         if (message.type === "removed") { gone = true; onGone(message.detail || "The instructor removed you from this room.", { removed: true }); }
         onMessage(message);
         announce(message);
-      });
-      socket.addEventListener("close", (event) => {
-        if (gone) return;
-        if (event.code === 1008) { gone = true; onGone("This room is not open any more (closed, or the server restarted)."); return; }
-        retry();
-      });
-    }
-    function retry() {
-      if (timer || gone) return;
-      attempts += 1;
-      timer = setTimeout(connect, Math.min(10000, 250 * 2 ** attempts));
-    }
-    document.addEventListener("visibilitychange", () => {
-      if (!document.hidden && !gone && socket && socket.readyState === WebSocket.CLOSED) { clearTimeout(timer); connect(); }
-    });
-    connect();
-    return {
-      send(message) {
-        if (!socket || socket.readyState !== WebSocket.OPEN) return false;
-        socket.send(JSON.stringify(message));
+      },
+      onClose(event) {
+        if (gone) return false;
+        if (event.code === 1008) { gone = true; onGone("This room is not open any more (closed, or the server restarted)."); return false; }
         return true;
       },
-    };
+    });
   }
 
   // ---- what both sides show: the play status, the room's readout, a room that has gone --------------
@@ -174,7 +135,7 @@
       onMessage,
       onGone: goneNotice,
     });
-    window.dynlabRoom = { roomId, role: "student", send: (m) => socket.send(m), state: () => latest };
+    classroom = { roomId, role: "student", send: (m) => socket.send(m), state: () => latest };
     if (lesson && !pageScene) lesson.schedule(); // worked examples only: the room has no scene to follow
 
     function showError(text) {
@@ -363,7 +324,7 @@
     let pendingParams = {}, lastSent = 0, flushTimer = null;
 
     const socket = roomSocket({ onOpen: () => panel.connected(true), onMessage, onGone: goneNotice });
-    window.dynlabRoom = { roomId, role: "instructor", send: (m) => socket.send(m), state: () => latest };
+    classroom = { roomId, role: "instructor", send: (m) => socket.send(m), state: () => latest };
     if (lesson && !pageScene) lesson.schedule(); // worked examples only: the room has no scene to drive
     const send = (message) => {
       if (message.type === "set_state" && !("if_lesson_id" in message)) Object.assign(message, shows);
@@ -485,7 +446,7 @@
     const status = el("p", { class: "room-status", "aria-live": "polite" });
     const play = button("❚❚ Pause", "play");
     const restart = button("⟲ Restart", "restart");
-    const scale = el("select", { id: "room-time-scale" }, ...TIME_SCALES.map((s) => new Option(scaleText(s), String(s))));
+    const scale = el("select", { id: "room-time-scale" }, ...config.time_scales.map((s) => new Option(scaleText(s), String(s))));
     const mode = button("Let everyone explore", "mode");
     const error = el("p", { class: "room-error error", role: "alert", hidden: true });
     const offerBox = el("div", { class: "room-offer", role: "status", hidden: true });
@@ -598,11 +559,11 @@
   function instructorPolls(act) {
     const ready = el("select", { id: "room-ready" }, new Option("Loading ready questions…", ""));
     const askReady = el("button", { type: "button", text: "Ask", "data-room": "ask-ready" });
-    const question = el("input", { type: "text", id: "room-own-question", maxlength: 300 });
+    const question = el("input", { type: "text", id: "room-own-question", maxlength: config.classroom.poll.question_max_chars });
     const kind = el("select", { id: "room-own-kind" }, new Option("Multiple choice", "choice"), new Option("A number with a unit", "number"));
     const choices = el("textarea", { id: "room-own-choices", rows: 3, placeholder: "one choice per line" });
-    const unit = el("input", { type: "text", id: "room-own-unit", maxlength: 20, placeholder: "e.g. rad/s" });
-    const choicesRow = el("p", {}, el("label", { for: choices.id, text: "Choices (2 to 8, one a line)" }), choices);
+    const unit = el("input", { type: "text", id: "room-own-unit", maxlength: config.classroom.poll.unit_max_chars, placeholder: "e.g. rad/s" });
+    const choicesRow = el("p", {}, el("label", { for: choices.id, text: `Choices (${config.classroom.poll.choices_min} to ${config.classroom.poll.choices_max}, one a line)` }), choices);
     const unitRow = el("p", { hidden: true }, el("label", { for: unit.id, text: "Unit" }), unit);
     const askOwn = el("button", { type: "submit", text: "Ask", "data-room": "ask-own" });
     const own = el("form", { class: "room-own" },

@@ -29,14 +29,13 @@
     requestAnimationFrame(() => { queued = false; markScrollBoxes(); });
   }
 
-  document.addEventListener("DOMContentLoaded", () => {
-    schedule();
-    // Content drawn later (worked solutions, derivations, an opened <details>, projector mode's larger text).
-    new MutationObserver(schedule).observe(document.body, {
-      childList: true, subtree: true, attributes: true, attributeFilter: ["open", "hidden", "class"],
-    });
-    window.addEventListener("resize", schedule);
-    // A web font (KaTeX's) that arrives late widens an equation without any change to the page's elements.
-    if (document.fonts) document.fonts.addEventListener("loadingdone", schedule);
+  // A module runs once the document is parsed: mark the boxes now, and again when anything changes.
+  schedule();
+  // Content drawn later (worked solutions, derivations, an opened <details>, projector mode's larger text).
+  new MutationObserver(schedule).observe(document.body, {
+    childList: true, subtree: true, attributes: true, attributeFilter: ["open", "hidden", "class"],
   });
+  window.addEventListener("resize", schedule);
+  // A web font (KaTeX's) that arrives late widens an equation without any change to the page's elements.
+  if (document.fonts) document.fonts.addEventListener("loadingdone", schedule);
 })();

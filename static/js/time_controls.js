@@ -2,26 +2,20 @@
 // server keeps (the last 60 s, replayed from stored states), and a share link that restores parameters, time,
 // play state and camera in another browser. Keys (outside text boxes): space plays or pauses, ← / → step back
 // or forward one frame while paused.
+import { config } from "./config.js";
+import { element as el } from "./dom.js";
+import { lesson } from "./lesson.js";
+
 (function () {
-  const lesson = window.dynlabLesson;
   if (!lesson || !lesson.scene || !lesson.scene.animated) return;
   const params = new URLSearchParams(location.search);
   if (params.has("room")) return; // a room's play state is the instructor's (room.js)
   const scene = lesson.scene;
   const session = lesson.session;
   const FRAME_S = 1 / 30;
-  const SPEEDS = [0.1, 0.25, 0.5, 1, 2, 4];
+  const SPEEDS = config.time_scales;
 
   // ---- the bar -----------------------------------------------------------------------------------------------
-  const el = (tag, attrs = {}, ...children) => {
-    const node = document.createElement(tag);
-    for (const [k, v] of Object.entries(attrs)) {
-      if (k === "text") node.textContent = v;
-      else node.setAttribute(k, v);
-    }
-    node.append(...children);
-    return node;
-  };
   const play = el("button", { type: "button", class: "tc-play", "aria-label": "Pause" }, "❚❚ Pause");
   const step = el("button", { type: "button", class: "tc-step", title: "One frame forward (→)", "aria-label": "Step one frame forward" }, "Step ▸");
   const restart = el("button", { type: "button", class: "tc-reset", "aria-label": "Restart from t = 0" }, "⟲ Restart");
@@ -134,12 +128,10 @@
 // "Save recording": the last few seconds the viewer showed (a still for a scene without motion), as one HTML file
 // that plays offline in any browser, for walkthroughs and for preparing a class. Beside the time controls.
 (function () {
-  const lesson = window.dynlabLesson;
   if (!lesson || !lesson.scene) return;
   if (new URLSearchParams(location.search).has("room")) return; // a room's scene is the instructor's
   const scene = lesson.scene;
   const session = lesson.session;
-  const el = window.dynlabElement;
   const group = el("div", { class: "recording-controls", role: "group", "aria-label": "Save a recording" });
   const save = el("button", { type: "button", class: "rec-save", text: scene.animated ? "Save recording" : "Save recording (a still)" });
   const seconds = el("select", { class: "rec-seconds", "aria-label": "Recording length: the last seconds shown" });

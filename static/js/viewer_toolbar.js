@@ -2,8 +2,9 @@
 // the camera back at the scene's start pose and "Save image" saves what the viewer shows as a PNG. viser's control
 // panel, which had these, is hidden (app/web/pages.py VIEWER_CSS). R resets the view too: on the page (outside
 // text boxes) here, inside the viewer by the script the viewer page carries.
+import { lesson } from "./lesson.js";
+
 (function () {
-  const lesson = window.dynlabLesson;
   const frame = document.getElementById("viewer");
   const resetButton = document.getElementById("reset-view");
   const saveButton = document.getElementById("save-image");
@@ -16,7 +17,7 @@
 
   // The page's own viewer (its session): the server puts every viewer of the session back at the start pose.
   // A room's viewer is the room's: this browser's camera alone goes back, inside the viewer.
-  const ownViewer = () => lesson.session && lesson.ownViewer && frame.getAttribute("src") === lesson.ownViewer;
+  const ownViewer = () => lesson.session && lesson.showsOwnViewer();
   const viewerWindow = () => { try { return frame.contentWindow; } catch (e) { return null; } };
   async function resetView() {
     if (ownViewer()) {

@@ -248,10 +248,11 @@ def open_lesson(
     errors: list[str] = []
     page.on("pageerror", lambda exc: errors.append(str(exc)))
     page.goto(live_server.url + path)
-    page.wait_for_function("window.dynlabLesson !== undefined")
-    session_id = page.evaluate("window.dynlabLesson.session.id")
+    # The page's lesson is static/js/lesson.js's export `lesson` (importing the module gives the page's own instance).
+    session_id = page.evaluate("async () => (await import('/static/js/lesson.js')).lesson.session.id")
     if hasattr(live_server.host, "remember"):
-        live_server.host.remember(session_id, page.evaluate("window.dynlabLesson.scene && window.dynlabLesson.scene.id") or "")
+        scene_id = page.evaluate("async () => (await import('/static/js/lesson.js')).lesson.scene?.id")
+        live_server.host.remember(session_id, scene_id or "")
     if viewer:
         wait_until(lambda: live_server.host.viewer_count(session_id) == 1, timeout_s, what="the 3D viewer to connect through the relay")
     return context, page, session_id, errors

@@ -36,7 +36,7 @@ PHONE = {"width": 390, "height": 844}
 #: Ready when the page's own scripts have drawn what they fetch: worked solutions (or the error that replaced them)
 #: and every derivation column (equations or its "could not derive" line).
 PAGE_DRAWN = """() => {
-  const config = document.getElementById('lesson-config');
+  const config = document.getElementById('dynlab-config');
   if (!config) return document.readyState === 'complete';
   const c = JSON.parse(config.textContent);
   const solved = !(c.examples || []).length || !document.getElementById('solution').hidden

@@ -43,7 +43,7 @@ def test_bouncing_bar_lesson_counts_impacts_keeps_the_energy_ledger_and_comes_to
     # The page claimed its session with its key: a change from outside the page must carry it (without it: 403).
     url = f"{live_server.url}/api/scenes/bouncing-bar/sessions/{session_id}"
     assert httpx.put(url, json={"params": elastic}).status_code == 403
-    key = page.evaluate("window.dynlabLesson.session.key")
+    key = page.evaluate("async () => (await import('/static/js/lesson.js')).lesson.session.key")
     assert httpx.put(url, json={"params": elastic}, headers={"X-Session-Key": key}).status_code == 200
     wait_until(lambda: host.session_params(session_id)["restitution"] == 1.0, 15, what="the scene to take the new parameters")
     def bouncing_elastically() -> bool:

@@ -56,8 +56,8 @@ def _instructor_on(browser, served, lesson_id: str):
     page.goto(f"{served.url}/lessons/{lesson_id}")
     page.get_by_role("button", name="Start a class room here").click()
     page.wait_for_url(re.compile(r"\?room=[0-9a-f]{16}"))
-    page.wait_for_function("window.dynlabRoom && window.dynlabRoom.state() !== null")
-    return context, page, page.evaluate("window.dynlabRoom.roomId")
+    page.wait_for_function("() => document.querySelector('.room-code')?.textContent")  # the room's state arrived
+    return context, page, re.search(r"room=([0-9a-f]{16})", page.url).group(1)
 
 
 def _set_control(page, name: str, value: str) -> None:
@@ -90,16 +90,18 @@ def test_a_second_instructor_tab_follows_the_class_and_moves_it_only_when_asked(
     offer.click()
     for page in (first, second):
         page.wait_for_url(re.compile(rf"/lessons/{FOUR_BAR_LESSON}\?room={room_id}&scene=four-bar$"))
-        page.wait_for_function("window.dynlabRoom && window.dynlabRoom.state() !== null")
+        page.wait_for_function("() => document.querySelector('.room-code')?.textContent")  # the room's state arrived
     state = _room_state(served, room_id)
     assert (state["lesson_id"], state["scene_id"]) == (FOUR_BAR_LESSON, "four-bar")
 
     # A change meant for the heavy top (a tab that had not yet followed) is refused with 409 and changes nothing.
     refusal = first.evaluate(
-        """(lesson) => new Promise((resolve) => {
+        """async (lesson) => {
+          const room = (await import('/static/js/room.js')).classroom;
+          return new Promise((resolve) => {
           document.addEventListener("dynlab:room", (e) => { if (e.detail.type === "error") resolve(e.detail); });
-          window.dynlabRoom.send({type: "set_state", params: {mass_kg: 2}, if_lesson_id: lesson, if_scene_id: "heavy-top"});
-        })""",
+          room.send({type: "set_state", params: {mass_kg: 2}, if_lesson_id: lesson, if_scene_id: "heavy-top"});
+        }); }""",
         TOP_LESSON,
     )
     assert refusal["status"] == 409 and "nothing changed" in refusal["detail"], refusal

@@ -73,8 +73,8 @@ def _instructor(browser, live_server):
     page.goto(f"{live_server.url}/lessons/{LESSON}")
     page.get_by_role("button", name="Start a class room here").click()
     page.wait_for_url(re.compile(r"\?room=[0-9a-f]{16}"))
-    page.wait_for_function("window.dynlabRoom && window.dynlabRoom.state() !== null")
-    room_id = page.evaluate("window.dynlabRoom.roomId")
+    page.wait_for_function("() => document.querySelector('.room-code')?.textContent")  # the room's state arrived
+    room_id = re.search(r"room=([0-9a-f]{16})", page.url).group(1)
     code = page.text_content(".room-code")
     return context, page, errors, room_id, code
 
@@ -167,10 +167,12 @@ def test_a_class_follows_explores_and_answers_a_poll(browser, live_server, shots
         {"type": "update_poll", "poll_id": "p1", "open": False},
     ):
         refusal = student.evaluate(
-            """(action) => new Promise((resolve) => {
+            """async (action) => {
+              const room = (await import('/static/js/room.js')).classroom;
+              return new Promise((resolve) => {
               document.addEventListener("dynlab:room", (e) => { if (e.detail.type === "error") resolve(e.detail); });
-              window.dynlabRoom.send(action);
-            })""",
+              room.send(action);
+            }); }""",
             action,
         )
         assert refusal["status"] == 403, refusal
@@ -182,7 +184,7 @@ def test_a_class_follows_explores_and_answers_a_poll(browser, live_server, shots
     sessions = []
     for page in pages:
         page.wait_for_selector('.room-bar[data-mode="explore"]')
-        session_id = page.evaluate("window.dynlabLesson.session.id")
+        session_id = page.evaluate("async () => (await import('/static/js/lesson.js')).lesson.session.id")
         assert page.get_attribute("#viewer", "src") == f"/viewer/{SCENE}/{session_id}/?hideViserLogo"
         assert not page.locator(f"#ctl-{SPIN}").is_disabled()
         assert _control(page) == 120
@@ -229,7 +231,7 @@ def test_a_class_follows_explores_and_answers_a_poll(browser, live_server, shots
     # The instructor moves on to the next lesson (its link keeps the room): every student's page follows.
     teacher.click(".prevnext a.next")
     teacher.wait_for_url(re.compile(rf"/lessons/(?!{LESSON})[^?]+\?room={room_id}"))
-    next_lesson = teacher.evaluate("JSON.parse(document.getElementById('lesson-config').textContent).lesson_id")
+    next_lesson = teacher.evaluate("JSON.parse(document.getElementById('dynlab-config').textContent).lesson_id")
     for page in pages:
         page.wait_for_url(re.compile(rf"/lessons/{next_lesson}\?room={room_id}"))
         page.wait_for_selector(".room-bar .room-banner")

@@ -1,7 +1,7 @@
 """Chapter 3.5–3.6 lesson pages in a real browser: each scene connects, its readout shows the physics, screenshots.
 
 One test per lesson page, serial. Each waits on the server's own client list,
-drives the page through its own control path (``dynlabLesson.schedule``), and
+drives the page through its own control path (``lesson.schedule`` of static/js/lesson.js), and
 compares a readout cell with the value computed here from app.physics.
 """
 
@@ -29,7 +29,9 @@ def _open(browser, live_server, lesson_id):
 def _set_controls(page, values: dict) -> None:
     """Set several controls the way the page's own widgets do (session values, then one scheduled PUT)."""
     page.evaluate(
-        "(values) => { Object.assign(window.dynlabLesson.session.values, values); window.dynlabLesson.schedule(); }", values
+        "async (values) => { const { lesson } = await import('/static/js/lesson.js');"
+        " Object.assign(lesson.session.values, values); lesson.schedule(); }",
+        values,
     )
 
 
@@ -50,7 +52,7 @@ def _wait_for_readout(page, live_server, name: str, condition_js: str, arg=None,
     try:
         page.wait_for_function(script, arg=[name, arg], timeout=timeout_ms)
     except Exception as exc:
-        session_id = page.evaluate("window.dynlabLesson.session.id")
+        session_id = page.evaluate("async () => (await import('/static/js/lesson.js')).lesson.session.id")
         scene_id = page.evaluate("document.getElementById('viewer').src.split('/')[4]")
         live = page.request.get(f"{live_server.url}/api/scenes/{scene_id}/sessions/{session_id}/live")
         raise AssertionError(f"readout {name!r} never satisfied {condition_js} (arg {arg!r}); live endpoint: {live.status} {live.text()[:400]}") from exc
@@ -89,7 +91,7 @@ def test_foucault_lesson_measures_the_swing_plane_turning(browser, live_server, 
     predicted = math.degrees(1000.0 * earth.vertical_earth_rate_rad_s(48.85))  # deg/s at the default ×1000
     assert _readout_value(page, "scene_rate_deg_s") == pytest.approx(predicted, rel=1e-12)
     # Six turning points take about 19 s of swinging (period 6.3 s): the time controls' 4× gets there in about 5 s.
-    page.evaluate("window.dynlabLesson.setPlayback({time_scale: 4})")
+    page.evaluate("async () => (await import('/static/js/lesson.js')).lesson.setPlayback({time_scale: 4})")
     _wait_for_readout(page, live_server, "turning_points", "value >= 6", timeout_ms=90_000)
     measured = _readout_value(page, "measured_rate_deg_s")
     assert measured == pytest.approx(predicted, rel=0.02)  # a fit over ~6 turning points; the lag from a/L = 0.1 is 0.4 %

@@ -40,7 +40,10 @@ def test_rigid_body_points_lesson(browser, live_server, shots):
     assert values["v_B_magnitude"] == pytest.approx(values["v_A_magnitude"], abs=1e-12)
     assert values["v_A_magnitude"] == pytest.approx(values["turntable_rate"] * 0.8 * math.cos(math.radians(30.0)), rel=1e-12)
     # Back to the rim, steady rates: |v_A| = 1.2 × 0.8 cos 30° = 0.8314 m/s at every instant.
-    page.evaluate("() => { Object.assign(window.dynlabLesson.session.values, {point_radius_fraction: 1.0}); window.dynlabLesson.schedule(); }")
+    page.evaluate(
+        "async () => { const { lesson } = await import('/static/js/lesson.js');"
+        " Object.assign(lesson.session.values, {point_radius_fraction: 1.0}); lesson.schedule(); }"
+    )
     _press_preset(page, host, session_id, "steady", lambda p: p["turntable_acceleration_rad_s2"] == 0.0 and p["shaft_elevation_deg"] == 0.0)
     _wait_for_quantity(page, "omega_cross_r_magnitude", "v > 0")
     _wait_for_quantity(page, "v_A_magnitude", f"Math.abs(v - {1.2 * 0.8!r}) < 1e-12")

@@ -43,7 +43,8 @@ def test_poinsot_lesson_readout_presets_and_ghost(browser, live_server, shots):
         and host.session_params(session_id)["omega0_rad_s"] == [0.1, 4.0, 0.1],
         15, what="the scene to take the preset and the ghost",
     )
-    page.evaluate("window.dynlabLesson.setPlayback({time_scale: 4})")  # 5.5 s of the flip in about 1.4 s
+    # 5.5 s of the flip in about 1.4 s
+    page.evaluate("async () => (await import('/static/js/lesson.js')).lesson.setPlayback({time_scale: 4})")
     page.wait_for_function(
         "() => { const c = document.querySelector('#readout [data-quantity=\"t_s\"]'); return c && JSON.parse(c.dataset.value) > 5.5; }",
         timeout=30_000,

@@ -1,4 +1,5 @@
-"""The classroom's rules handed to the page scripts are the rules the server enforces, not a second copy of them."""
+"""The classroom's rules handed to the page scripts are the rules the server enforces, not a second copy of them
+(with the web layer's time scales and socket rule, which the classroom's pages use too)."""
 
 from __future__ import annotations
 
@@ -14,26 +15,21 @@ from app.classroom.registry import Rooms
 from app.classroom.room import RoomError
 from app.classroom.schemas import JoinRequest, PollRequest, RoomStateChange
 from app.scenes.host.host import TIME_SCALE_RANGE
+from app.web.page_config import SOCKET_RECONNECT, TIME_SCALES, page_config
 
 CONFIG = classroom_page_config()
 
 
 def test_it_is_plain_json_with_the_keys_the_scripts_read():
     assert json.loads(json.dumps(CONFIG)) == CONFIG
-    assert set(CONFIG) == {
-        "time_scale_range", "time_scales", "room_socket", "room_code_length", "student_name_max_chars", "poll"
-    }
-    assert set(CONFIG["room_socket"]) == {
-        "reconnect_first_wait_ms", "reconnect_factor", "reconnect_longest_wait_ms", "ping_interval_ms"
-    }
+    assert set(CONFIG) == {"socket_ping_interval_ms", "room_code_length", "student_name_max_chars", "poll"}
     assert set(CONFIG["poll"]) == {
         "question_max_chars", "choice_max_chars", "choices_min", "choices_max", "unit_max_chars"
     }
 
 
 def test_the_time_scales_offered_span_the_range_every_door_accepts():
-    scales = CONFIG["time_scales"]
-    assert CONFIG["time_scale_range"] == list(TIME_SCALE_RANGE)
+    scales = list(TIME_SCALES)
     assert scales == sorted(scales) and 1 in scales  # slowest to fastest, real time among them
     assert (scales[0], scales[-1]) == TIME_SCALE_RANGE
     for scale in scales:  # a page's time controls, and the instructor's for the room
@@ -47,12 +43,19 @@ def test_the_time_scales_offered_span_the_range_every_door_accepts():
 
 
 def test_the_room_socket_waits_longer_after_each_failed_try_up_to_its_longest_wait():
-    rule = CONFIG["room_socket"]
-    waits = [rule["reconnect_first_wait_ms"]]
-    while waits[-1] < rule["reconnect_longest_wait_ms"]:
-        waits.append(min(rule["reconnect_longest_wait_ms"], waits[-1] * rule["reconnect_factor"]))
+    rule = SOCKET_RECONNECT
+    waits = [rule["initial_ms"]]
+    while waits[-1] < rule["cap_ms"]:
+        waits.append(min(rule["cap_ms"], waits[-1] * rule["factor"]))
     assert waits == [500, 1000, 2000, 4000, 8000, 10_000]
-    assert 0 < rule["ping_interval_ms"]
+    assert 0 < CONFIG["socket_ping_interval_ms"]
+
+
+def test_every_page_is_handed_the_classroom_section_once_the_app_is_made():
+    from app.main import create_app
+
+    create_app()
+    assert page_config()["classroom"] == CONFIG
 
 
 def _question(**fields) -> dict:

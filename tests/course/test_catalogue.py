@@ -122,7 +122,7 @@ def test_the_lesson_page_shows_every_referenced_example(tmp_path):
     client = TestClient(create_app(Settings(lessons_dir=root)))  # no lifespan: the lesson page needs no scene host
     page = client.get("/lessons/1-1-good")
     assert page.status_code == 200
-    config = json.loads(re.search(r'<script type="application/json" id="lesson-config">(.*?)</script>', page.text, re.S).group(1))
+    config = json.loads(re.search(r'<script type="application/json" id="dynlab-config">(.*?)</script>', page.text, re.S).group(1))
     assert [example["id"] for example in config["examples"]] == ["1.1", "1.2", "particle-work-energy"]
     assert config["scene"]["id"] == "radar-tracking"
 

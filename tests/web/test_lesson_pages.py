@@ -18,7 +18,7 @@ def pages() -> TestClient:
 
 
 def lesson_config(html: str) -> dict:
-    match = re.search(r'<script type="application/json" id="lesson-config">(.*?)</script>', html, re.S)
+    match = re.search(r'<script type="application/json" id="dynlab-config">(.*?)</script>', html, re.S)
     assert match, "the lesson page carries its configuration"
     return json.loads(match.group(1))
 
