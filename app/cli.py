@@ -17,7 +17,6 @@ from dataclasses import replace
 
 from app.settings import Settings, default_worker_count
 
-
 #: Ctrl+C ends ``dynlab serve`` within this long (s) whatever is in flight: requests get 1.5 s, the scene workers
 #: up to 3 s more (app/scenes/host/pool.py); anything still holding the process then (a thread blocked on a stopped
 #: worker, an executor's join) is not waited for: the workers are killed and the process exits.
@@ -30,7 +29,9 @@ def _exit_by_deadline(deadline_s: float) -> None:
     import threading
 
     def force() -> None:
-        logging.getLogger(__name__).warning("still stopping after %.1f s: the scene workers are killed and the server exits", deadline_s)
+        logging.getLogger(__name__).warning(
+            "still stopping after %.1f s: the scene workers are killed and the server exits", deadline_s
+        )
         for child in multiprocessing.active_children():
             child.kill()
         logging.shutdown()
@@ -75,14 +76,24 @@ def _serve(args: argparse.Namespace) -> int:
 
     log_redaction.install(app.state.instructor_key.secret)  # no log line carries the key (uvicorn's access log would)
     tune_garbage_collection()  # the front relays every frame of every viewer: the same allocation pattern as a worker
-    where = f"{settings.workers} scene worker{'s' if settings.workers != 1 else ''}" if settings.workers else "scenes in this process"
+    where = (
+        f"{settings.workers} scene worker{'s' if settings.workers != 1 else ''}"
+        if settings.workers
+        else "scenes in this process"
+    )
     print(f"Dynamics Lab: serving on http://{settings.host}:{settings.port}  ({where}; Ctrl+C to stop)", flush=True)
     base = settings.public_url or f"http://{settings.host}:{settings.port}"
-    print("Instructor link (keep it to yourself: whoever opens it runs the rooms): " f"{app.state.instructor_key.link(base)}", flush=True)
+    print(
+        "Instructor link (keep it to yourself: whoever opens it runs the rooms): "
+        f"{app.state.instructor_key.link(base)}",
+        flush=True,
+    )
     from app.web.slow_clients import GuardedHttpProtocol
 
     # Behind a reverse proxy every connection comes from the proxy: per-address connection caps belong to it there.
-    http_protocol = type("ServedHttpProtocol", (GuardedHttpProtocol,), {"cap_connections": not settings.trust_forwarded_for})
+    http_protocol = type(
+        "ServedHttpProtocol", (GuardedHttpProtocol,), {"cap_connections": not settings.trust_forwarded_for}
+    )
     # `kill -USR1 <pid>` writes every thread's stack to the log: what a server that will not stop is waiting for.
     with contextlib.suppress(AttributeError, ValueError, io.UnsupportedOperation):  # a stderr with no file (tests)
         faulthandler.register(signal.SIGUSR1, all_threads=True)
@@ -103,6 +114,7 @@ def _serve(args: argparse.Namespace) -> int:
         # (trust_forwarded_for).
         proxy_headers=False,
     )
+
     def on_stop() -> None:
         stop_all_work()  # a derivation in flight ends now: its request is answered before uvicorn's deadline
         app.state.requests_in_flight.stop()  # every request still waiting gets a 503 with Retry-After, not a 500
@@ -167,36 +179,65 @@ def _soak(args: argparse.Namespace) -> int:
 #: Commands that parse their own options: name → (runner, help, help of the options). Each runner imports its tool
 #: (app.bench) only when it runs: nothing else of the app imports the tools.
 _OWN_OPTIONS = {
-    "bench": (_bench, "measure speed against error (writes docs/bench/work_precision.json and plots)",
-              "options of the benchmark (see dynlab bench --help)"),
-    "derivations": (_derivations, "derivation engine: derive and compile times, agreement, proofs (writes docs/bench/derivations.json and .svg)",
-                    "options (see dynlab derivations --help)"),
-    "constrained": (_constrained, "work-precision of the DAE algorithms and scipy Radau/BDF (writes docs/bench/constrained_precision.json " "and .svg)",
-                    "options (see dynlab constrained --help)"),
-    "load": (_load, "classroom capacity: N viewers per scene, with --room N followers of one room, with --attack 100 "
-             "students before and while one client attacks (writes docs/bench/capacity.json, classroom.json or "
-             "attack.json, and .svg)", "options (see dynlab load --help)"),
-    "soak": (_soak, "N viewers for M minutes, then all gone: resources back to baseline",
-             "options (see dynlab soak --help)"),
+    "bench": (
+        _bench,
+        "measure speed against error (writes docs/bench/work_precision.json and plots)",
+        "options of the benchmark (see dynlab bench --help)",
+    ),
+    "derivations": (
+        _derivations,
+        "derivation engine: derive and compile times, agreement, proofs (writes docs/bench/derivations.json and .svg)",
+        "options (see dynlab derivations --help)",
+    ),
+    "constrained": (
+        _constrained,
+        "work-precision of the DAE algorithms and scipy Radau/BDF (writes docs/bench/constrained_precision.json "
+        "and .svg)",
+        "options (see dynlab constrained --help)",
+    ),
+    "load": (
+        _load,
+        "classroom capacity: N viewers per scene, with --room N followers of one room, with --attack 100 "
+        "students before and while one client attacks (writes docs/bench/capacity.json, classroom.json or "
+        "attack.json, and .svg)",
+        "options (see dynlab load --help)",
+    ),
+    "soak": (
+        _soak,
+        "N viewers for M minutes, then all gone: resources back to baseline",
+        "options (see dynlab soak --help)",
+    ),
 }
 
 
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
-    if argv[:1] and argv[0] in _OWN_OPTIONS:  # these parse their own options (argparse's REMAINDER refuses a leading --option)
+    if (
+        argv[:1] and argv[0] in _OWN_OPTIONS
+    ):  # these parse their own options (argparse's REMAINDER refuses a leading --option)
         return _OWN_OPTIONS[argv[0]][0](argparse.Namespace(bench_args=argv[1:]))
     parser = argparse.ArgumentParser(prog="dynlab", description="Dynamics Lab: interactive engineering dynamics.")
     commands = parser.add_subparsers(dest="command", required=True)
     serve = commands.add_parser("serve", help="run the web application")
-    serve.add_argument("--host", default=None, help="interface to bind (default 127.0.0.1; 0.0.0.0 for a classroom LAN)")
+    serve.add_argument(
+        "--host", default=None, help="interface to bind (default 127.0.0.1; 0.0.0.0 for a classroom LAN)"
+    )
     serve.add_argument("--port", type=int, default=None, help="port (default 8000)")
     serve.add_argument(
-        "--workers", type=int, default=None,
-        help=("scene-worker processes (default: one per core, or DYNLAB_WORKERS); 0 runs the scenes in the front " "process"),
+        "--workers",
+        type=int,
+        default=None,
+        help=(
+            "scene-worker processes (default: one per core, or DYNLAB_WORKERS); 0 runs the scenes in the front process"
+        ),
     )
     serve.add_argument(
-        "--instructor-key", default=None,
-        help=("the instructor's secret in the printed instructor link (default: DYNLAB_INSTRUCTOR_KEY, else a new " "random one each start)"),
+        "--instructor-key",
+        default=None,
+        help=(
+            "the instructor's secret in the printed instructor link (default: DYNLAB_INSTRUCTOR_KEY, else a new "
+            "random one each start)"
+        ),
     )
     serve.add_argument("--log-level", default="info", choices=["critical", "error", "warning", "info", "debug"])
     serve.set_defaults(run=_serve)
@@ -205,7 +246,10 @@ def main(argv: list[str] | None = None) -> int:
         command.add_argument("bench_args", nargs=argparse.REMAINDER, help=options_help)
         command.set_defaults(run=run)
     args = parser.parse_args(argv)
-    logging.basicConfig(level=getattr(logging, getattr(args, "log_level", "warning").upper()), format="%(levelname)s %(name)s: %(message)s")
+    logging.basicConfig(
+        level=getattr(logging, getattr(args, "log_level", "warning").upper()),
+        format="%(levelname)s %(name)s: %(message)s",
+    )
     return args.run(args)
 
 

@@ -46,7 +46,12 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
         host: SceneHost | WorkerPool
         if settings.workers:
-            host = WorkerPool(SCENES, workers=settings.workers, frame_rate_hz=settings.frame_rate_hz, max_sessions=settings.max_sessions)
+            host = WorkerPool(
+                SCENES,
+                workers=settings.workers,
+                frame_rate_hz=settings.frame_rate_hz,
+                max_sessions=settings.max_sessions,
+            )
         else:
             host = SceneHost(SCENES, frame_rate_hz=settings.frame_rate_hz, max_sessions=settings.max_sessions)
         host.start()
@@ -68,7 +73,9 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     )
     app.state.settings = settings
     # Page sessions: owners, viewers, per-client bounds; an evicted session is closed in its scene worker.
-    app.state.sessions = SessionDirectory(max_sessions=settings.max_sessions, close=lambda session_id: _close_evicted(app, session_id))
+    app.state.sessions = SessionDirectory(
+        max_sessions=settings.max_sessions, close=lambda session_id: _close_evicted(app, session_id)
+    )
     # Every lesson reference is checked here: a bad one stops the server before it starts.
     app.state.catalogue = load_catalogue(settings.lessons_dir)
     # The classroom: the instructor's secret, the open rooms, their sockets and the ready poll questions (checked now).

@@ -128,13 +128,19 @@ class SessionDirectory:
         self._by_client: dict[str, OrderedDict[str, None]] = {}
         self._viewers_of_client = InFlight(limit=MAX_VIEWERS_PER_CLIENT)
         self._followers = InFlight(limit=MAX_FOLLOWERS_PER_CLIENT)
-        self._creations = TokenBuckets(burst=CREATE_BURST, rate_per_s=CREATE_RATE_PER_S, max_clients=max_clients, clock=clock)
+        self._creations = TokenBuckets(
+            burst=CREATE_BURST, rate_per_s=CREATE_RATE_PER_S, max_clients=max_clients, clock=clock
+        )
         #: The one long computation a device may have running: a simulation, a derivation (both counted by the request
         #: guard, :class:`app.web.guard.RequestGuard`, which is given this counter) or a typed scene's change.
         self.heavy_work = InFlight(limit=1)
-        self._recordings = TokenBuckets(burst=RECORDING_BURST, rate_per_s=1.0 / RECORDING_EVERY_S, max_clients=max_clients, clock=clock)
+        self._recordings = TokenBuckets(
+            burst=RECORDING_BURST, rate_per_s=1.0 / RECORDING_EVERY_S, max_clients=max_clients, clock=clock
+        )
         self._recording_now = InFlight(limit=1)
-        self._long_requests = TokenBuckets(burst=LONG_REQUEST_BURST, rate_per_s=1.0 / LONG_REQUEST_EVERY_S, max_clients=max_clients, clock=clock)
+        self._long_requests = TokenBuckets(
+            burst=LONG_REQUEST_BURST, rate_per_s=1.0 / LONG_REQUEST_EVERY_S, max_clients=max_clients, clock=clock
+        )
         self._lock = threading.Lock()
 
     def __len__(self) -> int:
@@ -146,7 +152,10 @@ class SessionDirectory:
 
         ``creating``: the change may create the session (a page's parameters); otherwise it must exist (404)."""
         if session_id.startswith(STAGE_PREFIX):
-            raise Refused(403, f"session {session_id!r} is a classroom room's shared scene: only its instructor changes it, through the room")
+            raise Refused(
+                403,
+                f"session {session_id!r} is a classroom room's shared scene: only its instructor changes it, through the room",
+            )
         with self._lock:
             entry = self._entries.get(session_id)
             if entry is None:
@@ -156,12 +165,16 @@ class SessionDirectory:
                     wait_s = self._creations.take(client)
                     if wait_s > 0:
                         retry = retry_after_s(wait_s)
-                        raise Refused(429, f"too many new scenes from this device: try again in {retry} s", retry_after_s=retry)
+                        raise Refused(
+                            429, f"too many new scenes from this device: try again in {retry} s", retry_after_s=retry
+                        )
                 return
             if entry.key_hash is None:
                 return
             if key is None:
-                raise Refused(403, f"session {session_id!r} belongs to another page: changing it needs its {KEY_HEADER} header")
+                raise Refused(
+                    403, f"session {session_id!r} belongs to another page: changing it needs its {KEY_HEADER} header"
+                )
             if not hmac.compare_digest(entry.key_hash, _hash(key)):
                 raise Refused(403, f"session {session_id!r} belongs to another page: the {KEY_HEADER} does not match")
 
@@ -178,12 +191,16 @@ class SessionDirectory:
                     owned = self._by_client.setdefault(client, OrderedDict())
                     owned[session_id] = None
                     while len(owned) > MAX_SESSIONS_PER_CLIENT:
-                        oldest = next((sid for sid in owned if sid != session_id and self._entries[sid].viewers == 0), None)
+                        oldest = next(
+                            (sid for sid in owned if sid != session_id and self._entries[sid].viewers == 0), None
+                        )
                         if oldest is None:
                             break
                         evicted.append(self._forget_locked(oldest))
                 while len(self._entries) > self.max_sessions:
-                    oldest = next((sid for sid, e in self._entries.items() if sid != session_id and e.viewers == 0), None)
+                    oldest = next(
+                        (sid for sid, e in self._entries.items() if sid != session_id and e.viewers == 0), None
+                    )
                     if oldest is None:
                         break
                     evicted.append(self._forget_locked(oldest))
@@ -234,7 +251,11 @@ class SessionDirectory:
     def heavy_change(self, *, client: str | None) -> Iterator[None]:
         """Hold the client's one place for a change that compiles what a student typed (a typed Lagrangian's
         derivation may take its whole 20 s): a second one from the same device meanwhile is :class:`Refused` (429)."""
-        busy = Refused(429, "your previous change, simulation or derivation is still running: wait for it, then try again", retry_after_s=2)
+        busy = Refused(
+            429,
+            "your previous change, simulation or derivation is still running: wait for it, then try again",
+            retry_after_s=2,
+        )
         with _place(self.heavy_work, client, busy):
             yield
 
@@ -247,7 +268,9 @@ class SessionDirectory:
             wait_s = self._recordings.take(client) if client is not None else 0.0
             if wait_s > 0:
                 retry = retry_after_s(wait_s)
-                raise Refused(429, f"too many recordings from this device: the next one in {retry} s", retry_after_s=retry)
+                raise Refused(
+                    429, f"too many recordings from this device: the next one in {retry} s", retry_after_s=retry
+                )
             yield
 
     def check_long_request(self, *, client: str | None) -> None:
@@ -257,7 +280,9 @@ class SessionDirectory:
         wait_s = self._long_requests.take(client)
         if wait_s > 0:
             retry = retry_after_s(wait_s)
-            raise Refused(429, f"too many long steps or jumps from this device: the next one in {retry} s", retry_after_s=retry)
+            raise Refused(
+                429, f"too many long steps or jumps from this device: the next one in {retry} s", retry_after_s=retry
+            )
 
     # -- viewers -------------------------------------------------------------------------------------------
     @contextmanager
@@ -273,9 +298,13 @@ class SessionDirectory:
             if entry.scene_id != scene_id:
                 raise Refused(409, f"this session shows {entry.scene_id!r}, not {scene_id!r}: reload the page")
             if entry.viewers >= MAX_VIEWERS_PER_SESSION:
-                raise Refused(429, f"this scene has {MAX_VIEWERS_PER_SESSION} viewers open already: close a tab", retry_after_s=5)
+                raise Refused(
+                    429, f"this scene has {MAX_VIEWERS_PER_SESSION} viewers open already: close a tab", retry_after_s=5
+                )
             if client is not None and not self._viewers_of_client.try_enter(client):
-                raise Refused(429, f"this device has {MAX_VIEWERS_PER_CLIENT} scenes open already: close a tab", retry_after_s=5)
+                raise Refused(
+                    429, f"this device has {MAX_VIEWERS_PER_CLIENT} scenes open already: close a tab", retry_after_s=5
+                )
             entry.viewers += 1
             self._touch_locked(session_id, entry)
         try:
@@ -291,5 +320,9 @@ class SessionDirectory:
     @contextmanager
     def follower(self, *, client: str | None) -> Iterator[None]:
         """Hold a room follower's place while the block runs; :class:`Refused` (429) beyond the client's share."""
-        with _place(self._followers, client, Refused(429, f"this device follows the room in {MAX_FOLLOWERS_PER_CLIENT} tabs already", retry_after_s=5)):
+        with _place(
+            self._followers,
+            client,
+            Refused(429, f"this device follows the room in {MAX_FOLLOWERS_PER_CLIENT} tabs already", retry_after_s=5),
+        ):
             yield

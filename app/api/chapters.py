@@ -20,7 +20,13 @@ def list_chapters(catalogue: CatalogueDep) -> list[dict[str, Any]]:
             "summary": ch.summary,
             "sections": [{"number": s.number, "title": s.title, "topics": list(s.topics)} for s in ch.sections],
             "lessons": [
-                {"id": lesson.id, "title": lesson.title, "url": lesson.url, "section": lesson.section, "scene": lesson.scene}
+                {
+                    "id": lesson.id,
+                    "title": lesson.title,
+                    "url": lesson.url,
+                    "section": lesson.section,
+                    "scene": lesson.scene,
+                }
                 for lesson in ch.lessons
             ],
         }

@@ -24,10 +24,10 @@ from fastapi.exception_handlers import http_exception_handler
 from fastapi.exceptions import RequestValidationError
 from fastapi.responses import JSONResponse, Response
 
+from app.api.access import Refused
 from app.api.schemas.errors import ErrorDetail
 from app.physics.core.bounded import WorkBusy, WorkInterrupted, WorkRefused
 from app.physics.core.parameters import ParameterError
-from app.api.access import Refused
 from app.scenes.host.interface import HostBusy
 from app.scenes.host.rpc import WorkerUnavailableError
 
@@ -44,7 +44,9 @@ def _cut(text: str, limit: int) -> str:
 
 def unprocessable(loc: Sequence[str | int], message: str) -> HTTPException:
     """A 422 ``{"detail": [{"loc": loc, "msg": message, "type": "value_error"}]}``."""
-    return HTTPException(status_code=422, detail=[{"loc": list(loc), "msg": _cut(message, MAX_MESSAGE_CHARS), "type": "value_error"}])
+    return HTTPException(
+        status_code=422, detail=[{"loc": list(loc), "msg": _cut(message, MAX_MESSAGE_CHARS), "type": "value_error"}]
+    )
 
 
 def _echo(value: Any) -> Any:

@@ -16,7 +16,11 @@ router = APIRouter(prefix="/api/examples", tags=["examples"])
 
 #: The ``params`` query of a script route: the page's current values as JSON text.
 ScriptParams = Annotated[
-    str | None, Query(max_length=MAX_PARAMS_TEXT, description="The values as a JSON object, e.g. {\"mass_kg\": 2}; omitted names take their defaults")
+    str | None,
+    Query(
+        max_length=MAX_PARAMS_TEXT,
+        description='The values as a JSON object, e.g. {"mass_kg": 2}; omitted names take their defaults',
+    ),
 ]
 #: A script is served as Python text, named for the example or scene it reproduces.
 PYTHON_MEDIA_TYPE = "text/x-python; charset=utf-8"
@@ -24,7 +28,9 @@ PYTHON_MEDIA_TYPE = "text/x-python; charset=utf-8"
 
 def python_file(text: str, file_name: str) -> Response:
     """``text`` as a Python file the browser shows or saves as ``file_name``."""
-    return Response(text, media_type=PYTHON_MEDIA_TYPE, headers={"Content-Disposition": f'inline; filename="{file_name}"'})
+    return Response(
+        text, media_type=PYTHON_MEDIA_TYPE, headers={"Content-Disposition": f'inline; filename="{file_name}"'}
+    )
 
 
 @router.get("", response_model=list[ExampleSummary], response_model_exclude_unset=True)
@@ -45,7 +51,9 @@ def solve_example(example_id: str, request: SolveRequest, catalogue: CatalogueDe
     """Solve a worked example: ``outputs`` (SI; vectors as [x, y, z]), ``steps`` and ``plots``."""
     example = catalogue.examples.get(example_id)
     if example is None:
-        raise HTTPException(status_code=404, detail=f"no worked example {example_id!r}; known: {', '.join(catalogue.examples)}")
+        raise HTTPException(
+            status_code=404, detail=f"no worked example {example_id!r}; known: {', '.join(catalogue.examples)}"
+        )
     inputs = example.inputs.validate(request.inputs)
     result = example.solve(inputs).as_dict()
     result["inputs"] = inputs
@@ -60,7 +68,9 @@ def example_script_file(example_id: str, catalogue: CatalogueDep, params: Script
     """
     example = catalogue.examples.get(example_id)
     if example is None:
-        raise HTTPException(status_code=404, detail=f"no worked example {example_id!r}; known: {', '.join(catalogue.examples)}")
+        raise HTTPException(
+            status_code=404, detail=f"no worked example {example_id!r}; known: {', '.join(catalogue.examples)}"
+        )
     try:
         inputs = script_values(example.inputs, params)
     except ParameterError as exc:

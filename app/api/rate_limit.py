@@ -22,15 +22,23 @@ class TokenBuckets:
     first (its next request starts from a full bucket). ``burst=0`` means no limit.
     """
 
-    def __init__(self, *, burst: int, rate_per_s: float, max_clients: int, clock: Callable[[], float] = time.monotonic) -> None:
+    def __init__(
+        self, *, burst: int, rate_per_s: float, max_clients: int, clock: Callable[[], float] = time.monotonic
+    ) -> None:
         if burst < 0 or not (math.isfinite(rate_per_s) and rate_per_s > 0) or max_clients < 1:
-            raise ValueError(f"burst must be >= 0, rate_per_s finite and > 0, max_clients >= 1 (got {burst}, {rate_per_s}, {max_clients})")
+            raise ValueError(
+                f"burst must be >= 0, rate_per_s finite and > 0, max_clients >= 1 (got {burst}, {rate_per_s}, {max_clients})"
+            )
         self.burst = burst
         self.rate_per_s = rate_per_s
         self.max_clients = max_clients
         self._clock = clock
-        self._buckets: OrderedDict[str, tuple[float, float]] = OrderedDict()  # key -> (tokens, clock time of that count)
-        self._lock = threading.Lock()  # routes run in the thread pool: two requests at once must not both take the last token
+        self._buckets: OrderedDict[str, tuple[float, float]] = (
+            OrderedDict()
+        )  # key -> (tokens, clock time of that count)
+        self._lock = (
+            threading.Lock()
+        )  # routes run in the thread pool: two requests at once must not both take the last token
 
     def __len__(self) -> int:
         return len(self._buckets)

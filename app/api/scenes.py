@@ -10,13 +10,19 @@ from fastapi.responses import JSONResponse, Response
 from app.api.access import KEY_HEADER as SESSION_KEY_HEADER
 from app.api.access import SESSION_KEY_PATTERN, Refused
 from app.api.deps import ClientDep, ExploreStartDep, SceneHostDep, SessionsDep
-from app.api.examples import ScriptParams, python_file
 from app.api.errors import unprocessable
+from app.api.examples import ScriptParams, python_file
 from app.api.limits import SIMULATIONS, TOO_MANY_RESPONSE
 from app.api.schemas.errors import ErrorDetail, error_responses
 from app.api.schemas.graph import GraphAnswer
 from app.api.schemas.readout import LiveAnswer
-from app.api.schemas.scenes import PlaybackAnswer, PlaybackRequest, SceneSummary, SessionParamsAnswer, SessionParamsRequest
+from app.api.schemas.scenes import (
+    PlaybackAnswer,
+    PlaybackRequest,
+    SceneSummary,
+    SessionParamsAnswer,
+    SessionParamsRequest,
+)
 from app.api.schemas.simulation import SimulateRequest, SimulationAnswer
 from app.course.scripts import scene_script, script_file_name, script_values
 from app.physics.core.parameters import ParameterError
@@ -24,25 +30,44 @@ from app.physics.solvers.controls import CONTROL_NAMES
 from app.scenes.host.fair_share import is_long_request
 from app.scenes.host.graph import DEFAULT_MAX_POINTS, MAX_POINTS_RANGE, graph_csv
 from app.scenes.host.host import SESSION_ID_PATTERN, UnknownSceneError
-from app.scenes.host.recorder import DEFAULT_RECORDING_S, RECORDING_SECONDS_RANGE
 from app.scenes.host.interface import HostBusy
+from app.scenes.host.recorder import DEFAULT_RECORDING_S, RECORDING_SECONDS_RANGE
 from app.scenes.kit import Scene
 
 router = APIRouter(prefix="/api/scenes", tags=["scenes"])
 
-SessionId = Annotated[str, Path(pattern=SESSION_ID_PATTERN, description="One page's session: 8–64 letters, digits, '-' or '_'")]
+SessionId = Annotated[
+    str, Path(pattern=SESSION_ID_PATTERN, description="One page's session: 8–64 letters, digits, '-' or '_'")
+]
 SessionKey = Annotated[
     str | None,
-    Header(alias=SESSION_KEY_HEADER, pattern=SESSION_KEY_PATTERN.pattern, description="The page's secret for its session: 16–128 letters, digits, '-' or '_'"),
+    Header(
+        alias=SESSION_KEY_HEADER,
+        pattern=SESSION_KEY_PATTERN.pattern,
+        description="The page's secret for its session: 16–128 letters, digits, '-' or '_'",
+    ),
 ]
 _UNKNOWN_SCENE = "No scene has this id"
 #: What the session doors answer besides 404/422 (:mod:`app.api.access`).
 _RETRY_AFTER = {"Retry-After": {"description": "Seconds to wait before retrying", "schema": {"type": "integer"}}}
 _SESSION_DOOR = {
-    403: {"model": ErrorDetail, "description": "The session belongs to another page (its X-Session-Key is missing or wrong), or it is a classroom room's shared scene (changed only by its instructor); nothing changed"},
-    503: {"model": ErrorDetail, "description": "The session's scene worker is busy or restarting; Retry-After says when to try again", "headers": _RETRY_AFTER},
+    403: {
+        "model": ErrorDetail,
+        "description": "The session belongs to another page (its X-Session-Key is missing or wrong), or it is a classroom room's shared scene (changed only by its instructor); nothing changed",
+    },
+    503: {
+        "model": ErrorDetail,
+        "description": "The session's scene worker is busy or restarting; Retry-After says when to try again",
+        "headers": _RETRY_AFTER,
+    },
 }
-_TOO_MANY_SESSIONS = {429: {"model": ErrorDetail, "description": "Too many new scenes from this device; Retry-After says when to try again", "headers": _RETRY_AFTER}}
+_TOO_MANY_SESSIONS = {
+    429: {
+        "model": ErrorDetail,
+        "description": "Too many new scenes from this device; Retry-After says when to try again",
+        "headers": _RETRY_AFTER,
+    }
+}
 
 
 def _scene_class(host: SceneHostDep, scene_id: str) -> type[Scene]:
@@ -62,7 +87,10 @@ def list_scenes(host: SceneHostDep) -> list[dict[str, Any]]:
 @router.get(
     "/{scene_id}/sessions/{session_id}",
     response_model=SessionParamsAnswer,
-    responses=error_responses(not_found="No scene has this id, or the session shows none (or another scene)", unprocessable="The session id is malformed"),
+    responses=error_responses(
+        not_found="No scene has this id, or the session shows none (or another scene)",
+        unprocessable="The session id is malformed",
+    ),
 )
 def session_params(scene_id: str, session_id: SessionId, host: SceneHostDep) -> dict[str, Any]:
     """The session's parameters now and how many viewers are connected to it."""
@@ -153,16 +181,22 @@ def set_session_playback(
     except Refused as exc:
         if exc.status != 404:
             raise
-        raise unprocessable(["path", "session_id"], f"session {session_id!r} has no scene yet: set its parameters first") from None
+        raise unprocessable(
+            ["path", "session_id"], f"session {session_id!r} has no scene yet: set its parameters first"
+        ) from None
     if host.session_scene(session_id) != scene_id:
-        raise unprocessable(["path", "session_id"], f"session {session_id!r} shows no {scene_id!r} scene: set its parameters first")
+        raise unprocessable(
+            ["path", "session_id"], f"session {session_id!r} shows no {scene_id!r} scene: set its parameters first"
+        )
     if is_long_request(step=request.step, go_to_s=request.go_to_s):
         sessions.check_long_request(client=client)
     try:
         answer = host.set_playback(session_id, **request.model_dump(exclude_none=True))
     except ValueError as exc:
         field = str(exc).split(":", 1)[0]
-        raise unprocessable(["body", field if field in PlaybackRequest.model_fields else "session_id"], str(exc)) from None
+        raise unprocessable(
+            ["body", field if field in PlaybackRequest.model_fields else "session_id"], str(exc)
+        ) from None
     sessions.touched(session_id)
     return answer
 
@@ -171,7 +205,9 @@ def set_session_playback(
     "/{scene_id}/sessions/{session_id}/playback",
     response_model=PlaybackAnswer,
     response_model_exclude_unset=True,
-    responses=error_responses(not_found="No scene has this id, or the session has none yet", unprocessable="The session id is malformed"),
+    responses=error_responses(
+        not_found="No scene has this id, or the session has none yet", unprocessable="The session id is malformed"
+    ),
 )
 def session_playback(scene_id: str, session_id: SessionId, host: SceneHostDep) -> dict[str, Any]:
     """The session's play state, simulated time, the motion kept for scrubbing, the first viewer's camera (for a share
@@ -219,15 +255,23 @@ def simulate_scene(scene_id: str, request: SimulateRequest, host: SceneHostDep) 
         try:
             controls = model_cls.validate_controls(raw_controls)
             report = model_cls().simulate(params, controls, t_end_s=request.t_end, frame_rate_hz=request.frame_rate)
-        except ParameterError as exc:  # a control, a request field (t_end, frame_rate), a parameter failing over this span
+        except (
+            ParameterError
+        ) as exc:  # a control, a request field (t_end, frame_rate), a parameter failing over this span
             where = ["body", "params", *exc.path] if exc.field in params else ["body", exc.field]
             raise unprocessable(where, str(exc)) from None
         except ValueError as exc:  # no motion for these values (e.g. a linkage that cannot assemble)
             raise unprocessable(["body", "params"], str(exc)) from None
         out = report.as_dict()
         out["params"] = params
-        invariant_units = {k: v for k, v in model_cls.invariant_units.items() if k in out["invariants"]}  # e.g. |L| only without gravity
-        out["units"] = {"t": "s", **model_cls.series_units, **{f"invariants.{k}": v for k, v in invariant_units.items()}}
+        invariant_units = {
+            k: v for k, v in model_cls.invariant_units.items() if k in out["invariants"]
+        }  # e.g. |L| only without gravity
+        out["units"] = {
+            "t": "s",
+            **model_cls.series_units,
+            **{f"invariants.{k}": v for k, v in invariant_units.items()},
+        }
         # Encoded here, inside the slot, as FastAPI would after it: the encoding is half the answer's memory.
         return JSONResponse(SimulationAnswer.model_validate(out).model_dump(mode="json", exclude_unset=True))
 
@@ -257,7 +301,9 @@ def session_recording(
     host: SceneHostDep,
     sessions: SessionsDep,
     client: ClientDep,
-    seconds: Annotated[float, Query(ge=RECORDING_SECONDS_RANGE[0], le=RECORDING_SECONDS_RANGE[1], description="Length (s)")] = DEFAULT_RECORDING_S,
+    seconds: Annotated[
+        float, Query(ge=RECORDING_SECONDS_RANGE[0], le=RECORDING_SECONDS_RANGE[1], description="Length (s)")
+    ] = DEFAULT_RECORDING_S,
 ) -> Response:
     """The last ``seconds`` (1–60) of what the session's viewer showed, as one HTML file that plays offline in any
     browser (viser's client and the recording inside it); a still of the scene when it has no kept motion.
@@ -280,7 +326,9 @@ def session_recording(
     if page is None:
         raise HTTPException(status_code=404, detail=f"session {session_id!r} has no {scene_id!r} scene yet")
     return Response(
-        page, media_type="text/html; charset=utf-8", headers={"Content-Disposition": f'attachment; filename="{scene_id}-recording.html"'}
+        page,
+        media_type="text/html; charset=utf-8",
+        headers={"Content-Disposition": f'attachment; filename="{scene_id}-recording.html"'},
     )
 
 
@@ -302,7 +350,9 @@ def scene_script_file(scene_id: str, host: SceneHostDep, params: ScriptParams = 
 _GRAPH_UNPROCESSABLE = "since_s is not a number or is +∞, max_points is outside 10–2000, or the session id is malformed"
 
 
-def _session_graph(host: SceneHostDep, scene_id: str, session_id: str, *, since_s: float | None, max_points: int) -> dict[str, Any]:
+def _session_graph(
+    host: SceneHostDep, scene_id: str, session_id: str, *, since_s: float | None, max_points: int
+) -> dict[str, Any]:
     """The host's graph of the session's kept motion, or a 404 / 422 naming why not."""
     _scene_class(host, scene_id)
     try:
@@ -318,14 +368,26 @@ def _session_graph(host: SceneHostDep, scene_id: str, session_id: str, *, since_
 @router.get(
     "/{scene_id}/sessions/{session_id}/graph",
     response_model=GraphAnswer,
-    responses=error_responses(not_found="No scene has this id, or the session shows none (or another scene)", unprocessable=_GRAPH_UNPROCESSABLE),
+    responses=error_responses(
+        not_found="No scene has this id, or the session shows none (or another scene)",
+        unprocessable=_GRAPH_UNPROCESSABLE,
+    ),
 )
 def session_graph(
     scene_id: str,
     session_id: SessionId,
     host: SceneHostDep,
-    since_s: Annotated[float | None, Query(description="Only frames later than this simulated time (s); none: all the kept motion")] = None,
-    max_points: Annotated[int, Query(ge=MAX_POINTS_RANGE[0], le=MAX_POINTS_RANGE[1], description="Most frames in the answer (evenly thinned, the latest kept)")] = DEFAULT_MAX_POINTS,
+    since_s: Annotated[
+        float | None, Query(description="Only frames later than this simulated time (s); none: all the kept motion")
+    ] = None,
+    max_points: Annotated[
+        int,
+        Query(
+            ge=MAX_POINTS_RANGE[0],
+            le=MAX_POINTS_RANGE[1],
+            description="Most frames in the answer (evenly thinned, the latest kept)",
+        ),
+    ] = DEFAULT_MAX_POINTS,
 ) -> dict[str, Any]:
     """Graphs of the session's kept motion (the scrubber's last 60 s): every series, invariant and energy part
     against simulated time, evaluated on the kept states, and the energy bars at the latest frame. A scene that is
@@ -337,4 +399,8 @@ def session_graph(
 def session_graph_csv(scene_id: str, session_id: SessionId, host: SceneHostDep) -> Response:
     """The session's kept motion as CSV (every quantity of :func:`session_graph`, every kept frame), as a download."""
     answer = _session_graph(host, scene_id, session_id, since_s=None, max_points=MAX_POINTS_RANGE[1])
-    return Response(graph_csv(answer), media_type="text/csv", headers={"Content-Disposition": f'attachment; filename="{scene_id}-graph.csv"'})
+    return Response(
+        graph_csv(answer),
+        media_type="text/csv",
+        headers={"Content-Disposition": f'attachment; filename="{scene_id}-graph.csv"'},
+    )

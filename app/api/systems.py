@@ -53,7 +53,9 @@ def summary(system: SystemDescription) -> dict[str, Any]:
 def _system(catalogue, system_id: str) -> SystemDescription:
     system = catalogue.derivations.get(system_id)
     if system is None:
-        raise HTTPException(status_code=404, detail=f"no system {system_id!r}; known: {', '.join(catalogue.derivations)}")
+        raise HTTPException(
+            status_code=404, detail=f"no system {system_id!r}; known: {', '.join(catalogue.derivations)}"
+        )
     return system
 
 
@@ -89,7 +91,10 @@ def derive_custom(request: CustomDeriveRequest) -> dict[str, Any]:
 @router.post(
     "/{system_id}/derive",
     response_model=DeriveAnswer,
-    responses=error_responses(not_found="No system has this id", unprocessable="A parameter is out of range, or the formulation does not apply (the message says why)"),
+    responses=error_responses(
+        not_found="No system has this id",
+        unprocessable="A parameter is out of range, or the formulation does not apply (the message says why)",
+    ),
 )
 def derive_system(system_id: str, request: DeriveRequest, catalogue: CatalogueDep) -> dict[str, Any]:
     """The equations of motion by one formulation, with the steps that lead to them (LaTeX)."""
@@ -103,7 +108,10 @@ def derive_system(system_id: str, request: DeriveRequest, catalogue: CatalogueDe
 @router.post(
     "/{system_id}/rhs",
     response_model=RhsAnswer,
-    responses=error_responses(not_found="No system has this id", unprocessable="The state has the wrong length or is not finite, a parameter is out of range, the formulation does not apply, or the equations have no finite value at this state or time (`loc` names `state` or `t` and the message says why)"),
+    responses=error_responses(
+        not_found="No system has this id",
+        unprocessable="The state has the wrong length or is not finite, a parameter is out of range, the formulation does not apply, or the equations have no finite value at this state or time (`loc` names `state` or `t` and the message says why)",
+    ),
 )
 def system_rhs(system_id: str, request: RhsRequest, catalogue: CatalogueDep) -> dict[str, Any]:
     """The state derivative (q̇, q̈) at a state (q, q̇) by one formulation: every formulation answers the same quantity."""
@@ -112,32 +120,59 @@ def system_rhs(system_id: str, request: RhsRequest, catalogue: CatalogueDep) -> 
     n = len(system.coordinates)
     if len(request.state) != 2 * n:
         names = [c.name for c in system.coordinates]
-        raise ParameterError("state", f"give {2 * n} numbers: {', '.join(names)}, then their rates (got {len(request.state)})")
+        raise ParameterError(
+            "state", f"give {2 * n} numbers: {', '.join(names)}, then their rates (got {len(request.state)})"
+        )
     if not all(math.isfinite(x) for x in request.state):
         raise ParameterError("state", "every number of the state must be finite")
     if not math.isfinite(request.t):
         raise ParameterError("t", "must be a finite time (s)")
-    result, state, p = _derived(system, request.formulation), np.array(request.state), np.array(system.parameter_array(params))
+    result, state, p = (
+        _derived(system, request.formulation),
+        np.array(request.state),
+        np.array(system.parameter_array(params)),
+    )
     derivative, because = result.evaluate(request.t, state, p)
     if because:
-        raise _not_finite(system, request.formulation, request.t, state, because, finite_at_zero_time=not result.evaluate(0.0, state, p)[1])
+        raise _not_finite(
+            system,
+            request.formulation,
+            request.t,
+            state,
+            because,
+            finite_at_zero_time=not result.evaluate(0.0, state, p)[1],
+        )
     return {"state_derivative": derivative.tolist()}
 
 
-def _not_finite(system: SystemDescription, formulation: str, t_s: float, state: np.ndarray, because: str, *, finite_at_zero_time: bool) -> ParameterError:
+def _not_finite(
+    system: SystemDescription,
+    formulation: str,
+    t_s: float,
+    state: np.ndarray,
+    because: str,
+    *,
+    finite_at_zero_time: bool,
+) -> ParameterError:
     """The refusal of a state (or a time) where the equations have no finite value: which field, and why.
 
     The time is to blame when the same state at t = 0 is fine (a drive's angle ω t overflowing); else the state, at the
     coordinates' own singularity when one of the description's is zero there to within :data:`AT_SINGULARITY`.
     """
     if finite_at_zero_time and t_s != 0.0:
-        return ParameterError("t", f"at t = {t_s:g} s the {formulation} equations have no finite value because {because}; this state is fine at t = 0")
+        return ParameterError(
+            "t",
+            f"at t = {t_s:g} s the {formulation} equations have no finite value because {because}; this state is fine at t = 0",
+        )
     message = f"at this state the {formulation} equations have no finite value because {because}"
     values = dict(zip(system.q, state[: len(system.coordinates)].tolist()))
     for singularity in system.singularities:
         value = float(singularity.where.subs(values))
         if abs(value) <= AT_SINGULARITY:
-            return ParameterError("state", f"{message}. It is at the coordinates' singularity, {singularity.label} = {value:.3g}: {singularity.text}")
+            return ParameterError(
+                "state",
+                f"{message}. It is at the coordinates' singularity, {singularity.label} = {value:.3g}: {singularity.text}",
+            )
     return ParameterError("state", message)
 
 

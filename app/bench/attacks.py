@@ -125,8 +125,18 @@ class AttackBounds:
 
 #: A smaller attack of every kind, for a quick check of the tool (each attack still runs).
 QUICK_BOUNDS = AttackBounds(
-    room_rounds=3, rescenes=3, claims=40, takeovers=3, anonymous_gets=40, burst=40, bursts=1, seeks=2,
-    steps=10, viewers=10, derivations=1, request_timeout_s=5.0,
+    room_rounds=3,
+    rescenes=3,
+    claims=40,
+    takeovers=3,
+    anonymous_gets=40,
+    burst=40,
+    bursts=1,
+    seeks=2,
+    steps=10,
+    viewers=10,
+    derivations=1,
+    request_timeout_s=5.0,
 )
 
 
@@ -161,7 +171,11 @@ class AttackRecord:
             "count": int(sum(self.answers.values())),
             "answers": dict(sorted(self.answers.items(), key=lambda kv: (-kv[1], kv[0]))),
             "examples": self.examples,
-            "latency_ms": {"median": pick(50), "p95": pick(95), "max": round(float(values.max()), 1) if values.size else None},
+            "latency_ms": {
+                "median": pick(50),
+                "p95": pick(95),
+                "max": round(float(values.max()), 1) if values.size else None,
+            },
         }
 
 
@@ -226,8 +240,14 @@ class Attacker:
         if limit <= 0:
             return None
         answer = await http_request(
-            self.plan.host, self.plan.port, method, path, body=body,
-            headers={SESSION_KEY_HEADER: key} if key else None, source_address=self.plan.address, timeout_s=limit,
+            self.plan.host,
+            self.plan.port,
+            method,
+            path,
+            body=body,
+            headers={SESSION_KEY_HEADER: key} if key else None,
+            source_address=self.plan.address,
+            timeout_s=limit,
         )
         if answer.failure == "timeout" and (long or limit < self.bounds.request_timeout_s):
             return replace(answer, failure=WINDOW_ENDED)  # cut off by the window, not by the request timeout
@@ -275,7 +295,9 @@ class Attacker:
     async def claim(self, scene_id: str, params: dict, record: AttackRecord, *, prefix: str = "") -> tuple[str, str]:
         """A session of the attacker's own, claimed with its own key: (session id, key)."""
         session_id, key = new_session_id(), new_session_key()
-        answer = await self.request("PUT", f"/api/scenes/{scene_id}/sessions/{session_id}", body={"params": params}, key=key)
+        answer = await self.request(
+            "PUT", f"/api/scenes/{scene_id}/sessions/{session_id}", body={"params": params}, key=key
+        )
         if answer is not None:
             record.add_http(answer, prefix=prefix)
         return session_id, key
@@ -298,8 +320,11 @@ class Attacker:
         """One of item 2's changes of the room's shared scene, again and again (each change its own loop, so one
         that hangs does not keep the others from being tried)."""
         path = f"/api/scenes/{self.plan.scene_id}/sessions/room-{self.plan.room_id}/playback"
-        record = self.record(2, f"room scene: {name}", f"PUT /api/scenes/{self.plan.scene_id}/sessions/room-<room>/playback "
-                             f"{json.dumps(body)}, no credential")
+        record = self.record(
+            2,
+            f"room scene: {name}",
+            f"PUT /api/scenes/{self.plan.scene_id}/sessions/room-<room>/playback {json.dumps(body)}, no credential",
+        )
 
         async def change(_: int) -> bool:
             return await self.recorded(record, "PUT", path, body=body)
@@ -310,8 +335,11 @@ class Attacker:
 
     async def viewer_rescene(self) -> None:
         other = self.plan.other_scene_id
-        record = self.record(3, "viewer re-scenes a student's session",
-                             f"websocket /viewer/{other}/<a student's session id>, then viser's first camera message")
+        record = self.record(
+            3,
+            "viewer re-scenes a student's session",
+            f"websocket /viewer/{other}/<a student's session id>, then viser's first camera message",
+        )
         victims = itertools.cycle(self.plan.victims) if self.plan.victims else iter(())
 
         async def visit(_: int) -> bool:
@@ -331,17 +359,28 @@ class Attacker:
         """Claims as fast as the server answers and, beside them, a student's session changed under the attacker's
         key every so often (a flood that evicts the students' claims lets that through)."""
         scene = self.plan.scene_id
-        claims = self.record(4, "claim flood", f"PUT /api/scenes/{scene}/sessions/<new id> {{\"params\": {{}}}} with a new key each")
-        takeover = self.record(4, "a student's session under the attacker's key, during the flood",
-                               f"PUT /api/scenes/{scene}/sessions/<a student's session id>/playback {{\"playing\": false}} "
-                               "with the attacker's key, every few seconds while the claims go on")
+        claims = self.record(
+            4, "claim flood", f'PUT /api/scenes/{scene}/sessions/<new id> {{"params": {{}}}} with a new key each'
+        )
+        takeover = self.record(
+            4,
+            "a student's session under the attacker's key, during the flood",
+            f'PUT /api/scenes/{scene}/sessions/<a student\'s session id>/playback {{"playing": false}} '
+            "with the attacker's key, every few seconds while the claims go on",
+        )
         counter = itertools.count()
         victims = itertools.cycle(self.plan.victims) if self.plan.victims else iter(())
         attacker_key = new_session_key()
 
         async def claimer() -> None:
             while self.remaining_s() > 0 and next(counter) < self.bounds.claims:
-                if not await self.recorded(claims, "PUT", f"/api/scenes/{scene}/sessions/{new_session_id()}", body={"params": {}}, key=new_session_key()):
+                if not await self.recorded(
+                    claims,
+                    "PUT",
+                    f"/api/scenes/{scene}/sessions/{new_session_id()}",
+                    body={"params": {}},
+                    key=new_session_key(),
+                ):
                     return
 
         async def take_over(_: int) -> bool:
@@ -359,8 +398,11 @@ class Attacker:
 
     async def anonymous_gets(self) -> None:
         scene = self.plan.scene_id
-        record = self.record(4, "anonymous GETs of random session ids",
-                             f"GET /api/scenes/{scene}/sessions/<random id>/playback and …/live, alternately")
+        record = self.record(
+            4,
+            "anonymous GETs of random session ids",
+            f"GET /api/scenes/{scene}/sessions/<random id>/playback and …/live, alternately",
+        )
         counter = itertools.count()
 
         async def getter() -> None:
@@ -377,8 +419,11 @@ class Attacker:
         """Claim an own session of the scene with one held viewer (the attacker's page), then burst requests at it
         and flood it with viewers, both at once."""
         scene = self.plan.scene_id
-        viewers = self.record(6, "viewer flood from one address",
-                              f"up to {self.bounds.viewers} websockets /viewer/{scene}/<own session>, held open")
+        viewers = self.record(
+            6,
+            "viewer flood from one address",
+            f"up to {self.bounds.viewers} websockets /viewer/{scene}/<own session>, held open",
+        )
         session_id, _key = await self.claim(scene, {}, viewers, prefix="claim own session: ")
         await asyncio.gather(self.bursts(session_id), self.viewer_flood(session_id, viewers))
 
@@ -389,7 +434,9 @@ class Attacker:
 
         async def bursts_of(what: str) -> None:
             path = f"/api/scenes/{scene}/sessions/{session_id}/{what}"
-            record = self.record(5, f"burst: concurrent GETs of {what}", f"{n} concurrent GET /api/scenes/{scene}/sessions/<own>/{what}")
+            record = self.record(
+                5, f"burst: concurrent GETs of {what}", f"{n} concurrent GET /api/scenes/{scene}/sessions/<own>/{what}"
+            )
 
             async def burst(_: int) -> bool:
                 answers = await asyncio.gather(*(self.request("GET", path) for _ in range(n)))
@@ -420,14 +467,18 @@ class Attacker:
         for steps in DOUBLE_PENDULUM_STEPS:
             session_id, key = new_session_id(), new_session_key()
             answer = await self.request(
-                "PUT", f"/api/scenes/double-pendulum/sessions/{session_id}",
-                body={"params": {"method": "rk4", "steps_per_frame": steps}}, key=key,
+                "PUT",
+                f"/api/scenes/double-pendulum/sessions/{session_id}",
+                body={"params": {"method": "rk4", "steps_per_frame": steps}},
+                key=key,
             )
             if answer is None:
                 return None
             record.add_http(answer, prefix=f"setup ({steps} steps/frame): ")
             if answer.status == 200:
-                answer_text, elapsed_ms, client, _task = await self.open_viewer(f"/viewer/double-pendulum/{session_id}", hold=True)
+                answer_text, elapsed_ms, client, _task = await self.open_viewer(
+                    f"/viewer/double-pendulum/{session_id}", hold=True
+                )
                 record.add(f"setup viewer: {answer_text}", elapsed_ms, client.error or "")
                 self._keys[session_id] = key
                 return session_id
@@ -436,8 +487,12 @@ class Attacker:
     async def expensive_playback(self, name: str, body: dict, *, count: int, long: bool) -> None:
         """``body`` sent to the playback of an expensive session of the attacker's own, again each time it is
         answered."""
-        record = self.record(6, name, f"PUT /api/scenes/double-pendulum/sessions/<own>/playback {json.dumps(body)} "
-                                      "(rk4, 4096 steps/frame), again when answered")
+        record = self.record(
+            6,
+            name,
+            f"PUT /api/scenes/double-pendulum/sessions/<own>/playback {json.dumps(body)} "
+            "(rk4, 4096 steps/frame), again when answered",
+        )
         session_id = await self.expensive_session(record)
         if session_id is None:
             return
@@ -449,15 +504,20 @@ class Attacker:
         await self.until_window_ends(count, ask)
 
     async def derivations(self) -> None:
-        record = self.record(6, "two slow typed-Lagrangian derivations at once",
-                             "POST /api/systems/custom/derive, three coordinates, a kinetic energy sympy cannot finish "
-                             "in 20 s (new text each time), two at once, repeatedly")
+        record = self.record(
+            6,
+            "two slow typed-Lagrangian derivations at once",
+            "POST /api/systems/custom/derive, three coordinates, a kinetic energy sympy cannot finish "
+            "in 20 s (new text each time), two at once, repeatedly",
+        )
         counter = itertools.count(2 + secrets.randbelow(10**6))  # a new constant per request: no cache answers
 
         async def derive(_: int) -> bool:
             body = {
-                "coordinates": ["q1", "q2", "q3"], "kinetic_energy": SLOW_KINETIC_ENERGY.format(n=next(counter)),
-                "potential_energy": SLOW_POTENTIAL_ENERGY, "parameters": {},
+                "coordinates": ["q1", "q2", "q3"],
+                "kinetic_energy": SLOW_KINETIC_ENERGY.format(n=next(counter)),
+                "potential_energy": SLOW_POTENTIAL_ENERGY,
+                "parameters": {},
             }
             return await self.recorded(record, "POST", "/api/systems/custom/derive", body=body, long=True)
 
@@ -473,9 +533,15 @@ class Attacker:
         attacks = {
             **{f"room_{name}": self.room_change(name, body) for name, body in ROOM_CHANGES},
             "viewer_rescene": self.viewer_rescene(),
-            "claim_flood": self.claim_flood(), "anonymous_gets": self.anonymous_gets(),
-            "own_session_attacks": self.own_session_attacks(), "long_seeks": self.expensive_playback("long seek on an expensive session", {"go_to_s": 600.0}, count=self.bounds.seeks, long=True),
-            "repeated_steps": self.expensive_playback("repeated steps of 300 frames", {"step": 300}, count=self.bounds.steps, long=False),
+            "claim_flood": self.claim_flood(),
+            "anonymous_gets": self.anonymous_gets(),
+            "own_session_attacks": self.own_session_attacks(),
+            "long_seeks": self.expensive_playback(
+                "long seek on an expensive session", {"go_to_s": 600.0}, count=self.bounds.seeks, long=True
+            ),
+            "repeated_steps": self.expensive_playback(
+                "repeated steps of 300 frames", {"step": 300}, count=self.bounds.steps, long=False
+            ),
             "derivations": self.derivations(),
         }
         tasks = {asyncio.create_task(coro): name for name, coro in attacks.items()}

@@ -139,7 +139,9 @@ class LoadOptions:
             if not 1 <= count <= MAX_STUDENTS:
                 raise ValueError(f"students: each class size must be 1..{MAX_STUDENTS}, got {count}")
         if len(self.scenes) * len(self.students) > MAX_STEPS:
-            raise ValueError(f"students: {len(self.scenes)} scenes x {len(self.students)} sizes exceeds {MAX_STEPS} steps")
+            raise ValueError(
+                f"students: {len(self.scenes)} scenes x {len(self.students)} sizes exceeds {MAX_STEPS} steps"
+            )
         _check_range("seconds", self.seconds, 1.0, MAX_STEP_SECONDS)
         _check_range("warmup", self.warmup_s, 0.0, 120.0)
         _check_range("connect_rate", self.connect_per_s, 1.0, 1000.0)
@@ -153,18 +155,29 @@ class LoadOptions:
             if not (self.room or self.attack):
                 raise ValueError("instructor_key: only with --room or --attack (it opens the room)")
             if len(self.instructor_key) < MIN_KEY_LENGTH:
-                raise ValueError(f"instructor_key: at least {MIN_KEY_LENGTH} characters, got {len(self.instructor_key)}")
+                raise ValueError(
+                    f"instructor_key: at least {MIN_KEY_LENGTH} characters, got {len(self.instructor_key)}"
+                )
         elif (self.room or self.attack) and self.url is not None:
-            raise ValueError(f"instructor_key: a {'--room' if self.room else '--attack'} run against --url needs the server's " "instructor key")
+            raise ValueError(
+                f"instructor_key: a {'--room' if self.room else '--attack'} run against --url needs the server's "
+                "instructor key"
+            )
         if self.attack:
             if self.room:
-                raise ValueError("attack: students on their own scenes are attacked; --room and --attack do not go together")
+                raise ValueError(
+                    "attack: students on their own scenes are attacked; --room and --attack do not go together"
+                )
             if len(self.scenes) != 1 or len(self.students) != 1:
-                raise ValueError("attack: one scene and one class size (the students are measured before and under attack)")
+                raise ValueError(
+                    "attack: one scene and one class size (the students are measured before and under attack)"
+                )
         elif self.attack_bounds is not None:
             raise ValueError("attack_bounds: only with --attack")
         if self.distinct_addresses and self.url is not None and loopback_base(self.url)[0] == "::1":
-            raise ValueError("distinct_addresses: the students' addresses are IPv4 (127.0.1.x); give an http://127.0.0.1 url")
+            raise ValueError(
+                "distinct_addresses: the students' addresses are IPv4 (127.0.1.x); give an http://127.0.0.1 url"
+            )
 
 
 def _check_range(name: str, value: float, lo: float, hi: float) -> None:
@@ -281,7 +294,10 @@ def stop_process_group(process: subprocess.Popen, *, timeout_s: float) -> Server
 
 @contextlib.contextmanager
 def started_server(
-    *, workers: int | None, instructor_key: str | None = None, stop: ServerStop | None = None,
+    *,
+    workers: int | None,
+    instructor_key: str | None = None,
+    stop: ServerStop | None = None,
     stop_timeout_s: float = SERVER_STOP_TIMEOUT_S,
 ) -> Iterator[ServerUnderTest]:
     """``python -m app.cli serve`` on a free loopback port, stopped on exit (SIGINT, then kill after
@@ -318,13 +334,20 @@ def started_server(
 
 @contextlib.contextmanager
 def server_for(
-    options_url: str | None, *, server_pid: int | None, workers: int | None, instructor_key: str | None = None,
-    stop: ServerStop | None = None, stop_timeout_s: float = SERVER_STOP_TIMEOUT_S,
+    options_url: str | None,
+    *,
+    server_pid: int | None,
+    workers: int | None,
+    instructor_key: str | None = None,
+    stop: ServerStop | None = None,
+    stop_timeout_s: float = SERVER_STOP_TIMEOUT_S,
 ) -> Iterator[ServerUnderTest]:
     """The running server at ``options_url``, or one the tool starts (with ``instructor_key``) and stops (filling in
     ``stop``; killed after ``stop_timeout_s``)."""
     if options_url is None:
-        with started_server(workers=workers, instructor_key=instructor_key, stop=stop, stop_timeout_s=stop_timeout_s) as server:
+        with started_server(
+            workers=workers, instructor_key=instructor_key, stop=stop, stop_timeout_s=stop_timeout_s
+        ) as server:
             yield server
         return
     base_url = options_url.rstrip("/")
@@ -400,7 +423,11 @@ async def measure_window(server: ServerUnderTest, classroom: Classroom, seconds:
     try:
         healthy_at_start = tuple(classroom.healthy())
         busy_start, front_start, usage_start, tool_start, window_start = (
-            machine_busy_cpu_s(), server.front_cpu_s(), server.usage(), time.process_time(), classroom.snapshot()
+            machine_busy_cpu_s(),
+            server.front_cpu_s(),
+            server.usage(),
+            time.process_time(),
+            classroom.snapshot(),
         )
         await asyncio.sleep(seconds)
         usage_end, tool_end, window_end = server.usage(), time.process_time(), classroom.snapshot()
@@ -409,9 +436,18 @@ async def measure_window(server: ServerUnderTest, classroom: Classroom, seconds:
         stop_health.set()
         await asyncio.wait({prober}, timeout=5.0)
     return WindowReading(
-        start=window_start, end=window_end, usage_start=usage_start, usage_end=usage_end, front_start_s=front_start,
-        front_end_s=front_end, busy_start_s=busy_start, busy_end_s=busy_end, tool_cpu_s=tool_end - tool_start,
-        health=health, healthy_at_start=healthy_at_start, healthy_at_end=tuple(classroom.healthy()),
+        start=window_start,
+        end=window_end,
+        usage_start=usage_start,
+        usage_end=usage_end,
+        front_start_s=front_start,
+        front_end_s=front_end,
+        busy_start_s=busy_start,
+        busy_end_s=busy_end,
+        tool_cpu_s=tool_end - tool_start,
+        health=health,
+        healthy_at_start=healthy_at_start,
+        healthy_at_end=tuple(classroom.healthy()),
         errors=tuple(classroom.errors()),
     )
 
@@ -463,7 +499,9 @@ def window_figures(reading: WindowReading, *, count_dropped: bool = False) -> di
         figures["server_front_cpu_cores"] = round((reading.front_end_s - reading.front_start_s) / elapsed, 3)
     if reading.busy_start_s is not None and reading.busy_end_s is not None and figures["server_cpu_cores"] is not None:
         busy = (reading.busy_end_s - reading.busy_start_s) / elapsed
-        figures["other_cpu_cores"] = round(max(0.0, busy - figures["server_cpu_cores"] - figures["load_tool_cpu_cores"]), 3)
+        figures["other_cpu_cores"] = round(
+            max(0.0, busy - figures["server_cpu_cores"] - figures["load_tool_cpu_cores"]), 3
+        )
     return figures
 
 
@@ -477,7 +515,12 @@ async def measure_step(
     """
     host, port = server.address
     classroom = Classroom(
-        host, port, scene_id, students, connect_per_s=options.connect_per_s, path=viewer_path,
+        host,
+        port,
+        scene_id,
+        students,
+        connect_per_s=options.connect_per_s,
+        path=viewer_path,
         distinct_addresses=bool(options.distinct_addresses),  # set on construction of the options
     )
     try:
@@ -512,14 +555,18 @@ def server_facts(server: ServerUnderTest) -> dict:
         "url": server.base_url,
         "started_by_tool": server.started_by_tool,
         # A server started here without --workers runs `dynlab serve`'s default: one scene worker per core.
-        "workers": server.workers if server.workers is not None or not server.started_by_tool else default_worker_count(),
+        "workers": server.workers
+        if server.workers is not None or not server.started_by_tool
+        else default_worker_count(),
         # The frame rate a server started here runs at (DYNLAB_FRAME_RATE_HZ or the default); unknown for --url.
         "frame_rate_hz": Settings.from_env().frame_rate_hz if server.started_by_tool else None,
         "measured_pid": server.pid,
     }
 
 
-async def _measure_all(server: ServerUnderTest, options: LoadOptions, rooms: dict[str, dict] | None = None) -> list[dict]:
+async def _measure_all(
+    server: ServerUnderTest, options: LoadOptions, rooms: dict[str, dict] | None = None
+) -> list[dict]:
     """Every step; with ``rooms`` (scene id -> the room opened on it) the viewers follow that scene's room."""
     steps: list[dict] = []
     for scene_id in options.scenes:
@@ -542,7 +589,9 @@ def step_line(step: dict) -> str:
     fps = step["frames_per_s"] or {}
     cpu = step["server_cpu_cores"]
     return (
-        f"{step['scene_id']:>28} {step['students']:4d} " f"{'followers' if step.get('mode') == 'follow' else 'students '}: frames/s p10 {fps.get('p10', '—')} " "median "
+        f"{step['scene_id']:>28} {step['students']:4d} "
+        f"{'followers' if step.get('mode') == 'follow' else 'students '}: frames/s p10 {fps.get('p10', '—')} "
+        "median "
         f"{fps.get('median', '—')} min {fps.get('min', '—')}; server {cpu if cpu is not None else '—'} cores, "
         f"{step['server_rss_mb'] or '—'} MB; front {_or_dash(step.get('server_front_cpu_cores'))}; tool "
         f"{step['load_tool_cpu_cores']} cores; others {_or_dash(step.get('other_cpu_cores'))}; health p95 "
@@ -556,18 +605,27 @@ def check_scenes(base_url: str, scenes: Sequence[str]) -> None:
         known = {str(entry.get("id")) for entry in json.load(answer)}
     unknown = [scene_id for scene_id in scenes if scene_id not in known]
     if unknown:
-        raise ValueError(f"scene: the server has no scene {', '.join(map(repr, unknown))} (it has {', '.join(sorted(known))})")
+        raise ValueError(
+            f"scene: the server has no scene {', '.join(map(repr, unknown))} (it has {', '.join(sorted(known))})"
+        )
 
 
 # ---- a classroom room for --room ---------------------------------------------------------------
 
 
 def _request_json(
-    url: str, *, method: str = "GET", body: dict | None = None, headers: dict[str, str] | None = None, timeout_s: float = 30.0
+    url: str,
+    *,
+    method: str = "GET",
+    body: dict | None = None,
+    headers: dict[str, str] | None = None,
+    timeout_s: float = 30.0,
 ):
     """One JSON request to the server under test; RuntimeError with the server's answer on an HTTP error."""
     data = None if body is None else json.dumps(body).encode()
-    request = urllib.request.Request(url, data=data, method=method, headers={"Content-Type": "application/json", **(headers or {})})
+    request = urllib.request.Request(
+        url, data=data, method=method, headers={"Content-Type": "application/json", **(headers or {})}
+    )
     try:
         with urllib.request.urlopen(request, timeout=timeout_s) as answer:
             raw = answer.read()
@@ -590,7 +648,9 @@ def open_room(base_url: str, scene_id: str, *, instructor_key: str) -> dict:
     """Open a classroom room on ``scene_id`` (as the instructor): ``{"room_id", "code", "lesson_id", "scene_id"}``."""
     lesson_id = lesson_showing(_request_json(f"{base_url}/api/chapters"), scene_id)
     created = _request_json(
-        f"{base_url}/api/rooms", method="POST", body={"lesson_id": lesson_id, "scene_id": scene_id},
+        f"{base_url}/api/rooms",
+        method="POST",
+        body={"lesson_id": lesson_id, "scene_id": scene_id},
         headers={INSTRUCTOR_HEADER: instructor_key},
     )
     return {"room_id": created["room_id"], "code": created["code"], "lesson_id": lesson_id, "scene_id": scene_id}
@@ -601,7 +661,10 @@ def close_room(base_url: str, room_id: str, *, instructor_key: str, timeout_s: f
     ``timeout_s``, is fine (the server is stopped next)."""
     with contextlib.suppress(RuntimeError, OSError):
         _request_json(
-            f"{base_url}/api/rooms/{room_id}", method="DELETE", headers={INSTRUCTOR_HEADER: instructor_key}, timeout_s=timeout_s
+            f"{base_url}/api/rooms/{room_id}",
+            method="DELETE",
+            headers={INSTRUCTOR_HEADER: instructor_key},
+            timeout_s=timeout_s,
         )
 
 
@@ -640,7 +703,9 @@ def run_load(options: LoadOptions) -> dict:
     child_key = key if options.room and options.url is None else None
     rooms: dict[str, dict] | None = None
     one_viewer: list[dict] = []
-    with server_for(options.url, server_pid=options.server_pid, workers=options.workers, instructor_key=child_key) as server:
+    with server_for(
+        options.url, server_pid=options.server_pid, workers=options.workers, instructor_key=child_key
+    ) as server:
         check_scenes(server.base_url, options.scenes)
         if options.room:
             assert key is not None
@@ -662,7 +727,10 @@ def run_load(options: LoadOptions) -> dict:
             "health_period_s": 0.25,
             "health_slow_s": 2.0,
         },
-        "targets": {"p10_frames_per_s": TARGET_P10_FRAMES_PER_S, "min_frames_per_s_degraded": DEGRADED_MIN_FRAMES_PER_S},
+        "targets": {
+            "p10_frames_per_s": TARGET_P10_FRAMES_PER_S,
+            "min_frames_per_s_degraded": DEGRADED_MIN_FRAMES_PER_S,
+        },
         "steps": steps,
     }
     if rooms is not None:
@@ -708,10 +776,15 @@ def with_independent_comparison(report: dict, independent: dict | None, *, sourc
     for step in report["steps"]:
         match = _step_at(steps, step["scene_id"], step["students"])
         if match is not None and isinstance(match.get("frames_per_s"), dict):
-            rows.append({
-                "scene_id": step["scene_id"], "students": step["students"], "frames_per_s": match["frames_per_s"],
-                "server_cpu_cores": match.get("server_cpu_cores"), "server_rss_mb": match.get("server_rss_mb"),
-            })
+            rows.append(
+                {
+                    "scene_id": step["scene_id"],
+                    "students": step["students"],
+                    "frames_per_s": match["frames_per_s"],
+                    "server_cpu_cores": match.get("server_cpu_cores"),
+                    "server_rss_mb": match.get("server_rss_mb"),
+                }
+            )
     comparison = {"source": source, "created": (independent or {}).get("created"), "steps": rows}
     cost = dict(report.get("follow_cost") or {})
     if cost:
@@ -757,20 +830,37 @@ class _Panel:
         x_tick = next(step for step in (1, 2, 5, 10, 20, 25, 50, 100) if self.max_x / step <= 10)
         for k in range(int(self.max_x / x_tick + 1e-9) + 1):
             n = k * x_tick
-            grid.append(f'<line x1="{_f(self.x(n))}" x2="{_f(self.x(n))}" y1="{self.top}" y2="{self.bottom}" stroke="#eef0f4"/>')
+            grid.append(
+                f'<line x1="{_f(self.x(n))}" x2="{_f(self.x(n))}" y1="{self.top}" y2="{self.bottom}" stroke="#eef0f4"/>'
+            )
             grid.append(_text(self.x(n), self.bottom + 18, f"{n:g}", anchor="middle"))
         for k in range(int(self.max_y / y_step + 1e-9) + 1):
             value = k * y_step
-            grid.append(f'<line x1="{_f(self.left)}" x2="{_f(self.right)}" y1="{_f(self.y(value))}" ' f'y2="{_f(self.y(value))}" stroke="#eef0f4"/>')
+            grid.append(
+                f'<line x1="{_f(self.left)}" x2="{_f(self.right)}" y1="{_f(self.y(value))}" '
+                f'y2="{_f(self.y(value))}" stroke="#eef0f4"/>'
+            )
             grid.append(_text(self.left - 7, self.y(value) + 4, f"{value:g}", anchor="end"))
         cy, label_x = (self.top + self.bottom) / 2, self.left - 52
-        return "".join([
-            '<g class="grid">', *grid, "</g>",
-            f'<rect x="{_f(self.left)}" y="{_f(self.top)}" width="{_f(self.right - self.left)}" '
-            f'height="{_f(self.bottom - self.top)}" fill="none" stroke="#9aa3b2"/>',
-            _text((self.left + self.right) / 2, self.bottom + 42, x_label, size=13, anchor="middle", weight="600"),
-            _text(label_x, cy, y_label, size=13, anchor="middle", weight="600", extra=f'transform="rotate(-90 {_f(label_x)} {_f(cy)})"'),
-        ])
+        return "".join(
+            [
+                '<g class="grid">',
+                *grid,
+                "</g>",
+                f'<rect x="{_f(self.left)}" y="{_f(self.top)}" width="{_f(self.right - self.left)}" '
+                f'height="{_f(self.bottom - self.top)}" fill="none" stroke="#9aa3b2"/>',
+                _text((self.left + self.right) / 2, self.bottom + 42, x_label, size=13, anchor="middle", weight="600"),
+                _text(
+                    label_x,
+                    cy,
+                    y_label,
+                    size=13,
+                    anchor="middle",
+                    weight="600",
+                    extra=f'transform="rotate(-90 {_f(label_x)} {_f(cy)})"',
+                ),
+            ]
+        )
 
     def target(self, value: float, label: str = "") -> str:
         """A dashed horizontal target line, labelled (unless ``label`` is empty) at its left end, under the line."""
@@ -840,12 +930,21 @@ def capacity_svg(report: dict) -> str:
     scenes = list(dict.fromkeys(str(s["scene_id"]) for s in steps))
     panel = _rate_panel(steps, left=LEFT, right=RIGHT)
     out = _svg_open(
-        WIDTH, HEIGHT, "Classroom capacity: frames per second delivered to each student against the number of students",
-        "Classroom capacity: frames/s each student receives", _subtitle(report),
+        WIDTH,
+        HEIGHT,
+        "Classroom capacity: frames per second delivered to each student against the number of students",
+        "Classroom capacity: frames/s each student receives",
+        _subtitle(report),
     )
-    out.append(panel.frame(x_label="Students (one viewer and one scene each)", y_label="Frames per second per student", y_step=5))
+    out.append(
+        panel.frame(
+            x_label="Students (one viewer and one scene each)", y_label="Frames per second per student", y_step=5
+        )
+    )
     # At the left end, under its line: small classes sit at 30 frames/s, above both lines, so nothing is hidden.
-    out.append(panel.target(TARGET_P10_FRAMES_PER_S, f"target: 10th percentile at 100 students ({TARGET_P10_FRAMES_PER_S:g})"))
+    out.append(
+        panel.target(TARGET_P10_FRAMES_PER_S, f"target: 10th percentile at 100 students ({TARGET_P10_FRAMES_PER_S:g})")
+    )
     out.append(panel.target(DEGRADED_MIN_FRAMES_PER_S, f"floor: every student at 150 ({DEGRADED_MIN_FRAMES_PER_S:g})"))
     legend_y = TOP + 8
     for index, scene_id in enumerate(scenes):
@@ -853,15 +952,24 @@ def capacity_svg(report: dict) -> str:
         points = sorted((s["students"], s["frames_per_s"]) for s in steps if s["scene_id"] == scene_id)
         out.append(f'<g class="series" data-scene="{escape(scene_id)}">{_rate_lines(panel, points, colour)}</g>')
         out.append(
-            f'<line x1="{RIGHT + 16}" x2="{RIGHT + 44}" y1="{legend_y}" y2="{legend_y}" stroke="{colour}" ' 'stroke-width="2.2"/>'
-            + _text(RIGHT + 52, legend_y + 4, scene_id)
+            f'<line x1="{RIGHT + 16}" x2="{RIGHT + 44}" y1="{legend_y}" y2="{legend_y}" stroke="{colour}" '
+            'stroke-width="2.2"/>' + _text(RIGHT + 52, legend_y + 4, scene_id)
         )
         legend_y += 20
     legend_y += 10
     out.append(_text(RIGHT + 16, legend_y, "solid, filled: 10th percentile", size=11, fill="#5b6475"))
     out.append(_text(RIGHT + 16, legend_y + 16, "dashed, open: median", size=11, fill="#5b6475"))
     if not steps:
-        out.append(_text((LEFT + RIGHT) / 2, (TOP + BOTTOM) / 2, "no step delivered frames", size=14, anchor="middle", fill="#d0202e"))
+        out.append(
+            _text(
+                (LEFT + RIGHT) / 2,
+                (TOP + BOTTOM) / 2,
+                "no step delivered frames",
+                size=14,
+                anchor="middle",
+                fill="#d0202e",
+            )
+        )
     out.append("</svg>")
     return "\n".join(out) + "\n"
 
@@ -884,17 +992,25 @@ def classroom_svg(report: dict) -> str:
     cost = report.get("follow_cost") or {}
     scene = cost.get("scene_id") or report.get("scene_id") or "?"
     out = _svg_open(
-        CLASSROOM_WIDTH, CLASSROOM_HEIGHT,
+        CLASSROOM_WIDTH,
+        CLASSROOM_HEIGHT,
         "Classroom following one scene: frames per second each student receives and the server's CPU, against students",
-        f"Classroom following one {scene} demo: frames/s each student receives, server CPU", _subtitle(report),
+        f"Classroom following one {scene} demo: frames/s each student receives, server CPU",
+        _subtitle(report),
     )
     out.append(rates.frame(x_label="Students", y_label="Frames per second per student", y_step=5))
     out.append(rates.target(TARGET_P10_FRAMES_PER_S))  # labelled in the legend: the lines cross it
-    out.append(cpu.frame(x_label="Students", y_label="Server CPU (cores, all its processes)", y_step=0.25 if cpu_max <= 2 else 0.5))
+    out.append(
+        cpu.frame(
+            x_label="Students", y_label="Server CPU (cores, all its processes)", y_step=0.25 if cpu_max <= 2 else 0.5
+        )
+    )
     for mode, steps in (("independent", independent), ("follow", follow)):
         colour = MODE_COLOURS[mode]
         points = sorted((s["students"], s["frames_per_s"]) for s in steps)
-        cores = sorted((s["students"], s["server_cpu_cores"]) for s in steps if isinstance(s.get("server_cpu_cores"), (int, float)))
+        cores = sorted(
+            (s["students"], s["server_cpu_cores"]) for s in steps if isinstance(s.get("server_cpu_cores"), (int, float))
+        )
         out.append(
             f'<g class="series" data-mode="{mode}">{_rate_lines(rates, points, colour)}'
             f"{cpu.line(cores, colour, dashed=False, filled=True)}</g>"
@@ -903,37 +1019,60 @@ def classroom_svg(report: dict) -> str:
     for index, mode in enumerate(("follow", "independent")):
         x0 = LEFT + 300 * index
         out.append(
-            f'<line x1="{x0}" x2="{x0 + 28}" y1="{legend_y}" y2="{legend_y}" stroke="{MODE_COLOURS[mode]}" ' 'stroke-width="2.2"/>'
-            + _text(x0 + 36, legend_y + 4, MODE_NAMES[mode])
+            f'<line x1="{x0}" x2="{x0 + 28}" y1="{legend_y}" y2="{legend_y}" stroke="{MODE_COLOURS[mode]}" '
+            'stroke-width="2.2"/>' + _text(x0 + 36, legend_y + 4, MODE_NAMES[mode])
         )
     out.append(
-        f'<line x1="{LEFT + 600}" x2="{LEFT + 628}" y1="{legend_y}" y2="{legend_y}" stroke="#1d2330" ' 'stroke-width="1.3" '
-        f'stroke-dasharray="6 4"/>' + _text(LEFT + 636, legend_y + 4, f"target: 10th percentile at 100 ({TARGET_P10_FRAMES_PER_S:g})")
+        f'<line x1="{LEFT + 600}" x2="{LEFT + 628}" y1="{legend_y}" y2="{legend_y}" stroke="#1d2330" '
+        'stroke-width="1.3" '
+        f'stroke-dasharray="6 4"/>'
+        + _text(LEFT + 636, legend_y + 4, f"target: 10th percentile at 100 ({TARGET_P10_FRAMES_PER_S:g})")
     )
     legend_y += 22
-    out.append(_text(LEFT, legend_y, "Frames/s: solid, filled: 10th percentile; dashed, open: median. Server CPU: the "
-                     "server process and its scene workers.", size=11, fill="#5b6475"))
+    out.append(
+        _text(
+            LEFT,
+            legend_y,
+            "Frames/s: solid, filled: 10th percentile; dashed, open: median. Server CPU: the "
+            "server process and its scene workers.",
+            size=11,
+            fill="#5b6475",
+        )
+    )
     note = _follow_cost_note(cost)
     if note:
         out.append(_text(LEFT, legend_y + 26, note, size=12))
     if not follow:
-        out.append(_text(sum(RATE_PANEL_X) / 2, (TOP + BOTTOM) / 2, "no step delivered frames", size=14, anchor="middle", fill="#d0202e"))
+        out.append(
+            _text(
+                sum(RATE_PANEL_X) / 2,
+                (TOP + BOTTOM) / 2,
+                "no step delivered frames",
+                size=14,
+                anchor="middle",
+                fill="#d0202e",
+            )
+        )
     out.append("</svg>")
     return "\n".join(out) + "\n"
 
 
 def _follow_cost_note(cost: dict) -> str:
     """The server's CPU with 1 and with 100 followers (and one viewer of its own scene, and 100 such) in words."""
+
     def cores(key: str) -> str | None:
         value = cost.get(key)
         return f"{value:g}" if isinstance(value, (int, float)) else None
 
     parts = [
-        f"{label}: {cores(key)}" for key, label in (
-            ("cpu_cores_1", "1 follower"), (f"cpu_cores_{FOLLOW_COST_CLASS}", f"{FOLLOW_COST_CLASS} followers"),
+        f"{label}: {cores(key)}"
+        for key, label in (
+            ("cpu_cores_1", "1 follower"),
+            (f"cpu_cores_{FOLLOW_COST_CLASS}", f"{FOLLOW_COST_CLASS} followers"),
             ("one_viewer_cpu_cores", "1 viewer on its own scene"),
             (f"independent_cpu_cores_{FOLLOW_COST_CLASS}", f"{FOLLOW_COST_CLASS} on their own scenes"),
-        ) if cores(key) is not None
+        )
+        if cores(key) is not None
     ]
     return f"Server CPU (cores): {'; '.join(parts)}" if parts else ""
 
@@ -974,43 +1113,72 @@ def _scene_list(values: Sequence[str] | None, default: tuple[str, ...]) -> tuple
 
 def add_server_arguments(parser: argparse.ArgumentParser) -> None:
     """Options shared by ``dynlab load`` and ``dynlab soak``: which server, where the report goes."""
-    parser.add_argument("--scene", action="append", metavar="ID", help="scene id (repeatable or a comma list; default heavy-top)")
-    parser.add_argument("--workers", type=int, default=None, help="passed to `dynlab serve --workers` when the tool starts the server")
-    parser.add_argument("--url", default=None, help="a running server on loopback (http://127.0.0.1:PORT) instead of starting one")
-    parser.add_argument("--server-pid", type=int, default=None, help="with --url: the server's pid, to measure its CPU and memory")
+    parser.add_argument(
+        "--scene", action="append", metavar="ID", help="scene id (repeatable or a comma list; default heavy-top)"
+    )
+    parser.add_argument(
+        "--workers", type=int, default=None, help="passed to `dynlab serve --workers` when the tool starts the server"
+    )
+    parser.add_argument(
+        "--url", default=None, help="a running server on loopback (http://127.0.0.1:PORT) instead of starting one"
+    )
+    parser.add_argument(
+        "--server-pid", type=int, default=None, help="with --url: the server's pid, to measure its CPU and memory"
+    )
     parser.add_argument("--out", type=Path, default=DEFAULT_OUT_DIR, help="folder for the report (default docs/bench)")
 
 
 def add_load_arguments(parser: argparse.ArgumentParser) -> None:
     """The options of ``dynlab load``."""
     parser.add_argument(
-        "--students", type=_int_list, default=None,
-        help=("class sizes, e.g. 10,30,60,100,150 (the default; with --room 1,10,30,60,100,150; with --attack one " "size, 100)"),
+        "--students",
+        type=_int_list,
+        default=None,
+        help=(
+            "class sizes, e.g. 10,30,60,100,150 (the default; with --room 1,10,30,60,100,150; with --attack one "
+            "size, 100)"
+        ),
     )
     parser.add_argument(
-        "--seconds", type=float, default=None,
-        help=f"steady window per step (s, ≤ {MAX_STEP_SECONDS:g}; default {LoadOptions.seconds:g}, with --attack " f"{ATTACK_SECONDS:g} "
+        "--seconds",
+        type=float,
+        default=None,
+        help=f"steady window per step (s, ≤ {MAX_STEP_SECONDS:g}; default {LoadOptions.seconds:g}, with --attack "
+        f"{ATTACK_SECONDS:g} "
         "for each of the two windows)",
     )
-    parser.add_argument("--warmup", type=float, default=LoadOptions.warmup_s, help="seconds after all connected before measuring")
-    parser.add_argument("--connect-rate", type=float, default=LoadOptions.connect_per_s, help="viewers opened per second")
     parser.add_argument(
-        "--room", action="store_true",
-        help=("the students follow one classroom room on the scene instead of a scene each (writes classroom.json " "and .svg)"),
+        "--warmup", type=float, default=LoadOptions.warmup_s, help="seconds after all connected before measuring"
     )
     parser.add_argument(
-        "--attack", action="store_true",
+        "--connect-rate", type=float, default=LoadOptions.connect_per_s, help="viewers opened per second"
+    )
+    parser.add_argument(
+        "--room",
+        action="store_true",
+        help=(
+            "the students follow one classroom room on the scene instead of a scene each (writes classroom.json "
+            "and .svg)"
+        ),
+    )
+    parser.add_argument(
+        "--attack",
+        action="store_true",
         help="students on their own scenes, measured first alone and then while one client attacks the class with "
         "every attack the class-safety issue found (room, sessions, floods, bursts, expensive requests); writes "
         "attack.json and .svg",
     )
     parser.add_argument(
-        "--distinct-addresses", action=argparse.BooleanOptionalAction, default=None,
+        "--distinct-addresses",
+        action=argparse.BooleanOptionalAction,
+        default=None,
         help="each student connects from its own loopback address (127.0.1.1, 127.0.1.2, …) as a class of devices "
-        "does, so per-device limits see students, not one client (default: on; off from one address is refused " "beyond 8 viewers)",
+        "does, so per-device limits see students, not one client (default: on; off from one address is refused "
+        "beyond 8 viewers)",
     )
     parser.add_argument(
-        "--instructor-key", default=None,
+        "--instructor-key",
+        default=None,
         help="with --room or --attack and --url: the server's instructor secret, to open the room (a server the tool "
         "starts gets its own)",
     )
@@ -1026,10 +1194,18 @@ def run_load_command(args: argparse.Namespace, parser: argparse.ArgumentParser) 
     seconds = args.seconds if args.seconds is not None else ATTACK_SECONDS if args.attack else LoadOptions.seconds
     try:
         options = LoadOptions(
-            scenes=_scene_list(args.scene, LoadOptions.scenes), students=students, seconds=seconds,
-            warmup_s=args.warmup, connect_per_s=args.connect_rate, workers=args.workers, url=args.url,
-            server_pid=args.server_pid, room=args.room, instructor_key=args.instructor_key,
-            distinct_addresses=args.distinct_addresses, attack=args.attack,
+            scenes=_scene_list(args.scene, LoadOptions.scenes),
+            students=students,
+            seconds=seconds,
+            warmup_s=args.warmup,
+            connect_per_s=args.connect_rate,
+            workers=args.workers,
+            url=args.url,
+            server_pid=args.server_pid,
+            room=args.room,
+            instructor_key=args.instructor_key,
+            distinct_addresses=args.distinct_addresses,
+            attack=args.attack,
         )
     except ValueError as exc:
         parser.error(str(exc))

@@ -88,10 +88,22 @@ def cartesian_pendulum_case() -> ConstrainedCase:
     t_end = 1.0
     exact = exact_states(1.0, 1.0, np.concatenate([q0, v0]), np.array([t_end]))[0]
     return ConstrainedCase(
-        id="cartesian-pendulum", title="Cartesian pendulum, unit problem, 1 s",
-        system=pendulum_system(1.0, 1.0, 1.0), positions0=q0, rates0=v0, t_end_s=t_end, frame_rate_hz=60.0,
-        reference_positions=exact[:2], reference_name=("the exact motion released at rest from the horizontal, m = 1 kg, L = 1 m, g = 1 m/s² " "(Jacobi elliptic functions, scipy.special.ellipj)"),
-        error_unit="m", reference_floor=1e-14, rk4_steps_per_frame=(1, 2, 4, 8, 16, 32, 64), baumgarte_1_s=5.0,
+        id="cartesian-pendulum",
+        title="Cartesian pendulum, unit problem, 1 s",
+        system=pendulum_system(1.0, 1.0, 1.0),
+        positions0=q0,
+        rates0=v0,
+        t_end_s=t_end,
+        frame_rate_hz=60.0,
+        reference_positions=exact[:2],
+        reference_name=(
+            "the exact motion released at rest from the horizontal, m = 1 kg, L = 1 m, g = 1 m/s² "
+            "(Jacobi elliptic functions, scipy.special.ellipj)"
+        ),
+        error_unit="m",
+        reference_floor=1e-14,
+        rk4_steps_per_frame=(1, 2, 4, 8, 16, 32, 64),
+        baumgarte_1_s=5.0,
     )
 
 
@@ -109,16 +121,32 @@ def massive_four_bar_case() -> ConstrainedCase:
     t_end = 2.0
     crank = solve_ivp(
         lambda _t, y: np.array([y[1], float(crank_acceleration_rad_s2(params, np.array([y[0]]), np.array([y[1]]))[0])]),
-        (0.0, t_end), np.array([q0[2], v0[2]]), method="DOP853", rtol=1e-13, atol=1e-13,
+        (0.0, t_end),
+        np.array([q0[2], v0[2]]),
+        method="DOP853",
+        rtol=1e-13,
+        atol=1e-13,
     )
     theta, omega = crank.y[:, -1]
     q_ref, _, _ = four_bar_absolute_motion(params, np.array([theta]), np.array([omega]), np.zeros(1))
     return ConstrainedCase(
-        id="massive-four-bar", title=f"Massive four-bar, {t_end:g} s (9 coordinates, 8 constraints)",
-        system=massive_four_bar_system(params), positions0=q0, rates0=v0, t_end_s=t_end, frame_rate_hz=60.0,
+        id="massive-four-bar",
+        title=f"Massive four-bar, {t_end:g} s (9 coordinates, 8 constraints)",
+        system=massive_four_bar_system(params),
+        positions0=q0,
+        rates0=v0,
+        t_end_s=t_end,
+        frame_rate_hz=60.0,
         reference_positions=q_ref[0],
-        reference_name=("the one-degree-of-freedom equation in the crank angle (DOP853, rtol 1e-13) through " "chapter 4's loop closure"),
-        error_unit="m or rad", reference_floor=1e-10, rk4_steps_per_frame=(1, 2, 4, 8, 16, 32, 64), baumgarte_1_s=10.0, angle_coordinates=(2, 5, 8),
+        reference_name=(
+            "the one-degree-of-freedom equation in the crank angle (DOP853, rtol 1e-13) through "
+            "chapter 4's loop closure"
+        ),
+        error_unit="m or rad",
+        reference_floor=1e-10,
+        rk4_steps_per_frame=(1, 2, 4, 8, 16, 32, 64),
+        baumgarte_1_s=10.0,
+        angle_coordinates=(2, 5, 8),
     )
 
 
@@ -132,16 +160,26 @@ def andrews_case() -> ConstrainedCase:
 
     q0, v0 = andrews_initial_state()
     return ConstrainedCase(
-        id="andrews", title="Andrews' squeezing mechanism, 0.03 s (7 coordinates, 6 constraints)",
-        system=andrews_system(), positions0=q0, rates0=v0, t_end_s=REFERENCE_TIME_S, frame_rate_hz=1000.0,
+        id="andrews",
+        title="Andrews' squeezing mechanism, 0.03 s (7 coordinates, 6 constraints)",
+        system=andrews_system(),
+        positions0=q0,
+        rates0=v0,
+        t_end_s=REFERENCE_TIME_S,
+        frame_rate_hz=1000.0,
         reference_positions=REFERENCE_POSITIONS_RAD,
-        reference_name="the published solution of the IVP test set (PSIDE, rtol = atol = 1e-14)", error_unit="rad",
-        reference_floor=2e-9, rk4_steps_per_frame=(4, 8, 16, 32, 64, 128, 256), baumgarte_1_s=500.0,
+        reference_name="the published solution of the IVP test set (PSIDE, rtol = atol = 1e-14)",
+        error_unit="rad",
+        reference_floor=2e-9,
+        rk4_steps_per_frame=(4, 8, 16, 32, 64, 128, 256),
+        baumgarte_1_s=500.0,
     )
 
 
 CASES: dict[str, Callable[[], ConstrainedCase]] = {
-    "cartesian-pendulum": cartesian_pendulum_case, "massive-four-bar": massive_four_bar_case, "andrews": andrews_case,
+    "cartesian-pendulum": cartesian_pendulum_case,
+    "massive-four-bar": massive_four_bar_case,
+    "andrews": andrews_case,
 }
 
 
@@ -171,7 +209,13 @@ def our_sweeps(case: ConstrainedCase) -> list[tuple[str, str, str, str, tuple[fl
     """(algorithm, integrator, label, setting name, settings) for every DAE algorithm with each compiled integrator."""
     settings = {"rk4": case.rk4_steps_per_frame, "dopri5": DOPRI5_RTOLS}
     return [
-        (algorithm, integrator, f"{algorithm} + {INTEGRATORS[integrator][0]}", INTEGRATORS[integrator][1], settings[integrator])
+        (
+            algorithm,
+            integrator,
+            f"{algorithm} + {INTEGRATORS[integrator][0]}",
+            INTEGRATORS[integrator][1],
+            settings[integrator],
+        )
         for algorithm in ALGORITHMS
         for integrator in INTEGRATORS
     ]
@@ -213,7 +257,11 @@ def run_ours(case: ConstrainedCase, algorithm: str, integrator_name: str, settin
         if result.cpu_s > 0.5:
             break
     final = result.states[-1]
-    status = result.status if result.status == "ok" and len(result.states) == round(case.t_end_s * case.frame_rate_hz) + 1 else "failed"
+    status = (
+        result.status
+        if result.status == "ok" and len(result.states) == round(case.t_end_s * case.frame_rate_hz) + 1
+        else "failed"
+    )
     return Run(final[:n], final[n:], best, int(result.rhs_evals), status, repartition_count(ode.parameters, n))
 
 
@@ -240,7 +288,8 @@ SCIPY_SWEEPS = (
 
 
 _PROJECTION = {
-    "uncorrected": "none", "baumgarte": "none (the residuals are fed back into the accelerations)",
+    "uncorrected": "none",
+    "baumgarte": "none (the residuals are fed back into the accelerations)",
     "projection": "positions onto g = 0 and velocities onto C v = 0 after every step",
     "partitioning": "none (dependent coordinates solved from the independent ones by Newton at every stage)",
 }
@@ -249,14 +298,26 @@ _PROJECTION = {
 def _point(case: ConstrainedCase, setting: float, run: Run) -> dict[str, Any]:
     """One point of a sweep: the setting, cost, error and the final residuals (m or rad; m/s or rad/s)."""
     finite = run.status == "ok" and bool(np.all(np.isfinite(run.positions)) and np.all(np.isfinite(run.rates)))
-    point: dict[str, Any] = {"setting": setting, "cpu_s": run.cpu_s, "rhs_evals": run.rhs_evals, "repartitions": run.repartitions}
+    point: dict[str, Any] = {
+        "setting": setting,
+        "cpu_s": run.cpu_s,
+        "rhs_evals": run.rhs_evals,
+        "repartitions": run.repartitions,
+    }
     if not finite:
-        point.update(error=None, position_residual=None, velocity_residual=None, status=run.status if run.status != "ok" else "non_finite")
+        point.update(
+            error=None,
+            position_residual=None,
+            velocity_residual=None,
+            status=run.status if run.status != "ok" else "non_finite",
+        )
         return point
     position_residual, velocity_residual = constraint_residuals(case.system, np.concatenate([run.positions, run.rates]))
     point.update(
-        error=case.position_error(run.positions), position_residual=float(position_residual[0]),
-        velocity_residual=float(velocity_residual[0]), status="ok",
+        error=case.position_error(run.positions),
+        position_residual=float(position_residual[0]),
+        velocity_residual=float(velocity_residual[0]),
+        status="ok",
     )
     return point
 
@@ -265,12 +326,17 @@ def run_benchmark(case_ids: Sequence[str] | None = None, *, quick: bool = False)
     """Measure every sweep of every case; return the report dictionary."""
     cases = [CASES[c]() for c in (case_ids or CASES)]
     every = 2 if quick else 1
-    sweeps = {case.id: [(a, i, label, s, values[::every]) for a, i, label, s, values in our_sweeps(case)] for case in cases}
+    sweeps = {
+        case.id: [(a, i, label, s, values[::every]) for a, i, label, s, values in our_sweeps(case)] for case in cases
+    }
     scipy_sweeps = [(m, label, values[::every]) for m, label, values in SCIPY_SWEEPS]
-    runs = sum(len(s[4]) for case_sweeps in sweeps.values() for s in case_sweeps) + len(cases) * sum(len(s[2]) for s in scipy_sweeps)
+    runs = sum(len(s[4]) for case_sweeps in sweeps.values() for s in case_sweeps) + len(cases) * sum(
+        len(s[2]) for s in scipy_sweeps
+    )
     progress = Progress(runs)
     report: dict[str, Any] = {
-        "created": datetime.now(UTC).isoformat(timespec="seconds"), "machine": _machine(),
+        "created": datetime.now(UTC).isoformat(timespec="seconds"),
+        "machine": _machine(),
         "error_measure": (
             "largest |q − q_ref| over all coordinates at the final time, in each coordinate's unit (m or rad)"
         ),
@@ -287,21 +353,36 @@ def run_benchmark(case_ids: Sequence[str] | None = None, *, quick: bool = False)
             for setting in settings:
                 progress.step(f"{case.id}: {label} {setting_name}={setting:g}")
                 points.append(_point(case, setting, run_ours(case, method, integrator, setting)))
-            methods.append({
-                "method": f"{method}-{integrator}", "algorithm": method, "integrator": integrator, "family": "dynlab",
-                "label": label, "setting_name": setting_name, "baumgarte_1_s": case.baumgarte_1_s if method == "baumgarte" else None,
-                "projection": _PROJECTION[method],
-                "points": points,
-            })
+            methods.append(
+                {
+                    "method": f"{method}-{integrator}",
+                    "algorithm": method,
+                    "integrator": integrator,
+                    "family": "dynlab",
+                    "label": label,
+                    "setting_name": setting_name,
+                    "baumgarte_1_s": case.baumgarte_1_s if method == "baumgarte" else None,
+                    "projection": _PROJECTION[method],
+                    "points": points,
+                }
+            )
         for method, label, settings in scipy_sweeps:
             points = []
             for rtol in settings:
                 progress.step(f"{case.id}: {label} rtol={rtol:g}")
                 points.append(_point(case, rtol, run_scipy(case, method.split("-", 1)[1], rtol)))
-            methods.append({
-                "method": method, "algorithm": "index-1", "integrator": method.split("-", 1)[1], "family": "scipy", "label": label,
-                "setting_name": "rtol", "projection": "none", "points": points,
-            })
+            methods.append(
+                {
+                    "method": method,
+                    "algorithm": "index-1",
+                    "integrator": method.split("-", 1)[1],
+                    "family": "scipy",
+                    "label": label,
+                    "setting_name": "rtol",
+                    "projection": "none",
+                    "points": points,
+                }
+            )
         report["cases"].append(_case_entry(case, methods))
     return report
 
@@ -312,12 +393,21 @@ def _case_entry(case: ConstrainedCase, methods: list[dict[str, Any]]) -> dict[st
     for target in (1e-4, 1e-6, 1e-8):
         cost[f"{target:.0e}"] = {m["method"]: cost_at_error(m["points"], target) for m in methods}
     return {
-        "case_id": case.id, "scene_id": f"{SVG_PREFIX}{case.id}", "title": case.title, "t_end_s": case.t_end_s,
-        "frame_rate_hz": case.frame_rate_hz, "coordinates": list(case.system.coordinate_names),
-        "constraints": case.system.n_constraints, "error_measure": "largest final position error over all coordinates",
-        "error_unit": case.error_unit, "reference": case.reference_name,
-        "reference_positions": [float(x) for x in case.reference_positions], "reference_floor": case.reference_floor,
-        "cpu_s_at_error": cost, "methods": methods, "plot": f"{SVG_PREFIX}{case.id}.svg",
+        "case_id": case.id,
+        "scene_id": f"{SVG_PREFIX}{case.id}",
+        "title": case.title,
+        "t_end_s": case.t_end_s,
+        "frame_rate_hz": case.frame_rate_hz,
+        "coordinates": list(case.system.coordinate_names),
+        "constraints": case.system.n_constraints,
+        "error_measure": "largest final position error over all coordinates",
+        "error_unit": case.error_unit,
+        "reference": case.reference_name,
+        "reference_positions": [float(x) for x in case.reference_positions],
+        "reference_floor": case.reference_floor,
+        "cpu_s_at_error": cost,
+        "methods": methods,
+        "plot": f"{SVG_PREFIX}{case.id}.svg",
     }
 
 
@@ -350,5 +440,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         for method in case["methods"]:
             best = min((p for p in method["points"] if p["error"] is not None), key=lambda p: p["error"], default=None)
             if best is not None:
-                print(f"  {method['label']:<44} best error {best['error']:.1e} {case['error_unit']} in " f"{best['cpu_s'] * 1e3:.3g} ms")
+                print(
+                    f"  {method['label']:<44} best error {best['error']:.1e} {case['error_unit']} in "
+                    f"{best['cpu_s'] * 1e3:.3g} ms"
+                )
     return 0

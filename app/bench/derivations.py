@@ -57,7 +57,11 @@ def _frame_us(result: engine.Derived, p: np.ndarray, state: np.ndarray) -> tuple
     """Mean physics cost (µs) of a 30 Hz frame with RK4, and the steps per frame used."""
     rate = max(1.0, float(np.max(np.abs(result.state_derivative(0.0, state, p)))))
     steps = automatic_steps_per_frame("rk4", rate, FRAME_DT_S)
-    run = LiveRun(OdeSystem(rhs=result.kernel(), parameters=p, state_names=tuple(f"y{i}" for i in range(len(state)))), RK4(steps_per_frame=steps), state.copy())
+    run = LiveRun(
+        OdeSystem(rhs=result.kernel(), parameters=p, state_names=tuple(f"y{i}" for i in range(len(state)))),
+        RK4(steps_per_frame=steps),
+        state.copy(),
+    )
     run.advance(FRAME_DT_S)
     start = time.perf_counter()
     for _ in range(300):
@@ -70,7 +74,12 @@ def measure(*, prove: bool = True) -> dict[str, Any]:
 
     from app.main import create_app
 
-    runner = BoundedRunner(max_jobs=1, timeout_s=PROOF_TIMEOUT_S, memory_mb=2048, preload=("app.physics.core.bounded", "numpy", "sympy", __name__))
+    runner = BoundedRunner(
+        max_jobs=1,
+        timeout_s=PROOF_TIMEOUT_S,
+        memory_mb=2048,
+        preload=("app.physics.core.bounded", "numpy", "sympy", __name__),
+    )
     rows = []
     with tempfile.TemporaryDirectory() as cache, TestClient(create_app()) as client:
         os.environ["DYNLAB_DERIVATION_CACHE"] = cache
@@ -96,23 +105,40 @@ def measure(*, prove: bool = True) -> dict[str, Any]:
                 symbolic = "reference" if formulation == reference_formulation(system) else "not attempted"
                 if prove and symbolic == "not attempted":
                     try:
-                        symbolic = "proven" if runner.run(_prove, (system_id, formulation), what="the proof") else "differ"
+                        symbolic = (
+                            "proven" if runner.run(_prove, (system_id, formulation), what="the proof") else "differ"
+                        )
                     except WorkRefused:
                         symbolic = f"not proven in {PROOF_TIMEOUT_S:g} s"
                 row = {
-                    "system": system_id, "formulation": formulation,
-                    "derive_s": result.derive_s, "code_s": result.compile_s, "numba_s": numba_s,
-                    "second_request_ms": statistics.median(timings), "second_request_max_ms": max(timings),
-                    "frame_us": frame_us, "steps_per_frame": steps, "symbolic": symbolic,
+                    "system": system_id,
+                    "formulation": formulation,
+                    "derive_s": result.derive_s,
+                    "code_s": result.compile_s,
+                    "numba_s": numba_s,
+                    "second_request_ms": statistics.median(timings),
+                    "second_request_max_ms": max(timings),
+                    "frame_us": frame_us,
+                    "steps_per_frame": steps,
+                    "symbolic": symbolic,
                 }
                 rows.append(row)
-                print(f"{system_id:22s} {formulation:13s} derive {result.derive_s:6.2f} s  code " f"{result.compile_s:5.2f} s  numba {numba_s:5.2f} s  "
-                      f"again {row['second_request_ms']:5.1f} ms  frame {frame_us:6.1f} µs  {symbolic}", flush=True)
+                print(
+                    f"{system_id:22s} {formulation:13s} derive {result.derive_s:6.2f} s  code "
+                    f"{result.compile_s:5.2f} s  numba {numba_s:5.2f} s  "
+                    f"again {row['second_request_ms']:5.1f} ms  frame {frame_us:6.1f} µs  {symbolic}",
+                    flush=True,
+                )
             agreement = formulation_agreement(system, params, states)
             for row in rows:
                 if row["system"] == system_id:
                     row["agreement"] = agreement[row["formulation"]]
-    return {"generated_by": "dynlab derivations", "machine": f"{os.cpu_count()} cores", "proof_timeout_s": PROOF_TIMEOUT_S, "rows": rows}
+    return {
+        "generated_by": "dynlab derivations",
+        "machine": f"{os.cpu_count()} cores",
+        "proof_timeout_s": PROOF_TIMEOUT_S,
+        "rows": rows,
+    }
 
 
 def write_svg(report: dict[str, Any], path: Path) -> None:
@@ -125,17 +151,30 @@ def write_svg(report: dict[str, Any], path: Path) -> None:
     def x(seconds: float) -> float:
         return left + width * (min(max(np.log10(max(seconds, 1e-3)), lo), hi) - lo) / (hi - lo)
 
-    parts = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{left + width + 240}" height="{height + 30}" ' 'font-family="sans-serif" font-size="11">',
-             f'<text x="{left}" y="14">derivation time (blue) and a second request (orange), log scale, 1 ms … 100 s</text>']
+    parts = [
+        f'<svg xmlns="http://www.w3.org/2000/svg" width="{left + width + 240}" height="{height + 30}" '
+        'font-family="sans-serif" font-size="11">',
+        f'<text x="{left}" y="14">derivation time (blue) and a second request (orange), log scale, 1 ms … 100 s</text>',
+    ]
     for k in range(lo, hi + 1):
         parts.append(f'<line x1="{x(10.0**k):.1f}" y1="20" x2="{x(10.0**k):.1f}" y2="{height}" stroke="#ddd"/>')
         parts.append(f'<text x="{x(10.0**k):.1f}" y="{height + 14}" text-anchor="middle">{10.0**k:g} s</text>')
     for i, row in enumerate(rows):
         y = 24 + 16 * i
-        parts.append(f'<text x="{left - 6}" y="{y + 10}" text-anchor="end">{row["system"]} · {row["formulation"]}</text>')
-        parts.append(f'<rect x="{left}" y="{y + 1}" width="{x(row["derive_s"]) - left:.1f}" height="6" fill="#3b6fb6"/>')
-        parts.append(f'<rect x="{left}" y="{y + 8}" width="{x(row["second_request_ms"] / 1e3) - left:.1f}" height="6" ' 'fill="#e08a2c"/>')
-        parts.append(f'<text x="{left + width + 6}" y="{y + 10}">{row["derive_s"]:.2f} s / {row["second_request_ms"]:.1f} ' f'ms · {row["symbolic"]}</text>')
+        parts.append(
+            f'<text x="{left - 6}" y="{y + 10}" text-anchor="end">{row["system"]} · {row["formulation"]}</text>'
+        )
+        parts.append(
+            f'<rect x="{left}" y="{y + 1}" width="{x(row["derive_s"]) - left:.1f}" height="6" fill="#3b6fb6"/>'
+        )
+        parts.append(
+            f'<rect x="{left}" y="{y + 8}" width="{x(row["second_request_ms"] / 1e3) - left:.1f}" height="6" '
+            'fill="#e08a2c"/>'
+        )
+        parts.append(
+            f'<text x="{left + width + 6}" y="{y + 10}">{row["derive_s"]:.2f} s / {row["second_request_ms"]:.1f} '
+            f"ms · {row['symbolic']}</text>"
+        )
     parts.append("</svg>")
     path.write_text("\n".join(parts), encoding="utf-8")
 

@@ -60,10 +60,21 @@ def first_frame_svg(report: dict) -> str:
         f'<svg xmlns="{SVG_NS}" width="{WIDTH}" height="{height}" viewBox="0 0 {WIDTH} {height}" '
         f'font-family="{escape(FONT)}">',
         f'<rect width="{WIDTH}" height="{height}" fill="#ffffff"/>',
-        _text(16, 28, "A lesson's first frame: from opening the page to the viewer's first frame of its scene",
-              size=15, weight="600"),
-        _text(16, 46, "Median of each mark over the loads, ms after the page's navigation started; "
-              "each load a new browser context (nothing cached, a new scene)", size=11, fill="#555"),
+        _text(
+            16,
+            28,
+            "A lesson's first frame: from opening the page to the viewer's first frame of its scene",
+            size=15,
+            weight="600",
+        ),
+        _text(
+            16,
+            46,
+            "Median of each mark over the loads, ms after the page's navigation started; "
+            "each load a new browser context (nothing cached, a new scene)",
+            size=11,
+            fill="#555",
+        ),
     ]
     legend_x = 16
     for label, _key, colour in PHASES:

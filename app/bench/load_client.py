@@ -67,7 +67,9 @@ def loopback_base(url: str) -> tuple[str, int]:
     if parts.scheme != "http" or parts.hostname is None:
         raise ValueError(f"url: expected http://127.0.0.1:<port>, got {url!r}")
     if parts.hostname not in LOOPBACK_HOSTS:
-        raise ValueError(f"url: load tests target loopback only (127.0.0.1, localhost, ::1), got host {parts.hostname!r}")
+        raise ValueError(
+            f"url: load tests target loopback only (127.0.0.1, localhost, ::1), got host {parts.hostname!r}"
+        )
     try:
         port = parts.port or 80
     except ValueError:
@@ -88,7 +90,9 @@ def new_session_key() -> str:
 def student_address(index: int) -> str:
     """Student ``index``'s own loopback source address: 127.0.1.1, 127.0.1.2, …, 127.0.1.254, 127.0.2.1, …"""
     if not 0 <= index < MAX_STUDENT_ADDRESSES:
-        raise ValueError(f"students: at most {MAX_STUDENT_ADDRESSES} distinct loopback addresses, asked for number {index}")
+        raise ValueError(
+            f"students: at most {MAX_STUDENT_ADDRESSES} distinct loopback addresses, asked for number {index}"
+        )
     return f"127.0.{1 + index // 254}.{1 + index % 254}"
 
 
@@ -249,8 +253,14 @@ class ViewerClient:
         """The page's first change: ``PUT`` its session (default parameters) with its key; False (and ``error``) if
         refused. A viewer socket never creates a session, so this comes before :meth:`run` connects."""
         answer = await http_request(
-            host, port, "PUT", f"/api/scenes/{self.scene_id}/sessions/{self.session_id}", body={"params": {}},
-            headers={SESSION_KEY_HEADER: self.session_key}, source_address=self.source_address, timeout_s=CONNECT_TIMEOUT_S,
+            host,
+            port,
+            "PUT",
+            f"/api/scenes/{self.scene_id}/sessions/{self.session_id}",
+            body={"params": {}},
+            headers={SESSION_KEY_HEADER: self.session_key},
+            source_address=self.source_address,
+            timeout_s=CONNECT_TIMEOUT_S,
         )
         if answer.status == 200:
             return True
@@ -279,6 +289,7 @@ class ViewerClient:
             self.outcome = connect_failure(exc)
             self.error = f"connect: {type(exc).__name__}: {exc}"
             return
+
         async def close_on_stop() -> None:
             await stop.wait()
             await connection.close()
@@ -294,7 +305,9 @@ class ViewerClient:
         finally:
             if not stop.is_set():
                 self.outcome = f"close {connection.close_code}"
-                self.error = f"closed by the server: code {connection.close_code} {connection.close_reason or ''}".rstrip()
+                self.error = (
+                    f"closed by the server: code {connection.close_code} {connection.close_reason or ''}".rstrip()
+                )
             closer.cancel()
             with contextlib.suppress(OSError, websockets.ConnectionClosed, TimeoutError):
                 await connection.close()
@@ -332,7 +345,14 @@ class Classroom:
     """
 
     def __init__(
-        self, host: str, port: int, scene_id: str, students: int, *, connect_per_s: float, path: str = "",
+        self,
+        host: str,
+        port: int,
+        scene_id: str,
+        students: int,
+        *,
+        connect_per_s: float,
+        path: str = "",
         distinct_addresses: bool = False,
     ) -> None:
         # Imported here: importing app.scenes registers every scene (about 2 s), which only a running load needs.
@@ -358,7 +378,9 @@ class Classroom:
         while time.monotonic() < deadline and not all(c.connected or c.error or t.done() for c, t in self._pairs()):
             await asyncio.sleep(0.1)
         # A viewer connected at the socket level may wait a moment for its first frame; give the stragglers it.
-        while time.monotonic() < deadline and any(c.connected and c.frames == 0 and not t.done() for c, t in self._pairs()):
+        while time.monotonic() < deadline and any(
+            c.connected and c.frames == 0 and not t.done() for c, t in self._pairs()
+        ):
             await asyncio.sleep(0.1)
 
     def _pairs(self) -> list[tuple[ViewerClient, asyncio.Task]]:

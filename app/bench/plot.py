@@ -162,8 +162,18 @@ def _wrap(text: str, width: int) -> list[str]:
     return lines or [""]
 
 
-def _text(x: float, y: float, content: str, *, size: int = 12, anchor: str = "start", weight: str | None = None,
-          fill: str = "#1d2330", halo: bool = False, extra: str = "") -> str:
+def _text(
+    x: float,
+    y: float,
+    content: str,
+    *,
+    size: int = 12,
+    anchor: str = "start",
+    weight: str | None = None,
+    fill: str = "#1d2330",
+    halo: bool = False,
+    extra: str = "",
+) -> str:
     attrs = f'x="{_f(x)}" y="{_f(y)}" font-size="{size}" fill="{fill}"'
     if anchor != "start":
         attrs += f' text-anchor="{anchor}"'
@@ -436,16 +446,30 @@ def _ratio_marks(scene: dict, ax: _Axis) -> str:
         x = ax(error)
         if not PLOT_LEFT <= x <= PLOT_RIGHT:
             continue
-        parts.append(f'<line x1="{_f(x)}" x2="{_f(x)}" y1="{PLOT_TOP + 24}" y2="{PLOT_BOTTOM}" stroke="#7b2fa8" '
-                     'stroke-width="1" stroke-dasharray="1 3"/>')
-        parts.append(_text(x, PLOT_TOP + 34, f"at {_value_label(error)}:", size=10, anchor="middle", fill="#7b2fa8", halo=True))
+        parts.append(
+            f'<line x1="{_f(x)}" x2="{_f(x)}" y1="{PLOT_TOP + 24}" y2="{PLOT_BOTTOM}" stroke="#7b2fa8" '
+            'stroke-width="1" stroke-dasharray="1 3"/>'
+        )
+        parts.append(
+            _text(x, PLOT_TOP + 34, f"at {_value_label(error)}:", size=10, anchor="middle", fill="#7b2fa8", halo=True)
+        )
         for i, ratio in enumerate(ratios):
             value = ratio.get("ratio")
             name = _BASELINE_SHORT.get(str(ratio.get("baseline")), str(ratio.get("baseline")))
             ok = _finite_positive(value) and value >= float(ratio.get("required_ratio") or 0.0)
             text = f"{name} ×{value:.0f}" if _finite_positive(value) else f"{name} —"
-            parts.append(_text(x, PLOT_TOP + 47 + 12 * i, text, size=10, anchor="middle", weight="600",
-                               fill="#1b6b2f" if ok else "#d0202e", halo=True))
+            parts.append(
+                _text(
+                    x,
+                    PLOT_TOP + 47 + 12 * i,
+                    text,
+                    size=10,
+                    anchor="middle",
+                    weight="600",
+                    fill="#1b6b2f" if ok else "#d0202e",
+                    halo=True,
+                )
+            )
     parts.append("</g>")
     return "".join(parts) if len(parts) > 2 else ""
 
@@ -465,24 +489,43 @@ def phase_drift_svg(study: dict) -> str:
     axis = _Axis(lo, hi, left, right)
     colours = {"energy_drift": "#7d8894", "attitude_error_rad": "#d0202e"}
     out = [
-        f'<svg xmlns="{SVG_NS}" width="{WIDTH}" height="{height}" viewBox="0 0 {WIDTH} {height}" role="img" ' f'font-family="{FONT}">',
+        f'<svg xmlns="{SVG_NS}" width="{WIDTH}" height="{height}" viewBox="0 0 {WIDTH} {height}" role="img" '
+        f'font-family="{FONT}">',
         f"<title>{escape(str(study.get('title', 'Energy drift beside attitude error')))}</title>",
         f'<rect width="{WIDTH}" height="{height}" fill="#ffffff"/>',
         _text(16, 26, str(study.get("title", "Energy drift beside attitude error")), size=16, weight="600"),
-        _text(16, 44, "Grey: largest relative energy drift |E(t) − E(0)|/|E(0)|. Red: largest attitude error (rad) against the",
-              size=11, fill="#5b6475"),
-        _text(16, 58, "exact (quadrature) solution, at 60 frames/s; under each name its step (auto: what a live scene " "picks). Log scale.",
-              size=11, fill="#5b6475"),
+        _text(
+            16,
+            44,
+            "Grey: largest relative energy drift |E(t) − E(0)|/|E(0)|. Red: largest attitude error (rad) against the",
+            size=11,
+            fill="#5b6475",
+        ),
+        _text(
+            16,
+            58,
+            "exact (quadrature) solution, at 60 frames/s; under each name its step (auto: what a live scene "
+            "picks). Log scale.",
+            size=11,
+            fill="#5b6475",
+        ),
     ]
     for k in range(lo, hi + 1):
         x = axis(10.0**k)
-        out.append(f'<line x1="{_f(x)}" x2="{_f(x)}" y1="{top - 8}" y2="{top + row_h * len(rows)}" stroke="#e3e6ec" ' 'stroke-width="1"/>')
+        out.append(
+            f'<line x1="{_f(x)}" x2="{_f(x)}" y1="{top - 8}" y2="{top + row_h * len(rows)}" stroke="#e3e6ec" '
+            'stroke-width="1"/>'
+        )
         if (k - lo) % 2 == 0:
             out.append(_text(x, top + row_h * len(rows) + 18, tick_label(k), size=11, anchor="middle"))
     for i, row in enumerate(rows):
         y = top + i * row_h
-        out.append(_text(left - 8, y + 16, str(row.get("label") or row.get("method")), size=12, anchor="end", weight="600"))
-        out.append(_text(left - 8, y + 31, str(row.get("setting_text") or "")[:34], size=11, anchor="end", fill="#5b6475"))
+        out.append(
+            _text(left - 8, y + 16, str(row.get("label") or row.get("method")), size=12, anchor="end", weight="600")
+        )
+        out.append(
+            _text(left - 8, y + 31, str(row.get("setting_text") or "")[:34], size=11, anchor="end", fill="#5b6475")
+        )
         for j, key in enumerate(("energy_drift", "attitude_error_rad")):
             value = row.get(key)
             bar_y = y + 4 + 17 * j
@@ -493,8 +536,16 @@ def phase_drift_svg(study: dict) -> str:
             out.append(f'<rect x="{left}" y="{bar_y}" width="{_f(width)}" height="14" fill="{colours[key]}"/>')
             unit = " rad" if key == "attitude_error_rad" else ""
             out.append(_text(left + width + 5, bar_y + 11, f"{_value_label(float(value))}{unit}", size=11))
-    out.append(_text((left + right) / 2, top + row_h * len(rows) + 40, "relative drift (grey), error in rad (red), log scale",
-                     size=12, anchor="middle", weight="600"))
+    out.append(
+        _text(
+            (left + right) / 2,
+            top + row_h * len(rows) + 40,
+            "relative drift (grey), error in rad (red), log scale",
+            size=12,
+            anchor="middle",
+            weight="600",
+        )
+    )
     out.append("</svg>")
     return "\n".join(out) + "\n"
 
@@ -512,21 +563,35 @@ def frame_cost_svg(live_scenes: Sequence[dict]) -> str:
     top_value = max([FRAME_BUDGET_US * 1.2, *(float(s["physics_us_per_frame"]) for s in rows)])
     x = lambda v: left + (right - left) * v / top_value  # noqa: E731
     out = [
-        f'<svg xmlns="{SVG_NS}" width="{WIDTH}" height="{height}" viewBox="0 0 {WIDTH} {height}" ' f'font-family="{escape(FONT)}">',
+        f'<svg xmlns="{SVG_NS}" width="{WIDTH}" height="{height}" viewBox="0 0 {WIDTH} {height}" '
+        f'font-family="{escape(FONT)}">',
         f'<rect width="{WIDTH}" height="{height}" fill="#ffffff"/>',
         _text(16, 28, "Physics time per displayed frame, each animated scene at its defaults", size=15, weight="600"),
-        _text(16, 46, "µs of CPU per frame at 30 frames/s: the physics share of a closed-form scene's frame (profiled), " "one frame of an integrated live run", size=11, fill="#555"),
+        _text(
+            16,
+            46,
+            "µs of CPU per frame at 30 frames/s: the physics share of a closed-form scene's frame (profiled), "
+            "one frame of an integrated live run",
+            size=11,
+            fill="#555",
+        ),
     ]
     for i, scene in enumerate(rows):
         value = float(scene["physics_us_per_frame"])
         y = top + i * row_h
         colour = "#1b8a3a" if value <= FRAME_BUDGET_US else "#d0202e"
         out.append(_text(left - 8, y + 15, str(scene["scene_id"]), size=12, anchor="end"))
-        out.append(f'<rect x="{left}" y="{y + 4}" width="{_f(max(x(value) - left, 1.0))}" height="{row_h - 8}" ' f'fill="{colour}"/>')
+        out.append(
+            f'<rect x="{left}" y="{y + 4}" width="{_f(max(x(value) - left, 1.0))}" height="{row_h - 8}" '
+            f'fill="{colour}"/>'
+        )
         out.append(_text(x(value) + 6, y + 15, f"{value:.3g} µs ({scene['method']})", size=11))
     bottom = top + row_h * len(rows)
     budget = x(FRAME_BUDGET_US)
-    out.append(f'<line x1="{_f(budget)}" x2="{_f(budget)}" y1="{top - 4}" y2="{bottom + 4}" stroke="#d0202e" ' 'stroke-width="1.5" stroke-dasharray="5 3"/>')
+    out.append(
+        f'<line x1="{_f(budget)}" x2="{_f(budget)}" y1="{top - 4}" y2="{bottom + 4}" stroke="#d0202e" '
+        'stroke-width="1.5" stroke-dasharray="5 3"/>'
+    )
     out.append(_text(budget, bottom + 20, f"budget {FRAME_BUDGET_US:g} µs", size=11, anchor="middle", fill="#d0202e"))
     out.append(f'<line x1="{left}" x2="{right}" y1="{bottom + 4}" y2="{bottom + 4}" stroke="#888" stroke-width="1"/>')
     out.append("</svg>")

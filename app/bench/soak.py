@@ -75,7 +75,11 @@ def judge_soak(baseline: TreeUsage, end: TreeUsage, *, errors: int) -> dict:
             "ratio_end_to_start": round(rss_ratio, 4) if math.isfinite(rss_ratio) else None,
         },
         "fds_back_to_baseline": {"passed": end.fds <= baseline.fds, "start": baseline.fds, "end": end.fds},
-        "threads_back_to_baseline": {"passed": end.threads <= baseline.threads, "start": baseline.threads, "end": end.threads},
+        "threads_back_to_baseline": {
+            "passed": end.threads <= baseline.threads,
+            "start": baseline.threads,
+            "end": end.threads,
+        },
     }
     return {"passed": all(check["passed"] for check in checks.values()), "checks": checks}
 
@@ -139,12 +143,14 @@ async def _soak(server: ServerUnderTest, scene_id: str, students: int, minutes: 
             await asyncio.sleep(min(SAMPLE_PERIOD_S, remaining))
             current, usage = classroom.snapshot(), _usage_now(server)
             peak = TreeUsage(*(max(a, b) for a, b in zip(_fields(peak), _fields(usage))))
-            samples.append({
-                "minute": round((current.at_s - started) / 60.0, 2),
-                "frames_per_s": frame_rate_summary(per_client_rates(previous, current, classroom.healthy())),
-                "connected": sum(classroom.healthy()),
-                **{f"server_{k}": v for k, v in _usage_dict(usage).items() if k != "cpu_s"},
-            })
+            samples.append(
+                {
+                    "minute": round((current.at_s - started) / 60.0, 2),
+                    "frames_per_s": frame_rate_summary(per_client_rates(previous, current, classroom.healthy())),
+                    "connected": sum(classroom.healthy()),
+                    **{f"server_{k}": v for k, v in _usage_dict(usage).items() if k != "cpu_s"},
+                }
+            )
             print(f"soak minute {samples[-1]['minute']}: {samples[-1]}", flush=True)
             previous = current
     finally:
@@ -181,15 +187,25 @@ def _fields(usage: TreeUsage) -> tuple:
     return tuple(asdict(usage).values())
 
 
-def run_soak(scene_id: str, students: int, minutes: float, *, workers: int | None = None, url: str | None = None,
-             server_pid: int | None = None, connect_per_s: float = 50.0) -> dict:
+def run_soak(
+    scene_id: str,
+    students: int,
+    minutes: float,
+    *,
+    workers: int | None = None,
+    url: str | None = None,
+    server_pid: int | None = None,
+    connect_per_s: float = 50.0,
+) -> dict:
     """Run the soak (see the module docstring) and return its report."""
     if not 1 <= students <= MAX_STUDENTS:
         raise ValueError(f"students: must be 1..{MAX_STUDENTS}, got {students}")
     if not (math.isfinite(minutes) and 0 < minutes <= MAX_MINUTES):
         raise ValueError(f"minutes: must be in (0, {MAX_MINUTES:g}], got {minutes!r}")
     if url is not None and server_pid is None:
-        raise ValueError("server_pid: a soak measures the server's memory, fds and threads; give --server-pid with --url")
+        raise ValueError(
+            "server_pid: a soak measures the server's memory, fds and threads; give --server-pid with --url"
+        )
     with server_for(url, server_pid=server_pid, workers=workers) as server:
         check_scenes(server.base_url, [scene_id])
         result = asyncio.run(_soak(server, scene_id, students, minutes, connect_per_s))
@@ -210,8 +226,9 @@ def run_soak_command(args: argparse.Namespace, parser: argparse.ArgumentParser) 
     if len(scenes) != 1:
         parser.error(f"scene: a soak runs one scene, got {', '.join(scenes)}")
     try:
-        report = run_soak(scenes[0], args.students, args.minutes, workers=args.workers, url=args.url,
-                          server_pid=args.server_pid)
+        report = run_soak(
+            scenes[0], args.students, args.minutes, workers=args.workers, url=args.url, server_pid=args.server_pid
+        )
     except ValueError as exc:
         parser.error(str(exc))
     except RuntimeError as exc:

@@ -95,8 +95,12 @@ class AttackerProcess:
     def __init__(self) -> None:
         self.log = tempfile.TemporaryFile()
         self.process = subprocess.Popen(
-            [sys.executable, "-m", "app.bench.attacks"], cwd=PROJECT_ROOT, stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-            stderr=self.log, text=True,
+            [sys.executable, "-m", "app.bench.attacks"],
+            cwd=PROJECT_ROOT,
+            stdin=subprocess.PIPE,
+            stdout=subprocess.PIPE,
+            stderr=self.log,
+            text=True,
         )
 
     def __enter__(self) -> AttackerProcess:
@@ -141,7 +145,11 @@ class AttackerProcess:
         try:
             return json.loads(line)
         except ValueError:
-            return {"attacks": [], "victims_named": [], "failures": {"attacker": f"gave no report: {self.output_tail()}"}}
+            return {
+                "attacks": [],
+                "victims_named": [],
+                "failures": {"attacker": f"gave no report: {self.output_tail()}"},
+            }
 
     def cpu_s(self) -> float | None:
         with contextlib.suppress(ValueError):
@@ -161,11 +169,13 @@ def _rates_of(reading: WindowReading, chosen: Sequence[bool]) -> dict | None:
     elapsed = reading.end.at_s - reading.start.at_s
     if elapsed <= 0:
         return None
-    return frame_rate_summary([
-        (b - a) / elapsed
-        for a, b, ok, pick in zip(reading.start.frames, reading.end.frames, reading.healthy_at_start, chosen)
-        if ok and pick
-    ])
+    return frame_rate_summary(
+        [
+            (b - a) / elapsed
+            for a, b, ok, pick in zip(reading.start.frames, reading.end.frames, reading.healthy_at_start, chosen)
+            if ok and pick
+        ]
+    )
 
 
 def _projector_rate(start: ClassroomSnapshot, end: ClassroomSnapshot) -> float | None:
@@ -173,7 +183,9 @@ def _projector_rate(start: ClassroomSnapshot, end: ClassroomSnapshot) -> float |
     return round((end.frames[0] - start.frames[0]) / elapsed, 2) if elapsed > 0 else None
 
 
-def window_report(reading: WindowReading, projector: tuple[ClassroomSnapshot, ClassroomSnapshot], named: Sequence[bool]) -> dict:
+def window_report(
+    reading: WindowReading, projector: tuple[ClassroomSnapshot, ClassroomSnapshot], named: Sequence[bool]
+) -> dict:
     """One window's figures (every student connected at its start counted), and the split by whether an attack
     named the student's session, and the projector's frames/s."""
     return {
@@ -190,13 +202,23 @@ async def _baseline_then_attack(
     host, port = server.address
     scene_id, students = options.scenes[0], options.students[0]
     classroom = Classroom(
-        host, port, scene_id, students, connect_per_s=options.connect_per_s,
+        host,
+        port,
+        scene_id,
+        students,
+        connect_per_s=options.connect_per_s,
         distinct_addresses=bool(options.distinct_addresses),  # set on construction of the options
     )
     projector = Classroom(host, port, scene_id, 1, connect_per_s=options.connect_per_s, path=f"/room-viewer/{room_id}")
     plan = AttackPlan(
-        host=host, port=port, scene_id=scene_id, room_id=room_id, victims=tuple(c.session_id for c in classroom.clients),
-        seconds=options.seconds, bounds=options.attack_bounds or AttackBounds(), other_scene_id=rescene_target(scene_id),
+        host=host,
+        port=port,
+        scene_id=scene_id,
+        room_id=room_id,
+        victims=tuple(c.session_id for c in classroom.clients),
+        seconds=options.seconds,
+        bounds=options.attack_bounds or AttackBounds(),
+        other_scene_id=rescene_target(scene_id),
     )
     try:
         await projector.open(timeout_s=30.0)
@@ -224,11 +246,18 @@ async def _baseline_then_attack(
         if attack_window["other_cpu_cores"] is not None:  # the attacker is this machine's too, but not "others"
             attack_window["other_cpu_cores"] = round(max(0.0, attack_window["other_cpu_cores"] - attacker_cores), 3)
     return {
-        "windows": {"baseline": window_report(baseline, (projector_start, projector_middle), named), "attack": attack_window},
+        "windows": {
+            "baseline": window_report(baseline, (projector_start, projector_middle), named),
+            "attack": attack_window,
+        },
         "attacks": result.get("attacks") or [],
         "attacker": {
-            "address": ATTACKER_ADDRESS, "students_named": len(named_ids), "failures": result.get("failures") or {},
-            "ran_s": result.get("ran_s"), "bounds": asdict(plan.bounds), "rescene_to": plan.other_scene_id,
+            "address": ATTACKER_ADDRESS,
+            "students_named": len(named_ids),
+            "failures": result.get("failures") or {},
+            "ran_s": result.get("ran_s"),
+            "bounds": asdict(plan.bounds),
+            "rescene_to": plan.other_scene_id,
         },
     }
 
@@ -247,8 +276,12 @@ def run_attack(options: LoadOptions) -> dict:
     with AttackerProcess() as attacker:
         preload.start()
         with server_for(
-            options.url, server_pid=options.server_pid, workers=options.workers,
-            instructor_key=key if options.url is None else None, stop=stop, stop_timeout_s=STOP_TIMEOUT_S,
+            options.url,
+            server_pid=options.server_pid,
+            workers=options.workers,
+            instructor_key=key if options.url is None else None,
+            stop=stop,
+            stop_timeout_s=STOP_TIMEOUT_S,
         ) as server:
             check_scenes(server.base_url, [scene_id, rescene_target(scene_id), EXPENSIVE_SCENE])
             room = open_room(server.base_url, scene_id, instructor_key=key)
@@ -267,7 +300,11 @@ def run_attack(options: LoadOptions) -> dict:
         "server": {**facts, "stop_after_ctrl_c": stop.as_dict() if server.started_by_tool else None},
         "scene_id": scene_id,
         "students": options.students[0],
-        "room": {"lesson_id": room["lesson_id"], "scene_id": scene_id, "projector": "one viewer of the room's shared scene"},
+        "room": {
+            "lesson_id": room["lesson_id"],
+            "scene_id": scene_id,
+            "projector": "one viewer of the room's shared scene",
+        },
         "method": {
             "seconds": options.seconds,
             "warmup_s": options.warmup_s,
@@ -276,8 +313,8 @@ def run_attack(options: LoadOptions) -> dict:
             "addresses": (
                 "each student from its own loopback address (127.0.1.1, 127.0.1.2, …), the attacker from "
                 f"{ATTACKER_ADDRESS}, the tool's health probe and projector from 127.0.0.1"
-                if options.distinct_addresses else
-                f"every student from 127.0.0.1 (--no-distinct-addresses), the attacker from {ATTACKER_ADDRESS}"
+                if options.distinct_addresses
+                else f"every student from 127.0.0.1 (--no-distinct-addresses), the attacker from {ATTACKER_ADDRESS}"
             ),
             "windows": "before the attack, then under attack, on the same connected students, each of `seconds`",
             "frame": "one binary websocket message (a viser frame window), counted per client over the window",
@@ -314,11 +351,14 @@ def summary_line(report: dict) -> str:
     for name, label in (("baseline", "before the attack"), ("attack", "under attack")):
         fps = (windows.get(name) or {}).get("frames_per_s") or {}
         dropped = (windows.get(name) or {}).get("dropped")
-        parts.append(f"{label}: p10 {fps.get('p10', '—')}, median {fps.get('median', '—')}, slowest {fps.get('min', '—')}"
-                     f" frames/s, {dropped} dropped")
+        parts.append(
+            f"{label}: p10 {fps.get('p10', '—')}, median {fps.get('median', '—')}, slowest {fps.get('min', '—')}"
+            f" frames/s, {dropped} dropped"
+        )
     verdict = "meets" if (report.get("verdict") or {}).get("meets_target") else "misses"
     return (
-        f"{report.get('students')} students on {report.get('scene_id')}: " + "; ".join(parts)
+        f"{report.get('students')} students on {report.get('scene_id')}: "
+        + "; ".join(parts)
         + f"; {verdict} the target of {TARGET_P10_FRAMES_PER_S:g} (10th percentile); run {report.get('run_s')} s"
     )
 
@@ -332,7 +372,9 @@ def run_attack_command(options: LoadOptions, *, out_dir: Path) -> int:
         return 1
     for attack in report["attacks"]:
         answers = ", ".join(f"{answer} ×{count}" for answer, count in attack["answers"].items())
-        print(f"item {attack['item']} {attack['name']}: {answers}; slowest {attack['latency_ms']['max']} ms", flush=True)
+        print(
+            f"item {attack['item']} {attack['name']}: {answers}; slowest {attack['latency_ms']['max']} ms", flush=True
+        )
     print(summary_line(report), flush=True)
     for path in write_attack_report(report, out_dir):
         print(path)
@@ -372,11 +414,16 @@ def _notes(report: dict) -> list[str]:
     named, others = during.get("named_by_an_attack") or {}, during.get("not_named") or {}
     lines = [
         f"Under attack the 10th percentile is {_number(verdict.get('p10_frames_per_s_under_attack'))} frames/s: "
-        + ("the target is met." if verdict.get("meets_target") else f"the target of {TARGET_P10_FRAMES_PER_S:g} is missed."),
+        + (
+            "the target is met."
+            if verdict.get("meets_target")
+            else f"the target of {TARGET_P10_FRAMES_PER_S:g} is missed."
+        ),
         _split_note(named, others),
         f"Projector (the room's shared scene): {_number(before.get('projector_frames_per_s'))} frames/s before, "
         f"{_number(during.get('projector_frames_per_s'))} under attack.",
-        f"Server CPU: {_number(before.get('server_cpu_cores'))} cores before, " f"{_number(during.get('server_cpu_cores'))} under "
+        f"Server CPU: {_number(before.get('server_cpu_cores'))} cores before, "
+        f"{_number(during.get('server_cpu_cores'))} under "
         f"attack; health p95 {_number((before.get('health_ms') or {}).get('p95'), ' ms')} and "
         f"{_number((during.get('health_ms') or {}).get('p95'), ' ms')}.",
         f"The attacking client's own CPU: {_number(during.get('attacker_cpu_cores'))} cores; everything else on the "
@@ -394,7 +441,9 @@ def _split_note(named: dict, others: dict) -> str:
     """The 10th percentile of the students whose session id an attack used, and of the others (if any)."""
     p10 = lambda part: _number((part.get("frames_per_s") or {}).get("p10"))  # noqa: E731
     if not others.get("students"):
-        return f"An attack used every student's session id ({named.get('students', '?')}); their 10th percentile is above."
+        return (
+            f"An attack used every student's session id ({named.get('students', '?')}); their 10th percentile is above."
+        )
     if not named.get("students"):
         return "No attack used a student's session id."
     return (
@@ -427,7 +476,9 @@ def attack_svg(report: dict) -> str:
     attacks = listed_attacks(report)
     height = plot_height(report)
     values = [
-        v for name, _ in WINDOW_NAMES for v in ((windows.get(name) or {}).get("frames_per_s") or {}).values()
+        v
+        for name, _ in WINDOW_NAMES
+        for v in ((windows.get(name) or {}).get("frames_per_s") or {}).values()
         if isinstance(v, (int, float))
     ]
     top = 5.0 * max(7, int(max(values + [TARGET_P10_FRAMES_PER_S]) // 5) + 1)
@@ -435,7 +486,8 @@ def attack_svg(report: dict) -> str:
     machine, server = report.get("machine") or {}, report.get("server") or {}
     seconds = (report.get("method") or {}).get("seconds")
     subtitle = (
-        f"{report.get('students', '?')} students, each on a {report.get('scene_id', '?')} session of their own; " "one attacking "
+        f"{report.get('students', '?')} students, each on a {report.get('scene_id', '?')} session of their own; "
+        "one attacking "
         f"client; {machine.get('cores', '?')} cores; scene workers: {describe_workers(server.get('workers'))}; "
         f"{_number(seconds, ' s')} per window; {str(report.get('created', ''))[:10]}"
     )
@@ -445,7 +497,13 @@ def attack_svg(report: dict) -> str:
         "<title>A class under attack: frames per second each student receives before and while one client attacks, "
         "and what each attack got</title>",
         f'<rect width="{WIDTH}" height="{height}" fill="#ffffff"/>',
-        _text(24, 26, "A class under attack: frames/s each student receives, and what each attack got", size=17, weight="600"),
+        _text(
+            24,
+            26,
+            "A class under attack: frames/s each student receives, and what each attack got",
+            size=17,
+            weight="600",
+        ),
         _text(24, 45, subtitle, size=12, fill="#5b6475"),
         '<g class="grid">',
     ]
@@ -453,10 +511,22 @@ def attack_svg(report: dict) -> str:
         out.append(f'<line x1="{BAR_LEFT}" x2="{BAR_RIGHT}" y1="{_f(y(5 * k))}" y2="{_f(y(5 * k))}" stroke="#eef0f4"/>')
         out.append(_text(BAR_LEFT - 7, y(5 * k) + 4, f"{5 * k:g}", anchor="end"))
     out.append("</g>")
-    out.append(f'<rect x="{BAR_LEFT}" y="{BAR_TOP}" width="{BAR_RIGHT - BAR_LEFT}" height="{BAR_BOTTOM - BAR_TOP}" ' 'fill="none" stroke="#9aa3b2"/>')
+    out.append(
+        f'<rect x="{BAR_LEFT}" y="{BAR_TOP}" width="{BAR_RIGHT - BAR_LEFT}" height="{BAR_BOTTOM - BAR_TOP}" '
+        'fill="none" stroke="#9aa3b2"/>'
+    )
     cy = (BAR_TOP + BAR_BOTTOM) / 2
-    out.append(_text(BAR_LEFT - 40, cy, "Frames per second per student", size=13, anchor="middle", weight="600",
-                     extra=f'transform="rotate(-90 {_f(BAR_LEFT - 40)} {_f(cy)})"'))
+    out.append(
+        _text(
+            BAR_LEFT - 40,
+            cy,
+            "Frames per second per student",
+            size=13,
+            anchor="middle",
+            weight="600",
+            extra=f'transform="rotate(-90 {_f(BAR_LEFT - 40)} {_f(cy)})"',
+        )
+    )
     group_w = (BAR_RIGHT - BAR_LEFT) / len(WINDOW_NAMES)
     for index, (name, label) in enumerate(WINDOW_NAMES):
         window = windows.get(name) or {}
@@ -468,31 +538,58 @@ def attack_svg(report: dict) -> str:
             value = fps.get(key)
             if isinstance(value, (int, float)):
                 x = x0 + offset * bar_w
-                out.append(f'<rect class="bar" data-stat="{key}" data-value="{value:g}" x="{_f(x + 3)}" y="{_f(y(value))}" '
-                           f'width="{_f(bar_w - 6)}" height="{_f(BAR_BOTTOM - y(value))}" fill="{colour}"/>')
+                out.append(
+                    f'<rect class="bar" data-stat="{key}" data-value="{value:g}" x="{_f(x + 3)}" y="{_f(y(value))}" '
+                    f'width="{_f(bar_w - 6)}" height="{_f(BAR_BOTTOM - y(value))}" fill="{colour}"/>'
+                )
                 out.append(_text(x + bar_w / 2, y(value) - 6, f"{value:g}", size=11, anchor="middle", halo=True))
         slowest = fps.get("min")
         if isinstance(slowest, (int, float)):
-            out.append(f'<line class="slowest" data-value="{slowest:g}" x1="{_f(x0)}" x2="{_f(x0 + 2 * bar_w)}" '
-                       f'y1="{_f(y(slowest))}" y2="{_f(y(slowest))}" stroke="{SLOWEST_COLOUR}" stroke-width="2"/>')
+            out.append(
+                f'<line class="slowest" data-value="{slowest:g}" x1="{_f(x0)}" x2="{_f(x0 + 2 * bar_w)}" '
+                f'y1="{_f(y(slowest))}" y2="{_f(y(slowest))}" stroke="{SLOWEST_COLOUR}" stroke-width="2"/>'
+            )
         if not fps:
             out.append(_text(x0 + bar_w, cy, "not measured", size=12, anchor="middle", fill=SLOWEST_COLOUR))
         out.append(_text(x0 + bar_w, BAR_BOTTOM + 18, label, anchor="middle", weight="600"))
-        out.append(_text(x0 + bar_w, BAR_BOTTOM + 34, f"{_number(window.get('connected'))} connected, "
-                         f"{_number(window.get('dropped'))} cut off", size=11, anchor="middle", fill="#5b6475"))
+        out.append(
+            _text(
+                x0 + bar_w,
+                BAR_BOTTOM + 34,
+                f"{_number(window.get('connected'))} connected, {_number(window.get('dropped'))} cut off",
+                size=11,
+                anchor="middle",
+                fill="#5b6475",
+            )
+        )
         out.append("</g>")
     target_y = _f(y(TARGET_P10_FRAMES_PER_S))
-    out.append(f'<g class="target"><line x1="{BAR_LEFT}" x2="{BAR_RIGHT}" y1="{target_y}" y2="{target_y}" stroke="#1d2330" '
-               f'stroke-width="1.3" stroke-dasharray="6 4"/></g>')
+    out.append(
+        f'<g class="target"><line x1="{BAR_LEFT}" x2="{BAR_RIGHT}" y1="{target_y}" y2="{target_y}" stroke="#1d2330" '
+        f'stroke-width="1.3" stroke-dasharray="6 4"/></g>'
+    )
     legend_y = BAR_BOTTOM + 60
     for offset, (text, colour) in enumerate((("10th percentile", P10_COLOUR), ("median", MEDIAN_COLOUR))):
         x = BAR_LEFT + 120 * offset
-        out.append(f'<rect x="{x}" y="{legend_y - 9}" width="12" height="10" fill="{colour}"/>' + _text(x + 17, legend_y, text, size=11))
-    out.append(f'<line x1="{BAR_LEFT + 200}" x2="{BAR_LEFT + 224}" y1="{legend_y - 4}" y2="{legend_y - 4}" ' f'stroke="{SLOWEST_COLOUR}" '
-               f'stroke-width="2"/>' + _text(BAR_LEFT + 230, legend_y, "slowest student", size=11))
-    out.append(f'<line x1="{BAR_LEFT}" x2="{BAR_LEFT + 24}" y1="{legend_y + 14}" y2="{legend_y + 14}" stroke="#1d2330" '
-               f'stroke-width="1.3" stroke-dasharray="6 4"/>'
-               + _text(BAR_LEFT + 30, legend_y + 18, f"target: 10th percentile ≥ {TARGET_P10_FRAMES_PER_S:g} frames/s under attack", size=11))
+        out.append(
+            f'<rect x="{x}" y="{legend_y - 9}" width="12" height="10" fill="{colour}"/>'
+            + _text(x + 17, legend_y, text, size=11)
+        )
+    out.append(
+        f'<line x1="{BAR_LEFT + 200}" x2="{BAR_LEFT + 224}" y1="{legend_y - 4}" y2="{legend_y - 4}" '
+        f'stroke="{SLOWEST_COLOUR}" '
+        f'stroke-width="2"/>' + _text(BAR_LEFT + 230, legend_y, "slowest student", size=11)
+    )
+    out.append(
+        f'<line x1="{BAR_LEFT}" x2="{BAR_LEFT + 24}" y1="{legend_y + 14}" y2="{legend_y + 14}" stroke="#1d2330" '
+        f'stroke-width="1.3" stroke-dasharray="6 4"/>'
+        + _text(
+            BAR_LEFT + 30,
+            legend_y + 18,
+            f"target: 10th percentile ≥ {TARGET_P10_FRAMES_PER_S:g} frames/s under attack",
+            size=11,
+        )
+    )
     note_y = BAR_TOP + 8
     out.append('<g class="notes">')
     for note in _notes(report):
@@ -503,13 +600,36 @@ def attack_svg(report: dict) -> str:
     out.append("</g>")
     header_y = TABLE_TOP
     out.append('<g class="attacks">')
-    out.append(_text(COLUMN_X["item"], header_y - 22, "Every attack (one client, from one address) and every answer it got",
-                     size=14, weight="600"))
-    for column, title in (("item", "item"), ("attack", "attack"), ("tries", "tries"), ("answers", "answers (count)"),
-                          ("slowest", "slowest answer (ms)")):
-        out.append(_text(COLUMN_X[column], header_y, title, size=11, weight="600",
-                         anchor="end" if column in ("tries", "slowest") else "start"))
-    out.append(f'<line x1="{COLUMN_X["item"]}" x2="{COLUMN_X["slowest"]}" y1="{header_y + 5}" y2="{header_y + 5}" ' 'stroke="#9aa3b2"/>')
+    out.append(
+        _text(
+            COLUMN_X["item"],
+            header_y - 22,
+            "Every attack (one client, from one address) and every answer it got",
+            size=14,
+            weight="600",
+        )
+    )
+    for column, title in (
+        ("item", "item"),
+        ("attack", "attack"),
+        ("tries", "tries"),
+        ("answers", "answers (count)"),
+        ("slowest", "slowest answer (ms)"),
+    ):
+        out.append(
+            _text(
+                COLUMN_X[column],
+                header_y,
+                title,
+                size=11,
+                weight="600",
+                anchor="end" if column in ("tries", "slowest") else "start",
+            )
+        )
+    out.append(
+        f'<line x1="{COLUMN_X["item"]}" x2="{COLUMN_X["slowest"]}" y1="{header_y + 5}" y2="{header_y + 5}" '
+        'stroke="#9aa3b2"/>'
+    )
     for row, attack in enumerate(attacks):
         ry = header_y + ROW_H * (row + 1) + 2
         latency = (attack.get("latency_ms") or {}).get("max")
@@ -520,11 +640,19 @@ def attack_svg(report: dict) -> str:
             + _text(COLUMN_X["attack"], ry, name if len(name) <= 52 else name[:51] + "…", size=11)
             + _text(COLUMN_X["tries"], ry, str(attack.get("count", "?")), size=11, anchor="end")
             + _text(COLUMN_X["answers"], ry, _answers_text(attack.get("answers") or {}, 72), size=11)
-            + _text(COLUMN_X["slowest"], ry, "—" if not isinstance(latency, (int, float)) else f"{latency:,.0f}", size=11, anchor="end")
+            + _text(
+                COLUMN_X["slowest"],
+                ry,
+                "—" if not isinstance(latency, (int, float)) else f"{latency:,.0f}",
+                size=11,
+                anchor="end",
+            )
             + "</g>"
         )
     if not attacks:
-        out.append(_text(COLUMN_X["item"], header_y + ROW_H + 2, "no attack recorded an answer", size=12, fill=SLOWEST_COLOUR))
+        out.append(
+            _text(COLUMN_X["item"], header_y + ROW_H + 2, "no attack recorded an answer", size=12, fill=SLOWEST_COLOUR)
+        )
     out.append("</g>")
     out.append("</svg>")
     return "\n".join(out) + "\n"

@@ -96,8 +96,13 @@ class Case:
         over the case's span, from the same pilots (:func:`~app.physics.solvers.step_choice.choose`)."""
         target = AccuracyTarget(self.target_error, "rad", self.error_measure, horizon_s=self.t_end_s)
         return choose(
-            self.body.system(), self.y0, tuple(METHODS), target=target, frame_dt_s=1.0 / self.frame_rate_hz,
-            horizon_s=self.t_end_s, fastest_rate_rad_s=self.body.fastest_rate_rad_s(self.y0),
+            self.body.system(),
+            self.y0,
+            tuple(METHODS),
+            target=target,
+            frame_dt_s=1.0 / self.frame_rate_hz,
+            horizon_s=self.t_end_s,
+            fastest_rate_rad_s=self.body.fastest_rate_rad_s(self.y0),
             error=lambda states, reference: self.frame_errors(states[:, :4], reference[:, :4]),
         )
 
@@ -107,22 +112,43 @@ def heavy_top_params(overrides: dict[str, float]) -> dict[str, Any]:
     return heavy_top.PARAMETERS.validate(overrides)
 
 
-def _heavy_top_case(case_id: str, title: str, overrides: dict[str, float], *, error_kind: str,
-                    scene_id: str | None = None, baselines: tuple[str, ...] | None = None) -> Case:
+def _heavy_top_case(
+    case_id: str,
+    title: str,
+    overrides: dict[str, float],
+    *,
+    error_kind: str,
+    scene_id: str | None = None,
+    baselines: tuple[str, ...] | None = None,
+) -> Case:
     """A heavy symmetric top over 10 s at 60 frames/s against its quadrature solution."""
     params = heavy_top_params(overrides)
-    measure = {"axis": "largest symmetry-axis angle error over all frames",
-               "attitude": "largest attitude error (rotation angle, spin phase included) over all frames"}[error_kind]
+    measure = {
+        "axis": "largest symmetry-axis angle error over all frames",
+        "attitude": "largest attitude error (rotation angle, spin phase included) over all frames",
+    }[error_kind]
     return Case(
-        id=case_id, scene_id=scene_id, title=title, body=heavy_top.rigid_body(params), y0=heavy_top.initial_state(params),
-        t_end_s=10.0, frame_rate_hz=60.0, error_measure=measure,
-        reference_name=("quadrature solution (Jacobi elliptic functions for θ, elliptic integrals of the third " "kind for φ and ψ)"),
-        reference_quaternion=heavy_top.quadrature(params).quaternion, error_kind=error_kind, baselines=baselines,
+        id=case_id,
+        scene_id=scene_id,
+        title=title,
+        body=heavy_top.rigid_body(params),
+        y0=heavy_top.initial_state(params),
+        t_end_s=10.0,
+        frame_rate_hz=60.0,
+        error_measure=measure,
+        reference_name=(
+            "quadrature solution (Jacobi elliptic functions for θ, elliptic integrals of the third kind for φ and ψ)"
+        ),
+        reference_quaternion=heavy_top.quadrature(params).quaternion,
+        error_kind=error_kind,
+        baselines=baselines,
     )
 
 
 def heavy_top_case() -> Case:
-    return _heavy_top_case("heavy-top", "Heavy symmetric top, 10 s (scene defaults)", {}, error_kind="axis", scene_id="heavy-top")
+    return _heavy_top_case(
+        "heavy-top", "Heavy symmetric top, 10 s (scene defaults)", {}, error_kind="axis", scene_id="heavy-top"
+    )
 
 
 #: The other libraries' sweeps run on the added heavy-top cases: the two the ratios are quoted against.
@@ -130,13 +156,23 @@ RATIO_BASELINES = ("scipy-DOP853", "mujoco-RK4")
 
 
 def fast_top_case() -> Case:
-    return _heavy_top_case("heavy-top-fast", "Fast heavy top: spin 150 rad/s, 10 s", {"spin_rad_s": 150.0},
-                           error_kind="axis", baselines=RATIO_BASELINES)
+    return _heavy_top_case(
+        "heavy-top-fast",
+        "Fast heavy top: spin 150 rad/s, 10 s",
+        {"spin_rad_s": 150.0},
+        error_kind="axis",
+        baselines=RATIO_BASELINES,
+    )
 
 
 def slow_top_case() -> Case:
-    return _heavy_top_case("heavy-top-slow", "Slow heavy top: spin 15 rad/s from 45°, nutation to 80°, 10 s",
-                           {"spin_rad_s": 15.0, "theta0_deg": 45.0}, error_kind="axis", baselines=RATIO_BASELINES)
+    return _heavy_top_case(
+        "heavy-top-slow",
+        "Slow heavy top: spin 15 rad/s from 45°, nutation to 80°, 10 s",
+        {"spin_rad_s": 15.0, "theta0_deg": 45.0},
+        error_kind="axis",
+        baselines=RATIO_BASELINES,
+    )
 
 
 #: Released 1° from upright at 60 rad/s (four times the sleeping threshold of 15.7 rad/s): the axis stays
@@ -145,8 +181,13 @@ SLEEPING_TOP = {"spin_rad_s": 60.0, "theta0_deg": 1.0}
 
 
 def sleeping_top_case() -> Case:
-    return _heavy_top_case("heavy-top-sleeping", "Sleeping top: 60 rad/s released 1° from upright, 10 s", SLEEPING_TOP,
-                           error_kind="attitude", baselines=RATIO_BASELINES)
+    return _heavy_top_case(
+        "heavy-top-sleeping",
+        "Sleeping top: 60 rad/s released 1° from upright, 10 s",
+        SLEEPING_TOP,
+        error_kind="attitude",
+        baselines=RATIO_BASELINES,
+    )
 
 
 def free_body_case() -> Case:
@@ -161,16 +202,25 @@ def free_body_case() -> Case:
         return free_body_elliptic(inertia=inertia, omega0_body=omega0).quaternion(t)
 
     return Case(
-        id="free-body-dzhanibekov", title="Torque-free body, intermediate-axis flips, 10 s (I = (1, 2, 3)·10⁻³ kg·m²)",
-        body=body, y0=y0, t_end_s=10.0, frame_rate_hz=60.0, error_measure="largest attitude error (rotation angle) over all frames",
+        id="free-body-dzhanibekov",
+        title="Torque-free body, intermediate-axis flips, 10 s (I = (1, 2, 3)·10⁻³ kg·m²)",
+        body=body,
+        y0=y0,
+        t_end_s=10.0,
+        frame_rate_hz=60.0,
+        error_measure="largest attitude error (rotation angle) over all frames",
         reference_name="Jacobi elliptic closed form (ω) with quadrature for the angle about L",
-        reference_quaternion=reference, error_kind="attitude",
+        reference_quaternion=reference,
+        error_kind="attitude",
     )
 
 
 CASES: dict[str, Callable[[], Case]] = {
-    "heavy-top": heavy_top_case, "free-body-dzhanibekov": free_body_case, "heavy-top-fast": fast_top_case,
-    "heavy-top-slow": slow_top_case, "heavy-top-sleeping": sleeping_top_case,
+    "heavy-top": heavy_top_case,
+    "free-body-dzhanibekov": free_body_case,
+    "heavy-top-fast": fast_top_case,
+    "heavy-top-slow": slow_top_case,
+    "heavy-top-sleeping": sleeping_top_case,
 }
 
 #: Settings swept for each of our methods: steps per frame (fixed step) or rtol (adaptive).
@@ -191,7 +241,13 @@ def our_sweeps() -> list[tuple[str, str, str, str, list[float]]]:
     if missing:
         raise ValueError(f"no benchmark settings for the registered methods {sorted(missing)}")
     return [
-        (name, "dynlab", f"{spec.short_label} (numba)", "rtol" if spec.adaptive else "steps_per_frame", OUR_SETTINGS[name])
+        (
+            name,
+            "dynlab",
+            f"{spec.short_label} (numba)",
+            "rtol" if spec.adaptive else "steps_per_frame",
+            OUR_SETTINGS[name],
+        )
         for name, spec in METHODS.items()
     ]
 
@@ -201,7 +257,13 @@ OUR_SWEEPS = our_sweeps()
 SCIPY_SWEEPS: list[tuple[str, str, str, str, list[float]]] = [
     ("scipy-RK45", "scipy", "scipy RK45 (numpy RHS)", "rtol", [1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9]),
     # From 1e-3: the ratios at 1e-3 rad need a DOP853 point on each side of that error.
-    ("scipy-DOP853", "scipy", "scipy DOP853 (numpy RHS)", "rtol", [1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12]),
+    (
+        "scipy-DOP853",
+        "scipy",
+        "scipy DOP853 (numpy RHS)",
+        "rtol",
+        [1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12],
+    ),
     ("scipy-LSODA", "scipy", "scipy LSODA (numpy RHS)", "rtol", [1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10]),
     ("scipy-Radau", "scipy", "scipy Radau (numpy RHS)", "rtol", [1e-4, 1e-5, 1e-6, 1e-7]),
 ]
@@ -259,8 +321,12 @@ def numpy_rhs(body: PivotedBody) -> Callable[[float, np.ndarray], np.ndarray]:
         q, omega = y[:4], y[4:]
         w, x, yq, z = q
         q_dot = 0.5 * np.array(
-            [-x * omega[0] - yq * omega[1] - z * omega[2], w * omega[0] + yq * omega[2] - z * omega[1],
-             w * omega[1] - x * omega[2] + z * omega[0], w * omega[2] + x * omega[1] - yq * omega[0]]
+            [
+                -x * omega[0] - yq * omega[1] - z * omega[2],
+                w * omega[0] + yq * omega[2] - z * omega[1],
+                w * omega[1] - x * omega[2] + z * omega[0],
+                w * omega[2] + x * omega[1] - yq * omega[0],
+            ]
         )
         z_body = np.array([2.0 * (x * z - w * yq), 2.0 * (yq * z + w * x), 1.0 - 2.0 * (x * x + yq * yq)]) / (q @ q)
         torque = mgl * np.array([z_body[1], -z_body[0], 0.0])
@@ -294,14 +360,22 @@ def run_scipy(case: Case, method: str, rtol: float, frames_t: np.ndarray) -> tup
     return solution.y[:4].T, cpu, int(solution.nfev), status
 
 
-def run_mujoco(case: Case, method: str, steps_per_frame: int, frames_t: np.ndarray) -> tuple[np.ndarray, float, int, str]:
+def run_mujoco(
+    case: Case, method: str, steps_per_frame: int, frames_t: np.ndarray
+) -> tuple[np.ndarray, float, int, str]:
     from app.bench.mujoco_models import simulate_rigid_body_mujoco
 
     body = case.body
     kwargs: dict[str, Any] = dict(
-        inertia_pivot=body.inertia_pivot_kg_m2, mass_kg=body.mass_kg if body.mass_kg > 0 else 1.0,
-        cg_distance_m=body.cg_distance_m, g_m_s2=body.g_m_s2, q0=case.y0[:4], omega0_body=case.y0[4:],
-        t_end_s=case.t_end_s, frame_rate_hz=case.frame_rate_hz, steps_per_frame=int(steps_per_frame),
+        inertia_pivot=body.inertia_pivot_kg_m2,
+        mass_kg=body.mass_kg if body.mass_kg > 0 else 1.0,
+        cg_distance_m=body.cg_distance_m,
+        g_m_s2=body.g_m_s2,
+        q0=case.y0[:4],
+        omega0_body=case.y0[4:],
+        t_end_s=case.t_end_s,
+        frame_rate_hz=case.frame_rate_hz,
+        steps_per_frame=int(steps_per_frame),
         integrator=method.split("-", 1)[1],
     )
     simulate_rigid_body_mujoco(**{**kwargs, "t_end_s": 1.0 / case.frame_rate_hz})  # warm
@@ -331,8 +405,12 @@ def mujoco_batch_check(case: Case) -> dict[str, Any]:
 
     body = case.body
     frames = int(round(case.t_end_s * case.frame_rate_hz))
-    body_kwargs: dict[str, Any] = dict(inertia_pivot=body.inertia_pivot_kg_m2, mass_kg=body.mass_kg, cg_distance_m=body.cg_distance_m,
-                       g_m_s2=body.g_m_s2)
+    body_kwargs: dict[str, Any] = dict(
+        inertia_pivot=body.inertia_pivot_kg_m2,
+        mass_kg=body.mass_kg,
+        cg_distance_m=body.cg_distance_m,
+        g_m_s2=body.g_m_s2,
+    )
     model, data = build_rigid_body_model(**body_kwargs, timestep_s=1.0 / case.frame_rate_hz, integrator="RK4")
     model.opt.enableflags &= ~int(mujoco.mjtEnableBit.mjENBL_ENERGY)
     data.qpos[:] = case.y0[:4] / np.linalg.norm(case.y0[:4])
@@ -340,8 +418,15 @@ def mujoco_batch_check(case: Case) -> dict[str, Any]:
     spec = mujoco.mjtState.mjSTATE_FULLPHYSICS
     initial = np.empty(mujoco.mj_stateSize(model, spec))
     mujoco.mj_getState(model, data, initial, spec)
-    loop_kwargs: dict[str, Any] = dict(**body_kwargs, q0=case.y0[:4], omega0_body=case.y0[4:], t_end_s=case.t_end_s,
-                       frame_rate_hz=case.frame_rate_hz, steps_per_frame=1, integrator="RK4")
+    loop_kwargs: dict[str, Any] = dict(
+        **body_kwargs,
+        q0=case.y0[:4],
+        omega0_body=case.y0[4:],
+        t_end_s=case.t_end_s,
+        frame_rate_hz=case.frame_rate_hz,
+        steps_per_frame=1,
+        integrator="RK4",
+    )
     loop_cpu = batch_cpu = math.inf
     # Alternated, so a change in the machine's load between them falls on both.
     for _ in range(TIMING_REPEATS):
@@ -354,11 +439,17 @@ def mujoco_batch_check(case: Case) -> dict[str, Any]:
     same = bool(np.allclose(states[0, :, 1:5], loop.quaternion[1:], rtol=0.0, atol=1e-12))
     saving = 1.0 - batch_cpu / loop_cpu
     return {
-        "case": case.id, "method": "mujoco-RK4", "steps_per_frame": 1, "loop_cpu_s": loop_cpu, "rollout_cpu_s": batch_cpu,
-        "same_states": same, "rollout_saving": saving,
+        "case": case.id,
+        "method": "mujoco-RK4",
+        "steps_per_frame": 1,
+        "loop_cpu_s": loop_cpu,
+        "rollout_cpu_s": batch_cpu,
+        "same_states": same,
+        "rollout_saving": saving,
         "text": f"MuJoCo RK4, 1 step/frame, {case.id}: {loop_cpu * 1e3:.3g} ms with one mj_step call per frame, "
-                f"{batch_cpu * 1e3:.3g} ms in one mujoco.rollout call ({100 * abs(saving):.0f}% " f"{'less' if saving >= 0 else 'more'})"
-                f"{'' if same else ' (states differ!)'}.",
+        f"{batch_cpu * 1e3:.3g} ms in one mujoco.rollout call ({100 * abs(saving):.0f}% "
+        f"{'less' if saving >= 0 else 'more'})"
+        f"{'' if same else ' (states differ!)'}.",
     }
 
 
@@ -413,7 +504,8 @@ def live_frame_costs() -> list[dict[str, Any]]:
                 )
             else:
                 entry.update(
-                    method=report.method, physics_us_per_frame=scene_physics_us,
+                    method=report.method,
+                    physics_us_per_frame=scene_physics_us,
                     description=f"{report.description}, evaluated at each frame's time",
                 )
         elif cls.example is not None:
@@ -424,7 +516,9 @@ def live_frame_costs() -> list[dict[str, Any]]:
             for _ in range(100):
                 example.solve(inputs)
             entry.update(
-                method="static", physics_us_per_frame=0.0, solve_us_on_change=1e4 * (time.perf_counter() - start),
+                method="static",
+                physics_us_per_frame=0.0,
+                solve_us_on_change=1e4 * (time.perf_counter() - start),
                 description=f"{example.id} is solved again only when a control changes"
                 + ("; frames only move what was drawn" if cls.animated else "; nothing is computed per frame"),
             )
@@ -442,8 +536,12 @@ def _machine() -> dict[str, Any]:
     import scipy
 
     info: dict[str, Any] = {
-        "cpu": platform.processor() or platform.machine(), "cores": __import__("os").cpu_count(),
-        "python": platform.python_version(), "numpy": np.__version__, "scipy": scipy.__version__, "numba": numba.__version__,
+        "cpu": platform.processor() or platform.machine(),
+        "cores": __import__("os").cpu_count(),
+        "python": platform.python_version(),
+        "numpy": np.__version__,
+        "scipy": scipy.__version__,
+        "numba": numba.__version__,
     }
     try:
         import mujoco
@@ -475,13 +573,17 @@ class Progress:
         width = 30
         filled = int(width * self.done / self.total)
         elapsed = time.perf_counter() - self.start
-        sys.stderr.write(f"\r[{'#' * filled}{'.' * (width - filled)}] {self.done}/{self.total} {elapsed:5.0f} s  {text[:60]:<60}")
+        sys.stderr.write(
+            f"\r[{'#' * filled}{'.' * (width - filled)}] {self.done}/{self.total} {elapsed:5.0f} s  {text[:60]:<60}"
+        )
         sys.stderr.flush()
         if self.done == self.total:
             sys.stderr.write("\n")
 
 
-def run_benchmark(case_ids: Sequence[str] | None = None, *, include_mujoco: bool = True, quick: bool = False) -> dict[str, Any]:
+def run_benchmark(
+    case_ids: Sequence[str] | None = None, *, include_mujoco: bool = True, quick: bool = False
+) -> dict[str, Any]:
     """Measure every sweep of every case; return the report dictionary."""
     try:
         import mujoco  # noqa: F401
@@ -497,7 +599,11 @@ def run_benchmark(case_ids: Sequence[str] | None = None, *, include_mujoco: bool
 
     study_runs = list(PHASE_DRIFT_RUNS[:2] if quick else PHASE_DRIFT_RUNS)
     progress = Progress(sum(len(s[4]) for case in cases for s in case_sweeps(case)) + len(study_runs) + 1)
-    report: dict[str, Any] = {"created": datetime.now(UTC).isoformat(timespec="seconds"), "machine": _machine(), "scenes": []}
+    report: dict[str, Any] = {
+        "created": datetime.now(UTC).isoformat(timespec="seconds"),
+        "machine": _machine(),
+        "scenes": [],
+    }
     for case in cases:
         frames_t = np.arange(int(round(case.t_end_s * case.frame_rate_hz)) + 1) / case.frame_rate_hz
         reference = case.reference_quaternion(frames_t)
@@ -508,10 +614,23 @@ def run_benchmark(case_ids: Sequence[str] | None = None, *, include_mujoco: bool
             for setting in settings:
                 progress.step(f"{case.id}: {label} {setting_name}={setting:g}")
                 quaternions, cpu, evals, status = runner(case, method, setting, frames_t)
-                error = case.error(quaternions, reference) if status == "ok" and len(quaternions) == len(frames_t) else math.inf
-                points.append({"setting": setting, "cpu_s": cpu, "error": error if math.isfinite(error) else None,
-                               "rhs_evals": evals, "status": status if math.isfinite(error) else "failed"})
-            methods.append({"method": method, "family": family, "label": label, "setting_name": setting_name, "points": points})
+                error = (
+                    case.error(quaternions, reference)
+                    if status == "ok" and len(quaternions) == len(frames_t)
+                    else math.inf
+                )
+                points.append(
+                    {
+                        "setting": setting,
+                        "cpu_s": cpu,
+                        "error": error if math.isfinite(error) else None,
+                        "rhs_evals": evals,
+                        "status": status if math.isfinite(error) else "failed",
+                    }
+                )
+            methods.append(
+                {"method": method, "family": family, "label": label, "setting_name": setting_name, "points": points}
+            )
         # The default operating point: what a scene runs at this frame rate with "auto" (the error-target choice).
         choice = case.automatic_choice()
         if choice is None:
@@ -519,14 +638,22 @@ def run_benchmark(case_ids: Sequence[str] | None = None, *, include_mujoco: bool
         adaptive = choice.steps_per_frame is None
         setting = choice.rtol if adaptive else choice.steps_per_frame
         assert setting is not None  # a choice sets rtol or steps_per_frame
-        default_integrator = make_integrator(choice.method, rtol=choice.rtol) if adaptive else make_integrator(
-            choice.method, steps_per_frame=choice.steps_per_frame)
+        default_integrator = (
+            make_integrator(choice.method, rtol=choice.rtol)
+            if adaptive
+            else make_integrator(choice.method, steps_per_frame=choice.steps_per_frame)
+        )
         q_default, cpu_default, _, _ = run_ours(case, choice.method, setting, frames_t)
         default = {
-            "method": choice.method, "setting": setting, "setting_name": "rtol" if adaptive else "steps_per_frame",
+            "method": choice.method,
+            "setting": setting,
+            "setting_name": "rtol" if adaptive else "steps_per_frame",
             "description": default_integrator.describe(1.0 / case.frame_rate_hz),
-            "cpu_s": cpu_default, "error": case.error(q_default, reference),
-            "target_error": case.target_error, "estimated_error": choice.estimated_error, "accuracy": choice.text(),
+            "cpu_s": cpu_default,
+            "error": case.error(q_default, reference),
+            "target_error": case.target_error,
+            "estimated_error": choice.estimated_error,
+            "accuracy": choice.text(),
         }
         ratios = []
         for method in methods:
@@ -541,21 +668,44 @@ def run_benchmark(case_ids: Sequence[str] | None = None, *, include_mujoco: bool
                 continue
             theirs = cost_at_error(base["points"], case.target_error)
             if theirs is None:
-                ratios.append({"baseline": baseline, "at_error": case.target_error, "ratio": None,
-                               "text": f"{base['label']} never reached {case.target_error:.0e} in the sweep"})
+                ratios.append(
+                    {
+                        "baseline": baseline,
+                        "at_error": case.target_error,
+                        "ratio": None,
+                        "text": f"{base['label']} never reached {case.target_error:.0e} in the sweep",
+                    }
+                )
                 continue
             ratio = theirs / ours
-            ratios.append({"baseline": baseline, "at_error": case.target_error, "ratio": ratio, "ours_cpu_s": ours, "theirs_cpu_s": theirs,
-                           "ours": case.default_method,
-                           "text": f"At {case.target_error:.0e} {'rad'} error, {case.default_method} needs "
-                                   f"{ours * 1e3:.3g} ms of CPU; {base['label']} needs {theirs * 1e3:.3g} ms: {ratio:.0f}× more."})
+            ratios.append(
+                {
+                    "baseline": baseline,
+                    "at_error": case.target_error,
+                    "ratio": ratio,
+                    "ours_cpu_s": ours,
+                    "theirs_cpu_s": theirs,
+                    "ours": case.default_method,
+                    "text": f"At {case.target_error:.0e} {'rad'} error, {case.default_method} needs "
+                    f"{ours * 1e3:.3g} ms of CPU; {base['label']} needs {theirs * 1e3:.3g} ms: {ratio:.0f}× more.",
+                }
+            )
         ratios.extend(best_ratios(methods))
         report["scenes"].append(
             {
-                "scene_id": case.id, "live_scene": case.scene_id, "title": case.title, "t_end_s": case.t_end_s,
-                "frame_rate_hz": case.frame_rate_hz, "error_measure": case.error_measure, "error_unit": "rad",
-                "reference": case.reference_name, "target_error": case.target_error, "default": default,
-                "methods": methods, "ratios": ratios, "plot": f"{case.id}.svg",
+                "scene_id": case.id,
+                "live_scene": case.scene_id,
+                "title": case.title,
+                "t_end_s": case.t_end_s,
+                "frame_rate_hz": case.frame_rate_hz,
+                "error_measure": case.error_measure,
+                "error_unit": "rad",
+                "reference": case.reference_name,
+                "target_error": case.target_error,
+                "default": default,
+                "methods": methods,
+                "ratios": ratios,
+                "plot": f"{case.id}.svg",
             }
         )
     report["ratio_summary"] = ratio_summary(report["scenes"])
@@ -610,16 +760,25 @@ def best_ratios(methods: Sequence[dict], errors: Sequence[float] = RATIO_ERRORS)
                 continue
             theirs = cost_at_error(base["points"], error)
             span = _error_span(base["points"])
-            entry: dict[str, Any] = {"baseline": baseline, "at_error": error, "ours": our_method, "ours_cpu_s": our_cpu,
-                                     "required_ratio": required}
+            entry: dict[str, Any] = {
+                "baseline": baseline,
+                "at_error": error,
+                "ours": our_method,
+                "ours_cpu_s": our_cpu,
+                "required_ratio": required,
+            }
             if theirs is None:
                 entry.update(ratio=None, text=f"{base['label']} never reached {error:.0e} rad in the sweep")
             else:
                 ratio = theirs / our_cpu
                 entry.update(
-                    ratio=ratio, theirs_cpu_s=theirs, bracketed=bool(span and span[1] >= error), meets_requirement=ratio >= required,
-                    text=f"At {error:.0e} rad, the cheapest of ours ({our_method}) needs {our_cpu * 1e3:.3g} ms " "of CPU; "
-                         f"{base['label']} needs {theirs * 1e3:.3g} ms: {ratio:.0f}× more (asked: ≥ {required:.0f}×).",
+                    ratio=ratio,
+                    theirs_cpu_s=theirs,
+                    bracketed=bool(span and span[1] >= error),
+                    meets_requirement=ratio >= required,
+                    text=f"At {error:.0e} rad, the cheapest of ours ({our_method}) needs {our_cpu * 1e3:.3g} ms "
+                    "of CPU; "
+                    f"{base['label']} needs {theirs * 1e3:.3g} ms: {ratio:.0f}× more (asked: ≥ {required:.0f}×).",
                 )
             out.append(entry)
     return out
@@ -635,18 +794,32 @@ def ratio_summary(scenes: Sequence[dict]) -> dict[str, Any]:
         table: dict[str, list] = {}
         for r in scene["ratios"]:
             if "required_ratio" in r:
-                table.setdefault(r["baseline"], []).append({"at_error": r["at_error"], "ratio": r["ratio"], "ours": r["ours"]})
+                table.setdefault(r["baseline"], []).append(
+                    {"at_error": r["at_error"], "ratio": r["ratio"], "ours": r["ours"]}
+                )
         cases[scene["scene_id"]] = table
-    met = [r.get("meets_requirement", False) for s in scenes if str(s["scene_id"]).startswith("heavy-top")
-           for r in s["ratios"] if "required_ratio" in r]
+    met = [
+        r.get("meets_requirement", False)
+        for s in scenes
+        if str(s["scene_id"]).startswith("heavy-top")
+        for r in s["ratios"]
+        if "required_ratio" in r
+    ]
     return {"errors": list(RATIO_ERRORS), "required": REQUIRED_RATIO, "cases": cases, "all_met": bool(met) and all(met)}
 
 
 #: Runs of the phase-against-drift study: (method, steps per frame), None for the step (or rtol 1e-8) a live
 #: scene picks automatically; one step per frame is the cheapest setting a student can choose.
 PHASE_DRIFT_RUNS: tuple[tuple[str, int | None], ...] = (
-    ("splitting2", 1), ("splitting2", None), ("splitting4", 1), ("splitting4", None), ("splitting6", 1),
-    ("splitting8", 1), ("rk4", 4), ("rk4", None), ("dopri5", None),
+    ("splitting2", 1),
+    ("splitting2", None),
+    ("splitting4", 1),
+    ("splitting4", None),
+    ("splitting6", 1),
+    ("splitting8", 1),
+    ("rk4", 4),
+    ("rk4", None),
+    ("dopri5", None),
 )
 PHASE_DRIFT_SECONDS = 600.0
 
@@ -659,8 +832,9 @@ def _setting_text(integrator, steps_per_frame: int | None) -> str:
     return f"{'' if steps_per_frame else 'auto: '}{n} step{'' if n == 1 else 's'}/frame"
 
 
-def phase_drift_study(runs: Sequence[tuple[str, int | None]] = PHASE_DRIFT_RUNS, *,
-                      progress: Progress | None = None) -> dict[str, Any]:
+def phase_drift_study(
+    runs: Sequence[tuple[str, int | None]] = PHASE_DRIFT_RUNS, *, progress: Progress | None = None
+) -> dict[str, Any]:
     """The sleeping top over 600 s at 60 frames/s: each run's largest relative energy drift beside its attitude error
     (rad).
 
@@ -676,24 +850,37 @@ def phase_drift_study(runs: Sequence[tuple[str, int | None]] = PHASE_DRIFT_RUNS,
     for method, steps_per_frame in runs:
         if progress is not None:
             progress.step(f"phase against drift: {method}, {PHASE_DRIFT_SECONDS:g} s")
-        integrator = make_integrator(method, steps_per_frame=steps_per_frame, fastest_rate_rad_s=body.fastest_rate_rad_s(y0),
-                                     frame_dt_s=1 / 60)
+        integrator = make_integrator(
+            method, steps_per_frame=steps_per_frame, fastest_rate_rad_s=body.fastest_rate_rad_s(y0), frame_dt_s=1 / 60
+        )
         result = simulate(system, integrator, y0, t_end_s=PHASE_DRIFT_SECONDS, frame_rate_hz=60.0)
         if reference is None:
             reference = heavy_top.quadrature(params).quaternion(result.t_s)
         energy = body.energy_J(result.states)
         error = attitude_error_rad(result.states[:, :4], reference)
-        rows.append({
-            "method": method, "label": METHODS[method].short_label, "description": integrator.describe(1 / 60),
-            "setting": "auto" if steps_per_frame is None else steps_per_frame, "setting_text": _setting_text(integrator, steps_per_frame),
-            "status": result.status, "cpu_s": result.cpu_s,
-            "energy_drift": float(np.max(np.abs(energy - energy[0])) / abs(energy[0])),
-            "attitude_error_rad": float(error.max()), "attitude_error_10s_rad": float(error[: 10 * 60 + 1].max()),
-        })
+        rows.append(
+            {
+                "method": method,
+                "label": METHODS[method].short_label,
+                "description": integrator.describe(1 / 60),
+                "setting": "auto" if steps_per_frame is None else steps_per_frame,
+                "setting_text": _setting_text(integrator, steps_per_frame),
+                "status": result.status,
+                "cpu_s": result.cpu_s,
+                "energy_drift": float(np.max(np.abs(energy - energy[0])) / abs(energy[0])),
+                "attitude_error_rad": float(error.max()),
+                "attitude_error_10s_rad": float(error[: 10 * 60 + 1].max()),
+            }
+        )
     return {
         "title": f"Sleeping top over {PHASE_DRIFT_SECONDS:g} s: energy drift beside attitude error",
-        "case": "heavy-top-sleeping", "parameters": {k: float(v) for k, v in params.items()}, "t_end_s": PHASE_DRIFT_SECONDS,
-        "frame_rate_hz": 60.0, "reference": "quadrature solution", "methods": rows, "plot": "heavy-top-phase-drift.svg",
+        "case": "heavy-top-sleeping",
+        "parameters": {k: float(v) for k, v in params.items()},
+        "t_end_s": PHASE_DRIFT_SECONDS,
+        "frame_rate_hz": 60.0,
+        "reference": "quadrature solution",
+        "methods": rows,
+        "plot": "heavy-top-phase-drift.svg",
     }
 
 
@@ -719,22 +906,32 @@ def main(argv: Sequence[str] | None = None) -> int:
     for path in write_report(report, args.out):
         print(f"wrote {path}")
     for scene in report["scenes"]:
-        print(f"{scene['title']}: default {scene['default']['description']}: "
-              f"{scene['default']['cpu_s'] * 1e3:.3g} ms, error {scene['default']['error']:.2e} rad")
+        print(
+            f"{scene['title']}: default {scene['default']['description']}: "
+            f"{scene['default']['cpu_s'] * 1e3:.3g} ms, error {scene['default']['error']:.2e} rad"
+        )
         for ratio in scene["ratios"]:
             print("  " + ratio["text"])
     if "mujoco_batch_check" in report["timing"]:
         print(report["timing"]["mujoco_batch_check"]["text"])
     summary = report["ratio_summary"]
-    print(f"best of ours against {', '.join(summary['required'])} at " f"{', '.join(f'{e:.0e}' for e in summary['errors'])} rad"
-          f" (all asked ratios met: {summary['all_met']}):")
+    print(
+        f"best of ours against {', '.join(summary['required'])} at "
+        f"{', '.join(f'{e:.0e}' for e in summary['errors'])} rad"
+        f" (all asked ratios met: {summary['all_met']}):"
+    )
     for case_id, table in summary["cases"].items():
         for baseline, rows in table.items():
-            cells = ", ".join(f"{r['at_error']:.0e}: {r['ratio']:.0f}× ({r['ours']})" if r["ratio"] else f"{r['at_error']:.0e}: —" for r in rows)
+            cells = ", ".join(
+                f"{r['at_error']:.0e}: {r['ratio']:.0f}× ({r['ours']})" if r["ratio"] else f"{r['at_error']:.0e}: —"
+                for r in rows
+            )
             print(f"  {case_id} vs {baseline}: {cells}")
     for row in report["phase_drift"]["methods"]:
-        print(f"sleeping top {PHASE_DRIFT_SECONDS:g} s, {row['description']}: energy drift {row['energy_drift']:.1e}, "
-              f"attitude error {row['attitude_error_rad']:.1e} rad")
+        print(
+            f"sleeping top {PHASE_DRIFT_SECONDS:g} s, {row['description']}: energy drift {row['energy_drift']:.1e}, "
+            f"attitude error {row['attitude_error_rad']:.1e} rad"
+        )
     for live in report["live_scenes"]:
         drift = f", 60 s drift {live['max_invariant_drift_60s']:.1e}" if "max_invariant_drift_60s" in live else ""
         print(f"live {live['scene_id']}: {live['physics_us_per_frame']:.2f} µs/frame ({live['description']}){drift}")

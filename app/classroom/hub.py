@@ -181,7 +181,9 @@ class RoomHub:
                     except Exception:  # a worker restarting: the next pump tries again
                         live = None
                     if live is not None and room.scene_id == scene_id:
-                        self._deliver(room.room_id, finite_json({"type": "readout", "scene_id": scene_id, "data": live}), False)
+                        self._deliver(
+                            room.room_id, finite_json({"type": "readout", "scene_id": scene_id, "data": live}), False
+                        )
                 await asyncio.sleep(PUMP_PERIOD_S)
         finally:
             self._pumps.pop(room.room_id, None)

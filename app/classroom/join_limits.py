@@ -21,7 +21,6 @@ A refused join is a 429 with ``Retry-After`` (whole seconds, at least 1).
 
 from __future__ import annotations
 
-
 from fastapi import HTTPException
 from starlette.types import Scope
 
@@ -35,9 +34,13 @@ class JoinLimits:
 
     def __init__(self, settings: Settings) -> None:
         self.trust_forwarded_for = settings.trust_forwarded_for
-        self.per_address = TokenBuckets(burst=settings.join_burst, rate_per_s=settings.join_rate_per_s, max_clients=settings.rate_limit_clients)
+        self.per_address = TokenBuckets(
+            burst=settings.join_burst, rate_per_s=settings.join_rate_per_s, max_clients=settings.rate_limit_clients
+        )
         # Rooms closed long ago are forgotten first; a few times the open rooms is plenty.
-        self.per_room = TokenBuckets(burst=settings.room_join_burst, rate_per_s=settings.room_join_rate_per_s, max_clients=4 * MAX_ROOMS)
+        self.per_room = TokenBuckets(
+            burst=settings.room_join_burst, rate_per_s=settings.room_join_rate_per_s, max_clients=4 * MAX_ROOMS
+        )
 
     def check_address(self, scope: Scope) -> None:
         """429 if this client's address has joined too often (a peer with no IP address is not limited)."""
@@ -57,4 +60,6 @@ class JoinLimits:
 
 def too_many(wait_s: float, why: str) -> HTTPException:
     retry_after = retry_after_s(wait_s)
-    return HTTPException(status_code=429, detail=f"{why}: try again in {retry_after} s", headers={"Retry-After": str(retry_after)})
+    return HTTPException(
+        status_code=429, detail=f"{why}: try again in {retry_after} s", headers={"Retry-After": str(retry_after)}
+    )

@@ -22,9 +22,13 @@ def instructor_link(request: Request, key: Annotated[str, Query(max_length=200)]
     """The link ``dynlab serve`` prints: the right key sets the instructor's cookie and opens the course."""
     instructor_key = request.app.state.instructor_key
     if not instructor_key.matches(key):
-        raise HTTPException(status_code=403, detail="this is not the instructor link printed by dynlab serve (the key differs)")
+        raise HTTPException(
+            status_code=403, detail="this is not the instructor link printed by dynlab serve (the key differs)"
+        )
     response = RedirectResponse("/?instructor=1", status_code=303)
-    response.set_cookie(COOKIE, instructor_key.cookie_token, httponly=True, samesite="strict", max_age=12 * 3600, path="/")
+    response.set_cookie(
+        COOKIE, instructor_key.cookie_token, httponly=True, samesite="strict", max_age=12 * 3600, path="/"
+    )
     return response
 
 
@@ -66,7 +70,6 @@ def room_viewer_page(room_id: RoomId, rooms: RoomsDep) -> Response:
     return Response(viewer_client_html(), media_type="text/html; charset=utf-8")
 
 
-
 def _notice_page(status_code: int, title: str, message: str) -> HTMLResponse:
     """A page that says why it cannot show what was asked (a person reads it, not a client)."""
     body = f'<section class="room-notice" role="alert"><h1>{esc(title)}</h1><p>{esc(message)}</p><p><a href="/">The course</a></p></section>'
@@ -80,11 +83,19 @@ def projector_page(room_id: RoomId, request: Request, rooms: RoomsDep) -> HTMLRe
     """The projector view (instructor only): the room's scene large; the join code, QR code, readout, play state
     and the current poll's anonymous histogram in type readable from the back row."""
     if not is_instructor(request):
-        return _notice_page(403, "Instructor only", "The projector view is the instructor's: open the instructor link that dynlab serve printed, then this page again.")
+        return _notice_page(
+            403,
+            "Instructor only",
+            "The projector view is the instructor's: open the instructor link that dynlab serve printed, then this page again.",
+        )
     try:
         room = rooms.get(room_id)
     except KeyError:
-        return _notice_page(404, "No such room", "No open room has this address; it may have been closed. Open a room from a lesson page.")
+        return _notice_page(
+            404,
+            "No such room",
+            "No open room has this address; it may have been closed. Open a room from a lesson page.",
+        )
     join_address = room.join_url.removesuffix(f"/{room.code}").removeprefix("http://")  # as a student types it
     body = _template("projector.html").substitute(room_id=room.room_id, code=esc(room.code), join_url=esc(join_address))
     return _page(f"Room {room.code}: projector — Dynamics Lab", body, scripts=("/static/js/projector.js",))

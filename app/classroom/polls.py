@@ -119,7 +119,10 @@ def _finite_number(raw: Any, field_name: str) -> float:
         raise PollError(field_name, f"{field_name}: must be a number (got {raw!r})")
     value = float(raw)
     if not math.isfinite(value) or abs(value) > MAX_ANSWER_MAGNITUDE:
-        raise PollError(field_name, f"{field_name}: must be a finite number no larger than {MAX_ANSWER_MAGNITUDE:g} in size (got {raw!r})")
+        raise PollError(
+            field_name,
+            f"{field_name}: must be a finite number no larger than {MAX_ANSWER_MAGNITUDE:g} in size (got {raw!r})",
+        )
     return value
 
 
@@ -134,7 +137,9 @@ def _text(raw: Any, field_name: str, *, low: int, high: int) -> str:
 
 def _choice_index(raw: Any, field_name: str, choices: tuple[str, ...]) -> int:
     if isinstance(raw, bool) or not isinstance(raw, int) or not 0 <= raw < len(choices):
-        raise PollError(field_name, f"{field_name}: must be the index of a choice, 0 to {len(choices) - 1} (got {raw!r})")
+        raise PollError(
+            field_name, f"{field_name}: must be the index of a choice, 0 to {len(choices) - 1} (got {raw!r})"
+        )
     return raw
 
 
@@ -181,10 +186,16 @@ class Poll:
 
         quantity = raw.get("answer_quantity")
         if quantity is not None and (not isinstance(quantity, str) or not QUANTITY_NAME.match(quantity)):
-            raise PollError("answer_quantity", f"answer_quantity: must be a readout quantity name such as critical_spin_rad_s (got {quantity!r})")
+            raise PollError(
+                "answer_quantity",
+                f"answer_quantity: must be a readout quantity name such as critical_spin_rad_s (got {quantity!r})",
+            )
         own_answer = "answer_value" if kind == "number" else "answer_choice"
         if quantity is not None and raw.get(own_answer) is not None:
-            raise PollError(own_answer, f"{own_answer}: give either answer_quantity (the scene computes the answer) or {own_answer}, not both")
+            raise PollError(
+                own_answer,
+                f"{own_answer}: give either answer_quantity (the scene computes the answer) or {own_answer}, not both",
+            )
         wrong_kind = ("answer_value", "unit") if kind == "choice" else ("answer_choice", "answer_choices", "choices")
         for name in wrong_kind:
             if raw.get(name) not in (None, ""):
@@ -200,9 +211,14 @@ class Poll:
                 answer_choice = _choice_index(raw["answer_choice"], "answer_choice", choices)
             choice_for = cls._choice_for(raw.get("answer_choices"), choices)
             if quantity is not None and not choice_for:
-                raise PollError("answer_choices", "answer_choices: a choice poll answered by the scene maps the quantity's words to choices")
+                raise PollError(
+                    "answer_choices",
+                    "answer_choices: a choice poll answered by the scene maps the quantity's words to choices",
+                )
             if quantity is None and choice_for:
-                raise PollError("answer_choices", "answer_choices: maps a quantity's words, so it needs answer_quantity")
+                raise PollError(
+                    "answer_choices", "answer_choices: maps a quantity's words, so it needs answer_quantity"
+                )
         else:
             unit = _text(raw.get("unit", ""), "unit", low=0, high=MAX_UNIT_CHARS)
             if raw.get("answer_value") is not None:
@@ -296,13 +312,27 @@ class Poll:
             revealed = self._computed_answer(readout, self.answer_source)
         elif self.kind == "number" and self.answer_value is not None:
             text = f"{format_number(self.answer_value)} {self.unit}".rstrip()
-            revealed = {"text": text, "value": self.answer_value, "choice": None, "unit": self.unit, "source": "given by the instructor"}
+            revealed = {
+                "text": text,
+                "value": self.answer_value,
+                "choice": None,
+                "unit": self.unit,
+                "source": "given by the instructor",
+            }
         elif self.kind == "choice" and self.answer_choice is not None:
             text = self.choices[self.answer_choice]
-            revealed = {"text": text, "value": None, "choice": self.answer_choice, "unit": "", "source": "given by the instructor"}
+            revealed = {
+                "text": text,
+                "value": None,
+                "choice": self.answer_choice,
+                "unit": "",
+                "source": "given by the instructor",
+            }
         else:
             own = "answer_value" if self.kind == "number" else "answer_choice"
-            raise PollError("reveal", f"reveal: this poll has no answer to show (it names no answer_quantity and no {own})")
+            raise PollError(
+                "reveal", f"reveal: this poll has no answer to show (it names no answer_quantity and no {own})"
+            )
         self.open = False
         self.revealed = revealed
         return dict(revealed)
@@ -310,27 +340,53 @@ class Poll:
     def _computed_answer(self, readout: Mapping[str, Any] | None, source: AnswerSource) -> dict[str, Any]:
         quantities = readout.get("quantities") if isinstance(readout, Mapping) else None
         if not isinstance(quantities, list):
-            raise PollError("answer_quantity", f"answer_quantity: the scene has no readout now, so it cannot compute {source.quantity}")
+            raise PollError(
+                "answer_quantity",
+                f"answer_quantity: the scene has no readout now, so it cannot compute {source.quantity}",
+            )
         found = next((q for q in quantities if isinstance(q, Mapping) and q.get("name") == source.quantity), None)
         if found is None:
             names = ", ".join(str(q.get("name")) for q in quantities if isinstance(q, Mapping)) or "none"
-            raise PollError("answer_quantity", f"answer_quantity: the scene's readout has no {source.quantity!r} now (it has: {names})")
+            raise PollError(
+                "answer_quantity",
+                f"answer_quantity: the scene's readout has no {source.quantity!r} now (it has: {names})",
+            )
         label = str(found.get("label") or source.quantity)
         value, unit, text = found.get("value"), str(found.get("unit") or ""), str(found.get("text") or "")
         origin = f"computed by the scene: {label}"
         if self.kind == "number":
-            if value is None or isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+            if (
+                value is None
+                or isinstance(value, bool)
+                or not isinstance(value, (int, float))
+                or not math.isfinite(value)
+            ):
                 why = f" ({text})" if text else ""
-                raise PollError("answer_quantity", f"answer_quantity: {label} has no value now{why}; run the demo further or change its parameters")
+                raise PollError(
+                    "answer_quantity",
+                    f"answer_quantity: {label} has no value now{why}; run the demo further or change its parameters",
+                )
             if unit != self.unit:
                 asked = self.unit or "no unit"
-                raise PollError("answer_quantity", f"answer_quantity: {label} is in {unit or 'no unit'}, but the poll asks for {asked}")
+                raise PollError(
+                    "answer_quantity",
+                    f"answer_quantity: {label} is in {unit or 'no unit'}, but the poll asks for {asked}",
+                )
             number = float(value)
-            return {"text": f"{format_number(number)} {unit}".rstrip(), "value": number, "choice": None, "unit": unit, "source": origin}
+            return {
+                "text": f"{format_number(number)} {unit}".rstrip(),
+                "value": number,
+                "choice": None,
+                "unit": unit,
+                "source": origin,
+            }
         if value is not None or not text:
             raise PollError("answer_quantity", f"answer_quantity: {label} is a number, not a word a choice can match")
         if text not in source.choice_for:
-            raise PollError("answer_choices", f"answer_choices: the scene says {label} is {text!r}, which maps to none of the choices")
+            raise PollError(
+                "answer_choices",
+                f"answer_choices: the scene says {label} is {text!r}, which maps to none of the choices",
+            )
         choice = source.choice_for[text]
         return {"text": self.choices[choice], "value": None, "choice": choice, "unit": "", "source": origin}
 
@@ -371,7 +427,10 @@ class Poll:
         for answer in self._answers.values():
             assert answer.choice is not None
             counts[answer.choice] += 1
-        return [{"label": label, "lo": None, "hi": None, "count": count} for label, count in zip(self.choices, counts, strict=True)]
+        return [
+            {"label": label, "lo": None, "hi": None, "count": count}
+            for label, count in zip(self.choices, counts, strict=True)
+        ]
 
     def _number_histogram(self) -> list[dict[str, Any]]:
         """About :data:`TARGET_BINS` bins of a nice width over the answers (and the revealed value)."""

@@ -16,5 +16,15 @@ def qr_svg(text: str, *, scale: int = 8) -> bytes:
     """``text`` as a QR code (error correction M, dark on white, a 4-module quiet zone), SVG bytes."""
     code = segno.make(text, error="m", micro=False)
     out = io.BytesIO()
-    code.save(out, kind="svg", scale=scale, border=4, dark="#111", light="#fff", xmldecl=False, svgns=True, title="Join this room")
+    code.save(
+        out,
+        kind="svg",
+        scale=scale,
+        border=4,
+        dark="#111",
+        light="#fff",
+        xmldecl=False,
+        svgns=True,
+        title="Join this room",
+    )
     return out.getvalue()

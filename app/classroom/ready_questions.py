@@ -118,7 +118,9 @@ def _ready_question(entry: Any, scenes: Mapping[str, type[Scene]], *, path: Path
         raise ValueError(f"{path}: question {number} must be a table")
     question_id = entry.get("id")
     if not isinstance(question_id, str) or not QUESTION_ID.match(question_id):
-        raise ValueError(f"{path}: question {number}: id must be lower-case words joined by hyphens (got {question_id!r})")
+        raise ValueError(
+            f"{path}: question {number}: id must be lower-case words joined by hyphens (got {question_id!r})"
+        )
     where = f"{path}: question {question_id!r}"
     missing = [key for key in REQUIRED_KEYS if key not in entry]
     if missing:
@@ -168,7 +170,9 @@ def _ready_question(entry: Any, scenes: Mapping[str, type[Scene]], *, path: Path
         question.scene_params(scene)
     except ParameterError as exc:  # the file's author wrote the parameter's name: say it, and what the page calls it
         called = f" ({exc.label})" if exc.label else ""
-        raise ValueError(f"{where}: the scene refuses its params: {' → '.join(map(str, exc.path))}{called}: {exc.message}") from None
+        raise ValueError(
+            f"{where}: the scene refuses its params: {' → '.join(map(str, exc.path))}{called}: {exc.message}"
+        ) from None
     except ValueError as exc:
         raise ValueError(f"{where}: the scene refuses its params: {exc}") from None
     return question

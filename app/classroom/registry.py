@@ -43,7 +43,11 @@ class Rooms:
 
     def _drop_idle(self) -> list[Room]:
         now = time.monotonic()
-        idle = [room for room in self._rooms.values() if now - room.last_used_s > IDLE_ROOM_S and not room.instructor_sockets]
+        idle = [
+            room
+            for room in self._rooms.values()
+            if now - room.last_used_s > IDLE_ROOM_S and not room.instructor_sockets
+        ]
         for room in idle:
             del self._rooms[room.room_id]
         return idle

@@ -63,7 +63,9 @@ def ends_replay(window: bytes) -> bool:
         return False
     compressed = int.from_bytes(window[8:16], "little")
     try:
-        inner = zstandard.ZstdDecompressor().decompress(window[16 : 16 + compressed], max_output_size=int.from_bytes(window[:8], "little"))
+        inner = zstandard.ZstdDecompressor().decompress(
+            window[16 : 16 + compressed], max_output_size=int.from_bytes(window[:8], "little")
+        )
     except zstandard.ZstdError:
         return False
     return REPLAY_DONE in inner
@@ -115,8 +117,17 @@ class StageStream:
         self.task: asyncio.Task[None] | None = None
 
     async def connect(self) -> websockets.ClientConnection:
-        upstream = await websockets.connect(self.url, subprotocols=[self.protocol], max_size=None, compression=None, open_timeout=10, close_timeout=UPSTREAM_CLOSE_TIMEOUT_S)  # type: ignore[list-item]
-        await upstream.send(viewer_camera_message())  # viser counts a viewer as connected after its first camera message
+        upstream = await websockets.connect(
+            self.url,
+            subprotocols=[self.protocol],
+            max_size=None,
+            compression=None,
+            open_timeout=10,
+            close_timeout=UPSTREAM_CLOSE_TIMEOUT_S,
+        )  # type: ignore[list-item]
+        await upstream.send(
+            viewer_camera_message()
+        )  # viser counts a viewer as connected after its first camera message
         return upstream
 
     async def run(self, upstream: websockets.ClientConnection) -> None:
@@ -260,7 +271,14 @@ async def _follow(websocket: WebSocket, app: FastAPI, room_id: str, stage_id: st
         for task in tasks:
             task.cancel()
         for task in tasks:
-            with contextlib.suppress(asyncio.CancelledError, WebSocketDisconnect, websockets.ConnectionClosed, RuntimeError, OSError, TimeoutError):
+            with contextlib.suppress(
+                asyncio.CancelledError,
+                WebSocketDisconnect,
+                websockets.ConnectionClosed,
+                RuntimeError,
+                OSError,
+                TimeoutError,
+            ):
                 await task
         with contextlib.suppress(RuntimeError, WebSocketDisconnect):
             await websocket.close(code=1000 if not follower.dropped else 1013)

@@ -70,7 +70,12 @@ class Student:
 
     def listing(self) -> dict[str, Any]:
         """What the instructor's list shows (never the token or the device)."""
-        return {"student_id": self.student_id, "name": self.name, "connected": self.sockets > 0, "following": self.following}
+        return {
+            "student_id": self.student_id,
+            "name": self.name,
+            "connected": self.sockets > 0,
+            "following": self.following,
+        }
 
 
 @dataclass
@@ -143,8 +148,16 @@ class Room:
         actual = {"lesson_id": self.lesson_id, "scene_id": self.scene_id}
         stale = [name for name, value in believed.items() if value != actual[name]]
         if stale:
-            shows = f"lesson {self.lesson_id!r}" + (f", scene {self.scene_id!r}" if self.scene_id else "") if self.lesson_id else "no lesson"
-            thought = ", ".join(f"{name.removesuffix('_id')} {believed[name]!r}" for name in ("lesson_id", "scene_id") if name in believed)
+            shows = (
+                f"lesson {self.lesson_id!r}" + (f", scene {self.scene_id!r}" if self.scene_id else "")
+                if self.lesson_id
+                else "no lesson"
+            )
+            thought = ", ".join(
+                f"{name.removesuffix('_id')} {believed[name]!r}"
+                for name in ("lesson_id", "scene_id")
+                if name in believed
+            )
             raise RoomMovedOn(
                 f"if_{stale[0]}",
                 f"the class has moved on: the room shows {shows}, not {thought} as this page does; nothing changed "
@@ -164,7 +177,9 @@ class Room:
             scene_id = raw["scene_id"]
             if scene_id not in lesson.scenes:
                 named = ", ".join(lesson.scenes) or "none"
-                raise RoomError("scene_id", f"scene_id: lesson {lesson_id!r} has no scene {scene_id!r} (its scenes: {named})")
+                raise RoomError(
+                    "scene_id", f"scene_id: lesson {lesson_id!r} has no scene {scene_id!r} (its scenes: {named})"
+                )
         elif lesson_id != self.lesson_id or self.scene_id not in lesson.scenes:
             scene_id = lesson.scene  # a new lesson opens on its first scene (None for a lesson without one)
         else:
@@ -180,7 +195,9 @@ class Room:
                 found = next((p for p in cls.presets if p.name == preset), None)
                 if found is None:
                     names = ", ".join(p.name for p in cls.presets) or "none"
-                    raise RoomError("preset", f"preset: scene {scene_id!r} has no preset {preset!r} (its presets: {names})")
+                    raise RoomError(
+                        "preset", f"preset: scene {scene_id!r} has no preset {preset!r} (its presets: {names})"
+                    )
                 values.update(found.values)
             given = raw.get("params") or {}
             if not isinstance(given, Mapping):
@@ -198,8 +215,15 @@ class Room:
         time_scale = raw.get("time_scale")
         if time_scale is not None:
             low, high = TIME_SCALE_RANGE
-            if isinstance(time_scale, bool) or not isinstance(time_scale, int | float) or not math.isfinite(time_scale) or not low <= time_scale <= high:
-                raise RoomError("time_scale", f"time_scale: a number from {low:g} to {high:g} (× real time), got {time_scale!r}")
+            if (
+                isinstance(time_scale, bool)
+                or not isinstance(time_scale, int | float)
+                or not math.isfinite(time_scale)
+                or not low <= time_scale <= high
+            ):
+                raise RoomError(
+                    "time_scale", f"time_scale: a number from {low:g} to {high:g} (× real time), got {time_scale!r}"
+                )
         mode = raw.get("mode")
         if mode is not None and mode not in MODES:
             raise RoomError("mode", f"mode: 'follow' or 'explore', got {mode!r}")
@@ -226,7 +250,9 @@ class Room:
             self.params = {}
         playing = self.playing if plan["playing"] is None else plan["playing"]
         time_scale = self.time_scale if plan["time_scale"] is None else float(plan["time_scale"])
-        if scene_id is not None and (plan["new_scene"] or plan["reset"] or plan["playing"] is not None or plan["time_scale"] is not None):
+        if scene_id is not None and (
+            plan["new_scene"] or plan["reset"] or plan["playing"] is not None or plan["time_scale"] is not None
+        ):
             # A new stage starts playing at 1×: apply the room's own playback to it, and any reset. First, so that a
             # worker too busy to take it (HostBusy) leaves the room saying what its stage does.
             host.set_playback(self.stage_id, playing=playing, time_scale=time_scale, reset=plan["reset"])
@@ -252,7 +278,11 @@ class Room:
         """The device's student: the one it joined as before (a QR code scanned again, a reload, the code typed
         again), its name updated if one is given; else a new student. :class:`StudentRemoved` for a device the
         instructor removed."""
-        if not isinstance(name, str) or len(name) > MAX_NAME_LENGTH or any(ord(c) < 32 or 0x7F <= ord(c) < 0xA0 for c in name):
+        if (
+            not isinstance(name, str)
+            or len(name) > MAX_NAME_LENGTH
+            or any(ord(c) < 32 or 0x7F <= ord(c) < 0xA0 for c in name)
+        ):
             raise RoomError("name", f"name: at most {MAX_NAME_LENGTH} printable characters")
         name = name.strip()
         with self.lock:
@@ -267,7 +297,9 @@ class Room:
             if len(self.students) >= MAX_STUDENTS:
                 raise RoomError("code", f"this room is full ({MAX_STUDENTS} students)")
             self._students_ever += 1
-            student = Student(student_id=f"s{self._students_ever}", token=secrets.token_urlsafe(18), device=device, name=name)
+            student = Student(
+                student_id=f"s{self._students_ever}", token=secrets.token_urlsafe(18), device=device, name=name
+            )
             self.students[student.token] = student
             if device is not None:
                 self._by_device[device] = student.token

@@ -16,10 +16,10 @@ from typing import Annotated, Any
 
 from fastapi import APIRouter, Depends, Header, HTTPException, Path, Request, WebSocket
 from fastapi.concurrency import run_in_threadpool
-from pydantic import ValidationError
-from starlette.websockets import WebSocketDisconnect
 from fastapi.responses import PlainTextResponse, Response
+from pydantic import ValidationError
 from starlette.requests import HTTPConnection
+from starlette.websockets import WebSocketDisconnect
 
 from app.api.deps import CatalogueDep, SceneHostDep, SettingsDep
 from app.api.errors import unprocessable
@@ -67,7 +67,12 @@ DEVICE_COOKIE_PATH = "/api/rooms/join"
 DEVICE_PATTERN = re.compile(r"^[A-Za-z0-9_-]{16,64}$")
 #: How long a device cookie lasts (s): a school day and then some; rooms do not outlive the server anyway.
 DEVICE_COOKIE_MAX_AGE_S = 24 * 3600
-_FORBIDDEN = {403: {"model": ErrorDetail, "description": "Instructor only (the instructor link's cookie, or X-Instructor-Key); nothing changed"}}
+_FORBIDDEN = {
+    403: {
+        "model": ErrorDetail,
+        "description": "Instructor only (the instructor link's cookie, or X-Instructor-Key); nothing changed",
+    }
+}
 _NO_ROOM = "No open room has this id"
 
 
@@ -93,8 +98,13 @@ InstructorKeyDep = Annotated[InstructorKey, Depends(get_instructor_key)]
 ReadyQuestionsDep = Annotated[tuple[ReadyQuestion, ...], Depends(get_ready_questions)]
 RoomId = Annotated[str, Path(pattern=ROOM_ID_PATTERN, description=f"The room's id ({ROOM_ID_HEX_DIGITS} hex digits)")]
 PollId = Annotated[str, Path(pattern=POLL_ID_PATTERN, description="A poll of the room: p1, p2, …")]
-StudentToken = Annotated[str | None, Header(alias=STUDENT_HEADER, max_length=64, description="The token the room gave on joining")]
-StudentId = Annotated[str, Path(pattern=STUDENT_ID_PATTERN, description="A student's public id in the room: s1, s2, … (never their token)")]
+StudentToken = Annotated[
+    str | None, Header(alias=STUDENT_HEADER, max_length=64, description="The token the room gave on joining")
+]
+StudentId = Annotated[
+    str,
+    Path(pattern=STUDENT_ID_PATTERN, description="A student's public id in the room: s1, s2, … (never their token)"),
+]
 
 
 def is_instructor(connection: HTTPConnection) -> bool:
@@ -104,7 +114,9 @@ def is_instructor(connection: HTTPConnection) -> bool:
 def require_instructor(request: Request) -> None:
     """403 unless the request carries the instructor's cookie or key (checked before anything else runs)."""
     if not is_instructor(request):
-        raise HTTPException(status_code=403, detail="instructor only: open the instructor link that dynlab serve printed")
+        raise HTTPException(
+            status_code=403, detail="instructor only: open the instructor link that dynlab serve printed"
+        )
 
 
 Instructor = Depends(require_instructor)
@@ -147,9 +159,23 @@ def whoami(request: Request) -> dict[str, str]:
 
 
 # ---- rooms -----------------------------------------------------------------------------------------
-@router.post("/rooms", response_model=RoomCreated, dependencies=[Instructor], responses={**_FORBIDDEN, **error_responses(unprocessable="A lesson or scene that does not exist, or too many rooms open")})
+@router.post(
+    "/rooms",
+    response_model=RoomCreated,
+    dependencies=[Instructor],
+    responses={
+        **_FORBIDDEN,
+        **error_responses(unprocessable="A lesson or scene that does not exist, or too many rooms open"),
+    },
+)
 def create_room(
-    body: RoomCreateRequest | None, request: Request, rooms: RoomsDep, settings: SettingsDep, catalogue: CatalogueDep, host: SceneHostDep, hub: RoomHubDep
+    body: RoomCreateRequest | None,
+    request: Request,
+    rooms: RoomsDep,
+    settings: SettingsDep,
+    catalogue: CatalogueDep,
+    host: SceneHostDep,
+    hub: RoomHubDep,
 ) -> dict[str, Any]:
     """Open a room (instructor only), on a lesson if one is named; students join it by its code."""
     try:
@@ -168,7 +194,12 @@ def create_room(
     return {"room_id": room.room_id, "code": room.code, "join_url": room.join_url, "state": room.state()}
 
 
-@router.delete("/rooms/{room_id}", response_model=RoomClosed, dependencies=[Instructor], responses={**_FORBIDDEN, **error_responses(not_found=_NO_ROOM, unprocessable="A malformed room id")})
+@router.delete(
+    "/rooms/{room_id}",
+    response_model=RoomClosed,
+    dependencies=[Instructor],
+    responses={**_FORBIDDEN, **error_responses(not_found=_NO_ROOM, unprocessable="A malformed room id")},
+)
 def close_room(room: RoomDep, rooms: RoomsDep, host: SceneHostDep, hub: RoomHubDep) -> dict[str, str]:
     """Close the room (instructor only): its scene stops and every page in it is told."""
     rooms.close(room.room_id)
@@ -184,10 +215,15 @@ def close_room(room: RoomDep, rooms: RoomsDep, host: SceneHostDep, hub: RoomHubD
     responses={
         **error_responses(not_found="No open room has this code", unprocessable="A name too long, or the room is full"),
         403: {"model": ErrorDetail, "description": "The instructor removed this device from the room"},
-        429: {"model": ErrorDetail, "description": "Too many joins from this address, or into this room just now; Retry-After says when to try again"},
+        429: {
+            "model": ErrorDetail,
+            "description": "Too many joins from this address, or into this room just now; Retry-After says when to try again",
+        },
     },
 )
-def join_room(body: JoinRequest, request: Request, response: Response, rooms: RoomsDep, limits: JoinLimitsDep, hub: RoomHubDep) -> dict[str, Any]:
+def join_room(
+    body: JoinRequest, request: Request, response: Response, rooms: RoomsDep, limits: JoinLimitsDep, hub: RoomHubDep
+) -> dict[str, Any]:
     """A student joins by the room's code: the answer's token identifies them (keep it; a reconnect reuses it).
 
     The device cookie this sets makes a device that joins again the same student, with the same token."""
@@ -207,9 +243,21 @@ def join_room(body: JoinRequest, request: Request, response: Response, rooms: Ro
         raise HTTPException(status_code=403, detail=str(exc)) from None
     except RoomError as exc:
         raise room_error(exc) from None
-    response.set_cookie(DEVICE_COOKIE, device, max_age=DEVICE_COOKIE_MAX_AGE_S, path=DEVICE_COOKIE_PATH, httponly=True, samesite="strict")
+    response.set_cookie(
+        DEVICE_COOKIE,
+        device,
+        max_age=DEVICE_COOKIE_MAX_AGE_S,
+        path=DEVICE_COOKIE_PATH,
+        httponly=True,
+        samesite="strict",
+    )
     hub.publish_state(room, presence_only=True)  # the joined count, and the instructor's list, at the next pump
-    return {"room_id": room.room_id, "student_token": student.token, "student_id": student.student_id, "state": room.state()}
+    return {
+        "room_id": room.room_id,
+        "student_token": student.token,
+        "student_id": student.student_id,
+        "state": room.state(),
+    }
 
 
 @router.get(
@@ -227,7 +275,10 @@ def list_students(room: RoomDep) -> dict[str, Any]:
     "/rooms/{room_id}/students/{student_id}",
     response_model=StudentRemovedAnswer,
     dependencies=[Instructor],
-    responses={**_FORBIDDEN, **error_responses(not_found="No such room or student", unprocessable="A malformed room or student id")},
+    responses={
+        **_FORBIDDEN,
+        **error_responses(not_found="No such room or student", unprocessable="A malformed room or student id"),
+    },
 )
 def remove_student(room: RoomDep, student_id: StudentId, hub: RoomHubDep) -> dict[str, str]:
     """Remove a student (instructor only): their page is told and its socket closed, their token no longer answers,
@@ -236,7 +287,9 @@ def remove_student(room: RoomDep, student_id: StudentId, hub: RoomHubDep) -> dic
         student = room.remove(student_id)
     except KeyError as exc:
         raise HTTPException(status_code=404, detail=str(exc.args[0])) from None
-    hub.dismiss_student(room, student.token, {"type": "removed", "detail": "The instructor removed you from this room."})
+    hub.dismiss_student(
+        room, student.token, {"type": "removed", "detail": "The instructor removed you from this room."}
+    )
     hub.publish_state(room)
     hub.publish_students(room)
     poll = room.polls.get(room.poll_id) if room.poll_id else None
@@ -245,7 +298,11 @@ def remove_student(room: RoomDep, student_id: StudentId, hub: RoomHubDep) -> dic
     return {"removed": student.student_id}
 
 
-@router.get("/rooms/{room_id}/state", response_model=RoomState, responses=error_responses(not_found=_NO_ROOM, unprocessable="A malformed room id"))
+@router.get(
+    "/rooms/{room_id}/state",
+    response_model=RoomState,
+    responses=error_responses(not_found=_NO_ROOM, unprocessable="A malformed room id"),
+)
 def room_state(room: RoomDep, request: Request) -> dict[str, Any]:
     """What the room shows now: lesson, scene, parameters, play state, time scale, mode, students, the current poll,
     and how many 3D viewers follow its scene."""
@@ -259,10 +316,15 @@ def room_state(room: RoomDep, request: Request) -> dict[str, Any]:
     responses={
         **_FORBIDDEN,
         **error_responses(not_found=_NO_ROOM, unprocessable="A field is bad (named in loc); nothing changed"),
-        409: {"model": ErrorDetail, "description": "if_lesson_id or if_scene_id no longer what the room shows (a stale page); nothing changed"},
+        409: {
+            "model": ErrorDetail,
+            "description": "if_lesson_id or if_scene_id no longer what the room shows (a stale page); nothing changed",
+        },
     },
 )
-def change_room_state(room: RoomDep, body: RoomStateChange, catalogue: CatalogueDep, host: SceneHostDep, hub: RoomHubDep) -> dict[str, Any]:
+def change_room_state(
+    room: RoomDep, body: RoomStateChange, catalogue: CatalogueDep, host: SceneHostDep, hub: RoomHubDep
+) -> dict[str, Any]:
     """Change what every follower sees (instructor only): lesson, scene, parameters or preset, play/pause,
     reset, time scale, follow or explore. A page sends the lesson and scene it shows as ``if_lesson_id`` and
     ``if_scene_id``: once the room has moved on, its change is refused (409) instead of reaching another scene."""
@@ -299,14 +361,26 @@ def ready_polls(room: RoomDep, ready: ReadyQuestionsDep) -> list[dict[str, Any]]
     "/rooms/{room_id}/polls",
     response_model=PollPublic,
     dependencies=[Instructor],
-    responses={**_FORBIDDEN, **error_responses(not_found=_NO_ROOM, unprocessable="A field of the question is bad; no poll was opened")},
+    responses={
+        **_FORBIDDEN,
+        **error_responses(not_found=_NO_ROOM, unprocessable="A field of the question is bad; no poll was opened"),
+    },
 )
-def open_poll(room: RoomDep, body: PollRequest, ready: ReadyQuestionsDep, catalogue: CatalogueDep, host: SceneHostDep, hub: RoomHubDep) -> dict[str, Any]:
+def open_poll(
+    room: RoomDep,
+    body: PollRequest,
+    ready: ReadyQuestionsDep,
+    catalogue: CatalogueDep,
+    host: SceneHostDep,
+    hub: RoomHubDep,
+) -> dict[str, Any]:
     """Ask the room a question (instructor only): it becomes the current poll, closing any open one."""
     return start_poll(room, body.model_dump(exclude_none=True), ready=ready, catalogue=catalogue, host=host, hub=hub)
 
 
-def start_poll(room: Room, raw: dict[str, Any], *, ready: tuple[ReadyQuestion, ...], catalogue: Any, host: Any, hub: RoomHub) -> dict[str, Any]:
+def start_poll(
+    room: Room, raw: dict[str, Any], *, ready: tuple[ReadyQuestion, ...], catalogue: Any, host: Any, hub: RoomHub
+) -> dict[str, Any]:
     """Open a poll from a request body (a ready question first sets the room's scene as the question needs it)."""
     ready_id = raw.pop("ready_id", None)
     if ready_id is not None:
@@ -337,9 +411,17 @@ def start_poll(room: Room, raw: dict[str, Any], *, ready: tuple[ReadyQuestion, .
     response_model=PollResults,
     response_model_exclude_none=True,
     dependencies=[Instructor],
-    responses={**_FORBIDDEN, **error_responses(not_found="No such room or poll", unprocessable="The answer cannot be computed now (the scene has no such quantity)")},
+    responses={
+        **_FORBIDDEN,
+        **error_responses(
+            not_found="No such room or poll",
+            unprocessable="The answer cannot be computed now (the scene has no such quantity)",
+        ),
+    },
 )
-def update_poll(room: RoomDep, poll_id: PollId, body: PollUpdate, host: SceneHostDep, hub: RoomHubDep) -> dict[str, Any]:
+def update_poll(
+    room: RoomDep, poll_id: PollId, body: PollUpdate, host: SceneHostDep, hub: RoomHubDep
+) -> dict[str, Any]:
     """Close or reopen the poll, reveal the answer the scene computes, or show names (instructor only)."""
     try:
         poll = room.update_poll(poll_id, body.model_dump(exclude_none=True), host=host)
@@ -355,12 +437,17 @@ def update_poll(room: RoomDep, poll_id: PollId, body: PollUpdate, host: SceneHos
     "/rooms/{room_id}/polls/{poll_id}/answers",
     response_model=AnswerAccepted,
     responses={
-        **error_responses(not_found="No such room or poll", unprocessable="The answer does not fit the poll (a choice out of range, a number not finite)"),
+        **error_responses(
+            not_found="No such room or poll",
+            unprocessable="The answer does not fit the poll (a choice out of range, a number not finite)",
+        ),
         403: {"model": ErrorDetail, "description": "No X-Student-Token from this room"},
         409: {"model": ErrorDetail, "description": "The poll is closed"},
     },
 )
-def answer_poll(room: RoomDep, poll_id: PollId, body: AnswerRequest, hub: RoomHubDep, student_token: StudentToken = None) -> dict[str, Any]:
+def answer_poll(
+    room: RoomDep, poll_id: PollId, body: AnswerRequest, hub: RoomHubDep, student_token: StudentToken = None
+) -> dict[str, Any]:
     """A student's answer: one per student, which they may change until the poll closes."""
     try:
         room.answer(poll_id, student_token, body.model_dump(exclude_none=True))
@@ -383,7 +470,10 @@ def answer_poll(room: RoomDep, poll_id: PollId, body: AnswerRequest, hub: RoomHu
     response_model=PollResults,
     response_model_exclude_none=True,
     dependencies=[Instructor],
-    responses={**_FORBIDDEN, **error_responses(not_found="No such room or poll", unprocessable="A malformed room or poll id")},
+    responses={
+        **_FORBIDDEN,
+        **error_responses(not_found="No such room or poll", unprocessable="A malformed room or poll id"),
+    },
 )
 def poll_results(room: RoomDep, poll_id: PollId) -> dict[str, Any]:
     """Counts per choice or per bin (instructor only); names only if the instructor turned them on."""
@@ -393,7 +483,9 @@ def poll_results(room: RoomDep, poll_id: PollId) -> dict[str, Any]:
         raise HTTPException(status_code=404, detail=str(exc.args[0])) from None
 
 
-@router.get("/rooms/{room_id}/polls/{poll_id}/results.csv", dependencies=[Instructor], include_in_schema=False)  # CSV, not JSON
+@router.get(
+    "/rooms/{room_id}/polls/{poll_id}/results.csv", dependencies=[Instructor], include_in_schema=False
+)  # CSV, not JSON
 def poll_results_csv(room: RoomDep, poll_id: PollId) -> PlainTextResponse:
     """Every answer as CSV (instructor only): anonymous unless names are on."""
     try:
@@ -401,8 +493,9 @@ def poll_results_csv(room: RoomDep, poll_id: PollId) -> PlainTextResponse:
     except KeyError as exc:
         raise HTTPException(status_code=404, detail=str(exc.args[0])) from None
     filename = f"room-{room.code}-{poll_id}.csv"
-    return PlainTextResponse(poll.to_csv(), media_type="text/csv", headers={"Content-Disposition": f'attachment; filename="{filename}"'})
-
+    return PlainTextResponse(
+        poll.to_csv(), media_type="text/csv", headers={"Content-Disposition": f'attachment; filename="{filename}"'}
+    )
 
 
 # ---- the room socket ---------------------------------------------------------------------------------
@@ -429,14 +522,23 @@ async def room_socket(websocket: WebSocket, room_id: str) -> None:
         while True:
             text = await websocket.receive_text()
             if len(text) > MAX_SOCKET_MESSAGE:
-                hub.reply(member, {"type": "error", "status": 413, "detail": f"a room message is at most {MAX_SOCKET_MESSAGE} characters"})
+                hub.reply(
+                    member,
+                    {
+                        "type": "error",
+                        "status": 413,
+                        "detail": f"a room message is at most {MAX_SOCKET_MESSAGE} characters",
+                    },
+                )
                 continue
             try:
                 message = json.loads(text)
             except ValueError:
                 message = None
             if not isinstance(message, dict) or not isinstance(message.get("type"), str):
-                hub.reply(member, {"type": "error", "status": 400, "detail": 'a room message is a JSON object with a "type"'})
+                hub.reply(
+                    member, {"type": "error", "status": 400, "detail": 'a room message is a JSON object with a "type"'}
+                )
                 continue
             await _socket_message(websocket, room, member, message, hub)
     except (WebSocketDisconnect, RuntimeError):
@@ -452,10 +554,21 @@ async def _socket_message(websocket: WebSocket, room: Room, member: Any, message
         try:
             student = room.student(token) if isinstance(token, str) else None
         except StudentRemoved as exc:
-            hub.dismiss(member, {"type": "removed", "detail": f"{str(exc)[0].upper()}{str(exc)[1:]}."}, reason="removed from the room by the instructor")
+            hub.dismiss(
+                member,
+                {"type": "removed", "detail": f"{str(exc)[0].upper()}{str(exc)[1:]}."},
+                reason="removed from the room by the instructor",
+            )
             return
         if token is not None and student is None:
-            hub.reply(member, {"type": "error", "status": 403, "detail": "this student token is not from this room: join again with the code"})
+            hub.reply(
+                member,
+                {
+                    "type": "error",
+                    "status": 403,
+                    "detail": "this student token is not from this room: join again with the code",
+                },
+            )
             return
         if student is not None and member.student_token is None:
             with room.lock:
@@ -471,19 +584,44 @@ async def _socket_message(websocket: WebSocket, room: Room, member: Any, message
                 hub.presence_changed(room)
     elif kind in INSTRUCTOR_ACTIONS:
         if not member.instructor:
-            hub.reply(member, {"type": "error", "status": 403, "action": kind, "detail": f"{kind}: only the instructor can change the room; nothing changed"})
+            hub.reply(
+                member,
+                {
+                    "type": "error",
+                    "status": 403,
+                    "action": kind,
+                    "detail": f"{kind}: only the instructor can change the room; nothing changed",
+                },
+            )
             return
         try:
             await run_in_threadpool(_instructor_action, websocket, room, kind, message)
         except ValidationError as exc:
             first = exc.errors()[0]
-            hub.reply(member, {"type": "error", "status": 422, "action": kind, "detail": f"{'.'.join(map(str, first['loc']))}: {first['msg']}"})
+            hub.reply(
+                member,
+                {
+                    "type": "error",
+                    "status": 422,
+                    "action": kind,
+                    "detail": f"{'.'.join(map(str, first['loc']))}: {first['msg']}",
+                },
+            )
         except HTTPException as exc:
             detail = exc.detail[0]["msg"] if isinstance(exc.detail, list) else exc.detail
             hub.reply(member, {"type": "error", "status": exc.status_code, "action": kind, "detail": detail})
         except HostBusy as exc:  # the room's scene worker is busy or restarting: the instructor's socket stays open
             detail = f"{kind}: the room's scene is busy or restarting; try again in {exc.retry_after_s} s"
-            hub.reply(member, {"type": "error", "status": exc.status, "action": kind, "retry_after_s": exc.retry_after_s, "detail": detail})
+            hub.reply(
+                member,
+                {
+                    "type": "error",
+                    "status": exc.status,
+                    "action": kind,
+                    "retry_after_s": exc.retry_after_s,
+                    "detail": detail,
+                },
+            )
     elif kind == "ping":
         hub.reply(member, {"type": "pong"})
     else:
@@ -493,7 +631,9 @@ async def _socket_message(websocket: WebSocket, room: Room, member: Any, message
 def _instructor_action(websocket: WebSocket, room: Room, kind: str, message: dict[str, Any]) -> None:
     """The same work as the instructor-only route of that name (run in a thread: it may call a scene worker)."""
     state = websocket.app.state
-    body = INSTRUCTOR_ACTIONS[kind].model_validate(message if kind != "update_poll" else {k: v for k, v in message.items() if k != "poll_id"})
+    body = INSTRUCTOR_ACTIONS[kind].model_validate(
+        message if kind != "update_poll" else {k: v for k, v in message.items() if k != "poll_id"}
+    )
     host, hub, catalogue = state.scene_host, state.room_hub, state.catalogue
     if kind == "set_state":
         try:
@@ -501,7 +641,14 @@ def _instructor_action(websocket: WebSocket, room: Room, kind: str, message: dic
         except RoomError as exc:
             raise room_error(exc) from None
     elif kind == "open_poll":
-        start_poll(room, body.model_dump(exclude_none=True), ready=state.ready_questions, catalogue=catalogue, host=host, hub=hub)
+        start_poll(
+            room,
+            body.model_dump(exclude_none=True),
+            ready=state.ready_questions,
+            catalogue=catalogue,
+            host=host,
+            hub=hub,
+        )
     else:
         poll_id = message.get("poll_id")
         if not isinstance(poll_id, str):

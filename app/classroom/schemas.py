@@ -24,7 +24,7 @@ class RoomCreated(BaseModel):
     room_id: str
     code: str = Field(description=f"What students type to join: {CODE_LENGTH} capitals and digits")
     join_url: str = Field(description="The address students open (also shown as a QR code on the projector)")
-    state: "RoomState"
+    state: RoomState
 
 
 class JoinRequest(BaseModel):
@@ -37,9 +37,13 @@ class JoinRequest(BaseModel):
 
 class JoinAnswer(BaseModel):
     room_id: str
-    student_token: str = Field(description="Send as X-Student-Token with answers, and in the room socket's hello; the same for a device that joins again")
-    student_id: str = Field(description="This student's public id in the room (s1, s2, …): how the instructor's list names them")
-    state: "RoomState"
+    student_token: str = Field(
+        description="Send as X-Student-Token with answers, and in the room socket's hello; the same for a device that joins again"
+    )
+    student_id: str = Field(
+        description="This student's public id in the room (s1, s2, …): how the instructor's list names them"
+    )
+    state: RoomState
 
 
 class StudentListed(BaseModel):
@@ -74,7 +78,9 @@ class RoomStateChange(BaseModel):
     preset: str | None = Field(None, max_length=100, description="A preset name of the room's scene")
     reset: StrictBool = Field(False, description="Start the motion again from t = 0")
     if_lesson_id: str | None = Field(
-        None, max_length=100, description="Apply only if the room still shows this lesson (the lesson the sending page shows), else 409"
+        None,
+        max_length=100,
+        description="Apply only if the room still shows this lesson (the lesson the sending page shows), else 409",
     )
     if_scene_id: str | None = Field(
         None, max_length=100, description="Apply only if the room still shows this scene (null: no scene), else 409"
@@ -85,13 +91,19 @@ class PollRequest(BaseModel):
     """A question to the room: multiple choice or a number with a unit; or one of the ready questions by id."""
 
     model_config = ConfigDict(extra="forbid")
-    ready_id: str | None = Field(None, max_length=100, description="A ready question (GET .../polls/ready); the other fields override it")
+    ready_id: str | None = Field(
+        None, max_length=100, description="A ready question (GET .../polls/ready); the other fields override it"
+    )
     question: str | None = Field(None, max_length=MAX_QUESTION_CHARS)
     kind: Literal["choice", "number"] | None = None
     choices: list[str] | None = Field(None, max_length=CHOICES_RANGE[1])
     unit: str | None = Field(None, max_length=MAX_UNIT_CHARS)
-    answer_quantity: str | None = Field(None, max_length=100, description="A readout quantity of the room's scene that computes the answer")
-    answer_choices: dict[str, StrictInt] | None = Field(None, description="For a word quantity: its value -> the right choice's index")
+    answer_quantity: str | None = Field(
+        None, max_length=100, description="A readout quantity of the room's scene that computes the answer"
+    )
+    answer_choices: dict[str, StrictInt] | None = Field(
+        None, description="For a word quantity: its value -> the right choice's index"
+    )
     answer_value: float | None = Field(None, allow_inf_nan=False)
     answer_choice: StrictInt | None = None
     show_names: StrictBool | None = None
@@ -100,7 +112,9 @@ class PollRequest(BaseModel):
 class PollUpdate(BaseModel):
     model_config = ConfigDict(extra="forbid")
     open: StrictBool | None = None
-    reveal: StrictBool | None = Field(None, description="Close the poll and show the answer, computed by the room's scene now")
+    reveal: StrictBool | None = Field(
+        None, description="Close the poll and show the answer, computed by the room's scene now"
+    )
     show_names: StrictBool | None = None
 
 
@@ -191,11 +205,15 @@ class RoomState(BaseModel):
     mode: Literal["follow", "explore"]
     revision: int = Field(description="Grows with every change")
     reset_count: int
-    explore_start: dict[str, Any] | None = Field(description="Where explorers start: scene_id, params and motion (t_s, y), or null")
+    explore_start: dict[str, Any] | None = Field(
+        description="Where explorers start: scene_id, params and motion (t_s, y), or null"
+    )
     students: StudentCounts
     instructor_connected: bool
     poll: PollPublic | None
-    followers: int | None = Field(None, description="3D viewers showing the room's shared scene now (in the state route's answer)")
+    followers: int | None = Field(
+        None, description="3D viewers showing the room's shared scene now (in the state route's answer)"
+    )
 
 
 class RoomClosed(BaseModel):

@@ -3,4 +3,13 @@
 from app.course.catalogue import Catalogue, CatalogueError, load_catalogue
 from app.course.lessons import LESSONS_DIR, Chapter, Lesson, Section, render_markdown
 
-__all__ = ["LESSONS_DIR", "Catalogue", "CatalogueError", "Chapter", "Lesson", "Section", "load_catalogue", "render_markdown"]
+__all__ = [
+    "LESSONS_DIR",
+    "Catalogue",
+    "CatalogueError",
+    "Chapter",
+    "Lesson",
+    "Section",
+    "load_catalogue",
+    "render_markdown",
+]

@@ -88,22 +88,35 @@ def load_catalogue(
             problems.append(f"{lesson.source}: lesson id {lesson.id!r} is already used by {by_id[lesson.id].source}")
             continue
         by_id[lesson.id] = lesson
-        problems += _reference_problems(lesson, outline, {"scene": scenes, "worked example": examples, "derivation": derivations})
+        problems += _reference_problems(
+            lesson, outline, {"scene": scenes, "worked example": examples, "derivation": derivations}
+        )
     if problems:
         raise CatalogueError("the course catalogue is inconsistent:\n  " + "\n  ".join(problems))
-    chapters = tuple(replace(ch, lessons=tuple(lesson for lesson in lessons if lesson.chapter == ch.number)) for ch in outline)
-    return Catalogue(chapters=chapters, lessons=by_id, scenes=dict(scenes), examples=dict(examples), derivations=dict(derivations))
+    chapters = tuple(
+        replace(ch, lessons=tuple(lesson for lesson in lessons if lesson.chapter == ch.number)) for ch in outline
+    )
+    return Catalogue(
+        chapters=chapters, lessons=by_id, scenes=dict(scenes), examples=dict(examples), derivations=dict(derivations)
+    )
 
 
-def _reference_problems(lesson: Lesson, outline: tuple[Chapter, ...], registries: Mapping[str, Mapping[str, object]]) -> list[str]:
+def _reference_problems(
+    lesson: Lesson, outline: tuple[Chapter, ...], registries: Mapping[str, Mapping[str, object]]
+) -> list[str]:
     """What is wrong with one lesson's chapter, section and references (empty if nothing)."""
     problems: list[str] = []
     chapter = next((ch for ch in outline if ch.number == lesson.chapter), None)
     if chapter is None:
-        problems.append(f"{lesson.source}: chapter {lesson.chapter} is not in course.toml (known: " f"{', '.join(str(ch.number) for ch in outline)})")
+        problems.append(
+            f"{lesson.source}: chapter {lesson.chapter} is not in course.toml (known: "
+            f"{', '.join(str(ch.number) for ch in outline)})"
+        )
     elif lesson.section not in {s.number for s in chapter.sections}:
         known = ", ".join(s.number for s in chapter.sections)
-        problems.append(f"{lesson.source}: section {lesson.section!r} is not a section of chapter {chapter.number} (known: {known})")
+        problems.append(
+            f"{lesson.source}: section {lesson.section!r} is not a section of chapter {chapter.number} (known: {known})"
+        )
     references = {"scene": lesson.scenes, "worked example": lesson.examples, "derivation": lesson.derivations}
     for kind, ids in references.items():
         registry = registries[kind]

@@ -23,7 +23,16 @@ from markdown_it import MarkdownIt
 
 from app.settings import DEFAULT_LESSONS_DIR as LESSONS_DIR  # the default the catalogue loads
 
-__all__ = ["LESSONS_DIR", "Chapter", "Lesson", "Section", "parse_lesson", "parse_outline", "render_markdown", "split_front_matter"]
+__all__ = [
+    "LESSONS_DIR",
+    "Chapter",
+    "Lesson",
+    "Section",
+    "parse_lesson",
+    "parse_outline",
+    "render_markdown",
+    "split_front_matter",
+]
 
 _DISPLAY_MATH = re.compile(r"\$\$(.+?)\$\$", re.DOTALL)
 _INLINE_MATH = re.compile(r"(?<![\\$])\$(?!\$)([^\n$]+?)(?<!\\)\$")

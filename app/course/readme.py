@@ -27,7 +27,12 @@ def readme_table(catalogue: Catalogue) -> str:
         lessons = " · ".join(f"{lesson.section} {lesson.title}" for lesson in chapter.lessons)
         scenes = ", ".join(f"`{cls.id}`" for cls in catalogue.scenes_of_chapter(chapter.number))
         examples = ", ".join(f"`{ex.id}` {ex.title}" for ex in catalogue.examples_of_chapter(chapter.number))
-        cells = [f"{chapter.number} {chapter.title}", lessons or "outline only (sections on the course page)", scenes, examples]
+        cells = [
+            f"{chapter.number} {chapter.title}",
+            lessons or "outline only (sections on the course page)",
+            scenes,
+            examples,
+        ]
         rows.append("| " + " | ".join(cell.replace("|", "\\|") for cell in cells) + " |")
     return "\n".join(rows)
 

@@ -31,8 +31,14 @@ from app.physics.systems import system_modules
 from app.scenes.kit import Scene
 
 __all__ = [
-    "SCRIPT_FRAME_RATE_HZ", "SCRIPT_T_END_S", "example_script", "parse_params", "python_literal", "scene_script",
-    "script_file_name", "script_values",
+    "SCRIPT_FRAME_RATE_HZ",
+    "SCRIPT_T_END_S",
+    "example_script",
+    "parse_params",
+    "python_literal",
+    "scene_script",
+    "script_file_name",
+    "script_values",
 ]
 
 #: Simulated time (s) a scene's script runs its model for, and its samples per simulated second (Hz).
@@ -103,7 +109,7 @@ def parse_params(text: str | None) -> dict[str, Any]:
     except json.JSONDecodeError as exc:
         raise ParameterError("params", f"is not JSON ({exc.msg} at character {exc.pos})") from None
     if not isinstance(values, dict):
-        raise ParameterError("params", "must be a JSON object of parameter values, e.g. {\"mass_kg\": 2}")
+        raise ParameterError("params", 'must be a JSON object of parameter values, e.g. {"mass_kg": 2}')
     return values
 
 
@@ -159,7 +165,9 @@ def _importable(cls: type) -> tuple[str, str]:
     return module, name
 
 
-def example_script(example: WorkedExample, inputs: Mapping[str, Any], *, display: Mapping[str, Any] | None = None) -> str:
+def example_script(
+    example: WorkedExample, inputs: Mapping[str, Any], *, display: Mapping[str, Any] | None = None
+) -> str:
     """A script printing the worked solution of ``example`` for validated ``inputs`` (SI units).
 
     ``display`` (a scene's display options) is only named in a comment.
@@ -301,13 +309,13 @@ def _configuration_space_script(scene: type[Scene], params: Mapping[str, Any]) -
     kind = params["constraint"]
     if kind == "nonholonomic":
         names = ("drive_distance_m", "turn_angle_deg")
-        body = '''park = physics.ParallelParking(values["drive_distance_m"], math.radians(values["turn_angle_deg"]))
+        body = """park = physics.ParallelParking(values["drive_distance_m"], math.radians(values["turn_angle_deg"]))
 
 print("one manoeuvre: drive s, turn alpha, reverse s, turn back:")
 show("sideways_drift_m", park.sideways_drift_m, "m")  # s sin(alpha): no admissible velocity points this way
 show("sideways_drift_leading_m", park.drive_distance_m * park.turn_angle_rad, "m")  # s alpha, to leading order
 show("forward_drift_m", park.forward_drift_m, "m")  # s (1 - cos alpha)
-'''
+"""
     else:
         if kind == "scleronomic":
             names = ("semi_axis_a_m", "semi_axis_b_m", "bead_rate_rad_s")
@@ -316,7 +324,7 @@ show("forward_drift_m", park.forward_drift_m, "m")  # s (1 - cos alpha)
             names = ("hoop_radius_m", "hoop_amplitude_m", "hoop_rate_rad_s", "bead_rate_rad_s")
             build = ('system = physics.SlidingHoop(values["hoop_radius_m"], values["hoop_amplitude_m"], '
                      'values["hoop_rate_rad_s"], values["bead_rate_rad_s"])')  # fmt: skip
-        body = f'''{build}
+        body = f"""{build}
 snap = system.snapshot(T_S)
 
 print(f"the bead at t = {{T_S:g}} s:")
@@ -329,7 +337,7 @@ show("gradient_along_velocity_1_s", snap.gradient_along_velocity, "1/s")  # grad
 show("constraint_time_rate_1_s", snap.time_rate, "1/s")  # dg/dt at fixed position
 show("actual_variation_1_s", snap.actual_variation, "1/s")  # grad g . r' + dg/dt
 show("angle_dr_virtual_deg", snap.angle_between_deg, "deg")  # between the actual dr and delta r
-'''
+"""
     values = {k: params[k] for k in names}
     display = {k: v for k, v in params.items() if k not in names and k != "constraint"}
     return f'''"""{scene.title} (scene {scene.id}, chapter {scene.chapter}): the page's numbers.

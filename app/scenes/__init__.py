@@ -21,9 +21,16 @@ def _discover() -> dict[str, type[Scene]]:
         for info in sorted(pkgutil.iter_modules(package.__path__), key=lambda m: m.name):
             module = importlib.import_module(f"{package.__name__}.{info.name}")
             for value in vars(module).values():
-                if isinstance(value, type) and issubclass(value, Scene) and value.__module__ == module.__name__ and "id" in vars(value):
+                if (
+                    isinstance(value, type)
+                    and issubclass(value, Scene)
+                    and value.__module__ == module.__name__
+                    and "id" in vars(value)
+                ):
                     if value.id in found:
-                        raise ValueError(f"two scenes share the id {value.id!r}: {found[value.id].__module__} and {module.__name__}")
+                        raise ValueError(
+                            f"two scenes share the id {value.id!r}: {found[value.id].__module__} and {module.__name__}"
+                        )
                     found[value.id] = value
     return found
 

@@ -73,7 +73,9 @@ class HostPolicy:
         self.any_host = "*" in extra
         served = served_host.strip("[]").lower()
         self.served_port: int | None = served_port if served in LOOPBACK_NAMES else None
-        self.names = set(LOOPBACK_NAMES) if self.served_port is not None else {"localhost", served, socket.gethostname().lower()}
+        self.names = (
+            set(LOOPBACK_NAMES) if self.served_port is not None else {"localhost", served, socket.gethostname().lower()}
+        )
         self.any_ip = self.served_port is None
         self.extra_names: set[str] = set()
         self.extra_with_port: set[tuple[str, int]] = set()
@@ -105,26 +107,45 @@ class RequestGuard:
     """
 
     def __init__(
-        self, app: ASGIApp, *, settings: Settings, heavy_in_flight: InFlight | None = None, clock: Callable[[], float] = time.monotonic
+        self,
+        app: ASGIApp,
+        *,
+        settings: Settings,
+        heavy_in_flight: InFlight | None = None,
+        clock: Callable[[], float] = time.monotonic,
     ) -> None:
         self.app = RequestBodyLimitMiddleware(app, max_body_size=settings.max_body_bytes)
         self.max_body_bytes = settings.max_body_bytes
-        self.hosts = HostPolicy(served_host=settings.host, served_port=settings.port, extra_hosts=settings.allowed_hosts)
+        self.hosts = HostPolicy(
+            served_host=settings.host, served_port=settings.port, extra_hosts=settings.allowed_hosts
+        )
         self.allowed_origins = frozenset(o.strip().rstrip("/").lower() for o in settings.allowed_origins if o.strip())
         self.trust_forwarded_for = settings.trust_forwarded_for
         self.simulate_limit = TokenBuckets(
-            burst=settings.simulate_burst, rate_per_s=settings.simulate_rate_per_s, max_clients=settings.rate_limit_clients, clock=clock
+            burst=settings.simulate_burst,
+            rate_per_s=settings.simulate_rate_per_s,
+            max_clients=settings.rate_limit_clients,
+            clock=clock,
         )
         # One long computation per device, shared with a typed scene's change (SessionDirectory.heavy_work).
         self.heavy_in_flight = heavy_in_flight if heavy_in_flight is not None else InFlight(limit=1)
         self.request_limit = TokenBuckets(
-            burst=settings.request_burst, rate_per_s=settings.request_rate_per_s, max_clients=settings.rate_limit_clients, clock=clock
+            burst=settings.request_burst,
+            rate_per_s=settings.request_rate_per_s,
+            max_clients=settings.rate_limit_clients,
+            clock=clock,
         )
         self.static_limit = TokenBuckets(
-            burst=settings.static_request_burst, rate_per_s=settings.static_request_rate_per_s, max_clients=settings.rate_limit_clients, clock=clock
+            burst=settings.static_request_burst,
+            rate_per_s=settings.static_request_rate_per_s,
+            max_clients=settings.rate_limit_clients,
+            clock=clock,
         )
         self.viewer_limit = TokenBuckets(
-            burst=settings.viewer_open_burst, rate_per_s=settings.viewer_open_rate_per_s, max_clients=settings.rate_limit_clients, clock=clock
+            burst=settings.viewer_open_burst,
+            rate_per_s=settings.viewer_open_rate_per_s,
+            max_clients=settings.rate_limit_clients,
+            clock=clock,
         )
 
     async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
@@ -138,7 +159,9 @@ class RequestGuard:
     async def _http(self, scope: Scope, receive: Receive, send: Send) -> None:
         headers = Headers(scope=scope)
         method = scope["method"]
-        wait_s = self._wait_s(self.static_limit if scope["path"].startswith("/static/") else self.request_limit, scope, headers)
+        wait_s = self._wait_s(
+            self.static_limit if scope["path"].startswith("/static/") else self.request_limit, scope, headers
+        )
         if wait_s > 0:
             # Answered here, before any routing, and only after the wait: a device flooding the server over a few
             # connections is slowed to a few refusals a second instead of taking the event loop that relays every
@@ -146,7 +169,9 @@ class RequestGuard:
             await asyncio.sleep(min(wait_s, MAX_REFUSAL_DELAY_S))
             retry_after = retry_after_s(wait_s)
             detail = f"too many requests from this device: try again in {retry_after} s"
-            await JSONResponse({"detail": detail}, status_code=429, headers={"Retry-After": str(retry_after)})(scope, receive, send)
+            await JSONResponse({"detail": detail}, status_code=429, headers={"Retry-After": str(retry_after)})(
+                scope, receive, send
+            )
             return
         refusal = None if method in SAFE_METHODS else self.origin_refusal(headers)
         if refusal is not None:
@@ -163,7 +188,9 @@ class RequestGuard:
             if wait_s > 0:
                 retry_after = retry_after_s(wait_s)
                 detail = f"too many simulate or derive requests from this client: try again in {retry_after} s"
-                await JSONResponse({"detail": detail}, status_code=429, headers={"Retry-After": str(retry_after)})(scope, receive, send)
+                await JSONResponse({"detail": detail}, status_code=429, headers={"Retry-After": str(retry_after)})(
+                    scope, receive, send
+                )
                 return
             client = client_address(scope, trust_forwarded_for=self.trust_forwarded_for)
             if client is not None:
@@ -171,7 +198,9 @@ class RequestGuard:
                 # the server's places for them, and everyone else would wait.
                 if not self.heavy_in_flight.try_enter(client):
                     detail = "your previous simulation, derivation or change is still running: wait for its answer, then try again"
-                    await JSONResponse({"detail": detail}, status_code=429, headers={"Retry-After": "2"})(scope, receive, send)
+                    await JSONResponse({"detail": detail}, status_code=429, headers={"Retry-After": "2"})(
+                        scope, receive, send
+                    )
                     return
                 try:
                     await self.app(scope, receive, send)
@@ -190,14 +219,18 @@ class RequestGuard:
         wait_s = self._wait_s(self.viewer_limit, scope, headers) if scope["path"].startswith(VIEWER_PREFIXES) else 0.0
         if wait_s > 0:
             await asyncio.sleep(min(wait_s, MAX_REFUSAL_DELAY_S))  # as for HTTP: a flood of opens is slowed, cheaply
-            await self._close_before_accept(receive, send, code=1013, reason="try again later: too many viewers opened from this client")
+            await self._close_before_accept(
+                receive, send, code=1013, reason="try again later: too many viewers opened from this client"
+            )
             return
         await self.app(scope, receive, send)
 
     @staticmethod
     async def _close_before_accept(receive: Receive, send: Send, *, code: int, reason: str) -> None:
         await receive()  # websocket.connect
-        await send({"type": "websocket.close", "code": code, "reason": reason[:120]})  # a close reason is at most 123 bytes
+        await send(
+            {"type": "websocket.close", "code": code, "reason": reason[:120]}
+        )  # a close reason is at most 123 bytes
 
     def origin_refusal(self, headers: Headers) -> str | None:
         """Why a request with these headers may not change state or open a viewer, or None if it may."""
@@ -235,7 +268,9 @@ class RequestGuard:
 
 def refusals(method: str, path: str, *, reads_body: bool) -> dict[int, str]:
     """The answers :class:`RequestGuard` can give one route (``path`` as an OpenAPI template): status -> description."""
-    answers: dict[int, str] = {429: "Too many requests from this client (or too many simulations or derivations); Retry-After says when to try again"}
+    answers: dict[int, str] = {
+        429: "Too many requests from this client (or too many simulations or derivations); Retry-After says when to try again"
+    }
     if method.upper() not in SAFE_METHODS:
         answers[403] = "Sent from another site's page (Origin), or to a Host that does not name this server"
     if reads_body:

@@ -6,7 +6,7 @@ import html
 import math
 import re
 from datetime import datetime
-from functools import lru_cache
+from functools import cache, lru_cache
 from pathlib import Path
 from string import Template
 
@@ -27,7 +27,7 @@ TEMPLATES = Path(__file__).resolve().parent / "templates"
 esc = html.escape
 
 
-@lru_cache(maxsize=None)
+@cache
 def _template(name: str) -> Template:
     return Template((TEMPLATES / name).read_text(encoding="utf-8"))
 
@@ -92,10 +92,17 @@ def viewer_client_html() -> bytes:
     :data:`VIEWER_SCRIPT` in its head and a title saying what it shows: the page every viewer route serves."""
     client = (Path(viser.__file__).resolve().parent / "client" / "build" / "index.html").read_bytes()
     if client.count(_VIEWER_HEAD_END) != 1:
-        raise RuntimeError(f"viser {viser.__version__}'s client page has no single {_VIEWER_HEAD_END!r}: the viewer page cannot be patched")
+        raise RuntimeError(
+            f"viser {viser.__version__}'s client page has no single {_VIEWER_HEAD_END!r}: the viewer page cannot be patched"
+        )
     title_start = client.index(b"<title>")
     added = f"<style>{VIEWER_CSS}</style><script>{VIEWER_SCRIPT}</script>".encode()
-    return client[:title_start] + "<title>3D scene — Dynamics Lab</title>".encode() + added + client[client.index(_VIEWER_HEAD_END) + len(_VIEWER_HEAD_END):]
+    return (
+        client[:title_start]
+        + "<title>3D scene — Dynamics Lab</title>".encode()
+        + added
+        + client[client.index(_VIEWER_HEAD_END) + len(_VIEWER_HEAD_END) :]
+    )
 
 
 def _page(title: str, body: str, *, scripts: tuple[str, ...] = (), config: dict | None = None) -> HTMLResponse:
@@ -195,7 +202,9 @@ def lesson_page(lesson_id: str, catalogue: CatalogueDep, scene: str | None = Non
         raise HTTPException(status_code=404, detail=f"no lesson {lesson_id!r}")
     if scene is not None and scene not in lesson.scenes:
         named = ", ".join(lesson.scenes) or "none"
-        raise HTTPException(status_code=404, detail=f"lesson {lesson_id!r} has no scene {scene!r} (its scenes: {named})")
+        raise HTTPException(
+            status_code=404, detail=f"lesson {lesson_id!r} has no scene {scene!r} (its scenes: {named})"
+        )
     shown = scene or lesson.scene
     chapter = catalogue.chapter_of(lesson)
     previous, following = catalogue.neighbours(lesson)
@@ -327,7 +336,7 @@ def _points_table(scene: dict) -> str:
             )
             note = _point_note(point)
             rows.append(
-                f'<tr{" class=is-default" if is_default else ""}>{first}'
+                f"<tr{' class=is-default' if is_default else ''}>{first}"
                 f'<td class="num">{fmt_setting(point.get("setting"))}</td>'
                 f'<td class="num">{fmt_sig(cpu_ms)}</td>'
                 f'<td class="num">{fmt_sig(point.get("error"), min_exp=-1)}</td>'
@@ -549,7 +558,9 @@ def _classroom_note(settings) -> str:
 
 
 def _attack_row(attack: dict) -> str:
-    answers = ", ".join(f"{esc(str(answer))} ×{esc(str(count))}" for answer, count in (attack.get("answers") or {}).items())
+    answers = ", ".join(
+        f"{esc(str(answer))} ×{esc(str(count))}" for answer, count in (attack.get("answers") or {}).items()
+    )
     latency = (attack.get("latency_ms") or {}).get("max")
     slowest = f"{latency:,.0f}" if isinstance(latency, (int, float)) and not isinstance(latency, bool) else "—"
     return (

@@ -57,7 +57,9 @@ async def viser_protocol(websocket: WebSocket) -> str | None:
 
 
 @router.websocket("/viewer/{scene_id}/{session_id}")
-async def viewer_relay(websocket: WebSocket, scene_id: str, session_id: str, host: SceneHostDep, sessions: SessionsDep) -> None:
+async def viewer_relay(
+    websocket: WebSocket, scene_id: str, session_id: str, host: SceneHostDep, sessions: SessionsDep
+) -> None:
     """A page's viewer: relayed to the scene worker that holds the session, if :mod:`app.api.access` lets it open."""
     if scene_id not in host.scenes or not SESSION_ID_PATTERN.match(session_id):
         await websocket.close(code=1008, reason="unknown scene or malformed session id")
@@ -80,7 +82,9 @@ async def close_refused(websocket: WebSocket, exc: Refused) -> None:
         await websocket.close(code=1013 if exc.status in (429, 503) else 1008, reason=exc.message[:120])
 
 
-async def _relay(websocket: WebSocket, host: SceneHostInterface, scene_id: str, session_id: str, protocol: str, client: str | None) -> None:
+async def _relay(
+    websocket: WebSocket, host: SceneHostInterface, scene_id: str, session_id: str, protocol: str, client: str | None
+) -> None:
     query = f"?client={client}" if client is not None else ""  # the worker gives each client its fair share
     try:
         url = await run_in_threadpool(host.viewer_url, session_id)
@@ -121,7 +125,9 @@ async def _relay(websocket: WebSocket, host: SceneHostInterface, scene_id: str, 
         for task in tasks:
             task.cancel()
         for task in tasks:
-            with contextlib.suppress(asyncio.CancelledError, WebSocketDisconnect, websockets.ConnectionClosed, RuntimeError):
+            with contextlib.suppress(
+                asyncio.CancelledError, WebSocketDisconnect, websockets.ConnectionClosed, RuntimeError
+            ):
                 await task
         await upstream.close()
         close_code = upstream.close_code if upstream.close_code not in (None, 1000, 1005, 1006) else 1000

@@ -29,7 +29,11 @@ class ValidationErrorDetail(BaseModel):
 
 
 def error_responses(
-    *, not_found: str | None = None, unprocessable: str | None = None, busy: str | None = None, unavailable: str | None = None
+    *,
+    not_found: str | None = None,
+    unprocessable: str | None = None,
+    busy: str | None = None,
+    unavailable: str | None = None,
 ) -> dict[int | str, dict[str, Any]]:
     """OpenAPI ``responses=`` entries for the 404, 422, 429 and 503 answers a route can give, each with its description."""
     responses: dict[int | str, dict[str, Any]] = {}

@@ -10,7 +10,9 @@ from pydantic import BaseModel, Field
 class GraphQuantity(BaseModel):
     """One quantity that can be graphed: its name (a key of ``values``), what a student reads, its unit and kind."""
 
-    name: str = Field(description='A series or invariant name of the model, or "energy_" + an energy key (e.g. energy_rotational_kinetic_J)')
+    name: str = Field(
+        description='A series or invariant name of the model, or "energy_" + an energy key (e.g. energy_rotational_kinetic_J)'
+    )
     label: str = Field(description="The symbol or words a student sees (θ, ω₃, kinetic, rotational)")
     unit: str
     kind: Literal["series", "invariant", "energy"]
@@ -29,16 +31,24 @@ class EnergyBars(BaseModel):
 
     parts: list[EnergyPart]
     total_J: float | None = Field(description="Kinetic + potential (J); null if not finite")
-    note: str | None = Field(description="What the budget leaves out (a drive whose work is not tracked, a reduced model)")
+    note: str | None = Field(
+        description="What the budget leaves out (a drive whose work is not tracked, a reduced model)"
+    )
 
 
 class GraphAnswer(BaseModel):
     """Every series, invariant and energy part of the session's kept motion against simulated time."""
 
     scene_id: str
-    t_s: list[float] = Field(description="Simulated times (s), ascending, at most max_points, the latest kept frame last")
+    t_s: list[float] = Field(
+        description="Simulated times (s), ascending, at most max_points, the latest kept frame last"
+    )
     quantities: list[GraphQuantity]
-    values: dict[str, list[float | None]] = Field(description="Per quantity name, one value per time; null where not finite")
+    values: dict[str, list[float | None]] = Field(
+        description="Per quantity name, one value per time; null where not finite"
+    )
     energy: EnergyBars | None
     span_s: list[float] | None = Field(description="[first, last] of t_s (s); null when t_s is empty")
-    note: str | None = Field(description="Why the graph is empty (a scene that is not integrated, no viewer yet), or null")
+    note: str | None = Field(
+        description="Why the graph is empty (a scene that is not integrated, no viewer yet), or null"
+    )

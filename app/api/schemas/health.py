@@ -15,4 +15,6 @@ class WorkerState(BaseModel):
 class Health(BaseModel):
     status: str
     version: str
-    workers: list[WorkerState] | None = Field(None, description="Each scene worker's state (empty when the scenes run in the front process)")
+    workers: list[WorkerState] | None = Field(
+        None, description="Each scene worker's state (empty when the scenes run in the front process)"
+    )

@@ -58,21 +58,40 @@ class PlaybackRequest(BaseModel):
     model_config = ConfigDict(extra="forbid")
     playing: bool | None = Field(None, strict=True, description="Play (true) or pause (false)")
     time_scale: float | None = Field(
-        None, ge=TIME_SCALE_RANGE[0], le=TIME_SCALE_RANGE[1], strict=True, allow_inf_nan=False,
+        None,
+        ge=TIME_SCALE_RANGE[0],
+        le=TIME_SCALE_RANGE[1],
+        strict=True,
+        allow_inf_nan=False,
         description="× real time",
     )
     reset: bool = Field(False, strict=True, description="Start the motion again from t = 0")
     step: int = Field(
-        0, ge=0, le=MAX_STEP_FRAMES, strict=True,
+        0,
+        ge=0,
+        le=MAX_STEP_FRAMES,
+        strict=True,
         description="Advance this many displayed frames (1/30 s each) now, paused",
     )
-    seek_s: float | None = Field(None, ge=0.0, strict=True, allow_inf_nan=False, description="Go back to a kept instant (s; within history_s), paused")
+    seek_s: float | None = Field(
+        None,
+        ge=0.0,
+        strict=True,
+        allow_inf_nan=False,
+        description="Go back to a kept instant (s; within history_s), paused",
+    )
     go_to_s: float | None = Field(
-        None, ge=0.0, le=MAX_GO_TO_S, strict=True, allow_inf_nan=False,
+        None,
+        ge=0.0,
+        le=MAX_GO_TO_S,
+        strict=True,
+        allow_inf_nan=False,
         description="Compute the motion at this simulated time from the start (s): a share link",
     )
-    camera: "CameraIn | None" = Field(None, description="Point the viewers' cameras (a share link)")
-    reset_camera: bool = Field(False, strict=True, description="Put every viewer's camera back at the scene's start pose (Reset view)")
+    camera: CameraIn | None = Field(None, description="Point the viewers' cameras (a share link)")
+    reset_camera: bool = Field(
+        False, strict=True, description="Put every viewer's camera back at the scene's start pose (Reset view)"
+    )
 
 
 class CameraIn(BaseModel):
@@ -91,11 +110,18 @@ class PlaybackAnswer(BaseModel):
 
     playing: bool
     time_scale: float
-    t_s: float | None = Field(description="Simulated time of the first viewer's scene (s); null before a viewer connects")
+    t_s: float | None = Field(
+        description="Simulated time of the first viewer's scene (s); null before a viewer connects"
+    )
     history_s: list[float] | None = Field(description="[earliest, latest] simulated time kept for seek_s (s)")
     camera: CameraOut | None = None
-    viewers: int | None = Field(None, description="Viewers connected to the session now (0 until its viewer has connected)")
-    slowed: "Slowed | None" = Field(None, description="Present when the first viewer's scene runs slower than the chosen speed to keep within its share of the server")
+    viewers: int | None = Field(
+        None, description="Viewers connected to the session now (0 until its viewer has connected)"
+    )
+    slowed: Slowed | None = Field(
+        None,
+        description="Present when the first viewer's scene runs slower than the chosen speed to keep within its share of the server",
+    )
 
 
 class Slowed(BaseModel):

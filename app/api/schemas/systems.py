@@ -34,7 +34,9 @@ class SystemSummary(BaseModel):
 class DeriveRequest(BaseModel):
     model_config = ConfigDict(extra="forbid")
     formulation: Formulation = "lagrange"
-    params: dict[str, Any] = Field(default_factory=dict, description="Parameters by name (validated; the equations are symbolic in them)")
+    params: dict[str, Any] = Field(
+        default_factory=dict, description="Parameters by name (validated; the equations are symbolic in them)"
+    )
 
 
 class DeriveStep(BaseModel):
@@ -62,12 +64,16 @@ class RhsRequest(BaseModel):
     model_config = ConfigDict(extra="forbid")
     formulation: Formulation = "lagrange"
     params: dict[str, Any] = Field(default_factory=dict)
-    state: list[float] = Field(description="The coordinates, then their time derivatives, in the listed order (SI)", max_length=64)
+    state: list[float] = Field(
+        description="The coordinates, then their time derivatives, in the listed order (SI)", max_length=64
+    )
     t: float = Field(0.0, description="Time, s")
 
 
 class RhsAnswer(BaseModel):
-    state_derivative: list[float] = Field(description="d(state)/dt: the coordinates' rates, then their second derivatives (SI)")
+    state_derivative: list[float] = Field(
+        description="d(state)/dt: the coordinates' rates, then their second derivatives (SI)"
+    )
 
 
 class CustomDeriveRequest(BaseModel):

@@ -72,7 +72,9 @@ def _circle(radius: float, z: float, n: int = 24) -> np.ndarray:
 
 
 def _sphere_points(radius: float) -> np.ndarray:
-    directions = np.array([[1, 0, 0], [0, 1, 0], [0, 0, 1]] + [[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)], float)
+    directions = np.array(
+        [[1, 0, 0], [0, 1, 0], [0, 0, 1]] + [[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)], float
+    )
     directions = np.vstack([directions, -directions[:3]])
     return radius * directions / np.linalg.norm(directions, axis=1, keepdims=True)
 
@@ -81,7 +83,9 @@ def _box_corners(a: float, b: float, c: float) -> np.ndarray:
     return np.array([[sx * a / 2, sy * b / 2, sz * c / 2] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)])
 
 
-def _in_cylinder(p: np.ndarray, radius: float, z_low: float, z_high: float, tol: float, *, inner: float = 0.0) -> np.ndarray:
+def _in_cylinder(
+    p: np.ndarray, radius: float, z_low: float, z_high: float, tol: float, *, inner: float = 0.0
+) -> np.ndarray:
     rho = np.hypot(p[:, 0], p[:, 1])
     return (rho <= radius + tol) & (rho >= inner - tol) & (p[:, 2] >= z_low - tol) & (p[:, 2] <= z_high + tol)
 
@@ -94,71 +98,120 @@ SHAPES: dict[str, Shape] = {
     s.name: s
     for s in (
         Shape(
-            "sphere", ("radius_m",), inertia.solid_sphere, "volume",
+            "sphere",
+            ("radius_m",),
+            inertia.solid_sphere,
+            "volume",
             lambda r: 4.0 / 3.0 * math.pi * r**3,
             lambda p, r, tol: np.linalg.norm(p, axis=1) <= r + tol,
-            _sphere_points, "any axis", "solid sphere; every axis through its centre is a symmetry axis",
+            _sphere_points,
+            "any axis",
+            "solid sphere; every axis through its centre is a symmetry axis",
             lambda r: np.array([r, r, r]),
         ),
         Shape(
-            "spherical-shell", ("radius_m",), inertia.spherical_shell, "area",
+            "spherical-shell",
+            ("radius_m",),
+            inertia.spherical_shell,
+            "area",
             lambda r: 4.0 * math.pi * r**2,
             lambda p, r, tol: np.abs(np.linalg.norm(p, axis=1) - r) <= tol,
-            _sphere_points, "any axis", "thin spherical shell",
+            _sphere_points,
+            "any axis",
+            "thin spherical shell",
             lambda r: np.array([r, r, r]),
         ),
         Shape(
-            "cylinder", ("radius_m", "length_m"), inertia.solid_cylinder, "volume",
+            "cylinder",
+            ("radius_m", "length_m"),
+            inertia.solid_cylinder,
+            "volume",
             lambda r, L: math.pi * r**2 * L,
             lambda p, r, L, tol: _in_cylinder(p, r, -L / 2, L / 2, tol),
-            lambda r, L: np.vstack([_circle(r, -L / 2), _circle(r, L / 2)]), "z", "solid cylinder, axis along its own z",
+            lambda r, L: np.vstack([_circle(r, -L / 2), _circle(r, L / 2)]),
+            "z",
+            "solid cylinder, axis along its own z",
             lambda r, L: np.array([r, r, L / 2]),
         ),
         Shape(
-            "tube", ("radius_m", "inner_radius_m", "length_m"), inertia.tube, "volume",
+            "tube",
+            ("radius_m", "inner_radius_m", "length_m"),
+            inertia.tube,
+            "volume",
             lambda r, ri, L: math.pi * (r**2 - ri**2) * L,
             lambda p, r, ri, L, tol: _in_cylinder(p, r, -L / 2, L / 2, tol, inner=ri),
-            lambda r, ri, L: np.vstack([_circle(r, -L / 2), _circle(r, L / 2), _circle(ri, -L / 2), _circle(ri, L / 2)]),
-            "z", "thick-walled tube, axis along its own z",
+            lambda r, ri, L: np.vstack(
+                [_circle(r, -L / 2), _circle(r, L / 2), _circle(ri, -L / 2), _circle(ri, L / 2)]
+            ),
+            "z",
+            "thick-walled tube, axis along its own z",
             lambda r, ri, L: np.array([r, r, L / 2]),
         ),
         Shape(
-            "box", ("length_m", "width_m", "height_m"), inertia.box, "volume",
+            "box",
+            ("length_m", "width_m", "height_m"),
+            inertia.box,
+            "volume",
             lambda a, b, c: a * b * c,
             lambda p, a, b, c, tol: np.all(np.abs(p) <= np.array([a, b, c]) / 2 + tol, axis=1),
-            _box_corners, "none", "rectangular block: length along x, width along y, height along z",
+            _box_corners,
+            "none",
+            "rectangular block: length along x, width along y, height along z",
             lambda a, b, c: np.array([a, b, c]) / 2,
         ),
         Shape(
-            "rod", ("length_m",), inertia.slender_rod, "line",
+            "rod",
+            ("length_m",),
+            inertia.slender_rod,
+            "line",
             lambda L: L,
             lambda p, L, tol: (np.hypot(p[:, 0], p[:, 1]) <= tol) & (np.abs(p[:, 2]) <= L / 2 + tol),
-            lambda L: np.array([[0.0, 0.0, -L / 2], [0.0, 0.0, L / 2]]), "z", "slender rod along its own z",
+            lambda L: np.array([[0.0, 0.0, -L / 2], [0.0, 0.0, L / 2]]),
+            "z",
+            "slender rod along its own z",
             lambda L: np.array([0.0, 0.0, L / 2]),
         ),
         Shape(
-            "plate", ("length_m", "width_m"), inertia.thin_plate, "area",
+            "plate",
+            ("length_m", "width_m"),
+            inertia.thin_plate,
+            "area",
             lambda a, b: a * b,
             lambda p, a, b, tol: _flat(p, tol) & np.all(np.abs(p[:, :2]) <= np.array([a, b]) / 2 + tol, axis=1),
-            lambda a, b: _box_corners(a, b, 0.0)[::2], "z (normal)", "thin rectangular plate: length along x, width along y, normal along z",
+            lambda a, b: _box_corners(a, b, 0.0)[::2],
+            "z (normal)",
+            "thin rectangular plate: length along x, width along y, normal along z",
             lambda a, b: np.array([a / 2, b / 2, 0.0]),
         ),
         Shape(
-            "disk", ("radius_m",), inertia.thin_disk, "area",
+            "disk",
+            ("radius_m",),
+            inertia.thin_disk,
+            "area",
             lambda r: math.pi * r**2,
             lambda p, r, tol: _flat(p, tol) & (np.hypot(p[:, 0], p[:, 1]) <= r + tol),
-            lambda r: _circle(r, 0.0), "z (normal)", "thin disk, normal along its own z",
+            lambda r: _circle(r, 0.0),
+            "z (normal)",
+            "thin disk, normal along its own z",
             lambda r: np.array([r, r, 0.0]),
         ),
         Shape(
-            "cone", ("radius_m", "height_m"), inertia.solid_cone, "volume",
+            "cone",
+            ("radius_m", "height_m"),
+            inertia.solid_cone,
+            "volume",
             lambda r, h: math.pi * r**2 * h / 3.0,
             # Own origin at the centre of mass: base at z = −h/4, apex at z = +3h/4.
-            lambda p, r, h, tol: (p[:, 2] >= -h / 4 - tol) & (p[:, 2] <= 3 * h / 4 + tol)
-            & (np.hypot(p[:, 0], p[:, 1]) <= r * (3 * h / 4 - p[:, 2]) / h + tol),
+            lambda p, r, h, tol: (
+                (p[:, 2] >= -h / 4 - tol)
+                & (p[:, 2] <= 3 * h / 4 + tol)
+                & (np.hypot(p[:, 0], p[:, 1]) <= r * (3 * h / 4 - p[:, 2]) / h + tol)
+            ),
             lambda r, h: np.vstack([_circle(r, -h / 4), [[0.0, 0.0, 3 * h / 4]]]),
-            "z", "solid right circular cone, axis along its own z, apex towards +z; its position is its centre of mass (¼ h above the base)",
-            lambda r, h: np.array([r, r, 3 * h / 4]), lambda r, h: np.array([-r, -r, -h / 4]),
+            "z",
+            "solid right circular cone, axis along its own z, apex towards +z; its position is its centre of mass (¼ h above the base)",
+            lambda r, h: np.array([r, r, 3 * h / 4]),
+            lambda r, h: np.array([-r, -r, -h / 4]),
         ),
     )
 }
@@ -226,7 +279,9 @@ class CompositeBody:
 
     def inertia_about_kg_m2(self, point_m: np.ndarray) -> np.ndarray:
         """Inertia about ``point_m`` (reference components), by the parallel-axis theorem."""
-        return inertia.parallel_axis(self.inertia_cm_kg_m2, self.mass_kg, self.centre_of_mass_m - np.asarray(point_m, float))
+        return inertia.parallel_axis(
+            self.inertia_cm_kg_m2, self.mass_kg, self.centre_of_mass_m - np.asarray(point_m, float)
+        )
 
 
 def _check_holes(parts: Sequence[Part]) -> None:
@@ -238,7 +293,8 @@ def _check_holes(parts: Sequence[Part]) -> None:
         hosts = [p for p in parts if not p.hole and p.shape.extent == part.shape.extent and np.all(p.contains(points))]
         if not hosts:
             raise ParameterError(
-                "bodies", f"this hole (a {part.shape.name}) does not lie inside any solid {part.shape.extent} part: a hole must be "
+                "bodies",
+                f"this hole (a {part.shape.name}) does not lie inside any solid {part.shape.extent} part: a hole must be "
                 "cut from a body of the same kind (a solid from a solid, a flat shape from a plate or disk, a rod from a rod)",
                 path=("bodies", index),
             )
@@ -246,8 +302,10 @@ def _check_holes(parts: Sequence[Part]) -> None:
         if part.density > host.density * (1.0 + 1e-6):
             largest = host.density * part.shape.measure(*part.size_args)
             raise ParameterError(
-                "bodies", f"this hole removes {part.mass_kg:.6g} kg, more than the {largest:.6g} kg the body it is cut from has "
-                "in that space (same density)", path=("bodies", index, "mass_kg"),
+                "bodies",
+                f"this hole removes {part.mass_kg:.6g} kg, more than the {largest:.6g} kg the body it is cut from has "
+                "in that space (same density)",
+                path=("bodies", index, "mass_kg"),
             )
 
 
@@ -266,11 +324,16 @@ def sample_points(part: Part) -> np.ndarray:
     if part.shape.name == "spherical-shell":
         k = np.arange(SHELL_SAMPLES) + 0.5
         polar, azimuth = np.arccos(1.0 - 2.0 * k / SHELL_SAMPLES), math.pi * (1.0 + math.sqrt(5.0)) * k
-        own = size[0] * np.column_stack([np.sin(polar) * np.cos(azimuth), np.sin(polar) * np.sin(azimuth), np.cos(polar)])
+        own = size[0] * np.column_stack(
+            [np.sin(polar) * np.cos(azimuth), np.sin(polar) * np.sin(azimuth), np.cos(polar)]
+        )
     else:
         low, high = part.shape.bounds(*size)
         cells = OVERLAP_CELLS[part.shape.extent]
-        axes = [np.array([0.0]) if high[i] == low[i] else low[i] + (np.arange(cells) + 0.5) * (high[i] - low[i]) / cells for i in range(3)]
+        axes = [
+            np.array([0.0]) if high[i] == low[i] else low[i] + (np.arange(cells) + 0.5) * (high[i] - low[i]) / cells
+            for i in range(3)
+        ]
         own = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, 3)
         own = own[part.shape.contains(own, *size, 1e-9 * max(size))]
     return own @ part.rotation.T + part.position_m
@@ -292,14 +355,17 @@ def _check_hole_overlaps(parts: Sequence[Part]) -> None:
         for second_index, second in holes[a + 1 :]:
             if first.shape.extent != second.shape.extent:
                 continue
-            if np.linalg.norm(first.position_m - second.position_m) > _bounding_radius_m(first) + _bounding_radius_m(second):
+            if np.linalg.norm(first.position_m - second.position_m) > _bounding_radius_m(first) + _bounding_radius_m(
+                second
+            ):
                 continue
             for index in (first_index, second_index):
                 if index not in samples:
                     samples[index] = sample_points(parts[index])
             if np.any(second.contains(samples[first_index])) or np.any(first.contains(samples[second_index])):
                 raise ParameterError(
-                    "bodies", f"this hole (a {second.shape.name}) overlaps the hole at body {first_index + 1}: the material they share "
+                    "bodies",
+                    f"this hole (a {second.shape.name}) overlaps the hole at body {first_index + 1}: the material they share "
                     "would be removed twice. Make the holes only touch, or describe the opening as holes that do not overlap",
                     path=("bodies", second_index),
                 )
@@ -325,7 +391,9 @@ def combine(parts: Sequence[Part]) -> CompositeBody:
     tensor = 0.5 * (tensor + tensor.T)
     try:
         principal = inertia.check_inertia_tensor(
-            tensor, about="the composite body's centre of mass", hint="a slender rod alone has none about its own axis (use a thin cylinder), and holes may remove more than the bodies have"
+            tensor,
+            about="the composite body's centre of mass",
+            hint="a slender rod alone has none about its own axis (use a thin cylinder), and holes may remove more than the bodies have",
         )
     except ValueError as exc:
         raise ParameterError("bodies", str(exc), path=("bodies",)) from None
@@ -356,32 +424,45 @@ def validate_record(raw: Any, index: int, *, name: str = "bodies") -> dict[str, 
     """One body of a request, checked and normalised (defaults filled); ParameterError names ``name → index → field``."""
     here = (name, index)
     if not isinstance(raw, Mapping):
-        raise ParameterError(name, "each body must be an object with a shape, mass_kg, its dimensions and position_m", path=here)
+        raise ParameterError(
+            name, "each body must be an object with a shape, mass_kg, its dimensions and position_m", path=here
+        )
     shape_name = raw.get("shape")
     shape = SHAPES.get(shape_name) if isinstance(shape_name, str) else None
     if shape is None:
-        raise ParameterError(name, f"unknown shape {shape_name!r}; expected one of: {', '.join(SHAPES)}", path=(*here, "shape"))
+        raise ParameterError(
+            name, f"unknown shape {shape_name!r}; expected one of: {', '.join(SHAPES)}", path=(*here, "shape")
+        )
     allowed = set(RECORD_FIELDS) | set(shape.dimensions)
     for key in raw:
         if key not in allowed:
-            raise ParameterError(name, f"unknown field for a {shape.name}; expected: {', '.join(sorted(allowed))}", path=(*here, key))
+            raise ParameterError(
+                name, f"unknown field for a {shape.name}; expected: {', '.join(sorted(allowed))}", path=(*here, key)
+            )
     out: dict[str, Any] = {"shape": shape.name}
     if "mass_kg" not in raw:
         raise ParameterError(name, "missing: give the mass in kg", path=(*here, "mass_kg"))
     out["mass_kg"] = _number(raw["mass_kg"], (*here, "mass_kg"), *MASS_RANGE_KG, "kg")
     for dimension in shape.dimensions:
         if dimension not in raw:
-            raise ParameterError(name, f"missing: a {shape.name} needs {', '.join(shape.dimensions)}", path=(*here, dimension))
+            raise ParameterError(
+                name, f"missing: a {shape.name} needs {', '.join(shape.dimensions)}", path=(*here, dimension)
+            )
         out[dimension] = _number(raw[dimension], (*here, dimension), *DIMENSION_RANGE_M, "m")
     if shape.name == "tube" and out["inner_radius_m"] >= out["radius_m"]:
         raise ParameterError(
-            name, f"the inner radius ({out['inner_radius_m']:g} m) must be less than the outer radius ({out['radius_m']:g} m)",
+            name,
+            f"the inner radius ({out['inner_radius_m']:g} m) must be less than the outer radius ({out['radius_m']:g} m)",
             path=(*here, "inner_radius_m"),
         )
     out["position_m"] = _triple(raw.get("position_m", [0.0, 0.0, 0.0]), (*here, "position_m"), POSITION_LIMIT_M, "m")
     sequence = raw.get("sequence", "3-2-1")
     if not isinstance(sequence, str) or sequence not in SEQUENCES:
-        raise ParameterError(name, f"unknown rotation sequence {sequence!r}; expected one of: {', '.join(SEQUENCES)}", path=(*here, "sequence"))
+        raise ParameterError(
+            name,
+            f"unknown rotation sequence {sequence!r}; expected one of: {', '.join(SEQUENCES)}",
+            path=(*here, "sequence"),
+        )
     out["sequence"] = sequence
     out["angles_deg"] = _triple(raw.get("angles_deg", [0.0, 0.0, 0.0]), (*here, "angles_deg"), 720.0, "deg")
     hole = raw.get("hole", False)
@@ -442,6 +523,12 @@ def parts_from_records(records: Sequence[Mapping[str, Any]]) -> list[Part]:
 def shapes_schema() -> list[dict[str, Any]]:
     """Each shape's name, dimension fields, extent and own axes, for the API schema and the page's body editor."""
     return [
-        {"shape": s.name, "dimensions": list(s.dimensions), "extent": s.extent, "symmetry_axis": s.symmetry_axis, "description": s.description}
+        {
+            "shape": s.name,
+            "dimensions": list(s.dimensions),
+            "extent": s.extent,
+            "symmetry_axis": s.symmetry_axis,
+            "description": s.description,
+        }
         for s in SHAPES.values()
     ]

@@ -226,7 +226,9 @@ def check_principal_inertia(inertia_kg_m2: tuple[float, float, float], *, about:
     names = ("I1", "I2", "I3")
     for name, value in zip(names, inertia_kg_m2):
         if not math.isfinite(value) or value <= 0.0:
-            raise ValueError(f"{name} must be a finite positive moment of inertia about {about}, in kg·m² (got {value!r})")
+            raise ValueError(
+                f"{name} must be a finite positive moment of inertia about {about}, in kg·m² (got {value!r})"
+            )
     for i in range(3):
         j, k = (i + 1) % 3, (i + 2) % 3
         slack = inertia_kg_m2[j] + inertia_kg_m2[k] - inertia_kg_m2[i]
@@ -237,7 +239,9 @@ def check_principal_inertia(inertia_kg_m2: tuple[float, float, float], *, about:
             )
 
 
-def check_inertia_tensor(inertia_kg_m2: np.ndarray, *, about: str = "the centre of mass", hint: str = "") -> PrincipalAxes:
+def check_inertia_tensor(
+    inertia_kg_m2: np.ndarray, *, about: str = "the centre of mass", hint: str = ""
+) -> PrincipalAxes:
     """Refuse (ValueError, with the reason) a tensor no real body can have; return its principal axes.
 
     It must be finite and symmetric, positive definite, and its principal
@@ -267,5 +271,7 @@ def centre_of_mass_m(masses_kg: np.ndarray, positions_m: np.ndarray) -> np.ndarr
     masses = np.asarray(masses_kg, dtype=float)
     total = float(np.sum(masses))
     if not total > 0.0 or not math.isfinite(total):
-        raise ValueError(f"the total mass must be positive (got {total:.6g} kg): the holes remove more mass than the body has")
+        raise ValueError(
+            f"the total mass must be positive (got {total:.6g} kg): the holes remove more mass than the body has"
+        )
     return np.asarray(positions_m, dtype=float).T @ masses / total

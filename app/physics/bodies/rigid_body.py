@@ -42,7 +42,9 @@ class PivotedBody:
         check_principal_inertia(self.inertia_pivot_kg_m2, about="the fixed point")
         # Parallel-axis theorem back to the centre of mass (on body 3): that body must exist too.
         if self.mass_kg * self.cg_distance_m > 0.0:
-            inertia_cm = centroidal_from_point(np.diag(self.inertia_pivot_kg_m2), self.mass_kg, np.array([0.0, 0.0, self.cg_distance_m]))
+            inertia_cm = centroidal_from_point(
+                np.diag(self.inertia_pivot_kg_m2), self.mass_kg, np.array([0.0, 0.0, self.cg_distance_m])
+            )
             check_inertia_tensor(inertia_cm, about="the centre of mass")
 
     @property

@@ -35,8 +35,9 @@ wrapper (that cost 2.3–3 s per system; now 0.1–0.25 s, see :func:`algorithm_
 from __future__ import annotations
 
 import functools
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any, Callable
+from typing import Any
 
 import numba
 import numpy as np
@@ -107,7 +108,19 @@ def _shared_kernel(signature: Any) -> Callable[[Callable[..., Any]], Kernel]:
     return wrap
 
 
-@_shared_kernel(types.void(DYNAMICS_TYPE, MULTIPLIER_CONSTRAINTS_TYPE, types.float64, VECTOR, VECTOR, VECTOR, types.int64, types.int64, types.int64))
+@_shared_kernel(
+    types.void(
+        DYNAMICS_TYPE,
+        MULTIPLIER_CONSTRAINTS_TYPE,
+        types.float64,
+        VECTOR,
+        VECTOR,
+        VECTOR,
+        types.int64,
+        types.int64,
+        types.int64,
+    )
+)
 def constrained_rhs(dynamics, constraints, t, y, p, dydt, n, n_holonomic, n_constraints):
     """``dydt = (v, v̇)`` (2n,) of the algorithm named in ``p``'s tail, at time ``t`` (s) and state ``y = (q, v)`` (2n,)."""
     base = p.shape[0] - SETTINGS - n
@@ -115,12 +128,12 @@ def constrained_rhs(dynamics, constraints, t, y, p, dydt, n, n_holonomic, n_cons
     state = y
     if code == PARTITIONING:
         state = y.copy()
-        if not solve_dependent(constraints, state, p, p[base + SETTINGS:], n, n_holonomic, n_constraints):
+        if not solve_dependent(constraints, state, p, p[base + SETTINGS :], n, n_holonomic, n_constraints):
             for i in range(2 * n):
                 dydt[i] = np.nan
             return
     q = state[:n]
-    v = state[n:2 * n]
+    v = state[n : 2 * n]
     mass = np.empty((n, n))
     forces = np.empty(n)
     g = np.empty(n_holonomic)
@@ -146,7 +159,7 @@ def constrained_rhs(dynamics, constraints, t, y, p, dydt, n, n_holonomic, n_cons
         return
     for i in range(n):
         dydt[i] = v[i]
-    constrained_acceleration(mass, C, forces, gamma, dydt[n:2 * n])
+    constrained_acceleration(mass, C, forces, gamma, dydt[n : 2 * n])
 
 
 @_shared_kernel(types.void(MULTIPLIER_CONSTRAINTS_TYPE, VECTOR, VECTOR, types.int64, types.int64, types.int64))
@@ -156,7 +169,7 @@ def constrained_project(constraints, y, p, n, n_holonomic, n_constraints):
     code = int(p[base + _CODE])
     if code == PROJECTION:
         q = y[:n]
-        v = y[n:2 * n]
+        v = y[n : 2 * n]
         g = np.empty(n_holonomic)
         C = np.empty((n_constraints, n))
         c = np.empty(n_constraints)
@@ -178,7 +191,7 @@ def constrained_project(constraints, y, p, n, n_holonomic, n_constraints):
             rate[i] = acc
         minimum_norm_correction(C, rate, v)
     elif code == PARTITIONING:
-        partition = p[base + SETTINGS:]
+        partition = p[base + SETTINGS :]
         if not solve_dependent(constraints, y, p, partition, n, n_holonomic, n_constraints):
             for i in range(2 * n):
                 y[i] = np.nan
@@ -186,7 +199,7 @@ def constrained_project(constraints, y, p, n, n_holonomic, n_constraints):
         g = np.empty(n_holonomic)
         C = np.empty((n_constraints, n))
         c = np.empty(n_constraints)
-        constraints(y[:n], y[n:2 * n], p, g, C, c)
+        constraints(y[:n], y[n : 2 * n], p, g, C, c)
         if dependent_gain(C, partition) > REPARTITION_GAIN:
             fresh = partition.copy()
             if choose_partition(C, fresh):
@@ -208,7 +221,9 @@ class AlgorithmKernels:
 
 
 @functools.lru_cache(maxsize=64)
-def algorithm_kernels(dynamics: Kernel, constraints: Kernel, n: int, n_holonomic: int, n_constraints: int) -> AlgorithmKernels:
+def algorithm_kernels(
+    dynamics: Kernel, constraints: Kernel, n: int, n_holonomic: int, n_constraints: int
+) -> AlgorithmKernels:
     """The RHS_SIGNATURE / PROJECT_SIGNATURE callbacks of one system class (compiled once per process).
 
     They close over the system's two kernels; numba cannot cache such closures on disk,
@@ -236,12 +251,19 @@ def algorithm_kernels(dynamics: Kernel, constraints: Kernel, n: int, n_holonomic
     project_python.__name__ = project.__name__ = f"constrained_project_{constraints.name}"
     return AlgorithmKernels(
         rhs=Kernel(compiled=numba.cfunc(RHS_SIGNATURE, nopython=True, error_model="numpy")(rhs), python=rhs_python),
-        project=Kernel(compiled=numba.cfunc(PROJECT_SIGNATURE, nopython=True, error_model="numpy")(project), python=project_python),
+        project=Kernel(
+            compiled=numba.cfunc(PROJECT_SIGNATURE, nopython=True, error_model="numpy")(project), python=project_python
+        ),
     )
 
 
 def algorithm_parameters(
-    system: ConstrainedSystem, algorithm: str, *, alpha_1_s: float = 0.0, beta_1_s: float = 0.0, q: np.ndarray | None = None
+    system: ConstrainedSystem,
+    algorithm: str,
+    *,
+    alpha_1_s: float = 0.0,
+    beta_1_s: float = 0.0,
+    q: np.ndarray | None = None,
 ) -> np.ndarray:
     """The system's parameters followed by the algorithm's settings (see the module docstring).
 
@@ -273,7 +295,9 @@ def initial_partition(system: ConstrainedSystem, q: np.ndarray | None) -> np.nda
     _, jacobian, _ = system.constraint_terms(q, np.zeros(n))
     partition = np.empty(n)
     if not choose_partition(jacobian, partition):
-        raise ValueError(f"method partitioning: the {m} constraint rows are dependent at this state; no coordinates can be solved for")
+        raise ValueError(
+            f"method partitioning: the {m} constraint rows are dependent at this state; no coordinates can be solved for"
+        )
     return partition
 
 
@@ -284,19 +308,26 @@ def repartition_count(parameters: np.ndarray, n: int) -> int:
 
 def current_partition(parameters: np.ndarray, n: int, n_constraints: int) -> tuple[tuple[int, ...], tuple[int, ...]]:
     """(dependent, independent) coordinate indices partitioning is using now."""
-    partition = parameters[len(parameters) - n:].astype(int)
+    partition = parameters[len(parameters) - n :].astype(int)
     return tuple(int(k) for k in partition[:n_constraints]), tuple(int(k) for k in partition[n_constraints:])
 
 
 def algorithm_system(
-    system: ConstrainedSystem, algorithm: str, *, alpha_1_s: float = 0.0, beta_1_s: float = 0.0, q: np.ndarray | None = None
+    system: ConstrainedSystem,
+    algorithm: str,
+    *,
+    alpha_1_s: float = 0.0,
+    beta_1_s: float = 0.0,
+    q: np.ndarray | None = None,
 ) -> OdeSystem:
     """An :class:`OdeSystem` on ``y = (q, v)`` (2n,) that advances ``system`` by ``algorithm``.
 
     Every integrator that supports a ``project`` hook (rk4, dopri5) can run it;
     ``parameters`` is a fresh array (partitioning writes its re-choices into it).
     """
-    kernels = algorithm_kernels(system.dynamics, system.constraints, system.n_coordinates, system.n_holonomic, system.n_constraints)
+    kernels = algorithm_kernels(
+        system.dynamics, system.constraints, system.n_coordinates, system.n_holonomic, system.n_constraints
+    )
     names = system.coordinate_names
     needs_step_end = ALGORITHMS[algorithm].code in (PROJECTION, PARTITIONING) if algorithm in ALGORITHMS else False
     return OdeSystem(

@@ -48,7 +48,13 @@ class CoordinateChange:
         return self.consistent - self.requested
 
     def as_dict(self) -> dict[str, float | str]:
-        return {"name": self.name, "requested": self.requested, "consistent": self.consistent, "change": self.change, "unit": self.unit}
+        return {
+            "name": self.name,
+            "requested": self.requested,
+            "consistent": self.consistent,
+            "change": self.change,
+            "unit": self.unit,
+        }
 
     def sentence(self) -> str:
         return f"{self.name} {self.requested:.6g} → {self.consistent:.6g} {self.unit}".rstrip()
@@ -114,7 +120,11 @@ def consistent_initial_conditions(
     minimum_norm_correction(np.ascontiguousarray(jacobian[:, free_v]), jacobian @ v, free_rates)
     v[free_v] = free_rates
     g, jacobian, _ = system.constraint_terms(q, v)
-    labels = list(names) if names is not None else [*system.coordinate_names, *(f"{c}_rate" for c in system.coordinate_names)]
+    labels = (
+        list(names)
+        if names is not None
+        else [*system.coordinate_names, *(f"{c}_rate" for c in system.coordinate_names)]
+    )
     unit_labels = list(units) if units is not None else [""] * (2 * n)
     if len(labels) != 2 * n or len(unit_labels) != 2 * n:
         raise ValueError(f"names and units must have {2 * n} entries (positions then rates)")

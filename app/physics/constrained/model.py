@@ -139,10 +139,15 @@ class ConstrainedModel(IntegratedModel):
         control's method, with ``steps_per_frame`` and ``rtol``, are the integrator's."""
         method = controls.get("method", AUTO)
         self._algorithm = self.default_algorithm if method == AUTO else method
-        if self._algorithm not in (*self.algorithms, MINIMAL) or (self._algorithm == MINIMAL and not self.has_minimal()):
+        if self._algorithm not in (*self.algorithms, MINIMAL) or (
+            self._algorithm == MINIMAL and not self.has_minimal()
+        ):
             raise ValueError(f"method: {method!r} is not an algorithm of this model")
         alpha, beta = self.default_baumgarte_1_s
-        self._gains_1_s = (float(controls.get("baumgarte_alpha_1_s", alpha)), float(controls.get("baumgarte_beta_1_s", beta)))
+        self._gains_1_s = (
+            float(controls.get("baumgarte_alpha_1_s", alpha)),
+            float(controls.get("baumgarte_beta_1_s", beta)),
+        )
         return {
             "method": controls.get("integrator", AUTO),
             "steps_per_frame": controls.get("steps_per_frame", 0),
@@ -150,7 +155,9 @@ class ConstrainedModel(IntegratedModel):
         }
 
     # --- the accuracy target (each algorithm's pilot is its own: the key holds the algorithm and the gains) ------------
-    accuracy_target = AccuracyTarget(1e-6, "", "state (q, v): largest component error relative to the largest component")
+    accuracy_target = AccuracyTarget(
+        1e-6, "", "state (q, v): largest component error relative to the largest component"
+    )
 
     def pilot_key(self, params: Mapping[str, Any]):
         return (super().pilot_key(params), self.algorithm(), getattr(self, "_gains_1_s", self.default_baumgarte_1_s))
@@ -205,18 +212,30 @@ class ConstrainedModel(IntegratedModel):
         position, velocity = constraint_residuals(self.constrained_system(params), full)
         return {"energy": self.energy_J(params, full), "constraint_position": position, "constraint_velocity": velocity}
 
-    def energy_parts(self, params: Mapping[str, Any], states: np.ndarray, *, t_s: np.ndarray | None = None) -> EnergyParts | None:
+    def energy_parts(
+        self, params: Mapping[str, Any], states: np.ndarray, *, t_s: np.ndarray | None = None
+    ) -> EnergyParts | None:
         return self.constrained_energy_parts(params, self.constrained_view(params, states))
 
     def invariant_scales(self, params: Mapping[str, Any], state: np.ndarray) -> dict[str, float]:
         """Energy: :meth:`energy_scale_J`; residuals: :meth:`residual_scales` (a residual of 20% of these pauses a live scene)."""
         position, velocity = self.residual_scales(params)
         full = self.constrained_view(params, state)[0]
-        return {"energy": self.energy_scale_J(params, full), "constraint_position": position, "constraint_velocity": velocity}
+        return {
+            "energy": self.energy_scale_J(params, full),
+            "constraint_position": position,
+            "constraint_velocity": velocity,
+        }
 
     # --- the simulate answer --------------------------------------------------------------------------------------
     def simulate(
-        self, params: Mapping[str, Any], controls: Mapping[str, Any], *, t_end_s: float, frame_rate_hz: float, request_limits: bool = True
+        self,
+        params: Mapping[str, Any],
+        controls: Mapping[str, Any],
+        *,
+        t_end_s: float,
+        frame_rate_hz: float,
+        request_limits: bool = True,
     ) -> SimulationReport:
         """The integrated answer, with ``stats.method`` the algorithm, ``stats.integrator``, ``stats.initial_conditions``."""
         report = super().simulate(

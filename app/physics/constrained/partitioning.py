@@ -112,7 +112,7 @@ def solve_dependent(constraints, y, p, partition, n, n_holonomic, n_constraints)
     converge or the dependent block is singular (``y`` is then unusable).
     """
     q = y[:n]
-    v = y[n:2 * n]
+    v = y[n : 2 * n]
     g = np.empty(n_holonomic)
     C = np.empty((n_constraints, n))
     c = np.empty(n_constraints)

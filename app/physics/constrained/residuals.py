@@ -34,7 +34,7 @@ def residuals_along(constraints, states, p, n_holonomic, n_constraints, out):
             out[row, 1] = np.nan
             continue
         q = state[:n].copy()
-        v = state[n:2 * n].copy()
+        v = state[n : 2 * n].copy()
         constraints(q, v, p, g, C, c)
         position = 0.0
         for i in range(n_holonomic):
@@ -49,7 +49,9 @@ def residuals_along(constraints, states, p, n_holonomic, n_constraints, out):
         out[row, 1] = velocity
 
 
-@kernel(types.void(DYNAMICS_TYPE, MULTIPLIER_CONSTRAINTS_TYPE, VECTOR, MATRIX, VECTOR, types.int64, types.int64, MATRIX))
+@kernel(
+    types.void(DYNAMICS_TYPE, MULTIPLIER_CONSTRAINTS_TYPE, VECTOR, MATRIX, VECTOR, types.int64, types.int64, MATRIX)
+)
 def multipliers_along(dynamics, constraints, t_s, states, p, n_holonomic, n_constraints, out):
     """``out[k]`` = λ (m,) of the index-1 equations at ``states[k]`` (N, 2n) and time ``t_s[k]`` (s); ``out`` (N, m)."""
     n = states.shape[1] // 2
@@ -66,7 +68,7 @@ def multipliers_along(dynamics, constraints, t_s, states, p, n_holonomic, n_cons
                 out[row, i] = np.nan
             continue
         q = state[:n].copy()
-        v = state[n:2 * n].copy()
+        v = state[n : 2 * n].copy()
         dynamics(t_s[row], q, v, p, mass, forces)
         constraints(q, v, p, g, C, c)
         if not kkt_inputs_finite(mass, C, forces, c):
@@ -82,7 +84,9 @@ def constraint_residuals(system: ConstrainedSystem, states: np.ndarray) -> tuple
     """(max |g| (N,), max |C v| (N,)) along ``states`` (N, 2n), compiled."""
     states = np.ascontiguousarray(np.atleast_2d(states), dtype=float)
     out = np.empty((states.shape[0], 2))
-    residuals_along.compiled(system.constraints.compiled, states, system.parameters, system.n_holonomic, system.n_constraints, out)
+    residuals_along.compiled(
+        system.constraints.compiled, states, system.parameters, system.n_holonomic, system.n_constraints, out
+    )
     return out[:, 0], out[:, 1]
 
 
@@ -92,6 +96,13 @@ def multipliers(system: ConstrainedSystem, t_s: np.ndarray, states: np.ndarray) 
     times = np.array(np.broadcast_to(np.asarray(t_s, dtype=float), states.shape[:1]), dtype=float)
     out = np.empty((states.shape[0], system.n_constraints))
     multipliers_along.compiled(
-        system.dynamics.compiled, system.constraints.compiled, times, states, system.parameters, system.n_holonomic, system.n_constraints, out
+        system.dynamics.compiled,
+        system.constraints.compiled,
+        times,
+        states,
+        system.parameters,
+        system.n_holonomic,
+        system.n_constraints,
+        out,
     )
     return out

@@ -56,12 +56,16 @@ class ConstrainedSystem:
         if n < 1:
             raise ValueError("a constrained system needs at least one coordinate")
         if self.n_holonomic < 0 or self.n_nonholonomic < 0 or self.n_constraints < 1:
-            raise ValueError(f"constraint counts must be ≥ 0 with at least one constraint (got {self.n_holonomic}, {self.n_nonholonomic})")
+            raise ValueError(
+                f"constraint counts must be ≥ 0 with at least one constraint (got {self.n_holonomic}, {self.n_nonholonomic})"
+            )
         if self.n_constraints >= n:
             raise ValueError(f"{self.n_constraints} constraints on {n} coordinates leave no freedom to move")
         if self.independent is not None:
             if len(self.independent) != n - self.n_constraints or len(set(self.independent)) != len(self.independent):
-                raise ValueError(f"independent must name {n - self.n_constraints} distinct coordinates (got {self.independent})")
+                raise ValueError(
+                    f"independent must name {n - self.n_constraints} distinct coordinates (got {self.independent})"
+                )
             if any(not 0 <= i < n for i in self.independent):
                 raise ValueError(f"independent coordinates must be indices in [0, {n}) (got {self.independent})")
 

@@ -178,7 +178,9 @@ def _answer(function: Callable[..., Any], args: tuple[Any, ...]) -> tuple[str, A
         return ("error", f"{type(exc).__name__}: {exc}"[:MAX_MESSAGE_CHARS])
 
 
-def _child_main(sender: Any, function: Callable[..., Any], args: tuple[Any, ...], memory_bytes: int, cpu_seconds: int) -> None:
+def _child_main(
+    sender: Any, function: Callable[..., Any], args: tuple[Any, ...], memory_bytes: int, cpu_seconds: int
+) -> None:
     """The child: set the limits, run, send one pickled ``(kind, payload)`` and exit.
 
     SIGINT ends it as the signal itself (not Python's KeyboardInterrupt, an exit status 1 the runner could not tell
@@ -192,7 +194,9 @@ def _child_main(sender: Any, function: Callable[..., Any], args: tuple[Any, ...]
     except MemoryError:
         message = pickle.dumps(("memory", ""))
     except Exception as exc:  # noqa: BLE001 - an unpicklable result is the function's bug
-        message = pickle.dumps(("error", f"the result could not be pickled: {type(exc).__name__}: {exc}"[:MAX_MESSAGE_CHARS]))
+        message = pickle.dumps(
+            ("error", f"the result could not be pickled: {type(exc).__name__}: {exc}"[:MAX_MESSAGE_CHARS])
+        )
     with contextlib.suppress(BrokenPipeError):  # the caller has gone (the server stopped): nobody to tell
         sender.send_bytes(message)
     sender.close()
@@ -274,11 +278,14 @@ class BoundedRunner:
         timeout_s = self.timeout_s if timeout_s is None else timeout_s
         memory_mb = self.memory_mb if memory_mb is None else memory_mb
         _check_limits(timeout_s, memory_mb)
-        acquired = self._slots.acquire(timeout=self.wait_s) if self.wait_s > 0.0 else self._slots.acquire(blocking=False)
+        acquired = (
+            self._slots.acquire(timeout=self.wait_s) if self.wait_s > 0.0 else self._slots.acquire(blocking=False)
+        )
         if not acquired:
             retry_after_s = max(1, math.ceil(timeout_s / 2))
             raise WorkBusy(
-                f"busy: {self.max_jobs} such jobs are running already; retry in about {retry_after_s} s", retry_after_s=retry_after_s
+                f"busy: {self.max_jobs} such jobs are running already; retry in about {retry_after_s} s",
+                retry_after_s=retry_after_s,
             )
         with self._running_lock:
             self._running += 1
@@ -297,7 +304,10 @@ class BoundedRunner:
         receiver, sender = context.Pipe(duplex=False)
         cpu_seconds = math.ceil(timeout_s) + 1
         process = context.Process(
-            target=_child_main, args=(sender, function, args, int(memory_mb * 2**20), cpu_seconds), name="dynlab-bounded", daemon=True
+            target=_child_main,
+            args=(sender, function, args, int(memory_mb * 2**20), cpu_seconds),
+            name="dynlab-bounded",
+            daemon=True,
         )
         answered = False
         try:
@@ -313,7 +323,9 @@ class BoundedRunner:
                     retry_after_s=60,
                 )
             if not answer_arrived:
-                raise WorkTimeout(f"{what} took longer than its limit of {timeout_s:g} s and was stopped; try something smaller")
+                raise WorkTimeout(
+                    f"{what} took longer than its limit of {timeout_s:g} s and was stopped; try something smaller"
+                )
             try:
                 message = receiver.recv_bytes(self.max_result_bytes)
             except EOFError:
@@ -438,7 +450,8 @@ def _outcome(kind: str, payload: Any, *, memory_mb: float, what: str) -> Any:
         )
     if kind == "interrupted":
         raise WorkInterrupted(
-            f"{what} was stopped by the system (signal {_signal_name(payload)}), not by its limits; try again", signal_number=payload
+            f"{what} was stopped by the system (signal {_signal_name(payload)}), not by its limits; try again",
+            signal_number=payload,
         )
     if kind == "died":
         raise WorkFailed(f"{what} ended without an answer (exit status {payload})")

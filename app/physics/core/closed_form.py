@@ -72,7 +72,12 @@ class ClosedFormModel(Model):
         return {}
 
     def simulate(
-        self, params: Mapping[str, Any], controls: Mapping[str, Any], *, t_end_s: float, frame_rate_hz: float,
+        self,
+        params: Mapping[str, Any],
+        controls: Mapping[str, Any],
+        *,
+        t_end_s: float,
+        frame_rate_hz: float,
         request_limits: bool = True,
     ) -> SimulationReport:
         """The formula at the frame times (the span and frame bounds always apply: the frames are a formula's only

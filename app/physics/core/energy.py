@@ -57,7 +57,9 @@ class EnergyParts:
         """All the kinetic energy (J), (N,)."""
         if self.kinetic_J is not None:
             return np.asarray(self.kinetic_J, dtype=float)
-        return np.asarray(self.translational_kinetic_J, dtype=float) + np.asarray(self.rotational_kinetic_J, dtype=float)
+        return np.asarray(self.translational_kinetic_J, dtype=float) + np.asarray(
+            self.rotational_kinetic_J, dtype=float
+        )
 
     @property
     def total_J(self) -> np.ndarray:

@@ -57,7 +57,12 @@ class Model(ABC):
 
     @abstractmethod
     def simulate(
-        self, params: Mapping[str, Any], controls: Mapping[str, Any], *, t_end_s: float, frame_rate_hz: float,
+        self,
+        params: Mapping[str, Any],
+        controls: Mapping[str, Any],
+        *,
+        t_end_s: float,
+        frame_rate_hz: float,
         request_limits: bool = True,
     ) -> SimulationReport:
         """The motion for validated ``params`` and ``controls`` over ``t_end_s`` (s), sampled at ``frame_rate_hz``

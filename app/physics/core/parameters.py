@@ -55,7 +55,9 @@ class ParameterError(ValueError):
 
     def named(self, label: str, place: str = "") -> ParameterError:
         """This error with ``label`` (and ``place``) as the name a student reads (the one it has, if it has one)."""
-        return self if self.label else ParameterError(self.field, self.message, path=self.path, label=label, place=place)
+        return (
+            self if self.label else ParameterError(self.field, self.message, path=self.path, label=label, place=place)
+        )
 
 
 def _is_finite_float(value: int | float) -> bool:
@@ -154,7 +156,9 @@ class Parameter:
                 return self.parse(value)
             except ParameterError as exc:
                 inside = exc.path[1:]
-                raise exc.named(self.display_name(), self.item_place(inside) if self.item_place and inside else "") from None
+                raise exc.named(
+                    self.display_name(), self.item_place(inside) if self.item_place and inside else ""
+                ) from None
         if self.kind == "vector":
             return self._validate_vector(value)
         if isinstance(value, bool) or not isinstance(value, (int, float)):
@@ -193,7 +197,11 @@ class Parameter:
             raise self._refusal(f"must be a list of {self.length} numbers, each {self.range_text()}")
         out = []
         for index, component in enumerate(value):
-            if isinstance(component, bool) or not isinstance(component, (int, float)) or not _is_finite_float(component):
+            if (
+                isinstance(component, bool)
+                or not isinstance(component, (int, float))
+                or not _is_finite_float(component)
+            ):
                 raise self._refusal(f"component {index} must be a finite number {self.range_text()}")
             assert self.min is not None and self.max is not None
             if not self.min <= component <= self.max:
@@ -244,7 +252,11 @@ class ParameterSet:
 
     def defaults(self) -> dict[str, Any]:
         return {
-            p.name: list(p.default) if p.kind == "vector" else copy.deepcopy(p.default) if p.kind == "list" else p.default
+            p.name: list(p.default)
+            if p.kind == "vector"
+            else copy.deepcopy(p.default)
+            if p.kind == "list"
+            else p.default
             for p in self.parameters
         }
 

@@ -37,7 +37,9 @@ class Quantity:
         value = self.value
         if value is not None:
             if isinstance(value, bool) or not isinstance(value, (int, float)):
-                raise TypeError(f"readout {self.name}: value must be a number or None (got {value!r}); put words in text")
+                raise TypeError(
+                    f"readout {self.name}: value must be a number or None (got {value!r}); put words in text"
+                )
             value = float(value)
             if not math.isfinite(value):
                 object.__setattr__(self, "text", self.text or "undefined")

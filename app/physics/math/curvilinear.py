@@ -74,7 +74,9 @@ def _axis_rates(p: np.ndarray, v: np.ndarray, a: np.ndarray, defined: np.ndarray
     return R, R_dot, R_ddot, theta, theta_dot, theta_ddot
 
 
-def cylindrical(position_m: np.ndarray, velocity_m_s: np.ndarray, acceleration_m_s2: np.ndarray, *, length_scale_m: float) -> CurvilinearKinematics:
+def cylindrical(
+    position_m: np.ndarray, velocity_m_s: np.ndarray, acceleration_m_s2: np.ndarray, *, length_scale_m: float
+) -> CurvilinearKinematics:
     """Cylindrical (R, θ, z) description of a motion given on XYZ (arrays (N, 3))."""
     p, v, a = (np.atleast_2d(np.asarray(arr, dtype=float)) for arr in (position_m, velocity_m_s, acceleration_m_s2))
     off_axis = np.hypot(p[:, 0], p[:, 1]) > AXIS_TOLERANCE * length_scale_m
@@ -98,7 +100,9 @@ def cylindrical(position_m: np.ndarray, velocity_m_s: np.ndarray, acceleration_m
     )
 
 
-def spherical(position_m: np.ndarray, velocity_m_s: np.ndarray, acceleration_m_s2: np.ndarray, *, length_scale_m: float) -> CurvilinearKinematics:
+def spherical(
+    position_m: np.ndarray, velocity_m_s: np.ndarray, acceleration_m_s2: np.ndarray, *, length_scale_m: float
+) -> CurvilinearKinematics:
     """Spherical (r, φ, θ) description (φ polar from +Z, θ azimuth) of a motion given on XYZ."""
     p, v, a = (np.atleast_2d(np.asarray(arr, dtype=float)) for arr in (position_m, velocity_m_s, acceleration_m_s2))
     tolerance = AXIS_TOLERANCE * length_scale_m
@@ -158,10 +162,18 @@ def curvilinear_series(
     cyl = cylindrical(position_m, velocity_m_s, acceleration_m_s2, length_scale_m=length_scale_m)
     sph = spherical(position_m, velocity_m_s, acceleration_m_s2, length_scale_m=length_scale_m)
     return {
-        "R": cyl.coordinates[:, 0], "theta": unwrapped_azimuth(cyl.coordinates[:, 1]),
-        "v_R": cyl.velocity[:, 0], "v_theta": cyl.velocity[:, 1], "v_z": cyl.velocity[:, 2],
-        "a_R": cyl.acceleration[:, 0], "a_theta": cyl.acceleration[:, 1], "a_z": cyl.acceleration[:, 2],
-        "r": sph.coordinates[:, 0], "phi": sph.coordinates[:, 1],
-        "v_r": sph.velocity[:, 0], "v_phi": sph.velocity[:, 1],
-        "a_r": sph.acceleration[:, 0], "a_phi": sph.acceleration[:, 1],
+        "R": cyl.coordinates[:, 0],
+        "theta": unwrapped_azimuth(cyl.coordinates[:, 1]),
+        "v_R": cyl.velocity[:, 0],
+        "v_theta": cyl.velocity[:, 1],
+        "v_z": cyl.velocity[:, 2],
+        "a_R": cyl.acceleration[:, 0],
+        "a_theta": cyl.acceleration[:, 1],
+        "a_z": cyl.acceleration[:, 2],
+        "r": sph.coordinates[:, 0],
+        "phi": sph.coordinates[:, 1],
+        "v_r": sph.velocity[:, 0],
+        "v_phi": sph.velocity[:, 1],
+        "a_r": sph.acceleration[:, 0],
+        "a_phi": sph.acceleration[:, 1],
     }

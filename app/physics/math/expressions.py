@@ -194,7 +194,11 @@ def _scan(text: str, vocabulary: _Vocabulary) -> list[Token]:
         if char in " \t":
             i += 1
             continue
-        if char.isascii() and char.isdigit() or (char == "." and i + 1 < len(text) and text[i + 1].isascii() and text[i + 1].isdigit()):
+        if (
+            char.isascii()
+            and char.isdigit()
+            or (char == "." and i + 1 < len(text) and text[i + 1].isascii() and text[i + 1].isdigit())
+        ):
             match = _NUMBER.match(text, i)
             assert match is not None
             tokens.append(Token("number", match.group(0), position))
@@ -285,7 +289,9 @@ class _Parser:
     def unexpected_after_operand(self, token: Token) -> ValueError:
         if token.kind in ("number", "name", "("):
             sample = self.vocabulary.sample
-            return _unexpected(token.text, token.position, f"a product needs an explicit *, e.g. 2*{sample} or 3*sin({sample})")
+            return _unexpected(
+                token.text, token.position, f"a product needs an explicit *, e.g. 2*{sample} or 3*sin({sample})"
+            )
         return _unexpected(token.text, token.position, "expected an operator + - * / ^ or the end of the formula")
 
     def expression(self) -> sympy.Expr:
@@ -348,13 +354,20 @@ class _Parser:
             self.depth -= 1
             return inner
         if token.kind == ")":
-            raise _unexpected(")", token.position, f"expected a number, {self.vocabulary.operand}, pi, a function or '('")
-        raise _unexpected(token.text, token.position, f"expected a number, {self.vocabulary.operand}, pi, a function or '(' here")
+            raise _unexpected(
+                ")", token.position, f"expected a number, {self.vocabulary.operand}, pi, a function or '('"
+            )
+        raise _unexpected(
+            token.text, token.position, f"expected a number, {self.vocabulary.operand}, pi, a function or '(' here"
+        )
 
     def call(self, name: Token) -> sympy.Expr:
         opening = self.peek()
         if opening is None or opening.kind != "(":
-            raise _fail(name.position, f"{name.text} needs its argument in parentheses, e.g. {name.text}({self.vocabulary.sample})")
+            raise _fail(
+                name.position,
+                f"{name.text} needs its argument in parentheses, e.g. {name.text}({self.vocabulary.sample})",
+            )
         self.take()
         self.enter(opening.position)
         argument = self.expression()
@@ -444,7 +457,9 @@ def _formula_vocabulary(symbols: Mapping[str, sympy.Symbol], max_length: int) ->
         raise ValueError("symbols: a formula needs at least one name")
     for name, symbol in symbols.items():
         if not isinstance(name, str) or not _PLAIN_NAME.fullmatch(name) or name == "pi" or name in _FUNCTIONS:
-            raise ValueError(f"symbols: {name!r} cannot be a name in a formula (ASCII letters and digits, not pi or a function)")
+            raise ValueError(
+                f"symbols: {name!r} cannot be a name in a formula (ASCII letters and digits, not pi or a function)"
+            )
         if not isinstance(symbol, sympy.Symbol):
             raise ValueError(f"symbols: the value for {name!r} must be a sympy.Symbol")
     names = ", ".join(symbols)
@@ -452,14 +467,22 @@ def _formula_vocabulary(symbols: Mapping[str, sympy.Symbol], max_length: int) ->
     coordinates = [name for name in COORDINATE_NAMES if name in symbols]
     rates = [name for name in RATE_NAMES if name in symbols]
     if coordinates:
-        conventions = f"the coordinates are {', '.join(coordinates)}" + (f" and their rates {', '.join(rates)}" if rates else "")
+        conventions = f"the coordinates are {', '.join(coordinates)}" + (
+            f" and their rates {', '.join(rates)}" if rates else ""
+        )
     else:
         conventions = f"the names defined here are {names}"
     example = f"{(rates or coordinates or list(symbols))[0]}^2/2"
     char_hints = dict(_HINTS)
     char_hints["="] = f"type only the right-hand side, e.g. {example}"
-    char_hints["'"] = f"{conventions}: write a rate as {rates[0] if rates else 'its own name'}, not with a prime; {allowed}"
-    name_hints = {name: hint.replace(ALLOWED, allowed) for name, hint in _NAME_HINTS.items() if name in ("e", "ln") and name not in symbols}
+    char_hints["'"] = (
+        f"{conventions}: write a rate as {rates[0] if rates else 'its own name'}, not with a prime; {allowed}"
+    )
+    name_hints = {
+        name: hint.replace(ALLOWED, allowed)
+        for name, hint in _NAME_HINTS.items()
+        if name in ("e", "ln") and name not in symbols
+    }
     return _Vocabulary(
         symbols=dict(symbols),
         max_length=max_length,
@@ -494,7 +517,10 @@ def parse_formula(
     expr = _Parser(_scan(text, vocabulary), len(text), vocabulary).parse()
     operations = sympy.count_ops(expr)
     if operations > max_operations:
-        raise ValueError(f"the formula has {operations} operations; the limit is {max_operations}: write it shorter, or with " "fewer terms")
+        raise ValueError(
+            f"the formula has {operations} operations; the limit is {max_operations}: write it shorter, or with "
+            "fewer terms"
+        )
     _check_constants(expr)
     return expr
 
@@ -524,14 +550,19 @@ def check_parameter_name(name: str) -> None:
     if not name:
         raise ValueError("a parameter name is empty: use a letter, then letters or digits, e.g. m1")
     if len(name) > MAX_PARAMETER_NAME_LENGTH:
-        raise ValueError(f"the parameter name {shown!r} is {len(name)} characters long; the limit is {MAX_PARAMETER_NAME_LENGTH}")
+        raise ValueError(
+            f"the parameter name {shown!r} is {len(name)} characters long; the limit is {MAX_PARAMETER_NAME_LENGTH}"
+        )
     if not _PLAIN_NAME.fullmatch(name):
-        raise ValueError(f"the parameter name {shown!r} must be an ASCII letter followed by ASCII letters or digits, e.g. m1 or L")
+        raise ValueError(
+            f"the parameter name {shown!r} must be an ASCII letter followed by ASCII letters or digits, e.g. m1 or L"
+        )
     if name in _FUNCTIONS:
         raise ValueError(f"the parameter name {name!r} is a function (sqrt sin cos tan exp log); choose another")
     if re.fullmatch(r"q\d+d*", name) or name in COORDINATE_NAMES or name in RATE_NAMES:  # q4 or q1dd would mislead too
         raise ValueError(
-            f"the parameter name {name!r} is kept for the coordinates {', '.join(COORDINATE_NAMES)} and rates " f"{', '.join(RATE_NAMES)}; choose another"
+            f"the parameter name {name!r} is kept for the coordinates {', '.join(COORDINATE_NAMES)} and rates "
+            f"{', '.join(RATE_NAMES)}; choose another"
         )
     if name in _RESERVED_NAMES:
         raise ValueError(f"the parameter name {name!r} is kept for pi, e, time t or a numeric module; choose another")

@@ -49,7 +49,8 @@ def formulation_agreement(
             continue
         result = derived(system, formulation)
         worst[formulation] = max(
-            float(np.linalg.norm(result.state_derivative(t_s, y, p) - e) / np.linalg.norm(e)) for y, e in zip(states, expected)
+            float(np.linalg.norm(result.state_derivative(t_s, y, p) - e) / np.linalg.norm(e))
+            for y, e in zip(states, expected)
         )
     return worst
 

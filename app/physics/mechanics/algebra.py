@@ -18,7 +18,9 @@ def tidy(expr: sympy.Expr | sympy.Matrix) -> sympy.Expr | sympy.Matrix:
     return sympy.trigsimp(sympy.expand(expr))
 
 
-def linear_parts(expressions: Sequence[sympy.Expr], unknowns: Sequence[sympy.Symbol]) -> tuple[sympy.Matrix, sympy.Matrix]:
+def linear_parts(
+    expressions: Sequence[sympy.Expr], unknowns: Sequence[sympy.Symbol]
+) -> tuple[sympy.Matrix, sympy.Matrix]:
     """(A, b) with expressions = A·unknowns − b (the expressions must be linear in the unknowns)."""
     A = sympy.Matrix(list(expressions)).jacobian(list(unknowns))
     b = -sympy.Matrix(list(expressions)).xreplace({x: 0 for x in unknowns})

@@ -34,8 +34,13 @@ def latex_printer(names: dict) -> Callable[[sympy.Expr | sympy.Matrix], str]:
 
 
 def linear_equations_latex(
-    matrix: sympy.Matrix, unknowns: Sequence[sympy.Symbol], forcing: sympy.Matrix, latex: Callable[[sympy.Expr], str],
-    *, tidy: Callable[[sympy.Expr], sympy.Expr] = lambda e: e, tidy_left: bool = False,
+    matrix: sympy.Matrix,
+    unknowns: Sequence[sympy.Symbol],
+    forcing: sympy.Matrix,
+    latex: Callable[[sympy.Expr], str],
+    *,
+    tidy: Callable[[sympy.Expr], sympy.Expr] = lambda e: e,
+    tidy_left: bool = False,
 ) -> tuple[str, ...]:
     """One LaTeX equation per row of matrix · unknowns = forcing: the right side passed through ``tidy``,
     the left (the unknowns' coefficients, kept as written) only with ``tidy_left``."""

@@ -220,7 +220,9 @@ class SystemDescription:
         names = [c.name for c in self.coordinates]
         if len(set(names)) != len(names):
             raise ValueError(f"{self.id}: coordinate names repeat: {names}")
-        if (self.speeds is None) != (self.coordinate_rates is None) or (self.speeds is None) != (self.speeds_from_rates is None):
+        if (self.speeds is None) != (self.coordinate_rates is None) or (self.speeds is None) != (
+            self.speeds_from_rates is None
+        ):
             raise ValueError(f"{self.id}: give speeds, coordinate_rates and speeds_from_rates together, or none")
         if self.coordinate_rates is not None and len(self.coordinate_rates) != len(self.coordinates):
             raise ValueError(f"{self.id}: one rate expression per coordinate")
@@ -308,7 +310,8 @@ class SystemDescription:
             sympy.srepr([(p.name, p.mass, p.position) for p in self.particles]),
             sympy.srepr([(b.name, b.mass, b.mass_centre, b.rotations, b.inertia) for b in self.bodies]),
             sympy.srepr(self.gravity),
-            sympy.srepr([(s.stiffness, s.free_length, s.end_a, s.end_b, s.axis) for s in self.springs]) + repr([(s.on_a, s.on_b) for s in self.springs]),
+            sympy.srepr([(s.stiffness, s.free_length, s.end_a, s.end_b, s.axis) for s in self.springs])
+            + repr([(s.on_a, s.on_b) for s in self.springs]),
             sympy.srepr([(f.name, f.point, f.force) for f in self.forces]) + repr([f.on for f in self.forces]),
             sympy.srepr(self.extra_potential),
             sympy.srepr(self.kinetic_energy),
@@ -321,6 +324,8 @@ class SystemDescription:
         return hashlib.sha256("\n".join(parts).encode()).hexdigest()[:20]
 
 
-def parameter(name: str, unit: str, default: float, *, low: float, high: float, label: str, description: str) -> Parameter:
+def parameter(
+    name: str, unit: str, default: float, *, low: float, high: float, label: str, description: str
+) -> Parameter:
     """A physical parameter of a catalogue system (a float in [low, high])."""
     return Parameter(name, unit, default, min=low, max=high, label=label, description=description)

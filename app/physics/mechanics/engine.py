@@ -135,7 +135,12 @@ class Derived:
         out = np.empty(len(state))
         try:
             with np.errstate(over="raise", divide="raise", invalid="raise", under="ignore"):
-                self.rhs_python(float(t_s), np.ascontiguousarray(state, dtype=float), np.ascontiguousarray(parameters, dtype=float), out)
+                self.rhs_python(
+                    float(t_s),
+                    np.ascontiguousarray(state, dtype=float),
+                    np.ascontiguousarray(parameters, dtype=float),
+                    out,
+                )
         except (ArithmeticError, ValueError) as error:
             out[:] = np.nan
             return out, not_finite_because(error)
@@ -255,7 +260,9 @@ def _from_disk(system: SystemDescription, formulation: str, directory: Path | No
         load_s = time.perf_counter() - start
     except (OSError, ValueError, SyntaxError, AttributeError):
         return None  # a damaged entry is derived again and overwritten
-    return Derived(**meta["derived"], derive_s=0.0, compile_s=load_s, source_path=source_path, rhs_python=rhs, from_cache=True)
+    return Derived(
+        **meta["derived"], derive_s=0.0, compile_s=load_s, source_path=source_path, rhs_python=rhs, from_cache=True
+    )
 
 
 def _derive_and_store(system: SystemDescription, formulation: str, directory: Path | None) -> Derived:
@@ -281,7 +288,9 @@ def _derive_and_store(system: SystemDescription, formulation: str, directory: Pa
     temporary = meta_path.with_suffix(f".{os.getpid()}.{threading.get_ident()}.tmp")
     temporary.write_text(json.dumps(meta, ensure_ascii=False, indent=1))
     os.replace(temporary, meta_path)
-    return Derived(**shown, derive_s=derive_s, compile_s=compile_s, source_path=source_path, rhs_python=rhs, derivation=derivation)
+    return Derived(
+        **shown, derive_s=derive_s, compile_s=compile_s, source_path=source_path, rhs_python=rhs, derivation=derivation
+    )
 
 
 def available_formulations(system: SystemDescription) -> dict[str, str]:
@@ -291,10 +300,15 @@ def available_formulations(system: SystemDescription) -> dict[str, str]:
         reason = system.unavailable.get(formulation, "")
         if not reason:
             if formulation in ("lagrange", "hamilton", "routh") and not system.holonomic:
-                reason = ("needs independent coordinates; the rolling constraints restrict velocities only " "(chapter 8's multipliers)")
+                reason = (
+                    "needs independent coordinates; the rolling constraints restrict velocities only "
+                    "(chapter 8's multipliers)"
+                )
             elif formulation == "routh" and not system.ignorable:
                 reason = "no ignorable coordinate"
-            elif formulation == "newton-euler" and (not system.reactions or system.kinetic_energy is not None or system.extra_potential != 0):
+            elif formulation == "newton-euler" and (
+                not system.reactions or system.kinetic_energy is not None or system.extra_potential != 0
+            ):
                 reason = "no free-body diagrams: the system is given by its energies"
             elif formulation in ("kane", "gibbs-appell") and system.kinetic_energy is not None:
                 reason = "needs particles and bodies, not only an energy expression"

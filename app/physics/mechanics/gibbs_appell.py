@@ -41,7 +41,9 @@ def gibbs_function(system: SystemDescription) -> sympy.Expr:
 
 def derive_gibbs_appell(system: SystemDescription) -> Derivation:
     if system.kinetic_energy is not None:
-        raise FormulationUnavailable("the Gibbs function needs the particles' and bodies' accelerations, not only an energy expression")
+        raise FormulationUnavailable(
+            "the Gibbs function needs the particles' and bodies' accelerations, not only an energy expression"
+        )
     names = system.latex_names
     latex = latex_printer(names)
     motion = speed_motion(system)
@@ -57,10 +59,19 @@ def derive_gibbs_appell(system: SystemDescription) -> Derivation:
         Step(f"∂S/∂u̇ for {speed.name}", f"\\frac{{\\partial S}}{{\\partial {names[a]}}} = {latex(tidy(d))}")
         for speed, a, d in zip(system.speed_list, ud, dS)
     ]
-    steps += [Step(f"Generalized force for {speed.name}", f"\\Pi_{{{speed.latex}}} = {latex(tidy(g))}") for speed, g in zip(system.speed_list, generalized)]
+    steps += [
+        Step(f"Generalized force for {speed.name}", f"\\Pi_{{{speed.latex}}} = {latex(tidy(g))}")
+        for speed, g in zip(system.speed_list, generalized)
+    ]
     equations = linear_equations_latex(M, ud, forcing, latex, tidy=tidy)
     return Derivation(
-        system_id=system.id, formulation="gibbs-appell", variables="q, u",
-        mass_matrix=M, forcing=forcing, equations_latex=equations, steps=tuple(steps),
-        recipe=recipe_through_speeds(system, Solve(M, forcing, tuple(ud))), latex_names=names,
+        system_id=system.id,
+        formulation="gibbs-appell",
+        variables="q, u",
+        mass_matrix=M,
+        forcing=forcing,
+        equations_latex=equations,
+        steps=tuple(steps),
+        recipe=recipe_through_speeds(system, Solve(M, forcing, tuple(ud))),
+        latex_names=names,
     )

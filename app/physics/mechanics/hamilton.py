@@ -29,7 +29,9 @@ def momentum_symbols(system: SystemDescription) -> list[sympy.Symbol]:
     return [sympy.Symbol(f"p_{c.name}", real=True) for c in system.coordinates]
 
 
-def legendre_rates(L: sympy.Expr, rates: list[sympy.Symbol], momenta: list[sympy.Symbol]) -> tuple[sympy.Matrix, sympy.Matrix, list[sympy.Expr]]:
+def legendre_rates(
+    L: sympy.Expr, rates: list[sympy.Symbol], momenta: list[sympy.Symbol]
+) -> tuple[sympy.Matrix, sympy.Matrix, list[sympy.Expr]]:
     """(M, b, q̇(p)): ∂L/∂q̇ = M q̇ + b, and the rates solved for the given momenta (adjugate over determinant).
 
     Raises FormulationUnavailable if L is not quadratic in the rates or M is singular.
@@ -37,12 +39,16 @@ def legendre_rates(L: sympy.Expr, rates: list[sympy.Symbol], momenta: list[sympy
     momentum = sympy.Matrix([sympy.diff(L, r) for r in rates])
     M = momentum.jacobian(rates)
     if any(M.diff(r) != sympy.zeros(*M.shape) for r in rates):
-        raise FormulationUnavailable("the Lagrangian is not quadratic in the rates, so the Legendre transformation is not linear")
+        raise FormulationUnavailable(
+            "the Lagrangian is not quadratic in the rates, so the Legendre transformation is not linear"
+        )
     b = momentum.xreplace({r: 0 for r in rates})
     try:
         solved, _ = solve_exactly(M, sympy.Matrix(momenta) - b)
     except ZeroDivisionError:
-        raise FormulationUnavailable("the mass matrix is singular, so the rates cannot be written in terms of the momenta") from None
+        raise FormulationUnavailable(
+            "the mass matrix is singular, so the rates cannot be written in terms of the momenta"
+        ) from None
     return M, b, solved
 
 
@@ -55,7 +61,9 @@ def hamiltonian(L: sympy.Expr, rates: list[sympy.Symbol], M: sympy.Matrix, rates
 
 def derive_hamilton(system: SystemDescription) -> Derivation:
     if not system.holonomic:
-        raise FormulationUnavailable("Hamilton's equations need independent generalized coordinates (the rolling constraints are nonholonomic)")
+        raise FormulationUnavailable(
+            "Hamilton's equations need independent generalized coordinates (the rolling constraints are nonholonomic)"
+        )
     names = dict(system.latex_names)
     P = momentum_symbols(system)
     for c, p in zip(system.coordinates, P):
@@ -86,20 +94,36 @@ def derive_hamilton(system: SystemDescription) -> Derivation:
     )
     steps = [
         Step("Lagrangian", f"L = T - V = {latex(L)}"),
-        *(Step(f"Momentum conjugate to {c.name}", f"{names[p]} = \\frac{{\\partial L}}{{\\partial {names[r]}}} = {latex(tidy(e))}")
-          for c, p, r, e in zip(system.coordinates, P, qd, p_of_rates)),
-        *(Step(f"Rate of {c.name} in terms of the momenta", f"{names[r]} = {latex(e)}") for c, r, e in zip(system.coordinates, qd, rates_of_p)),
+        *(
+            Step(
+                f"Momentum conjugate to {c.name}",
+                f"{names[p]} = \\frac{{\\partial L}}{{\\partial {names[r]}}} = {latex(tidy(e))}",
+            )
+            for c, p, r, e in zip(system.coordinates, P, qd, p_of_rates)
+        ),
+        *(
+            Step(f"Rate of {c.name} in terms of the momenta", f"{names[r]} = {latex(e)}")
+            for c, r, e in zip(system.coordinates, qd, rates_of_p)
+        ),
         Step("Hamiltonian", f"H = \\sum_j p_j \\dot q_j - L = {latex(H)}"),
     ]
     equations = []
     for c, p, q_j, r, e_q, e_p in zip(system.coordinates, P, q, qd, qd_hamilton, pd_hamilton):
         equations.append(f"{names[r]} = \\frac{{\\partial H}}{{\\partial {names[p]}}} = {latex(e_q)}")
-        equations.append(f"\\dot{{p}}_{{{c.latex}}} = -\\frac{{\\partial H}}{{\\partial {names[q_j]}}} + Q_{{{c.latex}}} = " f"{latex(e_p)}")
+        equations.append(
+            f"\\dot{{p}}_{{{c.latex}}} = -\\frac{{\\partial H}}{{\\partial {names[q_j]}}} + Q_{{{c.latex}}} = "
+            f"{latex(e_p)}"
+        )
     n = len(q)
     pd_symbols = sympy.Matrix(pd_h)
     return Derivation(
-        system_id=system.id, formulation="hamilton", variables="q, p",
-        mass_matrix=sympy.eye(2 * n), forcing=sympy.Matrix([*qd_hamilton, *pd_hamilton]),
-        equations_latex=tuple(equations), steps=tuple(steps), recipe=recipe,
+        system_id=system.id,
+        formulation="hamilton",
+        variables="q, p",
+        mass_matrix=sympy.eye(2 * n),
+        forcing=sympy.Matrix([*qd_hamilton, *pd_hamilton]),
+        equations_latex=tuple(equations),
+        steps=tuple(steps),
+        recipe=recipe,
         latex_names={**names, **{s: f"\\dot{{p}}_{{{c.latex}}}" for s, c in zip(pd_symbols, system.coordinates)}},
     )

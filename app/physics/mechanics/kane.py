@@ -45,7 +45,10 @@ def derive_kane(system: SystemDescription) -> Derivation:
     point_forces += [(f.point, f.force) for f in system.forces]
     point_velocities = [motion.derivative(point) for point, _ in point_forces]
     active = [
-        sum(((force.T * velocity.diff(u_r))[0] for (_, force), velocity in zip(point_forces, point_velocities)), sympy.Integer(0))
+        sum(
+            ((force.T * velocity.diff(u_r))[0] for (_, force), velocity in zip(point_forces, point_velocities)),
+            sympy.Integer(0),
+        )
         for u_r in u
     ]
     active = [a + c for a, c in zip(active, conservative_share(system, system.extra_potential))]
@@ -63,15 +66,35 @@ def derive_kane(system: SystemDescription) -> Derivation:
     steps = []
     for item in items:
         for u_r, speed in zip(u, system.speed_list):
-            steps.append(Step(f"Partial velocity of {item.name} for {speed.name}", f"\\frac{{\\partial \\mathbf v_{{{item.name}}}}}{{\\partial {names[u_r]}}} = " f"{latex(tidy(item.velocity.diff(u_r)).T)}"))
+            steps.append(
+                Step(
+                    f"Partial velocity of {item.name} for {speed.name}",
+                    f"\\frac{{\\partial \\mathbf v_{{{item.name}}}}}{{\\partial {names[u_r]}}} = "
+                    f"{latex(tidy(item.velocity.diff(u_r)).T)}",
+                )
+            )
             if item.angular_velocity is not None:
-                steps.append(Step(f"Partial angular velocity of {item.name} for {speed.name}", f"\\frac{{\\partial \\boldsymbol\\omega_{{{item.name}}}}}{{\\partial {names[u_r]}}} = " f"{latex(tidy(item.angular_velocity.diff(u_r)).T)}"))
+                steps.append(
+                    Step(
+                        f"Partial angular velocity of {item.name} for {speed.name}",
+                        f"\\frac{{\\partial \\boldsymbol\\omega_{{{item.name}}}}}{{\\partial {names[u_r]}}} = "
+                        f"{latex(tidy(item.angular_velocity.diff(u_r)).T)}",
+                    )
+                )
     for speed, F_r, Fs_r in zip(system.speed_list, active, inertia):
         steps.append(Step(f"Generalized active force for {speed.name}", f"F_{{{speed.latex}}} = {latex(tidy(F_r))}"))
-        steps.append(Step(f"Generalized inertia force for {speed.name}", f"F^*_{{{speed.latex}}} = {latex(tidy(Fs_r))}"))
+        steps.append(
+            Step(f"Generalized inertia force for {speed.name}", f"F^*_{{{speed.latex}}} = {latex(tidy(Fs_r))}")
+        )
     equations = linear_equations_latex(M, ud, forcing, latex, tidy=tidy)
     return Derivation(
-        system_id=system.id, formulation="kane", variables="q, u",
-        mass_matrix=M, forcing=forcing, equations_latex=equations, steps=tuple(steps),
-        recipe=recipe_through_speeds(system, Solve(M, forcing, tuple(ud))), latex_names=names,
+        system_id=system.id,
+        formulation="kane",
+        variables="q, u",
+        mass_matrix=M,
+        forcing=forcing,
+        equations_latex=equations,
+        steps=tuple(steps),
+        recipe=recipe_through_speeds(system, Solve(M, forcing, tuple(ud))),
+        latex_names=names,
     )

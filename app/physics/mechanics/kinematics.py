@@ -109,8 +109,12 @@ def body_motions(system: SystemDescription, motion: Motion) -> list[BodyMotion]:
     for body in system.bodies:
         found.append(
             BodyMotion(
-                body.name, body.mass, motion.derivative(body.mass_centre),
-                tidy(angular_velocity_body(body, motion)), body.inertia, body_rotation(body),
+                body.name,
+                body.mass,
+                motion.derivative(body.mass_centre),
+                tidy(angular_velocity_body(body, motion)),
+                body.inertia,
+                body_rotation(body),
             )
         )
     return found
@@ -167,7 +171,9 @@ def spring_force_on_b(spring: Spring) -> sympy.Matrix:
     return -spring.stiffness * spring_stretch(spring) * direction
 
 
-def generalized_forces(system: SystemDescription, motion: Motion, velocities: Sequence[sympy.Symbol]) -> list[sympy.Expr]:
+def generalized_forces(
+    system: SystemDescription, motion: Motion, velocities: Sequence[sympy.Symbol]
+) -> list[sympy.Expr]:
     """Σ F·∂v/∂w for each of ``velocities`` (q̇ or u): the applied non-conservative forces' share (N or N·m)."""
     forces = []
     for w in velocities:

@@ -56,7 +56,9 @@ def mass_matrices(kinetic: Kinetic, t_s: np.ndarray, q: np.ndarray, qd: np.ndarr
     rates = rates + kicks  # axes (component, i, j, sign, state)
     variants = 2 * n * n
     with np.errstate(all="ignore"):
-        values = kinetic(np.tile(t, variants), np.tile(q.astype(complex), variants), rates.reshape(n, variants * count), p)
+        values = kinetic(
+            np.tile(t, variants), np.tile(q.astype(complex), variants), rates.reshape(n, variants * count), p
+        )
     values = np.broadcast_to(np.asarray(values), (variants * count,)).reshape(n, n, 2, count)
     derivative = np.imag(values) / _COMPLEX_STEP  # ∂T/∂q̇_i at q̇ ± h_j e_j: (i, j, sign, state)
     out = np.moveaxis((derivative[:, :, 0] - derivative[:, :, 1]) / (2.0 * steps[None, :, :]), -1, 0)  # (N, i, j)
@@ -98,11 +100,15 @@ def not_positive_definite(matrix: np.ndarray, rate_names: Sequence[str]) -> tupl
     lowest = float(eigenvalues[0])
     along = rate_names[int(np.argmax(np.abs(vectors[:, 0])))]
     if lowest < 0.0 and abs(lowest) > SINGULAR_RATIO * largest:
-        return "negative", (f"∂²T/∂q̇² has the negative eigenvalue {lowest:.4g} (mostly along {along}): moving that way would have "
-                            "negative kinetic energy, which no mass can have")
+        return "negative", (
+            f"∂²T/∂q̇² has the negative eigenvalue {lowest:.4g} (mostly along {along}): moving that way would have "
+            "negative kinetic energy, which no mass can have"
+        )
     if largest == 0.0 or lowest <= SINGULAR_RATIO * largest:
-        return "singular", (f"∂²T/∂q̇² is singular (smallest eigenvalue {lowest:.3g}, largest {largest:.3g}; mostly along {along}): "
-                            "that rate carries no kinetic energy, so its acceleration cannot be found")
+        return "singular", (
+            f"∂²T/∂q̇² is singular (smallest eigenvalue {lowest:.3g}, largest {largest:.3g}; mostly along {along}): "
+            "that rate carries no kinetic energy, so its acceleration cannot be found"
+        )
     return "", ""
 
 
@@ -153,7 +159,9 @@ def first_singular_crossing(
     flat = points.reshape(-1, width)
     matrices = mass_matrices(kinetic, times.ravel(), flat[:, :n].T, flat[:, n:].T, p)
     smallest, product = (values.reshape(len(start), len(samples)) for values in _relative(matrices, reference))
-    lowest = np.where(np.isnan(smallest).any(axis=1), -np.inf, np.min(np.where(np.isnan(smallest), np.inf, smallest), axis=1))
+    lowest = np.where(
+        np.isnan(smallest).any(axis=1), -np.inf, np.min(np.where(np.isnan(smallest), np.inf, smallest), axis=1)
+    )
     estimate, at = _parabola_minima(samples, product)
     met = (lowest <= SINGULAR_FALL) | (estimate <= SINGULAR_FALL)
     if not met.any():
@@ -169,8 +177,13 @@ def first_singular_crossing(
     time = t_start[frame] + where * (t_end[frame] - t_start[frame])
     matrix = mass_matrices(kinetic, np.array([time]), closest[:n, None], closest[n:, None], p)[0]
     rate_index = int(np.argmax(np.abs(np.linalg.eigh(matrix)[1][:, 0]))) if np.all(np.isfinite(matrix)) else 0
-    return SingularCrossing(frame=frame, q=closest[:n].copy(), inertia=float(min(lowest[frame], estimate[frame])),
-                            indefinite=bool(lowest[frame] < 0.0), rate_index=rate_index)
+    return SingularCrossing(
+        frame=frame,
+        q=closest[:n].copy(),
+        inertia=float(min(lowest[frame], estimate[frame])),
+        indefinite=bool(lowest[frame] < 0.0),
+        rate_index=rate_index,
+    )
 
 
 def _parabola_minima(s: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

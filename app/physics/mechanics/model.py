@@ -30,8 +30,13 @@ def formulation_parameter(system: SystemDescription, *, default: str = "lagrange
     """The ``formulation`` choice: the derivations that apply to ``system``."""
     choices = tuple(f for f, reason in available_formulations(system).items() if not reason)
     return Parameter(
-        "formulation", "", default if default in choices else choices[0], kind="choice", choices=choices,
-        label="formulation", description="Which derivation's equations drive the motion (all agree to rounding)",
+        "formulation",
+        "",
+        default if default in choices else choices[0],
+        kind="choice",
+        choices=choices,
+        label="formulation",
+        description="Which derivation's equations drive the motion (all agree to rounding)",
     )
 
 
@@ -40,7 +45,11 @@ def derived_parameters(
 ) -> ParameterSet:
     """A derived model's parameters: the system's, its initial conditions, then ``formulation``."""
     return ParameterSet(
-        (*system.parameters.parameters, *initial_conditions, formulation_parameter(system, default=default_formulation)),
+        (
+            *system.parameters.parameters,
+            *initial_conditions,
+            formulation_parameter(system, default=default_formulation),
+        ),
         check=check,
     )
 
@@ -75,10 +84,15 @@ def translational_kinetic_function(system: SystemDescription):
     key = system.fingerprint()
     if key not in _translational_functions:
         translational = sum(
-            (sympy.Rational(1, 2) * item.mass * (item.velocity.T * item.velocity)[0] for item in body_motions(system, coordinate_motion(system))),
+            (
+                sympy.Rational(1, 2) * item.mass * (item.velocity.T * item.velocity)[0]
+                for item in body_motions(system, coordinate_motion(system))
+            ),
             sympy.Integer(0),
         )
-        _translational_functions[key] = sympy.lambdify([TIME, system.q, system.qd, system.parameter_symbols], translational, modules="numpy", cse=True)
+        _translational_functions[key] = sympy.lambdify(
+            [TIME, system.q, system.qd, system.parameter_symbols], translational, modules="numpy", cse=True
+        )
     return _translational_functions[key]
 
 
@@ -93,7 +107,9 @@ class DerivedModel(IntegratedModel):
     description: SystemDescription
     methods = ("rk4", "dopri5")
     default_method = "rk4"
-    accuracy_target = AccuracyTarget(1e-6, "", "state (q, q̇): largest component error relative to the largest component")
+    accuracy_target = AccuracyTarget(
+        1e-6, "", "state (q, q̇): largest component error relative to the largest component"
+    )
 
     # --- derived pieces ---------------------------------------------------------------------------------------
     def parameter_array(self, params: Mapping[str, Any]) -> np.ndarray:
@@ -109,7 +125,8 @@ class DerivedModel(IntegratedModel):
     def system(self, params: Mapping[str, Any]) -> OdeSystem:
         names = [c.name for c in self.description.coordinates]
         return OdeSystem(
-            rhs=self.derived(params).kernel(), parameters=self.parameter_array(params),
+            rhs=self.derived(params).kernel(),
+            parameters=self.parameter_array(params),
             state_names=(*names, *(f"{n}_rate" for n in names)),
         )
 
@@ -146,7 +163,9 @@ class DerivedModel(IntegratedModel):
         """Work (J, (N,)) done on the system by its drives since t = 0 along ``states``, where the state tracks it."""
         return None
 
-    def energy_parts(self, params: Mapping[str, Any], states: np.ndarray, *, t_s: np.ndarray | None = None) -> EnergyParts:
+    def energy_parts(
+        self, params: Mapping[str, Any], states: np.ndarray, *, t_s: np.ndarray | None = None
+    ) -> EnergyParts:
         """T split as ½ Σ m v_G² (translational) and the rest, ½ Σ ω·I_G ω (rotational), unless the system states T
         itself; V; the drives' work from :meth:`drive_work_J`. Only the first 2n state slots are the motion."""
         states = np.atleast_2d(np.asarray(states, dtype=float))
@@ -158,8 +177,15 @@ class DerivedModel(IntegratedModel):
         translational_of = translational_kinetic_function(self.description)
         if translational_of is None:
             return EnergyParts(potential, kinetic_J=kinetic, drive_work_J=work)
-        translational = np.broadcast_to(np.asarray(translational_of(t, states[:, :n].T, states[:, n : 2 * n].T, p), dtype=float), t.shape)
-        return EnergyParts(potential, translational_kinetic_J=np.array(translational), rotational_kinetic_J=kinetic - translational, drive_work_J=work)
+        translational = np.broadcast_to(
+            np.asarray(translational_of(t, states[:, :n].T, states[:, n : 2 * n].T, p), dtype=float), t.shape
+        )
+        return EnergyParts(
+            potential,
+            translational_kinetic_J=np.array(translational),
+            rotational_kinetic_J=kinetic - translational,
+            drive_work_J=work,
+        )
 
     def agreement(self, params: Mapping[str, Any], state: np.ndarray, t_s: float = 0.0) -> dict[str, float]:
         """Per available formulation, |ẏ_f − ẏ_ref| / |ẏ_ref| at ``state`` (ref: the running formulation)."""

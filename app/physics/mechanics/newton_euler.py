@@ -40,9 +40,13 @@ def reaction_symbols(system: SystemDescription) -> list[tuple[sympy.Symbol, Reac
 
 def derive_newton_euler(system: SystemDescription) -> Derivation:
     if not system.reactions:
-        raise FormulationUnavailable("Newton–Euler needs the constraint reactions declared body by body, and this system has none")
+        raise FormulationUnavailable(
+            "Newton–Euler needs the constraint reactions declared body by body, and this system has none"
+        )
     if system.kinetic_energy is not None or system.extra_potential != 0:
-        raise FormulationUnavailable("Newton–Euler needs forces, and this system gives part of its physics only as an energy")
+        raise FormulationUnavailable(
+            "Newton–Euler needs forces, and this system gives part of its physics only as an energy"
+        )
     names = dict(system.latex_names)
     motion = speed_motion(system)
     unknown_reactions = reaction_symbols(system)
@@ -86,7 +90,12 @@ def derive_newton_euler(system: SystemDescription) -> Derivation:
         resultant = sum((f for _, f in forces[item.name]), sympy.zeros(3, 1))
         linear = item.mass * acceleration - resultant
         rows += list(linear)
-        steps.append(Step(f"{item.name}: m a = ΣF", f"{latex(item.mass)}\\,{latex(tidy(acceleration).T)}^T = {latex(resultant.T)}^T"))
+        steps.append(
+            Step(
+                f"{item.name}: m a = ΣF",
+                f"{latex(item.mass)}\\,{latex(tidy(acceleration).T)}^T = {latex(resultant.T)}^T",
+            )
+        )
         if item.angular_velocity is not None:
             centre = positions[item.name]
             moment = sum(((p - centre).cross(f) for p, f in forces[item.name]), sympy.zeros(3, 1))
@@ -96,11 +105,20 @@ def derive_newton_euler(system: SystemDescription) -> Derivation:
             steps.append(Step(f"{item.name}: I α + ω × I ω = ΣM_G (N components)", f"{latex(moment.T)}^T"))
     unknowns = [*system.ud, *(s for s, *_ in unknown_reactions)]
     if len(rows) != len(unknowns):
-        raise ValueError(f"{system.id}: Newton–Euler has {len(rows)} equations for {len(unknowns)} unknowns; declare the " "reactions fully")
+        raise ValueError(
+            f"{system.id}: Newton–Euler has {len(rows)} equations for {len(unknowns)} unknowns; declare the "
+            "reactions fully"
+        )
     A, b = linear_parts(rows, unknowns)
     equations = linear_equations_latex(A, unknowns, b, latex, tidy=tidy, tidy_left=True)
     return Derivation(
-        system_id=system.id, formulation="newton-euler", variables="q, u, reactions",
-        mass_matrix=A, forcing=b, equations_latex=equations, steps=tuple(steps),
-        recipe=recipe_through_speeds(system, Solve(A, b, tuple(unknowns))), latex_names=names,
+        system_id=system.id,
+        formulation="newton-euler",
+        variables="q, u, reactions",
+        mass_matrix=A,
+        forcing=b,
+        equations_latex=equations,
+        steps=tuple(steps),
+        recipe=recipe_through_speeds(system, Solve(A, b, tuple(unknowns))),
+        latex_names=names,
     )

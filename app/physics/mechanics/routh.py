@@ -66,9 +66,7 @@ def derive_routh(system: SystemDescription) -> Derivation:
     q_K, qd_K, qdd_K = [c.symbol for c in kept], [c.rate for c in kept], [c.acceleration for c in kept]
     motion = Motion(q_K, qd_K, qd_K, qdd_K)  # β is constant
     Q_all = dict(zip(system.q, generalized_forces(system, coordinate_motion(system), system.qd)))
-    equations_zero = [
-        motion.derivative(sympy.diff(R, r)) - sympy.diff(R, q) - Q_all[q] for q, r in zip(q_K, qd_K)
-    ]
+    equations_zero = [motion.derivative(sympy.diff(R, r)) - sympy.diff(R, q) - Q_all[q] for q, r in zip(q_K, qd_K)]
     M = jacobian_of(equations_zero, qdd_K)
     forcing = -sympy.Matrix(equations_zero).xreplace({a: 0 for a in qdd_K})
     cyclic_rates = [-sympy.diff(R, b) for b in beta]
@@ -87,14 +85,33 @@ def derive_routh(system: SystemDescription) -> Derivation:
         ),
     )
     steps = [
-        *(Step(f"Conserved momentum of the ignorable {c.name}", f"{names[b]} = \\frac{{\\partial L}}{{\\partial {names[c.rate]}}} = {latex(tidy(e))}")
-          for c, b, e in zip(cyclic, beta, beta_of_state)),
+        *(
+            Step(
+                f"Conserved momentum of the ignorable {c.name}",
+                f"{names[b]} = \\frac{{\\partial L}}{{\\partial {names[c.rate]}}} = {latex(tidy(e))}",
+            )
+            for c, b, e in zip(cyclic, beta, beta_of_state)
+        ),
         Step("Routhian", f"R = L - \\sum \\beta \\dot q_C = {latex(R)}"),
-        *(Step(f"Ignorable rate {c.name}", f"{names[c.rate]} = -\\frac{{\\partial R}}{{\\partial {names[b]}}} = {latex(e)}")
-          for c, b, e in zip(cyclic, beta, cyclic_rates)),
+        *(
+            Step(
+                f"Ignorable rate {c.name}",
+                f"{names[c.rate]} = -\\frac{{\\partial R}}{{\\partial {names[b]}}} = {latex(e)}",
+            )
+            for c, b, e in zip(cyclic, beta, cyclic_rates)
+        ),
     ]
-    equations = linear_equations_latex(M, qdd_K, forcing, latex) + tuple(f"{names[c.rate]} = {latex(e)}" for c, e in zip(cyclic, cyclic_rates))
+    equations = linear_equations_latex(M, qdd_K, forcing, latex) + tuple(
+        f"{names[c.rate]} = {latex(e)}" for c, e in zip(cyclic, cyclic_rates)
+    )
     return Derivation(
-        system_id=system.id, formulation="routh", variables="q_K, q̇_K, β",
-        mass_matrix=M, forcing=forcing, equations_latex=equations, steps=tuple(steps), recipe=recipe, latex_names=names,
+        system_id=system.id,
+        formulation="routh",
+        variables="q_K, q̇_K, β",
+        mass_matrix=M,
+        forcing=forcing,
+        equations_latex=equations,
+        steps=tuple(steps),
+        recipe=recipe,
+        latex_names=names,
     )

@@ -50,7 +50,10 @@ def typed_system(
     """Parse and check a typed Lagrangian; raises ParameterError naming the field."""
     coordinates = list(coordinates)
     if not 1 <= len(coordinates) <= len(COORDINATE_NAMES) or coordinates != list(COORDINATE_NAMES[: len(coordinates)]):
-        raise ParameterError("coordinates", f"name 1 to 3 coordinates in order: ['q1'], ['q1', 'q2'] or ['q1', 'q2', 'q3'] (got {coordinates!r})")
+        raise ParameterError(
+            "coordinates",
+            f"name 1 to 3 coordinates in order: ['q1'], ['q1', 'q2'] or ['q1', 'q2', 'q3'] (got {coordinates!r})",
+        )
     if len(parameters) > MAX_PARAMETERS:
         raise ParameterError("parameters", f"at most {MAX_PARAMETERS} named constants (got {len(parameters)})")
     symbols: dict[str, sympy.Symbol] = {}
@@ -66,8 +69,17 @@ def typed_system(
             check_parameter_name(name)
         except ValueError as error:
             raise ParameterError("parameters", str(error), path=("parameters", str(name))) from None
-        if isinstance(value, bool) or not isinstance(value, (int, float)) or not _finite(value) or abs(float(value)) > MAX_PARAMETER_VALUE:
-            raise ParameterError("parameters", f"must be a finite number of magnitude at most {MAX_PARAMETER_VALUE:g} (got {value!r})", path=("parameters", name))
+        if (
+            isinstance(value, bool)
+            or not isinstance(value, (int, float))
+            or not _finite(value)
+            or abs(float(value)) > MAX_PARAMETER_VALUE
+        ):
+            raise ParameterError(
+                "parameters",
+                f"must be a finite number of magnitude at most {MAX_PARAMETER_VALUE:g} (got {value!r})",
+                path=("parameters", name),
+            )
         constants[name] = sympy.Symbol(name, real=True)
     symbols.update(constants)
     energies = {}
@@ -84,11 +96,25 @@ def typed_system(
         raise ParameterError("potential_energy", "the potential energy may not depend on the rates q1d…q3d")
     for c in coords:
         if not T.has(c.rate):
-            raise ParameterError("kinetic_energy", f"the kinetic energy does not contain {c.name}d, so {c.name} has no inertia and its equation " "cannot be solved for its acceleration")
+            raise ParameterError(
+                "kinetic_energy",
+                f"the kinetic energy does not contain {c.name}d, so {c.name} has no inertia and its equation "
+                "cannot be solved for its acceleration",
+            )
     return SystemDescription(
-        id="custom", title="Typed Lagrangian", chapter=7, coordinates=coords,
-        parameters=ParameterSet(tuple(Parameter(name, "", float(value), min=-MAX_PARAMETER_VALUE, max=MAX_PARAMETER_VALUE, label=name) for name, value in parameters.items())),
-        symbols=constants, kinetic_energy=T, extra_potential=V,
+        id="custom",
+        title="Typed Lagrangian",
+        chapter=7,
+        coordinates=coords,
+        parameters=ParameterSet(
+            tuple(
+                Parameter(name, "", float(value), min=-MAX_PARAMETER_VALUE, max=MAX_PARAMETER_VALUE, label=name)
+                for name, value in parameters.items()
+            )
+        ),
+        symbols=constants,
+        kinetic_energy=T,
+        extra_potential=V,
     )
 
 
@@ -107,11 +133,16 @@ def derive_typed(request: Mapping[str, Any]) -> dict[str, Any]:
     derivatives Lagrange's equations take of it) with no finite value at the check state, and a kinetic energy not
     positive definite there.
     """
-    system = typed_system(request["coordinates"], request["kinetic_energy"], request["potential_energy"], request["parameters"])
+    system = typed_system(
+        request["coordinates"], request["kinetic_energy"], request["potential_energy"], request["parameters"]
+    )
     T, _ = lagrangian(system)
     mass_matrix = sympy.hessian(T, system.qd)
     if sympy.simplify(mass_matrix.det()) == 0:
-        raise ParameterError("kinetic_energy", "the mass matrix ∂²T/∂q̇² is singular everywhere: some combination of rates carries no kinetic energy")
+        raise ParameterError(
+            "kinetic_energy",
+            "the mass matrix ∂²T/∂q̇² is singular everywhere: some combination of rates carries no kinetic energy",
+        )
     state = check_state(len(system.coordinates))
     parameters = np.array(system.parameter_array(request["parameters"]))
     where = f"at the check state {describe_state(system, state)}, t = 0"
@@ -143,7 +174,10 @@ def energy_terms(system: SystemDescription) -> list[tuple[str, str, sympy.Expr]]
     for rate in system.qd:
         momentum = sympy.diff(T, rate)
         terms.append(("kinetic_energy", f"∂T/∂{names[rate]}", momentum))
-        terms += [("kinetic_energy", f"∂²T/∂{names[rate]}∂{names[other]}", sympy.diff(momentum, other)) for other in (*system.qd, *system.q)]
+        terms += [
+            ("kinetic_energy", f"∂²T/∂{names[rate]}∂{names[other]}", sympy.diff(momentum, other))
+            for other in (*system.qd, *system.q)
+        ]
         terms.append(("kinetic_energy", f"∂²T/∂{names[rate]}∂t", sympy.diff(momentum, TIME)))
     terms += [("kinetic_energy", f"∂T/∂{names[q]}", sympy.diff(T, q)) for q in system.q]
     terms.append(("potential_energy", "the potential energy V", V))
@@ -151,7 +185,9 @@ def energy_terms(system: SystemDescription) -> list[tuple[str, str, sympy.Expr]]
     return terms
 
 
-def check_energy_terms(system: SystemDescription, state: np.ndarray, parameters: np.ndarray, *, where: str, t_s: float = 0.0) -> None:
+def check_energy_terms(
+    system: SystemDescription, state: np.ndarray, parameters: np.ndarray, *, where: str, t_s: float = 0.0
+) -> None:
     """Raise ParameterError naming the energy (``kinetic_energy`` or ``potential_energy``) whose value, or a derivative
     Lagrange's equations take of it, has no finite double-precision value at ``state`` (q, q̇), and why."""
     n = len(system.coordinates)
@@ -163,28 +199,41 @@ def check_energy_terms(system: SystemDescription, state: np.ndarray, parameters:
             with np.errstate(over="raise", divide="raise", invalid="raise", under="ignore"):
                 value = complex(function(*values))
         except (ArithmeticError, ValueError) as error:
-            raise ParameterError(field, f"{where} {what} has no finite value because {not_finite_because(error)}") from None
+            raise ParameterError(
+                field, f"{where} {what} has no finite value because {not_finite_because(error)}"
+            ) from None
         if value.imag != 0.0:
-            raise ParameterError(field, f"{where} {what} is not a real number ({value:.4g}): e.g. the square root of a negative number")
+            raise ParameterError(
+                field, f"{where} {what} is not a real number ({value:.4g}): e.g. the square root of a negative number"
+            )
         if not math.isfinite(value.real):
             raise ParameterError(field, f"{where} {what} is not finite ({value.real})")
 
 
-def check_kinetic_energy(system: SystemDescription, state: np.ndarray, parameters: np.ndarray, *, where: str, t_s: float = 0.0) -> None:
+def check_kinetic_energy(
+    system: SystemDescription, state: np.ndarray, parameters: np.ndarray, *, where: str, t_s: float = 0.0
+) -> None:
     """Raise ParameterError naming ``kinetic_energy`` if T is not positive definite in the rates at ``state`` (q, q̇):
     a mass matrix ∂²T/∂q̇² with a negative or zero eigenvalue
     (:func:`~app.physics.mechanics.mass_matrix.not_positive_definite`)."""
     n = len(system.coordinates)
-    kinetic = sympy.lambdify([TIME, system.q, system.qd, system.parameter_symbols], system.kinetic_energy, modules="numpy", cse=True)
+    kinetic = sympy.lambdify(
+        [TIME, system.q, system.qd, system.parameter_symbols], system.kinetic_energy, modules="numpy", cse=True
+    )
     matrix = mass_matrices(kinetic, np.array([float(t_s)]), state[:n, None], state[n : 2 * n, None], parameters)[0]
     _, why = not_positive_definite(matrix, [f"{c.name}d" for c in system.coordinates])
     if why:
-        raise ParameterError("kinetic_energy", f"the kinetic energy must be positive definite in the rates, and {where} it is not: {why}")
+        raise ParameterError(
+            "kinetic_energy", f"the kinetic energy must be positive definite in the rates, and {where} it is not: {why}"
+        )
 
 
 #: One bounded runner per process for typed derivations (the API's and the typed-Lagrangian scene's): two at once.
 runner = BoundedRunner(
-    max_jobs=2, timeout_s=DERIVE_TIMEOUT_S, memory_mb=DERIVE_MEMORY_MB, wait_s=2.0,
+    max_jobs=2,
+    timeout_s=DERIVE_TIMEOUT_S,
+    memory_mb=DERIVE_MEMORY_MB,
+    wait_s=2.0,
     preload=("app.physics.core.bounded", "numpy", "sympy", __name__),
 )
 
@@ -199,6 +248,8 @@ def derive_typed_bounded(request: Mapping[str, Any]) -> dict[str, Any]:
 
 def typed_derived(request: Mapping[str, Any]):
     """The typed system and its Lagrange derivation, derived in a bounded child if not cached yet."""
-    system = typed_system(request["coordinates"], request["kinetic_energy"], request["potential_energy"], request["parameters"])
+    system = typed_system(
+        request["coordinates"], request["kinetic_energy"], request["potential_energy"], request["parameters"]
+    )
     derive_typed_bounded(request)
     return system, derived(system, "lagrange")

@@ -114,6 +114,8 @@ class FixedStepIntegrator(Integrator):
         """
         steps = int(frames_done) * self.steps_per_frame
         return FramesOutcome(
-            frames_done=int(frames_done), steps=steps, rhs_evals=steps * self.spec.evals_per_step + evals_per_run,
+            frames_done=int(frames_done),
+            steps=steps,
+            rhs_evals=steps * self.spec.evals_per_step + evals_per_run,
             status=STATUS_NAMES[OK if frames_done == n_frames else NON_FINITE],
         )

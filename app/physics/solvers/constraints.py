@@ -77,7 +77,7 @@ def project_onto_constraints(constraint, y, p, n_positions, n_constraints):
         for k in range(n_positions):
             acc += G[i, k] * y[n_positions + k]
         normal_velocity[i] = acc
-    minimum_norm_correction(G, normal_velocity, y[n_positions:2 * n_positions])
+    minimum_norm_correction(G, normal_velocity, y[n_positions : 2 * n_positions])
 
 
 @register_jitable

@@ -22,7 +22,11 @@ CONTROL_NAMES = ("method", "steps_per_frame", "rtol", "integrator", "baumgarte_a
 
 
 def integration_parameters(
-    methods: tuple[str, ...], *, default_method: str, target: AccuracyTarget | None = None, auto_methods: tuple[str, ...] | None = None
+    methods: tuple[str, ...],
+    *,
+    default_method: str,
+    target: AccuracyTarget | None = None,
+    auto_methods: tuple[str, ...] | None = None,
 ) -> tuple[Parameter, ...]:
     """``method`` (with ``auto``), ``steps_per_frame`` (0 = automatic) and ``rtol``, described as the code chooses.
 
@@ -43,7 +47,9 @@ def integration_parameters(
         candidates = auto_methods or methods
         goal = f"the accuracy target of {target.format(target.error)} over the run ({target.measure})"
         automatic_method = (
-            f"{AUTO} = {candidates[0]}" if len(candidates) == 1 else f"{AUTO} = whichever of {', '.join(candidates)} meets {goal} at least cost"
+            f"{AUTO} = {candidates[0]}"
+            if len(candidates) == 1
+            else f"{AUTO} = whichever of {', '.join(candidates)} meets {goal} at least cost"
         )
         automatic_steps = (
             f"0 chooses the fewest steps (the loosest tolerance) that meet {goal}, measured by two short pilot runs "
@@ -51,15 +57,33 @@ def integration_parameters(
         )
     return (
         Parameter(
-            "method", "", AUTO, kind="choice", choices=(AUTO, *methods), label="integrator",
+            "method",
+            "",
+            AUTO,
+            kind="choice",
+            choices=(AUTO, *methods),
+            label="integrator",
             description=f"Integration method ({automatic_method}). {described}",
         ),
         Parameter(
-            "steps_per_frame", "", 0, 0, 4096, kind="int", step=1, label="steps per frame",
+            "steps_per_frame",
+            "",
+            0,
+            0,
+            4096,
+            kind="int",
+            step=1,
+            label="steps per frame",
             description=f"Fixed steps per displayed frame; {automatic_steps}",
         ),
         Parameter(
-            "rtol", "", 1e-8, 1e-12, 1e-3, scale="log", label="tolerance",
+            "rtol",
+            "",
+            1e-8,
+            1e-12,
+            1e-3,
+            scale="log",
+            label="tolerance",
             description=f"Relative tolerance of the adaptive method ({_adaptive_methods()} only)",
         ),
     )
@@ -78,6 +102,9 @@ def integrator_from_controls(
         method = default_method
     steps = controls.get("steps_per_frame", 0) or None
     return make_integrator(
-        method, steps_per_frame=steps, rtol=controls.get("rtol"),
-        fastest_rate_rad_s=fastest_rate_rad_s, frame_dt_s=frame_dt_s,
+        method,
+        steps_per_frame=steps,
+        rtol=controls.get("rtol"),
+        fastest_rate_rad_s=fastest_rate_rad_s,
+        frame_dt_s=frame_dt_s,
     )

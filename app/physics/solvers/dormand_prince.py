@@ -141,14 +141,57 @@ def _record_event(event_log, stats, t, index, state):
 
 @kernel(
     types.int64(
-        RHS_TYPE, PROJECT_TYPE, EVENTS_TYPE, RESET_TYPE, CONSTRAINT_TYPE, types.float64, VECTOR, VECTOR,
-        types.float64, types.float64, types.float64, types.float64, types.int64, VECTOR, MATRIX, MATRIX, VECTOR,
-        INDEX_VECTOR, INDEX_VECTOR, MATRIX, MATRIX, types.boolean, types.int64, types.int64,
+        RHS_TYPE,
+        PROJECT_TYPE,
+        EVENTS_TYPE,
+        RESET_TYPE,
+        CONSTRAINT_TYPE,
+        types.float64,
+        VECTOR,
+        VECTOR,
+        types.float64,
+        types.float64,
+        types.float64,
+        types.float64,
+        types.int64,
+        VECTOR,
+        MATRIX,
+        MATRIX,
+        VECTOR,
+        INDEX_VECTOR,
+        INDEX_VECTOR,
+        MATRIX,
+        MATRIX,
+        types.boolean,
+        types.int64,
+        types.int64,
     )
 )
 def dopri5_solve(
-    rhs, project, events, reset, constraint, t0, y, t_out, rtol, atol, h_init, h_max, max_steps, p, y_out, work, stats,
-    directions, actions, event_work, event_log, has_projection, n_positions, n_constraints,
+    rhs,
+    project,
+    events,
+    reset,
+    constraint,
+    t0,
+    y,
+    t_out,
+    rtol,
+    atol,
+    h_init,
+    h_max,
+    max_steps,
+    p,
+    y_out,
+    work,
+    stats,
+    directions,
+    actions,
+    event_work,
+    event_log,
+    has_projection,
+    n_positions,
+    n_constraints,
 ):
     """Integrate from ``t0`` to ``t_out[-1]``, writing ``y(t_out[j])`` into ``y_out[j]``.
 
@@ -282,9 +325,13 @@ def dopri5_solve(
             for i in range(m):
                 theta_cross[i] = 2.0
                 if _crosses(g_old[i], g_mid[i], directions[i]):
-                    theta_cross[i] = _locate_event(events, i, 0.0, 0.5, g_old[i], g_mid[i], t, y, K, h, p, scratch, g_probe)
+                    theta_cross[i] = _locate_event(
+                        events, i, 0.0, 0.5, g_old[i], g_mid[i], t, y, K, h, p, scratch, g_probe
+                    )
                 elif _crosses(g_mid[i], g_new[i], directions[i]):
-                    theta_cross[i] = _locate_event(events, i, 0.5, 1.0, g_mid[i], g_new[i], t, y, K, h, p, scratch, g_probe)
+                    theta_cross[i] = _locate_event(
+                        events, i, 0.5, 1.0, g_mid[i], g_new[i], t, y, K, h, p, scratch, g_probe
+                    )
                 if theta_cross[i] <= 1.0:
                     if actions[i] != EVENT_RECORD and theta_cross[i] < theta_event:
                         theta_event = theta_cross[i]
@@ -405,12 +452,28 @@ class DormandPrince(Integrator):
         constraints = system.constraints if system.constraints is not None and system.constraints.project else None
         event_log = np.empty((MAX_EVENT_RECORDS if event_set is not None else 0, 2 + n))
         status = dopri5_solve.get(backend)(
-            system.rhs.get(backend), project.get(backend), event_functions.get(backend), reset.get(backend),
+            system.rhs.get(backend),
+            project.get(backend),
+            event_functions.get(backend),
+            reset.get(backend),
             (constraints.function if constraints is not None else no_constraint).get(backend),
-            float(t0_s), y, np.ascontiguousarray(t_out, dtype=float), self.rtol, self.atol, 0.0,
-            event_set.max_step_s if event_set is not None else math.inf, self.max_steps,
-            system.parameters, y_out, dopri5_work(n), stats, directions, actions,
-            np.empty((5, directions.shape[0])), event_log, system.project is not None,
+            float(t0_s),
+            y,
+            np.ascontiguousarray(t_out, dtype=float),
+            self.rtol,
+            self.atol,
+            0.0,
+            event_set.max_step_s if event_set is not None else math.inf,
+            self.max_steps,
+            system.parameters,
+            y_out,
+            dopri5_work(n),
+            stats,
+            directions,
+            actions,
+            np.empty((5, directions.shape[0])),
+            event_log,
+            system.project is not None,
             constraints.n_positions if constraints is not None else 0,
             constraints.n_constraints if constraints is not None else 0,
         )

@@ -54,7 +54,9 @@ class ModelLimit:
 
     def __post_init__(self) -> None:
         if self.frames < 1 or self.status in ("", "ok"):
-            raise ValueError(f"a model limit keeps at least one frame and names a status other than ok (got {self.frames}, {self.status!r})")
+            raise ValueError(
+                f"a model limit keeps at least one frame and names a status other than ok (got {self.frames}, {self.status!r})"
+            )
 
 
 class IntegratedModel(Model):
@@ -82,7 +84,9 @@ class IntegratedModel(Model):
 
     @classmethod
     def controls(cls) -> tuple[Parameter, ...]:
-        return integration_parameters(cls.methods, default_method=cls.default_method, target=cls.accuracy_target, auto_methods=cls.auto_methods)
+        return integration_parameters(
+            cls.methods, default_method=cls.default_method, target=cls.accuracy_target, auto_methods=cls.auto_methods
+        )
 
     def integration_controls(self, params: Mapping[str, Any], controls: Mapping[str, Any]) -> Mapping[str, Any]:
         """The integrator's controls (``method``, ``steps_per_frame``, ``rtol``) in ``controls``: the step policy
@@ -108,12 +112,16 @@ class IntegratedModel(Model):
     def invariant_scales(self, params: Mapping[str, Any], state: np.ndarray) -> dict[str, float]:
         """Positive scale per invariant: drift is reported as |I(t) − I(0)| / scale."""
 
-    def energy_parts(self, params: Mapping[str, Any], states: np.ndarray, *, t_s: np.ndarray | None = None) -> EnergyParts | None:
+    def energy_parts(
+        self, params: Mapping[str, Any], states: np.ndarray, *, t_s: np.ndarray | None = None
+    ) -> EnergyParts | None:
         """The model's energies (J) along ``states`` (N, n) at ``t_s`` (N,; None: the energies do not depend on t);
         None for a model that states none."""
         return None
 
-    def energy_budget(self, params: Mapping[str, Any], states: np.ndarray, *, t_s: np.ndarray | None = None) -> dict[str, np.ndarray] | None:
+    def energy_budget(
+        self, params: Mapping[str, Any], states: np.ndarray, *, t_s: np.ndarray | None = None
+    ) -> dict[str, np.ndarray] | None:
         """Named energies (J, arrays (N,)) along ``states`` (N, n): ``translational_kinetic_J`` and
         ``rotational_kinetic_J`` (or ``kinetic_J``), ``potential_J``, ``total_J`` and ``dissipated_J`` (energy removed
         since t = 0, drive work counted; see :mod:`app.physics.core.energy`). None for a model without energies."""
@@ -152,7 +160,12 @@ class IntegratedModel(Model):
 
     def pilot_key(self, params: Mapping[str, Any]) -> Hashable:
         """Key under which the step choice's pilot is cached: the model and its parameter values."""
-        values = tuple(sorted((k, tuple(np.ravel(v).tolist()) if isinstance(v, (list, tuple, np.ndarray)) else v) for k, v in params.items()))
+        values = tuple(
+            sorted(
+                (k, tuple(np.ravel(v).tolist()) if isinstance(v, (list, tuple, np.ndarray)) else v)
+                for k, v in params.items()
+            )
+        )
         return (type(self).__module__, type(self).__qualname__, values)
 
     def describable(self, params: Mapping[str, Any], states: np.ndarray) -> np.ndarray:
@@ -192,7 +205,12 @@ class IntegratedModel(Model):
         return np.asarray(self.solution_error(params, states, reference), dtype=float)
 
     def simulate(
-        self, params: Mapping[str, Any], controls: Mapping[str, Any], *, t_end_s: float, frame_rate_hz: float,
+        self,
+        params: Mapping[str, Any],
+        controls: Mapping[str, Any],
+        *,
+        t_end_s: float,
+        frame_rate_hz: float,
         request_limits: bool = True,
     ) -> SimulationReport:
         """Integrate for ``t_end_s`` and sample at ``frame_rate_hz`` (t = 0 included).
@@ -205,17 +223,33 @@ class IntegratedModel(Model):
         Explicit steps over the bounds are refused, naming the limit.
         """
         if request_limits:
-            frame_times(t_end_s=t_end_s, frame_rate_hz=frame_rate_hz)  # span and rate checked before anything divides by them
-        run = _integrate(self, params, controls, t_end_s=t_end_s, frame_rate_hz=frame_rate_hz, request_limits=request_limits)
+            frame_times(
+                t_end_s=t_end_s, frame_rate_hz=frame_rate_hz
+            )  # span and rate checked before anything divides by them
+        run = _integrate(
+            self, params, controls, t_end_s=t_end_s, frame_rate_hz=frame_rate_hz, request_limits=request_limits
+        )
         if isinstance(run, SimulationReport):
             return run
         integrator, choice, result = run
         limit = self.model_limit(params, result.t_s, result.states)
-        if limit is not None and limit.frames > 1 and choice is not None and _automatic(controls) and limit.frames < len(result.t_s):
+        if (
+            limit is not None
+            and limit.frames > 1
+            and choice is not None
+            and _automatic(controls)
+            and limit.frames < len(result.t_s)
+        ):
             # The automatic step was chosen over the whole span, its pilots run through where the model broke (which can
             # look like chaos, or need a far smaller step): choose again over the span the model describes.
-            again = _integrate(self, params, controls, t_end_s=float(result.t_s[limit.frames - 1]), frame_rate_hz=frame_rate_hz,
-                               request_limits=request_limits)
+            again = _integrate(
+                self,
+                params,
+                controls,
+                t_end_s=float(result.t_s[limit.frames - 1]),
+                frame_rate_hz=frame_rate_hz,
+                request_limits=request_limits,
+            )
             if not isinstance(again, SimulationReport) and len(again[2].t_s) == limit.frames:
                 integrator, choice, result = again
                 limit = self.model_limit(params, result.t_s, result.states) or limit
@@ -227,8 +261,20 @@ class IntegratedModel(Model):
         if choice is not None and choice.status in (REDUCED_ACCURACY, TARGET_MISSED):
             note = f"{choice.note[0].upper()}{choice.note[1:]}."
             status, message = (choice.status, note) if status == "ok" else (status, f"{message} {note}")
-        return _report(self, params, result.t_s, result.states, choice=choice, method=result.method, description=result.description,
-                       steps=result.steps, rhs_evals=result.rhs_evals, cpu_s=result.cpu_s, status=status, message=message)
+        return _report(
+            self,
+            params,
+            result.t_s,
+            result.states,
+            choice=choice,
+            method=result.method,
+            description=result.description,
+            steps=result.steps,
+            rhs_evals=result.rhs_evals,
+            cpu_s=result.cpu_s,
+            status=status,
+            message=message,
+        )
 
 
 def check_request_bounds(integrator, *, t_end_s: float, frame_rate_hz: float) -> None:
@@ -256,7 +302,11 @@ def _integrate(model: IntegratedModel, params, controls, *, t_end_s: float, fram
     """``(integrator, choice, result)`` of the run over ``t_end_s``, its blow-up cut off; or the exact fallback's report."""
     frame_dt = 1.0 / frame_rate_hz
     integrator, choice = choose_integrator(
-        model, params, controls, frame_dt, horizon_s=t_end_s,
+        model,
+        params,
+        controls,
+        frame_dt,
+        horizon_s=t_end_s,
         max_fixed_work=MAX_FIXED_STEP_WORK if request_limits else None,
         max_adaptive_steps=MAX_ADAPTIVE_STEPS if request_limits else math.inf,
     )
@@ -272,11 +322,17 @@ def _integrate(model: IntegratedModel, params, controls, *, t_end_s: float, fram
     if not describable.all():  # blew up while staying finite (e.g. an overflowed norm zeroed the quaternion)
         frames = max(int(np.argmin(describable)), 1)
         t_stop = float(result.t_s[frames - 1])
-        result = result.truncated(frames, status="non_finite", message=failure_message("non_finite", t_stop, integrator, frame_dt, system=system))
+        result = result.truncated(
+            frames,
+            status="non_finite",
+            message=failure_message("non_finite", t_stop, integrator, frame_dt, system=system),
+        )
     return integrator, choice, result
 
 
-def _report(model: IntegratedModel, params, t_s: np.ndarray, states: np.ndarray, *, choice: StepChoice | None, **stats) -> SimulationReport:
+def _report(
+    model: IntegratedModel, params, t_s: np.ndarray, states: np.ndarray, *, choice: StepChoice | None, **stats
+) -> SimulationReport:
     """Series, invariants, drift and the accuracy of ``states`` (N, n) at ``t_s`` (N,)."""
     with np.errstate(over="ignore", invalid="ignore"):
         drift = model.relative_drift(params, states)
@@ -287,15 +343,23 @@ def _report(model: IntegratedModel, params, t_s: np.ndarray, states: np.ndarray,
         series[model.reference_error_series] = reference_error
     accuracy = choice.as_dict() if choice is not None else {}
     if reference_error is not None:
-        accuracy["max_reference_error"] = float(np.max(reference_error)) if np.all(np.isfinite(reference_error)) else None
+        accuracy["max_reference_error"] = (
+            float(np.max(reference_error)) if np.all(np.isfinite(reference_error)) else None
+        )
         accuracy["reference"] = model.reference_name
     return SimulationReport(
-        t_s=t_s, series=series, invariants=model.invariants(params, states), max_invariant_drift=max_drift,
-        accuracy=accuracy or None, **stats,
+        t_s=t_s,
+        series=series,
+        invariants=model.invariants(params, states),
+        max_invariant_drift=max_drift,
+        accuracy=accuracy or None,
+        **stats,
     )
 
 
-def _exact_report(model: IntegratedModel, params, *, t_end_s: float, frame_rate_hz: float, choice: StepChoice) -> SimulationReport | None:
+def _exact_report(
+    model: IntegratedModel, params, *, t_end_s: float, frame_rate_hz: float, choice: StepChoice
+) -> SimulationReport | None:
     """The model's exact solution at the frame times, when it has one (else None)."""
     start = time.process_time()
     try:  # (a ParameterError is a ValueError: a span beyond the request limits has no exact answer here either)
@@ -312,7 +376,26 @@ def _exact_report(model: IntegratedModel, params, *, t_end_s: float, frame_rate_
         f"so the exact solution answers instead: {model.reference_name}."
     )
     exact_choice = StepChoice(
-        "exact", None, None, choice.target, choice.horizon_s, choice.frame_dt_s, 0.0, 0.0,
+        "exact",
+        None,
+        None,
+        choice.target,
+        choice.horizon_s,
+        choice.frame_dt_s,
+        0.0,
+        0.0,
     )
-    return _report(model, params, t_s, states, choice=exact_choice, method="exact", description=model.reference_name,
-                   steps=0, rhs_evals=0, cpu_s=cpu_s, status=EXACT_FALLBACK, message=message)
+    return _report(
+        model,
+        params,
+        t_s,
+        states,
+        choice=exact_choice,
+        method="exact",
+        description=model.reference_name,
+        steps=0,
+        rhs_evals=0,
+        cpu_s=cpu_s,
+        status=EXACT_FALLBACK,
+        message=message,
+    )

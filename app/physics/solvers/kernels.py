@@ -15,8 +15,9 @@ each integrator is compiled once and cached, whatever the model.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any, Callable, Literal
+from typing import Any, Literal
 
 import numba
 from numba import types
@@ -57,8 +58,14 @@ MATRIX = _matrix
 INDEX_VECTOR = types.int64[::1]
 
 _MODEL_SIGNATURES = (
-    RHS_SIGNATURE, PROJECT_SIGNATURE, TORQUE_SIGNATURE, EVENTS_SIGNATURE, RESET_SIGNATURE, CONSTRAINT_SIGNATURE,
-    DYNAMICS_SIGNATURE, MULTIPLIER_CONSTRAINTS_SIGNATURE,
+    RHS_SIGNATURE,
+    PROJECT_SIGNATURE,
+    TORQUE_SIGNATURE,
+    EVENTS_SIGNATURE,
+    RESET_SIGNATURE,
+    CONSTRAINT_SIGNATURE,
+    DYNAMICS_SIGNATURE,
+    MULTIPLIER_CONSTRAINTS_SIGNATURE,
 )
 
 

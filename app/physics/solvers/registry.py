@@ -21,8 +21,16 @@ METHODS: dict[str, MethodSpec] = {
 #: Largest h·ω_max each fixed-step method is allowed by the automatic step choice (from the specs).
 STEP_RATIO: dict[str, float] = {name: spec.step_ratio for name, spec in METHODS.items() if spec.step_ratio is not None}
 
-__all__ = ["MAX_STEPS_PER_FRAME", "METHODS", "STEP_RATIO", "MethodSpec", "Supports", "automatic_steps_per_frame",
-           "make_integrator", "method_spec"]
+__all__ = [
+    "MAX_STEPS_PER_FRAME",
+    "METHODS",
+    "STEP_RATIO",
+    "MethodSpec",
+    "Supports",
+    "automatic_steps_per_frame",
+    "make_integrator",
+    "method_spec",
+]
 
 
 def method_spec(method: str) -> MethodSpec:

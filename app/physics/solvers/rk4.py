@@ -29,11 +29,24 @@ from app.physics.solvers.spec import MethodSpec, Supports
 
 @kernel(
     types.int64(
-        RHS_TYPE, PROJECT_TYPE, CONSTRAINT_TYPE, types.float64, VECTOR, types.float64, types.int64, types.int64,
-        VECTOR, MATRIX, MATRIX, types.int64, types.int64,
+        RHS_TYPE,
+        PROJECT_TYPE,
+        CONSTRAINT_TYPE,
+        types.float64,
+        VECTOR,
+        types.float64,
+        types.int64,
+        types.int64,
+        VECTOR,
+        MATRIX,
+        MATRIX,
+        types.int64,
+        types.int64,
     )
 )
-def rk4_frames(rhs, project, constraint, t0, y, h, steps_per_frame, n_frames, p, y_frames, work, n_positions, n_constraints):
+def rk4_frames(
+    rhs, project, constraint, t0, y, h, steps_per_frame, n_frames, p, y_frames, work, n_positions, n_constraints
+):
     """Advance ``y`` (in place) ``n_frames`` frames of ``steps_per_frame`` RK4 steps of ``h`` s.
 
     Writes the state after frame ``i`` to ``y_frames[i]`` (shape (n_frames, n)).
@@ -99,9 +112,19 @@ class RK4(FixedStepIntegrator):
         projected = constraints is not None and constraints.project
         h = frame_dt_s / self.steps_per_frame
         done = rk4_frames.get(backend)(
-            system.rhs.get(backend), project.get(backend), (constraints.function if projected else no_constraint).get(backend),
-            float(t0_s), y, h, self.steps_per_frame, int(n_frames), system.parameters, y_frames, rk4_work(y.shape[0]),
-            constraints.n_positions if projected else 0, constraints.n_constraints if projected else 0,
+            system.rhs.get(backend),
+            project.get(backend),
+            (constraints.function if projected else no_constraint).get(backend),
+            float(t0_s),
+            y,
+            h,
+            self.steps_per_frame,
+            int(n_frames),
+            system.parameters,
+            y_frames,
+            rk4_work(y.shape[0]),
+            constraints.n_positions if projected else 0,
+            constraints.n_constraints if projected else 0,
         )
         return self.outcome(done, n_frames)
 

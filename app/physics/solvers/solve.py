@@ -35,7 +35,7 @@ def failure_message(status: str, t_s: float, integrator: Integrator, frame_dt_s:
 
 
 def remedy(system: OdeSystem) -> str:
-    """"Use more steps per frame", adding a geometric method only where one applies to ``system`` (a rigid body
+    """ "Use more steps per frame", adding a geometric method only where one applies to ``system`` (a rigid body
     about a fixed point, :attr:`OdeSystem.torque`): a model without one is never told to use it."""
     geometric = [name for name, spec in METHODS.items() if spec.needs_torque]
     if system.torque is None or not geometric:
@@ -185,8 +185,10 @@ class LiveRun:
             done = int(np.argmin(finite))
         self._ready, self._next = done, 0
         self._frame_dt_s = frame_dt_s
-        self._pending_status = "ok" if done == batch and outcome.status == "ok" else (
-            outcome.status if outcome.status != "ok" else "non_finite"
+        self._pending_status = (
+            "ok"
+            if done == batch and outcome.status == "ok"
+            else (outcome.status if outcome.status != "ok" else "non_finite")
         )
         self._pending_message = ""
         if self.limit is not None and done > 0:
@@ -217,5 +219,7 @@ class LiveRun:
 
     def _fail(self, frame_dt_s: float) -> bool:
         self.status = self._pending_status if self._pending_status != "ok" else "non_finite"
-        self.message = self._pending_message or failure_message(self.status, self.t_s, self.integrator, frame_dt_s, system=self.system)
+        self.message = self._pending_message or failure_message(
+            self.status, self.t_s, self.integrator, frame_dt_s, system=self.system
+        )
         return False

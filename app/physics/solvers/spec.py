@@ -9,8 +9,9 @@ bound on work, the benchmark, the convergence tests) reads it here.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Callable
+from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
     from app.physics.solvers.base import Integrator
@@ -23,7 +24,9 @@ MAX_STEPS_PER_FRAME = 4096
 def steps_for_ratio(step_ratio: float, fastest_rate_rad_s: float, frame_dt_s: float) -> int:
     """Fewest steps per frame with ``h · fastest_rate ≤ step_ratio`` (1 … :data:`MAX_STEPS_PER_FRAME`)."""
     if not (math.isfinite(fastest_rate_rad_s) and fastest_rate_rad_s >= 0.0):
-        raise ValueError(f"the fastest rate must be a finite number ≥ 0 rad/s to choose a step (got {fastest_rate_rad_s!r})")
+        raise ValueError(
+            f"the fastest rate must be a finite number ≥ 0 rad/s to choose a step (got {fastest_rate_rad_s!r})"
+        )
     needed = math.ceil(fastest_rate_rad_s * frame_dt_s / step_ratio - 1e-9)
     return int(min(max(needed, 1), MAX_STEPS_PER_FRAME))
 
@@ -81,8 +84,12 @@ class MethodSpec:
         return steps_for_ratio(self.step_ratio, fastest_rate_rad_s, frame_dt_s)
 
     def build(
-        self, *, steps_per_frame: int | None = None, rtol: float | None = None,
-        fastest_rate_rad_s: float = 0.0, frame_dt_s: float = 1 / 60,
+        self,
+        *,
+        steps_per_frame: int | None = None,
+        rtol: float | None = None,
+        fastest_rate_rad_s: float = 0.0,
+        frame_dt_s: float = 1 / 60,
     ) -> Integrator:
         """The integrator; ``steps_per_frame=None`` picks it from the fastest rate, ``rtol=None`` means 1e-8."""
         if self.adaptive:
@@ -99,7 +106,9 @@ class MethodSpec:
                 "choose rk4 or dopri5 for this model"
             )
         if system.events is not None and not self.supports.events:
-            raise ValueError(f"method {self.name} does not handle events; the system has {system.events.count} (use dopri5)")
+            raise ValueError(
+                f"method {self.name} does not handle events; the system has {system.events.count} (use dopri5)"
+            )
         if system.events is not None and system.events.has_resets and not self.supports.reset_maps:
             raise ValueError(f"method {self.name} does not apply reset maps at events (use dopri5)")
         if system.constraints is not None and system.constraints.project and not self.supports.constraints:

@@ -59,13 +59,24 @@ def symmetric_composition(leading: tuple[float, ...]) -> np.ndarray:
 #: constants for raising the orders of unconventional schemes for ordinary differential equations",
 #: Math. Comp. 66 (1997) 1089–1099; quoted in Hairer, Lubich & Wanner, *Geometric Numerical
 #: Integration*, 2nd ed. (2006), §V.3.2, p. 158). The middle weight is 1 − 2 Σ γi = 0.798543990934830.
-_KAHAN_LI_6 = (0.39216144400731413927925056, 0.33259913678935943859974864, -0.70624617255763935980996482,
-               0.08221359629355080023149045)
+_KAHAN_LI_6 = (
+    0.39216144400731413927925056,
+    0.33259913678935943859974864,
+    -0.70624617255763935980996482,
+    0.08221359629355080023149045,
+)
 #: Kahan & Li's symmetric 17-stage order-8 composition "s17odr8a" (same sources, HLW p. 158);
 #: middle weight 1 − 2 Σ γi = −0.605508533830035.
-_KAHAN_LI_8 = (0.13020248308889008087881763, 0.56116298177510838456196441, -0.38947496264484728640807860,
-               0.15884190655515560089621075, -0.39590389413323757733623154, 0.18453964097831570709183254,
-               0.25837438768632204729397911, 0.29501172360931029887096624)
+_KAHAN_LI_8 = (
+    0.13020248308889008087881763,
+    0.56116298177510838456196441,
+    -0.38947496264484728640807860,
+    0.15884190655515560089621075,
+    -0.39590389413323757733623154,
+    0.18453964097831570709183254,
+    0.25837438768632204729397911,
+    0.29501172360931029887096624,
+)
 
 #: Sub-step weights of each composition (fractions of h for one Strang step each), keyed by order.
 COMPOSITIONS = {
@@ -237,9 +248,23 @@ def _splitting_frames(torque, t0, y, h, steps_per_frame, n_frames, p, weights, y
 #: :func:`~app.physics.solvers.kernels.kernel` otherwise.
 splitting_frames = Kernel(
     compiled=numba.njit(
-        types.int64(TORQUE_TYPE, types.float64, VECTOR, types.float64, types.int64, types.int64, VECTOR, VECTOR, MATRIX,
-                    VECTOR, MATRIX),
-        cache=True, nogil=True, error_model="numpy", _nrt=False,
+        types.int64(
+            TORQUE_TYPE,
+            types.float64,
+            VECTOR,
+            types.float64,
+            types.int64,
+            types.int64,
+            VECTOR,
+            VECTOR,
+            MATRIX,
+            VECTOR,
+            MATRIX,
+        ),
+        cache=True,
+        nogil=True,
+        error_model="numpy",
+        _nrt=False,
     )(_splitting_frames),
     python=_splitting_frames,
 )
@@ -258,8 +283,17 @@ class RigidBodySplitting(FixedStepIntegrator):
     def _run_frames(self, system, t0_s, y, frame_dt_s, n_frames, y_frames, *, backend="numba"):
         h = frame_dt_s / self.steps_per_frame
         done = splitting_frames.get(backend)(
-            system.torque.get(backend), float(t0_s), y, h, self.steps_per_frame, int(n_frames),
-            system.parameters, self.weights, y_frames, np.empty(10), np.empty((self.weights.shape[0], 3)),
+            system.torque.get(backend),
+            float(t0_s),
+            y,
+            h,
+            self.steps_per_frame,
+            int(n_frames),
+            system.parameters,
+            self.weights,
+            y_frames,
+            np.empty(10),
+            np.empty((self.weights.shape[0], 3)),
         )
         # The torque at the start of the run comes on top of one per Strang stage.
         return self.outcome(done, n_frames, evals_per_run=1)
@@ -292,19 +326,27 @@ def _splitting_spec(order: int, *, short_label: str, description: str, step_rati
 #: most 8e-10 over 60 s on the default, fast (150 and 1000 rad/s) and slow heavy tops (measured).
 SPLITTING_SPECS = {
     8: _splitting_spec(
-        8, short_label="Splitting 8, Kahan–Li", step_ratio=1.0,
+        8,
+        short_label="Splitting 8, Kahan–Li",
+        step_ratio=1.0,
         description="Splitting, order 8 (Kahan–Li, 17 Strang stages): the cheapest at tight tolerances (geometric)",
     ),
     6: _splitting_spec(
-        6, short_label="Splitting 6, Kahan–Li", step_ratio=1.0,
+        6,
+        short_label="Splitting 6, Kahan–Li",
+        step_ratio=1.0,
         description="Splitting, order 6 (Kahan–Li, 9 Strang stages): exact free flow + gravity kicks (geometric)",
     ),
     4: _splitting_spec(
-        4, short_label="Splitting 4, exact free flow", step_ratio=0.25,
+        4,
+        short_label="Splitting 4, exact free flow",
+        step_ratio=0.25,
         description="Splitting, order 4: exact free flow + gravity kicks (geometric, bounded energy error)",
     ),
     2: _splitting_spec(
-        2, short_label="Splitting 2, Strang", step_ratio=0.02,
+        2,
+        short_label="Splitting 2, Strang",
+        step_ratio=0.02,
         description="Splitting, order 2 (Strang): cheap, geometric, less accurate",
     ),
 }

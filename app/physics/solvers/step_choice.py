@@ -105,6 +105,7 @@ PILOT_FAILED = "pilot_failed"
 class PilotPending(Exception):
     """A pilot that is not cached was needed by a caller that asked not to run one (``run_pilots=False``)."""
 
+
 #: Error of ``states`` (N, n) against ``reference`` (N, n), per frame (N,), in the target's unit.
 ErrorMeasure = Callable[[np.ndarray, np.ndarray], np.ndarray]
 
@@ -240,11 +241,29 @@ class StepChoice:
         return self.estimated_error <= self.target.error
 
     @classmethod
-    def pending(cls, method: str, steps_per_frame: int | None, rtol: float | None, target: AccuracyTarget, *,
-                horizon_s: float, frame_dt_s: float) -> StepChoice:
+    def pending(
+        cls,
+        method: str,
+        steps_per_frame: int | None,
+        rtol: float | None,
+        target: AccuracyTarget,
+        *,
+        horizon_s: float,
+        frame_dt_s: float,
+    ) -> StepChoice:
         """A setting running while its pilot is measured elsewhere (status :data:`ESTIMATING`, error unknown)."""
-        return cls(method, steps_per_frame, rtol, target, horizon_s, frame_dt_s, math.nan, math.nan, ESTIMATING,
-                   "the fixed step rule runs until the pilot has measured the error")
+        return cls(
+            method,
+            steps_per_frame,
+            rtol,
+            target,
+            horizon_s,
+            frame_dt_s,
+            math.nan,
+            math.nan,
+            ESTIMATING,
+            "the fixed step rule runs until the pilot has measured the error",
+        )
 
     def setting_text(self) -> str:
         if self.steps_per_frame is None and self.rtol is None:
@@ -255,7 +274,9 @@ class StepChoice:
 
     def text(self) -> str:
         """One line for the live panel: "target 1e-06 rad over 60 s · estimated 3e-07 rad · 12 steps/frame"."""
-        estimate = "estimating…" if self.status == ESTIMATING else f"estimated {self.target.format(self.estimated_error)}"
+        estimate = (
+            "estimating…" if self.status == ESTIMATING else f"estimated {self.target.format(self.estimated_error)}"
+        )
         return f"target {self.target.format(self.target.error)} over {self.horizon_s:g} s · {estimate} · {self.setting_text()}"
 
     def as_dict(self) -> dict:
@@ -310,8 +331,16 @@ def _growth_exponent(errors: np.ndarray, *, geometric: bool) -> float:
     return float(min(max(math.log(last / half) / math.log(2.0), 2.0), 4.0))
 
 
-def _run(system: OdeSystem, spec: MethodSpec, y0: np.ndarray, frames: int, frame_dt_s: float, *,
-         max_steps: int = PILOT_ADAPTIVE_STEPS, **setting):
+def _run(
+    system: OdeSystem,
+    spec: MethodSpec,
+    y0: np.ndarray,
+    frames: int,
+    frame_dt_s: float,
+    *,
+    max_steps: int = PILOT_ADAPTIVE_STEPS,
+    **setting,
+):
     """One pilot run: (result, CPU s, usable). Usable: finite, and complete, or ended at a terminal event (the
     model's own end of the motion), or (adaptive) out of its ``max_steps`` after :data:`PILOT_MIN_FRAMES` frames."""
     integrator = spec.factory(**setting)
@@ -327,7 +356,14 @@ def _run(system: OdeSystem, spec: MethodSpec, y0: np.ndarray, frames: int, frame
 
 
 def _affordable_frames(
-    system: OdeSystem, spec: MethodSpec, y0: np.ndarray, frames: int, frame_dt_s: float, *, runs_cost: float, cpu_budget_s: float,
+    system: OdeSystem,
+    spec: MethodSpec,
+    y0: np.ndarray,
+    frames: int,
+    frame_dt_s: float,
+    *,
+    runs_cost: float,
+    cpu_budget_s: float,
     **setting,
 ) -> tuple[int, float]:
     """(frames ≤ ``frames`` the pilot runs can afford within ``cpu_budget_s``, CPU s of the calibration measuring that).
@@ -355,23 +391,41 @@ def _measured_growth(errors: np.ndarray, frame_dt_s: float, spec: MethodSpec, *r
     curve_t, curve_error, rate = _error_curve(errors, frame_dt_s)
     ended = all(run.status == "event" for run in runs)
     return dict(
-        span_s=max(len(errors) - 1, 1) * frame_dt_s, error_pilot=float(errors.max()),
+        span_s=max(len(errors) - 1, 1) * frame_dt_s,
+        error_pilot=float(errors.max()),
         growth_exponent=0.0 if ended else _growth_exponent(errors, geometric=spec.geometric),
-        curve_t_s=curve_t, curve_error=curve_error, chaotic_rate_1_s=0.0 if ended else rate,
+        curve_t_s=curve_t,
+        curve_error=curve_error,
+        chaotic_rate_1_s=0.0 if ended else rate,
     )
 
 
 def pilot_fixed(
-    system: OdeSystem, y0: np.ndarray, spec: MethodSpec, steps_per_frame: int, frame_dt_s: float, error: ErrorMeasure,
-    *, span_s: float = PILOT_SPAN_S, cpu_budget_s: float = PILOT_CPU_S,
+    system: OdeSystem,
+    y0: np.ndarray,
+    spec: MethodSpec,
+    steps_per_frame: int,
+    frame_dt_s: float,
+    error: ErrorMeasure,
+    *,
+    span_s: float = PILOT_SPAN_S,
+    cpu_budget_s: float = PILOT_CPU_S,
 ) -> ErrorModel | None:
     """Richardson pilot of a fixed-step method at ``steps_per_frame`` over ``span_s`` (bounded in work and in CPU
     time; None: a run did not finish)."""
     # PILOT_WORK bounds the span beyond PILOT_SPAN_S; up to that (or the horizon) only the CPU budget does.
-    wanted = max(_pilot_frames(spec, steps_per_frame, frame_dt_s, span_s), int(round(min(span_s, PILOT_SPAN_S) / frame_dt_s)))
+    wanted = max(
+        _pilot_frames(spec, steps_per_frame, frame_dt_s, span_s), int(round(min(span_s, PILOT_SPAN_S) / frame_dt_s))
+    )
     frames, calibration_cpu = _affordable_frames(
-        system, spec, y0, wanted, frame_dt_s, runs_cost=3.0,
-        cpu_budget_s=cpu_budget_s, steps_per_frame=steps_per_frame,
+        system,
+        spec,
+        y0,
+        wanted,
+        frame_dt_s,
+        runs_cost=3.0,
+        cpu_budget_s=cpu_budget_s,
+        steps_per_frame=steps_per_frame,
     )
     coarse, cpu_coarse, ok_coarse = _run(system, spec, y0, frames, frame_dt_s, steps_per_frame=steps_per_frame)
     fine, cpu_fine, ok_fine = _run(system, spec, y0, frames, frame_dt_s, steps_per_frame=2 * steps_per_frame)
@@ -381,15 +435,27 @@ def pilot_fixed(
     if not np.all(np.isfinite(errors)):
         return None
     return ErrorModel(
-        method=spec.name, order=spec.order, adaptive=False, h_pilot_s=frame_dt_s / steps_per_frame, rtol_pilot=0.0,
-        cpu_per_step_s=cpu_fine / max(fine.steps, 1), pilot_cpu_s=calibration_cpu + cpu_coarse + cpu_fine,
+        method=spec.name,
+        order=spec.order,
+        adaptive=False,
+        h_pilot_s=frame_dt_s / steps_per_frame,
+        rtol_pilot=0.0,
+        cpu_per_step_s=cpu_fine / max(fine.steps, 1),
+        pilot_cpu_s=calibration_cpu + cpu_coarse + cpu_fine,
         **_measured_growth(errors, frame_dt_s, spec, coarse, fine),
     )
 
 
 def pilot_adaptive(
-    system: OdeSystem, y0: np.ndarray, spec: MethodSpec, frame_dt_s: float, error: ErrorMeasure, *,
-    span_s: float = PILOT_SPAN_S, rtol: float = PILOT_RTOL, cpu_budget_s: float = PILOT_CPU_S,
+    system: OdeSystem,
+    y0: np.ndarray,
+    spec: MethodSpec,
+    frame_dt_s: float,
+    error: ErrorMeasure,
+    *,
+    span_s: float = PILOT_SPAN_S,
+    rtol: float = PILOT_RTOL,
+    cpu_budget_s: float = PILOT_CPU_S,
 ) -> ErrorModel | None:
     """Pilot of an adaptive method over ``span_s``: the run at ``rtol`` against one 10³ times tighter
     (at most down to the tightest tolerance offered, the difference then corrected as Richardson's is).
@@ -404,9 +470,16 @@ def pilot_adaptive(
     cpu_per_step = calibration_cpu / max(calibration.steps, 1)
     affordable = cpu_budget_s / max(cpu_per_step, 1e-9)
     ratio = (rtol / tighter) ** (1.0 / (spec.order + 1))
-    loose, cpu, ok_loose = _run(system, spec, y0, frames, frame_dt_s, rtol=rtol, max_steps=min(PILOT_ADAPTIVE_STEPS, affordable / (1.0 + ratio)))
+    loose, cpu, ok_loose = _run(
+        system, spec, y0, frames, frame_dt_s, rtol=rtol, max_steps=min(PILOT_ADAPTIVE_STEPS, affordable / (1.0 + ratio))
+    )
     tight, cpu_tight, ok_tight = _run(
-        system, spec, y0, len(loose.t_s) - 1 if loose.status == "too_many_steps" else frames, frame_dt_s, rtol=tighter,
+        system,
+        spec,
+        y0,
+        len(loose.t_s) - 1 if loose.status == "too_many_steps" else frames,
+        frame_dt_s,
+        rtol=tighter,
         max_steps=min(PILOT_ADAPTIVE_STEPS, affordable * ratio / (1.0 + ratio)),
     )
     if not (ok_loose and ok_tight and min(len(loose.t_s), len(tight.t_s)) >= 2):
@@ -416,9 +489,15 @@ def pilot_adaptive(
         return None
     growth = _measured_growth(errors, frame_dt_s, spec, loose, tight)
     return ErrorModel(
-        method=spec.name, order=spec.order, adaptive=True, h_pilot_s=0.0, rtol_pilot=rtol,
-        cpu_per_step_s=cpu / max(loose.steps, 1), steps_per_s_pilot=loose.steps / ((len(loose.t_s) - 1) * frame_dt_s),
-        pilot_cpu_s=calibration_cpu + cpu + cpu_tight, **growth,
+        method=spec.name,
+        order=spec.order,
+        adaptive=True,
+        h_pilot_s=0.0,
+        rtol_pilot=rtol,
+        cpu_per_step_s=cpu / max(loose.steps, 1),
+        steps_per_s_pilot=loose.steps / ((len(loose.t_s) - 1) * frame_dt_s),
+        pilot_cpu_s=calibration_cpu + cpu + cpu_tight,
+        **growth,
     )
 
 
@@ -435,8 +514,15 @@ def _fixed_steps_needed(model: ErrorModel, goal: float, horizon_s: float, frame_
 
 
 def _fixed_error_model(
-    system: OdeSystem, y0: np.ndarray, spec: MethodSpec, *, target: AccuracyTarget, horizon_s: float, start_steps: int,
-    frame_dt_s: float, error: ErrorMeasure,
+    system: OdeSystem,
+    y0: np.ndarray,
+    spec: MethodSpec,
+    *,
+    target: AccuracyTarget,
+    horizon_s: float,
+    start_steps: int,
+    frame_dt_s: float,
+    error: ErrorMeasure,
 ) -> ErrorModel | None:
     """The error model from the pilot whose step is closest to what the target needs (re-piloted when shrinking steps)."""
     n = max(1, min(start_steps, MAX_STEPS_PER_FRAME))
@@ -463,7 +549,13 @@ def _fixed_error_model(
 
 
 def _adaptive_error_model(
-    system: OdeSystem, y0: np.ndarray, spec: MethodSpec, *, target: AccuracyTarget, horizon_s: float, frame_dt_s: float,
+    system: OdeSystem,
+    y0: np.ndarray,
+    spec: MethodSpec,
+    *,
+    target: AccuracyTarget,
+    horizon_s: float,
+    frame_dt_s: float,
     error: ErrorMeasure,
 ) -> ErrorModel | None:
     """The error model from the pilot at the tolerance closest to what the target needs (re-piloted there).
@@ -477,7 +569,9 @@ def _adaptive_error_model(
     for _ in range(MAX_PILOTS):
         if spent >= PILOT_CPU_S:
             return trusted
-        model = pilot_adaptive(system, y0, spec, frame_dt_s, error, span_s=horizon_s, rtol=rtol, cpu_budget_s=PILOT_CPU_S - spent)
+        model = pilot_adaptive(
+            system, y0, spec, frame_dt_s, error, span_s=horizon_s, rtol=rtol, cpu_budget_s=PILOT_CPU_S - spent
+        )
         if model is None:
             return trusted
         trusted = model
@@ -487,7 +581,9 @@ def _adaptive_error_model(
             return model
         needed = rtol * (SAFETY * target.error / base) ** ((spec.order + 1) / spec.order)
         needed = min(max(needed, RTOL_RANGE[0]), RTOL_RANGE[1])
-        if abs(math.log10(needed / rtol)) <= 1.0 or (needed > rtol and base <= SAFETY * target.error and rtol >= RTOL_RANGE[1]):
+        if abs(math.log10(needed / rtol)) <= 1.0 or (
+            needed > rtol and base <= SAFETY * target.error and rtol >= RTOL_RANGE[1]
+        ):
             return model
         rtol = needed
     return trusted
@@ -504,7 +600,9 @@ class _PilotCache:
         #: Pilots run, by the name of the thread that ran them (a live scene's must never be the frame loop's).
         self.pilots_by_thread: Counter[str] = Counter()
 
-    def get(self, key: Hashable, compute: Callable[[], ErrorModel | None], *, run_pilot: bool = True) -> ErrorModel | None:
+    def get(
+        self, key: Hashable, compute: Callable[[], ErrorModel | None], *, run_pilot: bool = True
+    ) -> ErrorModel | None:
         """The cached value of ``key``, else ``compute()`` cached (``run_pilot=False``: :class:`PilotPending` instead)."""
         with self._lock:
             if key in self._items:
@@ -532,8 +630,17 @@ PILOT_CACHE = _PilotCache()
 
 
 def error_model(
-    system: OdeSystem, y0: np.ndarray, spec: MethodSpec, *, target: AccuracyTarget, start_steps: int, frame_dt_s: float,
-    error: ErrorMeasure, cache_key: Hashable | None = None, run_pilot: bool = True, horizon_s: float | None = None,
+    system: OdeSystem,
+    y0: np.ndarray,
+    spec: MethodSpec,
+    *,
+    target: AccuracyTarget,
+    start_steps: int,
+    frame_dt_s: float,
+    error: ErrorMeasure,
+    cache_key: Hashable | None = None,
+    run_pilot: bool = True,
+    horizon_s: float | None = None,
 ) -> ErrorModel | None:
     """The method's measured error model for this system over ``horizon_s`` (default: the target's), cached under
     ``cache_key`` when given.
@@ -544,9 +651,18 @@ def error_model(
 
     def compute() -> ErrorModel | None:
         if spec.adaptive:
-            return _adaptive_error_model(system, y0, spec, target=target, horizon_s=horizon, frame_dt_s=frame_dt_s, error=error)
+            return _adaptive_error_model(
+                system, y0, spec, target=target, horizon_s=horizon, frame_dt_s=frame_dt_s, error=error
+            )
         return _fixed_error_model(
-            system, y0, spec, target=target, horizon_s=horizon, start_steps=start_steps, frame_dt_s=frame_dt_s, error=error
+            system,
+            y0,
+            spec,
+            target=target,
+            horizon_s=horizon,
+            start_steps=start_steps,
+            frame_dt_s=frame_dt_s,
+            error=error,
         )
 
     if cache_key is None:
@@ -557,8 +673,14 @@ def error_model(
 
 
 def choice_from_model(
-    model: ErrorModel, target: AccuracyTarget, *, horizon_s: float, frame_dt_s: float,
-    max_steps_per_frame: int = MAX_STEPS_PER_FRAME, max_adaptive_steps: float = math.inf, limit_text: str = "",
+    model: ErrorModel,
+    target: AccuracyTarget,
+    *,
+    horizon_s: float,
+    frame_dt_s: float,
+    max_steps_per_frame: int = MAX_STEPS_PER_FRAME,
+    max_adaptive_steps: float = math.inf,
+    limit_text: str = "",
     max_frame_cpu_s: float = math.inf,
 ) -> StepChoice:
     """The cheapest setting meeting ``target`` over ``horizon_s``, or the most accurate the limits allow (stated).
@@ -569,8 +691,12 @@ def choice_from_model(
     stated over its predictability horizon instead (the choice's ``horizon_s``, the reason in its note): the
     part of the pilot's error curve measured before the runs parted, never an extrapolation of the exponential.
     """
-    limits = dict(max_steps_per_frame=max_steps_per_frame, max_adaptive_steps=max_adaptive_steps, limit_text=limit_text,
-                  max_frame_cpu_s=max_frame_cpu_s)
+    limits = dict(
+        max_steps_per_frame=max_steps_per_frame,
+        max_adaptive_steps=max_adaptive_steps,
+        limit_text=limit_text,
+        max_frame_cpu_s=max_frame_cpu_s,
+    )
     trusted_s = _extrapolation_limit_s(model)
     if horizon_s > trusted_s:
         stated = min(_two_figures_down(trusted_s), trusted_s)
@@ -594,8 +720,18 @@ def choice_from_model(
                 f"motion, or one that keeps speeding up), so the target is stated over {predictable:g} s, the predictability "
                 f"horizon at these parameters, not over the {horizon_s:g} s asked for"
             )
-            return StepChoice(model.method, steps, rtol, target, predictable, frame_dt_s,
-                              model.pilot_error_over(predictable) * factor, cost, REDUCED_ACCURACY, note)
+            return StepChoice(
+                model.method,
+                steps,
+                rtol,
+                target,
+                predictable,
+                frame_dt_s,
+                model.pilot_error_over(predictable) * factor,
+                cost,
+                REDUCED_ACCURACY,
+                note,
+            )
     note = f"accuracy lowered to ~{target.format(estimated)} with {setting} to stay within {limit}"
     return StepChoice(model.method, steps, rtol, target, horizon_s, frame_dt_s, estimated, cost, REDUCED_ACCURACY, note)
 
@@ -615,8 +751,15 @@ def _extrapolation_limit_s(model: ErrorModel) -> float:
 
 
 def _setting(
-    model: ErrorModel, target: AccuracyTarget, horizon_s: float, frame_dt_s: float, *,
-    max_steps_per_frame: int, max_adaptive_steps: float, limit_text: str, max_frame_cpu_s: float,
+    model: ErrorModel,
+    target: AccuracyTarget,
+    horizon_s: float,
+    frame_dt_s: float,
+    *,
+    max_steps_per_frame: int,
+    max_adaptive_steps: float,
+    limit_text: str,
+    max_frame_cpu_s: float,
 ) -> tuple[int | None, float | None, float, float, str, str]:
     """(steps/frame, rtol, error factor on the pilot's, cost over ``horizon_s`` (s), the setting and the limit in words)
     of the cheapest setting meeting half the target over ``horizon_s``, capped by the limits."""
@@ -629,12 +772,16 @@ def _setting(
         rtol = float(f"{rtol:.1g}")  # a tolerance a student can read (rounded down or up by less than 2×)
         limit = f"rtol {RTOL_RANGE[0]:g}, the tightest tolerance offered"
         if model.adaptive_steps(rtol, horizon_s) > max_adaptive_steps:
-            rtol = model.rtol_pilot * (model.adaptive_steps(model.rtol_pilot, horizon_s) / max_adaptive_steps) ** (model.order + 1)
+            rtol = model.rtol_pilot * (model.adaptive_steps(model.rtol_pilot, horizon_s) / max_adaptive_steps) ** (
+                model.order + 1
+            )
             rtol = float(min(max(rtol, RTOL_RANGE[0]), RTOL_RANGE[1]))
             limit = limit_text or "the step limit"
         steps_in_budget = max_frame_cpu_s / max(model.cpu_per_step_s, 1e-12)
         if model.adaptive_steps(rtol, frame_dt_s) > steps_in_budget:
-            rtol = model.rtol_pilot * (model.adaptive_steps(model.rtol_pilot, frame_dt_s) / steps_in_budget) ** (model.order + 1)
+            rtol = model.rtol_pilot * (model.adaptive_steps(model.rtol_pilot, frame_dt_s) / steps_in_budget) ** (
+                model.order + 1
+            )
             rtol = float(f"{min(max(rtol, RTOL_RANGE[0]), RTOL_RANGE[1]):.1g}")
             limit = _budget_text(max_frame_cpu_s)
         cost = model.adaptive_steps(rtol, horizon_s) * model.cpu_per_step_s
@@ -670,7 +817,9 @@ def cheapest(choices: Sequence[StepChoice]) -> StepChoice:
     meeting = [c for c in choices if c.meets_target and c.status == "ok"]
     if meeting:
         return min(meeting, key=lambda c: c.cost_s)
-    return min(choices, key=lambda c: (-c.horizon_s, c.estimated_error))  # the longest horizon stated, then the smallest error
+    return min(
+        choices, key=lambda c: (-c.horizon_s, c.estimated_error)
+    )  # the longest horizon stated, then the smallest error
 
 
 def usable_methods(system: OdeSystem, methods: Sequence[str]) -> list[MethodSpec]:
@@ -689,9 +838,19 @@ def usable_methods(system: OdeSystem, methods: Sequence[str]) -> list[MethodSpec
 
 
 def choose(
-    system: OdeSystem, y0: np.ndarray, methods: Sequence[str], *, target: AccuracyTarget, frame_dt_s: float,
-    horizon_s: float, fastest_rate_rad_s: float, error: ErrorMeasure, cache_key: Hashable | None = None,
-    max_fixed_work: int | None = None, max_adaptive_steps: float = math.inf, run_pilots: bool = True,
+    system: OdeSystem,
+    y0: np.ndarray,
+    methods: Sequence[str],
+    *,
+    target: AccuracyTarget,
+    frame_dt_s: float,
+    horizon_s: float,
+    fastest_rate_rad_s: float,
+    error: ErrorMeasure,
+    cache_key: Hashable | None = None,
+    max_fixed_work: int | None = None,
+    max_adaptive_steps: float = math.inf,
+    run_pilots: bool = True,
     max_frame_cpu_s: float = math.inf,
 ) -> StepChoice | None:
     """The cheapest of ``methods`` (those that can integrate ``system``) meeting ``target`` over ``horizon_s``.
@@ -707,9 +866,18 @@ def choose(
     frames = math.ceil(horizon_s / frame_dt_s - 1e-9)
     for spec in usable_methods(system, methods):
         start = 1 if spec.adaptive else spec.automatic_steps_per_frame(fastest_rate_rad_s, frame_dt_s)
-        model = error_model(system, y0, spec, target=target, start_steps=start, frame_dt_s=frame_dt_s, error=error, cache_key=cache_key,
-                            horizon_s=horizon_s,
-                            run_pilot=run_pilots)
+        model = error_model(
+            system,
+            y0,
+            spec,
+            target=target,
+            start_steps=start,
+            frame_dt_s=frame_dt_s,
+            error=error,
+            cache_key=cache_key,
+            horizon_s=horizon_s,
+            run_pilot=run_pilots,
+        )
         if model is None:
             continue
         cap, limit_text = MAX_STEPS_PER_FRAME, ""
@@ -718,8 +886,16 @@ def choose(
             limit_text = f"the request limit of {max_fixed_work} sub-steps"
         elif math.isfinite(max_adaptive_steps) and spec.adaptive:
             limit_text = f"the request limit of {int(max_adaptive_steps)} adaptive steps"
-        choices.append(choice_from_model(
-            model, target, horizon_s=horizon_s, frame_dt_s=frame_dt_s, max_steps_per_frame=cap,
-            max_adaptive_steps=max_adaptive_steps, limit_text=limit_text, max_frame_cpu_s=max_frame_cpu_s,
-        ))
+        choices.append(
+            choice_from_model(
+                model,
+                target,
+                horizon_s=horizon_s,
+                frame_dt_s=frame_dt_s,
+                max_steps_per_frame=cap,
+                max_adaptive_steps=max_adaptive_steps,
+                limit_text=limit_text,
+                max_frame_cpu_s=max_frame_cpu_s,
+            )
+        )
     return cheapest(choices) if choices else None

@@ -38,9 +38,16 @@ __all__ = ["choose_integrator"]
 
 
 def choose_integrator(
-    model: IntegratedModel, params: Mapping[str, Any], controls: Mapping[str, Any], frame_dt_s: float, *,
-    horizon_s: float | None = None, max_fixed_work: int | None = None, max_adaptive_steps: float = math.inf,
-    run_pilots: bool = True, max_frame_cpu_s: float = math.inf,
+    model: IntegratedModel,
+    params: Mapping[str, Any],
+    controls: Mapping[str, Any],
+    frame_dt_s: float,
+    *,
+    horizon_s: float | None = None,
+    max_fixed_work: int | None = None,
+    max_adaptive_steps: float = math.inf,
+    run_pilots: bool = True,
+    max_frame_cpu_s: float = math.inf,
 ) -> tuple[Integrator, StepChoice | None]:
     """The integrator ``model``'s ``controls`` ask for, and the step choice behind it (None without an accuracy target).
 
@@ -65,9 +72,15 @@ def choose_integrator(
     y0 = model.initial_state(params)
     rate = model.starting_rate_rad_s(params)
     explicit_adaptive = method != AUTO and method in model.methods and _is_adaptive(method)
-    if method == AUTO and _is_adaptive(model.default_method) and controls.get("rtol") not in (None, _default_rtol(model)):
+    if (
+        method == AUTO
+        and _is_adaptive(model.default_method)
+        and controls.get("rtol") not in (None, _default_rtol(model))
+    ):
         explicit_adaptive = True  # a tolerance set by hand for a model whose default method is adaptive
-    ratio_rule = integrator_from_controls(controls, default_method=model.default_method, fastest_rate_rad_s=rate, frame_dt_s=frame_dt_s)
+    ratio_rule = integrator_from_controls(
+        controls, default_method=model.default_method, fastest_rate_rad_s=rate, frame_dt_s=frame_dt_s
+    )
     if target is None:
         return ratio_rule, None
     horizon = target.horizon_s if horizon_s is None else horizon_s
@@ -75,16 +88,29 @@ def choose_integrator(
         if steps > 0 or explicit_adaptive:
             return ratio_rule, _estimate_for(model, params, ratio_rule, frame_dt_s, horizon, run_pilot=run_pilots)
         chosen = choose(
-            model.system(params), y0, (model.auto_methods or model.methods) if method == AUTO else (method,), target=target,
-            frame_dt_s=frame_dt_s, horizon_s=horizon, fastest_rate_rad_s=rate, error=lambda a, b: model.solution_error(params, a, b),
-            cache_key=model.pilot_key(params), max_fixed_work=max_fixed_work, max_adaptive_steps=max_adaptive_steps,
-            run_pilots=run_pilots, max_frame_cpu_s=max_frame_cpu_s,
+            model.system(params),
+            y0,
+            (model.auto_methods or model.methods) if method == AUTO else (method,),
+            target=target,
+            frame_dt_s=frame_dt_s,
+            horizon_s=horizon,
+            fastest_rate_rad_s=rate,
+            error=lambda a, b: model.solution_error(params, a, b),
+            cache_key=model.pilot_key(params),
+            max_fixed_work=max_fixed_work,
+            max_adaptive_steps=max_adaptive_steps,
+            run_pilots=run_pilots,
+            max_frame_cpu_s=max_frame_cpu_s,
         )
     except PilotPending:
         fixed = isinstance(ratio_rule, FixedStepIntegrator)
         return ratio_rule, StepChoice.pending(
-            ratio_rule.name, ratio_rule.steps_per_frame if fixed else None, None if fixed else ratio_rule.rtol, target,
-            horizon_s=horizon, frame_dt_s=frame_dt_s,
+            ratio_rule.name,
+            ratio_rule.steps_per_frame if fixed else None,
+            None if fixed else ratio_rule.rtol,
+            target,
+            horizon_s=horizon,
+            frame_dt_s=frame_dt_s,
         )
     if chosen is None:  # no pilot finished: every run blew up or ran out of steps
         return _unmeasured(model, controls, target, rate, frame_dt_s, horizon, max_fixed_work)
@@ -92,24 +118,55 @@ def choose_integrator(
     return integrator, chosen
 
 
-def _unmeasured(model: IntegratedModel, controls: Mapping[str, Any], target: AccuracyTarget, rate: float, frame_dt_s: float,
-                horizon_s: float, max_fixed_work: int | None) -> tuple[Integrator, StepChoice]:
+def _unmeasured(
+    model: IntegratedModel,
+    controls: Mapping[str, Any],
+    target: AccuracyTarget,
+    rate: float,
+    frame_dt_s: float,
+    horizon_s: float,
+    max_fixed_work: int | None,
+) -> tuple[Integrator, StepChoice]:
     """No pilot finished (a motion too stiff or too fast for every method): the fixed ratio, capped by the
     request limit, with the error stated as unknown; the run itself then says where it stopped."""
-    integrator = integrator_from_controls(controls, default_method=model.default_method, fastest_rate_rad_s=rate, frame_dt_s=frame_dt_s)
+    integrator = integrator_from_controls(
+        controls, default_method=model.default_method, fastest_rate_rad_s=rate, frame_dt_s=frame_dt_s
+    )
     note = "no pilot run of any method finished (the motion is too stiff or too fast for the steps tried), so the error is unknown"
     if isinstance(integrator, FixedStepIntegrator) and max_fixed_work is not None:
-        cap = max(int(max_fixed_work // max(math.ceil(horizon_s / frame_dt_s) * integrator.spec.substeps_per_step, 1)), 1)
+        cap = max(
+            int(max_fixed_work // max(math.ceil(horizon_s / frame_dt_s) * integrator.spec.substeps_per_step, 1)), 1
+        )
         if integrator.steps_per_frame > cap:
             integrator = make_integrator(integrator.name, steps_per_frame=cap)
             note += f"; {cap} steps/frame is the most the request limit of {max_fixed_work} sub-steps allows"
-    setting = dict(steps_per_frame=integrator.steps_per_frame, rtol=None) if isinstance(integrator, FixedStepIntegrator) else dict(steps_per_frame=None, rtol=integrator.rtol)
-    return integrator, StepChoice(integrator.name, target=target, horizon_s=horizon_s, frame_dt_s=frame_dt_s, estimated_error=math.nan,
-                                  cost_s=math.nan, status=REDUCED_ACCURACY, note=note, **setting)
+    setting = (
+        dict(steps_per_frame=integrator.steps_per_frame, rtol=None)
+        if isinstance(integrator, FixedStepIntegrator)
+        else dict(steps_per_frame=None, rtol=integrator.rtol)
+    )
+    return integrator, StepChoice(
+        integrator.name,
+        target=target,
+        horizon_s=horizon_s,
+        frame_dt_s=frame_dt_s,
+        estimated_error=math.nan,
+        cost_s=math.nan,
+        status=REDUCED_ACCURACY,
+        note=note,
+        **setting,
+    )
 
 
-def _estimate_for(model: IntegratedModel, params: Mapping[str, Any], integrator: Integrator, frame_dt_s: float, horizon: float, *,
-                  run_pilot: bool) -> StepChoice | None:
+def _estimate_for(
+    model: IntegratedModel,
+    params: Mapping[str, Any],
+    integrator: Integrator,
+    frame_dt_s: float,
+    horizon: float,
+    *,
+    run_pilot: bool,
+) -> StepChoice | None:
     """The estimated error of a setting the student chose (from the same cached pilot as the automatic choice)."""
     target = model.accuracy_target
     assert target is not None
@@ -120,8 +177,15 @@ def _estimate_for(model: IntegratedModel, params: Mapping[str, Any], integrator:
     y0 = model.initial_state(params)
     start = spec.automatic_steps_per_frame(model.starting_rate_rad_s(params), frame_dt_s) if not spec.adaptive else 1
     errors = error_model(
-        system, y0, spec, target=target, start_steps=start, frame_dt_s=frame_dt_s,
-        error=lambda a, b: model.solution_error(params, a, b), cache_key=model.pilot_key(params), run_pilot=run_pilot,
+        system,
+        y0,
+        spec,
+        target=target,
+        start_steps=start,
+        frame_dt_s=frame_dt_s,
+        error=lambda a, b: model.solution_error(params, a, b),
+        cache_key=model.pilot_key(params),
+        run_pilot=run_pilot,
         horizon_s=horizon,
     )
     if errors is None:
@@ -132,12 +196,21 @@ def _estimate_for(model: IntegratedModel, params: Mapping[str, Any], integrator:
     else:
         setting = dict(steps_per_frame=integrator.steps_per_frame, rtol=None)
         error = errors.error_fixed(frame_dt_s / integrator.steps_per_frame, horizon)
-    chosen = StepChoice(spec.name, target=target, horizon_s=horizon, frame_dt_s=frame_dt_s, estimated_error=error,
-                        cost_s=math.nan, **setting)
+    chosen = StepChoice(
+        spec.name,
+        target=target,
+        horizon_s=horizon,
+        frame_dt_s=frame_dt_s,
+        estimated_error=error,
+        cost_s=math.nan,
+        **setting,
+    )
     if chosen.meets_target:
         return chosen
-    note = (f"the chosen setting misses the target of {target.format(target.error)} over {horizon:g} s: estimated "
-            f"{target.format(error)} (automatic steps meet it)")
+    note = (
+        f"the chosen setting misses the target of {target.format(target.error)} over {horizon:g} s: estimated "
+        f"{target.format(error)} (automatic steps meet it)"
+    )
     return replace(chosen, status=TARGET_MISSED, note=note)
 
 

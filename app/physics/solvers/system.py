@@ -84,7 +84,8 @@ class Events:
         """Per event: ``EVENT_STOP``, ``EVENT_RESET`` or ``EVENT_RECORD`` (int64, shape (m,))."""
         resets = self.resets if self.resets is not None else (False,) * self.count
         return np.array(
-            [EVENT_STOP if t else EVENT_RESET if r else EVENT_RECORD for t, r in zip(self.terminal, resets)], dtype=np.int64
+            [EVENT_STOP if t else EVENT_RESET if r else EVENT_RECORD for t, r in zip(self.terminal, resets)],
+            dtype=np.int64,
         )
 
 
@@ -107,7 +108,9 @@ class Constraints:
         if self.n_constraints < 1 or self.n_positions < 1:
             raise ValueError("constraints: n_constraints and n_positions must be ≥ 1")
         if self.n_constraints > self.n_positions:
-            raise ValueError(f"constraints: {self.n_constraints} constraints on {self.n_positions} positions over-determine them")
+            raise ValueError(
+                f"constraints: {self.n_constraints} constraints on {self.n_positions} positions over-determine them"
+            )
 
     def residuals(self, states: np.ndarray, parameters: np.ndarray) -> np.ndarray:
         """``g(q)`` along ``states`` (N, n) → (N, m), with the pure-Python kernel."""

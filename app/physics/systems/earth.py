@@ -32,8 +32,14 @@ SECONDS_PER_HOUR = 3600.0
 def latitude_parameter(default_deg: float) -> Parameter:
     """The ``latitude_deg`` control shared by the Earth scenes (north positive)."""
     return Parameter(
-        "latitude_deg", "deg", default_deg, -90.0, 90.0,
-        "Latitude of the laboratory: positive north of the equator, negative south", "latitude λ", step=0.05,
+        "latitude_deg",
+        "deg",
+        default_deg,
+        -90.0,
+        90.0,
+        "Latitude of the laboratory: positive north of the equator, negative south",
+        "latitude λ",
+        step=0.05,
     )
 
 

@@ -18,8 +18,15 @@ from app.scenes.kit import Preset, Quantity, Readout, Scene, arrow_segments
 VELOCITY_SCALE = 0.25  # m of arrow per m/s
 PAUSE_AT_LANDING_S = 1.5
 #: A baseball hit hard: 145 g at 40 m/s, 35° up, quadratic drag c = 7.6e-4 kg/m (the defaults).
-BASEBALL = {"mass_kg": 0.145, "speed0_m_s": 40.0, "elevation_deg": 35.0, "height0_m": 0.0,
-            "linear_drag_kg_s": 0.0, "quadratic_drag_kg_m": 7.6e-4, "g_m_s2": 9.807}
+BASEBALL = {
+    "mass_kg": 0.145,
+    "speed0_m_s": 40.0,
+    "elevation_deg": 35.0,
+    "height0_m": 0.0,
+    "linear_drag_kg_s": 0.0,
+    "quadratic_drag_kg_m": 7.6e-4,
+    "g_m_s2": 9.807,
+}
 
 
 class ProjectileDragScene(Scene):
@@ -29,10 +36,18 @@ class ProjectileDragScene(Scene):
     example = physics.EXAMPLE
     animated = True
     presets = (
-        Preset("baseball", "Baseball through air", BASEBALL,
-               "145 g at 40 m/s, 35° up, with quadratic drag: it carries about 100 m, two thirds of the vacuum range."),
-        Preset("vacuum", "The same hit in a vacuum", {**BASEBALL, "quadratic_drag_kg_m": 0.0},
-               "No drag: the parabola, range v₀² sin 2α / g = 153 m; the climb and the fall take equally long."),
+        Preset(
+            "baseball",
+            "Baseball through air",
+            BASEBALL,
+            "145 g at 40 m/s, 35° up, with quadratic drag: it carries about 100 m, two thirds of the vacuum range.",
+        ),
+        Preset(
+            "vacuum",
+            "The same hit in a vacuum",
+            {**BASEBALL, "quadratic_drag_kg_m": 0.0},
+            "No drag: the parabola, range v₀² sin 2α / g = 153 m; the climb and the fall take equally long.",
+        ),
     )
 
     def camera_view(self):
@@ -44,7 +59,9 @@ class ProjectileDragScene(Scene):
         self.t_s = 0.0
         self._t_drawn, self._row_drawn = 0.0, np.zeros(12)
         self._span_m = 100.0
-        self.ground = scene.add_grid("/ground", width=200.0, height=60.0, cell_size=5.0, section_size=10.0, position=(100.0, 0.0, 0.0))
+        self.ground = scene.add_grid(
+            "/ground", width=200.0, height=60.0, cell_size=5.0, section_size=10.0, position=(100.0, 0.0, 0.0)
+        )
         self.path = scene.add_line_segments("/path", np.zeros((1, 2, 3), np.float32), (120, 120, 160), thickness=0.25)
         self.ball = scene.add_icosphere("/ball", radius=1.0, color=(200, 60, 40))
         self.label = scene.add_label("/readout", "", anchor="bottom-left")
@@ -81,7 +98,14 @@ class ProjectileDragScene(Scene):
         # drag work (1), kinetic energy (1), gravity's work (1).
         traj = self.trajectory
         self._frame_table = np.column_stack(
-            [traj.position_m, traj.velocity_m_s, traj.drag_force_N, traj.work_drag_J, traj.kinetic_energy_J, traj.work_gravity_J]
+            [
+                traj.position_m,
+                traj.velocity_m_s,
+                traj.drag_force_N,
+                traj.work_drag_J,
+                traj.kinetic_energy_J,
+                traj.work_gravity_J,
+            ]
         )
         self.t_s = 0.0
         self._draw()
@@ -129,8 +153,11 @@ class ProjectileDragScene(Scene):
             Quantity("range_m", "range", range_m, "m"),
             Quantity("vacuum_range_m", "range in a vacuum", vacuum.range_m, "m"),
             Quantity.or_text(
-                "range_percent_of_vacuum", "range as a share of the vacuum range",
-                physics.range_percent_of_vacuum(traj, vacuum), "%", "none: a vertical launch has no range",
+                "range_percent_of_vacuum",
+                "range as a share of the vacuum range",
+                physics.range_percent_of_vacuum(traj, vacuum),
+                "%",
+                "none: a vertical launch has no range",
             ),
             Quantity("flight_time_s", "time of flight", float(traj.t_s[-1]), "s"),
             Quantity("vacuum_flight_time_s", "time of flight in a vacuum", vacuum.flight_time_s, "s"),

@@ -102,17 +102,39 @@ class RadarTrackingScene(Scene):
         quantities += [
             Quantity("range_rate_m_s", "range rate ṙ", r_dot, "m/s"),
             Quantity("azimuth_rate_rad_s", "azimuth rate θ̇", theta_dot, "rad/s"),
-            Quantity.or_text("elevation_rate_rad_s", "elevation rate β̇", beta_dot, "rad/s", "infinite at t = 0 (β̇ = −0.05/√t)"),
-            Quantity.or_text("speed_m_s", "speed |v|", None if velocity is None else float(np.linalg.norm(velocity)), "m/s", undefined),
             Quantity.or_text(
-                "acceleration_m_s2", "acceleration |a|", None if acceleration is None else float(np.linalg.norm(acceleration)), "m/s²", undefined
+                "elevation_rate_rad_s", "elevation rate β̇", beta_dot, "rad/s", "infinite at t = 0 (β̇ = −0.05/√t)"
+            ),
+            Quantity.or_text(
+                "speed_m_s",
+                "speed |v|",
+                None if velocity is None else float(np.linalg.norm(velocity)),
+                "m/s",
+                undefined,
+            ),
+            Quantity.or_text(
+                "acceleration_m_s2",
+                "acceleration |a|",
+                None if acceleration is None else float(np.linalg.norm(acceleration)),
+                "m/s²",
+                undefined,
             ),
         ]
         chosen = self.params["t_s"]
         out = self.instant
         quantities += [
-            Quantity("instant_speed_m_s", f"speed at the chosen t = {chosen:g} s", float(np.linalg.norm(out["velocity_exact_m_s"])), "m/s"),
-            Quantity("fd_error_m_s", f"finite-difference error at Δt = {self.params['dt_s']:.3g} s", out["fd_error_m_s"], "m/s"),
+            Quantity(
+                "instant_speed_m_s",
+                f"speed at the chosen t = {chosen:g} s",
+                float(np.linalg.norm(out["velocity_exact_m_s"])),
+                "m/s",
+            ),
+            Quantity(
+                "fd_error_m_s",
+                f"finite-difference error at Δt = {self.params['dt_s']:.3g} s",
+                out["fd_error_m_s"],
+                "m/s",
+            ),
             Quantity("optimal_dt_s", "best Δt of the error model", out["optimal_dt_s"], "s"),
         ]
         marks = {"dt_s": [Mark(out["optimal_dt_s"], "best Δt")]}

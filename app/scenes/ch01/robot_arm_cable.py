@@ -37,15 +37,18 @@ class RobotArmCableScene(Scene):
         scene = self.client.scene
         scene.add_grid("/ground", width=8.0, height=8.0, cell_size=0.5, section_size=1.0, position=(1.0, 0.5, 0.0))
         axes = np.array([[[0, 0, 0], [1, 0, 0]], [[0, 0, 0], [0, 1, 0]], [[0, 0, 0], [0, 0, 1]]], dtype=np.float32)
-        scene.add_line_segments("/axes", axes * 1.2, np.array([[200, 0, 0], [0, 160, 0], [0, 0, 200]], dtype=np.uint8)[:, None, :].repeat(2, 1), thickness=0.015)
+        scene.add_line_segments(
+            "/axes",
+            axes * 1.2,
+            np.array([[200, 0, 0], [0, 160, 0], [0, 0, 200]], dtype=np.uint8)[:, None, :].repeat(2, 1),
+            thickness=0.015,
+        )
         for name, tip in (("x", (1.3, 0, 0)), ("y", (0, 1.3, 0)), ("z", (0, 0, 1.3))):
             scene.add_label(f"/axes/{name}", name, position=tip, anchor="center-center")
         self.link_AB = scene.add_cylinder("/arm/AB", radius=LINK_RADIUS_M, height=1.0, color=(90, 110, 140))
         self.link_BC = scene.add_cylinder("/arm/BC", radius=LINK_RADIUS_M * 0.8, height=1.0, color=(200, 140, 60))
         self.pin_B = scene.add_cylinder("/arm/pin", radius=LINK_RADIUS_M * 0.9, height=0.25, color=(60, 60, 60))
-        self.points = {
-            name: scene.add_icosphere(f"/points/{name}", radius=0.06, color=(40, 40, 40)) for name in "ABCD"
-        }
+        self.points = {name: scene.add_icosphere(f"/points/{name}", radius=0.06, color=(40, 40, 40)) for name in "ABCD"}
         self.point_labels = {
             name: scene.add_label(f"/points/{name}/label", name, position=(0.0, 0.0, 0.12), anchor="bottom-center")
             for name in "ABCD"
@@ -53,9 +56,16 @@ class RobotArmCableScene(Scene):
         self.cable = scene.add_line_segments("/cable", np.zeros((1, 2, 3), np.float32), (30, 30, 30), thickness=0.012)
         colors = np.array([c for _, c in ARROWS], dtype=np.uint8)
         self.arrows = scene.add_arrows(
-            "/vectors", np.zeros((len(ARROWS), 2, 3), np.float32), colors, shaft_radius=0.018, head_radius=0.05, head_length=0.12
+            "/vectors",
+            np.zeros((len(ARROWS), 2, 3), np.float32),
+            colors,
+            shaft_radius=0.018,
+            head_radius=0.05,
+            head_length=0.12,
         )
-        self.arrow_labels = [scene.add_label(f"/vectors/label{i}", name, anchor="center-left") for i, (name, _) in enumerate(ARROWS)]
+        self.arrow_labels = [
+            scene.add_label(f"/vectors/label{i}", name, anchor="center-left") for i, (name, _) in enumerate(ARROWS)
+        ]
 
     def _place_link(self, handle, start: np.ndarray, end: np.ndarray) -> None:
         handle.position = (start + end) / 2.0

@@ -55,8 +55,15 @@ PATH_ANGLE_MEANING = {
 }
 
 CONTROLS = (
-    Parameter("frame", "", "cylindrical", kind="choice", choices=physics.FRAMES, label="unit vectors",
-              description="The unit vectors riding on the particle: cylindrical (e_R, e_θ, e_z) or spherical (e_r, e_φ, e_θ)"),
+    Parameter(
+        "frame",
+        "",
+        "cylindrical",
+        kind="choice",
+        choices=physics.FRAMES,
+        label="unit vectors",
+        description="The unit vectors riding on the particle: cylindrical (e_R, e_θ, e_z) or spherical (e_r, e_φ, e_θ)",
+    ),
 )
 
 
@@ -69,16 +76,57 @@ class CurvilinearCoordinatesScene(ParticleRunScene):
     arrow_colors = (VELOCITY, *(VELOCITY_PART,) * 3, ACCELERATION, *(ACCELERATION_PART,) * 3)
     labelled_arrows = ((0, "v", 1.0), (4, "a", 1.0))
     presets = (
-        Preset("helix", "Helix", {"path": "helix", "size_m": 1.0, "azimuth_rate_rad_s": 1.0, "path_angle_deg": 15.0, "frame": "cylindrical"},
-               "R = 1 m and θ̇ = 1 rad/s constant: v_R = 0, a_R = −R θ̇² = −1 m/s², a_θ = a_z = 0"),
-        Preset("conical-spiral", "Spiral on a cone", {"path": "conical-spiral", "size_m": 0.1 * math.pi, "azimuth_rate_rad_s": 2.0, "path_angle_deg": 40.0, "frame": "cylindrical"},
-               "a = 0.1π m = 0.314 m, so Ṙ = a θ̇/2π = 0.1 m/s with θ̇ = 2 rad/s: the Coriolis-like term 2 Ṙ θ̇ = " "0.4 m/s² is all of a_θ"),
-        Preset("latitude-circle", "Circle of latitude", {"path": "latitude-circle", "size_m": 1.0, "azimuth_rate_rad_s": 1.0, "path_angle_deg": 50.0, "frame": "spherical"},
-               "r and φ fixed: a_r = −r sin²φ θ̇² and a_φ = −r sin φ cos φ θ̇², and together they point at the " "circle's centre"),
-        Preset("loxodrome", "Loxodrome", {"path": "loxodrome", "size_m": 1.0, "azimuth_rate_rad_s": 1.0, "path_angle_deg": 75.0, "frame": "spherical"},
-               "Crosses every meridian at 75° from north: v_φ / v_θ = −cot 75° throughout, while the speed falls " "toward the poles"),
-        Preset("on-the-pole", "On the pole (φ = 0)", {"path": "latitude-circle", "size_m": 1.0, "path_angle_deg": 0.0, "frame": "spherical"},
-               "A circle of zero radius: the particle sits on the Z axis, where θ, e_φ and e_θ have no value"),
+        Preset(
+            "helix",
+            "Helix",
+            {"path": "helix", "size_m": 1.0, "azimuth_rate_rad_s": 1.0, "path_angle_deg": 15.0, "frame": "cylindrical"},
+            "R = 1 m and θ̇ = 1 rad/s constant: v_R = 0, a_R = −R θ̇² = −1 m/s², a_θ = a_z = 0",
+        ),
+        Preset(
+            "conical-spiral",
+            "Spiral on a cone",
+            {
+                "path": "conical-spiral",
+                "size_m": 0.1 * math.pi,
+                "azimuth_rate_rad_s": 2.0,
+                "path_angle_deg": 40.0,
+                "frame": "cylindrical",
+            },
+            "a = 0.1π m = 0.314 m, so Ṙ = a θ̇/2π = 0.1 m/s with θ̇ = 2 rad/s: the Coriolis-like term 2 Ṙ θ̇ = "
+            "0.4 m/s² is all of a_θ",
+        ),
+        Preset(
+            "latitude-circle",
+            "Circle of latitude",
+            {
+                "path": "latitude-circle",
+                "size_m": 1.0,
+                "azimuth_rate_rad_s": 1.0,
+                "path_angle_deg": 50.0,
+                "frame": "spherical",
+            },
+            "r and φ fixed: a_r = −r sin²φ θ̇² and a_φ = −r sin φ cos φ θ̇², and together they point at the "
+            "circle's centre",
+        ),
+        Preset(
+            "loxodrome",
+            "Loxodrome",
+            {
+                "path": "loxodrome",
+                "size_m": 1.0,
+                "azimuth_rate_rad_s": 1.0,
+                "path_angle_deg": 75.0,
+                "frame": "spherical",
+            },
+            "Crosses every meridian at 75° from north: v_φ / v_θ = −cot 75° throughout, while the speed falls "
+            "toward the poles",
+        ),
+        Preset(
+            "on-the-pole",
+            "On the pole (φ = 0)",
+            {"path": "latitude-circle", "size_m": 1.0, "path_angle_deg": 0.0, "frame": "spherical"},
+            "A circle of zero radius: the particle sits on the Z axis, where θ, e_φ and e_θ have no value",
+        ),
     )
 
     def build(self) -> None:
@@ -110,9 +158,25 @@ class CurvilinearCoordinatesScene(ParticleRunScene):
         nodes = []
         for k, text in enumerate(TRIAD_LABELS[self.params["frame"]]):
             tip = length * np.eye(3)[k]
-            nodes.append(scene.add_arrows(f"/particle/e{k}", np.array([[np.zeros(3), tip]], np.float32), TRIAD_COLORS[k],
-                                          shaft_radius=shaft, head_radius=2.5 * shaft, head_length=5.0 * shaft))
-            nodes.append(scene.add_label(f"/particle/e{k}/label", text, position=tuple(1.1 * tip), anchor="center-left", font_screen_scale=0.9))
+            nodes.append(
+                scene.add_arrows(
+                    f"/particle/e{k}",
+                    np.array([[np.zeros(3), tip]], np.float32),
+                    TRIAD_COLORS[k],
+                    shaft_radius=shaft,
+                    head_radius=2.5 * shaft,
+                    head_length=5.0 * shaft,
+                )
+            )
+            nodes.append(
+                scene.add_label(
+                    f"/particle/e{k}/label",
+                    text,
+                    position=tuple(1.1 * tip),
+                    anchor="center-left",
+                    font_screen_scale=0.9,
+                )
+            )
         self._triad_nodes = nodes
         self._triad_shown = (True, True, True)
 
@@ -123,7 +187,12 @@ class CurvilinearCoordinatesScene(ParticleRunScene):
         v_parts = np.nan_to_num(described.velocity[0])[:, None] * triad
         a_parts = np.nan_to_num(described.acceleration[0])[:, None] * triad
         p = position[0]
-        arrows = np.concatenate([chain_arrows(p, velocity[0], v_parts, self._v_scale), chain_arrows(p, acceleration[0], a_parts, self._a_scale)])
+        arrows = np.concatenate(
+            [
+                chain_arrows(p, velocity[0], v_parts, self._v_scale),
+                chain_arrows(p, acceleration[0], a_parts, self._a_scale),
+            ]
+        )
         return p, arrows
 
     def after_draw(self, t_s: float) -> None:
@@ -144,13 +213,34 @@ class CurvilinearCoordinatesScene(ParticleRunScene):
         undefined = "no value here (see the message below)"
         quantities = [Quantity("t_s", "time t", self.t_s, "s")]
         for key, source in (("coordinates", described.coordinates), ("rates", described.rates)):
-            quantities += [Quantity.or_text(name, label, float(source[0, k]), unit, undefined) for k, (name, label, unit) in enumerate(rows[key])]
-        quantities += [Quantity.or_text(name, label, float(described.velocity[0, k]), "m/s", undefined) for k, (name, label) in enumerate(rows["velocity"])]
-        quantities += [Quantity.or_text(name, label, float(described.acceleration[0, k]), "m/s²", undefined) for k, (name, label) in enumerate(rows["acceleration"])]
+            quantities += [
+                Quantity.or_text(name, label, float(source[0, k]), unit, undefined)
+                for k, (name, label, unit) in enumerate(rows[key])
+            ]
         quantities += [
-            Quantity.or_text("speed_from_components", "|v| from these components", float(np.linalg.norm(described.velocity[0])), "m/s", undefined),
+            Quantity.or_text(name, label, float(described.velocity[0, k]), "m/s", undefined)
+            for k, (name, label) in enumerate(rows["velocity"])
+        ]
+        quantities += [
+            Quantity.or_text(name, label, float(described.acceleration[0, k]), "m/s²", undefined)
+            for k, (name, label) in enumerate(rows["acceleration"])
+        ]
+        quantities += [
+            Quantity.or_text(
+                "speed_from_components",
+                "|v| from these components",
+                float(np.linalg.norm(described.velocity[0])),
+                "m/s",
+                undefined,
+            ),
             Quantity("speed", "|v| = √(ẋ² + ẏ² + ż²), Cartesian", float(np.linalg.norm(v)), "m/s"),
-            Quantity.or_text("acceleration_from_components", "|a| from these components", float(np.linalg.norm(described.acceleration[0])), "m/s²", undefined),
+            Quantity.or_text(
+                "acceleration_from_components",
+                "|a| from these components",
+                float(np.linalg.norm(described.acceleration[0])),
+                "m/s²",
+                undefined,
+            ),
             Quantity("acceleration_magnitude", "|a| = √(ẍ² + ÿ² + z̈²), Cartesian", float(np.linalg.norm(a)), "m/s²"),
             Quantity("run", "one run lasts", self.path.run_s, "s"),
             Quantity("grid_cell", "side of a grid square", self.grid_cell_m, "m"),
@@ -163,7 +253,13 @@ class CurvilinearCoordinatesScene(ParticleRunScene):
         if not undefined.any():
             return ""
         if self.params["frame"] == "cylindrical":
-            return ("The particle is on the Z axis (R = 0): θ, e_R and e_θ have no value there, so neither do the " "components that use them; e_z and z do.")
+            return (
+                "The particle is on the Z axis (R = 0): θ, e_R and e_θ have no value there, so neither do the "
+                "components that use them; e_z and z do."
+            )
         if undefined.all():
             return "The particle is at the origin (r = 0): no spherical direction has a value there."
-        return ("The particle is on the polar axis (φ = 0 or π, R = 0): θ, e_φ and e_θ have no value there; e_r " "still points along ±Z.")
+        return (
+            "The particle is on the polar axis (φ = 0 or π, R = 0): θ, e_φ and e_θ have no value there; e_r "
+            "still points along ±Z."
+        )

@@ -82,8 +82,13 @@ class ParticleRunScene(Scene):
         self.particle = scene.add_frame("/particle", show_axes=False)
         self.ball = scene.add_icosphere("/particle/ball", radius=1.0, color=(30, 30, 30))
         count = len(self.arrow_colors)
-        self.arrows = scene.add_arrows("/arrows", np.zeros((count, 2, 3), np.float32), np.array(self.arrow_colors, np.uint8))
-        self.arrow_labels = [scene.add_label(f"/arrow_labels/{k}", text, anchor="bottom-left", font_screen_scale=0.9) for k, text, _ in self.labelled_arrows]
+        self.arrows = scene.add_arrows(
+            "/arrows", np.zeros((count, 2, 3), np.float32), np.array(self.arrow_colors, np.uint8)
+        )
+        self.arrow_labels = [
+            scene.add_label(f"/arrow_labels/{k}", text, anchor="bottom-left", font_screen_scale=0.9)
+            for k, text, _ in self.labelled_arrows
+        ]
 
     def update(self) -> None:
         self.prepare()
@@ -92,7 +97,9 @@ class ParticleRunScene(Scene):
         old_center, old_size = self._center, self._size
         self._center = 0.5 * (low + high)
         self._size = max(float(np.linalg.norm(high - low)), 0.5)
-        moved = not 0.8 < self._size / old_size < 1.25 or float(np.linalg.norm(self._center - old_center)) > 0.2 * old_size
+        moved = (
+            not 0.8 < self._size / old_size < 1.25 or float(np.linalg.norm(self._center - old_center)) > 0.2 * old_size
+        )
         reframe = self._built and moved
         self._built = True
         self._draw_static(points, ground_z=float(low[2]))
@@ -111,11 +118,21 @@ class ParticleRunScene(Scene):
         axes = 0.2 * size
         self._static = [
             scene.add_line_segments("/path", segments, PATH_COLOR, thickness=2.0, thickness_units="screen"),
-            scene.add_grid("/ground", width=width, height=width, cell_size=self.grid_cell_m, section_size=5 * self.grid_cell_m,
-                           position=(float(center[0]), float(center[1]), ground_z - 0.003 * size)),  # just under a path in the floor
+            scene.add_grid(
+                "/ground",
+                width=width,
+                height=width,
+                cell_size=self.grid_cell_m,
+                section_size=5 * self.grid_cell_m,
+                position=(float(center[0]), float(center[1]), ground_z - 0.003 * size),
+            ),  # just under a path in the floor
             scene.add_frame("/world_axes", axes_length=axes, axes_radius=0.005 * size),
-            *(scene.add_label(f"/world_axes/{name}", name, position=tuple(1.08 * axes * np.eye(3)[k]), font_screen_scale=0.8)
-              for k, name in enumerate("XYZ")),
+            *(
+                scene.add_label(
+                    f"/world_axes/{name}", name, position=tuple(1.08 * axes * np.eye(3)[k]), font_screen_scale=0.8
+                )
+                for k, name in enumerate("XYZ")
+            ),
         ]
         self.ball.scale = 0.02 * size
         shaft = 0.009 * size
@@ -129,7 +146,9 @@ class ParticleRunScene(Scene):
     def camera_view(self) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
         c, size = self._center, self._size
         return (float(c[0] + 0.38 * size), float(c[1] - 0.6 * size), float(c[2] + 0.36 * size)), (
-            float(c[0]), float(c[1]), float(c[2])
+            float(c[0]),
+            float(c[1]),
+            float(c[2]),
         )
 
     def _draw(self) -> None:

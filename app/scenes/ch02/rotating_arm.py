@@ -35,16 +35,55 @@ class RotatingArmScene(ParticleRunScene):
     labelled_arrows = ((0, "v", 1.0), (3, "a", 1.0), (7, "2ṙθ̇", 0.5))  # the Coriolis term ends at a's tip
     frame_message_budget = 7.0
     presets = (
-        Preset("sliding-collar", "Collar sliding on a steady arm", {"arm_rate_rad_s": 1.0, "arm_acceleration_rad_s2": 0.0, "collar_mean_m": 0.8, "collar_amplitude_m": 0.6, "collar_frequency_rad_s": 1.5},
-               "Ω = 1 rad/s steady: the Coriolis term 2ṙθ̇ is largest as the collar passes r₀ = 0.8 m, where ṙ is largest"),
-        Preset("fixed-collar", "Collar clamped (b = 0)", {"arm_rate_rad_s": 1.0, "arm_acceleration_rad_s2": 0.0, "collar_mean_m": 1.0, "collar_amplitude_m": 0.0},
-               "ṙ = r̈ = 0: only the centripetal term −rθ̇² = −1 m/s² is left; the collar goes round a circle"),
-        Preset("arm-held", "Arm held still (Ω = 0)", {"arm_rate_rad_s": 0.0, "arm_acceleration_rad_s2": 0.0, "collar_mean_m": 0.8, "collar_amplitude_m": 0.6, "collar_frequency_rad_s": 1.5},
-               "θ̇ = 0: the collar only slides back and forth, and a = r̈ e_r"),
-        Preset("through-the-pivot", "Through the pivot", {"arm_rate_rad_s": 0.6, "arm_acceleration_rad_s2": 0.0, "collar_mean_m": 0.0, "collar_amplitude_m": 1.2, "collar_frequency_rad_s": 1.0},
-               "r swings from −1.2 m to 1.2 m: at the pivot the arm's e_r and e_θ are still defined, and a is all " "Coriolis"),
-        Preset("speeding-up", "Arm speeding up (α)", {"arm_rate_rad_s": 0.3, "arm_acceleration_rad_s2": 0.1, "collar_mean_m": 1.0, "collar_amplitude_m": 0.0},
-               "θ̈ = 0.1 rad/s²: the transverse term rθ̈ = 0.1 m/s² stays while −rθ̇² grows"),
+        Preset(
+            "sliding-collar",
+            "Collar sliding on a steady arm",
+            {
+                "arm_rate_rad_s": 1.0,
+                "arm_acceleration_rad_s2": 0.0,
+                "collar_mean_m": 0.8,
+                "collar_amplitude_m": 0.6,
+                "collar_frequency_rad_s": 1.5,
+            },
+            "Ω = 1 rad/s steady: the Coriolis term 2ṙθ̇ is largest as the collar passes r₀ = 0.8 m, where ṙ is largest",
+        ),
+        Preset(
+            "fixed-collar",
+            "Collar clamped (b = 0)",
+            {"arm_rate_rad_s": 1.0, "arm_acceleration_rad_s2": 0.0, "collar_mean_m": 1.0, "collar_amplitude_m": 0.0},
+            "ṙ = r̈ = 0: only the centripetal term −rθ̇² = −1 m/s² is left; the collar goes round a circle",
+        ),
+        Preset(
+            "arm-held",
+            "Arm held still (Ω = 0)",
+            {
+                "arm_rate_rad_s": 0.0,
+                "arm_acceleration_rad_s2": 0.0,
+                "collar_mean_m": 0.8,
+                "collar_amplitude_m": 0.6,
+                "collar_frequency_rad_s": 1.5,
+            },
+            "θ̇ = 0: the collar only slides back and forth, and a = r̈ e_r",
+        ),
+        Preset(
+            "through-the-pivot",
+            "Through the pivot",
+            {
+                "arm_rate_rad_s": 0.6,
+                "arm_acceleration_rad_s2": 0.0,
+                "collar_mean_m": 0.0,
+                "collar_amplitude_m": 1.2,
+                "collar_frequency_rad_s": 1.0,
+            },
+            "r swings from −1.2 m to 1.2 m: at the pivot the arm's e_r and e_θ are still defined, and a is all "
+            "Coriolis",
+        ),
+        Preset(
+            "speeding-up",
+            "Arm speeding up (α)",
+            {"arm_rate_rad_s": 0.3, "arm_acceleration_rad_s2": 0.1, "collar_mean_m": 1.0, "collar_amplitude_m": 0.0},
+            "θ̈ = 0.1 rad/s²: the transverse term rθ̈ = 0.1 m/s² stays while −rθ̇² grows",
+        ),
     )
 
     def build(self) -> None:
@@ -79,8 +118,20 @@ class RotatingArmScene(ParticleRunScene):
         self._state = s
         p, e_r, e_theta = s.position_m[0], s.e_r[0], s.e_theta[0]
         v_parts = np.array([s.v_radial_m_s[0] * e_r, s.v_transverse_m_s[0] * e_theta])
-        terms = np.array([s.sliding_m_s2[0] * e_r, s.centripetal_m_s2[0] * e_r, s.angular_m_s2[0] * e_theta, s.coriolis_m_s2[0] * e_theta])
-        arrows = np.concatenate([chain_arrows(p, s.velocity_m_s[0], v_parts, self._v_scale), chain_arrows(p, s.acceleration_m_s2[0], terms, self._a_scale)])
+        terms = np.array(
+            [
+                s.sliding_m_s2[0] * e_r,
+                s.centripetal_m_s2[0] * e_r,
+                s.angular_m_s2[0] * e_theta,
+                s.coriolis_m_s2[0] * e_theta,
+            ]
+        )
+        arrows = np.concatenate(
+            [
+                chain_arrows(p, s.velocity_m_s[0], v_parts, self._v_scale),
+                chain_arrows(p, s.acceleration_m_s2[0], terms, self._a_scale),
+            ]
+        )
         return p, arrows
 
     def after_draw(self, t_s: float) -> None:
@@ -113,11 +164,24 @@ class RotatingArmScene(ParticleRunScene):
             Quantity.or_text("a_normal", "path: a_n = |v × a|/|v|", a_n, "m/s²", at_rest),
         ]
         if abs(r) < 0.01:
-            message = ("The collar is passing the pivot (r ≈ 0). The arm's e_r and e_θ are still defined, so " "every term is; only the collar's own polar angle, atan2(y, x), would jump here.")
+            message = (
+                "The collar is passing the pivot (r ≈ 0). The arm's e_r and e_θ are still defined, so "
+                "every term is; only the collar's own polar angle, atan2(y, x), would jump here."
+            )
         elif r < 0:
-            message = ("r < 0: the collar is on the arm's other half, beyond the pivot. e_r still points along " "the arm, so the same formulas hold.")
+            message = (
+                "r < 0: the collar is on the arm's other half, beyond the pivot. e_r still points along "
+                "the arm, so the same formulas hold."
+            )
         else:
             message = ""
         if not math.isfinite(a_t):
-            message = " ".join(m for m in (message, "The collar is momentarily at rest: a_t and a_n have no value (there is no direction of travel)." ) if m)
+            message = " ".join(
+                m
+                for m in (
+                    message,
+                    "The collar is momentarily at rest: a_t and a_n have no value (there is no direction of travel).",
+                )
+                if m
+            )
         return Readout(quantities, message=message)

@@ -73,18 +73,38 @@ def _check_playback(values: Mapping[str, Any]) -> None:
 
 #: Playback and display controls, after the curve's own inputs.
 CONTROLS = (
-        Parameter("t_end_s", "s", 12.57, 0.1, 600.0, "The particle runs t from 0 to this time, then starts again", "t end"),
-        Parameter("t_start_s", "s", 0.0, 0.0, 600.0, "Time at which the particle starts (and stays, if the speed scale is 0)", "t start"),
-        Parameter("speed_scale", "s/s", 1.0, 0.0, 5.0, "Seconds of t per second of wall-clock time (0 holds the particle at t start)", "playback speed", step=0.05),
-        Parameter(
-            "frame",
-            "",
-            "frenet",
-            kind="choice",
-            choices=("frenet", "cylindrical", "spherical"),
-            label="unit vectors",
-            description=("Which unit vectors ride on the particle: path (T, N, B), cylindrical (e_R, e_θ, e_z) or " "spherical (e_r, e_φ, e_θ)"),
+    Parameter("t_end_s", "s", 12.57, 0.1, 600.0, "The particle runs t from 0 to this time, then starts again", "t end"),
+    Parameter(
+        "t_start_s",
+        "s",
+        0.0,
+        0.0,
+        600.0,
+        "Time at which the particle starts (and stays, if the speed scale is 0)",
+        "t start",
+    ),
+    Parameter(
+        "speed_scale",
+        "s/s",
+        1.0,
+        0.0,
+        5.0,
+        "Seconds of t per second of wall-clock time (0 holds the particle at t start)",
+        "playback speed",
+        step=0.05,
+    ),
+    Parameter(
+        "frame",
+        "",
+        "frenet",
+        kind="choice",
+        choices=("frenet", "cylindrical", "spherical"),
+        label="unit vectors",
+        description=(
+            "Which unit vectors ride on the particle: path (T, N, B), cylindrical (e_R, e_θ, e_z) or "
+            "spherical (e_r, e_φ, e_θ)"
         ),
+    ),
 )
 
 PRESETS = (
@@ -97,19 +117,32 @@ PRESETS = (
     Preset(
         "conical-spiral",
         "Conical spiral",
-        {"x_of_t": "0.1*t*cos(2*t)", "y_of_t": "0.1*t*sin(2*t)", "z_of_t": "0.12*t", "t_end_s": 9.42, "frame": "cylindrical"},
+        {
+            "x_of_t": "0.1*t*cos(2*t)",
+            "y_of_t": "0.1*t*sin(2*t)",
+            "z_of_t": "0.12*t",
+            "t_end_s": 9.42,
+            "frame": "cylindrical",
+        },
         "R = 0.1 t m, θ = 2t rad, z = 0.12 t m: the radius grows, so the curvature falls",
     ),
     Preset(
         "figure-eight",
         "Figure eight",
         {"x_of_t": "cos(t)", "y_of_t": "sin(2*t)/2", "z_of_t": "0.3*sin(t)", "t_end_s": 6.283, "frame": "frenet"},
-        "A figure eight bent out of its plane: fastest and nearly straight at the crossing, where the torsion " "swings negative",
+        "A figure eight bent out of its plane: fastest and nearly straight at the crossing, where the torsion "
+        "swings negative",
     ),
     Preset(
         "viviani",
         "Viviani's curve",
-        {"x_of_t": "0.5*(1-cos(t))", "y_of_t": "0.5*sin(t)", "z_of_t": "cos(t/2)", "t_end_s": 12.57, "frame": "spherical"},
+        {
+            "x_of_t": "0.5*(1-cos(t))",
+            "y_of_t": "0.5*sin(t)",
+            "z_of_t": "cos(t/2)",
+            "t_end_s": 12.57,
+            "frame": "spherical",
+        },
         "A curve on the sphere of radius 1 m, starting on the +Z pole: r stays 1 m, so v_r = 0",
     ),
 )
@@ -281,7 +314,9 @@ class SpaceCurveScene(Scene):
         if frame == "frenet":
             return path, None
         describe = cylindrical if frame == "cylindrical" else spherical
-        return path, describe(path.position_m, path.velocity_m_s, path.acceleration_m_s2, length_scale_m=self.scales.length_m)
+        return path, describe(
+            path.position_m, path.velocity_m_s, path.acceleration_m_s2, length_scale_m=self.scales.length_m
+        )
 
     def _tabulate(self, path: physics.PathVariables, coordinates) -> FrameTable:
         if coordinates is None:
@@ -327,27 +362,51 @@ class SpaceCurveScene(Scene):
         segments = np.stack([points[:-1], points[1:]], axis=1)[keep].astype(np.float32)
         nodes = []
         if len(segments):
-            nodes.append(scene.add_line_segments("/curve", segments, (90, 90, 150), thickness=2.5, thickness_units="screen"))
+            nodes.append(
+                scene.add_line_segments("/curve", segments, (90, 90, 150), thickness=2.5, thickness_units="screen")
+            )
         cell = self._grid_cell_m = _nice_step(size / 8.0)
         ground_z = float(np.min(points[finite, 2])) if finite.any() else 0.0
         width = 2.0 * cell * math.ceil(0.75 * size / cell)
         nodes.append(
-            scene.add_grid("/ground", width=width, height=width, cell_size=cell, section_size=5 * cell, position=(center[0], center[1], ground_z))
+            scene.add_grid(
+                "/ground",
+                width=width,
+                height=width,
+                cell_size=cell,
+                section_size=5 * cell,
+                position=(center[0], center[1], ground_z),
+            )
         )
         axes_length = 0.25 * size
         nodes.append(scene.add_frame("/world_axes", axes_length=axes_length, axes_radius=0.006 * size))
         for k, name in enumerate("XYZ"):
-            nodes.append(scene.add_label(f"/world_axes/{name}", name, position=tuple(1.08 * axes_length * np.eye(3)[k]), font_screen_scale=0.9))
+            nodes.append(
+                scene.add_label(
+                    f"/world_axes/{name}",
+                    name,
+                    position=tuple(1.08 * axes_length * np.eye(3)[k]),
+                    font_screen_scale=0.9,
+                )
+            )
         self.ball.scale = 0.018 * size
         length, shaft = TRIAD_FRACTION * size, 0.012 * size
         for k in range(3):
             tip = length * np.eye(3)[k]
             arrow = scene.add_arrows(
-                f"/particle/e{k}", np.array([[np.zeros(3), tip]], np.float32), TRIAD_COLORS[k],
-                shaft_radius=shaft, head_radius=2.5 * shaft, head_length=6.0 * shaft,
+                f"/particle/e{k}",
+                np.array([[np.zeros(3), tip]], np.float32),
+                TRIAD_COLORS[k],
+                shaft_radius=shaft,
+                head_radius=2.5 * shaft,
+                head_length=6.0 * shaft,
             )
             label = scene.add_label(
-                f"/particle/e{k}/label", TRIAD_LABELS[self.params["frame"]][k], position=tuple(1.06 * tip), anchor="center-left", font_screen_scale=0.9
+                f"/particle/e{k}/label",
+                TRIAD_LABELS[self.params["frame"]][k],
+                position=tuple(1.06 * tip),
+                anchor="center-left",
+                font_screen_scale=0.9,
             )
             nodes += [arrow, label]
         self._static_nodes = nodes
@@ -433,7 +492,12 @@ class SpaceCurveScene(Scene):
         shaft = 0.008 * self._size
         if len(points):
             self._acceleration_node = self.client.scene.add_arrows(
-                "/acceleration", points, ACCELERATION_COLORS[list(mask)], shaft_radius=shaft, head_radius=2.5 * shaft, head_length=6.0 * shaft
+                "/acceleration",
+                points,
+                ACCELERATION_COLORS[list(mask)],
+                shaft_radius=shaft,
+                head_radius=2.5 * shaft,
+                head_length=6.0 * shaft,
             )
         for label, visible in zip(self.acceleration_labels, mask or (False, False, False)):
             label.visible = visible
@@ -449,7 +513,12 @@ class SpaceCurveScene(Scene):
             Quantity("a_normal", "a_n = κ v²", float(path.a_normal_m_s2[0]), "m/s²"),
             Quantity("curvature", "curvature κ", float(path.curvature_1_m[0]), "1/m"),
             Quantity("torsion", "torsion τ", float(path.torsion_1_m[0]), "1/m"),
-            Quantity("arc_length", "arc length s from t = 0", float(physics.arc_length(self.curve, np.array([self.t_s]))[0]), "m"),
+            Quantity(
+                "arc_length",
+                "arc length s from t = 0",
+                float(physics.arc_length(self.curve, np.array([self.t_s]))[0]),
+                "m",
+            ),
             Quantity("grid_cell", "side of a grid square", self._grid_cell_m, "m"),
         ]
         messages = [physics.undefined_reason(path)]
@@ -473,9 +542,17 @@ _COORDINATE_ROWS = {
 
 def _coordinate_quantities(frame: str, coordinates) -> list[Quantity]:
     rows = _COORDINATE_ROWS[frame]
-    out = [Quantity(name, label, float(coordinates.coordinates[0, k]), unit) for k, (name, label, unit) in enumerate(rows)]
-    out += [Quantity(f"v_{name}", f"v_{label}", float(coordinates.velocity[0, k]), "m/s") for k, (name, label, _) in enumerate(rows)]
-    out += [Quantity(f"a_{name}", f"a_{label}", float(coordinates.acceleration[0, k]), "m/s²") for k, (name, label, _) in enumerate(rows)]
+    out = [
+        Quantity(name, label, float(coordinates.coordinates[0, k]), unit) for k, (name, label, unit) in enumerate(rows)
+    ]
+    out += [
+        Quantity(f"v_{name}", f"v_{label}", float(coordinates.velocity[0, k]), "m/s")
+        for k, (name, label, _) in enumerate(rows)
+    ]
+    out += [
+        Quantity(f"a_{name}", f"a_{label}", float(coordinates.acceleration[0, k]), "m/s²")
+        for k, (name, label, _) in enumerate(rows)
+    ]
     return out
 
 

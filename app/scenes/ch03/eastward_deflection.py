@@ -50,16 +50,37 @@ class EastwardDeflectionScene(Scene):
     model = physics.EastwardDeflection
     animated = True
     presets = (
-        Preset("drop-100m", "Drop 100 m at 45°", {"height_m": 100.0, "latitude_deg": 45.0, "launch_velocity_m_s": [0.0, 0.0, 0.0]},
-               "About 15 mm east; the second-order southward part is about 2 µm."),
-        Preset("reich-mine", "Mine shaft, 158 m at 51° N", {"height_m": 158.0, "latitude_deg": 50.9, "launch_velocity_m_s": [0.0, 0.0, 0.0]},
-               "The depth of the Freiberg mine shaft where Ferdinand Reich measured the deflection in 1831; this " "model gives 27.5 mm."),
-        Preset("equator", "Equator, 100 m", {"height_m": 100.0, "latitude_deg": 0.0, "launch_velocity_m_s": [0.0, 0.0, 0.0]},
-               "cos λ = 1: the largest eastward deflection, and no southward part."),
-        Preset("pole", "North Pole, 100 m", {"height_m": 100.0, "latitude_deg": 90.0, "launch_velocity_m_s": [0.0, 0.0, 0.0]},
-               "Ω is vertical, parallel to the fall: no deflection at all."),
-        Preset("thrown-up", "Thrown straight up", {"height_m": 1.0, "latitude_deg": 45.0, "launch_velocity_m_s": [0.0, 0.0, 40.0]},
-               "Going up it is pushed west, coming down east; the westward push wins and it lands west."),
+        Preset(
+            "drop-100m",
+            "Drop 100 m at 45°",
+            {"height_m": 100.0, "latitude_deg": 45.0, "launch_velocity_m_s": [0.0, 0.0, 0.0]},
+            "About 15 mm east; the second-order southward part is about 2 µm.",
+        ),
+        Preset(
+            "reich-mine",
+            "Mine shaft, 158 m at 51° N",
+            {"height_m": 158.0, "latitude_deg": 50.9, "launch_velocity_m_s": [0.0, 0.0, 0.0]},
+            "The depth of the Freiberg mine shaft where Ferdinand Reich measured the deflection in 1831; this "
+            "model gives 27.5 mm.",
+        ),
+        Preset(
+            "equator",
+            "Equator, 100 m",
+            {"height_m": 100.0, "latitude_deg": 0.0, "launch_velocity_m_s": [0.0, 0.0, 0.0]},
+            "cos λ = 1: the largest eastward deflection, and no southward part.",
+        ),
+        Preset(
+            "pole",
+            "North Pole, 100 m",
+            {"height_m": 100.0, "latitude_deg": 90.0, "launch_velocity_m_s": [0.0, 0.0, 0.0]},
+            "Ω is vertical, parallel to the fall: no deflection at all.",
+        ),
+        Preset(
+            "thrown-up",
+            "Thrown straight up",
+            {"height_m": 1.0, "latitude_deg": 45.0, "launch_velocity_m_s": [0.0, 0.0, 40.0]},
+            "Going up it is pushed west, coming down east; the westward push wins and it lands west.",
+        ),
     )
 
     def camera_view(self):
@@ -89,7 +110,9 @@ class EastwardDeflectionScene(Scene):
         largest = float(np.max(np.linalg.norm(deviation[:, :2], axis=-1)))
         # At the poles the deviation is round-off (~1e-16 of the height): draw it unenlarged rather than blow that up.
         resolvable = largest > 1e-12 * extent
-        self.exaggeration = min(_round_factor(DEVIATION_ON_SCREEN * extent / largest), MAX_EXAGGERATION) if resolvable else 1.0
+        self.exaggeration = (
+            min(_round_factor(DEVIATION_ON_SCREEN * extent / largest), MAX_EXAGGERATION) if resolvable else 1.0
+        )
         # Drawn path: the non-rotating path plus N × the deviation from it (heights kept true).
         drawn = plain + self.exaggeration * deviation
         self._drawn_t = t
@@ -113,32 +136,74 @@ class EastwardDeflectionScene(Scene):
         scene = self.client.scene
         width = 0.08 * extent
         nodes = [
-            scene.add_grid("/ground", width=1.2 * extent, height=1.2 * extent, cell_size=extent / 20.0, section_size=extent / 4.0),
-            scene.add_box("/tower", color=(185, 175, 160), dimensions=(width, width, h), position=(-0.5 * width - 0.06 * extent, 0.0, 0.5 * h)),
-            scene.add_line_segments("/arm", np.array([[[-0.06 * extent, 0.0, h], [0.0, 0.0, h]]], np.float32), (90, 90, 90), thickness=3.0, thickness_units="screen"),
-            scene.add_line_segments("/plumb", np.array([[[0.0, 0.0, h], [0.0, 0.0, 0.0]]], np.float32), (60, 60, 60), thickness=1.5, thickness_units="screen"),
+            scene.add_grid(
+                "/ground", width=1.2 * extent, height=1.2 * extent, cell_size=extent / 20.0, section_size=extent / 4.0
+            ),
+            scene.add_box(
+                "/tower",
+                color=(185, 175, 160),
+                dimensions=(width, width, h),
+                position=(-0.5 * width - 0.06 * extent, 0.0, 0.5 * h),
+            ),
+            scene.add_line_segments(
+                "/arm",
+                np.array([[[-0.06 * extent, 0.0, h], [0.0, 0.0, h]]], np.float32),
+                (90, 90, 90),
+                thickness=3.0,
+                thickness_units="screen",
+            ),
+            scene.add_line_segments(
+                "/plumb",
+                np.array([[[0.0, 0.0, h], [0.0, 0.0, 0.0]]], np.float32),
+                (60, 60, 60),
+                thickness=1.5,
+                thickness_units="screen",
+            ),
             scene.add_label("/plumb_label", "foot of the plumb line", position=(0.0, 0.0, 0.0), anchor="top-right"),
             scene.add_icosphere("/plumb_foot", radius=0.008 * extent, color=(90, 90, 90)),
-            scene.add_line_segments("/path", np.stack([drawn[:-1], drawn[1:]], axis=1).astype(np.float32), (210, 60, 40), thickness=2.5, thickness_units="screen"),
+            scene.add_line_segments(
+                "/path",
+                np.stack([drawn[:-1], drawn[1:]], axis=1).astype(np.float32),
+                (210, 60, 40),
+                thickness=2.5,
+                thickness_units="screen",
+            ),
             scene.add_icosphere("/landing", radius=0.01 * extent, color=(210, 60, 40), position=drawn[-1]),
             scene.add_label(
                 "/landing_label",
                 _landing_text(self.deflection),
-                position=drawn[-1] + np.array([0.02 * extent, 0.0, 0.0]), anchor="center-left",
+                position=drawn[-1] + np.array([0.02 * extent, 0.0, 0.0]),
+                anchor="center-left",
             ),
         ]
         if np.max(np.abs(plain[:, :2])) > 1e-9:  # a throw: show the path the body would take on a non-turning Earth
-            nodes.append(scene.add_line_segments("/plain_path", np.stack([plain[:-1], plain[1:]], axis=1).astype(np.float32), (150, 150, 150), thickness=1.0, thickness_units="screen"))
+            nodes.append(
+                scene.add_line_segments(
+                    "/plain_path",
+                    np.stack([plain[:-1], plain[1:]], axis=1).astype(np.float32),
+                    (150, 150, 150),
+                    thickness=1.0,
+                    thickness_units="screen",
+                )
+            )
         # A small compass at the tower's foot: east and north, each a tenth of the scene.
         base, arm = np.array([-0.3 * extent, -0.3 * extent, 0.0]), 0.1 * extent
         nodes.append(
             scene.add_arrows(
-                "/compass", np.array([[base, base + [arm, 0.0, 0.0]], [base, base + [0.0, arm, 0.0]]], np.float32),
-                np.array([(200, 70, 70), (70, 140, 70)], np.uint8), shaft_radius=0.003 * extent, head_radius=0.008 * extent, head_length=0.02 * extent,
+                "/compass",
+                np.array([[base, base + [arm, 0.0, 0.0]], [base, base + [0.0, arm, 0.0]]], np.float32),
+                np.array([(200, 70, 70), (70, 140, 70)], np.uint8),
+                shaft_radius=0.003 * extent,
+                head_radius=0.008 * extent,
+                head_length=0.02 * extent,
             )
         )
-        nodes.append(scene.add_label("/compass_east", "east", position=base + [1.1 * arm, 0.0, 0.0], anchor="center-left"))
-        nodes.append(scene.add_label("/compass_north", "north", position=base + [0.0, 1.1 * arm, 0.0], anchor="bottom-center"))
+        nodes.append(
+            scene.add_label("/compass_east", "east", position=base + [1.1 * arm, 0.0, 0.0], anchor="center-left")
+        )
+        nodes.append(
+            scene.add_label("/compass_north", "north", position=base + [0.0, 1.1 * arm, 0.0], anchor="bottom-center")
+        )
         return nodes
 
     def _draw(self) -> None:
@@ -161,16 +226,32 @@ class EastwardDeflectionScene(Scene):
         quantities = [
             Quantity("t_s", "time since release", min(self.t_s, self.t_land), "s"),
             Quantity("time_of_fall_s", "time of flight (exact)", float(self.t_land), "s"),
-            Quantity("time_without_rotation_s", "time of flight without the Earth's rotation", float(self.flight.fall_time_without_rotation_s()), "s"),
+            Quantity(
+                "time_without_rotation_s",
+                "time of flight without the Earth's rotation",
+                float(self.flight.fall_time_without_rotation_s()),
+                "s",
+            ),
             Quantity("east_mm", "east deflection (exact)", 1000.0 * float(self.deflection[0]), "mm"),
-            Quantity("east_first_order_mm", "east, first order in Ω" + (" (⅓ Ω g t³ cos λ)" if dropped else ""), 1000.0 * float(self.deflection_first[0]), "mm"),
+            Quantity(
+                "east_first_order_mm",
+                "east, first order in Ω" + (" (⅓ Ω g t³ cos λ)" if dropped else ""),
+                1000.0 * float(self.deflection_first[0]),
+                "mm",
+            ),
             Quantity("south_mm", "south deflection (exact, uniform g)", -1000.0 * float(self.deflection[1]), "mm"),
-            Quantity("south_second_order_mm", "south, second order in Ω" + (" (⅙ Ω² g t⁴ sin λ cos λ)" if dropped else ""), -1000.0 * float(self.deflection_second[1]), "mm"),
+            Quantity(
+                "south_second_order_mm",
+                "south, second order in Ω" + (" (⅙ Ω² g t⁴ sin λ cos λ)" if dropped else ""),
+                -1000.0 * float(self.deflection_second[1]),
+                "mm",
+            ),
             Quantity("exaggeration", "sideways deviation drawn enlarged by", self.exaggeration, "×"),
             Quantity("earth_rate", "Earth's rotation rate Ω", EARTH_RATE_RAD_S, "rad/s"),
         ]
         message = (
-            f"At latitude {lam:g}° the Earth turns about the local vertical at Ω sin λ and about the north axis " "at Ω cos λ; "
+            f"At latitude {lam:g}° the Earth turns about the local vertical at Ω sin λ and about the north axis "
+            "at Ω cos λ; "
             "only the north part acts on a vertical fall, which is why the deflection goes as cos λ."
         )
         return Readout(quantities, message=message)

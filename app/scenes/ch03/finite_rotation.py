@@ -26,10 +26,25 @@ from app.scenes.kit import Preset, Quantity, Readout, Scene
 
 CONTROLS = (
     *(p for p in SEQUENCE_CONTROLS if p.name != "stage"),
-    Parameter("second_axis", "", "Z", kind="choice", choices=physics.FIXED_AXES, label="B about",
-              description="Fixed axis of the second turn B"),
-    Parameter("second_angle_deg", "deg", 0.0, -180.0, 180.0, label="β", step=1.0,
-              description="Angle of the second turn B about its fixed axis (0: no second turn, Euler's theorem alone)"),
+    Parameter(
+        "second_axis",
+        "",
+        "Z",
+        kind="choice",
+        choices=physics.FIXED_AXES,
+        label="B about",
+        description="Fixed axis of the second turn B",
+    ),
+    Parameter(
+        "second_angle_deg",
+        "deg",
+        0.0,
+        -180.0,
+        180.0,
+        label="β",
+        step=1.0,
+        description="Angle of the second turn B about its fixed axis (0: no second turn, Euler's theorem alone)",
+    ),
 )
 
 BODY_AXIS_LENGTH = 0.7
@@ -71,14 +86,51 @@ class FiniteRotationScene(Scene):
     camera_position = (1.7, -2.3, 1.45)
     camera_look_at = (0.0, 0.0, 0.0)
     presets = (
-        Preset("classic-euler", "Three turns, one axis (3-1-3)", {"sequence": "3-1-3", "angle1_deg": 80.0, "angle2_deg": 35.0, "angle3_deg": 60.0, "second_angle_deg": 0.0},
-               "Precession 80°, nutation 35°, spin 60°: the same attitude as one turn of 141.92° about n"),
-        Preset("quarter-turns", "Quarter turns do not commute", {"sequence": "1-2-3", "angle1_deg": 90.0, "angle2_deg": 0.0, "angle3_deg": 0.0, "second_axis": "Z", "second_angle_deg": 90.0},
-               "A = 90° about X, B = 90° about Z: A then B and B then A are both 120° turns, about different axes"),
-        Preset("same-axis", "Turns about one axis commute", {"sequence": "3-2-1", "angle1_deg": 50.0, "angle2_deg": 0.0, "angle3_deg": 0.0, "second_axis": "Z", "second_angle_deg": 70.0},
-               "A and B both about Z: the order does not matter, the angles just add"),
-        Preset("small-turns", "Small turns nearly commute", {"sequence": "1-2-3", "angle1_deg": 5.0, "angle2_deg": 0.0, "angle3_deg": 0.0, "second_axis": "Z", "second_angle_deg": 5.0},
-               "5° about X and 5° about Z: the orders differ by only about 0.44°, the product of the two angles"),
+        Preset(
+            "classic-euler",
+            "Three turns, one axis (3-1-3)",
+            {"sequence": "3-1-3", "angle1_deg": 80.0, "angle2_deg": 35.0, "angle3_deg": 60.0, "second_angle_deg": 0.0},
+            "Precession 80°, nutation 35°, spin 60°: the same attitude as one turn of 141.92° about n",
+        ),
+        Preset(
+            "quarter-turns",
+            "Quarter turns do not commute",
+            {
+                "sequence": "1-2-3",
+                "angle1_deg": 90.0,
+                "angle2_deg": 0.0,
+                "angle3_deg": 0.0,
+                "second_axis": "Z",
+                "second_angle_deg": 90.0,
+            },
+            "A = 90° about X, B = 90° about Z: A then B and B then A are both 120° turns, about different axes",
+        ),
+        Preset(
+            "same-axis",
+            "Turns about one axis commute",
+            {
+                "sequence": "3-2-1",
+                "angle1_deg": 50.0,
+                "angle2_deg": 0.0,
+                "angle3_deg": 0.0,
+                "second_axis": "Z",
+                "second_angle_deg": 70.0,
+            },
+            "A and B both about Z: the order does not matter, the angles just add",
+        ),
+        Preset(
+            "small-turns",
+            "Small turns nearly commute",
+            {
+                "sequence": "1-2-3",
+                "angle1_deg": 5.0,
+                "angle2_deg": 0.0,
+                "angle3_deg": 0.0,
+                "second_axis": "Z",
+                "second_angle_deg": 5.0,
+            },
+            "5° about X and 5° about Z: the orders differ by only about 0.44°, the product of the two angles",
+        ),
     )
 
     def camera_view(self):
@@ -90,30 +142,55 @@ class FiniteRotationScene(Scene):
     # -- building -----------------------------------------------------------------------------------
     def build(self) -> None:
         scene = self.client.scene
-        add_labelled_axes(scene, "/fixed", length=FIXED_AXIS_LENGTH, labels="XYZ", axes_radius=0.012, origin_radius=0.04)
+        add_labelled_axes(
+            scene, "/fixed", length=FIXED_AXIS_LENGTH, labels="XYZ", axes_radius=0.012, origin_radius=0.04
+        )
         self.bodies = []
         self.ghosts = []
         for n in range(2):
             body = scene.add_frame(f"/body{n}", axes_length=BODY_AXIS_LENGTH, axes_radius=0.022, origin_radius=0.04)
-            scene.add_box(f"/body{n}/plate", color=BODY_COLOR, dimensions=BODY_DIMENSIONS, opacity=0.8, cast_shadow=False, receive_shadow=False)
+            scene.add_box(
+                f"/body{n}/plate",
+                color=BODY_COLOR,
+                dimensions=BODY_DIMENSIONS,
+                opacity=0.8,
+                cast_shadow=False,
+                receive_shadow=False,
+            )
             ghost = scene.add_frame(f"/ghost{n}", axes_length=BODY_AXIS_LENGTH, axes_radius=0.008, origin_radius=0.01)
-            scene.add_box(f"/ghost{n}/plate", color=BODY_COLOR, dimensions=BODY_DIMENSIONS, opacity=0.18, cast_shadow=False, receive_shadow=False)
+            scene.add_box(
+                f"/ghost{n}/plate",
+                color=BODY_COLOR,
+                dimensions=BODY_DIMENSIONS,
+                opacity=0.18,
+                cast_shadow=False,
+                receive_shadow=False,
+            )
             self.bodies.append(body)
             self.ghosts.append(ghost)
-        self.axes = scene.add_line_segments("/turn_axes", np.zeros((1, 2, 3), np.float32), AXIS_A_COLOR, thickness=4.0, thickness_units="screen")
+        self.axes = scene.add_line_segments(
+            "/turn_axes", np.zeros((1, 2, 3), np.float32), AXIS_A_COLOR, thickness=4.0, thickness_units="screen"
+        )
         self.axis_labels = [scene.add_label(f"/turn_axes/label{n}", "", anchor="bottom-left") for n in range(4)]
         self.arcs = [
-            scene.add_line_segments(f"/arc{n}", np.zeros((1, 2, 3), np.float32), AXIS_A_COLOR, thickness=3.0, thickness_units="screen")
+            scene.add_line_segments(
+                f"/arc{n}", np.zeros((1, 2, 3), np.float32), AXIS_A_COLOR, thickness=3.0, thickness_units="screen"
+            )
             for n in range(2)
         ]
-        self.order_labels = [scene.add_label(f"/order_label{n}", "", anchor="top-center", font_screen_scale=1.2) for n in range(2)]
+        self.order_labels = [
+            scene.add_label(f"/order_label{n}", "", anchor="top-center", font_screen_scale=1.2) for n in range(2)
+        ]
         self.t_s = 0.0
 
     # -- parameters → geometry ------------------------------------------------------------------------
     def update(self) -> None:
         angles = np.radians([self.params[f"angle{k}_deg"] for k in (1, 2, 3)])
         self.result = physics.finite_rotation(
-            angles, self.params["sequence"], second_axis=self.params["second_axis"], second_angle_rad=math.radians(self.params["second_angle_deg"])
+            angles,
+            self.params["sequence"],
+            second_axis=self.params["second_axis"],
+            second_angle_rad=math.radians(self.params["second_angle_deg"]),
         )
         self.compare = abs(self.params["second_angle_deg"]) > 0.0
         a = self.result.turn_a
@@ -137,10 +214,20 @@ class FiniteRotationScene(Scene):
             for (axis, angle), name in zip(turns, ("A", "B") if pivot[0] <= 0.0 else ("B", "A")):
                 if angle == 0.0 or (name == "A" and a.angle_rad < NO_TURN_RAD):
                     continue
-                segments.append([pivot - EQUIVALENT_AXIS_HALF_LENGTH * axis, pivot + EQUIVALENT_AXIS_HALF_LENGTH * axis])
-                labels.append((pivot + EQUIVALENT_AXIS_HALF_LENGTH * axis, f"{name}: {math.degrees(angle):.4g}° about " f"{'n' if name == 'A' else self.params['second_axis']}"))
+                segments.append(
+                    [pivot - EQUIVALENT_AXIS_HALF_LENGTH * axis, pivot + EQUIVALENT_AXIS_HALF_LENGTH * axis]
+                )
+                labels.append(
+                    (
+                        pivot + EQUIVALENT_AXIS_HALF_LENGTH * axis,
+                        f"{name}: {math.degrees(angle):.4g}° about "
+                        f"{'n' if name == 'A' else self.params['second_axis']}",
+                    )
+                )
         points = np.array(segments, np.float32).reshape(-1, 2, 3) if segments else np.zeros((1, 2, 3), np.float32)
-        colors = np.array([AXIS_A_COLOR if text.startswith("A") else AXIS_B_COLOR for _, text in labels] or [AXIS_A_COLOR], np.uint8)
+        colors = np.array(
+            [AXIS_A_COLOR if text.startswith("A") else AXIS_B_COLOR for _, text in labels] or [AXIS_A_COLOR], np.uint8
+        )
         self.axes.points = points
         self.axes.colors = np.repeat(colors[:, None, :], 2, axis=1)
         self.axes.visible = bool(segments)
@@ -197,7 +284,11 @@ class FiniteRotationScene(Scene):
                 path = pivot + np.concatenate(samples)
                 self.arcs[n].points = np.stack([path[:-1], path[1:]], axis=1).astype(np.float32)
             else:
-                self.arcs[n].points = np.zeros((1, 2, 3), np.float32) + pivot.astype(np.float32) + np.array([BODY_AXIS_LENGTH, 0, 0], np.float32)
+                self.arcs[n].points = (
+                    np.zeros((1, 2, 3), np.float32)
+                    + pivot.astype(np.float32)
+                    + np.array([BODY_AXIS_LENGTH, 0, 0], np.float32)
+                )
 
     def advance(self, dt_s: float) -> None:
         before = sweep_fractions(self.t_s)
@@ -213,20 +304,50 @@ class FiniteRotationScene(Scene):
         has_axis = a.angle_rad >= NO_TURN_RAD
         quantities = [
             Quantity.word("sequence", "sequence of A", f"{r.sequence.name} ({r.sequence.kind})"),
-            *(Quantity(f"R_row{i + 1}", f"[R] row {i + 1} (v_XYZ = [R] v_xyz)", None, "", "  ".join(f"{v:+.4f}" for v in a.R_world_body[i])) for i in range(3)),
+            *(
+                Quantity(
+                    f"R_row{i + 1}",
+                    f"[R] row {i + 1} (v_XYZ = [R] v_xyz)",
+                    None,
+                    "",
+                    "  ".join(f"{v:+.4f}" for v in a.R_world_body[i]),
+                )
+                for i in range(3)
+            ),
             *(Quantity(f"q_{c}", f"quaternion {c}", float(v), "") for c, v in zip("wxyz", a.q_world_body)),
             *(
-                Quantity.or_text(f"axis_{c}", f"axis n, {c.upper()} component", float(v) if has_axis else None, "", "undefined: no turn")
+                Quantity.or_text(
+                    f"axis_{c}",
+                    f"axis n, {c.upper()} component",
+                    float(v) if has_axis else None,
+                    "",
+                    "undefined: no turn",
+                )
                 for c, v in zip("xyz", a.axis_world)
             ),
             Quantity("rotation_angle_deg", "angle φ of the one turn about n", math.degrees(a.angle_rad), "deg"),
-            Quantity("rodrigues_mismatch", "largest |[R] from Rodrigues (n, φ) − [R] from the sequence|", r.rodrigues_mismatch, ""),
+            Quantity(
+                "rodrigues_mismatch",
+                "largest |[R] from Rodrigues (n, φ) − [R] from the sequence|",
+                r.rodrigues_mismatch,
+                "",
+            ),
         ]
         if self.compare:
             for name, label, turn in (("a_then_b", "A then B", r.a_then_b), ("b_then_a", "B then A", r.b_then_a)):
-                quantities.append(Quantity(f"{name}_angle_deg", f"{label}: angle of the one turn", math.degrees(turn.angle_rad), "deg"))
-                quantities.append(Quantity(f"{name}_axis", f"{label}: its axis (X, Y, Z)", None, "", components_text(turn.axis_world, 4)))
-            quantities.append(Quantity("order_gap_deg", "turn between the two results", math.degrees(r.order_gap_rad), "deg"))
+                quantities.append(
+                    Quantity(
+                        f"{name}_angle_deg", f"{label}: angle of the one turn", math.degrees(turn.angle_rad), "deg"
+                    )
+                )
+                quantities.append(
+                    Quantity(
+                        f"{name}_axis", f"{label}: its axis (X, Y, Z)", None, "", components_text(turn.axis_world, 4)
+                    )
+                )
+            quantities.append(
+                Quantity("order_gap_deg", "turn between the two results", math.degrees(r.order_gap_rad), "deg")
+            )
         quantities.append(Quantity("t_s", "time into the animation loop", self.t_s, "s"))
         return Readout(quantities, message=self.message())
 
@@ -236,13 +357,18 @@ class FiniteRotationScene(Scene):
             text = "A is no turn at all: the body stays as the fixed frame, and the axis n is undefined."
         else:
             text = (
-                f"Euler's theorem: the {r.sequence.name} turns end where one turn of φ = " f"{math.degrees(a.angle_rad):.2f}° "
-                f"about n = {components_text(a.axis_world, 4)} ends; Rodrigues' formula with that n and φ gives " "[R] again."
+                f"Euler's theorem: the {r.sequence.name} turns end where one turn of φ = "
+                f"{math.degrees(a.angle_rad):.2f}° "
+                f"about n = {components_text(a.axis_world, 4)} ends; Rodrigues' formula with that n and φ gives "
+                "[R] again."
             )
         if self.compare:
             gap = math.degrees(r.order_gap_rad)
             if gap < 1e-7:
-                text += (" A then B and B then A end in the same attitude: these two turns commute (they share an " "axis, or one is no turn).")
+                text += (
+                    " A then B and B then A end in the same attitude: these two turns commute (they share an "
+                    "axis, or one is no turn)."
+                )
             else:
                 text += f" A then B and B then A end {gap:.4g}° apart: finite rotations do not commute."
         return text

@@ -34,18 +34,42 @@ class FoucaultPendulumScene(IntegratedScene):
     chapter = 3
     model = physics.FoucaultPendulum
     presets = (
-        Preset("paris", "Paris, exaggerated ×1000", {"latitude_deg": 48.85, "earth_rate_factor": 1000.0, "release": "from rest"},
-               "Foucault's city; the rate is a thousand times the Earth's so one turn takes about two minutes."),
-        Preset("north-pole", "North Pole", {"latitude_deg": 90.0, "earth_rate_factor": 1000.0},
-               "The plane stays fixed against the stars while the floor turns under it once a (scaled) day."),
-        Preset("equator", "Equator: no turning", {"latitude_deg": 0.0, "earth_rate_factor": 1000.0},
-               "Ω is horizontal here: Ω sin λ = 0 and the swing plane does not turn."),
-        Preset("sydney", "Sydney (southern hemisphere)", {"latitude_deg": -33.87, "earth_rate_factor": 1000.0},
-               "South of the equator the plane turns counterclockwise seen from above."),
-        Preset("through-centre", "Pushed through the centre", {"release": "from the centre", "earth_rate_factor": 1000.0},
-               "Started with a push from the rest position: the rosette's loops all pass through the centre."),
-        Preset("real-earth", "Real Earth, Panthéon size", {"latitude_deg": 48.85, "earth_rate_factor": 1.0, "length_m": 67.0, "amplitude_m": 3.0},
-               "The true rate: about 11° an hour. Nothing visible happens in a lesson, which is the point."),
+        Preset(
+            "paris",
+            "Paris, exaggerated ×1000",
+            {"latitude_deg": 48.85, "earth_rate_factor": 1000.0, "release": "from rest"},
+            "Foucault's city; the rate is a thousand times the Earth's so one turn takes about two minutes.",
+        ),
+        Preset(
+            "north-pole",
+            "North Pole",
+            {"latitude_deg": 90.0, "earth_rate_factor": 1000.0},
+            "The plane stays fixed against the stars while the floor turns under it once a (scaled) day.",
+        ),
+        Preset(
+            "equator",
+            "Equator: no turning",
+            {"latitude_deg": 0.0, "earth_rate_factor": 1000.0},
+            "Ω is horizontal here: Ω sin λ = 0 and the swing plane does not turn.",
+        ),
+        Preset(
+            "sydney",
+            "Sydney (southern hemisphere)",
+            {"latitude_deg": -33.87, "earth_rate_factor": 1000.0},
+            "South of the equator the plane turns counterclockwise seen from above.",
+        ),
+        Preset(
+            "through-centre",
+            "Pushed through the centre",
+            {"release": "from the centre", "earth_rate_factor": 1000.0},
+            "Started with a push from the rest position: the rosette's loops all pass through the centre.",
+        ),
+        Preset(
+            "real-earth",
+            "Real Earth, Panthéon size",
+            {"latitude_deg": 48.85, "earth_rate_factor": 1.0, "length_m": 67.0, "amplitude_m": 3.0},
+            "The true rate: about 11° an hour. Nothing visible happens in a lesson, which is the point.",
+        ),
     )
 
     def camera_view(self):
@@ -57,13 +81,28 @@ class FoucaultPendulumScene(IntegratedScene):
         self.floor = None
         self.compass: list = []
         self.pivot = scene.add_icosphere("/pivot", radius=0.05, color=(40, 40, 40))
-        self.string = scene.add_line_segments("/string", np.zeros((1, 2, 3), np.float32), (60, 60, 60), thickness=1.5, thickness_units="screen")
+        self.string = scene.add_line_segments(
+            "/string", np.zeros((1, 2, 3), np.float32), (60, 60, 60), thickness=1.5, thickness_units="screen"
+        )
         self.bob = scene.add_icosphere("/bob", radius=0.05, color=(190, 150, 40))
-        self.first_plane = scene.add_line_segments("/first_plane", np.zeros((1, 2, 3), np.float32), (150, 150, 150), thickness=2.0, thickness_units="screen")
-        self.predicted_plane = scene.add_line_segments("/predicted_plane", np.zeros((1, 2, 3), np.float32), (240, 130, 20), thickness=3.0, thickness_units="screen")
-        self.predicted_label = scene.add_label("/predicted_plane/label", "predicted plane (Ω sin λ)", anchor="bottom-left")
+        self.first_plane = scene.add_line_segments(
+            "/first_plane", np.zeros((1, 2, 3), np.float32), (150, 150, 150), thickness=2.0, thickness_units="screen"
+        )
+        self.predicted_plane = scene.add_line_segments(
+            "/predicted_plane", np.zeros((1, 2, 3), np.float32), (240, 130, 20), thickness=3.0, thickness_units="screen"
+        )
+        self.predicted_label = scene.add_label(
+            "/predicted_plane/label", "predicted plane (Ω sin λ)", anchor="bottom-left"
+        )
         self.rate_label = scene.add_label("/rate_note", "", anchor="top-left")
-        self.trail = Trail(scene, "/trail", color=(40, 90, 200), chunk_frames=TRAIL_CHUNK_FRAMES, max_chunks=TRAIL_CHUNKS, thickness=2.0)
+        self.trail = Trail(
+            scene,
+            "/trail",
+            color=(40, 90, 200),
+            chunk_frames=TRAIL_CHUNK_FRAMES,
+            max_chunks=TRAIL_CHUNKS,
+            thickness=2.0,
+        )
 
     def update(self) -> None:
         params = self.physical_params()
@@ -73,9 +112,13 @@ class FoucaultPendulumScene(IntegratedScene):
         size = max(a, 0.05)
         for node in ([self.floor] if self.floor is not None else []) + self.compass:
             node.remove()
-        self.floor = scene.add_grid("/floor", width=3.0 * size, height=3.0 * size, cell_size=size / 4.0, section_size=size)
+        self.floor = scene.add_grid(
+            "/floor", width=3.0 * size, height=3.0 * size, cell_size=size / 4.0, section_size=size
+        )
         self.compass = [
-            scene.add_label(f"/compass/{name}", name, position=(1.35 * size * dx, 1.35 * size * dy, 0.0), anchor="center-center")
+            scene.add_label(
+                f"/compass/{name}", name, position=(1.35 * size * dx, 1.35 * size * dy, 0.0), anchor="center-center"
+            )
             for name, dx, dy in (("N", 0, 1), ("E", 1, 0), ("S", 0, -1), ("W", -1, 0))
         ]
         self.pivot.position = (0.0, 0.0, L)
@@ -123,24 +166,39 @@ class FoucaultPendulumScene(IntegratedScene):
             Quantity("t_s", "t", self.run.t_s, "s"),
             Quantity("real_rate_deg_h", "Ω sin λ, real Earth (clockwise from above)", real_deg_h, "deg/h"),
             Quantity(
-                "real_full_turn_h", "one full turn of the plane, real Earth",
-                360.0 / abs(real_deg_h) if abs(real_rate) > 1e-12 else None, "h", "" if abs(real_rate) > 1e-12 else "never (equator)",
-            ),
-            Quantity("scene_rate_deg_s", f"Ω sin λ in this scene (Earth rate ×{factor:g})", math.degrees(self._rate), "deg/s"),
-            Quantity(
-                "measured_rate_deg_s", "measured from the swings' turning points",
-                math.degrees(measured) if measured is not None else None, "deg/s", "" if measured is not None else "waiting for 3 turning points",
+                "real_full_turn_h",
+                "one full turn of the plane, real Earth",
+                360.0 / abs(real_deg_h) if abs(real_rate) > 1e-12 else None,
+                "h",
+                "" if abs(real_rate) > 1e-12 else "never (equator)",
             ),
             Quantity(
-                "measured_real_deg_h", f"measured ÷ {factor:g} (as on the real Earth)",
-                math.degrees(measured) * SECONDS_PER_HOUR / factor if measured is not None else None, "deg/h", "" if measured is not None else "waiting",
+                "scene_rate_deg_s", f"Ω sin λ in this scene (Earth rate ×{factor:g})", math.degrees(self._rate), "deg/s"
+            ),
+            Quantity(
+                "measured_rate_deg_s",
+                "measured from the swings' turning points",
+                math.degrees(measured) if measured is not None else None,
+                "deg/s",
+                "" if measured is not None else "waiting for 3 turning points",
+            ),
+            Quantity(
+                "measured_real_deg_h",
+                f"measured ÷ {factor:g} (as on the real Earth)",
+                math.degrees(measured) * SECONDS_PER_HOUR / factor if measured is not None else None,
+                "deg/h",
+                "" if measured is not None else "waiting",
             ),
             Quantity("turning_points", "turning points measured", self._tracker.count, ""),
             Quantity("period_s", "swing period 2π/ω₀", 2.0 * math.pi / omega0, "s"),
         ]
         expected = physics.expected_clockwise_rate_rad_s(params)
         lag = 1.0 - expected / self._rate if self._rate != 0.0 else 0.0
-        quantities.append(Quantity("expected_rate_deg_s", "expected with the finite-swing correction", math.degrees(expected), "deg/s"))
+        quantities.append(
+            Quantity(
+                "expected_rate_deg_s", "expected with the finite-swing correction", math.degrees(expected), "deg/s"
+            )
+        )
         message = (
             "Positive rates turn clockwise seen from above. A finite swing turns its own ellipse a little "
             f"(Airy): here the plane should lag Ω sin λ by about {100 * lag:.2g}%."

@@ -22,12 +22,12 @@ from app.scenes.kit import FRAME_DT_S, Preset, Quantity, Readout, Scene, move_no
 from app.scenes.kit.arrows import LabelledArrows
 
 COLORS = {
-    "reference": (120, 80, 180),   # purple
-    "angular": (235, 140, 20),     # orange
+    "reference": (120, 80, 180),  # purple
+    "angular": (235, 140, 20),  # orange
     "centripetal": (40, 160, 70),  # green
-    "coriolis": (215, 40, 40),     # red
-    "relative": (30, 110, 220),    # blue
-    "total": (25, 25, 25),         # black
+    "coriolis": (215, 40, 40),  # red
+    "relative": (30, 110, 220),  # blue
+    "total": (25, 25, 25),  # black
 }
 SHORT_LABELS = {
     "reference": "a_O",
@@ -44,12 +44,34 @@ PATH_SAMPLES = 400
 #: The table's top face is drawn this far below the plane of P's motion, so arrows lying in that plane are not
 #: hidden inside the disc (the slider box is tall enough to sit in the groove).
 DISC_TOP_BELOW_P_M = 0.04
-BATCH_FRAMES = 30  # frames evaluated per vectorised call: the per-call overhead shared (docs/bench/live-frame-costs.svg)
+BATCH_FRAMES = (
+    30  # frames evaluated per vectorised call: the per-call overhead shared (docs/bench/live-frame-costs.svg)
+)
 
 DISPLAY_PARAMETERS = (
-    Parameter("time_s", "s", 0.0, 0.0, 60.0, "Instant shown when the playback speed is 0 (and where playback starts)", "instant t", step=0.05),
-    Parameter("playback_speed", "× real time", 0.5, 0.0, 2.0, "Speed of the replay; 0 holds the instant t still", "playback speed", step=0.05),
-    Parameter("replay_s", "s", 10.0, 2.0, 60.0, "The motion replays from t = 0 after this long", "replay length", step=1.0),
+    Parameter(
+        "time_s",
+        "s",
+        0.0,
+        0.0,
+        60.0,
+        "Instant shown when the playback speed is 0 (and where playback starts)",
+        "instant t",
+        step=0.05,
+    ),
+    Parameter(
+        "playback_speed",
+        "× real time",
+        0.5,
+        0.0,
+        2.0,
+        "Speed of the replay; 0 holds the instant t still",
+        "playback speed",
+        step=0.05,
+    ),
+    Parameter(
+        "replay_s", "s", 10.0, 2.0, 60.0, "The motion replays from t = 0 after this long", "replay length", step=1.0
+    ),
 )
 
 
@@ -80,33 +102,87 @@ class MovingFrameScene(Scene):
     controls = DISPLAY_PARAMETERS
     animated = True
     presets = (
-        Preset("steady-radial", "Steady spin, radial groove", {
-            "table_radius_m": 1.0,
-            "spin_rate_rad_s": 1.5, "spin_acceleration_rad_s2": 0.0, "tilt_deg": 0.0, "precession_rate_rad_s": 0.0,
-            "groove_offset_m": 0.0, "slider_amplitude_m": 0.7, "slider_frequency_hz": 0.2, "cart_amplitude_m": 0.0,
-        }, "Only centripetal, Coriolis and relative terms: watch the Coriolis arrow flip as the slider turns back."),
-        Preset("slider-locked", "Slider locked, table spinning up", {
-            "table_radius_m": 1.0,
-            "spin_rate_rad_s": 0.5, "spin_acceleration_rad_s2": 0.3, "tilt_deg": 0.0, "precession_rate_rad_s": 0.0,
-            "slider_amplitude_m": 0.0, "groove_offset_m": 0.6, "cart_amplitude_m": 0.0,
-        }, "A point fixed to the body: no Coriolis or relative term; α × r is the tangential part."),
-        Preset("tilted-precessing", "Tilted axis that precesses", {
-            "table_radius_m": 1.0,
-            "spin_rate_rad_s": 2.0, "spin_acceleration_rad_s2": 0.0, "tilt_deg": 30.0, "precession_rate_rad_s": 0.8,
-            "groove_offset_m": 0.3, "slider_amplitude_m": 0.6, "slider_frequency_hz": 0.25, "cart_amplitude_m": 0.0,
-        }, "Steady spin and steady precession still give α ≠ 0: the spin axis itself turns."),
-        Preset("shaking-cart", "On a shaking cart", {
-            "table_radius_m": 1.0,
-            "spin_rate_rad_s": 1.0, "spin_acceleration_rad_s2": 0.0, "tilt_deg": 0.0, "precession_rate_rad_s": 0.0,
-            "groove_offset_m": 0.3, "slider_amplitude_m": 0.6, "slider_frequency_hz": 0.25,
-            "cart_amplitude_m": 0.3, "cart_frequency_hz": 0.6,
-        }, "The reference point O accelerates: a_O is added to every point of the table alike."),
-        Preset("everything", "Everything at once", {
-            "table_radius_m": 1.0,
-            "spin_rate_rad_s": 1.2, "spin_acceleration_rad_s2": 0.2, "tilt_deg": 25.0, "precession_rate_rad_s": 0.6,
-            "groove_offset_m": 0.3, "slider_amplitude_m": 0.6, "slider_frequency_hz": 0.3,
-            "cart_amplitude_m": 0.2, "cart_frequency_hz": 0.5,
-        }, "All five terms at once; the chain still closes on a_P."),
+        Preset(
+            "steady-radial",
+            "Steady spin, radial groove",
+            {
+                "table_radius_m": 1.0,
+                "spin_rate_rad_s": 1.5,
+                "spin_acceleration_rad_s2": 0.0,
+                "tilt_deg": 0.0,
+                "precession_rate_rad_s": 0.0,
+                "groove_offset_m": 0.0,
+                "slider_amplitude_m": 0.7,
+                "slider_frequency_hz": 0.2,
+                "cart_amplitude_m": 0.0,
+            },
+            "Only centripetal, Coriolis and relative terms: watch the Coriolis arrow flip as the slider turns back.",
+        ),
+        Preset(
+            "slider-locked",
+            "Slider locked, table spinning up",
+            {
+                "table_radius_m": 1.0,
+                "spin_rate_rad_s": 0.5,
+                "spin_acceleration_rad_s2": 0.3,
+                "tilt_deg": 0.0,
+                "precession_rate_rad_s": 0.0,
+                "slider_amplitude_m": 0.0,
+                "groove_offset_m": 0.6,
+                "cart_amplitude_m": 0.0,
+            },
+            "A point fixed to the body: no Coriolis or relative term; α × r is the tangential part.",
+        ),
+        Preset(
+            "tilted-precessing",
+            "Tilted axis that precesses",
+            {
+                "table_radius_m": 1.0,
+                "spin_rate_rad_s": 2.0,
+                "spin_acceleration_rad_s2": 0.0,
+                "tilt_deg": 30.0,
+                "precession_rate_rad_s": 0.8,
+                "groove_offset_m": 0.3,
+                "slider_amplitude_m": 0.6,
+                "slider_frequency_hz": 0.25,
+                "cart_amplitude_m": 0.0,
+            },
+            "Steady spin and steady precession still give α ≠ 0: the spin axis itself turns.",
+        ),
+        Preset(
+            "shaking-cart",
+            "On a shaking cart",
+            {
+                "table_radius_m": 1.0,
+                "spin_rate_rad_s": 1.0,
+                "spin_acceleration_rad_s2": 0.0,
+                "tilt_deg": 0.0,
+                "precession_rate_rad_s": 0.0,
+                "groove_offset_m": 0.3,
+                "slider_amplitude_m": 0.6,
+                "slider_frequency_hz": 0.25,
+                "cart_amplitude_m": 0.3,
+                "cart_frequency_hz": 0.6,
+            },
+            "The reference point O accelerates: a_O is added to every point of the table alike.",
+        ),
+        Preset(
+            "everything",
+            "Everything at once",
+            {
+                "table_radius_m": 1.0,
+                "spin_rate_rad_s": 1.2,
+                "spin_acceleration_rad_s2": 0.2,
+                "tilt_deg": 25.0,
+                "precession_rate_rad_s": 0.6,
+                "groove_offset_m": 0.3,
+                "slider_amplitude_m": 0.6,
+                "slider_frequency_hz": 0.3,
+                "cart_amplitude_m": 0.2,
+                "cart_frequency_hz": 0.5,
+            },
+            "All five terms at once; the chain still closes on a_P.",
+        ),
     )
 
     def camera_view(self):
@@ -122,13 +198,30 @@ class MovingFrameScene(Scene):
         self.cart = scene.add_frame("/cart", show_axes=False)
         scene.add_box("/cart/body", color=(150, 150, 160), dimensions=(0.5, 0.36, 0.18), position=(0.0, 0.0, 0.14))
         for i, (x, y) in enumerate(((-0.18, -0.2), (0.18, -0.2), (-0.18, 0.2), (0.18, 0.2))):
-            scene.add_cylinder(f"/cart/wheel{i}", radius=0.05, height=0.04, color=(40, 40, 40), position=(x, y, 0.05), wxyz=(math.sqrt(0.5), math.sqrt(0.5), 0.0, 0.0))
-        scene.add_cylinder("/cart/post", radius=0.025, height=physics.TABLE_HEIGHT_M - 0.23, color=(110, 110, 120), position=(0.0, 0.0, 0.23 + 0.5 * (physics.TABLE_HEIGHT_M - 0.23)))
+            scene.add_cylinder(
+                f"/cart/wheel{i}",
+                radius=0.05,
+                height=0.04,
+                color=(40, 40, 40),
+                position=(x, y, 0.05),
+                wxyz=(math.sqrt(0.5), math.sqrt(0.5), 0.0, 0.0),
+            )
+        scene.add_cylinder(
+            "/cart/post",
+            radius=0.025,
+            height=physics.TABLE_HEIGHT_M - 0.23,
+            color=(110, 110, 120),
+            position=(0.0, 0.0, 0.23 + 0.5 * (physics.TABLE_HEIGHT_M - 0.23)),
+        )
         self.table = scene.add_frame("/table", axes_length=0.25, axes_radius=0.008)
         self.disc = None
         self.groove = None
-        self.slider = scene.add_box("/table/slider", color=(250, 200, 40), dimensions=(0.08, 0.05, 2.0 * DISC_TOP_BELOW_P_M))
-        self.path = scene.add_line_segments("/path", np.zeros((1, 2, 3), np.float32), (170, 170, 190), thickness=1.5, thickness_units="screen")
+        self.slider = scene.add_box(
+            "/table/slider", color=(250, 200, 40), dimensions=(0.08, 0.05, 2.0 * DISC_TOP_BELOW_P_M)
+        )
+        self.path = scene.add_line_segments(
+            "/path", np.zeros((1, 2, 3), np.float32), (170, 170, 190), thickness=1.5, thickness_units="screen"
+        )
         self.accel = LabelledArrows(scene, "/accel", COLORS, SHORT_LABELS)
         self.rates = LabelledArrows(scene, "/rates", RATE_COLORS, {"omega": "ω", "alpha": "α"})
         self.rates.set_style(shaft_radius=0.01, head_radius=0.03, head_length=0.06)
@@ -141,11 +234,21 @@ class MovingFrameScene(Scene):
         if self.disc is not None:
             self.disc.remove()
             self.groove.remove()
-        self.disc = scene.add_cylinder("/table/disc", radius=radius, height=0.02, color=(205, 215, 230), position=(0.0, 0.0, -DISC_TOP_BELOW_P_M - 0.01))
+        self.disc = scene.add_cylinder(
+            "/table/disc",
+            radius=radius,
+            height=0.02,
+            color=(205, 215, 230),
+            position=(0.0, 0.0, -DISC_TOP_BELOW_P_M - 0.01),
+        )
         d = params["groove_offset_m"]
         half = math.sqrt(max(radius * radius - d * d, 0.0))
         self.groove = scene.add_line_segments(
-            "/table/groove", np.array([[[-half, d, -DISC_TOP_BELOW_P_M + 0.001], [half, d, -DISC_TOP_BELOW_P_M + 0.001]]], np.float32), (150, 130, 100), thickness=2.5, thickness_units="screen"
+            "/table/groove",
+            np.array([[[-half, d, -DISC_TOP_BELOW_P_M + 0.001], [half, d, -DISC_TOP_BELOW_P_M + 0.001]]], np.float32),
+            (150, 130, 100),
+            thickness=2.5,
+            thickness_units="screen",
         )
         # Sizes follow the table so every radius gives a readable picture.
         self.accel.set_style(shaft_radius=0.02 * radius, head_radius=0.048 * radius, head_length=0.085 * radius)
@@ -190,7 +293,10 @@ class MovingFrameScene(Scene):
         move_labels = self._row % LABEL_MOVE_EVERY_FRAMES == 0
         self.accel.draw(segments, move_labels=move_labels)
         self.rates.draw(
-            {"omega": (origin, origin + RATE_ARROW_M_PER_RAD_S * self._omega), "alpha": (origin, origin + RATE_ARROW_M_PER_RAD_S * self._alpha)},
+            {
+                "omega": (origin, origin + RATE_ARROW_M_PER_RAD_S * self._omega),
+                "alpha": (origin, origin + RATE_ARROW_M_PER_RAD_S * self._alpha),
+            },
             label_at=1.0,
             move_labels=move_labels,
         )
@@ -223,8 +329,11 @@ class MovingFrameScene(Scene):
         ]
         for name in (*physics.TERM_NAMES, "total"):
             vector = self._terms[name]
-            quantities.append(Quantity(f"a_{name}", physics.TERM_LABELS[name], None, "m/s² (world X, Y, Z)", _vector_text(vector)))
-            quantities.append(Quantity(f"a_{name}_magnitude", f"|{SHORT_LABELS[name]}|", float(np.linalg.norm(vector)), "m/s²"))
+            quantities.append(
+                Quantity(f"a_{name}", physics.TERM_LABELS[name], None, "m/s² (world X, Y, Z)", _vector_text(vector))
+            )
+            quantities.append(
+                Quantity(f"a_{name}_magnitude", f"|{SHORT_LABELS[name]}|", float(np.linalg.norm(vector)), "m/s²")
+            )
         quantities.append(Quantity("arrow_scale", "acceleration arrows", self.arrow_m_per_m_s2, "m of arrow per m/s²"))
         return Readout(quantities, message="Terms shorter than their arrowhead are listed here but not drawn.")
-

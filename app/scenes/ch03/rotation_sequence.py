@@ -42,17 +42,60 @@ STAGES = ("animate", "after turn 1", "after turn 2", "after turn 3")
 NEAR_LOCK_DEG = 10.0
 
 CONTROLS = (
-        Parameter(
-            "sequence", "", "3-1-3", kind="choice", choices=tuple(SEQUENCES), label="Sequence",
-            description=("Axes of the three body-fixed turns (1 = x, 2 = y, 3 = z): proper Euler (first axis " "repeated) or Tait–Bryan (all three)"),
+    Parameter(
+        "sequence",
+        "",
+        "3-1-3",
+        kind="choice",
+        choices=tuple(SEQUENCES),
+        label="Sequence",
+        description=(
+            "Axes of the three body-fixed turns (1 = x, 2 = y, 3 = z): proper Euler (first axis "
+            "repeated) or Tait–Bryan (all three)"
         ),
-        Parameter("angle1_deg", "deg", 80.0, -180.0, 180.0, label="θ1", step=1.0, description="First turn, about axis a1 of the fixed frame XYZ"),
-        Parameter("angle2_deg", "deg", 35.0, -180.0, 180.0, label="θ2", step=1.0, description="Second turn, about axis a2 of the once-turned frame x′y′z′"),
-        Parameter("angle3_deg", "deg", 60.0, -180.0, 180.0, label="θ3", step=1.0, description="Third turn, about axis a3 of the twice-turned frame x″y″z″"),
-        Parameter(
-            "stage", "", "animate", kind="choice", choices=STAGES, label="Stage",
-            description=("animate: sweep θ1, then θ2, then θ3, hold and repeat; or hold the frame reached after one, " "two or all three turns"),
+    ),
+    Parameter(
+        "angle1_deg",
+        "deg",
+        80.0,
+        -180.0,
+        180.0,
+        label="θ1",
+        step=1.0,
+        description="First turn, about axis a1 of the fixed frame XYZ",
+    ),
+    Parameter(
+        "angle2_deg",
+        "deg",
+        35.0,
+        -180.0,
+        180.0,
+        label="θ2",
+        step=1.0,
+        description="Second turn, about axis a2 of the once-turned frame x′y′z′",
+    ),
+    Parameter(
+        "angle3_deg",
+        "deg",
+        60.0,
+        -180.0,
+        180.0,
+        label="θ3",
+        step=1.0,
+        description="Third turn, about axis a3 of the twice-turned frame x″y″z″",
+    ),
+    Parameter(
+        "stage",
+        "",
+        "animate",
+        kind="choice",
+        choices=STAGES,
+        label="Stage",
+        description=(
+            "animate: sweep θ1, then θ2, then θ3, hold and repeat; or hold the frame reached after one, "
+            "two or all three turns"
         ),
+    ),
 )
 
 # Axis lengths (display units) of the frames after 0, 1, 2, 3 turns: nested so labels never coincide.
@@ -70,7 +113,16 @@ VIEW_PX_PER_TANGENT = 260.0 / math.tan(0.5)
 #: The sides of its tip a name may be put on (viser anchors: the text's corner or edge at the tip), corners first.
 #: Half-size (px) of the spot around each name's tip that other names' texts keep clear of.
 TIP_CLEARANCE_PX = 1.5
-LABEL_SIDES = ("bottom-left", "bottom-right", "top-left", "top-right", "center-left", "center-right", "bottom-center", "top-center")
+LABEL_SIDES = (
+    "bottom-left",
+    "bottom-right",
+    "top-left",
+    "top-right",
+    "center-left",
+    "center-right",
+    "bottom-center",
+    "top-center",
+)
 TURN_COLORS = ((240, 140, 20), (190, 60, 200), (20, 160, 170))
 LOCK_COLOR = (225, 25, 25)
 ARC_DEGREES_PER_SEGMENT = 4.0
@@ -105,12 +157,22 @@ def view_px(camera_position, camera_look_at, points_world: np.ndarray) -> np.nda
     right = np.cross(forward, [0.0, 0.0, 1.0])
     right /= np.linalg.norm(right)
     offsets = np.asarray(points_world, float) - camera
-    return VIEW_PX_PER_TANGENT * np.column_stack([offsets @ right, offsets @ np.cross(right, forward)]) / (offsets @ forward)[:, None]
+    return (
+        VIEW_PX_PER_TANGENT
+        * np.column_stack([offsets @ right, offsets @ np.cross(right, forward)])
+        / (offsets @ forward)[:, None]
+    )
 
 
 #: Where each LABEL_SIDES anchor puts the text's lower-left corner, in widths and heights of the text from the tip.
 SIDE_OFFSETS = np.array(
-    [[-{"left": 0.0, "center": 0.5, "right": 1.0}[side.split("-")[1]], -{"bottom": 0.0, "center": 0.5, "top": 1.0}[side.split("-")[0]]] for side in LABEL_SIDES]
+    [
+        [
+            -{"left": 0.0, "center": 0.5, "right": 1.0}[side.split("-")[1]],
+            -{"bottom": 0.0, "center": 0.5, "top": 1.0}[side.split("-")[0]],
+        ]
+        for side in LABEL_SIDES
+    ]
 )
 
 
@@ -166,12 +228,24 @@ class RotationSequenceScene(Scene):
     camera_position = (1.95, -2.55, 2.0)
     camera_look_at = (0.0, 0.0, 0.7)
     presets = (
-        Preset("aircraft", "Aircraft yaw–pitch–roll (3-2-1)", {"sequence": "3-2-1", "angle1_deg": 30.0, "angle2_deg": -20.0, "angle3_deg": 25.0, "stage": "animate"},
-               "Yaw 30° about Z, pitch 20° nose-up (θ2 = −20° about y′, because Z points up here), roll 25° about x″"),
-        Preset("classic-euler", "Classic Euler angles (3-1-3)", {"sequence": "3-1-3", "angle1_deg": 80.0, "angle2_deg": 35.0, "angle3_deg": 60.0, "stage": "animate"},
-               "Precession 80° about Z, nutation 35° about the line of nodes x′, spin 60° about z″"),
-        Preset("gimbal-lock", "Gimbal lock (3-2-1, pitch 90°)", {"sequence": "3-2-1", "angle1_deg": 30.0, "angle2_deg": 90.0, "angle3_deg": 10.0, "stage": "after turn 3"},
-               "Pitch 90°: the roll axis x″ lands on the yaw axis Z, so only yaw − roll is determined"),
+        Preset(
+            "aircraft",
+            "Aircraft yaw–pitch–roll (3-2-1)",
+            {"sequence": "3-2-1", "angle1_deg": 30.0, "angle2_deg": -20.0, "angle3_deg": 25.0, "stage": "animate"},
+            "Yaw 30° about Z, pitch 20° nose-up (θ2 = −20° about y′, because Z points up here), roll 25° about x″",
+        ),
+        Preset(
+            "classic-euler",
+            "Classic Euler angles (3-1-3)",
+            {"sequence": "3-1-3", "angle1_deg": 80.0, "angle2_deg": 35.0, "angle3_deg": 60.0, "stage": "animate"},
+            "Precession 80° about Z, nutation 35° about the line of nodes x′, spin 60° about z″",
+        ),
+        Preset(
+            "gimbal-lock",
+            "Gimbal lock (3-2-1, pitch 90°)",
+            {"sequence": "3-2-1", "angle1_deg": 30.0, "angle2_deg": 90.0, "angle3_deg": 10.0, "stage": "after turn 3"},
+            "Pitch 90°: the roll axis x″ lands on the yaw axis Z, so only yaw − roll is determined",
+        ),
     )
 
     # -- building -----------------------------------------------------------------------------------
@@ -184,17 +258,43 @@ class RotationSequenceScene(Scene):
             for axis, text in enumerate(labels):
                 tip = np.zeros(3)
                 tip[axis] = length + LABEL_GAP
-                handle = scene.add_label(f"/frame{n}/label_{axis}", text, position=tip, anchor=LABEL_SIDES[n], font_screen_scale=FRAME_LABEL_SCALE[n])
+                handle = scene.add_label(
+                    f"/frame{n}/label_{axis}",
+                    text,
+                    position=tip,
+                    anchor=LABEL_SIDES[n],
+                    font_screen_scale=FRAME_LABEL_SCALE[n],
+                )
                 self.axis_labels.append((n, handle, label_box_px(text, FRAME_LABEL_SCALE[n])))
             self.frames.append(frame)
-        scene.add_box("/frame3/plate", color=(90, 120, 170), dimensions=(0.7, 0.42, 0.06), opacity=0.45, cast_shadow=False, receive_shadow=False)
+        scene.add_box(
+            "/frame3/plate",
+            color=(90, 120, 170),
+            dimensions=(0.7, 0.42, 0.06),
+            opacity=0.45,
+            cast_shadow=False,
+            receive_shadow=False,
+        )
         self.turn_axes = [
-            scene.add_arrows(f"/turn{k}/axis", np.zeros((1, 2, 3), np.float32), TURN_COLORS[k], shaft_radius=0.02, head_radius=0.06, head_length=0.15)
+            scene.add_arrows(
+                f"/turn{k}/axis",
+                np.zeros((1, 2, 3), np.float32),
+                TURN_COLORS[k],
+                shaft_radius=0.02,
+                head_radius=0.06,
+                head_length=0.15,
+            )
             for k in range(3)
         ]
         self.turn_labels = [scene.add_label(f"/turn{k}/label", "", anchor="bottom-left") for k in range(3)]
         self.arcs = [
-            scene.add_line_segments(f"/turn{k}/arc", np.zeros((1, 2, 3), np.float32), TURN_COLORS[k], thickness=4.0, thickness_units="screen")
+            scene.add_line_segments(
+                f"/turn{k}/arc",
+                np.zeros((1, 2, 3), np.float32),
+                TURN_COLORS[k],
+                thickness=4.0,
+                thickness_units="screen",
+            )
             for k in range(3)
         ]
         self.t_s = 0.0
@@ -279,11 +379,17 @@ class RotationSequenceScene(Scene):
     def _place_labels(self) -> None:
         """Put each shown turn label and axis name on a side of its tip where its text covers no other label nor
         another's tip in the default view (see :func:`label_anchors`); only labels whose side changes are sent."""
-        shown = [(label, np.asarray(label.position, float), label_box_px(label.text, 1.0)) for label in self.turn_labels if label.visible]
+        shown = [
+            (label, np.asarray(label.position, float), label_box_px(label.text, 1.0))
+            for label in self.turn_labels
+            if label.visible
+        ]
         for n, handle, size in self.axis_labels:
             frame = self.frames[n]
             if frame.visible:
-                tip = np.asarray(frame.position, float) + rotate_vector(np.asarray(frame.wxyz, float), np.asarray(handle.position, float))
+                tip = np.asarray(frame.position, float) + rotate_vector(
+                    np.asarray(frame.wxyz, float), np.asarray(handle.position, float)
+                )
                 shown.append((handle, tip, size))
         if not shown:
             return
@@ -317,12 +423,23 @@ class RotationSequenceScene(Scene):
         recovered = np.degrees(decomposition.angles_rad)
         quantities = [
             Quantity.word("sequence", "sequence", f"{seq.name} ({seq.kind})"),
-            *(Quantity(f"R_row{i + 1}", f"[R] row {i + 1} (v_XYZ = [R] v_xyz)", None, "", "  ".join(_fmt(v) for v in R[i])) for i in range(3)),
+            *(
+                Quantity(
+                    f"R_row{i + 1}", f"[R] row {i + 1} (v_XYZ = [R] v_xyz)", None, "", "  ".join(_fmt(v) for v in R[i])
+                )
+                for i in range(3)
+            ),
             *(Quantity(f"q_{c}", f"quaternion {c}", float(v), "") for c, v in zip("wxyz", q)),
             Quantity("axis", "rotation axis (unit vector, XYZ)", None, "", "  ".join(_fmt(v) for v in axis)),
             Quantity("rotation_angle_deg", "rotation angle about that axis", math.degrees(float(angle)), "deg"),
             Quantity("gimbal_lock_distance_deg", "distance to gimbal lock", lock_deg, "deg"),
-            Quantity("recovered_angles_deg", "angles read back from [R]", None, "deg", ", ".join(f"{a:.2f}" for a in recovered)),
+            Quantity(
+                "recovered_angles_deg",
+                "angles read back from [R]",
+                None,
+                "deg",
+                ", ".join(f"{a:.2f}" for a in recovered),
+            ),
             Quantity.or_text("rate_gain", "largest angle rate per unit |ω|", rate_gain, "(rad/s)/(rad/s)", "unbounded"),
             Quantity("t_s", "time into the animation loop", self.t_s % CYCLE_S, "s"),
         ]
@@ -341,14 +458,18 @@ class RotationSequenceScene(Scene):
             value = math.degrees(self.angles[0] + s * self.angles[2])
             value = (value + 180.0) % 360.0 - 180.0
             text += (
-                f" Gimbal lock: θ2 = {degrees[1]:g}° puts the third turn's axis {seq.axis_label(3)} on the line " "of the first "
-                f"turn's axis {seq.axis_label(1)}, so the first and third turns act about the same line. Only " f"{combination} "
-                f"= {value:.6g}° is determined; every pair with that {'sum' if s > 0 else 'difference'} gives " "the same [R], "
+                f" Gimbal lock: θ2 = {degrees[1]:g}° puts the third turn's axis {seq.axis_label(3)} on the line "
+                "of the first "
+                f"turn's axis {seq.axis_label(1)}, so the first and third turns act about the same line. Only "
+                f"{combination} "
+                f"= {value:.6g}° is determined; every pair with that {'sum' if s > 0 else 'difference'} gives "
+                "the same [R], "
                 "and the angle rates can no longer be found from ω."
             )
         elif lock_deg < NEAR_LOCK_DEG:
             text += (
-                f" Near gimbal lock ({lock_deg:.3g}° away): small changes of attitude need large, opposite " "changes of θ1 and θ3, "
+                f" Near gimbal lock ({lock_deg:.3g}° away): small changes of attitude need large, opposite "
+                "changes of θ1 and θ3, "
                 "and the angle rates for a given ω grow like 1/sin of that distance."
             )
         return text

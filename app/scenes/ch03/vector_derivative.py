@@ -19,7 +19,13 @@ from app.scenes.ch03.replayed import DISPLAY_PARAMETERS, ReplayedScene
 from app.scenes.kit import Preset, Quantity, Readout, circle_segments, move_node
 from app.scenes.kit.arrows import LabelledArrows
 
-COLORS = {"vector": (25, 25, 25), "relative": (30, 110, 220), "transport": (240, 140, 20), "fixed": (190, 30, 40), "omega": (120, 120, 120)}
+COLORS = {
+    "vector": (25, 25, 25),
+    "relative": (30, 110, 220),
+    "transport": (240, 140, 20),
+    "fixed": (190, 30, 40),
+    "omega": (120, 120, 120),
+}
 LABELS = {"vector": "A", "relative": "(dA/dt)_rel", "transport": "ω × A", "fixed": "(dA/dt)_fixed", "omega": "ω"}
 FIXED_AXIS_LENGTH = 1.6
 FRAME_AXIS_LENGTH = 0.9
@@ -38,27 +44,67 @@ class VectorDerivativeScene(ReplayedScene):
     camera_position = (1.6, -2.2, 1.5)
     camera_look_at = (0.0, 0.0, 0.3)
     presets = (
-        Preset("fixed-in-frame", "A fixed in the turning frame", {
-            "frame_rate_rad_s": 0.8, "frame_axis_tilt_deg": 20.0, "length_m": 1.0, "stretch_amplitude_m": 0.0,
-            "relative_turn_rate_rad_s": 0.0, "elevation_deg": 30.0,
-        }, "A rides with xyz: (dA/dt)_rel = 0 and dA/dt = ω × A, perpendicular to both ω and A"),
-        Preset("stretching-only", "Stretching along a line of the frame", {
-            "frame_rate_rad_s": 0.8, "frame_axis_tilt_deg": 0.0, "length_m": 1.0, "stretch_amplitude_m": 0.5, "stretch_frequency_hz": 0.3,
-            "relative_turn_rate_rad_s": 0.0, "elevation_deg": 0.0,
-        }, "In the frame A only changes length: (dA/dt)_rel lies along A, ω × A across it"),
-        Preset("counter-turning", "Turning back as fast as the frame turns", {
-            "frame_rate_rad_s": 0.8, "frame_axis_tilt_deg": 0.0, "length_m": 1.0, "stretch_amplitude_m": 0.0,
-            "relative_turn_rate_rad_s": -0.8, "elevation_deg": 20.0,
-        }, "ψ̇ = −Ω about the same axis: the two terms cancel and A stands still in XYZ"),
+        Preset(
+            "fixed-in-frame",
+            "A fixed in the turning frame",
+            {
+                "frame_rate_rad_s": 0.8,
+                "frame_axis_tilt_deg": 20.0,
+                "length_m": 1.0,
+                "stretch_amplitude_m": 0.0,
+                "relative_turn_rate_rad_s": 0.0,
+                "elevation_deg": 30.0,
+            },
+            "A rides with xyz: (dA/dt)_rel = 0 and dA/dt = ω × A, perpendicular to both ω and A",
+        ),
+        Preset(
+            "stretching-only",
+            "Stretching along a line of the frame",
+            {
+                "frame_rate_rad_s": 0.8,
+                "frame_axis_tilt_deg": 0.0,
+                "length_m": 1.0,
+                "stretch_amplitude_m": 0.5,
+                "stretch_frequency_hz": 0.3,
+                "relative_turn_rate_rad_s": 0.0,
+                "elevation_deg": 0.0,
+            },
+            "In the frame A only changes length: (dA/dt)_rel lies along A, ω × A across it",
+        ),
+        Preset(
+            "counter-turning",
+            "Turning back as fast as the frame turns",
+            {
+                "frame_rate_rad_s": 0.8,
+                "frame_axis_tilt_deg": 0.0,
+                "length_m": 1.0,
+                "stretch_amplitude_m": 0.0,
+                "relative_turn_rate_rad_s": -0.8,
+                "elevation_deg": 20.0,
+            },
+            "ψ̇ = −Ω about the same axis: the two terms cancel and A stands still in XYZ",
+        ),
     )
 
     def build(self) -> None:
         scene = self.client.scene
         add_labelled_axes(scene, "/fixed", length=FIXED_AXIS_LENGTH, labels="XYZ", axes_radius=0.01, origin_radius=0.03)
-        self.frame = add_labelled_axes(scene, "/frame", length=FRAME_AXIS_LENGTH, labels="xyz", axes_radius=0.018, origin_radius=0.04)
-        scene.add_line_segments("/frame/rim", circle_segments(radius=FRAME_AXIS_LENGTH, segments=64), (150, 170, 200), thickness=1.5, thickness_units="screen")
-        self.frame_path = scene.add_line_segments("/frame/path", np.zeros((1, 2, 3), np.float32), (140, 180, 240), thickness=1.5, thickness_units="screen")
-        self.world_path = scene.add_line_segments("/path", np.zeros((1, 2, 3), np.float32), (170, 170, 170), thickness=1.5, thickness_units="screen")
+        self.frame = add_labelled_axes(
+            scene, "/frame", length=FRAME_AXIS_LENGTH, labels="xyz", axes_radius=0.018, origin_radius=0.04
+        )
+        scene.add_line_segments(
+            "/frame/rim",
+            circle_segments(radius=FRAME_AXIS_LENGTH, segments=64),
+            (150, 170, 200),
+            thickness=1.5,
+            thickness_units="screen",
+        )
+        self.frame_path = scene.add_line_segments(
+            "/frame/path", np.zeros((1, 2, 3), np.float32), (140, 180, 240), thickness=1.5, thickness_units="screen"
+        )
+        self.world_path = scene.add_line_segments(
+            "/path", np.zeros((1, 2, 3), np.float32), (170, 170, 170), thickness=1.5, thickness_units="screen"
+        )
         self.arrows = LabelledArrows(scene, "/vectors", COLORS, LABELS)
 
     def physical_params(self) -> dict:
@@ -107,19 +153,32 @@ class VectorDerivativeScene(ReplayedScene):
             Quantity("A_world", "A (X, Y, Z)", None, "m", components_text(r.vector_world_m[0])),
             Quantity("A_frame", "A (x, y, z)", None, "m", components_text(r.vector_frame_m[0])),
             Quantity("A_magnitude", "|A|", float(np.linalg.norm(r.vector_world_m[0])), "m"),
-            Quantity("dA_relative_frame", "(dA/dt)_rel on the frame's own axes (x, y, z)", None, "m/s", components_text(r.rate_frame_m_s[0])),
+            Quantity(
+                "dA_relative_frame",
+                "(dA/dt)_rel on the frame's own axes (x, y, z)",
+                None,
+                "m/s",
+                components_text(r.rate_frame_m_s[0]),
+            ),
         ]
         for name in physics.TERM_NAMES:
             vector = r.terms_m_s[name][0]
-            quantities.append(Quantity(f"dA_{name}", f"{physics.TERM_LABELS[name]} (X, Y, Z)", None, "m/s", components_text(vector)))
-            quantities.append(Quantity(f"dA_{name}_magnitude", f"|{LABELS[name]}|", float(np.linalg.norm(vector)), "m/s"))
+            quantities.append(
+                Quantity(f"dA_{name}", f"{physics.TERM_LABELS[name]} (X, Y, Z)", None, "m/s", components_text(vector))
+            )
+            quantities.append(
+                Quantity(f"dA_{name}_magnitude", f"|{LABELS[name]}|", float(np.linalg.norm(vector)), "m/s")
+            )
         quantities.append(Quantity("arrow_scale", "rate arrows", self.arrow_s, "m of arrow per m/s"))
         relative = float(np.linalg.norm(r.terms_m_s["relative"][0]))
         fixed = float(np.linalg.norm(r.terms_m_s["fixed"][0]))
         if relative == 0.0:
             message = "A is fixed in the turning frame: (dA/dt)_rel = 0, so the rate seen from XYZ is ω × A alone."
         elif fixed <= 1e-12 * relative:
-            message = ("(dA/dt)_rel and ω × A cancel: A turns back in the frame exactly as fast as the frame " "turns, so it stands still in XYZ.")
+            message = (
+                "(dA/dt)_rel and ω × A cancel: A turns back in the frame exactly as fast as the frame "
+                "turns, so it stands still in XYZ."
+            )
         else:
             message = "(dA/dt)_fixed = (dA/dt)_rel + ω × A: the blue and orange arrows add head to tail to the red one."
         return Readout(quantities, message=message + " Arrows shorter than their head are listed here but not drawn.")

@@ -42,9 +42,21 @@ class CardanJointScene(Scene):
     camera_position = (0.45, -2.0, 1.05)
     camera_look_at = (0.05, 0.2, 0.5)
     presets = (
-        Preset("straight", "Straight (β = 0°)", {"shaft_angle_deg": 0.0}, "In line: the output follows the input exactly."),
-        Preset("car-driveshaft", "Drive shaft (β = 15°)", {"shaft_angle_deg": 15.0}, "A typical drive-shaft angle: a few per cent of speed fluctuation."),
-        Preset("steep", "Steep (β = 50°)", {"shaft_angle_deg": 50.0}, "A large angle: the output speed swings between 0.64 and 1.56 of the input."),
+        Preset(
+            "straight", "Straight (β = 0°)", {"shaft_angle_deg": 0.0}, "In line: the output follows the input exactly."
+        ),
+        Preset(
+            "car-driveshaft",
+            "Drive shaft (β = 15°)",
+            {"shaft_angle_deg": 15.0},
+            "A typical drive-shaft angle: a few per cent of speed fluctuation.",
+        ),
+        Preset(
+            "steep",
+            "Steep (β = 50°)",
+            {"shaft_angle_deg": 50.0},
+            "A large angle: the output speed swings between 0.64 and 1.56 of the input.",
+        ),
     )
 
     def build(self) -> None:
@@ -60,32 +72,60 @@ class CardanJointScene(Scene):
         self._add_yoke("/output_mount/output", side=1.0, arm_axis="z", color=(210, 70, 50))
         self.cross = scene.add_frame("/cross", show_axes=False)
         for name, wxyz in (("u", Z_TO_Y), ("v", (1.0, 0.0, 0.0, 0.0))):
-            scene.add_cylinder(f"/cross/{name}", radius=0.035, height=2 * YOKE_RADIUS + 0.06, color=(235, 190, 40), wxyz=wxyz)
+            scene.add_cylinder(
+                f"/cross/{name}", radius=0.035, height=2 * YOKE_RADIUS + 0.06, color=(235, 190, 40), wxyz=wxyz
+            )
         scene.add_icosphere("/cross/hub", radius=0.06, color=(235, 190, 40))
-        scene.add_label("/input/label", "input shaft (ω₁ constant)", position=(-SHAFT_LENGTH, 0.0, 0.1), anchor="bottom-left")
-        self.output_label = scene.add_label("/output_mount/label", "output shaft", position=(SHAFT_LENGTH, 0.0, 0.1), anchor="bottom-right")
+        scene.add_label(
+            "/input/label", "input shaft (ω₁ constant)", position=(-SHAFT_LENGTH, 0.0, 0.1), anchor="bottom-left"
+        )
+        self.output_label = scene.add_label(
+            "/output_mount/label", "output shaft", position=(SHAFT_LENGTH, 0.0, 0.1), anchor="bottom-right"
+        )
         # Speed-ratio graph in the plane y = 0 above the joint.
-        self.graph_axes = scene.add_line_segments("/graph/axes", np.zeros((1, 2, 3), np.float32), (90, 90, 90), thickness=1.5, thickness_units="screen")
-        self.graph_bounds = scene.add_line_segments("/graph/bounds", np.zeros((2, 2, 3), np.float32), (150, 150, 150), thickness=1.0, thickness_units="screen")
-        self.graph_curve = scene.add_line_segments("/graph/curve", np.zeros((1, 2, 3), np.float32), (200, 60, 40), thickness=2.5, thickness_units="screen")
+        self.graph_axes = scene.add_line_segments(
+            "/graph/axes", np.zeros((1, 2, 3), np.float32), (90, 90, 90), thickness=1.5, thickness_units="screen"
+        )
+        self.graph_bounds = scene.add_line_segments(
+            "/graph/bounds", np.zeros((2, 2, 3), np.float32), (150, 150, 150), thickness=1.0, thickness_units="screen"
+        )
+        self.graph_curve = scene.add_line_segments(
+            "/graph/curve", np.zeros((1, 2, 3), np.float32), (200, 60, 40), thickness=2.5, thickness_units="screen"
+        )
         self.graph_dot = scene.add_icosphere("/graph/dot", radius=0.035, color=(200, 60, 40))
         self.graph_labels = {
             name: scene.add_label(f"/graph/{name}", "", anchor=anchor)
-            for name, anchor in (("title", "bottom-left"), ("max", "center-right"), ("min", "center-right"), ("start", "top-center"), ("end", "top-center"))
+            for name, anchor in (
+                ("title", "bottom-left"),
+                ("max", "center-right"),
+                ("min", "center-right"),
+                ("start", "top-center"),
+                ("end", "top-center"),
+            )
         }
 
     def _add_yoke(self, parent: str, *, side: float, arm_axis: str, color: tuple[int, int, int]) -> None:
         """Shaft, fork base and two arms in the parent's frame; ``side`` −1 puts the shaft on −x."""
         scene = self.client.scene
         x_base = side * YOKE_DEPTH
-        scene.add_cylinder(f"{parent}/shaft", radius=0.05, height=SHAFT_LENGTH, color=color, wxyz=Z_TO_X,
-                           position=(side * (YOKE_DEPTH + 0.5 * SHAFT_LENGTH), 0.0, 0.0))
+        scene.add_cylinder(
+            f"{parent}/shaft",
+            radius=0.05,
+            height=SHAFT_LENGTH,
+            color=color,
+            wxyz=Z_TO_X,
+            position=(side * (YOKE_DEPTH + 0.5 * SHAFT_LENGTH), 0.0, 0.0),
+        )
         across = (0.06, 2 * YOKE_RADIUS + 0.06, 0.06) if arm_axis == "y" else (0.06, 0.06, 2 * YOKE_RADIUS + 0.06)
         scene.add_box(f"{parent}/fork_base", color=color, dimensions=across, position=(x_base, 0.0, 0.0))
         for k, sign in enumerate((-1.0, 1.0)):
             offset = (0.0, sign * YOKE_RADIUS, 0.0) if arm_axis == "y" else (0.0, 0.0, sign * YOKE_RADIUS)
-            scene.add_box(f"{parent}/arm{k}", color=color, dimensions=(YOKE_DEPTH, 0.05, 0.05),
-                          position=(0.5 * x_base + offset[0], offset[1], offset[2]))
+            scene.add_box(
+                f"{parent}/arm{k}",
+                color=color,
+                dimensions=(YOKE_DEPTH, 0.05, 0.05),
+                position=(0.5 * x_base + offset[0], offset[1], offset[2]),
+            )
 
     def update(self) -> None:
         self.motion = physics.CardanMotion.from_params(self.params)
@@ -101,7 +141,9 @@ class CardanJointScene(Scene):
         self.graph_curve.points = np.stack([points[:-1], points[1:]], axis=1).astype(np.float32)
         x0, x1 = -0.5 * GRAPH_WIDTH, 0.5 * GRAPH_WIDTH
         z_low, z_high = GRAPH_BASE_Z, GRAPH_BASE_Z + GRAPH_HEIGHT
-        self.graph_axes.points = np.array([[[x0, 0, z_low], [x1, 0, z_low]], [[x0, 0, z_low], [x0, 0, z_high]]], np.float32)
+        self.graph_axes.points = np.array(
+            [[[x0, 0, z_low], [x1, 0, z_low]], [[x0, 0, z_low], [x0, 0, z_high]]], np.float32
+        )
         bounds = [self._graph_points(np.array([0.0, 2 * math.pi]), np.array([r, r])) for r in (high, low)]
         self.graph_bounds.points = np.array(bounds, np.float32)
         labels = self.graph_labels
@@ -138,12 +180,14 @@ class CardanJointScene(Scene):
     def readout(self) -> Readout:
         state = self._state
         low, high = self.motion.joint.speed_ratio_span
-        return Readout([
-            Quantity("t_s", "time t", float(state.t_s[0]), "s"),
-            Quantity("input_angle", "input angle φ₁", math.degrees(float(state.input_angle[0])) % 360.0, "deg"),
-            Quantity("output_angle", "output angle φ₂", math.degrees(float(state.output_angle[0])) % 360.0, "deg"),
-            Quantity("speed_ratio", "speed ratio ω₂/ω₁ now", float(state.speed_ratio[0]), ""),
-            Quantity("speed_ratio_min", "smallest ratio, cos β", float(low), ""),
-            Quantity("speed_ratio_max", "largest ratio, 1/cos β", float(high), ""),
-            Quantity("output_rate", "output speed ω₂", float(state.output_rate[0]), "rad/s"),
-        ])
+        return Readout(
+            [
+                Quantity("t_s", "time t", float(state.t_s[0]), "s"),
+                Quantity("input_angle", "input angle φ₁", math.degrees(float(state.input_angle[0])) % 360.0, "deg"),
+                Quantity("output_angle", "output angle φ₂", math.degrees(float(state.output_angle[0])) % 360.0, "deg"),
+                Quantity("speed_ratio", "speed ratio ω₂/ω₁ now", float(state.speed_ratio[0]), ""),
+                Quantity("speed_ratio_min", "smallest ratio, cos β", float(low), ""),
+                Quantity("speed_ratio_max", "largest ratio, 1/cos β", float(high), ""),
+                Quantity("output_rate", "output speed ω₂", float(state.output_rate[0]), "rad/s"),
+            ]
+        )

@@ -35,16 +35,36 @@ class FourBarScene(Scene):
     model = physics.FourBarLinkage
     animated = True
     presets = (
-        Preset("crank-rocker", "Crank-rocker", {"ground_m": 1.0, "crank_m": 0.3, "coupler_m": 1.0, "rocker_m": 0.9, "crank_angle0_deg": 60.0},
-               "Shortest link is the crank: it turns fully and the rocker rocks."),
-        Preset("double-crank", "Double crank", {"ground_m": 0.3, "crank_m": 0.7, "coupler_m": 0.9, "rocker_m": 0.8, "crank_angle0_deg": 60.0},
-               "Shortest link is the ground: both crank and rocker turn fully (a drag link)."),
-        Preset("double-rocker", "Double rocker", {"ground_m": 1.0, "crank_m": 0.8, "coupler_m": 0.35, "rocker_m": 0.9, "crank_angle0_deg": 60.0},
-               "Shortest link is the coupler: the crank only rocks, between two toggle positions."),
-        Preset("parallelogram", "Parallelogram (change point)", {"ground_m": 1.0, "crank_m": 0.4, "coupler_m": 1.0, "rocker_m": 0.4, "crank_angle0_deg": 60.0},
-               "s + l = p + q: twice a turn all links fall in line and the assembly is ambiguous."),
-        Preset("triple-rocker", "Non-Grashof", {"ground_m": 1.2, "crank_m": 0.9, "coupler_m": 0.7, "rocker_m": 0.6, "crank_angle0_deg": 0.0},
-               "s + l > p + q: no link turns fully; the crank rocks between toggle positions."),
+        Preset(
+            "crank-rocker",
+            "Crank-rocker",
+            {"ground_m": 1.0, "crank_m": 0.3, "coupler_m": 1.0, "rocker_m": 0.9, "crank_angle0_deg": 60.0},
+            "Shortest link is the crank: it turns fully and the rocker rocks.",
+        ),
+        Preset(
+            "double-crank",
+            "Double crank",
+            {"ground_m": 0.3, "crank_m": 0.7, "coupler_m": 0.9, "rocker_m": 0.8, "crank_angle0_deg": 60.0},
+            "Shortest link is the ground: both crank and rocker turn fully (a drag link).",
+        ),
+        Preset(
+            "double-rocker",
+            "Double rocker",
+            {"ground_m": 1.0, "crank_m": 0.8, "coupler_m": 0.35, "rocker_m": 0.9, "crank_angle0_deg": 60.0},
+            "Shortest link is the coupler: the crank only rocks, between two toggle positions.",
+        ),
+        Preset(
+            "parallelogram",
+            "Parallelogram (change point)",
+            {"ground_m": 1.0, "crank_m": 0.4, "coupler_m": 1.0, "rocker_m": 0.4, "crank_angle0_deg": 60.0},
+            "s + l = p + q: twice a turn all links fall in line and the assembly is ambiguous.",
+        ),
+        Preset(
+            "triple-rocker",
+            "Non-Grashof",
+            {"ground_m": 1.2, "crank_m": 0.9, "coupler_m": 0.7, "rocker_m": 0.6, "crank_angle0_deg": 0.0},
+            "s + l > p + q: no link turns fully; the crank rocks between toggle positions.",
+        ),
     )
 
     def build(self) -> None:
@@ -53,20 +73,40 @@ class FourBarScene(Scene):
         self._t_drawn = 0.0
         self._span = 1.0
         self._center = np.zeros(3)
-        self.backdrop = scene.add_grid("/backdrop", width=4.0, height=4.0, plane="xz", cell_size=0.1, section_size=0.5, position=(0.5, 0.05, 0.0))
+        self.backdrop = scene.add_grid(
+            "/backdrop", width=4.0, height=4.0, plane="xz", cell_size=0.1, section_size=0.5, position=(0.5, 0.05, 0.0)
+        )
         self.ground = scene.add_line_segments("/ground", np.zeros((1, 2, 3), np.float32), (80, 80, 80), thickness=0.01)
-        self.pivots = scene.add_point_cloud("/pivots", np.zeros((2, 3), np.float32), (40, 40, 40), point_size=0.05, point_shape="circle")
+        self.pivots = scene.add_point_cloud(
+            "/pivots", np.zeros((2, 3), np.float32), (40, 40, 40), point_size=0.05, point_shape="circle"
+        )
         self.pivot_labels = [scene.add_label(f"/pivots/{name}", name, anchor="top-center") for name in ("O₂", "O₄")]
-        self.curve = scene.add_line_segments("/curve/current", np.zeros((1, 2, 3), np.float32), CURVE_COLOR, thickness=2.5, thickness_units="screen")
-        self.ghost_curve = scene.add_line_segments("/curve/other", np.zeros((1, 2, 3), np.float32), GHOST_COLOR, thickness=1.5, thickness_units="screen")
+        self.curve = scene.add_line_segments(
+            "/curve/current", np.zeros((1, 2, 3), np.float32), CURVE_COLOR, thickness=2.5, thickness_units="screen"
+        )
+        self.ghost_curve = scene.add_line_segments(
+            "/curve/other", np.zeros((1, 2, 3), np.float32), GHOST_COLOR, thickness=1.5, thickness_units="screen"
+        )
         self.ghost = scene.add_line_segments("/ghost", np.zeros((2, 2, 3), np.float32), GHOST_COLOR, thickness=0.01)
-        self.links = scene.add_line_segments("/links", np.zeros((5, 2, 3), np.float32), np.repeat(LINK_COLORS[:, None, :], 2, axis=1), thickness=0.02)
-        self.joints = scene.add_point_cloud("/joints", np.zeros((3, 3), np.float32), np.array([[30, 30, 30], [30, 30, 30], [235, 140, 30]], np.uint8), point_size=0.04, point_shape="circle")
+        self.links = scene.add_line_segments(
+            "/links", np.zeros((5, 2, 3), np.float32), np.repeat(LINK_COLORS[:, None, :], 2, axis=1), thickness=0.02
+        )
+        self.joints = scene.add_point_cloud(
+            "/joints",
+            np.zeros((3, 3), np.float32),
+            np.array([[30, 30, 30], [30, 30, 30], [235, 140, 30]], np.uint8),
+            point_size=0.04,
+            point_shape="circle",
+        )
         self.legend = scene.add_label("/legend", "", anchor="bottom-left")
 
     def camera_view(self):
         c, span = self._center, self._span
-        return (float(c[0] + 0.08 * span), float(-1.1 * span), float(c[2] + 0.12 * span)), (float(c[0]), 0.0, float(c[2]))
+        return (float(c[0] + 0.08 * span), float(-1.1 * span), float(c[2] + 0.12 * span)), (
+            float(c[0]),
+            0.0,
+            float(c[2]),
+        )
 
     def update(self) -> None:
         self.motion = physics.FourBarMotion.from_params(self.params)
@@ -77,7 +117,9 @@ class FourBarScene(Scene):
         other = self.motion.coupler_curve(self.motion.other_branch)
         # Frame everything any joint reaches in either assembly, and both pivots.
         travels = [self.motion.travel_positions(branch, 181) for branch in physics.BRANCHES]
-        pts = np.concatenate([curve, other, *[np.concatenate([t.crank_pin, t.rocker_pin]) for t in travels], [[0.0, 0.0], [d, 0.0]]])
+        pts = np.concatenate(
+            [curve, other, *[np.concatenate([t.crank_pin, t.rocker_pin]) for t in travels], [[0.0, 0.0], [d, 0.0]]]
+        )
         pts = pts[np.isfinite(pts).all(axis=1)]
         low, high = pts.min(axis=0), pts.max(axis=0)
         self._span = float(max(high[0] - low[0], high[1] - low[1], 0.2))
@@ -136,7 +178,12 @@ class FourBarScene(Scene):
             Quantity.word("grashof_class", "Grashof class", grashof.name),
             Quantity.word("crank_travel", "crank travel", motion.crank_range.describe().removeprefix("the crank ")),
             Quantity("t_s", "time t", float(state.t_s[0]), "s"),
-            Quantity("crank_angle", "crank angle θ₂", math.degrees(math.remainder(float(state.crank_angle[0]), 2 * math.pi)), "deg"),
+            Quantity(
+                "crank_angle",
+                "crank angle θ₂",
+                math.degrees(math.remainder(float(state.crank_angle[0]), 2 * math.pi)),
+                "deg",
+            ),
             Quantity("transmission_angle", "transmission angle μ", mu, "deg"),
             Quantity.or_text("rocker_rate", "rocker rate ω₄", rocker_rate, "rad/s", "unbounded"),
             Quantity.or_text("coupler_rate", "coupler rate ω₃", float(state.coupler_rate[0]), "rad/s", "undefined"),
@@ -144,13 +191,20 @@ class FourBarScene(Scene):
         marks: dict[str, list[Mark]] = {}
         if motion.drive.limits_rad is not None:  # the crank rocks between two limits
             lower, upper = motion.drive.limits_rad
-            marks["crank_angle0_deg"] = [Mark(math.degrees(math.remainder(angle, 2 * math.pi)), "toggle") for angle in (lower, upper)]
+            marks["crank_angle0_deg"] = [
+                Mark(math.degrees(math.remainder(angle, 2 * math.pi)), "toggle") for angle in (lower, upper)
+            ]
         if bool(state.singular[0]) or min(mu, 180.0 - mu) < TOGGLE_WINDOW_DEG:
             message = "toggle position: rocker rate is unbounded here (coupler and rocker are in line)"
         elif not GOOD_TRANSMISSION_DEG[0] <= mu <= GOOD_TRANSMISSION_DEG[1]:
-            message = (f"poor transmission: μ = {mu:.0f}°, so a push along the coupler mostly loads the rocker's " "pivot instead of turning it")
+            message = (
+                f"poor transmission: μ = {mu:.0f}°, so a push along the coupler mostly loads the rocker's "
+                "pivot instead of turning it"
+            )
         elif not motion.drive.turns_fully:
-            message = f"The crank cannot turn fully ({motion.crank_range.describe()}); it reverses at each toggle position."
+            message = (
+                f"The crank cannot turn fully ({motion.crank_range.describe()}); it reverses at each toggle position."
+            )
         else:
             message = ""
         return Readout(quantities, marks=marks, message=message)

@@ -31,17 +31,40 @@ SCALE_SAMPLES = 61
 VIEWS = ("velocity", "acceleration")
 PLATTER_BELOW_O_M = 0.35
 
-VELOCITY_COLORS = {"center": (40, 100, 220), "relative": (230, 120, 20), "total": (200, 30, 60), "omega": (140, 60, 200)}
+VELOCITY_COLORS = {
+    "center": (40, 100, 220),
+    "relative": (230, 120, 20),
+    "total": (200, 30, 60),
+    "omega": (140, 60, 200),
+}
 VELOCITY_LABELS = {"center": "v_A", "relative": "ω × r_B/A", "total": "v_B", "omega": "ω"}
 ACCELERATION_COLORS = {
-    "center": (40, 100, 220), "tangential": (230, 120, 20), "centripetal": (30, 160, 80), "total": (200, 30, 60), "alpha": (140, 60, 200),
+    "center": (40, 100, 220),
+    "tangential": (230, 120, 20),
+    "centripetal": (30, 160, 80),
+    "total": (200, 30, 60),
+    "alpha": (140, 60, 200),
 }
-ACCELERATION_LABELS = {"center": "a_A", "tangential": "α × r_B/A", "centripetal": "ω × (ω × r_B/A)", "total": "a_B", "alpha": "α"}
+ACCELERATION_LABELS = {
+    "center": "a_A",
+    "tangential": "α × r_B/A",
+    "centripetal": "ω × (ω × r_B/A)",
+    "total": "a_B",
+    "alpha": "α",
+}
 
 CONTROLS = (
     Parameter(
-        "arrows", "", "velocity", kind="choice", choices=VIEWS, label="arrows",
-        description=("Which formula's terms are drawn at B: velocity (v_A, ω × r_B/A, v_B) or acceleration (a_A, " "α × r_B/A, ω × (ω × r_B/A), a_B)"),
+        "arrows",
+        "",
+        "velocity",
+        kind="choice",
+        choices=VIEWS,
+        label="arrows",
+        description=(
+            "Which formula's terms are drawn at B: velocity (v_A, ω × r_B/A, v_B) or acceleration (a_A, "
+            "α × r_B/A, ω × (ω × r_B/A), a_B)"
+        ),
     ),
 )
 
@@ -66,14 +89,30 @@ class RigidBodyPointsScene(CyclingScene):
     #: Turntable and disk attitudes, one arrow batch, and at most five labels moved at 15 Hz.
     frame_message_budget = 6.0
     presets = (
-        Preset("steady", "Steady rates", {"turntable_acceleration_rad_s2": 0.0, "spin_acceleration_rad_s2": 0.0, "shaft_elevation_deg": 0.0},
-               "Constant ω₁ and ω₂ on a horizontal shaft: α = ω₁K × ω₂n̂ is still not zero, because the spin axis turns."),
-        Preset("spin-only", "Turntable stopped", {"turntable_rate_rad_s": 0.0, "turntable_acceleration_rad_s2": 0.0, "spin_acceleration_rad_s2": 0.0},
-               "Only the spin: A is at rest and B moves on a circle about the shaft."),
-        Preset("centre-point", "B at the centre", {"point_radius_fraction": 0.0},
-               "r_B/A = 0: B moves exactly like A, whatever the disk's ω and α."),
-        Preset("spinning-up", "Both spinning up", {"turntable_acceleration_rad_s2": 1.0, "spin_acceleration_rad_s2": 3.0, "arrows": "acceleration"},
-               "Large ω̇₁ and ω̇₂: the tangential term α × r_B/A grows beside the centripetal one."),
+        Preset(
+            "steady",
+            "Steady rates",
+            {"turntable_acceleration_rad_s2": 0.0, "spin_acceleration_rad_s2": 0.0, "shaft_elevation_deg": 0.0},
+            "Constant ω₁ and ω₂ on a horizontal shaft: α = ω₁K × ω₂n̂ is still not zero, because the spin axis turns.",
+        ),
+        Preset(
+            "spin-only",
+            "Turntable stopped",
+            {"turntable_rate_rad_s": 0.0, "turntable_acceleration_rad_s2": 0.0, "spin_acceleration_rad_s2": 0.0},
+            "Only the spin: A is at rest and B moves on a circle about the shaft.",
+        ),
+        Preset(
+            "centre-point",
+            "B at the centre",
+            {"point_radius_fraction": 0.0},
+            "r_B/A = 0: B moves exactly like A, whatever the disk's ω and α.",
+        ),
+        Preset(
+            "spinning-up",
+            "Both spinning up",
+            {"turntable_acceleration_rad_s2": 1.0, "spin_acceleration_rad_s2": 3.0, "arrows": "acceleration"},
+            "Large ω̇₁ and ω̇₂: the tangential term α × r_B/A grows beside the centripetal one.",
+        ),
     )
 
     def camera_view(self):
@@ -90,7 +129,14 @@ class RigidBodyPointsScene(CyclingScene):
         self.t_s = 0.0
         self._size = 1.1
         self._center_start = (0.8, 0.0, 0.0)
-        self.ground = scene.add_grid("/ground", width=2.4, height=2.4, cell_size=0.1, section_size=0.5, position=(0.0, 0.0, -PLATTER_BELOW_O_M - 0.03))
+        self.ground = scene.add_grid(
+            "/ground",
+            width=2.4,
+            height=2.4,
+            cell_size=0.1,
+            section_size=0.5,
+            position=(0.0, 0.0, -PLATTER_BELOW_O_M - 0.03),
+        )
         self.turntable = scene.add_frame("/turntable", show_axes=False)
         self.disk = scene.add_frame("/turntable/disk", show_axes=False)
         self.geometry: list = []
@@ -116,13 +162,25 @@ class RigidBodyPointsScene(CyclingScene):
             return float(np.median(np.max([np.linalg.norm(v, axis=-1) for v in vectors], axis=0)))
 
         term_length = 0.45 * self._size
-        self.velocity_scale = _arrow_scale(longest(whole.center_velocity, whole.relative_velocity, whole.point_velocity), term_length)
+        self.velocity_scale = _arrow_scale(
+            longest(whole.center_velocity, whole.relative_velocity, whole.point_velocity), term_length
+        )
         self.acceleration_scale = _arrow_scale(
-            longest(whole.center_acceleration, whole.tangential_acceleration, whole.centripetal_acceleration, whole.point_acceleration), term_length
+            longest(
+                whole.center_acceleration,
+                whole.tangential_acceleration,
+                whole.centripetal_acceleration,
+                whole.point_acceleration,
+            ),
+            term_length,
         )
         self.omega_scale = _arrow_scale(longest(whole.angular_velocity), 0.5 * self._size)
         self.alpha_scale = _arrow_scale(longest(whole.angular_acceleration), 0.5 * self._size)
-        style = {"shaft_radius": 0.012 * self._size, "head_radius": 0.03 * self._size, "head_length": 0.055 * self._size}
+        style = {
+            "shaft_radius": 0.012 * self._size,
+            "head_radius": 0.03 * self._size,
+            "head_length": 0.055 * self._size,
+        }
         if style != self._arrow_style:  # a new style rebuilds the batches: only when the sizes change
             self._arrow_style = style
             self.velocity_arrows.set_style(**style)
@@ -130,11 +188,21 @@ class RigidBodyPointsScene(CyclingScene):
         view = self.params["arrows"]
         self.legend.position = (0.3 * self._size, 0.0, L * math.sin(beta) + R + 0.35 * self._size)
         if view == "velocity":
-            self.legend.text = (f"v_B = v_A + ω × r_B/A, tip to tail at B · 1 m/s ↦ {self.velocity_scale:g} m · " f"ω: 1 rad/s ↦ {self.omega_scale:g} m")
+            self.legend.text = (
+                f"v_B = v_A + ω × r_B/A, tip to tail at B · 1 m/s ↦ {self.velocity_scale:g} m · "
+                f"ω: 1 rad/s ↦ {self.omega_scale:g} m"
+            )
         else:
-            self.legend.text = ("a_B = a_A + α × r_B/A + ω × (ω × r_B/A) at B · 1 m/s² ↦ " f"{self.acceleration_scale:g} m · α: 1 rad/s² ↦ {self.alpha_scale:g} m")
+            self.legend.text = (
+                "a_B = a_A + α × r_B/A + ω × (ω × r_B/A) at B · 1 m/s² ↦ "
+                f"{self.acceleration_scale:g} m · α: 1 rad/s² ↦ {self.alpha_scale:g} m"
+            )
         # The other view's arrows and labels are hidden (all of zero length) until it is chosen.
-        other, keys = (self.acceleration_arrows, ACCELERATION_LABELS) if view == "velocity" else (self.velocity_arrows, VELOCITY_LABELS)
+        other, keys = (
+            (self.acceleration_arrows, ACCELERATION_LABELS)
+            if view == "velocity"
+            else (self.velocity_arrows, VELOCITY_LABELS)
+        )
         other.draw(dict.fromkeys(keys, (np.zeros(3), np.zeros(3))))
         self.t_s = 0.0
         self._draw(move_labels=True)
@@ -149,29 +217,72 @@ class RigidBodyPointsScene(CyclingScene):
         reach = 0.5 * L * math.cos(beta) + 0.1
         shaft_end = (L * math.cos(beta), 0.0, L * math.sin(beta))
         self.geometry = [
-            scene.add_cylinder("/turntable/platter", radius=reach, height=0.03, color=(190, 195, 210), position=(0.0, 0.0, -PLATTER_BELOW_O_M)),
-            scene.add_cylinder("/turntable/post", radius=0.025, height=PLATTER_BELOW_O_M, color=(110, 110, 120), position=(0.0, 0.0, -0.5 * PLATTER_BELOW_O_M)),
-            scene.add_line_segments("/turntable/shaft", np.array([[(0.0, 0.0, 0.0), shaft_end]], np.float32), (90, 90, 100), thickness=4.0, thickness_units="screen"),
+            scene.add_cylinder(
+                "/turntable/platter",
+                radius=reach,
+                height=0.03,
+                color=(190, 195, 210),
+                position=(0.0, 0.0, -PLATTER_BELOW_O_M),
+            ),
+            scene.add_cylinder(
+                "/turntable/post",
+                radius=0.025,
+                height=PLATTER_BELOW_O_M,
+                color=(110, 110, 120),
+                position=(0.0, 0.0, -0.5 * PLATTER_BELOW_O_M),
+            ),
+            scene.add_line_segments(
+                "/turntable/shaft",
+                np.array([[(0.0, 0.0, 0.0), shaft_end]], np.float32),
+                (90, 90, 100),
+                thickness=4.0,
+                thickness_units="screen",
+            ),
             scene.add_icosphere("/turntable/bearing", radius=0.03, color=(90, 90, 100)),
             scene.add_label("/turntable/bearing_label", "O", anchor="top-right"),
             scene.add_line_segments(
-                "/turntable/mark", np.array([[(0.0, 0.0, -PLATTER_BELOW_O_M + 0.016), (reach, 0.0, -PLATTER_BELOW_O_M + 0.016)]], np.float32),
-                (60, 60, 70), thickness=2.0, thickness_units="screen",
+                "/turntable/mark",
+                np.array(
+                    [[(0.0, 0.0, -PLATTER_BELOW_O_M + 0.016), (reach, 0.0, -PLATTER_BELOW_O_M + 0.016)]], np.float32
+                ),
+                (60, 60, 70),
+                thickness=2.0,
+                thickness_units="screen",
             ),
             # The disk: body x is the shaft, so its cylinder (axis local z) is turned onto x.
-            scene.add_cylinder("/turntable/disk/plate", radius=R, height=0.02 * R + 0.004, color=(120, 170, 220), opacity=0.55,
-                               wxyz=tuple(quaternion_z_to(np.array([1.0, 0.0, 0.0])))),
+            scene.add_cylinder(
+                "/turntable/disk/plate",
+                radius=R,
+                height=0.02 * R + 0.004,
+                color=(120, 170, 220),
+                opacity=0.55,
+                wxyz=tuple(quaternion_z_to(np.array([1.0, 0.0, 0.0]))),
+            ),
         ]
         spokes = np.linspace(0.0, math.pi, 3, endpoint=False)
         ends = R * np.stack([np.zeros(3), np.cos(spokes), np.sin(spokes)], axis=-1)
         self.geometry.append(
-            scene.add_line_segments("/turntable/disk/spokes", np.stack([-ends, ends], axis=1).astype(np.float32), (30, 60, 100), thickness=1.5, thickness_units="screen")
+            scene.add_line_segments(
+                "/turntable/disk/spokes",
+                np.stack([-ends, ends], axis=1).astype(np.float32),
+                (30, 60, 100),
+                thickness=1.5,
+                thickness_units="screen",
+            )
         )
         point = system.point_body
         self.geometry += [
-            scene.add_icosphere("/turntable/disk/point", radius=0.05 * R + 0.01, color=(250, 200, 40), position=tuple(point)),
+            scene.add_icosphere(
+                "/turntable/disk/point", radius=0.05 * R + 0.01, color=(250, 200, 40), position=tuple(point)
+            ),
             scene.add_label("/turntable/disk/point_label", "B", anchor="bottom-left", position=tuple(point)),
-            scene.add_line_segments("/turntable/disk/r_BA", np.array([[(0.0, 0.0, 0.0), point]], np.float32), (250, 170, 30), thickness=2.5, thickness_units="screen"),
+            scene.add_line_segments(
+                "/turntable/disk/r_BA",
+                np.array([[(0.0, 0.0, 0.0), point]], np.float32),
+                (250, 170, 30),
+                thickness=2.5,
+                thickness_units="screen",
+            ),
             scene.add_label("/turntable/disk/center_label", "A", anchor="top-left"),
         ]
         self.disk.position = shaft_end
@@ -223,10 +334,15 @@ class RigidBodyPointsScene(CyclingScene):
         )
         quantities = [Quantity("t_s", "time t", float(self.t_s), "s")]
         rates = self.system.angles.rates(np.array([self.t_s]))[0]
-        quantities += [Quantity("turntable_rate", "turntable rate ω₁ now", float(rates[0]), "rad/s"), Quantity("spin_rate", "spin rate ω₂ now", float(rates[2]), "rad/s")]
+        quantities += [
+            Quantity("turntable_rate", "turntable rate ω₁ now", float(rates[0]), "rad/s"),
+            Quantity("spin_rate", "spin rate ω₂ now", float(rates[2]), "rad/s"),
+        ]
         for name, label, vector, unit in rows:
             quantities.append(Quantity(name, f"{label} (X, Y, Z)", None, unit, _components(vector[0])))
-            quantities.append(Quantity(f"{name}_magnitude", f"|{label.split(' = ')[0]}|", float(np.linalg.norm(vector[0])), unit))
+            quantities.append(
+                Quantity(f"{name}_magnitude", f"|{label.split(' = ')[0]}|", float(np.linalg.norm(vector[0])), unit)
+            )
         message = (
             f"The motion replays every {CYCLE_S:g} s with ω₁ and ω₂ changing at ω̇₁ and ω̇₂. "
             "Terms shorter than their arrowhead are listed here but not drawn."

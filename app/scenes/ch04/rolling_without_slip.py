@@ -56,10 +56,30 @@ class RollingScene(Scene):
     model = physics.SteadyRollingMotion
     animated = True
     presets = (
-        Preset("upright-disk", "Upright disk", {"body": "disk", "tilt_deg": 0.0, "path_radius_m": 1.5}, "A wheel rolling upright round a circle."),
-        Preset("leaning-disk", "Leaning disk", {"body": "disk", "tilt_deg": 25.0, "path_radius_m": 1.5}, "A coin leaning into its turn."),
-        Preset("wide-circle", "Nearly straight", {"body": "disk", "tilt_deg": 0.0, "path_radius_m": 20.0}, "A very large circle: close to rolling in a straight line."),
-        Preset("cone", "Cone about its apex", {"body": "cone", "tilt_deg": 20.0}, "A cone rolling on its side: ω lies along the line of contact."),
+        Preset(
+            "upright-disk",
+            "Upright disk",
+            {"body": "disk", "tilt_deg": 0.0, "path_radius_m": 1.5},
+            "A wheel rolling upright round a circle.",
+        ),
+        Preset(
+            "leaning-disk",
+            "Leaning disk",
+            {"body": "disk", "tilt_deg": 25.0, "path_radius_m": 1.5},
+            "A coin leaning into its turn.",
+        ),
+        Preset(
+            "wide-circle",
+            "Nearly straight",
+            {"body": "disk", "tilt_deg": 0.0, "path_radius_m": 20.0},
+            "A very large circle: close to rolling in a straight line.",
+        ),
+        Preset(
+            "cone",
+            "Cone about its apex",
+            {"body": "cone", "tilt_deg": 20.0},
+            "A cone rolling on its side: ω lies along the line of contact.",
+        ),
     )
 
     def build(self) -> None:
@@ -68,14 +88,20 @@ class RollingScene(Scene):
         self._view = (1.5, 0.4, (0.0, 0.0))
         self._replay_s: float | None = None
         self.ground = scene.add_grid("/ground", width=6.0, height=6.0, cell_size=0.1, section_size=0.5)
-        self.path = scene.add_line_segments("/path", np.zeros((1, 2, 3), np.float32), (150, 150, 170), thickness=1.5, thickness_units="screen")
+        self.path = scene.add_line_segments(
+            "/path", np.zeros((1, 2, 3), np.float32), (150, 150, 170), thickness=1.5, thickness_units="screen"
+        )
         self.body = scene.add_frame("/body", show_axes=False)
         self.body_meshes: list = []
-        self.instant_axis = scene.add_line_segments("/instant_axis", np.zeros((1, 2, 3), np.float32), (240, 140, 30), thickness=2.0, thickness_units="screen")
+        self.instant_axis = scene.add_line_segments(
+            "/instant_axis", np.zeros((1, 2, 3), np.float32), (240, 140, 30), thickness=2.0, thickness_units="screen"
+        )
         self.axis_point = scene.add_icosphere("/axis_point", radius=0.03, color=(240, 140, 30))
         self.axis_point_label = scene.add_label("/axis_point/label", "O′ (at rest)", anchor="bottom-left")
         self.arrows = scene.add_arrows("/arrows", np.zeros((2 + RIM_ARROWS, 2, 3), np.float32), ARROW_COLORS)
-        self.contact_arrow = scene.add_arrows("/contact_arrow", np.zeros((1, 2, 3), np.float32), (220, 40, 40), visible=False)
+        self.contact_arrow = scene.add_arrows(
+            "/contact_arrow", np.zeros((1, 2, 3), np.float32), (220, 40, 40), visible=False
+        )
         self.contact_dot = scene.add_icosphere("/contact", radius=0.03, color=(220, 40, 40))
         self.contact_label = scene.add_label("/contact/label", "", anchor="top-left")
         self._contact_text = ""
@@ -117,7 +143,9 @@ class RollingScene(Scene):
         self._velocity_scale = 0.5 * R / speed  # the rim's top (about 2v) gets an arrow one radius long
         self._omega_scale = 0.8 * min(max(rho, 2.0 * R), 4.0 * R) / max(speed / R, 1e-9)
         what = "cone rolling on its side, apex fixed at O" if rolling.body == "cone" else "disk rolling round a circle"
-        self.legend.position = (0.0, rho + 1.5 * R, 0.0) if self._replay_s is None else (self._view[2][0], self._view[2][1] + 4.0 * R, 0.0)
+        self.legend.position = (
+            (0.0, rho + 1.5 * R, 0.0) if self._replay_s is None else (self._view[2][0], self._view[2][1] + 4.0 * R, 0.0)
+        )
         self.legend.text = f"{what} · orange: instantaneous axis · purple: ω · blue: v_G · green: rim velocities"
         self._draw()
 
@@ -131,17 +159,24 @@ class RollingScene(Scene):
         ends = R * 0.98 * np.stack([np.cos(spokes), np.sin(spokes), np.zeros(4)], axis=-1)
         if rolling.body == "cone":
             vertices, faces = cone_mesh(radius=R, height=rolling.cone_height_m)
-            mesh = scene.add_mesh_simple("/body/cone", vertices, faces, color=(90, 150, 200), opacity=0.6, side="double")
+            mesh = scene.add_mesh_simple(
+                "/body/cone", vertices, faces, color=(90, 150, 200), opacity=0.6, side="double"
+            )
             # Stripes from the apex to the rim show the spin.
             apex = np.array([0.0, 0.0, -rolling.cone_height_m])
             rim = np.vstack([ends, -ends]) * 1.0 / 0.98
             stripes = np.stack([np.repeat(apex[None], len(rim), axis=0), rim], axis=1)
-            lines = scene.add_line_segments("/body/stripes", stripes.astype(np.float32), (30, 60, 100), thickness=1.5, thickness_units="screen")
+            lines = scene.add_line_segments(
+                "/body/stripes", stripes.astype(np.float32), (30, 60, 100), thickness=1.5, thickness_units="screen"
+            )
         else:
             mesh = scene.add_cylinder("/body/disk", radius=R, height=0.06 * R, color=(90, 150, 200), opacity=0.6)
             lines = scene.add_line_segments(
-                "/body/spokes", np.stack([-ends, ends], axis=1).astype(np.float32) + np.array([0.0, 0.0, 0.035 * R], np.float32),
-                (30, 60, 100), thickness=1.5, thickness_units="screen",
+                "/body/spokes",
+                np.stack([-ends, ends], axis=1).astype(np.float32) + np.array([0.0, 0.0, 0.035 * R], np.float32),
+                (30, 60, 100),
+                thickness=1.5,
+                thickness_units="screen",
             )
         marker = scene.add_icosphere("/body/marker", radius=0.06 * R, color=(240, 200, 40), position=(-R, 0.0, 0.0))
         self.body_meshes = [mesh, lines, marker]
@@ -156,7 +191,13 @@ class RollingScene(Scene):
         rim = rolling.rim_points(state, 0, RIM_ARROWS)
         rim_velocity = rolling.velocity_of(state, 0, rim)
         tails = np.vstack([center, contact, rim])
-        vectors = np.vstack([state.center_velocity[0] * self._velocity_scale, omega * self._omega_scale, rim_velocity * self._velocity_scale])
+        vectors = np.vstack(
+            [
+                state.center_velocity[0] * self._velocity_scale,
+                omega * self._omega_scale,
+                rim_velocity * self._velocity_scale,
+            ]
+        )
         self.arrows.points = np.stack([tails, tails + vectors], axis=1).astype(np.float32)
         # The contact point's computed velocity, to the same scale as the others: zero length in practice.
         v_c = state.contact_point_velocity[0]
@@ -187,19 +228,33 @@ class RollingScene(Scene):
         line_name = "the contact line" if rolling.body == "cone" else "the line C–O′"
         quantities = [
             # To the millimetre per second, as a student would measure it; the next row has the computed round-off.
-            Quantity("contact_point_velocity", "contact point velocity |v_C| = |v_G + ω × r_GC|", None, "m/s", f"{v_c:.3f}"),
+            Quantity(
+                "contact_point_velocity", "contact point velocity |v_C| = |v_G + ω × r_GC|", None, "m/s", f"{v_c:.3f}"
+            ),
             Quantity("contact_point_speed", "|v_C| unrounded (round-off)", v_c, "m/s"),
-            Quantity("center_speed", "speed of the rim's centre |v_G|", float(np.linalg.norm(state.center_velocity[0])), "m/s"),
+            Quantity(
+                "center_speed",
+                "speed of the rim's centre |v_G|",
+                float(np.linalg.norm(state.center_velocity[0])),
+                "m/s",
+            ),
             Quantity("angular_speed", "|ω|", float(np.linalg.norm(omega)), "rad/s"),
             Quantity("spin_rate", "spin rate about the axis, −v/R", float(rolling.spin_rate_rad_s), "rad/s"),
             Quantity("turn_rate", "turn rate about Z, v/ρ", float(rolling.turn_rate_rad_s), "rad/s"),
             Quantity("path_radius", "contact circle radius ρ", float(rolling.path_radius_m), "m"),
             Quantity("axis_point_height", "height of O′ above the ground", float(rolling.axis_point[2]), "m"),
-            Quantity.or_text("axis_misalignment", f"angle between ω and {line_name}", math.degrees(misalignment), "deg", "at rest"),
+            Quantity.or_text(
+                "axis_misalignment", f"angle between ω and {line_name}", math.degrees(misalignment), "deg", "at rest"
+            ),
             Quantity("t_s", "time t", float(self.t_s), "s"),
         ]
         if rolling.body == "cone":
-            message = "ω lies along the line of contact: every point of the cone touching the ground is momentarily at rest."
+            message = (
+                "ω lies along the line of contact: every point of the cone touching the ground is momentarily at rest."
+            )
         else:
-            message = (f"The instantaneous axis runs from C through O′, {rolling.axis_point[2]:.3f} m up the " "vertical through the centre of the path.")
+            message = (
+                f"The instantaneous axis runs from C through O′, {rolling.axis_point[2]:.3f} m up the "
+                "vertical through the centre of the path."
+            )
         return Readout(quantities, message=message)

@@ -27,11 +27,24 @@ class SliderCrankScene(Scene):
     model = physics.SliderCrankMechanism
     animated = True
     presets = (
-        Preset("in-line", "In line", {"crank_m": 0.3, "rod_m": 1.0, "offset_m": 0.0}, "No offset: both strokes take the same time."),
-        Preset("short-rod", "Short rod (l = 2r)", {"crank_m": 0.3, "rod_m": 0.6, "offset_m": 0.0},
-               "A short rod makes the motion far from harmonic: compare the accelerations at the two dead centres."),
-        Preset("quick-return", "Offset (quick return)", {"crank_m": 0.3, "rod_m": 0.8, "offset_m": 0.25},
-               "An offset makes one stroke take longer than the other."),
+        Preset(
+            "in-line",
+            "In line",
+            {"crank_m": 0.3, "rod_m": 1.0, "offset_m": 0.0},
+            "No offset: both strokes take the same time.",
+        ),
+        Preset(
+            "short-rod",
+            "Short rod (l = 2r)",
+            {"crank_m": 0.3, "rod_m": 0.6, "offset_m": 0.0},
+            "A short rod makes the motion far from harmonic: compare the accelerations at the two dead centres.",
+        ),
+        Preset(
+            "quick-return",
+            "Offset (quick return)",
+            {"crank_m": 0.3, "rod_m": 0.8, "offset_m": 0.25},
+            "An offset makes one stroke take longer than the other.",
+        ),
     )
 
     def build(self) -> None:
@@ -39,23 +52,41 @@ class SliderCrankScene(Scene):
         self.t_s = 0.0
         self._span = 1.0
         self._center = np.zeros(3)
-        self.backdrop = scene.add_grid("/backdrop", width=4.0, height=4.0, plane="xz", cell_size=0.1, section_size=0.5, position=(0.5, 0.05, 0.0))
+        self.backdrop = scene.add_grid(
+            "/backdrop", width=4.0, height=4.0, plane="xz", cell_size=0.1, section_size=0.5, position=(0.5, 0.05, 0.0)
+        )
         self.rail = scene.add_line_segments("/rail", np.zeros((1, 2, 3), np.float32), (110, 110, 110), thickness=0.01)
-        self.crank_circle = scene.add_line_segments("/crank_circle", np.zeros((1, 2, 3), np.float32), (150, 170, 210), thickness=1.5, thickness_units="screen")
-        self.pivot = scene.add_point_cloud("/pivot", np.zeros((1, 3), np.float32), (40, 40, 40), point_size=0.05, point_shape="circle")
+        self.crank_circle = scene.add_line_segments(
+            "/crank_circle", np.zeros((1, 2, 3), np.float32), (150, 170, 210), thickness=1.5, thickness_units="screen"
+        )
+        self.pivot = scene.add_point_cloud(
+            "/pivot", np.zeros((1, 3), np.float32), (40, 40, 40), point_size=0.05, point_shape="circle"
+        )
         self.pivot_label = scene.add_label("/pivot/label", "O", anchor="top-center")
-        self.links = scene.add_line_segments("/links", np.zeros((2, 2, 3), np.float32), np.repeat(LINK_COLORS[:, None, :], 2, axis=1), thickness=0.02)
-        self.joints = scene.add_point_cloud("/joints", np.zeros((2, 3), np.float32), (30, 30, 30), point_size=0.04, point_shape="circle")
+        self.links = scene.add_line_segments(
+            "/links", np.zeros((2, 2, 3), np.float32), np.repeat(LINK_COLORS[:, None, :], 2, axis=1), thickness=0.02
+        )
+        self.joints = scene.add_point_cloud(
+            "/joints", np.zeros((2, 3), np.float32), (30, 30, 30), point_size=0.04, point_shape="circle"
+        )
         self.slider = scene.add_box("/slider", color=(150, 150, 160), dimensions=(0.2, 0.1, 0.1))
         self.arrows = scene.add_arrows(
-            "/arrows", np.zeros((2, 2, 3), np.float32), np.array([[30, 150, 60], [220, 60, 40]], np.uint8),
-            shaft_radius=0.01, head_radius=0.025, head_length=0.05,
+            "/arrows",
+            np.zeros((2, 2, 3), np.float32),
+            np.array([[30, 150, 60], [220, 60, 40]], np.uint8),
+            shaft_radius=0.01,
+            head_radius=0.025,
+            head_length=0.05,
         )
         self.legend = scene.add_label("/legend", "", anchor="bottom-left")
 
     def camera_view(self):
         c, span = self._center, self._span
-        return (float(c[0] + 0.08 * span), float(-0.75 * span), float(c[2] + 0.12 * span)), (float(c[0]), 0.0, float(c[2]))
+        return (float(c[0] + 0.08 * span), float(-0.75 * span), float(c[2] + 0.12 * span)), (
+            float(c[0]),
+            0.0,
+            float(c[2]),
+        )
 
     def update(self) -> None:
         self.motion = physics.SliderCrankMotion.from_params(self.params)
@@ -76,7 +107,9 @@ class SliderCrankScene(Scene):
         self.joints.point_size = 0.02 * span
         self.pivot_label.position = (0.0, 0.0, -0.04 * span)
         rail_z = e - 0.5 * block[2]
-        self.rail.points = np.array([[[x_min - 0.15 * span, 0.0, rail_z], [x_max + 0.15 * span, 0.0, rail_z]]], np.float32)
+        self.rail.points = np.array(
+            [[[x_min - 0.15 * span, 0.0, rail_z], [x_max + 0.15 * span, 0.0, rail_z]]], np.float32
+        )
         circle = np.linspace(0.0, 2.0 * math.pi, 121)
         self.crank_circle.points = polyline_segments(r * np.stack([np.cos(circle), np.sin(circle)], axis=-1))
         self.arrows.shaft_radius = 0.006 * span
@@ -87,7 +120,9 @@ class SliderCrankScene(Scene):
         self.backdrop.cell_size = 10 ** math.floor(math.log10(span / 4.0))
         self.backdrop.section_size = 5 * self.backdrop.cell_size
         # Arrow scales: the largest velocity / acceleration over a turn is drawn 0.25 span long.
-        turn = self.motion.at(np.linspace(0.0, self.motion.drive.period_s if math.isfinite(self.motion.drive.period_s) else 1.0, 361))
+        turn = self.motion.at(
+            np.linspace(0.0, self.motion.drive.period_s if math.isfinite(self.motion.drive.period_s) else 1.0, 361)
+        )
         self._velocity_scale = 0.25 * span / max(float(np.max(np.abs(turn.slider_velocity_m_s))), 1e-12)
         self._acceleration_scale = 0.25 * span / max(float(np.max(np.abs(turn.slider_acceleration_m_s2))), 1e-12)
         self.legend.position = (float(low[0]), 0.0, float(high[1] + 0.2 * span))
@@ -104,10 +139,12 @@ class SliderCrankScene(Scene):
         self.slider.position = tuple(slider_world)
         lift = np.array([0.0, -0.05 * self._span, 0.09 * self._span])
         tails = np.array([slider_world + lift, slider_world + 1.6 * lift])
-        vectors = np.array([
-            [state.slider_velocity_m_s[0] * self._velocity_scale, 0.0, 0.0],
-            [state.slider_acceleration_m_s2[0] * self._acceleration_scale, 0.0, 0.0],
-        ])
+        vectors = np.array(
+            [
+                [state.slider_velocity_m_s[0] * self._velocity_scale, 0.0, 0.0],
+                [state.slider_acceleration_m_s2[0] * self._acceleration_scale, 0.0, 0.0],
+            ]
+        )
         self.arrows.points = np.stack([tails, tails + vectors], axis=1).astype(np.float32)
 
     def readout(self) -> Readout:
@@ -129,5 +166,8 @@ class SliderCrankScene(Scene):
         message = ""
         if mech.offset_m != 0.0:
             sense = "counterclockwise" if counterclockwise else "clockwise"
-            message = (f"With the offset the strokes take unequal times: turning {sense}, the outward stroke " f"lasts {ratio:.3f} times the return stroke.")
+            message = (
+                f"With the offset the strokes take unequal times: turning {sense}, the outward stroke "
+                f"lasts {ratio:.3f} times the return stroke."
+            )
         return Readout(quantities, message=message)

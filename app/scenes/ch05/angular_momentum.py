@@ -43,14 +43,30 @@ REPLAY_S = 4.0
 CONE_GENERATORS = 12
 
 PRESETS = (
-    Preset("tilted-plate", "Tilted plate", {"view": "rigid body", "body": "plate", "tilt_deg": 30.0, "spin_rate_rad_s": 4.0},
-           "The plate's normal 30° off the shaft: H leans away from ω and the bearings feel a turning couple."),
-    Preset("principal", "Shaft along a principal axis", {"view": "rigid body", "body": "plate", "tilt_deg": 0.0},
-           "Tilt 0: the shaft is the plate's normal, a principal axis. ω and H line up and the bearings carry nothing."),
-    Preset("skewed-disk", "Skewed disk", {"view": "rigid body", "body": "disk", "tilt_deg": 10.0, "spin_rate_rad_s": 20.0},
-           "A disk mounted 10° askew at 20 rad/s: a small error in mounting, a large bearing load."),
-    Preset("particles", "Particles, moving centre", {"view": "particles", "body": "box", "tilt_deg": 30.0},
-           "The body as eight point masses, carried along at v_G: momentum, H about O and the energy split."),
+    Preset(
+        "tilted-plate",
+        "Tilted plate",
+        {"view": "rigid body", "body": "plate", "tilt_deg": 30.0, "spin_rate_rad_s": 4.0},
+        "The plate's normal 30° off the shaft: H leans away from ω and the bearings feel a turning couple.",
+    ),
+    Preset(
+        "principal",
+        "Shaft along a principal axis",
+        {"view": "rigid body", "body": "plate", "tilt_deg": 0.0},
+        "Tilt 0: the shaft is the plate's normal, a principal axis. ω and H line up and the bearings carry nothing.",
+    ),
+    Preset(
+        "skewed-disk",
+        "Skewed disk",
+        {"view": "rigid body", "body": "disk", "tilt_deg": 10.0, "spin_rate_rad_s": 20.0},
+        "A disk mounted 10° askew at 20 rad/s: a small error in mounting, a large bearing load.",
+    ),
+    Preset(
+        "particles",
+        "Particles, moving centre",
+        {"view": "particles", "body": "box", "tilt_deg": 30.0},
+        "The body as eight point masses, carried along at v_G: momentum, H about O and the energy split.",
+    ),
 )
 
 
@@ -68,22 +84,38 @@ class AngularMomentumScene(Scene):
         self._span = 1.0
         self.rig = scene.add_frame("/rig", show_axes=False)
         self.body_frame = scene.add_frame("/rig/body", show_axes=False)
-        self.shaft = scene.add_line_segments("/rig/shaft", np.zeros((1, 2, 3), np.float32), (90, 90, 90), thickness=4.0, thickness_units="screen")
-        self.cone = scene.add_line_segments("/rig/cone", np.zeros((1, 2, 3), np.float32), (235, 150, 150), thickness=1.5, thickness_units="screen")
+        self.shaft = scene.add_line_segments(
+            "/rig/shaft", np.zeros((1, 2, 3), np.float32), (90, 90, 90), thickness=4.0, thickness_units="screen"
+        )
+        self.cone = scene.add_line_segments(
+            "/rig/cone", np.zeros((1, 2, 3), np.float32), (235, 150, 150), thickness=1.5, thickness_units="screen"
+        )
         self.arrows = scene.add_arrows(
-            "/rig/arrows", np.zeros((5, 2, 3), np.float32),
+            "/rig/arrows",
+            np.zeros((5, 2, 3), np.float32),
             np.array([OMEGA_COLOR, MOMENTUM_COLOR, RATE_COLOR, FORCE_COLOR, FORCE_COLOR], np.uint8),
-            shaft_radius=0.01, head_radius=0.025, head_length=0.05,
+            shaft_radius=0.01,
+            head_radius=0.025,
+            head_length=0.05,
         )
         self.labels = {
             name: scene.add_label(f"/rig/label_{key}", name, anchor=anchor)
-            for key, name, anchor in (("omega", "ω", "bottom-left"), ("h", "H_G", "bottom-right"), ("rate", "dH/dt (bearing moment)", "bottom-left"),
-                                      ("a", "F_A", "bottom-left"), ("b", "F_B", "bottom-left"))
+            for key, name, anchor in (
+                ("omega", "ω", "bottom-left"),
+                ("h", "H_G", "bottom-right"),
+                ("rate", "dH/dt (bearing moment)", "bottom-left"),
+                ("a", "F_A", "bottom-left"),
+                ("b", "F_B", "bottom-left"),
+            )
         }
-        self.origin = scene.add_point_cloud("/origin", np.zeros((1, 3), np.float32), (30, 30, 30), point_size=0.03, point_shape="circle")
+        self.origin = scene.add_point_cloud(
+            "/origin", np.zeros((1, 3), np.float32), (30, 30, 30), point_size=0.03, point_shape="circle"
+        )
         self.origin_label = scene.add_label("/origin/label", "O", anchor="top-right")
         self.legend = scene.add_label("/legend", "", anchor="top-left")
-        self.particles_legend = scene.add_label("/particles_legend", "purple vᵢ · magenta p = m v_G · dark red H_O (from O)", anchor="top-left")
+        self.particles_legend = scene.add_label(
+            "/particles_legend", "purple vᵢ · magenta p = m v_G · dark red H_O (from O)", anchor="top-left"
+        )
 
     def camera_view(self):
         span = self._span
@@ -109,19 +141,37 @@ class AngularMomentumScene(Scene):
             scene.remove_by_name(name)
         if self.particles_view:
             local, masses = physics.equivalent_particles(np.diag(body.inertia_body_kg_m2), body.mass_kg)
-            scene.add_point_cloud("/rig/body/particles", local.astype(np.float32), (60, 60, 70), point_size=0.06 * size, point_shape="circle")
+            scene.add_point_cloud(
+                "/rig/body/particles",
+                local.astype(np.float32),
+                (60, 60, 70),
+                point_size=0.06 * size,
+                point_shape="circle",
+            )
             spokes = np.stack([np.zeros_like(local), local], axis=1).astype(np.float32)
-            scene.add_line_segments("/rig/body/spokes", spokes, (150, 150, 160), thickness=1.5, thickness_units="screen")
+            scene.add_line_segments(
+                "/rig/body/spokes", spokes, (150, 150, 160), thickness=1.5, thickness_units="screen"
+            )
             self.particle_arrows = scene.add_arrows(
-                "/particle_arrows", np.zeros((len(masses), 2, 3), np.float32), VELOCITY_COLOR,
-                shaft_radius=0.012 * size, head_radius=0.03 * size, head_length=0.06 * size,
+                "/particle_arrows",
+                np.zeros((len(masses), 2, 3), np.float32),
+                VELOCITY_COLOR,
+                shaft_radius=0.012 * size,
+                head_radius=0.03 * size,
+                head_length=0.06 * size,
             )
             self.momenta = scene.add_arrows(
-                "/momenta", np.zeros((2, 2, 3), np.float32), np.array([LINEAR_MOMENTUM_COLOR, ORIGIN_MOMENTUM_COLOR], np.uint8),
-                shaft_radius=0.015 * size, head_radius=0.04 * size, head_length=0.08 * size,
+                "/momenta",
+                np.zeros((2, 2, 3), np.float32),
+                np.array([LINEAR_MOMENTUM_COLOR, ORIGIN_MOMENTUM_COLOR], np.uint8),
+                shaft_radius=0.015 * size,
+                head_radius=0.04 * size,
+                head_length=0.08 * size,
             )
         elif body.shape == "disk":
-            scene.add_cylinder("/rig/body/mesh", radius=0.5 * body.dimensions_m[0], height=0.04 * size, color=BODY_COLOR, opacity=0.75)
+            scene.add_cylinder(
+                "/rig/body/mesh", radius=0.5 * body.dimensions_m[0], height=0.04 * size, color=BODY_COLOR, opacity=0.75
+            )
         else:
             a, b, c = body.dimensions_m
             scene.add_box("/rig/body/mesh", color=BODY_COLOR, dimensions=(a, b, max(c, 0.02 * size)), opacity=0.75)
@@ -131,15 +181,27 @@ class AngularMomentumScene(Scene):
         # The shaft through both bearings, and the arrow sizes.
         reach = half_span + 0.25 * size
         self.shaft.points = np.array([[[0.0, 0.0, -reach], [0.0, 0.0, reach]]], np.float32)
-        self.arrows.shaft_radius, self.arrows.head_radius, self.arrows.head_length = 0.015 * size, 0.04 * size, 0.08 * size
+        self.arrows.shaft_radius, self.arrows.head_radius, self.arrows.head_length = (
+            0.015 * size,
+            0.04 * size,
+            0.08 * size,
+        )
         scene.remove_by_name("/rig/bearings")
         for key, z in (("a", -half_span), ("b", half_span)):
-            scene.add_cylinder(f"/rig/bearings/{key}", radius=0.08 * size, height=0.12 * size, color=(70, 70, 80), position=(0.0, 0.0, z))
+            scene.add_cylinder(
+                f"/rig/bearings/{key}",
+                radius=0.08 * size,
+                height=0.12 * size,
+                color=(70, 70, 80),
+                position=(0.0, 0.0, z),
+            )
         # Each vector drawn to fit the body: ω 1.1 size, H size, dH/dt 0.8 size, bearing forces 0.6 size.
         spin = self.spin
         h_size = spin.angular_momentum_magnitude_kg_m2_s
         self._h_scale = size / h_size if h_size > 0.0 else 0.0
-        self._omega_tip = np.array([0.0, 0.0, 1.1 * size * math.copysign(1.0, spin.spin_rate_rad_s) if spin.spin_rate_rad_s else 0.0])
+        self._omega_tip = np.array(
+            [0.0, 0.0, 1.1 * size * math.copysign(1.0, spin.spin_rate_rad_s) if spin.spin_rate_rad_s else 0.0]
+        )
         moment = spin.bearing_moment_N_m
         self._moment_scale = 0.8 * size / moment if moment > 0.0 else 0.0
         force = moment / spin.bearing_span_m
@@ -195,20 +257,29 @@ class AngularMomentumScene(Scene):
     def _draw_particles(self, state: physics.SpinState) -> None:
         particles = self.spin.particles_at(state)
         self._particles = particles
-        velocity_scale = 0.5 * self._size / max(float(np.max(np.linalg.norm(particles.velocities_m_s[0], axis=-1))), 1e-12)
-        self.particle_arrows.points = arrow_segments(particles.positions_m[0], particles.velocities_m_s[0], velocity_scale)
+        velocity_scale = (
+            0.5 * self._size / max(float(np.max(np.linalg.norm(particles.velocities_m_s[0], axis=-1))), 1e-12)
+        )
+        self.particle_arrows.points = arrow_segments(
+            particles.positions_m[0], particles.velocities_m_s[0], velocity_scale
+        )
         p = state.linear_momentum
         p_scale = 0.8 * self._size / max(float(np.linalg.norm(p)), 1e-12)
         h_o = state.angular_momentum_O[0]
         h_o_scale = self._h_scale if self._h_scale else 0.0
-        self.momenta.points = arrow_segments(np.array([state.centre_m[0], np.zeros(3)]), np.array([p * p_scale, h_o * h_o_scale]), 1.0)
+        self.momenta.points = arrow_segments(
+            np.array([state.centre_m[0], np.zeros(3)]), np.array([p * p_scale, h_o * h_o_scale]), 1.0
+        )
 
     def readout(self) -> Readout:
         spin, state = self.spin, self._state
         no_spin = spin.spin_rate_rad_s == 0.0
         angle = Quantity.or_text(
-            "angle_omega_H", "angle between ω and H_G", None if no_spin else math.degrees(float(state.angle_between_omega_and_H[0])),
-            "deg", physics.NO_SPIN_ANGLE,
+            "angle_omega_H",
+            "angle between ω and H_G",
+            None if no_spin else math.degrees(float(state.angle_between_omega_and_H[0])),
+            "deg",
+            physics.NO_SPIN_ANGLE,
         )
         force = float(state.bearing_moment_N_m[0]) / spin.bearing_span_m
         quantities = [
@@ -216,12 +287,20 @@ class AngularMomentumScene(Scene):
             Quantity("spin_angle", "spin angle Ωt (mod 360°)", math.degrees(float(state.spin_angle[0])) % 360.0, "deg"),
             angle,
             Quantity("angular_momentum", "|H_G|", float(np.linalg.norm(state.angular_momentum_G[0])), "kg·m²/s"),
-            Quantity("angular_momentum_along_shaft", "H_G along the shaft", float(state.angular_momentum_G[0, 2]), "kg·m²/s"),
-            Quantity("bearing_moment", "|dH/dt| = |ω × H_G| (bearing moment)", float(state.bearing_moment_N_m[0]), "N·m"),
+            Quantity(
+                "angular_momentum_along_shaft", "H_G along the shaft", float(state.angular_momentum_G[0, 2]), "kg·m²/s"
+            ),
+            Quantity(
+                "bearing_moment", "|dH/dt| = |ω × H_G| (bearing moment)", float(state.bearing_moment_N_m[0]), "N·m"
+            ),
             Quantity("bearing_force", f"force at each bearing (span {spin.bearing_span_m:g} m)", force, "N"),
             Quantity("kinetic_energy", "kinetic energy T", float(state.kinetic_energy_J[0]), "J"),
-            Quantity("kinetic_energy_centre", "T of G's motion, ½ m v_G²", float(state.kinetic_energy_centre_J[0]), "J"),
-            Quantity("kinetic_energy_about_centre", "T about G, ½ ω·H_G", float(state.kinetic_energy_about_centre_J[0]), "J"),
+            Quantity(
+                "kinetic_energy_centre", "T of G's motion, ½ m v_G²", float(state.kinetic_energy_centre_J[0]), "J"
+            ),
+            Quantity(
+                "kinetic_energy_about_centre", "T about G, ½ ω·H_G", float(state.kinetic_energy_about_centre_J[0]), "J"
+            ),
         ]
         if self.particles_view:
             particles = self._particles
@@ -232,9 +311,19 @@ class AngularMomentumScene(Scene):
             )
             energy_mismatch = abs(float(particles.kinetic_energy()[0] - state.kinetic_energy_J[0]))
             quantities += [
-                Quantity("linear_momentum", "|p| = |Σ mᵢ vᵢ| = m |v_G|", float(np.linalg.norm(particles.linear_momentum()[0])), "kg·m/s"),
+                Quantity(
+                    "linear_momentum",
+                    "|p| = |Σ mᵢ vᵢ| = m |v_G|",
+                    float(np.linalg.norm(particles.linear_momentum()[0])),
+                    "kg·m/s",
+                ),
                 Quantity("angular_momentum_O", "|H_O| = |H_G + r_G × m v_G|", float(np.linalg.norm(h_o)), "kg·m²/s"),
-                Quantity("particle_sum_mismatch", "largest |Σ rᵢ × mᵢ vᵢ − rigid-body H| (about G and O)", mismatch, "kg·m²/s"),
+                Quantity(
+                    "particle_sum_mismatch",
+                    "largest |Σ rᵢ × mᵢ vᵢ − rigid-body H| (about G and O)",
+                    mismatch,
+                    "kg·m²/s",
+                ),
                 Quantity("particle_energy_mismatch", "|Σ ½ mᵢ vᵢ² − T|", energy_mismatch, "J"),
             ]
         return Readout(quantities, message=self._message(force))
@@ -248,14 +337,18 @@ class AngularMomentumScene(Scene):
             words.append("No spin: ω = 0, so H = 0, T = ½ m v_G² and the bearings carry nothing.")
         elif not spin.body.shaft_is_principal:
             words.append(
-                f"H_G leans {math.degrees(spin.angle_between_omega_and_H):.2f}° off the shaft and sweeps a cone " "once a turn; "
+                f"H_G leans {math.degrees(spin.angle_between_omega_and_H):.2f}° off the shaft and sweeps a cone "
+                "once a turn; "
                 f"the bearings must supply dH/dt = ω × H_G, two forces of {force_N:.4g} N turning with the body."
             )
         if self.particles_view:
             masses = self._particles.masses_kg
             words.append(
-                f"The body is drawn as {len(masses)} point masses of {masses[0]:.4g} kg with its mass, centre " "and inertia. "
+                f"The body is drawn as {len(masses)} point masses of {masses[0]:.4g} kg with its mass, centre "
+                "and inertia. "
                 "The shaft travels at constant v_G: p, H_O and T change with v_G, the bearing forces do not."
             )
-        words.append("Gravity is left out: on a vertical shaft the weight is an axial thrust and changes none of these moments.")
+        words.append(
+            "Gravity is left out: on a vertical shaft the weight is an axial thrust and changes none of these moments."
+        )
         return " ".join(words)

@@ -59,24 +59,49 @@ TURNED_FRAME_COLORS = np.array([[235, 130, 40], [150, 200, 40], [40, 190, 210]],
 SUBSCRIPTS = "₁₂₃"
 
 FRAME_SEQUENCE = Parameter(
-    "frame_sequence", "", "3-2-1", description="Rotation sequence from the reference axes xyz to the turned axes x′y′z′",
-    label="turned frame: sequence", kind="choice", choices=tuple(SEQUENCES),
+    "frame_sequence",
+    "",
+    "3-2-1",
+    description="Rotation sequence from the reference axes xyz to the turned axes x′y′z′",
+    label="turned frame: sequence",
+    kind="choice",
+    choices=tuple(SEQUENCES),
 )
 FRAME_ANGLES = Parameter(
-    "frame_angles_deg", "deg", [0.0, 0.0, 0.0], -360.0, 360.0,
-    "The sequence's three angles; the tensor's components are shown on the turned axes x′y′z′", "turned frame: angles",
-    kind="vector", step=1.0,
+    "frame_angles_deg",
+    "deg",
+    [0.0, 0.0, 0.0],
+    -360.0,
+    360.0,
+    "The sequence's three angles; the tensor's components are shown on the turned axes x′y′z′",
+    "turned frame: angles",
+    kind="vector",
+    step=1.0,
 )
 SHOW_ELLIPSOID = Parameter(
-    "show_ellipsoid", "", "yes", description="Draw the inertia ellipsoid at G (semi-axes ∝ 1/√I)", label="inertia ellipsoid",
-    kind="choice", choices=("yes", "no"),
+    "show_ellipsoid",
+    "",
+    "yes",
+    description="Draw the inertia ellipsoid at G (semi-axes ∝ 1/√I)",
+    label="inertia ellipsoid",
+    kind="choice",
+    choices=("yes", "no"),
 )
 
 
-def _record(shape: str, mass_kg: float, position_m, angles_deg=(0.0, 0.0, 0.0), **dimensions_m: float) -> dict[str, Any]:
+def _record(
+    shape: str, mass_kg: float, position_m, angles_deg=(0.0, 0.0, 0.0), **dimensions_m: float
+) -> dict[str, Any]:
     """One solid body of a preset (3-2-1 angles in deg, m, kg)."""
-    return {"shape": shape, "mass_kg": mass_kg, **dimensions_m, "position_m": list(position_m),
-            "sequence": "3-2-1", "angles_deg": list(angles_deg), "hole": False}
+    return {
+        "shape": shape,
+        "mass_kg": mass_kg,
+        **dimensions_m,
+        "position_m": list(position_m),
+        "sequence": "3-2-1",
+        "angles_deg": list(angles_deg),
+        "hole": False,
+    }
 
 
 #: 3-2-1 angles (deg) that turn a shape's own z onto the reference x and y axes.
@@ -84,7 +109,10 @@ ALONG_X = (0.0, 90.0, 0.0)
 ALONG_Y = (0.0, 0.0, -90.0)
 
 PRESET_BODIES: dict[str, list[dict[str, Any]]] = {
-    "bent-bar": [_record("rod", 1.2, (0.3, 0.0, 0.0), ALONG_X, length_m=0.6), _record("rod", 0.6, (0.6, 0.15, 0.0), ALONG_Y, length_m=0.3)],
+    "bent-bar": [
+        _record("rod", 1.2, (0.3, 0.0, 0.0), ALONG_X, length_m=0.6),
+        _record("rod", 0.6, (0.6, 0.15, 0.0), ALONG_Y, length_m=0.3),
+    ],
     "plate-with-hole": composite_body.DEFAULT_BODIES,
     "skewed-disk": [
         _record("rod", 1.5, (0.0, 0.0, 0.0), ALONG_X, length_m=0.8),
@@ -102,21 +130,39 @@ PRESET_BODIES: dict[str, list[dict[str, Any]]] = {
 
 #: Each preset's button label and description (its body is PRESET_BODIES[name]; P at the origin).
 PRESET_TEXT: dict[str, tuple[str, str]] = {
-    "bent-bar": ("Bent bar", "Two rods at right angles: a flat body, so I₃ = I₁ + I₂, with a product of inertia in its plane."),
-    "plate-with-hole": ("Plate with a hole", "The default bracket: a plate with an 80 mm hole (a negative disk) and a rod standing on one edge."),
-    "skewed-disk": ("Skewed disk", "A disk on a shaft, tilted 6° from square: the shaft is no longer a principal axis (I_xz ≠ 0)."),
+    "bent-bar": (
+        "Bent bar",
+        "Two rods at right angles: a flat body, so I₃ = I₁ + I₂, with a product of inertia in its plane.",
+    ),
+    "plate-with-hole": (
+        "Plate with a hole",
+        "The default bracket: a plate with an 80 mm hole (a negative disk) and a rod standing on one edge.",
+    ),
+    "skewed-disk": (
+        "Skewed disk",
+        "A disk on a shaft, tilted 6° from square: the shaft is no longer a principal axis (I_xz ≠ 0).",
+    ),
     "dumbbell": ("Dumbbell", "Two spheres on a rod: axisymmetric, so every axis across the rod is principal."),
     "sphere": ("Sphere", "Every axis through the centre is principal: the ellipsoid is a sphere."),
     "cube": ("Cube (turned)", "A cube turned 30°, 20°, 10°: still every axis through its centre is principal."),
 }
 
 
-def _tube_mesh(radius_m: float, inner_radius_m: float, length_m: float, segments: int = 48) -> tuple[np.ndarray, np.ndarray]:
+def _tube_mesh(
+    radius_m: float, inner_radius_m: float, length_m: float, segments: int = 48
+) -> tuple[np.ndarray, np.ndarray]:
     """Vertices (V, 3) and faces (F, 3) of a tube along its own z, centred on its centre of mass (m)."""
     angles = np.linspace(0.0, 2.0 * math.pi, segments, endpoint=False)
     ring = np.column_stack([np.cos(angles), np.sin(angles)])
-    rings = [np.column_stack([r * ring, np.full(segments, z)]) for r, z in (
-        (radius_m, -length_m / 2), (radius_m, length_m / 2), (inner_radius_m, length_m / 2), (inner_radius_m, -length_m / 2))]
+    rings = [
+        np.column_stack([r * ring, np.full(segments, z)])
+        for r, z in (
+            (radius_m, -length_m / 2),
+            (radius_m, length_m / 2),
+            (inner_radius_m, length_m / 2),
+            (inner_radius_m, -length_m / 2),
+        )
+    ]
     vertices = np.vstack(rings)
     faces = []
     for k in range(4):  # outer wall, top annulus, inner wall, bottom annulus (outward normals)
@@ -185,22 +231,37 @@ class InertiaExplorerScene(Scene):
         self._drawn_bodies: list[dict[str, Any]] | None = None
         self._part_handles: list[Any] = []
         self.reference_axes = scene.add_line_segments(
-            "/reference/axes", np.zeros((3, 2, 3), np.float32), np.full((3, 2, 3), 120, np.uint8),
-            thickness=2.0, thickness_units="screen",
+            "/reference/axes",
+            np.zeros((3, 2, 3), np.float32),
+            np.full((3, 2, 3), 120, np.uint8),
+            thickness=2.0,
+            thickness_units="screen",
         )
         self.reference_labels = [scene.add_label(f"/reference/{n}", n, anchor="center-center") for n in "xyz"]
         self.centre_marker = scene.add_icosphere("/centre_of_mass", radius=0.01, color=(20, 20, 20))
         self.centre_label = scene.add_label("/centre_of_mass/label", "G", anchor="bottom-left")
         self.point_marker = scene.add_icosphere("/point_P", radius=0.008, color=(120, 60, 160))
         self.point_label = scene.add_label("/point_P/label", "P", anchor="top-right")
-        self.ellipsoid = scene.add_icosphere("/ellipsoid", radius=1.0, color=(90, 170, 230), subdivisions=4, opacity=0.22)
-        self.principal_arrows = scene.add_arrows(
-            "/principal/arrows", np.zeros((3, 2, 3), np.float32), AXIS_COLORS, shaft_radius=0.004, head_radius=0.01, head_length=0.025,
+        self.ellipsoid = scene.add_icosphere(
+            "/ellipsoid", radius=1.0, color=(90, 170, 230), subdivisions=4, opacity=0.22
         )
-        self.principal_labels = [scene.add_label(f"/principal/label{k + 1}", str(k + 1), anchor="center-left") for k in range(3)]
+        self.principal_arrows = scene.add_arrows(
+            "/principal/arrows",
+            np.zeros((3, 2, 3), np.float32),
+            AXIS_COLORS,
+            shaft_radius=0.004,
+            head_radius=0.01,
+            head_length=0.025,
+        )
+        self.principal_labels = [
+            scene.add_label(f"/principal/label{k + 1}", str(k + 1), anchor="center-left") for k in range(3)
+        ]
         self.turned_axes = scene.add_line_segments(
-            "/turned/axes", np.zeros((3, 2, 3), np.float32), np.repeat(TURNED_FRAME_COLORS[:, None, :], 2, axis=1),
-            thickness=3.0, thickness_units="screen",
+            "/turned/axes",
+            np.zeros((3, 2, 3), np.float32),
+            np.repeat(TURNED_FRAME_COLORS[:, None, :], 2, axis=1),
+            thickness=3.0,
+            thickness_units="screen",
         )
         self.turned_labels = [scene.add_label(f"/turned/{n}", n, anchor="center-center") for n in ("x′", "y′", "z′")]
 
@@ -222,26 +283,38 @@ class InertiaExplorerScene(Scene):
     # -- drawing ------------------------------------------------------------------------
     def camera_view(self):
         c, s = self._centre, self._span
-        return (float(c[0] + 0.75 * s), float(c[1] - 1.05 * s), float(c[2] + 0.6 * s)), (float(c[0]), float(c[1]), float(c[2]))
+        return (float(c[0] + 0.75 * s), float(c[1] - 1.05 * s), float(c[2] + 0.6 * s)), (
+            float(c[0]),
+            float(c[1]),
+            float(c[2]),
+        )
 
     def _draw_parts(self) -> None:
         for handle in self._part_handles:
             handle.remove()
         thickness = 0.02 * self._span
-        self._part_handles = [self._add_part(f"/body/part{k}", part, thickness) for k, part in enumerate(self.body.parts)]
+        self._part_handles = [
+            self._add_part(f"/body/part{k}", part, thickness) for k, part in enumerate(self.body.parts)
+        ]
 
     def _add_part(self, name: str, part: Part, thickness_m: float):
         """One primitive as a mesh in its place and orientation; a hole red and a little proud of its part."""
         scene = self.client.scene
         size = dict(part.dimensions_m)
         proud = 1.6 if part.hole else 1.0
-        style: _PartStyle = {"color": HOLE_COLOR if part.hole else SOLID_COLOR, "wxyz": quaternion_from_matrix(part.rotation), "position": part.position_m}
+        style: _PartStyle = {
+            "color": HOLE_COLOR if part.hole else SOLID_COLOR,
+            "wxyz": quaternion_from_matrix(part.rotation),
+            "position": part.position_m,
+        }
         if part.hole:
             # Slightly larger than the material it removes, so it shows through both faces.
             size = {k: v * 1.01 if k != "inner_radius_m" else v * 0.99 for k, v in size.items()}
         shape = part.shape.name
         if shape in ("sphere", "spherical-shell"):
-            return scene.add_icosphere(name, radius=size["radius_m"], subdivisions=3, wireframe=shape == "spherical-shell", **style)
+            return scene.add_icosphere(
+                name, radius=size["radius_m"], subdivisions=3, wireframe=shape == "spherical-shell", **style
+            )
         if shape == "cylinder":
             return scene.add_cylinder(name, radius=size["radius_m"], height=size["length_m"], **style)
         if shape == "tube":
@@ -306,16 +379,33 @@ class InertiaExplorerScene(Scene):
         inertia_P = tensor_in_turned_frame(body.inertia_about_kg_m2(self._point), self.R_turned)
         quantities = [
             Quantity("mass", "mass m", body.mass_kg, "kg"),
-            *(Quantity(f"centre_of_mass_{c}", f"centre of mass {c}_G", float(v), "m") for c, v in zip("xyz", body.centre_of_mass_m)),
-            *(Quantity(f"I_{c}{c}", f"moment I_{c}′{c}′ about G", component(tensor[i, i]), "kg·m²") for i, c in enumerate("xyz")),
             *(
-                Quantity(f"I_{a}{b}", f"product I_{a}′{b}′ = ∫{a}′{b}′ dm (tensor entry −I_{a}′{b}′)", component(-tensor[i, j]), "kg·m²")
+                Quantity(f"centre_of_mass_{c}", f"centre of mass {c}_G", float(v), "m")
+                for c, v in zip("xyz", body.centre_of_mass_m)
+            ),
+            *(
+                Quantity(f"I_{c}{c}", f"moment I_{c}′{c}′ about G", component(tensor[i, i]), "kg·m²")
+                for i, c in enumerate("xyz")
+            ),
+            *(
+                Quantity(
+                    f"I_{a}{b}",
+                    f"product I_{a}′{b}′ = ∫{a}′{b}′ dm (tensor entry −I_{a}′{b}′)",
+                    component(-tensor[i, j]),
+                    "kg·m²",
+                )
                 for i, j, a, b in ((0, 1, "x", "y"), (0, 2, "x", "z"), (1, 2, "y", "z"))
             ),
             Quantity("trace", "I_x′x′ + I_y′y′ + I_z′z′ (the same on every frame)", float(np.trace(tensor)), "kg·m²"),
-            *(Quantity(f"I_{k + 1}", f"principal moment I{SUBSCRIPTS[k]} about G", float(m), "kg·m²") for k, m in enumerate(principal.moments_kg_m2)),
+            *(
+                Quantity(f"I_{k + 1}", f"principal moment I{SUBSCRIPTS[k]} about G", float(m), "kg·m²")
+                for k, m in enumerate(principal.moments_kg_m2)
+            ),
             Quantity.word("degeneracy", "principal axes", self._degeneracy_text()),
-            *(Quantity(f"I_{c}{c}_P", f"moment about P along {c}′", float(inertia_P[i, i]), "kg·m²") for i, c in enumerate("xyz")),
+            *(
+                Quantity(f"I_{c}{c}_P", f"moment about P along {c}′", float(inertia_P[i, i]), "kg·m²")
+                for i, c in enumerate("xyz")
+            ),
         ]
         message = (
             "Products of inertia are I_x′y′ = ∫x′y′ dm; the tensor holds −I_x′y′ off its diagonal. Turn the frame: "
@@ -335,7 +425,8 @@ class InertiaExplorerScene(Scene):
         if pair is not None:
             i, j, gap = pair
             return (
-                f"distinct, but I{SUBSCRIPTS[i]} and I{SUBSCRIPTS[j]} are nearly equal (they differ by {gap:.1e} " "of I₃): "
+                f"distinct, but I{SUBSCRIPTS[i]} and I{SUBSCRIPTS[j]} are nearly equal (they differ by {gap:.1e} "
+                "of I₃): "
                 f"axes {i + 1} and {j + 1} are well defined, yet swing far for tiny changes of the body"
             )
         return "three distinct moments: the principal axes are unique"

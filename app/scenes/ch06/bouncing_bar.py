@@ -46,16 +46,36 @@ class BouncingBarScene(IntegratedScene):
     chapter = 6
     model = physics.BouncingBar
     presets = (
-        Preset("flat", "Flat landing", {"angle0_deg": 0.0, "restitution": 0.6, "friction_coefficient": 0.3},
-               "Both ends strike at once: equal impulses, no spin, straight up and down."),
-        Preset("tilted-45", "45°", {"angle0_deg": 45.0, "restitution": 0.6, "friction_coefficient": 0.3},
-               "The lower end strikes first and the bar starts to spin."),
-        Preset("nearly-vertical", "Nearly vertical", {"angle0_deg": 80.0, "restitution": 0.6, "friction_coefficient": 0.3},
-               "An end strike almost through the centre: little spin at first, then the bar topples."),
-        Preset("frictionless", "Frictionless", {"angle0_deg": 30.0, "restitution": 0.6, "friction_coefficient": 0.0},
-               "No tangential impulse: the centre of mass only moves up and down."),
-        Preset("rough", "Rough floor", {"angle0_deg": 30.0, "restitution": 0.6, "friction_coefficient": 1.0},
-               "Friction grips the striking end: the impacts stick and the bar is thrown sideways."),
+        Preset(
+            "flat",
+            "Flat landing",
+            {"angle0_deg": 0.0, "restitution": 0.6, "friction_coefficient": 0.3},
+            "Both ends strike at once: equal impulses, no spin, straight up and down.",
+        ),
+        Preset(
+            "tilted-45",
+            "45°",
+            {"angle0_deg": 45.0, "restitution": 0.6, "friction_coefficient": 0.3},
+            "The lower end strikes first and the bar starts to spin.",
+        ),
+        Preset(
+            "nearly-vertical",
+            "Nearly vertical",
+            {"angle0_deg": 80.0, "restitution": 0.6, "friction_coefficient": 0.3},
+            "An end strike almost through the centre: little spin at first, then the bar topples.",
+        ),
+        Preset(
+            "frictionless",
+            "Frictionless",
+            {"angle0_deg": 30.0, "restitution": 0.6, "friction_coefficient": 0.0},
+            "No tangential impulse: the centre of mass only moves up and down.",
+        ),
+        Preset(
+            "rough",
+            "Rough floor",
+            {"angle0_deg": 30.0, "restitution": 0.6, "friction_coefficient": 1.0},
+            "Friction grips the striking end: the impacts stick and the bar is thrown sideways.",
+        ),
     )
 
     def camera_view(self):
@@ -66,7 +86,9 @@ class BouncingBarScene(IntegratedScene):
 
     def build(self) -> None:
         scene = self.client.scene
-        self.floor = scene.add_grid("/floor", width=12.0, height=4.0, cell_size=0.1, section_size=0.5, plane="xy", position=(0.0, 0.0, 0.0))
+        self.floor = scene.add_grid(
+            "/floor", width=12.0, height=4.0, cell_size=0.1, section_size=0.5, plane="xy", position=(0.0, 0.0, 0.0)
+        )
         self.bar = scene.add_frame("/bar", show_axes=False)
         self.bar_body = None
         self.end_markers = [
@@ -74,13 +96,31 @@ class BouncingBarScene(IntegratedScene):
             scene.add_icosphere("/bar/end_b", radius=0.02, color=(40, 110, 220)),
         ]
         self.impulse_arrows = scene.add_arrows(
-            "/impulses", np.zeros((2, 2, 3), np.float32), np.array([[200, 40, 40], [200, 40, 40]], np.uint8),
-            shaft_radius=0.012, head_radius=0.03, head_length=0.06,
+            "/impulses",
+            np.zeros((2, 2, 3), np.float32),
+            np.array([[200, 40, 40], [200, 40, 40]], np.uint8),
+            shaft_radius=0.012,
+            head_radius=0.03,
+            head_length=0.06,
         )
         self.label = scene.add_label("/readout", "", anchor="bottom-left")
         self.trails = [
-            Trail(scene, "/trail_a", color=(235, 130, 30), chunk_frames=TRAIL_CHUNK_FRAMES, max_chunks=TRAIL_CHUNKS, thickness=2.0),
-            Trail(scene, "/trail_b", color=(40, 110, 220), chunk_frames=TRAIL_CHUNK_FRAMES, max_chunks=TRAIL_CHUNKS, thickness=2.0),
+            Trail(
+                scene,
+                "/trail_a",
+                color=(235, 130, 30),
+                chunk_frames=TRAIL_CHUNK_FRAMES,
+                max_chunks=TRAIL_CHUNKS,
+                thickness=2.0,
+            ),
+            Trail(
+                scene,
+                "/trail_b",
+                color=(40, 110, 220),
+                chunk_frames=TRAIL_CHUNK_FRAMES,
+                max_chunks=TRAIL_CHUNKS,
+                thickness=2.0,
+            ),
         ]
 
     def update(self) -> None:
@@ -90,7 +130,9 @@ class BouncingBarScene(IntegratedScene):
         thickness = BAR_THICKNESS_FRACTION * length
         if self.bar_body is not None:
             self.bar_body.remove()
-        self.bar_body = self.client.scene.add_box("/bar/body", color=(90, 90, 100), dimensions=(length, thickness, thickness))
+        self.bar_body = self.client.scene.add_box(
+            "/bar/body", color=(90, 90, 100), dimensions=(length, thickness, thickness)
+        )
         for marker, sign in zip(self.end_markers, (-1.0, 1.0)):
             marker.position = (sign * 0.5 * length, 0.0, 0.0)
             marker.scale = max(thickness, 0.004) / 0.02
@@ -141,14 +183,20 @@ class BouncingBarScene(IntegratedScene):
         impacts = int(y[physics.IMPACTS])
         quantities = [
             Quantity("t_s", "time t", self.run.t_s, "s"),
-            Quantity("angle_deg", "angle of the bar from the floor θ (end A to end B)", _wrapped_deg(y[physics.THETA]), "deg"),
+            Quantity(
+                "angle_deg", "angle of the bar from the floor θ (end A to end B)", _wrapped_deg(y[physics.THETA]), "deg"
+            ),
             Quantity("centre_height_m", "height of the centre of mass", y[physics.Z], "m"),
             Quantity("end_a_height_m", "height of end A (orange)", end_a[0, 1], "m"),
             Quantity("end_b_height_m", "height of end B (blue)", end_b[0, 1], "m"),
             Quantity("angular_velocity_rad_s", "angular velocity θ̇", y[physics.OMEGA], "rad/s"),
             Quantity("impact_count", "impacts so far", impacts, "impacts"),
             Quantity.or_text(
-                "last_energy_loss_J", "energy lost at the last impact", y[physics.LAST_LOSS] if impacts else None, "J", "no impact yet"
+                "last_energy_loss_J",
+                "energy lost at the last impact",
+                y[physics.LAST_LOSS] if impacts else None,
+                "J",
+                "no impact yet",
             ),
             Quantity.word("slip_state", "slip at the last impact", physics.SLIP_NAMES[int(y[physics.SLIP])]),
             Quantity("energy_J", "kinetic + potential energy", float(physics.mechanical_energy_J(y, p)), "J"),

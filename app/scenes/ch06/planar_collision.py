@@ -41,16 +41,43 @@ class PlanarCollisionScene(Scene):
         "friction_coefficient": (0.0, 2.0, 0.01),
     }
     presets = (
-        Preset("head-on-elastic", "Head-on, elastic", {"line_of_centres_deg": 0.0, "restitution": 1.0, "friction_coefficient": 0.0,
-               "omega1_rad_s": 0.0, "omega2_rad_s": 0.0}, "e = 1, μ = 0: no energy is lost and no disk starts to spin."),
-        Preset("plastic", "Plastic (e = 0)", {"restitution": 0.0},
-               "The contact points leave with no normal separation speed: the most energy the normal impulse can take."),
-        Preset("oblique-sticks", "Oblique, high friction", {"line_of_centres_deg": 60.0, "friction_coefficient": 1.5},
-               "Friction is strong enough to stop the sliding during the impact: the contact sticks and both disks " "spin up."),
-        Preset("spin-kick", "A spinning disk", {"line_of_centres_deg": 0.0, "omega2_rad_s": 30.0, "friction_coefficient": 0.3},
-               "A head-on hit, but disk 2 spins: friction turns spin into sideways motion of both disks."),
-        Preset("grazing", "Grazing", {"line_of_centres_deg": 88.0, "friction_coefficient": 0.3},
-               "The disks barely touch: the normal approach speed is small, and so are the impulse and the loss."),
+        Preset(
+            "head-on-elastic",
+            "Head-on, elastic",
+            {
+                "line_of_centres_deg": 0.0,
+                "restitution": 1.0,
+                "friction_coefficient": 0.0,
+                "omega1_rad_s": 0.0,
+                "omega2_rad_s": 0.0,
+            },
+            "e = 1, μ = 0: no energy is lost and no disk starts to spin.",
+        ),
+        Preset(
+            "plastic",
+            "Plastic (e = 0)",
+            {"restitution": 0.0},
+            "The contact points leave with no normal separation speed: the most energy the normal impulse can take.",
+        ),
+        Preset(
+            "oblique-sticks",
+            "Oblique, high friction",
+            {"line_of_centres_deg": 60.0, "friction_coefficient": 1.5},
+            "Friction is strong enough to stop the sliding during the impact: the contact sticks and both disks "
+            "spin up.",
+        ),
+        Preset(
+            "spin-kick",
+            "A spinning disk",
+            {"line_of_centres_deg": 0.0, "omega2_rad_s": 30.0, "friction_coefficient": 0.3},
+            "A head-on hit, but disk 2 spins: friction turns spin into sideways motion of both disks.",
+        ),
+        Preset(
+            "grazing",
+            "Grazing",
+            {"line_of_centres_deg": 88.0, "friction_coefficient": 0.3},
+            "The disks barely touch: the normal approach speed is small, and so are the impulse and the loss.",
+        ),
     )
 
     def build(self) -> None:
@@ -58,15 +85,36 @@ class PlanarCollisionScene(Scene):
         self.elapsed_s = 0.0
         self._span = 1.0
         self._center = np.zeros(3)
-        self.backdrop = scene.add_grid("/backdrop", width=4.0, height=4.0, plane="xz", cell_size=0.1, section_size=0.5, position=(0.0, 0.05, 0.0))
-        self.ghosts = scene.add_line_segments("/ghosts", np.zeros((2, 2, 3), np.float32), (170, 170, 170), thickness=1.5, thickness_units="screen")
+        self.backdrop = scene.add_grid(
+            "/backdrop", width=4.0, height=4.0, plane="xz", cell_size=0.1, section_size=0.5, position=(0.0, 0.05, 0.0)
+        )
+        self.ghosts = scene.add_line_segments(
+            "/ghosts", np.zeros((2, 2, 3), np.float32), (170, 170, 170), thickness=1.5, thickness_units="screen"
+        )
         self.rims = [
-            scene.add_line_segments(f"/disk{i + 1}", np.zeros((1, 2, 3), np.float32), color, thickness=3.0, thickness_units="screen")
+            scene.add_line_segments(
+                f"/disk{i + 1}", np.zeros((1, 2, 3), np.float32), color, thickness=3.0, thickness_units="screen"
+            )
             for i, color in enumerate(DISK_COLORS)
         ]
-        self.spokes = scene.add_line_segments("/spokes", np.zeros((2, 2, 3), np.float32), np.array(DISK_COLORS, np.uint8)[:, None, :].repeat(2, 1), thickness=3.0, thickness_units="screen")
-        self.contact = scene.add_point_cloud("/contact", np.zeros((1, 3), np.float32), (215, 40, 40), point_size=0.03, point_shape="circle")
-        self.arrows = scene.add_arrows("/arrows", np.zeros((5, 2, 3), np.float32), ARROW_COLORS, shaft_radius=0.01, head_radius=0.025, head_length=0.05)
+        self.spokes = scene.add_line_segments(
+            "/spokes",
+            np.zeros((2, 2, 3), np.float32),
+            np.array(DISK_COLORS, np.uint8)[:, None, :].repeat(2, 1),
+            thickness=3.0,
+            thickness_units="screen",
+        )
+        self.contact = scene.add_point_cloud(
+            "/contact", np.zeros((1, 3), np.float32), (215, 40, 40), point_size=0.03, point_shape="circle"
+        )
+        self.arrows = scene.add_arrows(
+            "/arrows",
+            np.zeros((5, 2, 3), np.float32),
+            ARROW_COLORS,
+            shaft_radius=0.01,
+            head_radius=0.025,
+            head_length=0.05,
+        )
         self.labels = [scene.add_label(f"/arrows/label{i}", "", anchor="center-left") for i in range(5)]
         self.legend = scene.add_label("/legend", "", anchor="bottom-left")
 
@@ -123,9 +171,21 @@ class PlanarCollisionScene(Scene):
             spokes.append([world, world + disk.radius_m * np.array([math.cos(angle), 0.0, math.sin(angle)])])
         self.spokes.points = np.array(spokes, np.float32)
         (d1, d2), (a1, a2) = c.before, c.after
-        tails = np.array([to_world(d1.centre_m[:2]), to_world(d2.centre_m[:2]), to_world(placed[0][0][:2]), to_world(placed[1][0][:2]),
-                          to_world(c.contact_point_m[:2])])
-        vectors = np.array([to_world(v[:2]) for v in (d1.momentum_N_s, d2.momentum_N_s, a1.momentum_N_s, a2.momentum_N_s, c.impulse_N_s)])
+        tails = np.array(
+            [
+                to_world(d1.centre_m[:2]),
+                to_world(d2.centre_m[:2]),
+                to_world(placed[0][0][:2]),
+                to_world(placed[1][0][:2]),
+                to_world(c.contact_point_m[:2]),
+            ]
+        )
+        vectors = np.array(
+            [
+                to_world(v[:2])
+                for v in (d1.momentum_N_s, d2.momentum_N_s, a1.momentum_N_s, a2.momentum_N_s, c.impulse_N_s)
+            ]
+        )
         self.arrows.points = arrow_segments(tails, vectors, self._arrow_scale)
         after = self.t_s >= 0.0
         texts = (
@@ -188,7 +248,9 @@ class PlanarCollisionScene(Scene):
         message = words[c.impact.slip_state]
         if -vn < GRAZING_RATIO * math.hypot(vn, vt):
             message += (
-                f" Grazing: the normal approach speed is only {100 * -vn / math.hypot(vn, vt):.2g}% of the " "contact speed. "
-                "A rigid-body impact assumes the contact lasts an instant; for real bodies this glancing a touch " "may roll or rub instead."
+                f" Grazing: the normal approach speed is only {100 * -vn / math.hypot(vn, vt):.2g}% of the "
+                "contact speed. "
+                "A rigid-body impact assumes the contact lasts an instant; for real bodies this glancing a touch "
+                "may roll or rub instead."
             )
         return Readout(quantities, message=message)

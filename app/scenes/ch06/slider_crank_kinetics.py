@@ -49,14 +49,30 @@ class SliderCrankKineticsScene(IntegratedScene):
     chapter = 6
     model = physics.MechanismKinetics
     presets = (
-        Preset("constant-speed", "Motor at constant speed", {"drive": "speed", "crank_speed_rad_s": 10.0, "slider_mass_kg": 3.0, "g_m_s2": 9.80665},
-               "The motor holds ω = 10 rad/s: watch the torque it must supply, and where it has to brake."),
-        Preset("given-torque", "Constant torque", {"drive": "torque", "drive_torque_N_m": 2.0, "crank_speed_rad_s": 10.0, "slider_mass_kg": 3.0},
-               "A constant 2 N·m: the crank speeds up, unevenly, as M(θ) and gravity change over each turn."),
-        Preset("coasting", "Coasting (no torque)", {"drive": "torque", "drive_torque_N_m": 0.0, "crank_speed_rad_s": 10.0, "slider_mass_kg": 3.0},
-               "No torque: T + V stays constant, so the crank slows going up and speeds up coming down."),
-        Preset("heavy-slider", "Heavy slider", {"drive": "speed", "crank_speed_rad_s": 10.0, "slider_mass_kg": 50.0},
-               "A 50 kg slider: the torque swings hard between driving and braking twice a turn."),
+        Preset(
+            "constant-speed",
+            "Motor at constant speed",
+            {"drive": "speed", "crank_speed_rad_s": 10.0, "slider_mass_kg": 3.0, "g_m_s2": 9.80665},
+            "The motor holds ω = 10 rad/s: watch the torque it must supply, and where it has to brake.",
+        ),
+        Preset(
+            "given-torque",
+            "Constant torque",
+            {"drive": "torque", "drive_torque_N_m": 2.0, "crank_speed_rad_s": 10.0, "slider_mass_kg": 3.0},
+            "A constant 2 N·m: the crank speeds up, unevenly, as M(θ) and gravity change over each turn.",
+        ),
+        Preset(
+            "coasting",
+            "Coasting (no torque)",
+            {"drive": "torque", "drive_torque_N_m": 0.0, "crank_speed_rad_s": 10.0, "slider_mass_kg": 3.0},
+            "No torque: T + V stays constant, so the crank slows going up and speeds up coming down.",
+        ),
+        Preset(
+            "heavy-slider",
+            "Heavy slider",
+            {"drive": "speed", "crank_speed_rad_s": 10.0, "slider_mass_kg": 50.0},
+            "A 50 kg slider: the torque swings hard between driving and braking twice a turn.",
+        ),
     )
 
     def build(self) -> None:
@@ -64,17 +80,34 @@ class SliderCrankKineticsScene(IntegratedScene):
         self._span = 1.0
         self._center = np.zeros(3)
         self.rail = scene.add_line_segments("/rail", np.zeros((1, 2, 3), np.float32), (110, 110, 110), thickness=0.01)
-        self.crank_circle = scene.add_line_segments("/crank_circle", np.zeros((1, 2, 3), np.float32), (150, 170, 210), thickness=1.5, thickness_units="screen")
-        self.links = scene.add_line_segments("/links", np.zeros((2, 2, 3), np.float32), np.repeat(LINK_COLORS[:, None, :], 2, axis=1), thickness=0.02)
-        self.joints = scene.add_point_cloud("/joints", np.zeros((3, 3), np.float32), (30, 30, 30), point_size=0.04, point_shape="circle")
+        self.crank_circle = scene.add_line_segments(
+            "/crank_circle", np.zeros((1, 2, 3), np.float32), (150, 170, 210), thickness=1.5, thickness_units="screen"
+        )
+        self.links = scene.add_line_segments(
+            "/links", np.zeros((2, 2, 3), np.float32), np.repeat(LINK_COLORS[:, None, :], 2, axis=1), thickness=0.02
+        )
+        self.joints = scene.add_point_cloud(
+            "/joints", np.zeros((3, 3), np.float32), (30, 30, 30), point_size=0.04, point_shape="circle"
+        )
         self.slider = scene.add_box("/slider", color=(150, 150, 160), dimensions=(0.2, 0.1, 0.1))
-        self.arrows = scene.add_arrows("/forces", np.zeros((4, 2, 3), np.float32), FORCE_COLORS, shaft_radius=0.01, head_radius=0.025, head_length=0.05)
+        self.arrows = scene.add_arrows(
+            "/forces",
+            np.zeros((4, 2, 3), np.float32),
+            FORCE_COLORS,
+            shaft_radius=0.01,
+            head_radius=0.025,
+            head_length=0.05,
+        )
         self.force_labels = [scene.add_label(f"/forces/{name}", name, anchor="center-left") for name in FORCE_NAMES]
         self.legend = scene.add_label("/legend", "", anchor="bottom-left")
 
     def camera_view(self):
         c, span = self._center, self._span
-        return (float(c[0] + 0.05 * span), float(-0.8 * span), float(c[2] + 0.1 * span)), (float(c[0]), 0.0, float(c[2]))
+        return (float(c[0] + 0.05 * span), float(-0.8 * span), float(c[2] + 0.1 * span)), (
+            float(c[0]),
+            0.0,
+            float(c[2]),
+        )
 
     def update(self) -> None:
         params = self.physical_params()
@@ -117,7 +150,9 @@ class SliderCrankKineticsScene(IntegratedScene):
         update_node(self.links, points=to_world(np.array([[[0.0, 0.0], a], [a, b]])))
         update_node(self.joints, points=to_world(np.array([[0.0, 0.0], a, b])))
         move_node(self.slider, position=to_world(b))
-        vectors = np.array([forces.pivot_O_N[0], forces.crank_pin_A_N[0], forces.wrist_pin_B_N[0], [0.0, forces.guide_force_N[0]]])
+        vectors = np.array(
+            [forces.pivot_O_N[0], forces.crank_pin_A_N[0], forces.wrist_pin_B_N[0], [0.0, forces.guide_force_N[0]]]
+        )
         sizes = np.linalg.norm(vectors, axis=-1)
         self._largest_force_N = max(self._largest_force_N, float(np.max(sizes)))
         scale = FORCE_ARROW_SPAN * self._span / max(self._largest_force_N, 1e-12)
@@ -145,9 +180,15 @@ class SliderCrankKineticsScene(IntegratedScene):
             Quantity("crank_angle", "crank angle θ", math.degrees(float(self.run.y[0])) % 360.0, "deg"),
             Quantity("crank_speed_rad_s", "crank speed ω", float(self.run.y[1]), "rad/s"),
             Quantity("driving_torque_N_m", "driving torque τ", float(forces.driving_torque_N_m[0]), "N·m"),
-            Quantity("pin_force_O_N", "pin force at O (ground on crank)", float(np.linalg.norm(forces.pivot_O_N[0])), "N"),
-            Quantity("pin_force_A_N", "pin force at A (crank on rod)", float(np.linalg.norm(forces.crank_pin_A_N[0])), "N"),
-            Quantity("pin_force_B_N", "pin force at B (rod on slider)", float(np.linalg.norm(forces.wrist_pin_B_N[0])), "N"),
+            Quantity(
+                "pin_force_O_N", "pin force at O (ground on crank)", float(np.linalg.norm(forces.pivot_O_N[0])), "N"
+            ),
+            Quantity(
+                "pin_force_A_N", "pin force at A (crank on rod)", float(np.linalg.norm(forces.crank_pin_A_N[0])), "N"
+            ),
+            Quantity(
+                "pin_force_B_N", "pin force at B (rod on slider)", float(np.linalg.norm(forces.wrist_pin_B_N[0])), "N"
+            ),
             Quantity("guide_force_N", "guide force N on the slider (+ up)", guide, "N"),
             Quantity("kinetic_energy_J", "kinetic energy T", float(kinetic[0]), "J"),
             Quantity("potential_energy_J", "potential energy V", float(potential[0]), "J"),
@@ -156,7 +197,10 @@ class SliderCrankKineticsScene(IntegratedScene):
         ]
         notes = ["The guide is frictionless (guide friction is out of scope)."]
         if guide < 0.0:
-            notes.append("The guide force points down: the guide must hold the slider down here; a slider resting on a " "one-sided guide would lift off.")
+            notes.append(
+                "The guide force points down: the guide must hold the slider down here; a slider resting on a "
+                "one-sided guide would lift off."
+            )
         if params["drive"] == "speed" and forces.driving_torque_N_m[0] * self.run.y[1] < 0.0:
             notes.append("The torque opposes the motion: the motor is braking to hold the speed constant.")
         message = self.status or " ".join(notes)

@@ -36,14 +36,30 @@ class SlidingLadderScene(IntegratedScene):
     chapter = 6
     model = physics.SlidingLadder
     presets = (
-        Preset("smooth", "Smooth wall and floor", {"angle0_deg": 60.0, "mu_wall": 0.0, "mu_floor": 0.0},
-               "No friction: it leaves the wall where sin θ = (2/3) sin θ₀ (35.26° from 60°)."),
-        Preset("nearly-upright", "Nearly upright (89.9°)", {"angle0_deg": 89.9, "mu_wall": 0.0, "mu_floor": 0.0},
-               "A slow start from almost vertical: it takes seconds to get going, then leaves the wall at 41.81°."),
-        Preset("rough-floor", "Rough floor (μ_f = 0.3)", {"angle0_deg": 45.0, "mu_wall": 0.0, "mu_floor": 0.3},
-               "Floor friction delays the separation and brakes the slide after the landing."),
-        Preset("held", "Held by friction", {"angle0_deg": 60.0, "mu_wall": 0.2, "mu_floor": 0.3},
-               "tan 60° = 1.73 ≥ (1 − μ_w μ_f)/(2 μ_f) = 1.57: friction holds the ladder; it stays."),
+        Preset(
+            "smooth",
+            "Smooth wall and floor",
+            {"angle0_deg": 60.0, "mu_wall": 0.0, "mu_floor": 0.0},
+            "No friction: it leaves the wall where sin θ = (2/3) sin θ₀ (35.26° from 60°).",
+        ),
+        Preset(
+            "nearly-upright",
+            "Nearly upright (89.9°)",
+            {"angle0_deg": 89.9, "mu_wall": 0.0, "mu_floor": 0.0},
+            "A slow start from almost vertical: it takes seconds to get going, then leaves the wall at 41.81°.",
+        ),
+        Preset(
+            "rough-floor",
+            "Rough floor (μ_f = 0.3)",
+            {"angle0_deg": 45.0, "mu_wall": 0.0, "mu_floor": 0.3},
+            "Floor friction delays the separation and brakes the slide after the landing.",
+        ),
+        Preset(
+            "held",
+            "Held by friction",
+            {"angle0_deg": 60.0, "mu_wall": 0.2, "mu_floor": 0.3},
+            "tan 60° = 1.73 ≥ (1 − μ_w μ_f)/(2 μ_f) = 1.57: friction holds the ladder; it stays.",
+        ),
     )
 
     def build(self) -> None:
@@ -51,8 +67,17 @@ class SlidingLadderScene(IntegratedScene):
         self.wall = scene.add_box("/wall", color=(175, 175, 185), dimensions=(0.1, 0.4, 1.0))
         self.floor = scene.add_box("/floor", color=(150, 160, 150), dimensions=(1.0, 0.4, 0.1))
         self.bar = scene.add_line_segments("/ladder", np.zeros((1, 2, 3), np.float32), (150, 90, 40), thickness=0.05)
-        self.ends = scene.add_point_cloud("/ends", np.zeros((2, 3), np.float32), (30, 30, 30), point_size=0.08, point_shape="circle")
-        self.arrows = scene.add_arrows("/forces", np.zeros((3, 2, 3), np.float32), ARROW_COLORS, shaft_radius=0.02, head_radius=0.05, head_length=0.1)
+        self.ends = scene.add_point_cloud(
+            "/ends", np.zeros((2, 3), np.float32), (30, 30, 30), point_size=0.08, point_shape="circle"
+        )
+        self.arrows = scene.add_arrows(
+            "/forces",
+            np.zeros((3, 2, 3), np.float32),
+            ARROW_COLORS,
+            shaft_radius=0.02,
+            head_radius=0.05,
+            head_length=0.1,
+        )
         self.arrow_labels = [
             scene.add_label("/forces/top", "wall on A", anchor="center-left"),
             scene.add_label("/forces/bottom", "floor on the ladder", anchor="center-left"),
@@ -81,7 +106,9 @@ class SlidingLadderScene(IntegratedScene):
         self.arrows.head_length = 0.06 * length
         self._force_scale = 0.3 * length / (params["mass_kg"] * params["g_m_s2"])
         self.legend.position = (0.05 * length, 0.0, 1.3 * length)
-        self.legend.text = "blue: wall on A · orange: floor on B (on G once lying) · grey: weight m·g, ending at G (0.3 L long)"
+        self.legend.text = (
+            "blue: wall on A · orange: floor on B (on G once lying) · grey: weight m·g, ending at G (0.3 L long)"
+        )
         self.changes = physics.phase_changes(params, t_end_s=LOOKAHEAD_S)
         self._draw()
 
@@ -136,16 +163,22 @@ class SlidingLadderScene(IntegratedScene):
         quantities += [
             Quantity.or_text("separation_time_s", "leaves the wall at t", release.t_s if release else None, "s", never),
             Quantity.or_text(
-                "separation_angle_deg", "angle when it leaves the wall",
-                math.degrees(release.state[physics.THETA]) if release else None, "deg", never,
+                "separation_angle_deg",
+                "angle when it leaves the wall",
+                math.degrees(release.state[physics.THETA]) if release else None,
+                "deg",
+                never,
             ),
         ]
         frictionless = params["mu_wall"] == 0.0 and params["mu_floor"] == 0.0
         closed_form = math.degrees(physics.separation_angle_frictionless_rad(math.radians(params["angle0_deg"])))
         quantities.append(
             Quantity.or_text(
-                "separation_angle_closed_form_deg", "closed form sin θ = (2/3) sin θ₀",
-                closed_form if frictionless else None, "deg", "applies only with μ_w = μ_f = 0",
+                "separation_angle_closed_form_deg",
+                "closed form sin θ = (2/3) sin θ₀",
+                closed_form if frictionless else None,
+                "deg",
+                "applies only with μ_w = μ_f = 0",
             )
         )
         return Readout(quantities, message=self._message(params, phase, forces))
@@ -161,13 +194,23 @@ class SlidingLadderScene(IntegratedScene):
                 f"equally between the two ends (statics alone cannot split them)."
             )
         if forces[physics.C_FLOOR_N] < 0.0:
-            return ("The floor would have to pull the bottom end down: the model's contact assumption fails here " "(it would lift off).")
+            return (
+                "The floor would have to pull the bottom end down: the model's contact assumption fails here "
+                "(it would lift off)."
+            )
         words = {
             physics.WALL_AND_FLOOR: "Both ends slide: the wall force falls as the ladder speeds up.",
-            physics.FLOOR_SLIDING: ("The wall force reached zero: the top end has left the wall and the ladder " "slides on the floor alone."),
-            physics.FLOOR_STUCK: ("The bottom end has stopped sliding: friction holds it, and the ladder pivots " "about it."),
+            physics.FLOOR_SLIDING: (
+                "The wall force reached zero: the top end has left the wall and the ladder slides on the floor alone."
+            ),
+            physics.FLOOR_STUCK: (
+                "The bottom end has stopped sliding: friction holds it, and the ladder pivots about it."
+            ),
             physics.LYING: "The ladder has landed flat (a plastic impact, e = 0) and "
-            + ("slides on the floor until friction stops it." if params["mu_floor"] > 0.0
-               else "slides on at constant speed: the floor is smooth, so nothing stops it."),
+            + (
+                "slides on the floor until friction stops it."
+                if params["mu_floor"] > 0.0
+                else "slides on at constant speed: the floor is smooth, so nothing stops it."
+            ),
         }
         return words[phase]

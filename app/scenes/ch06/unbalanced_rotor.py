@@ -55,18 +55,43 @@ class UnbalancedRotorScene(Scene):
         "correction_radius_m": (0.02, 0.5, 0.01),
     }
     presets = (
-        Preset("static", "Static imbalance", {"eccentricity_m": 0.002, "skew_deg": 0.0, "balanced": "off"},
-               "Centre of mass 2 mm off the shaft, disk square to it: each bearing carries its beam share of m e ω² " "plus the weight."),
-        Preset("dynamic", "Dynamic imbalance", {"eccentricity_m": 0.0, "skew_deg": 3.0, "balanced": "off"},
-               "Centre of mass on the shaft, disk tilted 3°: a turning couple, equal and opposite forces at A and B."),
-        Preset("both", "Both", {"eccentricity_m": 0.001, "skew_deg": 2.0, "balanced": "off"},
-               "The general case: a static and a couple imbalance at once."),
-        Preset("balance-it", "Balance it", {"eccentricity_m": 0.001, "skew_deg": 2.0, "balanced": "on"},
-               "Fit the two correction masses: the rotating reactions fall to zero, only the weight is left."),
-        Preset("weightless", "Balanced, no gravity", {"eccentricity_m": 0.001, "skew_deg": 2.0, "balanced": "on", "g_m_s2": 0.0},
-               "Without gravity the balanced rotor loads its bearings not at all."),
-        Preset("at-rest", "At rest", {"shaft_speed_rad_s": 0.0, "eccentricity_m": 0.002, "skew_deg": 2.0, "balanced": "off"},
-               "No speed: only the weight, and the drive holds the rotor against gravity's moment m g e."),
+        Preset(
+            "static",
+            "Static imbalance",
+            {"eccentricity_m": 0.002, "skew_deg": 0.0, "balanced": "off"},
+            "Centre of mass 2 mm off the shaft, disk square to it: each bearing carries its beam share of m e ω² "
+            "plus the weight.",
+        ),
+        Preset(
+            "dynamic",
+            "Dynamic imbalance",
+            {"eccentricity_m": 0.0, "skew_deg": 3.0, "balanced": "off"},
+            "Centre of mass on the shaft, disk tilted 3°: a turning couple, equal and opposite forces at A and B.",
+        ),
+        Preset(
+            "both",
+            "Both",
+            {"eccentricity_m": 0.001, "skew_deg": 2.0, "balanced": "off"},
+            "The general case: a static and a couple imbalance at once.",
+        ),
+        Preset(
+            "balance-it",
+            "Balance it",
+            {"eccentricity_m": 0.001, "skew_deg": 2.0, "balanced": "on"},
+            "Fit the two correction masses: the rotating reactions fall to zero, only the weight is left.",
+        ),
+        Preset(
+            "weightless",
+            "Balanced, no gravity",
+            {"eccentricity_m": 0.001, "skew_deg": 2.0, "balanced": "on", "g_m_s2": 0.0},
+            "Without gravity the balanced rotor loads its bearings not at all.",
+        ),
+        Preset(
+            "at-rest",
+            "At rest",
+            {"shaft_speed_rad_s": 0.0, "eccentricity_m": 0.002, "skew_deg": 2.0, "balanced": "off"},
+            "No speed: only the weight, and the drive holds the rotor against gravity's moment m g e.",
+        ),
     )
 
     def build(self) -> None:
@@ -75,25 +100,51 @@ class UnbalancedRotorScene(Scene):
         self.spin_angle = 0.0
         self._span = 1.0
         self.ground = scene.add_grid("/ground", width=3.0, height=3.0, cell_size=0.1, section_size=0.5)
-        self.shaft = scene.add_cylinder("/shaft", radius=0.01, height=1.0, color=(110, 110, 115), wxyz=quaternion_z_to(AXIS_X))
+        self.shaft = scene.add_cylinder(
+            "/shaft", radius=0.01, height=1.0, color=(110, 110, 115), wxyz=quaternion_z_to(AXIS_X)
+        )
         self.housings = [
-            scene.add_cylinder(f"/bearing_{name}", radius=0.03, height=0.05, color=(60, 60, 65), wxyz=quaternion_z_to(AXIS_X))
+            scene.add_cylinder(
+                f"/bearing_{name}", radius=0.03, height=0.05, color=(60, 60, 65), wxyz=quaternion_z_to(AXIS_X)
+            )
             for name in ("A", "B")
         ]
-        self.pedestals = [scene.add_box(f"/pedestal_{name}", color=(150, 150, 155), dimensions=(0.05, 0.05, 0.2)) for name in ("A", "B")]
-        self.bearing_labels = [scene.add_label(f"/bearing_{name}/label", name, anchor="bottom-center") for name in ("A", "B")]
+        self.pedestals = [
+            scene.add_box(f"/pedestal_{name}", color=(150, 150, 155), dimensions=(0.05, 0.05, 0.2))
+            for name in ("A", "B")
+        ]
+        self.bearing_labels = [
+            scene.add_label(f"/bearing_{name}/label", name, anchor="bottom-center") for name in ("A", "B")
+        ]
         self.plane_circles = scene.add_line_segments(
-            "/correction_planes", np.zeros((1, 2, 3), np.float32), (230, 160, 60), thickness=1.5, thickness_units="screen"
+            "/correction_planes",
+            np.zeros((1, 2, 3), np.float32),
+            (230, 160, 60),
+            thickness=1.5,
+            thickness_units="screen",
         )
         self.rotor = scene.add_frame("/rotor", show_axes=False)
         self.disk = scene.add_cylinder("/rotor/disk", radius=0.2, height=0.01, color=(70, 120, 190), radial_segments=64)
         self.centre = scene.add_icosphere("/rotor/centre", radius=0.01, color=(220, 30, 30))
         self.centre_label = scene.add_label("/rotor/centre/label", "G", anchor="bottom-left")
-        self.eccentricity_line = scene.add_line_segments("/rotor/eccentricity", np.zeros((1, 2, 3), np.float32), (220, 30, 30), thickness=3.0, thickness_units="screen")
-        self.corrections = [scene.add_icosphere(f"/rotor/correction_{i}", radius=0.02, color=(240, 150, 30), visible=False) for i in (1, 2)]
+        self.eccentricity_line = scene.add_line_segments(
+            "/rotor/eccentricity",
+            np.zeros((1, 2, 3), np.float32),
+            (220, 30, 30),
+            thickness=3.0,
+            thickness_units="screen",
+        )
+        self.corrections = [
+            scene.add_icosphere(f"/rotor/correction_{i}", radius=0.02, color=(240, 150, 30), visible=False)
+            for i in (1, 2)
+        ]
         self.arrows = scene.add_arrows(
-            "/reactions", np.zeros((2, 2, 3), np.float32), np.array([COLOR_A, COLOR_B], np.uint8),
-            shaft_radius=0.008, head_radius=0.02, head_length=0.04,
+            "/reactions",
+            np.zeros((2, 2, 3), np.float32),
+            np.array([COLOR_A, COLOR_B], np.uint8),
+            shaft_radius=0.008,
+            head_radius=0.02,
+            head_length=0.04,
         )
         self.force_labels = [scene.add_label(f"/reactions/{name}", "", anchor="bottom-left") for name in ("A", "B")]
         self.legend = scene.add_label("/legend", "", anchor="top-center")
@@ -115,7 +166,9 @@ class UnbalancedRotorScene(Scene):
         self.ground.width = self.ground.height = 2.5 * span
         self.ground.cell_size = 10 ** math.floor(math.log10(span / 4.0))
         self.ground.section_size = 5 * self.ground.cell_size
-        for x, housing, pedestal, label in zip((0.0, L), self.housings, self.pedestals, self.bearing_labels, strict=True):
+        for x, housing, pedestal, label in zip(
+            (0.0, L), self.housings, self.pedestals, self.bearing_labels, strict=True
+        ):
             housing.radius, housing.height, housing.position = 2.5 * shaft_radius, 0.06 * span, (x, 0.0, 0.0)
             pedestal.dimensions = (0.05 * span, 0.08 * span, -floor - 2.5 * shaft_radius)
             pedestal.position = (x, 0.0, 0.5 * (floor - 2.5 * shaft_radius))
@@ -140,7 +193,11 @@ class UnbalancedRotorScene(Scene):
         turn = self.steady.at_spin_angle(np.linspace(0.0, 2.0 * math.pi, 73))
         largest = max(float(np.max(turn.bearing_A_force_N)), float(np.max(turn.bearing_B_force_N)))
         self._force_scale = 0.45 * span / largest if largest > 0.0 else 0.0
-        self.arrows.shaft_radius, self.arrows.head_radius, self.arrows.head_length = 0.014 * span, 0.032 * span, 0.06 * span
+        self.arrows.shaft_radius, self.arrows.head_radius, self.arrows.head_length = (
+            0.014 * span,
+            0.032 * span,
+            0.06 * span,
+        )
         self.legend.position = (0.5 * L, 0.0, floor)  # on the floor, clear of the arrows above the shaft
         self.legend.text = "arrows: force of each bearing on the shaft (red A, purple B) · red dot G: centre of mass"
         self._draw()
@@ -166,20 +223,44 @@ class UnbalancedRotorScene(Scene):
             Quantity("spin_angle_deg", "spin angle φ (G from +Y towards +Z)", math.degrees(self.spin_angle), "deg"),
             Quantity("bearing_A_force_N", "bearing force |R_A|", float(np.linalg.norm(loads.bearing_A_N[0])), "N"),
             Quantity("bearing_B_force_N", "bearing force |R_B|", float(np.linalg.norm(loads.bearing_B_N[0])), "N"),
-            Quantity("bearing_A_rotating_force_N", "rotating part at A (speed-dependent)", float(np.linalg.norm(loads.bearing_A_rotating_N[0])), "N"),
-            Quantity("bearing_B_rotating_force_N", "rotating part at B (speed-dependent)", float(np.linalg.norm(loads.bearing_B_rotating_N[0])), "N"),
+            Quantity(
+                "bearing_A_rotating_force_N",
+                "rotating part at A (speed-dependent)",
+                float(np.linalg.norm(loads.bearing_A_rotating_N[0])),
+                "N",
+            ),
+            Quantity(
+                "bearing_B_rotating_force_N",
+                "rotating part at B (speed-dependent)",
+                float(np.linalg.norm(loads.bearing_B_rotating_N[0])),
+                "N",
+            ),
             Quantity("driving_torque_Nm", "driving torque T", float(loads.driving_torque_Nm[0]), "N·m"),
             Quantity.word("imbalance_class", "imbalance", model.imbalance),
-            Quantity("static_imbalance_kg_m", "static imbalance m e (disk)", float(np.hypot(*physics.first_moment_kg_m(parts))), "kg·m"),
-            Quantity("couple_imbalance_kg_m2", "couple imbalance |I_xy, I_xz| at G (disk)",
-                     float(np.hypot(*physics.couple_imbalance_kg_m2(parts))), "kg·m²"),
+            Quantity(
+                "static_imbalance_kg_m",
+                "static imbalance m e (disk)",
+                float(np.hypot(*physics.first_moment_kg_m(parts))),
+                "kg·m",
+            ),
+            Quantity(
+                "couple_imbalance_kg_m2",
+                "couple imbalance |I_xy, I_xz| at G (disk)",
+                float(np.hypot(*physics.couple_imbalance_kg_m2(parts))),
+                "kg·m²",
+            ),
         ]
         for index, (mass, angle) in enumerate(zip(correction.masses_kg, correction.angles_rad, strict=True), start=1):
             needed = mass > NEGLIGIBLE_CORRECTION * disk.disk_mass_kg
             quantities.append(Quantity(f"correction_mass_{index}_kg", f"correction mass {index}", float(mass), "kg"))
             quantities.append(
-                Quantity.or_text(f"correction_angle_{index}_deg", "its angle from G's direction (about +X)",
-                                 math.degrees(angle) if needed else None, "deg", "none needed")
+                Quantity.or_text(
+                    f"correction_angle_{index}_deg",
+                    "its angle from G's direction (about +X)",
+                    math.degrees(angle) if needed else None,
+                    "deg",
+                    "none needed",
+                )
             )
         return Readout(quantities, message=self._message())
 
@@ -193,14 +274,22 @@ class UnbalancedRotorScene(Scene):
                 "the drive must cancel it to keep the speed constant, and it averages to zero over a turn."
             )
         else:
-            torque = ("The drive torque is zero: at constant speed, with the centre of mass on the shaft or no " "gravity, a rigid rotor needs none (no friction is modelled).")
+            torque = (
+                "The drive torque is zero: at constant speed, with the centre of mass on the shaft or no "
+                "gravity, a rigid rotor needs none (no friction is modelled)."
+            )
         if speed == 0.0:
             return "At rest: the bearings carry only the weight. " + torque
         parts = [torque]
         rotating = float(np.linalg.norm(steady.bearing_A_rotating_rotor_N))
         weight_share = steady.weight_shares_N[0]
         if rotating > weight_share > 0.0:
-            parts.append("At A the rotating force exceeds the weight: the reaction turns right round once a turn (a " "bearing with play would knock).")
+            parts.append(
+                "At A the rotating force exceeds the weight: the reaction turns right round once a turn (a "
+                "bearing with play would knock)."
+            )
         if abs(speed) > DRAWN_SPIN_RAD_S:
-            parts.append(f"The spin is drawn slowed to {DRAWN_SPIN_RAD_S:g} rad/s; the forces are those at ω = {speed:g} rad/s.")
+            parts.append(
+                f"The spin is drawn slowed to {DRAWN_SPIN_RAD_S:g} rad/s; the forces are those at ω = {speed:g} rad/s."
+            )
         return " ".join(parts)

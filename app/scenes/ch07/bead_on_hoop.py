@@ -35,21 +35,41 @@ class BeadOnHoopScene(DerivedSystemScene):
     camera_position = (0.8, -3.6, 1.0)
     camera_look_at = (0.0, 0.0, -0.1)
     presets = (
-        Preset("slow-spin", "Below the critical spin", {"hoop_speed_rad_s": 3.0, "theta_0_deg": 30.0, "theta_rate_0_deg_s": 0.0},
-               "Ω = 3 rad/s < √(g/R) = 4.43 rad/s: the bottom is the only stable place; the bead rocks about it."),
-        Preset("fast-spin", "Above the critical spin", {"hoop_speed_rad_s": 6.0, "theta_0_deg": 20.0, "theta_rate_0_deg_s": 0.0},
-               "Ω = 6 rad/s: the bottom is unstable and the bead rocks about θ* = 57.0°, where cos θ* = g/(RΩ²)."),
-        Preset("at-equilibrium", "Resting at θ*", {"hoop_speed_rad_s": 6.0, "theta_0_deg": 56.9753, "theta_rate_0_deg_s": 0.0},
-               "Started at θ* (R = 0.5 m, g = 9.81 m/s²): the bead stays put on the hoop while the hoop carries it round."),
-        Preset("over-the-top", "Over the top", {"hoop_speed_rad_s": 6.0, "theta_0_deg": 0.0, "theta_rate_0_deg_s": 700.0},
-               "Launched fast, the bead goes all the way round the hoop; its energy rises and falls, h does not move."),
+        Preset(
+            "slow-spin",
+            "Below the critical spin",
+            {"hoop_speed_rad_s": 3.0, "theta_0_deg": 30.0, "theta_rate_0_deg_s": 0.0},
+            "Ω = 3 rad/s < √(g/R) = 4.43 rad/s: the bottom is the only stable place; the bead rocks about it.",
+        ),
+        Preset(
+            "fast-spin",
+            "Above the critical spin",
+            {"hoop_speed_rad_s": 6.0, "theta_0_deg": 20.0, "theta_rate_0_deg_s": 0.0},
+            "Ω = 6 rad/s: the bottom is unstable and the bead rocks about θ* = 57.0°, where cos θ* = g/(RΩ²).",
+        ),
+        Preset(
+            "at-equilibrium",
+            "Resting at θ*",
+            {"hoop_speed_rad_s": 6.0, "theta_0_deg": 56.9753, "theta_rate_0_deg_s": 0.0},
+            "Started at θ* (R = 0.5 m, g = 9.81 m/s²): the bead stays put on the hoop while the hoop carries it round.",
+        ),
+        Preset(
+            "over-the-top",
+            "Over the top",
+            {"hoop_speed_rad_s": 6.0, "theta_0_deg": 0.0, "theta_rate_0_deg_s": 700.0},
+            "Launched fast, the bead goes all the way round the hoop; its energy rises and falls, h does not move.",
+        ),
     )
 
     def build(self) -> None:
         scene = self.client.scene
-        self.axis = scene.add_line_segments("/axis", np.array([[[0, 0, -1.35], [0, 0, 1.35]]], np.float32), (120, 120, 120), thickness=0.01)
+        self.axis = scene.add_line_segments(
+            "/axis", np.array([[[0, 0, -1.35], [0, 0, 1.35]]], np.float32), (120, 120, 120), thickness=0.01
+        )
         self.hoop = scene.add_frame("/hoop", show_axes=False)
-        self.ring = scene.add_line_segments("/hoop/ring", circle_segments(radius=1.0, normal=(0.0, 1.0, 0.0)), (70, 90, 160), thickness=0.025)
+        self.ring = scene.add_line_segments(
+            "/hoop/ring", circle_segments(radius=1.0, normal=(0.0, 1.0, 0.0)), (70, 90, 160), thickness=0.025
+        )
         self.bead = scene.add_icosphere("/hoop/bead", radius=0.07, color=(235, 120, 20))
         self.markers: list = []
 
@@ -59,7 +79,10 @@ class BeadOnHoopScene(DerivedSystemScene):
             marker.remove()
         self.markers = [
             self.client.scene.add_icosphere(
-                f"/hoop/equilibrium_{k}", radius=0.035, color=STABLE_COLOR if e.stable else UNSTABLE_COLOR, position=on_hoop(e.theta_rad)
+                f"/hoop/equilibrium_{k}",
+                radius=0.035,
+                color=STABLE_COLOR if e.stable else UNSTABLE_COLOR,
+                position=on_hoop(e.theta_rad),
             )
             for k, e in enumerate(hoop_equilibria(self.physical_params()))
         ]
@@ -80,17 +103,31 @@ class BeadOnHoopScene(DerivedSystemScene):
         spin = float(params["hoop_speed_rad_s"])
         quantities = [
             Quantity("t_s", "time t", self.run.t_s, "s"),
-            Quantity("theta_deg", "bead angle θ from the bottom", math.degrees(math.remainder(float(self.run.y[0]), 2 * math.pi)), "deg"),
+            Quantity(
+                "theta_deg",
+                "bead angle θ from the bottom",
+                math.degrees(math.remainder(float(self.run.y[0]), 2 * math.pi)),
+                "deg",
+            ),
             Quantity("theta_rate_rad_s", "rate θ̇ relative to the hoop", float(self.run.y[1]), "rad/s"),
             Quantity("jacobi_integral_J", "Jacobi integral h = T₂ − T₀ + V (conserved)", float(jacobi[0]), "J"),
             self.drift_quantity("jacobi_integral", "drift of h, |Δh| / scale"),
             Quantity("energy_J", "energy E = T + V (not conserved)", float(energy[0]), "J"),
-            Quantity("energy_change_J", "change of E since the start (the motor's work)", float(energy[0]) - self._energy0, "J"),
+            Quantity(
+                "energy_change_J",
+                "change of E since the start (the motor's work)",
+                float(energy[0]) - self._energy0,
+                "J",
+            ),
             Quantity("critical_spin_rad_s", "critical spin √(g/R)", critical, "rad/s"),
             Quantity.word("bottom_stability", "the bottom θ = 0 is", "stable" if equilibria[0].stable else "unstable"),
-            Quantity.or_text("off_bottom_equilibrium_deg", "off-bottom equilibrium θ*, cos θ* = g/(RΩ²) (stable)",
-                             math.degrees(off_bottom[0].theta_rad) if off_bottom else None, "deg",
-                             f"none: Ω = {spin:.2f} rad/s is below √(g/R) = {critical:.2f} rad/s"),
+            Quantity.or_text(
+                "off_bottom_equilibrium_deg",
+                "off-bottom equilibrium θ*, cos θ* = g/(RΩ²) (stable)",
+                math.degrees(off_bottom[0].theta_rad) if off_bottom else None,
+                "deg",
+                f"none: Ω = {spin:.2f} rad/s is below √(g/R) = {critical:.2f} rad/s",
+            ),
             *self.agreement_quantities(),
         ]
         return Readout(quantities, message=self.status)

@@ -30,7 +30,9 @@ def torus_point(theta1_rad, theta2_rad) -> np.ndarray:
     """(…, 3) world points on the configuration torus for angles (…) in rad."""
     theta1, theta2 = np.asarray(theta1_rad), np.asarray(theta2_rad)
     ring = TORUS_MAJOR + TORUS_MINOR * np.cos(theta2)
-    return TORUS_CENTER + np.stack([ring * np.sin(theta1), -TORUS_MINOR * np.sin(theta2), -ring * np.cos(theta1)], axis=-1)
+    return TORUS_CENTER + np.stack(
+        [ring * np.sin(theta1), -TORUS_MINOR * np.sin(theta2), -ring * np.cos(theta1)], axis=-1
+    )
 
 
 def torus_wireframe(*, rings: int = 24, tubes: int = 12, segments: int = 72) -> tuple[np.ndarray, np.ndarray]:
@@ -58,28 +60,78 @@ class DoublePendulumScene(DerivedSystemScene):
     camera_position = (1.45, -5.6, 0.7)
     camera_look_at = (1.45, 0.0, -0.2)
     presets = (
-        Preset("slow-mode", "Slow normal mode", {"m1_kg": 1.0, "m2_kg": 1.0, "l1_m": 1.0, "l2_m": 1.0, "theta1_0_deg": 5.0,
-               "theta2_0_deg": round(5.0 * SLOW_MODE_RATIO, 4), "theta1_rate_0_deg_s": 0.0, "theta2_rate_0_deg_s": 0.0},
-               "θ₂ = √2 θ₁, in step: both rods swing together at ω = √((2 − √2) g/l); the point draws one closed " "loop on the torus."),
-        Preset("fast-mode", "Fast normal mode", {"m1_kg": 1.0, "m2_kg": 1.0, "l1_m": 1.0, "l2_m": 1.0, "theta1_0_deg": 5.0,
-               "theta2_0_deg": round(-5.0 * SLOW_MODE_RATIO, 4), "theta1_rate_0_deg_s": 0.0, "theta2_rate_0_deg_s": 0.0},
-               "θ₂ = −√2 θ₁, opposed: ω = √((2 + √2) g/l), 2.4 times the slow mode's frequency."),
-        Preset("chaotic", "Large swing (chaotic)", {"theta1_0_deg": 120.0, "theta2_0_deg": -30.0, "theta1_rate_0_deg_s": 0.0,
-               "theta2_rate_0_deg_s": 200.0, "steps_per_frame": 0},
-               "Far from the bottom the motion never repeats: the point wanders over the whole torus, and the " "energy stays put."),
+        Preset(
+            "slow-mode",
+            "Slow normal mode",
+            {
+                "m1_kg": 1.0,
+                "m2_kg": 1.0,
+                "l1_m": 1.0,
+                "l2_m": 1.0,
+                "theta1_0_deg": 5.0,
+                "theta2_0_deg": round(5.0 * SLOW_MODE_RATIO, 4),
+                "theta1_rate_0_deg_s": 0.0,
+                "theta2_rate_0_deg_s": 0.0,
+            },
+            "θ₂ = √2 θ₁, in step: both rods swing together at ω = √((2 − √2) g/l); the point draws one closed "
+            "loop on the torus.",
+        ),
+        Preset(
+            "fast-mode",
+            "Fast normal mode",
+            {
+                "m1_kg": 1.0,
+                "m2_kg": 1.0,
+                "l1_m": 1.0,
+                "l2_m": 1.0,
+                "theta1_0_deg": 5.0,
+                "theta2_0_deg": round(-5.0 * SLOW_MODE_RATIO, 4),
+                "theta1_rate_0_deg_s": 0.0,
+                "theta2_rate_0_deg_s": 0.0,
+            },
+            "θ₂ = −√2 θ₁, opposed: ω = √((2 + √2) g/l), 2.4 times the slow mode's frequency.",
+        ),
+        Preset(
+            "chaotic",
+            "Large swing (chaotic)",
+            {
+                "theta1_0_deg": 120.0,
+                "theta2_0_deg": -30.0,
+                "theta1_rate_0_deg_s": 0.0,
+                "theta2_rate_0_deg_s": 200.0,
+                "steps_per_frame": 0,
+            },
+            "Far from the bottom the motion never repeats: the point wanders over the whole torus, and the "
+            "energy stays put.",
+        ),
     )
 
     def build(self) -> None:
         scene = self.client.scene
         segments, colors = torus_wireframe()
         self.torus = scene.add_line_segments("/torus", segments, colors, thickness=1.2, thickness_units="screen")
-        self.torus_label = scene.add_label("/torus/label", "configuration space: θ₁ round the ring, θ₂ round the tube", anchor="bottom-center")
+        self.torus_label = scene.add_label(
+            "/torus/label", "configuration space: θ₁ round the ring, θ₂ round the tube", anchor="bottom-center"
+        )
         self.torus_label.position = TORUS_CENTER + np.array([0.0, 0.0, TORUS_MAJOR + TORUS_MINOR + 0.12])
         self.pivot = scene.add_icosphere("/pivot", radius=0.035, color=(40, 40, 40))
-        self.rods = scene.add_line_segments("/rods", np.zeros((2, 2, 3), np.float32), np.array([[[40, 100, 220]] * 2, [[40, 150, 70]] * 2], np.uint8), thickness=0.02)
-        self.bobs = scene.add_point_cloud("/bobs", np.zeros((2, 3), np.float32), np.array([[40, 100, 220], [40, 150, 70]], np.uint8), point_size=0.09, point_shape="circle")
+        self.rods = scene.add_line_segments(
+            "/rods",
+            np.zeros((2, 2, 3), np.float32),
+            np.array([[[40, 100, 220]] * 2, [[40, 150, 70]] * 2], np.uint8),
+            thickness=0.02,
+        )
+        self.bobs = scene.add_point_cloud(
+            "/bobs",
+            np.zeros((2, 3), np.float32),
+            np.array([[40, 100, 220], [40, 150, 70]], np.uint8),
+            point_size=0.09,
+            point_shape="circle",
+        )
         self.state_point = scene.add_icosphere("/torus/state", radius=0.045, color=(235, 120, 20))
-        self.trail = Trail(scene, "/torus/trail", color=(235, 120, 20), chunk_frames=TRAIL_CHUNK_FRAMES, max_chunks=TRAIL_CHUNKS)
+        self.trail = Trail(
+            scene, "/torus/trail", color=(235, 120, 20), chunk_frames=TRAIL_CHUNK_FRAMES, max_chunks=TRAIL_CHUNKS
+        )
 
     def update(self) -> None:
         self.restart()

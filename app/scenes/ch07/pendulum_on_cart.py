@@ -40,23 +40,44 @@ class PendulumOnCartScene(DerivedSystemScene):
     camera_position = (0.0, -4.5, -0.3)
     camera_look_at = (0.0, 0.0, -0.5)
     presets = (
-        Preset("free", "Free (no drive)", {"force_amplitude_N": 0.0, "x0_m": 0.0, "theta_0_deg": 30.0},
-               "No force: the cart and the bob trade energy through the rod and the spring, and T + V stays constant."),
-        Preset("driven", "Driven at Ω = 2 rad/s", {"force_amplitude_N": 5.0, "force_frequency_rad_s": 2.0, "x0_m": 0.0, "theta_0_deg": 0.0},
-               "F₀ = 5 N at 2 rad/s: watch the work W grow and the energy follow it, ΔE = W."),
-        Preset("cart-kick", "Cart pulled aside", {"force_amplitude_N": 0.0, "x0_m": 0.4, "theta_0_deg": 0.0},
-               "The cart released 0.4 m from its rest: the spring's oscillation sets the bob swinging."),
+        Preset(
+            "free",
+            "Free (no drive)",
+            {"force_amplitude_N": 0.0, "x0_m": 0.0, "theta_0_deg": 30.0},
+            "No force: the cart and the bob trade energy through the rod and the spring, and T + V stays constant.",
+        ),
+        Preset(
+            "driven",
+            "Driven at Ω = 2 rad/s",
+            {"force_amplitude_N": 5.0, "force_frequency_rad_s": 2.0, "x0_m": 0.0, "theta_0_deg": 0.0},
+            "F₀ = 5 N at 2 rad/s: watch the work W grow and the energy follow it, ΔE = W.",
+        ),
+        Preset(
+            "cart-kick",
+            "Cart pulled aside",
+            {"force_amplitude_N": 0.0, "x0_m": 0.4, "theta_0_deg": 0.0},
+            "The cart released 0.4 m from its rest: the spring's oscillation sets the bob swinging.",
+        ),
     )
 
     def build(self) -> None:
         scene = self.client.scene
         self.rail = scene.add_line_segments("/rail", np.zeros((1, 2, 3), np.float32), (110, 110, 110), thickness=0.01)
         self.wall = scene.add_box("/wall", color=(150, 150, 150), dimensions=(0.04, 0.3, 0.4))
-        self.spring = scene.add_line_segments("/spring", spring_zigzag(-1.0, 0.0, width=0.05), (90, 90, 90), thickness=0.012)
+        self.spring = scene.add_line_segments(
+            "/spring", spring_zigzag(-1.0, 0.0, width=0.05), (90, 90, 90), thickness=0.012
+        )
         self.cart = scene.add_box("/cart", color=(40, 100, 220), dimensions=(0.3, 0.2, 0.15))
         self.rod = scene.add_line_segments("/rod", np.zeros((1, 2, 3), np.float32), (40, 40, 40), thickness=0.015)
         self.bob = scene.add_icosphere("/bob", radius=0.07, color=(235, 120, 20))
-        self.drive = scene.add_arrows("/drive", np.zeros((1, 2, 3), np.float32), (210, 40, 40), shaft_radius=0.012, head_radius=0.03, head_length=0.06)
+        self.drive = scene.add_arrows(
+            "/drive",
+            np.zeros((1, 2, 3), np.float32),
+            (210, 40, 40),
+            shaft_radius=0.012,
+            head_radius=0.03,
+            head_length=0.06,
+        )
 
     def update(self) -> None:
         self.restart()
@@ -76,7 +97,10 @@ class PendulumOnCartScene(DerivedSystemScene):
         update_node(self.rod, points=np.array([[[x, 0.0, 0.0], bob]], np.float32))
         move_node(self.bob, position=bob)
         force = float(drive_force_N(self.run_model.parameter_array(self.physical_params()), self.run.t_s))
-        update_node(self.drive, points=arrow_segments(np.array([[x + 0.15, 0.0, 0.12]]), np.array([[force, 0.0, 0.0]]), 0.1 * length))
+        update_node(
+            self.drive,
+            points=arrow_segments(np.array([[x + 0.15, 0.0, 0.12]]), np.array([[force, 0.0, 0.0]]), 0.1 * length),
+        )
 
     def readout(self) -> Readout:
         params = self.physical_params()

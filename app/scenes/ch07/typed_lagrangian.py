@@ -46,20 +46,34 @@ def typed_values(kinetic_energy: str, potential_energy: str, constants: str, q0:
     n = len(q0)
     pad = [0.0] * (3 - n)
     return {
-        "coordinates": n, "kinetic_energy": kinetic_energy, "potential_energy": potential_energy,
-        "parameters": constants, "q0_rad": [*q0, *pad], "qd0_rad_s": [*qd0, *pad],
+        "coordinates": n,
+        "kinetic_energy": kinetic_energy,
+        "potential_energy": potential_energy,
+        "parameters": constants,
+        "q0_rad": [*q0, *pad],
+        "qd0_rad_s": [*qd0, *pad],
     }
 
 
 PENDULUM = typed_values("m*l^2*q1d^2/2", "-m*g*l*cos(q1)", "m = 1, l = 1, g = 9.81", [1.0], [0.0])
-DOUBLE_PENDULUM = typed_values(DEFAULT_KINETIC_ENERGY, DEFAULT_POTENTIAL_ENERGY, DEFAULT_PARAMETERS, [1.0, 0.0], [0.0, 0.0])
+DOUBLE_PENDULUM = typed_values(
+    DEFAULT_KINETIC_ENERGY, DEFAULT_POTENTIAL_ENERGY, DEFAULT_PARAMETERS, [1.0, 0.0], [0.0, 0.0]
+)
 SPRING_PENDULUM = typed_values(
-    "m*(q1d^2 + (l + q1)^2*q2d^2)/2", "k*q1^2/2 - m*g*(l + q1)*cos(q2)", "m = 1, l = 1, k = 40, g = 9.81", [0.1, 0.8], [0.0, 0.0]
+    "m*(q1d^2 + (l + q1)^2*q2d^2)/2",
+    "k*q1^2/2 - m*g*(l + q1)*cos(q2)",
+    "m = 1, l = 1, k = 40, g = 9.81",
+    [0.1, 0.8],
+    [0.0, 0.0],
 )
 #: Started on the bounded solution q1 = g/(2w²) sin wt: q1 = 0, q̇1 = g/(2w) = 2.4525 m/s.
 SPUN_WIRE = typed_values("m*(q1d^2 + w^2*q1^2)/2", "m*g*q1*sin(w*t)", "m = 1, w = 2, g = 9.81", [0.0], [2.4525])
 LISSAJOUS = typed_values(
-    "m*(q1d^2 + q2d^2 + q3d^2)/2", "(k1*q1^2 + k2*q2^2 + k3*q3^2)/2", "m = 1, k1 = 1, k2 = 4, k3 = 9", [1.0, 0.5, 0.3], [0.0, 0.5, 0.0]
+    "m*(q1d^2 + q2d^2 + q3d^2)/2",
+    "(k1*q1^2 + k2*q2^2 + k3*q3^2)/2",
+    "m = 1, k1 = 1, k2 = 4, k3 = 9",
+    [1.0, 0.5, 0.3],
+    [0.0, 0.5, 0.0],
 )
 
 
@@ -93,21 +107,41 @@ class TypedLagrangianScene(DerivedSystemScene):
     camera_look_at = (2.1, 0.0, -0.05)
     presets = (
         Preset("pendulum", "Pendulum", PENDULUM, "T = ½ m l² q̇₁², V = −m g l cos q₁: expect m l² q̈₁ = −m g l sin q₁."),
-        Preset("double-pendulum", "Double pendulum", DOUBLE_PENDULUM, "Two equal bobs on equal rods: the catalogue's double pendulum with m₁ = m₂ = m and l₁ = l₂ = l."),
-        Preset("spring-pendulum", "Spring pendulum", SPRING_PENDULUM,
-               "q₁ = stretch (m), q₂ = angle: the spring and the swing trade energy; T + V stays put."),
-        Preset("spun-wire", "Bead on a spun wire (t explicit)", SPUN_WIRE,
-               "A wire turning at w in a vertical plane: V holds t, so the energy is not conserved. Started on the " "bounded "
-               "solution q₁ = g/(2w²) sin wt, rounding slowly throws the bead off it."),
-        Preset("lissajous", "Three springs (3 coordinates)", LISSAJOUS,
-               "Three independent oscillators at 1, 2 and 3 rad/s: the point draws a Lissajous curve in the cube."),
+        Preset(
+            "double-pendulum",
+            "Double pendulum",
+            DOUBLE_PENDULUM,
+            "Two equal bobs on equal rods: the catalogue's double pendulum with m₁ = m₂ = m and l₁ = l₂ = l.",
+        ),
+        Preset(
+            "spring-pendulum",
+            "Spring pendulum",
+            SPRING_PENDULUM,
+            "q₁ = stretch (m), q₂ = angle: the spring and the swing trade energy; T + V stays put.",
+        ),
+        Preset(
+            "spun-wire",
+            "Bead on a spun wire (t explicit)",
+            SPUN_WIRE,
+            "A wire turning at w in a vertical plane: V holds t, so the energy is not conserved. Started on the "
+            "bounded "
+            "solution q₁ = g/(2w²) sin wt, rounding slowly throws the bead off it.",
+        ),
+        Preset(
+            "lissajous",
+            "Three springs (3 coordinates)",
+            LISSAJOUS,
+            "Three independent oscillators at 1, 2 and 3 rad/s: the point draws a Lissajous curve in the cube.",
+        ),
     )
 
     def build(self) -> None:
         scene = self.client.scene
         self.rods = None  # drawn by _draw_fixed: one segment per coordinate
         self.state_point = scene.add_icosphere("/box/state", radius=0.045, color=(235, 120, 20))
-        self.trail = Trail(scene, "/box/trail", color=(235, 120, 20), chunk_frames=TRAIL_CHUNK_FRAMES, max_chunks=TRAIL_CHUNKS)
+        self.trail = Trail(
+            scene, "/box/trail", color=(235, 120, 20), chunk_frames=TRAIL_CHUNK_FRAMES, max_chunks=TRAIL_CHUNKS
+        )
         self._fixed: list = []
         self._range_labels: list = []
         self._dimensions = 0
@@ -129,15 +163,28 @@ class TypedLagrangianScene(DerivedSystemScene):
         scene = self.client.scene
         for handle in self._fixed:
             handle.remove()
-        rings = np.concatenate([circle_segments(radius=DIAL_RADIUS, center=dial_center(i), normal=(0.0, 1.0, 0.0), segments=64) for i in range(n)])
+        rings = np.concatenate(
+            [
+                circle_segments(radius=DIAL_RADIUS, center=dial_center(i), normal=(0.0, 1.0, 0.0), segments=64)
+                for i in range(n)
+            ]
+        )
         if self.rods is not None:
             self.rods.remove()
         colors = np.repeat(DIAL_COLORS[:n, None, :], 2, axis=1)
         self.rods = scene.add_line_segments("/rods", np.zeros((n, 2, 3), np.float32), colors, thickness=0.03)
         self._fixed = [
             scene.add_line_segments("/dials/rings", rings, (150, 150, 150), thickness=1.5, thickness_units="screen"),
-            scene.add_point_cloud("/dials/hubs", np.array([dial_center(i) for i in range(n)], np.float32), (40, 40, 40), point_size=0.07, point_shape="circle"),
-            scene.add_line_segments("/box/edges", box_edges(n), (120, 120, 120), thickness=1.5, thickness_units="screen"),
+            scene.add_point_cloud(
+                "/dials/hubs",
+                np.array([dial_center(i) for i in range(n)], np.float32),
+                (40, 40, 40),
+                point_size=0.07,
+                point_shape="circle",
+            ),
+            scene.add_line_segments(
+                "/box/edges", box_edges(n), (120, 120, 120), thickness=1.5, thickness_units="screen"
+            ),
         ]
         for i in range(n):
             label = scene.add_label(f"/dials/name{i}", COORDINATE_NAMES[i], anchor="top-center")
@@ -148,9 +195,16 @@ class TypedLagrangianScene(DerivedSystemScene):
         heading.position = BOX_CENTER + np.array([0.0, 0.0, BOX_HALF + 0.1])
         self._fixed.append(heading)
         axes = ["q1", "q1d"] if n == 1 else list(COORDINATE_NAMES[:n])
-        places = [np.array([0.0, -BOX_HALF if n == 3 else 0.0, -BOX_HALF - 0.08]), np.array([-BOX_HALF - 0.08, 0.0, 0.0])]
+        places = [
+            np.array([0.0, -BOX_HALF if n == 3 else 0.0, -BOX_HALF - 0.08]),
+            np.array([-BOX_HALF - 0.08, 0.0, 0.0]),
+        ]
         if n == 3:
-            places = [places[0], np.array([BOX_HALF + 0.08, 0.0, -BOX_HALF]), np.array([-BOX_HALF - 0.08, -BOX_HALF, 0.0])]
+            places = [
+                places[0],
+                np.array([BOX_HALF + 0.08, 0.0, -BOX_HALF]),
+                np.array([-BOX_HALF - 0.08, -BOX_HALF, 0.0]),
+            ]
         anchors = ["top-center", "center-left" if n == 3 else "center-right", "center-right"]
         self._range_labels = []
         for k, (axis, place) in enumerate(zip(axes, places, strict=True)):
@@ -214,8 +268,13 @@ class TypedLagrangianScene(DerivedSystemScene):
 
     def derivation_status(self) -> str:
         prepared = self.run_model.prepared(self.physical_params())
-        derived_text = "from the derivation cache" if prepared.cached else f"derived by sympy in {prepared.derive_s:.2f} s"
-        return (f"Lagrange's equations {derived_text}, in a bounded process; compiled by numba in " f"{prepared.compile_s:.2f} s")
+        derived_text = (
+            "from the derivation cache" if prepared.cached else f"derived by sympy in {prepared.derive_s:.2f} s"
+        )
+        return (
+            f"Lagrange's equations {derived_text}, in a bounded process; compiled by numba in "
+            f"{prepared.compile_s:.2f} s"
+        )
 
     def readout(self) -> Readout:
         params = self.physical_params()
@@ -223,11 +282,19 @@ class TypedLagrangianScene(DerivedSystemScene):
         prepared = model.prepared(params)
         n = len(prepared.system.coordinates)
         y, t_s = self.run.y, self.run.t_s
-        kinetic, potential, jacobi = (float(v[0]) for v in model.energies_and_jacobi_J(params, np.array([t_s]), y[None, :]))
+        kinetic, potential, jacobi = (
+            float(v[0]) for v in model.energies_and_jacobi_J(params, np.array([t_s]), y[None, :])
+        )
         quantities = [Quantity("t_s", "time t", t_s, "s")]
         for i, coordinate in enumerate(prepared.system.coordinates):
-            quantities.append(Quantity(f"{coordinate.name}_rad", f"coordinate {coordinate.name}", float(y[i]), coordinate.unit))
-            quantities.append(Quantity(f"{coordinate.name}_rate_rad_s", f"rate {coordinate.name}d", float(y[n + i]), coordinate.rate_unit))
+            quantities.append(
+                Quantity(f"{coordinate.name}_rad", f"coordinate {coordinate.name}", float(y[i]), coordinate.unit)
+            )
+            quantities.append(
+                Quantity(
+                    f"{coordinate.name}_rate_rad_s", f"rate {coordinate.name}d", float(y[n + i]), coordinate.rate_unit
+                )
+            )
         quantities += [
             Quantity("kinetic_energy_J", "kinetic energy T", kinetic, "J"),
             Quantity("potential_energy_J", "potential energy V", potential, "J"),
@@ -237,10 +304,20 @@ class TypedLagrangianScene(DerivedSystemScene):
             Quantity.word("derivation", "derivation", self.derivation_status()),
         ]
         equations = "".join(f"$${latex}$$" for latex in prepared.derived.equations_latex)
-        return Readout(quantities, message=self.status or f"Lagrange's equations, derived from what you typed:{equations}")
+        return Readout(
+            quantities, message=self.status or f"Lagrange's equations, derived from what you typed:{equations}"
+        )
 
     def _drift_row(self, explicit_time: bool, h_is_energy: bool) -> Quantity:
         if explicit_time:
-            return Quantity.word("energy_drift", "energy", "not conserved: t appears explicitly in T or V, so neither T + V nor h stays constant")
-        label = "drift of T + V (= h here) |Δh| / scale" if h_is_energy else "drift of h (T + V is not conserved: T has terms not quadratic in the rates)"
+            return Quantity.word(
+                "energy_drift",
+                "energy",
+                "not conserved: t appears explicitly in T or V, so neither T + V nor h stays constant",
+            )
+        label = (
+            "drift of T + V (= h here) |Δh| / scale"
+            if h_is_energy
+            else "drift of h (T + V is not conserved: T has terms not quadratic in the rates)"
+        )
         return self.drift_quantity("jacobi_integral", label)

@@ -42,18 +42,44 @@ class VirtualWorkFrameScene(Scene):
     chapter = 7
     controls = (
         *physics.TOGGLE_PARAMETERS.parameters,
-        Parameter("virtual_angle_deg", "deg", 12.0, 1.0, 20.0, "Size of the virtual rotation δθ drawn (display only; δW = 0 holds for every δθ)", "δθ drawn", step=0.5),
+        Parameter(
+            "virtual_angle_deg",
+            "deg",
+            12.0,
+            1.0,
+            20.0,
+            "Size of the virtual rotation δθ drawn (display only; δW = 0 holds for every δθ)",
+            "δθ drawn",
+            step=0.5,
+        ),
     )
     #: The press's own check (BC must reach the line AC), run on every change.
     check_controls = physics.TOGGLE_PARAMETERS.check
     presets = (
-        Preset("press", "Toggle press (θ = 20°)", {"angle_deg": 20.0, "load_B_N": 500.0}, "Q = 755.6 N, 1.51 times the knee load P: the toggle already multiplies the force."),
-        Preset("near-toggle", "Near the toggle (θ = 3°)", {"angle_deg": 3.0, "load_B_N": 500.0},
-               "Close to the line of the bars δx_C is tiny: the same 500 N at B holds Q = 5247 N."),
-        Preset("toggle", "At the toggle (θ = 0°)", {"angle_deg": 0.0, "load_B_N": 500.0},
-               "Bars in line: δx_C = 0 for every δθ. Q does no virtual work, and no finite Q holds P."),
-        Preset("steep", "Steep, unequal bars", {"angle_deg": 60.0, "bar_AB_m": 0.6, "bar_BC_m": 1.2, "load_B_N": 500.0},
-               "A steep AB: C moves a lot for each δθ, and Q = 248.6 N is about half of P."),
+        Preset(
+            "press",
+            "Toggle press (θ = 20°)",
+            {"angle_deg": 20.0, "load_B_N": 500.0},
+            "Q = 755.6 N, 1.51 times the knee load P: the toggle already multiplies the force.",
+        ),
+        Preset(
+            "near-toggle",
+            "Near the toggle (θ = 3°)",
+            {"angle_deg": 3.0, "load_B_N": 500.0},
+            "Close to the line of the bars δx_C is tiny: the same 500 N at B holds Q = 5247 N.",
+        ),
+        Preset(
+            "toggle",
+            "At the toggle (θ = 0°)",
+            {"angle_deg": 0.0, "load_B_N": 500.0},
+            "Bars in line: δx_C = 0 for every δθ. Q does no virtual work, and no finite Q holds P.",
+        ),
+        Preset(
+            "steep",
+            "Steep, unequal bars",
+            {"angle_deg": 60.0, "bar_AB_m": 0.6, "bar_BC_m": 1.2, "load_B_N": 500.0},
+            "A steep AB: C moves a lot for each δθ, and Q = 248.6 N is about half of P.",
+        ),
     )
 
     def build(self) -> None:
@@ -62,11 +88,24 @@ class VirtualWorkFrameScene(Scene):
         self._center = np.zeros(3)
         self.guide = scene.add_line_segments("/guide", np.zeros((1, 2, 3), np.float32), (110, 110, 110), thickness=0.01)
         self.ghost = scene.add_line_segments("/ghost", np.zeros((2, 2, 3), np.float32), GHOST_COLOR, thickness=0.01)
-        self.bars = scene.add_line_segments("/bars", np.zeros((2, 2, 3), np.float32), np.repeat(BAR_COLORS[:, None, :], 2, axis=1), thickness=0.02)
-        self.joints = scene.add_point_cloud("/joints", np.zeros((3, 3), np.float32), (30, 30, 30), point_size=0.04, point_shape="circle")
+        self.bars = scene.add_line_segments(
+            "/bars", np.zeros((2, 2, 3), np.float32), np.repeat(BAR_COLORS[:, None, :], 2, axis=1), thickness=0.02
+        )
+        self.joints = scene.add_point_cloud(
+            "/joints", np.zeros((3, 3), np.float32), (30, 30, 30), point_size=0.04, point_shape="circle"
+        )
         self.slider = scene.add_box("/slider", color=(150, 150, 160), dimensions=(0.2, 0.1, 0.1))
-        self.arrows = scene.add_arrows("/arrows", np.zeros((len(ARROW_NAMES), 2, 3), np.float32), ARROW_COLORS, shaft_radius=0.01, head_radius=0.025, head_length=0.05)
-        self.arrow_labels = [scene.add_label(f"/arrows/{index}", name, anchor="center-left") for index, name in enumerate(ARROW_NAMES)]
+        self.arrows = scene.add_arrows(
+            "/arrows",
+            np.zeros((len(ARROW_NAMES), 2, 3), np.float32),
+            ARROW_COLORS,
+            shaft_radius=0.01,
+            head_radius=0.025,
+            head_length=0.05,
+        )
+        self.arrow_labels = [
+            scene.add_label(f"/arrows/{index}", name, anchor="center-left") for index, name in enumerate(ARROW_NAMES)
+        ]
         self.point_labels = [scene.add_label(f"/points/{name}", name, anchor="top-center") for name in "ABC"]
         self.legend = scene.add_label("/legend", "", anchor="top-left")
 
@@ -102,7 +141,10 @@ class VirtualWorkFrameScene(Scene):
         block = (0.08 * span, 0.04 * span, 0.04 * span)
         self.slider.dimensions = block
         self.slider.position = tuple(to_world(slider))
-        self.guide.points = np.array([[[slider[0] - 0.15 * span, 0.0, -0.5 * block[2]], [slider[0] + 0.15 * span, 0.0, -0.5 * block[2]]]], np.float32)
+        self.guide.points = np.array(
+            [[[slider[0] - 0.15 * span, 0.0, -0.5 * block[2]], [slider[0] + 0.15 * span, 0.0, -0.5 * block[2]]]],
+            np.float32,
+        )
         self.bars.points = to_world(np.array([[pin, knee], [knee, slider]])).astype(np.float32)
         self.joints.points = to_world(np.array([pin, knee, slider])).astype(np.float32)
         for label, point in zip(self.point_labels, (pin, knee, slider)):
@@ -119,7 +161,9 @@ class VirtualWorkFrameScene(Scene):
         except ValueError:  # turned past what the bars can reach: no ghost
             self.ghost.points = np.zeros((2, 2, 3), np.float32)
             return
-        self.ghost.points = to_world(np.array([[turned["A"], turned["B"]], [turned["B"], turned["C"]]])).astype(np.float32)
+        self.ghost.points = to_world(np.array([[turned["A"], turned["B"]], [turned["B"], turned["C"]]])).astype(
+            np.float32
+        )
 
     def _draw_arrows(self, press: physics.TogglePress, points: dict[str, np.ndarray], delta_rad: float) -> None:
         loads = press.loads()
@@ -134,7 +178,10 @@ class VirtualWorkFrameScene(Scene):
         shift_tails = np.array([points[name] for name in ("B", "G1", "G2", "C")])
         shifts = delta_rad * np.array([displacements[name] for name in ("B", "G1", "G2", "C")])
         segments = np.concatenate(
-            [arrow_segments(to_world(tails), to_world(forces), scale), arrow_segments(to_world(shift_tails), to_world(shifts), 1.0)]
+            [
+                arrow_segments(to_world(tails), to_world(forces), scale),
+                arrow_segments(to_world(shift_tails), to_world(shifts), 1.0),
+            ]
         )
         self.arrows.points = segments
         sizes = (press.load_B_N, press.weight_AB_N, press.weight_BC_N)
@@ -143,7 +190,11 @@ class VirtualWorkFrameScene(Scene):
         texts += list(ARROW_NAMES[4:])
         offset = np.array([0.012 * self._span, 0.0, 0.0])
         for index, (label, text) in enumerate(zip(self.arrow_labels, texts)):
-            label.position = tuple(segments[index, 0 if index < 4 else 1] + offset + (np.array([0.0, 0.0, 0.03 * self._span]) if index < 3 else 0.0))
+            label.position = tuple(
+                segments[index, 0 if index < 4 else 1]
+                + offset
+                + (np.array([0.0, 0.0, 0.03 * self._span]) if index < 3 else 0.0)
+            )
             label.text = text
 
     def readout(self) -> Readout:
@@ -153,19 +204,43 @@ class VirtualWorkFrameScene(Scene):
         infinite = "infinite: the bars are in line (toggle position)"
         quantities = [
             Quantity.or_text("holding_force_N", "holding force Q by virtual work", q, "N", infinite),
-            Quantity.or_text("holding_force_newtonian_N", "Q from both bars' equilibrium (6 equations)", None if check is None else check.holding_force_N, "N", "singular at the toggle position"),
             Quantity.or_text(
-                "relative_difference", "relative difference of the two Q",
-                None if q is None or check is None else abs(q - check.holding_force_N) / max(abs(check.holding_force_N), 1e-300), "", "—",
+                "holding_force_newtonian_N",
+                "Q from both bars' equilibrium (6 equations)",
+                None if check is None else check.holding_force_N,
+                "N",
+                "singular at the toggle position",
             ),
-            Quantity.or_text("force_ratio", "force ratio Q / P", None if q is None or press.load_B_N == 0.0 else q / press.load_B_N, "", "—"),
+            Quantity.or_text(
+                "relative_difference",
+                "relative difference of the two Q",
+                None
+                if q is None or check is None
+                else abs(q - check.holding_force_N) / max(abs(check.holding_force_N), 1e-300),
+                "",
+                "—",
+            ),
+            Quantity.or_text(
+                "force_ratio",
+                "force ratio Q / P",
+                None if q is None or press.load_B_N == 0.0 else q / press.load_B_N,
+                "",
+                "—",
+            ),
             Quantity("load_virtual_work_N_m", "virtual work of the loads per δθ", press.load_virtual_work_N_m(), "N·m"),
             Quantity("slider_virtual_displacement_m", "δx_C per δθ", float(d["C"][0]), "m"),
             Quantity("knee_virtual_displacement_y_m", "δy_B per δθ", float(d["B"][1]), "m"),
-            Quantity.or_text("guide_force_C_N", "guide force C_y on the slider (+ up)", None if check is None else check.guide_C_N, "N", "singular at the toggle position"),
+            Quantity.or_text(
+                "guide_force_C_N",
+                "guide force C_y on the slider (+ up)",
+                None if check is None else check.guide_C_N,
+                "N",
+                "singular at the toggle position",
+            ),
         ]
         message = self._refusal or (
-            "The pins at A and B and the guide at C do no virtual work (A does not move, the two sides of B move " "together, "
+            "The pins at A and B and the guide at C do no virtual work (A does not move, the two sides of B move "
+            "together, "
             "and C moves along its guide), so only the loads and Q enter δW = 0."
         )
         return Readout(quantities, message=message)

@@ -38,32 +38,80 @@ class CartesianPendulumScene(IntegratedScene):
     camera_position = (0.0, -3.6, 0.9)
     camera_look_at = (0.0, 0.0, 0.8)
     presets = (
-        Preset("unit", "Unit pendulum (m = L = g = 1)", {**UNIT, "method": "auto", "steps_per_frame": 0},
-               "The classic test problem: released level with the pivot, at rest; period 7.42 s."),
-        Preset("drift", "Uncorrected: watch the drift", {**UNIT, "g_m_s2": 9.81, "method": "uncorrected", "integrator": "rk4", "steps_per_frame": 1},
-               "Index reduction alone, one RK4 step per frame: the residuals are never fed back and grow run after run."),
-        Preset("baumgarte", "Baumgarte, α = β = 5/s", {**UNIT, "g_m_s2": 9.81, "method": "baumgarte", "integrator": "rk4", "steps_per_frame": 1,
-               "baumgarte_alpha_1_s": 5.0, "baumgarte_beta_1_s": 5.0},
-               "The same step with the residual fed back as a critically damped oscillator: it stays small."),
-        Preset("bad-gains", "Baumgarte, gains too large", {**UNIT, "g_m_s2": 9.81, "method": "baumgarte", "integrator": "rk4", "steps_per_frame": 1,
-               "baumgarte_alpha_1_s": 200.0, "baumgarte_beta_1_s": 200.0},
-               "h·α = 6.7 with h = 33 ms: the error's own dynamics are too fast for the step and the run blows up."),
-        Preset("inconsistent", "Inconsistent start", {**UNIT, "g_m_s2": 9.81, "x0_m": 1.2, "y0_m": 0.4, "vx0_m_s": 1.0, "vy0_m_s": 1.0, "method": "auto"},
-               "(1.2, 0.4) m is off the circle and the velocity has a part along the rod: the nearest consistent " "start is used."),
+        Preset(
+            "unit",
+            "Unit pendulum (m = L = g = 1)",
+            {**UNIT, "method": "auto", "steps_per_frame": 0},
+            "The classic test problem: released level with the pivot, at rest; period 7.42 s.",
+        ),
+        Preset(
+            "drift",
+            "Uncorrected: watch the drift",
+            {**UNIT, "g_m_s2": 9.81, "method": "uncorrected", "integrator": "rk4", "steps_per_frame": 1},
+            "Index reduction alone, one RK4 step per frame: the residuals are never fed back and grow run after run.",
+        ),
+        Preset(
+            "baumgarte",
+            "Baumgarte, α = β = 5/s",
+            {
+                **UNIT,
+                "g_m_s2": 9.81,
+                "method": "baumgarte",
+                "integrator": "rk4",
+                "steps_per_frame": 1,
+                "baumgarte_alpha_1_s": 5.0,
+                "baumgarte_beta_1_s": 5.0,
+            },
+            "The same step with the residual fed back as a critically damped oscillator: it stays small.",
+        ),
+        Preset(
+            "bad-gains",
+            "Baumgarte, gains too large",
+            {
+                **UNIT,
+                "g_m_s2": 9.81,
+                "method": "baumgarte",
+                "integrator": "rk4",
+                "steps_per_frame": 1,
+                "baumgarte_alpha_1_s": 200.0,
+                "baumgarte_beta_1_s": 200.0,
+            },
+            "h·α = 6.7 with h = 33 ms: the error's own dynamics are too fast for the step and the run blows up.",
+        ),
+        Preset(
+            "inconsistent",
+            "Inconsistent start",
+            {**UNIT, "g_m_s2": 9.81, "x0_m": 1.2, "y0_m": 0.4, "vx0_m_s": 1.0, "vy0_m_s": 1.0, "method": "auto"},
+            "(1.2, 0.4) m is off the circle and the velocity has a part along the rod: the nearest consistent "
+            "start is used.",
+        ),
     )
 
     def build(self) -> None:
         scene = self.client.scene
-        self.circle = scene.add_line_segments("/constraint", circle_segments(radius=PENDULUM_REACH, center=tuple(PIVOT), normal=(0.0, 1.0, 0.0)).astype(np.float32),
-                                              (200, 200, 200), thickness=1.5, thickness_units="screen")
+        self.circle = scene.add_line_segments(
+            "/constraint",
+            circle_segments(radius=PENDULUM_REACH, center=tuple(PIVOT), normal=(0.0, 1.0, 0.0)).astype(np.float32),
+            (200, 200, 200),
+            thickness=1.5,
+            thickness_units="screen",
+        )
         self.pivot = scene.add_icosphere("/pivot", radius=0.035, color=(40, 40, 40))
         self.pivot.position = PIVOT
         self.rod = scene.add_line_segments("/rod", np.zeros((1, 2, 3), np.float32), ROD_COLOR, thickness=0.015)
         self.dots = scene.add_point_cloud(
-            "/bob", np.zeros((2, 3), np.float32), np.array([GHOST_COLOR, BOB_COLOR], np.uint8), point_size=0.12, point_shape="circle"
+            "/bob",
+            np.zeros((2, 3), np.float32),
+            np.array([GHOST_COLOR, BOB_COLOR], np.uint8),
+            point_size=0.12,
+            point_shape="circle",
         )
-        self.trail = Trail(scene, "/path", color=(235, 120, 20), chunk_frames=TRAIL_CHUNK_FRAMES, max_chunks=TRAIL_CHUNKS)
-        self.legend = scene.add_label("/legend", "grey circle: x² + y² = L² · blue: the bob · grey dot: exact motion", anchor="bottom-center")
+        self.trail = Trail(
+            scene, "/path", color=(235, 120, 20), chunk_frames=TRAIL_CHUNK_FRAMES, max_chunks=TRAIL_CHUNKS
+        )
+        self.legend = scene.add_label(
+            "/legend", "grey circle: x² + y² = L² · blue: the bob · grey dot: exact motion", anchor="bottom-center"
+        )
         self.legend.position = (0.0, 0.0, float(PIVOT[2]) + 1.15 * PENDULUM_REACH)
 
     def update(self) -> None:
@@ -79,7 +127,6 @@ class CartesianPendulumScene(IntegratedScene):
         self.trail.clear()
         self._draw()
 
-
     def state(self) -> np.ndarray:
         """The bob's (x, y, ẋ, ẏ) (m, m/s) now, whatever the algorithm integrates."""
         return self.run_model.constrained_view(self.physical_params(), self.run.y)[0]
@@ -88,7 +135,9 @@ class CartesianPendulumScene(IntegratedScene):
         if not self._exact:
             return None
         params = self.physical_params()
-        return exact_states(float(params["length_m"]), float(params["g_m_s2"]), self._start.state, np.array([self.run.t_s]))[0]
+        return exact_states(
+            float(params["length_m"]), float(params["g_m_s2"]), self._start.state, np.array([self.run.t_s])
+        )[0]
 
     def _world(self, x_m: float, y_m: float) -> np.ndarray:
         return PIVOT + self._scale * np.array([x_m, 0.0, y_m])
@@ -106,8 +155,9 @@ class CartesianPendulumScene(IntegratedScene):
         params = self.physical_params()
         x, y, vx, vy = (float(v) for v in self.state())
         now = self.current_invariants()
-        series = self.run_model.constrained_series(params, np.array([self.run.t_s]), self.state()[None, :],
-                                                   self._multipliers())
+        series = self.run_model.constrained_series(
+            params, np.array([self.run.t_s]), self.state()[None, :], self._multipliers()
+        )
         exact = self.exact_state()
         algorithm = self.run_model.algorithm()
         quantities = [
@@ -116,21 +166,36 @@ class CartesianPendulumScene(IntegratedScene):
             Quantity("x_m", "bob x", x, "m"),
             Quantity("y_m", "bob y (up)", y, "m"),
             Quantity("distance_m", "distance from the pivot √(x² + y²) (rod: L)", math.hypot(x, y), "m"),
-            Quantity("constraint_position_m2", "position residual |g| = |L² − x² − y²|/2", now["constraint_position"], "m²"),
-            Quantity("constraint_velocity_m2_s", "velocity residual |C v| = |x ẋ + y ẏ|", now["constraint_velocity"], "m²/s"),
+            Quantity(
+                "constraint_position_m2", "position residual |g| = |L² − x² − y²|/2", now["constraint_position"], "m²"
+            ),
+            Quantity(
+                "constraint_velocity_m2_s", "velocity residual |C v| = |x ẋ + y ẏ|", now["constraint_velocity"], "m²/s"
+            ),
             Quantity("energy_J", "energy ½ m v² + m g y", now["energy"], "J"),
             Quantity("energy_drift", "energy drift |ΔE| / (2 m g L)", self.current_drift()["energy"]),
-            Quantity("multiplier_N_m", "multiplier λ (force per unit length, + = tension)", float(series["multiplier"][0]), "N/m"),
+            Quantity(
+                "multiplier_N_m",
+                "multiplier λ (force per unit length, + = tension)",
+                float(series["multiplier"][0]),
+                "N/m",
+            ),
             Quantity("tension_N", "rod tension λ L", float(series["tension_N"][0]), "N"),
-            Quantity.or_text("exact_distance_m", "distance from the exact bob (phase error)",
-                             math.hypot(x - exact[0], y - exact[1]) if exact is not None else None, "m",
-                             "no closed form: the bob goes over the top (or g = 0)"),
+            Quantity.or_text(
+                "exact_distance_m",
+                "distance from the exact bob (phase error)",
+                math.hypot(x - exact[0], y - exact[1]) if exact is not None else None,
+                "m",
+                "no closed form: the bob goes over the top (or g = 0)",
+            ),
             Quantity.word("start", "start", self._start.summary()),
         ]
         if algorithm == "partitioning":
             names = ("x", "y")
             dependent, _ = current_partition(self.run.system.parameters, 2, 1)
-            quantities.append(Quantity.word("dependent", "dependent coordinate (solved by Newton)", names[dependent[0]]))
+            quantities.append(
+                Quantity.word("dependent", "dependent coordinate (solved by Newton)", names[dependent[0]])
+            )
         return Readout(quantities, message=self.status)
 
     def _multipliers(self) -> np.ndarray:

@@ -22,12 +22,24 @@ class FourBarDaeScene(PlanarLinkageScene):
     chapter = 8
     model = MassiveFourBar
     presets = (
-        Preset("crank-rocker", "Crank-rocker, 1 N·m", {"crank_m": 0.3, "drive_torque_N_m": 1.0, "method": "projection"},
-               "The crank turns fully; the rocker swings."),
-        Preset("uncorrected", "Uncorrected, few steps", {"method": "uncorrected", "steps_per_frame": 4, "drive_torque_N_m": 0.0},
-               "No correction: the residuals drift."),
-        Preset("non-grashof", "Non-Grashof (toggles)", {"crank_m": 1.5, "crank_angle0_deg": 0.0, "drive_torque_N_m": 0.0, "method": "projection"},
-               "The crank cannot turn fully: it swings through toggle positions, where the one-coordinate equation fails."),
+        Preset(
+            "crank-rocker",
+            "Crank-rocker, 1 N·m",
+            {"crank_m": 0.3, "drive_torque_N_m": 1.0, "method": "projection"},
+            "The crank turns fully; the rocker swings.",
+        ),
+        Preset(
+            "uncorrected",
+            "Uncorrected, few steps",
+            {"method": "uncorrected", "steps_per_frame": 4, "drive_torque_N_m": 0.0},
+            "No correction: the residuals drift.",
+        ),
+        Preset(
+            "non-grashof",
+            "Non-Grashof (toggles)",
+            {"crank_m": 1.5, "crank_angle0_deg": 0.0, "drive_torque_N_m": 0.0, "method": "projection"},
+            "The crank cannot turn fully: it swings through toggle positions, where the one-coordinate equation fails.",
+        ),
     )
 
     def ground_segments(self, params) -> np.ndarray:
@@ -41,5 +53,7 @@ class FourBarDaeScene(PlanarLinkageScene):
     def notes(self, params) -> list[str]:
         if self.model().crank_turns_fully(params):
             return []
-        return ["The crank cannot turn fully here (non-Grashof): at a toggle position the crank angle is not a usable "
-                "coordinate, so a one-coordinate equation in θ₂ would fail; the nine absolute coordinates carry on."]
+        return [
+            "The crank cannot turn fully here (non-Grashof): at a toggle position the crank angle is not a usable "
+            "coordinate, so a one-coordinate equation in θ₂ would fail; the nine absolute coordinates carry on."
+        ]

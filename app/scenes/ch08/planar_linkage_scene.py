@@ -47,13 +47,31 @@ class PlanarLinkageScene(IntegratedScene):
     def build(self) -> None:
         scene = self.client.scene
         self._span, self._center, self._camera_distance = 1.0, np.zeros(3), 1.0
-        self.ground = scene.add_line_segments("/ground", np.zeros((1, 2, 3), np.float32), (110, 110, 110), thickness=0.01)
+        self.ground = scene.add_line_segments(
+            "/ground", np.zeros((1, 2, 3), np.float32), (110, 110, 110), thickness=0.01
+        )
         bars = 2 if self.has_slider else 3
-        self.links = scene.add_line_segments("/links", np.zeros((bars, 2, 3), np.float32), np.repeat(LINK_COLORS[:bars, None, :], 2, axis=1), thickness=0.02)
-        self.pins = scene.add_point_cloud("/pins", np.zeros((4, 3), np.float32), (30, 30, 30), point_size=0.04, point_shape="circle")
-        self.slider = scene.add_box("/slider", color=(150, 150, 160), dimensions=(0.2, 0.1, 0.1)) if self.has_slider else None
+        self.links = scene.add_line_segments(
+            "/links",
+            np.zeros((bars, 2, 3), np.float32),
+            np.repeat(LINK_COLORS[:bars, None, :], 2, axis=1),
+            thickness=0.02,
+        )
+        self.pins = scene.add_point_cloud(
+            "/pins", np.zeros((4, 3), np.float32), (30, 30, 30), point_size=0.04, point_shape="circle"
+        )
+        self.slider = (
+            scene.add_box("/slider", color=(150, 150, 160), dimensions=(0.2, 0.1, 0.1)) if self.has_slider else None
+        )
         n_pins = len(self.model.pin_joints)
-        self.arrows = scene.add_arrows("/forces", np.zeros((n_pins, 2, 3), np.float32), FORCE_COLOR, shaft_radius=0.01, head_radius=0.025, head_length=0.05)
+        self.arrows = scene.add_arrows(
+            "/forces",
+            np.zeros((n_pins, 2, 3), np.float32),
+            FORCE_COLOR,
+            shaft_radius=0.01,
+            head_radius=0.025,
+            head_length=0.05,
+        )
 
     def camera_view(self):
         c, distance = self._center, self._camera_distance
@@ -76,7 +94,11 @@ class PlanarLinkageScene(IntegratedScene):
         self._camera_distance = max(CAMERA_DISTANCE_PER_WIDTH * width, CAMERA_DISTANCE_PER_HEIGHT * height)
         self.links.thickness = 0.012 * span
         self.pins.point_size = 0.02 * span
-        self.arrows.shaft_radius, self.arrows.head_radius, self.arrows.head_length = 0.004 * span, 0.011 * span, 0.025 * span
+        self.arrows.shaft_radius, self.arrows.head_radius, self.arrows.head_length = (
+            0.004 * span,
+            0.011 * span,
+            0.025 * span,
+        )
         self.ground.points = self.ground_segments(params).astype(np.float32)
         self.ground.thickness = 0.006 * span
         if self.slider is not None:
@@ -142,15 +164,22 @@ class PlanarLinkageScene(IntegratedScene):
             Quantity("crank_speed_rad_s", "crank speed θ̇", float(state[11]), "rad/s"),
         ]
         for name, force in model.pin_forces_N(params, multipliers).items():
-            quantities.append(Quantity(pin_force_series_name(name), f"pin force at {name} |λ|", float(np.linalg.norm(force[0])), "N"))
+            quantities.append(
+                Quantity(pin_force_series_name(name), f"pin force at {name} |λ|", float(np.linalg.norm(force[0])), "N")
+            )
         quantities += [
             Quantity("constraint_position", "position residual max |g|", invariants["constraint_position"], "m"),
             Quantity("constraint_velocity", "velocity residual max |C q̇|", invariants["constraint_velocity"], "m/s"),
-            Quantity("work_energy_residual_J", "work–energy residual ΔT + ΔV − τΔθ", invariants["energy"] - energy0, "J"),
+            Quantity(
+                "work_energy_residual_J", "work–energy residual ΔT + ΔV − τΔθ", invariants["energy"] - energy0, "J"
+            ),
         ]
         algorithm = model.algorithm()
         if algorithm == "baumgarte":
-            algorithm += (f" (α = {float(self.params['baumgarte_alpha_1_s']):g}/s, β = " f"{float(self.params['baumgarte_beta_1_s']):g}/s)")
+            algorithm += (
+                f" (α = {float(self.params['baumgarte_alpha_1_s']):g}/s, β = "
+                f"{float(self.params['baumgarte_beta_1_s']):g}/s)"
+            )
         quantities.append(Quantity.word("algorithm", "DAE algorithm", algorithm))
         notes = [f"{algorithm}: {self.description}."]
         notes += self.notes(params)

@@ -22,12 +22,24 @@ class SliderCrankDaeScene(PlanarLinkageScene):
     model = SliderCrankDae
     has_slider = True
     presets = (
-        Preset("driven", "Driven by 2 N·m", {"drive_torque_N_m": 2.0, "crank_speed_rad_s": 10.0, "method": "projection"},
-               "Chapter 6's defaults: compare the pin forces with lesson 6.3."),
-        Preset("coasting-uncorrected", "Coasting, uncorrected", {"drive_torque_N_m": 0.0, "method": "uncorrected", "steps_per_frame": 4},
-               "No torque and no correction: watch the residuals grow while the energy should stay put."),
-        Preset("baumgarte", "Baumgarte, α = β = 20/s", {"method": "baumgarte", "baumgarte_alpha_1_s": 20.0, "baumgarte_beta_1_s": 20.0, "steps_per_frame": 4},
-               "The residuals are pulled back like a damped oscillator."),
+        Preset(
+            "driven",
+            "Driven by 2 N·m",
+            {"drive_torque_N_m": 2.0, "crank_speed_rad_s": 10.0, "method": "projection"},
+            "Chapter 6's defaults: compare the pin forces with lesson 6.3.",
+        ),
+        Preset(
+            "coasting-uncorrected",
+            "Coasting, uncorrected",
+            {"drive_torque_N_m": 0.0, "method": "uncorrected", "steps_per_frame": 4},
+            "No torque and no correction: watch the residuals grow while the energy should stay put.",
+        ),
+        Preset(
+            "baumgarte",
+            "Baumgarte, α = β = 20/s",
+            {"method": "baumgarte", "baumgarte_alpha_1_s": 20.0, "baumgarte_beta_1_s": 20.0, "steps_per_frame": 4},
+            "The residuals are pulled back like a damped oscillator.",
+        ),
     )
 
     def ground_segments(self, params) -> np.ndarray:

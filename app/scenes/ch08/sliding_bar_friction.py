@@ -40,24 +40,55 @@ class SlidingBarFrictionScene(IntegratedScene):
     #: Bar, ends, force arrows and the friction cone each frame.
     frame_message_budget = 5.0
     presets = (
-        Preset("slide-and-fall", "Slides and falls", {"angle0_deg": 30.0, "slide_speed0_m_s": 1.0, "mu": 0.3},
-               "B slides away while the bar falls flat; friction work is booked as it goes."),
-        Preset("stick-then-slip", "Pivots, then breaks loose", {"angle0_deg": 60.0, "slide_speed0_m_s": 0.0, "mu": 0.5},
-               "Released at rest: B sticks and the bar pivots until |F| reaches μN at 31.8° (t = 0.345 s), then B slides."),
-        Preset("near-jam", "Braked towards the band", {"angle0_deg": 45.0, "slide_speed0_m_s": 3.0, "mu": 1.5},
-               "μ = 1.5: friction tips the bar up towards the Painlevé band (50.6°–73.0°); N peaks at 49.5 N (5 m " "g) and B stops at 47.3°, short of it."),
-        Preset("painleve", "Painlevé's paradox", {"angle0_deg": 63.4, "slide_speed0_m_s": 1.0, "mu": 1.5},
-               "Sliding away from the lean at tan θ ≈ 2 with μ = 1.5 > 4/3: no contact force N ≥ 0 fits — detected " "and stopped."),
-        Preset("painleve-reversed", "Same, sliding the other way", {"angle0_deg": 63.4, "slide_speed0_m_s": -1.0, "mu": 1.5},
-               "The same bar and angle with B sliding towards the lean: D > 0, the motion is consistent."),
+        Preset(
+            "slide-and-fall",
+            "Slides and falls",
+            {"angle0_deg": 30.0, "slide_speed0_m_s": 1.0, "mu": 0.3},
+            "B slides away while the bar falls flat; friction work is booked as it goes.",
+        ),
+        Preset(
+            "stick-then-slip",
+            "Pivots, then breaks loose",
+            {"angle0_deg": 60.0, "slide_speed0_m_s": 0.0, "mu": 0.5},
+            "Released at rest: B sticks and the bar pivots until |F| reaches μN at 31.8° (t = 0.345 s), then B slides.",
+        ),
+        Preset(
+            "near-jam",
+            "Braked towards the band",
+            {"angle0_deg": 45.0, "slide_speed0_m_s": 3.0, "mu": 1.5},
+            "μ = 1.5: friction tips the bar up towards the Painlevé band (50.6°–73.0°); N peaks at 49.5 N (5 m "
+            "g) and B stops at 47.3°, short of it.",
+        ),
+        Preset(
+            "painleve",
+            "Painlevé's paradox",
+            {"angle0_deg": 63.4, "slide_speed0_m_s": 1.0, "mu": 1.5},
+            "Sliding away from the lean at tan θ ≈ 2 with μ = 1.5 > 4/3: no contact force N ≥ 0 fits — detected "
+            "and stopped.",
+        ),
+        Preset(
+            "painleve-reversed",
+            "Same, sliding the other way",
+            {"angle0_deg": 63.4, "slide_speed0_m_s": -1.0, "mu": 1.5},
+            "The same bar and angle with B sliding towards the lean: D > 0, the motion is consistent.",
+        ),
     )
 
     def build(self) -> None:
         scene = self.client.scene
         self.floor = scene.add_box("/floor", color=(150, 160, 150), dimensions=(1.0, 0.4, 0.1))
         self.bar = scene.add_line_segments("/bar", np.zeros((1, 2, 3), np.float32), (150, 90, 40), thickness=0.05)
-        self.ends = scene.add_point_cloud("/ends", np.zeros((2, 3), np.float32), (30, 30, 30), point_size=0.05, point_shape="circle")
-        self.arrows = scene.add_arrows("/forces", np.zeros((3, 2, 3), np.float32), ARROW_COLORS, shaft_radius=0.01, head_radius=0.03, head_length=0.06)
+        self.ends = scene.add_point_cloud(
+            "/ends", np.zeros((2, 3), np.float32), (30, 30, 30), point_size=0.05, point_shape="circle"
+        )
+        self.arrows = scene.add_arrows(
+            "/forces",
+            np.zeros((3, 2, 3), np.float32),
+            ARROW_COLORS,
+            shaft_radius=0.01,
+            head_radius=0.03,
+            head_length=0.06,
+        )
         self.cone = scene.add_line_segments("/cone", np.zeros((2, 2, 3), np.float32), (150, 150, 150), thickness=0.006)
         self.legend = scene.add_label("/legend", "", anchor="bottom-left")
         self._length = 1.0
@@ -83,7 +114,9 @@ class SlidingBarFrictionScene(IntegratedScene):
         self.legend.position = (-1.0 * length, 0.0, 1.1 * length)
         self.legend.text = "blue: N · orange: F · grey lines: cone ±μN · grey arrow: m g (0.3 L)"
         self.events = physics.run_events(params, t_end_s=LOOKAHEAD_S)
-        self.stop = next((e for e in self.events if e.index in (physics.JAM_STOP, physics.LIFT_OFF, physics.LANDS)), None)
+        self.stop = next(
+            (e for e in self.events if e.index in (physics.JAM_STOP, physics.LIFT_OFF, physics.LANDS)), None
+        )
         self._held_s = 0.0
         self._clock_s = 0.0
         self._shown = self.run.y
@@ -106,7 +139,12 @@ class SlidingBarFrictionScene(IntegratedScene):
         update_node(self.arrows, points=arrow_segments(tails, vectors, scale))
         limit = params["mu"] * normal
         base = np.array(_xz(bottom))
-        cone = np.array([[base, base + scale * np.array([-limit, 0.0, normal])], [base, base + scale * np.array([limit, 0.0, normal])]])
+        cone = np.array(
+            [
+                [base, base + scale * np.array([-limit, 0.0, normal])],
+                [base, base + scale * np.array([limit, 0.0, normal])],
+            ]
+        )
         update_node(self.cone, points=cone.astype(np.float32))
 
     def step_motion(self, dt_s: float) -> bool:
@@ -150,15 +188,25 @@ class SlidingBarFrictionScene(IntegratedScene):
         band = physics.painleve_band_deg(params["mu"])
         band_text = "none: μ < 4/3, sliding is always consistent"
         quantities = [
-            Quantity("t_s", "time t", self.stop.t_s if self._held_s > 0.0 and self.stop is not None else self.run.t_s, "s"),
+            Quantity(
+                "t_s", "time t", self.stop.t_s if self._held_s > 0.0 and self.stop is not None else self.run.t_s, "s"
+            ),
             Quantity.word("phase", "phase", physics.PHASE_WORDS[phase]),
             Quantity("angle_deg", "angle from the floor θ", math.degrees(y[physics.THETA]), "deg"),
             Quantity("contact_speed_m_s", "sliding speed of B, u", float(y[physics.U]), "m/s"),
             Quantity("normal_force_N", "normal force N", float(forces[physics.C_NORMAL]), "N"),
             Quantity("friction_force_N", "friction force F", float(forces[physics.C_FRICTION]), "N"),
             Quantity("friction_limit_N", "friction limit μN", params["mu"] * float(forces[physics.C_NORMAL]), "N"),
-            Quantity("painleve_factor", "D = 1 + 3 cos θ (cos θ − σμ sin θ)", float(forces[physics.C_PAINLEVE_FACTOR]), ""),
-            Quantity.or_text("painleve_band_low_deg", "Painlevé band (sliding away from the lean) from", band[0] if band else None, "deg", band_text),
+            Quantity(
+                "painleve_factor", "D = 1 + 3 cos θ (cos θ − σμ sin θ)", float(forces[physics.C_PAINLEVE_FACTOR]), ""
+            ),
+            Quantity.or_text(
+                "painleve_band_low_deg",
+                "Painlevé band (sliding away from the lean) from",
+                band[0] if band else None,
+                "deg",
+                band_text,
+            ),
             Quantity.or_text("painleve_band_high_deg", "… to", band[1] if band else None, "deg", band_text),
             Quantity("kinetic_energy_J", "kinetic energy", float(budget.kinetic_J[0]), "J"),
             Quantity("potential_energy_J", "potential energy (floor = 0)", float(budget.potential_J[0]), "J"),

@@ -37,27 +37,54 @@ class StickSlipBeltScene(IntegratedScene):
     #: mode changes.
     frame_message_budget = 7.0
     presets = (
-        Preset("stick-slip", "Stick–slip cycle", {"belt_speed_m_s": 0.5, "mu_static": 0.6, "mu_kinetic": 0.4, "x0_m": 0.0, "v0_m_s": 0.0},
-               "μ_s > μ_k: the block rides with the belt until k x = μ_s N, slips back, and sticks again — a limit cycle."),
-        Preset("pushed-start", "Pushed start", {"belt_speed_m_s": 0.5, "mu_static": 0.6, "mu_kinetic": 0.4, "x0_m": -0.4, "v0_m_s": 1.2},
-               "Thrown forward from x = −0.4 m at 1.2 m/s: a slip transient, then the same stick–slip cycle."),
-        Preset("fast-belt", "Fast belt, pure slip", {"belt_speed_m_s": 2.0, "mu_static": 0.6, "mu_kinetic": 0.4, "x0_m": 0.0, "v0_m_s": 0.0},
-               "The block never catches the belt: it slips all the time, oscillating about x_eq = μ_k N / k."),
-        Preset("belt-at-rest", "Belt at rest", {"belt_speed_m_s": 0.0, "mu_static": 0.3, "mu_kinetic": 0.2, "x0_m": 0.9, "v0_m_s": 0.0},
-               "A released spring on a still belt: each swing loses 2 μ_k N / k of amplitude until friction holds it."),
+        Preset(
+            "stick-slip",
+            "Stick–slip cycle",
+            {"belt_speed_m_s": 0.5, "mu_static": 0.6, "mu_kinetic": 0.4, "x0_m": 0.0, "v0_m_s": 0.0},
+            "μ_s > μ_k: the block rides with the belt until k x = μ_s N, slips back, and sticks again — a limit cycle.",
+        ),
+        Preset(
+            "pushed-start",
+            "Pushed start",
+            {"belt_speed_m_s": 0.5, "mu_static": 0.6, "mu_kinetic": 0.4, "x0_m": -0.4, "v0_m_s": 1.2},
+            "Thrown forward from x = −0.4 m at 1.2 m/s: a slip transient, then the same stick–slip cycle.",
+        ),
+        Preset(
+            "fast-belt",
+            "Fast belt, pure slip",
+            {"belt_speed_m_s": 2.0, "mu_static": 0.6, "mu_kinetic": 0.4, "x0_m": 0.0, "v0_m_s": 0.0},
+            "The block never catches the belt: it slips all the time, oscillating about x_eq = μ_k N / k.",
+        ),
+        Preset(
+            "belt-at-rest",
+            "Belt at rest",
+            {"belt_speed_m_s": 0.0, "mu_static": 0.3, "mu_kinetic": 0.2, "x0_m": 0.9, "v0_m_s": 0.0},
+            "A released spring on a still belt: each swing loses 2 μ_k N / k of amplitude until friction holds it.",
+        ),
     )
 
     def build(self) -> None:
         scene = self.client.scene
         self.belt = scene.add_box("/belt", color=(70, 70, 80), dimensions=(4.0, 0.3, 0.04), position=(0.0, 0.0, -0.02))
-        self.ticks = scene.add_line_segments("/belt/ticks", np.zeros((BELT_TICKS, 2, 3), np.float32), (190, 190, 190), thickness=0.006)
+        self.ticks = scene.add_line_segments(
+            "/belt/ticks", np.zeros((BELT_TICKS, 2, 3), np.float32), (190, 190, 190), thickness=0.006
+        )
         self.anchor = scene.add_box("/anchor", color=(140, 140, 150), dimensions=(0.04, 0.2, 0.3))
         self.block = scene.add_box("/block", color=(60, 110, 200), dimensions=(BLOCK_M, 0.14, BLOCK_M))
-        self.spring = scene.add_line_segments("/spring", np.zeros((2 * SPRING_COILS + 2, 2, 3), np.float32), (200, 60, 60), thickness=0.008)
-        self.friction_arrow = scene.add_arrows(
-            "/friction", np.zeros((1, 2, 3), np.float32), (230, 130, 20), shaft_radius=0.008, head_radius=0.02, head_length=0.04
+        self.spring = scene.add_line_segments(
+            "/spring", np.zeros((2 * SPRING_COILS + 2, 2, 3), np.float32), (200, 60, 60), thickness=0.008
         )
-        self.gauge = scene.add_line_segments("/gauge", np.zeros((6, 2, 3), np.float32), np.zeros((6, 2, 3), np.uint8), thickness=0.012)
+        self.friction_arrow = scene.add_arrows(
+            "/friction",
+            np.zeros((1, 2, 3), np.float32),
+            (230, 130, 20),
+            shaft_radius=0.008,
+            head_radius=0.02,
+            head_length=0.04,
+        )
+        self.gauge = scene.add_line_segments(
+            "/gauge", np.zeros((6, 2, 3), np.float32), np.zeros((6, 2, 3), np.uint8), thickness=0.012
+        )
         self.gauge_label = scene.add_label("/gauge/label", "", anchor="bottom-left")
         self.mode_label = scene.add_label("/mode", "", anchor="bottom-center")
         self._mode = -1
@@ -105,18 +132,24 @@ class StickSlipBeltScene(IntegratedScene):
         self._friction, self._limit = friction, limit
         mode = int(y[physics.MODE])
         color = np.array(MODE_COLORS[mode], np.uint8)
-        update_node(self.friction_arrow, points=arrow_segments(np.array([x, 0.0, 0.01]), np.array([friction, 0.0, 0.0]), 0.5 * self._gauge_scale))
+        update_node(
+            self.friction_arrow,
+            points=arrow_segments(np.array([x, 0.0, 0.01]), np.array([friction, 0.0, 0.0]), 0.5 * self._gauge_scale),
+        )
         # Gauge: scale line, the two mode-limit ticks, the force bar, and its zero tick.
         s, z = self._gauge_scale, GAUGE_HEIGHT_M
         full = GAUGE_HALF_WIDTH_M
-        segments = np.array([
-            [[-full, 0.0, z], [full, 0.0, z]],
-            [[-s * limit, 0.0, z - 0.05], [-s * limit, 0.0, z + 0.05]],
-            [[s * limit, 0.0, z - 0.05], [s * limit, 0.0, z + 0.05]],
-            [[0.0, 0.0, z + 0.012], [s * friction, 0.0, z + 0.012]],
-            [[0.0, 0.0, z - 0.012], [s * friction, 0.0, z - 0.012]],
-            [[0.0, 0.0, z - 0.03], [0.0, 0.0, z + 0.03]],
-        ], np.float32)
+        segments = np.array(
+            [
+                [[-full, 0.0, z], [full, 0.0, z]],
+                [[-s * limit, 0.0, z - 0.05], [-s * limit, 0.0, z + 0.05]],
+                [[s * limit, 0.0, z - 0.05], [s * limit, 0.0, z + 0.05]],
+                [[0.0, 0.0, z + 0.012], [s * friction, 0.0, z + 0.012]],
+                [[0.0, 0.0, z - 0.012], [s * friction, 0.0, z - 0.012]],
+                [[0.0, 0.0, z - 0.03], [0.0, 0.0, z + 0.03]],
+            ],
+            np.float32,
+        )
         colors = np.array([[150, 150, 150], [210, 40, 40], [210, 40, 40], color, color, [60, 60, 60]], np.uint8)
         update_node(self.gauge, points=segments, colors=np.repeat(colors[:, None, :], 2, axis=1))
         move_node(self.mode_label, position=(x, 0.0, BLOCK_M + 0.05))
@@ -137,17 +170,36 @@ class StickSlipBeltScene(IntegratedScene):
             Quantity.word("mode", "mode", physics.MODE_WORDS[mode]),
             Quantity("x_m", "position x (spring unstretched at 0)", float(y[physics.X]), "m"),
             Quantity("v_m_s", "velocity ẋ", float(y[physics.V]), "m/s"),
-            Quantity("relative_velocity_m_s", "velocity relative to the belt ẋ − v_b", float(y[physics.V] - params["belt_speed_m_s"]), "m/s"),
+            Quantity(
+                "relative_velocity_m_s",
+                "velocity relative to the belt ẋ − v_b",
+                float(y[physics.V] - params["belt_speed_m_s"]),
+                "m/s",
+            ),
             Quantity("friction_force_N", "friction force F on the block", self._friction, "N"),
             Quantity("friction_limit_N", "its limit μN in this mode", self._limit, "N"),
             Quantity("kinetic_energy_J", "kinetic energy", float(budget.kinetic_J[0]), "J"),
             Quantity("spring_energy_J", "spring energy", float(budget.spring_J[0]), "J"),
             Quantity("dissipated_J", "dissipated by friction", float(budget.dissipated_J[0]), "J"),
             Quantity("belt_work_J", "work done by the belt", float(budget.belt_work_J[0]), "J"),
-            Quantity("energy_budget_J", "kinetic + spring + dissipated − belt work (constant)", float(budget.total_J[0]), "J"),
+            Quantity(
+                "energy_budget_J", "kinetic + spring + dissipated − belt work (constant)", float(budget.total_J[0]), "J"
+            ),
             Quantity.or_text("last_transition_s", "last transition at t", last.t_s if last else None, "s", "none yet"),
-            Quantity.or_text("stick_duration_s", "stick phase of the cycle (closed form)", cycle.stick_s if cycle else None, "s", no_cycle),
-            Quantity.or_text("slip_duration_s", "slip phase of the cycle (closed form)", cycle.slip_s if cycle else None, "s", no_cycle),
+            Quantity.or_text(
+                "stick_duration_s",
+                "stick phase of the cycle (closed form)",
+                cycle.stick_s if cycle else None,
+                "s",
+                no_cycle,
+            ),
+            Quantity.or_text(
+                "slip_duration_s",
+                "slip phase of the cycle (closed form)",
+                cycle.slip_s if cycle else None,
+                "s",
+                no_cycle,
+            ),
         ]
         return Readout(quantities, message=self._message(params, mode, last))
 
@@ -156,11 +208,11 @@ class StickSlipBeltScene(IntegratedScene):
             return self.status
         if mode == physics.STICK:
             return (
-                f"Sticking: the block rides with the belt at {params['belt_speed_m_s']:g} m/s; friction holds " "the spring, "
+                f"Sticking: the block rides with the belt at {params['belt_speed_m_s']:g} m/s; friction holds "
+                "the spring, "
                 f"|F| = {abs(self._friction):.3f} N ≤ μ_s N = {self._limit:.3f} N."
             )
         words = f"Slipping: friction is μ_k N = {self._limit:.3f} N against the relative velocity"
         if last is not None:
             words += f" (since t = {last.t_s:.4f} s: {last.words})"
         return words + "."
-

@@ -48,24 +48,69 @@ class UnsteadyRollingDiskScene(IntegratedScene):
     camera_position = (0.3, 0.45, 0.75)
     camera_look_at = (0.0, -1.0, 0.0)
     presets = (
-        Preset("stable", "Upright above the threshold", {"radius_m": 0.1, "lean_0_deg": 2.0, "spin_rate_0_rad_s": 12.0, "heading_rate_0_rad_s": 0.0, "lean_rate_0_rad_s": 0.0, "method": "auto"},
-               "Ω = 12 rad/s is above the critical spin √(g/(3r)) = 5.72 rad/s (r = 0.1 m): the lean stays between " "2.0° and 3.2° and the path is a wide curve (the run starts over when the disk leaves the floor)."),
-        Preset("falls", "Below the threshold: it falls over", {"radius_m": 0.1, "lean_0_deg": 2.0, "spin_rate_0_rad_s": 2.0, "heading_rate_0_rad_s": 0.0, "lean_rate_0_rad_s": 0.0, "method": "auto"},
-               "Ω = 2 rad/s is below 5.72 rad/s: the lean grows from 2° to 75° while the path curls tightly. Set " "the spin to 0 and the disk topples: near 60° the floor would have to pull (N < 0), so it lifts off " "and the run stops."),
-        Preset("circle", "Leaning circle", {"radius_m": 0.1, **CIRCLE, "method": "auto"},
-               "Leaning 30° at 15 rad/s with ψ̇ = −2.723 rad/s: the steady turn, a circle of radius r φ̇/|ψ̇| = " "0.55 m with the lean constant (to 0.001°)."),
-        Preset("drift", "Uncorrected, coarse step", {"radius_m": 0.1, "lean_0_deg": 20.0, "spin_rate_0_rad_s": 20.0, "heading_rate_0_rad_s": 5.0,
-               "method": "uncorrected", "integrator": "rk4", "steps_per_frame": 4},
-               "Index reduction alone with 4 RK4 steps per frame: the contact point's slip speed |A v| (about 5e-5 " "m/s) is never fed back; pick projection and it drops to round-off."),
+        Preset(
+            "stable",
+            "Upright above the threshold",
+            {
+                "radius_m": 0.1,
+                "lean_0_deg": 2.0,
+                "spin_rate_0_rad_s": 12.0,
+                "heading_rate_0_rad_s": 0.0,
+                "lean_rate_0_rad_s": 0.0,
+                "method": "auto",
+            },
+            "Ω = 12 rad/s is above the critical spin √(g/(3r)) = 5.72 rad/s (r = 0.1 m): the lean stays between "
+            "2.0° and 3.2° and the path is a wide curve (the run starts over when the disk leaves the floor).",
+        ),
+        Preset(
+            "falls",
+            "Below the threshold: it falls over",
+            {
+                "radius_m": 0.1,
+                "lean_0_deg": 2.0,
+                "spin_rate_0_rad_s": 2.0,
+                "heading_rate_0_rad_s": 0.0,
+                "lean_rate_0_rad_s": 0.0,
+                "method": "auto",
+            },
+            "Ω = 2 rad/s is below 5.72 rad/s: the lean grows from 2° to 75° while the path curls tightly. Set "
+            "the spin to 0 and the disk topples: near 60° the floor would have to pull (N < 0), so it lifts off "
+            "and the run stops.",
+        ),
+        Preset(
+            "circle",
+            "Leaning circle",
+            {"radius_m": 0.1, **CIRCLE, "method": "auto"},
+            "Leaning 30° at 15 rad/s with ψ̇ = −2.723 rad/s: the steady turn, a circle of radius r φ̇/|ψ̇| = "
+            "0.55 m with the lean constant (to 0.001°).",
+        ),
+        Preset(
+            "drift",
+            "Uncorrected, coarse step",
+            {
+                "radius_m": 0.1,
+                "lean_0_deg": 20.0,
+                "spin_rate_0_rad_s": 20.0,
+                "heading_rate_0_rad_s": 5.0,
+                "method": "uncorrected",
+                "integrator": "rk4",
+                "steps_per_frame": 4,
+            },
+            "Index reduction alone with 4 RK4 steps per frame: the contact point's slip speed |A v| (about 5e-5 "
+            "m/s) is never fed back; pick projection and it drops to round-off.",
+        ),
     )
 
     def build(self) -> None:
         scene = self.client.scene
         scene.add_grid("/floor", width=6.0, height=6.0, cell_size=0.1, section_size=0.5, position=FLOOR_CENTRE)
         colors = disk_outline_colors()
-        self.disk = scene.add_line_segments("/disk", np.zeros(colors.shape, np.float32), colors, thickness=DISK_LINE_PX, thickness_units="screen")
-        self.trail = Trail(scene, "/contact-path", color=(235, 120, 20), chunk_frames=TRAIL_CHUNK_FRAMES, max_chunks=TRAIL_CHUNKS)
-
+        self.disk = scene.add_line_segments(
+            "/disk", np.zeros(colors.shape, np.float32), colors, thickness=DISK_LINE_PX, thickness_units="screen"
+        )
+        self.trail = Trail(
+            scene, "/contact-path", color=(235, 120, 20), chunk_frames=TRAIL_CHUNK_FRAMES, max_chunks=TRAIL_CHUNKS
+        )
 
     def update(self) -> None:
         self.restart()
@@ -78,7 +123,10 @@ class UnsteadyRollingDiskScene(IntegratedScene):
         self._draw()
 
     def step_motion(self, dt_s: float) -> bool:
-        off_floor = max(abs(float(self.run.y[0]) - FLOOR_CENTRE[0]), abs(float(self.run.y[1]) - FLOOR_CENTRE[1])) > FLOOR_HALF_WIDTH_M
+        off_floor = (
+            max(abs(float(self.run.y[0]) - FLOOR_CENTRE[0]), abs(float(self.run.y[1]) - FLOOR_CENTRE[1]))
+            > FLOOR_HALF_WIDTH_M
+        )
         if off_floor:  # rolled out of view: replay from the start (drift and residuals start again with it)
             self.restart()
             self.trail.clear()
@@ -102,12 +150,26 @@ class UnsteadyRollingDiskScene(IntegratedScene):
             Quantity("heading_deg", "heading ψ", math.degrees(math.remainder(float(y[2]), 2 * math.pi)), "deg"),
             Quantity("spin_rate_rad_s", "spin rate φ̇", float(y[9]), "rad/s"),
             Quantity("heading_rate_rad_s", "heading rate ψ̇", float(y[7]), "rad/s"),
-            Quantity("constraint_velocity_m_s", "contact point's slip speed max|A v| (0 when rolling)", now["constraint_velocity"], "m/s"),
-            Quantity("friction_N", "floor's friction on the disk |λ| (the multipliers)", float(np.hypot(*friction)), "N"),
-            Quantity("normal_force_N", "floor's normal force N = m (g + z̈_G) (a floor can only push: N ≥ 0)", float(normal_force_N(params, y[None, :])[0]), "N"),
+            Quantity(
+                "constraint_velocity_m_s",
+                "contact point's slip speed max|A v| (0 when rolling)",
+                now["constraint_velocity"],
+                "m/s",
+            ),
+            Quantity(
+                "friction_N", "floor's friction on the disk |λ| (the multipliers)", float(np.hypot(*friction)), "N"
+            ),
+            Quantity(
+                "normal_force_N",
+                "floor's normal force N = m (g + z̈_G) (a floor can only push: N ≥ 0)",
+                float(normal_force_N(params, y[None, :])[0]),
+                "N",
+            ),
             Quantity("energy_J", "energy T + V (V = 0 with the centre on the floor)", now["energy"], "J"),
             Quantity("energy_drift", "energy drift |ΔE| / scale", self.current_drift()["energy"]),
-            Quantity("critical_spin_rad_s", "critical spin Ω_c (linearised upright rolling)", self._critical_spin, "rad/s"),
+            Quantity(
+                "critical_spin_rad_s", "critical spin Ω_c (linearised upright rolling)", self._critical_spin, "rad/s"
+            ),
             Quantity.word("upright_stability", "at the start's spin", self._stability),
         ]
         return Readout(quantities, message=self.status)

@@ -49,22 +49,54 @@ class PhasePortraitScene(DerivedSystemScene):
     camera_position = (1.45, -4.4, 0.1)
     camera_look_at = (1.45, 0.0, -0.1)
     presets = (
-        Preset("small-swing", "Small swing", {"theta_0_deg": 15.0, "theta_rate_0_deg_s": 0.0},
-               "H = −m g l cos 15°: the state goes round a small, nearly elliptical level set (a harmonic oscillator)."),
-        Preset("near-separatrix", "Near the separatrix", {"theta_0_deg": 175.0, "theta_rate_0_deg_s": 0.0},
-               "Released 5° from upright: the orbit hugs the separatrix and lingers near θ = ±180°; the period " "grows without bound as the release nears 180°."),
-        Preset("over-the-top", "Going over the top", {"theta_0_deg": 0.0, "theta_rate_0_deg_s": 420.0},
-               "θ̇₀ = 420°/s at the bottom exceeds 2√(g/l) = 359°/s (l = 1 m): H > m g l, the pendulum rotates and " "p_θ never changes sign."),
+        Preset(
+            "small-swing",
+            "Small swing",
+            {"theta_0_deg": 15.0, "theta_rate_0_deg_s": 0.0},
+            "H = −m g l cos 15°: the state goes round a small, nearly elliptical level set (a harmonic oscillator).",
+        ),
+        Preset(
+            "near-separatrix",
+            "Near the separatrix",
+            {"theta_0_deg": 175.0, "theta_rate_0_deg_s": 0.0},
+            "Released 5° from upright: the orbit hugs the separatrix and lingers near θ = ±180°; the period "
+            "grows without bound as the release nears 180°.",
+        ),
+        Preset(
+            "over-the-top",
+            "Going over the top",
+            {"theta_0_deg": 0.0, "theta_rate_0_deg_s": 420.0},
+            "θ̇₀ = 420°/s at the bottom exceeds 2√(g/l) = 359°/s (l = 1 m): H > m g l, the pendulum rotates and "
+            "p_θ never changes sign.",
+        ),
     )
 
     def build(self) -> None:
         scene = self.client.scene
-        self.levels = scene.add_line_segments("/phase/levels", np.zeros((1, 2, 3), np.float32), np.zeros((1, 2, 3), np.uint8), thickness=1.5, thickness_units="screen")
-        self.plane_label = scene.add_label("/phase/label", "phase plane: θ across (−180° to 180°), p_θ up; red: separatrix H = m g l", anchor="bottom-center")
+        self.levels = scene.add_line_segments(
+            "/phase/levels",
+            np.zeros((1, 2, 3), np.float32),
+            np.zeros((1, 2, 3), np.uint8),
+            thickness=1.5,
+            thickness_units="screen",
+        )
+        self.plane_label = scene.add_label(
+            "/phase/label",
+            "phase plane: θ across (−180° to 180°), p_θ up; red: separatrix H = m g l",
+            anchor="bottom-center",
+        )
         self.plane_label.position = PLANE_CENTER + np.array([0.0, 0.0, PLANE_HALF_HEIGHT + 0.12])
         self.pivot = scene.add_icosphere("/pivot", radius=0.035, color=(40, 40, 40))
-        self.rod = scene.add_line_segments("/rod", np.zeros((1, 2, 3), np.float32), np.array([[[40, 100, 220]] * 2], np.uint8), thickness=0.02)
-        self.bob = scene.add_point_cloud("/bob", np.zeros((1, 3), np.float32), np.array([[40, 100, 220]], np.uint8), point_size=0.14, point_shape="circle")
+        self.rod = scene.add_line_segments(
+            "/rod", np.zeros((1, 2, 3), np.float32), np.array([[[40, 100, 220]] * 2], np.uint8), thickness=0.02
+        )
+        self.bob = scene.add_point_cloud(
+            "/bob",
+            np.zeros((1, 3), np.float32),
+            np.array([[40, 100, 220]], np.uint8),
+            point_size=0.14,
+            point_shape="circle",
+        )
         self.state_point = scene.add_icosphere("/phase/state", radius=0.045, color=(235, 120, 20))
 
     def update(self) -> None:
@@ -89,7 +121,10 @@ class PhasePortraitScene(DerivedSystemScene):
                 segments.append(_polyline_segments(self._plane_point(theta, sign * momentum)))
                 colors.append(np.full((SAMPLES - 1, 2, 3), color, np.uint8))
         p_top = PLANE_HALF_HEIGHT / self._p_scale
-        for theta_ends, p_ends in (([-math.pi, math.pi], [0.0, 0.0]), ([0.0, 0.0], [-p_top, p_top])):  # θ axis, p_θ axis
+        for theta_ends, p_ends in (
+            ([-math.pi, math.pi], [0.0, 0.0]),
+            ([0.0, 0.0], [-p_top, p_top]),
+        ):  # θ axis, p_θ axis
             segments.append(_polyline_segments(self._plane_point(np.array(theta_ends), np.array(p_ends))))
             colors.append(np.full((1, 2, 3), AXIS_COLOR, np.uint8))
         update_node(self.levels, points=np.concatenate(segments).astype(np.float32), colors=np.concatenate(colors))
@@ -108,7 +143,9 @@ class PhasePortraitScene(DerivedSystemScene):
         theta, rate = float(self.run.y[0]), float(self.run.y[1])
         bob = PENDULUM_REACH * np.array([math.sin(theta), 0.0, -math.cos(theta)])
         update_node(self.rod, points=np.array([[np.zeros(3), bob]], np.float32))
-        update_node(self.bob, points=bob[None, :].astype(np.float32))  # the same kind of update as the rod: they arrive together
+        update_node(
+            self.bob, points=bob[None, :].astype(np.float32)
+        )  # the same kind of update as the rod: they arrive together
         momentum = float(conjugate_momentum_kg_m2_s(self.physical_params(), rate))
         move_node(self.state_point, position=self._plane_point(np.array([theta]), np.array([momentum]))[0])
 

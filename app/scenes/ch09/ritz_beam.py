@@ -47,16 +47,37 @@ class RitzCantileverScene(Scene):
         "amplitude_m": (0.0, 1.0, 0.01),
     }
     presets = (
-        Preset("one-term", "One term", {"terms": 1, "mode": 1, "basis": "orthogonal"},
-               "A single admissible function (a parabola, ξ²): ω₁ comes out 27 % high, ω² = 20 EI/(ρA L⁴)."),
-        Preset("converged", "Six terms, mode 1", {"terms": 6, "mode": 1, "basis": "orthogonal"},
-               "Six terms: the first frequency is right to 1e-10, the sixth still 3.4 times the exact one."),
-        Preset("highest-mode", "Highest mode is poor", {"terms": 6, "mode": 6, "basis": "orthogonal"},
-               "The Nth Ritz mode is always the worst: watch it drift out of phase with the exact one."),
-        Preset("many-terms", "Fourteen terms", {"terms": 14, "mode": 3, "basis": "orthogonal"},
-               "The orthogonal basis at N = 14: every frequency an upper bound, the first four within 2e-10 of the " "exact ones."),
-        Preset("monomials-fail", "Monomials, 14 terms", {"terms": 14, "mode": 3, "basis": "monomial"},
-               "The same space spanned by ξ², ξ³, …: cond(M) ≈ 1e18, the upper bound breaks and some ω² turn negative."),
+        Preset(
+            "one-term",
+            "One term",
+            {"terms": 1, "mode": 1, "basis": "orthogonal"},
+            "A single admissible function (a parabola, ξ²): ω₁ comes out 27 % high, ω² = 20 EI/(ρA L⁴).",
+        ),
+        Preset(
+            "converged",
+            "Six terms, mode 1",
+            {"terms": 6, "mode": 1, "basis": "orthogonal"},
+            "Six terms: the first frequency is right to 1e-10, the sixth still 3.4 times the exact one.",
+        ),
+        Preset(
+            "highest-mode",
+            "Highest mode is poor",
+            {"terms": 6, "mode": 6, "basis": "orthogonal"},
+            "The Nth Ritz mode is always the worst: watch it drift out of phase with the exact one.",
+        ),
+        Preset(
+            "many-terms",
+            "Fourteen terms",
+            {"terms": 14, "mode": 3, "basis": "orthogonal"},
+            "The orthogonal basis at N = 14: every frequency an upper bound, the first four within 2e-10 of the "
+            "exact ones.",
+        ),
+        Preset(
+            "monomials-fail",
+            "Monomials, 14 terms",
+            {"terms": 14, "mode": 3, "basis": "monomial"},
+            "The same space spanned by ξ², ξ³, …: cond(M) ≈ 1e18, the upper bound breaks and some ω² turn negative.",
+        ),
     )
 
     def build(self) -> None:
@@ -64,15 +85,26 @@ class RitzCantileverScene(Scene):
         self.t_s = 0.0
         self._length = 1.0
         self.clamp = scene.add_box("/clamp", color=(90, 90, 95), dimensions=(0.05, 0.6, 0.4))
-        self.axes = scene.add_line_segments("/rest_lines", np.zeros((2, 2, 3), np.float32), AXIS_COLOR, thickness=1.0, thickness_units="screen")
+        self.axes = scene.add_line_segments(
+            "/rest_lines", np.zeros((2, 2, 3), np.float32), AXIS_COLOR, thickness=1.0, thickness_units="screen"
+        )
         colors = np.zeros((2 * SEGMENTS, 2, 3), np.uint8)
         colors[:SEGMENTS], colors[SEGMENTS:] = RITZ_COLOR, EXACT_COLOR
-        self.beams = scene.add_line_segments("/beams", np.zeros((2 * SEGMENTS, 2, 3), np.float32), colors, thickness=5.0, thickness_units="screen")
+        self.beams = scene.add_line_segments(
+            "/beams", np.zeros((2 * SEGMENTS, 2, 3), np.float32), colors, thickness=5.0, thickness_units="screen"
+        )
         self.ritz_label = scene.add_label("/labels/ritz", "", anchor="bottom-left")
         self.exact_label = scene.add_label("/labels/exact", "", anchor="top-left")
-        self.chart = scene.add_line_segments("/chart/lines", np.zeros((1, 2, 3), np.float32), AXIS_COLOR, thickness=2.0, thickness_units="screen")
-        self.chart_marks = scene.add_point_cloud("/chart/marks", np.zeros((1, 3), np.float32), MONOMIAL_COLOR, point_size=0.03, point_shape="circle")
-        self.chart_labels = [scene.add_label(f"/chart/label_{i}", "", anchor=anchor) for i, anchor in enumerate(("bottom-left", "center-right", "center-right", "top-center", "top-center"))]
+        self.chart = scene.add_line_segments(
+            "/chart/lines", np.zeros((1, 2, 3), np.float32), AXIS_COLOR, thickness=2.0, thickness_units="screen"
+        )
+        self.chart_marks = scene.add_point_cloud(
+            "/chart/marks", np.zeros((1, 3), np.float32), MONOMIAL_COLOR, point_size=0.03, point_shape="circle"
+        )
+        self.chart_labels = [
+            scene.add_label(f"/chart/label_{i}", "", anchor=anchor)
+            for i, anchor in enumerate(("bottom-left", "center-right", "center-right", "top-center", "top-center"))
+        ]
         self._xi = np.linspace(0.0, 1.0, SEGMENTS + 1)
         self._points = np.zeros((2 * SEGMENTS, 2, 3), np.float32)
 
@@ -93,10 +125,16 @@ class RitzCantileverScene(Scene):
         self.slow_motion = self.exact_omega / (2.0 * math.pi * SHOWN_HZ)
         self.available = self.ritz.mode_available(self.mode)
         self.ritz_omega = float(self.ritz.ritz_omega_rad_s[self.mode - 1]) if self.available else math.nan
-        self._ritz_shape = self.amplitude * self.ritz.ritz_shape(self.mode, self._xi) if self.available else np.zeros_like(self._xi)
+        self._ritz_shape = (
+            self.amplitude * self.ritz.ritz_shape(self.mode, self._xi) if self.available else np.zeros_like(self._xi)
+        )
         self._exact_shape = self.amplitude * beam.exact_shape(self.mode, self._xi)
         exact_shape_unit = beam.exact_shape(self.mode, self._xi)
-        self.shape_error = float(np.max(np.abs(self.ritz.ritz_shape(self.mode, self._xi) - exact_shape_unit))) if self.available else math.nan
+        self.shape_error = (
+            float(np.max(np.abs(self.ritz.ritz_shape(self.mode, self._xi) - exact_shape_unit)))
+            if self.available
+            else math.nan
+        )
         x = L * self._xi
         y_exact = -EXACT_OFFSET * L
         self._x_pairs = np.stack([x[:-1], x[1:]], axis=1)
@@ -107,7 +145,11 @@ class RitzCantileverScene(Scene):
         self.clamp.dimensions = (0.04 * L, (EXACT_OFFSET + 0.2) * L, height)
         self.clamp.position = (-0.02 * L, 0.5 * y_exact, 0.0)
         basis = "orthogonal" if params["basis"] == "orthogonal" else "monomials"
-        ritz_text = f"Ritz, {self.ritz.terms} {basis}: ω{self.mode} = {self.ritz_omega:.6g} rad/s" if self.available else f"Ritz mode {self.mode}: no real frequency"
+        ritz_text = (
+            f"Ritz, {self.ritz.terms} {basis}: ω{self.mode} = {self.ritz_omega:.6g} rad/s"
+            if self.available
+            else f"Ritz mode {self.mode}: no real frequency"
+        )
         self.ritz_label.text = ritz_text
         self.ritz_label.position = (0.3 * L, 0.0, 1.1 * self.amplitude + 0.05 * L)
         self.exact_label.text = f"exact: ω{self.mode} = {self.exact_omega:.6g} rad/s"
@@ -148,11 +190,16 @@ class RitzCantileverScene(Scene):
         self.chart.points = np.concatenate(segments).astype(np.float32)
         self.chart.colors = np.concatenate(colors).astype(np.uint8)
         broken_points = np.concatenate(marks)
-        self.chart_marks.points = (broken_points if len(broken_points) else np.array([[left, 0.0, bottom]])).astype(np.float32)
+        self.chart_marks.points = (broken_points if len(broken_points) else np.array([[left, 0.0, bottom]])).astype(
+            np.float32
+        )
         self.chart_marks.point_size = 0.035 * L
         self.chart_marks.visible = len(broken_points) > 0
         texts = (
-            (f"error of ω{mode} against N (log): blue orthogonal, red monomial", (left, 0.0, bottom + height + 0.05 * L)),
+            (
+                f"error of ω{mode} against N (log): blue orthogonal, red monomial",
+                (left, 0.0, bottom + height + 0.05 * L),
+            ),
             ("1", (left - 0.03 * L, 0.0, bottom + height)),
             ("1e-16", (left - 0.03 * L, 0.0, bottom)),
             ("N = 1", (left, 0.0, bottom - 0.04 * L)),
@@ -183,25 +230,49 @@ class RitzCantileverScene(Scene):
         ritz = self.ritz
         quantities = [
             Quantity("t_s", "beam time t (slowed)", self.t_s, "s"),
-            Quantity("slow_motion", f"time shown slowed by (exact mode {self.mode} at {SHOWN_HZ:g} Hz)", self.slow_motion, "×"),
+            Quantity(
+                "slow_motion",
+                f"time shown slowed by (exact mode {self.mode} at {SHOWN_HZ:g} Hz)",
+                self.slow_motion,
+                "×",
+            ),
         ]
         for index in range(ritz.terms):
             n = index + 1
             omega, exact = float(ritz.ritz_omega_rad_s[index]), float(ritz.exact_omega_rad_s[index])
-            ritz_text = f"{omega / (2.0 * math.pi):.6g} Hz" if math.isfinite(omega) else "imaginary: ω² < 0 from rounding"
+            ritz_text = (
+                f"{omega / (2.0 * math.pi):.6g} Hz" if math.isfinite(omega) else "imaginary: ω² < 0 from rounding"
+            )
             quantities += [
                 Quantity(f"omega_ritz_{n}_rad_s", f"ω{n} Ritz", omega, "rad/s", ritz_text),
                 Quantity(f"omega_exact_{n}_rad_s", f"ω{n} exact", exact, "rad/s", f"{exact / (2.0 * math.pi):.6g} Hz"),
-                Quantity.or_text(f"relative_error_{n}", f"ω{n} relative error (Ritz − exact)/exact", float(ritz.relative_error[index]), "", "undefined"),
+                Quantity.or_text(
+                    f"relative_error_{n}",
+                    f"ω{n} relative error (Ritz − exact)/exact",
+                    float(ritz.relative_error[index]),
+                    "",
+                    "undefined",
+                ),
             ]
         quantities += [
             Quantity("condition_number_M", f"cond(M), {ritz.basis.name} basis", ritz.modes.condition_mass, ""),
             Quantity("rounding_estimate", "u·cond(M): rounding's reach (relative)", ritz.rounding_estimate, ""),
-            Quantity.or_text("shape_error", f"largest |w_Ritz − w_exact| of mode {self.mode} (unit tip)", self.shape_error, "", "no Ritz mode"),
+            Quantity.or_text(
+                "shape_error",
+                f"largest |w_Ritz − w_exact| of mode {self.mode} (unit tip)",
+                self.shape_error,
+                "",
+                "no Ritz mode",
+            ),
         ]
         warning = ritz.warning()
-        message = f"Warning: {warning}" if warning else (
-            "Every Ritz frequency is above the exact one (Rayleigh–Ritz upper bound); cond(M) = " f"{ritz.modes.condition_mass:.2g} "
-            f"costs at most about {max(0.0, math.log10(ritz.modes.condition_mass)):.0f} of the 16 digits."
+        message = (
+            f"Warning: {warning}"
+            if warning
+            else (
+                "Every Ritz frequency is above the exact one (Rayleigh–Ritz upper bound); cond(M) = "
+                f"{ritz.modes.condition_mass:.2g} "
+                f"costs at most about {max(0.0, math.log10(ritz.modes.condition_mass)):.0f} of the 16 digits."
+            )
         )
         return Readout(quantities, message=message)

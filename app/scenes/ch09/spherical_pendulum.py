@@ -45,27 +45,72 @@ class SphericalPendulumScene(DerivedSystemScene):
     camera_position = (1.6, -4.6, 1.0)
     camera_look_at = (1.6, 0.0, 0.2)
     presets = (
-        Preset("conical", "Steady cone", {"mass_kg": 1.0, "length_m": 1.0, "g_m_s2": 9.81, "theta_0_deg": 60.0, "theta_rate_0_deg_s": 0.0,
-               "phi_rate_0_deg_s": round(math.degrees(math.sqrt(9.81 / math.cos(math.radians(60.0)))), 4)},
-               "φ̇₀ = √(g/(l cos θ₀)) = 6.26 rad/s at 60°: θ sits at the bottom of V_eff and the bob draws a " "horizontal circle."),
-        Preset("wide-band", "Wide band", {"theta_0_deg": 90.0, "theta_rate_0_deg_s": 0.0, "phi_rate_0_deg_s": 60.0},
-               "Started level with the pivot and a slow sweep: the bob dips far below and climbs back, θ between " "the two crossings of E with V_eff."),
-        Preset("above-pivot", "Swinging above the pivot", {"theta_0_deg": 135.0, "theta_rate_0_deg_s": 0.0, "phi_rate_0_deg_s": 400.0},
-               "Fast enough that the bob stays above the pivot part of the time: V_eff keeps θ away from 180°, " "however high it goes."),
+        Preset(
+            "conical",
+            "Steady cone",
+            {
+                "mass_kg": 1.0,
+                "length_m": 1.0,
+                "g_m_s2": 9.81,
+                "theta_0_deg": 60.0,
+                "theta_rate_0_deg_s": 0.0,
+                "phi_rate_0_deg_s": round(math.degrees(math.sqrt(9.81 / math.cos(math.radians(60.0)))), 4),
+            },
+            "φ̇₀ = √(g/(l cos θ₀)) = 6.26 rad/s at 60°: θ sits at the bottom of V_eff and the bob draws a "
+            "horizontal circle.",
+        ),
+        Preset(
+            "wide-band",
+            "Wide band",
+            {"theta_0_deg": 90.0, "theta_rate_0_deg_s": 0.0, "phi_rate_0_deg_s": 60.0},
+            "Started level with the pivot and a slow sweep: the bob dips far below and climbs back, θ between "
+            "the two crossings of E with V_eff.",
+        ),
+        Preset(
+            "above-pivot",
+            "Swinging above the pivot",
+            {"theta_0_deg": 135.0, "theta_rate_0_deg_s": 0.0, "phi_rate_0_deg_s": 400.0},
+            "Fast enough that the bob stays above the pivot part of the time: V_eff keeps θ away from 180°, "
+            "however high it goes.",
+        ),
     )
 
     def build(self) -> None:
         scene = self.client.scene
-        self.curve = scene.add_line_segments("/veff/curve", np.zeros((1, 2, 3), np.float32), np.zeros((1, 2, 3), np.uint8), thickness=2.0, thickness_units="screen")
-        self.plot_label = scene.add_label("/veff/label", "V_eff(θ) for θ from 0 to 180°; red: the energy E", anchor="bottom-center")
+        self.curve = scene.add_line_segments(
+            "/veff/curve",
+            np.zeros((1, 2, 3), np.float32),
+            np.zeros((1, 2, 3), np.uint8),
+            thickness=2.0,
+            thickness_units="screen",
+        )
+        self.plot_label = scene.add_label(
+            "/veff/label", "V_eff(θ) for θ from 0 to 180°; red: the energy E", anchor="bottom-center"
+        )
         self.plot_label.position = (PLOT_LEFT + 0.5 * PLOT_WIDTH, 0.0, PLOT_BOTTOM + PLOT_HEIGHT + 0.1)
-        self.turning = scene.add_point_cloud("/veff/turning", np.zeros((2, 3), np.float32), np.full((2, 3), 120, np.uint8), point_size=0.07, point_shape="circle")
+        self.turning = scene.add_point_cloud(
+            "/veff/turning",
+            np.zeros((2, 3), np.float32),
+            np.full((2, 3), 120, np.uint8),
+            point_size=0.07,
+            point_shape="circle",
+        )
         self.marker = scene.add_icosphere("/veff/theta", radius=0.045, color=(235, 120, 20))
         self.pivot = scene.add_icosphere("/pivot", radius=0.035, color=(40, 40, 40))
         self.pivot.position = PIVOT
-        self.rod = scene.add_line_segments("/rod", np.zeros((1, 2, 3), np.float32), np.array([[[40, 100, 220]] * 2], np.uint8), thickness=0.02)
-        self.bob = scene.add_point_cloud("/bob", np.zeros((1, 3), np.float32), np.array([[40, 100, 220]], np.uint8), point_size=0.14, point_shape="circle")
-        self.trail = Trail(scene, "/path", color=(235, 120, 20), chunk_frames=TRAIL_CHUNK_FRAMES, max_chunks=TRAIL_CHUNKS)
+        self.rod = scene.add_line_segments(
+            "/rod", np.zeros((1, 2, 3), np.float32), np.array([[[40, 100, 220]] * 2], np.uint8), thickness=0.02
+        )
+        self.bob = scene.add_point_cloud(
+            "/bob",
+            np.zeros((1, 3), np.float32),
+            np.array([[40, 100, 220]], np.uint8),
+            point_size=0.14,
+            point_shape="circle",
+        )
+        self.trail = Trail(
+            scene, "/path", color=(235, 120, 20), chunk_frames=TRAIL_CHUNK_FRAMES, max_chunks=TRAIL_CHUNKS
+        )
 
     def update(self) -> None:
         self.restart()
@@ -93,7 +138,9 @@ class SphericalPendulumScene(DerivedSystemScene):
             segments.append(self._plot_point(np.array(theta_ends), np.array(v_ends))[None, :, :])
             colors.append(np.full((1, 2, 3), color, np.uint8))
         update_node(self.curve, points=np.concatenate(segments).astype(np.float32), colors=np.concatenate(colors))
-        update_node(self.turning, points=self._plot_point(np.array(self._turning), np.full(2, self._energy)).astype(np.float32))
+        update_node(
+            self.turning, points=self._plot_point(np.array(self._turning), np.full(2, self._energy)).astype(np.float32)
+        )
         self._display_scale = PENDULUM_REACH / l
         self.trail.clear()
         self._draw()
@@ -106,9 +153,13 @@ class SphericalPendulumScene(DerivedSystemScene):
 
     def _draw(self) -> None:
         theta, phi = float(self.run.y[0]), float(self.run.y[1])
-        bob = PIVOT + PENDULUM_REACH * np.array([math.sin(theta) * math.cos(phi), math.sin(theta) * math.sin(phi), -math.cos(theta)])
+        bob = PIVOT + PENDULUM_REACH * np.array(
+            [math.sin(theta) * math.cos(phi), math.sin(theta) * math.sin(phi), -math.cos(theta)]
+        )
         update_node(self.rod, points=np.array([[PIVOT, bob]], np.float32))
-        update_node(self.bob, points=bob[None, :].astype(np.float32))  # the same kind of update as the rod: they arrive together
+        update_node(
+            self.bob, points=bob[None, :].astype(np.float32)
+        )  # the same kind of update as the rod: they arrive together
         self.trail.add(bob)
         on_curve = float(effective_potential_J(self.physical_params(), self._beta, theta))
         move_node(self.marker, position=self._plot_point(np.array([theta]), np.array([on_curve]))[0])
@@ -128,8 +179,13 @@ class SphericalPendulumScene(DerivedSystemScene):
             self.drift_quantity("energy", "energy drift |ΔE| / scale"),
             Quantity("theta_min_deg", "turning angle θ_min (V_eff = E)", math.degrees(self._turning[0]), "deg"),
             Quantity("theta_max_deg", "turning angle θ_max (V_eff = E)", math.degrees(self._turning[1]), "deg"),
-            Quantity.or_text("conical_rate_rad_s", "steady cone's φ̇ at this θ, √(g/(l cos θ))", conical, "rad/s",
-                             "none: no steady cone at or above the pivot's level"),
+            Quantity.or_text(
+                "conical_rate_rad_s",
+                "steady cone's φ̇ at this θ, √(g/(l cos θ))",
+                conical,
+                "rad/s",
+                "none: no steady cone at or above the pivot's level",
+            ),
             *self.agreement_quantities(),
         ]
         return Readout(quantities, message=self.status)

@@ -40,7 +40,15 @@ def ellipsoid_mesh(*, equatorial_radius: float, polar_radius: float, rings: int 
     polar = np.linspace(0.0, math.pi, rings + 1)
     azimuth = np.linspace(0.0, 2.0 * math.pi, segments, endpoint=False)
     vertices = np.array(
-        [[equatorial_radius * math.sin(p) * math.cos(a), equatorial_radius * math.sin(p) * math.sin(a), polar_radius * math.cos(p)] for p in polar for a in azimuth],
+        [
+            [
+                equatorial_radius * math.sin(p) * math.cos(a),
+                equatorial_radius * math.sin(p) * math.sin(a),
+                polar_radius * math.cos(p),
+            ]
+            for p in polar
+            for a in azimuth
+        ],
         dtype=np.float32,
     )
     faces = []
@@ -59,31 +67,80 @@ class EquinoxPrecessionScene(Scene):
     animated = True
     example = physics.EXAMPLE
     controls = (
-        Parameter("years_per_second", "yr/s", 2000.0, 10.0, 20000.0, "Time scale of the animation: simulated years per second", "time scale", scale="log"),
+        Parameter(
+            "years_per_second",
+            "yr/s",
+            2000.0,
+            10.0,
+            20000.0,
+            "Time scale of the animation: simulated years per second",
+            "time scale",
+            scale="log",
+        ),
     )
     camera_position = (3.4, -4.4, 3.6)
     camera_look_at = (0.0, 0.0, 1.1)
 
     def build(self) -> None:
         scene = self.client.scene
-        scene.add_grid("/ecliptic", width=12.0, height=12.0, cell_size=0.5, section_size=2.0, plane="xy", position=(0.0, 0.0, 0.0))
+        scene.add_grid(
+            "/ecliptic", width=12.0, height=12.0, cell_size=0.5, section_size=2.0, plane="xy", position=(0.0, 0.0, 0.0)
+        )
         scene.add_label("/ecliptic/label", "ecliptic plane", position=(5.5, -5.5, 0.0), anchor="center-left")
-        scene.add_line_segments("/ecliptic_normal", np.array([[[0, 0, 0], [0, 0, 3.4]]], np.float32), (120, 120, 120), thickness=2.0, thickness_units="screen")
-        scene.add_line_segments("/sun_ring", circle_segments(radius=SUN_RING_RADIUS, segments=160), (235, 180, 40), thickness=2.0, thickness_units="screen")
+        scene.add_line_segments(
+            "/ecliptic_normal",
+            np.array([[[0, 0, 0], [0, 0, 3.4]]], np.float32),
+            (120, 120, 120),
+            thickness=2.0,
+            thickness_units="screen",
+        )
+        scene.add_line_segments(
+            "/sun_ring",
+            circle_segments(radius=SUN_RING_RADIUS, segments=160),
+            (235, 180, 40),
+            thickness=2.0,
+            thickness_units="screen",
+        )
         scene.add_icosphere("/sun", radius=0.35, color=(250, 200, 50), position=(SUN_RING_RADIUS, 0.0, 0.0))
-        scene.add_label("/labels/sun", "Sun's yearly path (averaged: a ring)", position=(SUN_RING_RADIUS, 0.0, 0.5), anchor="center-left")
-        self.moon_ring = scene.add_line_segments("/moon_ring", np.zeros((1, 2, 3), np.float32), (190, 190, 210), thickness=2.0, thickness_units="screen")
+        scene.add_label(
+            "/labels/sun",
+            "Sun's yearly path (averaged: a ring)",
+            position=(SUN_RING_RADIUS, 0.0, 0.5),
+            anchor="center-left",
+        )
+        self.moon_ring = scene.add_line_segments(
+            "/moon_ring", np.zeros((1, 2, 3), np.float32), (190, 190, 210), thickness=2.0, thickness_units="screen"
+        )
         self.moon_label = scene.add_label("/moon_ring/label", "Moon's monthly path (averaged)", anchor="center-left")
         self.earth = scene.add_frame("/earth", show_axes=False)
         vertices, faces = ellipsoid_mesh(equatorial_radius=1.0, polar_radius=1.0 - FLATTENING_SHOWN)
         scene.add_mesh_simple("/earth/body", vertices, faces, color=(60, 110, 190), flat_shading=False)
-        scene.add_line_segments("/earth/equator", circle_segments(radius=1.003, segments=96), (240, 240, 240), thickness=2.0, thickness_units="screen")
         scene.add_line_segments(
-            "/earth/axis", np.array([[[0, 0, -AXIS_HALF_LENGTH], [0, 0, AXIS_HALF_LENGTH]]], np.float32), (30, 30, 30), thickness=3.0, thickness_units="screen"
+            "/earth/equator",
+            circle_segments(radius=1.003, segments=96),
+            (240, 240, 240),
+            thickness=2.0,
+            thickness_units="screen",
         )
-        scene.add_label("/earth/flattening", f"flattening shown ×{FLATTENING_SHOWN * 298:.0f}", position=(0.0, 1.05, -0.4), anchor="center-left")
-        self.cone = scene.add_line_segments("/cone", np.zeros((1, 2, 3), np.float32), (200, 160, 200), thickness=1.0, thickness_units="screen")
-        self.pole_path = scene.add_line_segments("/pole_path", np.zeros((1, 2, 3), np.float32), (200, 70, 200), thickness=3.0, thickness_units="screen")
+        scene.add_line_segments(
+            "/earth/axis",
+            np.array([[[0, 0, -AXIS_HALF_LENGTH], [0, 0, AXIS_HALF_LENGTH]]], np.float32),
+            (30, 30, 30),
+            thickness=3.0,
+            thickness_units="screen",
+        )
+        scene.add_label(
+            "/earth/flattening",
+            f"flattening shown ×{FLATTENING_SHOWN * 298:.0f}",
+            position=(0.0, 1.05, -0.4),
+            anchor="center-left",
+        )
+        self.cone = scene.add_line_segments(
+            "/cone", np.zeros((1, 2, 3), np.float32), (200, 160, 200), thickness=1.0, thickness_units="screen"
+        )
+        self.pole_path = scene.add_line_segments(
+            "/pole_path", np.zeros((1, 2, 3), np.float32), (200, 70, 200), thickness=3.0, thickness_units="screen"
+        )
         self.arrows = scene.add_arrows(
             "/vectors",
             np.zeros((2, 2, 3), np.float32),
@@ -95,9 +152,13 @@ class EquinoxPrecessionScene(Scene):
         self.momentum_label = scene.add_label("/vectors/L", "L = Cω s (spin)", anchor="center-left")
         self.torque_label = scene.add_label("/vectors/tau", "τ = dL/dt (averaged)", anchor="top-left")
         self.star_today = scene.add_icosphere("/star_today", radius=0.06, color=(255, 255, 255))
-        self.star_today_label = scene.add_label("/labels/star_today", "Polaris: pole in 2000 CE", anchor="bottom-center")
+        self.star_today_label = scene.add_label(
+            "/labels/star_today", "Polaris: pole in 2000 CE", anchor="bottom-center"
+        )
         self.star_later = scene.add_icosphere("/star_later", radius=0.06, color=(255, 255, 255))
-        self.star_later_label = scene.add_label("/labels/star_later", "near Vega: pole ≈ 14 000 CE", anchor="bottom-center")
+        self.star_later_label = scene.add_label(
+            "/labels/star_later", "near Vega: pole ≈ 14 000 CE", anchor="bottom-center"
+        )
         self.time_label = scene.add_label("/time", "", position=(-2.5, 2.5, 3.2), anchor="bottom-left")
 
     def update(self) -> None:
@@ -149,7 +210,12 @@ class EquinoxPrecessionScene(Scene):
         torque_length = 1.2 * math.sin(self.obliquity) / max(math.sin(math.radians(23.439)), 1e-9)
         tails = np.array([[0.0, 0.0, 0.0], s * AXIS_HALF_LENGTH * 1.6])
         norm = np.linalg.norm(torque_direction)
-        vectors = np.array([s * AXIS_HALF_LENGTH * 1.6, torque_direction / norm * min(torque_length, 1.5) if norm > 1e-12 else np.zeros(3)])
+        vectors = np.array(
+            [
+                s * AXIS_HALF_LENGTH * 1.6,
+                torque_direction / norm * min(torque_length, 1.5) if norm > 1e-12 else np.zeros(3),
+            ]
+        )
         self.arrows.points = arrow_segments(tails, vectors, 1.0)
         self.momentum_label.position = tuple(s * AXIS_HALF_LENGTH * 0.75 + np.array([0.1, 0.0, 0.0]))
         self.torque_label.position = tuple(tails[1] + vectors[1] * 1.05)
@@ -169,15 +235,21 @@ class EquinoxPrecessionScene(Scene):
                 Quantity("moon_share", "Moon's share", 1.0 - share if result.rate_rad_s > 0 else 0.0, ""),
                 Quantity("t_s", "simulated time since 2000 CE", self.elapsed_years * physics.JULIAN_YEAR_S, "s"),
                 Quantity("years_elapsed", "years since 2000 CE", self.elapsed_years, "yr"),
-                Quantity("precession_angle_deg", "axis turned since 2000 CE", turned_deg, "deg", turns_and_degrees(turned_deg) if turned_deg >= 360.0 else ""),
+                Quantity(
+                    "precession_angle_deg",
+                    "axis turned since 2000 CE",
+                    turned_deg,
+                    "deg",
+                    turns_and_degrees(turned_deg) if turned_deg >= 360.0 else "",
+                ),
             ],
             message=" ".join(
                 m
                 for m in (
                     physics.averaged_model_warning(self.params, result),
-                    f"Time runs {self.params['years_per_second']:g} years per second; the daily spin and the " "yearly orbit are far too fast to show and appear as their averages.",
+                    f"Time runs {self.params['years_per_second']:g} years per second; the daily spin and the "
+                    "yearly orbit are far too fast to show and appear as their averages.",
                 )
                 if m
             ),
         )
-

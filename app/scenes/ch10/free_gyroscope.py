@@ -50,12 +50,24 @@ class FreeGyroscopeScene(Scene):
     camera_position = (2.6, -1.35, 0.95)  # mostly from +x: the default spin axis (+y) is seen side-on
     camera_look_at = (0.0, 0.1, -0.15)
     presets = (
-        Preset("yaw", "Yaw turn", {"vehicle_rate_rad_s": [0.0, 0.0, 0.3], "inner_gimbal0_deg": 0.0},
-               "The vehicle turns about its vertical axis: only the outer ring moves, by the heading change."),
-        Preset("roll-lock", "Roll into gimbal lock", {"vehicle_rate_rad_s": [0.3, 0.0, 0.0], "inner_gimbal0_deg": 0.0, "outer_gimbal0_deg": 0.0},
-               "Rolling the vehicle tips the inner ring until, after a quarter turn, both rings lie in one plane."),
-        Preset("tumble", "Tumbling vehicle", {"vehicle_rate_rad_s": [0.3, 0.2, 0.4], "inner_gimbal0_deg": 15.0, "outer_gimbal0_deg": 25.0},
-               "Roll, pitch and yaw at once: both rings move, the rotor's axis still never turns."),
+        Preset(
+            "yaw",
+            "Yaw turn",
+            {"vehicle_rate_rad_s": [0.0, 0.0, 0.3], "inner_gimbal0_deg": 0.0},
+            "The vehicle turns about its vertical axis: only the outer ring moves, by the heading change.",
+        ),
+        Preset(
+            "roll-lock",
+            "Roll into gimbal lock",
+            {"vehicle_rate_rad_s": [0.3, 0.0, 0.0], "inner_gimbal0_deg": 0.0, "outer_gimbal0_deg": 0.0},
+            "Rolling the vehicle tips the inner ring until, after a quarter turn, both rings lie in one plane.",
+        ),
+        Preset(
+            "tumble",
+            "Tumbling vehicle",
+            {"vehicle_rate_rad_s": [0.3, 0.2, 0.4], "inner_gimbal0_deg": 15.0, "outer_gimbal0_deg": 25.0},
+            "Roll, pitch and yaw at once: both rings move, the rotor's axis still never turns.",
+        ),
     )
 
     def build(self) -> None:
@@ -71,33 +83,70 @@ class FreeGyroscopeScene(Scene):
         scene.add_mesh_simple("/vehicle/outer/ring", vertices, faces, color=(225, 135, 45), flat_shading=False)
         for sign in (-1.0, 1.0):  # the inner ring's pivots on the outer ring's x axis
             scene.add_cylinder(
-                f"/vehicle/outer/pin{int(sign)}", radius=0.025, height=OUTER_RADIUS - INNER_RADIUS + 0.04, color=(120, 120, 120),
-                position=(sign * 0.5 * (OUTER_RADIUS + INNER_RADIUS), 0.0, 0.0), wxyz=quaternion_from_axis_angle(np.array([0.0, 1.0, 0.0]), 0.5 * math.pi),
+                f"/vehicle/outer/pin{int(sign)}",
+                radius=0.025,
+                height=OUTER_RADIUS - INNER_RADIUS + 0.04,
+                color=(120, 120, 120),
+                position=(sign * 0.5 * (OUTER_RADIUS + INNER_RADIUS), 0.0, 0.0),
+                wxyz=quaternion_from_axis_angle(np.array([0.0, 1.0, 0.0]), 0.5 * math.pi),
             )
         self.inner = scene.add_frame("/vehicle/outer/inner", show_axes=False)
         vertices, faces = ring_mesh(INNER_RADIUS, 0.026, normal="z")
         scene.add_mesh_simple("/vehicle/outer/inner/ring", vertices, faces, color=(40, 160, 160), flat_shading=False)
-        self.rotor = add_rotor(scene, "/vehicle/outer/inner/rotor", radius=ROTOR_RADIUS, thickness=0.12, axle_length=2 * INNER_RADIUS)
+        self.rotor = add_rotor(
+            scene, "/vehicle/outer/inner/rotor", radius=ROTOR_RADIUS, thickness=0.12, axle_length=2 * INNER_RADIUS
+        )
         self.arrows = scene.add_arrows(
-            "/vectors", np.zeros((2, 2, 3), np.float32), np.array([COLOR_H, COLOR_RATE], np.uint8),
-            shaft_radius=0.018, head_radius=0.045, head_length=0.1,
+            "/vectors",
+            np.zeros((2, 2, 3), np.float32),
+            np.array([COLOR_H, COLOR_RATE], np.uint8),
+            shaft_radius=0.018,
+            head_radius=0.045,
+            head_length=0.1,
         )
         self.h_label = scene.add_label("/vectors/H", "", anchor="bottom-left")
         self.rate_label = scene.add_label("/vectors/rate", "", anchor="bottom-center")
-        self.lock_label = scene.add_label("/lock", "GIMBAL LOCK: both rings in one plane", position=(0.0, 0.0, 1.15), anchor="bottom-center", visible=False)
+        self.lock_label = scene.add_label(
+            "/lock",
+            "GIMBAL LOCK: both rings in one plane",
+            position=(0.0, 0.0, 1.15),
+            anchor="bottom-center",
+            visible=False,
+        )
 
     def _build_vehicle(self, scene) -> None:
         """Platform, nose marker on the roll axis, bottom pedestal and a yoke to the top pivot (vehicle frame)."""
         base_z = -OUTER_RADIUS - 0.25
-        scene.add_box("/vehicle/platform", color=(150, 150, 155), dimensions=(2.2, 1.3, 0.08), position=(0.0, 0.0, base_z))
-        scene.add_box("/vehicle/nose", color=(235, 200, 40), dimensions=(0.3, 0.3, 0.09), position=(1.2, 0.0, base_z),
-                      wxyz=quaternion_from_axis_angle(np.array([0.0, 0.0, 1.0]), 0.25 * math.pi))
+        scene.add_box(
+            "/vehicle/platform", color=(150, 150, 155), dimensions=(2.2, 1.3, 0.08), position=(0.0, 0.0, base_z)
+        )
+        scene.add_box(
+            "/vehicle/nose",
+            color=(235, 200, 40),
+            dimensions=(0.3, 0.3, 0.09),
+            position=(1.2, 0.0, base_z),
+            wxyz=quaternion_from_axis_angle(np.array([0.0, 0.0, 1.0]), 0.25 * math.pi),
+        )
         scene.add_label("/vehicle/nose/label", "vehicle x", position=(0.1, 0.0, 0.0), anchor="center-left")
-        scene.add_cylinder("/vehicle/pedestal", radius=0.035, height=0.25, color=(110, 110, 110), position=(0.0, 0.0, base_z + 0.125))
+        scene.add_cylinder(
+            "/vehicle/pedestal", radius=0.035, height=0.25, color=(110, 110, 110), position=(0.0, 0.0, base_z + 0.125)
+        )
         post_x, top_z = -1.0, OUTER_RADIUS + 0.12
-        scene.add_box("/vehicle/post", color=(110, 110, 110), dimensions=(0.06, 0.06, top_z - base_z), position=(post_x, 0.0, 0.5 * (top_z + base_z)))
-        scene.add_box("/vehicle/beam", color=(110, 110, 110), dimensions=(-post_x, 0.06, 0.06), position=(0.5 * post_x, 0.0, top_z))
-        scene.add_cylinder("/vehicle/top_pin", radius=0.03, height=0.12, color=(110, 110, 110), position=(0.0, 0.0, top_z - 0.06))
+        scene.add_box(
+            "/vehicle/post",
+            color=(110, 110, 110),
+            dimensions=(0.06, 0.06, top_z - base_z),
+            position=(post_x, 0.0, 0.5 * (top_z + base_z)),
+        )
+        scene.add_box(
+            "/vehicle/beam",
+            color=(110, 110, 110),
+            dimensions=(-post_x, 0.06, 0.06),
+            position=(0.5 * post_x, 0.0, top_z),
+        )
+        scene.add_cylinder(
+            "/vehicle/top_pin", radius=0.03, height=0.12, color=(110, 110, 110), position=(0.0, 0.0, top_z - 0.06)
+        )
 
     def update(self) -> None:
         params = self.params
@@ -111,7 +160,10 @@ class FreeGyroscopeScene(Scene):
         h_vector = math.copysign(H_ARROW_LENGTH, params["spin_rad_s"]) * s_world
         rate_tail = np.array(RATE_ARROW_TAIL)
         self.arrows.points = np.concatenate(
-            [arrow_segments(np.zeros(3), h_vector, 1.0), arrow_segments(rate_tail, RATE_ARROW_LENGTH * rate_direction, 1.0)]
+            [
+                arrow_segments(np.zeros(3), h_vector, 1.0),
+                arrow_segments(rate_tail, RATE_ARROW_LENGTH * rate_direction, 1.0),
+            ]
         )
         h = physics.angular_momentum_N_m_s(params)
         self.h_label.text = f"H = {h:.3g} N·m·s"
@@ -145,10 +197,16 @@ class FreeGyroscopeScene(Scene):
             Quantity("vehicle_turn_deg", "vehicle has turned", math.degrees(rate * self.t_s), "deg"),
             Quantity.or_text("outer_gimbal_deg", "outer gimbal φ_o", math.degrees(outer), "deg", "undefined"),
             Quantity("inner_gimbal_deg", "inner gimbal φ_i", math.degrees(float(motion.inner_rad[0])), "deg"),
-            Quantity.or_text("outer_gimbal_rate_rad_s", "outer gimbal rate φ̇_o", float(motion.outer_rate_rad_s[0]), "rad/s", LOCKED),
-            Quantity.or_text("inner_gimbal_rate_rad_s", "inner gimbal rate φ̇_i", float(motion.inner_rate_rad_s[0]), "rad/s", LOCKED),
+            Quantity.or_text(
+                "outer_gimbal_rate_rad_s", "outer gimbal rate φ̇_o", float(motion.outer_rate_rad_s[0]), "rad/s", LOCKED
+            ),
+            Quantity.or_text(
+                "inner_gimbal_rate_rad_s", "inner gimbal rate φ̇_i", float(motion.inner_rate_rad_s[0]), "rad/s", LOCKED
+            ),
             Quantity("lock_angle_deg", "spin axis to outer gimbal axis", lock_deg, "deg"),
-            Quantity("angular_momentum_N_m_s", "spin angular momentum H", physics.angular_momentum_N_m_s(params), "N·m·s"),
+            Quantity(
+                "angular_momentum_N_m_s", "spin angular momentum H", physics.angular_momentum_N_m_s(params), "N·m·s"
+            ),
             Quantity("torque_on_rotor_N_m", "torque reaching the rotor", 0.0, "N·m"),
             Quantity("axis_drift_rad_s", "drift of the spin axis", 0.0, "rad/s"),
         ]
@@ -157,8 +215,8 @@ class FreeGyroscopeScene(Scene):
             needed = float(motion.outer_rate_rad_s[0])
             needed_text = f"{abs(needed):.3g} rad/s" if math.isfinite(needed) else "an unbounded rate"
             message = (
-                f"Near gimbal lock: the spin axis is {lock_deg:.1f}° from the outer gimbal axis, so the two " "rings are almost "
+                f"Near gimbal lock: the spin axis is {lock_deg:.1f}° from the outer gimbal axis, so the two "
+                "rings are almost "
                 f"in one plane; the outer ring must turn at {needed_text} to keep the rotor free of torque."
             )
         return Readout(quantities, message=message)
-

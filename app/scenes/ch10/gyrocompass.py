@@ -44,8 +44,14 @@ COLOR_EARTH_HORIZONTAL = (130, 200, 140)
 LABEL_TEXT_EVERY = 6
 
 TIME_SCALE = Parameter(
-    "time_scale", "s/s", 10.0, 1.0, 2000.0,
-    "Simulated seconds shown per second of wall-clock time (the north-seeking swing takes minutes)", "time scale", scale="log",
+    "time_scale",
+    "s/s",
+    10.0,
+    1.0,
+    2000.0,
+    "Simulated seconds shown per second of wall-clock time (the north-seeking swing takes minutes)",
+    "time scale",
+    scale="log",
 )
 
 
@@ -68,14 +74,31 @@ class GyrocompassScene(IntegratedScene):
     camera_position = (2.45, -1.2, 1.35)  # from the east-south-east: an axis near north is seen side-on
     camera_look_at = (0.0, 0.1, -0.15)
     presets = (
-        Preset("swing", "Undamped swing", {"damping_N_m_s_rad": 0.0, "alpha0_deg": 40.0, "latitude_deg": 45.0},
-               "Released 40° east of north: the axis swings through north to 40° west and back, for ever."),
-        Preset("damped", "Damped compass", {"damping_N_m_s_rad": 0.01, "alpha0_deg": 60.0, "latitude_deg": 45.0},
-               "A little damping about the vertical: the swing dies away and the axis settles on north."),
-        Preset("high-latitude", "Near the pole", {"latitude_deg": 80.0, "damping_N_m_s_rad": 0.0, "alpha0_deg": 40.0},
-               "At 80° latitude Ω cos λ is small: the compass is weak and slow."),
-        Preset("large", "Released 170° off", {"alpha0_deg": 170.0, "damping_N_m_s_rad": 0.0, "latitude_deg": 45.0},
-               "Almost pointing south: the swing lingers near the top and the period is far longer than the " "small-angle one."),
+        Preset(
+            "swing",
+            "Undamped swing",
+            {"damping_N_m_s_rad": 0.0, "alpha0_deg": 40.0, "latitude_deg": 45.0},
+            "Released 40° east of north: the axis swings through north to 40° west and back, for ever.",
+        ),
+        Preset(
+            "damped",
+            "Damped compass",
+            {"damping_N_m_s_rad": 0.01, "alpha0_deg": 60.0, "latitude_deg": 45.0},
+            "A little damping about the vertical: the swing dies away and the axis settles on north.",
+        ),
+        Preset(
+            "high-latitude",
+            "Near the pole",
+            {"latitude_deg": 80.0, "damping_N_m_s_rad": 0.0, "alpha0_deg": 40.0},
+            "At 80° latitude Ω cos λ is small: the compass is weak and slow.",
+        ),
+        Preset(
+            "large",
+            "Released 170° off",
+            {"alpha0_deg": 170.0, "damping_N_m_s_rad": 0.0, "latitude_deg": 45.0},
+            "Almost pointing south: the swing lingers near the top and the period is far longer than the "
+            "small-angle one.",
+        ),
     )
 
     # -- integration with a time scale -----------------------------------------------------
@@ -97,28 +120,64 @@ class GyrocompassScene(IntegratedScene):
     # -- drawing ---------------------------------------------------------------------------
     def build(self) -> None:
         scene = self.client.scene
-        scene.add_cylinder("/card", radius=CARD_RADIUS, height=0.02, color=(235, 232, 220), position=(0.0, 0.0, -0.76), radial_segments=64)
+        scene.add_cylinder(
+            "/card",
+            radius=CARD_RADIUS,
+            height=0.02,
+            color=(235, 232, 220),
+            position=(0.0, 0.0, -0.76),
+            radial_segments=64,
+        )
         ticks = []
         for k in range(36):
             a = math.radians(10 * k)
             inner = CARD_RADIUS - (0.16 if k % 9 == 0 else 0.08)
-            ticks.append([[inner * math.sin(a), inner * math.cos(a), -0.745], [CARD_RADIUS * math.sin(a), CARD_RADIUS * math.cos(a), -0.745]])
-        scene.add_line_segments("/card/ticks", np.asarray(ticks, np.float32), (60, 60, 60), thickness=2.0, thickness_units="screen")
+            ticks.append(
+                [
+                    [inner * math.sin(a), inner * math.cos(a), -0.745],
+                    [CARD_RADIUS * math.sin(a), CARD_RADIUS * math.cos(a), -0.745],
+                ]
+            )
+        scene.add_line_segments(
+            "/card/ticks", np.asarray(ticks, np.float32), (60, 60, 60), thickness=2.0, thickness_units="screen"
+        )
         for text, (x, y) in {"N": (0, 1), "E": (1, 0), "S": (0, -1), "W": (-1, 0)}.items():
-            scene.add_label(f"/card/{text}", text, position=(1.1 * CARD_RADIUS * x, 1.1 * CARD_RADIUS * y, -0.74), anchor="center-center", font_screen_scale=1.4)
+            scene.add_label(
+                f"/card/{text}",
+                text,
+                position=(1.1 * CARD_RADIUS * x, 1.1 * CARD_RADIUS * y, -0.74),
+                anchor="center-center",
+                font_screen_scale=1.4,
+            )
         scene.add_cylinder("/shaft", radius=0.03, height=1.75, color=(110, 110, 110), position=(0.0, 0.0, 0.11))
         self.housing = scene.add_frame("/housing", show_axes=False)
-        vertices, faces = ring_mesh(HOUSING_RADIUS, 0.03, normal="x")  # the ring's plane holds the spin axis (y) and the vertical
+        vertices, faces = ring_mesh(
+            HOUSING_RADIUS, 0.03, normal="x"
+        )  # the ring's plane holds the spin axis (y) and the vertical
         scene.add_mesh_simple("/housing/ring", vertices, faces, color=(225, 135, 45), flat_shading=False)
-        self.rotor = add_rotor(scene, "/housing/rotor", radius=ROTOR_RADIUS, thickness=0.14, axle_length=2 * HOUSING_RADIUS)
+        self.rotor = add_rotor(
+            scene, "/housing/rotor", radius=ROTOR_RADIUS, thickness=0.14, axle_length=2 * HOUSING_RADIUS
+        )
         self.arrows = scene.add_arrows(
-            "/vectors", np.zeros((6, 2, 3), np.float32),
-            np.array([COLOR_H, COLOR_RATE, COLOR_EARTH_HORIZONTAL, COLOR_PRECESSION, COLOR_TORQUE, COLOR_LEVELLING], np.uint8),
-            shaft_radius=0.016, head_radius=0.04, head_length=0.09,
+            "/vectors",
+            np.zeros((6, 2, 3), np.float32),
+            np.array(
+                [COLOR_H, COLOR_RATE, COLOR_EARTH_HORIZONTAL, COLOR_PRECESSION, COLOR_TORQUE, COLOR_LEVELLING], np.uint8
+            ),
+            shaft_radius=0.016,
+            head_radius=0.04,
+            head_length=0.09,
         )
         self.labels = {
             name: scene.add_label(f"/vectors/{name}", "", anchor=anchor)
-            for name, anchor in (("H", "bottom-left"), ("earth", "bottom-right"), ("earth_h", "top-left"), ("rate", "bottom-left"), ("moment", "top-center"), ("level", "bottom-left"))
+            for name, anchor in (
+                ("H", "bottom-left"),
+                ("earth", "bottom-right"),
+                ("earth_h", "top-left"),
+                ("rate", "bottom-left"),
+                ("moment", "top-center"),
+                ("level", "bottom-left"),
+            )
         }
 
     def update(self) -> None:
@@ -136,12 +195,17 @@ class GyrocompassScene(IntegratedScene):
         self._level_max = max(abs(self._h) * (abs(omega * math.sin(lam)) + self._rate_max), 1e-300)
         earth = np.array([0.0, math.cos(lam), math.sin(lam)])
         self._earth_segments = np.concatenate(
-            [arrow_segments(EARTH_ARROW_TAIL, EARTH_ARROW_LENGTH * earth, 1.0), arrow_segments(EARTH_ARROW_TAIL, EARTH_ARROW_LENGTH * earth * [0, 1, 0], 1.0)]
+            [
+                arrow_segments(EARTH_ARROW_TAIL, EARTH_ARROW_LENGTH * earth, 1.0),
+                arrow_segments(EARTH_ARROW_TAIL, EARTH_ARROW_LENGTH * earth * [0, 1, 0], 1.0),
+            ]
         )
         self.labels["earth"].text = f"Ω Earth = {omega:.4g} rad/s"
         self.labels["earth"].position = tuple(EARTH_ARROW_TAIL + 1.04 * EARTH_ARROW_LENGTH * earth)
         self.labels["earth_h"].text = f"Ω cos λ = {omega * math.cos(lam):.3g} rad/s (north)"
-        self.labels["earth_h"].position = tuple(EARTH_ARROW_TAIL + np.array([0.03, EARTH_ARROW_LENGTH * math.cos(lam), 0.0]))
+        self.labels["earth_h"].position = tuple(
+            EARTH_ARROW_TAIL + np.array([0.03, EARTH_ARROW_LENGTH * math.cos(lam), 0.0])
+        )
         self.labels["H"].text = f"H = {abs(self._h):.3g} N·m·s"
         self.labels["rate"].position = (0.05, 0.0, 1.0)
         self.labels["moment"].position = tuple(MOMENT_ARROW_TAIL + np.array([0.0, 0.0, -0.03]))
@@ -152,7 +216,9 @@ class GyrocompassScene(IntegratedScene):
         params = self.physical_params()
         alpha, alpha_rate = float(self.run.y[0]), float(self.run.y[1])
         lam = math.radians(params["latitude_deg"])
-        self.housing.wxyz = np.array([math.cos(-0.5 * alpha), 0.0, 0.0, math.sin(-0.5 * alpha)])  # a turn of −α about up
+        self.housing.wxyz = np.array(
+            [math.cos(-0.5 * alpha), 0.0, 0.0, math.sin(-0.5 * alpha)]
+        )  # a turn of −α about up
         self.rotor.wxyz = spin_quaternion(drawn_spin_angle(self.params["spin_rad_s"], self.run.t_s / self.time_scale))
         axis = np.array([math.sin(alpha), math.cos(alpha), 0.0])
         across = np.array([-math.cos(alpha), math.sin(alpha), 0.0])  # up × axis
@@ -185,18 +251,39 @@ class GyrocompassScene(IntegratedScene):
         params = self.physical_params()
         alpha, alpha_rate = float(self.run.y[0]), float(self.run.y[1])
         amplitude = physics.amplitude_rad(params)
-        period = physics.large_amplitude_period_s(params, amplitude) if amplitude is not None and amplitude < math.pi else None
+        period = (
+            physics.large_amplitude_period_s(params, amplitude)
+            if amplitude is not None and amplitude < math.pi
+            else None
+        )
         quantities = [
             Quantity("t_s", "simulated time t", self.run.t_s, "s"),
             Quantity("time_scale", "time scale", self.time_scale, "simulated s per s"),
-            Quantity("alpha_deg", "azimuth α of the spin axis (east of north)", math.degrees(math.remainder(alpha, 2 * math.pi)), "deg"),
+            Quantity(
+                "alpha_deg",
+                "azimuth α of the spin axis (east of north)",
+                math.degrees(math.remainder(alpha, 2 * math.pi)),
+                "deg",
+            ),
             Quantity("alpha_rate_rad_s", "azimuth rate α̇", alpha_rate, "rad/s"),
             Quantity("horizontal_earth_rate_rad_s", "Ω cos λ", physics.horizontal_earth_rate_rad_s(params), "rad/s"),
             Quantity("restoring_moment_N_m", "K = I_a ω_s Ω cos λ", physics.restoring_moment_N_m(params), "N·m"),
-            Quantity("small_angle_period_s", "small-swing period 2π√(I_t/K)", physics.small_angle_period_s(params), "s"),
+            Quantity(
+                "small_angle_period_s", "small-swing period 2π√(I_t/K)", physics.small_angle_period_s(params), "s"
+            ),
             Quantity.or_text("swing_period_s", "period of this swing (elliptic)", period, "s", "goes right round"),
             Quantity("damping_ratio", "damping ratio ζ", physics.damping_ratio(params), ""),
-            Quantity("spin_to_swing_ratio", "spin rate / swing rate ω_s/ω_n", abs(params["spin_rad_s"]) / physics.natural_frequency_rad_s(params), ""),
-            Quantity("full_model_steps_per_period", "RK4 steps per period if the spin were integrated", physics.full_model_steps_per_period(params), ""),
+            Quantity(
+                "spin_to_swing_ratio",
+                "spin rate / swing rate ω_s/ω_n",
+                abs(params["spin_rad_s"]) / physics.natural_frequency_rad_s(params),
+                "",
+            ),
+            Quantity(
+                "full_model_steps_per_period",
+                "RK4 steps per period if the spin were integrated",
+                physics.full_model_steps_per_period(params),
+                "",
+            ),
         ]
         return Readout(quantities, message=self.status)

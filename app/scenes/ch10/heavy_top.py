@@ -88,7 +88,13 @@ class HeavyTopScene(IntegratedScene):
         scene.add_grid("/ground", width=3.0, height=3.0, cell_size=0.1, section_size=0.5, position=(0.0, 0.0, 0.0))
         scene.add_icosphere("/pivot", radius=0.025, color=(40, 40, 40))
         scene.add_icosphere(
-            "/locus_sphere", radius=AXIS_LENGTH, color=(150, 170, 200), opacity=0.12, subdivisions=4, cast_shadow=False, receive_shadow=False
+            "/locus_sphere",
+            radius=AXIS_LENGTH,
+            color=(150, 170, 200),
+            opacity=0.12,
+            subdivisions=4,
+            cast_shadow=False,
+            receive_shadow=False,
         )
         self.body = scene.add_frame("/top", show_axes=False)
         self.mesh = None
@@ -110,7 +116,14 @@ class HeavyTopScene(IntegratedScene):
             "/nutation_band", np.zeros((1, 2, 3), np.float32), (40, 160, 80), thickness=2.5, thickness_units="screen"
         )
         self.reference_tip = scene.add_icosphere("/reference_tip", radius=0.022, color=(250, 250, 250))
-        self.trail = Trail(scene, "/trail", color=(230, 120, 30), chunk_frames=TRAIL_CHUNK_FRAMES, max_chunks=TRAIL_CHUNKS, thickness=3.0)
+        self.trail = Trail(
+            scene,
+            "/trail",
+            color=(230, 120, 30),
+            chunk_frames=TRAIL_CHUNK_FRAMES,
+            max_chunks=TRAIL_CHUNKS,
+            thickness=3.0,
+        )
 
     def update(self) -> None:
         params = self.physical_params()
@@ -123,7 +136,9 @@ class HeavyTopScene(IntegratedScene):
         vertices, faces = top_mesh(radius=radius, height_cg=height_cg)
         if self.mesh is not None:
             self.mesh.remove()
-        self.mesh = self.client.scene.add_mesh_simple("/top/body", vertices, faces, color=(70, 130, 180), flat_shading=False)
+        self.mesh = self.client.scene.add_mesh_simple(
+            "/top/body", vertices, faces, color=(70, 130, 180), flat_shading=False
+        )
         self.spin_marker.position = (radius, 0.0, height_cg)
         self.trail.clear()
         body = physics.rigid_body(params)
@@ -176,7 +191,10 @@ class HeavyTopScene(IntegratedScene):
             move_node(self.reference_tip, position=self._reference_tip_position(self.run.t_s))
         if self._frame_index % LABEL_EVERY_FRAMES == 0:
             drift = self._drift_max[-1] if self._drift_max else max(self.current_drift().values(), default=0.0)
-            update_node(self.readout_label, text=f"t = {self.run.t_s:6.2f} s   θ = {math.degrees(theta_rad):5.2f}°   largest drift {drift:.1e}")
+            update_node(
+                self.readout_label,
+                text=f"t = {self.run.t_s:6.2f} s   θ = {math.degrees(theta_rad):5.2f}°   largest drift {drift:.1e}",
+            )
         self._frame_index += 1
 
     def _reference_tip_position(self, t_s: float) -> tuple[float, float, float]:
@@ -209,31 +227,53 @@ class HeavyTopScene(IntegratedScene):
         reference = self.reference
         if reference is not None:
             quantities += [
-                Quantity("theta_min_deg", "nutation band: θ min (quadrature)", math.degrees(reference.theta_min_rad), "deg"),
-                Quantity("theta_max_deg", "nutation band: θ max (quadrature)", math.degrees(reference.theta_max_rad), "deg"),
+                Quantity(
+                    "theta_min_deg", "nutation band: θ min (quadrature)", math.degrees(reference.theta_min_rad), "deg"
+                ),
+                Quantity(
+                    "theta_max_deg", "nutation band: θ max (quadrature)", math.degrees(reference.theta_max_rad), "deg"
+                ),
                 # An upright top's axis never comes back: its nutation period is infinite.
-                Quantity.or_text("nutation_period_s", "nutation period (quadrature)", reference.nutation_period_s, "s", "never returns"),
-                Quantity("mean_precession_rate_rad_s", "mean precession rate (quadrature)", reference.mean_precession_rate_rad_s, "rad/s"),
+                Quantity.or_text(
+                    "nutation_period_s",
+                    "nutation period (quadrature)",
+                    reference.nutation_period_s,
+                    "s",
+                    "never returns",
+                ),
+                Quantity(
+                    "mean_precession_rate_rad_s",
+                    "mean precession rate (quadrature)",
+                    reference.mean_precession_rate_rad_s,
+                    "rad/s",
+                ),
                 Quantity.word("locus", "axis locus", physics.locus_shape(reference)),
             ]
         if self._theta_swept[0] <= self._theta_swept[1]:
             quantities += [
-                Quantity("theta_min_swept_deg", "θ min swept so far (integration)", math.degrees(self._theta_swept[0]), "deg"),
-                Quantity("theta_max_swept_deg", "θ max swept so far (integration)", math.degrees(self._theta_swept[1]), "deg"),
+                Quantity(
+                    "theta_min_swept_deg", "θ min swept so far (integration)", math.degrees(self._theta_swept[0]), "deg"
+                ),
+                Quantity(
+                    "theta_max_swept_deg", "θ max swept so far (integration)", math.degrees(self._theta_swept[1]), "deg"
+                ),
             ]
         spin = abs(params["spin_rad_s"])
         if params["g_m_s2"] == 0.0:
             # Without gravity nothing pulls an upright top over: there is no threshold to cross.
             quantities.append(Quantity.word("critical_spin_rad_s", "sleeping threshold |ω₃|", "none: no gravity"))
             message = self.reference_message or (
-                "g = 0: no gravity, so no torque about the pivot; the top moves as a torque-free body and any " "spin, even none, keeps an upright top up."
+                "g = 0: no gravity, so no torque about the pivot; the top moves as a torque-free body and any "
+                "spin, even none, keeps an upright top up."
             )
             return Readout(quantities, marks={}, message=message)
         quantities.append(Quantity("critical_spin_rad_s", "sleeping threshold |ω₃|", critical, "rad/s"))
         message = self.reference_message or (
-            f"|ω₃| = {spin:.4g} rad/s is above the sleeping threshold {critical:.4g} rad/s: started upright, " "this top would stay up."
+            f"|ω₃| = {spin:.4g} rad/s is above the sleeping threshold {critical:.4g} rad/s: started upright, "
+            "this top would stay up."
             if spin > critical
-            else f"|ω₃| = {spin:.4g} rad/s is below the sleeping threshold {critical:.4g} rad/s: an upright " "start is unstable."
+            else f"|ω₃| = {spin:.4g} rad/s is below the sleeping threshold {critical:.4g} rad/s: an upright "
+            "start is unstable."
         )
         marks = {"spin_rad_s": [Mark(critical, "sleeping threshold"), Mark(-critical, "sleeping threshold")]}
         return Readout(quantities, marks=marks, message=message)

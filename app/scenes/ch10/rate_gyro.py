@@ -103,47 +103,101 @@ class RateGyroScene(Scene):
     camera_position = (2.05, -1.75, 1.25)
     camera_look_at = (0.1, 0.0, -0.05)
     presets = (
-        Preset("underdamped", "Under-damped (ζ ≈ 0.2)", {"damping_N_m_s_rad": 0.02, "input_kind": "step"},
-               "The pointer overshoots and rings before it settles on the input rate."),
-        Preset("critical", "Critically damped (ζ = 1)", {"damping_N_m_s_rad": 0.1, "input_kind": "step", "stiffness_N_m_rad": 0.5, "gimbal_inertia_kg_m2": 5e-3},
-               "The fastest approach without overshoot."),
-        Preset("overdamped", "Over-damped (ζ = 3)", {"damping_N_m_s_rad": 0.3, "input_kind": "step"},
-               "Sluggish: the pointer creeps up to the reading."),
-        Preset("sine", "Oscillating input", {"input_kind": "sine", "input_frequency_rad_s": 5.0, "damping_N_m_s_rad": 0.03},
-               "The case rocks back and forth; the pointer follows with a gain and a lag set by ω/ω_n and ζ."),
+        Preset(
+            "underdamped",
+            "Under-damped (ζ ≈ 0.2)",
+            {"damping_N_m_s_rad": 0.02, "input_kind": "step"},
+            "The pointer overshoots and rings before it settles on the input rate.",
+        ),
+        Preset(
+            "critical",
+            "Critically damped (ζ = 1)",
+            {"damping_N_m_s_rad": 0.1, "input_kind": "step", "stiffness_N_m_rad": 0.5, "gimbal_inertia_kg_m2": 5e-3},
+            "The fastest approach without overshoot.",
+        ),
+        Preset(
+            "overdamped",
+            "Over-damped (ζ = 3)",
+            {"damping_N_m_s_rad": 0.3, "input_kind": "step"},
+            "Sluggish: the pointer creeps up to the reading.",
+        ),
+        Preset(
+            "sine",
+            "Oscillating input",
+            {"input_kind": "sine", "input_frequency_rad_s": 5.0, "damping_N_m_s_rad": 0.03},
+            "The case rocks back and forth; the pointer follows with a gain and a lag set by ω/ω_n and ζ.",
+        ),
     )
 
     def build(self) -> None:
         scene = self.client.scene
         self.t_s = 0.0
         lx, ly, lz = CASE_SIZE
-        scene.add_grid("/ground", width=4.0, height=4.0, cell_size=0.25, section_size=1.0, position=(0.0, 0.0, -0.5 * lz - 0.12))
+        scene.add_grid(
+            "/ground", width=4.0, height=4.0, cell_size=0.25, section_size=1.0, position=(0.0, 0.0, -0.5 * lz - 0.12)
+        )
         self.table = scene.add_frame("/table", show_axes=False)
-        scene.add_cylinder("/table/top", radius=1.25, height=0.06, color=(150, 150, 155), position=(0.0, 0.0, -0.5 * lz - 0.06), radial_segments=64)
-        scene.add_box("/table/mark", color=(235, 200, 40), dimensions=(0.25, 0.08, 0.065), position=(1.1, 0.0, -0.5 * lz - 0.06))
-        scene.add_box("/table/case", color=(180, 190, 210), dimensions=CASE_SIZE, opacity=0.18, side="double", cast_shadow=False, receive_shadow=False)
+        scene.add_cylinder(
+            "/table/top",
+            radius=1.25,
+            height=0.06,
+            color=(150, 150, 155),
+            position=(0.0, 0.0, -0.5 * lz - 0.06),
+            radial_segments=64,
+        )
+        scene.add_box(
+            "/table/mark", color=(235, 200, 40), dimensions=(0.25, 0.08, 0.065), position=(1.1, 0.0, -0.5 * lz - 0.06)
+        )
+        scene.add_box(
+            "/table/case",
+            color=(180, 190, 210),
+            dimensions=CASE_SIZE,
+            opacity=0.18,
+            side="double",
+            cast_shadow=False,
+            receive_shadow=False,
+        )
         scene.add_box("/table/case_edges", color=(90, 100, 120), dimensions=CASE_SIZE, wireframe=True)
         for sign in (-1.0, 1.0):  # the output-axis bearings in the case walls
             scene.add_cylinder(
-                f"/table/bearing{int(sign)}", radius=0.03, height=0.5 * lx - GIMBAL_RADIUS, color=(110, 110, 110),
-                position=(sign * 0.5 * (0.5 * lx + GIMBAL_RADIUS), 0.0, 0.0), wxyz=np.array([math.cos(math.pi / 4), 0.0, math.sin(math.pi / 4), 0.0]),
+                f"/table/bearing{int(sign)}",
+                radius=0.03,
+                height=0.5 * lx - GIMBAL_RADIUS,
+                color=(110, 110, 110),
+                position=(sign * 0.5 * (0.5 * lx + GIMBAL_RADIUS), 0.0, 0.0),
+                wxyz=np.array([math.cos(math.pi / 4), 0.0, math.sin(math.pi / 4), 0.0]),
             )
-        scene.add_label("/table/output_axis", "output axis x", position=(-0.5 * lx - 0.05, 0.0, 0.1), anchor="bottom-right")
+        scene.add_label(
+            "/table/output_axis", "output axis x", position=(-0.5 * lx - 0.05, 0.0, 0.1), anchor="bottom-right"
+        )
         self.gimbal = scene.add_frame("/table/gimbal", show_axes=False)
-        vertices, faces = ring_mesh(GIMBAL_RADIUS, 0.028, normal="z")  # holds the output pivots (±x) and the rotor bearings (±y)
+        vertices, faces = ring_mesh(
+            GIMBAL_RADIUS, 0.028, normal="z"
+        )  # holds the output pivots (±x) and the rotor bearings (±y)
         scene.add_mesh_simple("/table/gimbal/ring", vertices, faces, color=(40, 160, 160), flat_shading=False)
         scene.add_box(
-            "/table/gimbal/pointer", color=(200, 40, 40), dimensions=(0.02, 0.02, POINTER_LENGTH),
+            "/table/gimbal/pointer",
+            color=(200, 40, 40),
+            dimensions=(0.02, 0.02, POINTER_LENGTH),
             position=(POINTER_X, 0.0, 0.5 * POINTER_LENGTH),
         )
-        self.rotor = add_rotor(scene, "/table/gimbal/rotor", radius=ROTOR_RADIUS, thickness=0.12, axle_length=2 * GIMBAL_RADIUS)
+        self.rotor = add_rotor(
+            scene, "/table/gimbal/rotor", radius=ROTOR_RADIUS, thickness=0.12, axle_length=2 * GIMBAL_RADIUS
+        )
         self._build_indicator()
         self.scale_nodes: list = []
         self.arrows = scene.add_arrows(
-            "/table/vectors", np.zeros((3, 2, 3), np.float32), np.array([COLOR_H, COLOR_RATE, COLOR_TORQUE], np.uint8),
-            shaft_radius=0.016, head_radius=0.04, head_length=0.09,
+            "/table/vectors",
+            np.zeros((3, 2, 3), np.float32),
+            np.array([COLOR_H, COLOR_RATE, COLOR_TORQUE], np.uint8),
+            shaft_radius=0.016,
+            head_radius=0.04,
+            head_length=0.09,
         )
-        self.labels = {name: scene.add_label(f"/table/vectors/{name}", "", anchor="bottom-left") for name in ("H", "rate", "moment")}
+        self.labels = {
+            name: scene.add_label(f"/table/vectors/{name}", "", anchor="bottom-left")
+            for name in ("H", "rate", "moment")
+        }
 
     def _build_indicator(self) -> None:
         """The dial, its needle and its caption, fixed in space (the scale's ticks and numbers follow the
@@ -152,14 +206,35 @@ class RateGyroScene(Scene):
         centre, wxyz = indicator_pose(*self.camera_view())
         scene.add_frame("/indicator", show_axes=False, position=tuple(centre), wxyz=tuple(wxyz))
         face_normal = np.array([math.cos(math.pi / 4), 0.0, math.sin(math.pi / 4), 0.0])  # cylinder axis z → x
-        scene.add_cylinder("/indicator/dial", radius=DIAL_RADIUS, height=0.03, color=(245, 245, 240), wxyz=face_normal, radial_segments=48)
-        scene.add_cylinder("/indicator/hub", radius=0.03, height=0.02, color=(60, 60, 60), position=tuple(1.2 * DIAL_FACE_X_VECTOR), wxyz=face_normal)
+        scene.add_cylinder(
+            "/indicator/dial",
+            radius=DIAL_RADIUS,
+            height=0.03,
+            color=(245, 245, 240),
+            wxyz=face_normal,
+            radial_segments=48,
+        )
+        scene.add_cylinder(
+            "/indicator/hub",
+            radius=0.03,
+            height=0.02,
+            color=(60, 60, 60),
+            position=tuple(1.2 * DIAL_FACE_X_VECTOR),
+            wxyz=face_normal,
+        )
         self.needle = scene.add_frame("/indicator/needle", show_axes=False)
         scene.add_box(
-            "/indicator/needle/bar", color=(200, 40, 40), dimensions=(0.01, 0.02, NEEDLE_LENGTH),
+            "/indicator/needle/bar",
+            color=(200, 40, 40),
+            dimensions=(0.01, 0.02, NEEDLE_LENGTH),
             position=(DIAL_FACE_X, 0.0, 0.5 * NEEDLE_LENGTH),
         )
-        scene.add_label("/indicator/caption", "indicator: β read as Ω", position=(DIAL_FACE_X, 0.0, -DIAL_RADIUS - 0.04), anchor="top-center")
+        scene.add_label(
+            "/indicator/caption",
+            "indicator: β read as Ω",
+            position=(DIAL_FACE_X, 0.0, -DIAL_RADIUS - 0.04),
+            anchor="top-center",
+        )
 
     def update(self) -> None:
         params = self.params
@@ -189,21 +264,44 @@ class RateGyroScene(Scene):
         step = nice_step(0.5 * full_rate)
         count = int(min(2.0 * full_rate / step, MAX_SCALE_RAD / (abs(self._gain) * step), 8))
         if count * step * abs(self._gain) < MIN_SCALE_RAD:
-            step, count = nice_step(MIN_SCALE_RAD / (4.0 * abs(self._gain))), 4  # at most 2 MIN_SCALE_RAD < MAX_SCALE_RAD
+            step, count = (
+                nice_step(MIN_SCALE_RAD / (4.0 * abs(self._gain))),
+                4,
+            )  # at most 2 MIN_SCALE_RAD < MAX_SCALE_RAD
         segments, nodes = [], []
         for k in range(-count, count + 1):
             beta = self._gain * k * step
             direction = needle_direction(beta)  # where the needle's tip stops for this Ω
-            segments.append([DIAL_FACE_X_VECTOR + direction * NEEDLE_LENGTH, DIAL_FACE_X_VECTOR + direction * (NEEDLE_LENGTH + 0.07)])
+            segments.append(
+                [
+                    DIAL_FACE_X_VECTOR + direction * NEEDLE_LENGTH,
+                    DIAL_FACE_X_VECTOR + direction * (NEEDLE_LENGTH + 0.07),
+                ]
+            )
             if k in (-count, 0, count):
                 rate = k * step
                 text = "0" if k == 0 else f"{rate:+g} rad/s".replace("-", "−")
-                anchor = "bottom-center" if k == 0 else ("bottom-left" if direction[1] < 0.0 else "bottom-right")  # −y is the screen's right
-                nodes.append(scene.add_label(
-                    f"/indicator/scale/t{k + count}", text, position=tuple(DIAL_FACE_X_VECTOR + direction * (NEEDLE_LENGTH + SCALE_LABEL_GAP)),
-                    anchor=anchor, font_screen_scale=SCALE_LABEL_SIZE,
-                ))
-        nodes.append(scene.add_line_segments("/indicator/scale/ticks", np.asarray(segments, np.float32), (40, 40, 40), thickness=2.0, thickness_units="screen"))
+                anchor = (
+                    "bottom-center" if k == 0 else ("bottom-left" if direction[1] < 0.0 else "bottom-right")
+                )  # −y is the screen's right
+                nodes.append(
+                    scene.add_label(
+                        f"/indicator/scale/t{k + count}",
+                        text,
+                        position=tuple(DIAL_FACE_X_VECTOR + direction * (NEEDLE_LENGTH + SCALE_LABEL_GAP)),
+                        anchor=anchor,
+                        font_screen_scale=SCALE_LABEL_SIZE,
+                    )
+                )
+        nodes.append(
+            scene.add_line_segments(
+                "/indicator/scale/ticks",
+                np.asarray(segments, np.float32),
+                (40, 40, 40),
+                thickness=2.0,
+                thickness_units="screen",
+            )
+        )
         self.scale_nodes = nodes
 
     def demonstration(self, t_s: float) -> tuple[float, float, float, float]:
@@ -211,7 +309,12 @@ class RateGyroScene(Scene):
         params = self.params
         if params["input_kind"] == "sine":
             response = physics.gimbal_response(params, t_s)
-            return float(response.beta_rad[0]), float(response.beta_rate_rad_s[0]), float(response.input_rate_rad_s[0]), float(physics.case_angle_rad(params, t_s))
+            return (
+                float(response.beta_rad[0]),
+                float(response.beta_rate_rad_s[0]),
+                float(response.input_rate_rad_s[0]),
+                float(physics.case_angle_rad(params, t_s)),
+            )
         hold = self._hold_s
         cycle = math.floor(t_s / (2.0 * hold))
         local = t_s - 2.0 * hold * cycle
@@ -243,12 +346,18 @@ class RateGyroScene(Scene):
         full_rate = max(abs(params["input_rate_rad_s"]), 1e-12)
         rate_tail = RATE_ARROW_TAIL
         rate_vector = np.array([0.0, 0.0, rate / full_rate * RATE_ARROW_MAX])
-        moment = -(params["stiffness_N_m_rad"] * beta + params["damping_N_m_s_rad"] * beta_rate)  # on the gimbal, about +x
+        moment = -(
+            params["stiffness_N_m_rad"] * beta + params["damping_N_m_s_rad"] * beta_rate
+        )  # on the gimbal, about +x
         moment_scale = MOMENT_ARROW_MAX / max(abs(self._h) * full_rate, 1e-300)
         moment_tail = MOMENT_ARROW_TAIL
         moment_vector = np.array([moment * moment_scale, 0.0, 0.0])
         self.arrows.points = np.concatenate(
-            [arrow_segments(np.zeros(3), h_vector, 1.0), arrow_segments(rate_tail, rate_vector, 1.0), arrow_segments(moment_tail, moment_vector, 1.0)]
+            [
+                arrow_segments(np.zeros(3), h_vector, 1.0),
+                arrow_segments(rate_tail, rate_vector, 1.0),
+                arrow_segments(moment_tail, moment_vector, 1.0),
+            ]
         )
         self.labels["H"].position = tuple(1.03 * h_vector)
         if self._frame % LABEL_TEXT_EVERY == 0:
@@ -266,19 +375,32 @@ class RateGyroScene(Scene):
             Quantity("beta_deg", "gimbal deflection β", math.degrees(beta), "deg"),
             Quantity("indicated_rate_rad_s", "indicated rate β/G", float(beta / self._gain), "rad/s"),
             Quantity("steady_gain_s", "steady-state gain G = I_a ω_s/k", float(self._gain), "rad per rad/s"),
-            Quantity("natural_frequency_rad_s", "natural frequency ω_n = √(k/I_g)", physics.natural_frequency_rad_s(params), "rad/s"),
+            Quantity(
+                "natural_frequency_rad_s",
+                "natural frequency ω_n = √(k/I_g)",
+                physics.natural_frequency_rad_s(params),
+                "rad/s",
+            ),
             Quantity("damping_ratio", "damping ratio ζ = c/(2√(k I_g))", physics.damping_ratio(params), ""),
         ]
         if params["input_kind"] == "sine":
             ratio, lag = physics.frequency_response(params, params["input_frequency_rad_s"])
             quantities += [
-                Quantity.or_text("amplitude_ratio_s", "steady amplitude ratio |β|/|Ω|", float(ratio), "rad per rad/s", "none: grows without bound"),
+                Quantity.or_text(
+                    "amplitude_ratio_s",
+                    "steady amplitude ratio |β|/|Ω|",
+                    float(ratio),
+                    "rad per rad/s",
+                    "none: grows without bound",
+                ),
                 Quantity("phase_lag_deg", "phase lag of β behind Ω", math.degrees(lag), "deg"),
             ]
             message = (
-                "Undamped and driven at its natural frequency: resonance. β = (G Ω₀/2)(sin ω_n t − ω_n t cos ω_n " "t) grows in proportion to t."
+                "Undamped and driven at its natural frequency: resonance. β = (G Ω₀/2)(sin ω_n t − ω_n t cos ω_n "
+                "t) grows in proportion to t."
                 if physics.resonant(params)
-                else "The case rocks at the input frequency; after the start-up transient β is a sine with the " "gain and lag above."
+                else "The case rocks at the input frequency; after the start-up transient β is a sine with the "
+                "gain and lag above."
             )
         else:
             quantities.append(Quantity("hold_s", "turntable runs, then rests, for", self._hold_s, "s"))

@@ -48,7 +48,9 @@ SLIDER_RANGES: Mapping[str, tuple[float, float, float]] = {
 }
 
 
-def spheroid_sectors(*, axial: float, transverse: float, sectors: int = 8, rings: int = 24, segments: int = 64) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def spheroid_sectors(
+    *, axial: float, transverse: float, sectors: int = 8, rings: int = 24, segments: int = 64
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """A spheroid about +z (semi-axes ``transverse``, ``transverse``, ``axial``) as one vertex array and two face
     arrays.
 
@@ -59,7 +61,12 @@ def spheroid_sectors(*, axial: float, transverse: float, sectors: int = 8, rings
     azimuth = np.linspace(0.0, 2.0 * math.pi, segments, endpoint=False)
     sp, cp = np.sin(polar)[:, None], np.cos(polar)[:, None]
     vertices = np.stack(
-        [transverse * sp * np.cos(azimuth), transverse * sp * np.sin(azimuth), np.broadcast_to(axial * cp, (rings + 1, segments))], axis=-1
+        [
+            transverse * sp * np.cos(azimuth),
+            transverse * sp * np.sin(azimuth),
+            np.broadcast_to(axial * cp, (rings + 1, segments)),
+        ],
+        axis=-1,
     ).reshape(-1, 3)
     faces: list[list[tuple[int, int, int]]] = [[], []]
     per_sector = segments // sectors
@@ -73,7 +80,9 @@ def spheroid_sectors(*, axial: float, transverse: float, sectors: int = 8, rings
     return vertices.astype(np.float32), np.asarray(faces[0], np.uint32), np.asarray(faces[1], np.uint32)
 
 
-def cone_mesh(half_angle_rad: float, *, slant: float = CONE_SLANT, segments: int = 96) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def cone_mesh(
+    half_angle_rad: float, *, slant: float = CONE_SLANT, segments: int = 96
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """A cone with its apex at the origin and axis +z: vertices, faces and its rim points (display units)."""
     azimuth = np.linspace(0.0, 2.0 * math.pi, segments, endpoint=False)
     radius, height = slant * math.sin(half_angle_rad), slant * math.cos(half_angle_rad)
@@ -106,25 +115,29 @@ class TorqueFreeAxisymmetricScene(Scene):
             "football",
             "Football (prolate)",
             {"I_transverse": 1.0, "I_axial": 0.4, "spin_rad_s": 3.0, "nutation_deg": 25.0},
-            "A spheroid twice as long as it is wide, I_a/I_t = 0.4: direct precession, the body cone rolls round " "the outside of the space cone.",
+            "A spheroid twice as long as it is wide, I_a/I_t = 0.4: direct precession, the body cone rolls round "
+            "the outside of the space cone.",
         ),
         Preset(
             "pencil",
             "Tumbling rod (prolate)",
             {"I_transverse": 2.0, "I_axial": 0.1, "spin_rad_s": 4.0, "nutation_deg": 65.0},
-            "A slender body, I_a/I_t = 0.05, thrown with its axis far from L: a thin body cone rolls round a " "wide space cone.",
+            "A slender body, I_a/I_t = 0.05, thrown with its axis far from L: a thin body cone rolls round a "
+            "wide space cone.",
         ),
         Preset(
             "coin",
             "Wobbling coin (oblate)",
             {"I_transverse": 0.5, "I_axial": 0.99, "spin_rad_s": 1.0, "nutation_deg": 15.0},
-            "A thin disc, I_a/I_t = 1.98: retrograde precession nearly twice as fast as the spin; the space cone " "sits inside the body cone.",
+            "A thin disc, I_a/I_t = 1.98: retrograde precession nearly twice as fast as the spin; the space cone "
+            "sits inside the body cone.",
         ),
         Preset(
             "near-sphere",
             "Nearly a sphere (oblate)",
             {"I_transverse": 0.95, "I_axial": 1.0, "spin_rad_s": 2.0, "nutation_deg": 20.0},
-            "I_a/I_t = 1.053, like a slightly flattened planet: ω stays within about 1° of L and circles the " "axis slowly, seen from the body.",
+            "I_a/I_t = 1.053, like a slightly flattened planet: ω stays within about 1° of L and circles the "
+            "axis slowly, seen from the body.",
         ),
     )
     camera_position = (1.6, -2.0, 1.65)
@@ -135,20 +148,30 @@ class TorqueFreeAxisymmetricScene(Scene):
         scene.add_grid("/ground", width=2.5, height=2.5, cell_size=0.25, section_size=1.25, position=(0.0, 0.0, -0.9))
         scene.add_icosphere("/centre_of_mass", radius=0.03, color=(30, 30, 30))
         scene.add_arrows(
-            "/L", arrow_segments(np.zeros(3), np.array([0.0, 0.0, L_ARROW]), 1.0), np.array([SPACE_BLUE], np.uint8),
-            shaft_radius=0.02, head_radius=0.055, head_length=0.11,
+            "/L",
+            arrow_segments(np.zeros(3), np.array([0.0, 0.0, L_ARROW]), 1.0),
+            np.array([SPACE_BLUE], np.uint8),
+            shaft_radius=0.02,
+            head_radius=0.055,
+            head_length=0.11,
         )
         scene.add_label("/L/label", "L (fixed)", position=(0.0, 0.0, L_ARROW + 0.05), anchor="bottom-center")
         self.nodal = scene.add_frame("/nodal", show_axes=False)
         self.body = scene.add_frame("/nodal/body", show_axes=False)
         # ω and the symmetry axis are constant on the nodal frame: placed in update(), never per frame.
         self.vectors = scene.add_arrows(
-            "/nodal/vectors", np.zeros((2, 2, 3), np.float32), np.array([BODY_RED, OMEGA_ORANGE], np.uint8),
-            shaft_radius=0.02, head_radius=0.055, head_length=0.11,
+            "/nodal/vectors",
+            np.zeros((2, 2, 3), np.float32),
+            np.array([BODY_RED, OMEGA_ORANGE], np.uint8),
+            shaft_radius=0.02,
+            head_radius=0.055,
+            head_length=0.11,
         )
         # The symmetry axis continues below the centre of mass as a thin line, labelled at its far
         # end, where the label never meets ω's (ω is always within 90° of the upper half of k).
-        self.axis_tail = scene.add_line_segments("/nodal/axis_tail", np.zeros((1, 2, 3), np.float32), BODY_RED, thickness=2.0, thickness_units="screen")
+        self.axis_tail = scene.add_line_segments(
+            "/nodal/axis_tail", np.zeros((1, 2, 3), np.float32), BODY_RED, thickness=2.0, thickness_units="screen"
+        )
         self.axis_label = scene.add_label("/nodal/axis_label", "symmetry axis", anchor="top-center")
         self.omega_label = scene.add_label("/nodal/omega_label", "ω", anchor="center-left")
         self.t_s = 0.0
@@ -174,10 +197,22 @@ class TorqueFreeAxisymmetricScene(Scene):
             shown = half_angle >= HIDDEN_CONE_RAD
             cone_vertices, cone_faces, rim = cone_mesh(half_angle)
             scene.add_mesh_simple(
-                path, cone_vertices, cone_faces, color=colour, opacity=0.28, side="double", cast_shadow=False, receive_shadow=False, visible=shown
+                path,
+                cone_vertices,
+                cone_faces,
+                color=colour,
+                opacity=0.28,
+                side="double",
+                cast_shadow=False,
+                receive_shadow=False,
+                visible=shown,
             )
-            scene.add_line_segments(f"{path}_rim", _ring_segments(rim), colour, thickness=2.5, thickness_units="screen", visible=shown)
-            scene.add_line_segments(f"{path}_rulings", _rulings(rim, 12), colour, thickness=1.2, thickness_units="screen", visible=shown)
+            scene.add_line_segments(
+                f"{path}_rim", _ring_segments(rim), colour, thickness=2.5, thickness_units="screen", visible=shown
+            )
+            scene.add_line_segments(
+                f"{path}_rulings", _rulings(rim, 12), colour, thickness=1.2, thickness_units="screen", visible=shown
+            )
 
         k = motion.symmetry_axis_nodal()
         omega = motion.angular_velocity_nodal_rad_s()
@@ -194,7 +229,12 @@ class TorqueFreeAxisymmetricScene(Scene):
         r, h = AXIS_ARROW * math.sin(theta), AXIS_ARROW * math.cos(theta)
         ring = np.stack([r * np.cos(azimuth), r * np.sin(azimuth), np.full(96, h)], axis=1)
         scene.add_line_segments(
-            "/axis_path", _ring_segments(ring)[::2], BODY_RED, thickness=1.5, thickness_units="screen", visible=theta >= HIDDEN_CONE_RAD
+            "/axis_path",
+            _ring_segments(ring)[::2],
+            BODY_RED,
+            thickness=1.5,
+            thickness_units="screen",
+            visible=theta >= HIDDEN_CONE_RAD,
         )
         self._draw()
 
@@ -208,15 +248,29 @@ class TorqueFreeAxisymmetricScene(Scene):
             Quantity("spin_rate", "spin rate ψ̇ (relative to the line of nodes)", m.spin_rate_rad_s, "rad/s"),
             Quantity.word("sense", "precession sense", m.sense),
             Quantity("body_cone_half_angle", "body cone half-angle β", math.degrees(m.body_cone_half_angle_rad), "deg"),
-            Quantity("space_cone_half_angle", "space cone half-angle γ", math.degrees(m.space_cone_half_angle_rad), "deg"),
+            Quantity(
+                "space_cone_half_angle", "space cone half-angle γ", math.degrees(m.space_cone_half_angle_rad), "deg"
+            ),
             Quantity("angular_momentum", "angular momentum |L|", m.angular_momentum_kg_m2_s, "kg·m²/s"),
             Quantity("energy", "kinetic energy T", m.energy_J, "J"),
             Quantity("angular_speed", "angular speed |ω|", m.angular_speed_rad_s, "rad/s"),
-            Quantity("body_frame_precession_rate", "λ: ω round the axis, seen from the body", m.body_frame_precession_rate_rad_s, "rad/s"),
-            Quantity.or_text("precession_period", "precession period 2π/φ̇", m.precession_period_s, "s", "no precession"),
+            Quantity(
+                "body_frame_precession_rate",
+                "λ: ω round the axis, seen from the body",
+                m.body_frame_precession_rate_rad_s,
+                "rad/s",
+            ),
+            Quantity.or_text(
+                "precession_period", "precession period 2π/φ̇", m.precession_period_s, "s", "no precession"
+            ),
             Quantity("t_s", "time t", self.t_s, "s"),
         ]
-        marks = {"I_axial": [Mark(self.params["I_transverse"], "sphere"), Mark(2.0 * self.params["I_transverse"], "flat disc")]}
+        marks = {
+            "I_axial": [
+                Mark(self.params["I_transverse"], "sphere"),
+                Mark(2.0 * self.params["I_transverse"], "flat disc"),
+            ]
+        }
         return Readout(quantities, marks=marks, message=_sense_message(m))
 
 
@@ -224,5 +278,7 @@ def _sense_message(motion: physics.AxisymmetricFreeMotion) -> str:
     if motion.sense == "direct":
         return "Prolate (I_a < I_t): direct precession. The body cone rolls round the outside of the space cone."
     if motion.sense == "retrograde":
-        return "Oblate (I_a > I_t): retrograde precession. The space cone sits inside the body cone, which rolls round it."
+        return (
+            "Oblate (I_a > I_t): retrograde precession. The space cone sits inside the body cone, which rolls round it."
+        )
     return "I_a = I_t: every axis is principal, ω lies along L and the body simply turns about it."

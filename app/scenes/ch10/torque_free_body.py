@@ -50,7 +50,12 @@ HERPOLHODE_LABEL_SIDE = np.array([-0.8, -0.6, 0.0])  # a horizontal direction on
 POLHODE_LABEL_SIDE = -HERPOLHODE_LABEL_SIDE  # the camera's right: the two curves' names never meet
 
 GHOST = Parameter(
-    "ghost", "", "off", kind="choice", choices=("off", "on"), label="numerical ghost",
+    "ghost",
+    "",
+    "off",
+    kind="choice",
+    choices=("off", "on"),
+    label="numerical ghost",
     description="Also integrate the same body numerically (RK4 on the solver core) and draw it as a green "
     "see-through outline; the readout shows the angle between the two attitudes",
 )
@@ -58,17 +63,21 @@ GHOST = Parameter(
 _BOOK = dict(physics.BOOK_INERTIA_KG_M2)
 PRESETS = (
     Preset(
-        "tennis-racket", "Tennis racket: spin about the intermediate axis",
+        "tennis-racket",
+        "Tennis racket: spin about the intermediate axis",
         {**_BOOK, "omega0_rad_s": [0.1, 4.0, 0.1]},
-        "The book spun about axis 2 (the middle moment) with a tiny wobble: it turns over every few seconds " "(Dzhanibekov effect).",
+        "The book spun about axis 2 (the middle moment) with a tiny wobble: it turns over every few seconds "
+        "(Dzhanibekov effect).",
     ),
     Preset(
-        "major-axis", "Near the major axis (stable)",
+        "major-axis",
+        "Near the major axis (stable)",
         {**_BOOK, "omega0_rad_s": [0.3, 0.3, 4.0]},
         "Spin about axis 3, the largest moment: the polhode is a small loop and the wobble stays small.",
     ),
     Preset(
-        "minor-axis", "Near the minor axis (stable)",
+        "minor-axis",
+        "Near the minor axis (stable)",
         {**_BOOK, "omega0_rad_s": [4.0, 0.3, 0.3]},
         "Spin about axis 1, the smallest moment: also stable in the torque-free ideal.",
     ),
@@ -100,16 +109,26 @@ class TorqueFreeBodyScene(Scene):
         scene = self.client.scene
         self.body_frame = scene.add_frame("/body", show_axes=False)
         self.ellipsoid = scene.add_icosphere(
-            "/body/ellipsoid", radius=1.0, color=(250, 215, 110), subdivisions=5, opacity=0.3,
-            cast_shadow=False, receive_shadow=False,
+            "/body/ellipsoid",
+            radius=1.0,
+            color=(250, 215, 110),
+            subdivisions=5,
+            opacity=0.3,
+            cast_shadow=False,
+            receive_shadow=False,
         )
         self.axis_labels = [
-            scene.add_label(f"/body/axis_label_{k + 1}", "", anchor="center-left", font_screen_scale=0.85) for k in range(3)
+            scene.add_label(f"/body/axis_label_{k + 1}", "", anchor="center-left", font_screen_scale=0.85)
+            for k in range(3)
         ]
         self.ghost_frame = scene.add_frame("/ghost", show_axes=False, visible=False)
         self.arrows = scene.add_arrows(
-            "/vectors", np.zeros((2, 2, 3), np.float32), np.array([MOMENTUM_COLOR, OMEGA_COLOR], np.uint8),
-            shaft_radius=0.013, head_radius=0.036, head_length=0.08,
+            "/vectors",
+            np.zeros((2, 2, 3), np.float32),
+            np.array([MOMENTUM_COLOR, OMEGA_COLOR], np.uint8),
+            shaft_radius=0.013,
+            head_radius=0.036,
+            head_length=0.08,
         )
         self.momentum_label = scene.add_label("/vectors/L", "L (fixed)", anchor="center-left")
         # The contact point carries its marker and ω's label: one pose message per frame moves both.
@@ -117,12 +136,18 @@ class TorqueFreeBodyScene(Scene):
         scene.add_icosphere("/contact/marker", radius=0.022, color=HERPOLHODE_COLOR, cast_shadow=False)
         scene.add_label("/contact/omega_label", "ω", position=(0.03, 0.0, 0.05), anchor="bottom-left")
         self.plane_label = scene.add_label("/plane_label", "invariable plane (⊥ L, fixed in space)", anchor="top-left")
-        self.herpolhode_label = scene.add_label("/herpolhode_label", "herpolhode (red, on the plane)", anchor="center-right", font_screen_scale=0.85)
+        self.herpolhode_label = scene.add_label(
+            "/herpolhode_label", "herpolhode (red, on the plane)", anchor="center-right", font_screen_scale=0.85
+        )
         self.polhode_label = scene.add_label(
             "/polhode_label", "polhode (orange, on the ellipsoid)", anchor="center-left", font_screen_scale=0.85
         )
-        self.polhode_trail = Trail(scene, "/body/polhode", color=POLHODE_COLOR, chunk_frames=TRAIL_CHUNK_FRAMES, max_chunks=POLHODE_CHUNKS)
-        self.herpolhode_trail = Trail(scene, "/herpolhode", color=HERPOLHODE_COLOR, chunk_frames=TRAIL_CHUNK_FRAMES, max_chunks=HERPOLHODE_CHUNKS)
+        self.polhode_trail = Trail(
+            scene, "/body/polhode", color=POLHODE_COLOR, chunk_frames=TRAIL_CHUNK_FRAMES, max_chunks=POLHODE_CHUNKS
+        )
+        self.herpolhode_trail = Trail(
+            scene, "/herpolhode", color=HERPOLHODE_COLOR, chunk_frames=TRAIL_CHUNK_FRAMES, max_chunks=HERPOLHODE_CHUNKS
+        )
 
     def update(self) -> None:
         self.body = physics.motion(self.params)
@@ -142,16 +167,23 @@ class TorqueFreeBodyScene(Scene):
         ends = np.zeros((3, 2, 3), np.float32)
         for k in range(3):
             ends[k, 0, k], ends[k, 1, k] = -1.12 * shown_axes[k], 1.12 * shown_axes[k]
-        scene.add_line_segments("/body/axes", ends, np.repeat(AXIS_COLORS[:, None, :], 2, axis=1), thickness=2.0, thickness_units="screen")
+        scene.add_line_segments(
+            "/body/axes", ends, np.repeat(AXIS_COLORS[:, None, :], 2, axis=1), thickness=2.0, thickness_units="screen"
+        )
         rank = np.argsort(np.argsort(self.body.inertia, kind="stable"), kind="stable")
         for k, label in enumerate(self.axis_labels):
             label.text = f"{k + 1} ({_AXIS_RANK[rank[k]]})"
             label.position = tuple(ends[k, 1] * 1.02)
         family = physics.polhode_family(self.body, loops_per_axis=3)
-        segments = np.concatenate([np.stack([c[:-1], c[1:]], axis=1) for c in family]) if family else np.zeros((1, 2, 3))
+        segments = (
+            np.concatenate([np.stack([c[:-1], c[1:]], axis=1) for c in family]) if family else np.zeros((1, 2, 3))
+        )
         scene.add_line_segments(
-            "/body/polhode_family", (segments * self.scale * ON_ELLIPSOID).astype(np.float32), (185, 160, 110),
-            thickness=1.0, thickness_units="screen",
+            "/body/polhode_family",
+            (segments * self.scale * ON_ELLIPSOID).astype(np.float32),
+            (185, 160, 110),
+            thickness=1.0,
+            thickness_units="screen",
         )
 
         # The invariable plane: horizontal (L is along −Z), below the centre by 2T/|L|.
@@ -159,9 +191,16 @@ class TorqueFreeBodyScene(Scene):
         reach = float(np.linalg.norm(physics.omega_amplitudes_rad_s(self.body))) * self.scale
         half_width = max(1.1, math.ceil(1.15 * reach / 0.25) * 0.25)
         scene.add_grid(
-            "/plane", width=2 * half_width, height=2 * half_width, cell_size=0.1, section_size=0.5,
-            position=(0.0, 0.0, plane_z), plane_color=(215, 228, 245), plane_opacity=0.45,
-            cell_color=(185, 200, 225), section_color=(130, 150, 190),
+            "/plane",
+            width=2 * half_width,
+            height=2 * half_width,
+            cell_size=0.1,
+            section_size=0.5,
+            position=(0.0, 0.0, plane_z),
+            plane_color=(215, 228, 245),
+            plane_opacity=0.45,
+            cell_color=(185, 200, 225),
+            section_color=(130, 150, 190),
         )
         self.plane_label.position = (-half_width, -half_width, plane_z)
         arrow_length = -plane_z + 0.4
@@ -176,11 +215,15 @@ class TorqueFreeBodyScene(Scene):
         # The polhode turns with the body, so a name riding on it would cross the herpolhode's as the body turns. Its
         # name stays in space instead, just outside the ellipsoid on the camera's right, level with the centre: the
         # herpolhode's is on the left and below, on the plane, so the two never meet.
-        self.polhode_label.position = tuple((ELLIPSOID_SIZE + 0.08) * POLHODE_LABEL_SIDE / np.linalg.norm(POLHODE_LABEL_SIDE))
+        self.polhode_label.position = tuple(
+            (ELLIPSOID_SIZE + 0.08) * POLHODE_LABEL_SIDE / np.linalg.norm(POLHODE_LABEL_SIDE)
+        )
         # The herpolhode stays within its largest radius of the foot of L: its label goes just outside, to the viewer's
         # left.
         _, widest = physics.herpolhode_radii_rad_s(self.body)
-        self.herpolhode_label.position = tuple((widest * self.scale + 0.06) * HERPOLHODE_LABEL_SIDE + np.array([0.0, 0.0, plane_z]))
+        self.herpolhode_label.position = tuple(
+            (widest * self.scale + 0.06) * HERPOLHODE_LABEL_SIDE + np.array([0.0, 0.0, plane_z])
+        )
         self._setup_ghost(sides)
         self._draw_frame(0)
 
@@ -191,7 +234,11 @@ class TorqueFreeBodyScene(Scene):
         if on:
             # An outline: lines are drawn with the opaque pass, so the translucent ellipsoid cannot hide them.
             self.client.scene.add_line_segments(
-                "/ghost/outline", box_edges(1.03 * sides), GHOST_COLOR, thickness=2.5, thickness_units="screen",
+                "/ghost/outline",
+                box_edges(1.03 * sides),
+                GHOST_COLOR,
+                thickness=2.5,
+                thickness_units="screen",
             )
             self.ghost = physics.IntegratedTwin(self.body, frame_dt_s=FRAME_DT_S)
             self.ghost_frame.wxyz = self.body.q0
@@ -227,7 +274,9 @@ class TorqueFreeBodyScene(Scene):
         self.arrows.points = np.stack([self._momentum_segment, np.array([[0.0, 0.0, 0.0], tip], np.float32)])
         self.contact.position = tuple(tip)
         # ω_body is periodic: after one period (and a chunk of overlap) the polhode only retraces itself.
-        polhode_done = math.isfinite(self.body.period_s) and self.t_s > self.body.period_s + 2 * TRAIL_CHUNK_FRAMES * FRAME_DT_S
+        polhode_done = (
+            math.isfinite(self.body.period_s) and self.t_s > self.body.period_s + 2 * TRAIL_CHUNK_FRAMES * FRAME_DT_S
+        )
         if not polhode_done:
             self.polhode_trail.add(omega_body * self.scale * ON_ELLIPSOID)
         self.herpolhode_trail.add(tip + np.array([0.0, 0.0, ABOVE_PLANE]))
@@ -283,20 +332,41 @@ class TorqueFreeBodyScene(Scene):
             Quantity("angular_momentum", "|L|", body.angular_momentum_norm, "kg·m²/s"),
             Quantity("plane_distance", "plane distance 2T/|L|", self.plane_distance_rad_s, "rad/s"),
             Quantity.or_text(
-                "period", "period of ω", body.period_s, "s", "none: ω is constant" if body.kind == "steady" else "infinite (separatrix)"
+                "period",
+                "period of ω",
+                body.period_s,
+                "s",
+                "none: ω is constant" if body.kind == "steady" else "infinite (separatrix)",
             ),
-            Quantity.word("intermediate_axis", "intermediate axis", f"{mid + 1} (I{mid + 1} = {inertia[mid]:.4g} kg·m²)"),
+            Quantity.word(
+                "intermediate_axis", "intermediate axis", f"{mid + 1} (I{mid + 1} = {inertia[mid]:.4g} kg·m²)"
+            ),
         ]
         if body.circled_axis is not None:
             rank = "largest" if inertia[body.circled_axis] == inertia.max() else "smallest"
-            quantities.append(Quantity.word("circled_axis", "polhode circles", f"axis {body.circled_axis + 1} ({rank} I)"))
+            quantities.append(
+                Quantity.word("circled_axis", "polhode circles", f"axis {body.circled_axis + 1} ({rank} I)")
+            )
         next_flip = physics.next_flip_s(body, self.t_s)
         quantities.append(
-            Quantity.or_text("next_flip", "time to next flip", None if next_flip is None else next_flip - self.t_s, "s", "no flips in this motion")
+            Quantity.or_text(
+                "next_flip",
+                "time to next flip",
+                None if next_flip is None else next_flip - self.t_s,
+                "s",
+                "no flips in this motion",
+            )
         )
         if self.ghost is not None:
             quantities.append(Quantity.word("ghost_method", "ghost integrator", self.ghost.description))
-            quantities.append(Quantity("ghost_attitude_difference", "ghost vs closed form, attitude", self.ghost_attitude_difference_rad(), "rad"))
+            quantities.append(
+                Quantity(
+                    "ghost_attitude_difference",
+                    "ghost vs closed form, attitude",
+                    self.ghost_attitude_difference_rad(),
+                    "rad",
+                )
+            )
         return Readout(quantities, marks=self._triangle_marks(), message=self._message(next_flip))
 
     def _triangle_marks(self) -> dict[str, list[Mark]]:
@@ -313,12 +383,16 @@ class TorqueFreeBodyScene(Scene):
         if self.ghost_status:
             return f"Ghost stopped: {self.ghost_status}"
         if body.kind == "steady":
-            return ("Steady rotation about a principal axis: ω and L are parallel, the polhode and herpolhode are " "single points.")
+            return (
+                "Steady rotation about a principal axis: ω and L are parallel, the polhode and herpolhode are "
+                "single points."
+            )
         if body.kind == "separatrix":
             return "Exactly on the separatrix: ω creeps towards the intermediate axis and never quite arrives."
         if next_flip is not None:
             return (
-                f"Intermediate-axis tumble: axis {body.intermediate_axis + 1} turns over every " f"{0.5 * body.period_s:.3g} s "
+                f"Intermediate-axis tumble: axis {body.intermediate_axis + 1} turns over every "
+                f"{0.5 * body.period_s:.3g} s "
                 "while |L| and T stay fixed."
             )
         if body.circled_axis is not None:

@@ -137,7 +137,7 @@ class RequestTooCostly(ValueError):
 
     @classmethod
     def over_limit(cls, field: str, what: str, advice: str) -> RequestTooCostly:
-        """"``field``: ``what`` takes more than the limit …; ``advice``" (the words every such refusal uses)."""
+        """ "``field``: ``what`` takes more than the limit …; ``advice``" (the words every such refusal uses)."""
         return cls(f"{field}: {what} takes more than the {REQUEST_COMPUTE_S:g} s of computing one request may use while a class "
                    f"shares the server; {advice}")  # fmt: skip
 
@@ -159,7 +159,9 @@ class Pace:
     ``limit_s`` is spent, or as soon as the frames done so far show that the whole would take longer (after
     :data:`PROJECT_AFTER` of them), so a request whose cost was not known yet is refused for the price of a few frames."""
 
-    def __init__(self, *, frames: int, limit_s: float = REQUEST_COMPUTE_S, clock: Callable[[], float] = time.perf_counter) -> None:
+    def __init__(
+        self, *, frames: int, limit_s: float = REQUEST_COMPUTE_S, clock: Callable[[], float] = time.perf_counter
+    ) -> None:
         self.frames = frames
         self.limit_s = limit_s
         self.spent_s = 0.0

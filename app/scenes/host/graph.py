@@ -77,13 +77,23 @@ def _finite(value: float) -> float | None:
 
 def empty_graph(scene_id: str, note: str) -> dict[str, Any]:
     """A graph with nothing in it, and why."""
-    return {"scene_id": scene_id, "t_s": [], "quantities": [], "values": {}, "energy": None, "span_s": None, "note": note}
+    return {
+        "scene_id": scene_id,
+        "t_s": [],
+        "quantities": [],
+        "values": {},
+        "energy": None,
+        "span_s": None,
+        "note": note,
+    }
 
 
 def no_graph_note(scene_cls: type[Scene]) -> str | None:
     """Why a scene of this class has no graph (None: it has one)."""
     if not scene_cls.animated:
-        return "this scene does not move in time: there is nothing to graph against time (its numbers are in the readout)"
+        return (
+            "this scene does not move in time: there is nothing to graph against time (its numbers are in the readout)"
+        )
     model = scene_cls.model
     if model is None or not model.integrated:
         return "this scene's motion is a closed form in time, not integrated: its graph is not kept (its numbers are in the readout)"
@@ -120,20 +130,39 @@ def motion_graph(
             )
             for kind, named, units in groups:
                 for name, series in named.items():
-                    quantities.append({"name": name, "label": labels.get(name) or readable_label(name), "unit": units.get(name, ""), "kind": kind})
+                    quantities.append(
+                        {
+                            "name": name,
+                            "label": labels.get(name) or readable_label(name),
+                            "unit": units.get(name, ""),
+                            "kind": kind,
+                        }
+                    )
                     values[name] = _finite_list(np.broadcast_to(np.asarray(series, dtype=float), t_s.shape)[keep])
             budget = model.energy_budget(params, states, t_s=t_s)
             for key, energy in (budget or {}).items():
                 name = ENERGY_PREFIX + key
-                quantities.append({"name": name, "label": ENERGY_LABELS.get(key, readable_label(key)), "unit": "J", "kind": "energy"})
+                quantities.append(
+                    {"name": name, "label": ENERGY_LABELS.get(key, readable_label(key)), "unit": "J", "kind": "energy"}
+                )
                 values[name] = _finite_list(np.asarray(energy)[keep])
             t_s = t_s[keep]
         if not frames and latest is not None:  # nothing new: the bars still show the last kept frame
             latest_t_s, latest_motion = latest
-            budget = model.energy_budget(params, np.asarray(latest_motion["y"], dtype=float)[None, :], t_s=np.array([latest_t_s]))
+            budget = model.energy_budget(
+                params, np.asarray(latest_motion["y"], dtype=float)[None, :], t_s=np.array([latest_t_s])
+            )
         energy = None if budget is None else _energy_bars(model, params, budget)
     span = [float(t_s[0]), float(t_s[-1])] if len(t_s) else None
-    return {"scene_id": scene_id, "t_s": t_s.tolist(), "quantities": quantities, "values": values, "energy": energy, "span_s": span, "note": None}
+    return {
+        "scene_id": scene_id,
+        "t_s": t_s.tolist(),
+        "quantities": quantities,
+        "values": values,
+        "energy": energy,
+        "span_s": span,
+        "note": None,
+    }
 
 
 def _energy_bars(model: IntegratedModel, params: Mapping[str, Any], budget: Mapping[str, np.ndarray]) -> dict[str, Any]:
@@ -151,6 +180,8 @@ def graph_csv(answer: Mapping[str, Any]) -> str:
     header = ["t_s"] + [f"{q['name']} ({q['unit']})" if q["unit"] else q["name"] for q in answer["quantities"]]
     lines = [",".join(header)]
     for i, t in enumerate(answer["t_s"]):
-        cells = [repr(float(t))] + ["" if (v := answer["values"][name][i]) is None else repr(float(v)) for name in names]
+        cells = [repr(float(t))] + [
+            "" if (v := answer["values"][name][i]) is None else repr(float(v)) for name in names
+        ]
         lines.append(",".join(cells))
     return "\n".join(lines) + "\n"

@@ -59,10 +59,12 @@ from app.scenes.host.fair_share import (
     is_long_request,
     slowdown_note,
 )
-from app.scenes.host.interface import HostBusy
 from app.scenes.host.graph import DEFAULT_MAX_POINTS, check_graph_request, empty_graph, motion_graph, no_graph_note
 from app.scenes.host.history import MotionHistory
+from app.scenes.host.interface import HostBusy
 from app.scenes.host.recorder import SceneRecorder, checked_seconds, frames_for
+from app.scenes.kit import Scene
+from app.scenes.kit.scene import FRAME_DT_S
 from app.scenes.viser_boundary import (
     BatchedWakeups,
     BroadcastViewer,
@@ -74,8 +76,6 @@ from app.scenes.viser_boundary import (
     stop_quietly,
     viewer_count,
 )
-from app.scenes.kit import Scene
-from app.scenes.kit.scene import FRAME_DT_S
 
 log = logging.getLogger(__name__)
 
@@ -100,7 +100,8 @@ def check_session_id(session_id: str, *, stage: bool = False) -> None:
     if session_id.startswith(STAGE_PREFIX) != stage:
         raise ValueError(
             f"session_id: ids beginning {STAGE_PREFIX!r} are classroom rooms' shared scenes, changed only by their room"
-            if not stage else f"session_id: a stage's id begins {STAGE_PREFIX!r}"
+            if not stage
+            else f"session_id: a stage's id begins {STAGE_PREFIX!r}"
         )
 
 
@@ -200,7 +201,12 @@ class Session:
         """Play state, time scale, the first scene's simulated time (or, before a viewer, the time the next one resumes
         at) and the span of motion kept for scrubbing."""
         waiting_t_s = self.resume_motion.get("t_s") if self.resume_motion is not None else self.go_to_s
-        out: dict[str, Any] = {"playing": self.playing, "time_scale": self.time_scale, "t_s": waiting_t_s, "history_s": None}
+        out: dict[str, Any] = {
+            "playing": self.playing,
+            "time_scale": self.time_scale,
+            "t_s": waiting_t_s,
+            "history_s": None,
+        }
         for client_id, scene in list(self.instances.items()):
             motion = scene.motion_state()
             out["t_s"] = None if motion is None else motion["t_s"]
@@ -222,7 +228,9 @@ class Session:
         """The first usable viewer camera (m, world frame), or without viewers the one the next viewer starts from."""
         if not self.instances:
             return None if self.camera is None else {k: list(v) for k, v in self.camera.items()}
-        return next((c for c in (viewer_camera(scene.client) for scene in self.instances.values()) if c is not None), None)
+        return next(
+            (c for c in (viewer_camera(scene.client) for scene in self.instances.values()) if c is not None), None
+        )
 
     def add_instance(self, client_id: int, scene: Scene, *, client: str | None = None) -> None:
         self.instances[client_id] = scene
@@ -342,7 +350,9 @@ class SceneHost:
         """Get or create the session (caller holds the lock)."""
         session = self._sessions.get(session_id)
         if session is not None and session.stage is not None and session.scene_id != scene_id:
-            raise ValueError(f"session {session_id!r} is a stage showing {session.scene_id!r}: open_stage changes its scene")
+            raise ValueError(
+                f"session {session_id!r} is a stage showing {session.scene_id!r}: open_stage changes its scene"
+            )
         if session is None or session.scene_id != scene_id:
             if session is not None:
                 self._close_instances(session)
@@ -361,7 +371,9 @@ class SceneHost:
                 return
             del self._sessions[oldest]
 
-    def set_params(self, scene_id: str, session_id: str, raw: Mapping[str, Any], *, stage: bool = False) -> dict[str, Any]:
+    def set_params(
+        self, scene_id: str, session_id: str, raw: Mapping[str, Any], *, stage: bool = False
+    ) -> dict[str, Any]:
         """Validate ``raw`` against the scene's parameters and apply it to every viewer of the session.
 
         ``stage`` is True only for a room changing its own stage (ids beginning :data:`STAGE_PREFIX`);
@@ -418,12 +430,25 @@ class SceneHost:
             raise ValueError("playing: must be true or false")
         if time_scale is not None:
             low, high = TIME_SCALE_RANGE
-            if isinstance(time_scale, bool) or not isinstance(time_scale, int | float) or not math.isfinite(time_scale) or not low <= time_scale <= high:
-                raise ValueError(f"time_scale: must be a number from {low:g} to {high:g} (× real time), got {time_scale!r}")
+            if (
+                isinstance(time_scale, bool)
+                or not isinstance(time_scale, int | float)
+                or not math.isfinite(time_scale)
+                or not low <= time_scale <= high
+            ):
+                raise ValueError(
+                    f"time_scale: must be a number from {low:g} to {high:g} (× real time), got {time_scale!r}"
+                )
         if isinstance(step, bool) or not isinstance(step, int) or not 0 <= step <= MAX_STEP_FRAMES:
             raise ValueError(f"step: a whole number of frames from 0 to {MAX_STEP_FRAMES}, got {step!r}")
         for name, value, high in (("seek_s", seek_s, None), ("go_to_s", go_to_s, MAX_GO_TO_S)):
-            if value is not None and (isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value) or value < 0 or (high is not None and value > high)):
+            if value is not None and (
+                isinstance(value, bool)
+                or not isinstance(value, int | float)
+                or not math.isfinite(value)
+                or value < 0
+                or (high is not None and value > high)
+            ):
                 raise ValueError(f"{name}: a simulated time from 0 to {high or 'the latest kept'} s, got {value!r}")
         session = self._existing(session_id)
         if (go_to_s is not None or step or seek_s is not None) and not self.scene_class(session.scene_id).animated:
@@ -436,18 +461,28 @@ class SceneHost:
                 check_request_cost("step", frames=step, frame_cost_s=drawn_s, what=f"stepping {step} frames")
             if go_to_s is not None and session.instances:
                 stepped_s = sum(scene.motion_cost_s() or 0.0 for scene in session.instances.values())
-                frames = math.ceil(float(go_to_s) / FRAME_DT_S)  # a jump steps the kit's frames, as _paced_go_to counts them
-                check_request_cost("go_to_s", frames=frames, frame_cost_s=stepped_s, what=f"computing the motion to {go_to_s:g} s")
+                frames = math.ceil(
+                    float(go_to_s) / FRAME_DT_S
+                )  # a jump steps the kit's frames, as _paced_go_to counts them
+                check_request_cost(
+                    "go_to_s", frames=frames, frame_cost_s=stepped_s, what=f"computing the motion to {go_to_s:g} s"
+                )
             if seek_s is not None:  # checked against every viewer's kept motion before anything moves
-                motions = {cid: session.histories[cid].at(seek_s) for cid in session.instances if cid in session.histories}
+                motions = {
+                    cid: session.histories[cid].at(seek_s) for cid in session.instances if cid in session.histories
+                }
                 if not motions:
-                    raise ValueError("seek_s: no motion is kept for this session yet (it has no viewer): open its scene, then go back in it")
+                    raise ValueError(
+                        "seek_s: no motion is kept for this session yet (it has no viewer): open its scene, then go back in it"
+                    )
             if playing is not None:
                 session.playing = playing
             if time_scale is not None:
                 session.time_scale = float(time_scale)
             if reset or go_to_s is not None:
-                session.resume_motion = session.go_to_s = None  # a viewer that connects later starts from the new motion
+                session.resume_motion = session.go_to_s = (
+                    None  # a viewer that connects later starts from the new motion
+                )
             if reset:
                 for scene in session.instances.values():
                     with scene.client.atomic():
@@ -494,7 +529,10 @@ class SceneHost:
             yield
             return
         if not self._long_request.acquire(timeout=1.0):
-            raise HostBusy("another student's long computation is running on this scene worker; try again in a moment", retry_after_s=2)
+            raise HostBusy(
+                "another student's long computation is running on this scene worker; try again in a moment",
+                retry_after_s=2,
+            )
         try:
             yield
         finally:
@@ -521,7 +559,9 @@ class SceneHost:
                     scene.resume_from(before[client_id])  # type: ignore[arg-type]
                     scene.redraw()
             session.restarted()
-            raise RequestTooCostly.over_limit("step", f"stepping {frames} frames of this scene", "step fewer frames, or use fewer steps per frame")
+            raise RequestTooCostly.over_limit(
+                "step", f"stepping {frames} frames of this scene", "step fewer frames, or use fewer steps per frame"
+            )
 
     @staticmethod
     def _paced_go_to(scene: Scene, t_s: float) -> None:
@@ -538,7 +578,9 @@ class SceneHost:
             if before is not None:
                 scene.resume_from(before)
                 scene.redraw()
-            raise RequestTooCostly.over_limit("go_to_s", f"computing the motion to {t_s:g} s", "ask for an earlier time, or use fewer steps per frame")
+            raise RequestTooCostly.over_limit(
+                "go_to_s", f"computing the motion to {t_s:g} s", "ask for an earlier time, or use fewer steps per frame"
+            )
 
     def camera(self, session_id: str) -> dict[str, list[float]] | None:
         """The first viewer's camera now (m, world frame), as its browser last reported it; before a viewer, the one the
@@ -695,7 +737,9 @@ class SceneHost:
                     return out
         return None
 
-    def graph(self, session_id: str, *, since_s: float = -math.inf, max_points: int = DEFAULT_MAX_POINTS) -> dict[str, Any] | None:
+    def graph(
+        self, session_id: str, *, since_s: float = -math.inf, max_points: int = DEFAULT_MAX_POINTS
+    ) -> dict[str, Any] | None:
         """The first viewer's kept motion later than ``since_s`` (s) as graphs: every series, invariant and energy
         part against simulated time, at most ``max_points`` frames (:mod:`.graph`); None for a session without a
         scene. ValueError naming the field for a bad ``since_s`` or ``max_points``."""
@@ -710,7 +754,9 @@ class SceneHost:
             client_id, scene = next(iter(session.instances.items()), (None, None))
             history = session.histories.get(client_id) if client_id is not None else None
             if scene is None or history is None or not len(history):
-                return empty_graph(session.scene_id, "no viewer is showing this scene yet: its motion is kept once one connects")
+                return empty_graph(
+                    session.scene_id, "no viewer is showing this scene yet: its motion is kept once one connects"
+                )
             frames = history.since(since_s)
             span = history.span_s()
             latest = frames[-1] if frames else (span[1], history.at(span[1])) if span is not None else None
@@ -754,9 +800,11 @@ class SceneHost:
         """Each session's restorable state (:meth:`Session.snapshot`): every session, or the ones named that exist.
         A session busy with a long request is skipped this time (the front keeps its previous snapshot)."""
         with self._lock:
-            wanted = list(self._sessions.items()) if session_ids is None else [
-                (sid, self._sessions[sid]) for sid in session_ids if sid in self._sessions
-            ]
+            wanted = (
+                list(self._sessions.items())
+                if session_ids is None
+                else [(sid, self._sessions[sid]) for sid in session_ids if sid in self._sessions]
+            )
         out: dict[str, dict[str, Any]] = {}
         for session_id, session in wanted:
             if session.lock.acquire(timeout=0.05):
@@ -790,9 +838,13 @@ class SceneHost:
                         session.resume_motion = dict(motion)
                 elif snapshot.get("go_to_s") is not None:
                     session.go_to_s = float(snapshot["go_to_s"])
-        self.set_playback(session_id, playing=bool(snapshot.get("playing", True)), time_scale=float(snapshot.get("time_scale", 1.0)))
+        self.set_playback(
+            session_id, playing=bool(snapshot.get("playing", True)), time_scale=float(snapshot.get("time_scale", 1.0))
+        )
         camera = snapshot.get("camera")
-        if camera is not None:  # last: a camera that does not fit loses only itself (the viewer starts at the scene's pose)
+        if (
+            camera is not None
+        ):  # last: a camera that does not fit loses only itself (the viewer starts at the scene's pose)
             try:
                 self.set_playback(session_id, camera=camera)
             except ValueError as exc:
@@ -808,7 +860,12 @@ class SceneHost:
         route, _, query = path.partition("?")
         parts = [p for p in route.split("/") if p]
         owner = next((v for k, _, v in (item.partition("=") for item in query.split("&")) if k == "client" and v), None)
-        if len(parts) != 2 or parts[0] not in self.scenes or not SESSION_ID_PATTERN.match(parts[1]) or parts[1].startswith(STAGE_PREFIX):
+        if (
+            len(parts) != 2
+            or parts[0] not in self.scenes
+            or not SESSION_ID_PATTERN.match(parts[1])
+            or parts[1].startswith(STAGE_PREFIX)
+        ):
             log.warning("viewer connected with unusable path %r", path)
             tell_viewer(client, f"No such scene: {route}")
             return
@@ -840,7 +897,11 @@ class SceneHost:
                     scene.resume_from(motion)
                     scene.redraw()
                 except ValueError:
-                    log.warning("session %s: the motion handed over does not fit scene %s; it starts at t = 0", session_id, scene_id)
+                    log.warning(
+                        "session %s: the motion handed over does not fit scene %s; it starts at t = 0",
+                        session_id,
+                        scene_id,
+                    )
             if session.go_to_s is not None:
                 go_to_s, session.go_to_s = session.go_to_s, None
                 try:
@@ -938,7 +999,9 @@ class SceneHost:
             client_demand = demand.get(share.client or "", 0.0)
             if client_demand > allowance:
                 share.rate = allowance / client_demand
-                share.note = slowdown_note(share.rate, client_demand, allowance, viewers=viewers.get(share.client or "", 1))
+                share.note = slowdown_note(
+                    share.rate, client_demand, allowance, viewers=viewers.get(share.client or "", 1)
+                )
             else:
                 share.rate, share.note = 1.0, ""
             # time_scale frames per displayed frame on average: 0.5 advances every other frame, 2 twice a frame.

@@ -60,7 +60,9 @@ F = TypeVar("F", bound=Callable[..., Any])
 CALLS: dict[str, Call] = {}
 
 
-def call(*, answer_timeout_s: float = 5.0, creates: bool = False, unknown: Any = None, every_worker: bool = False) -> Callable[[F], F]:
+def call(
+    *, answer_timeout_s: float = 5.0, creates: bool = False, unknown: Any = None, every_worker: bool = False
+) -> Callable[[F], F]:
     """Declare an interface method as a call a worker answers (see :class:`Call`)."""
 
     def declare(method: F) -> F:
@@ -88,7 +90,9 @@ class SceneHostInterface(Protocol):
 
     # -- a page's session ---------------------------------------------------------------------------------
     @call(answer_timeout_s=SLOW_ANSWER_S, creates=True, unknown=RAISE)
-    def set_params(self, scene_id: str, session_id: str, raw: Mapping[str, Any], *, stage: bool = False) -> dict[str, Any]:
+    def set_params(
+        self, scene_id: str, session_id: str, raw: Mapping[str, Any], *, stage: bool = False
+    ) -> dict[str, Any]:
         """Validate ``raw`` and apply it to every viewer of the session (created showing ``scene_id`` if new, or
         switched to it); returns the parameters in force. ``ValueError``/``ParameterError`` and no change on bad input."""
         ...
@@ -127,12 +131,10 @@ class SceneHostInterface(Protocol):
         ...
 
     @call()
-    def camera(self, session_id: str) -> dict[str, list[float]] | None:
-        ...
+    def camera(self, session_id: str) -> dict[str, list[float]] | None: ...
 
     @call()
-    def live_readout(self, scene_id: str, session_id: str) -> dict[str, Any] | None:
-        ...
+    def live_readout(self, scene_id: str, session_id: str) -> dict[str, Any] | None: ...
 
     @call(unknown=0)
     def viewer_count(self, session_id: str) -> int:
@@ -140,20 +142,16 @@ class SceneHostInterface(Protocol):
         ...
 
     @call(answer_timeout_s=SLOW_ANSWER_S)
-    def graph(self, session_id: str, *, since_s: float = ..., max_points: int = ...) -> dict[str, Any] | None:
-        ...
+    def graph(self, session_id: str, *, since_s: float = ..., max_points: int = ...) -> dict[str, Any] | None: ...
 
     @call(answer_timeout_s=SLOW_ANSWER_S)
-    def recording_html(self, scene_id: str, session_id: str, *, seconds: float) -> str | None:
-        ...
+    def recording_html(self, scene_id: str, session_id: str, *, seconds: float) -> str | None: ...
 
     @call()
-    def motion_state(self, session_id: str) -> dict[str, Any] | None:
-        ...
+    def motion_state(self, session_id: str) -> dict[str, Any] | None: ...
 
     @call(unknown=RAISE)
-    def resume_from(self, session_id: str, motion: Mapping[str, Any]) -> None:
-        ...
+    def resume_from(self, session_id: str, motion: Mapping[str, Any]) -> None: ...
 
     @call(unknown=None)
     def close_session(self, session_id: str) -> None:
@@ -162,20 +160,16 @@ class SceneHostInterface(Protocol):
 
     # -- a room's stage: one scene, every follower -------------------------------------------------------
     @call(answer_timeout_s=SLOW_ANSWER_S, creates=True)
-    def open_stage(self, session_id: str, scene_id: str, raw: Mapping[str, Any]) -> dict[str, Any]:
-        ...
+    def open_stage(self, session_id: str, scene_id: str, raw: Mapping[str, Any]) -> dict[str, Any]: ...
 
     @call()
-    def close_stage(self, session_id: str) -> None:
-        ...
+    def close_stage(self, session_id: str) -> None: ...
 
     @call()
-    def stage_viewer_url(self, session_id: str) -> str | None:
-        ...
+    def stage_viewer_url(self, session_id: str) -> str | None: ...
 
     @call(unknown=0)
-    def stage_viewers(self, session_id: str) -> int:
-        ...
+    def stage_viewers(self, session_id: str) -> int: ...
 
     # -- what survives a worker's restart --------------------------------------------------------------
     @call(every_worker=True, answer_timeout_s=2.0)

@@ -163,7 +163,9 @@ class WorkerPool(SceneHostInterface):
         try:
             ready = pipe.recv()
         except EOFError:
-            raise RuntimeError(f"scene worker {index} exited while starting (exit code {process.exitcode}); see its log") from None
+            raise RuntimeError(
+                f"scene worker {index} exited while starting (exit code {process.exitcode}); see its log"
+            ) from None
         return _Worker(index, process, pipe, ready["viewer_url"], tuple(ready["rpc_address"]))
 
     # -- supervision: pings, snapshots, restarts ----------------------------------------------
@@ -174,7 +176,9 @@ class WorkerPool(SceneHostInterface):
                     continue
                 if not worker.process.is_alive():
                     self._restarting.add(index)
-                    threading.Thread(target=self._restart, args=(index, worker), name=f"restart-worker-{index}", daemon=True).start()
+                    threading.Thread(
+                        target=self._restart, args=(index, worker), name=f"restart-worker-{index}", daemon=True
+                    ).start()
                     continue
                 self._check(worker)
 
@@ -185,7 +189,9 @@ class WorkerPool(SceneHostInterface):
         except WorkerUnavailableError as exc:
             worker.missed_pings += 1
             if worker.answering and worker.missed_pings >= MISSED_PINGS:
-                log.error("scene worker %d is not answering (%s): its sessions get 503 until it does", worker.index, exc)
+                log.error(
+                    "scene worker %d is not answering (%s): its sessions get 503 until it does", worker.index, exc
+                )
                 worker.answering = False
             return
         worker.missed_pings = 0
@@ -238,7 +244,13 @@ class WorkerPool(SceneHostInterface):
         """Each worker's state as the front last saw it (no call is made): for ``/api/health``."""
         states = []
         for index, worker in enumerate(self._workers):
-            state = "restarting" if worker is None or index in self._restarting else "answering" if worker.answering else "not answering"
+            state = (
+                "restarting"
+                if worker is None or index in self._restarting
+                else "answering"
+                if worker.answering
+                else "not answering"
+            )
             states.append({"index": index, "state": state})
         return states
 
@@ -250,7 +262,11 @@ class WorkerPool(SceneHostInterface):
             index = self._pinned.get(session_id)
             if index is not None or not create:
                 return index
-            open_to_new = [i for i, worker in enumerate(self._workers) if worker is not None and worker.answering and i not in self._restarting]
+            open_to_new = [
+                i
+                for i, worker in enumerate(self._workers)
+                if worker is not None and worker.answering and i not in self._restarting
+            ]
             counts = {i: self._pinned_count[i] for i in (open_to_new or range(len(self._workers)))}
             fewest = min(counts.values())
             candidates = [i for i, count in counts.items() if count == fewest]
@@ -273,7 +289,9 @@ class WorkerPool(SceneHostInterface):
         by long calls (paced jumps, recordings, derivations) is busy, not sick, and its ping still answers."""
         worker = self._workers[index]
         if worker is None or not (worker.answering or checking):
-            raise WorkerUnavailableError(f"scene worker {index} is {'restarting' if worker is None else 'not answering'}")
+            raise WorkerUnavailableError(
+                f"scene worker {index} is {'restarting' if worker is None else 'not answering'}"
+            )
         if not checking and not worker.places.acquire(timeout=PLACE_WAIT_S):
             raise WorkerUnavailableError(f"scene worker {index} has {CALLS_PER_WORKER} calls waiting already")
         try:
@@ -345,7 +363,9 @@ class WorkerPool(SceneHostInterface):
         except KeyError:
             raise UnknownSceneError(scene_id) from None
 
-    def set_params(self, scene_id: str, session_id: str, raw: Mapping[str, Any], *, stage: bool = False) -> dict[str, Any]:
+    def set_params(
+        self, scene_id: str, session_id: str, raw: Mapping[str, Any], *, stage: bool = False
+    ) -> dict[str, Any]:
         check_session_id(session_id, stage=stage)
         self.scene_class(scene_id)
         params = self._forward(CALLS["set_params"], session_id, (scene_id, session_id, dict(raw)), {"stage": stage})

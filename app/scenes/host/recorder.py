@@ -41,8 +41,8 @@ import viser
 
 from app.scenes.host.fair_share import Pace, RequestTooCostly
 from app.scenes.host.interface import HostBusy
-from app.scenes.viser_boundary import BroadcastViewer, quiet_server, stop_quietly
 from app.scenes.kit import Scene
+from app.scenes.viser_boundary import BroadcastViewer, quiet_server, stop_quietly
 
 log = logging.getLogger(__name__)
 
@@ -143,7 +143,9 @@ class SceneRecorder:
         if len(frames) > MAX_RECORDING_FRAMES:
             raise ValueError(f"seconds: at most {MAX_RECORDING_FRAMES} frames in one recording, not {len(frames)}")
         if not self._lock.acquire(timeout=RECORDER_WAIT_S):
-            raise RecorderBusy("another recording is being made on this scene worker; try again in a few seconds", retry_after_s=3)
+            raise RecorderBusy(
+                "another recording is being made on this scene worker; try again in a few seconds", retry_after_s=3
+            )
         try:
             page = self._record_locked(scene_class, params, frames, frame_period_s=frame_period_s)
         finally:
@@ -157,7 +159,12 @@ class SceneRecorder:
         return page
 
     def _record_locked(
-        self, scene_class: type[Scene], params: Mapping[str, Any], frames: Sequence[tuple[float, Mapping[str, Any]]], *, frame_period_s: float
+        self,
+        scene_class: type[Scene],
+        params: Mapping[str, Any],
+        frames: Sequence[tuple[float, Mapping[str, Any]]],
+        *,
+        frame_period_s: float,
     ) -> str:
         server = self._ready_server()
         scene: Scene | None = None
@@ -177,7 +184,9 @@ class SceneRecorder:
                         scene.redraw()
                         serializer.insert_sleep(frame_period_s)
                         if not pace():
-                            raise RequestTooCostly.over_limit("seconds", f"drawing {len(frames)} frames of this scene again", "record fewer seconds")
+                            raise RequestTooCostly.over_limit(
+                                "seconds", f"drawing {len(frames)} frames of this scene again", "record fewer seconds"
+                            )
             viewer_html, serializer = serializer.as_html(), None
             return offline_page(viewer_html, title=f"{scene_class.title} — a Dynamics Lab recording")
         except RequestTooCostly:

@@ -36,7 +36,10 @@ class ViewerMessageRefused(logging.Filter):
     def filter(self, record: logging.LogRecord) -> bool:
         if record.msg == "connection handler failed" and record.exc_info and record.exc_info[1] is not None:
             error = record.exc_info[1]
-            record.msg, record.args = "a viewer's connection ended on a message it could not use (%s: %s)", (type(error).__name__, error)
+            record.msg, record.args = (
+                "a viewer's connection ended on a message it could not use (%s: %s)",
+                (type(error).__name__, error),
+            )
             record.levelno, record.levelname = logging.WARNING, "WARNING"
             record.exc_info = record.exc_text = None
         return True
@@ -44,10 +47,12 @@ class ViewerMessageRefused(logging.Filter):
 
 def run_worker(index: int, start_pipe: Connection, authkey: bytes, options: dict[str, Any]) -> None:
     """Process entry: serve scenes until ``"stop"`` arrives on ``start_pipe`` or it closes."""
-    logging.basicConfig(level=options.get("log_level", "WARNING"), format=f"%(levelname)s worker{index} %(name)s: %(message)s")
+    logging.basicConfig(
+        level=options.get("log_level", "WARNING"), format=f"%(levelname)s worker{index} %(name)s: %(message)s"
+    )
     logging.getLogger("websockets.server").addFilter(ViewerMessageRefused())
-    from app.scenes import SCENES  # importing the scenes loads every numba kernel (compiled eagerly, cached on disk)
     from app.physics.core.bounded import stop_all_work
+    from app.scenes import SCENES  # importing the scenes loads every numba kernel (compiled eagerly, cached on disk)
     from app.scenes.host.host import SceneHost
 
     host = SceneHost(SCENES, frame_rate_hz=options["frame_rate_hz"], max_sessions=options["max_sessions"])
@@ -56,7 +61,9 @@ def run_worker(index: int, start_pipe: Connection, authkey: bytes, options: dict
     tune_garbage_collection()
     listener = socket.create_server(("127.0.0.1", 0), backlog=CALL_BACKLOG)
     closing = threading.Event()
-    threading.Thread(target=_accept_calls, args=(listener, authkey, host, closing), name="worker-rpc", daemon=True).start()
+    threading.Thread(
+        target=_accept_calls, args=(listener, authkey, host, closing), name="worker-rpc", daemon=True
+    ).start()
     start_pipe.send({"viewer_url": host.url, "rpc_address": listener.getsockname(), "pid": os.getpid()})
     try:
         start_pipe.recv()  # "stop", or EOFError when the front process has gone
@@ -134,7 +141,9 @@ def _answer_calls(sock: socket.socket, authkey: bytes, host: Any) -> None:
                 try:
                     answer = ("ok", getattr(host, method)(*args, **kwargs))
                 except Exception as exc:  # every error goes back to the caller, which raises it again
-                    if not isinstance(exc, ValueError | KeyError | HostBusy | WorkBusy | WorkInterrupted):  # answers, not faults
+                    if not isinstance(
+                        exc, ValueError | KeyError | HostBusy | WorkBusy | WorkInterrupted
+                    ):  # answers, not faults
                         log.exception("worker call %s failed", method)
                     answer = encode_error(exc)
             try:

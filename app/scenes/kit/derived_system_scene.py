@@ -43,7 +43,8 @@ class DerivedSystemScene(IntegratedScene):
         agreement = self.formulation_agreement()
         rows = [
             Quantity(f"agreement_{f.replace('-', '_')}", f"{f} vs {running}: relative difference of ẏ", agreement[f])
-            for f in FORMULATIONS if f in agreement and f != running
+            for f in FORMULATIONS
+            if f in agreement and f != running
         ]
         worst = max((agreement[f] for f in agreement if f != running), default=0.0)
         return [Quantity("formulation_agreement", "largest difference between formulations", worst), *rows]

@@ -25,8 +25,8 @@ from typing import Any, ClassVar
 import numpy as np
 
 from app.physics.solvers import LiveRun
-from app.physics.solvers.controls import CONTROL_NAMES
 from app.physics.solvers.base import Integrator
+from app.physics.solvers.controls import CONTROL_NAMES
 from app.physics.solvers.integrated_model import IntegratedModel
 from app.physics.solvers.solve import remedy
 from app.physics.solvers.step_choice import ESTIMATING, PILOT_FAILED, StepChoice
@@ -34,6 +34,7 @@ from app.physics.solvers.step_policy import choose_integrator
 from app.physics.solvers.system import OdeSystem
 from app.scenes.kit.background_pilots import PILOTS
 from app.scenes.kit.scene import FRAME_DT_S, Scene, motion_numbers
+
 DRIFT_HISTORY_FRAMES = 300  # 10 s of history at 30 Hz
 #: Invariants are evaluated every 6th frame (5 Hz): enough for the drift plot and the runaway check, and a
 #: sixth of their cost per frame (with a class of 100 that cost is paid 3000 times a second).
@@ -107,7 +108,9 @@ class IntegratedScene(Scene):
             generation = self._generation
             PILOTS.submit(
                 id(self),
-                lambda: choose_integrator(self.model(), params, controls, frame_dt, max_frame_cpu_s=LIVE_PHYSICS_BUDGET_S),
+                lambda: choose_integrator(
+                    self.model(), params, controls, frame_dt, max_frame_cpu_s=LIVE_PHYSICS_BUDGET_S
+                ),
                 lambda chosen: setattr(self, "_measured", (generation, chosen)),
             )
         self._scales = model.invariant_scales(params, self.run.y)
@@ -163,7 +166,11 @@ class IntegratedScene(Scene):
         chosen = measured[1]
         if chosen is None:
             assert self.accuracy is not None
-            self.accuracy = replace(self.accuracy, status=PILOT_FAILED, note="the pilot failed, so the error of the fixed step rule is unknown")
+            self.accuracy = replace(
+                self.accuracy,
+                status=PILOT_FAILED,
+                note="the pilot failed, so the error of the fixed step rule is unknown",
+            )
             return
         integrator, self.accuracy = chosen
         old = self.run
@@ -243,8 +250,11 @@ class IntegratedScene(Scene):
         if self._reference_error is not None:
             unit = model.accuracy_target.unit if model.accuracy_target is not None else ""
             out["reference_error"] = {
-                "name": model.reference_error_series, "reference": model.reference_name, "unit": unit,
-                "value": self._reference_error, "max_so_far": self._reference_error_max,
+                "name": model.reference_error_series,
+                "reference": model.reference_name,
+                "unit": unit,
+                "value": self._reference_error,
+                "max_so_far": self._reference_error_max,
             }
         return out
 
@@ -269,7 +279,12 @@ class IntegratedScene(Scene):
             "status": self.status,
             "physics_us_per_frame": 1e6 * self._physics_s / max(self._frames, 1),
             "invariants": {
-                name: {"value": now[name], "initial": self._invariants0[name], "unit": model.invariant_units.get(name, ""), "relative_drift": drift[name]}
+                name: {
+                    "value": now[name],
+                    "initial": self._invariants0[name],
+                    "unit": model.invariant_units.get(name, ""),
+                    "relative_drift": drift[name],
+                }
                 for name in now
             },
             "drift_history": {"t_s": list(self._drift_t), "max_relative_drift": list(self._drift_max)},
@@ -284,4 +299,3 @@ class IntegratedScene(Scene):
         for _ in range(frames):
             probe.advance(FRAME_DT_S)
         return (time.perf_counter() - start) / frames
-

@@ -61,7 +61,9 @@ def add_rotor(scene, name: str, *, radius: float, thickness: float, axle_length:
     scene.add_cylinder(f"{name}/disc", radius=radius, height=thickness, color=color, wxyz=Z_TO_Y, radial_segments=48)
     scene.add_cylinder(f"{name}/axle", radius=0.025, height=axle_length, color=(90, 90, 90), wxyz=Z_TO_Y)
     scene.add_box(
-        f"{name}/stripe", color=(245, 245, 245), dimensions=(0.9 * radius, 0.01, 0.06),
+        f"{name}/stripe",
+        color=(245, 245, 245),
+        dimensions=(0.9 * radius, 0.01, 0.06),
         position=(0.45 * radius, 0.5 * thickness + 0.004, 0.0),
     )
     return frame

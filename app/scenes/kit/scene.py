@@ -21,8 +21,8 @@ from app.physics.core.model import Model
 from app.physics.core.parameters import Parameter, ParameterSet
 from app.physics.core.readout import Readout
 from app.physics.core.solution import WorkedExample
-from app.scenes.viser_boundary import set_initial_camera
 from app.scenes.kit.trail import Trail
+from app.scenes.viser_boundary import set_initial_camera
 
 #: Simulated seconds per displayed frame (the host draws at 30 Hz).
 FRAME_DT_S = 1.0 / 30.0
@@ -32,7 +32,12 @@ GO_TO_MAX_S = 600.0
 
 def checked_go_to_time(t_s: Any) -> float:
     """``t_s`` as a float in [0, :data:`GO_TO_MAX_S`] s; ValueError naming ``t_s`` otherwise."""
-    if isinstance(t_s, bool) or not isinstance(t_s, int | float) or not math.isfinite(t_s) or not 0.0 <= t_s <= GO_TO_MAX_S:
+    if (
+        isinstance(t_s, bool)
+        or not isinstance(t_s, int | float)
+        or not math.isfinite(t_s)
+        or not 0.0 <= t_s <= GO_TO_MAX_S
+    ):
         raise ValueError(f"t_s: a simulated time from 0 to {GO_TO_MAX_S:g} s, got {t_s!r}")
     return float(t_s)
 
@@ -93,7 +98,9 @@ def compose_parameters(
     if unknown:
         raise ValueError(f"slider_ranges names no parameter: {', '.join(sorted(unknown))}")
     parameters = tuple(
-        replace(p, min=slider_ranges[p.name][0], max=slider_ranges[p.name][1], step=slider_ranges[p.name][2], scale="linear")
+        replace(
+            p, min=slider_ranges[p.name][0], max=slider_ranges[p.name][1], step=slider_ranges[p.name][2], scale="linear"
+        )
         if p.name in slider_ranges
         else p
         for p in parameters
@@ -264,7 +271,9 @@ class Scene(ABC):
         """Every :class:`Trail` this scene keeps (as an attribute, or in a list, tuple or dict attribute)."""
         found: list[Trail] = []
         for value in vars(self).values():
-            items = value.values() if isinstance(value, dict) else value if isinstance(value, list | tuple) else (value,)
+            items = (
+                value.values() if isinstance(value, dict) else value if isinstance(value, list | tuple) else (value,)
+            )
             found.extend(item for item in items if isinstance(item, Trail))
         return found
 

@@ -50,7 +50,11 @@ class Trail:
             self._serial += 1
             self._nodes.append(
                 self.scene.add_line_segments(
-                    f"{self.root}/{self._serial}", segments, self.color, thickness=self.thickness, thickness_units="screen"
+                    f"{self.root}/{self._serial}",
+                    segments,
+                    self.color,
+                    thickness=self.thickness,
+                    thickness_units="screen",
                 )
             )
         else:  # full: the oldest chunk's node becomes the newest

@@ -48,13 +48,17 @@ def angle_rate_matrix_body(angles_rad: np.ndarray, sequence: str | RotationSeque
     return np.stack([R23[..., seq.axes[0], :], R3[..., seq.axes[1], :], third], axis=-1)
 
 
-def angular_velocity_world(angles_rad: np.ndarray, angle_rates_rad_s: np.ndarray, sequence: str | RotationSequence) -> np.ndarray:
+def angular_velocity_world(
+    angles_rad: np.ndarray, angle_rates_rad_s: np.ndarray, sequence: str | RotationSequence
+) -> np.ndarray:
     """ω (rad/s, world components, shape (..., 3)) from the angles and their rates."""
     J = angle_rate_matrix_world(angles_rad, sequence)
     return np.einsum("...ij,...j->...i", J, np.asarray(angle_rates_rad_s, dtype=float))
 
 
-def angular_velocity_body(angles_rad: np.ndarray, angle_rates_rad_s: np.ndarray, sequence: str | RotationSequence) -> np.ndarray:
+def angular_velocity_body(
+    angles_rad: np.ndarray, angle_rates_rad_s: np.ndarray, sequence: str | RotationSequence
+) -> np.ndarray:
     """ω (rad/s, body components, shape (..., 3)) from the angles and their rates."""
     J = angle_rate_matrix_body(angles_rad, sequence)
     return np.einsum("...ij,...j->...i", J, np.asarray(angle_rates_rad_s, dtype=float))

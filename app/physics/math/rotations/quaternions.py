@@ -82,7 +82,9 @@ def check_rotation_matrix(R: np.ndarray, *, name: str = "R") -> np.ndarray:
         raise ValueError(f"{name} must contain only finite numbers")
     gram_error = np.abs(np.swapaxes(R, -1, -2) @ R - np.eye(3)).max(initial=0.0)
     if gram_error > ORTHONORMAL_TOLERANCE:
-        raise ValueError(f"{name} is not a rotation matrix: its columns are not orthonormal (RᵀR − I reaches {gram_error:.1e})")
+        raise ValueError(
+            f"{name} is not a rotation matrix: its columns are not orthonormal (RᵀR − I reaches {gram_error:.1e})"
+        )
     if np.any(np.linalg.det(R) < 0.0):
         raise ValueError(f"{name} is a reflection (determinant −1), not a rotation")
     return R

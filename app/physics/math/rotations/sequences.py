@@ -284,4 +284,6 @@ def intermediate_frames(angles_rad: np.ndarray, sequence: str | RotationSequence
         axes.append(frames[-1][..., :, seq.axes[step]])  # the axis being turned about stays put
         frames.append(frames[-1] @ elementary_rotation_matrix(seq.axes[step], angles[..., step]))
     R = np.stack(frames, axis=-3)
-    return SequenceFrames(R_world_frame=R, q_world_frame=quaternion_from_matrix(R), rotation_axes_world=np.stack(axes, axis=-2))
+    return SequenceFrames(
+        R_world_frame=R, q_world_frame=quaternion_from_matrix(R), rotation_axes_world=np.stack(axes, axis=-2)
+    )

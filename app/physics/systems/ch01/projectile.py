@@ -35,7 +35,14 @@ INPUTS = ParameterSet(
         Parameter("height0_m", "m", 0.0, 0.0, 200.0, "Launch height above the ground", "h₀", step=1),
         Parameter("linear_drag_kg_s", "kg/s", 0.0, 0.0, 10.0, "Linear drag coefficient b in F = −b v", "b", step=0.001),
         Parameter(
-            "quadratic_drag_kg_m", "kg/m", 7.6e-4, 0.0, 1.0, "Quadratic drag coefficient c in F = −c|v| v", "c", step=1e-5
+            "quadratic_drag_kg_m",
+            "kg/m",
+            7.6e-4,
+            0.0,
+            1.0,
+            "Quadratic drag coefficient c in F = −c|v| v",
+            "c",
+            step=1e-5,
         ),
         Parameter("g_m_s2", "m/s²", 9.807, 0.1, 30.0, "Gravitational acceleration", "g", step=0.001),
     )
@@ -149,7 +156,8 @@ def simulate(inputs: Mapping[str, Any], samples: int = 241) -> ProjectileTraject
     if r0[2] == 0.0 and v0[2] <= 0.0:
         raise ValueError("the particle starts on the ground moving down: raise height0_m or elevation_deg")
     system = OdeSystem(
-        rhs=projectile_rhs, parameters=np.array([m, g, b, c], dtype=float),
+        rhs=projectile_rhs,
+        parameters=np.array([m, g, b, c], dtype=float),
         state_names=("x", "y", "z", "vx", "vy", "vz", "work_drag", "impulse_x", "impulse_y", "impulse_z"),
         events=Events(landing_and_apex, directions=(-1, -1), terminal=(True, False)),
     )
@@ -277,13 +285,21 @@ def solve(inputs: Mapping[str, Any]) -> Solution:
         ),
         Step(
             "Work–energy: kinetic energy change equals the work done",
-            r"T_2 - T_1 = \underbrace{-mg(z_2 - z_1)}_{W_g} + \underbrace{\int_{t_1}^{t_2} \bar F_d\cdot\bar " r"v\,dt}_{W_d}",
-            {"T1": traj.kinetic_energy_J[0], "T2": traj.kinetic_energy_J[-1], "W_g": Wg, "W_d": Wd, "residual": energy_residual},
+            r"T_2 - T_1 = \underbrace{-mg(z_2 - z_1)}_{W_g} + \underbrace{\int_{t_1}^{t_2} \bar F_d\cdot\bar "
+            r"v\,dt}_{W_d}",
+            {
+                "T1": traj.kinetic_energy_J[0],
+                "T2": traj.kinetic_energy_J[-1],
+                "W_g": Wg,
+                "W_d": Wd,
+                "residual": energy_residual,
+            },
             {"T1": "J", "T2": "J", "W_g": "J", "W_d": "J", "residual": "J"},
         ),
         Step(
             "Impulse–momentum: momentum change equals the impulse",
-            r"m\bar v_2 - m\bar v_1 = \underbrace{-mg\,t\,\bar k}_{\bar I_g} + \underbrace{\int_{t_1}^{t_2}\bar " r"F_d\,dt}_{\bar I_d}",
+            r"m\bar v_2 - m\bar v_1 = \underbrace{-mg\,t\,\bar k}_{\bar I_g} + \underbrace{\int_{t_1}^{t_2}\bar "
+            r"F_d\,dt}_{\bar I_d}",
             {"m_dv": dp, "I_g": Ig, "I_d": Id, "residual": momentum_residual},
             {"m_dv": "N·s", "I_g": "N·s", "I_d": "N·s", "residual": "N·s"},
         ),

@@ -31,14 +31,23 @@ from app.physics.core.solution import Plot, PlotSeries, Solution, Step, WorkedEx
 
 def _check_interval_fits(values: Mapping[str, Any]) -> None:
     if values["dt_s"] > values["t_s"]:
-        raise ParameterError("dt_s", f"must not exceed the time t = {values['t_s']:g} s (the elevation formula needs t − Δt ≥ 0)")
+        raise ParameterError(
+            "dt_s", f"must not exceed the time t = {values['t_s']:g} s (the elevation formula needs t − Δt ≥ 0)"
+        )
 
 
 INPUTS = ParameterSet(
     (
         Parameter("t_s", "s", 2.0, 1.0, 60.0, "Instant at which the velocity is wanted", "t", step=0.1),
         Parameter(
-            "dt_s", "s", 1e-3, 1e-12, 1.0, "Half-width h of the central difference [p(t+h) − p(t−h)]/(2h)", "Δt", scale="log"
+            "dt_s",
+            "s",
+            1e-3,
+            1e-12,
+            1.0,
+            "Half-width h of the central difference [p(t+h) − p(t−h)]/(2h)",
+            "Δt",
+            scale="log",
         ),
     ),
     check=_check_interval_fits,
@@ -185,9 +194,15 @@ def solve(inputs: Mapping[str, Any]) -> Solution:
         ),
         Step(
             "Error of the finite difference",
-            r"|\bar v_{fd} - \bar v| \approx \frac{\Delta t^2}{6}\left|\dddot{\bar r}\right| + " r"\frac{\varepsilon\,|\bar r|}{\Delta t},"
+            r"|\bar v_{fd} - \bar v| \approx \frac{\Delta t^2}{6}\left|\dddot{\bar r}\right| + "
+            r"\frac{\varepsilon\,|\bar r|}{\Delta t},"
             r"\quad \Delta t^{*} \approx \left(\frac{3\varepsilon|\bar r|}{|\dddot{\bar r}|}\right)^{1/3}",
-            {"error": error, "third_derivative": third_norm, "optimal_dt_model": optimal_dt, "optimal_dt_measured": float(sweep_dt[best])},
+            {
+                "error": error,
+                "third_derivative": third_norm,
+                "optimal_dt_model": optimal_dt,
+                "optimal_dt_measured": float(sweep_dt[best]),
+            },
             {"error": "m/s", "third_derivative": "m/s³", "optimal_dt_model": "s", "optimal_dt_measured": "s"},
         ),
     )

@@ -25,7 +25,16 @@ def _check_cable_has_length(values: Mapping[str, Any]) -> None:
 
 INPUTS = ParameterSet(
     (
-        Parameter("theta_deg", "deg", 25.0, -180.0, 180.0, "Angle of link AB from the x axis, in the horizontal plane", "θ", step=1),
+        Parameter(
+            "theta_deg",
+            "deg",
+            25.0,
+            -180.0,
+            180.0,
+            "Angle of link AB from the x axis, in the horizontal plane",
+            "θ",
+            step=1,
+        ),
         Parameter("gamma_deg", "deg", 40.0, -90.0, 90.0, "Elevation of link BC above the horizontal", "γ", step=1),
         Parameter("tension_N", "N", 5000.0, 0.0, 100_000.0, "Tension in cable CD", "T", step=100),
         Parameter("AB_m", "m", 2.0, 0.05, 10.0, "Length of link AB", "AB", step=0.05),
@@ -79,7 +88,9 @@ def arm_geometry(theta_deg: float, gamma_deg: float, AB_m: float, BC_m: float, D
     try:
         e_CD = unit_vector(D - C)
     except ValueError:
-        raise ParameterError("D_x_m", "the cable end C coincides with the anchor D, so the cable has no direction") from None
+        raise ParameterError(
+            "D_x_m", "the cable end C coincides with the anchor D, so the cable has no direction"
+        ) from None
     return ArmGeometry(A, B, C, D, e_AB, e_BC, e_CD)
 
 
@@ -116,7 +127,8 @@ def solve(inputs: Mapping[str, Any]) -> Solution:
         Step(
             "Positions of B, C and D",
             r"\bar r_{B} = AB(\cos\theta\,\bar i + \sin\theta\,\bar j),\quad "
-            r"\bar r_{C} = \bar r_{B} + BC(\cos\gamma\cos\theta\,\bar i + \cos\gamma\sin\theta\,\bar j + " r"\sin\gamma\,\bar k),\quad "
+            r"\bar r_{C} = \bar r_{B} + BC(\cos\gamma\cos\theta\,\bar i + \cos\gamma\sin\theta\,\bar j + "
+            r"\sin\gamma\,\bar k),\quad "
             r"\bar r_{D} = x_D\,\bar i",
             {"r_B": g.B, "r_C": g.C, "r_D": g.D},
             {"r_B": "m", "r_C": "m", "r_D": "m"},

@@ -92,7 +92,13 @@ class Projectile:
         t = np.atleast_1d(np.asarray(t_s, dtype=float))
         v0, g = self.speed_m_s, self.gravity_m_s2
         horizontal = v0 * math.cos(self.elevation_rad)
-        launch = np.array([horizontal * math.cos(self.heading_rad), horizontal * math.sin(self.heading_rad), v0 * math.sin(self.elevation_rad)])
+        launch = np.array(
+            [
+                horizontal * math.cos(self.heading_rad),
+                horizontal * math.sin(self.heading_rad),
+                v0 * math.sin(self.elevation_rad),
+            ]
+        )
         gravity = np.array([0.0, 0.0, -g])
         position = t[:, None] * launch + 0.5 * t[:, None] ** 2 * gravity
         velocity = launch + t[:, None] * gravity
@@ -105,7 +111,10 @@ def cartesian_motion(params: Mapping[str, Any]) -> SineSlot | Projectile:
     if params["motion"] == "sine-slot":
         return SineSlot(params["slot_amplitude_m"], params["slot_length_m"], params["drive_speed_m_s"])
     return Projectile(
-        params["launch_speed_m_s"], math.radians(params["launch_angle_deg"]), math.radians(params["launch_heading_deg"]), params["gravity_m_s2"]
+        params["launch_speed_m_s"],
+        math.radians(params["launch_angle_deg"]),
+        math.radians(params["launch_heading_deg"]),
+        params["gravity_m_s2"],
     )
 
 
@@ -117,15 +126,76 @@ CONTROLS_USED = {
 
 PARAMETERS = ParameterSet(
     (
-        Parameter("motion", "", "sine-slot", kind="choice", choices=MOTIONS, label="motion",
-                  description="A pin driven along a sine-shaped slot, or a projectile without air"),
-        Parameter("slot_amplitude_m", "m", 0.3, 0.0, 1.0, "Sine slot: the slot's amplitude h in y = h sin(πx/L)", "h", step=0.01),
-        Parameter("slot_length_m", "m", 1.0, 0.2, 3.0, "Sine slot: half a wavelength L, the x distance from one crossing of y = 0 to the next", "L", step=0.05),
-        Parameter("drive_speed_m_s", "m/s", 0.5, 0.05, 3.0, "Sine slot: the constant speed ẋ at which the pin is driven along X", "ẋ", step=0.05),
+        Parameter(
+            "motion",
+            "",
+            "sine-slot",
+            kind="choice",
+            choices=MOTIONS,
+            label="motion",
+            description="A pin driven along a sine-shaped slot, or a projectile without air",
+        ),
+        Parameter(
+            "slot_amplitude_m",
+            "m",
+            0.3,
+            0.0,
+            1.0,
+            "Sine slot: the slot's amplitude h in y = h sin(πx/L)",
+            "h",
+            step=0.01,
+        ),
+        Parameter(
+            "slot_length_m",
+            "m",
+            1.0,
+            0.2,
+            3.0,
+            "Sine slot: half a wavelength L, the x distance from one crossing of y = 0 to the next",
+            "L",
+            step=0.05,
+        ),
+        Parameter(
+            "drive_speed_m_s",
+            "m/s",
+            0.5,
+            0.05,
+            3.0,
+            "Sine slot: the constant speed ẋ at which the pin is driven along X",
+            "ẋ",
+            step=0.05,
+        ),
         Parameter("launch_speed_m_s", "m/s", 8.0, 0.5, 30.0, "Projectile: launch speed v₀", "v₀", step=0.1),
-        Parameter("launch_angle_deg", "deg", 50.0, 1.0, 90.0, "Projectile: elevation α of the launch above the horizontal", "α", step=1),
-        Parameter("launch_heading_deg", "deg", 30.0, -180.0, 180.0, "Projectile: heading ψ of the launch, from +X toward +Y", "ψ", step=1),
-        Parameter("gravity_m_s2", "m/s²", 9.81, 0.5, 30.0, "Projectile: gravitational acceleration g, along −Z", "g", step=0.01),
+        Parameter(
+            "launch_angle_deg",
+            "deg",
+            50.0,
+            1.0,
+            90.0,
+            "Projectile: elevation α of the launch above the horizontal",
+            "α",
+            step=1,
+        ),
+        Parameter(
+            "launch_heading_deg",
+            "deg",
+            30.0,
+            -180.0,
+            180.0,
+            "Projectile: heading ψ of the launch, from +X toward +Y",
+            "ψ",
+            step=1,
+        ),
+        Parameter(
+            "gravity_m_s2",
+            "m/s²",
+            9.81,
+            0.5,
+            30.0,
+            "Projectile: gravitational acceleration g, along −Z",
+            "g",
+            step=0.01,
+        ),
     )
 )
 
@@ -135,12 +205,21 @@ class CartesianParticle(ClosedFormModel):
 
     parameters = PARAMETERS
     series_units = {
-        "x": "m", "y": "m", "z": "m",
-        "x_dot": "m/s", "y_dot": "m/s", "z_dot": "m/s",
-        "x_ddot": "m/s^2", "y_ddot": "m/s^2", "z_ddot": "m/s^2",
-        "speed": "m/s", "acceleration_magnitude": "m/s^2",
+        "x": "m",
+        "y": "m",
+        "z": "m",
+        "x_dot": "m/s",
+        "y_dot": "m/s",
+        "z_dot": "m/s",
+        "x_ddot": "m/s^2",
+        "y_ddot": "m/s^2",
+        "z_ddot": "m/s^2",
+        "speed": "m/s",
+        "acceleration_magnitude": "m/s^2",
     }
-    description = "x(t), y(t), z(t) and their derivatives in closed form (sine slot at constant ẋ, or a projectile without air)"
+    description = (
+        "x(t), y(t), z(t) and their derivatives in closed form (sine slot at constant ẋ, or a projectile without air)"
+    )
 
     def evaluate(self, params: Mapping[str, Any], t_s: np.ndarray) -> ClosedFormSolution:
         motion = cartesian_motion(params)
@@ -159,5 +238,9 @@ class CartesianParticle(ClosedFormModel):
                 "the ground, where a real one would have stopped."
             )
         elif isinstance(motion, SineSlot) and t_s[-1] > motion.run_s:
-            warning = (f"The slot is one wavelength long (x ≤ 2L = {2 * motion.half_wavelength_m:g} m, reached at " f"t = {motion.run_s:.4g} s); after that the formula follows the slot's sine on past its " "end.")
+            warning = (
+                f"The slot is one wavelength long (x ≤ 2L = {2 * motion.half_wavelength_m:g} m, reached at "
+                f"t = {motion.run_s:.4g} s); after that the formula follows the slot's sine on past its "
+                "end."
+            )
         return ClosedFormSolution(series=series, warning=warning)

@@ -63,7 +63,11 @@ def _position(path: str) -> tuple[sympy.Expr, sympy.Expr, sympy.Expr]:
         radius = _A * (1 + theta / (2 * sympy.pi))
         return radius * sympy.cos(theta), radius * sympy.sin(theta), radius * sympy.cos(_BETA) / sympy.sin(_BETA)
     if path == "latitude-circle":
-        return (_A * sympy.sin(_BETA) * sympy.cos(theta), _A * sympy.sin(_BETA) * sympy.sin(theta), _A * sympy.cos(_BETA))
+        return (
+            _A * sympy.sin(_BETA) * sympy.cos(theta),
+            _A * sympy.sin(_BETA) * sympy.sin(theta),
+            _A * sympy.cos(_BETA),
+        )
     u = theta * sympy.cos(_BETA) / sympy.sin(_BETA)
     cos_latitude, sin_latitude = 1 / sympy.cosh(u), sympy.tanh(u)
     return _A * cos_latitude * sympy.cos(theta), _A * cos_latitude * sympy.sin(theta), _A * sin_latitude
@@ -75,7 +79,9 @@ def _compiled(path: str) -> Callable[..., list]:
     position = _position(path)
     velocity = [sympy.diff(expr, _T) for expr in position]
     acceleration = [sympy.diff(expr, _T) for expr in velocity]
-    return sympy.lambdify((_T, _A, _OMEGA, _BETA, _THETA0), [*position, *velocity, *acceleration], modules="numpy", cse=True)
+    return sympy.lambdify(
+        (_T, _A, _OMEGA, _BETA, _THETA0), [*position, *velocity, *acceleration], modules="numpy", cse=True
+    )
 
 
 @dataclass(frozen=True)
@@ -89,7 +95,9 @@ class CoordinatePath:
 
     @classmethod
     def from_params(cls, params: Mapping[str, Any]) -> CoordinatePath:
-        return cls(params["path"], params["size_m"], params["azimuth_rate_rad_s"], math.radians(params["path_angle_deg"]))
+        return cls(
+            params["path"], params["size_m"], params["azimuth_rate_rad_s"], math.radians(params["path_angle_deg"])
+        )
 
     @property
     def start_azimuth_rad(self) -> float:
@@ -119,7 +127,9 @@ class CoordinatePath:
     def at(self, t_s: np.ndarray | float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Position (m), velocity (m/s), acceleration (m/s²) on XYZ at times ``t_s`` (s), each (N, 3)."""
         t = np.atleast_1d(np.asarray(t_s, dtype=float))
-        values = _compiled(self.path)(t, self.size_m, self.azimuth_rate_rad_s, self.path_angle_rad, self.start_azimuth_rad)
+        values = _compiled(self.path)(
+            t, self.size_m, self.azimuth_rate_rad_s, self.path_angle_rad, self.start_azimuth_rad
+        )
         columns = np.stack([np.broadcast_to(np.asarray(v, dtype=float), t.shape) for v in values], axis=1)
         return columns[:, 0:3], columns[:, 3:6], columns[:, 6:9]
 
@@ -128,11 +138,18 @@ class CoordinatePath:
         """The path's size (m), for deciding when the particle is on the Z axis or at the origin."""
         return self.size_m
 
-    def describe(self, frame: str, t_s: np.ndarray | float) -> tuple[np.ndarray, np.ndarray, np.ndarray, CurvilinearKinematics]:
+    def describe(
+        self, frame: str, t_s: np.ndarray | float
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, CurvilinearKinematics]:
         """Cartesian position, velocity, acceleration and their ``frame`` ('cylindrical' or 'spherical') description."""
         position, velocity, acceleration = self.at(t_s)
         describe = cylindrical if frame == "cylindrical" else spherical
-        return position, velocity, acceleration, describe(position, velocity, acceleration, length_scale_m=self.length_scale_m)
+        return (
+            position,
+            velocity,
+            acceleration,
+            describe(position, velocity, acceleration, length_scale_m=self.length_scale_m),
+        )
 
 
 def _check(values: Mapping[str, Any]) -> None:
@@ -140,18 +157,56 @@ def _check(values: Mapping[str, Any]) -> None:
     beta = values["path_angle_deg"]
     if not low <= beta <= high:
         reason = f" ({why})" if why else ""
-        raise ParameterError("path_angle_deg", f"β must be from {low:g}° to {high:g}° for the {values['path']} (got {beta:g}°){reason}")
+        raise ParameterError(
+            "path_angle_deg", f"β must be from {low:g}° to {high:g}° for the {values['path']} (got {beta:g}°){reason}"
+        )
 
 
 PARAMETERS = ParameterSet(
     (
-        Parameter("path", "", "helix", kind="choice", choices=PATHS, label="path",
-                  description=("The path: a helix, a spiral on a cone, a circle of latitude on a sphere, or a loxodrome " "(rhumb line) on a sphere")),
-        Parameter("size_m", "m", 1.0, 0.1, 3.0,
-                  "a: the helix's radius, the spiral's growth of R per turn (and its starting R), or the sphere's radius", "a", step=0.01),
-        Parameter("azimuth_rate_rad_s", "rad/s", 1.0, 0.1, 3.0, "θ̇: the constant rate at which the azimuth θ turns about Z", "θ̇", step=0.05),
-        Parameter("path_angle_deg", "deg", 15.0, 0.0, 90.0,
-                  "β: the helix's climb angle, the cone's half-angle, the circle's polar angle φ, or the loxodrome's " "bearing from north", "β", step=1),
+        Parameter(
+            "path",
+            "",
+            "helix",
+            kind="choice",
+            choices=PATHS,
+            label="path",
+            description=(
+                "The path: a helix, a spiral on a cone, a circle of latitude on a sphere, or a loxodrome "
+                "(rhumb line) on a sphere"
+            ),
+        ),
+        Parameter(
+            "size_m",
+            "m",
+            1.0,
+            0.1,
+            3.0,
+            "a: the helix's radius, the spiral's growth of R per turn (and its starting R), or the sphere's radius",
+            "a",
+            step=0.01,
+        ),
+        Parameter(
+            "azimuth_rate_rad_s",
+            "rad/s",
+            1.0,
+            0.1,
+            3.0,
+            "θ̇: the constant rate at which the azimuth θ turns about Z",
+            "θ̇",
+            step=0.05,
+        ),
+        Parameter(
+            "path_angle_deg",
+            "deg",
+            15.0,
+            0.0,
+            90.0,
+            "β: the helix's climb angle, the cone's half-angle, the circle's polar angle φ, or the loxodrome's "
+            "bearing from north",
+            "β",
+            step=1,
+        ),
     ),
     check=_check,
 )
@@ -162,21 +217,45 @@ class ParticleOnCoordinatePath(ClosedFormModel):
 
     parameters = PARAMETERS
     series_units = {
-        "x": "m", "y": "m", "z": "m", "speed": "m/s", "acceleration_magnitude": "m/s^2",
-        "R": "m", "theta": "rad", "v_R": "m/s", "v_theta": "m/s", "v_z": "m/s", "a_R": "m/s^2", "a_theta": "m/s^2", "a_z": "m/s^2",
-        "r": "m", "phi": "rad", "v_r": "m/s", "v_phi": "m/s", "a_r": "m/s^2", "a_phi": "m/s^2",
+        "x": "m",
+        "y": "m",
+        "z": "m",
+        "speed": "m/s",
+        "acceleration_magnitude": "m/s^2",
+        "R": "m",
+        "theta": "rad",
+        "v_R": "m/s",
+        "v_theta": "m/s",
+        "v_z": "m/s",
+        "a_R": "m/s^2",
+        "a_theta": "m/s^2",
+        "a_z": "m/s^2",
+        "r": "m",
+        "phi": "rad",
+        "v_r": "m/s",
+        "v_phi": "m/s",
+        "a_r": "m/s^2",
+        "a_phi": "m/s^2",
     }
-    description = ("x, y, z of the path in closed form, differentiated exactly (sympy); cylindrical and spherical " "components from R = √(x²+y²), θ = atan2(y, x), r = |r|, φ = atan2(R, z) and their rates")
+    description = (
+        "x, y, z of the path in closed form, differentiated exactly (sympy); cylindrical and spherical "
+        "components from R = √(x²+y²), θ = atan2(y, x), r = |r|, φ = atan2(R, z) and their rates"
+    )
 
     def evaluate(self, params: Mapping[str, Any], t_s: np.ndarray) -> ClosedFormSolution:
         path = CoordinatePath.from_params(params)
         position, velocity, acceleration = path.at(t_s)
         series = {
-            "x": position[:, 0], "y": position[:, 1], "z": position[:, 2],
-            "speed": np.linalg.norm(velocity, axis=1), "acceleration_magnitude": np.linalg.norm(acceleration, axis=1),
+            "x": position[:, 0],
+            "y": position[:, 1],
+            "z": position[:, 2],
+            "speed": np.linalg.norm(velocity, axis=1),
+            "acceleration_magnitude": np.linalg.norm(acceleration, axis=1),
             **curvilinear_series(position, velocity, acceleration, length_scale_m=path.length_scale_m),
         }
         warning = ""
         if t_s[-1] > path.run_s:
-            warning = f"One run along the path lasts {path.run_s:.4g} s; after it the formulas go on past the path's end."
+            warning = (
+                f"One run along the path lasts {path.run_s:.4g} s; after it the formulas go on past the path's end."
+            )
         return ClosedFormSolution(series=series, warning=warning)

@@ -129,8 +129,11 @@ class RotatingArm:
     @classmethod
     def from_params(cls, params: Mapping[str, Any]) -> RotatingArm:
         return cls(
-            params["arm_rate_rad_s"], params["arm_acceleration_rad_s2"],
-            params["collar_mean_m"], params["collar_amplitude_m"], params["collar_frequency_rad_s"],
+            params["arm_rate_rad_s"],
+            params["arm_acceleration_rad_s2"],
+            params["collar_mean_m"],
+            params["collar_amplitude_m"],
+            params["collar_frequency_rad_s"],
         )
 
     def at(self, t_s: np.ndarray | float) -> ArmState:
@@ -158,17 +161,49 @@ def _check(values: Mapping[str, Any]) -> None:
     if reach > ARM_HALF_LENGTH_M:
         raise ParameterError(
             "collar_amplitude_m",
-            f"the collar would slide off the arm: |r₀| + b = {reach:g} m, but the arm reaches " f"{ARM_HALF_LENGTH_M:g} m each side of the pivot",
+            f"the collar would slide off the arm: |r₀| + b = {reach:g} m, but the arm reaches "
+            f"{ARM_HALF_LENGTH_M:g} m each side of the pivot",
         )
 
 
 PARAMETERS = ParameterSet(
     (
-        Parameter("arm_rate_rad_s", "rad/s", 1.0, -3.0, 3.0, "Ω: the arm's angular velocity θ̇ at t = 0", "Ω", step=0.05),
-        Parameter("arm_acceleration_rad_s2", "rad/s²", 0.0, -0.3, 0.3, "α: the arm's constant angular acceleration θ̈", "α", step=0.01),
-        Parameter("collar_mean_m", "m", 0.8, -1.5, 1.5, "r₀: the collar's middle position along the arm, from the pivot", "r₀", step=0.01),
-        Parameter("collar_amplitude_m", "m", 0.6, 0.0, 1.5, "b: how far the collar slides each way from r₀", "b", step=0.01),
-        Parameter("collar_frequency_rad_s", "rad/s", 1.5, 0.0, 5.0, "ω_c: the angular frequency of the collar's sliding, r = r₀ + b sin(ω_c t)", "ω_c", step=0.05),
+        Parameter(
+            "arm_rate_rad_s", "rad/s", 1.0, -3.0, 3.0, "Ω: the arm's angular velocity θ̇ at t = 0", "Ω", step=0.05
+        ),
+        Parameter(
+            "arm_acceleration_rad_s2",
+            "rad/s²",
+            0.0,
+            -0.3,
+            0.3,
+            "α: the arm's constant angular acceleration θ̈",
+            "α",
+            step=0.01,
+        ),
+        Parameter(
+            "collar_mean_m",
+            "m",
+            0.8,
+            -1.5,
+            1.5,
+            "r₀: the collar's middle position along the arm, from the pivot",
+            "r₀",
+            step=0.01,
+        ),
+        Parameter(
+            "collar_amplitude_m", "m", 0.6, 0.0, 1.5, "b: how far the collar slides each way from r₀", "b", step=0.01
+        ),
+        Parameter(
+            "collar_frequency_rad_s",
+            "rad/s",
+            1.5,
+            0.0,
+            5.0,
+            "ω_c: the angular frequency of the collar's sliding, r = r₀ + b sin(ω_c t)",
+            "ω_c",
+            step=0.05,
+        ),
     ),
     check=_check,
 )
@@ -179,25 +214,51 @@ class CollarOnRotatingArm(ClosedFormModel):
 
     parameters = PARAMETERS
     series_units = {
-        "theta": "rad", "theta_dot": "rad/s", "r": "m", "r_dot": "m/s",
-        "v_r": "m/s", "v_theta": "m/s", "a_r": "m/s^2", "a_theta": "m/s^2",
-        "a_sliding": "m/s^2", "a_centripetal": "m/s^2", "a_angular": "m/s^2", "a_coriolis": "m/s^2",
-        "speed": "m/s", "a_tangential": "m/s^2", "a_normal": "m/s^2",
+        "theta": "rad",
+        "theta_dot": "rad/s",
+        "r": "m",
+        "r_dot": "m/s",
+        "v_r": "m/s",
+        "v_theta": "m/s",
+        "a_r": "m/s^2",
+        "a_theta": "m/s^2",
+        "a_sliding": "m/s^2",
+        "a_centripetal": "m/s^2",
+        "a_angular": "m/s^2",
+        "a_coriolis": "m/s^2",
+        "speed": "m/s",
+        "a_tangential": "m/s^2",
+        "a_normal": "m/s^2",
     }
-    description = ("θ = Ω t + α t²/2 and r = r₀ + b sin(ω_c t) in closed form; v and a from the polar formulas on " "the arm's unit vectors")
+    description = (
+        "θ = Ω t + α t²/2 and r = r₀ + b sin(ω_c t) in closed form; v and a from the polar formulas on "
+        "the arm's unit vectors"
+    )
 
     def evaluate(self, params: Mapping[str, Any], t_s: np.ndarray) -> ClosedFormSolution:
         state = RotatingArm.from_params(params).at(t_s)
         speed, a_t, a_n = state.path_variables()
         series = {
-            "theta": state.theta_rad, "theta_dot": state.theta_dot_rad_s, "r": state.r_m, "r_dot": state.r_dot_m_s,
-            "v_r": state.v_radial_m_s, "v_theta": state.v_transverse_m_s,
-            "a_r": state.a_radial_m_s2, "a_theta": state.a_transverse_m_s2,
-            "a_sliding": state.sliding_m_s2, "a_centripetal": state.centripetal_m_s2,
-            "a_angular": state.angular_m_s2, "a_coriolis": state.coriolis_m_s2,
-            "speed": speed, "a_tangential": a_t, "a_normal": a_n,
+            "theta": state.theta_rad,
+            "theta_dot": state.theta_dot_rad_s,
+            "r": state.r_m,
+            "r_dot": state.r_dot_m_s,
+            "v_r": state.v_radial_m_s,
+            "v_theta": state.v_transverse_m_s,
+            "a_r": state.a_radial_m_s2,
+            "a_theta": state.a_transverse_m_s2,
+            "a_sliding": state.sliding_m_s2,
+            "a_centripetal": state.centripetal_m_s2,
+            "a_angular": state.angular_m_s2,
+            "a_coriolis": state.coriolis_m_s2,
+            "speed": speed,
+            "a_tangential": a_t,
+            "a_normal": a_n,
         }
         warning = ""
         if np.any(np.isnan(a_t)):
-            warning = ("The collar is momentarily at rest at some frames: a_t and a_n (the path variables) are " "undefined there (null).")
+            warning = (
+                "The collar is momentarily at rest at some frames: a_t and a_n (the path variables) are "
+                "undefined there (null)."
+            )
         return ClosedFormSolution(series=series, warning=warning)

@@ -99,7 +99,9 @@ class SpaceCurve:
             with np.errstate(all="ignore"):
                 values = self._evaluate(chunk)
                 for column, value in enumerate(values):  # order k = column // 3, axis = column % 3
-                    out[column // 3, start : start + chunk.size, column % 3] = np.broadcast_to(np.asarray(value, dtype=float), chunk.shape)
+                    out[column // 3, start : start + chunk.size, column % 3] = np.broadcast_to(
+                        np.asarray(value, dtype=float), chunk.shape
+                    )
         out[~np.isfinite(out)] = np.nan
         return out
 
@@ -161,7 +163,8 @@ def check_curve_span(curve: SpaceCurve, t_s: np.ndarray) -> None:
     raise CurveError(
         COMPONENTS[axis],
         f"{what} reaches {value:.3g} at t = {t[index]:.4g} s, beyond the bound of {MAX_CURVE_MAGNITUDE:g} (SI units) "
-        f"within the span 0 to {t[-1]:.4g} s it is drawn over: shorten the span or type a formula that grows " "more slowly",
+        f"within the span 0 to {t[-1]:.4g} s it is drawn over: shorten the span or type a formula that grows "
+        "more slowly",
     )
 
 
@@ -278,7 +281,10 @@ def arc_length(curve: SpaceCurve, t_s: np.ndarray) -> np.ndarray:
     left = starts[interval] + 2.0 * half * within
     nodes = (left[:, None] + half[:, None] * (1.0 + _ARC_NODES[None, :])).ravel()
     speed = np.concatenate(  # in chunks: the jets of every node at once would be 12 floats per node
-        [np.linalg.norm(curve.jets(nodes[i : i + EVALUATION_CHUNK])[1], axis=1) for i in range(0, nodes.size, EVALUATION_CHUNK)]
+        [
+            np.linalg.norm(curve.jets(nodes[i : i + EVALUATION_CHUNK])[1], axis=1)
+            for i in range(0, nodes.size, EVALUATION_CHUNK)
+        ]
     ).reshape(interval.size, -1)
     pieces = np.bincount(interval, weights=half * (speed @ _ARC_WEIGHTS), minlength=t.size)
     return np.cumsum(pieces)
@@ -347,12 +353,29 @@ class ParticleOnCurve(ClosedFormModel):
 
     parameters = INPUTS
     series_units = {
-        "x": "m", "y": "m", "z": "m",
-        "speed": "m/s", "arc_length": "m",
-        "curvature": "1/m", "torsion": "1/m",
-        "a_tangential": "m/s^2", "a_normal": "m/s^2",
-        "R": "m", "theta": "rad", "v_R": "m/s", "v_theta": "m/s", "v_z": "m/s", "a_R": "m/s^2", "a_theta": "m/s^2", "a_z": "m/s^2",
-        "r": "m", "phi": "rad", "v_r": "m/s", "v_phi": "m/s", "a_r": "m/s^2", "a_phi": "m/s^2",
+        "x": "m",
+        "y": "m",
+        "z": "m",
+        "speed": "m/s",
+        "arc_length": "m",
+        "curvature": "1/m",
+        "torsion": "1/m",
+        "a_tangential": "m/s^2",
+        "a_normal": "m/s^2",
+        "R": "m",
+        "theta": "rad",
+        "v_R": "m/s",
+        "v_theta": "m/s",
+        "v_z": "m/s",
+        "a_R": "m/s^2",
+        "a_theta": "m/s^2",
+        "a_z": "m/s^2",
+        "r": "m",
+        "phi": "rad",
+        "v_r": "m/s",
+        "v_phi": "m/s",
+        "a_r": "m/s^2",
+        "a_phi": "m/s^2",
     }
     description = (
         "the typed curve differentiated symbolically (sympy) and evaluated at each frame; "
@@ -368,11 +391,18 @@ class ParticleOnCurve(ClosedFormModel):
         scales = reference_scales(curve, float(t_s[-1]) if t_s[-1] > 0 else 1.0)
         path = path_variables(curve, t_s, scales)
         series = {
-            "x": path.position_m[:, 0], "y": path.position_m[:, 1], "z": path.position_m[:, 2],
-            "speed": path.speed_m_s, "arc_length": arc_length(curve, t_s),
-            "curvature": path.curvature_1_m, "torsion": path.torsion_1_m,
-            "a_tangential": path.a_tangential_m_s2, "a_normal": path.a_normal_m_s2,
-            **curvilinear_series(path.position_m, path.velocity_m_s, path.acceleration_m_s2, length_scale_m=scales.length_m),
+            "x": path.position_m[:, 0],
+            "y": path.position_m[:, 1],
+            "z": path.position_m[:, 2],
+            "speed": path.speed_m_s,
+            "arc_length": arc_length(curve, t_s),
+            "curvature": path.curvature_1_m,
+            "torsion": path.torsion_1_m,
+            "a_tangential": path.a_tangential_m_s2,
+            "a_normal": path.a_normal_m_s2,
+            **curvilinear_series(
+                path.position_m, path.velocity_m_s, path.acceleration_m_s2, length_scale_m=scales.length_m
+            ),
         }
         return ClosedFormSolution(series=series, events=_degenerate_events(path))
 

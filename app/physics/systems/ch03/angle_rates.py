@@ -44,14 +44,45 @@ _ORDINAL = ("first", "second", "third")
 
 
 def _angle_parameters() -> tuple[Parameter, ...]:
-    defaults = ((30.0, 0.6, 0.0), (40.0, 0.0, 0.0), (0.0, 2.0, 0.0))  # a top: steady precession and spin at a fixed tilt
+    defaults = (
+        (30.0, 0.6, 0.0),
+        (40.0, 0.0, 0.0),
+        (0.0, 2.0, 0.0),
+    )  # a top: steady precession and spin at a fixed tilt
     parameters: list[Parameter] = []
     for k, (angle, rate, acceleration) in enumerate(defaults, start=1):
         which = _ORDINAL[k - 1]
         parameters += [
-            Parameter(f"angle{k}_deg", "deg", angle, -180.0, 180.0, f"Angle θ{k} of the {which} turn at t = 0", f"θ{k}(0)", step=1.0),
-            Parameter(f"rate{k}_rad_s", "rad/s", rate, -3.0, 3.0, f"Rate θ̇{k} of the {which} angle at t = 0", f"θ̇{k}(0)", step=0.05),
-            Parameter(f"accel{k}_rad_s2", "rad/s²", acceleration, -2.0, 2.0, f"Constant angular acceleration θ̈{k} of the {which} angle", f"θ̈{k}", step=0.05),
+            Parameter(
+                f"angle{k}_deg",
+                "deg",
+                angle,
+                -180.0,
+                180.0,
+                f"Angle θ{k} of the {which} turn at t = 0",
+                f"θ{k}(0)",
+                step=1.0,
+            ),
+            Parameter(
+                f"rate{k}_rad_s",
+                "rad/s",
+                rate,
+                -3.0,
+                3.0,
+                f"Rate θ̇{k} of the {which} angle at t = 0",
+                f"θ̇{k}(0)",
+                step=0.05,
+            ),
+            Parameter(
+                f"accel{k}_rad_s2",
+                "rad/s²",
+                acceleration,
+                -2.0,
+                2.0,
+                f"Constant angular acceleration θ̈{k} of the {which} angle",
+                f"θ̈{k}",
+                step=0.05,
+            ),
         ]
     return tuple(parameters)
 
@@ -59,8 +90,16 @@ def _angle_parameters() -> tuple[Parameter, ...]:
 PARAMETERS = ParameterSet(
     (
         Parameter(
-            "sequence", "", "3-1-3", kind="choice", choices=tuple(SEQUENCES), label="Sequence",
-            description=("Axes of the three body-fixed turns (1 = x, 2 = y, 3 = z): proper Euler (first axis " "repeated) or Tait–Bryan (all three)"),
+            "sequence",
+            "",
+            "3-1-3",
+            kind="choice",
+            choices=tuple(SEQUENCES),
+            label="Sequence",
+            description=(
+                "Axes of the three body-fixed turns (1 = x, 2 = y, 3 = z): proper Euler (first axis "
+                "repeated) or Tait–Bryan (all three)"
+            ),
         ),
         *_angle_parameters(),
     )
@@ -165,13 +204,17 @@ class AngleKinematics:
     def recovered_rates(self, i: int) -> tuple[np.ndarray | None, str]:
         """The angle rates solved back from body ω at instant ``i`` (rad/s, (3,)), or None and why not."""
         try:
-            return angle_rates_from_angular_velocity_body(self.angles_rad[i], self.omega_body_rad_s[i], self.sequence), ""
+            return angle_rates_from_angular_velocity_body(
+                self.angles_rad[i], self.omega_body_rad_s[i], self.sequence
+            ), ""
         except ValueError:
             seq = self.sequence
             combination = "θ̇1 + θ̇3" if float(seq.lock_combination_sign(self.angles_rad[i, 1])) > 0 else "θ̇1 − θ̇3"
             return None, (
-                f"the rates cannot be recovered here: θ2 = {math.degrees(float(self.angles_rad[i, 1])):.4g}° " "puts the third "
-                f"turn's axis {seq.axis_label(3)} on the line of {seq.axis_label(1)} (gimbal lock), so ω fixes " f"only {combination}"
+                f"the rates cannot be recovered here: θ2 = {math.degrees(float(self.angles_rad[i, 1])):.4g}° "
+                "puts the third "
+                f"turn's axis {seq.axis_label(3)} on the line of {seq.axis_label(1)} (gimbal lock), so ω fixes "
+                f"only {combination}"
             )
 
 
@@ -204,7 +247,8 @@ class AngleRates(ClosedFormModel):
         starts = np.flatnonzero(locked & ~np.concatenate([[False], locked[:-1]]))
         events = [
             Event(
-                float(k.t_s[i]), "gimbal_lock",
+                float(k.t_s[i]),
+                "gimbal_lock",
                 f"gimbal lock of the {k.sequence.name} sequence: ω and α still follow from the rates, "
                 "but the rates cannot be recovered from ω here",
             )

@@ -40,14 +40,37 @@ from app.physics.systems.earth import EARTH_RATE_RAD_S, STANDARD_GRAVITY_M_S2, e
 
 PARAMETERS = ParameterSet(
     (
-        Parameter("height_m", "m", 100.0, 1.0, 2000.0, "Height h of the release point above the ground (top of the tower)", "drop height h", scale="log"),
+        Parameter(
+            "height_m",
+            "m",
+            100.0,
+            1.0,
+            2000.0,
+            "Height h of the release point above the ground (top of the tower)",
+            "drop height h",
+            scale="log",
+        ),
         latitude_parameter(45.0),
         Parameter(
-            "launch_velocity_m_s", "m/s", [0.0, 0.0, 0.0], -100.0, 100.0,
+            "launch_velocity_m_s",
+            "m/s",
+            [0.0, 0.0, 0.0],
+            -100.0,
+            100.0,
             "Velocity relative to the ground at release, components (east, north, up); zero for a drop from rest",
-            "launch velocity (E, N, up)", kind="vector",
+            "launch velocity (E, N, up)",
+            kind="vector",
         ),
-        Parameter("g_m_s2", "m/s²", STANDARD_GRAVITY_M_S2, 1.0, 30.0, "Gravitational acceleration along the plumb line", "g", step=0.001),
+        Parameter(
+            "g_m_s2",
+            "m/s²",
+            STANDARD_GRAVITY_M_S2,
+            1.0,
+            30.0,
+            "Gravitational acceleration along the plumb line",
+            "g",
+            step=0.001,
+        ),
     ),
 )
 
@@ -102,7 +125,9 @@ def exact_state(
         return t * v + (_one_minus_cos(x) / c) * K(v) + (_x_minus_sin(x) / c) * K2(v)
 
     def S2(v):
-        return 0.5 * t * t * v + (_x_minus_sin(x) / (c * c)) * K(v) + (_half_x2_minus_one_minus_cos(x) / (c * c)) * K2(v)
+        return (
+            0.5 * t * t * v + (_x_minus_sin(x) / (c * c)) * K(v) + (_half_x2_minus_one_minus_cos(x) / (c * c)) * K2(v)
+        )
 
     position = r0 + S1(v0) + S2(gravity)
     velocity = R(v0) + S1(gravity)
@@ -128,7 +153,11 @@ def series_position(
     if order >= 1:
         r = r - np.cross(omega, u) * t**2 + (g_m_s2 / 3.0) * np.cross(omega, up) * t**3
     if order >= 2:
-        r = r + (2.0 / 3.0) * np.cross(omega, np.cross(omega, u)) * t**3 - (g_m_s2 / 6.0) * np.cross(omega, np.cross(omega, up)) * t**4
+        r = (
+            r
+            + (2.0 / 3.0) * np.cross(omega, np.cross(omega, u)) * t**3
+            - (g_m_s2 / 6.0) * np.cross(omega, np.cross(omega, up)) * t**4
+        )
     return r
 
 
@@ -159,7 +188,9 @@ class Flight:
         return self.series(t_s, order=0)
 
     def series(self, t_s: np.ndarray, *, order: int) -> np.ndarray:
-        return series_position(t_s, r0_m=self.r0_m, v0_m_s=self.v0_m_s, omega_local=self.omega_local, g_m_s2=self.g_m_s2, order=order)
+        return series_position(
+            t_s, r0_m=self.r0_m, v0_m_s=self.v0_m_s, omega_local=self.omega_local, g_m_s2=self.g_m_s2, order=order
+        )
 
     def fall_time_without_rotation_s(self) -> float:
         """Positive root of ``h + u_z t − ½ g t² = 0`` (s)."""
@@ -194,13 +225,17 @@ class Flight:
         return self.landing_point(order=order) - self.landing_point(order=0)
 
 
-def drop_east_deflection_first_order_m(*, height_m: float, latitude_deg: float, g_m_s2: float, earth_rate_rad_s: float = EARTH_RATE_RAD_S) -> float:
+def drop_east_deflection_first_order_m(
+    *, height_m: float, latitude_deg: float, g_m_s2: float, earth_rate_rad_s: float = EARTH_RATE_RAD_S
+) -> float:
     """The textbook ``⅓ Ω g t³ cos λ`` with ``t = √(2h/g)`` (m east), for a drop from rest."""
     t = math.sqrt(2.0 * height_m / g_m_s2)
     return earth_rate_rad_s * g_m_s2 * t**3 * math.cos(math.radians(latitude_deg)) / 3.0
 
 
-def drop_south_deflection_second_order_m(*, height_m: float, latitude_deg: float, g_m_s2: float, earth_rate_rad_s: float = EARTH_RATE_RAD_S) -> float:
+def drop_south_deflection_second_order_m(
+    *, height_m: float, latitude_deg: float, g_m_s2: float, earth_rate_rad_s: float = EARTH_RATE_RAD_S
+) -> float:
     """``⅙ Ω² g t⁴ sin λ cos λ`` with ``t = √(2h/g)`` (m south), for a drop from rest (uniform g)."""
     t = math.sqrt(2.0 * height_m / g_m_s2)
     lam = math.radians(latitude_deg)
@@ -227,15 +262,19 @@ class EastwardDeflection(ClosedFormModel):
             deflection = flight.deflection()
             events.append(
                 Event(
-                    t_land, "landed",
+                    t_land,
+                    "landed",
                     f"lands {1000 * deflection[0]:.3f} mm east and {-1000 * deflection[1]:.3f} mm south of where it "
                     f"would land if the Earth did not turn; the series hold their landing values from here on",
                 )
             )
         return ClosedFormSolution(
             series={
-                "east": position[:, 0], "north": position[:, 1], "up": position[:, 2],
-                "east_deflection": deviation[:, 0], "south_deflection": -deviation[:, 1],
+                "east": position[:, 0],
+                "north": position[:, 1],
+                "up": position[:, 2],
+                "east_deflection": deviation[:, 0],
+                "south_deflection": -deviation[:, 1],
             },
             invariants={"jacobi_integral": 0.5 * np.sum(velocity**2, axis=-1) + flight.g_m_s2 * position[:, 2]},
             events=events,

@@ -68,22 +68,61 @@ def _check(values: Mapping[str, Any]) -> None:
 
 PARAMETERS = ParameterSet(
     (
-        Parameter("length_m", "m", 10.0, 0.5, 100.0, "Length L of the string from pivot to bob", "string length L", scale="log"),
-        Parameter("amplitude_m", "m", 1.0, 0.001, 90.0, "Horizontal amplitude a of the swing", "amplitude a", scale="log"),
-        latitude_parameter(48.85),
         Parameter(
-            "earth_rate_factor", "×", 1000.0, 1.0, 5000.0,
-            "EXAGGERATION: the Earth's rotation rate is multiplied by this factor so the swing plane turns in "
-            "minutes instead of a day and a half (1 = the real Earth, 7.292115e-5 rad/s)",
-            "Earth-rate exaggeration", scale="log",
+            "length_m",
+            "m",
+            10.0,
+            0.5,
+            100.0,
+            "Length L of the string from pivot to bob",
+            "string length L",
+            scale="log",
         ),
         Parameter(
-            "release", "", RELEASES[0], kind="choice", choices=RELEASES, label="release",
+            "amplitude_m", "m", 1.0, 0.001, 90.0, "Horizontal amplitude a of the swing", "amplitude a", scale="log"
+        ),
+        latitude_parameter(48.85),
+        Parameter(
+            "earth_rate_factor",
+            "×",
+            1000.0,
+            1.0,
+            5000.0,
+            "EXAGGERATION: the Earth's rotation rate is multiplied by this factor so the swing plane turns in "
+            "minutes instead of a day and a half (1 = the real Earth, 7.292115e-5 rad/s)",
+            "Earth-rate exaggeration",
+            scale="log",
+        ),
+        Parameter(
+            "release",
+            "",
+            RELEASES[0],
+            kind="choice",
+            choices=RELEASES,
+            label="release",
             description="'from rest': pulled aside and let go (a rosette with sharp points); "
             "'from the centre': pushed through the rest position (a rosette of loops through the centre)",
         ),
-        Parameter("swing_bearing_deg", "deg", 90.0, 0.0, 180.0, "Compass bearing of the first swing (0 = north–south, 90 = east–west)", "first swing bearing", step=1.0),
-        Parameter("g_m_s2", "m/s²", STANDARD_GRAVITY_M_S2, 0.1, 30.0, "Gravitational acceleration along the plumb line", "g", step=0.001),
+        Parameter(
+            "swing_bearing_deg",
+            "deg",
+            90.0,
+            0.0,
+            180.0,
+            "Compass bearing of the first swing (0 = north–south, 90 = east–west)",
+            "first swing bearing",
+            step=1.0,
+        ),
+        Parameter(
+            "g_m_s2",
+            "m/s²",
+            STANDARD_GRAVITY_M_S2,
+            0.1,
+            30.0,
+            "Gravitational acceleration along the plumb line",
+            "g",
+            step=0.001,
+        ),
     ),
     check=_check,
 )
@@ -241,11 +280,15 @@ class FoucaultPendulum(IntegratedModel):
     default_method = "rk4"
     series_units = {"bob_east": "m", "bob_north": "m", "bob_up": "m", "swing_plane_bearing": "deg"}
     invariant_units = {"jacobi_integral": "J/kg", "string_length_error": "m"}
-    accuracy_target = AccuracyTarget(1e-6, "", "bob position and velocity: largest component error relative to the largest component")
+    accuracy_target = AccuracyTarget(
+        1e-6, "", "bob position and velocity: largest component error relative to the largest component"
+    )
     auto_methods = ("rk4",)  # the simulate contract answers with RK4; the target sets its step
 
     def system(self, params):
-        return OdeSystem(rhs=foucault_rhs, parameters=kernel_parameters(params), state_names=STATE_NAMES, project=keep_string_length)
+        return OdeSystem(
+            rhs=foucault_rhs, parameters=kernel_parameters(params), state_names=STATE_NAMES, project=keep_string_length
+        )
 
     def initial_state(self, params):
         return initial_state(params)
@@ -261,25 +304,43 @@ class FoucaultPendulum(IntegratedModel):
             "bob_east": states[:, 0].copy(),
             "bob_north": states[:, 1].copy(),
             "bob_up": states[:, 2].copy(),
-            "swing_plane_bearing": np.degrees(np.unwrap(np.radians(swing_plane_bearing_deg(params, states)), period=math.pi)),
+            "swing_plane_bearing": np.degrees(
+                np.unwrap(np.radians(swing_plane_bearing_deg(params, states)), period=math.pi)
+            ),
         }
 
     def invariants(self, params, states):
         states = np.asarray(states, dtype=float)
         string = np.linalg.norm(states[..., 0:3] - np.array([0.0, 0.0, params["length_m"]]), axis=-1)
-        return {"jacobi_integral": jacobi_integral_J_kg(params, states), "string_length_error": string - params["length_m"]}
+        return {
+            "jacobi_integral": jacobi_integral_J_kg(params, states),
+            "string_length_error": string - params["length_m"],
+        }
 
-    series_labels = {"bob_east": "x (east)", "bob_north": "y (north)", "bob_up": "z (up)", "swing_plane_bearing": "swing plane bearing",
-                     "jacobi_integral": "½|ṙ|² + g z", "string_length_error": "|r − pivot| − L"}
+    series_labels = {
+        "bob_east": "x (east)",
+        "bob_north": "y (north)",
+        "bob_up": "z (up)",
+        "swing_plane_bearing": "swing plane bearing",
+        "jacobi_integral": "½|ṙ|² + g z",
+        "string_length_error": "|r − pivot| − L",
+    }
 
     def energy_parts(self, params, states, *, t_s=None):
         """For a 1 kg bob (the model is per unit mass): ½|ṙ|² relative to the ground (a point: no rotation) and g z."""
         states = np.atleast_2d(states)
         kinetic = relative_kinetic_J_kg(states)
-        return EnergyParts(gravity_potential_J_kg(params, states), translational_kinetic_J=kinetic, rotational_kinetic_J=np.zeros_like(kinetic))
+        return EnergyParts(
+            gravity_potential_J_kg(params, states),
+            translational_kinetic_J=kinetic,
+            rotational_kinetic_J=np.zeros_like(kinetic),
+        )
 
     def energy_note(self, params):
-        return ("energies of a 1 kg bob (the motion does not depend on its mass), with its speed measured against " "the turning ground")
+        return (
+            "energies of a 1 kg bob (the motion does not depend on its mass), with its speed measured against "
+            "the turning ground"
+        )
 
     def invariant_scales(self, params, state):
         # The swing's energy above the rest position (the Jacobi integral is zero there).

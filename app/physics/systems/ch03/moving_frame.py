@@ -65,16 +65,83 @@ def _check(values: Mapping[str, Any]) -> None:
 
 PARAMETERS = ParameterSet(
     (
-        Parameter("spin_rate_rad_s", "rad/s", 1.0, -6.0, 6.0, "Spin rate θ̇ of the table about its own axis at t = 0", "spin ω₀", step=0.05),
-        Parameter("spin_acceleration_rad_s2", "rad/s²", 0.0, -2.0, 2.0, "Constant spin acceleration θ̈ of the table", "spin-up α₀", step=0.02),
-        Parameter("tilt_deg", "deg", 0.0, 0.0, 60.0, "Tilt β of the table's axis from the vertical", "axis tilt β", step=0.5),
-        Parameter("precession_rate_rad_s", "rad/s", 0.0, -3.0, 3.0, "Rate Ω_p at which the tilted axis turns about the vertical", "axis precession Ω_p", step=0.05),
+        Parameter(
+            "spin_rate_rad_s",
+            "rad/s",
+            1.0,
+            -6.0,
+            6.0,
+            "Spin rate θ̇ of the table about its own axis at t = 0",
+            "spin ω₀",
+            step=0.05,
+        ),
+        Parameter(
+            "spin_acceleration_rad_s2",
+            "rad/s²",
+            0.0,
+            -2.0,
+            2.0,
+            "Constant spin acceleration θ̈ of the table",
+            "spin-up α₀",
+            step=0.02,
+        ),
+        Parameter(
+            "tilt_deg", "deg", 0.0, 0.0, 60.0, "Tilt β of the table's axis from the vertical", "axis tilt β", step=0.5
+        ),
+        Parameter(
+            "precession_rate_rad_s",
+            "rad/s",
+            0.0,
+            -3.0,
+            3.0,
+            "Rate Ω_p at which the tilted axis turns about the vertical",
+            "axis precession Ω_p",
+            step=0.05,
+        ),
         Parameter("table_radius_m", "m", 1.0, 0.2, 3.0, "Radius of the turntable", "table radius", step=0.05),
-        Parameter("groove_offset_m", "m", 0.3, -2.0, 2.0, "Distance d of the straight groove from the table's centre (0: a radial groove)", "groove offset d", step=0.01),
-        Parameter("slider_amplitude_m", "m", 0.6, 0.0, 3.0, "Amplitude A_s of the slider's oscillation along the groove", "slider amplitude", step=0.01),
-        Parameter("slider_frequency_hz", "Hz", 0.25, 0.0, 2.0, "Frequency f_s of the slider's oscillation along the groove", "slider frequency", step=0.01),
-        Parameter("cart_amplitude_m", "m", 0.0, 0.0, 2.0, "Amplitude A_c of the cart's shaking along world X", "cart amplitude", step=0.01),
-        Parameter("cart_frequency_hz", "Hz", 0.0, 0.0, 2.0, "Frequency f_c of the cart's shaking", "cart frequency", step=0.01),
+        Parameter(
+            "groove_offset_m",
+            "m",
+            0.3,
+            -2.0,
+            2.0,
+            "Distance d of the straight groove from the table's centre (0: a radial groove)",
+            "groove offset d",
+            step=0.01,
+        ),
+        Parameter(
+            "slider_amplitude_m",
+            "m",
+            0.6,
+            0.0,
+            3.0,
+            "Amplitude A_s of the slider's oscillation along the groove",
+            "slider amplitude",
+            step=0.01,
+        ),
+        Parameter(
+            "slider_frequency_hz",
+            "Hz",
+            0.25,
+            0.0,
+            2.0,
+            "Frequency f_s of the slider's oscillation along the groove",
+            "slider frequency",
+            step=0.01,
+        ),
+        Parameter(
+            "cart_amplitude_m",
+            "m",
+            0.0,
+            0.0,
+            2.0,
+            "Amplitude A_c of the cart's shaking along world X",
+            "cart amplitude",
+            step=0.01,
+        ),
+        Parameter(
+            "cart_frequency_hz", "Hz", 0.0, 0.0, 2.0, "Frequency f_c of the cart's shaking", "cart frequency", step=0.01
+        ),
     ),
     check=_check,
 )
@@ -119,7 +186,9 @@ class MovingFrameMotion:
     def euler_313_angles(self, t_s: np.ndarray) -> np.ndarray:
         """3-1-3 angles (Ω_p t, β, θ(t)) in rad, shape (N, 3): precession, tilt, spin."""
         t = np.atleast_1d(np.asarray(t_s, dtype=float))
-        return np.stack([self.precession_rate_rad_s * t, np.full_like(t, self.tilt_rad), self.spin_angle_rad(t)], axis=-1)
+        return np.stack(
+            [self.precession_rate_rad_s * t, np.full_like(t, self.tilt_rad), self.spin_angle_rad(t)], axis=-1
+        )
 
     def attitude(self, t_s: np.ndarray) -> np.ndarray:
         """``R_world_body`` at times ``t_s`` (shape (N, 3, 3)): Rz(Ω_p t) Rx(β) Rz(θ)."""
@@ -236,6 +305,7 @@ class Kinematics:
     omega_rad_s: np.ndarray
     alpha_rad_s2: np.ndarray
     terms_m_s2: dict[str, np.ndarray]
+
 
 class MovingFrameAcceleration(ClosedFormModel):
     """The slider on the shaking, spinning, precessing turntable, evaluated in closed form."""

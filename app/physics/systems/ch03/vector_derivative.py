@@ -50,13 +50,60 @@ def _check(values: Mapping[str, Any]) -> None:
 
 PARAMETERS = ParameterSet(
     (
-        Parameter("frame_rate_rad_s", "rad/s", 0.8, -3.0, 3.0, "Rate Ω at which the frame xyz turns about its axis", "frame rate Ω", step=0.05),
-        Parameter("frame_axis_tilt_deg", "deg", 20.0, 0.0, 90.0, "Tilt β of the frame's turning axis from Z towards X", "axis tilt β", step=1.0),
+        Parameter(
+            "frame_rate_rad_s",
+            "rad/s",
+            0.8,
+            -3.0,
+            3.0,
+            "Rate Ω at which the frame xyz turns about its axis",
+            "frame rate Ω",
+            step=0.05,
+        ),
+        Parameter(
+            "frame_axis_tilt_deg",
+            "deg",
+            20.0,
+            0.0,
+            90.0,
+            "Tilt β of the frame's turning axis from Z towards X",
+            "axis tilt β",
+            step=1.0,
+        ),
         Parameter("length_m", "m", 1.0, 0.2, 2.0, "Mean length L₀ of the vector A", "length L₀", step=0.05),
-        Parameter("stretch_amplitude_m", "m", 0.3, 0.0, 1.9, "Amplitude a of the change of A's length", "stretch a", step=0.01),
-        Parameter("stretch_frequency_hz", "Hz", 0.2, 0.0, 2.0, "Frequency f of the change of A's length", "stretch frequency f", step=0.01),
-        Parameter("relative_turn_rate_rad_s", "rad/s", 0.5, -3.0, 3.0, "Rate ψ̇ at which A turns about z relative to the frame xyz", "turn in the frame ψ̇", step=0.05),
-        Parameter("elevation_deg", "deg", 30.0, -80.0, 80.0, "Elevation e of A above the frame's xy plane", "elevation e", step=1.0),
+        Parameter(
+            "stretch_amplitude_m", "m", 0.3, 0.0, 1.9, "Amplitude a of the change of A's length", "stretch a", step=0.01
+        ),
+        Parameter(
+            "stretch_frequency_hz",
+            "Hz",
+            0.2,
+            0.0,
+            2.0,
+            "Frequency f of the change of A's length",
+            "stretch frequency f",
+            step=0.01,
+        ),
+        Parameter(
+            "relative_turn_rate_rad_s",
+            "rad/s",
+            0.5,
+            -3.0,
+            3.0,
+            "Rate ψ̇ at which A turns about z relative to the frame xyz",
+            "turn in the frame ψ̇",
+            step=0.05,
+        ),
+        Parameter(
+            "elevation_deg",
+            "deg",
+            30.0,
+            -80.0,
+            80.0,
+            "Elevation e of A above the frame's xy plane",
+            "elevation e",
+            step=1.0,
+        ),
     ),
     check=_check,
 )
@@ -112,7 +159,9 @@ class VectorMotion:
         psi = self.relative_turn_rate_rad_s * t
         ce, se = math.cos(self.elevation_rad), math.sin(self.elevation_rad)
         direction = np.stack([ce * np.cos(psi), ce * np.sin(psi), np.full_like(psi, se)], axis=-1)
-        direction_rate = self.relative_turn_rate_rad_s * np.stack([-ce * np.sin(psi), ce * np.cos(psi), np.zeros_like(psi)], axis=-1)
+        direction_rate = self.relative_turn_rate_rad_s * np.stack(
+            [-ce * np.sin(psi), ce * np.cos(psi), np.zeros_like(psi)], axis=-1
+        )
         return length[:, None] * direction, length_rate[:, None] * direction + length[:, None] * direction_rate
 
     def vector_world(self, t_s: np.ndarray) -> np.ndarray:

@@ -120,8 +120,13 @@ class CardanMotion:
         ratio = self.joint.speed_ratio(phi1)
         # ω₂ = r(φ₁) ω₁, so α₂ = r'(φ₁) ω₁² (the input turns at constant speed).
         return CardanState(
-            t, phi1, self.joint.output_angle(phi1), omega1, ratio * omega1,
-            self.joint.speed_ratio_slope(phi1) * omega1**2, ratio,
+            t,
+            phi1,
+            self.joint.output_angle(phi1),
+            omega1,
+            ratio * omega1,
+            self.joint.speed_ratio_slope(phi1) * omega1**2,
+            ratio,
         )
 
 
@@ -131,7 +136,16 @@ def _check(params: Mapping[str, Any]) -> None:
 
 PARAMETERS = ParameterSet(
     (
-        Parameter("shaft_angle_deg", "deg", 30.0, 0.0, 90.0, "Angle β between the input and output shafts (below 90°)", "β", step=1),
+        Parameter(
+            "shaft_angle_deg",
+            "deg",
+            30.0,
+            0.0,
+            90.0,
+            "Angle β between the input and output shafts (below 90°)",
+            "β",
+            step=1,
+        ),
         Parameter("input_speed_rad_s", "rad/s", 1.0, -10.0, 10.0, "Constant input shaft speed ω₁", "ω₁", step=0.05),
     ),
     check=_check,

@@ -95,8 +95,10 @@ class CrankDrive:
         width = upper - lower
         u0 = self.angle0_rad - lower
         # Reversals where the unfolded travel is a multiple of the arc width.
-        ks = np.arange(math.ceil(min(u0, u0 + self.speed_rad_s * t_end_s) / width - 1e-12),
-                       math.floor(max(u0, u0 + self.speed_rad_s * t_end_s) / width + 1e-12) + 1)
+        ks = np.arange(
+            math.ceil(min(u0, u0 + self.speed_rad_s * t_end_s) / width - 1e-12),
+            math.floor(max(u0, u0 + self.speed_rad_s * t_end_s) / width + 1e-12) + 1,
+        )
         out = []
         for k in ks:
             t = (k * width - u0) / self.speed_rad_s
@@ -124,6 +126,8 @@ class CrankDrive:
         lo, hi = min(u0, u1), max(u0, u1)
         times = set()
         for base in (offset, 2.0 * width - offset):
-            for k in range(math.ceil((lo - base) / (2 * width) - 1e-12), math.floor((hi - base) / (2 * width) + 1e-12) + 1):
+            for k in range(
+                math.ceil((lo - base) / (2 * width) - 1e-12), math.floor((hi - base) / (2 * width) + 1e-12) + 1
+            ):
                 times.add(round(max(0.0, (base + 2 * width * k - u0) / self.speed_rad_s), 12))
         return sorted(t for t in times if t <= t_end_s + 1e-12)

@@ -95,28 +95,73 @@ def singularity_note(nutation_rad: float) -> str:
     theta = math.degrees(nutation_rad)
     if distance <= math.degrees(GIMBAL_LOCK_TOLERANCE_RAD):
         return (
-            f"θ = {theta:.1f}°: the spin axis z lies on Z, so φ and ψ turn about the same line. The attitude " "fixes only "
-            "φ ± ψ, the line of nodes is undefined, and ω cannot be turned back into φ̇ and ψ̇ (the angles are " "singular, the body is not)."
+            f"θ = {theta:.1f}°: the spin axis z lies on Z, so φ and ψ turn about the same line. The attitude "
+            "fixes only "
+            "φ ± ψ, the line of nodes is undefined, and ω cannot be turned back into φ̇ and ψ̇ (the angles are "
+            "singular, the body is not)."
         )
     if distance < NEAR_SINGULAR_DEG:
         return (
             f"θ = {theta:.1f}° is {distance:.2f}° from the singularity at θ = 0 or 180°: recovering φ̇ and ψ̇ from ω "
             f"divides by sin θ = {math.sin(nutation_rad):.4f}, so small errors in ω become large errors in the rates."
         )
-    return (f"θ = {theta:.1f}°, {distance:.1f}° away from the singularity at θ = 0 or 180° (where z lies on Z and " "only φ ± ψ is defined).")
+    return (
+        f"θ = {theta:.1f}°, {distance:.1f}° away from the singularity at θ = 0 or 180° (where z lies on Z and "
+        "only φ ± ψ is defined)."
+    )
 
 
 PARAMETERS = ParameterSet(
     (
-        Parameter("precession_deg", "deg", 30.0, -180.0, 180.0, "Precession φ at t = 0: turn about the fixed Z axis", "φ", step=1.0),
-        Parameter("nutation_deg", "deg", 35.0, 0.0, 180.0, "Nutation θ at t = 0: tilt of the body's z axis from Z, a turn about the line of nodes", "θ", step=1.0),
-        Parameter("spin_deg", "deg", 0.0, -180.0, 180.0, "Spin ψ at t = 0: turn about the body's own z axis", "ψ", step=1.0),
+        Parameter(
+            "precession_deg",
+            "deg",
+            30.0,
+            -180.0,
+            180.0,
+            "Precession φ at t = 0: turn about the fixed Z axis",
+            "φ",
+            step=1.0,
+        ),
+        Parameter(
+            "nutation_deg",
+            "deg",
+            35.0,
+            0.0,
+            180.0,
+            "Nutation θ at t = 0: tilt of the body's z axis from Z, a turn about the line of nodes",
+            "θ",
+            step=1.0,
+        ),
+        Parameter(
+            "spin_deg", "deg", 0.0, -180.0, 180.0, "Spin ψ at t = 0: turn about the body's own z axis", "ψ", step=1.0
+        ),
         Parameter("precession_rate_rad_s", "rad/s", 0.8, -10.0, 10.0, "Precession rate φ̇ at t = 0", "φ̇", step=0.05),
         Parameter("nutation_rate_rad_s", "rad/s", 0.15, -5.0, 5.0, "Nutation rate θ̇ at t = 0", "θ̇", step=0.05),
         Parameter("spin_rate_rad_s", "rad/s", 4.0, -30.0, 30.0, "Spin rate ψ̇ at t = 0", "ψ̇", step=0.1),
-        Parameter("precession_acceleration_rad_s2", "rad/s²", 0.0, -3.0, 3.0, "Precession acceleration φ̈ (constant)", "φ̈", step=0.05),
-        Parameter("nutation_acceleration_rad_s2", "rad/s²", 0.0, -3.0, 3.0, "Nutation acceleration θ̈ (constant)", "θ̈", step=0.05),
-        Parameter("spin_acceleration_rad_s2", "rad/s²", 0.0, -10.0, 10.0, "Spin acceleration ψ̈ (constant)", "ψ̈", step=0.1),
+        Parameter(
+            "precession_acceleration_rad_s2",
+            "rad/s²",
+            0.0,
+            -3.0,
+            3.0,
+            "Precession acceleration φ̈ (constant)",
+            "φ̈",
+            step=0.05,
+        ),
+        Parameter(
+            "nutation_acceleration_rad_s2",
+            "rad/s²",
+            0.0,
+            -3.0,
+            3.0,
+            "Nutation acceleration θ̈ (constant)",
+            "θ̈",
+            step=0.05,
+        ),
+        Parameter(
+            "spin_acceleration_rad_s2", "rad/s²", 0.0, -10.0, 10.0, "Spin acceleration ψ̈ (constant)", "ψ̈", step=0.1
+        ),
     ),
     check=lambda params: EulerianAngleMotion.from_params(params),
 )

@@ -85,7 +85,8 @@ class CrankRange:
                 if lo - 1e-9 <= angle_rad <= hi + 1e-9:
                     return lo, hi
         raise ValueError(
-            f"the loop cannot close with the crank at {math.degrees(angle_rad):.1f}°: with these lengths " f"{self.describe()}"
+            f"the loop cannot close with the crank at {math.degrees(angle_rad):.1f}°: with these lengths "
+            f"{self.describe()}"
         )
 
 
@@ -135,19 +136,33 @@ class FourBar:
         pq = sum(links.values()) - s - l
         if s + l > pq * (1.0 + LENGTH_RTOL):
             return GrashofClass(
-                "non-Grashof", False, s_name, False,
+                "non-Grashof",
+                False,
+                s_name,
+                False,
                 "s + l > p + q: no link turns fully relative to another, so the crank can only rock (a triple rocker)",
             )
         if s + l >= pq * (1.0 - LENGTH_RTOL):
             turns = links["crank"] <= s * (1.0 + LENGTH_RTOL) or links["ground"] <= s * (1.0 + LENGTH_RTOL)
             return GrashofClass(
-                "change point", True, s_name, turns,
+                "change point",
+                True,
+                s_name,
+                turns,
                 "s + l = p + q: all four links can fall in line, where the linkage may switch assembly",
             )
         names = {
             "crank": ("crank-rocker", True, "the crank is the shortest link: it turns fully while the rocker rocks"),
-            "ground": ("double-crank", True, "the ground is the shortest link: crank and rocker both turn fully (a drag link)"),
-            "rocker": ("rocker-crank", False, "the rocker is the shortest link: it turns fully while the crank can only rock"),
+            "ground": (
+                "double-crank",
+                True,
+                "the ground is the shortest link: crank and rocker both turn fully (a drag link)",
+            ),
+            "rocker": (
+                "rocker-crank",
+                False,
+                "the rocker is the shortest link: it turns fully while the crank can only rock",
+            ),
             "coupler": ("double-rocker", False, "the coupler is the shortest link: crank and rocker can only rock"),
         }
         name, turns, description = names[s_name]
@@ -226,15 +241,24 @@ class FourBar:
         """
         a, b, c = self.crank_m, self.coupler_m, self.rocker_m
         return solve_2x2(
-            -b * np.sin(theta3), c * np.sin(theta4), b * np.cos(theta3), -c * np.cos(theta4),
-            a * omega2 * np.sin(theta2), -a * omega2 * np.cos(theta2),
+            -b * np.sin(theta3),
+            c * np.sin(theta4),
+            b * np.cos(theta3),
+            -c * np.cos(theta4),
+            a * omega2 * np.sin(theta2),
+            -a * omega2 * np.cos(theta2),
             singular_below=SINGULAR_SIN * b * c,
         )
 
     def accelerations(
         self,
-        theta2: np.ndarray, theta3: np.ndarray, theta4: np.ndarray,
-        omega2: np.ndarray, omega3: np.ndarray, omega4: np.ndarray, alpha2: np.ndarray,
+        theta2: np.ndarray,
+        theta3: np.ndarray,
+        theta4: np.ndarray,
+        omega2: np.ndarray,
+        omega3: np.ndarray,
+        omega4: np.ndarray,
+        alpha2: np.ndarray,
     ) -> tuple[np.ndarray, np.ndarray]:
         """Coupler and rocker angular accelerations (rad/s²) from the twice-differentiated loop.
 
@@ -242,10 +266,25 @@ class FourBar:
         acceleration and every centripetal term ``ω² × length``.
         """
         a, b, c = self.crank_m, self.coupler_m, self.rocker_m
-        r1 = a * alpha2 * np.sin(theta2) + a * omega2**2 * np.cos(theta2) + b * omega3**2 * np.cos(theta3) - c * omega4**2 * np.cos(theta4)
-        r2 = -a * alpha2 * np.cos(theta2) + a * omega2**2 * np.sin(theta2) + b * omega3**2 * np.sin(theta3) - c * omega4**2 * np.sin(theta4)
+        r1 = (
+            a * alpha2 * np.sin(theta2)
+            + a * omega2**2 * np.cos(theta2)
+            + b * omega3**2 * np.cos(theta3)
+            - c * omega4**2 * np.cos(theta4)
+        )
+        r2 = (
+            -a * alpha2 * np.cos(theta2)
+            + a * omega2**2 * np.sin(theta2)
+            + b * omega3**2 * np.sin(theta3)
+            - c * omega4**2 * np.sin(theta4)
+        )
         alpha3, alpha4, _ = solve_2x2(
-            -b * np.sin(theta3), c * np.sin(theta4), b * np.cos(theta3), -c * np.cos(theta4), r1, r2,
+            -b * np.sin(theta3),
+            c * np.sin(theta4),
+            b * np.cos(theta3),
+            -c * np.cos(theta4),
+            r1,
+            r2,
             singular_below=SINGULAR_SIN * b * c,
         )
         return alpha3, alpha4
@@ -315,8 +354,11 @@ class FourBarMotion:
         if limits is not None:
             angle0 = min(max(angle0, limits[0]), limits[1])
         return cls(
-            linkage, params["branch"], CrankDrive(angle0, params["crank_speed_rad_s"], limits),
-            params.get("coupler_point_m", 0.0), math.radians(params.get("coupler_point_deg", 0.0)),
+            linkage,
+            params["branch"],
+            CrankDrive(angle0, params["crank_speed_rad_s"], limits),
+            params.get("coupler_point_m", 0.0),
+            math.radians(params.get("coupler_point_deg", 0.0)),
         )
 
     @cached_property
@@ -382,18 +424,34 @@ class FourBarMotion:
         """Toggle positions (crank reversals) and change points passed in ``[0, t_end_s]``."""
         events = []
         for t, angle in self.drive.reversal_times(t_end_s):
-            events.append(Event(t, "toggle", (
-                f"toggle position at crank angle {math.degrees(angle):.1f}°: the coupler and rocker are " "in line, so the "
-                "rocker rate is unbounded here; the crank cannot turn further, so it reverses and the " "linkage stays "
-                f"in the {self.branch} assembly"
-            )))
+            events.append(
+                Event(
+                    t,
+                    "toggle",
+                    (
+                        f"toggle position at crank angle {math.degrees(angle):.1f}°: the coupler and rocker are "
+                        "in line, so the "
+                        "rocker rate is unbounded here; the crank cannot turn further, so it reverses and the "
+                        "linkage stays "
+                        f"in the {self.branch} assembly"
+                    ),
+                )
+            )
         for angle in self.crank_range.singular_angles_rad:
             for t in self.drive.times_at_angle(angle, t_end_s):
-                events.append(Event(t, "change-point", (
-                    f"change point at crank angle {math.degrees(angle):.1f}°: all four links are in " "line, so the coupler "
-                    "and rocker rates are undefined (0/0) and the linkage could switch assembly; this " "motion stays in "
-                    f"the {self.branch} assembly"
-                )))
+                events.append(
+                    Event(
+                        t,
+                        "change-point",
+                        (
+                            f"change point at crank angle {math.degrees(angle):.1f}°: all four links are in "
+                            "line, so the coupler "
+                            "and rocker rates are undefined (0/0) and the linkage could switch assembly; this "
+                            "motion stays in "
+                            f"the {self.branch} assembly"
+                        ),
+                    )
+                )
         return sorted(events, key=lambda e: e.t_s)
 
     def travel_positions(self, branch: str | None = None, samples: int = 721) -> FourBarPositions:
@@ -430,15 +488,61 @@ def _check(params: Mapping[str, Any]) -> None:
 
 PARAMETERS = ParameterSet(
     (
-        Parameter("ground_m", "m", 1.0, 0.05, 20.0, "Ground link d: distance between the two fixed pivots O₂ and O₄", "ground d", step=0.01),
+        Parameter(
+            "ground_m",
+            "m",
+            1.0,
+            0.05,
+            20.0,
+            "Ground link d: distance between the two fixed pivots O₂ and O₄",
+            "ground d",
+            step=0.01,
+        ),
         Parameter("crank_m", "m", 0.3, 0.05, 20.0, "Crank a (O₂A), the driven input link", "crank a", step=0.01),
         Parameter("coupler_m", "m", 1.0, 0.05, 20.0, "Coupler b (AB), the floating link", "coupler b", step=0.01),
         Parameter("rocker_m", "m", 0.9, 0.05, 20.0, "Rocker c (O₄B), the output link", "rocker c", step=0.01),
-        Parameter("crank_speed_rad_s", "rad/s", 1.5, -10.0, 10.0, "Constant crank speed ω₂ (counterclockwise positive)", "ω₂", step=0.05),
-        Parameter("crank_angle0_deg", "deg", 60.0, -180.0, 180.0, "Crank angle θ₂ at t = 0, from the ground line", "θ₂(0)", step=1),
-        Parameter("branch", "", "open", description="Assembly: B left (open) or right (crossed) of the line from A to O₄", label="assembly", kind="choice", choices=BRANCHES),
-        Parameter("coupler_point_m", "m", 0.6, 0.0, 20.0, "Distance of the traced coupler point P from A", "AP", step=0.01),
-        Parameter("coupler_point_deg", "deg", 40.0, -180.0, 180.0, "Angle of AP from the coupler line AB (counterclockwise)", "∠BAP", step=1),
+        Parameter(
+            "crank_speed_rad_s",
+            "rad/s",
+            1.5,
+            -10.0,
+            10.0,
+            "Constant crank speed ω₂ (counterclockwise positive)",
+            "ω₂",
+            step=0.05,
+        ),
+        Parameter(
+            "crank_angle0_deg",
+            "deg",
+            60.0,
+            -180.0,
+            180.0,
+            "Crank angle θ₂ at t = 0, from the ground line",
+            "θ₂(0)",
+            step=1,
+        ),
+        Parameter(
+            "branch",
+            "",
+            "open",
+            description="Assembly: B left (open) or right (crossed) of the line from A to O₄",
+            label="assembly",
+            kind="choice",
+            choices=BRANCHES,
+        ),
+        Parameter(
+            "coupler_point_m", "m", 0.6, 0.0, 20.0, "Distance of the traced coupler point P from A", "AP", step=0.01
+        ),
+        Parameter(
+            "coupler_point_deg",
+            "deg",
+            40.0,
+            -180.0,
+            180.0,
+            "Angle of AP from the coupler line AB (counterclockwise)",
+            "∠BAP",
+            step=1,
+        ),
     ),
     check=_check,
 )
@@ -462,7 +566,10 @@ class FourBarLinkage(ClosedFormModel):
         "coupler_point_y": "m",
     }
     invariant_units = {"loop_closure_residual": "m"}
-    description = ("loop closure (two-circle intersection) for positions; differentiated loop equations (2×2 " "linear solves) for rates")
+    description = (
+        "loop closure (two-circle intersection) for positions; differentiated loop equations (2×2 "
+        "linear solves) for rates"
+    )
 
     def evaluate(self, params: Mapping[str, Any], t_s: np.ndarray) -> ClosedFormSolution:
         motion = FourBarMotion.from_params(params)

@@ -45,10 +45,17 @@ def velocity_on_body(reference_velocity: np.ndarray, angular_velocity: np.ndarra
 
 
 def acceleration_on_body(
-    reference_acceleration: np.ndarray, angular_velocity: np.ndarray, angular_acceleration: np.ndarray, offset: np.ndarray
+    reference_acceleration: np.ndarray,
+    angular_velocity: np.ndarray,
+    angular_acceleration: np.ndarray,
+    offset: np.ndarray,
 ) -> np.ndarray:
     """a_B = a_A + α × r_B/A + ω × (ω × r_B/A) (m/s², (..., 3)), all vectors on one frame."""
-    return reference_acceleration + np.cross(angular_acceleration, offset) + np.cross(angular_velocity, np.cross(angular_velocity, offset))
+    return (
+        reference_acceleration
+        + np.cross(angular_acceleration, offset)
+        + np.cross(angular_velocity, np.cross(angular_velocity, offset))
+    )
 
 
 @dataclass(frozen=True)
@@ -93,9 +100,15 @@ class DiskOnTurntable:
 
     def __post_init__(self) -> None:
         if not (self.shaft_length_m > 0.0 and self.disk_radius_m > 0.0):
-            raise ValueError(f"the shaft length L and disk radius R must be positive (got L = {self.shaft_length_m:g} m, R = " f"{self.disk_radius_m:g} m)")
+            raise ValueError(
+                f"the shaft length L and disk radius R must be positive (got L = {self.shaft_length_m:g} m, R = "
+                f"{self.disk_radius_m:g} m)"
+            )
         if not abs(self.shaft_elevation_rad) < 0.5 * math.pi:
-            raise ValueError("the shaft elevation β must lie strictly between −90° and 90° (got " f"{math.degrees(self.shaft_elevation_rad):g}°)")
+            raise ValueError(
+                "the shaft elevation β must lie strictly between −90° and 90° (got "
+                f"{math.degrees(self.shaft_elevation_rad):g}°)"
+            )
         if not 0.0 <= self.point_radius_fraction <= 1.0:
             raise ValueError(f"ρ/R must lie in [0, 1]: the point B is on the disk (got {self.point_radius_fraction:g})")
 
@@ -169,15 +182,87 @@ class DiskOnTurntable:
 
 PARAMETERS = ParameterSet(
     (
-        Parameter("turntable_rate_rad_s", "rad/s", 1.2, -5.0, 5.0, "Rate ω₁ at which the turntable turns about the vertical Z axis, at t = 0", "ω₁", step=0.05),
-        Parameter("turntable_acceleration_rad_s2", "rad/s²", 0.3, -2.0, 2.0, "Angular acceleration ω̇₁ of the turntable (constant)", "ω̇₁", step=0.05),
-        Parameter("spin_rate_rad_s", "rad/s", 4.0, -20.0, 20.0, "Rate ω₂ at which the disk spins about its shaft relative to the turntable, at t = 0", "ω₂", step=0.1),
-        Parameter("spin_acceleration_rad_s2", "rad/s²", -0.5, -5.0, 5.0, "Angular acceleration ω̇₂ of the spin relative to the turntable (constant)", "ω̇₂", step=0.05),
-        Parameter("shaft_elevation_deg", "deg", 30.0, -75.0, 75.0, "Elevation β of the shaft above the horizontal", "β", step=1.0),
-        Parameter("shaft_length_m", "m", 0.8, 0.2, 2.0, "Length L from the bearing O on the turntable's axis to the disk's centre A", "L", step=0.01),
+        Parameter(
+            "turntable_rate_rad_s",
+            "rad/s",
+            1.2,
+            -5.0,
+            5.0,
+            "Rate ω₁ at which the turntable turns about the vertical Z axis, at t = 0",
+            "ω₁",
+            step=0.05,
+        ),
+        Parameter(
+            "turntable_acceleration_rad_s2",
+            "rad/s²",
+            0.3,
+            -2.0,
+            2.0,
+            "Angular acceleration ω̇₁ of the turntable (constant)",
+            "ω̇₁",
+            step=0.05,
+        ),
+        Parameter(
+            "spin_rate_rad_s",
+            "rad/s",
+            4.0,
+            -20.0,
+            20.0,
+            "Rate ω₂ at which the disk spins about its shaft relative to the turntable, at t = 0",
+            "ω₂",
+            step=0.1,
+        ),
+        Parameter(
+            "spin_acceleration_rad_s2",
+            "rad/s²",
+            -0.5,
+            -5.0,
+            5.0,
+            "Angular acceleration ω̇₂ of the spin relative to the turntable (constant)",
+            "ω̇₂",
+            step=0.05,
+        ),
+        Parameter(
+            "shaft_elevation_deg",
+            "deg",
+            30.0,
+            -75.0,
+            75.0,
+            "Elevation β of the shaft above the horizontal",
+            "β",
+            step=1.0,
+        ),
+        Parameter(
+            "shaft_length_m",
+            "m",
+            0.8,
+            0.2,
+            2.0,
+            "Length L from the bearing O on the turntable's axis to the disk's centre A",
+            "L",
+            step=0.01,
+        ),
         Parameter("disk_radius_m", "m", 0.3, 0.05, 1.0, "Radius R of the disk", "R", step=0.01),
-        Parameter("point_angle_deg", "deg", 90.0, -180.0, 180.0, "Where B is round the disk: angle γ from the disk's y axis towards its z axis", "γ", step=1.0),
-        Parameter("point_radius_fraction", "", 1.0, 0.0, 1.0, "How far B is from the centre A, as a fraction ρ/R of the disk's radius", "ρ/R", step=0.05),
+        Parameter(
+            "point_angle_deg",
+            "deg",
+            90.0,
+            -180.0,
+            180.0,
+            "Where B is round the disk: angle γ from the disk's y axis towards its z axis",
+            "γ",
+            step=1.0,
+        ),
+        Parameter(
+            "point_radius_fraction",
+            "",
+            1.0,
+            0.0,
+            1.0,
+            "How far B is from the centre A, as a fraction ρ/R of the disk's radius",
+            "ρ/R",
+            step=0.05,
+        ),
     ),
     check=lambda params: DiskOnTurntable.from_params(params),
 )

@@ -108,7 +108,9 @@ class SteadyRolling:
     @property
     def axis_point(self) -> np.ndarray:
         """O' (m): where the symmetry axis meets the vertical through O; at rest, on the instantaneous axis."""
-        return np.array([0.0, 0.0, (self.rim_radius_m - self.path_radius_m * math.sin(self.tilt_rad)) / math.cos(self.tilt_rad)])
+        return np.array(
+            [0.0, 0.0, (self.rim_radius_m - self.path_radius_m * math.sin(self.tilt_rad)) / math.cos(self.tilt_rad)]
+        )
 
     @property
     def cone_height_m(self) -> float:
@@ -135,7 +137,9 @@ class SteadyRolling:
         omega = omega_turn * Z + sigma_dot * axis
         contact_velocity = center_velocity + np.cross(omega, contact - center)
         wxyz = _turn_about_z(self._attitude_at_rest, psi, sigma)
-        return RollingState(t, psi, sigma, contact, center, axis, rim_up, e_psi, omega, center_velocity, contact_velocity, wxyz)
+        return RollingState(
+            t, psi, sigma, contact, center, axis, rim_up, e_psi, omega, center_velocity, contact_velocity, wxyz
+        )
 
     @cached_property
     def _attitude_at_rest(self) -> np.ndarray:
@@ -158,7 +162,9 @@ class SteadyRolling:
     def velocity_of(self, state: RollingState, index: int, points: np.ndarray) -> np.ndarray:
         """Velocity (m/s, (M, 3)) of body points at world positions ``points`` (M, 3) at instant ``index``:
         v_P = v_G + ω × (r_P − r_G)."""
-        return state.center_velocity[index] + np.cross(state.angular_velocity[index], np.asarray(points) - state.center[index])
+        return state.center_velocity[index] + np.cross(
+            state.angular_velocity[index], np.asarray(points) - state.center[index]
+        )
 
     def axis_misalignment(self, state: RollingState) -> np.ndarray:
         """Angle (rad) between ω and the line from C to O' (for the cone, the contact line); zero when
@@ -186,10 +192,45 @@ def _turn_about_z(q: np.ndarray, before_rad: np.ndarray, after_rad: np.ndarray) 
 
 PARAMETERS = ParameterSet(
     (
-        Parameter("body", "", "disk", description="What rolls: a thin disk, or a cone rolling on its side about its apex", label="body", kind="choice", choices=BODIES),
-        Parameter("rim_radius_m", "m", 0.4, 0.05, 2.0, "Radius R of the rolling rim (the disk, or the cone's base)", "R", step=0.01),
-        Parameter("tilt_deg", "deg", 20.0, 0.0, 60.0, "Tilt θ of the rim's plane from vertical, leaning in; for the cone this is its half-angle", "θ", step=1),
-        Parameter("path_radius_m", "m", 1.5, 0.2, 20.0, "Disk only: radius ρ of the contact point's circle (a cone's is fixed at R/sin θ)", "ρ", step=0.05),
+        Parameter(
+            "body",
+            "",
+            "disk",
+            description="What rolls: a thin disk, or a cone rolling on its side about its apex",
+            label="body",
+            kind="choice",
+            choices=BODIES,
+        ),
+        Parameter(
+            "rim_radius_m",
+            "m",
+            0.4,
+            0.05,
+            2.0,
+            "Radius R of the rolling rim (the disk, or the cone's base)",
+            "R",
+            step=0.01,
+        ),
+        Parameter(
+            "tilt_deg",
+            "deg",
+            20.0,
+            0.0,
+            60.0,
+            "Tilt θ of the rim's plane from vertical, leaning in; for the cone this is its half-angle",
+            "θ",
+            step=1,
+        ),
+        Parameter(
+            "path_radius_m",
+            "m",
+            1.5,
+            0.2,
+            20.0,
+            "Disk only: radius ρ of the contact point's circle (a cone's is fixed at R/sin θ)",
+            "ρ",
+            step=0.05,
+        ),
         Parameter("speed_m_s", "m/s", 0.8, -5.0, 5.0, "Speed v of the contact point along its circle", "v", step=0.05),
     ),
     check=lambda params: SteadyRolling.from_params(params),

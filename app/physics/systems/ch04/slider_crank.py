@@ -78,8 +78,12 @@ class SliderCrank:
         ``[-1, -l sinφ; 0, l cosφ] [ẋ, φ̇] = [r ω sinθ, -r ω cosθ]``."""
         r, l = self.crank_m, self.rod_m
         xdot, phidot, _ = solve_2x2(
-            -1.0, -l * np.sin(phi), 0.0, l * np.cos(phi),
-            r * omega * np.sin(theta), -r * omega * np.cos(theta),
+            -1.0,
+            -l * np.sin(phi),
+            0.0,
+            l * np.cos(phi),
+            r * omega * np.sin(theta),
+            -r * omega * np.cos(theta),
             singular_below=0.0,
         )
         return xdot, phidot
@@ -144,7 +148,9 @@ class SliderCrankMotion:
     @classmethod
     def from_params(cls, params: Mapping[str, Any]) -> SliderCrankMotion:
         mechanism = SliderCrank(params["crank_m"], params["rod_m"], params["offset_m"])
-        return cls(mechanism, CrankDrive(math.radians(params.get("crank_angle0_deg", 0.0)), params["crank_speed_rad_s"]))
+        return cls(
+            mechanism, CrankDrive(math.radians(params.get("crank_angle0_deg", 0.0)), params["crank_speed_rad_s"])
+        )
 
     def at(self, t_s: np.ndarray) -> SliderCrankState:
         t = np.atleast_1d(np.asarray(t_s, dtype=float))
@@ -166,8 +172,26 @@ PARAMETERS = ParameterSet(
     (
         Parameter("crank_m", "m", 0.3, 0.02, 5.0, "Crank r (OA)", "crank r", step=0.01),
         Parameter("rod_m", "m", 1.0, 0.05, 20.0, "Connecting rod l (AB)", "rod l", step=0.01),
-        Parameter("offset_m", "m", 0.0, -5.0, 5.0, "Offset e of the slider's line above the crank pivot", "offset e", step=0.01),
-        Parameter("crank_speed_rad_s", "rad/s", 2.0, -20.0, 20.0, "Constant crank speed ω (counterclockwise positive)", "ω", step=0.1),
+        Parameter(
+            "offset_m",
+            "m",
+            0.0,
+            -5.0,
+            5.0,
+            "Offset e of the slider's line above the crank pivot",
+            "offset e",
+            step=0.01,
+        ),
+        Parameter(
+            "crank_speed_rad_s",
+            "rad/s",
+            2.0,
+            -20.0,
+            20.0,
+            "Constant crank speed ω (counterclockwise positive)",
+            "ω",
+            step=0.1,
+        ),
         Parameter("crank_angle0_deg", "deg", 0.0, -180.0, 180.0, "Crank angle θ at t = 0", "θ(0)", step=1),
     ),
     check=_check,
@@ -188,7 +212,10 @@ class SliderCrankMechanism(ClosedFormModel):
         "rod_acceleration": "rad/s²",
     }
     invariant_units = {"loop_closure_residual": "m"}
-    description = ("loop closure for the slider position; differentiated loop equations (2×2 linear solves) for " "velocity and acceleration")
+    description = (
+        "loop closure for the slider position; differentiated loop equations (2×2 linear solves) for "
+        "velocity and acceleration"
+    )
 
     def evaluate(self, params: Mapping[str, Any], t_s: np.ndarray) -> ClosedFormSolution:
         motion = SliderCrankMotion.from_params(params)

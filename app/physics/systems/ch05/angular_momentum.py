@@ -167,7 +167,11 @@ class ParticleState:
 
     def kinetic_energy(self, *, relative_to_m_s: np.ndarray | None = None) -> np.ndarray:
         """``Σ ½ mᵢ |vᵢ − u|²`` (N,) J, with ``u`` = ``relative_to_m_s`` (3,) or zero."""
-        v = self.velocities_m_s if relative_to_m_s is None else self.velocities_m_s - np.asarray(relative_to_m_s, dtype=float)
+        v = (
+            self.velocities_m_s
+            if relative_to_m_s is None
+            else self.velocities_m_s - np.asarray(relative_to_m_s, dtype=float)
+        )
         return 0.5 * np.einsum("p,npk,npk->n", self.masses_kg, v, v)
 
 
@@ -268,10 +272,17 @@ class ShaftSpin:
         t_centre = 0.5 * mass * float(self.centre_velocity_m_s @ self.centre_velocity_m_s) if moving else 0.0
         n = t.shape[0]
         return SpinState(
-            t_s=t, spin_angle=angle, omega_rad_s=self.omega_rad_s,
-            angular_momentum_G=h_g, angular_momentum_O=h_g + moment_of_momentum,
-            bearing_moment=moment, bearing_force_A=-force_b, bearing_force_B=force_b,
-            centre_m=centre, centre_velocity_m_s=self.centre_velocity_m_s, linear_momentum=momentum,
+            t_s=t,
+            spin_angle=angle,
+            omega_rad_s=self.omega_rad_s,
+            angular_momentum_G=h_g,
+            angular_momentum_O=h_g + moment_of_momentum,
+            bearing_moment=moment,
+            bearing_force_A=-force_b,
+            bearing_force_B=force_b,
+            centre_m=centre,
+            centre_velocity_m_s=self.centre_velocity_m_s,
+            linear_momentum=momentum,
             bearing_moment_N_m=np.full(n, self.bearing_moment_N_m),
             angle_between_omega_and_H=np.full(n, self.angle_between_omega_and_H),
             kinetic_energy_centre_J=np.full(n, t_centre),
@@ -305,7 +316,13 @@ def _shaft_spin(items: tuple[tuple[str, Any], ...]) -> ShaftSpin:
     moving = params["view"] == "particles"
     start = _read_only(params["centre_position_m"]) if moving else _AT_REST
     velocity = _read_only(params["centre_velocity_m_s"]) if moving else _AT_REST
-    return ShaftSpin(MountedBody.from_params(params), float(params["spin_rate_rad_s"]), float(params["bearing_span_m"]), start, velocity)
+    return ShaftSpin(
+        MountedBody.from_params(params),
+        float(params["spin_rate_rad_s"]),
+        float(params["bearing_span_m"]),
+        start,
+        velocity,
+    )
 
 
 def _check(params: Mapping[str, Any]) -> None:
@@ -314,25 +331,92 @@ def _check(params: Mapping[str, Any]) -> None:
 
 PARAMETERS = ParameterSet(
     (
-        Parameter("body", "", "plate", description="The body on the shaft: a thin rectangular plate, a rectangular box or a thin disk",
-                  label="body", kind="choice", choices=BODIES),
+        Parameter(
+            "body",
+            "",
+            "plate",
+            description="The body on the shaft: a thin rectangular plate, a rectangular box or a thin disk",
+            label="body",
+            kind="choice",
+            choices=BODIES,
+        ),
         Parameter("mass_kg", "kg", 4.0, 0.01, 1000.0, "Mass m of the body", "m", scale="log"),
-        Parameter("length_m", "m", 0.5, 0.01, 5.0, "Plate and box: side a along the body's x axis (the tilt axis)", "a", step=0.01),
+        Parameter(
+            "length_m",
+            "m",
+            0.5,
+            0.01,
+            5.0,
+            "Plate and box: side a along the body's x axis (the tilt axis)",
+            "a",
+            step=0.01,
+        ),
         Parameter("width_m", "m", 0.4, 0.01, 5.0, "Plate and box: side b along the body's y axis", "b", step=0.01),
-        Parameter("height_m", "m", 0.1, 0.01, 5.0, "Box only: side c along the body's z axis (along the shaft at zero tilt)", "c", step=0.01),
+        Parameter(
+            "height_m",
+            "m",
+            0.1,
+            0.01,
+            5.0,
+            "Box only: side c along the body's z axis (along the shaft at zero tilt)",
+            "c",
+            step=0.01,
+        ),
         Parameter("radius_m", "m", 0.25, 0.01, 5.0, "Disk only: radius r", "r", step=0.01),
-        Parameter("tilt_deg", "deg", 30.0, -90.0, 90.0,
-                  "Tilt of the body's z axis (plate normal, disk axis) from the shaft, about the body's x axis", "tilt", step=1),
-        Parameter("spin_rate_rad_s", "rad/s", 4.0, -30.0, 30.0, "Constant spin rate Ω of the shaft (0 allowed)", "Ω", step=0.1),
-        Parameter("bearing_span_m", "m", 0.8, 0.05, 10.0, "Distance between the two bearings, which sit symmetrically about G", "span", step=0.01),
-        Parameter("view", "", "rigid body", description="Show the rigid body on its shaft, or the body as point masses with a moving centre",
-                  label="view", kind="choice", choices=VIEWS),
-        Parameter("centre_velocity_m_s", "m/s", [0.3, 0.0, 0.0], -10.0, 10.0,
-                  "Particles view only: constant velocity v_G of the centre of mass (and of the shaft), world [x, y, z]",
-                  "v_G", kind="vector", step=0.05),
-        Parameter("centre_position_m", "m", [-0.3, 0.3, 0.0], -10.0, 10.0,
-                  "Particles view only: position of the centre of mass at t = 0 from the origin O, world [x, y, z]",
-                  "r_G(0)", kind="vector", step=0.05),
+        Parameter(
+            "tilt_deg",
+            "deg",
+            30.0,
+            -90.0,
+            90.0,
+            "Tilt of the body's z axis (plate normal, disk axis) from the shaft, about the body's x axis",
+            "tilt",
+            step=1,
+        ),
+        Parameter(
+            "spin_rate_rad_s", "rad/s", 4.0, -30.0, 30.0, "Constant spin rate Ω of the shaft (0 allowed)", "Ω", step=0.1
+        ),
+        Parameter(
+            "bearing_span_m",
+            "m",
+            0.8,
+            0.05,
+            10.0,
+            "Distance between the two bearings, which sit symmetrically about G",
+            "span",
+            step=0.01,
+        ),
+        Parameter(
+            "view",
+            "",
+            "rigid body",
+            description="Show the rigid body on its shaft, or the body as point masses with a moving centre",
+            label="view",
+            kind="choice",
+            choices=VIEWS,
+        ),
+        Parameter(
+            "centre_velocity_m_s",
+            "m/s",
+            [0.3, 0.0, 0.0],
+            -10.0,
+            10.0,
+            "Particles view only: constant velocity v_G of the centre of mass (and of the shaft), world [x, y, z]",
+            "v_G",
+            kind="vector",
+            step=0.05,
+        ),
+        Parameter(
+            "centre_position_m",
+            "m",
+            [-0.3, 0.3, 0.0],
+            -10.0,
+            10.0,
+            "Particles view only: position of the centre of mass at t = 0 from the origin O, world [x, y, z]",
+            "r_G(0)",
+            kind="vector",
+            step=0.05,
+        ),
     ),
     check=_check,
 )
@@ -377,5 +461,9 @@ class ShaftSpinModel(ClosedFormModel):
             "angular_momentum_magnitude_kg_m2_s": np.sqrt(np.sum(h * h, axis=-1)),
             "kinetic_energy_J": state.kinetic_energy_centre_J + 0.5 * motion.spin_rate_rad_s * h[:, 2],
         }
-        events = [] if motion.spin_rate_rad_s != 0.0 else [Event(0.0, "undefined", f"angle between ω and H_G: {NO_SPIN_ANGLE}")]
+        events = (
+            []
+            if motion.spin_rate_rad_s != 0.0
+            else [Event(0.0, "undefined", f"angle between ω and H_G: {NO_SPIN_ANGLE}")]
+        )
         return ClosedFormSolution(series, invariants, events=events)

@@ -33,34 +33,76 @@ from app.physics.math.rotations import SEQUENCES
 
 #: A bracket: a 12 kg plate (100 kg/m²) with a 80 mm hole, and a 3 kg handle standing on one edge.
 DEFAULT_BODIES: list[dict[str, Any]] = [
-    {"shape": "plate", "mass_kg": 12.0, "length_m": 0.4, "width_m": 0.3, "position_m": [0.0, 0.0, 0.0],
-     "sequence": "3-2-1", "angles_deg": [0.0, 0.0, 0.0], "hole": False},
-    {"shape": "disk", "mass_kg": 2.0106, "radius_m": 0.08, "position_m": [0.1, 0.05, 0.0],
-     "sequence": "3-2-1", "angles_deg": [0.0, 0.0, 0.0], "hole": True},
-    {"shape": "rod", "mass_kg": 3.0, "length_m": 0.5, "position_m": [-0.2, 0.0, 0.25],
-     "sequence": "3-2-1", "angles_deg": [0.0, 0.0, 0.0], "hole": False},
+    {
+        "shape": "plate",
+        "mass_kg": 12.0,
+        "length_m": 0.4,
+        "width_m": 0.3,
+        "position_m": [0.0, 0.0, 0.0],
+        "sequence": "3-2-1",
+        "angles_deg": [0.0, 0.0, 0.0],
+        "hole": False,
+    },
+    {
+        "shape": "disk",
+        "mass_kg": 2.0106,
+        "radius_m": 0.08,
+        "position_m": [0.1, 0.05, 0.0],
+        "sequence": "3-2-1",
+        "angles_deg": [0.0, 0.0, 0.0],
+        "hole": True,
+    },
+    {
+        "shape": "rod",
+        "mass_kg": 3.0,
+        "length_m": 0.5,
+        "position_m": [-0.2, 0.0, 0.25],
+        "sequence": "3-2-1",
+        "angles_deg": [0.0, 0.0, 0.0],
+        "hole": False,
+    },
 ]
 
 BODY_FIELDS = {
     "shape": "one of the shapes below",
     "mass_kg": "mass in kg (a hole: the mass removed)",
     "position_m": "[x, y, z] of the shape's own centre of mass in the reference frame, m",
-    "sequence": "rotation sequence from the reference axes to the shape's own axes, e.g. \"3-2-1\"",
+    "sequence": 'rotation sequence from the reference axes to the shape\'s own axes, e.g. "3-2-1"',
     "angles_deg": "the sequence's three angles, deg",
     "hole": "true: the body is removed (a negative body)",
 }
 
 BODIES = Parameter(
-    "bodies", "", DEFAULT_BODIES, description="The primitive bodies (and holes) the composite is built from", label="bodies",
-    kind="list", parse=validate_records, item_place=body_place,
-    item_schema={"fields": BODY_FIELDS, "shapes": shapes_schema(), "sequences": list(SEQUENCES), "max_items": MAX_PARTS},
+    "bodies",
+    "",
+    DEFAULT_BODIES,
+    description="The primitive bodies (and holes) the composite is built from",
+    label="bodies",
+    kind="list",
+    parse=validate_records,
+    item_place=body_place,
+    item_schema={
+        "fields": BODY_FIELDS,
+        "shapes": shapes_schema(),
+        "sequences": list(SEQUENCES),
+        "max_items": MAX_PARTS,
+    },
 )
 
 INPUTS = ParameterSet(
     (
         BODIES,
-        Parameter("about_point_m", "m", [0.0, 0.0, 0.0], -100.0, 100.0,
-                  "The point the inertia is also wanted about, reference frame", "P", kind="vector", step=0.01),
+        Parameter(
+            "about_point_m",
+            "m",
+            [0.0, 0.0, 0.0],
+            -100.0,
+            100.0,
+            "The point the inertia is also wanted about, reference frame",
+            "P",
+            kind="vector",
+            step=0.01,
+        ),
     )
 )
 
@@ -102,14 +144,16 @@ def solve(inputs: Mapping[str, Any]) -> Solution:
         Step(
             "Parallel-axis theorem to the common centre of mass",
             _tensor_latex(r"\mathbf{I}_G")
-            + r" = \sum_k \left[\mathbf{I}_{G_k} + m_k\left(|\mathbf{d}_k|^2\,\mathbf{1} - " r"\mathbf{d}_k\mathbf{d}_k^{\mathsf T}\right)\right],"
+            + r" = \sum_k \left[\mathbf{I}_{G_k} + m_k\left(|\mathbf{d}_k|^2\,\mathbf{1} - "
+            r"\mathbf{d}_k\mathbf{d}_k^{\mathsf T}\right)\right],"
             r"\quad \mathbf{d}_k = \mathbf{r}_{G_k} - \mathbf{r}_G",
             {"I_G": body.inertia_cm_kg_m2},
             {"I_G": "kg·m²"},
         ),
         Step(
             "Inertia about the point P",
-            r"\mathbf{I}_P = \mathbf{I}_G + m\left(|\mathbf{d}|^2\,\mathbf{1} - \mathbf{d}\mathbf{d}^{\mathsf " r"T}\right),"
+            r"\mathbf{I}_P = \mathbf{I}_G + m\left(|\mathbf{d}|^2\,\mathbf{1} - \mathbf{d}\mathbf{d}^{\mathsf "
+            r"T}\right),"
             r"\quad \mathbf{d} = \mathbf{r}_G - \mathbf{r}_P",
             {"r_P": point, "I_P": inertia_point},
             {"r_P": "m", "I_P": "kg·m²"},
@@ -118,7 +162,12 @@ def solve(inputs: Mapping[str, Any]) -> Solution:
             "Principal moments and axes at G",
             r"\left(\mathbf{I}_G - I_i\,\mathbf{1}\right)\mathbf{e}_i = \mathbf{0}, \qquad I_1 \le I_2 \le I_3,"
             r"\quad \mathbf{e}_3 = \mathbf{e}_1 \times \mathbf{e}_2",
-            {"I_1..3": principal.moments_kg_m2, "e_1": principal.axes[0], "e_2": principal.axes[1], "e_3": principal.axes[2]},
+            {
+                "I_1..3": principal.moments_kg_m2,
+                "e_1": principal.axes[0],
+                "e_2": principal.axes[1],
+                "e_3": principal.axes[2],
+            },
             {"I_1..3": "kg·m²", "e_1": "", "e_2": "", "e_3": ""},
         ),
     )

@@ -98,8 +98,10 @@ def _check(values: Mapping[str, Any]) -> None:
     if lowest < START_CLEARANCE_M:
         raise ParameterError(
             "drop_height_m",
-            f"must put the lower end at least {START_CLEARANCE_M * 1e3:g} mm above the floor: with L = " f"{values['length_m']:g} m "
-            f"at {values['angle0_deg']:g}° the centre needs h₀ ≥ " f"{values['drop_height_m'] - lowest + START_CLEARANCE_M:.4g} m",
+            f"must put the lower end at least {START_CLEARANCE_M * 1e3:g} mm above the floor: with L = "
+            f"{values['length_m']:g} m "
+            f"at {values['angle0_deg']:g}° the centre needs h₀ ≥ "
+            f"{values['drop_height_m'] - lowest + START_CLEARANCE_M:.4g} m",
         )
 
 
@@ -107,10 +109,14 @@ PARAMETERS = ParameterSet(
     (
         Parameter("length_m", "m", 1.0, 0.05, 5.0, "Length of the bar", "L", step=0.01),
         Parameter("mass_kg", "kg", 1.0, 0.01, 100.0, "Mass of the bar", "m", scale="log"),
-        Parameter("drop_height_m", "m", 1.0, 0.0, 10.0, "Height of the centre of mass at release (from rest)", "h₀", step=0.01),
+        Parameter(
+            "drop_height_m", "m", 1.0, 0.0, 10.0, "Height of the centre of mass at release (from rest)", "h₀", step=0.01
+        ),
         Parameter("angle0_deg", "deg", 30.0, 0.0, 90.0, "Angle of the bar from the floor at release", "θ₀", step=0.5),
         Parameter("restitution", "", 0.6, 0.0, 1.0, "Energetic coefficient of restitution e (Stronge)", "e", step=0.01),
-        Parameter("friction_coefficient", "", 0.3, 0.0, 2.0, "Coulomb friction coefficient μ at the floor", "μ", step=0.01),
+        Parameter(
+            "friction_coefficient", "", 0.3, 0.0, 2.0, "Coulomb friction coefficient μ at the floor", "μ", step=0.01
+        ),
         Parameter("g_m_s2", "m/s²", 9.807, 0.1, 30.0, "Gravitational acceleration", "g", step=0.001),
     ),
     check=_check,
@@ -121,9 +127,22 @@ PARAMETERS = ParameterSet(
 X, Z, THETA, VX, VZ, OMEGA = range(6)
 MODE, IMPACTS, LOST, LAST_LOSS, LAST_T, PN_A, PT_A, PN_B, PT_B, SLIP = range(6, 16)
 STATE_NAMES = (
-    "x_m", "z_m", "theta_rad", "vx_m_s", "vz_m_s", "theta_dot_rad_s",
-    "mode", "impact_count", "energy_lost_J", "last_energy_loss_J", "last_impact_t_s",
-    "impulse_normal_a_N_s", "impulse_tangential_a_N_s", "impulse_normal_b_N_s", "impulse_tangential_b_N_s", "slip_state",
+    "x_m",
+    "z_m",
+    "theta_rad",
+    "vx_m_s",
+    "vz_m_s",
+    "theta_dot_rad_s",
+    "mode",
+    "impact_count",
+    "energy_lost_J",
+    "last_energy_loss_J",
+    "last_impact_t_s",
+    "impulse_normal_a_N_s",
+    "impulse_tangential_a_N_s",
+    "impulse_normal_b_N_s",
+    "impulse_tangential_b_N_s",
+    "slip_state",
 )
 #: Values of the ``mode`` slot.
 FLIGHT, RESTING, SETTLED_ON_END = 0.0, 1.0, 2.0
@@ -156,7 +175,9 @@ def parameter_array(params: Mapping[str, Any]) -> np.ndarray:
     """``p = [m (kg), L (m), I (kg·m²) about the centre, g (m/s²), e, μ]`` for the kernels."""
     m, L = params["mass_kg"], params["length_m"]
     inertia = float(slender_rod(m, L)[0, 0])  # rod along its own z: any transverse axis
-    return np.array([m, L, inertia, params["g_m_s2"], params["restitution"], params["friction_coefficient"]], dtype=float)
+    return np.array(
+        [m, L, inertia, params["g_m_s2"], params["restitution"], params["friction_coefficient"]], dtype=float
+    )
 
 
 def initial_state(params: Mapping[str, Any]) -> np.ndarray:
@@ -231,7 +252,8 @@ def energy_parts(y: np.ndarray, p: np.ndarray) -> EnergyParts:
     """½ m v_G², ½ I_G ω² and m g z (J) of states ``y`` (N, 16)."""
     y = np.atleast_2d(y)
     return EnergyParts(
-        _potential_J(y[:, Z], p), translational_kinetic_J=_translational_kinetic_J(y[:, VX], y[:, VZ], p),
+        _potential_J(y[:, Z], p),
+        translational_kinetic_J=_translational_kinetic_J(y[:, VX], y[:, VZ], p),
         rotational_kinetic_J=_rotational_kinetic_J(y[:, OMEGA], p),
     )
 
@@ -318,15 +340,21 @@ def floor_impacts(y, p, t_s, end):
     for _ in range(4):
         height_a, approach_a = _end_height_and_approach(y, L, END_A)
         height_b, approach_b = _end_height_and_approach(y, L, END_B)
-        striking_a = (height_a <= TOUCH_TOLERANCE_M or (end == END_A and impacts == 0)) and approach_a < -GRAZING_SPEED_M_S
-        striking_b = (height_b <= TOUCH_TOLERANCE_M or (end == END_B and impacts == 0)) and approach_b < -GRAZING_SPEED_M_S
+        striking_a = (
+            height_a <= TOUCH_TOLERANCE_M or (end == END_A and impacts == 0)
+        ) and approach_a < -GRAZING_SPEED_M_S
+        striking_b = (
+            height_b <= TOUCH_TOLERANCE_M or (end == END_B and impacts == 0)
+        ) and approach_b < -GRAZING_SPEED_M_S
         if not (striking_a or striking_b):
             break
         if striking_a:
             slowest_m_s = min(slowest_m_s, -approach_a)
         if striking_b:
             slowest_m_s = min(slowest_m_s, -approach_b)
-        if striking_a and striking_b and L * abs(math.sin(y[THETA])) <= 2.0 * TOUCH_TOLERANCE_M:  # both on the floor: flat
+        if (
+            striking_a and striking_b and L * abs(math.sin(y[THETA])) <= 2.0 * TOUCH_TOLERANCE_M
+        ):  # both on the floor: flat
             loss, slip = _two_contacts(y, p)
         else:
             end_striking = striking_a if end == END_A else striking_b
@@ -419,10 +447,16 @@ def bar_reset(t, y, p, index):
 
 def system(params: Mapping[str, Any]) -> OdeSystem:
     return OdeSystem(
-        rhs=bar_rhs, parameters=parameter_array(params), state_names=STATE_NAMES,
+        rhs=bar_rhs,
+        parameters=parameter_array(params),
+        state_names=STATE_NAMES,
         events=Events(
-            bar_events, directions=(-1, -1, 0), terminal=(False, False, False), reset=bar_reset,
-            resets=(True, True, True), max_step_s=MAX_STEP_S,
+            bar_events,
+            directions=(-1, -1, 0),
+            terminal=(False, False, False),
+            reset=bar_reset,
+            resets=(True, True, True),
+            max_step_s=MAX_STEP_S,
         ),
     )
 
@@ -450,12 +484,14 @@ def mode_message(params: Mapping[str, Any], y: np.ndarray) -> str:
     if mode == RESTING:
         return (
             f"Resting: the bounces fell below {REST_SPEED_M_S:g} m/s, so the endless cascade of ever smaller "
-            "bounces is cut off and the bar lies flat on the floor" + (", sliding to a stop under friction." if y[VX] != 0.0 else ".")
+            "bounces is cut off and the bar lies flat on the floor"
+            + (", sliding to a stop under friction." if y[VX] != 0.0 else ".")
         )
     if mode == SETTLED_ON_END:
         return (
             f"Settled on one end at t = {y[LAST_T]:.2f} s: the last impact left that end on the floor, tilted "
-            f"θ = {math.degrees(math.remainder(float(y[THETA]), 2 * math.pi)):.1f}°, at rest. From here the bar " "would pivot or "
+            f"θ = {math.degrees(math.remainder(float(y[THETA]), 2 * math.pi)):.1f}°, at rest. From here the bar "
+            "would pivot or "
             "slide down in continuous contact, which this impact model does not follow, so the motion stops here."
         )
     return f"In flight between impacts; e = {params['restitution']:g}, μ = {params['friction_coefficient']:g}."
@@ -498,8 +534,14 @@ class BouncingBar(IntegratedModel):
         p = parameter_array(params)
         return {"energy_balance": mechanical_energy_J(states, p) + states[:, LOST]}
 
-    series_labels = {"angle": "θ", "centre_height_m": "height of G", "energy_J": "kinetic + potential", "impact_count": "impacts",
-                     "energy_lost_J": "energy lost", "energy_balance": "energy + lost"}
+    series_labels = {
+        "angle": "θ",
+        "centre_height_m": "height of G",
+        "energy_J": "kinetic + potential",
+        "impact_count": "impacts",
+        "energy_lost_J": "energy lost",
+        "energy_balance": "energy + lost",
+    }
 
     def energy_parts(self, params, states, *, t_s=None):
         return energy_parts(states, parameter_array(params))

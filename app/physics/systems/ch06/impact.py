@@ -37,7 +37,14 @@ SLIP_STATES = ("slid throughout", "stuck", "reversed")
 _MAX_PHASES = 8  # slip → stick/reverse, each split once at the end of compression: at most 4 are ever used
 
 #: Slots of :func:`impact_core`'s output vector (length :data:`IMPACT_OUT_SIZE`).
-OUT_NORMAL_IMPULSE, OUT_TANGENTIAL_IMPULSE, OUT_NORMAL_VELOCITY_AFTER, OUT_TANGENTIAL_VELOCITY_AFTER, OUT_ENERGY_LOSS, OUT_SLIP_CODE = range(6)
+(
+    OUT_NORMAL_IMPULSE,
+    OUT_TANGENTIAL_IMPULSE,
+    OUT_NORMAL_VELOCITY_AFTER,
+    OUT_TANGENTIAL_VELOCITY_AFTER,
+    OUT_ENERGY_LOSS,
+    OUT_SLIP_CODE,
+) = range(6)
 IMPACT_OUT_SIZE = 6
 #: ``impact_core(W, v0, restitution, friction_coefficient, out)``.
 IMPACT_CORE_SIGNATURE = types.void(MATRIX, VECTOR, types.float64, types.float64, VECTOR)
@@ -68,7 +75,10 @@ def _check_inputs(W: np.ndarray, v: np.ndarray, restitution: float, friction_coe
     if not (math.isfinite(friction_coefficient) and friction_coefficient >= 0.0):
         raise ValueError(f"friction_coefficient: must be a finite number ≥ 0 (got {friction_coefficient!r})")
     if not v[0] < 0.0:
-        raise ValueError(f"contact_velocity_m_s: the bodies are not approaching at the contact (vn = {v[0]:g} m/s ≥ 0), so " "there is no impact")
+        raise ValueError(
+            f"contact_velocity_m_s: the bodies are not approaching at the contact (vn = {v[0]:g} m/s ≥ 0), so "
+            "there is no impact"
+        )
 
 
 @register_jitable
@@ -117,7 +127,7 @@ def impact_core(W, v0, restitution, friction_coefficient, out):
         if compressing and rate_n > 0.0:
             dp = -vn / rate_n
         if not compressing:
-            dp, event = _first_root_of_work(vn, rate_n, -restitution**2 * compression_work - restitution_work), _DONE
+            dp, event = _first_root_of_work(vn, rate_n, -(restitution**2) * compression_work - restitution_work), _DONE
         if slip_sign != 0.0 and rate_t * slip_sign < 0.0 and -vt / rate_t < dp:
             dp, event = -vt / rate_t, _SLIP_STOPS
         work = vn * dp + 0.5 * rate_n * dp * dp

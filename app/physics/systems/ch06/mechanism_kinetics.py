@@ -64,7 +64,12 @@ def _check(values: Mapping[str, Any]) -> None:
 PARAMETERS = ParameterSet(
     (
         Parameter(
-            "drive", "", DRIVES[0], kind="choice", choices=DRIVES, label="drive",
+            "drive",
+            "",
+            DRIVES[0],
+            kind="choice",
+            choices=DRIVES,
+            label="drive",
             description="'speed': a motor holds the crank speed constant (the torque it needs is computed); "
             "'torque': a constant torque is applied and the motion follows from it",
         ),
@@ -72,16 +77,62 @@ PARAMETERS = ParameterSet(
         _GEOMETRY["rod_m"],
         _GEOMETRY["offset_m"],
         replace(
-            _GEOMETRY["crank_speed_rad_s"], default=10.0,
+            _GEOMETRY["crank_speed_rad_s"],
+            default=10.0,
             description="Crank speed ω (counterclockwise positive): held constant by the 'speed' drive; "
             "the initial speed under the 'torque' drive",
         ),
-        Parameter("drive_torque_N_m", "N·m", 2.0, -100.0, 100.0, "Constant torque τ on the crank under the 'torque' drive (counterclockwise positive)", "τ", step=0.1),
+        Parameter(
+            "drive_torque_N_m",
+            "N·m",
+            2.0,
+            -100.0,
+            100.0,
+            "Constant torque τ on the crank under the 'torque' drive (counterclockwise positive)",
+            "τ",
+            step=0.1,
+        ),
         _GEOMETRY["crank_angle0_deg"],
-        Parameter("crank_mass_kg", "kg", 1.0, 0.01, 100.0, "Mass of the crank (a uniform slender rod)", "crank mass", scale="log"),
-        Parameter("rod_mass_kg", "kg", 2.0, 0.01, 100.0, "Mass of the connecting rod (a uniform slender rod)", "rod mass", scale="log"),
-        Parameter("slider_mass_kg", "kg", 3.0, 0.01, 100.0, "Mass of the slider (a particle at the wrist pin B)", "slider mass", scale="log"),
-        Parameter("g_m_s2", "m/s²", STANDARD_GRAVITY_M_S2, 0.0, 30.0, "Gravitational acceleration along −y (0: the mechanism lies in a horizontal plane)", "g", step=0.01),
+        Parameter(
+            "crank_mass_kg",
+            "kg",
+            1.0,
+            0.01,
+            100.0,
+            "Mass of the crank (a uniform slender rod)",
+            "crank mass",
+            scale="log",
+        ),
+        Parameter(
+            "rod_mass_kg",
+            "kg",
+            2.0,
+            0.01,
+            100.0,
+            "Mass of the connecting rod (a uniform slender rod)",
+            "rod mass",
+            scale="log",
+        ),
+        Parameter(
+            "slider_mass_kg",
+            "kg",
+            3.0,
+            0.01,
+            100.0,
+            "Mass of the slider (a particle at the wrist pin B)",
+            "slider mass",
+            scale="log",
+        ),
+        Parameter(
+            "g_m_s2",
+            "m/s²",
+            STANDARD_GRAVITY_M_S2,
+            0.0,
+            30.0,
+            "Gravitational acceleration along −y (0: the mechanism lies in a horizontal plane)",
+            "g",
+            step=0.01,
+        ),
     ),
     check=_check,
 )
@@ -100,13 +151,17 @@ class SliderCrankLinks:
     @classmethod
     def from_params(cls, params: Mapping[str, Any]) -> SliderCrankLinks:
         mechanism = kinematics.SliderCrank(params["crank_m"], params["rod_m"], params["offset_m"])
-        return cls(mechanism, params["crank_mass_kg"], params["rod_mass_kg"], params["slider_mass_kg"], params["g_m_s2"])
+        return cls(
+            mechanism, params["crank_mass_kg"], params["rod_mass_kg"], params["slider_mass_kg"], params["g_m_s2"]
+        )
 
     @property
     def crank_inertia_about_pivot_kg_m2(self) -> float:
         """I_O of the crank about the pivot axis (normal to the plane), kg·m²: a rod's m r²/12 moved r/2."""
         r = self.mechanism.crank_m
-        about_pivot = parallel_axis(slender_rod(self.crank_mass_kg, r), self.crank_mass_kg, np.array([0.0, 0.0, 0.5 * r]))
+        about_pivot = parallel_axis(
+            slender_rod(self.crank_mass_kg, r), self.crank_mass_kg, np.array([0.0, 0.0, 0.5 * r])
+        )
         return float(about_pivot[0, 0])
 
     @property
@@ -120,9 +175,17 @@ class SliderCrankLinks:
         mech = self.mechanism
         return np.array(
             [
-                float(drive == "torque"), mech.crank_m, mech.rod_m, mech.offset_m,
-                self.crank_mass_kg, self.rod_mass_kg, self.slider_mass_kg, self.g_m_s2, drive_torque_N_m,
-                self.crank_inertia_about_pivot_kg_m2, self.rod_inertia_about_centre_kg_m2,
+                float(drive == "torque"),
+                mech.crank_m,
+                mech.rod_m,
+                mech.offset_m,
+                self.crank_mass_kg,
+                self.rod_mass_kg,
+                self.slider_mass_kg,
+                self.g_m_s2,
+                drive_torque_N_m,
+                self.crank_inertia_about_pivot_kg_m2,
+                self.rod_inertia_about_centre_kg_m2,
             ]
         )
 
@@ -165,7 +228,9 @@ def link_motion(
     by the chapter-4 loop closure (:class:`~app.physics.systems.ch04.slider_crank.SliderCrank`)."""
     mech = links.mechanism
     r, l = mech.crank_m, mech.rod_m
-    theta, omega, alpha = np.broadcast_arrays(*(np.atleast_1d(np.asarray(v, dtype=float)) for v in (theta, omega, alpha)))
+    theta, omega, alpha = np.broadcast_arrays(
+        *(np.atleast_1d(np.asarray(v, dtype=float)) for v in (theta, omega, alpha))
+    )
     x, phi = mech.positions(theta)
     xdot, phidot = mech.rates(theta, phi, omega)
     xddot, phiddot = mech.accelerations(theta, phi, omega, phidot, alpha)
@@ -174,7 +239,9 @@ def link_motion(
     crank_pin = r * along_crank
     pin_velocity = r * omega[:, None] * across_crank
     pin_acceleration = r * (alpha[:, None] * across_crank - (omega**2)[:, None] * along_crank)
-    rod_centre_acceleration = pin_acceleration + 0.5 * l * (phiddot[:, None] * across_rod - (phidot**2)[:, None] * along_rod)
+    rod_centre_acceleration = pin_acceleration + 0.5 * l * (
+        phiddot[:, None] * across_rod - (phidot**2)[:, None] * along_rod
+    )
     zeros = np.zeros_like(x)
     return LinkMotion(
         crank_angle=theta,
@@ -210,7 +277,9 @@ def rotational_kinetic_J(links: SliderCrankLinks, motion: LinkMotion) -> np.ndar
     """½ I_G ω² summed over the crank and the rod (J), shape (N,): the slider does not turn. The rest of
     :func:`kinetic_energy_J` is the links' translation, ½ m v_G²."""
     crank_about_centre = float(slender_rod(links.crank_mass_kg, links.mechanism.crank_m)[0, 0])
-    return 0.5 * (crank_about_centre * motion.crank_speed_rad_s**2 + links.rod_inertia_about_centre_kg_m2 * motion.rod_rate**2)
+    return 0.5 * (
+        crank_about_centre * motion.crank_speed_rad_s**2 + links.rod_inertia_about_centre_kg_m2 * motion.rod_rate**2
+    )
 
 
 def potential_energy_J(links: SliderCrankLinks, motion: LinkMotion) -> np.ndarray:
@@ -263,7 +332,9 @@ def _balance(links: SliderCrankLinks, motion: LinkMotion) -> tuple[np.ndarray, n
     K[:, 1, 1], K[:, 1, 3] = 1.0, -1.0
     f[:, 0:2] = m_c * (motion.crank_centre_acceleration - weight)
     K[:, 2, 2], K[:, 2, 3], K[:, 2, 7] = a_pin[:, 1], -a_pin[:, 0], 1.0
-    f[:, 2] = links.crank_inertia_about_pivot_kg_m2 * motion.crank_acceleration_rad_s2 - _cross(motion.crank_centre, m_c * weight)
+    f[:, 2] = links.crank_inertia_about_pivot_kg_m2 * motion.crank_acceleration_rad_s2 - _cross(
+        motion.crank_centre, m_c * weight
+    )
     # Rod: A − B + m_r g = m_r a_G2;  (r_A − r_G2) × A + (r_B − r_G2) × (−B) = I_G2 φ̈.
     K[:, 3, 2], K[:, 3, 4] = 1.0, -1.0
     K[:, 4, 3], K[:, 4, 5] = 1.0, -1.0
@@ -312,7 +383,9 @@ def newton_euler(
         f0[:, 2] -= torque
         u = np.linalg.solve(K, f0[..., None])[..., 0]
         alpha = u[:, 7]
-    return PinForces(u[:, 0:2], u[:, 2:4], u[:, 4:6], u[:, 6], np.array(torque, dtype=float), np.array(alpha, dtype=float))
+    return PinForces(
+        u[:, 0:2], u[:, 2:4], u[:, 4:6], u[:, 6], np.array(torque, dtype=float), np.array(alpha, dtype=float)
+    )
 
 
 @kernel(RHS_SIGNATURE)
@@ -403,7 +476,9 @@ class MechanismKinetics(IntegratedModel):
     }
     invariant_units = {"work_energy_residual": "J"}
     #: 1e-8, not 1e-6: the lesson checks the work–energy balance (motor work = ΔT + ΔV) to 1e-8 of the energy scale.
-    accuracy_target = AccuracyTarget(1e-8, "", "crank angle per turn, crank speed per the speed scale, motor work per the energy scale: the largest")
+    accuracy_target = AccuracyTarget(
+        1e-8, "", "crank angle per turn, crank speed per the speed scale, motor work per the energy scale: the largest"
+    )
     auto_methods = ("rk4",)  # the simulate contract answers with RK4; the target sets its step
 
     def solution_error(self, params: Mapping[str, Any], states: np.ndarray, reference: np.ndarray) -> np.ndarray:
@@ -474,16 +549,31 @@ class MechanismKinetics(IntegratedModel):
     def invariant_scales(self, params: Mapping[str, Any], state: np.ndarray) -> dict[str, float]:
         return {"work_energy_residual": energy_scale_J(params)}
 
-    series_labels = {"crank_angle": "θ", "crank_speed_rad_s": "ω (crank)", "driving_torque_N_m": "τ", "pin_force_O_N": "|O|",
-                     "pin_force_A_N": "|A|", "pin_force_B_N": "|B|", "guide_force_N": "N (guide)", "kinetic_energy_J": "T",
-                     "work_energy_residual_J": "T + V − T₀ − V₀ − W", "work_energy_residual": "T + V − T₀ − V₀ − W"}
+    series_labels = {
+        "crank_angle": "θ",
+        "crank_speed_rad_s": "ω (crank)",
+        "driving_torque_N_m": "τ",
+        "pin_force_O_N": "|O|",
+        "pin_force_A_N": "|A|",
+        "pin_force_B_N": "|B|",
+        "guide_force_N": "N (guide)",
+        "kinetic_energy_J": "T",
+        "work_energy_residual_J": "T + V − T₀ − V₀ − W",
+        "work_energy_residual": "T + V − T₀ − V₀ − W",
+    }
 
-    def energy_parts(self, params: Mapping[str, Any], states: np.ndarray, *, t_s: np.ndarray | None = None) -> EnergyParts:
+    def energy_parts(
+        self, params: Mapping[str, Any], states: np.ndarray, *, t_s: np.ndarray | None = None
+    ) -> EnergyParts:
         """Translation of G₁, G₂ and the slider, rotation of crank and rod, gravity; the motor's work W is the
         drive's (tracked in the state for either drive)."""
         states = np.atleast_2d(np.asarray(states, dtype=float))
         links = SliderCrankLinks.from_params(params)
         motion = link_motion(links, states[:, 0], states[:, 1], np.zeros(states.shape[0]))
         kinetic, rotational = kinetic_energy_J(links, motion), rotational_kinetic_J(links, motion)
-        return EnergyParts(potential_energy_J(links, motion), translational_kinetic_J=kinetic - rotational, rotational_kinetic_J=rotational,
-                           drive_work_J=states[:, 2].copy())
+        return EnergyParts(
+            potential_energy_J(links, motion),
+            translational_kinetic_J=kinetic - rotational,
+            rotational_kinetic_J=rotational,
+            drive_work_J=states[:, 2].copy(),
+        )

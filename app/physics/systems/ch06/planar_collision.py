@@ -57,11 +57,16 @@ class Disk:
     def angular_momentum_about(self, point_m: np.ndarray) -> float:
         """z component of the angular momentum about a fixed point (kg·m²/s): ``I ω + m (r_G − r_P) × v_G``."""
         arm = self.centre_m - np.asarray(point_m, dtype=float)
-        return self.inertia_kg_m2 * self.spin_rad_s + self.mass_kg * float(arm[0] * self.velocity_m_s[1] - arm[1] * self.velocity_m_s[0])
+        return self.inertia_kg_m2 * self.spin_rad_s + self.mass_kg * float(
+            arm[0] * self.velocity_m_s[1] - arm[1] * self.velocity_m_s[0]
+        )
 
     @property
     def kinetic_energy_J(self) -> float:
-        return 0.5 * self.mass_kg * float(self.velocity_m_s @ self.velocity_m_s) + 0.5 * self.inertia_kg_m2 * self.spin_rad_s**2
+        return (
+            0.5 * self.mass_kg * float(self.velocity_m_s @ self.velocity_m_s)
+            + 0.5 * self.inertia_kg_m2 * self.spin_rad_s**2
+        )
 
     def point_velocity(self, point_m: np.ndarray) -> np.ndarray:
         """Velocity (m/s, (3,)) of the body point at ``point_m``: ``v_G + ω k × (r − r_G)``."""
@@ -73,7 +78,13 @@ class Disk:
         ``Δω = ((r − r_G) × P)_z / I``."""
         arm = np.asarray(at_m, dtype=float) - self.centre_m
         spin_change = float(arm[0] * impulse_N_s[1] - arm[1] * impulse_N_s[0]) / self.inertia_kg_m2
-        return Disk(self.mass_kg, self.radius_m, self.centre_m, self.velocity_m_s + impulse_N_s / self.mass_kg, self.spin_rad_s + spin_change)
+        return Disk(
+            self.mass_kg,
+            self.radius_m,
+            self.centre_m,
+            self.velocity_m_s + impulse_N_s / self.mass_kg,
+            self.spin_rad_s + spin_change,
+        )
 
 
 @dataclass(frozen=True)
@@ -111,11 +122,15 @@ def disks_before(inputs: Mapping[str, Any]) -> tuple[Disk, Disk, np.ndarray, np.
     normal, tangent = contact_frame(inputs["line_of_centres_deg"])
     r1, r2 = inputs["r1_m"], inputs["r2_m"]
     disk1 = Disk(inputs["m1_kg"], r1, np.zeros(3), np.asarray(inputs["v1_m_s"], dtype=float), inputs["omega1_rad_s"])
-    disk2 = Disk(inputs["m2_kg"], r2, (r1 + r2) * normal, np.asarray(inputs["v2_m_s"], dtype=float), inputs["omega2_rad_s"])
+    disk2 = Disk(
+        inputs["m2_kg"], r2, (r1 + r2) * normal, np.asarray(inputs["v2_m_s"], dtype=float), inputs["omega2_rad_s"]
+    )
     return disk1, disk2, normal, tangent, r1 * normal
 
 
-def relative_contact_velocity(disk1: Disk, disk2: Disk, normal: np.ndarray, tangent: np.ndarray, contact_m: np.ndarray) -> np.ndarray:
+def relative_contact_velocity(
+    disk1: Disk, disk2: Disk, normal: np.ndarray, tangent: np.ndarray, contact_m: np.ndarray
+) -> np.ndarray:
     """[vn, vt] (m/s) of disk 2's contact point relative to disk 1's; vn < 0 means approaching."""
     relative = disk2.point_velocity(contact_m) - disk1.point_velocity(contact_m)
     return np.array([float(relative @ normal), float(relative @ tangent)])
@@ -138,8 +153,10 @@ def collide(inputs: Mapping[str, Any]) -> DiskCollision:
     W = inverse_effective_mass(disk1, disk2)
     v_contact = relative_contact_velocity(disk1, disk2, normal, tangent, contact)
     impact = resolve_impact(
-        inverse_effective_mass=W, contact_velocity_m_s=v_contact,
-        restitution=inputs["restitution"], friction_coefficient=inputs["friction_coefficient"],
+        inverse_effective_mass=W,
+        contact_velocity_m_s=v_contact,
+        restitution=inputs["restitution"],
+        friction_coefficient=inputs["friction_coefficient"],
     )
     impulse = impact.impulse_N_s[0] * normal + impact.impulse_N_s[1] * tangent
     after = (disk1.after_impulse(-impulse, contact), disk2.after_impulse(impulse, contact))
@@ -149,13 +166,16 @@ def collide(inputs: Mapping[str, Any]) -> DiskCollision:
 def _check(values: Mapping[str, Any]) -> None:
     for name in _VECTORS:
         if values[name][2] != 0.0:
-            raise ParameterError(name, f"must lie in the plane: its z component must be 0 (got {values[name][2]:g} m/s)")
+            raise ParameterError(
+                name, f"must lie in the plane: its z component must be 0 (got {values[name][2]:g} m/s)"
+            )
     disk1, disk2, normal, tangent, contact = disks_before(values)
     vn, vt = relative_contact_velocity(disk1, disk2, normal, tangent, contact)
     if not vn < -APPROACH_ROUND_OFF * math.hypot(vn, vt):
         raise ParameterError(
             "v2_m_s",
-            f"the disks are not approaching at contact: (v2 − v1)·n = {vn:.4g} m/s, not below zero along the " "line of centres, "
+            f"the disks are not approaching at contact: (v2 − v1)·n = {vn:.4g} m/s, not below zero along the "
+            "line of centres, "
             "so there is no impact; make v2 − v1 point against n",
         )
 
@@ -166,13 +186,53 @@ INPUTS = ParameterSet(
         Parameter("m2_kg", "kg", 1.0, 0.01, 1000.0, "Mass of disk 2", "m₂", scale="log"),
         Parameter("r1_m", "m", 0.3, 0.01, 10.0, "Radius of disk 1", "r₁", step=0.01),
         Parameter("r2_m", "m", 0.2, 0.01, 10.0, "Radius of disk 2", "r₂", step=0.01),
-        Parameter("v1_m_s", "m/s", (3.0, 0.0, 0.0), -100.0, 100.0, "Velocity of disk 1's centre before impact (z = 0)", "v₁", kind="vector", step=0.1),
-        Parameter("v2_m_s", "m/s", (-1.0, 0.0, 0.0), -100.0, 100.0, "Velocity of disk 2's centre before impact (z = 0)", "v₂", kind="vector", step=0.1),
+        Parameter(
+            "v1_m_s",
+            "m/s",
+            (3.0, 0.0, 0.0),
+            -100.0,
+            100.0,
+            "Velocity of disk 1's centre before impact (z = 0)",
+            "v₁",
+            kind="vector",
+            step=0.1,
+        ),
+        Parameter(
+            "v2_m_s",
+            "m/s",
+            (-1.0, 0.0, 0.0),
+            -100.0,
+            100.0,
+            "Velocity of disk 2's centre before impact (z = 0)",
+            "v₂",
+            kind="vector",
+            step=0.1,
+        ),
         Parameter("omega1_rad_s", "rad/s", 0.0, -500.0, 500.0, "Spin of disk 1 about z before impact", "ω₁", step=0.5),
         Parameter("omega2_rad_s", "rad/s", 0.0, -500.0, 500.0, "Spin of disk 2 about z before impact", "ω₂", step=0.5),
-        Parameter("line_of_centres_deg", "deg", 40.0, -180.0, 180.0, "Direction from disk 1's centre to disk 2's at contact, from +x", "β", step=1),
-        Parameter("restitution", "", 0.8, 0.0, 1.0, "Energetic coefficient of restitution e (1: no loss in the normal direction)", "e", step=0.01),
-        Parameter("friction_coefficient", "", 0.1, 0.0, 10.0, "Coulomb friction coefficient μ at the contact", "μ", step=0.01),
+        Parameter(
+            "line_of_centres_deg",
+            "deg",
+            40.0,
+            -180.0,
+            180.0,
+            "Direction from disk 1's centre to disk 2's at contact, from +x",
+            "β",
+            step=1,
+        ),
+        Parameter(
+            "restitution",
+            "",
+            0.8,
+            0.0,
+            1.0,
+            "Energetic coefficient of restitution e (1: no loss in the normal direction)",
+            "e",
+            step=0.01,
+        ),
+        Parameter(
+            "friction_coefficient", "", 0.1, 0.0, 10.0, "Coulomb friction coefficient μ at the contact", "μ", step=0.01
+        ),
     ),
     check=_check,
 )
@@ -188,7 +248,8 @@ def solve(inputs: Mapping[str, Any]) -> Solution:
     steps = (
         Step(
             "Contact frame and contact point",
-            r"\bar n = \cos\beta\,\bar i + \sin\beta\,\bar j,\quad \bar t = \bar k\times\bar n,\quad \bar r_C = " r"r_1\,\bar n",
+            r"\bar n = \cos\beta\,\bar i + \sin\beta\,\bar j,\quad \bar t = \bar k\times\bar n,\quad \bar r_C = "
+            r"r_1\,\bar n",
             {"n": c.normal, "t": c.tangent, "r_C": c.contact_point_m},
             {"n": "", "t": "", "r_C": "m"},
         ),
@@ -202,13 +263,15 @@ def solve(inputs: Mapping[str, Any]) -> Solution:
         Step(
             "Inverse effective mass at the contact (I = ½ m r²)",
             r"\Delta\begin{bmatrix}v_n\\v_t\end{bmatrix} = W\begin{bmatrix}P_n\\P_t\end{bmatrix},\quad "
-            r"W = \begin{bmatrix}\frac1{m_1}+\frac1{m_2} & 0\\ 0 & " r"\frac1{m_1}+\frac1{m_2}+\frac{r_1^2}{I_1}+\frac{r_2^2}{I_2}\end{bmatrix}",
+            r"W = \begin{bmatrix}\frac1{m_1}+\frac1{m_2} & 0\\ 0 & "
+            r"\frac1{m_1}+\frac1{m_2}+\frac{r_1^2}{I_1}+\frac{r_2^2}{I_2}\end{bmatrix}",
             {"I_1": d1.inertia_kg_m2, "I_2": d2.inertia_kg_m2, "W_nn": W[0, 0], "W_tt": W[1, 1]},
             {"I_1": "kg·m²", "I_2": "kg·m²", "W_nn": "1/kg", "W_tt": "1/kg"},
         ),
         Step(
             "Impulse (energetic restitution; friction stops the slip or caps Pt at μ Pn)",
-            r"P_n = (1+e)\,\frac{-v_n}{W_{nn}},\quad P_t = -\operatorname{sign}(v_t)\,\min\!\left(\mu " r"P_n,\ \frac{|v_t|}{W_{tt}}\right)",
+            r"P_n = (1+e)\,\frac{-v_n}{W_{nn}},\quad P_t = -\operatorname{sign}(v_t)\,\min\!\left(\mu "
+            r"P_n,\ \frac{|v_t|}{W_{tt}}\right)",
             {"e": e, "mu": mu, "P_n": p_n, "P_t": p_t, "P": c.impulse_N_s},
             {"e": "", "mu": "", "P_n": "N·s", "P_t": "N·s", "P": "N·s"},
         ),
@@ -222,7 +285,11 @@ def solve(inputs: Mapping[str, Any]) -> Solution:
         Step(
             "Energy lost",
             r"\Delta T = -\tfrac12\,P^{\mathsf T}(v_{\rm before} + v_{\rm after}) = T - T' \ge 0",
-            {"T": c.energy_before_J, "T'": c.energy_before_J - c.impact.energy_loss_J, "Delta_T": c.impact.energy_loss_J},
+            {
+                "T": c.energy_before_J,
+                "T'": c.energy_before_J - c.impact.energy_loss_J,
+                "Delta_T": c.impact.energy_loss_J,
+            },
             {"T": "J", "T'": "J", "Delta_T": "J"},
         ),
     )

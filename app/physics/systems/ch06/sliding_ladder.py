@@ -65,8 +65,14 @@ from app.physics.solvers.step_choice import AccuracyTarget
 #: State slots: centre of mass x (m), angle from the floor (rad), their rates (m/s, rad/s),
 #: friction work done so far (J, ≥ 0), impact loss so far (J, ≥ 0), phase code, sliding direction of B (±1).
 STATE_NAMES = (
-    "x_center_m", "angle_from_floor_rad", "vx_center_m_s", "angle_rate_rad_s",
-    "friction_work_J", "impact_loss_J", "phase", "slip_direction",
+    "x_center_m",
+    "angle_from_floor_rad",
+    "vx_center_m_s",
+    "angle_rate_rad_s",
+    "friction_work_J",
+    "impact_loss_J",
+    "phase",
+    "slip_direction",
 )
 X, THETA, VX, OMEGA, FRICTION_WORK, IMPACT_LOSS, PHASE, SLIP = range(8)
 #: Kernel parameters p: [L (m), m (kg), g (m/s²), μw, μf, I about G (kg·m²)].
@@ -100,9 +106,22 @@ PARAMETERS = ParameterSet(
     (
         Parameter("length_m", "m", 4.0, 0.1, 20.0, "Length of the ladder (a uniform bar)", "L", step=0.1),
         Parameter("mass_kg", "kg", 10.0, 0.1, 200.0, "Mass of the ladder", "m", step=0.1),
-        Parameter("angle0_deg", "deg", 60.0, 1.0, 89.9, "Initial angle of the ladder from the floor (released from rest)", "θ₀", step=0.1),
-        Parameter("mu_wall", "", 0.0, 0.0, 1.0, "Coulomb friction coefficient at the wall (0: smooth)", "μ_w", step=0.01),
-        Parameter("mu_floor", "", 0.0, 0.0, 1.0, "Coulomb friction coefficient at the floor (0: smooth)", "μ_f", step=0.01),
+        Parameter(
+            "angle0_deg",
+            "deg",
+            60.0,
+            1.0,
+            89.9,
+            "Initial angle of the ladder from the floor (released from rest)",
+            "θ₀",
+            step=0.1,
+        ),
+        Parameter(
+            "mu_wall", "", 0.0, 0.0, 1.0, "Coulomb friction coefficient at the wall (0: smooth)", "μ_w", step=0.01
+        ),
+        Parameter(
+            "mu_floor", "", 0.0, 0.0, 1.0, "Coulomb friction coefficient at the floor (0: smooth)", "μ_f", step=0.01
+        ),
         Parameter("g_m_s2", "m/s²", 9.807, 0.1, 100.0, "Gravitational acceleration", "g", step=0.001),
     ),
 )
@@ -143,8 +162,10 @@ def contact_dynamics(y, p, out):
         k_floor, r_floor = az - mu_w * ax, bz + g - mu_w * bx
         # I θ̈ = (L/2)[(sin θ + μw cos θ) N_A + (μf sin θ − cos θ) N_B]  (θ̈ > 0 turns the bar up).
         arm_wall, arm_floor = half * (s + mu_w * c), half * (mu_f * s - c)
-        alpha = (m / det) * (arm_wall * r_wall + arm_floor * r_floor) / (
-            inertia - (m / det) * (arm_wall * k_wall + arm_floor * k_floor)
+        alpha = (
+            (m / det)
+            * (arm_wall * r_wall + arm_floor * r_floor)
+            / (inertia - (m / det) * (arm_wall * k_wall + arm_floor * k_floor))
         )
         normal_wall = m * (k_wall * alpha + r_wall) / det
         normal_floor = m * (k_floor * alpha + r_floor) / det
@@ -335,7 +356,11 @@ def energy_budget(params: Mapping[str, Any], states: np.ndarray) -> ContactEnerg
     vx = np.where(phase == FLOOR_STUCK, half * np.sin(theta) * omega, vx)
     vz = half * np.cos(theta) * omega
     return ContactEnergyBudget(
-        0.5 * mass * (vx**2 + vz**2), 0.5 * inertia * omega**2, mass * g * half * np.sin(theta), states[:, FRICTION_WORK], states[:, IMPACT_LOSS]
+        0.5 * mass * (vx**2 + vz**2),
+        0.5 * inertia * omega**2,
+        mass * g * half * np.sin(theta),
+        states[:, FRICTION_WORK],
+        states[:, IMPACT_LOSS],
     )
 
 
@@ -356,10 +381,15 @@ def end_positions_m(params: Mapping[str, Any], state: np.ndarray) -> tuple[np.nd
 
 def ladder_system(params: Mapping[str, Any]) -> OdeSystem:
     return OdeSystem(
-        rhs=ladder_rhs, parameters=kernel_parameters(params), state_names=STATE_NAMES,
+        rhs=ladder_rhs,
+        parameters=kernel_parameters(params),
+        state_names=STATE_NAMES,
         events=Events(
-            ladder_events, directions=(-1, -1, -1, -1, -1, -1), terminal=(False, False, False, False, False, True),
-            reset=ladder_reset, resets=(True, True, True, True, True, False),
+            ladder_events,
+            directions=(-1, -1, -1, -1, -1, -1),
+            terminal=(False, False, False, False, False, True),
+            reset=ladder_reset,
+            resets=(True, True, True, True, True, False),
             # The fall from the wall to the floor lasts ≳ 0.2 s for the shortest ladder: 0.02 s steps
             # put several checks inside every phase.
             max_step_s=0.02,
@@ -390,7 +420,9 @@ class SlidingLadder(IntegratedModel):
     methods = ("dopri5",)
     default_method = "dopri5"
     #: Events are located (to the tolerance), so the tolerance pilot's two runs meet the same phase changes.
-    accuracy_target = AccuracyTarget(1e-6, "", "x, angle and their rates: largest error relative to the largest of them")
+    accuracy_target = AccuracyTarget(
+        1e-6, "", "x, angle and their rates: largest error relative to the largest of them"
+    )
     accuracy_components = (0, 1, 2, 3)
     series_units = {"angle_from_floor": "rad", "wall_force_N": "N", "floor_force_N": "N", "top_height_m": "m"}
     invariant_units = {"energy_budget_J": "J"}
@@ -419,8 +451,13 @@ class SlidingLadder(IntegratedModel):
     def invariant_scales(self, params, state):
         return {"energy_budget_J": max(float(energy_budget(params, state).total_J[0]), 1e-300)}
 
-    series_labels = {"angle_from_floor": "θ", "wall_force_N": "N_wall", "floor_force_N": "N_floor", "top_height_m": "height of the top",
-                     "energy_budget_J": "energy + friction work + impact loss"}
+    series_labels = {
+        "angle_from_floor": "θ",
+        "wall_force_N": "N_wall",
+        "floor_force_N": "N_floor",
+        "top_height_m": "height of the top",
+        "energy_budget_J": "energy + friction work + impact loss",
+    }
 
     def energy_parts(self, params, states, *, t_s=None):
         return energy_budget(params, states).parts()

@@ -73,7 +73,14 @@ class DiskOnShaft:
     disk_position_m: float
 
     def __post_init__(self) -> None:
-        values = (self.disk_mass_kg, self.disk_radius_m, self.eccentricity_m, self.skew_rad, self.bearing_span_m, self.disk_position_m)
+        values = (
+            self.disk_mass_kg,
+            self.disk_radius_m,
+            self.eccentricity_m,
+            self.skew_rad,
+            self.bearing_span_m,
+            self.disk_position_m,
+        )
         if not all(math.isfinite(v) for v in values):
             raise ValueError("the rotor's mass, sizes and angles must be finite numbers")
         if not (self.disk_mass_kg > 0.0 and self.disk_radius_m > 0.0 and self.bearing_span_m > 0.0):
@@ -81,11 +88,14 @@ class DiskOnShaft:
         if not 0.0 <= self.disk_position_m <= self.bearing_span_m:
             raise ParameterError(
                 "disk_position_m",
-                f"the disk ({self.disk_position_m:g} m from A) must sit between the bearings (0 to " f"{self.bearing_span_m:g} m)",
+                f"the disk ({self.disk_position_m:g} m from A) must sit between the bearings (0 to "
+                f"{self.bearing_span_m:g} m)",
             )
         if not 0.0 <= self.eccentricity_m < self.disk_radius_m:
             raise ParameterError(
-                "eccentricity_m", f"the eccentricity ({self.eccentricity_m:g} m) must be less than the disk's radius " f"({self.disk_radius_m:g} m)"
+                "eccentricity_m",
+                f"the eccentricity ({self.eccentricity_m:g} m) must be less than the disk's radius "
+                f"({self.disk_radius_m:g} m)",
             )
 
     @property
@@ -129,12 +139,16 @@ class TwoPlaneCorrection:
     def parts(self) -> tuple[RotorPart, ...]:
         """The correction masses as rotor parts (points: no inertia about their own centre)."""
         return tuple(
-            RotorPart(float(m), np.array([x, self.radius_m * math.cos(th), self.radius_m * math.sin(th)]), np.zeros((3, 3)))
+            RotorPart(
+                float(m), np.array([x, self.radius_m * math.cos(th), self.radius_m * math.sin(th)]), np.zeros((3, 3))
+            )
             for m, th, x in zip(self.masses_kg, self.angles_rad, self.planes_m, strict=True)
         )
 
 
-def two_plane_correction(parts: tuple[RotorPart, ...], *, planes_m: tuple[float, float], radius_m: float) -> TwoPlaneCorrection:
+def two_plane_correction(
+    parts: tuple[RotorPart, ...], *, planes_m: tuple[float, float], radius_m: float
+) -> TwoPlaneCorrection:
     """Solve ``U₁ + U₂ = −S`` and ``x₁ U₁ + x₂ U₂ = −P`` for the two correction masses (see the module docstring)."""
     x1, x2 = planes_m
     if not (radius_m > 0.0 and x1 != x2):
@@ -199,18 +213,25 @@ class UnbalancedRotor:
     @classmethod
     def from_params(cls, params: Mapping[str, Any]) -> UnbalancedRotor:
         disk = DiskOnShaft(
-            params["disk_mass_kg"], params["disk_radius_m"], params["eccentricity_m"], math.radians(params["skew_deg"]),
-            params["bearing_span_m"], params["disk_position_m"],
+            params["disk_mass_kg"],
+            params["disk_radius_m"],
+            params["eccentricity_m"],
+            math.radians(params["skew_deg"]),
+            params["bearing_span_m"],
+            params["disk_position_m"],
         )
         span = disk.bearing_span_m
         planes = (params["correction_plane_1_m"], params["correction_plane_2_m"])
         for name, x in zip(("correction_plane_1_m", "correction_plane_2_m"), planes, strict=True):
             if not 0.0 <= x <= span:
-                raise ParameterError(name, f"the correction plane ({x:g} m from A) must lie between the bearings (0 to {span:g} m)")
+                raise ParameterError(
+                    name, f"the correction plane ({x:g} m from A) must lie between the bearings (0 to {span:g} m)"
+                )
         if abs(planes[1] - planes[0]) < MIN_PLANE_SEPARATION * span:
             raise ParameterError(
                 "correction_plane_2_m",
-                f"the two correction planes must be at least {MIN_PLANE_SEPARATION * span:g} m apart (2% of the " "bearing span)",
+                f"the two correction planes must be at least {MIN_PLANE_SEPARATION * span:g} m apart (2% of the "
+                "bearing span)",
             )
         correction = two_plane_correction((disk.part(),), planes_m=planes, radius_m=params["correction_radius_m"])
         return cls(disk, params["shaft_speed_rad_s"], params["g_m_s2"], correction, params["balanced"] == "on")
@@ -231,7 +252,9 @@ class UnbalancedRotor:
         for part in self.parts:
             acceleration = np.cross(omega, np.cross(omega, part.centre_m))
             force += part.mass_kg * acceleration
-            moment += np.cross(omega, part.inertia_cm_kg_m2 @ omega) + np.cross(part.centre_m, part.mass_kg * acceleration)
+            moment += np.cross(omega, part.inertia_cm_kg_m2 @ omega) + np.cross(
+                part.centre_m, part.mass_kg * acceleration
+            )
         return force, moment
 
     def steady_loads(self) -> SteadyLoads:
@@ -318,19 +341,100 @@ def _check(params: Mapping[str, Any]) -> None:
 
 PARAMETERS = ParameterSet(
     (
-        Parameter("shaft_speed_rad_s", "rad/s", 100.0, -500.0, 500.0, "Constant shaft speed ω about +X (A to B)", "ω", step=1.0),
+        Parameter(
+            "shaft_speed_rad_s",
+            "rad/s",
+            100.0,
+            -500.0,
+            500.0,
+            "Constant shaft speed ω about +X (A to B)",
+            "ω",
+            step=1.0,
+        ),
         Parameter("disk_mass_kg", "kg", 10.0, 0.01, 1000.0, "Mass m of the thin uniform disk", "disk mass m", step=0.1),
         Parameter("disk_radius_m", "m", 0.2, 0.01, 2.0, "Radius r of the disk", "disk radius r", step=0.01),
-        Parameter("eccentricity_m", "m", 0.001, 0.0, 0.5, "Distance e of the disk's centre of mass from the shaft axis", "eccentricity e", step=0.0005),
-        Parameter("skew_deg", "deg", 2.0, -45.0, 45.0, "Skew β: angle between the disk's axis and the shaft", "skew β", step=0.1),
-        Parameter("bearing_span_m", "m", 0.6, 0.05, 5.0, "Distance L between bearings A and B", "bearing span L", step=0.01),
-        Parameter("disk_position_m", "m", 0.2, 0.0, 5.0, "Distance a of the disk from bearing A along the shaft", "disk position a", step=0.01),
-        Parameter("g_m_s2", "m/s²", 9.81, 0.0, 30.0, "Gravity g across the shaft (along −Z); 0 for none", "gravity g", step=0.01),
-        Parameter("correction_plane_1_m", "m", 0.05, 0.0, 5.0, "Position x₁ of the first correction plane from A", "plane 1 x₁", step=0.01),
-        Parameter("correction_plane_2_m", "m", 0.55, 0.0, 5.0, "Position x₂ of the second correction plane from A", "plane 2 x₂", step=0.01),
-        Parameter("correction_radius_m", "m", 0.15, 0.01, 2.0, "Radius ρ at which the correction masses are fixed", "correction radius ρ", step=0.01),
-        Parameter("balanced", "", "off", kind="choice", choices=("off", "on"), label="correction masses",
-                  description="Fit the two correction masses that balance the rotor"),
+        Parameter(
+            "eccentricity_m",
+            "m",
+            0.001,
+            0.0,
+            0.5,
+            "Distance e of the disk's centre of mass from the shaft axis",
+            "eccentricity e",
+            step=0.0005,
+        ),
+        Parameter(
+            "skew_deg",
+            "deg",
+            2.0,
+            -45.0,
+            45.0,
+            "Skew β: angle between the disk's axis and the shaft",
+            "skew β",
+            step=0.1,
+        ),
+        Parameter(
+            "bearing_span_m", "m", 0.6, 0.05, 5.0, "Distance L between bearings A and B", "bearing span L", step=0.01
+        ),
+        Parameter(
+            "disk_position_m",
+            "m",
+            0.2,
+            0.0,
+            5.0,
+            "Distance a of the disk from bearing A along the shaft",
+            "disk position a",
+            step=0.01,
+        ),
+        Parameter(
+            "g_m_s2",
+            "m/s²",
+            9.81,
+            0.0,
+            30.0,
+            "Gravity g across the shaft (along −Z); 0 for none",
+            "gravity g",
+            step=0.01,
+        ),
+        Parameter(
+            "correction_plane_1_m",
+            "m",
+            0.05,
+            0.0,
+            5.0,
+            "Position x₁ of the first correction plane from A",
+            "plane 1 x₁",
+            step=0.01,
+        ),
+        Parameter(
+            "correction_plane_2_m",
+            "m",
+            0.55,
+            0.0,
+            5.0,
+            "Position x₂ of the second correction plane from A",
+            "plane 2 x₂",
+            step=0.01,
+        ),
+        Parameter(
+            "correction_radius_m",
+            "m",
+            0.15,
+            0.01,
+            2.0,
+            "Radius ρ at which the correction masses are fixed",
+            "correction radius ρ",
+            step=0.01,
+        ),
+        Parameter(
+            "balanced",
+            "",
+            "off",
+            kind="choice",
+            choices=("off", "on"),
+            label="correction masses",
+            description="Fit the two correction masses that balance the rotor",
+        ),
     ),
     check=_check,
 )
@@ -341,7 +445,10 @@ class UnbalancedRotorModel(ClosedFormModel):
 
     parameters = PARAMETERS
     series_units = {"spin_angle": "rad", "bearing_A_force_N": "N", "bearing_B_force_N": "N", "driving_torque_Nm": "N·m"}
-    description = ("Newton–Euler for a rigid rotor at constant speed: the inertial loads are fixed in the rotor " "frame (closed form)")
+    description = (
+        "Newton–Euler for a rigid rotor at constant speed: the inertial loads are fixed in the rotor "
+        "frame (closed form)"
+    )
 
     def evaluate(self, params: Mapping[str, Any], t_s: np.ndarray) -> ClosedFormSolution:
         loads = UnbalancedRotor.from_params(params).at(t_s)

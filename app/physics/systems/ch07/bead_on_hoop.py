@@ -25,12 +25,30 @@ SYSTEM = SystemDescription(
     title="Bead on a spinning hoop",
     chapter=7,
     coordinates=(theta,),
-    parameters=ParameterSet((
-        parameter("hoop_radius_m", "m", 0.5, low=0.01, high=10.0, label="R", description="Radius of the hoop"),
-        parameter("hoop_speed_rad_s", "rad/s", 6.0, low=0.0, high=100.0, label="Ω", description="Prescribed spin of the hoop about its vertical diameter"),
-        parameter("g_m_s2", "m/s²", 9.81, low=0.0, high=100.0, label="g", description="Gravitational acceleration"),
-        parameter("bead_mass_kg", "kg", 0.1, low=0.001, high=100.0, label="m", description="Mass of the bead (it scales the energies, not the motion)"),
-    )),
+    parameters=ParameterSet(
+        (
+            parameter("hoop_radius_m", "m", 0.5, low=0.01, high=10.0, label="R", description="Radius of the hoop"),
+            parameter(
+                "hoop_speed_rad_s",
+                "rad/s",
+                6.0,
+                low=0.0,
+                high=100.0,
+                label="Ω",
+                description="Prescribed spin of the hoop about its vertical diameter",
+            ),
+            parameter("g_m_s2", "m/s²", 9.81, low=0.0, high=100.0, label="g", description="Gravitational acceleration"),
+            parameter(
+                "bead_mass_kg",
+                "kg",
+                0.1,
+                low=0.001,
+                high=100.0,
+                label="m",
+                description="Mass of the bead (it scales the energies, not the motion)",
+            ),
+        )
+    ),
     symbols={"hoop_radius_m": R, "hoop_speed_rad_s": Omega, "g_m_s2": g, "bead_mass_kg": m},
     particles=(Particle("bead", m, bead),),
     gravity=vector(0, 0, -g),

@@ -54,8 +54,12 @@ class BeadOnHoopMotion(DerivedModel):
     description = SYSTEM
     parameters = derived_parameters(
         SYSTEM,
-        Parameter("theta_0_deg", "deg", 20.0, -180.0, 180.0, "Initial angle of the bead from the bottom of the hoop", "θ₀"),
-        Parameter("theta_rate_0_deg_s", "deg/s", 0.0, -720.0, 720.0, "Initial rate of that angle (relative to the hoop)", "θ̇₀"),
+        Parameter(
+            "theta_0_deg", "deg", 20.0, -180.0, 180.0, "Initial angle of the bead from the bottom of the hoop", "θ₀"
+        ),
+        Parameter(
+            "theta_rate_0_deg_s", "deg/s", 0.0, -720.0, 720.0, "Initial rate of that angle (relative to the hoop)", "θ̇₀"
+        ),
         default_formulation="lagrange",
     )
     series_units = {"theta_rad": "rad", "theta_rate_rad_s": "rad/s", "energy_J": "J", "jacobi_integral_J": "J"}
@@ -64,7 +68,9 @@ class BeadOnHoopMotion(DerivedModel):
     def initial_state(self, params: Mapping[str, Any]) -> np.ndarray:
         return np.radians([float(params["theta_0_deg"]), float(params["theta_rate_0_deg_s"])])
 
-    def energy_and_jacobi_J(self, params: Mapping[str, Any], t_s: np.ndarray, states: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def energy_and_jacobi_J(
+        self, params: Mapping[str, Any], t_s: np.ndarray, states: np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray]:
         """(T + V, T₂ − T₀ + V) in J along ``states`` (N, 2) at ``t_s`` (N,).
 
         T splits by degree in the rates: T₂ = (T(q̇) + T(−q̇))/2 − T₀ with T₀ = T(0),
@@ -82,12 +88,20 @@ class BeadOnHoopMotion(DerivedModel):
 
     def series(self, params: Mapping[str, Any], t_s: np.ndarray, states: np.ndarray) -> dict[str, np.ndarray]:
         energy, jacobi = self.energy_and_jacobi_J(params, t_s, states)
-        return {"theta_rad": states[:, 0], "theta_rate_rad_s": states[:, 1], "energy_J": energy, "jacobi_integral_J": jacobi}
+        return {
+            "theta_rad": states[:, 0],
+            "theta_rate_rad_s": states[:, 1],
+            "energy_J": energy,
+            "jacobi_integral_J": jacobi,
+        }
 
     def energy_note(self, params: Mapping[str, Any]) -> str | None:
         if float(params["hoop_speed_rad_s"]) == 0.0:
             return None
-        return ("the motor that holds the hoop's spin does work that is not tracked: dissipated shows E(0) − " "E(t), not a loss")
+        return (
+            "the motor that holds the hoop's spin does work that is not tracked: dissipated shows E(0) − "
+            "E(t), not a loss"
+        )
 
     def invariants(self, params: Mapping[str, Any], states: np.ndarray) -> dict[str, np.ndarray]:
         """The Jacobi integral (J); T and V do not depend on t itself here, so t = 0 is used."""

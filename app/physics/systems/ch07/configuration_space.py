@@ -203,7 +203,11 @@ def turn_field(q: np.ndarray) -> np.ndarray:
 
 
 def lie_bracket(
-    first: Callable[[np.ndarray], np.ndarray], second: Callable[[np.ndarray], np.ndarray], q: np.ndarray, *, step: float = 1e-6
+    first: Callable[[np.ndarray], np.ndarray],
+    second: Callable[[np.ndarray], np.ndarray],
+    q: np.ndarray,
+    *,
+    step: float = 1e-6,
 ) -> np.ndarray:
     """[f, g](q) = (∂g/∂q) f − (∂f/∂q) g (n,), the Jacobians by central differences of ``step`` in each coordinate.
 
@@ -273,7 +277,13 @@ class ParallelParking:
         """End minus start (3,) (m, m, rad) of one manoeuvre begun at heading ψ₀: s (cos ψ₀ − cos(ψ₀+α), sin ψ₀ −
         sin(ψ₀+α), 0)."""
         s, alpha = self.drive_distance_m, self.turn_angle_rad
-        return s * np.array([math.cos(heading_rad) - math.cos(heading_rad + alpha), math.sin(heading_rad) - math.sin(heading_rad + alpha), 0.0])
+        return s * np.array(
+            [
+                math.cos(heading_rad) - math.cos(heading_rad + alpha),
+                math.sin(heading_rad) - math.sin(heading_rad + alpha),
+                0.0,
+            ]
+        )
 
     @property
     def sideways_drift_m(self) -> float:

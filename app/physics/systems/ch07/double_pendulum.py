@@ -26,13 +26,15 @@ SYSTEM = SystemDescription(
     title="Double pendulum",
     chapter=7,
     coordinates=(theta1, theta2),
-    parameters=ParameterSet((
-        parameter("m1_kg", "kg", 1.0, low=0.01, high=100.0, label="m₁", description="Mass of the upper bob"),
-        parameter("m2_kg", "kg", 1.0, low=0.01, high=100.0, label="m₂", description="Mass of the lower bob"),
-        parameter("l1_m", "m", 1.0, low=0.05, high=10.0, label="l₁", description="Length of the upper rod"),
-        parameter("l2_m", "m", 1.0, low=0.05, high=10.0, label="l₂", description="Length of the lower rod"),
-        parameter("g_m_s2", "m/s²", 9.81, low=0.0, high=100.0, label="g", description="Gravitational acceleration"),
-    )),
+    parameters=ParameterSet(
+        (
+            parameter("m1_kg", "kg", 1.0, low=0.01, high=100.0, label="m₁", description="Mass of the upper bob"),
+            parameter("m2_kg", "kg", 1.0, low=0.01, high=100.0, label="m₂", description="Mass of the lower bob"),
+            parameter("l1_m", "m", 1.0, low=0.05, high=10.0, label="l₁", description="Length of the upper rod"),
+            parameter("l2_m", "m", 1.0, low=0.05, high=10.0, label="l₂", description="Length of the lower rod"),
+            parameter("g_m_s2", "m/s²", 9.81, low=0.0, high=100.0, label="g", description="Gravitational acceleration"),
+        )
+    ),
     symbols={"m1_kg": m1, "m2_kg": m2, "l1_m": l1, "l2_m": l2, "g_m_s2": g},
     particles=(Particle("A", m1, first), Particle("B", m2, second)),
     gravity=vector(0, 0, -g),

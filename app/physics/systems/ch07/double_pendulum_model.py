@@ -39,13 +39,35 @@ class DoublePendulumMotion(DerivedModel):
     description = SYSTEM
     parameters = derived_parameters(
         SYSTEM,
-        Parameter("theta1_0_deg", "deg", 60.0, -180.0, 180.0, "Initial angle of the upper rod from the downward vertical", "θ₁₀"),
-        Parameter("theta2_0_deg", "deg", 0.0, -180.0, 180.0, "Initial angle of the lower rod from the downward vertical", "θ₂₀"),
+        Parameter(
+            "theta1_0_deg",
+            "deg",
+            60.0,
+            -180.0,
+            180.0,
+            "Initial angle of the upper rod from the downward vertical",
+            "θ₁₀",
+        ),
+        Parameter(
+            "theta2_0_deg",
+            "deg",
+            0.0,
+            -180.0,
+            180.0,
+            "Initial angle of the lower rod from the downward vertical",
+            "θ₂₀",
+        ),
         Parameter("theta1_rate_0_deg_s", "deg/s", 0.0, -720.0, 720.0, "Initial rate of the upper angle", "θ̇₁₀"),
         Parameter("theta2_rate_0_deg_s", "deg/s", 0.0, -720.0, 720.0, "Initial rate of the lower angle", "θ̇₂₀"),
         default_formulation="lagrange",
     )
-    series_units = {"theta1_rad": "rad", "theta2_rad": "rad", "theta1_rate_rad_s": "rad/s", "theta2_rate_rad_s": "rad/s", "energy_J": "J"}
+    series_units = {
+        "theta1_rad": "rad",
+        "theta2_rad": "rad",
+        "theta1_rate_rad_s": "rad/s",
+        "theta2_rate_rad_s": "rad/s",
+        "energy_J": "J",
+    }
     invariant_units = {"energy": "J"}
 
     def initial_state(self, params: Mapping[str, Any]) -> np.ndarray:
@@ -59,8 +81,10 @@ class DoublePendulumMotion(DerivedModel):
 
     def series(self, params: Mapping[str, Any], t_s: np.ndarray, states: np.ndarray) -> dict[str, np.ndarray]:
         return {
-            "theta1_rad": states[:, 0], "theta2_rad": states[:, 1],
-            "theta1_rate_rad_s": states[:, 2], "theta2_rate_rad_s": states[:, 3],
+            "theta1_rad": states[:, 0],
+            "theta2_rad": states[:, 1],
+            "theta1_rate_rad_s": states[:, 2],
+            "theta2_rate_rad_s": states[:, 3],
             "energy_J": self.energy_J(params, t_s, states),
         }
 

@@ -64,26 +64,39 @@ class CartPendulumMotion(DerivedModel):
     parameters = derived_parameters(
         SYSTEM,
         Parameter("x0_m", "m", 0.0, -2.0, 2.0, "Initial position of the cart (the spring is relaxed at x = 0)", "x₀"),
-        Parameter("theta_0_deg", "deg", 30.0, -180.0, 180.0, "Initial angle of the rod from the downward vertical", "θ₀"),
+        Parameter(
+            "theta_0_deg", "deg", 30.0, -180.0, 180.0, "Initial angle of the rod from the downward vertical", "θ₀"
+        ),
         Parameter("x_rate_0_m_s", "m/s", 0.0, -5.0, 5.0, "Initial speed of the cart", "ẋ₀"),
         Parameter("theta_rate_0_deg_s", "deg/s", 0.0, -720.0, 720.0, "Initial rate of the rod's angle", "θ̇₀"),
         default_formulation="lagrange",
     )
     series_units = {
-        "x_m": "m", "theta_rad": "rad", "x_rate_m_s": "m/s", "theta_rate_rad_s": "rad/s",
-        "force_N": "N", "force_work_J": "J", "energy_J": "J",
+        "x_m": "m",
+        "theta_rad": "rad",
+        "x_rate_m_s": "m/s",
+        "theta_rate_rad_s": "rad/s",
+        "force_N": "N",
+        "force_work_J": "J",
+        "energy_J": "J",
     }
     invariant_units = {"energy_balance": "J"}
 
     def initial_state(self, params: Mapping[str, Any]) -> np.ndarray:
-        return np.array([
-            float(params["x0_m"]), math.radians(float(params["theta_0_deg"])),
-            float(params["x_rate_0_m_s"]), math.radians(float(params["theta_rate_0_deg_s"])), 0.0,
-        ])
+        return np.array(
+            [
+                float(params["x0_m"]),
+                math.radians(float(params["theta_0_deg"])),
+                float(params["x_rate_0_m_s"]),
+                math.radians(float(params["theta_rate_0_deg_s"])),
+                0.0,
+            ]
+        )
 
     def system(self, params: Mapping[str, Any]) -> OdeSystem:
         return OdeSystem(
-            rhs=motion_with_work_kernel(params.get("formulation", "lagrange")), parameters=self.parameter_array(params),
+            rhs=motion_with_work_kernel(params.get("formulation", "lagrange")),
+            parameters=self.parameter_array(params),
             state_names=("x", "theta", "x_rate", "theta_rate", "force_work"),
         )
 
@@ -102,9 +115,13 @@ class CartPendulumMotion(DerivedModel):
 
     def series(self, params: Mapping[str, Any], t_s: np.ndarray, states: np.ndarray) -> dict[str, np.ndarray]:
         return {
-            "x_m": states[:, 0], "theta_rad": states[:, 1], "x_rate_m_s": states[:, 2], "theta_rate_rad_s": states[:, 3],
+            "x_m": states[:, 0],
+            "theta_rad": states[:, 1],
+            "x_rate_m_s": states[:, 2],
+            "theta_rate_rad_s": states[:, 3],
             "force_N": np.asarray(drive_force_N(self.parameter_array(params), t_s), dtype=float) * np.ones(len(t_s)),
-            "force_work_J": states[:, WORK_SLOT], "energy_J": self.energy_J(params, t_s, states),
+            "force_work_J": states[:, WORK_SLOT],
+            "energy_J": self.energy_J(params, t_s, states),
         }
 
     def drive_work_J(self, params: Mapping[str, Any], states: np.ndarray) -> np.ndarray:

@@ -12,11 +12,13 @@ m, l, g = sympy.symbols("m l g", positive=True)
 theta = Coordinate("theta", "\\theta")
 bob = vector(l * sympy.sin(theta.symbol), 0, -l * sympy.cos(theta.symbol))
 #: A bob on a rod: its mass, the rod's length and gravity (the spherical pendulum has the same three).
-PENDULUM_PARAMETERS = ParameterSet((
-    parameter("mass_kg", "kg", 1.0, low=0.01, high=100.0, label="m", description="Mass of the bob"),
-    parameter("length_m", "m", 1.0, low=0.05, high=10.0, label="l", description="Length of the rod"),
-    parameter("g_m_s2", "m/s²", 9.81, low=0.0, high=100.0, label="g", description="Gravitational acceleration"),
-))
+PENDULUM_PARAMETERS = ParameterSet(
+    (
+        parameter("mass_kg", "kg", 1.0, low=0.01, high=100.0, label="m", description="Mass of the bob"),
+        parameter("length_m", "m", 1.0, low=0.05, high=10.0, label="l", description="Length of the rod"),
+        parameter("g_m_s2", "m/s²", 9.81, low=0.0, high=100.0, label="g", description="Gravitational acceleration"),
+    )
+)
 
 SYSTEM = SystemDescription(
     id="simple-pendulum",

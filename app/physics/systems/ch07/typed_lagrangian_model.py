@@ -87,7 +87,9 @@ def parse_constants(text: str) -> dict[str, float]:
             raise ValueError(f"{name!r} is named twice")
         value = float(number)
         if not math.isfinite(value) or abs(value) > MAX_PARAMETER_VALUE:
-            raise ValueError(f"{name} = {number}: a value must be finite and at most {MAX_PARAMETER_VALUE:g} in magnitude")
+            raise ValueError(
+                f"{name} = {number}: a value must be finite and at most {MAX_PARAMETER_VALUE:g} in magnitude"
+            )
         constants[name] = value
     if len(constants) > MAX_PARAMETERS:
         raise ValueError(f"at most {MAX_PARAMETERS} named constants (got {len(constants)})")
@@ -114,7 +116,9 @@ def compile_typed_kernel(request: Mapping[str, Any]) -> float:
     numba writes the compiled kernel to its disk cache beside the generated module, so
     the parent's :meth:`Derived.kernel` then loads it instead of compiling.
     """
-    system = typed_system(request["coordinates"], request["kinetic_energy"], request["potential_energy"], request["parameters"])
+    system = typed_system(
+        request["coordinates"], request["kinetic_energy"], request["potential_energy"], request["parameters"]
+    )
     result = derived(system, "lagrange")
     start = time.perf_counter()
     result.kernel()
@@ -143,7 +147,14 @@ _prepared_lock = threading.Lock()
 
 
 def _request_key(request: Mapping[str, Any]) -> str:
-    return repr((request["coordinates"], request["kinetic_energy"], request["potential_energy"], sorted(request["parameters"].items())))
+    return repr(
+        (
+            request["coordinates"],
+            request["kinetic_energy"],
+            request["potential_energy"],
+            sorted(request["parameters"].items()),
+        )
+    )
 
 
 def prepare_typed_lagrangian(request: Mapping[str, Any]) -> PreparedLagrangian:
@@ -162,18 +173,28 @@ def prepare_typed_lagrangian(request: Mapping[str, Any]) -> PreparedLagrangian:
     try:
         answer = derive_typed_bounded(request)
         compile_s = runner.run(compile_typed_kernel, (dict(request),), what="compiling these equations")
-    except (ParameterError, WorkBusy, WorkInterrupted):  # busy or stopped from outside: "try again", not the input's fault
+    except (
+        ParameterError,
+        WorkBusy,
+        WorkInterrupted,
+    ):  # busy or stopped from outside: "try again", not the input's fault
         raise
     except (WorkRefused, ValueError) as error:
         raise ParameterError("kinetic_energy", str(error)) from None
-    system = typed_system(request["coordinates"], request["kinetic_energy"], request["potential_energy"], request["parameters"])
+    system = typed_system(
+        request["coordinates"], request["kinetic_energy"], request["potential_energy"], request["parameters"]
+    )
     assert system.kinetic_energy is not None  # typed_system always gives T as typed
     result = derived(system, "lagrange")
     result.kernel()
     prepared = PreparedLagrangian(
-        system=system, derived=result, parameter_values=tuple(system.parameter_array(request["parameters"])),
+        system=system,
+        derived=result,
+        parameter_values=tuple(system.parameter_array(request["parameters"])),
         explicit_time=bool(system.kinetic_energy.has(TIME) or system.extra_potential.has(TIME)),
-        derive_s=float(answer["derive_s"]), cached=bool(answer["cached"]), compile_s=float(compile_s),
+        derive_s=float(answer["derive_s"]),
+        cached=bool(answer["cached"]),
+        compile_s=float(compile_s),
     )
     with _prepared_lock:
         _prepared[key] = prepared
@@ -195,14 +216,20 @@ def check_typed_lagrangian(values: Mapping[str, Any]) -> None:
     prepared = prepare_typed_lagrangian(typed_request(values))
     start = initial_state(values)
     where = f"at the initial state {describe_state(prepared.system, start)}"
-    kind, why = not_positive_definite(start_mass_matrix(prepared, start), [f"{c.name}d" for c in prepared.system.coordinates])
+    kind, why = not_positive_definite(
+        start_mass_matrix(prepared, start), [f"{c.name}d" for c in prepared.system.coordinates]
+    )
     if kind == "negative":
-        raise ParameterError("kinetic_energy", f"the kinetic energy must be positive definite in the rates, and {where} it is not: {why}")
+        raise ParameterError(
+            "kinetic_energy", f"the kinetic energy must be positive definite in the rates, and {where} it is not: {why}"
+        )
     if why:
         raise ParameterError("q0_rad", f"{where} the mass matrix is not positive definite: {why}; start somewhere else")
     _, because = prepared.derived.evaluate(0.0, start, np.array(prepared.parameter_values))
     if because:
-        raise ParameterError("q0_rad", f"{where} Lagrange's equations have no finite value because {because}: start somewhere else")
+        raise ParameterError(
+            "q0_rad", f"{where} Lagrange's equations have no finite value because {because}: start somewhere else"
+        )
 
 
 def start_mass_matrix(prepared: PreparedLagrangian, start: np.ndarray) -> np.ndarray:
@@ -210,7 +237,9 @@ def start_mass_matrix(prepared: PreparedLagrangian, start: np.ndarray) -> np.nda
     (:mod:`~app.physics.mechanics.mass_matrix`)."""
     n = len(prepared.system.coordinates)
     kinetic, _ = energy_functions(prepared.system)
-    return mass_matrices(kinetic, np.zeros(1), start[:n, None], start[n : 2 * n, None], np.array(prepared.parameter_values))[0]
+    return mass_matrices(
+        kinetic, np.zeros(1), start[:n, None], start[n : 2 * n, None], np.array(prepared.parameter_values)
+    )[0]
 
 
 #: ``stats.status`` of a motion stopped where the mass matrix became singular.
@@ -221,15 +250,21 @@ def singular_message(system: SystemDescription, t_before_s: float, t_after_s: fl
     """What a student reads when the motion between two frames meets a singular mass matrix."""
     n = len(system.coordinates)
     # Where the parabola puts the point: to rounding (1e-12 of the segment), so what is below 1e-9 is shown as 0.
-    where = ", ".join(f"{c.name} = {value if abs(value) > 1e-9 else 0.0:.3g}" for c, value in zip(system.coordinates, crossing.q[:n]))
+    where = ", ".join(
+        f"{c.name} = {value if abs(value) > 1e-9 else 0.0:.3g}" for c, value in zip(system.coordinates, crossing.q[:n])
+    )
     rate = f"{system.coordinates[crossing.rate_index].name}d"
-    lost = f"stops being positive definite (the inertia along {rate} turns negative)" if crossing.indefinite else (
-        f"becomes singular (the inertia along {rate} vanishes)"
+    lost = (
+        f"stops being positive definite (the inertia along {rate} turns negative)"
+        if crossing.indefinite
+        else (f"becomes singular (the inertia along {rate} vanishes)")
     )
     return (
-        f"Stopped at t = {t_before_s:.2f} s: before t = {t_after_s:.2f} s the motion reaches {where}, where the " "mass matrix "
+        f"Stopped at t = {t_before_s:.2f} s: before t = {t_after_s:.2f} s the motion reaches {where}, where the "
+        "mass matrix "
         f"∂²T/∂q̇² {lost}. There "
-        "Lagrange's equations cannot give the accelerations: the coordinates themselves fail (as polar " "coordinates do at "
+        "Lagrange's equations cannot give the accelerations: the coordinates themselves fail (as polar "
+        "coordinates do at "
         f"r = 0), and the motion beyond is not this Lagrangian's."
     )
 
@@ -239,27 +274,81 @@ class TypedLagrangianMotion(DerivedModel):
 
     parameters = ParameterSet(
         (
-            Parameter("coordinates", "", 2, 1, 3, "How many generalized coordinates: q1, q1…q2 or q1…q3", "n", kind="int", step=1),
             Parameter(
-                "kinetic_energy", "J", DEFAULT_KINETIC_ENERGY, kind="text", max_length=MAX_ENERGY_LENGTH, label="T",
-                description=("Kinetic energy in q1…q3, their rates q1d…q3d, t and your constants; + - * / ^ ( ) " "sqrt sin cos tan exp log pi"),
+                "coordinates",
+                "",
+                2,
+                1,
+                3,
+                "How many generalized coordinates: q1, q1…q2 or q1…q3",
+                "n",
+                kind="int",
+                step=1,
             ),
             Parameter(
-                "potential_energy", "J", DEFAULT_POTENTIAL_ENERGY, kind="text", max_length=MAX_ENERGY_LENGTH, label="V",
+                "kinetic_energy",
+                "J",
+                DEFAULT_KINETIC_ENERGY,
+                kind="text",
+                max_length=MAX_ENERGY_LENGTH,
+                label="T",
+                description=(
+                    "Kinetic energy in q1…q3, their rates q1d…q3d, t and your constants; + - * / ^ ( ) "
+                    "sqrt sin cos tan exp log pi"
+                ),
+            ),
+            Parameter(
+                "potential_energy",
+                "J",
+                DEFAULT_POTENTIAL_ENERGY,
+                kind="text",
+                max_length=MAX_ENERGY_LENGTH,
+                label="V",
                 description="Potential energy in q1…q3, t and your constants (no rates)",
             ),
             Parameter(
-                "parameters", "", DEFAULT_PARAMETERS, kind="text", max_length=200, label="constants", parse=parse_constants,
-                description=(f"Named constants, comma-separated: name = number (at most {MAX_PARAMETERS}), e.g. m " "= 1, l = 0.5, g = 9.81"),
+                "parameters",
+                "",
+                DEFAULT_PARAMETERS,
+                kind="text",
+                max_length=200,
+                label="constants",
+                parse=parse_constants,
+                description=(
+                    f"Named constants, comma-separated: name = number (at most {MAX_PARAMETERS}), e.g. m "
+                    "= 1, l = 0.5, g = 9.81"
+                ),
             ),
-            Parameter("q0_rad", "rad", [1.0, 0.0, 0.0], -100.0, 100.0, "Initial q1, q2, q3 (only the first n are used)", "q₀", kind="vector"),
-            Parameter("qd0_rad_s", "rad/s", [0.0, 0.0, 0.0], -1000.0, 1000.0, "Initial rates q̇1, q̇2, q̇3 (only the first n are used)", "q̇₀", kind="vector"),
+            Parameter(
+                "q0_rad",
+                "rad",
+                [1.0, 0.0, 0.0],
+                -100.0,
+                100.0,
+                "Initial q1, q2, q3 (only the first n are used)",
+                "q₀",
+                kind="vector",
+            ),
+            Parameter(
+                "qd0_rad_s",
+                "rad/s",
+                [0.0, 0.0, 0.0],
+                -1000.0,
+                1000.0,
+                "Initial rates q̇1, q̇2, q̇3 (only the first n are used)",
+                "q̇₀",
+                kind="vector",
+            ),
         ),
         check=check_typed_lagrangian,
     )
     series_units = {
-        **{f"{q}_rad": "rad" for q in COORDINATE_NAMES}, **{f"{q}_rate_rad_s": "rad/s" for q in COORDINATE_NAMES},
-        "kinetic_energy_J": "J", "potential_energy_J": "J", "energy_J": "J", "jacobi_integral_J": "J",
+        **{f"{q}_rad": "rad" for q in COORDINATE_NAMES},
+        **{f"{q}_rate_rad_s": "rad/s" for q in COORDINATE_NAMES},
+        "kinetic_energy_J": "J",
+        "potential_energy_J": "J",
+        "energy_J": "J",
+        "jacobi_integral_J": "J",
     }
     invariant_units = {"jacobi_integral": "J"}
 
@@ -283,7 +372,9 @@ class TypedLagrangianMotion(DerivedModel):
     def initial_state(self, params: Mapping[str, Any]) -> np.ndarray:
         return initial_state(params)
 
-    def energies_and_jacobi_J(self, params: Mapping[str, Any], t_s: np.ndarray, states: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def energies_and_jacobi_J(
+        self, params: Mapping[str, Any], t_s: np.ndarray, states: np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(T, V, h) in J along ``states`` (N, 2n) at ``t_s`` (N,), with h = Σ q̇ᵢ ∂T/∂q̇ᵢ − T + V.
 
         Σ q̇ᵢ ∂T/∂q̇ᵢ = d/dε T(q, (1 + ε) q̇) at ε = 0, taken as a complex step:
@@ -305,13 +396,20 @@ class TypedLagrangianMotion(DerivedModel):
         kinetic, potential, jacobi = self.energies_and_jacobi_J(params, t_s, states)
         out = {f"{COORDINATE_NAMES[i]}_rad": states[:, i] for i in range(n)}
         out.update({f"{COORDINATE_NAMES[i]}_rate_rad_s": states[:, n + i] for i in range(n)})
-        out.update(kinetic_energy_J=kinetic, potential_energy_J=potential, energy_J=kinetic + potential, jacobi_integral_J=jacobi)
+        out.update(
+            kinetic_energy_J=kinetic,
+            potential_energy_J=potential,
+            energy_J=kinetic + potential,
+            jacobi_integral_J=jacobi,
+        )
         return out
 
     def energy_note(self, params: Mapping[str, Any]) -> str | None:
         note = "kinetic energy as you typed it (not split into translation and rotation)"
         if self.prepared(params).explicit_time:
-            note += "; t appears in T or V, so whatever drives that time dependence does work: dissipated shows E(0) − E(t)"
+            note += (
+                "; t appears in T or V, so whatever drives that time dependence does work: dissipated shows E(0) − E(t)"
+            )
         return note
 
     def model_limit(self, params: Mapping[str, Any], t_s: np.ndarray, states: np.ndarray) -> ModelLimit | None:
@@ -319,12 +417,16 @@ class TypedLagrangianMotion(DerivedModel):
         prepared, kinetic, reference = self._singularity_reference(params)
         if reference is None:
             return None  # a start the whole-set check refuses; nothing to measure against
-        crossing = first_singular_crossing(kinetic, t_s, states, np.array(prepared.parameter_values), reference=reference)
+        crossing = first_singular_crossing(
+            kinetic, t_s, states, np.array(prepared.parameter_values), reference=reference
+        )
         if crossing is None:
             return None
         k = crossing.frame
         after = min(k + 1, len(t_s) - 1)
-        return ModelLimit(k + 1, SINGULAR_MASS_MATRIX, singular_message(prepared.system, float(t_s[k]), float(t_s[after]), crossing))
+        return ModelLimit(
+            k + 1, SINGULAR_MASS_MATRIX, singular_message(prepared.system, float(t_s[k]), float(t_s[after]), crossing)
+        )
 
     def _singularity_reference(self, params: Mapping[str, Any]):
         """(prepared, T as a numpy function, M at the start or None if it is not positive definite), kept per start: a
@@ -355,8 +457,15 @@ class TypedLagrangianMotion(DerivedModel):
         for i in range(n):
             probes[1 + 2 * i, i] += 1.0
             probes[2 + 2 * i, i] -= 1.0
-        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):  # a probe may land where V is singular (−k/q1 at 0)
+        with np.errstate(
+            divide="ignore", invalid="ignore", over="ignore"
+        ):  # a probe may land where V is singular (−k/q1 at 0)
             kinetic, potential, _ = self.energies_and_jacobi_J(params, np.zeros(len(probes)), probes)
         swings = np.abs(potential - potential[0])
-        scale = max(abs(float(kinetic[0])), abs(float(potential[0])), float(np.max(swings[np.isfinite(swings)], initial=0.0)), 1e-12)
+        scale = max(
+            abs(float(kinetic[0])),
+            abs(float(potential[0])),
+            float(np.max(swings[np.isfinite(swings)], initial=0.0)),
+            1e-12,
+        )
         return {"jacobi_integral": scale}

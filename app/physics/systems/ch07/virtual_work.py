@@ -56,8 +56,19 @@ def _check_toggle(values: Mapping[str, Any]) -> None:
 TOGGLE_PARAMETERS = ParameterSet(
     (
         Parameter("bar_AB_m", "m", 1.0, 0.1, 5.0, "Length a of bar AB (A: fixed pin)", "a", step=0.01),
-        Parameter("bar_BC_m", "m", 1.0, 0.1, 5.0, "Length b of bar BC (C: pin of the slider on line AC)", "b", step=0.01),
-        Parameter("angle_deg", "deg", 20.0, 0.0, 85.0, "Angle θ of bar AB above the line AC (0: the bars in line, the toggle position)", "θ", step=0.5),
+        Parameter(
+            "bar_BC_m", "m", 1.0, 0.1, 5.0, "Length b of bar BC (C: pin of the slider on line AC)", "b", step=0.01
+        ),
+        Parameter(
+            "angle_deg",
+            "deg",
+            20.0,
+            0.0,
+            85.0,
+            "Angle θ of bar AB above the line AC (0: the bars in line, the toggle position)",
+            "θ",
+            step=0.5,
+        ),
         Parameter("load_B_N", "N", 500.0, -10_000.0, 10_000.0, "Load P at the knee B, downward positive", "P", step=10),
         Parameter("weight_AB_N", "N", 50.0, 0.0, 10_000.0, "Weight W₁ of bar AB, at its midpoint G₁", "W₁", step=5),
         Parameter("weight_BC_N", "N", 50.0, 0.0, 10_000.0, "Weight W₂ of bar BC, at its midpoint G₂", "W₂", step=5),
@@ -86,15 +97,21 @@ class TogglePress:
         if self._bc_reach_m < LEAST_BC_COSINE * b:
             raise ParameterError(
                 "bar_BC_m",
-                f"bar BC (b = {b:g} m) must reach line AC well clear of the vertical: b cos(BC's angle) ≥ " f"{LEAST_BC_COSINE:g} b "
-                f"needs b ≥ {a * math.sin(theta) / math.sqrt(1.0 - LEAST_BC_COSINE**2):.4g} m at a = {a:g} m and " f"θ = {math.degrees(theta):g}°",
+                f"bar BC (b = {b:g} m) must reach line AC well clear of the vertical: b cos(BC's angle) ≥ "
+                f"{LEAST_BC_COSINE:g} b "
+                f"needs b ≥ {a * math.sin(theta) / math.sqrt(1.0 - LEAST_BC_COSINE**2):.4g} m at a = {a:g} m and "
+                f"θ = {math.degrees(theta):g}°",
             )
 
     @classmethod
     def from_params(cls, params: Mapping[str, Any]) -> TogglePress:
         return cls(
-            params["bar_AB_m"], params["bar_BC_m"], math.radians(params["angle_deg"]),
-            params["load_B_N"], params["weight_AB_N"], params["weight_BC_N"],
+            params["bar_AB_m"],
+            params["bar_BC_m"],
+            math.radians(params["angle_deg"]),
+            params["load_B_N"],
+            params["weight_AB_N"],
+            params["weight_BC_N"],
         )
 
     @property
@@ -147,7 +164,8 @@ def holding_force_by_virtual_work(press: TogglePress) -> float:
                 "the virtual-work equation holds for every Q, so it does not fix Q"
             )
         raise TogglePositionError(
-            f"θ (deg): at θ = {math.degrees(press.angle_rad):g}° the bars lie in line (the toggle position): " "δx_C = 0 for "
+            f"θ (deg): at θ = {math.degrees(press.angle_rad):g}° the bars lie in line (the toggle position): "
+            "δx_C = 0 for "
             f"every δθ, so Q does no virtual work while the loads do {loads:.4g} N·m per rad; no finite Q holds them "
             "(the force needed grows like 1/θ as θ → 0)"
         )
@@ -247,7 +265,9 @@ def dynamic_virtual_work(
     (:func:`~app.physics.systems.ch06.mechanism_kinetics.link_motion` with ω = 1, α = 0).
     """
     theta = np.atleast_1d(np.asarray(theta, dtype=float))
-    motion = kinetics.link_motion(links, theta, np.broadcast_to(omega, theta.shape), np.broadcast_to(alpha, theta.shape))
+    motion = kinetics.link_motion(
+        links, theta, np.broadcast_to(omega, theta.shape), np.broadcast_to(alpha, theta.shape)
+    )
     unit = kinetics.link_motion(links, theta, np.ones_like(theta), np.zeros_like(theta))
     weight = np.array([0.0, -links.g_m_s2])
     m_c, m_r, m_s = links.crank_mass_kg, links.rod_mass_kg, links.slider_mass_kg
@@ -256,13 +276,22 @@ def dynamic_virtual_work(
     inertia_g1 = -m_c * motion.crank_centre_acceleration
     inertia_g2 = -m_r * motion.rod_centre_acceleration
     inertia_b = -m_s * motion.slider_acceleration
-    couples = crank_inertia_about_centre_kg_m2(links) * motion.crank_acceleration_rad_s2 + links.rod_inertia_about_centre_kg_m2 * motion.rod_acceleration * unit.rod_rate
+    couples = (
+        crank_inertia_about_centre_kg_m2(links) * motion.crank_acceleration_rad_s2
+        + links.rod_inertia_about_centre_kg_m2 * motion.rod_acceleration * unit.rod_rate
+    )
     inertia = _dot(inertia_g1, d_g1) + _dot(inertia_g2, d_g2) + _dot(inertia_b, d_b) - couples
-    return DynamicVirtualWork(motion, d_g1, d_g2, d_b, unit.rod_rate, inertia_g1, inertia_g2, inertia_b, gravity, inertia)
+    return DynamicVirtualWork(
+        motion, d_g1, d_g2, d_b, unit.rod_rate, inertia_g1, inertia_g2, inertia_b, gravity, inertia
+    )
 
 
 def driving_torque_by_virtual_work(
-    links: kinetics.SliderCrankLinks, theta: np.ndarray, omega: np.ndarray, *, crank_acceleration_rad_s2: np.ndarray | float = 0.0
+    links: kinetics.SliderCrankLinks,
+    theta: np.ndarray,
+    omega: np.ndarray,
+    *,
+    crank_acceleration_rad_s2: np.ndarray | float = 0.0,
 ) -> np.ndarray:
     """τ (N·m, (N,)) that moves the crank at θ (rad), ω (rad/s) with acceleration α (rad/s², default 0: held speed)."""
     return dynamic_virtual_work(links, theta, omega, crank_acceleration_rad_s2).driving_torque_N_m
@@ -296,10 +325,19 @@ class ConstraintVirtualWork:
 
     @property
     def total(self) -> np.ndarray:
-        return self.pivot_O + self.crank_pin_on_crank + self.crank_pin_on_rod + self.wrist_pin_on_rod + self.wrist_pin_on_slider + self.guide
+        return (
+            self.pivot_O
+            + self.crank_pin_on_crank
+            + self.crank_pin_on_rod
+            + self.wrist_pin_on_rod
+            + self.wrist_pin_on_slider
+            + self.guide
+        )
 
 
-def constraint_virtual_work(links: kinetics.SliderCrankLinks, theta: np.ndarray, forces: kinetics.PinForces) -> ConstraintVirtualWork:
+def constraint_virtual_work(
+    links: kinetics.SliderCrankLinks, theta: np.ndarray, forces: kinetics.PinForces
+) -> ConstraintVirtualWork:
     """The virtual work of Newton–Euler's pin and guide ``forces`` at crank angles θ (rad, (N,)), per unit δθ."""
     theta = np.atleast_1d(np.asarray(theta, dtype=float))
     unit = kinetics.link_motion(links, theta, np.ones_like(theta), np.zeros_like(theta))
@@ -348,7 +386,10 @@ class SliderCrankVirtualWork(ClosedFormModel):
         "constraint_virtual_work_N_m": "N·m",
     }
     invariant_units = {"torque_difference": "N·m"}
-    description = ("dynamic virtual work τ = Σ(m a − F)·r′ + Σ I α φ′ with the chapter-4 kinematic coefficients, " "against the 8×8 Newton–Euler solve")
+    description = (
+        "dynamic virtual work τ = Σ(m a − F)·r′ + Σ I α φ′ with the chapter-4 kinematic coefficients, "
+        "against the 8×8 Newton–Euler solve"
+    )
 
     def evaluate(self, params: Mapping[str, Any], t_s: np.ndarray) -> ClosedFormSolution:
         links = kinetics.SliderCrankLinks.from_params(params)
@@ -369,4 +410,8 @@ class SliderCrankVirtualWork(ClosedFormModel):
         """The largest |τ| over a turn (N·m), at least 1e-12."""
         links = kinetics.SliderCrankLinks.from_params(params)
         turn = np.linspace(0.0, 2.0 * math.pi, 73)
-        return {"torque_difference": max(float(np.max(np.abs(driving_torque_by_virtual_work(links, turn, params["crank_speed_rad_s"])))), 1e-12)}
+        return {
+            "torque_difference": max(
+                float(np.max(np.abs(driving_torque_by_virtual_work(links, turn, params["crank_speed_rad_s"])))), 1e-12
+            )
+        }

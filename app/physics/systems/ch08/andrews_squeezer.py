@@ -54,31 +54,51 @@ from app.physics.solvers.kernels import DYNAMICS_SIGNATURE, MULTIPLIER_CONSTRAIN
 COORDINATE_NAMES = ("beta_rad", "Theta_rad", "gamma_rad", "Phi_rad", "delta_rad", "Omega_rad", "epsilon_rad")
 
 #: Consistent initial positions (rad) of the test set; the mechanism starts at rest.
-INITIAL_POSITIONS_RAD = np.array([
-    -0.0617138900142764496358948458001,
-    0.0,
-    0.455279819163070380255912382449,
-    0.222668390165885884674473185609,
-    0.487364979543842550225598953530,
-    -0.222668390165885884674473185609,
-    1.23054744454982119249735015568,
-])
+INITIAL_POSITIONS_RAD = np.array(
+    [
+        -0.0617138900142764496358948458001,
+        0.0,
+        0.455279819163070380255912382449,
+        0.222668390165885884674473185609,
+        0.487364979543842550225598953530,
+        -0.222668390165885884674473185609,
+        1.23054744454982119249735015568,
+    ]
+)
 #: Initial accelerations (rad/s²) of the test set, consistent with the positions above at rest.
-INITIAL_ACCELERATIONS_RAD_S2 = np.array([14222.4439199541138705911625887, -10666.8329399655854029433719415, 0.0, 0.0, 0.0, 0.0, 0.0])
+INITIAL_ACCELERATIONS_RAD_S2 = np.array(
+    [14222.4439199541138705911625887, -10666.8329399655854029433719415, 0.0, 0.0, 0.0, 0.0, 0.0]
+)
 #: Initial multipliers in the test set's sign (M q̈ = f − Gᵀλ, N); ours are their negatives.
-PUBLISHED_INITIAL_MULTIPLIERS_N = np.array([98.5668703962410896057654982170, -6.12268834425566265503114393122, 0.0, 0.0, 0.0, 0.0])
+PUBLISHED_INITIAL_MULTIPLIERS_N = np.array(
+    [98.5668703962410896057654982170, -6.12268834425566265503114393122, 0.0, 0.0, 0.0, 0.0]
+)
 
 #: The published reference at t = 0.03 s (PSIDE, rtol = atol = 1e-14): positions (rad) ...
 REFERENCE_TIME_S = 0.03
-REFERENCE_POSITIONS_RAD = np.array([
-    0.1581077119629904e2, -0.1575637105984298e2, 0.4082224013073101e-1, -0.5347301163226948e0,
-    0.5244099658805304e0, 0.5347301163226948e0, 0.1048080741042263e1,
-])
+REFERENCE_POSITIONS_RAD = np.array(
+    [
+        0.1581077119629904e2,
+        -0.1575637105984298e2,
+        0.4082224013073101e-1,
+        -0.5347301163226948e0,
+        0.5244099658805304e0,
+        0.5347301163226948e0,
+        0.1048080741042263e1,
+    ]
+)
 #: ... and rates (rad/s).
-REFERENCE_RATES_RAD_S = np.array([
-    0.1139920302151208e4, -0.1424379294994111e4, 0.1103291221937134e2, 0.1929337464421385e2,
-    0.5735699284790808e0, -0.1929337464421385e2, 0.3231791658026955e0,
-])
+REFERENCE_RATES_RAD_S = np.array(
+    [
+        0.1139920302151208e4,
+        -0.1424379294994111e4,
+        0.1103291221937134e2,
+        0.1929337464421385e2,
+        0.5735699284790808e0,
+        -0.1929337464421385e2,
+        0.3231791658026955e0,
+    ]
+)
 
 
 @dataclass(frozen=True)
@@ -257,8 +277,11 @@ def andrews_system(params: AndrewsParameters | None = None) -> ConstrainedSystem
     """The mechanism as a :class:`ConstrainedSystem` (7 coordinates, 6 holonomic constraints, 1 degree of freedom)."""
     params = AndrewsParameters() if params is None else params
     return ConstrainedSystem(
-        dynamics=andrews_dynamics, constraints=andrews_constraints, parameters=params.array(),
-        coordinate_names=COORDINATE_NAMES, n_holonomic=6,
+        dynamics=andrews_dynamics,
+        constraints=andrews_constraints,
+        parameters=params.array(),
+        coordinate_names=COORDINATE_NAMES,
+        n_holonomic=6,
     )
 
 

@@ -52,8 +52,11 @@ def pendulum_constraint(q, v, p, g_out, C_out, c_out):
 def pendulum_system(mass_kg: float, length_m: float, g_m_s2: float) -> ConstrainedSystem:
     """The Cartesian pendulum as a :class:`ConstrainedSystem` (coordinates x, y; one holonomic row)."""
     return ConstrainedSystem(
-        dynamics=pendulum_dynamics, constraints=pendulum_constraint,
-        parameters=np.array([mass_kg, length_m, g_m_s2], dtype=float), coordinate_names=("x", "y"), n_holonomic=1,
+        dynamics=pendulum_dynamics,
+        constraints=pendulum_constraint,
+        parameters=np.array([mass_kg, length_m, g_m_s2], dtype=float),
+        coordinate_names=("x", "y"),
+        n_holonomic=1,
     )
 
 
@@ -67,7 +70,9 @@ def angle_and_rate(length_m: float, states: np.ndarray) -> tuple[np.ndarray, np.
 def cartesian_states(length_m: float, theta_rad: np.ndarray, theta_rate_rad_s: np.ndarray) -> np.ndarray:
     """``(x, y, ẋ, ẏ)`` rows (N, 4) of the angle θ (rad) and rate θ̇ (rad/s) arrays (N,)."""
     s, c = np.sin(theta_rad), np.cos(theta_rad)
-    return np.stack([length_m * s, -length_m * c, length_m * c * theta_rate_rad_s, length_m * s * theta_rate_rad_s], axis=-1)
+    return np.stack(
+        [length_m * s, -length_m * c, length_m * c * theta_rate_rad_s, length_m * s * theta_rate_rad_s], axis=-1
+    )
 
 
 def exact_states(length_m: float, g_m_s2: float, state0: np.ndarray, t_s: np.ndarray) -> np.ndarray:

@@ -42,16 +42,54 @@ class CartesianPendulum(ConstrainedModel):
             Parameter("mass_kg", "kg", 1.0, 0.01, 100.0, "Mass of the bob", "m"),
             Parameter("length_m", "m", 1.0, 0.05, 10.0, "Length of the rod", "L"),
             Parameter("g_m_s2", "m/s²", 9.81, 0.0, 100.0, "Gravitational acceleration (along −y)", "g"),
-            Parameter("x0_m", "m", 0.8, -10.0, 10.0, "Requested start: bob's horizontal position (made consistent with the rod)", "x₀"),
-            Parameter("y0_m", "m", -0.6, -10.0, 10.0, "Requested start: bob's height above the pivot (y up; made consistent)", "y₀"),
-            Parameter("vx0_m_s", "m/s", 0.0, -50.0, 50.0, "Requested start: horizontal velocity (its part along the rod is removed)", "ẋ₀"),
-            Parameter("vy0_m_s", "m/s", 0.0, -50.0, 50.0, "Requested start: vertical velocity (its part along the rod is removed)", "ẏ₀"),
+            Parameter(
+                "x0_m",
+                "m",
+                0.8,
+                -10.0,
+                10.0,
+                "Requested start: bob's horizontal position (made consistent with the rod)",
+                "x₀",
+            ),
+            Parameter(
+                "y0_m",
+                "m",
+                -0.6,
+                -10.0,
+                10.0,
+                "Requested start: bob's height above the pivot (y up; made consistent)",
+                "y₀",
+            ),
+            Parameter(
+                "vx0_m_s",
+                "m/s",
+                0.0,
+                -50.0,
+                50.0,
+                "Requested start: horizontal velocity (its part along the rod is removed)",
+                "ẋ₀",
+            ),
+            Parameter(
+                "vy0_m_s",
+                "m/s",
+                0.0,
+                -50.0,
+                50.0,
+                "Requested start: vertical velocity (its part along the rod is removed)",
+                "ẏ₀",
+            ),
         ),
         check=_start_is_consistent,
     )
     start_parameters = ("x0_m", "y0_m", "vx0_m_s", "vy0_m_s")
     series_units = {
-        "x_m": "m", "y_m": "m", "vx_m_s": "m/s", "vy_m_s": "m/s", "multiplier": "N/m", "theta_rad": "rad", "tension_N": "N",
+        "x_m": "m",
+        "y_m": "m",
+        "vx_m_s": "m/s",
+        "vy_m_s": "m/s",
+        "multiplier": "N/m",
+        "theta_rad": "rad",
+        "tension_N": "N",
     }
     invariant_units = {"energy": "J", "constraint_position": "m²", "constraint_velocity": "m²/s"}
 
@@ -71,7 +109,9 @@ class CartesianPendulum(ConstrainedModel):
         states = np.atleast_2d(states)
         with np.errstate(over="ignore", invalid="ignore"):
             kinetic = 0.5 * m * (states[:, 2] ** 2 + states[:, 3] ** 2)
-            return EnergyParts(m * g * states[:, 1], translational_kinetic_J=kinetic, rotational_kinetic_J=np.zeros_like(kinetic))
+            return EnergyParts(
+                m * g * states[:, 1], translational_kinetic_J=kinetic, rotational_kinetic_J=np.zeros_like(kinetic)
+            )
 
     def energy_scale_J(self, params: Mapping[str, Any], state: np.ndarray) -> float:
         """2 m g L (the potential energy's whole range) or the kinetic energy if larger (J)."""
@@ -99,15 +139,21 @@ class CartesianPendulum(ConstrainedModel):
         _, l, _ = _m_l_g(params)
         theta, _ = angle_and_rate(l, states)
         return {
-            "x_m": states[:, 0], "y_m": states[:, 1], "vx_m_s": states[:, 2], "vy_m_s": states[:, 3],
-            "multiplier": multipliers[:, 0], "theta_rad": theta, "tension_N": multipliers[:, 0] * l,
+            "x_m": states[:, 0],
+            "y_m": states[:, 1],
+            "vx_m_s": states[:, 2],
+            "vy_m_s": states[:, 3],
+            "multiplier": multipliers[:, 0],
+            "theta_rad": theta,
+            "tension_N": multipliers[:, 0] * l,
         }
 
     # --- the chapter 7 engine's simple pendulum as the minimal-coordinate reference ---------------------------
     def minimal_system(self, params: Mapping[str, Any]) -> OdeSystem | None:
         return OdeSystem(
             rhs=derived(SIMPLE_PENDULUM, "lagrange").kernel(),
-            parameters=np.array(SIMPLE_PENDULUM.parameter_array(params), dtype=float), state_names=("theta", "theta_rate"),
+            parameters=np.array(SIMPLE_PENDULUM.parameter_array(params), dtype=float),
+            state_names=("theta", "theta_rate"),
         )
 
     def minimal_state(self, params: Mapping[str, Any], state: np.ndarray) -> np.ndarray:

@@ -42,7 +42,10 @@ def _check(values: Mapping[str, Any]) -> None:
     motion = kinematics.FourBarMotion.from_params(values)
     state = motion.at(np.zeros(1))
     if state.singular[0]:
-        raise ParameterError("crank_angle0_deg", "the linkage starts at a toggle or change point, where its rates are undefined; choose another crank angle")
+        raise ParameterError(
+            "crank_angle0_deg",
+            "the linkage starts at a toggle or change point, where its rates are undefined; choose another crank angle",
+        )
 
 
 PARAMETERS = ParameterSet(
@@ -53,11 +56,31 @@ PARAMETERS = ParameterSet(
         _GEOMETRY["rocker_m"],
         _GEOMETRY["branch"],
         _GEOMETRY["crank_angle0_deg"],
-        replace(_GEOMETRY["crank_speed_rad_s"], default=4.0, min=-30.0, max=30.0, description="Crank speed ω₂ at t = 0 (counterclockwise positive)"),
-        replace(_MASSES["drive_torque_N_m"], default=1.0, description="Constant torque τ on the crank (counterclockwise positive)"),
+        replace(
+            _GEOMETRY["crank_speed_rad_s"],
+            default=4.0,
+            min=-30.0,
+            max=30.0,
+            description="Crank speed ω₂ at t = 0 (counterclockwise positive)",
+        ),
+        replace(
+            _MASSES["drive_torque_N_m"],
+            default=1.0,
+            description="Constant torque τ on the crank (counterclockwise positive)",
+        ),
         replace(_MASSES["crank_mass_kg"], description="Mass of the crank (a uniform slender bar)"),
-        replace(_MASSES["rod_mass_kg"], name="coupler_mass_kg", label="coupler mass", description="Mass of the coupler (a uniform slender bar)"),
-        replace(_MASSES["rod_mass_kg"], name="rocker_mass_kg", label="rocker mass", description="Mass of the rocker (a uniform slender bar)"),
+        replace(
+            _MASSES["rod_mass_kg"],
+            name="coupler_mass_kg",
+            label="coupler mass",
+            description="Mass of the coupler (a uniform slender bar)",
+        ),
+        replace(
+            _MASSES["rod_mass_kg"],
+            name="rocker_mass_kg",
+            label="rocker mass",
+            description="Mass of the rocker (a uniform slender bar)",
+        ),
         _MASSES["g_m_s2"],
     ),
     check=_check,
@@ -96,14 +119,18 @@ def _normal(angle: np.ndarray) -> np.ndarray:
 
 
 def centre_motion(
-    linkage: kinematics.FourBar, angles: tuple[np.ndarray, np.ndarray, np.ndarray],
-    rates: tuple[np.ndarray, np.ndarray, np.ndarray], angular_accelerations: tuple[np.ndarray, np.ndarray, np.ndarray],
+    linkage: kinematics.FourBar,
+    angles: tuple[np.ndarray, np.ndarray, np.ndarray],
+    rates: tuple[np.ndarray, np.ndarray, np.ndarray],
+    angular_accelerations: tuple[np.ndarray, np.ndarray, np.ndarray],
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Absolute coordinates, rates and accelerations (N, 9) from the link angles θ₂, θ₃, θ₄ (rad), their rates
     (rad/s) and accelerations (rad/s²), each (N,): the centres are O₂ + ½a e₂, A + ½b e₃ and O₄ + ½c e₄."""
     a, b, c, d = linkage.crank_m, linkage.coupler_m, linkage.rocker_m, linkage.ground_m
-    (t2, t3, t4), (w2, w3, w4), (al2, al3, al4) = (np.broadcast_arrays(*(np.atleast_1d(np.asarray(x, float)) for x in group))
-                                                     for group in (angles, rates, angular_accelerations))
+    (t2, t3, t4), (w2, w3, w4), (al2, al3, al4) = (
+        np.broadcast_arrays(*(np.atleast_1d(np.asarray(x, float)) for x in group))
+        for group in (angles, rates, angular_accelerations)
+    )
 
     def point(length, angle, rate, acceleration):
         """Position, velocity, acceleration of the point ``length`` along a link at ``angle`` from its base."""
@@ -118,13 +145,24 @@ def centre_motion(
     rocker_centre = (rocker_centre[0] + np.array([d, 0.0]), rocker_centre[1], rocker_centre[2])
     columns = []
     for level, angle_terms in enumerate(((t2, t3, t4), (w2, w3, w4), (al2, al3, al4))):
-        columns.append(np.column_stack([
-            crank_centre[level], angle_terms[0], coupler_centre[level], angle_terms[1], rocker_centre[level], angle_terms[2],
-        ]))
+        columns.append(
+            np.column_stack(
+                [
+                    crank_centre[level],
+                    angle_terms[0],
+                    coupler_centre[level],
+                    angle_terms[1],
+                    rocker_centre[level],
+                    angle_terms[2],
+                ]
+            )
+        )
     return columns[0], columns[1], columns[2]
 
 
-def four_bar_absolute_motion(params: Mapping[str, Any], theta: np.ndarray, omega: np.ndarray, alpha: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def four_bar_absolute_motion(
+    params: Mapping[str, Any], theta: np.ndarray, omega: np.ndarray, alpha: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(q, v, a) (N, 9) from the crank's θ₂ (rad), ω₂ (rad/s), α₂ (rad/s²) (N,) by chapter 4's loop closure
     in the chosen assembly (coupler and rocker angles wrapped to [−π, π); NaN rates at a toggle)."""
     motion = four_bar_motion(params)
@@ -150,8 +188,10 @@ def massive_four_bar_initial_state(params: Mapping[str, Any]) -> tuple[np.ndarra
     motion = four_bar_motion(params)
     state = motion.at(np.zeros(1))
     q, v, _ = centre_motion(
-        motion.linkage, (state.crank_angle, state.coupler_angle, state.rocker_angle),
-        (np.full(1, float(params["crank_speed_rad_s"])), state.coupler_rate, state.rocker_rate), (np.zeros(1),) * 3,
+        motion.linkage,
+        (state.crank_angle, state.coupler_angle, state.rocker_angle),
+        (np.full(1, float(params["crank_speed_rad_s"])), state.coupler_rate, state.rocker_rate),
+        (np.zeros(1),) * 3,
     )
     return q[0], v[0]
 
@@ -168,7 +208,6 @@ def crank_acceleration_rad_s2(params: Mapping[str, Any], theta: np.ndarray, omeg
     """θ̈ = (τ − ½M′θ̇² − V′)/M (rad/s²) of the one-degree-of-freedom equation at θ (rad), θ̇ (rad/s) (N,)."""
     inertia, half_slope, potential_slope = one_dof_terms(params, theta)
     return (float(params["drive_torque_N_m"]) - half_slope * np.asarray(omega) ** 2 - potential_slope) / inertia
-
 
 
 class MassiveFourBar(PlanarLinkageModel):

@@ -90,8 +90,14 @@ class Joint:
 
     def record(self) -> list[float]:
         return [
-            float(JOINT_KINDS.index(self.kind)), float(self.body), self.at_m, float(self.other), self.other_at_m,
-            self.ground_m[0], self.ground_m[1], self.angle_rad,
+            float(JOINT_KINDS.index(self.kind)),
+            float(self.body),
+            self.at_m,
+            float(self.other),
+            self.other_at_m,
+            self.ground_m[0],
+            self.ground_m[1],
+            self.angle_rad,
         ]
 
 
@@ -222,8 +228,12 @@ class PlanarLinkage:
 
     def system(self, *, independent: tuple[int, ...] | None = None) -> ConstrainedSystem:
         return ConstrainedSystem(
-            dynamics=linkage_dynamics, constraints=linkage_constraints, parameters=self.kernel_parameters(),
-            coordinate_names=self.coordinate_names, n_holonomic=self.n_constraints, independent=independent,
+            dynamics=linkage_dynamics,
+            constraints=linkage_constraints,
+            parameters=self.kernel_parameters(),
+            coordinate_names=self.coordinate_names,
+            n_holonomic=self.n_constraints,
+            independent=independent,
         )
 
     def multiplier_rows(self) -> dict[str, slice]:
@@ -254,7 +264,9 @@ class PlanarLinkage:
         energy0 = self.kinetic_energy_J(v0) + self.potential_energy_J(q0)
         return energy - energy0 - self.torque_work_J(q, q0)
 
-    def one_dof_terms(self, velocity_coefficients: np.ndarray, acceleration_coefficients: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def one_dof_terms(
+        self, velocity_coefficients: np.ndarray, acceleration_coefficients: np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The one-degree-of-freedom equation's ``M(θ)`` (kg·m²), ``½M′(θ)`` (kg·m²) and ``V′(θ)`` (N·m), each (N,).
 
         From the kinematic coefficients of the absolute coordinates with respect to
@@ -266,5 +278,8 @@ class PlanarLinkage:
         diagonal = self.mass_diagonal
         q1, q2 = np.atleast_2d(velocity_coefficients), np.atleast_2d(acceleration_coefficients)
         masses = np.array([link.mass_kg for link in self.links])
-        return np.sum(diagonal * q1 * q1, axis=-1), np.sum(diagonal * q1 * q2, axis=-1), self.g_m_s2 * np.sum(masses * q1[:, 1::3], axis=-1)
-
+        return (
+            np.sum(diagonal * q1 * q1, axis=-1),
+            np.sum(diagonal * q1 * q2, axis=-1),
+            self.g_m_s2 * np.sum(masses * q1[:, 1::3], axis=-1),
+        )

@@ -31,7 +31,9 @@ TURNS_FOR_STEP_CHOICE = 10.0
 #: Crank angles sampled (over a turn, or the crank's travel) for M(θ) and V(θ).
 _SAMPLES = 145
 
-MotionFunction = Callable[[Mapping[str, Any], np.ndarray, np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray, np.ndarray]]
+MotionFunction = Callable[
+    [Mapping[str, Any], np.ndarray, np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray, np.ndarray]
+]
 
 
 class PlanarLinkageModel(ConstrainedModel):
@@ -46,7 +48,9 @@ class PlanarLinkageModel(ConstrainedModel):
     def linkage(self, params: Mapping[str, Any]) -> PlanarLinkage: ...
 
     @abstractmethod
-    def absolute_motion(self, params: Mapping[str, Any], theta: np.ndarray, omega: np.ndarray, alpha: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def absolute_motion(
+        self, params: Mapping[str, Any], theta: np.ndarray, omega: np.ndarray, alpha: np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(q, v, a) (N, 9) from the crank's angle (rad), speed (rad/s) and acceleration (rad/s²) (N,)."""
 
     @abstractmethod
@@ -88,8 +92,12 @@ class PlanarLinkageModel(ConstrainedModel):
         q, v = states[:, :9], states[:, 9:]
         kinetic = linkage.kinetic_energy_J(v)
         rotational = 0.5 * np.sum(linkage.mass_diagonal[2::3] * v[:, 2::3] ** 2, axis=-1)
-        return EnergyParts(linkage.potential_energy_J(q), translational_kinetic_J=kinetic - rotational, rotational_kinetic_J=rotational,
-                           drive_work_J=linkage.torque_work_J(q, q0))
+        return EnergyParts(
+            linkage.potential_energy_J(q),
+            translational_kinetic_J=kinetic - rotational,
+            rotational_kinetic_J=rotational,
+            drive_work_J=linkage.torque_work_J(q, q0),
+        )
 
     def _inertia_and_potential(self, params: Mapping[str, Any]) -> tuple[np.ndarray, np.ndarray]:
         """M(θ) (kg·m²) and V(θ) (J) over the crank's travel, where defined."""
@@ -113,8 +121,12 @@ class PlanarLinkageModel(ConstrainedModel):
         :data:`TURNS_FOR_STEP_CHOICE` turns on top of the energy in play (frictionless, it speeds up without limit)."""
         inertia, _ = self._inertia_and_potential(params)
         q0, v0 = self.loop_closure_start(params)
-        energy = self.energy_scale_J(params, np.concatenate([q0, v0])) + 2.0 * math.pi * TURNS_FOR_STEP_CHOICE * abs(float(params["drive_torque_N_m"]))
-        return max(math.sqrt(2.0 * energy / float(np.min(inertia))), 2.0 * abs(float(params["crank_speed_rad_s"])) + 1.0)
+        energy = self.energy_scale_J(params, np.concatenate([q0, v0])) + 2.0 * math.pi * TURNS_FOR_STEP_CHOICE * abs(
+            float(params["drive_torque_N_m"])
+        )
+        return max(
+            math.sqrt(2.0 * energy / float(np.min(inertia))), 2.0 * abs(float(params["crank_speed_rad_s"])) + 1.0
+        )
 
     def fastest_rate_rad_s(self, params: Mapping[str, Any], state: np.ndarray) -> float:
         """The speed limit times how sharply M(θ) changes, √(M_max/M_min), at least 2 (rad/s), as in chapter 6."""
@@ -135,7 +147,9 @@ class PlanarLinkageModel(ConstrainedModel):
         multipliers = np.atleast_2d(multipliers)
         return {name: multipliers[:, rows[name]] for name in self.pin_joints}
 
-    def constrained_series(self, params: Mapping[str, Any], t_s: np.ndarray, states: np.ndarray, multipliers: np.ndarray) -> dict[str, np.ndarray]:
+    def constrained_series(
+        self, params: Mapping[str, Any], t_s: np.ndarray, states: np.ndarray, multipliers: np.ndarray
+    ) -> dict[str, np.ndarray]:
         states = np.atleast_2d(states)
         energy = self.energy_J(params, states)
         q0, v0 = self.loop_closure_start(params)
@@ -148,7 +162,12 @@ class PlanarLinkageModel(ConstrainedModel):
 
 def linkage_series_units(pin_joints: tuple[str, ...]) -> dict[str, str]:
     """The units of :meth:`PlanarLinkageModel.constrained_series` for a linkage with these pin joints."""
-    return {"crank_angle": "rad", "crank_speed_rad_s": "rad/s", **{pin_force_series_name(j): "N" for j in pin_joints}, "work_energy_residual_J": "J"}
+    return {
+        "crank_angle": "rad",
+        "crank_speed_rad_s": "rad/s",
+        **{pin_force_series_name(j): "N" for j in pin_joints},
+        "work_energy_residual_J": "J",
+    }
 
 
 def pin_force_series_name(joint: str) -> str:

@@ -74,7 +74,11 @@ def rolling_disk_dynamics(t, q, v, p, M_out, f_out):
     f_out[0] = m * r * (s_psi * s_th * squares - c_psi * cross)
     f_out[1] = -m * r * (c_psi * s_th * squares + s_psi * cross)
     f_out[2] = lean_rate * c_th * (2.0 * (transverse - axial - m * r * r) * s_th * heading_rate - axial * spin_rate)
-    f_out[3] = (axial + m * r * r - transverse) * s_th * c_th * heading_rate * heading_rate + axial * c_th * spin_rate * heading_rate + m * g * r * s_th
+    f_out[3] = (
+        (axial + m * r * r - transverse) * s_th * c_th * heading_rate * heading_rate
+        + axial * c_th * spin_rate * heading_rate
+        + m * g * r * s_th
+    )
     f_out[4] = -axial * c_th * heading_rate * lean_rate
 
 
@@ -116,14 +120,31 @@ def rolling_disk_system(params: Mapping[str, Any]) -> ConstrainedSystem:
     )
 
 
-def rolling_state(*, radius_m: float, heading_rad: float, lean_rad: float, heading_rate_rad_s: float, lean_rate_rad_s: float, spin_rate_rad_s: float) -> np.ndarray:
+def rolling_state(
+    *,
+    radius_m: float,
+    heading_rad: float,
+    lean_rad: float,
+    heading_rate_rad_s: float,
+    lean_rate_rad_s: float,
+    spin_rate_rad_s: float,
+) -> np.ndarray:
     """A consistent state (q, v) (10,) at the origin: the contact point moves along the heading at r φ̇ (A v = 0
     exactly)."""
-    return np.array([
-        0.0, 0.0, heading_rad, lean_rad, 0.0,
-        radius_m * spin_rate_rad_s * math.cos(heading_rad), radius_m * spin_rate_rad_s * math.sin(heading_rad),
-        heading_rate_rad_s, lean_rate_rad_s, spin_rate_rad_s,
-    ])
+    return np.array(
+        [
+            0.0,
+            0.0,
+            heading_rad,
+            lean_rad,
+            0.0,
+            radius_m * spin_rate_rad_s * math.cos(heading_rad),
+            radius_m * spin_rate_rad_s * math.sin(heading_rad),
+            heading_rate_rad_s,
+            lean_rate_rad_s,
+            spin_rate_rad_s,
+        ]
+    )
 
 
 def energy_J(params: Mapping[str, Any], states: np.ndarray) -> np.ndarray:
@@ -139,15 +160,22 @@ def energy_parts(params: Mapping[str, Any], states: np.ndarray) -> EnergyParts:
     heading, lean = q[:, HEADING], q[:, LEAN]
     x_rate, y_rate, heading_rate, lean_rate, spin_rate = v.T
     s_psi, c_psi, s_th, c_th = np.sin(heading), np.cos(heading), np.sin(lean), np.cos(lean)
-    centre_velocity = np.stack([
-        x_rate + r * (c_psi * s_th * heading_rate + s_psi * c_th * lean_rate),
-        y_rate + r * (s_psi * s_th * heading_rate - c_psi * c_th * lean_rate),
-        -r * s_th * lean_rate,
-    ], axis=1)
+    centre_velocity = np.stack(
+        [
+            x_rate + r * (c_psi * s_th * heading_rate + s_psi * c_th * lean_rate),
+            y_rate + r * (s_psi * s_th * heading_rate - c_psi * c_th * lean_rate),
+            -r * s_th * lean_rate,
+        ],
+        axis=1,
+    )
     transverse, axial = 0.25 * m * r * r, 0.5 * m * r * r
     # Body rates in the lean frame Rz(ψ) Rx(θ) (the disk is symmetric about its axis): (θ̇, φ̇ + ψ̇ sθ, ψ̇ cθ).
     rotation = transverse * (lean_rate**2 + (heading_rate * c_th) ** 2) + axial * (spin_rate + heading_rate * s_th) ** 2
-    return EnergyParts(m * g * r * c_th, translational_kinetic_J=0.5 * m * np.sum(centre_velocity**2, axis=1), rotational_kinetic_J=0.5 * rotation)
+    return EnergyParts(
+        m * g * r * c_th,
+        translational_kinetic_J=0.5 * m * np.sum(centre_velocity**2, axis=1),
+        rotational_kinetic_J=0.5 * rotation,
+    )
 
 
 def contact_velocity_m_s(params: Mapping[str, Any], states: np.ndarray) -> np.ndarray:
@@ -156,4 +184,6 @@ def contact_velocity_m_s(params: Mapping[str, Any], states: np.ndarray) -> np.nd
     states = np.atleast_2d(states)
     r = float(params["radius_m"])
     heading, spin_rate = states[:, HEADING], states[:, 5 + SPIN]
-    return np.stack([states[:, 5] - r * np.cos(heading) * spin_rate, states[:, 6] - r * np.sin(heading) * spin_rate], axis=1)
+    return np.stack(
+        [states[:, 5] - r * np.cos(heading) * spin_rate, states[:, 6] - r * np.sin(heading) * spin_rate], axis=1
+    )

@@ -52,14 +52,18 @@ from app.physics.systems.ch09.rolling_disk_model import RollingDiskMotion
 __all__ = ["FALLEN", "FALLEN_LEAN_DEG", "LIFT_OFF", "PARAMETERS", "UnsteadyRollingDisk", "fallen_message"]
 
 _CHAPTER_9_START = RollingDiskMotion.parameters.by_name
-PARAMETERS = ParameterSet((
-    *CHAPTER_9_DISK.parameters.parameters,
-    _CHAPTER_9_START["lean_0_deg"],
-    _CHAPTER_9_START["spin_rate_0_rad_s"],
-    _CHAPTER_9_START["heading_rate_0_rad_s"],
-    Parameter("heading_0_deg", "deg", 0.0, -180.0, 180.0, "Initial heading ψ of the rolling direction from +x", "ψ₀"),
-    Parameter("lean_rate_0_rad_s", "rad/s", 0.0, -20.0, 20.0, "Initial lean rate θ̇", "θ̇₀"),
-))
+PARAMETERS = ParameterSet(
+    (
+        *CHAPTER_9_DISK.parameters.parameters,
+        _CHAPTER_9_START["lean_0_deg"],
+        _CHAPTER_9_START["spin_rate_0_rad_s"],
+        _CHAPTER_9_START["heading_rate_0_rad_s"],
+        Parameter(
+            "heading_0_deg", "deg", 0.0, -180.0, 180.0, "Initial heading ψ of the rolling direction from +x", "ψ₀"
+        ),
+        Parameter("lean_rate_0_rad_s", "rad/s", 0.0, -20.0, 20.0, "Initial lean rate θ̇", "θ̇₀"),
+    )
+)
 
 
 def _mass_radius_g(params: Mapping[str, Any]) -> tuple[float, float, float]:
@@ -73,8 +77,15 @@ class UnsteadyRollingDisk(ConstrainedModel):
     parameters = PARAMETERS
     start_parameters = ("heading_0_deg", "lean_0_deg", "heading_rate_0_rad_s", "lean_rate_0_rad_s", "spin_rate_0_rad_s")
     series_units = {
-        "x_m": "m", "y_m": "m", "heading_rad": "rad", "lean_rad": "rad", "spin_rate_rad_s": "rad/s", "energy_J": "J",
-        "friction_x_N": "N", "friction_y_N": "N", "normal_force_N": "N",
+        "x_m": "m",
+        "y_m": "m",
+        "heading_rad": "rad",
+        "lean_rad": "rad",
+        "spin_rate_rad_s": "rad/s",
+        "energy_J": "J",
+        "friction_x_N": "N",
+        "friction_y_N": "N",
+        "normal_force_N": "N",
     }
     invariant_units = {"energy": "J", "constraint_position": "m", "constraint_velocity": "m/s"}
 
@@ -93,7 +104,9 @@ class UnsteadyRollingDisk(ConstrainedModel):
         )
         names = (*COORDINATE_NAMES, *(f"{name}_rate" for name in COORDINATE_NAMES))
         units = ("m", "m", "rad", "rad", "rad", "m/s", "m/s", "rad/s", "rad/s", "rad/s")
-        return consistent_initial_conditions(self.constrained_system(params), state[:5], state[5:], names=names, units=units)
+        return consistent_initial_conditions(
+            self.constrained_system(params), state[:5], state[5:], names=names, units=units
+        )
 
     def energy_J(self, params: Mapping[str, Any], states: np.ndarray) -> np.ndarray:
         return energy_J(params, states)
@@ -122,9 +135,15 @@ class UnsteadyRollingDisk(ConstrainedModel):
     def constrained_series(self, params, t_s, states, multipliers):
         """The chapter-9 series, and the multipliers: the floor's friction force on the disk (N, world x and y)."""
         return {
-            "x_m": states[:, 0], "y_m": states[:, 1], "heading_rad": states[:, 2], "lean_rad": states[:, 3],
-            "spin_rate_rad_s": states[:, 9], "energy_J": energy_J(params, states),
-            "friction_x_N": multipliers[:, 0], "friction_y_N": multipliers[:, 1], "normal_force_N": normal_force_N(params, states),
+            "x_m": states[:, 0],
+            "y_m": states[:, 1],
+            "heading_rad": states[:, 2],
+            "lean_rad": states[:, 3],
+            "spin_rate_rad_s": states[:, 9],
+            "energy_J": energy_J(params, states),
+            "friction_x_N": multipliers[:, 0],
+            "friction_y_N": multipliers[:, 1],
+            "normal_force_N": normal_force_N(params, states),
         }
 
     # --- the minimal method: chapter 9's independent-speed equations ---------------------------------------------

@@ -78,7 +78,10 @@ def critical_spin_rad_s(system: ConstrainedSystem) -> float:
     # Bracket: spin energy ~ m r² Ω² against the fall's m g r, with a factor 100 of room.
     high = 10.0 * np.sqrt(g_m_s2 / radius_m)
     if lean_stiffness_1_s2(system, high) <= 0.0:
-        raise ValueError(f"no spin below {high:.3g} rad/s steadies the upright disk (mass_kg = {mass_kg}, radius_m = " f"{radius_m}, g_m_s2 = {g_m_s2})")
+        raise ValueError(
+            f"no spin below {high:.3g} rad/s steadies the upright disk (mass_kg = {mass_kg}, radius_m = "
+            f"{radius_m}, g_m_s2 = {g_m_s2})"
+        )
     return float(brentq(lambda spin: lean_stiffness_1_s2(system, spin), 0.0, high, xtol=1e-13, rtol=1e-14))
 
 

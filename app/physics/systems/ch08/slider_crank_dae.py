@@ -81,10 +81,19 @@ def slider_crank_absolute_motion(
         return np.column_stack([crank, crank_angle, rod, rod_angle, slider, zeros])
 
     q = stack(motion.crank_centre, motion.crank_angle, motion.rod_centre, motion.rod_angle, motion.slider_pin)
-    v = stack(motion.crank_centre_velocity, motion.crank_speed_rad_s, motion.rod_centre_velocity, motion.rod_rate, motion.slider_velocity)
+    v = stack(
+        motion.crank_centre_velocity,
+        motion.crank_speed_rad_s,
+        motion.rod_centre_velocity,
+        motion.rod_rate,
+        motion.slider_velocity,
+    )
     a = stack(
-        motion.crank_centre_acceleration, motion.crank_acceleration_rad_s2, motion.rod_centre_acceleration,
-        motion.rod_acceleration, motion.slider_acceleration,
+        motion.crank_centre_acceleration,
+        motion.crank_acceleration_rad_s2,
+        motion.rod_centre_acceleration,
+        motion.rod_acceleration,
+        motion.slider_acceleration,
     )
     return q, v, a
 
@@ -96,7 +105,9 @@ def slider_crank_system(params: Mapping[str, Any]) -> ConstrainedSystem:
 
 def slider_crank_initial_state(params: Mapping[str, Any]) -> tuple[np.ndarray, np.ndarray]:
     """Consistent ``(q, v)`` (9,) each from ``crank_angle0_deg`` and ``crank_speed_rad_s`` by loop closure."""
-    q, v, _ = slider_crank_absolute_motion(params, math.radians(params["crank_angle0_deg"]), params["crank_speed_rad_s"], 0.0)
+    q, v, _ = slider_crank_absolute_motion(
+        params, math.radians(params["crank_angle0_deg"]), params["crank_speed_rad_s"], 0.0
+    )
     return q[0], v[0]
 
 
@@ -133,5 +144,7 @@ class SliderCrankDae(PlanarLinkageModel):
 
     def constrained_states(self, params: Mapping[str, Any], minimal_states: np.ndarray) -> np.ndarray:
         minimal_states = np.atleast_2d(minimal_states)
-        q, v, _ = slider_crank_absolute_motion(params, minimal_states[:, 0], minimal_states[:, 1], np.zeros(len(minimal_states)))
+        q, v, _ = slider_crank_absolute_motion(
+            params, minimal_states[:, 0], minimal_states[:, 1], np.zeros(len(minimal_states))
+        )
         return np.hstack([q, v])

@@ -59,7 +59,13 @@ from app.physics.solvers.step_choice import AccuracyTarget
 #: State slots: x of the lower end B (m), angle from the floor (rad), ẋ_B (m/s), θ̇ (rad/s),
 #: friction work so far (J, ≥ 0), phase code, sliding direction σ (±1), time the contact jammed (s).
 STATE_NAMES = (
-    "x_contact_m", "angle_rad", "contact_speed_m_s", "angle_rate_rad_s", "friction_work_J", "phase", "slip_direction",
+    "x_contact_m",
+    "angle_rad",
+    "contact_speed_m_s",
+    "angle_rate_rad_s",
+    "friction_work_J",
+    "phase",
+    "slip_direction",
     "jam_time_s",
 )
 X, THETA, U, OMEGA, FRICTION_WORK, PHASE, SLIP, JAM_TIME = range(8)
@@ -82,7 +88,9 @@ EVENT_WORDS = {
 JAM_STOP_DELAY_S = 1e-9
 #: Contact quantities from :func:`contact_dynamics`.
 N_CONTACT = 7
-C_ANGULAR_ACC, C_CONTACT_ACC, C_NORMAL, C_FRICTION, C_FRICTION_POWER, C_PAINLEVE_FACTOR, C_NORMAL_NUMERATOR = range(N_CONTACT)
+C_ANGULAR_ACC, C_CONTACT_ACC, C_NORMAL, C_FRICTION, C_FRICTION_POWER, C_PAINLEVE_FACTOR, C_NORMAL_NUMERATOR = range(
+    N_CONTACT
+)
 
 
 PARAMETERS = ParameterSet(
@@ -91,11 +99,18 @@ PARAMETERS = ParameterSet(
         Parameter("mass_kg", "kg", 1.0, 0.1, 100.0, "Mass of the bar", "m", step=0.1),
         Parameter("angle0_deg", "deg", 30.0, 1.0, 89.0, "Initial angle of the bar from the floor", "θ₀", step=0.1),
         Parameter(
-            "slide_speed0_m_s", "m/s", 1.0, -5.0, 5.0,
+            "slide_speed0_m_s",
+            "m/s",
+            1.0,
+            -5.0,
+            5.0,
             "Initial sliding speed of the lower end B (+x: away from the side the bar leans to); no initial rotation",
-            "u₀", step=0.01,
+            "u₀",
+            step=0.01,
         ),
-        Parameter("mu", "", 0.3, 0.0, 3.0, "Coulomb friction coefficient at the floor (static = kinetic)", "μ", step=0.01),
+        Parameter(
+            "mu", "", 0.3, 0.0, 3.0, "Coulomb friction coefficient at the floor (static = kinetic)", "μ", step=0.01
+        ),
         Parameter("g_m_s2", "m/s²", 9.807, 0.1, 100.0, "Gravitational acceleration", "g", step=0.001),
     ),
 )
@@ -289,10 +304,15 @@ def end_positions_m(params: Mapping[str, Any], state: np.ndarray) -> tuple[np.nd
 
 def bar_system(params: Mapping[str, Any]) -> OdeSystem:
     return OdeSystem(
-        rhs=bar_rhs, parameters=kernel_parameters(params), state_names=STATE_NAMES,
+        rhs=bar_rhs,
+        parameters=kernel_parameters(params),
+        state_names=STATE_NAMES,
         events=Events(
-            bar_events, directions=(-1,) * 6, terminal=(False, False, False, True, True, True),
-            reset=bar_reset, resets=(True, True, True, False, False, False),
+            bar_events,
+            directions=(-1,) * 6,
+            terminal=(False, False, False, True, True, True),
+            reset=bar_reset,
+            resets=(True, True, True, False, False, False),
             # √(L/g) ≥ 0.03 s over the parameter ranges: 0.005 s steps put several checks in every phase.
             max_step_s=0.005,
         ),
@@ -307,27 +327,38 @@ def stop_message(params: Mapping[str, Any], event: EventRecord) -> str:
     if event.index == LIFT_OFF:
         return f"The lower end leaves the floor (N = 0) {where}: free flight is not modelled, so the run stops here."
     if event.index == LANDS:
-        return (f"The bar lands flat {where}: the landing impact is not modelled here (see the sliding ladder, " "6.2); the run stops.")
+        return (
+            f"The bar lands flat {where}: the landing impact is not modelled here (see the sliding ladder, "
+            "6.2); the run stops."
+        )
     if event.index != JAM_STOP:
         return ""
     forces = contact_forces(params, state)[0]
     factor, numerator = forces[C_PAINLEVE_FACTOR], forces[C_NORMAL_NUMERATOR]
     direction = "away from" if state[SLIP] * math.cos(state[THETA]) > 0.0 else "towards"
     if abs(factor) < 1e-6:
-        why = "D fell to 0 while sliding: the normal force needed grows without bound (a tangential impact would follow)"
+        why = (
+            "D fell to 0 while sliding: the normal force needed grows without bound (a tangential impact would follow)"
+        )
     elif numerator > 0.0:
         why = f"sliding would need N = m(g − (L/2)θ̇² sin θ)/D < 0 with D = {factor:.3f}: no contact force N ≥ 0 fits"
     else:
-        why = (f"with D = {factor:.3f} and a negative numerator both sliding with N > 0 and lifting off fit: the " "motion is not unique")
+        why = (
+            f"with D = {factor:.3f} and a negative numerator both sliding with N > 0 and lifting off fit: the "
+            "motion is not unique"
+        )
     return (
         f"No consistent contact force: Painlevé's paradox at θ = {theta_deg:.2f}°, μ = {params['mu']:.2f} "
-        f"(t = {event.t_s:.4f} s, B sliding {direction} the side the bar leans to): {why}. The run stops here, " "not integrated further."
+        f"(t = {event.t_s:.4f} s, B sliding {direction} the side the bar leans to): {why}. The run stops here, "
+        "not integrated further."
     )
 
 
 def run_events(params: Mapping[str, Any], *, t_end_s: float, rtol: float = 1e-10) -> tuple[EventRecord, ...]:
     """Every event in [0, t_end_s], located by Dormand–Prince (rtol as given)."""
-    result = simulate(bar_system(params), DormandPrince(rtol=rtol), initial_state(params), t_end_s=t_end_s, frame_rate_hz=10.0)
+    result = simulate(
+        bar_system(params), DormandPrince(rtol=rtol), initial_state(params), t_end_s=t_end_s, frame_rate_hz=10.0
+    )
     return result.events
 
 
@@ -336,11 +367,18 @@ class SlidingBar(IntegratedModel):
     methods = ("dopri5",)
     default_method = "dopri5"
     #: Phases change at located events, so the tolerance pilot's two runs meet the same changes.
-    accuracy_target = AccuracyTarget(1e-6, "", "contact position, angle and their rates: largest error relative to the largest of them")
+    accuracy_target = AccuracyTarget(
+        1e-6, "", "contact position, angle and their rates: largest error relative to the largest of them"
+    )
     accuracy_components = (0, 1, 2, 3)
     series_units = {
-        "angle_rad": "rad", "contact_speed_m_s": "m/s", "normal_force_N": "N", "friction_force_N": "N",
-        "friction_limit_N": "N", "phase": "", "painleve_factor": "",
+        "angle_rad": "rad",
+        "contact_speed_m_s": "m/s",
+        "normal_force_N": "N",
+        "friction_force_N": "N",
+        "friction_limit_N": "N",
+        "phase": "",
+        "painleve_factor": "",
     }
     invariant_units = {"energy_budget_J": "J"}
 
@@ -371,8 +409,15 @@ class SlidingBar(IntegratedModel):
     def invariant_scales(self, params, state):
         return {"energy_budget_J": max(float(energy_budget(params, state).total_J[0]), 1e-300)}
 
-    series_labels = {"angle_rad": "θ", "contact_speed_m_s": "u (speed of B)", "normal_force_N": "N", "friction_force_N": "F",
-                     "friction_limit_N": "μN", "painleve_factor": "D (Painlevé)", "energy_budget_J": "energy + friction work"}
+    series_labels = {
+        "angle_rad": "θ",
+        "contact_speed_m_s": "u (speed of B)",
+        "normal_force_N": "N",
+        "friction_force_N": "F",
+        "friction_limit_N": "μN",
+        "painleve_factor": "D (Painlevé)",
+        "energy_budget_J": "energy + friction work",
+    }
 
     def energy_parts(self, params, states, *, t_s=None):
         return energy_budget(params, states).parts()

@@ -56,14 +56,18 @@ STICK, SLIP_MODE = 0, 1
 MODE_WORDS = {STICK: "stick", SLIP_MODE: "slip"}
 #: Event indices.
 SLIP_STOPS, STICK_BREAKS = range(2)
-EVENT_WORDS = {SLIP_STOPS: "relative velocity reaches zero", STICK_BREAKS: "friction reaches μ_s N: the block breaks loose"}
+EVENT_WORDS = {
+    SLIP_STOPS: "relative velocity reaches zero",
+    STICK_BREAKS: "friction reaches μ_s N: the block breaks loose",
+}
 
 
 def _check(values: Mapping[str, Any]) -> None:
     if values["mu_kinetic"] > values["mu_static"]:
         raise ParameterError(
             "mu_kinetic",
-            f"the kinetic coefficient ({values['mu_kinetic']:g}) may not exceed the static one " f"({values['mu_static']:g})",
+            f"the kinetic coefficient ({values['mu_kinetic']:g}) may not exceed the static one "
+            f"({values['mu_static']:g})",
         )
 
 
@@ -71,9 +75,22 @@ PARAMETERS = ParameterSet(
     (
         Parameter("mass_kg", "kg", 1.0, 0.1, 20.0, "Mass of the block", "m", step=0.1),
         Parameter("stiffness_N_m", "N/m", 20.0, 1.0, 500.0, "Stiffness of the spring holding the block", "k", step=1.0),
-        Parameter("belt_speed_m_s", "m/s", 0.5, -2.0, 2.0, "Speed of the belt (+x away from the anchor)", "v_b", step=0.01),
-        Parameter("mu_static", "", 0.6, 0.0, 1.5, "Static friction coefficient (stick holds while |F| ≤ μ_s N)", "μ_s", step=0.01),
-        Parameter("mu_kinetic", "", 0.4, 0.0, 1.5, "Kinetic friction coefficient (slip: |F| = μ_k N)", "μ_k", step=0.01),
+        Parameter(
+            "belt_speed_m_s", "m/s", 0.5, -2.0, 2.0, "Speed of the belt (+x away from the anchor)", "v_b", step=0.01
+        ),
+        Parameter(
+            "mu_static",
+            "",
+            0.6,
+            0.0,
+            1.5,
+            "Static friction coefficient (stick holds while |F| ≤ μ_s N)",
+            "μ_s",
+            step=0.01,
+        ),
+        Parameter(
+            "mu_kinetic", "", 0.4, 0.0, 1.5, "Kinetic friction coefficient (slip: |F| = μ_k N)", "μ_k", step=0.01
+        ),
         Parameter("g_m_s2", "m/s²", 9.807, 0.1, 100.0, "Gravitational acceleration (N = m g)", "g", step=0.001),
         Parameter("x0_m", "m", 0.0, -1.0, 1.0, "Initial position (spring unstretched at 0)", "x₀", step=0.01),
         Parameter("v0_m_s", "m/s", 0.0, -2.0, 2.0, "Initial velocity of the block", "v₀", step=0.01),
@@ -159,9 +176,15 @@ def initial_state(params: Mapping[str, Any]) -> np.ndarray:
 
 def belt_system(params: Mapping[str, Any]) -> OdeSystem:
     return OdeSystem(
-        rhs=belt_rhs, parameters=kernel_parameters(params), state_names=STATE_NAMES,
+        rhs=belt_rhs,
+        parameters=kernel_parameters(params),
+        state_names=STATE_NAMES,
         events=Events(
-            belt_events, directions=(-1, -1), terminal=(False, False), reset=belt_reset, resets=(True, True),
+            belt_events,
+            directions=(-1, -1),
+            terminal=(False, False),
+            reset=belt_reset,
+            resets=(True, True),
             # A quarter of the fastest slip period (2π/ω ≥ 0.089 s over the parameter ranges) bounds the step,
             # so a slip phase that starts and ends inside one step is still seen at the step's middle.
             max_step_s=0.02,
@@ -196,8 +219,10 @@ def energy_budget(params: Mapping[str, Any], states: np.ndarray) -> EnergyBudget
     """Kinetic, spring, dissipated and belt work along ``states`` (N, 6)."""
     states = np.atleast_2d(states)
     return EnergyBudget(
-        0.5 * params["mass_kg"] * states[:, V] ** 2, 0.5 * params["stiffness_N_m"] * states[:, X] ** 2,
-        states[:, DISSIPATED].copy(), states[:, BELT_WORK].copy(),
+        0.5 * params["mass_kg"] * states[:, V] ** 2,
+        0.5 * params["stiffness_N_m"] * states[:, X] ** 2,
+        states[:, DISSIPATED].copy(),
+        states[:, BELT_WORK].copy(),
     )
 
 
@@ -211,9 +236,17 @@ class Transition:
     state: np.ndarray
 
 
-def transitions(params: Mapping[str, Any], *, t_end_s: float, rtol: float = 1e-10, frame_rate_hz: float = 10.0) -> tuple[Transition, ...]:
+def transitions(
+    params: Mapping[str, Any], *, t_end_s: float, rtol: float = 1e-10, frame_rate_hz: float = 10.0
+) -> tuple[Transition, ...]:
     """Every stick/slip transition in [0, t_end_s], located by Dormand–Prince (rtol as given)."""
-    result = simulate(belt_system(params), DormandPrince(rtol=rtol), initial_state(params), t_end_s=t_end_s, frame_rate_hz=frame_rate_hz)
+    result = simulate(
+        belt_system(params),
+        DormandPrince(rtol=rtol),
+        initial_state(params),
+        t_end_s=t_end_s,
+        frame_rate_hz=frame_rate_hz,
+    )
     return tuple(Transition(e.t_s, e.index, EVENT_WORDS[e.index], e.state) for e in result.events)
 
 
@@ -252,8 +285,10 @@ def limit_cycle(params: Mapping[str, Any]) -> LimitCycle | None:
     x_break = direction * mu_s * normal / k
     x_stick = direction * (2.0 * mu_k - mu_s) * normal / k
     return LimitCycle(
-        stick_s=abs(x_break - x_stick) / abs(speed), slip_s=(math.pi + 2.0 * math.atan(abs(speed) / (omega * d))) / omega,
-        stick_from_m=x_stick, stick_to_m=x_break,
+        stick_s=abs(x_break - x_stick) / abs(speed),
+        slip_s=(math.pi + 2.0 * math.atan(abs(speed) / (omega * d))) / omega,
+        stick_from_m=x_stick,
+        stick_to_m=x_break,
     )
 
 
@@ -262,10 +297,17 @@ class StickSlipBelt(IntegratedModel):
     methods = ("dopri5",)
     default_method = "dopri5"
     #: Stick and slip change at located events, so the tolerance pilot's two runs meet the same mode changes.
-    accuracy_target = AccuracyTarget(1e-6, "", "block position and velocity: largest error relative to the larger of them")
+    accuracy_target = AccuracyTarget(
+        1e-6, "", "block position and velocity: largest error relative to the larger of them"
+    )
     accuracy_components = (X, V)
     series_units = {
-        "x_m": "m", "v_m_s": "m/s", "friction_force_N": "N", "friction_limit_N": "N", "mode": "", "dissipated_J": "J",
+        "x_m": "m",
+        "v_m_s": "m/s",
+        "friction_force_N": "N",
+        "friction_limit_N": "N",
+        "mode": "",
+        "dissipated_J": "J",
     }
     invariant_units = {"energy_budget_J": "J"}
 
@@ -292,14 +334,24 @@ class StickSlipBelt(IntegratedModel):
     def invariants(self, params, states):
         return {"energy_budget_J": energy_budget(params, states).total_J}
 
-    series_labels = {"x_m": "x", "v_m_s": "ẋ", "friction_force_N": "F", "friction_limit_N": "μN", "dissipated_J": "dissipated by friction",
-                     "energy_budget_J": "energy + dissipated − belt work"}
+    series_labels = {
+        "x_m": "x",
+        "v_m_s": "ẋ",
+        "friction_force_N": "F",
+        "friction_limit_N": "μN",
+        "dissipated_J": "dissipated by friction",
+        "energy_budget_J": "energy + dissipated − belt work",
+    }
 
     def energy_parts(self, params, states, *, t_s=None):
         """The block translates only (½ m ẋ²); the spring's ½ k x²; the belt's work through friction is the drive's."""
         budget = energy_budget(params, states)
-        return EnergyParts(budget.spring_J, translational_kinetic_J=budget.kinetic_J, rotational_kinetic_J=np.zeros_like(budget.kinetic_J),
-                           drive_work_J=budget.belt_work_J)
+        return EnergyParts(
+            budget.spring_J,
+            translational_kinetic_J=budget.kinetic_J,
+            rotational_kinetic_J=np.zeros_like(budget.kinetic_J),
+            drive_work_J=budget.belt_work_J,
+        )
 
     def invariant_scales(self, params, state):
         # The energy stored in the spring at the static limit, or the initial energy if larger.

@@ -39,19 +39,56 @@ SYSTEM = SystemDescription(
     title="Heavy symmetric top",
     chapter=9,
     coordinates=(phi, theta, psi),
-    parameters=ParameterSet((
-        parameter("mass_kg", "kg", 1.0, low=0.01, high=100.0, label="m", description="Mass of the top"),
-        parameter("cg_distance_m", "m", 0.05, low=0.001, high=2.0, label="l", description="Pivot to centre of mass, along the symmetry axis"),
-        parameter("I_transverse_pivot", "kg·m²", 0.0125, low=1e-5, high=100.0, label="I_t", description="Moment of inertia about a transverse axis through the pivot"),
-        parameter("I_axial", "kg·m²", 0.01, low=1e-5, high=100.0, label="I_a", description="Moment of inertia about the symmetry axis"),
-        parameter("g_m_s2", "m/s²", 9.807, low=0.0, high=100.0, label="g", description="Gravitational acceleration"),
-    )),
+    parameters=ParameterSet(
+        (
+            parameter("mass_kg", "kg", 1.0, low=0.01, high=100.0, label="m", description="Mass of the top"),
+            parameter(
+                "cg_distance_m",
+                "m",
+                0.05,
+                low=0.001,
+                high=2.0,
+                label="l",
+                description="Pivot to centre of mass, along the symmetry axis",
+            ),
+            parameter(
+                "I_transverse_pivot",
+                "kg·m²",
+                0.0125,
+                low=1e-5,
+                high=100.0,
+                label="I_t",
+                description="Moment of inertia about a transverse axis through the pivot",
+            ),
+            parameter(
+                "I_axial",
+                "kg·m²",
+                0.01,
+                low=1e-5,
+                high=100.0,
+                label="I_a",
+                description="Moment of inertia about the symmetry axis",
+            ),
+            parameter(
+                "g_m_s2", "m/s²", 9.807, low=0.0, high=100.0, label="g", description="Gravitational acceleration"
+            ),
+        )
+    ),
     symbols={"mass_kg": m, "cg_distance_m": l, "I_transverse_pivot": I_t, "I_axial": I_a, "g_m_s2": g},
     bodies=(RigidBody("top", m, centre, rotations, sympy.diag(transverse_about_centre, transverse_about_centre, I_a)),),
     gravity=vector(0, 0, -g),
     reactions=(Reaction("pivot", on="top", point=pivot, forces=(vector(1, 0, 0), vector(0, 1, 0), vector(0, 0, 1))),),
     ignorable=("phi", "psi"),
-    singularities=(Singularity(sympy.sin(theta.symbol), "sin θ", "the Euler angles are singular where sin θ = 0 (θ = 0 or 180°): φ and ψ turn about one axis there " "and cannot be told apart; choose θ strictly between 0 and 180°"),),
+    singularities=(
+        Singularity(
+            sympy.sin(theta.symbol),
+            "sin θ",
+            "the Euler angles are singular where sin θ = 0 (θ = 0 or 180°): φ and ψ turn about one axis there "
+            "and cannot be told apart; choose θ strictly between 0 and 180°",
+        ),
+    ),
     state_ranges={"theta": (0.2, 2.9)},
-    assumptions=("A rigid axisymmetric body on a frictionless fixed pivot. The Euler angles are singular at θ = 0 " "and 180°."),
+    assumptions=(
+        "A rigid axisymmetric body on a frictionless fixed pivot. The Euler angles are singular at θ = 0 and 180°."
+    ),
 )

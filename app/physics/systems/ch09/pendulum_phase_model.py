@@ -61,7 +61,9 @@ class PendulumPhaseMotion(DerivedModel):
     description = SYSTEM
     parameters = derived_parameters(
         SYSTEM,
-        Parameter("theta_0_deg", "deg", 60.0, -180.0, 180.0, "Initial angle of the rod from the downward vertical", "θ₀"),
+        Parameter(
+            "theta_0_deg", "deg", 60.0, -180.0, 180.0, "Initial angle of the rod from the downward vertical", "θ₀"
+        ),
         Parameter("theta_rate_0_deg_s", "deg/s", 0.0, -1080.0, 1080.0, "Initial rate of the angle", "θ̇₀"),
         default_formulation="hamilton",
     )
@@ -73,12 +75,18 @@ class PendulumPhaseMotion(DerivedModel):
 
     def series(self, params: Mapping[str, Any], t_s: np.ndarray, states: np.ndarray) -> dict[str, np.ndarray]:
         momentum = conjugate_momentum_kg_m2_s(params, states[:, 1])
-        return {"theta_rad": states[:, 0], "p_theta_kg_m2_s": momentum, "hamiltonian_J": hamiltonian_J(params, states[:, 0], momentum)}
+        return {
+            "theta_rad": states[:, 0],
+            "p_theta_kg_m2_s": momentum,
+            "hamiltonian_J": hamiltonian_J(params, states[:, 0], momentum),
+        }
 
     def invariants(self, params: Mapping[str, Any], states: np.ndarray) -> dict[str, np.ndarray]:
         return {"hamiltonian": hamiltonian_J(params, states[:, 0], conjugate_momentum_kg_m2_s(params, states[:, 1]))}
 
     def invariant_scales(self, params: Mapping[str, Any], state: np.ndarray) -> dict[str, float]:
         """H's scale: the swing from hanging to upright, 2 m g l, or the kinetic energy if larger (J)."""
-        kinetic = float(conjugate_momentum_kg_m2_s(params, state[1]) ** 2) / (2.0 * float(params["mass_kg"]) * float(params["length_m"]) ** 2)
+        kinetic = float(conjugate_momentum_kg_m2_s(params, state[1]) ** 2) / (
+            2.0 * float(params["mass_kg"]) * float(params["length_m"]) ** 2
+        )
         return {"hamiltonian": max(2.0 * separatrix_energy_J(params), kinetic, 1e-12)}

@@ -82,7 +82,14 @@ def frequency_equation(beta_L: np.ndarray | float) -> np.ndarray | float:
 @cache
 def _exact_beta_L(modes: int) -> tuple[float, ...]:
     return tuple(
-        brentq(frequency_equation, (n - 1) * math.pi, n * math.pi, xtol=1e-300, rtol=4.0 * float(np.finfo(float).eps), maxiter=200)
+        brentq(
+            frequency_equation,
+            (n - 1) * math.pi,
+            n * math.pi,
+            xtol=1e-300,
+            rtol=4.0 * float(np.finfo(float).eps),
+            maxiter=200,
+        )
         for n in range(1, modes + 1)
     )
 
@@ -354,16 +361,23 @@ class RitzCantilever:
         conditioning = f"cond(M) = {modes.condition_mass:.1e}"
         if not modes.factorized:
             return (
-                f"The {self.basis.name} basis with {self.terms} terms failed: the Cholesky factor of K could not " "be formed "
+                f"The {self.basis.name} basis with {self.terms} terms failed: the Cholesky factor of K could not "
+                "be formed "
                 f"({conditioning}, cond(K) = {modes.condition_stiffness:.1e}). No Ritz frequencies."
             )
         words = []
         if modes.nonphysical:
-            words.append(f"{modes.nonphysical} computed ω² came out negative (imaginary frequencies), which exact " "arithmetic forbids.")
+            words.append(
+                f"{modes.nonphysical} computed ω² came out negative (imaginary frequencies), which exact "
+                "arithmetic forbids."
+            )
         below = np.flatnonzero(self.below_exact) + 1
         if below.size:
             listed = ", ".join(str(n) for n in below)
-            words.append(f"Mode{'s' if below.size > 1 else ''} {listed} fell below the exact frequency: the Ritz upper " "bound is broken.")
+            words.append(
+                f"Mode{'s' if below.size > 1 else ''} {listed} fell below the exact frequency: the Ritz upper "
+                "bound is broken."
+            )
         if words or self.rounding_estimate > TRUSTED_ROUNDING:
             digits = max(0, int(math.floor(-math.log10(self.rounding_estimate)))) if self.rounding_estimate < 1.0 else 0
             words.append(
@@ -392,7 +406,14 @@ def convergence_table(beam: Cantilever, *, basis: Basis, max_terms: int = MAX_TE
     for terms in range(1, max_terms + 1):
         ritz = RitzCantilever.build(beam, basis=basis, terms=terms)
         rows.append(
-            ConvergenceRow(terms, ritz.ritz_omega_rad_s, ritz.exact_omega_rad_s, ritz.relative_error, ritz.modes.condition_mass, ritz.modes.factorized)
+            ConvergenceRow(
+                terms,
+                ritz.ritz_omega_rad_s,
+                ritz.exact_omega_rad_s,
+                ritz.relative_error,
+                ritz.modes.condition_mass,
+                ritz.modes.factorized,
+            )
         )
     return tuple(rows)
 
@@ -402,19 +423,65 @@ def convergence_table(beam: Cantilever, *, basis: Basis, max_terms: int = MAX_TE
 
 def _check(params: Mapping[str, Any]) -> None:
     if params["mode"] > params["terms"]:
-        raise ParameterError("mode", f"mode {params['mode']} needs at least {params['mode']} Ritz terms (terms = {params['terms']})")
+        raise ParameterError(
+            "mode", f"mode {params['mode']} needs at least {params['mode']} Ritz terms (terms = {params['terms']})"
+        )
 
 
 PARAMETERS = ParameterSet(
     (
-        Parameter("length_m", "m", 1.0, 0.05, 50.0, "Length L of the cantilever, clamp to free end", "length L", scale="log"),
-        Parameter("flexural_rigidity_N_m2", "N·m²", 50.0, 1e-3, 1e9, "Flexural rigidity EI of the cross-section", "flexural rigidity EI", scale="log"),
-        Parameter("mass_per_length_kg_m", "kg/m", 1.0, 1e-3, 1e4, "Mass per unit length ρA", "mass per length ρA", scale="log"),
-        Parameter("terms", "", 6, 1, MAX_TERMS, "Number N of admissible functions in the Ritz series", "Ritz terms N", kind="int", step=1),
-        Parameter("basis", "", "orthogonal", kind="choice", choices=BASES, label="basis",
-                  description=("Admissible functions: 'orthogonal' (second derivatives are shifted Legendre " "polynomials) or 'monomial' (ξ², ξ³, …)")),
-        Parameter("mode", "", 1, 1, MAX_TERMS, "Which Ritz mode n to animate (at most N)", "mode n", kind="int", step=1),
-        Parameter("amplitude_m", "m", 0.2, 0.0, 10.0, "Tip amplitude of the animated mode (linear theory: frequencies do not depend on it)", "tip amplitude", step=0.01),
+        Parameter(
+            "length_m", "m", 1.0, 0.05, 50.0, "Length L of the cantilever, clamp to free end", "length L", scale="log"
+        ),
+        Parameter(
+            "flexural_rigidity_N_m2",
+            "N·m²",
+            50.0,
+            1e-3,
+            1e9,
+            "Flexural rigidity EI of the cross-section",
+            "flexural rigidity EI",
+            scale="log",
+        ),
+        Parameter(
+            "mass_per_length_kg_m", "kg/m", 1.0, 1e-3, 1e4, "Mass per unit length ρA", "mass per length ρA", scale="log"
+        ),
+        Parameter(
+            "terms",
+            "",
+            6,
+            1,
+            MAX_TERMS,
+            "Number N of admissible functions in the Ritz series",
+            "Ritz terms N",
+            kind="int",
+            step=1,
+        ),
+        Parameter(
+            "basis",
+            "",
+            "orthogonal",
+            kind="choice",
+            choices=BASES,
+            label="basis",
+            description=(
+                "Admissible functions: 'orthogonal' (second derivatives are shifted Legendre "
+                "polynomials) or 'monomial' (ξ², ξ³, …)"
+            ),
+        ),
+        Parameter(
+            "mode", "", 1, 1, MAX_TERMS, "Which Ritz mode n to animate (at most N)", "mode n", kind="int", step=1
+        ),
+        Parameter(
+            "amplitude_m",
+            "m",
+            0.2,
+            0.0,
+            10.0,
+            "Tip amplitude of the animated mode (linear theory: frequencies do not depend on it)",
+            "tip amplitude",
+            step=0.01,
+        ),
     ),
     check=_check,
 )
@@ -424,9 +491,17 @@ class RitzCantileverModel(ClosedFormModel):
     """Free vibration of the cantilever in one Ritz mode, beside the exact mode of the same index."""
 
     parameters = PARAMETERS
-    series_units = {"tip_deflection_m": "m", "exact_tip_deflection_m": "m", "root_bending_moment_N_m": "N·m", "exact_root_bending_moment_N_m": "N·m"}
+    series_units = {
+        "tip_deflection_m": "m",
+        "exact_tip_deflection_m": "m",
+        "root_bending_moment_N_m": "N·m",
+        "exact_root_bending_moment_N_m": "N·m",
+    }
     invariant_units = {"energy_J": "J"}
-    description = ("Ritz series (Hamilton's principle on N admissible functions): one mode, w = a φ_n(x) cos ω_n " "t, beside the exact mode")
+    description = (
+        "Ritz series (Hamilton's principle on N admissible functions): one mode, w = a φ_n(x) cos ω_n "
+        "t, beside the exact mode"
+    )
 
     def evaluate(self, params: Mapping[str, Any], t_s: np.ndarray) -> ClosedFormSolution:
         ritz = RitzCantilever.from_params(params)
@@ -444,15 +519,24 @@ class RitzCantileverModel(ClosedFormModel):
             series = {
                 "tip_deflection_m": amplitude * phase,
                 "exact_tip_deflection_m": exact_tip,
-                "root_bending_moment_N_m": beam.flexural_rigidity_N_m2 * amplitude * ritz.ritz_root_curvature(mode) * phase,
+                "root_bending_moment_N_m": beam.flexural_rigidity_N_m2
+                * amplitude
+                * ritz.ritz_root_curvature(mode)
+                * phase,
                 "exact_root_bending_moment_N_m": exact_moment,
             }
             return ClosedFormSolution(series, {"energy_J": ritz.modal_energy_J(mode, amplitude, t)}, warning=warning)
         undefined = np.full(t.shape, np.nan)
-        series = {"tip_deflection_m": undefined, "exact_tip_deflection_m": exact_tip, "root_bending_moment_N_m": undefined,
-                  "exact_root_bending_moment_N_m": exact_moment}
+        series = {
+            "tip_deflection_m": undefined,
+            "exact_tip_deflection_m": exact_tip,
+            "root_bending_moment_N_m": undefined,
+            "exact_root_bending_moment_N_m": exact_moment,
+        }
         message = f"Ritz mode {mode} has no real frequency. {warning}"
-        return ClosedFormSolution(series, {"energy_J": undefined}, [Event(0.0, "ritz-failed", message)], warning=message)
+        return ClosedFormSolution(
+            series, {"energy_J": undefined}, [Event(0.0, "ritz-failed", message)], warning=message
+        )
 
     def invariant_scales(self, params: Mapping[str, Any], invariants: Mapping[str, np.ndarray]) -> dict[str, float]:
         values = invariants["energy_J"]

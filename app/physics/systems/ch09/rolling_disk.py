@@ -47,19 +47,41 @@ SYSTEM = SystemDescription(
     title="Disk rolling without slipping",
     chapter=9,
     coordinates=(x, y, psi, theta, phi),
-    parameters=ParameterSet((
-        parameter("mass_kg", "kg", 1.0, low=0.01, high=100.0, label="m", description="Mass of the disk"),
-        parameter("radius_m", "m", 0.1, low=0.005, high=5.0, label="r", description="Radius of the disk"),
-        parameter("g_m_s2", "m/s²", 9.81, low=0.0, high=100.0, label="g", description="Gravitational acceleration"),
-    )),
+    parameters=ParameterSet(
+        (
+            parameter("mass_kg", "kg", 1.0, low=0.01, high=100.0, label="m", description="Mass of the disk"),
+            parameter("radius_m", "m", 0.1, low=0.005, high=5.0, label="r", description="Radius of the disk"),
+            parameter("g_m_s2", "m/s²", 9.81, low=0.0, high=100.0, label="g", description="Gravitational acceleration"),
+        )
+    ),
     symbols={"mass_kg": m, "radius_m": r, "g_m_s2": g},
-    bodies=(RigidBody("disk", m, centre, (("z", ps), ("x", th), ("y", phi.symbol)), sympy.diag(m * r**2 / 4, m * r**2 / 2, m * r**2 / 4)),),
+    bodies=(
+        RigidBody(
+            "disk",
+            m,
+            centre,
+            (("z", ps), ("x", th), ("y", phi.symbol)),
+            sympy.diag(m * r**2 / 4, m * r**2 / 2, m * r**2 / 4),
+        ),
+    ),
     gravity=vector(0, 0, -g),
     speeds=(heading_rate, lean_rate, spin_rate),
     coordinate_rates=rates,
     speeds_from_rates=(psi.rate, theta.rate, phi.rate),
-    reactions=(Reaction("floor", on="disk", point=contact, forces=(vector(1, 0, 0), vector(0, 1, 0), vector(0, 0, 1))),),
-    singularities=(Singularity(sympy.cos(th), "cos θ", "the angles are singular where cos θ = 0 (the disk flat, lean ±90°): heading and spin turn about one " "axis there; choose a lean strictly between −90° and 90°"),),
+    reactions=(
+        Reaction("floor", on="disk", point=contact, forces=(vector(1, 0, 0), vector(0, 1, 0), vector(0, 0, 1))),
+    ),
+    singularities=(
+        Singularity(
+            sympy.cos(th),
+            "cos θ",
+            "the angles are singular where cos θ = 0 (the disk flat, lean ±90°): heading and spin turn about one "
+            "axis there; choose a lean strictly between −90° and 90°",
+        ),
+    ),
     state_ranges={"theta": (-1.0, 1.0)},
-    assumptions=("A uniform thin disk (a knife edge) rolling without slipping or pivoting friction on a rigid " "floor; it never loses contact."),
+    assumptions=(
+        "A uniform thin disk (a knife edge) rolling without slipping or pivoting friction on a rigid "
+        "floor; it never loses contact."
+    ),
 )

@@ -80,13 +80,18 @@ def contact_limit(params: Mapping[str, Any], t_s: np.ndarray, states: np.ndarray
     t = float(t_s[k])
     if fallen[k]:
         return ModelLimit(max(k, 1), FALLEN, fallen_message(t, FALLEN_LEAN_DEG))
-    return ModelLimit(max(k, 1), LIFT_OFF, lift_off_message(t, float(normal[k]), float(np.degrees(states[k, LEAN])), float(states[k, LEAN_RATE])))
+    return ModelLimit(
+        max(k, 1),
+        LIFT_OFF,
+        lift_off_message(t, float(normal[k]), float(np.degrees(states[k, LEAN])), float(states[k, LEAN_RATE])),
+    )
 
 
 def fallen_message(t_s: float, lean_deg: float) -> str:
     """What a student reads when the disk has fallen."""
     return (
-        f"Stopped at t = {t_s:.2f} s: the disk has fallen (lean past {lean_deg:.0f}°). Lying on the floor it is " "no longer "
+        f"Stopped at t = {t_s:.2f} s: the disk has fallen (lean past {lean_deg:.0f}°). Lying on the floor it is "
+        "no longer "
         "a disk rolling on its rim, so the rolling model stops here."
     )
 
@@ -95,7 +100,9 @@ def lift_off_message(t_s: float, normal_N: float, lean_deg: float, lean_rate_rad
     """What a student reads when the floor would have to pull the disk down."""
     when = "At the start" if t_s == 0.0 else f"Stopped at t = {t_s:.2f} s"
     return (
-        f"{when}: the floor would have to pull the disk down (normal force N = {normal_N:.3g} N, at lean " f"{lean_deg:.1f}° "
-        f"and lean rate {lean_rate_rad_s:.3g} rad/s). A floor can only push: to stay on its rim the centre would " "have to "
+        f"{when}: the floor would have to pull the disk down (normal force N = {normal_N:.3g} N, at lean "
+        f"{lean_deg:.1f}° "
+        f"and lean rate {lean_rate_rad_s:.3g} rad/s). A floor can only push: to stay on its rim the centre would "
+        "have to "
         "drop faster than gravity can make it, so the disk leaves the floor, which the rolling model cannot describe."
     )

@@ -37,8 +37,14 @@ JACOBIAN_STEP = 1e-5
 def disk_pose(radius_m: float, state: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(centre (3,) m, R_NB (3, 3)) of the disk at ``state`` (10,): R_NB = Rz(ψ) Rx(θ) Ry(φ), body y the disk's axis."""
     x, y, heading, lean, spin = (float(v) for v in state[:5])
-    rotation = elementary_rotation_matrix(2, heading) @ elementary_rotation_matrix(0, lean) @ elementary_rotation_matrix(1, spin)
-    centre = np.array([x, y, 0.0]) + radius_m * np.array([math.sin(heading) * math.sin(lean), -math.cos(heading) * math.sin(lean), math.cos(lean)])
+    rotation = (
+        elementary_rotation_matrix(2, heading)
+        @ elementary_rotation_matrix(0, lean)
+        @ elementary_rotation_matrix(1, spin)
+    )
+    centre = np.array([x, y, 0.0]) + radius_m * np.array(
+        [math.sin(heading) * math.sin(lean), -math.cos(heading) * math.sin(lean), math.cos(lean)]
+    )
     return centre, rotation
 
 
@@ -55,12 +61,26 @@ class RollingDiskMotion(DerivedModel):
     parameters = derived_parameters(
         SYSTEM,
         Parameter("lean_0_deg", "deg", 10.0, -60.0, 60.0, "Initial lean of the disk from the vertical", "θ₀"),
-        Parameter("spin_rate_0_rad_s", "rad/s", 12.0, -60.0, 60.0, "Initial spin rate φ̇ about the disk's axis (rolling speed r φ̇)", "φ̇₀"),
+        Parameter(
+            "spin_rate_0_rad_s",
+            "rad/s",
+            12.0,
+            -60.0,
+            60.0,
+            "Initial spin rate φ̇ about the disk's axis (rolling speed r φ̇)",
+            "φ̇₀",
+        ),
         Parameter("heading_rate_0_rad_s", "rad/s", 0.0, -20.0, 20.0, "Initial heading rate ψ̇ about the vertical", "ψ̇₀"),
         default_formulation="kane",
     )
     series_units = {
-        "x_m": "m", "y_m": "m", "heading_rad": "rad", "lean_rad": "rad", "spin_rate_rad_s": "rad/s", "energy_J": "J", "normal_force_N": "N",
+        "x_m": "m",
+        "y_m": "m",
+        "heading_rad": "rad",
+        "lean_rad": "rad",
+        "spin_rate_rad_s": "rad/s",
+        "energy_J": "J",
+        "normal_force_N": "N",
     }
     invariant_units = {"energy": "J"}
 
@@ -77,8 +97,12 @@ class RollingDiskMotion(DerivedModel):
 
     def series(self, params: Mapping[str, Any], t_s: np.ndarray, states: np.ndarray) -> dict[str, np.ndarray]:
         return {
-            "x_m": states[:, 0], "y_m": states[:, 1], "heading_rad": states[:, 2], "lean_rad": states[:, 3],
-            "spin_rate_rad_s": states[:, SPIN_RATE], "energy_J": self.energy_J(params, t_s, states),
+            "x_m": states[:, 0],
+            "y_m": states[:, 1],
+            "heading_rad": states[:, 2],
+            "lean_rad": states[:, 3],
+            "spin_rate_rad_s": states[:, SPIN_RATE],
+            "energy_J": self.energy_J(params, t_s, states),
             "normal_force_N": normal_force_N(params, states),
         }
 

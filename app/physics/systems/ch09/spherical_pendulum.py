@@ -30,7 +30,17 @@ SYSTEM = SystemDescription(
     gravity=vector(0, 0, -g),
     reactions=(Reaction("rod", on="bob", point=bob, forces=(-bob / l,)),),
     ignorable=("phi",),
-    singularities=(Singularity(sympy.sin(th), "sin θ", "the angles are singular where sin θ = 0 (the rod vertical): the azimuth φ is undefined there; " "choose θ strictly between 0 and 180°"),),
+    singularities=(
+        Singularity(
+            sympy.sin(th),
+            "sin θ",
+            "the angles are singular where sin θ = 0 (the rod vertical): the azimuth φ is undefined there; "
+            "choose θ strictly between 0 and 180°",
+        ),
+    ),
     state_ranges={"theta": (0.2, 2.9)},
-    assumptions=("A point mass on a rigid massless rod, frictionless pivot. The angles are singular at θ = 0 " "(straight down), where φ is undefined."),
+    assumptions=(
+        "A point mass on a rigid massless rod, frictionless pivot. The angles are singular at θ = 0 "
+        "(straight down), where φ is undefined."
+    ),
 )

@@ -31,9 +31,7 @@ def azimuthal_momentum_kg_m2_s(params: Mapping[str, Any], states: np.ndarray) ->
     return m * l * l * np.sin(states[:, 0]) ** 2 * states[:, 3]
 
 
-def effective_potential_J(
-    params: Mapping[str, Any], beta_kg_m2_s: float, theta_rad: np.ndarray | float
-) -> np.ndarray:
+def effective_potential_J(params: Mapping[str, Any], beta_kg_m2_s: float, theta_rad: np.ndarray | float) -> np.ndarray:
     """V_eff(θ) = β²/(2 m l² sin²θ) − m g l cos θ (J) over ``theta_rad`` (any shape, 0 < θ < π)."""
     m, l, g = _m_l_g(params)
     theta = np.asarray(theta_rad, dtype=float)
@@ -92,20 +90,32 @@ class SphericalPendulumMotion(DerivedModel):
         SYSTEM,
         Parameter("theta_0_deg", "deg", 60.0, 1.0, 179.0, "Initial angle of the rod from the downward vertical", "θ₀"),
         Parameter("theta_rate_0_deg_s", "deg/s", 0.0, -720.0, 720.0, "Initial rate of θ", "θ̇₀"),
-        Parameter("phi_rate_0_deg_s", "deg/s", 120.0, -1080.0, 1080.0, "Initial rate of the azimuth φ about the vertical", "φ̇₀"),
+        Parameter(
+            "phi_rate_0_deg_s",
+            "deg/s",
+            120.0,
+            -1080.0,
+            1080.0,
+            "Initial rate of the azimuth φ about the vertical",
+            "φ̇₀",
+        ),
         default_formulation="routh",
     )
     series_units = {"theta_rad": "rad", "phi_rad": "rad", "beta_kg_m2_s": "kg·m²/s", "energy_J": "J"}
     invariant_units = {"energy": "J", "azimuthal_momentum": "kg·m²/s"}
 
     def initial_state(self, params: Mapping[str, Any]) -> np.ndarray:
-        theta0, theta_rate0, phi_rate0 = (float(params[n]) for n in ("theta_0_deg", "theta_rate_0_deg_s", "phi_rate_0_deg_s"))
+        theta0, theta_rate0, phi_rate0 = (
+            float(params[n]) for n in ("theta_0_deg", "theta_rate_0_deg_s", "phi_rate_0_deg_s")
+        )
         return np.radians([theta0, 0.0, theta_rate0, phi_rate0])
 
     def series(self, params: Mapping[str, Any], t_s: np.ndarray, states: np.ndarray) -> dict[str, np.ndarray]:
         return {
-            "theta_rad": states[:, 0], "phi_rad": states[:, 1],
-            "beta_kg_m2_s": azimuthal_momentum_kg_m2_s(params, states), "energy_J": energy_J(params, states),
+            "theta_rad": states[:, 0],
+            "phi_rad": states[:, 1],
+            "beta_kg_m2_s": azimuthal_momentum_kg_m2_s(params, states),
+            "energy_J": energy_J(params, states),
         }
 
     def invariants(self, params: Mapping[str, Any], states: np.ndarray) -> dict[str, np.ndarray]:
@@ -117,4 +127,7 @@ class SphericalPendulumMotion(DerivedModel):
         one = state[None, :]
         kinetic = float(energy_J(params, one)[0]) + m * g * l * math.cos(float(state[0]))
         beta = abs(float(azimuthal_momentum_kg_m2_s(params, one)[0]))
-        return {"energy": max(2.0 * m * g * l, kinetic, 1e-12), "azimuthal_momentum": max(beta, m * l * math.sqrt(g * l), 1e-12)}
+        return {
+            "energy": max(2.0 * m * g * l, kinetic, 1e-12),
+            "azimuthal_momentum": max(beta, m * l * math.sqrt(g * l), 1e-12),
+        }

@@ -46,15 +46,75 @@ ARCSEC_PER_TURN = 360.0 * 3600.0
 
 INPUTS = ParameterSet(
     (
-        Parameter("dynamical_ellipticity", "", 0.0032738, 1e-6, 0.1, "Dynamical ellipticity H = (C − A)/C of the Earth", "H", scale="log"),
-        Parameter("obliquity_deg", "deg", 23.439, 0.0, 89.0, "Obliquity ε: tilt of the spin axis from the ecliptic normal", "ε", step=0.1),
-        Parameter("earth_spin_rad_s", "rad/s", 7.292115e-5, 1e-7, 1e-2, "Earth's spin rate ω relative to the stars (one sidereal day)", "ω", scale="log"),
-        Parameter("sun_orbital_period_days", "d", 365.25636, 1.0, 1e5, "Sidereal year: period of the Earth's orbit about the Sun", "T_sun", scale="log"),
-        Parameter("moon_orbital_period_days", "d", 27.321662, 0.1, 1e4, "Sidereal month: period of the Moon's orbit about the Earth", "T_moon", scale="log"),
-        Parameter("moon_mass_ratio", "", 0.0123000371, 0.0, 1.0, "Moon's mass over the Earth's mass, μ", "μ", step=0.0001),
-        Parameter("earth_orbit_eccentricity", "", 0.0167, 0.0, 0.9, "Eccentricity of the Earth's orbit", "e_sun", step=0.0001),
-        Parameter("moon_orbit_eccentricity", "", 0.0549, 0.0, 0.9, "Eccentricity of the Moon's orbit", "e_moon", step=0.0001),
-        Parameter("moon_inclination_deg", "deg", 5.145, 0.0, 30.0, "Inclination of the Moon's orbit to the ecliptic", "i", step=0.01),
+        Parameter(
+            "dynamical_ellipticity",
+            "",
+            0.0032738,
+            1e-6,
+            0.1,
+            "Dynamical ellipticity H = (C − A)/C of the Earth",
+            "H",
+            scale="log",
+        ),
+        Parameter(
+            "obliquity_deg",
+            "deg",
+            23.439,
+            0.0,
+            89.0,
+            "Obliquity ε: tilt of the spin axis from the ecliptic normal",
+            "ε",
+            step=0.1,
+        ),
+        Parameter(
+            "earth_spin_rad_s",
+            "rad/s",
+            7.292115e-5,
+            1e-7,
+            1e-2,
+            "Earth's spin rate ω relative to the stars (one sidereal day)",
+            "ω",
+            scale="log",
+        ),
+        Parameter(
+            "sun_orbital_period_days",
+            "d",
+            365.25636,
+            1.0,
+            1e5,
+            "Sidereal year: period of the Earth's orbit about the Sun",
+            "T_sun",
+            scale="log",
+        ),
+        Parameter(
+            "moon_orbital_period_days",
+            "d",
+            27.321662,
+            0.1,
+            1e4,
+            "Sidereal month: period of the Moon's orbit about the Earth",
+            "T_moon",
+            scale="log",
+        ),
+        Parameter(
+            "moon_mass_ratio", "", 0.0123000371, 0.0, 1.0, "Moon's mass over the Earth's mass, μ", "μ", step=0.0001
+        ),
+        Parameter(
+            "earth_orbit_eccentricity", "", 0.0167, 0.0, 0.9, "Eccentricity of the Earth's orbit", "e_sun", step=0.0001
+        ),
+        Parameter(
+            "moon_orbit_eccentricity", "", 0.0549, 0.0, 0.9, "Eccentricity of the Moon's orbit", "e_moon", step=0.0001
+        ),
+        Parameter(
+            "moon_inclination_deg",
+            "deg",
+            5.145,
+            0.0,
+            30.0,
+            "Inclination of the Moon's orbit to the ecliptic",
+            "i",
+            step=0.01,
+        ),
     )
 )
 
@@ -91,7 +151,8 @@ def averaged_model_warning(inputs: Mapping[str, Any], result: EquinoxPrecession)
         return ""
     return (
         f"Outside the model: the precession rate is {ratio:.3g} times the spin rate. The gyroscopic, orbit-averaged "
-        f"model assumes precession far slower than spin (Ω/ω below {GYROSCOPIC_RATIO_LIMIT:g}), so these numbers " "are the "
+        f"model assumes precession far slower than spin (Ω/ω below {GYROSCOPIC_RATIO_LIMIT:g}), so these numbers "
+        "are the "
         "formula's, not the motion such a body would have."
     )
 
@@ -105,7 +166,9 @@ def orbit_factor(eccentricity: float, inclination_rad: float = 0.0) -> float:
     return (1.0 - eccentricity**2) ** -1.5 * (1.0 - 1.5 * math.sin(inclination_rad) ** 2)
 
 
-def precession_rate_rad_s(*, gm_over_a3: float, factor: float, ellipticity: float, obliquity_rad: float, spin_rad_s: float) -> float:
+def precession_rate_rad_s(
+    *, gm_over_a3: float, factor: float, ellipticity: float, obliquity_rad: float, spin_rad_s: float
+) -> float:
     """Ω = (3/2)(GM/a³)(H/ω) cos ε × factor (rad/s), the gyroscopic precession from one body."""
     return 1.5 * gm_over_a3 * factor * ellipticity * math.cos(obliquity_rad) / spin_rad_s
 
@@ -117,12 +180,18 @@ def equinox_precession(inputs: Mapping[str, Any]) -> EquinoxPrecession:
     n_sun = mean_motion_rad_s(inputs["sun_orbital_period_days"])
     n_moon = mean_motion_rad_s(inputs["moon_orbital_period_days"])
     sun = precession_rate_rad_s(
-        gm_over_a3=n_sun**2, factor=orbit_factor(inputs["earth_orbit_eccentricity"]), ellipticity=H, obliquity_rad=eps, spin_rad_s=omega
+        gm_over_a3=n_sun**2,
+        factor=orbit_factor(inputs["earth_orbit_eccentricity"]),
+        ellipticity=H,
+        obliquity_rad=eps,
+        spin_rad_s=omega,
     )
     moon = precession_rate_rad_s(
         gm_over_a3=n_moon**2 * mu / (1.0 + mu),
         factor=orbit_factor(inputs["moon_orbit_eccentricity"], math.radians(inputs["moon_inclination_deg"])),
-        ellipticity=H, obliquity_rad=eps, spin_rad_s=omega,
+        ellipticity=H,
+        obliquity_rad=eps,
+        spin_rad_s=omega,
     )
     return EquinoxPrecession(sun_rate_rad_s=sun, moon_rate_rad_s=moon)
 
@@ -154,20 +223,28 @@ def solve(inputs: Mapping[str, Any]) -> Solution:
         ),
         Step(
             "GM/a³ from Kepler's third law (no G, no masses needed)",
-            r"\frac{GM_\odot}{a_\odot^3} = n_\odot^2, \qquad \frac{GM_{☾}}{a_{☾}^3} = " r"n_{☾}^2\,\frac{\mu}{1+\mu}, \qquad n = \frac{2\pi}{T}",
+            r"\frac{GM_\odot}{a_\odot^3} = n_\odot^2, \qquad \frac{GM_{☾}}{a_{☾}^3} = "
+            r"n_{☾}^2\,\frac{\mu}{1+\mu}, \qquad n = \frac{2\pi}{T}",
             {"n_sun": n_sun, "n_moon": n_moon, "μ/(1+μ)": mu / (1.0 + mu)},
             {"n_sun": "rad/s", "n_moon": "rad/s", "μ/(1+μ)": ""},
         ),
         Step(
             "Gyroscopic precession: the moment turns the spin angular momentum Cω about the ecliptic normal",
-            r"\Omega = \frac{\langle M\rangle}{C\,\omega\sin\varepsilon} = " r"\frac{3}{2}\,\frac{GM}{a^3}\,\frac{H}{\omega}\cos\varepsilon\;\frac{P_2(\cos i)}{(1-e^2)^{3/2}}",
+            r"\Omega = \frac{\langle M\rangle}{C\,\omega\sin\varepsilon} = "
+            r"\frac{3}{2}\,\frac{GM}{a^3}\,\frac{H}{\omega}\cos\varepsilon\;\frac{P_2(\cos i)}{(1-e^2)^{3/2}}",
             {"Ω_sun": result.sun_rate_rad_s, "Ω_moon": result.moon_rate_rad_s, "ω": omega},
             {"Ω_sun": "rad/s", "Ω_moon": "rad/s", "ω": "rad/s"},
         ),
         Step(
             "Per year, and the time for the axis to sweep its whole cone",
-            r"\Omega_{\mathrm{yr}} = (\Omega_\odot + \Omega_{☾})\times 365.25\,\mathrm{d} \times " r"206265''/\mathrm{rad}, \qquad T = \frac{1296000''}{\Omega_{\mathrm{yr}}}",
-            {"Ω": outputs["rate_arcsec_per_year"], "T": outputs["period_years"], "Sun's share": outputs["sun_share"], "Moon's share": outputs["moon_share"]},
+            r"\Omega_{\mathrm{yr}} = (\Omega_\odot + \Omega_{☾})\times 365.25\,\mathrm{d} \times "
+            r"206265''/\mathrm{rad}, \qquad T = \frac{1296000''}{\Omega_{\mathrm{yr}}}",
+            {
+                "Ω": outputs["rate_arcsec_per_year"],
+                "T": outputs["period_years"],
+                "Sun's share": outputs["sun_share"],
+                "Moon's share": outputs["moon_share"],
+            },
             {"Ω": "arcsec/yr", "T": "yr", "Sun's share": "", "Moon's share": ""},
         ),
     )
@@ -182,7 +259,9 @@ def solve(inputs: Mapping[str, Any]) -> Solution:
             ),
         )
     obliquities = np.linspace(0.0, 89.0, 90)
-    sweep = np.array([equinox_precession({**inputs, "obliquity_deg": float(e)}).rate_arcsec_per_year for e in obliquities])
+    sweep = np.array(
+        [equinox_precession({**inputs, "obliquity_deg": float(e)}).rate_arcsec_per_year for e in obliquities]
+    )
     plot = Plot(
         "Precession rate against obliquity (other inputs as set)",
         "obliquity ε (deg)",

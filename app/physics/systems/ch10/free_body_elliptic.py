@@ -143,7 +143,13 @@ def elliptic_f_from_sn_cn(sn: float, cn: float, *, m: float, mc: float, K: float
 
 
 def elliptic_pi_reduced(
-    sin_r: np.ndarray | float, cos2_r: np.ndarray | float, *, n: float, one_minus_n: float, m: float, mc: float,
+    sin_r: np.ndarray | float,
+    cos2_r: np.ndarray | float,
+    *,
+    n: float,
+    one_minus_n: float,
+    m: float,
+    mc: float,
     dn2: np.ndarray | None = None,
 ) -> np.ndarray:
     """Π(n; r | m) = ∫₀^r dθ / ((1 − n sin²θ) √(1 − m sin²θ)) for |r| ≤ π/2, Carlson form.
@@ -242,7 +248,11 @@ class FreeBodyElliptic:
         if w.kind == "separatrix":
             sech = 1.0 / np.cosh(x)
             return np.stack(
-                [w.sign_other * A1 * sech, w.epsilon * w.sign_other * w.sign_circled * A2 * np.tanh(x), w.sign_circled * A3 * sech],
+                [
+                    w.sign_other * A1 * sech,
+                    w.epsilon * w.sign_other * w.sign_circled * A2 * np.tanh(x),
+                    w.sign_circled * A3 * sech,
+                ],
                 axis=-1,
             )
         k, sn, cn, dn = jacobi_reduced(x, m=w.m, mc=w.mc, K=w.K)
@@ -376,12 +386,18 @@ def free_body_elliptic(
 
     steady = all(omega0[i] == 0.0 or omega0[j] == 0.0 or I[i] == I[j] for i in range(3) for j in range(i + 1, 3))
     common = dict(
-        inertia=I, omega0_body=omega0, q0=q0, energy_J=0.5 * two_T, angular_momentum_norm=L_norm,
+        inertia=I,
+        omega0_body=omega0,
+        q0=q0,
+        energy_J=0.5 * two_T,
+        angular_momentum_norm=L_norm,
         angular_momentum_world=L_world,
     )
     if steady:
         w = _Working("steady", np.eye(3), I.copy())
-        return FreeBodyElliptic(**common, period_s=math.inf, circled_axis=None, intermediate_axis=i_mid, kind="steady", _w=w)
+        return FreeBodyElliptic(
+            **common, period_s=math.inf, circled_axis=None, intermediate_axis=i_mid, kind="steady", _w=w
+        )
 
     d_mid = distance_from(i_mid)  # D − I_mid: the sign picks the circled axis; zero on the separatrix
     kind = "separatrix" if d_mid == 0.0 else "elliptic"
@@ -418,11 +434,29 @@ def free_body_elliptic(
         period = 4.0 * K / rate
 
     w = _Working(
-        kind, P, J, amplitude=np.array([A1, A2, A3]), sign_circled=sigma, sign_other=sign_other, epsilon=epsilon,
-        m=m, mc=mc, K=K, rate=rate, x0=x0, n=n, q_work_from_user=quaternion_from_matrix(P),
+        kind,
+        P,
+        J,
+        amplitude=np.array([A1, A2, A3]),
+        sign_circled=sigma,
+        sign_other=sign_other,
+        epsilon=epsilon,
+        m=m,
+        mc=mc,
+        K=K,
+        rate=rate,
+        x0=x0,
+        n=n,
+        q_work_from_user=quaternion_from_matrix(P),
     )
-    body = FreeBodyElliptic(**common, period_s=period, circled_axis=None if kind == "separatrix" else circled,
-                            intermediate_axis=i_mid, kind=kind, _w=w)
+    body = FreeBodyElliptic(
+        **common,
+        period_s=period,
+        circled_axis=None if kind == "separatrix" else circled,
+        intermediate_axis=i_mid,
+        kind=kind,
+        _w=w,
+    )
     # Φ counts from t = 0; the inertial frame along L is q_world_L = q0 ⊗ p* ⊗ e(0)*, so that q(0) = q0.
     body = replace(body, _w=replace(w, phi_at_x0=float(body._phi_integral(np.array(x0)))))
     e0 = quaternion_from_euler_313(*body._euler_about_L(np.zeros(())))

@@ -47,25 +47,54 @@ LOCK_WARNING_DEG = 5.0
 
 def _check(values: Mapping[str, Any]) -> None:
     if values["spin_rad_s"] == 0.0:
-        raise ParameterError("spin_rad_s", "must be non-zero: a rotor that does not spin has no angular momentum to hold its direction")
+        raise ParameterError(
+            "spin_rad_s", "must be non-zero: a rotor that does not spin has no angular momentum to hold its direction"
+        )
 
 
 PARAMETERS = ParameterSet(
     (
         Parameter(
-            "vehicle_rate_rad_s", "rad/s", [0.0, 0.0, 0.3], -2.0, 2.0,
+            "vehicle_rate_rad_s",
+            "rad/s",
+            [0.0, 0.0, 0.3],
+            -2.0,
+            2.0,
             "Constant angular velocity of the vehicle, components on its own roll (x), pitch (y) and yaw (z) axes",
-            "ω_B", kind="vector", step=0.05,
+            "ω_B",
+            kind="vector",
+            step=0.05,
         ),
         Parameter("spin_rad_s", "rad/s", 2000.0, -30000.0, 30000.0, "Rotor spin rate about its axis", "ω_s", step=10.0),
-        Parameter("rotor_inertia_kg_m2", "kg·m²", 2e-3, 1e-6, 10.0, "Rotor moment of inertia about its spin axis", "I_a", scale="log"),
         Parameter(
-            "inner_gimbal0_deg", "deg", 0.0, -89.0, 89.0,
-            "Inner gimbal angle at t = 0: elevation of the spin axis above the vehicle's x-y plane", "φ_i(0)", step=1.0,
+            "rotor_inertia_kg_m2",
+            "kg·m²",
+            2e-3,
+            1e-6,
+            10.0,
+            "Rotor moment of inertia about its spin axis",
+            "I_a",
+            scale="log",
         ),
         Parameter(
-            "outer_gimbal0_deg", "deg", 0.0, -180.0, 180.0,
-            "Outer gimbal angle at t = 0: turn of the outer ring about the vehicle's z axis", "φ_o(0)", step=1.0,
+            "inner_gimbal0_deg",
+            "deg",
+            0.0,
+            -89.0,
+            89.0,
+            "Inner gimbal angle at t = 0: elevation of the spin axis above the vehicle's x-y plane",
+            "φ_i(0)",
+            step=1.0,
+        ),
+        Parameter(
+            "outer_gimbal0_deg",
+            "deg",
+            0.0,
+            -180.0,
+            180.0,
+            "Outer gimbal angle at t = 0: turn of the outer ring about the vehicle's z axis",
+            "φ_o(0)",
+            step=1.0,
         ),
     ),
     check=_check,
@@ -156,8 +185,13 @@ def gimbal_motion(params: Mapping[str, Any], t_s: np.ndarray | float) -> GimbalM
         inner_rate = np.where(horizontal_sq > 1e-24, s_dot[:, 2] / np.sqrt(horizontal_sq), np.nan)
         outer_rate = np.where(horizontal_sq > 1e-24, (sx * s_dot[:, 1] - sy * s_dot[:, 0]) / horizontal_sq, np.nan)
     return GimbalMotion(
-        t_s=t, outer_rad=outer, inner_rad=inner, outer_rate_rad_s=outer_rate, inner_rate_rad_s=inner_rate,
-        spin_axis_vehicle=s_vehicle, q_world_vehicle=vehicle_attitude(params, t),
+        t_s=t,
+        outer_rad=outer,
+        inner_rad=inner,
+        outer_rate_rad_s=outer_rate,
+        inner_rate_rad_s=inner_rate,
+        spin_axis_vehicle=s_vehicle,
+        q_world_vehicle=vehicle_attitude(params, t),
     )
 
 
@@ -210,7 +244,9 @@ class FreeGyroscope(ClosedFormModel):
         "vehicle_turn_rad": "rad",
     }
     invariant_units = {"spin_axis_error_rad": "rad"}
-    description = "Kinematics of ideal gimbals: spin axis fixed in inertial space, gimbal angles from the vehicle's attitude"
+    description = (
+        "Kinematics of ideal gimbals: spin axis fixed in inertial space, gimbal angles from the vehicle's attitude"
+    )
 
     def evaluate(self, params: Mapping[str, Any], t_s: np.ndarray) -> ClosedFormSolution:
         motion = gimbal_motion(params, t_s)
@@ -219,7 +255,9 @@ class FreeGyroscope(ClosedFormModel):
         finite = np.isfinite(outer)
         outer[finite] = np.unwrap(outer[finite])
         # Check of the formulas: rebuild the inertial axis from vehicle attitude and gimbal angles.
-        rebuilt = rotate_vector(motion.q_world_vehicle, spin_axis_from_gimbals(np.nan_to_num(motion.outer_rad), motion.inner_rad))
+        rebuilt = rotate_vector(
+            motion.q_world_vehicle, spin_axis_from_gimbals(np.nan_to_num(motion.outer_rad), motion.inner_rad)
+        )
         s_world = spin_axis_inertial(params)
         error = np.arctan2(np.linalg.norm(np.cross(rebuilt, s_world), axis=-1), rebuilt @ s_world)
         events = [
@@ -254,5 +292,6 @@ def _lock_message(params: Mapping[str, Any], t_s: float, angle_rad: float) -> st
     outer_rate = abs(float(gimbal_motion(params, t_s).outer_rate_rad_s[0]))
     return (
         f"At t = {t_s:.3f} s the spin axis passes {math.degrees(angle_rad):.2f}° from the outer gimbal axis "
-        f"(near gimbal lock): the outer ring must turn at {outer_rate:.3g} rad/s there to keep the rotor free of " "torque."
+        f"(near gimbal lock): the outer ring must turn at {outer_rate:.3g} rad/s there to keep the rotor free of "
+        "torque."
     )

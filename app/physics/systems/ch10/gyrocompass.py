@@ -62,13 +62,16 @@ def _check(values: Mapping[str, Any]) -> None:
     if abs(latitude) > MAX_LATITUDE_DEG:
         raise ParameterError(
             "latitude_deg",
-            f"must lie within ±{MAX_LATITUDE_DEG:g}° (got {latitude:g}°): at a pole the Earth's rotation axis is " "vertical, "
+            f"must lie within ±{MAX_LATITUDE_DEG:g}° (got {latitude:g}°): at a pole the Earth's rotation axis is "
+            "vertical, "
             "so its horizontal component Ω cos λ, the only part a horizontal spin axis can feel, vanishes and there is "
             "no north for the gyrocompass to seek",
         )
     if values["spin_rad_s"] == 0.0:
         raise ParameterError(
-            "spin_rad_s", "must be non-zero: without spin there is no angular momentum, no north-seeking torque and the period " "would be infinite"
+            "spin_rad_s",
+            "must be non-zero: without spin there is no angular momentum, no north-seeking torque and the period "
+            "would be infinite",
         )
     ratio = reduction_ratio(values)
     if ratio > MAX_REDUCTION_RATIO:
@@ -82,18 +85,59 @@ def _check(values: Mapping[str, Any]) -> None:
 PARAMETERS = ParameterSet(
     (
         Parameter("latitude_deg", "deg", 45.0, -90.0, 90.0, "Latitude λ of the site (positive north)", "λ", step=0.5),
-        Parameter("spin_rad_s", "rad/s", 2000.0, -50000.0, 50000.0, "Rotor spin ω_s about its axis (positive: spin vector along the axis)", "ω_s", step=10.0),
-        Parameter("rotor_axial_inertia_kg_m2", "kg·m²", 0.02, 1e-5, 10.0, "Rotor moment of inertia about its spin axis", "I_a", scale="log"),
         Parameter(
-            "vertical_inertia_kg_m2", "kg·m²", 0.5, 1e-5, 100.0,
-            "Moment of inertia of rotor and housing about the local vertical", "I_t", scale="log",
+            "spin_rad_s",
+            "rad/s",
+            2000.0,
+            -50000.0,
+            50000.0,
+            "Rotor spin ω_s about its axis (positive: spin vector along the axis)",
+            "ω_s",
+            step=10.0,
         ),
-        Parameter("damping_N_m_s_rad", "N·m·s/rad", 0.0, 0.0, 10.0, "Viscous damping about the vertical", "c", step=1e-4),
-        Parameter("alpha0_deg", "deg", 40.0, -179.0, 179.0, "Initial azimuth of the spin axis from north (positive toward east)", "α₀", step=1.0),
+        Parameter(
+            "rotor_axial_inertia_kg_m2",
+            "kg·m²",
+            0.02,
+            1e-5,
+            10.0,
+            "Rotor moment of inertia about its spin axis",
+            "I_a",
+            scale="log",
+        ),
+        Parameter(
+            "vertical_inertia_kg_m2",
+            "kg·m²",
+            0.5,
+            1e-5,
+            100.0,
+            "Moment of inertia of rotor and housing about the local vertical",
+            "I_t",
+            scale="log",
+        ),
+        Parameter(
+            "damping_N_m_s_rad", "N·m·s/rad", 0.0, 0.0, 10.0, "Viscous damping about the vertical", "c", step=1e-4
+        ),
+        Parameter(
+            "alpha0_deg",
+            "deg",
+            40.0,
+            -179.0,
+            179.0,
+            "Initial azimuth of the spin axis from north (positive toward east)",
+            "α₀",
+            step=1.0,
+        ),
         Parameter("alpha_rate0_rad_s", "rad/s", 0.0, -1.0, 1.0, "Initial azimuth rate α̇₀", "α̇₀", step=0.001),
         Parameter(
-            "earth_rate_rad_s", "rad/s", EARTH_RATE_RAD_S, 1e-6, 1.0,
-            "Rotation rate of the planet (the Earth: 7.292115e-5 rad/s)", "Ω", scale="log",
+            "earth_rate_rad_s",
+            "rad/s",
+            EARTH_RATE_RAD_S,
+            1e-6,
+            1.0,
+            "Rotation rate of the planet (the Earth: 7.292115e-5 rad/s)",
+            "Ω",
+            scale="log",
         ),
     ),
     check=_check,
@@ -117,7 +161,9 @@ def restoring_moment_N_m(params: Mapping[str, Any]) -> float:
 
 def reduction_ratio(params: Mapping[str, Any]) -> float:
     """``ε = I_t Ω cos λ / (I_a |ω_s|)``: bound on the term the reduced model drops, relative to the one it keeps."""
-    return params["vertical_inertia_kg_m2"] * abs(horizontal_earth_rate_rad_s(params)) / abs(spin_momentum_N_m_s(params))
+    return (
+        params["vertical_inertia_kg_m2"] * abs(horizontal_earth_rate_rad_s(params)) / abs(spin_momentum_N_m_s(params))
+    )
 
 
 def stable_azimuth_rad(params: Mapping[str, Any]) -> float:
@@ -137,7 +183,9 @@ def small_angle_period_s(params: Mapping[str, Any]) -> float:
 
 def damping_ratio(params: Mapping[str, Any]) -> float:
     """``ζ = c / (2 √(I_t K))`` (dimensionless)."""
-    return params["damping_N_m_s_rad"] / (2.0 * math.sqrt(params["vertical_inertia_kg_m2"] * abs(restoring_moment_N_m(params))))
+    return params["damping_N_m_s_rad"] / (
+        2.0 * math.sqrt(params["vertical_inertia_kg_m2"] * abs(restoring_moment_N_m(params)))
+    )
 
 
 def deviation_from_rest_rad(params: Mapping[str, Any], alpha_rad: np.ndarray | float) -> np.ndarray:
@@ -208,7 +256,9 @@ class Gyrocompass(IntegratedModel):
         inertia = params["vertical_inertia_kg_m2"]
         damping = params["damping_N_m_s_rad"]
         p = np.array([restoring_moment_N_m(params) / inertia, damping / inertia, damping])
-        return OdeSystem(rhs=gyrocompass_rhs, parameters=p, state_names=("alpha_rad", "alpha_rate_rad_s", "dissipated_energy_J"))
+        return OdeSystem(
+            rhs=gyrocompass_rhs, parameters=p, state_names=("alpha_rad", "alpha_rate_rad_s", "dissipated_energy_J")
+        )
 
     def initial_state(self, params):
         return np.array([math.radians(params["alpha0_deg"]), params["alpha_rate0_rad_s"], 0.0])
@@ -227,18 +277,28 @@ class Gyrocompass(IntegratedModel):
     def invariants(self, params, states):
         return {"energy_plus_dissipated_J": swing_energy_J(params, states[:, 0], states[:, 1]) + states[:, 2]}
 
-    series_labels = {"alpha_rad": "α", "alpha_rate_rad_s": "α̇", "dissipated_energy_J": "damper's work",
-                     "energy_plus_dissipated_J": "swing energy + damper's work"}
+    series_labels = {
+        "alpha_rad": "α",
+        "alpha_rate_rad_s": "α̇",
+        "dissipated_energy_J": "damper's work",
+        "energy_plus_dissipated_J": "swing energy + damper's work",
+    }
 
     def energy_parts(self, params, states, *, t_s=None):
         """The swing about the vertical (rotational, ½ I_t α̇²) and the gyroscopic potential |K|(1 − cos δ)."""
         states = np.atleast_2d(states)
         kinetic = swing_kinetic_J(params, states[:, 1])
-        return EnergyParts(gyroscopic_potential_J(params, states[:, 0]), translational_kinetic_J=np.zeros_like(kinetic), rotational_kinetic_J=kinetic)
+        return EnergyParts(
+            gyroscopic_potential_J(params, states[:, 0]),
+            translational_kinetic_J=np.zeros_like(kinetic),
+            rotational_kinetic_J=kinetic,
+        )
 
     def energy_note(self, params):
-        return ("the reduced model's swing energy: the rotor's spin energy (constant) is left out, and the potential is "
-                "the work of the north-seeking moment I_a ω_s Ω cos λ sin α, not gravity")
+        return (
+            "the reduced model's swing energy: the rotor's spin energy (constant) is left out, and the potential is "
+            "the work of the north-seeking moment I_a ω_s Ω cos λ sin α, not gravity"
+        )
 
     def invariant_scales(self, params, state):
         # The energy that would carry the axis right round (2|K|) plus the initial swing energy: never zero.

@@ -65,11 +65,42 @@ def _check(values: Mapping[str, Any]) -> None:
 PARAMETERS = ParameterSet(
     (
         Parameter("mass_kg", "kg", 1.0, 0.01, 100.0, "Mass of the top", "m", scale="log"),
-        Parameter("cg_distance_m", "m", 0.05, 0.001, 2.0, "Pivot to centre of mass, along the symmetry axis", "l", scale="log"),
-        Parameter("I_transverse_pivot", "kg·m²", 0.0125, 1e-5, 100.0, "Moment of inertia about a transverse axis through the pivot", "I_t", scale="log"),
-        Parameter("I_axial", "kg·m²", 0.01, 1e-5, 100.0, "Moment of inertia about the symmetry axis", "I_a", scale="log"),
-        Parameter("spin_rad_s", "rad/s", 60.0, -2000.0, 2000.0, "Spin ω3: angular velocity component along the symmetry axis", "ω₃", scale="symlog"),
-        Parameter("theta0_deg", "deg", 30.0, 0.0, 179.0, "Initial tilt of the symmetry axis from the upward vertical", "θ₀", step=0.5),
+        Parameter(
+            "cg_distance_m", "m", 0.05, 0.001, 2.0, "Pivot to centre of mass, along the symmetry axis", "l", scale="log"
+        ),
+        Parameter(
+            "I_transverse_pivot",
+            "kg·m²",
+            0.0125,
+            1e-5,
+            100.0,
+            "Moment of inertia about a transverse axis through the pivot",
+            "I_t",
+            scale="log",
+        ),
+        Parameter(
+            "I_axial", "kg·m²", 0.01, 1e-5, 100.0, "Moment of inertia about the symmetry axis", "I_a", scale="log"
+        ),
+        Parameter(
+            "spin_rad_s",
+            "rad/s",
+            60.0,
+            -2000.0,
+            2000.0,
+            "Spin ω3: angular velocity component along the symmetry axis",
+            "ω₃",
+            scale="symlog",
+        ),
+        Parameter(
+            "theta0_deg",
+            "deg",
+            30.0,
+            0.0,
+            179.0,
+            "Initial tilt of the symmetry axis from the upward vertical",
+            "θ₀",
+            step=0.5,
+        ),
         Parameter("precession_rate0_rad_s", "rad/s", 0.0, -100.0, 100.0, "Initial precession rate φ̇₀", "φ̇₀", step=0.05),
         Parameter("nutation_rate0_rad_s", "rad/s", 0.0, -100.0, 100.0, "Initial nutation rate θ̇₀", "θ̇₀", step=0.05),
         Parameter("g_m_s2", "m/s²", 9.807, 0.0, 100.0, "Gravitational acceleration", "g", step=0.001),
@@ -80,7 +111,9 @@ PARAMETERS = ParameterSet(
 
 def rigid_body(params: Mapping[str, Any]) -> PivotedBody:
     """The top as a body about its pivot (checked once per set of values: frames ask for it every 1/30 s)."""
-    return _rigid_body(params["I_transverse_pivot"], params["I_axial"], params["mass_kg"], params["cg_distance_m"], params["g_m_s2"])
+    return _rigid_body(
+        params["I_transverse_pivot"], params["I_axial"], params["mass_kg"], params["cg_distance_m"], params["g_m_s2"]
+    )
 
 
 @functools.lru_cache(maxsize=256)
@@ -97,7 +130,9 @@ def initial_state(params: Mapping[str, Any]) -> np.ndarray:
     :func:`quaternion_from_euler_313`)."""
     theta0 = math.radians(params["theta0_deg"])
     q0 = quaternion_from_euler_313(0.0, theta0, 0.0)
-    omega = body_rates_from_euler_313_rates(theta0, 0.0, params["precession_rate0_rad_s"], params["nutation_rate0_rad_s"], 0.0)
+    omega = body_rates_from_euler_313_rates(
+        theta0, 0.0, params["precession_rate0_rad_s"], params["nutation_rate0_rad_s"], 0.0
+    )
     omega[2] = params["spin_rad_s"]
     return np.concatenate([q0, omega])
 
@@ -113,7 +148,9 @@ def euler_313_rates(angles: np.ndarray, omega_body: np.ndarray) -> tuple[np.ndar
     w1, w2, w3 = omega_body[:, 0], omega_body[:, 1], omega_body[:, 2]
     sin_theta, cos_theta = np.sin(theta), np.cos(theta)
     locked = np.abs(sin_theta) < 1e-12
-    phi_dot = np.where(locked, 0.5 * w3 * np.sign(cos_theta), (w1 * np.sin(psi) + w2 * np.cos(psi)) / np.where(locked, 1.0, sin_theta))
+    phi_dot = np.where(
+        locked, 0.5 * w3 * np.sign(cos_theta), (w1 * np.sin(psi) + w2 * np.cos(psi)) / np.where(locked, 1.0, sin_theta)
+    )
     psi_dot = np.where(locked, 0.5 * w3, w3 - phi_dot * cos_theta)
     return phi_dot, psi_dot
 
@@ -164,16 +201,26 @@ def quadrature(params: Mapping[str, Any]) -> HeavyTopQuadrature:
     separatrix, reaching the upright position in infinite time). Cached per set of values.
     """
     return _quadrature(
-        params["I_transverse_pivot"], params["I_axial"], params["mass_kg"] * params["g_m_s2"] * params["cg_distance_m"],
-        params["spin_rad_s"], math.radians(params["theta0_deg"]), params["precession_rate0_rad_s"], params["nutation_rate0_rad_s"],
+        params["I_transverse_pivot"],
+        params["I_axial"],
+        params["mass_kg"] * params["g_m_s2"] * params["cg_distance_m"],
+        params["spin_rad_s"],
+        math.radians(params["theta0_deg"]),
+        params["precession_rate0_rad_s"],
+        params["nutation_rate0_rad_s"],
     )
 
 
 @functools.lru_cache(maxsize=64)
 def _quadrature(I_transverse, I_axial, mgl, spin_rad_s, theta0_rad, phi_dot0, theta_dot0) -> HeavyTopQuadrature:
     return heavy_top_quadrature(
-        I_transverse=I_transverse, I_axial=I_axial, mgl=mgl, spin_rad_s=spin_rad_s,
-        theta0_rad=theta0_rad, phi_dot0=phi_dot0, theta_dot0=theta_dot0,
+        I_transverse=I_transverse,
+        I_axial=I_axial,
+        mgl=mgl,
+        spin_rad_s=spin_rad_s,
+        theta0_rad=theta0_rad,
+        phi_dot0=phi_dot0,
+        theta_dot0=theta_dot0,
     )
 
 
@@ -193,7 +240,9 @@ def quadrature_states(params: Mapping[str, Any], t_s: np.ndarray) -> np.ndarray:
     It, Ia, mgl, spin = solution.I_transverse, params["I_axial"], solution.mgl, params["spin_rad_s"]
     sin2 = np.sin(theta) ** 2
     upright = sin2 < 1e-24
-    phi_dot = np.where(upright, 0.0, (solution.p_phi - solution.p_psi * np.cos(theta)) / (It * np.where(upright, 1.0, sin2)))
+    phi_dot = np.where(
+        upright, 0.0, (solution.p_phi - solution.p_psi * np.cos(theta)) / (It * np.where(upright, 1.0, sin2))
+    )
     psi_dot = spin - phi_dot * np.cos(theta)
     y0 = initial_state(params)
     energy = float(rigid_body(params).energy_J(y0[None, :])[0])
@@ -241,11 +290,19 @@ class HeavyTop(IntegratedModel):
     methods = tuple(METHODS)
     default_method = "splitting4"
     series_units = {"theta": "rad", "phi": "rad", "psi": "rad", "attitude_error_rad": "rad"}
-    accuracy_target = AccuracyTarget(1e-6, "rad", "attitude: rotation angle between the integrated and the exact attitude")
+    accuracy_target = AccuracyTarget(
+        1e-6, "rad", "attitude: rotation angle between the integrated and the exact attitude"
+    )
     reference_error_series = "attitude_error_rad"
     reference_name = "quadrature solution (elliptic functions for θ, elliptic integrals for φ and ψ)"
     #: ``angular_momentum`` (|L|) is conserved, and reported, only without gravity (``g_m_s2 = 0``).
-    invariant_units = {"energy": "J", "angular_momentum_z": "kg·m²/s", "spin": "rad/s", "quaternion_norm_error": "", "angular_momentum": "kg·m²/s"}
+    invariant_units = {
+        "energy": "J",
+        "angular_momentum_z": "kg·m²/s",
+        "spin": "rad/s",
+        "quaternion_norm_error": "",
+        "angular_momentum": "kg·m²/s",
+    }
 
     def system(self, params):
         return rigid_body(params).system()
@@ -278,8 +335,16 @@ class HeavyTop(IntegratedModel):
     def invariants(self, params, states):
         return rigid_body(params).invariants(states)
 
-    series_labels = {"theta": "θ", "phi": "φ", "psi": "ψ", "attitude_error_rad": "attitude error", "spin": "ω₃",
-                     "angular_momentum_z": "L_z", "angular_momentum": "|L|", "quaternion_norm_error": "|q| − 1"}
+    series_labels = {
+        "theta": "θ",
+        "phi": "φ",
+        "psi": "ψ",
+        "attitude_error_rad": "attitude error",
+        "spin": "ω₃",
+        "angular_momentum_z": "L_z",
+        "angular_momentum": "|L|",
+        "quaternion_norm_error": "|q| − 1",
+    }
 
     def energy_parts(self, params, states, *, t_s=None):
         """About the fixed pivot: ½ m v_G² with v_G = ω × l e₃ (so ½ m l² (ω₁² + ω₂²)) and the rest of ½ ω·I_O ω,
@@ -289,7 +354,11 @@ class HeavyTop(IntegratedModel):
         omega = states[:, 4:7]
         kinetic = 0.5 * np.sum(np.asarray(body.inertia_pivot_kg_m2) * omega**2, axis=-1)
         translational = 0.5 * body.mass_kg * body.cg_distance_m**2 * (omega[:, 0] ** 2 + omega[:, 1] ** 2)
-        return EnergyParts(body.energy_J(states) - kinetic, translational_kinetic_J=translational, rotational_kinetic_J=kinetic - translational)
+        return EnergyParts(
+            body.energy_J(states) - kinetic,
+            translational_kinetic_J=translational,
+            rotational_kinetic_J=kinetic - translational,
+        )
 
     def describable(self, params, states):
         """Finite states whose quaternion is still a unit one to within a half: every step renormalises it,

@@ -120,7 +120,9 @@ class _Orbit:
     def top_integral(self, x: np.ndarray) -> np.ndarray:
         k, sn, cn, dn = jacobi_reduced(x, m=self.m, mc=self.mc, K=self.K)
         one_minus_n = self.one_minus_u2 / self.one_minus_u1
-        reduced = elliptic_pi_reduced(sn, cn * cn, n=self.n_top, one_minus_n=one_minus_n, m=self.m, mc=self.mc, dn2=dn * dn)
+        reduced = elliptic_pi_reduced(
+            sn, cn * cn, n=self.n_top, one_minus_n=one_minus_n, m=self.m, mc=self.mc, dn2=dn * dn
+        )
         return (2.0 * k * self.pi_top + reduced) / self.one_minus_u1
 
     def bottom_integral(self, x: np.ndarray) -> np.ndarray:
@@ -129,13 +131,19 @@ class _Orbit:
         shifted = np.asarray(x, dtype=float) - self.K
         k, sn, cn, dn = jacobi_reduced(shifted, m=self.m, mc=self.mc, K=self.K)
         one_minus_n = self.mc * self.one_plus_u1 / self.one_plus_u2
-        reduced = elliptic_pi_reduced(sn, cn * cn, n=self.n_bottom, one_minus_n=one_minus_n, m=self.m, mc=self.mc, dn2=dn * dn)
+        reduced = elliptic_pi_reduced(
+            sn, cn * cn, n=self.n_bottom, one_minus_n=one_minus_n, m=self.m, mc=self.mc, dn2=dn * dn
+        )
         return self.linear_bottom * shifted + self.weight_bottom * (2.0 * k * self.pi_bottom + reduced)
 
     def passes(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Exact pole passages in (x0, x] (negative for x < x0): top at x = K + 2Kj, bottom at x = 2Kj."""
         period = 2.0 * self.K
-        top = np.floor((x - self.K) / period) - math.floor((self.x0 - self.K) / period) if self.jump_top else np.zeros_like(x)
+        top = (
+            np.floor((x - self.K) / period) - math.floor((self.x0 - self.K) / period)
+            if self.jump_top
+            else np.zeros_like(x)
+        )
         bottom = np.floor(x / period) - math.floor(self.x0 / period) if self.jump_bottom else np.zeros_like(x)
         return top, bottom
 
@@ -277,7 +285,13 @@ def heavy_top_quadrature(
     towards φ0 + π; φ̇0 has no effect there (it multiplies sin²θ0 = 0).
     """
     _check_top(I_transverse, I_axial, mgl)
-    for name, value in (("spin_rad_s", spin_rad_s), ("phi_dot0", phi_dot0), ("theta_dot0", theta_dot0), ("phi0", phi0), ("psi0", psi0)):
+    for name, value in (
+        ("spin_rad_s", spin_rad_s),
+        ("phi_dot0", phi_dot0),
+        ("theta_dot0", theta_dot0),
+        ("phi0", phi0),
+        ("psi0", psi0),
+    ):
         if not math.isfinite(value):
             raise ValueError(f"{name} must be finite (got {value!r})")
     if not (math.isfinite(theta0_rad) and 0.0 <= theta0_rad <= math.pi):
@@ -307,15 +321,35 @@ def heavy_top_quadrature(
 
     kinetic = theta_dot**2 + phi_dot0**2 * sin2  # 2 T_transverse / I_t
     common = dict(
-        I_transverse=It, I_axial=Ia, mgl=mgl, spin_rad_s=spin_rad_s, theta0_rad=theta0_rad, phi_dot0=phi_dot0,
-        theta_dot0=theta_dot0, phi0=phi0, psi0=psi0, p_phi=p_phi, p_psi=p_psi, energy_J=energy,
+        I_transverse=It,
+        I_axial=Ia,
+        mgl=mgl,
+        spin_rad_s=spin_rad_s,
+        theta0_rad=theta0_rad,
+        phi_dot0=phi_dot0,
+        theta_dot0=theta_dot0,
+        phi0=phi0,
+        psi0=psi0,
+        p_phi=p_phi,
+        p_psi=p_psi,
+        energy_J=energy,
     )
 
-    def constant(u1: float, u2: float, u3: float, period: float, phi_rate: float, psi_rate: float) -> HeavyTopQuadrature:
+    def constant(
+        u1: float, u2: float, u3: float, period: float, phi_rate: float, psi_rate: float
+    ) -> HeavyTopQuadrature:
         orbit = _Orbit(True, phi_start, psi_start, theta0_rad, phi_rate, psi_rate)
         return HeavyTopQuadrature(
-            **common, u1=u1, u2=u2, u3=u3, theta_min_rad=theta0_rad, theta_max_rad=theta0_rad,
-            nutation_period_s=period, mean_precession_rate_rad_s=phi_rate, mean_spin_rate_rad_s=psi_rate, _orbit=orbit,
+            **common,
+            u1=u1,
+            u2=u2,
+            u3=u3,
+            theta_min_rad=theta0_rad,
+            theta_max_rad=theta0_rad,
+            nutation_period_s=period,
+            mean_precession_rate_rad_s=phi_rate,
+            mean_spin_rate_rad_s=psi_rate,
+            _orbit=orbit,
         )
 
     # Vertical equilibria: φ̇ = ±c/2 is the limit of (b − c u)/(1 − u²) at the pole.
@@ -392,17 +426,44 @@ def heavy_top_quadrature(
     x0 = elliptic_f_from_sn_cn(sn0, cn0, m=m, mc=mc, K=K)
 
     n_top = delta_u / one_minus_u1 if one_minus_u1 > 0.0 else 0.0
-    pi_top = complete_elliptic_pi(n=n_top, one_minus_n=one_minus_u2 / one_minus_u1, m=m, mc=mc) if b_minus_c != 0.0 else 0.0
+    pi_top = (
+        complete_elliptic_pi(n=n_top, one_minus_n=one_minus_u2 / one_minus_u1, m=m, mc=mc) if b_minus_c != 0.0 else 0.0
+    )
     scaled = m * one_plus_u1 + delta_u
     n_bottom = scaled / one_plus_u2
-    pi_bottom = complete_elliptic_pi(n=n_bottom, one_minus_n=mc * one_plus_u1 / one_plus_u2, m=m, mc=mc) if b_plus_c != 0.0 else 0.0
+    pi_bottom = (
+        complete_elliptic_pi(n=n_bottom, one_minus_n=mc * one_plus_u1 / one_plus_u2, m=m, mc=mc)
+        if b_plus_c != 0.0
+        else 0.0
+    )
     orbit = _Orbit(
-        False, phi_start, psi_start, theta0_rad, 0.0, 0.0,
-        delta_u=delta_u, one_minus_u2=one_minus_u2, one_plus_u1=one_plus_u1, one_minus_u1=one_minus_u1,
-        one_plus_u2=one_plus_u2, m=m, mc=mc, K=K, rate=rate, x0=x0, b_minus_c=b_minus_c, b_plus_c=b_plus_c,
-        spin_offset=spin_offset, n_top=n_top, pi_top=pi_top, n_bottom=n_bottom, pi_bottom=pi_bottom,
-        linear_bottom=m / scaled, weight_bottom=delta_u * mc / (one_plus_u2 * scaled),
-        jump_top=b_minus_c == 0.0 and one_minus_u2 == 0.0, jump_bottom=b_plus_c == 0.0,
+        False,
+        phi_start,
+        psi_start,
+        theta0_rad,
+        0.0,
+        0.0,
+        delta_u=delta_u,
+        one_minus_u2=one_minus_u2,
+        one_plus_u1=one_plus_u1,
+        one_minus_u1=one_minus_u1,
+        one_plus_u2=one_plus_u2,
+        m=m,
+        mc=mc,
+        K=K,
+        rate=rate,
+        x0=x0,
+        b_minus_c=b_minus_c,
+        b_plus_c=b_plus_c,
+        spin_offset=spin_offset,
+        n_top=n_top,
+        pi_top=pi_top,
+        n_bottom=n_bottom,
+        pi_bottom=pi_bottom,
+        linear_bottom=m / scaled,
+        weight_bottom=delta_u * mc / (one_plus_u2 * scaled),
+        jump_top=b_minus_c == 0.0 and one_minus_u2 == 0.0,
+        jump_bottom=b_plus_c == 0.0,
     )
     x0_array = np.array(x0)
     orbit = replace(
@@ -415,17 +476,23 @@ def heavy_top_quadrature(
     period = 2.0 * K / rate
     top_per_period = (b_minus_c / (2.0 * rate)) * 2.0 * pi_top / one_minus_u1 if b_minus_c != 0.0 else 0.0
     bottom_per_period = (
-        (b_plus_c / (2.0 * rate)) * (orbit.linear_bottom * 2.0 * K + orbit.weight_bottom * 2.0 * pi_bottom) if b_plus_c != 0.0 else 0.0
+        (b_plus_c / (2.0 * rate)) * (orbit.linear_bottom * 2.0 * K + orbit.weight_bottom * 2.0 * pi_bottom)
+        if b_plus_c != 0.0
+        else 0.0
     )
     jumps_phi = math.pi * (int(orbit.jump_top) + int(orbit.jump_bottom))
     jumps_psi = math.pi * (int(orbit.jump_bottom) - int(orbit.jump_top))
     dphi = top_per_period + bottom_per_period + jumps_phi
     dpsi = spin_offset * period - top_per_period + bottom_per_period + jumps_psi
     return HeavyTopQuadrature(
-        **common, u1=u1, u2=u2, u3=u3,
+        **common,
+        u1=u1,
+        u2=u2,
+        u3=u3,
         theta_min_rad=float(_theta_from(one_minus_u2, one_plus_u2)),
         theta_max_rad=float(_theta_from(one_minus_u1, one_plus_u1)),
-        nutation_period_s=period, mean_precession_rate_rad_s=dphi / period, mean_spin_rate_rad_s=dpsi / period,
+        nutation_period_s=period,
+        mean_precession_rate_rad_s=dphi / period,
+        mean_spin_rate_rad_s=dpsi / period,
         _orbit=orbit,
     )
-

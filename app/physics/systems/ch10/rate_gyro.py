@@ -43,7 +43,11 @@ RESONANCE_TOLERANCE = 1e-9
 
 def _check(values: Mapping[str, Any]) -> None:
     if values["spin_rad_s"] == 0.0:
-        raise ParameterError("spin_rad_s", "must be non-zero: without spin the rotor has no angular momentum and the gimbal cannot sense rate " "(the gain I_a ω_s / k would be zero)")
+        raise ParameterError(
+            "spin_rad_s",
+            "must be non-zero: without spin the rotor has no angular momentum and the gimbal cannot sense rate "
+            "(the gain I_a ω_s / k would be zero)",
+        )
 
 
 def resonant(params: Mapping[str, Any]) -> bool:
@@ -66,25 +70,80 @@ def small_angle_excess(t_s: np.ndarray, beta_rad: np.ndarray) -> tuple[float, fl
 def small_angle_warning(first_t_s: float, largest_beta_rad: float) -> str:
     """The sentence a student reads when the response leaves the small-angle model."""
     return (
-        f"Outside the model: from t = {first_t_s:.4g} s the gimbal deflection |β| exceeds " f"{SMALL_ANGLE_LIMIT_RAD:g} rad "
-        f"({math.degrees(SMALL_ANGLE_LIMIT_RAD):.0f}°), reaching {largest_beta_rad:.3g} rad; the output equation " "assumes a small β "
-        "(sin β ≈ β), so the numbers beyond it are the linear model's, not a real gyro's (a real gimbal hits its " "stops)."
+        f"Outside the model: from t = {first_t_s:.4g} s the gimbal deflection |β| exceeds "
+        f"{SMALL_ANGLE_LIMIT_RAD:g} rad "
+        f"({math.degrees(SMALL_ANGLE_LIMIT_RAD):.0f}°), reaching {largest_beta_rad:.3g} rad; the output equation "
+        "assumes a small β "
+        "(sin β ≈ β), so the numbers beyond it are the linear model's, not a real gyro's (a real gimbal hits its "
+        "stops)."
     )
 
 
 PARAMETERS = ParameterSet(
     (
-        Parameter("rotor_axial_inertia_kg_m2", "kg·m²", 2e-4, 1e-7, 1.0, "Rotor moment of inertia about its spin axis", "I_a", scale="log"),
-        Parameter("spin_rad_s", "rad/s", 1000.0, -30000.0, 30000.0, "Rotor spin ω_s (held constant by its motor)", "ω_s", step=10.0),
         Parameter(
-            "gimbal_inertia_kg_m2", "kg·m²", 5e-3, 1e-6, 10.0, "Moment of inertia of gimbal and rotor about the output axis", "I_g", scale="log"
+            "rotor_axial_inertia_kg_m2",
+            "kg·m²",
+            2e-4,
+            1e-7,
+            1.0,
+            "Rotor moment of inertia about its spin axis",
+            "I_a",
+            scale="log",
         ),
-        Parameter("stiffness_N_m_rad", "N·m/rad", 0.5, 1e-4, 1000.0, "Torsion-spring stiffness k restraining the gimbal", "k", scale="log"),
+        Parameter(
+            "spin_rad_s",
+            "rad/s",
+            1000.0,
+            -30000.0,
+            30000.0,
+            "Rotor spin ω_s (held constant by its motor)",
+            "ω_s",
+            step=10.0,
+        ),
+        Parameter(
+            "gimbal_inertia_kg_m2",
+            "kg·m²",
+            5e-3,
+            1e-6,
+            10.0,
+            "Moment of inertia of gimbal and rotor about the output axis",
+            "I_g",
+            scale="log",
+        ),
+        Parameter(
+            "stiffness_N_m_rad",
+            "N·m/rad",
+            0.5,
+            1e-4,
+            1000.0,
+            "Torsion-spring stiffness k restraining the gimbal",
+            "k",
+            scale="log",
+        ),
         Parameter("damping_N_m_s_rad", "N·m·s/rad", 0.02, 0.0, 10.0, "Viscous damping c on the gimbal", "c", step=1e-3),
-        Parameter("input_kind", "", "step", kind="choice", choices=INPUT_KINDS, label="input",
-                  description="Input rate: a step to Ω₀ at t = 0, or a sine Ω₀ sin(w t)"),
-        Parameter("input_rate_rad_s", "rad/s", 0.5, -5.0, 5.0, "Input rate Ω₀ about the case's input axis (step height or sine amplitude)", "Ω₀", step=0.05),
-        Parameter("input_frequency_rad_s", "rad/s", 5.0, 0.01, 500.0, "Angular frequency w of a sine input", "w", scale="log"),
+        Parameter(
+            "input_kind",
+            "",
+            "step",
+            kind="choice",
+            choices=INPUT_KINDS,
+            label="input",
+            description="Input rate: a step to Ω₀ at t = 0, or a sine Ω₀ sin(w t)",
+        ),
+        Parameter(
+            "input_rate_rad_s",
+            "rad/s",
+            0.5,
+            -5.0,
+            5.0,
+            "Input rate Ω₀ about the case's input axis (step height or sine amplitude)",
+            "Ω₀",
+            step=0.05,
+        ),
+        Parameter(
+            "input_frequency_rad_s", "rad/s", 5.0, 0.01, 500.0, "Angular frequency w of a sine input", "w", scale="log"
+        ),
     ),
     check=_check,
 )

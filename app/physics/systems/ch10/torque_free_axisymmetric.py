@@ -149,7 +149,9 @@ class AxisymmetricFreeMotion:
         t = np.asarray(t_s, dtype=float)
         return self.precession_rate_rad_s * t, np.full_like(t, self.nutation_rad), self.spin_rate_rad_s * t
 
-    def nodal_and_body_quaternions(self, t_s: float) -> tuple[tuple[float, float, float, float], tuple[float, float, float, float]]:
+    def nodal_and_body_quaternions(
+        self, t_s: float
+    ) -> tuple[tuple[float, float, float, float], tuple[float, float, float, float]]:
         """``q_world_nodal`` = Rz(φ) and ``q_nodal_body`` = Rx(θ) Rz(ψ) (``wxyz``) at time ``t_s`` (s).
 
         Their product is ``q_world_body``. The nodal frame carries ω and the symmetry
@@ -171,13 +173,17 @@ class AxisymmetricFreeMotion:
 
     def angular_velocity_nodal_rad_s(self) -> np.ndarray:
         """ω = φ̇ K + ψ̇ k (rad/s, shape (3,)) on the nodal frame ``Rz(φ)``: constant there."""
-        return self.precession_rate_rad_s * np.array([0.0, 0.0, 1.0]) + self.spin_rate_rad_s * self.symmetry_axis_nodal()
+        return (
+            self.precession_rate_rad_s * np.array([0.0, 0.0, 1.0]) + self.spin_rate_rad_s * self.symmetry_axis_nodal()
+        )
 
     def angular_velocity_body_rad_s(self, t_s: np.ndarray | float) -> np.ndarray:
         """ω on body axes (rad/s, shape (..., 3)) at times ``t_s``: ω⊥ turns about k at λ = −ψ̇."""
         _, theta, psi = self.euler_angles_313(t_s)
         transverse = self.precession_rate_rad_s * np.sin(theta)
-        return np.stack([transverse * np.sin(psi), transverse * np.cos(psi), np.full_like(psi, self.spin_rad_s)], axis=-1)
+        return np.stack(
+            [transverse * np.sin(psi), transverse * np.cos(psi), np.full_like(psi, self.spin_rad_s)], axis=-1
+        )
 
 
 def spheroid_aspect_ratio(inertia_ratio: float) -> float:
@@ -197,7 +203,9 @@ def check_inputs(*, I_transverse: float, I_axial: float, spin_rad_s: float, nuta
     """Raise :class:`ParameterError` (naming the input) for values no torque-free axisymmetric body can have."""
     for name, value in (("I_transverse", I_transverse), ("I_axial", I_axial)):
         if not (math.isfinite(value) and value > 0.0):
-            raise ParameterError(name, f"must be a finite positive moment of inertia about the centre of mass in kg·m² (got {value!r})")
+            raise ParameterError(
+                name, f"must be a finite positive moment of inertia about the centre of mass in kg·m² (got {value!r})"
+            )
     if I_axial > 2.0 * I_transverse * (1.0 + 1e-12):
         raise ParameterError(
             "I_axial",
@@ -219,7 +227,8 @@ def check_inputs(*, I_transverse: float, I_axial: float, spin_rad_s: float, nuta
     if not (math.isfinite(nutation_deg) and 0.0 <= nutation_deg <= MAX_NUTATION_DEG):
         raise ParameterError(
             "nutation_deg",
-            f"must lie between 0° and {MAX_NUTATION_DEG:g}°: at 90° the axis is perpendicular to L and L = " "I_a·ω₃/cos θ is undefined",
+            f"must lie between 0° and {MAX_NUTATION_DEG:g}°: at 90° the axis is perpendicular to L and L = "
+            "I_a·ω₃/cos θ is undefined",
         )
 
 
@@ -234,10 +243,46 @@ def _check(values: Mapping[str, Any]) -> None:
 
 PARAMETERS = ParameterSet(
     (
-        Parameter("I_transverse", "kg·m²", 1.0, 1e-6, 1e6, "Moment of inertia about a transverse axis through the centre of mass", "I_t", scale="log"),
-        Parameter("I_axial", "kg·m²", 0.4, 1e-6, 1e6, "Moment of inertia about the symmetry axis (at most 2 I_t)", "I_a", scale="log"),
-        Parameter("spin_rad_s", "rad/s", 3.0, -1000.0, 1000.0, "Spin ω3: angular velocity component along the symmetry axis (positive)", "ω₃", step=0.05),
-        Parameter("nutation_deg", "deg", 25.0, 0.0, MAX_NUTATION_DEG, "Nutation θ: constant angle between the symmetry axis and L", "θ", step=0.5),
+        Parameter(
+            "I_transverse",
+            "kg·m²",
+            1.0,
+            1e-6,
+            1e6,
+            "Moment of inertia about a transverse axis through the centre of mass",
+            "I_t",
+            scale="log",
+        ),
+        Parameter(
+            "I_axial",
+            "kg·m²",
+            0.4,
+            1e-6,
+            1e6,
+            "Moment of inertia about the symmetry axis (at most 2 I_t)",
+            "I_a",
+            scale="log",
+        ),
+        Parameter(
+            "spin_rad_s",
+            "rad/s",
+            3.0,
+            -1000.0,
+            1000.0,
+            "Spin ω3: angular velocity component along the symmetry axis (positive)",
+            "ω₃",
+            step=0.05,
+        ),
+        Parameter(
+            "nutation_deg",
+            "deg",
+            25.0,
+            0.0,
+            MAX_NUTATION_DEG,
+            "Nutation θ: constant angle between the symmetry axis and L",
+            "θ",
+            step=0.5,
+        ),
     ),
     check=_check,
 )
