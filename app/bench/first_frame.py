@@ -76,7 +76,7 @@ def first_frame_svg(report: dict) -> str:
             fill="#555",
         ),
     ]
-    legend_x = 16
+    legend_x: float = 16
     for label, _key, colour in PHASES:
         out.append(f'<rect x="{legend_x}" y="58" width="12" height="12" fill="{colour}"/>')
         out.append(_text(legend_x + 16, 68, label, size=11))

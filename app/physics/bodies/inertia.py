@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Literal
+from typing import Literal, cast
 
 import numpy as np
 
@@ -262,7 +262,8 @@ def check_inertia_tensor(
             f"the inertia tensor about {about} is not positive definite: its smallest principal moment is {smallest:.6g} kg·m²"
             f" (a body with mass has positive inertia about every axis{'; ' + hint if hint else ''})"
         )
-    check_principal_inertia(tuple(float(m) for m in principal.moments_kg_m2), about=about)
+    moments = cast("tuple[float, float, float]", tuple(float(m) for m in principal.moments_kg_m2))
+    check_principal_inertia(moments, about=about)
     return principal
 
 

@@ -103,7 +103,10 @@ def _shared_kernel(signature: Any) -> Callable[[Callable[..., Any]], Kernel]:
     """
 
     def wrap(fn: Callable[..., Any]) -> Kernel:
-        return Kernel(compiled=numba.cfunc(signature, cache=True, nopython=True, error_model="numpy")(fn), python=fn)
+        compiled = numba.cfunc(  # type: ignore[call-arg]  # numba's stub omits cfunc's nopython option
+            signature, cache=True, nopython=True, error_model="numpy"
+        )(fn)
+        return Kernel(compiled=compiled, python=fn)
 
     return wrap
 
@@ -250,9 +253,17 @@ def algorithm_kernels(
     rhs_python.__name__ = rhs.__name__ = f"constrained_rhs_{dynamics.name}"
     project_python.__name__ = project.__name__ = f"constrained_project_{constraints.name}"
     return AlgorithmKernels(
-        rhs=Kernel(compiled=numba.cfunc(RHS_SIGNATURE, nopython=True, error_model="numpy")(rhs), python=rhs_python),
+        rhs=Kernel(
+            compiled=numba.cfunc(  # type: ignore[call-arg]  # numba's stub omits cfunc's nopython option
+                RHS_SIGNATURE, nopython=True, error_model="numpy"
+            )(rhs),
+            python=rhs_python,
+        ),
         project=Kernel(
-            compiled=numba.cfunc(PROJECT_SIGNATURE, nopython=True, error_model="numpy")(project), python=project_python
+            compiled=numba.cfunc(  # type: ignore[call-arg]  # numba's stub omits cfunc's nopython option
+                PROJECT_SIGNATURE, nopython=True, error_model="numpy"
+            )(project),
+            python=project_python,
         ),
     )
 

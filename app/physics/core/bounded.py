@@ -103,7 +103,7 @@ class WorkFailed(RuntimeError):
 _PRELOAD_LOCK = threading.Lock()
 
 
-def _forkserver_context(preload: Sequence[str]) -> multiprocessing.context.BaseContext:
+def _forkserver_context(preload: Sequence[str]) -> multiprocessing.context.ForkServerContext:
     """The forkserver context, its server started with ``preload`` imported if it is not running yet.
 
     The process has one forkserver: the preload list of whichever runner starts it applies.

@@ -12,7 +12,7 @@ import copy
 import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any, Literal
+from typing import Any, Literal, cast
 
 
 class ParameterError(ValueError):
@@ -88,7 +88,7 @@ class Parameter:
 
     name: str
     unit: str
-    default: float | int | str | list
+    default: float | int | str | tuple[float, ...] | list
     min: float | None = None
     max: float | None = None
     description: str = ""
@@ -117,12 +117,13 @@ class Parameter:
                 raise ValueError(f"{self.name}: a list parameter needs a parse function and a list default")
             self.parse(self.default)
         elif self.kind == "vector":
-            if self.min is None or self.max is None or len(self.default) != self.length:
+            vector = cast("Sequence[float]", self.default)
+            if self.min is None or self.max is None or len(vector) != self.length:
                 raise ValueError(f"{self.name}: a vector needs min, max and a default of length {self.length}")
-            if not all(self.min <= float(v) <= self.max for v in self.default):
+            if not all(self.min <= float(v) <= self.max for v in vector):
                 raise ValueError(f"{self.name}: default components must lie in [min, max]")
         else:
-            if self.min is None or self.max is None or not self.min <= self.default <= self.max:
+            if self.min is None or self.max is None or not self.min <= cast(float, self.default) <= self.max:
                 raise ValueError(f"{self.name}: default must lie in [min, max]")
             if self.scale == "log" and self.min <= 0:
                 raise ValueError(f"{self.name}: a log-scale parameter needs min > 0")
@@ -244,7 +245,7 @@ class ParameterSet:
     """
 
     parameters: Sequence[Parameter]
-    check: Callable[[Mapping[str, Any]], None] | None = None
+    check: Callable[[Mapping[str, Any]], object] | None = None
     by_name: Mapping[str, Parameter] = field(init=False)
 
     def __post_init__(self) -> None:
@@ -252,7 +253,7 @@ class ParameterSet:
 
     def defaults(self) -> dict[str, Any]:
         return {
-            p.name: list(p.default)
+            p.name: list(cast("Sequence[float]", p.default))
             if p.kind == "vector"
             else copy.deepcopy(p.default)
             if p.kind == "list"

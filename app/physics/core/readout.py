@@ -55,7 +55,7 @@ class Quantity:
     def or_text(cls, name: str, label: str, value: float | None, unit: str, text: str) -> Quantity:
         """``value`` in ``unit`` where it is a finite number; otherwise no value, and ``text`` says why."""
         finite = value is not None and math.isfinite(value)
-        return cls(name, label, float(value) if finite else None, unit, "" if finite else text)
+        return cls(name, label, float(value) if finite and value is not None else None, unit, "" if finite else text)
 
     def as_dict(self) -> dict[str, Any]:
         out: dict[str, Any] = {"name": self.name, "label": self.label, "value": self.value, "unit": self.unit}

@@ -101,7 +101,9 @@ def kernel(signature: Any) -> Callable[[Callable[..., Any]], Kernel]:
 
     def wrap(fn: Callable[..., Any]) -> Kernel:
         if model_function:
-            compiled = numba.cfunc(signature, cache=True, nopython=True, error_model="numpy")(fn)
+            compiled = numba.cfunc(  # type: ignore[call-arg]  # numba's stub omits cfunc's nopython option
+                signature, cache=True, nopython=True, error_model="numpy"
+            )(fn)
         else:
             compiled = numba.njit(signature, cache=True, nogil=True, error_model="numpy")(fn)
         return Kernel(compiled=compiled, python=fn)

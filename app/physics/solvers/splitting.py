@@ -247,7 +247,7 @@ def _splitting_frames(torque, t0, y, h, steps_per_frame, n_frames, p, weights, y
 #: per call: a quarter of a run of the heavy top (measured with splitting2 and splitting4). Same options as
 #: :func:`~app.physics.solvers.kernels.kernel` otherwise.
 splitting_frames = Kernel(
-    compiled=numba.njit(
+    compiled=numba.njit(  # type: ignore[call-overload]  # numba's stub omits the _nrt option
         types.int64(
             TORQUE_TYPE,
             types.float64,
