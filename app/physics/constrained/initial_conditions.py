@@ -88,8 +88,8 @@ class ConsistentStart:
 
 def consistent_initial_conditions(
     system: ConstrainedSystem,
-    q0: Sequence[float],
-    v0: Sequence[float],
+    q0: Sequence[float] | np.ndarray,
+    v0: Sequence[float] | np.ndarray,
     *,
     fixed_positions: Sequence[int] = (),
     fixed_velocities: Sequence[int] = (),
@@ -192,7 +192,7 @@ def _check_rank(what: str, jacobian: np.ndarray, rows: int) -> None:
         )
 
 
-def _finite_vector(name: str, values: Sequence[float], n: int) -> np.ndarray:
+def _finite_vector(name: str, values: Sequence[float] | np.ndarray, n: int) -> np.ndarray:
     array = np.asarray(values, dtype=float).reshape(-1)
     if array.shape != (n,) or not np.all(np.isfinite(array)):
         raise ValueError(f"{name}: give {n} finite numbers (got {values!r})")

@@ -45,6 +45,7 @@ import time
 from collections import Counter, OrderedDict
 from collections.abc import Callable, Hashable, Sequence
 from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING, TypedDict, cast
 
 import numpy as np
 
@@ -52,6 +53,9 @@ from app.physics.solvers.registry import METHODS
 from app.physics.solvers.solve import simulate
 from app.physics.solvers.spec import MAX_STEPS_PER_FRAME, MethodSpec
 from app.physics.solvers.system import OdeSystem
+
+if TYPE_CHECKING:
+    from app.physics.solvers.dormand_prince import DormandPrince
 
 #: Horizon (s) over which a live scene's default meets its target: what a student watches.
 DEFAULT_HORIZON_S = 60.0
@@ -345,7 +349,7 @@ def _run(
     model's own end of the motion), or (adaptive) out of its ``max_steps`` after :data:`PILOT_MIN_FRAMES` frames."""
     integrator = spec.factory(**setting)
     if spec.adaptive:
-        integrator.max_steps = max(int(max_steps), 1)
+        cast("DormandPrince", integrator).max_steps = max(int(max_steps), 1)
     start = time.process_time()
     result = simulate(system, integrator, y0, t_end_s=frames * frame_dt_s, frame_rate_hz=1.0 / frame_dt_s)
     cpu = time.process_time() - start
@@ -672,6 +676,15 @@ def error_model(
     return PILOT_CACHE.get((cache_key, spec.name, target, horizon), compute, run_pilot=run_pilot)
 
 
+class _Limits(TypedDict):
+    """The limits :func:`choice_from_model` passes on (to itself over a shorter horizon, and to :func:`_setting`)."""
+
+    max_steps_per_frame: int
+    max_adaptive_steps: float
+    limit_text: str
+    max_frame_cpu_s: float
+
+
 def choice_from_model(
     model: ErrorModel,
     target: AccuracyTarget,
@@ -691,7 +704,7 @@ def choice_from_model(
     stated over its predictability horizon instead (the choice's ``horizon_s``, the reason in its note): the
     part of the pilot's error curve measured before the runs parted, never an extrapolation of the exponential.
     """
-    limits = dict(
+    limits = _Limits(
         max_steps_per_frame=max_steps_per_frame,
         max_adaptive_steps=max_adaptive_steps,
         limit_text=limit_text,

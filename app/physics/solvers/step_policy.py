@@ -15,7 +15,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import replace
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, TypedDict, cast
 
 from app.physics.solvers.base import FixedStepIntegrator, Integrator
 from app.physics.solvers.controls import AUTO, integrator_from_controls
@@ -32,9 +32,17 @@ from app.physics.solvers.step_choice import (
 )
 
 if TYPE_CHECKING:
+    from app.physics.solvers.dormand_prince import DormandPrince
     from app.physics.solvers.integrated_model import IntegratedModel
 
 __all__ = ["choose_integrator"]
+
+
+class _Setting(TypedDict):
+    """A method's setting as :class:`StepChoice` takes it: steps per frame (fixed step) or ``rtol`` (adaptive)."""
+
+    steps_per_frame: int | None
+    rtol: float | None
 
 
 def choose_integrator(
@@ -106,8 +114,8 @@ def choose_integrator(
         fixed = isinstance(ratio_rule, FixedStepIntegrator)
         return ratio_rule, StepChoice.pending(
             ratio_rule.name,
-            ratio_rule.steps_per_frame if fixed else None,
-            None if fixed else ratio_rule.rtol,
+            cast(FixedStepIntegrator, ratio_rule).steps_per_frame if fixed else None,
+            None if fixed else cast("DormandPrince", ratio_rule).rtol,
             target,
             horizon_s=horizon,
             frame_dt_s=frame_dt_s,
@@ -143,7 +151,7 @@ def _unmeasured(
     setting = (
         dict(steps_per_frame=integrator.steps_per_frame, rtol=None)
         if isinstance(integrator, FixedStepIntegrator)
-        else dict(steps_per_frame=None, rtol=integrator.rtol)
+        else dict(steps_per_frame=None, rtol=cast("DormandPrince", integrator).rtol)
     )
     return integrator, StepChoice(
         integrator.name,
@@ -191,11 +199,13 @@ def _estimate_for(
     if errors is None:
         return None
     if spec.adaptive:
-        setting = dict(steps_per_frame=None, rtol=integrator.rtol)
-        error = errors.error_adaptive(integrator.rtol, horizon)
+        rtol = cast("DormandPrince", integrator).rtol
+        setting = _Setting(steps_per_frame=None, rtol=rtol)
+        error = errors.error_adaptive(rtol, horizon)
     else:
-        setting = dict(steps_per_frame=integrator.steps_per_frame, rtol=None)
-        error = errors.error_fixed(frame_dt_s / integrator.steps_per_frame, horizon)
+        steps_per_frame = cast(FixedStepIntegrator, integrator).steps_per_frame
+        setting = _Setting(steps_per_frame=steps_per_frame, rtol=None)
+        error = errors.error_fixed(frame_dt_s / steps_per_frame, horizon)
     chosen = StepChoice(
         spec.name,
         target=target,
@@ -216,7 +226,7 @@ def _estimate_for(
 
 def _default_rtol(model: IntegratedModel) -> float | None:
     """The ``rtol`` control's default value (what validated controls carry when no one set it)."""
-    return next((c.default for c in model.controls() if c.name == "rtol"), None)
+    return next((cast(float, c.default) for c in model.controls() if c.name == "rtol"), None)
 
 
 def _is_adaptive(method: str) -> bool:
