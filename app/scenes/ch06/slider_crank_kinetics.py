@@ -48,6 +48,7 @@ class SliderCrankKineticsScene(IntegratedScene):
     title = "Kinetics of the slider-crank: pin forces and driving torque"
     chapter = 6
     model = physics.MechanismKinetics
+    run_model: physics.MechanismKinetics
     presets = (
         Preset(
             "constant-speed",

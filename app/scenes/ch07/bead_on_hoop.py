@@ -32,6 +32,7 @@ class BeadOnHoopScene(DerivedSystemScene):
     title = "A bead on a spinning hoop: the Jacobi integral and the bifurcation at √(g/R)"
     chapter = 7
     model = BeadOnHoopMotion
+    run_model: BeadOnHoopMotion
     camera_position = (0.8, -3.6, 1.0)
     camera_look_at = (0.0, 0.0, -0.1)
     presets = (

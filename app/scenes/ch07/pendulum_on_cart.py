@@ -37,6 +37,7 @@ class PendulumOnCartScene(DerivedSystemScene):
     title = "A pendulum on a sprung, driven cart"
     chapter = 7
     model = CartPendulumMotion
+    run_model: CartPendulumMotion
     camera_position = (0.0, -4.5, -0.3)
     camera_look_at = (0.0, 0.0, -0.5)
     presets = (

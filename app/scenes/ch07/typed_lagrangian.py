@@ -103,6 +103,7 @@ class TypedLagrangianScene(DerivedSystemScene):
     title = "A Lagrangian you type: its equations derived, then run live"
     chapter = 7
     model = TypedLagrangianMotion
+    run_model: TypedLagrangianMotion
     camera_position = (2.1, -4.4, 1.0)
     camera_look_at = (2.1, 0.0, -0.05)
     presets = (

@@ -34,6 +34,7 @@ class CartesianPendulumScene(IntegratedScene):
     title = "The pendulum in Cartesian coordinates: DAE algorithms side by side"
     chapter = 8
     model = CartesianPendulum
+    run_model: CartesianPendulum
     frame_message_budget = 3.0
     camera_position = (0.0, -3.6, 0.9)
     camera_look_at = (0.0, 0.0, 0.8)

@@ -39,6 +39,7 @@ class PlanarLinkageScene(IntegratedScene):
     """Draws :attr:`model`'s three links from the state (q, v) of whichever algorithm runs."""
 
     model: ClassVar[type[PlanarLinkageModel]]
+    run_model: PlanarLinkageModel
     #: Links, pins and arrows each frame (and the slider block where there is one).
     frame_message_budget = 5.0
     #: Whether the third link is a slider block (drawn as a box, not a bar).

@@ -41,6 +41,7 @@ class UnsteadyRollingDiskScene(IntegratedScene):
     title = "The unsteady rolling disk: rolling without slip as nonholonomic constraints"
     chapter = 8
     model = UnsteadyRollingDisk
+    run_model: UnsteadyRollingDisk
     frame_message_budget = 2.0
     #: 0.75 m up, just outside the default start's 2 m circle (centre (0, −1) m) beside where the disk starts,
     #: looking across it: with viser's 75° field of view the circle fills the view and the 0.2 m disk is never

@@ -31,6 +31,7 @@ class RollingDiskScene(DerivedSystemScene):
     title = "Kane and Gibbs–Appell: a disk rolling without slipping"
     chapter = 9
     model = RollingDiskMotion
+    run_model: RollingDiskMotion
     camera_position = (0.3, -3.3, 1.9)
     camera_look_at = (0.0, -0.7, 0.0)
     presets = (

@@ -11,6 +11,7 @@ from __future__ import annotations
 from abc import abstractmethod
 
 from app.physics.core.readout import Quantity
+from app.physics.mechanics.model import DerivedModel
 from app.physics.mechanics.derivation import FORMULATIONS
 from app.scenes.kit.integrated import IntegratedScene
 
@@ -20,6 +21,8 @@ AGREEMENT_EVERY_FRAMES = 15
 
 class DerivedSystemScene(IntegratedScene):
     """An integrated scene whose model is a :class:`~app.physics.mechanics.model.DerivedModel`."""
+
+    run_model: DerivedModel
 
     @abstractmethod
     def _draw(self) -> None:
