@@ -26,7 +26,7 @@ from app.physics.core.parameters import Parameter, ParameterError
 from app.physics.math.curvilinear import cylindrical, spherical
 from app.physics.math.rotations import quaternion_from_matrix
 from app.physics.systems.ch02 import space_curve as physics
-from app.scenes.kit import Preset, Quantity, Readout, Scene, arrow_segments
+from app.scenes.kit import LabelAnchor, Preset, Quantity, Readout, Scene, arrow_segments
 
 CURVE_SEGMENTS_MAX = 3000  # the drawn curve is the frame table's points, thinned to at most this many segments
 TRIAD_FRACTION = 0.16  # triad arrow length / curve size
@@ -38,7 +38,7 @@ TRIAD_COLORS = ((220, 60, 50), (40, 160, 70), (40, 90, 220))
 ACCELERATION_COLORS = np.array([[150, 50, 190], [235, 140, 20], [20, 170, 170]], np.uint8)
 ACCELERATION_LABELS = ("a", "aₜ", "aₙ")
 #: Label anchors: a above its tip, aₙ below, so they stay apart when a_t = 0 and a = a_n N.
-ACCELERATION_ANCHORS = ("bottom-left", "center-left", "top-left")
+ACCELERATION_ANCHORS: tuple[LabelAnchor, ...] = ("bottom-left", "center-left", "top-left")
 TRIAD_LABELS = {
     "frenet": ("T", "N", "B"),
     "cylindrical": ("e_R", "e_θ", "e_z"),

@@ -36,7 +36,7 @@ from app.physics.math.rotations import (
     rotate_vector,
     rotation_sequence,
 )
-from app.scenes.kit import Mark, Preset, Quantity, Readout, Scene
+from app.scenes.kit import LabelAnchor, Mark, Preset, Quantity, Readout, Scene
 
 STAGES = ("animate", "after turn 1", "after turn 2", "after turn 3")
 NEAR_LOCK_DEG = 10.0
@@ -113,7 +113,7 @@ VIEW_PX_PER_TANGENT = 260.0 / math.tan(0.5)
 #: The sides of its tip a name may be put on (viser anchors: the text's corner or edge at the tip), corners first.
 #: Half-size (px) of the spot around each name's tip that other names' texts keep clear of.
 TIP_CLEARANCE_PX = 1.5
-LABEL_SIDES = (
+LABEL_SIDES: tuple[LabelAnchor, ...] = (
     "bottom-left",
     "bottom-right",
     "top-left",
@@ -197,7 +197,7 @@ def boxes_overlap(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.clip(width, 0.0, None) * np.clip(height, 0.0, None)
 
 
-def label_anchors(points_px: np.ndarray, sizes_px, current: list[str]) -> list[str]:
+def label_anchors(points_px: np.ndarray, sizes_px, current: list[LabelAnchor]) -> list[LabelAnchor]:
     """A side (LABEL_SIDES anchor) for each label at ``points_px`` (n, 2) whose text covers no label placed before
     it and no other label's tip (TIP_CLEARANCE_PX around it, so a later name always has room): its ``current``
     side if that is free (so names do not jump about), else the first free side, else the side covering least."""

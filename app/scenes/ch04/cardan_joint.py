@@ -12,12 +12,13 @@ and one dot move.
 from __future__ import annotations
 
 import math
+from typing import cast
 
 import numpy as np
 from scipy.spatial.transform import Rotation
 
 from app.physics.systems.ch04 import cardan_joint as physics
-from app.scenes.kit import Preset, Quantity, Readout, Scene
+from app.scenes.kit import LabelAnchor, Preset, Quantity, Readout, Scene
 
 SHAFT_LENGTH = 1.2
 YOKE_RADIUS = 0.22  # distance of each yoke arm (and pin end) from the shaft axis
@@ -94,7 +95,7 @@ class CardanJointScene(Scene):
         )
         self.graph_dot = scene.add_icosphere("/graph/dot", radius=0.035, color=(200, 60, 40))
         self.graph_labels = {
-            name: scene.add_label(f"/graph/{name}", "", anchor=anchor)
+            name: scene.add_label(f"/graph/{name}", "", anchor=cast(LabelAnchor, anchor))
             for name, anchor in (
                 ("title", "bottom-left"),
                 ("max", "center-right"),

@@ -16,11 +16,13 @@ origin O (dark red); the motion restarts every few seconds so it stays in view.
 from __future__ import annotations
 
 import math
+from typing import cast
 
 import numpy as np
 
 from app.physics.systems.ch05 import angular_momentum as physics
 from app.scenes.kit import (
+    LabelAnchor,
     Preset,
     Quantity,
     Readout,
@@ -99,7 +101,7 @@ class AngularMomentumScene(Scene):
             head_length=0.05,
         )
         self.labels = {
-            name: scene.add_label(f"/rig/label_{key}", name, anchor=anchor)
+            name: scene.add_label(f"/rig/label_{key}", name, anchor=cast(LabelAnchor, anchor))
             for key, name, anchor in (
                 ("omega", "ω", "bottom-left"),
                 ("h", "H_G", "bottom-right"),

@@ -27,7 +27,7 @@ from app.physics.systems.ch07.typed_lagrangian_model import (
     TypedLagrangianMotion,
     initial_state,
 )
-from app.scenes.kit import Preset, Quantity, Readout, Trail, circle_segments, move_node, update_node
+from app.scenes.kit import LabelAnchor, Preset, Quantity, Readout, Trail, circle_segments, move_node, update_node
 from app.scenes.kit.derived_system_scene import DerivedSystemScene
 
 DIAL_RADIUS = 0.45
@@ -206,7 +206,7 @@ class TypedLagrangianScene(DerivedSystemScene):
                 np.array([BOX_HALF + 0.08, 0.0, -BOX_HALF]),
                 np.array([-BOX_HALF - 0.08, -BOX_HALF, 0.0]),
             ]
-        anchors = ["top-center", "center-left" if n == 3 else "center-right", "center-right"]
+        anchors: list[LabelAnchor] = ["top-center", "center-left" if n == 3 else "center-right", "center-right"]
         self._range_labels = []
         for k, (axis, place) in enumerate(zip(axes, places, strict=True)):
             label = scene.add_label(f"/box/axis{k}", axis, anchor=anchors[k])

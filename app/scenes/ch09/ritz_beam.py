@@ -14,11 +14,12 @@ points); everything else is redrawn only when a control changes.
 from __future__ import annotations
 
 import math
+from typing import cast
 
 import numpy as np
 
 from app.physics.systems.ch09 import ritz_beam as physics
-from app.scenes.kit import Preset, Quantity, Readout, Scene, circle_segments, update_node
+from app.scenes.kit import LabelAnchor, Preset, Quantity, Readout, Scene, circle_segments, update_node
 
 RITZ_COLOR = (40, 90, 220)
 EXACT_COLOR = (235, 130, 30)
@@ -102,7 +103,7 @@ class RitzCantileverScene(Scene):
             "/chart/marks", np.zeros((1, 3), np.float32), MONOMIAL_COLOR, point_size=0.03, point_shape="circle"
         )
         self.chart_labels = [
-            scene.add_label(f"/chart/label_{i}", "", anchor=anchor)
+            scene.add_label(f"/chart/label_{i}", "", anchor=cast(LabelAnchor, anchor))
             for i, anchor in enumerate(("bottom-left", "center-right", "center-right", "top-center", "top-center"))
         ]
         self._xi = np.linspace(0.0, 1.0, SEGMENTS + 1)

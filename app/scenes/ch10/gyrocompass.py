@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import cast
 
 import numpy as np
 
@@ -25,7 +26,7 @@ from app.physics.core.parameters import Parameter
 from app.physics.solvers import LiveRun
 from app.physics.systems.ch10 import gyrocompass as physics
 from app.scenes.ch10.free_gyroscope import COLOR_H, COLOR_PRECESSION, COLOR_RATE, COLOR_TORQUE
-from app.scenes.kit import FRAME_DT_S, IntegratedScene, Preset, Quantity, Readout, arrow_segments
+from app.scenes.kit import FRAME_DT_S, IntegratedScene, LabelAnchor, Preset, Quantity, Readout, arrow_segments
 from app.scenes.kit.rotor import add_rotor, drawn_spin_angle, ring_mesh, spin_quaternion
 
 CARD_RADIUS = 1.3
@@ -169,7 +170,7 @@ class GyrocompassScene(IntegratedScene):
             head_length=0.09,
         )
         self.labels = {
-            name: scene.add_label(f"/vectors/{name}", "", anchor=anchor)
+            name: scene.add_label(f"/vectors/{name}", "", anchor=cast(LabelAnchor, anchor))
             for name, anchor in (
                 ("H", "bottom-left"),
                 ("earth", "bottom-right"),

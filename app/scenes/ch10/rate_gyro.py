@@ -28,7 +28,7 @@ import numpy as np
 from app.physics.math.rotations import quaternion_from_matrix
 from app.physics.systems.ch10 import rate_gyro as physics
 from app.scenes.ch10.free_gyroscope import COLOR_H, COLOR_RATE, COLOR_TORQUE
-from app.scenes.kit import Mark, Preset, Quantity, Readout, Scene, arrow_segments
+from app.scenes.kit import LabelAnchor, Mark, Preset, Quantity, Readout, Scene, arrow_segments
 from app.scenes.kit.rotor import add_rotor, drawn_spin_angle, ring_mesh, spin_quaternion
 
 GIMBAL_RADIUS = 0.55
@@ -281,7 +281,7 @@ class RateGyroScene(Scene):
             if k in (-count, 0, count):
                 rate = k * step
                 text = "0" if k == 0 else f"{rate:+g} rad/s".replace("-", "−")
-                anchor = (
+                anchor: LabelAnchor = (
                     "bottom-center" if k == 0 else ("bottom-left" if direction[1] < 0.0 else "bottom-right")
                 )  # −y is the screen's right
                 nodes.append(

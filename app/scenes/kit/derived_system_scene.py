@@ -11,8 +11,8 @@ from __future__ import annotations
 from abc import abstractmethod
 
 from app.physics.core.readout import Quantity
-from app.physics.mechanics.model import DerivedModel
 from app.physics.mechanics.derivation import FORMULATIONS
+from app.physics.mechanics.model import DerivedModel
 from app.scenes.kit.integrated import IntegratedScene
 
 #: The agreement is re-evaluated at 2 Hz (every 15th frame at 30 Hz).

@@ -13,7 +13,7 @@ import math
 from abc import ABC, abstractmethod
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, replace
-from typing import Any, ClassVar
+from typing import Any, ClassVar, Literal
 
 import viser
 
@@ -28,6 +28,18 @@ from app.scenes.viser_boundary import set_initial_camera
 FRAME_DT_S = 1.0 / 30.0
 #: Latest simulated time :meth:`Scene.go_to` computes (s): a share link's bound.
 GO_TO_MAX_S = 600.0
+#: Where a label's text sits against its point (viser's ``add_label`` anchors: the text's corner or edge there).
+LabelAnchor = Literal[
+    "top-left",
+    "top-center",
+    "top-right",
+    "center-left",
+    "center-center",
+    "center-right",
+    "bottom-left",
+    "bottom-center",
+    "bottom-right",
+]
 
 
 def checked_go_to_time(t_s: Any) -> float:
@@ -216,6 +228,8 @@ class Scene(ABC):
     #: An animated scene's motion as ``{key in motion_state(): instance attribute}``, every value a float, ``t_s``
     #: (simulated s) first. The default fits the common closed-form scene: a clock ``self.t_s`` and ``_draw()``.
     motion_attributes: ClassVar[Mapping[str, str]] = {"t_s": "t_s"}
+    #: The clock of a scene that keeps one (simulated s): set by the scene, moved by :meth:`step_motion`.
+    t_s: float
 
     def advance(self, dt_s: float) -> None:
         """Advance the animation by ``dt_s`` seconds of wall-clock time: :meth:`step_motion`, then :meth:`redraw`."""
