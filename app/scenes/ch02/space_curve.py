@@ -233,7 +233,7 @@ class SpaceCurveScene(Scene):
     chapter = 2
     model = physics.ParticleOnCurve
     controls = CONTROLS
-    check_controls = staticmethod(_check_playback)
+    check_controls = _check_playback
     presets = PRESETS
     animated = True
 

@@ -13,6 +13,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import viser
 
 from app.physics.systems.ch03 import foucault_pendulum as physics
 from app.physics.systems.earth import (
@@ -78,7 +79,7 @@ class FoucaultPendulumScene(IntegratedScene):
 
     def build(self) -> None:
         scene = self.client.scene
-        self.floor = None
+        self.floor: viser.GridHandle | None = None
         self.compass: list = []
         self.pivot = scene.add_icosphere("/pivot", radius=0.05, color=(40, 40, 40))
         self.string = scene.add_line_segments(

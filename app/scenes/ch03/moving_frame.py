@@ -12,9 +12,10 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
+import viser
 
 from app.physics.core.parameters import Parameter
 from app.physics.systems.ch03 import moving_frame as physics
@@ -214,8 +215,8 @@ class MovingFrameScene(Scene):
             position=(0.0, 0.0, 0.23 + 0.5 * (physics.TABLE_HEIGHT_M - 0.23)),
         )
         self.table = scene.add_frame("/table", axes_length=0.25, axes_radius=0.008)
-        self.disc = None
-        self.groove = None
+        self.disc: viser.CylinderHandle | None = None
+        self.groove: viser.LineSegmentsHandle | None = None
         self.slider = scene.add_box(
             "/table/slider", color=(250, 200, 40), dimensions=(0.08, 0.05, 2.0 * DISC_TOP_BELOW_P_M)
         )
@@ -233,7 +234,7 @@ class MovingFrameScene(Scene):
         radius = params["table_radius_m"]
         if self.disc is not None:
             self.disc.remove()
-            self.groove.remove()
+            cast(viser.LineSegmentsHandle, self.groove).remove()  # drawn with the disc
         self.disc = scene.add_cylinder(
             "/table/disc",
             radius=radius,

@@ -23,6 +23,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import viser
 
 from app.physics.systems.ch04 import rolling as physics
 from app.scenes.kit import Preset, Quantity, Readout, Scene
@@ -159,7 +160,7 @@ class RollingScene(Scene):
         ends = R * 0.98 * np.stack([np.cos(spokes), np.sin(spokes), np.zeros(4)], axis=-1)
         if rolling.body == "cone":
             vertices, faces = cone_mesh(radius=R, height=rolling.cone_height_m)
-            mesh = scene.add_mesh_simple(
+            mesh: viser.MeshHandle | viser.CylinderHandle = scene.add_mesh_simple(
                 "/body/cone", vertices, faces, color=(90, 150, 200), opacity=0.6, side="double"
             )
             # Stripes from the apex to the rim show the spin.

@@ -13,6 +13,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import viser
 
 from app.physics.systems.ch06 import bouncing_bar as physics
 from app.scenes.kit import (
@@ -90,7 +91,7 @@ class BouncingBarScene(IntegratedScene):
             "/floor", width=12.0, height=4.0, cell_size=0.1, section_size=0.5, plane="xy", position=(0.0, 0.0, 0.0)
         )
         self.bar = scene.add_frame("/bar", show_axes=False)
-        self.bar_body = None
+        self.bar_body: viser.BoxHandle | None = None
         self.end_markers = [
             scene.add_icosphere("/bar/end_a", radius=0.02, color=(235, 130, 30)),
             scene.add_icosphere("/bar/end_b", radius=0.02, color=(40, 110, 220)),

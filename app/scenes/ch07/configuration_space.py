@@ -22,8 +22,10 @@ Every frame evaluates closed forms (no integration): a handful of numpy operatio
 from __future__ import annotations
 
 import math
+from typing import cast
 
 import numpy as np
+import viser
 
 from app.physics.core.parameters import Parameter
 from app.physics.systems.ch07 import configuration_space as physics
@@ -291,7 +293,7 @@ class ConfigurationSpaceScene(Scene):
         )
         self.curve_frame = self._add(scene.add_frame("/config/curve", show_axes=False, position=right))
         scene.add_line_segments("/config/curve/line", polyline_segments(shape), CURVE_COLOR, thickness=0.004 * span)
-        self.later_frame = None
+        self.later_frame: viser.FrameHandle | None = None
         if isinstance(self._system, physics.SlidingHoop):
             self.later_frame = self._add(scene.add_frame("/config/later", show_axes=False, position=right))
             scene.add_line_segments("/config/later/line", polyline_segments(shape), GHOST_COLOR, thickness=0.003 * span)
@@ -335,7 +337,8 @@ class ConfigurationSpaceScene(Scene):
             centre = self._system.centre(self.t_s)
             move_node(self.wire_frame, position=self._left + to_world(centre))
             move_node(self.curve_frame, position=self._right + to_world(centre))
-            move_node(self.later_frame, position=self._right + to_world(self._system.centre(self.t_s + ARROW_TIME_S)))
+            later = cast(viser.FrameHandle, self.later_frame)  # a sliding hoop's sides have one
+            move_node(later, position=self._right + to_world(self._system.centre(self.t_s + ARROW_TIME_S)))
         move_node(self.bead, position=self._left + to_world(snap.position))
         point = self._right + to_world(snap.position)
         move_node(self.point, position=point)

@@ -15,9 +15,10 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
+import viser
 
 from app.physics.mechanics.typed import COORDINATE_NAMES
 from app.physics.systems.ch07.typed_lagrangian_model import (
@@ -138,7 +139,7 @@ class TypedLagrangianScene(DerivedSystemScene):
 
     def build(self) -> None:
         scene = self.client.scene
-        self.rods = None  # drawn by _draw_fixed: one segment per coordinate
+        self.rods: viser.LineSegmentsHandle | None = None  # drawn by _draw_fixed: one segment per coordinate
         self.state_point = scene.add_icosphere("/box/state", radius=0.045, color=(235, 120, 20))
         self.trail = Trail(
             scene, "/box/trail", color=(235, 120, 20), chunk_frames=TRAIL_CHUNK_FRAMES, max_chunks=TRAIL_CHUNKS
@@ -235,7 +236,7 @@ class TypedLagrangianScene(DerivedSystemScene):
         return self.run.y[:2] if n == 1 else self.run.y[:n]
 
     def _draw(self) -> None:
-        update_node(self.rods, points=self._rod_segments())
+        update_node(cast(viser.LineSegmentsHandle, self.rods), points=self._rod_segments())  # drawn by _draw_fixed
         values = self._box_values()
         if np.any(np.abs(values) > self._ranges):
             while np.any(np.abs(values) > self._ranges):

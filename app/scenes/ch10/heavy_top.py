@@ -17,6 +17,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import viser
 
 from app.physics.math.rotations import rotation_matrix
 from app.physics.systems.ch10 import heavy_top as physics
@@ -97,7 +98,7 @@ class HeavyTopScene(IntegratedScene):
             receive_shadow=False,
         )
         self.body = scene.add_frame("/top", show_axes=False)
-        self.mesh = None
+        self.mesh: viser.MeshHandle | None = None
         self.spin_marker = scene.add_icosphere("/top/marker", radius=0.03, color=(240, 190, 40))
         self.arrows = scene.add_arrows(
             "/vectors",

@@ -2,7 +2,10 @@
 
 from __future__ import annotations
 
+from typing import cast
+
 import numpy as np
+import viser
 
 from app.scenes.viser_boundary import move_node, update_node
 
@@ -20,7 +23,7 @@ class LabelledArrows:
         self._scene = scene
         self._name = name
         self._colors = colors
-        self._node = None
+        self._node: viser.ArrowsHandle | None = None
         self._drawn: tuple[str, ...] | None = None
         self._serial = 0
         self._style: dict[str, float] = {}
@@ -61,4 +64,4 @@ class LabelledArrows:
             self._node = self._scene.add_arrows(f"{self._name}/{self._serial}", points, colors, **self._style)
             self._drawn = tuple(keep)
         else:
-            update_node(self._node, points=points)
+            update_node(cast(viser.ArrowsHandle, self._node), points=points)  # drawn: _drawn starts as None

@@ -92,7 +92,7 @@ def compose_parameters(
     example: WorkedExample | None,
     controls: tuple[Parameter, ...],
     slider_ranges: Mapping[str, tuple[float, float, float]],
-    check_controls: Callable[[Mapping[str, Any]], None] | None,
+    check_controls: Callable[[Mapping[str, Any]], object] | None,
 ) -> ParameterSet:
     """A scene's parameters: the model's (or the worked example's inputs), the scene's own controls,
     then the model's controls (an integrated model's integration controls; none for a closed form).
@@ -158,7 +158,7 @@ class Scene(ABC):
     #: Composed by ``__init_subclass__``: model/example parameters, controls, integration controls.
     parameters: ClassVar[ParameterSet] = ParameterSet(())
     #: Raises ValueError for control values impossible with the rest (run after the model's check).
-    check_controls: ClassVar[Callable[[Mapping[str, Any]], None] | None] = None
+    check_controls: ClassVar[Callable[[Mapping[str, Any]], object] | None] = None
     animated: ClassVar[bool] = False
     #: Buttons on the lesson page that set several controls at once.
     presets: ClassVar[tuple[Preset, ...]] = ()
