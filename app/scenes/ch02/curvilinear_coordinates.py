@@ -14,6 +14,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import viser
 
 from app.physics.core.parameters import Parameter
 from app.physics.math.rotations import quaternion_from_matrix
@@ -155,7 +156,7 @@ class CurvilinearCoordinatesScene(ParticleRunScene):
             node.remove()
         size = self.drawing_size_m
         length, shaft = TRIAD_FRACTION * size, 0.008 * size
-        nodes = []
+        nodes: list[viser.SceneNodeHandle] = []
         for k, text in enumerate(TRIAD_LABELS[self.params["frame"]]):
             tip = length * np.eye(3)[k]
             nodes.append(

@@ -21,6 +21,7 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+import viser
 
 from app.physics.core.parameters import Parameter, ParameterError
 from app.physics.math.curvilinear import cylindrical, spherical
@@ -274,7 +275,7 @@ class SpaceCurveScene(Scene):
         self.osculating = scene.add_line_segments(
             "/particle/osculating", _unit_osculating_circle(), (120, 120, 120), thickness=1.5, thickness_units="screen"
         )
-        self._acceleration_node = None
+        self._acceleration_node: viser.ArrowsHandle | None = None
         self.acceleration_labels = [
             scene.add_label(f"/acceleration_label/{k}", text, anchor=anchor, font_screen_scale=0.9)
             for k, (text, anchor) in enumerate(zip(ACCELERATION_LABELS, ACCELERATION_ANCHORS))
@@ -360,7 +361,7 @@ class SpaceCurveScene(Scene):
         points, finite = points[::stride], finite[::stride]
         keep = finite[:-1] & finite[1:]
         segments = np.stack([points[:-1], points[1:]], axis=1)[keep].astype(np.float32)
-        nodes = []
+        nodes: list[viser.SceneNodeHandle] = []
         if len(segments):
             nodes.append(
                 scene.add_line_segments("/curve", segments, (90, 90, 150), thickness=2.5, thickness_units="screen")

@@ -24,6 +24,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import viser
 
 from app.physics.math.rotations import quaternion_from_matrix
 from app.physics.systems.ch10 import rate_gyro as physics
@@ -268,7 +269,8 @@ class RateGyroScene(Scene):
                 nice_step(MIN_SCALE_RAD / (4.0 * abs(self._gain))),
                 4,
             )  # at most 2 MIN_SCALE_RAD < MAX_SCALE_RAD
-        segments, nodes = [], []
+        segments: list[list[np.ndarray]] = []
+        nodes: list[viser.SceneNodeHandle] = []
         for k in range(-count, count + 1):
             beta = self._gain * k * step
             direction = needle_direction(beta)  # where the needle's tip stops for this Ω
