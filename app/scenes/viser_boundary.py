@@ -28,13 +28,16 @@ import io
 import threading
 import typing
 from collections.abc import Iterator
-from typing import Any
+from typing import Any, cast
 
 import msgspec
 import numpy as np
 import viser
 from viser import _messages
 from viser._viser import InitialCameraConfig
+
+if typing.TYPE_CHECKING:
+    from websockets.http11 import Request
 
 #: The viser version these private calls were checked against.
 CHECKED_VISER_VERSION = "1.1.1"
@@ -70,7 +73,8 @@ def set_initial_camera(
 def connection_path(server: viser.ViserServer, client: viser.ClientHandle) -> str | None:
     """The request path (with any query) of ``client``'s websocket, or None once it has gone."""
     connection = server._websock_server._live_connections.get(client.client_id)
-    return None if connection is None else connection.request.path
+    # A live connection has been accepted, so its handshake request is there.
+    return None if connection is None else cast("Request", connection.request).path
 
 
 def viewer_camera_message(
@@ -173,7 +177,8 @@ def count_outgoing_messages(client: viser.ClientHandle) -> Iterator[list[int]]:
         count[0] += 1
         queue_message(message)
 
-    connection.queue_message = counting  # an instance attribute shadows the method while the block runs
+    # An instance attribute shadows the method while the block runs (deliberately: mypy forbids it by default).
+    connection.queue_message = counting  # type: ignore[method-assign]
     try:
         yield count
     finally:
@@ -337,8 +342,8 @@ class BroadcastViewer:
         """Move every viewer's camera now (m, world frame): a new scene on the stage is seen from its own start pose,
         not from wherever the last scene left the cameras."""
         queue = self.server._websock_server.queue_message
-        queue(_messages.SetCameraLookAtMessage(tuple(map(float, look_at))))
-        queue(_messages.SetCameraPositionMessage(tuple(map(float, position))))
+        queue(_messages.SetCameraLookAtMessage(cast("tuple[float, float, float]", tuple(map(float, look_at)))))
+        queue(_messages.SetCameraPositionMessage(cast("tuple[float, float, float]", tuple(map(float, position)))))
 
     def flush(self) -> None:
         self.server.flush()
