@@ -14,6 +14,7 @@ import math
 import threading
 from collections.abc import Iterator
 from contextlib import contextmanager
+from typing import Any
 
 from fastapi import HTTPException
 
@@ -85,7 +86,7 @@ SIMULATIONS = HeavyRequestLimiter(
 )
 
 #: OpenAPI ``responses=`` entry for a route guarded by a limiter.
-TOO_MANY_RESPONSE = {
+TOO_MANY_RESPONSE: dict[int | str, dict[str, Any]] = {
     429: {
         "model": ErrorDetail,
         "description": "Too many simulations are running or waiting; the `Retry-After` header says when to try again (s)",

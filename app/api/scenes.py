@@ -50,7 +50,7 @@ SessionKey = Annotated[
 _UNKNOWN_SCENE = "No scene has this id"
 #: What the session doors answer besides 404/422 (:mod:`app.api.access`).
 _RETRY_AFTER = {"Retry-After": {"description": "Seconds to wait before retrying", "schema": {"type": "integer"}}}
-_SESSION_DOOR = {
+_SESSION_DOOR: dict[int | str, dict[str, Any]] = {
     403: {
         "model": ErrorDetail,
         "description": "The session belongs to another page (its X-Session-Key is missing or wrong), or it is a classroom room's shared scene (changed only by its instructor); nothing changed",
@@ -61,7 +61,7 @@ _SESSION_DOOR = {
         "headers": _RETRY_AFTER,
     },
 }
-_TOO_MANY_SESSIONS = {
+_TOO_MANY_SESSIONS: dict[int | str, dict[str, Any]] = {
     429: {
         "model": ErrorDetail,
         "description": "Too many new scenes from this device; Retry-After says when to try again",

@@ -33,6 +33,7 @@ import zstandard
 from fastapi import APIRouter, FastAPI, WebSocket
 from starlette.concurrency import run_in_threadpool
 from starlette.websockets import WebSocketDisconnect
+from websockets.typing import Subprotocol
 
 from app.api.access import Refused
 from app.api.rate_limit import client_address
@@ -119,12 +120,12 @@ class StageStream:
     async def connect(self) -> websockets.ClientConnection:
         upstream = await websockets.connect(
             self.url,
-            subprotocols=[self.protocol],
+            subprotocols=[Subprotocol(self.protocol)],
             max_size=None,
             compression=None,
             open_timeout=10,
             close_timeout=UPSTREAM_CLOSE_TIMEOUT_S,
-        )  # type: ignore[list-item]
+        )
         await upstream.send(
             viewer_camera_message()
         )  # viser counts a viewer as connected after its first camera message

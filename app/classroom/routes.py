@@ -12,12 +12,12 @@ import contextlib
 import json
 import re
 import secrets
-from typing import Annotated, Any
+from typing import Annotated, Any, cast
 
 from fastapi import APIRouter, Depends, Header, HTTPException, Path, Request, WebSocket
 from fastapi.concurrency import run_in_threadpool
 from fastapi.responses import PlainTextResponse, Response
-from pydantic import ValidationError
+from pydantic import BaseModel, ValidationError
 from starlette.requests import HTTPConnection
 from starlette.websockets import WebSocketDisconnect
 
@@ -67,7 +67,7 @@ DEVICE_COOKIE_PATH = "/api/rooms/join"
 DEVICE_PATTERN = re.compile(r"^[A-Za-z0-9_-]{16,64}$")
 #: How long a device cookie lasts (s): a school day and then some; rooms do not outlive the server anyway.
 DEVICE_COOKIE_MAX_AGE_S = 24 * 3600
-_FORBIDDEN = {
+_FORBIDDEN: dict[int | str, dict[str, Any]] = {
     403: {
         "model": ErrorDetail,
         "description": "Instructor only (the instructor link's cookie, or X-Instructor-Key); nothing changed",
@@ -502,7 +502,11 @@ def poll_results_csv(room: RoomDep, poll_id: PollId) -> PlainTextResponse:
 #: Largest message a page may send on the room socket (characters); the largest real one is a few hundred.
 MAX_SOCKET_MESSAGE = 16_384
 #: Socket actions only the instructor may take, and the request body each carries.
-INSTRUCTOR_ACTIONS = {"set_state": RoomStateChange, "open_poll": PollRequest, "update_poll": PollUpdate}
+INSTRUCTOR_ACTIONS: dict[str, type[BaseModel]] = {
+    "set_state": RoomStateChange,
+    "open_poll": PollRequest,
+    "update_poll": PollUpdate,
+}
 
 
 @router.websocket("/rooms/{room_id}/socket")
@@ -653,4 +657,4 @@ def _instructor_action(websocket: WebSocket, room: Room, kind: str, message: dic
         poll_id = message.get("poll_id")
         if not isinstance(poll_id, str):
             raise unprocessable(["poll_id"], "update_poll needs the poll_id")
-        update_poll(room, poll_id, body, host, hub)
+        update_poll(room, poll_id, cast(PollUpdate, body), host, hub)  # the update_poll action validates a PollUpdate

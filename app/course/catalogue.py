@@ -16,11 +16,15 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass, replace
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from app.course.lessons import LESSONS_DIR, Chapter, Lesson, parse_lesson, parse_outline
 from app.physics.core.solution import WorkedExample
 from app.physics.systems import analytical_systems, worked_examples
 from app.scenes import SCENES, Scene
+
+if TYPE_CHECKING:
+    from app.physics.mechanics.description import SystemDescription
 
 
 class CatalogueError(ValueError):
@@ -39,7 +43,7 @@ class Catalogue:
     lessons: Mapping[str, Lesson]
     scenes: Mapping[str, type[Scene]]
     examples: Mapping[str, WorkedExample]
-    derivations: Mapping[str, object]
+    derivations: Mapping[str, SystemDescription]
 
     def chapter_of(self, lesson: Lesson) -> Chapter:
         return next(ch for ch in self.chapters if ch.number == lesson.chapter)
@@ -64,7 +68,7 @@ def load_catalogue(
     *,
     scenes: Mapping[str, type[Scene]] | None = None,
     examples: Mapping[str, WorkedExample] | None = None,
-    derivations: Mapping[str, object] | None = None,
+    derivations: Mapping[str, SystemDescription] | None = None,
 ) -> Catalogue:
     """Read the outline and lesson files under ``root`` and check every reference.
 
