@@ -308,7 +308,7 @@ show("rate_gain", None if read_back.degenerate else 1.0 / smallest, "(rad/s)/(ra
 def _configuration_space_script(scene: type[Scene], params: Mapping[str, Any]) -> str:
     kind = params["constraint"]
     if kind == "nonholonomic":
-        names = ("drive_distance_m", "turn_angle_deg")
+        names: tuple[str, ...] = ("drive_distance_m", "turn_angle_deg")
         body = """park = physics.ParallelParking(values["drive_distance_m"], math.radians(values["turn_angle_deg"]))
 
 print("one manoeuvre: drive s, turn alpha, reverse s, turn back:")

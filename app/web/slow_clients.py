@@ -51,7 +51,7 @@ class GuardedHttpProtocol(HttpToolsProtocol):
         super().connection_made(transport)
         address = self.client[0] if self.client else None
         if self.cap_connections and address is not None:
-            held = sum(1 for c in self.connections if getattr(c, "client", None) and c.client[0] == address)
+            held = sum(1 for c in self.connections if (client := getattr(c, "client", None)) and client[0] == address)
             if held > MAX_CONNECTIONS_PER_CLIENT:
                 log.warning("closing a connection from %s: it holds %d already", address, held - 1)
                 transport.abort()

@@ -140,12 +140,12 @@ def motion_graph(
                     )
                     values[name] = _finite_list(np.broadcast_to(np.asarray(series, dtype=float), t_s.shape)[keep])
             budget = model.energy_budget(params, states, t_s=t_s)
-            for key, energy in (budget or {}).items():
+            for key, series in (budget or {}).items():
                 name = ENERGY_PREFIX + key
                 quantities.append(
                     {"name": name, "label": ENERGY_LABELS.get(key, readable_label(key)), "unit": "J", "kind": "energy"}
                 )
-                values[name] = _finite_list(np.asarray(energy)[keep])
+                values[name] = _finite_list(np.asarray(series)[keep])
             t_s = t_s[keep]
         if not frames and latest is not None:  # nothing new: the bars still show the last kept frame
             latest_t_s, latest_motion = latest

@@ -441,15 +441,15 @@ class SceneHost:
                 )
         if isinstance(step, bool) or not isinstance(step, int) or not 0 <= step <= MAX_STEP_FRAMES:
             raise ValueError(f"step: a whole number of frames from 0 to {MAX_STEP_FRAMES}, got {step!r}")
-        for name, value, high in (("seek_s", seek_s, None), ("go_to_s", go_to_s, MAX_GO_TO_S)):
+        for name, value, latest in (("seek_s", seek_s, None), ("go_to_s", go_to_s, MAX_GO_TO_S)):
             if value is not None and (
                 isinstance(value, bool)
                 or not isinstance(value, int | float)
                 or not math.isfinite(value)
                 or value < 0
-                or (high is not None and value > high)
+                or (latest is not None and value > latest)
             ):
-                raise ValueError(f"{name}: a simulated time from 0 to {high or 'the latest kept'} s, got {value!r}")
+                raise ValueError(f"{name}: a simulated time from 0 to {latest or 'the latest kept'} s, got {value!r}")
         session = self._existing(session_id)
         if (go_to_s is not None or step or seek_s is not None) and not self.scene_class(session.scene_id).animated:
             raise ValueError(f"{session.scene_id} is not animated: it has no time to step, scrub or go to")
@@ -516,9 +516,9 @@ class SceneHost:
             if playing and seek_s is None:
                 # Playing on from a scrubbed instant: the frames kept after it are not this run's.
                 for client_id, scene in session.instances.items():
-                    motion = scene.motion_state()
-                    if motion is not None and client_id in session.histories:
-                        session.histories[client_id].forget_after(motion["t_s"])
+                    current = scene.motion_state()
+                    if current is not None and client_id in session.histories:
+                        session.histories[client_id].forget_after(current["t_s"])
             return session.playback_answer()
 
     @contextlib.contextmanager

@@ -144,7 +144,7 @@ class IntegratedScene(Scene):
             self._sample_reference_error()
         if self._frames % DRIFT_SAMPLE_EVERY == 0:
             drift = self.current_drift()
-            worst = max(drift, key=drift.get, default=None)
+            worst = max(drift, key=drift.__getitem__, default=None)
             self._drift_t.append(self.run.t_s)
             self._drift_max.append(drift[worst] if worst else 0.0)
             if worst is not None and drift[worst] > RUNAWAY_DRIFT:
