@@ -41,7 +41,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from multiprocessing import AuthenticationError
 from multiprocessing.connection import Connection
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from app.scenes.host.host import UnknownSceneError, check_session_id
 from app.scenes.host.interface import CALLS, RAISE, Call, SceneHostInterface
@@ -85,6 +85,19 @@ class _Worker:
 
 class WorkerPool(SceneHostInterface):
     """``workers`` scene-worker processes on loopback and the calls that reach them."""
+
+    if TYPE_CHECKING:  # the session calls installed after the class, each forwarded to the session's worker
+        session_params = SceneHostInterface.session_params
+        session_scene = SceneHostInterface.session_scene
+        playback = SceneHostInterface.playback
+        camera = SceneHostInterface.camera
+        live_readout = SceneHostInterface.live_readout
+        viewer_count = SceneHostInterface.viewer_count
+        graph = SceneHostInterface.graph
+        recording_html = SceneHostInterface.recording_html
+        motion_state = SceneHostInterface.motion_state
+        stage_viewer_url = SceneHostInterface.stage_viewer_url
+        stage_viewers = SceneHostInterface.stage_viewers
 
     def __init__(
         self,
