@@ -202,8 +202,9 @@ class PlanarCollisionScene(Scene):
     #: The motion's clock is the simulated time since the pass began (≥ 0), not the time from impact.
     motion_attributes = {"t_s": "elapsed_s"}
 
+    # Read-only where Scene keeps a writable clock: this scene overrides step_motion, which alone writes it.
     @property
-    def t_s(self) -> float:
+    def t_s(self) -> float:  # type: ignore[override]
         """Simulated time from the impact (s): negative before it."""
         return self.elapsed_s - self._window_s
 
