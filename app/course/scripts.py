@@ -322,8 +322,10 @@ show("forward_drift_m", park.forward_drift_m, "m")  # s (1 - cos alpha)
             build = 'system = physics.FixedEllipse(values["semi_axis_a_m"], values["semi_axis_b_m"], values["bead_rate_rad_s"])'
         else:
             names = ("hoop_radius_m", "hoop_amplitude_m", "hoop_rate_rad_s", "bead_rate_rad_s")
-            build = ('system = physics.SlidingHoop(values["hoop_radius_m"], values["hoop_amplitude_m"], '
-                     'values["hoop_rate_rad_s"], values["bead_rate_rad_s"])')  # fmt: skip
+            build = (
+                'system = physics.SlidingHoop(values["hoop_radius_m"], values["hoop_amplitude_m"], '
+                'values["hoop_rate_rad_s"], values["bead_rate_rad_s"])'
+            )
         body = f"""{build}
 snap = system.snapshot(T_S)
 

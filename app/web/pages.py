@@ -478,10 +478,15 @@ def _capacity_row(step: dict) -> str:
     fps = step.get("frames_per_s") or {}
     health = step.get("health_ms") or {}
     cells = [
-        fmt_sig(fps.get("p10")), fmt_sig(fps.get("median")), fmt_sig(fps.get("min")),
-        fmt_sig(step.get("server_cpu_cores")), fmt_sig(step.get("server_rss_mb")),
-        fmt_sig(step.get("load_tool_cpu_cores")), fmt_sig(health.get("p95")), fmt_sig(step.get("bytes_per_frame")),
-    ]  # fmt: skip
+        fmt_sig(fps.get("p10")),
+        fmt_sig(fps.get("median")),
+        fmt_sig(fps.get("min")),
+        fmt_sig(step.get("server_cpu_cores")),
+        fmt_sig(step.get("server_rss_mb")),
+        fmt_sig(step.get("load_tool_cpu_cores")),
+        fmt_sig(health.get("p95")),
+        fmt_sig(step.get("bytes_per_frame")),
+    ]
     errors = step.get("errors")
     return (
         f'<tr><th scope="row">{esc(str(step.get("scene_id")))}</th><td class="num">{esc(str(step.get("students")))}</td>'

@@ -36,10 +36,11 @@ class SessionParamsRequest(BaseModel):
     model_config = ConfigDict(extra="forbid")
     params: dict[str, Any] = Field(default_factory=dict, description="Parameters to change; others keep their values")
     from_room: str | None = Field(
-        None, pattern=r"^[0-9a-f]{16}$",
+        None,
+        pattern=r"^[0-9a-f]{16}$",
         description="A room exploring now: the session starts from where the room's scene was when exploring began "
         "(its parameters, then these params, and its motion)",
-    )  # fmt: skip
+    )
 
 
 class SessionParamsAnswer(BaseModel):

@@ -81,16 +81,32 @@ class Algorithm:
 ALGORITHMS: dict[str, Algorithm] = {
     a.name: a
     for a in (
-        Algorithm("uncorrected", UNCORRECTED, "uncorrected index reduction",
-                  "C v̇ = −Ċ v only: the constraint residuals are never fed back and drift"),
-        Algorithm("baumgarte", BAUMGARTE, "Baumgarte stabilisation",
-                  "C v̇ = −Ċ v − 2α C v − β² g: the residual is a damped oscillator driven back to zero"),
-        Algorithm("projection", PROJECTION, "coordinate projection",
-                  "index reduction, then positions and velocities projected back onto the constraints after every step"),
-        Algorithm("partitioning", PARTITIONING, "coordinate partitioning",
-                  "independent coordinates integrated; dependent ones solved by Newton on g(q) = 0 and from C v = 0"),
+        Algorithm(
+            "uncorrected",
+            UNCORRECTED,
+            "uncorrected index reduction",
+            "C v̇ = −Ċ v only: the constraint residuals are never fed back and drift",
+        ),
+        Algorithm(
+            "baumgarte",
+            BAUMGARTE,
+            "Baumgarte stabilisation",
+            "C v̇ = −Ċ v − 2α C v − β² g: the residual is a damped oscillator driven back to zero",
+        ),
+        Algorithm(
+            "projection",
+            PROJECTION,
+            "coordinate projection",
+            "index reduction, then positions and velocities projected back onto the constraints after every step",
+        ),
+        Algorithm(
+            "partitioning",
+            PARTITIONING,
+            "coordinate partitioning",
+            "independent coordinates integrated; dependent ones solved by Newton on g(q) = 0 and from C v = 0",
+        ),
     )
-}  # fmt: skip
+}
 
 
 def _shared_kernel(signature: Any) -> Callable[[Callable[..., Any]], Kernel]:

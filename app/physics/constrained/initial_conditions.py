@@ -136,9 +136,12 @@ def consistent_initial_conditions(
         if abs(consistent[k] - requested[k]) > 1e-12 * max(1.0, abs(requested[k]))
     )
     return ConsistentStart(
-        q=q, v=v, changes=changes,
-        position_residual=float(np.max(np.abs(g), initial=0.0)), velocity_residual=float(np.max(np.abs(jacobian @ v), initial=0.0)),
-    )  # fmt: skip
+        q=q,
+        v=v,
+        changes=changes,
+        position_residual=float(np.max(np.abs(g), initial=0.0)),
+        velocity_residual=float(np.max(np.abs(jacobian @ v), initial=0.0)),
+    )
 
 
 def _consistent_positions(system: ConstrainedSystem, q_requested: np.ndarray, free: np.ndarray) -> np.ndarray:

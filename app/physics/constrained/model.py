@@ -119,16 +119,39 @@ class ConstrainedModel(IntegratedModel):
             described += f"; {MINIMAL}: the minimal-coordinate equations (no constraints to keep; the reference)"
         alpha, beta = cls.default_baumgarte_1_s
         return (
-            Parameter("method", "", AUTO, kind="choice", choices=(AUTO, *choices), label="DAE algorithm",
-                      description=f"How the constraints are kept ({AUTO} = {cls.default_algorithm}). {described}"),
+            Parameter(
+                "method",
+                "",
+                AUTO,
+                kind="choice",
+                choices=(AUTO, *choices),
+                label="DAE algorithm",
+                description=f"How the constraints are kept ({AUTO} = {cls.default_algorithm}). {described}",
+            ),
             replace(integrator, name="integrator"),
             steps,
             rtol,
-            Parameter("baumgarte_alpha_1_s", "1/s", alpha, 0.0, MAX_BAUMGARTE_GAIN_1_S, label="Baumgarte α", step=0.5,
-                      description="Damping gain α of Baumgarte's ë + 2α ė + β² e = 0 for a residual e (method baumgarte only); 0 with β = 0: uncorrected"),
-            Parameter("baumgarte_beta_1_s", "1/s", beta, 0.0, MAX_BAUMGARTE_GAIN_1_S, label="Baumgarte β", step=0.5,
-                      description="Stiffness gain β of Baumgarte's ë + 2α ė + β² e = 0 (method baumgarte only); h·β near 1 or more makes the step unstable"),
-        )  # fmt: skip
+            Parameter(
+                "baumgarte_alpha_1_s",
+                "1/s",
+                alpha,
+                0.0,
+                MAX_BAUMGARTE_GAIN_1_S,
+                label="Baumgarte α",
+                step=0.5,
+                description="Damping gain α of Baumgarte's ë + 2α ė + β² e = 0 for a residual e (method baumgarte only); 0 with β = 0: uncorrected",
+            ),
+            Parameter(
+                "baumgarte_beta_1_s",
+                "1/s",
+                beta,
+                0.0,
+                MAX_BAUMGARTE_GAIN_1_S,
+                label="Baumgarte β",
+                step=0.5,
+                description="Stiffness gain β of Baumgarte's ë + 2α ė + β² e = 0 (method baumgarte only); h·β near 1 or more makes the step unstable",
+            ),
+        )
 
     def algorithm(self) -> str:
         """The algorithm recorded by :meth:`integration_controls` (``auto`` resolved); the default before any."""
@@ -250,6 +273,9 @@ class ConstrainedModel(IntegratedModel):
             count = repartition_count(system.parameters, self.constrained_system(params).n_coordinates)
             description += f"; independent coordinates re-chosen {count} time{'' if count == 1 else 's'}"
         return replace(
-            report, method=algorithm, integrator=report.method, description=description,
+            report,
+            method=algorithm,
+            integrator=report.method,
+            description=description,
             initial_conditions=[change.as_dict() for change in start.changes],
-        )  # fmt: skip
+        )

@@ -138,8 +138,10 @@ class RequestTooCostly(ValueError):
     @classmethod
     def over_limit(cls, field: str, what: str, advice: str) -> RequestTooCostly:
         """ "``field``: ``what`` takes more than the limit …; ``advice``" (the words every such refusal uses)."""
-        return cls(f"{field}: {what} takes more than the {REQUEST_COMPUTE_S:g} s of computing one request may use while a class "
-                   f"shares the server; {advice}")  # fmt: skip
+        return cls(
+            f"{field}: {what} takes more than the {REQUEST_COMPUTE_S:g} s of computing one request may use while a class "
+            f"shares the server; {advice}"
+        )
 
 
 def check_request_cost(field: str, *, frames: int, frame_cost_s: float, what: str) -> None:

@@ -28,9 +28,25 @@ ENERGY_BAR_ORDER = ("translational_kinetic_J", "rotational_kinetic_J", "kinetic_
 ENERGY_PREFIX = "energy_"
 
 _GREEK = {
-    "alpha": "α", "beta": "β", "gamma": "γ", "delta": "δ", "theta": "θ", "phi": "φ", "psi": "ψ", "omega": "ω", "mu": "μ",
-    "lambda": "λ", "tau": "τ", "sigma": "σ", "kappa": "κ", "xi": "ξ", "rho": "ρ", "eta": "η", "epsilon": "ε", "zeta": "ζ",
-}  # fmt: skip
+    "alpha": "α",
+    "beta": "β",
+    "gamma": "γ",
+    "delta": "δ",
+    "theta": "θ",
+    "phi": "φ",
+    "psi": "ψ",
+    "omega": "ω",
+    "mu": "μ",
+    "lambda": "λ",
+    "tau": "τ",
+    "sigma": "σ",
+    "kappa": "κ",
+    "xi": "ξ",
+    "rho": "ρ",
+    "eta": "η",
+    "epsilon": "ε",
+    "zeta": "ζ",
+}
 _SUBSCRIPT = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
 #: Unit words at the end of a name (``crank_speed_rad_s``), dropped from its label: the unit column says them.
 _UNIT_WORDS = {"rad", "s", "s2", "m", "N", "J", "kg", "deg", "Hz", "W", "kg_m2", "m2"}
@@ -169,8 +185,9 @@ def _energy_bars(model: IntegratedModel, params: Mapping[str, Any], budget: Mapp
     """The energy bars at the budget's last frame: parts in :data:`ENERGY_BAR_ORDER`, the total and the model's note."""
     parts = [
         {"name": ENERGY_PREFIX + key, "label": ENERGY_LABELS[key], "value_J": _finite(float(budget[key][-1]))}
-        for key in ENERGY_BAR_ORDER if key in budget
-    ]  # fmt: skip
+        for key in ENERGY_BAR_ORDER
+        if key in budget
+    ]
     return {"parts": parts, "total_J": _finite(float(budget["total_J"][-1])), "note": model.energy_note(params)}
 
 

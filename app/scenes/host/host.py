@@ -256,10 +256,15 @@ class Session:
         motion = scene.motion_state() if scene is not None else self.resume_motion
         camera = self.camera_now()
         return {
-            "scene_id": self.scene_id, "params": dict(self.params), "stage": self.stage is not None,
-            "playing": self.playing, "time_scale": self.time_scale, "motion": motion,
-            "go_to_s": self.go_to_s if motion is None else None, "camera": camera,
-        }  # fmt: skip
+            "scene_id": self.scene_id,
+            "params": dict(self.params),
+            "stage": self.stage is not None,
+            "playing": self.playing,
+            "time_scale": self.time_scale,
+            "motion": motion,
+            "go_to_s": self.go_to_s if motion is None else None,
+            "camera": camera,
+        }
 
     def restarted(self) -> None:
         """The motion started again (new parameters, a reset, a jump): the kept frames belong to the old one."""
@@ -873,11 +878,14 @@ class SceneHost:
         with self._lock:
             session = self._sessions.get(session_id)
             refusal = (
-                "This scene has not been opened by its page yet: reload the page." if session is None
-                else "This viewer is for another scene than its page shows: reload the page." if session.scene_id != scene_id or session.stage is not None
-                else f"This scene already has {MAX_VIEWERS_PER_SESSION} viewers open." if len(session.instances) >= MAX_VIEWERS_PER_SESSION
+                "This scene has not been opened by its page yet: reload the page."
+                if session is None
+                else "This viewer is for another scene than its page shows: reload the page."
+                if session.scene_id != scene_id or session.stage is not None
+                else f"This scene already has {MAX_VIEWERS_PER_SESSION} viewers open."
+                if len(session.instances) >= MAX_VIEWERS_PER_SESSION
                 else None
-            )  # fmt: skip
+            )
             if refusal is not None or session is None:
                 log.info("viewer of %s/%s refused: %s", scene_id, session_id, refusal)
                 tell_viewer(client, refusal or "")
@@ -986,9 +994,14 @@ class SceneHost:
         wakeups.flush()
 
     def _advance_session(
-        self, session: Session, dt_s: float, demand: Mapping[str, float], allowed: Mapping[str, float],
-        viewers: Mapping[str, int], wakeups: BatchedWakeups,
-    ) -> None:  # fmt: skip
+        self,
+        session: Session,
+        dt_s: float,
+        demand: Mapping[str, float],
+        allowed: Mapping[str, float],
+        viewers: Mapping[str, int],
+        wakeups: BatchedWakeups,
+    ) -> None:
         """Advance each viewer's scene of a playing session by the frames it is owed (caller holds the session's lock)."""
         for client_id, scene in list(session.instances.items()):
             share = session.shares.get(client_id)
