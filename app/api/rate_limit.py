@@ -68,7 +68,8 @@ def retry_after_s(wait_s: float) -> int:
 
 
 class InFlight:
-    """How many requests each client has running now, at most ``limit`` each (thread-safe; a client with none is forgotten)."""
+    """How many requests each client has running now, at most ``limit`` each (thread-safe; a client with none is
+    forgotten)."""
 
     def __init__(self, *, limit: int) -> None:
         if limit < 1:

@@ -82,7 +82,8 @@ def list_systems(catalogue: CatalogueDep) -> list[dict[str, Any]]:
     ),
 )
 def derive_custom(request: CustomDeriveRequest) -> dict[str, Any]:
-    """Lagrange's equations for typed energies T and V (parsed by a whitelisting parser; derived in a bounded process)."""
+    """Lagrange's equations for typed energies T and V (parsed by a whitelisting parser; derived in a bounded
+    process)."""
     answer = derive_typed_bounded(request.model_dump())
     answer["params"] = dict(request.parameters)
     return answer
@@ -114,7 +115,8 @@ def derive_system(system_id: str, request: DeriveRequest, catalogue: CatalogueDe
     ),
 )
 def system_rhs(system_id: str, request: RhsRequest, catalogue: CatalogueDep) -> dict[str, Any]:
-    """The state derivative (q̇, q̈) at a state (q, q̇) by one formulation: every formulation answers the same quantity."""
+    """The state derivative (q̇, q̈) at a state (q, q̇) by one formulation: every formulation answers the same
+    quantity."""
     system = _system(catalogue, system_id)
     params = system.parameters.validate(request.params)
     n = len(system.coordinates)

@@ -119,7 +119,8 @@ class PollUpdate(BaseModel):
 
 
 class AnswerRequest(BaseModel):
-    """``{"choice": index}`` for a multiple-choice poll, ``{"value": number}`` (in the poll's unit) for a number poll."""
+    """``{"choice": index}`` for a multiple-choice poll, ``{"value": number}`` (in the poll's unit) for a number
+    poll."""
 
     model_config = ConfigDict(extra="forbid")
     choice: StrictInt | None = None

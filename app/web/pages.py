@@ -38,8 +38,10 @@ def _template(name: str) -> Template:
 #: websocket URL, dev settings, scene tree and share button), on a viewer under 576 px wide its bottom sheet (the
 #: panel outside the dock root, a Paper around a ScrollArea). Every floating window is hidden, not only the one
 #: holding the tab: viser draws the panel's window a second or more before the tab exists (a flash of the websocket
-#: pill on every load), and our scenes add no GUI of their own, so no other window is lost. Selectors from viser 1.1.1's client
-#: (ControlPanelDock.tsx, ControlPanel.tsx, BottomPanel.tsx), pinned by tests/browser/test_viewer_controls_in_browser.py.
+#: pill on every load), and our scenes add no GUI of their own, so no other window is lost. Selectors from viser 1.1.1's
+#: client
+#: (ControlPanelDock.tsx, ControlPanel.tsx, BottomPanel.tsx), pinned by
+#: tests/browser/test_viewer_controls_in_browser.py.
 #: Add viewer styling (label sizes, projector mode) here.
 VIEWER_CSS = """
 [data-floating-window],
@@ -171,7 +173,8 @@ def _lesson_config(lesson: Lesson, catalogue: Catalogue, scene_id: str | None) -
 
 
 def _derivation_config(system) -> dict:
-    """What derivations.js needs to ask /api/systems/{id}/derive for each formulation and show why others do not apply."""
+    """What derivations.js needs to ask /api/systems/{id}/derive for each formulation and show why others do not
+    apply."""
     reasons = available_formulations(system)
     return {
         "id": system.id,
@@ -275,7 +278,8 @@ def _with_unit(value_html: str, unit: str) -> str:
 
 @lru_cache(maxsize=4)
 def _solver_lab_text(lessons_dir: Path) -> tuple[dict, str]:
-    """Front matter and rendered body of ``solver-lab.md`` in the lessons folder (TOML between '+++' lines, like the lessons)."""
+    """Front matter and rendered body of ``solver-lab.md`` in the lessons folder (TOML between '+++' lines, like the
+    lessons)."""
     path = lessons_dir / "solver-lab.md"
     meta, body = split_front_matter(path.read_text(encoding="utf-8"), str(path))
     return meta, render_markdown(body)

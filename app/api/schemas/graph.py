@@ -27,7 +27,8 @@ class EnergyPart(BaseModel):
 
 
 class EnergyBars(BaseModel):
-    """The energy bars at the latest kept frame: translational and rotational kinetic (or kinetic), potential, dissipated."""
+    """The energy bars at the latest kept frame: translational and rotational kinetic (or kinetic), potential,
+    dissipated."""
 
     parts: list[EnergyPart]
     total_J: float | None = Field(description="Kinetic + potential (J); null if not finite")

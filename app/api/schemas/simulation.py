@@ -51,7 +51,8 @@ class InitialConditionChange(BaseModel):
 
 
 class SimulationStats(BaseModel):
-    """How the motion was computed: ``method`` (``closed-form`` for a formula), work done, CPU time, worst invariant drift."""
+    """How the motion was computed: ``method`` (``closed-form`` for a formula), work done, CPU time, worst invariant
+    drift."""
 
     method: str
     description: str

@@ -269,7 +269,8 @@ class Part:
 
 @dataclass(frozen=True)
 class CompositeBody:
-    """Mass properties of a composite body: total mass (kg), centre of mass (m) and inertia about it (kg·m²), reference frame."""
+    """Mass properties of a composite body: total mass (kg), centre of mass (m) and inertia about it (kg·m²), reference
+    frame."""
 
     parts: tuple[Part, ...]
     mass_kg: float
@@ -372,7 +373,8 @@ def _check_hole_overlaps(parts: Sequence[Part]) -> None:
 
 
 def combine(parts: Sequence[Part]) -> CompositeBody:
-    """Total mass, centre of mass and inertia about it of ``parts`` (holes subtracted); refuses bodies that cannot exist."""
+    """Total mass, centre of mass and inertia about it of ``parts`` (holes subtracted); refuses bodies that cannot
+    exist."""
     if not parts:
         raise ParameterError("bodies", "give at least one body", path=("bodies",))
     if all(p.hole for p in parts):
@@ -421,7 +423,8 @@ def _triple(value: Any, path: tuple[Any, ...], limit: float, unit: str) -> list[
 
 
 def validate_record(raw: Any, index: int, *, name: str = "bodies") -> dict[str, Any]:
-    """One body of a request, checked and normalised (defaults filled); ParameterError names ``name → index → field``."""
+    """One body of a request, checked and normalised (defaults filled); ParameterError names
+    ``name → index → field``."""
     here = (name, index)
     if not isinstance(raw, Mapping):
         raise ParameterError(
@@ -493,7 +496,8 @@ def body_place(path: tuple[str | int, ...]) -> str:
 
 
 def validate_records(raw: Any, *, name: str = "bodies") -> list[dict[str, Any]]:
-    """A whole list of bodies checked and normalised; the composite is formed too, so impossible bodies are refused here."""
+    """A whole list of bodies checked and normalised; the composite is formed too, so impossible bodies are refused
+    here."""
     if not isinstance(raw, (list, tuple)):
         raise ParameterError(name, "must be a list of bodies", path=(name,))
     if not 1 <= len(raw) <= MAX_PARTS:

@@ -110,7 +110,8 @@ ALGORITHMS: dict[str, Algorithm] = {
 
 
 def _shared_kernel(signature: Any) -> Callable[[Callable[..., Any]], Kernel]:
-    """Decorator: compile ``fn`` for ``signature`` as a disk-cached C callback (a first-class function value) with its twin.
+    """Decorator: compile ``fn`` for ``signature`` as a disk-cached C callback (a first-class function value) with its
+    twin.
 
     :func:`~app.physics.solvers.kernels.kernel` makes an ordinary ``njit`` function of a
     signature that is not a model function's; a caller compiled later would then link
@@ -138,7 +139,8 @@ def _shared_kernel(signature: Any) -> Callable[[Callable[..., Any]], Kernel]:
     )
 )
 def constrained_rhs(dynamics, constraints, t, y, p, dydt, n, n_holonomic, n_constraints):
-    """``dydt = (v, v̇)`` (2n,) of the algorithm named in ``p``'s tail, at time ``t`` (s) and state ``y = (q, v)`` (2n,)."""
+    """``dydt = (v, v̇)`` (2n,) of the algorithm named in ``p``'s tail, at time ``t`` (s) and state ``y = (q, v)``
+    (2n,)."""
     base = p.shape[0] - SETTINGS - n
     code = int(p[base + _CODE])
     state = y
@@ -180,7 +182,8 @@ def constrained_rhs(dynamics, constraints, t, y, p, dydt, n, n_holonomic, n_cons
 
 @_shared_kernel(types.void(MULTIPLIER_CONSTRAINTS_TYPE, VECTOR, VECTOR, types.int64, types.int64, types.int64))
 def constrained_project(constraints, y, p, n, n_holonomic, n_constraints):
-    """After a step: projection (positions onto ``g = 0``, then ``C v = 0``) or partitioning (dependent from independent)."""
+    """After a step: projection (positions onto ``g = 0``, then ``C v = 0``) or partitioning (dependent from
+    independent)."""
     base = p.shape[0] - SETTINGS - n
     code = int(p[base + _CODE])
     if code == PROJECTION:

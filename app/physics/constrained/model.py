@@ -45,7 +45,8 @@ MAX_BAUMGARTE_GAIN_1_S = 1000.0
 
 
 class ConstrainedModel(IntegratedModel):
-    """An :class:`IntegratedModel` over a :class:`ConstrainedSystem` (state ``(q, v)``, 2n; ``minimal``: the subclass's own).
+    """An :class:`IntegratedModel` over a :class:`ConstrainedSystem` (state ``(q, v)``, 2n; ``minimal``: the subclass's
+    own).
 
     A subclass gives ``parameters``, ``series_units``, ``invariant_units`` (with
     ``energy``, ``constraint_position``, ``constraint_velocity``), ``start_parameters``
@@ -109,7 +110,8 @@ class ConstrainedModel(IntegratedModel):
 
     @classmethod
     def controls(cls) -> tuple[Parameter, ...]:
-        """``method`` (the DAE algorithm), ``integrator``, ``steps_per_frame``, ``rtol``, ``baumgarte_alpha_1_s``, ``baumgarte_beta_1_s``."""
+        """``method`` (the DAE algorithm), ``integrator``, ``steps_per_frame``, ``rtol``, ``baumgarte_alpha_1_s``,
+        ``baumgarte_beta_1_s``."""
         integrator, steps, rtol = integration_parameters(
             INTEGRATORS, default_method=cls.default_method, target=cls.accuracy_target, auto_methods=cls.auto_methods
         )
@@ -177,7 +179,7 @@ class ConstrainedModel(IntegratedModel):
             "rtol": controls.get("rtol"),
         }
 
-    # --- the accuracy target (each algorithm's pilot is its own: the key holds the algorithm and the gains) ------------
+    # --- the accuracy target (each algorithm's pilot is its own: the key holds the algorithm and the gains) ----
     accuracy_target = AccuracyTarget(
         1e-6, "", "state (q, v): largest component error relative to the largest component"
     )
@@ -241,7 +243,8 @@ class ConstrainedModel(IntegratedModel):
         return self.constrained_energy_parts(params, self.constrained_view(params, states))
 
     def invariant_scales(self, params: Mapping[str, Any], state: np.ndarray) -> dict[str, float]:
-        """Energy: :meth:`energy_scale_J`; residuals: :meth:`residual_scales` (a residual of 20% of these pauses a live scene)."""
+        """Energy: :meth:`energy_scale_J`; residuals: :meth:`residual_scales` (a residual of 20% of these pauses a live
+        scene)."""
         position, velocity = self.residual_scales(params)
         full = self.constrained_view(params, state)[0]
         return {
@@ -260,7 +263,8 @@ class ConstrainedModel(IntegratedModel):
         frame_rate_hz: float,
         request_limits: bool = True,
     ) -> SimulationReport:
-        """The integrated answer, with ``stats.method`` the algorithm, ``stats.integrator``, ``stats.initial_conditions``."""
+        """The integrated answer, with ``stats.method`` the algorithm, ``stats.integrator``,
+        ``stats.initial_conditions``."""
         report = super().simulate(
             params, controls, t_end_s=t_end_s, frame_rate_hz=frame_rate_hz, request_limits=request_limits
         )

@@ -78,7 +78,8 @@ class Integrator(ABC):
         *,
         backend: Backend = "numba",
     ) -> FramesOutcome:
-        """Advance ``y`` in place by ``n_frames`` frames, storing each frame's end state in ``y_frames`` (n_frames, n)."""
+        """Advance ``y`` in place by ``n_frames`` frames, storing each frame's end state in ``y_frames`` (n_frames,
+        n)."""
         self.spec.check_system(system)
         return self._run_frames(system, t0_s, y, frame_dt_s, n_frames, y_frames, backend=backend)
 

@@ -159,7 +159,8 @@ class Pace:
     """Called once a frame by a long computation of ``frames`` frames: every :data:`SLICE_S` it sleeps
     :data:`PACE_RATIO` times as long (the frame loop runs meanwhile), and it stops the computation (returns False) once
     ``limit_s`` is spent, or as soon as the frames done so far show that the whole would take longer (after
-    :data:`PROJECT_AFTER` of them), so a request whose cost was not known yet is refused for the price of a few frames."""
+    :data:`PROJECT_AFTER` of them), so a request whose cost was not known yet is refused for the price of a few
+    frames."""
 
     def __init__(
         self, *, frames: int, limit_s: float = REQUEST_COMPUTE_S, clock: Callable[[], float] = time.perf_counter

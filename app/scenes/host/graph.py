@@ -62,7 +62,8 @@ def check_graph_request(*, since_s: float, max_points: int) -> None:
 
 
 def readable_label(name: str) -> str:
-    """A name as a student reads it: unit words dropped, Greek letters and subscripts written (``theta1_rad`` → ``θ₁``)."""
+    """A name as a student reads it: unit words dropped, Greek letters and subscripts written (``theta1_rad``
+    → ``θ₁``)."""
     words = name.split("_")
     while len(words) > 1 and (words[-1] in _UNIT_WORDS or "_".join(words[-2:]) in _UNIT_WORDS):
         words.pop()

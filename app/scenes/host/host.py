@@ -110,7 +110,8 @@ MAX_CAMERA_M = 1e4
 
 
 def checked_camera(raw: Mapping[str, Any]) -> dict[str, tuple[float, float, float]]:
-    """``{"position", "look_at"}`` as two finite 3-vectors within :data:`MAX_CAMERA_M`, distinct; ValueError otherwise."""
+    """``{"position", "look_at"}`` as two finite 3-vectors within :data:`MAX_CAMERA_M`, distinct; ValueError
+    otherwise."""
     try:
         view = {name: tuple(float(v) for v in raw[name]) for name in ("position", "look_at")}
     except (KeyError, TypeError, ValueError):
@@ -123,7 +124,8 @@ def checked_camera(raw: Mapping[str, Any]) -> dict[str, tuple[float, float, floa
 
 
 def tell_viewer(client: Any, text: str) -> None:
-    """Show ``text`` in the middle of a viewer's scene: the page hides viser's own panel, so a message there is unseen."""
+    """Show ``text`` in the middle of a viewer's scene: the page hides viser's own panel, so a message there is
+    unseen."""
     client.scene.add_label("/viewer-message", text, position=(0.0, 0.0, 0.0), font_screen_scale=1.5)
 
 
@@ -682,12 +684,14 @@ class SceneHost:
 
     # -- a motion handed from one session to another (a room's students exploring) ----------
     def motion_state(self, session_id: str) -> dict[str, Any] | None:
-        """The session's scene's motion now (``Scene.motion_state``), or None (no scene, or one that restarts at t = 0)."""
+        """The session's scene's motion now (``Scene.motion_state``), or None (no scene, or one that restarts at
+        t = 0)."""
         with self.inspect(session_id) as scenes:
             return scenes[0].motion_state() if scenes else None
 
     def resume_from(self, session_id: str, motion: Mapping[str, Any]) -> None:
-        """Start the session's scene (now, and the next one built for a viewer) from ``motion``; set its parameters first."""
+        """Start the session's scene (now, and the next one built for a viewer) from ``motion``; set its parameters
+        first."""
         session = self._existing(session_id)
         with session.lock:
             for scene in session.instances.values():
@@ -822,7 +826,8 @@ class SceneHost:
     def restore(self, session_id: str, snapshot: Mapping[str, Any]) -> None:
         """Make the session as ``snapshot`` (:meth:`Session.snapshot`) describes it: its scene and parameters, play
         state and time scale, its motion (the next viewer resumes it) and camera. A stage is opened again and resumed
-        at once. Raises ``ValueError`` for a snapshot whose scene or parameters do not fit (and restores nothing); a kept
+        at once. Raises ``ValueError`` for a snapshot whose scene or parameters do not fit (and restores nothing); a
+        kept
         camera that does not fit is left out (logged), the rest restored."""
         scene_id = snapshot["scene_id"]
         motion = snapshot.get("motion")
@@ -1002,7 +1007,8 @@ class SceneHost:
         viewers: Mapping[str, int],
         wakeups: BatchedWakeups,
     ) -> None:
-        """Advance each viewer's scene of a playing session by the frames it is owed (caller holds the session's lock)."""
+        """Advance each viewer's scene of a playing session by the frames it is owed (caller holds the session's
+        lock)."""
         for client_id, scene in list(session.instances.items()):
             share = session.shares.get(client_id)
             history = session.histories.get(client_id)

@@ -79,7 +79,8 @@ def checked_seconds(seconds: Any) -> float:
 
 
 def frames_for(seconds: float, *, frame_rate_hz: float) -> int:
-    """Kept frames that fill ``seconds`` of playback at one frame per displayed frame (at most :data:`MAX_RECORDING_FRAMES`)."""
+    """Kept frames that fill ``seconds`` of playback at one frame per displayed frame (at most
+    :data:`MAX_RECORDING_FRAMES`)."""
     return min(MAX_RECORDING_FRAMES, max(1, round(seconds * frame_rate_hz)))
 
 
