@@ -107,7 +107,10 @@ def session_params(scene_id: str, session_id: SessionId, host: SceneHostDep) -> 
     responses={
         **error_responses(
             not_found=_UNKNOWN_SCENE,
-            unprocessable="A parameter is unknown, not finite or out of range, or the session id or key is malformed; nothing changed",
+            unprocessable=(
+                "A parameter is unknown, not finite or out of range, or the session id or key is "
+                "malformed; nothing changed"
+            ),
         ),
         **_SESSION_DOOR,
         **_TOO_MANY_SESSIONS,
@@ -158,7 +161,10 @@ def set_session_params(
     responses={
         **error_responses(
             not_found=_UNKNOWN_SCENE,
-            unprocessable="A field is out of range, the session has no scene yet, seek_s is outside the kept motion, or the request would compute longer than one request may; nothing changed",
+            unprocessable=(
+                "A field is out of range, the session has no scene yet, seek_s is outside the kept "
+                "motion, or the request would compute longer than one request may; nothing changed"
+            ),
         ),
         **_SESSION_DOOR,
     },
@@ -226,7 +232,10 @@ def session_playback(scene_id: str, session_id: SessionId, host: SceneHostDep) -
     responses={
         **error_responses(
             not_found=_UNKNOWN_SCENE,
-            unprocessable="The scene has no motion in time, a parameter or control is bad, or the request is over a limit; `loc` names it",
+            unprocessable=(
+                "The scene has no motion in time, a parameter or control is bad, or the request is "
+                "over a limit; `loc` names it"
+            ),
         ),
         **TOO_MANY_RESPONSE,
     },

@@ -38,7 +38,10 @@ class JoinRequest(BaseModel):
 class JoinAnswer(BaseModel):
     room_id: str
     student_token: str = Field(
-        description="Send as X-Student-Token with answers, and in the room socket's hello; the same for a device that joins again"
+        description=(
+            "Send as X-Student-Token with answers, and in the room socket's hello; the same for a device "
+            "that joins again"
+        )
     )
     student_id: str = Field(
         description="This student's public id in the room (s1, s2, …): how the instructor's list names them"

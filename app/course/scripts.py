@@ -217,7 +217,8 @@ def _model_script(scene: type[Scene], params: Mapping[str, Any]) -> str:
     check = f"params = {name}.parameters.validate(params)\n"
     if control_names:  # how the motion is found: an integrator's method, steps and tolerance (a formula has none)
         values += (
-            "# How the page integrates: the method, steps per frame (0: chosen to meet the accuracy target), the tolerance.\n"
+            "# How the page integrates: the method, steps per frame (0: chosen to meet the accuracy target), the "
+            "tolerance.\n"
             f"{_dict_block('controls', controls)}\n"
         )
         check += f"controls = {name}.validate_controls(controls)\n"
@@ -319,7 +320,10 @@ show("forward_drift_m", park.forward_drift_m, "m")  # s (1 - cos alpha)
     else:
         if kind == "scleronomic":
             names = ("semi_axis_a_m", "semi_axis_b_m", "bead_rate_rad_s")
-            build = 'system = physics.FixedEllipse(values["semi_axis_a_m"], values["semi_axis_b_m"], values["bead_rate_rad_s"])'
+            build = (
+                'system = physics.FixedEllipse(values["semi_axis_a_m"], values["semi_axis_b_m"], '
+                'values["bead_rate_rad_s"])'
+            )
         else:
             names = ("hoop_radius_m", "hoop_amplitude_m", "hoop_rate_rad_s", "bead_rate_rad_s")
             build = (

@@ -95,7 +95,8 @@ def viewer_client_html() -> bytes:
     client = (Path(viser.__file__).resolve().parent / "client" / "build" / "index.html").read_bytes()
     if client.count(_VIEWER_HEAD_END) != 1:
         raise RuntimeError(
-            f"viser {viser.__version__}'s client page has no single {_VIEWER_HEAD_END!r}: the viewer page cannot be patched"
+            f"viser {viser.__version__}'s client page has no single {_VIEWER_HEAD_END!r}: the viewer page cannot "
+            "be patched"
         )
     title_start = client.index(b"<title>")
     added = f"<style>{VIEWER_CSS}</style><script>{VIEWER_SCRIPT}</script>".encode()
@@ -148,7 +149,8 @@ def _chapter_card(chapter: Chapter) -> str:
         f'<section class="chapter" id="chapter-{chapter.number}" aria-labelledby="ch{chapter.number}-title">'
         f'<h3 id="ch{chapter.number}-title"><span class="ch-num">{chapter.number}</span> {esc(chapter.title)}</h3>'
         f'<p class="summary">{esc(chapter.summary)}</p>'
-        f'<details><summary>Sections: {covered} of {len(chapter.sections)} with a lesson</summary><ul class="sections">{sections}</ul></details>'
+        f"<details><summary>Sections: {covered} of {len(chapter.sections)} with a lesson</summary><ul "
+        f'class="sections">{sections}</ul></details>'
         f"{lessons_html}</section>"
     )
 
@@ -493,7 +495,8 @@ def _capacity_row(step: dict) -> str:
     ]
     errors = step.get("errors")
     return (
-        f'<tr><th scope="row">{esc(str(step.get("scene_id")))}</th><td class="num">{esc(str(step.get("students")))}</td>'
+        f'<tr><th scope="row">{esc(str(step.get("scene_id")))}</th><td '
+        f'class="num">{esc(str(step.get("students")))}</td>'
         + "".join(f'<td class="num">{cell}</td>' for cell in cells)
         + f'<td class="num">{esc(str(errors))}</td></tr>'
     )
@@ -554,7 +557,10 @@ def _classroom_note(settings) -> str:
             f"student on a scene of their own (<code>dynlab load --room</code>).</p>"
         )
     except (AttributeError, TypeError, KeyError, ValueError, StopIteration):
-        return '<p class="notice">The measurement of a class following one room is malformed; <code>dynlab load --room</code> measures it again.</p>'
+        return (
+            '<p class="notice">The measurement of a class following one room is malformed; <code>dynlab load '
+            "--room</code> measures it again.</p>"
+        )
     figure = ""
     if bench_reports.diagram_path(settings, "classroom"):
         figure = (
@@ -599,7 +605,8 @@ def _attack_note(settings) -> str:
         before, during = windows["baseline"]["frames_per_s"], windows["attack"]["frames_per_s"]
         target = report["targets"]["p10_frames_per_s"]
         text = (
-            f"<p>With {esc(str(report['students']))} students each on a {esc(str(report['scene_id']))} session of their "
+            f"<p>With {esc(str(report['students']))} students each on a {esc(str(report['scene_id']))} session "
+            "of their "
             "own, each from its own address, and one client attacking the class from one address (changing the room's "
             "shared scene without the instructor, turning students' sessions into another scene through the viewer "
             "socket, flooding session claims and look-ups, bursts of 40 requests at once, long seeks and steps on "
@@ -608,7 +615,8 @@ def _attack_note(settings) -> str:
             f"{fmt_sig(during['min'])}), against {fmt_sig(before['p10'])} (median {fmt_sig(before['median'])}) just "
             f"before the attack. The target is {fmt_sig(target)} under attack: "
             f"{'met' if during['p10'] >= target else 'not met'}. Measured "
-            f"{esc(str(report.get('created') or '')[:16].replace('T', ' '))} UTC (<code>dynlab load --attack</code>).</p>"
+            f"{esc(str(report.get('created') or '')[:16].replace('T', ' '))} UTC (<code>dynlab load "
+            "--attack</code>).</p>"
         )
         rows = "".join(_attack_row(attack) for attack in bench_reports.listed_attacks(report))
     except (AttributeError, TypeError, KeyError, ValueError):
@@ -673,7 +681,8 @@ def solver_lab_page(settings: SettingsDep) -> HTMLResponse:
             results_html = (
                 '<section class="bench-run notice" role="status"><h2>No measurements yet</h2>'
                 f"<p>{_esc_code(bench_reports.missing_message(settings))}</p>"
-                "<p>Then reload this page: <code>uv run --group bench dynlab bench</code> writes <code>work_precision.json</code> "
+                "<p>Then reload this page: <code>uv run --group bench dynlab bench</code> writes "
+                "<code>work_precision.json</code> "
                 "and one diagram per scene into the benchmark folder.</p></section>"
             )
         else:

@@ -121,7 +121,10 @@ class PlaybackAnswer(BaseModel):
     )
     slowed: Slowed | None = Field(
         None,
-        description="Present when the first viewer's scene runs slower than the chosen speed to keep within its share of the server",
+        description=(
+            "Present when the first viewer's scene runs slower than the chosen speed to keep within its "
+            "share of the server"
+        ),
     )
 
 

@@ -141,7 +141,10 @@ class ConstrainedModel(IntegratedModel):
                 MAX_BAUMGARTE_GAIN_1_S,
                 label="Baumgarte α",
                 step=0.5,
-                description="Damping gain α of Baumgarte's ë + 2α ė + β² e = 0 for a residual e (method baumgarte only); 0 with β = 0: uncorrected",
+                description=(
+                    "Damping gain α of Baumgarte's ë + 2α ė + β² e = 0 for a residual e (method "
+                    "baumgarte only); 0 with β = 0: uncorrected"
+                ),
             ),
             Parameter(
                 "baumgarte_beta_1_s",
@@ -151,7 +154,10 @@ class ConstrainedModel(IntegratedModel):
                 MAX_BAUMGARTE_GAIN_1_S,
                 label="Baumgarte β",
                 step=0.5,
-                description="Stiffness gain β of Baumgarte's ë + 2α ė + β² e = 0 (method baumgarte only); h·β near 1 or more makes the step unstable",
+                description=(
+                    "Stiffness gain β of Baumgarte's ë + 2α ė + β² e = 0 (method baumgarte only); h·β "
+                    "near 1 or more makes the step unstable"
+                ),
             ),
         )
 

@@ -56,7 +56,8 @@ class ModelLimit:
     def __post_init__(self) -> None:
         if self.frames < 1 or self.status in ("", "ok"):
             raise ValueError(
-                f"a model limit keeps at least one frame and names a status other than ok (got {self.frames}, {self.status!r})"
+                f"a model limit keeps at least one frame and names a status other than ok (got {self.frames}, "
+                f"{self.status!r})"
             )
 
 

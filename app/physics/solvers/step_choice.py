@@ -279,7 +279,10 @@ class StepChoice:
         estimate = (
             "estimating…" if self.status == ESTIMATING else f"estimated {self.target.format(self.estimated_error)}"
         )
-        return f"target {self.target.format(self.target.error)} over {self.horizon_s:g} s · {estimate} · {self.setting_text()}"
+        return (
+            f"target {self.target.format(self.target.error)} over {self.horizon_s:g} s · {estimate} · "
+            f"{self.setting_text()}"
+        )
 
     def as_dict(self) -> dict:
         """The keys the live readout and a simulate answer's stats carry."""
@@ -720,8 +723,10 @@ def choice_from_model(
         predictable = _two_figures_down(model.predictable_horizon_s(factor, SAFETY * target.error, measured_s))
         if predictable > 0.0:
             note = (
-                f"exponential error growth (×e every {1.0 / model.chaotic_rate_1_s:.2g} s, measured by the pilot: a chaotic "
-                f"motion, or one that keeps speeding up), so the target is stated over {predictable:g} s, the predictability "
+                f"exponential error growth (×e every {1.0 / model.chaotic_rate_1_s:.2g} s, measured by the "
+                "pilot: a chaotic "
+                f"motion, or one that keeps speeding up), so the target is stated over {predictable:g} s, the "
+                "predictability "
                 f"horizon at these parameters, not over the {horizon_s:g} s asked for"
             )
             return StepChoice(

@@ -154,7 +154,8 @@ class SceneRecorder:
         size = len(page.encode())
         if size > MAX_RECORDING_BYTES:
             raise ValueError(
-                f"seconds: this recording would be {size / 2**20:.0f} MB, over the {MAX_RECORDING_BYTES / 2**20:.0f} MB limit;"
+                f"seconds: this recording would be {size / 2**20:.0f} MB, over the "
+                f"{MAX_RECORDING_BYTES / 2**20:.0f} MB limit;"
                 " record fewer seconds"
             )
         return page
