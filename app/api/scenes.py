@@ -108,8 +108,8 @@ def session_params(scene_id: str, session_id: SessionId, host: SceneHostDep) -> 
         **error_responses(
             not_found=_UNKNOWN_SCENE,
             unprocessable=(
-                "A parameter is unknown, not finite or out of range, or the session id or key is "
-                "malformed; nothing changed"
+                "A parameter is unknown, not finite or out of range, "
+                "or the session id or key is malformed; nothing changed"
             ),
         ),
         **_SESSION_DOOR,
@@ -162,8 +162,8 @@ def set_session_params(
         **error_responses(
             not_found=_UNKNOWN_SCENE,
             unprocessable=(
-                "A field is out of range, the session has no scene yet, seek_s is outside the kept "
-                "motion, or the request would compute longer than one request may; nothing changed"
+                "A field is out of range, the session has no scene yet, seek_s is outside the kept motion, or the "
+                "request would compute longer than one request may; nothing changed"
             ),
         ),
         **_SESSION_DOOR,
@@ -233,8 +233,8 @@ def session_playback(scene_id: str, session_id: SessionId, host: SceneHostDep) -
         **error_responses(
             not_found=_UNKNOWN_SCENE,
             unprocessable=(
-                "The scene has no motion in time, a parameter or control is bad, or the request is "
-                "over a limit; `loc` names it"
+                "The scene has no motion in time, a parameter or control "
+                "is bad, or the request is over a limit; `loc` names it"
             ),
         ),
         **TOO_MANY_RESPONSE,

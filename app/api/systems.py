@@ -77,13 +77,13 @@ def list_systems(catalogue: CatalogueDep) -> list[dict[str, Any]]:
     response_model=CustomDeriveAnswer,
     responses=error_responses(
         unprocessable=(
-            "A name, value or formula is refused, the derivation exceeded its time or memory bound, or "
-            "the mass matrix is singular; `loc` names the field"
+            "A name, value or formula is refused, the derivation exceeded its time or memory bound, or the mass "
+            "matrix is singular; `loc` names the field"
         ),
         busy="Two typed derivations are already running; the `Retry-After` header says when to try again (s)",
         unavailable=(
-            "The derivation's process was stopped from outside (not by its limits); the `Retry-After` "
-            "header says when to try again (s)"
+            "The derivation's process was stopped from outside (not by its "
+            "limits); the `Retry-After` header says when to try again (s)"
         ),
     ),
 )
@@ -118,9 +118,9 @@ def derive_system(system_id: str, request: DeriveRequest, catalogue: CatalogueDe
     responses=error_responses(
         not_found="No system has this id",
         unprocessable=(
-            "The state has the wrong length or is not finite, a parameter is out of range, the "
-            "formulation does not apply, or the equations have no finite value at this state or time "
-            "(`loc` names `state` or `t` and the message says why)"
+            "The state has the wrong length or is not finite, a parameter is out of "
+            "range, the formulation does not apply, or the equations have no finite value "
+            "at this state or time (`loc` names `state` or `t` and the message says why)"
         ),
     ),
 )
@@ -174,8 +174,8 @@ def _not_finite(
     if finite_at_zero_time and t_s != 0.0:
         return ParameterError(
             "t",
-            f"at t = {t_s:g} s the {formulation} equations have no finite value because {because}; this state is "
-            "fine at t = 0",
+            f"at t = {t_s:g} s the {formulation} equations have no "
+            f"finite value because {because}; this state is fine at t = 0",
         )
     message = f"at this state the {formulation} equations have no finite value because {because}"
     values = dict(zip(system.q, state[: len(system.coordinates)].tolist()))

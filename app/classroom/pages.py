@@ -92,8 +92,8 @@ def projector_page(room_id: RoomId, request: Request, rooms: RoomsDep) -> HTMLRe
         return _notice_page(
             403,
             "Instructor only",
-            "The projector view is the instructor's: open the instructor link that dynlab serve printed, then "
-            "this page again.",
+            "The projector view is the instructor's: open the instructor "
+            "link that dynlab serve printed, then this page again.",
         )
     try:
         room = rooms.get(room_id)

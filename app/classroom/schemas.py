@@ -39,8 +39,8 @@ class JoinAnswer(BaseModel):
     room_id: str
     student_token: str = Field(
         description=(
-            "Send as X-Student-Token with answers, and in the room socket's hello; the same for a device "
-            "that joins again"
+            "Send as X-Student-Token with answers, and in the room "
+            "socket's hello; the same for a device that joins again"
         )
     )
     student_id: str = Field(

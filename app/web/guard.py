@@ -198,8 +198,8 @@ class RequestGuard:
                 # the server's places for them, and everyone else would wait.
                 if not self.heavy_in_flight.try_enter(client):
                     detail = (
-                        "your previous simulation, derivation or change is still running: wait for its "
-                        "answer, then try again"
+                        "your previous simulation, derivation or change is "
+                        "still running: wait for its answer, then try again"
                     )
                     await JSONResponse({"detail": detail}, status_code=429, headers={"Retry-After": "2"})(
                         scope, receive, send
@@ -262,8 +262,8 @@ class RequestGuard:
         )
         if not same_origin:
             return (
-                f"cross-origin request from {origin[:100]!r} refused (add it to DYNLAB_ALLOWED_ORIGINS if it "
-                "should pass)"
+                f"cross-origin request from {origin[:100]!r} refused "
+                "(add it to DYNLAB_ALLOWED_ORIGINS if it should pass)"
             )
         return None
 
@@ -276,8 +276,8 @@ def refusals(method: str, path: str, *, reads_body: bool) -> dict[int, str]:
     """The answers :class:`RequestGuard` can give one route (``path`` as an OpenAPI template): status -> description."""
     answers: dict[int, str] = {
         429: (
-            "Too many requests from this client (or too many simulations or derivations); Retry-After says when "
-            "to try again"
+            "Too many requests from this client (or too many simulations "
+            "or derivations); Retry-After says when to try again"
         )
     }
     if method.upper() not in SAFE_METHODS:

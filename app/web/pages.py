@@ -95,8 +95,8 @@ def viewer_client_html() -> bytes:
     client = (Path(viser.__file__).resolve().parent / "client" / "build" / "index.html").read_bytes()
     if client.count(_VIEWER_HEAD_END) != 1:
         raise RuntimeError(
-            f"viser {viser.__version__}'s client page has no single {_VIEWER_HEAD_END!r}: the viewer page cannot "
-            "be patched"
+            f"viser {viser.__version__}'s client page has no single "
+            f"{_VIEWER_HEAD_END!r}: the viewer page cannot be patched"
         )
     title_start = client.index(b"<title>")
     added = f"<style>{VIEWER_CSS}</style><script>{VIEWER_SCRIPT}</script>".encode()
@@ -605,9 +605,9 @@ def _attack_note(settings) -> str:
         before, during = windows["baseline"]["frames_per_s"], windows["attack"]["frames_per_s"]
         target = report["targets"]["p10_frames_per_s"]
         text = (
-            f"<p>With {esc(str(report['students']))} students each on a {esc(str(report['scene_id']))} session "
-            "of their "
-            "own, each from its own address, and one client attacking the class from one address (changing the room's "
+            f"<p>With {esc(str(report['students']))} students each on a "
+            f"{esc(str(report['scene_id']))} session of their own, each from its own address, "
+            "and one client attacking the class from one address (changing the room's "
             "shared scene without the instructor, turning students' sessions into another scene through the viewer "
             "socket, flooding session claims and look-ups, bursts of 40 requests at once, long seeks and steps on "
             "expensive sessions, 200 viewers, two slow derivations at once), the students received "
@@ -682,8 +682,7 @@ def solver_lab_page(settings: SettingsDep) -> HTMLResponse:
                 '<section class="bench-run notice" role="status"><h2>No measurements yet</h2>'
                 f"<p>{_esc_code(bench_reports.missing_message(settings))}</p>"
                 "<p>Then reload this page: <code>uv run --group bench dynlab bench</code> writes "
-                "<code>work_precision.json</code> "
-                "and one diagram per scene into the benchmark folder.</p></section>"
+                "<code>work_precision.json</code> and one diagram per scene into the benchmark folder.</p></section>"
             )
         else:
             results_html = _guarded(_run_summary, results) + "".join(

@@ -122,8 +122,8 @@ class PlaybackAnswer(BaseModel):
     slowed: Slowed | None = Field(
         None,
         description=(
-            "Present when the first viewer's scene runs slower than the chosen speed to keep within its "
-            "share of the server"
+            "Present when the first viewer's scene runs slower than "
+            "the chosen speed to keep within its share of the server"
         ),
     )
 

@@ -209,8 +209,8 @@ SHAPES: dict[str, Shape] = {
             ),
             lambda r, h: np.vstack([_circle(r, -h / 4), [[0.0, 0.0, 3 * h / 4]]]),
             "z",
-            "solid right circular cone, axis along its own z, apex towards +z; its position is its centre of "
-            "mass (¼ h above the base)",
+            "solid right circular cone, axis along its own z, apex towards "
+            "+z; its position is its centre of mass (¼ h above the base)",
             lambda r, h: np.array([r, r, 3 * h / 4]),
             lambda r, h: np.array([-r, -r, -h / 4]),
         ),
@@ -296,10 +296,9 @@ def _check_holes(parts: Sequence[Part]) -> None:
         if not hosts:
             raise ParameterError(
                 "bodies",
-                f"this hole (a {part.shape.name}) does not lie inside any solid {part.shape.extent} part: a hole "
-                "must be "
-                "cut from a body of the same kind (a solid from a solid, a flat shape from a plate or disk, a "
-                "rod from a rod)",
+                f"this hole (a {part.shape.name}) does not lie inside any solid "
+                f"{part.shape.extent} part: a hole must be cut from a body of the same kind "
+                "(a solid from a solid, a flat shape from a plate or disk, a rod from a rod)",
                 path=("bodies", index),
             )
         host = max(hosts, key=lambda p: p.density)
@@ -369,10 +368,9 @@ def _check_hole_overlaps(parts: Sequence[Part]) -> None:
             if np.any(second.contains(samples[first_index])) or np.any(first.contains(samples[second_index])):
                 raise ParameterError(
                     "bodies",
-                    f"this hole (a {second.shape.name}) overlaps the hole at body {first_index + 1}: the "
-                    "material they share "
-                    "would be removed twice. Make the holes only touch, or describe the opening as holes that do "
-                    "not overlap",
+                    f"this hole (a {second.shape.name}) overlaps the hole at body "
+                    f"{first_index + 1}: the material they share would be removed twice. Make "
+                    "the holes only touch, or describe the opening as holes that do not overlap",
                     path=("bodies", second_index),
                 )
 
@@ -401,8 +399,8 @@ def combine(parts: Sequence[Part]) -> CompositeBody:
             tensor,
             about="the composite body's centre of mass",
             hint=(
-                "a slender rod alone has none about its own axis (use a thin cylinder), and holes may remove "
-                "more than the bodies have"
+                "a slender rod alone has none about its own axis (use a thin "
+                "cylinder), and holes may remove more than the bodies have"
             ),
         )
     except ValueError as exc:
@@ -463,8 +461,8 @@ def validate_record(raw: Any, index: int, *, name: str = "bodies") -> dict[str, 
     if shape.name == "tube" and out["inner_radius_m"] >= out["radius_m"]:
         raise ParameterError(
             name,
-            f"the inner radius ({out['inner_radius_m']:g} m) must be less than the outer radius "
-            f"({out['radius_m']:g} m)",
+            f"the inner radius ({out['inner_radius_m']:g} m) must "
+            f"be less than the outer radius ({out['radius_m']:g} m)",
             path=(*here, "inner_radius_m"),
         )
     out["position_m"] = _triple(raw.get("position_m", [0.0, 0.0, 0.0]), (*here, "position_m"), POSITION_LIMIT_M, "m")

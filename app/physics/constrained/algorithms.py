@@ -315,8 +315,8 @@ def initial_partition(system: ConstrainedSystem, q: np.ndarray | None) -> np.nda
     partition = np.empty(n)
     if not choose_partition(jacobian, partition):
         raise ValueError(
-            f"method partitioning: the {m} constraint rows are dependent at this state; no coordinates can be "
-            "solved for"
+            f"method partitioning: the {m} constraint rows are "
+            "dependent at this state; no coordinates can be solved for"
         )
     return partition
 

@@ -151,8 +151,8 @@ def _consistent_positions(system: ConstrainedSystem, q_requested: np.ndarray, fr
         return q
     if len(free) < m_h:
         raise ValueError(
-            f"positions: {m_h} position constraints but only {len(free)} free coordinates; free more of them "
-            "(fewer fixed positions)"
+            f"positions: {m_h} position constraints but only {len(free)} "
+            "free coordinates; free more of them (fewer fixed positions)"
         )
     zero_rates = np.zeros(system.n_coordinates)
     size = max(1.0, float(np.max(np.abs(q_requested))))
@@ -175,9 +175,8 @@ def _consistent_positions(system: ConstrainedSystem, q_requested: np.ndarray, fr
                 return q
             break
     raise ValueError(
-        "positions: no consistent start near the requested one (Gauss–Newton did not converge in "
-        f"{MAX_ITERATIONS} iterations): "
-        "the fixed coordinates ask for a place the constraints cannot reach"
+        f"positions: no consistent start near the requested one (Gauss–Newton did not converge in {MAX_ITERATIONS} "
+        "iterations): the fixed coordinates ask for a place the constraints cannot reach"
     )
 
 

@@ -142,8 +142,8 @@ class ConstrainedModel(IntegratedModel):
                 label="Baumgarte α",
                 step=0.5,
                 description=(
-                    "Damping gain α of Baumgarte's ë + 2α ė + β² e = 0 for a residual e (method "
-                    "baumgarte only); 0 with β = 0: uncorrected"
+                    "Damping gain α of Baumgarte's ë + 2α ė + β² e = 0 for a "
+                    "residual e (method baumgarte only); 0 with β = 0: uncorrected"
                 ),
             ),
             Parameter(
@@ -155,8 +155,8 @@ class ConstrainedModel(IntegratedModel):
                 label="Baumgarte β",
                 step=0.5,
                 description=(
-                    "Stiffness gain β of Baumgarte's ë + 2α ė + β² e = 0 (method baumgarte only); h·β "
-                    "near 1 or more makes the step unstable"
+                    "Stiffness gain β of Baumgarte's ë + 2α ė + β² e = 0 (method "
+                    "baumgarte only); h·β near 1 or more makes the step unstable"
                 ),
             ),
         )

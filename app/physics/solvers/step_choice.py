@@ -723,11 +723,9 @@ def choice_from_model(
         predictable = _two_figures_down(model.predictable_horizon_s(factor, SAFETY * target.error, measured_s))
         if predictable > 0.0:
             note = (
-                f"exponential error growth (×e every {1.0 / model.chaotic_rate_1_s:.2g} s, measured by the "
-                "pilot: a chaotic "
-                f"motion, or one that keeps speeding up), so the target is stated over {predictable:g} s, the "
-                "predictability "
-                f"horizon at these parameters, not over the {horizon_s:g} s asked for"
+                f"exponential error growth (×e every {1.0 / model.chaotic_rate_1_s:.2g} s, measured by the pilot: a "
+                f"chaotic motion, or one that keeps speeding up), so the target is stated over {predictable:g} s, the "
+                f"predictability horizon at these parameters, not over the {horizon_s:g} s asked for"
             )
             return StepChoice(
                 model.method,

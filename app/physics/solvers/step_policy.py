@@ -133,8 +133,8 @@ def _unmeasured(
         controls, default_method=model.default_method, fastest_rate_rad_s=rate, frame_dt_s=frame_dt_s
     )
     note = (
-        "no pilot run of any method finished (the motion is too stiff or too fast for the steps tried), so "
-        "the error is unknown"
+        "no pilot run of any method finished (the motion is too stiff "
+        "or too fast for the steps tried), so the error is unknown"
     )
     if isinstance(integrator, FixedStepIntegrator) and max_fixed_work is not None:
         cap = max(

@@ -139,9 +139,8 @@ class RequestTooCostly(ValueError):
     def over_limit(cls, field: str, what: str, advice: str) -> RequestTooCostly:
         """ "``field``: ``what`` takes more than the limit …; ``advice``" (the words every such refusal uses)."""
         return cls(
-            f"{field}: {what} takes more than the {REQUEST_COMPUTE_S:g} s of computing one request may use while "
-            "a class "
-            f"shares the server; {advice}"
+            f"{field}: {what} takes more than the {REQUEST_COMPUTE_S:g} s of "
+            f"computing one request may use while a class shares the server; {advice}"
         )
 
 
@@ -150,9 +149,8 @@ def check_request_cost(field: str, *, frames: int, frame_cost_s: float, what: st
     estimate_s = frames * frame_cost_s
     if estimate_s > REQUEST_COMPUTE_S:
         raise RequestTooCostly(
-            f"{field}: {what} needs {frames} frames at about {1e3 * frame_cost_s:.2g} ms each, about "
-            f"{estimate_s:.0f} s "
-            f"of computing; one request may take at most {REQUEST_COMPUTE_S:g} s while a class shares the server. "
+            f"{field}: {what} needs {frames} frames at about {1e3 * frame_cost_s:.2g} ms each, about {estimate_s:.0f} "
+            f"s of computing; one request may take at most {REQUEST_COMPUTE_S:g} s while a class shares the server. "
             f"Ask for less, or use fewer steps per frame."
         )
 

@@ -114,8 +114,8 @@ def no_graph_note(scene_cls: type[Scene]) -> str | None:
     model = scene_cls.model
     if model is None or not model.integrated:
         return (
-            "this scene's motion is a closed form in time, not integrated: its graph is not kept (its numbers "
-            "are in the readout)"
+            "this scene's motion is a closed form in time, not integrated: "
+            "its graph is not kept (its numbers are in the readout)"
         )
     return None
 

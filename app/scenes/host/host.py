@@ -480,8 +480,8 @@ class SceneHost:
                 }
                 if not motions:
                     raise ValueError(
-                        "seek_s: no motion is kept for this session yet (it has no viewer): open its scene, then "
-                        "go back in it"
+                        "seek_s: no motion is kept for this session yet (it "
+                        "has no viewer): open its scene, then go back in it"
                     )
             if playing is not None:
                 session.playing = playing

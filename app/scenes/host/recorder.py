@@ -155,8 +155,7 @@ class SceneRecorder:
         if size > MAX_RECORDING_BYTES:
             raise ValueError(
                 f"seconds: this recording would be {size / 2**20:.0f} MB, over the "
-                f"{MAX_RECORDING_BYTES / 2**20:.0f} MB limit;"
-                " record fewer seconds"
+                f"{MAX_RECORDING_BYTES / 2**20:.0f} MB limit; record fewer seconds"
             )
         return page
 
