@@ -89,7 +89,9 @@ SIMULATIONS = HeavyRequestLimiter(
 TOO_MANY_RESPONSE = {
     429: {
         "model": ErrorDetail,
-        "description": "Too many simulations are running or waiting; the `Retry-After` header says when to try again (s)",
+        "description": (
+            "Too many simulations are running or waiting; the `Retry-After` header says when to try again (s)"
+        ),
         "headers": {"Retry-After": {"description": "Seconds to wait before retrying", "schema": {"type": "integer"}}},
     }
 }

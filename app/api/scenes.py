@@ -53,7 +53,10 @@ _RETRY_AFTER = {"Retry-After": {"description": "Seconds to wait before retrying"
 _SESSION_DOOR = {
     403: {
         "model": ErrorDetail,
-        "description": "The session belongs to another page (its X-Session-Key is missing or wrong), or it is a classroom room's shared scene (changed only by its instructor); nothing changed",
+        "description": (
+            "The session belongs to another page (its X-Session-Key is missing or wrong), or it is a classroom "
+            "room's shared scene (changed only by its instructor); nothing changed"
+        ),
     },
     503: {
         "model": ErrorDetail,

@@ -46,7 +46,8 @@ def _template(name: str) -> Template:
 VIEWER_CSS = """
 [data-floating-window],
 [data-dock-leaf]:has([data-dock-tab="viser-control-panel"]),
-#root .mantine-Paper-root:not([data-floating-window]):has(> div > .mantine-ScrollArea-root) { display: none !important; }
+#root .mantine-Paper-root:not([data-floating-window]):has(> div > .mantine-ScrollArea-root) \
+{ display: none !important; }
 """
 
 #: Script added to viser's client page, for the keyboard (outside text boxes; viser's own keys orbit, move and pan):
@@ -60,7 +61,8 @@ VIEWER_CSS = """
 VIEWER_SCRIPT = """
 document.addEventListener("keydown", (event) => {
   const target = event.target instanceof Element ? event.target : null;
-  if (event.ctrlKey || event.metaKey || event.altKey || (target && target.closest("input, select, textarea, [contenteditable]"))) return;
+  if (event.ctrlKey || event.metaKey || event.altKey || \
+(target && target.closest("input, select, textarea, [contenteditable]"))) return;
   const viewer = window.__viserMutable;
   const controls = viewer && viewer.cameraControl;
   const zoom = { "+": 1, "=": 1, "-": -1, "_": -1 }[event.key];

@@ -494,7 +494,8 @@ class SceneHost:
             if reset:
                 for scene in session.instances.values():
                     with scene.client.atomic():
-                        scene.restart_motion()  # the kit's own restart (go_to's too), not a re-application of the parameters
+                        # the kit's own restart (go_to's too), not a re-application of the parameters
+                        scene.restart_motion()
                 session.restarted()
             if go_to_s is not None:
                 for scene in session.instances.values():

@@ -152,7 +152,9 @@ class WorkerPool(SceneHostInterface):
             target=run_worker,
             args=(index, worker_end, self._authkey, self._options),
             name=f"dynlab-scene-worker-{index}",
-            daemon=False,  # a worker starts children of its own (a typed Lagrangian's bounded derivation); it ends with the front by its pipe
+            # a worker starts children of its own (a typed Lagrangian's bounded derivation);
+            # it ends with the front by its pipe
+            daemon=False,
         )
         process.start()
         worker_end.close()
