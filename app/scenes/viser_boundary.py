@@ -79,9 +79,16 @@ def viewer_camera_message(
 ) -> bytes:
     """The encoded camera message a browser's viewer sends first; viser counts a client as connected only after it."""
     camera = _messages.ViewerCameraMessage(
-        wxyz=(1.0, 0.0, 0.0, 0.0), position=position, fov=1.0, near=0.01, far=100.0,
-        image_height=480, image_width=640, look_at=look_at, up_direction=(0.0, 0.0, 1.0),
-    )  # fmt: skip
+        wxyz=(1.0, 0.0, 0.0, 0.0),
+        position=position,
+        fov=1.0,
+        near=0.01,
+        far=100.0,
+        image_height=480,
+        image_width=640,
+        look_at=look_at,
+        up_direction=(0.0, 0.0, 1.0),
+    )
     return msgspec.msgpack.encode(camera.as_serializable_dict())
 
 
