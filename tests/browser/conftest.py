@@ -9,6 +9,7 @@ import threading
 import time
 from collections.abc import Iterator
 from pathlib import Path
+from urllib.parse import urlsplit
 
 import httpx
 import pytest
@@ -275,6 +276,16 @@ def readout_quantity(page, name: str):
     """The readout cell ``name``'s value, or None while the page does not show it."""
     cell = page.query_selector(f'#readout [data-quantity="{name}"]')
     return None if cell is None else json.loads(cell.get_attribute("data-value"))
+
+
+def wait_for_polls(page, count: int = 2, *, path_end: str = "/live", timeout_s: float = 30.0) -> None:
+    """Wait until the page has had ``count`` more answers to its requests whose path ends with ``path_end`` (the
+    readout's poll ``/live``, once a second while its viewer is connected; the graph's ``/graph``). A test that checks
+    that something does *not* change watches it over the page's own polls, which a busy machine slows down together
+    with the page, rather than over fixed seconds."""
+    for _ in range(count):
+        with page.expect_response(lambda answer: urlsplit(answer.url).path.endswith(path_end), timeout=timeout_s * 1000):
+            pass
 
 
 def let_webgl_draw(page, milliseconds: int) -> None:
