@@ -3,11 +3,12 @@ suite is shared between README's two xdist workers."""
 
 from __future__ import annotations
 
+import asyncio
 import json
 import os
 import time
 from collections import Counter, defaultdict
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from pathlib import Path
 
 import pytest
@@ -59,6 +60,26 @@ def pytest_collection_finish(session: pytest.Session) -> None:
 @pytest.hookimpl(optionalhook=True)
 def pytest_xdist_make_scheduler(config: pytest.Config, log) -> LoadScopeScheduling:
     return LongestFilesFirst(config, log)
+
+
+BROWSER_TESTS = "tests/browser/"
+
+
+@pytest.fixture(autouse=True)
+def _no_event_loop_of_the_browsers(request: pytest.FixtureRequest) -> Iterator[None]:
+    """A worker that has run a browser test keeps Playwright's sync API (its Chromium) until the session ends, and
+    Playwright marks its event loop as running in this thread between its calls: ``asyncio.run`` (the load tools of
+    tests/bench) would then refuse to start. A test outside tests/browser runs with no loop marked; the mark is put
+    back after it."""
+    loop = asyncio._get_running_loop()
+    if loop is None or request.node.nodeid.startswith(BROWSER_TESTS):
+        yield
+        return
+    asyncio._set_running_loop(None)
+    try:
+        yield
+    finally:
+        asyncio._set_running_loop(loop)
 
 
 _measured_seconds: defaultdict[str, float] = defaultdict(float)

@@ -99,10 +99,11 @@ class ServedHost:
 
 
 class LiveServer:
-    """``dynlab serve`` as README starts it (its own process, its scene workers), for the browser tests."""
+    """A served app (``dynlab serve`` as README starts it: its own process, its scene workers) as the browser tests
+    use it: its address, its instructor link and the scene host's state, asked over HTTP."""
 
-    def __init__(self) -> None:
-        self.app = ServedApp(name="browser")
+    def __init__(self, app: ServedApp) -> None:
+        self.app = app
         self.instructor_key = INSTRUCTOR_KEY
         self.host = ServedHost(self.app)
 
@@ -113,13 +114,6 @@ class LiveServer:
     @property
     def instructor_link(self) -> str:
         return self.app.instructor_link
-
-    def __enter__(self) -> "LiveServer":
-        self.app.start()
-        return self
-
-    def __exit__(self, *exc: object) -> None:
-        self.app.stop()
 
 
 class InProcessLiveServer:
@@ -159,9 +153,9 @@ def inprocess_live_server() -> Iterator[InProcessLiveServer]:
 
 
 @pytest.fixture(scope="session")
-def live_server() -> Iterator[LiveServer]:
-    with LiveServer() as server:
-        yield server
+def live_server(served: ServedApp) -> LiveServer:
+    """The xdist worker's served app (``served``, which its API tests share): one server start a worker, not two."""
+    return LiveServer(served)
 
 
 #: Frames per second the 3D viewer may draw in a test (see :class:`ViewerFramesLimited`).
