@@ -278,7 +278,8 @@ def wait_for_polls(page, count: int = 2, *, path_end: str = "/live", timeout_s: 
     that something does *not* change watches it over the page's own polls, which a busy machine slows down together
     with the page, rather than over fixed seconds."""
     for _ in range(count):
-        with page.expect_response(lambda answer: urlsplit(answer.url).path.endswith(path_end), timeout=timeout_s * 1000):
+        polled = lambda answer: urlsplit(answer.url).path.endswith(path_end)  # noqa: E731
+        with page.expect_response(polled, timeout=timeout_s * 1000):
             pass
 
 

@@ -17,7 +17,9 @@ import re
 
 import pytest
 
-from tests.browser.conftest import dismiss_webgl_notice, keeping_screenshots, let_webgl_draw, open_lesson, screenshot, wait_for_polls
+from tests.browser.conftest import (
+    dismiss_webgl_notice, keeping_screenshots, let_webgl_draw, open_lesson, screenshot, wait_for_polls,
+)
 from tests.browser.test_accessibility_in_browser import FAILING_IMPACTS, run_axe
 from tests.conftest import wait_until
 
@@ -127,7 +129,8 @@ def test_energy_bars_phase_plot_live_time_graph_and_csv(browser, live_server, sh
     page.click(".tc-play")
     page.wait_for_selector('.tc-play[data-playing="false"]')
     held_t = host.motion_state(session_id)["t_s"]
-    wait_for_polls(page, 2, path_end="/graph")  # a poll in flight when paused lands; a paused scene is asked once a second
+    # A poll in flight when paused lands; a paused scene is asked once a second.
+    wait_for_polls(page, 2, path_end="/graph")
     held_points = points(page)
     wait_for_polls(page, 2, path_end="/graph")
     assert points(page) == held_points
