@@ -277,8 +277,10 @@ def wait_for_polls(page, count: int = 2, *, path_end: str = "/live", timeout_s: 
     readout's poll ``/live``, once a second while its viewer is connected; the graph's ``/graph``). A test that checks
     that something does *not* change watches it over the page's own polls, which a busy machine slows down together
     with the page, rather than over fixed seconds."""
+    def polled(answer) -> bool:
+        return urlsplit(answer.url).path.endswith(path_end)
+
     for _ in range(count):
-        polled = lambda answer: urlsplit(answer.url).path.endswith(path_end)  # noqa: E731
         with page.expect_response(polled, timeout=timeout_s * 1000):
             pass
 
