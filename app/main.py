@@ -90,9 +90,18 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     app.state.requests_in_flight = RequestsInFlight()
     app.add_middleware(AnswerWhenStopping, requests=app.state.requests_in_flight)
     routers = (
-        health.router, chapters.router, scenes.router, examples.router, systems.router, bench.router, rooms.router,
-        pages.router, room_pages.router, relay.router, room_relay.router,
-    )  # fmt: skip
+        health.router,
+        chapters.router,
+        scenes.router,
+        examples.router,
+        systems.router,
+        bench.router,
+        rooms.router,
+        pages.router,
+        room_pages.router,
+        relay.router,
+        room_relay.router,
+    )
     for router in routers:
         app.include_router(router)
     errors.document_refusals(app, guard.refusals)

@@ -3,24 +3,50 @@ suite is shared between README's two xdist workers."""
 
 from __future__ import annotations
 
+import asyncio
+import json
+import os
 import time
-from collections import Counter
-from collections.abc import Callable
+from collections import Counter, defaultdict
+from collections.abc import Callable, Iterator
+from pathlib import Path
 
 import pytest
 from xdist.scheduler import LoadScopeScheduling
 
-BROWSER_TESTS = "tests/browser/"
+#: Seconds each test file took (setup, call and teardown of its tests) in a measured run of README's test command:
+#: the order in which the files are handed out. ``DYNLAB_STORE_FILE_SECONDS=1 tests/run.sh`` measures it again.
+FILE_SECONDS = Path(__file__).with_name("file_seconds.json")
 
 
-class BrowserTestsTogether(LoadScopeScheduling):
-    """README's test command runs the suite on two xdist workers (``-n 2``). The real-browser tests are one unit of
-    work, sent first and kept serial on one worker (one server, one Chromium, as before), while the other worker runs
-    every other test one at a time. (xdist's own ``--dist loadgroup`` does the same with a marker, but it marks a
-    test by rewriting ``Item._nodeid``, which pytest 9.2 no longer reads.)"""
+def file_of(nodeid: str) -> str:
+    """The file a test id belongs to (``tests/api/test_faults.py`` of ``tests/api/test_faults.py::test_…[…]``)."""
+    return nodeid.split("::", 1)[0]
+
+
+class LongestFilesFirst(LoadScopeScheduling):
+    """README's test command runs the suite on two xdist workers (``-n 2``). Each test file is one unit of work, so a
+    file's module fixtures (a served app, a browser page, a derivation) are set up once, on one worker; the browser
+    test files are shared by both workers like any other (each worker starts its own served app and Chromium on its
+    first browser test). The units go out longest first (:data:`FILE_SECONDS`, in the order the workers collected
+    them: see :func:`pytest_collection_modifyitems`), so the two workers finish together. (xdist's own
+    ``--dist loadgroup`` marks a test by rewriting ``Item._nodeid``, which pytest 9.2 no longer reads.)"""
+
+    def __init__(self, config: pytest.Config, log=None) -> None:
+        config.option.loadscopereorder = False  # keep the collected order: longest file first
+        super().__init__(config, log)
 
     def _split_scope(self, nodeid: str) -> str:
-        return BROWSER_TESTS if nodeid.startswith(BROWSER_TESTS) else nodeid
+        return file_of(nodeid)
+
+
+def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    """On an xdist worker: the test files in order of their measured seconds, longest first (a file not measured yet
+    counts as quick), each file's tests in their own order."""
+    if not hasattr(config, "workerinput") or not FILE_SECONDS.exists():
+        return
+    seconds = json.loads(FILE_SECONDS.read_text())
+    items.sort(key=lambda item: -seconds.get(file_of(item.nodeid), 0.0))  # a stable sort: a file's order is kept
 
 
 def pytest_collection_finish(session: pytest.Session) -> None:
@@ -33,7 +59,43 @@ def pytest_collection_finish(session: pytest.Session) -> None:
 
 @pytest.hookimpl(optionalhook=True)
 def pytest_xdist_make_scheduler(config: pytest.Config, log) -> LoadScopeScheduling:
-    return BrowserTestsTogether(config, log)
+    return LongestFilesFirst(config, log)
+
+
+BROWSER_TESTS = "tests/browser/"
+
+
+@pytest.fixture(autouse=True)
+def _no_event_loop_of_the_browsers(request: pytest.FixtureRequest) -> Iterator[None]:
+    """A worker that has run a browser test keeps Playwright's sync API (its Chromium) until the session ends, and
+    Playwright marks its event loop as running in this thread between its calls: ``asyncio.run`` (the load tools of
+    tests/bench) would then refuse to start. A test outside tests/browser runs with no loop marked; the mark is put
+    back after it."""
+    loop = asyncio._get_running_loop()
+    if loop is None or request.node.nodeid.startswith(BROWSER_TESTS):
+        yield
+        return
+    asyncio._set_running_loop(None)
+    try:
+        yield
+    finally:
+        asyncio._set_running_loop(loop)
+
+
+_measured_seconds: defaultdict[str, float] = defaultdict(float)
+
+
+def pytest_runtest_logreport(report: pytest.TestReport) -> None:
+    """Sum each file's seconds (every phase of every test; on xdist's controller, as the workers report them)."""
+    _measured_seconds[file_of(report.nodeid)] += report.duration
+
+
+def pytest_sessionfinish(session: pytest.Session) -> None:
+    """With ``DYNLAB_STORE_FILE_SECONDS=1``, write :data:`FILE_SECONDS` from this run (on xdist's controller, or a
+    run without xdist)."""
+    if os.environ.get("DYNLAB_STORE_FILE_SECONDS") == "1" and not hasattr(session.config, "workerinput"):
+        ordered = dict(sorted(((f, round(s, 1)) for f, s in _measured_seconds.items()), key=lambda kv: -kv[1]))
+        FILE_SECONDS.write_text(json.dumps(ordered, indent=1) + "\n")
 
 
 def wait_until(predicate: Callable[[], bool], timeout_s: float = 30.0, interval_s: float = 0.05, what: str = "condition") -> None:

@@ -26,8 +26,8 @@ from typing import Any
 
 import httpx
 
-#: Keys whose values measure the machine or the moment, not the app.
-VOLATILE_KEYS = re.compile(r"cpu|uptime|wall|elapsed|load|_ms$|^ms_|seconds_running|started|now|pid|rss|memory")
+#: Keys whose values measure the machine or the moment (or whether a derivation was in the disk cache), not the app.
+VOLATILE_KEYS = re.compile(r"cached|derive_s|compile_s|cpu|uptime|wall|elapsed|load|_ms$|^ms_|seconds_running|started|now|pid|rss|memory")
 
 #: Integration controls asked of every scene's simulate beside its defaults (an integrated scene answers, a closed
 #: form refuses with a 422 naming the field; both answers are contracts).
@@ -138,9 +138,9 @@ def dump(url: str) -> dict[str, Any]:
 
 def compare(before_path: str, after_path: str) -> int:
     with open(before_path) as f:
-        before = json.load(f)
+        before = masked(json.load(f))
     with open(after_path) as f:
-        after = json.load(f)
+        after = masked(json.load(f))
     differences = 0
     for key in sorted(set(before) | set(after)):
         if before.get(key) != after.get(key):

@@ -13,4 +13,8 @@ if [ ! -x /usr/bin/chromium ]; then
   $SUDO apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq chromium >/dev/null
 fi
+# Keep compiled bytecode (and pytest's rewritten test modules) in __pycache__ even where the environment says not to
+# write it: a run starts dozens of Python processes (served apps, their scene workers, bounded children), and each
+# would otherwise compile app/ again from source.
+unset PYTHONDONTWRITEBYTECODE
 exec python3 -m uv run --group test --group bench pytest -n 2 "$@"

@@ -154,7 +154,8 @@ class SessionDirectory:
         if session_id.startswith(STAGE_PREFIX):
             raise Refused(
                 403,
-                f"session {session_id!r} is a classroom room's shared scene: only its instructor changes it, through the room",
+                f"session {session_id!r} is a classroom room's shared "
+                "scene: only its instructor changes it, through the room",
             )
         with self._lock:
             entry = self._entries.get(session_id)

@@ -115,7 +115,8 @@ async def work_busy_handler(request: Request, exc: Exception) -> Response:
 
 
 async def work_interrupted_handler(request: Request, exc: Exception) -> Response:
-    """Bounded work ended from outside (an administrator's or the out-of-memory killer's signal): not the input's fault."""
+    """Bounded work ended from outside (an administrator's or the out-of-memory killer's signal): not the input's
+    fault."""
     assert isinstance(exc, WorkInterrupted)
     log.warning("%s %s: %s", request.method, request.url.path, exc)
     return JSONResponse({"detail": str(exc)}, status_code=503, headers={"Retry-After": str(exc.retry_after_s)})

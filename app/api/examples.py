@@ -44,7 +44,9 @@ def list_examples(catalogue: CatalogueDep) -> list[dict[str, Any]]:
     response_model=SolveAnswer,
     responses=error_responses(
         not_found="No worked example has this id",
-        unprocessable="An input is unknown, not finite, out of range, or the inputs cannot exist together; `loc` names it",
+        unprocessable=(
+            "An input is unknown, not finite, out of range, or the inputs cannot exist together; `loc` names it"
+        ),
     ),
 )
 def solve_example(example_id: str, request: SolveRequest, catalogue: CatalogueDep) -> dict[str, Any]:

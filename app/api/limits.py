@@ -39,7 +39,8 @@ class Busy(HTTPException):
 
 
 class HeavyRequestLimiter:
-    """At most ``concurrent`` holders of :meth:`slot` at once; at most ``queued`` more wait, each up to ``wait_s`` (s)."""
+    """At most ``concurrent`` holders of :meth:`slot` at once; at most ``queued`` more wait, each up to ``wait_s``
+    (s)."""
 
     def __init__(self, *, concurrent: int, queued: int, wait_s: float, retry_after_s: int) -> None:
         if concurrent < 1 or queued < 0 or not (math.isfinite(wait_s) and wait_s >= 0.0) or retry_after_s < 1:
@@ -89,7 +90,9 @@ SIMULATIONS = HeavyRequestLimiter(
 TOO_MANY_RESPONSE: dict[int | str, dict[str, Any]] = {
     429: {
         "model": ErrorDetail,
-        "description": "Too many simulations are running or waiting; the `Retry-After` header says when to try again (s)",
+        "description": (
+            "Too many simulations are running or waiting; the `Retry-After` header says when to try again (s)"
+        ),
         "headers": {"Retry-After": {"description": "Seconds to wait before retrying", "schema": {"type": "integer"}}},
     }
 }

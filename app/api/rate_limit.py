@@ -27,7 +27,8 @@ class TokenBuckets:
     ) -> None:
         if burst < 0 or not (math.isfinite(rate_per_s) and rate_per_s > 0) or max_clients < 1:
             raise ValueError(
-                f"burst must be >= 0, rate_per_s finite and > 0, max_clients >= 1 (got {burst}, {rate_per_s}, {max_clients})"
+                f"burst must be >= 0, rate_per_s finite and > 0, max_clients >= 1 (got {burst}, {rate_per_s}, "
+                f"{max_clients})"
             )
         self.burst = burst
         self.rate_per_s = rate_per_s
@@ -68,7 +69,8 @@ def retry_after_s(wait_s: float) -> int:
 
 
 class InFlight:
-    """How many requests each client has running now, at most ``limit`` each (thread-safe; a client with none is forgotten)."""
+    """How many requests each client has running now, at most ``limit`` each (thread-safe; a client with none is
+    forgotten)."""
 
     def __init__(self, *, limit: int) -> None:
         if limit < 1:

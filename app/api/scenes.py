@@ -53,7 +53,10 @@ _RETRY_AFTER = {"Retry-After": {"description": "Seconds to wait before retrying"
 _SESSION_DOOR: dict[int | str, dict[str, Any]] = {
     403: {
         "model": ErrorDetail,
-        "description": "The session belongs to another page (its X-Session-Key is missing or wrong), or it is a classroom room's shared scene (changed only by its instructor); nothing changed",
+        "description": (
+            "The session belongs to another page (its X-Session-Key is missing or wrong), or it is a classroom "
+            "room's shared scene (changed only by its instructor); nothing changed"
+        ),
     },
     503: {
         "model": ErrorDetail,
@@ -107,7 +110,10 @@ def session_params(scene_id: str, session_id: SessionId, host: SceneHostDep) -> 
     responses={
         **error_responses(
             not_found=_UNKNOWN_SCENE,
-            unprocessable="A parameter is unknown, not finite or out of range, or the session id or key is malformed; nothing changed",
+            unprocessable=(
+                "A parameter is unknown, not finite or out of range, "
+                "or the session id or key is malformed; nothing changed"
+            ),
         ),
         **_SESSION_DOOR,
         **_TOO_MANY_SESSIONS,
@@ -158,7 +164,10 @@ def set_session_params(
     responses={
         **error_responses(
             not_found=_UNKNOWN_SCENE,
-            unprocessable="A field is out of range, the session has no scene yet, seek_s is outside the kept motion, or the request would compute longer than one request may; nothing changed",
+            unprocessable=(
+                "A field is out of range, the session has no scene yet, seek_s is outside the kept motion, or the "
+                "request would compute longer than one request may; nothing changed"
+            ),
         ),
         **_SESSION_DOOR,
     },
@@ -226,7 +235,10 @@ def session_playback(scene_id: str, session_id: SessionId, host: SceneHostDep) -
     responses={
         **error_responses(
             not_found=_UNKNOWN_SCENE,
-            unprocessable="The scene has no motion in time, a parameter or control is bad, or the request is over a limit; `loc` names it",
+            unprocessable=(
+                "The scene has no motion in time, a parameter or control "
+                "is bad, or the request is over a limit; `loc` names it"
+            ),
         ),
         **TOO_MANY_RESPONSE,
     },

@@ -76,13 +76,20 @@ def list_systems(catalogue: CatalogueDep) -> list[dict[str, Any]]:
     "/custom/derive",
     response_model=CustomDeriveAnswer,
     responses=error_responses(
-        unprocessable="A name, value or formula is refused, the derivation exceeded its time or memory bound, or the mass matrix is singular; `loc` names the field",
+        unprocessable=(
+            "A name, value or formula is refused, the derivation exceeded its time or memory bound, or the mass "
+            "matrix is singular; `loc` names the field"
+        ),
         busy="Two typed derivations are already running; the `Retry-After` header says when to try again (s)",
-        unavailable="The derivation's process was stopped from outside (not by its limits); the `Retry-After` header says when to try again (s)",
+        unavailable=(
+            "The derivation's process was stopped from outside (not by its "
+            "limits); the `Retry-After` header says when to try again (s)"
+        ),
     ),
 )
 def derive_custom(request: CustomDeriveRequest) -> dict[str, Any]:
-    """Lagrange's equations for typed energies T and V (parsed by a whitelisting parser; derived in a bounded process)."""
+    """Lagrange's equations for typed energies T and V (parsed by a whitelisting parser; derived in a bounded
+    process)."""
     answer = derive_typed_bounded(request.model_dump())
     answer["params"] = dict(request.parameters)
     return answer
@@ -110,11 +117,16 @@ def derive_system(system_id: str, request: DeriveRequest, catalogue: CatalogueDe
     response_model=RhsAnswer,
     responses=error_responses(
         not_found="No system has this id",
-        unprocessable="The state has the wrong length or is not finite, a parameter is out of range, the formulation does not apply, or the equations have no finite value at this state or time (`loc` names `state` or `t` and the message says why)",
+        unprocessable=(
+            "The state has the wrong length or is not finite, a parameter is out of "
+            "range, the formulation does not apply, or the equations have no finite value "
+            "at this state or time (`loc` names `state` or `t` and the message says why)"
+        ),
     ),
 )
 def system_rhs(system_id: str, request: RhsRequest, catalogue: CatalogueDep) -> dict[str, Any]:
-    """The state derivative (q̇, q̈) at a state (q, q̇) by one formulation: every formulation answers the same quantity."""
+    """The state derivative (q̇, q̈) at a state (q, q̇) by one formulation: every formulation answers the same
+    quantity."""
     system = _system(catalogue, system_id)
     params = system.parameters.validate(request.params)
     n = len(system.coordinates)
@@ -162,7 +174,8 @@ def _not_finite(
     if finite_at_zero_time and t_s != 0.0:
         return ParameterError(
             "t",
-            f"at t = {t_s:g} s the {formulation} equations have no finite value because {because}; this state is fine at t = 0",
+            f"at t = {t_s:g} s the {formulation} equations have no "
+            f"finite value because {because}; this state is fine at t = 0",
         )
     message = f"at this state the {formulation} equations have no finite value because {because}"
     values = dict(zip(system.q, state[: len(system.coordinates)].tolist()))
@@ -171,7 +184,8 @@ def _not_finite(
         if abs(value) <= AT_SINGULARITY:
             return ParameterError(
                 "state",
-                f"{message}. It is at the coordinates' singularity, {singularity.label} = {value:.3g}: {singularity.text}",
+                f"{message}. It is at the coordinates' singularity, {singularity.label} = {value:.3g}: "
+                f"{singularity.text}",
             )
     return ParameterError("state", message)
 

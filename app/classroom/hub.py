@@ -156,7 +156,8 @@ class RoomHub:
         member.closing = True
 
     def dismiss_student(self, room: Room, token: str, message: dict[str, Any]) -> None:
-        """Close every socket of the student holding ``token`` (removed by the instructor), ``message`` last (any thread)."""
+        """Close every socket of the student holding ``token`` (removed by the instructor), ``message`` last (any
+        thread)."""
 
         def dismiss_all() -> None:
             for member in list(self._members.get(room.room_id, ())):

@@ -35,7 +35,10 @@ def instructor_link(request: Request, key: Annotated[str, Query(max_length=200)]
 def _join_page(code: str) -> HTMLResponse:
     """The join page: the code (typed, or from the QR code's address), an optional name, then Join."""
     if code:
-        lead = f'You are joining room <strong class="join-room">{esc(code)}</strong>. Give your name if you like, then press Join.'
+        lead = (
+            f'You are joining room <strong class="join-room">{esc(code)}</strong>. Give your name if you '
+            "like, then press Join."
+        )
     else:
         lead = "Type the code shown on the projector."
     fields = {"code": esc(code), "lead": lead, "code_size": CODE_LENGTH, "name_max": MAX_NAME_LENGTH}
@@ -72,7 +75,10 @@ def room_viewer_page(room_id: RoomId, rooms: RoomsDep) -> Response:
 
 def _notice_page(status_code: int, title: str, message: str) -> HTMLResponse:
     """A page that says why it cannot show what was asked (a person reads it, not a client)."""
-    body = f'<section class="room-notice" role="alert"><h1>{esc(title)}</h1><p>{esc(message)}</p><p><a href="/">The course</a></p></section>'
+    body = (
+        f'<section class="room-notice" role="alert"><h1>{esc(title)}</h1><p>{esc(message)}</p><p><a '
+        'href="/">The course</a></p></section>'
+    )
     response = _page(f"{title} — Dynamics Lab", body)
     response.status_code = status_code
     return response
@@ -86,7 +92,8 @@ def projector_page(room_id: RoomId, request: Request, rooms: RoomsDep) -> HTMLRe
         return _notice_page(
             403,
             "Instructor only",
-            "The projector view is the instructor's: open the instructor link that dynlab serve printed, then this page again.",
+            "The projector view is the instructor's: open the instructor "
+            "link that dynlab serve printed, then this page again.",
         )
     try:
         room = rooms.get(room_id)

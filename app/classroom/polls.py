@@ -39,8 +39,16 @@ EQUAL_ATOL = 1e-300
 MAX_EDGE_DECIMALS = 6
 QUANTITY_NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_]{0,99}$")
 CREATE_FIELDS = (
-    "question", "kind", "choices", "unit", "answer_quantity", "answer_choices", "answer_value", "answer_choice", "show_names",
-)  # fmt: skip
+    "question",
+    "kind",
+    "choices",
+    "unit",
+    "answer_quantity",
+    "answer_choices",
+    "answer_value",
+    "answer_choice",
+    "show_names",
+)
 CSV_HEADER = ("poll_id", "question", "student", "answer", "unit", "answered_at_utc")
 #: What a spreadsheet reads as the start of a formula (OWASP, "CSV Injection"): =, +, -, @, tab, carriage return.
 FORMULA_STARTS = ("=", "+", "-", "@", "\t", "\r")
@@ -225,9 +233,16 @@ class Poll:
                 answer_value = _finite_number(raw["answer_value"], "answer_value")
         source = AnswerSource(quantity, choice_for) if quantity is not None else None
         return cls(
-            poll_id=poll_id, question=question, kind=kind, choices=choices, unit=unit, answer_source=source,
-            answer_value=answer_value, answer_choice=answer_choice, show_names=show_names,
-        )  # fmt: skip
+            poll_id=poll_id,
+            question=question,
+            kind=kind,
+            choices=choices,
+            unit=unit,
+            answer_source=source,
+            answer_value=answer_value,
+            answer_choice=answer_choice,
+            show_names=show_names,
+        )
 
     @staticmethod
     def _choices(raw: Any) -> tuple[str, ...]:

@@ -19,7 +19,8 @@ ROOM_ID_PATTERN = rf"^[0-9a-f]{{{ROOM_ID_HEX_DIGITS}}}$"
 
 
 class Rooms:
-    """Open rooms (thread-safe). ``join_base`` is the address students use (``Settings.public_url`` or the request's)."""
+    """Open rooms (thread-safe). ``join_base`` is the address students use (``Settings.public_url`` or the
+    request's)."""
 
     def __init__(self, *, max_rooms: int = MAX_ROOMS) -> None:
         self.max_rooms = max_rooms

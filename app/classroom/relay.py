@@ -132,7 +132,8 @@ class StageStream:
         return upstream
 
     async def run(self, upstream: websockets.ClientConnection) -> None:
-        """Offer every frame to the followers; frames of the stage's own replay only to those still waiting on a snapshot."""
+        """Offer every frame to the followers; frames of the stage's own replay only to those still waiting on a
+        snapshot."""
         replaying = True
         try:
             async for window in upstream:

@@ -118,16 +118,26 @@ class Room:
             following = sum(1 for s in self.students.values() if s.sockets and s.following and self.mode == "follow")
             poll = self.polls.get(self.poll_id) if self.poll_id else None
             return {
-                "room_id": self.room_id, "code": self.code, "join_url": self.join_url,
-                "lesson_id": self.lesson_id, "scene_id": self.scene_id, "params": dict(self.params),
-                "playing": self.playing, "time_scale": self.time_scale, "mode": self.mode,
-                "revision": self.revision, "reset_count": self.reset_count, "explore_start": self.explore_start,
+                "room_id": self.room_id,
+                "code": self.code,
+                "join_url": self.join_url,
+                "lesson_id": self.lesson_id,
+                "scene_id": self.scene_id,
+                "params": dict(self.params),
+                "playing": self.playing,
+                "time_scale": self.time_scale,
+                "mode": self.mode,
+                "revision": self.revision,
+                "reset_count": self.reset_count,
+                "explore_start": self.explore_start,
                 "students": {
-                    "joined": len(self.students), "connected": sum(1 for s in self.students.values() if s.sockets), "following": following,
+                    "joined": len(self.students),
+                    "connected": sum(1 for s in self.students.values() if s.sockets),
+                    "following": following,
                 },
                 "instructor_connected": self.instructor_sockets > 0,
                 "poll": poll.public() if poll is not None else None,
-            }  # fmt: skip
+            }
 
     def change(self, raw: Mapping[str, Any], *, catalogue: Catalogue, host: SceneHostInterface) -> dict[str, Any]:
         """Apply an instructor's change (any of :data:`STATE_FIELDS`), checked whole first; returns the new state."""
@@ -231,9 +241,15 @@ class Room:
         if not isinstance(reset, bool):
             raise RoomError("reset", "reset: must be true or false")
         return {
-            "lesson_id": lesson_id, "scene_id": scene_id, "new_scene": new_scene, "params": params,
-            "playing": playing, "time_scale": time_scale, "mode": mode, "reset": reset,
-        }  # fmt: skip
+            "lesson_id": lesson_id,
+            "scene_id": scene_id,
+            "new_scene": new_scene,
+            "params": params,
+            "playing": playing,
+            "time_scale": time_scale,
+            "mode": mode,
+            "reset": reset,
+        }
 
     def _apply(self, plan: dict[str, Any], *, host: SceneHostInterface) -> None:
         scene_id, params = plan["scene_id"], plan["params"]

@@ -217,7 +217,9 @@ def close_room(room: RoomDep, rooms: RoomsDep, host: SceneHostDep, hub: RoomHubD
         403: {"model": ErrorDetail, "description": "The instructor removed this device from the room"},
         429: {
             "model": ErrorDetail,
-            "description": "Too many joins from this address, or into this room just now; Retry-After says when to try again",
+            "description": (
+                "Too many joins from this address, or into this room just now; Retry-After says when to try again"
+            ),
         },
     },
 )

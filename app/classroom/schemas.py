@@ -38,7 +38,10 @@ class JoinRequest(BaseModel):
 class JoinAnswer(BaseModel):
     room_id: str
     student_token: str = Field(
-        description="Send as X-Student-Token with answers, and in the room socket's hello; the same for a device that joins again"
+        description=(
+            "Send as X-Student-Token with answers, and in the room "
+            "socket's hello; the same for a device that joins again"
+        )
     )
     student_id: str = Field(
         description="This student's public id in the room (s1, s2, …): how the instructor's list names them"
@@ -119,7 +122,8 @@ class PollUpdate(BaseModel):
 
 
 class AnswerRequest(BaseModel):
-    """``{"choice": index}`` for a multiple-choice poll, ``{"value": number}`` (in the poll's unit) for a number poll."""
+    """``{"choice": index}`` for a multiple-choice poll, ``{"value": number}`` (in the poll's unit) for a number
+    poll."""
 
     model_config = ConfigDict(extra="forbid")
     choice: StrictInt | None = None

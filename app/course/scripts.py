@@ -217,7 +217,8 @@ def _model_script(scene: type[Scene], params: Mapping[str, Any]) -> str:
     check = f"params = {name}.parameters.validate(params)\n"
     if control_names:  # how the motion is found: an integrator's method, steps and tolerance (a formula has none)
         values += (
-            "# How the page integrates: the method, steps per frame (0: chosen to meet the accuracy target), the tolerance.\n"
+            "# How the page integrates: the method, steps per frame (0: chosen to meet the accuracy target), the "
+            "tolerance.\n"
             f"{_dict_block('controls', controls)}\n"
         )
         check += f"controls = {name}.validate_controls(controls)\n"
@@ -280,7 +281,8 @@ from app.physics.math.rotations import (
 {_SHOW}
 
 # The values the page had.
-sequence = rotation_sequence({python_literal(params["sequence"])})  # axes of the three body-fixed turns (1 = x, 2 = y, 3 = z)
+sequence = rotation_sequence({python_literal(params["sequence"])})  # axes of the three body-fixed turns \
+(1 = x, 2 = y, 3 = z)
 angles_deg = {python_literal(angles)}  # theta1, theta2, theta3 (deg)
 {_display_note(display)}
 angles_rad = np.radians(angles_deg)
@@ -319,11 +321,16 @@ show("forward_drift_m", park.forward_drift_m, "m")  # s (1 - cos alpha)
     else:
         if kind == "scleronomic":
             names = ("semi_axis_a_m", "semi_axis_b_m", "bead_rate_rad_s")
-            build = 'system = physics.FixedEllipse(values["semi_axis_a_m"], values["semi_axis_b_m"], values["bead_rate_rad_s"])'
+            build = (
+                'system = physics.FixedEllipse(values["semi_axis_a_m"], values["semi_axis_b_m"], '
+                'values["bead_rate_rad_s"])'
+            )
         else:
             names = ("hoop_radius_m", "hoop_amplitude_m", "hoop_rate_rad_s", "bead_rate_rad_s")
-            build = ('system = physics.SlidingHoop(values["hoop_radius_m"], values["hoop_amplitude_m"], '
-                     'values["hoop_rate_rad_s"], values["bead_rate_rad_s"])')  # fmt: skip
+            build = (
+                'system = physics.SlidingHoop(values["hoop_radius_m"], values["hoop_amplitude_m"], '
+                'values["hoop_rate_rad_s"], values["bead_rate_rad_s"])'
+            )
         body = f"""{build}
 snap = system.snapshot(T_S)
 
@@ -392,7 +399,8 @@ except physics.TogglePositionError as exc:  # the bars in line: no finite Q hold
 else:
     show("holding_force_N", holding_force_N, "N")
     show("holding_force_newtonian_N", forces.holding_force_N, "N")
-    show("relative_difference", abs(holding_force_N - forces.holding_force_N) / max(abs(forces.holding_force_N), 1e-300))
+    show("relative_difference", abs(holding_force_N - forces.holding_force_N) / \
+max(abs(forces.holding_force_N), 1e-300))
     if press.load_B_N != 0.0:
         show("force_ratio", holding_force_N / press.load_B_N)
     show("guide_force_C_N", forces.guide_C_N, "N")
@@ -421,7 +429,8 @@ from app.physics.systems.ch03 import finite_rotation as physics
 {_display_note(display)}
 angles_rad = [math.radians(values[f"angle{{k}}_deg"]) for k in (1, 2, 3)]
 result = physics.finite_rotation(
-    angles_rad, values["sequence"], second_axis=values["second_axis"], second_angle_rad=math.radians(values["second_angle_deg"])
+    angles_rad, values["sequence"], second_axis=values["second_axis"], \
+second_angle_rad=math.radians(values["second_angle_deg"])
 )
 a = result.turn_a
 

@@ -8,6 +8,7 @@ Layers, each importing only those before it:
   constraints, step choice, and the integrated-model contract;
 * :mod:`.bodies` — rigid-body data: inertia, the body about a fixed point (chapter 5 fills it);
 * :mod:`.mechanics` — derivations as data (chapters 7–9 fill it);
-* :mod:`.constrained` — constrained generalized coordinates: multiplier equations, the DAE algorithms, consistent starts (chapter 8);
+* :mod:`.constrained` — constrained generalized coordinates: multiplier equations, the DAE algorithms, consistent starts
+  (chapter 8);
 * :mod:`.systems` — the physical systems, one module each, grouped by the chapter whose lessons use them.
 """

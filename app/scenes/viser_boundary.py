@@ -7,10 +7,11 @@ scene and session ids from it), the encoded first message a browser's
 viewer sends (tests stand in for a browser with it), and a cheap way to move
 a node or replace its points every frame: :func:`move_node` and
 :func:`update_node` queue the same messages as viser's property setters at a
-quarter of their cost (the setters validate and compare with ``np.allclose``
-on every call, about 60 µs, which at 30 frames/s for 100 students is most of
-a core). The names of nodes on a
-scene API are read for tests that check a scene removed what it built.
+fraction of their cost (the setters validate and compare with ``np.allclose``
+on every call, which a class of scenes at 30 frames/s pays thousands of times a
+second; ``dynlab bench`` measures a frame's cost: docs/bench/live-frame-costs.svg).
+The names of nodes on a scene API are read for tests that check a scene removed
+what it built.
 ``tests/scenes/test_viser_boundary.py`` pins the version and checks each
 function against a real loopback server: re-check them all when viser is
 upgraded. One is a fix: viser's message buffers set an ``asyncio.Event``
@@ -82,9 +83,16 @@ def viewer_camera_message(
 ) -> bytes:
     """The encoded camera message a browser's viewer sends first; viser counts a client as connected only after it."""
     camera = _messages.ViewerCameraMessage(
-        wxyz=(1.0, 0.0, 0.0, 0.0), position=position, fov=1.0, near=0.01, far=100.0,
-        image_height=480, image_width=640, look_at=look_at, up_direction=(0.0, 0.0, 1.0),
-    )  # fmt: skip
+        wxyz=(1.0, 0.0, 0.0, 0.0),
+        position=position,
+        fov=1.0,
+        near=0.01,
+        far=100.0,
+        image_height=480,
+        image_width=640,
+        look_at=look_at,
+        up_direction=(0.0, 0.0, 1.0),
+    )
     return msgspec.msgpack.encode(camera.as_serializable_dict())
 
 

@@ -197,7 +197,10 @@ class RequestGuard:
                 # One heavy computation per client at a time: two 20 s derivations from one device would take both of
                 # the server's places for them, and everyone else would wait.
                 if not self.heavy_in_flight.try_enter(client):
-                    detail = "your previous simulation, derivation or change is still running: wait for its answer, then try again"
+                    detail = (
+                        "your previous simulation, derivation or change is "
+                        "still running: wait for its answer, then try again"
+                    )
                     await JSONResponse({"detail": detail}, status_code=429, headers={"Retry-After": "2"})(
                         scope, receive, send
                     )
@@ -258,7 +261,10 @@ class RequestGuard:
             and (origin_port or default_port) == (host_port or default_port)
         )
         if not same_origin:
-            return f"cross-origin request from {origin[:100]!r} refused (add it to DYNLAB_ALLOWED_ORIGINS if it should pass)"
+            return (
+                f"cross-origin request from {origin[:100]!r} refused "
+                "(add it to DYNLAB_ALLOWED_ORIGINS if it should pass)"
+            )
         return None
 
     def _wait_s(self, limit: TokenBuckets, scope: Scope, headers: Headers) -> float:
@@ -269,7 +275,10 @@ class RequestGuard:
 def refusals(method: str, path: str, *, reads_body: bool) -> dict[int, str]:
     """The answers :class:`RequestGuard` can give one route (``path`` as an OpenAPI template): status -> description."""
     answers: dict[int, str] = {
-        429: "Too many requests from this client (or too many simulations or derivations); Retry-After says when to try again"
+        429: (
+            "Too many requests from this client (or too many simulations "
+            "or derivations); Retry-After says when to try again"
+        )
     }
     if method.upper() not in SAFE_METHODS:
         answers[403] = "Sent from another site's page (Origin), or to a Host that does not name this server"

@@ -54,7 +54,8 @@ class KeyRedaction:
             else:
                 record.msg, record.args = redacted, None
         if record.exc_info and not record.exc_text:
-            # Formatted now, as every handler's formatter would (it reuses exc_text): an exception's message may quote a URL.
+            # Formatted now, as every handler's formatter would (it reuses exc_text): an exception's message may quote a
+            # URL.
             record.exc_text = logging.Formatter().formatException(record.exc_info)
         if record.exc_text:
             record.exc_text = self.text(record.exc_text)

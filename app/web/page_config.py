@@ -25,7 +25,8 @@ _SECTIONS: dict[str, dict[str, Any]] = {}
 
 
 def add_page_config_section(name: str, values: dict[str, Any]) -> None:
-    """Hand ``values`` (JSON-ready) to every page's scripts as ``config[name]``; adding the same name again replaces it."""
+    """Hand ``values`` (JSON-ready) to every page's scripts as ``config[name]``; adding the same name again replaces
+    it."""
     _SECTIONS[name] = values
 
 

@@ -38,13 +38,16 @@ def _template(name: str) -> Template:
 #: websocket URL, dev settings, scene tree and share button), on a viewer under 576 px wide its bottom sheet (the
 #: panel outside the dock root, a Paper around a ScrollArea). Every floating window is hidden, not only the one
 #: holding the tab: viser draws the panel's window a second or more before the tab exists (a flash of the websocket
-#: pill on every load), and our scenes add no GUI of their own, so no other window is lost. Selectors from viser 1.1.1's client
-#: (ControlPanelDock.tsx, ControlPanel.tsx, BottomPanel.tsx), pinned by tests/browser/test_viewer_controls_in_browser.py.
+#: pill on every load), and our scenes add no GUI of their own, so no other window is lost. Selectors from viser 1.1.1's
+#: client
+#: (ControlPanelDock.tsx, ControlPanel.tsx, BottomPanel.tsx), pinned by
+#: tests/browser/test_viewer_controls_in_browser.py.
 #: Add viewer styling (label sizes, projector mode) here.
 VIEWER_CSS = """
 [data-floating-window],
 [data-dock-leaf]:has([data-dock-tab="viser-control-panel"]),
-#root .mantine-Paper-root:not([data-floating-window]):has(> div > .mantine-ScrollArea-root) { display: none !important; }
+#root .mantine-Paper-root:not([data-floating-window]):has(> div > .mantine-ScrollArea-root) \
+{ display: none !important; }
 """
 
 #: Script added to viser's client page, for the keyboard (outside text boxes; viser's own keys orbit, move and pan):
@@ -58,7 +61,8 @@ VIEWER_CSS = """
 VIEWER_SCRIPT = """
 document.addEventListener("keydown", (event) => {
   const target = event.target instanceof Element ? event.target : null;
-  if (event.ctrlKey || event.metaKey || event.altKey || (target && target.closest("input, select, textarea, [contenteditable]"))) return;
+  if (event.ctrlKey || event.metaKey || event.altKey || \
+(target && target.closest("input, select, textarea, [contenteditable]"))) return;
   const viewer = window.__viserMutable;
   const controls = viewer && viewer.cameraControl;
   const zoom = { "+": 1, "=": 1, "-": -1, "_": -1 }[event.key];
@@ -93,7 +97,8 @@ def viewer_client_html() -> bytes:
     client = (Path(viser.__file__).resolve().parent / "client" / "build" / "index.html").read_bytes()
     if client.count(_VIEWER_HEAD_END) != 1:
         raise RuntimeError(
-            f"viser {viser.__version__}'s client page has no single {_VIEWER_HEAD_END!r}: the viewer page cannot be patched"
+            f"viser {viser.__version__}'s client page has no single "
+            f"{_VIEWER_HEAD_END!r}: the viewer page cannot be patched"
         )
     title_start = client.index(b"<title>")
     added = f"<style>{VIEWER_CSS}</style><script>{VIEWER_SCRIPT}</script>".encode()
@@ -146,7 +151,8 @@ def _chapter_card(chapter: Chapter) -> str:
         f'<section class="chapter" id="chapter-{chapter.number}" aria-labelledby="ch{chapter.number}-title">'
         f'<h3 id="ch{chapter.number}-title"><span class="ch-num">{chapter.number}</span> {esc(chapter.title)}</h3>'
         f'<p class="summary">{esc(chapter.summary)}</p>'
-        f'<details><summary>Sections: {covered} of {len(chapter.sections)} with a lesson</summary><ul class="sections">{sections}</ul></details>'
+        f"<details><summary>Sections: {covered} of {len(chapter.sections)} with a lesson</summary><ul "
+        f'class="sections">{sections}</ul></details>'
         f"{lessons_html}</section>"
     )
 
@@ -171,7 +177,8 @@ def _lesson_config(lesson: Lesson, catalogue: Catalogue, scene_id: str | None) -
 
 
 def _derivation_config(system) -> dict:
-    """What derivations.js needs to ask /api/systems/{id}/derive for each formulation and show why others do not apply."""
+    """What derivations.js needs to ask /api/systems/{id}/derive for each formulation and show why others do not
+    apply."""
     reasons = available_formulations(system)
     return {
         "id": system.id,
@@ -275,7 +282,8 @@ def _with_unit(value_html: str, unit: str) -> str:
 
 @lru_cache(maxsize=4)
 def _solver_lab_text(lessons_dir: Path) -> tuple[dict, str]:
-    """Front matter and rendered body of ``solver-lab.md`` in the lessons folder (TOML between '+++' lines, like the lessons)."""
+    """Front matter and rendered body of ``solver-lab.md`` in the lessons folder (TOML between '+++' lines, like the
+    lessons)."""
     path = lessons_dir / "solver-lab.md"
     meta, body = split_front_matter(path.read_text(encoding="utf-8"), str(path))
     return meta, render_markdown(body)
@@ -478,13 +486,19 @@ def _capacity_row(step: dict) -> str:
     fps = step.get("frames_per_s") or {}
     health = step.get("health_ms") or {}
     cells = [
-        fmt_sig(fps.get("p10")), fmt_sig(fps.get("median")), fmt_sig(fps.get("min")),
-        fmt_sig(step.get("server_cpu_cores")), fmt_sig(step.get("server_rss_mb")),
-        fmt_sig(step.get("load_tool_cpu_cores")), fmt_sig(health.get("p95")), fmt_sig(step.get("bytes_per_frame")),
-    ]  # fmt: skip
+        fmt_sig(fps.get("p10")),
+        fmt_sig(fps.get("median")),
+        fmt_sig(fps.get("min")),
+        fmt_sig(step.get("server_cpu_cores")),
+        fmt_sig(step.get("server_rss_mb")),
+        fmt_sig(step.get("load_tool_cpu_cores")),
+        fmt_sig(health.get("p95")),
+        fmt_sig(step.get("bytes_per_frame")),
+    ]
     errors = step.get("errors")
     return (
-        f'<tr><th scope="row">{esc(str(step.get("scene_id")))}</th><td class="num">{esc(str(step.get("students")))}</td>'
+        f'<tr><th scope="row">{esc(str(step.get("scene_id")))}</th><td '
+        f'class="num">{esc(str(step.get("students")))}</td>'
         + "".join(f'<td class="num">{cell}</td>' for cell in cells)
         + f'<td class="num">{esc(str(errors))}</td></tr>'
     )
@@ -545,7 +559,10 @@ def _classroom_note(settings) -> str:
             f"student on a scene of their own (<code>dynlab load --room</code>).</p>"
         )
     except (AttributeError, TypeError, KeyError, ValueError, StopIteration):
-        return '<p class="notice">The measurement of a class following one room is malformed; <code>dynlab load --room</code> measures it again.</p>'
+        return (
+            '<p class="notice">The measurement of a class following one room is malformed; <code>dynlab load '
+            "--room</code> measures it again.</p>"
+        )
     figure = ""
     if bench_reports.diagram_path(settings, "classroom"):
         figure = (
@@ -590,8 +607,9 @@ def _attack_note(settings) -> str:
         before, during = windows["baseline"]["frames_per_s"], windows["attack"]["frames_per_s"]
         target = report["targets"]["p10_frames_per_s"]
         text = (
-            f"<p>With {esc(str(report['students']))} students each on a {esc(str(report['scene_id']))} session of their "
-            "own, each from its own address, and one client attacking the class from one address (changing the room's "
+            f"<p>With {esc(str(report['students']))} students each on a "
+            f"{esc(str(report['scene_id']))} session of their own, each from its own address, "
+            "and one client attacking the class from one address (changing the room's "
             "shared scene without the instructor, turning students' sessions into another scene through the viewer "
             "socket, flooding session claims and look-ups, bursts of 40 requests at once, long seeks and steps on "
             "expensive sessions, 200 viewers, two slow derivations at once), the students received "
@@ -599,7 +617,8 @@ def _attack_note(settings) -> str:
             f"{fmt_sig(during['min'])}), against {fmt_sig(before['p10'])} (median {fmt_sig(before['median'])}) just "
             f"before the attack. The target is {fmt_sig(target)} under attack: "
             f"{'met' if during['p10'] >= target else 'not met'}. Measured "
-            f"{esc(str(report.get('created') or '')[:16].replace('T', ' '))} UTC (<code>dynlab load --attack</code>).</p>"
+            f"{esc(str(report.get('created') or '')[:16].replace('T', ' '))} UTC (<code>dynlab load "
+            "--attack</code>).</p>"
         )
         rows = "".join(_attack_row(attack) for attack in bench_reports.listed_attacks(report))
     except (AttributeError, TypeError, KeyError, ValueError):
@@ -664,8 +683,8 @@ def solver_lab_page(settings: SettingsDep) -> HTMLResponse:
             results_html = (
                 '<section class="bench-run notice" role="status"><h2>No measurements yet</h2>'
                 f"<p>{_esc_code(bench_reports.missing_message(settings))}</p>"
-                "<p>Then reload this page: <code>uv run --group bench dynlab bench</code> writes <code>work_precision.json</code> "
-                "and one diagram per scene into the benchmark folder.</p></section>"
+                "<p>Then reload this page: <code>uv run --group bench dynlab bench</code> writes "
+                "<code>work_precision.json</code> and one diagram per scene into the benchmark folder.</p></section>"
             )
         else:
             results_html = _guarded(_run_summary, results) + "".join(

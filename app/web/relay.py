@@ -48,7 +48,8 @@ def is_blocked_message(data: bytes) -> bool:
 
 
 async def viser_protocol(websocket: WebSocket) -> str | None:
-    """The ``viser-v<version>`` subprotocol the browser's viewer offered; None after closing with 1002 if it offered none."""
+    """The ``viser-v<version>`` subprotocol the browser's viewer offered; None after closing with 1002 if it offered
+    none."""
     offered = websocket.scope.get("subprotocols") or []
     protocol = next((p for p in offered if p.startswith("viser-v")), None)
     if protocol is None:

@@ -52,7 +52,6 @@ from app.bench.soak import judge_soak, run_soak, wait_until_settled
 from app.scenes.host.host import SESSION_ID_PATTERN
 from app.settings import Settings
 from app.web.pages import _capacity_section
-from tests.browser.conftest import LiveServer
 from tests.conftest import wait_until
 
 SVG = "{http://www.w3.org/2000/svg}"
@@ -332,12 +331,12 @@ def test_the_solver_lab_section_quotes_the_class_following_one_room_when_measure
 # ---- --room: followers of one classroom room ---------------------------------------------------
 
 
-def test_the_room_mode_delivers_the_rooms_one_scene_to_every_follower_and_closes_the_room():
-    # About 8 s: one viewer on its own scene (the "one viewer" the cost is compared with), then 3 followers.
-    with LiveServer() as server:
-        report = run_load(LoadOptions(
-            students=(3,), seconds=2.0, warmup_s=0.5, url=server.url, room=True, instructor_key=server.instructor_key,
-        ))  # fmt: skip
+def test_the_room_mode_delivers_the_rooms_one_scene_to_every_follower_and_closes_the_room(served):
+    # About 8 s on the worker's served app: one viewer on its own scene (the "one viewer" the cost is compared with),
+    # then 3 followers.
+    report = run_load(LoadOptions(
+        students=(3,), seconds=2.0, warmup_s=0.5, url=served.url, room=True, instructor_key=served.instructor_key,
+    ))  # fmt: skip
     # The tool closed the room it opened: DELETE /api/rooms/<id> answered 200, or run_load would have raised.
     assert report["mode"] == "follow" and report["scene_id"] == "heavy-top"
     (room,) = report["rooms"]

@@ -9,6 +9,7 @@ import threading
 import time
 from collections.abc import Iterator
 from pathlib import Path
+from urllib.parse import urlsplit
 
 import httpx
 import pytest
@@ -98,10 +99,11 @@ class ServedHost:
 
 
 class LiveServer:
-    """``dynlab serve`` as README starts it (its own process, its scene workers), for the browser tests."""
+    """A served app (``dynlab serve`` as README starts it: its own process, its scene workers) as the browser tests
+    use it: its address, its instructor link and the scene host's state, asked over HTTP."""
 
-    def __init__(self) -> None:
-        self.app = ServedApp(name="browser")
+    def __init__(self, app: ServedApp) -> None:
+        self.app = app
         self.instructor_key = INSTRUCTOR_KEY
         self.host = ServedHost(self.app)
 
@@ -112,13 +114,6 @@ class LiveServer:
     @property
     def instructor_link(self) -> str:
         return self.app.instructor_link
-
-    def __enter__(self) -> "LiveServer":
-        self.app.start()
-        return self
-
-    def __exit__(self, *exc: object) -> None:
-        self.app.stop()
 
 
 class InProcessLiveServer:
@@ -158,9 +153,9 @@ def inprocess_live_server() -> Iterator[InProcessLiveServer]:
 
 
 @pytest.fixture(scope="session")
-def live_server() -> Iterator[LiveServer]:
-    with LiveServer() as server:
-        yield server
+def live_server(served: ServedApp) -> LiveServer:
+    """The xdist worker's served app (``served``, which its API tests share): one server start a worker, not two."""
+    return LiveServer(served)
 
 
 #: Frames per second the 3D viewer may draw in a test (see :class:`ViewerFramesLimited`).
@@ -276,6 +271,19 @@ def readout_quantity(page, name: str):
     """The readout cell ``name``'s value, or None while the page does not show it."""
     cell = page.query_selector(f'#readout [data-quantity="{name}"]')
     return None if cell is None else json.loads(cell.get_attribute("data-value"))
+
+
+def wait_for_polls(page, count: int = 2, *, path_end: str = "/live", timeout_s: float = 30.0) -> None:
+    """Wait until the page has had ``count`` more answers to its requests whose path ends with ``path_end`` (the
+    readout's poll ``/live``, once a second while its viewer is connected; the graph's ``/graph``). A test that checks
+    that something does *not* change watches it over the page's own polls, which a busy machine slows down together
+    with the page, rather than over fixed seconds."""
+    def polled(answer) -> bool:
+        return urlsplit(answer.url).path.endswith(path_end)
+
+    for _ in range(count):
+        with page.expect_response(polled, timeout=timeout_s * 1000):
+            pass
 
 
 def let_webgl_draw(page, milliseconds: int) -> None:

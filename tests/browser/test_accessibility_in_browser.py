@@ -14,6 +14,7 @@ rules that fail *inside* viser's client are printed, not asserted (they are vise
 from __future__ import annotations
 
 import json
+from collections.abc import Callable
 from pathlib import Path
 
 import httpx
@@ -156,6 +157,19 @@ class ReportedCamera:
         return np.array(self._host.camera(self._session_id)["look_at"])
 
 
+def _settled(camera: ReportedCamera) -> Callable[[], bool]:
+    """A predicate that holds once the reported camera has not moved since it was last asked (within 1 µm)."""
+    last: list[np.ndarray] = []
+
+    def settled() -> bool:
+        now = camera.position
+        still = bool(last) and np.allclose(now, last[-1], rtol=0.0, atol=1e-6)
+        last.append(now)
+        return still
+
+    return settled
+
+
 def _orbit_and_move_in_from_the_keyboard(page, camera) -> None:
     """Focus the viewer as Tab would, hold → (orbit) then W (move in); the viewer reports its camera to the server.
 
@@ -170,7 +184,7 @@ def _orbit_and_move_in_from_the_keyboard(page, camera) -> None:
     page.wait_for_timeout(800)
     page.keyboard.up("ArrowRight")
     wait_until(lambda: np.linalg.norm(camera.position - start) > 0.1, 10, what="the camera to orbit from the keyboard")
-    page.wait_for_timeout(500)  # the client's damping settles
+    wait_until(_settled(camera), 10, interval_s=0.5, what="the client's damping to settle")
     assert abs(distance() - start_distance) < 0.05 * start_distance, (distance(), start_distance)
     # W moves the camera and its look-at point forward together: it comes closer to what it was looking at.
     target = np.array(camera.look_at)

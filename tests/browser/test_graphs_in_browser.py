@@ -17,7 +17,9 @@ import re
 
 import pytest
 
-from tests.browser.conftest import dismiss_webgl_notice, keeping_screenshots, let_webgl_draw, open_lesson, screenshot
+from tests.browser.conftest import (
+    dismiss_webgl_notice, keeping_screenshots, let_webgl_draw, open_lesson, screenshot, wait_for_polls,
+)
 from tests.browser.test_accessibility_in_browser import FAILING_IMPACTS, run_axe
 from tests.conftest import wait_until
 
@@ -127,9 +129,10 @@ def test_energy_bars_phase_plot_live_time_graph_and_csv(browser, live_server, sh
     page.click(".tc-play")
     page.wait_for_selector('.tc-play[data-playing="false"]')
     held_t = host.motion_state(session_id)["t_s"]
-    page.wait_for_timeout(1500)  # a poll in flight when paused lands; a paused scene is asked once a second
+    # A poll in flight when paused lands; a paused scene is asked once a second.
+    wait_for_polls(page, 2, path_end="/graph")
     held_points = points(page)
-    page.wait_for_timeout(2500)
+    wait_for_polls(page, 2, path_end="/graph")
     assert points(page) == held_points
     last_t = float(re.search(r"to (\S+) s;", page.text_content("#graphs .graph-summary")).group(1))
     assert last_t == pytest.approx(held_t, abs=0.006)  # shown to 2 decimals: the paused instant is the last point

@@ -16,6 +16,7 @@ from tests.browser.conftest import (
     readout_quantity,
     readout_values,
     screenshot,
+    wait_for_polls,
 )
 from tests.conftest import wait_until
 
@@ -55,7 +56,7 @@ def test_inertia_lesson_readout_body_editor_and_refused_entry(browser, live_serv
     message = page.locator("#control-error").text_content()
     assert message.startswith("bodies, body 4, radius (m):") and "100" in message, message  # the editor's own words
     assert live_server.host.session_params(session_id) == before
-    page.wait_for_timeout(1500)  # a readout poll or two later, the scene still shows the 4-body composite
+    wait_for_polls(page, 2)  # two readout polls later, the scene still shows the 4-body composite
     assert readout_quantity(page, "mass") == pytest.approx(expected_mass, rel=1e-12)
 
     # Fixing the entry clears the marks and the scene takes it.

@@ -16,7 +16,7 @@ from urllib.parse import urlsplit
 
 import pytest
 
-from tests.browser.conftest import dismiss_webgl_notice, let_webgl_draw, open_lesson, screenshot
+from tests.browser.conftest import dismiss_webgl_notice, let_webgl_draw, open_lesson, screenshot, wait_for_polls
 from tests.browser.test_accessibility_in_browser import _stub_viewer, our_pages
 from tests.conftest import wait_until
 
@@ -210,7 +210,7 @@ def test_projector_mode_enlarges_the_viewer_its_labels_and_the_readout(browser, 
     assert _readout_font_px(page) > font
     wait_until(lambda: _viewer_pixel_ratio(page) >= 1.5 * ratio - 1e-6, timeout_s=5, what="the viewer's page to render larger")
     # The marks are placed again on the next readout (about a second), with projector mode's larger text.
-    page.wait_for_timeout(1500)
+    wait_for_polls(page, 2)
     _assert_apart(_spin_mark_labels(page))
     dismiss_webgl_notice(page)
     let_webgl_draw(page, 3000)
@@ -220,7 +220,7 @@ def test_projector_mode_enlarges_the_viewer_its_labels_and_the_readout(browser, 
     page.wait_for_selector('#large-text[aria-pressed="false"]')
     page.set_viewport_size(PHONE)
     assert page.evaluate("document.getElementById('viewer-wrap').getBoundingClientRect().top") < PHONE["height"] / 2
-    page.wait_for_timeout(1500)
+    wait_for_polls(page, 2)
     _assert_apart(_spin_mark_labels(page))
     let_webgl_draw(page, 3000)
     screenshot(page, shots / "lesson-phone.png")

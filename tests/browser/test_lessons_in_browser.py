@@ -12,7 +12,7 @@ import math
 import pytest
 
 from app.physics.systems import worked_examples
-from tests.browser.conftest import let_webgl_draw, open_lesson, readout_quantity, screenshot
+from tests.browser.conftest import let_webgl_draw, open_lesson, readout_quantity, screenshot, wait_for_polls
 from tests.conftest import wait_until
 
 EXAMPLES = worked_examples()
@@ -78,7 +78,7 @@ def test_two_browsers_get_independent_scenes(browser, live_server):
     page_a.press("#ctl-gamma_deg", "Enter")
     page_a.locator("#ctl-gamma_deg").blur()
     wait_until(lambda: host.session_params(session_a)["gamma_deg"] == 60.0, 10, what="scene A to take γ = 60°")
-    page_b.wait_for_timeout(500)
+    wait_for_polls(page_b, 1)  # a readout poll of B's later, B's scene is untouched
     assert host.session_params(session_b)["gamma_deg"] == 40.0
     assert page_b.input_value("#ctl-gamma_deg") == "40"
     # And each has its own scene: one viewer each, its own motion.

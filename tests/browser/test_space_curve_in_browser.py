@@ -10,7 +10,7 @@ import json
 
 import pytest
 
-from tests.browser.conftest import dismiss_webgl_notice, let_webgl_draw, open_lesson, screenshot
+from tests.browser.conftest import dismiss_webgl_notice, let_webgl_draw, open_lesson, screenshot, wait_for_polls
 from tests.conftest import wait_until
 
 pytestmark = pytest.mark.browser
@@ -85,7 +85,7 @@ def test_typed_helix_gives_the_closed_form_curvature_and_torsion(browser, live_s
     assert message.startswith("x(t) (m):") and "x_of_t" not in message, message
     assert "never closed" in message and "character 6" in message, message
     assert "invalid" in (page.get_attribute('.control[data-name="x_of_t"]', "class") or "")
-    page.wait_for_timeout(1500)
+    wait_for_polls(page, 2)  # two readout polls later, the scene still has its parameters
     assert host.session_params(session_id) == before
     assert host.session_params(session_id) == before
     assert _wait_for_quantity(page, "curvature", 2 / 4.25) == pytest.approx(2 / 4.25, rel=1e-12)

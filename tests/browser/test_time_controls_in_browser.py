@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import pytest
 
-from tests.browser.conftest import open_lesson, readout_quantity, screenshot
+from tests.browser.conftest import open_lesson, readout_quantity, screenshot, wait_for_polls
 from tests.conftest import wait_until
 
 pytestmark = pytest.mark.browser
@@ -31,7 +31,7 @@ def test_time_controls_and_a_share_link_restore_parameters_and_time(browser, liv
     page.click(".tc-play")  # pause
     page.wait_for_selector('.tc-play[data-playing="false"]')
     held = host.motion_state(session_id)["t_s"]
-    page.wait_for_timeout(600)
+    wait_for_polls(page, 1)  # a readout poll later, simulated time has not moved
     assert host.motion_state(session_id)["t_s"] == held
     page.click(".tc-step")
     wait_until(lambda: clock(page) == pytest.approx(held + FRAME_S, abs=1e-9), timeout_s=5, what="one frame's step")
@@ -55,7 +55,7 @@ def test_time_controls_and_a_share_link_restore_parameters_and_time(browser, liv
     wait_until(lambda: host.session_params(session_id)["spin_rad_s"] == 80.0, timeout_s=5, what="the spin to reach the server")
     assert host.motion_state(session_id)["t_s"] == 0.0  # new parameters start again at t = 0, still paused
     page.click(".tc-play")
-    page.wait_for_timeout(1200)
+    wait_until(lambda: host.motion_state(session_id)["t_s"] > 0.5, timeout_s=10, what="the new top to move")
     page.click(".tc-play")
     page.wait_for_selector('.tc-play[data-playing="false"]')
     shared_t = host.motion_state(session_id)["t_s"]

@@ -6,7 +6,8 @@ from pydantic import BaseModel, ConfigDict, JsonValue
 
 
 class WorkPrecisionReport(BaseModel):
-    """When and where the sweep ran, one entry per benchmarked scene (methods, points, ratios) and the live scenes' costs."""
+    """When and where the sweep ran, one entry per benchmarked scene (methods, points, ratios) and the live scenes'
+    costs."""
 
     model_config = ConfigDict(extra="allow")
     created: str

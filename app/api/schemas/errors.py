@@ -35,7 +35,8 @@ def error_responses(
     busy: str | None = None,
     unavailable: str | None = None,
 ) -> dict[int | str, dict[str, Any]]:
-    """OpenAPI ``responses=`` entries for the 404, 422, 429 and 503 answers a route can give, each with its description."""
+    """OpenAPI ``responses=`` entries for the 404, 422, 429 and 503 answers a route can give, each with its
+    description."""
     responses: dict[int | str, dict[str, Any]] = {}
     if unavailable:
         responses[503] = {"model": ErrorDetail, "description": unavailable}

@@ -11,7 +11,9 @@ class GraphQuantity(BaseModel):
     """One quantity that can be graphed: its name (a key of ``values``), what a student reads, its unit and kind."""
 
     name: str = Field(
-        description='A series or invariant name of the model, or "energy_" + an energy key (e.g. energy_rotational_kinetic_J)'
+        description=(
+            'A series or invariant name of the model, or "energy_" + an energy key (e.g. energy_rotational_kinetic_J)'
+        )
     )
     label: str = Field(description="The symbol or words a student sees (θ, ω₃, kinetic, rotational)")
     unit: str
@@ -27,7 +29,8 @@ class EnergyPart(BaseModel):
 
 
 class EnergyBars(BaseModel):
-    """The energy bars at the latest kept frame: translational and rotational kinetic (or kinetic), potential, dissipated."""
+    """The energy bars at the latest kept frame: translational and rotational kinetic (or kinetic), potential,
+    dissipated."""
 
     parts: list[EnergyPart]
     total_J: float | None = Field(description="Kinetic + potential (J); null if not finite")

@@ -1,4 +1,5 @@
-"""``GET /api/scenes/{scene_id}/sessions/{session_id}/live``: the running scene's numbers (see app/physics/core/readout.py)."""
+"""``GET /api/scenes/{scene_id}/sessions/{session_id}/live``: the running scene's numbers (see
+app/physics/core/readout.py)."""
 
 from __future__ import annotations
 

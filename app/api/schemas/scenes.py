@@ -36,10 +36,11 @@ class SessionParamsRequest(BaseModel):
     model_config = ConfigDict(extra="forbid")
     params: dict[str, Any] = Field(default_factory=dict, description="Parameters to change; others keep their values")
     from_room: str | None = Field(
-        None, pattern=r"^[0-9a-f]{16}$",
+        None,
+        pattern=r"^[0-9a-f]{16}$",
         description="A room exploring now: the session starts from where the room's scene was when exploring began "
         "(its parameters, then these params, and its motion)",
-    )  # fmt: skip
+    )
 
 
 class SessionParamsAnswer(BaseModel):
@@ -120,7 +121,10 @@ class PlaybackAnswer(BaseModel):
     )
     slowed: Slowed | None = Field(
         None,
-        description="Present when the first viewer's scene runs slower than the chosen speed to keep within its share of the server",
+        description=(
+            "Present when the first viewer's scene runs slower than "
+            "the chosen speed to keep within its share of the server"
+        ),
     )
 
 

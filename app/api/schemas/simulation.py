@@ -22,7 +22,9 @@ class SimulateRequest(BaseModel):
     # Constrained-coordinate scenes (chapter 8): there ``method`` names the DAE algorithm.
     integrator: str | None = Field(
         None,
-        description="Integrator of a constrained-coordinate scene ('auto', 'rk4', 'dopri5'); `method` is then the DAE algorithm",
+        description=(
+            "Integrator of a constrained-coordinate scene ('auto', 'rk4', 'dopri5'); `method` is then the DAE algorithm"
+        ),
     )
     baumgarte_alpha_1_s: float | None = Field(
         None, description="Baumgarte damping gain α (1/s) of a constrained-coordinate scene"
@@ -51,7 +53,8 @@ class InitialConditionChange(BaseModel):
 
 
 class SimulationStats(BaseModel):
-    """How the motion was computed: ``method`` (``closed-form`` for a formula), work done, CPU time, worst invariant drift."""
+    """How the motion was computed: ``method`` (``closed-form`` for a formula), work done, CPU time, worst invariant
+    drift."""
 
     method: str
     description: str

@@ -209,7 +209,8 @@ SHAPES: dict[str, Shape] = {
             ),
             lambda r, h: np.vstack([_circle(r, -h / 4), [[0.0, 0.0, 3 * h / 4]]]),
             "z",
-            "solid right circular cone, axis along its own z, apex towards +z; its position is its centre of mass (¼ h above the base)",
+            "solid right circular cone, axis along its own z, apex towards "
+            "+z; its position is its centre of mass (¼ h above the base)",
             lambda r, h: np.array([r, r, 3 * h / 4]),
             lambda r, h: np.array([-r, -r, -h / 4]),
         ),
@@ -269,7 +270,8 @@ class Part:
 
 @dataclass(frozen=True)
 class CompositeBody:
-    """Mass properties of a composite body: total mass (kg), centre of mass (m) and inertia about it (kg·m²), reference frame."""
+    """Mass properties of a composite body: total mass (kg), centre of mass (m) and inertia about it (kg·m²), reference
+    frame."""
 
     parts: tuple[Part, ...]
     mass_kg: float
@@ -294,8 +296,9 @@ def _check_holes(parts: Sequence[Part]) -> None:
         if not hosts:
             raise ParameterError(
                 "bodies",
-                f"this hole (a {part.shape.name}) does not lie inside any solid {part.shape.extent} part: a hole must be "
-                "cut from a body of the same kind (a solid from a solid, a flat shape from a plate or disk, a rod from a rod)",
+                f"this hole (a {part.shape.name}) does not lie inside any solid "
+                f"{part.shape.extent} part: a hole must be cut from a body of the same kind "
+                "(a solid from a solid, a flat shape from a plate or disk, a rod from a rod)",
                 path=("bodies", index),
             )
         host = max(hosts, key=lambda p: p.density)
@@ -365,14 +368,16 @@ def _check_hole_overlaps(parts: Sequence[Part]) -> None:
             if np.any(second.contains(samples[first_index])) or np.any(first.contains(samples[second_index])):
                 raise ParameterError(
                     "bodies",
-                    f"this hole (a {second.shape.name}) overlaps the hole at body {first_index + 1}: the material they share "
-                    "would be removed twice. Make the holes only touch, or describe the opening as holes that do not overlap",
+                    f"this hole (a {second.shape.name}) overlaps the hole at body "
+                    f"{first_index + 1}: the material they share would be removed twice. Make "
+                    "the holes only touch, or describe the opening as holes that do not overlap",
                     path=("bodies", second_index),
                 )
 
 
 def combine(parts: Sequence[Part]) -> CompositeBody:
-    """Total mass, centre of mass and inertia about it of ``parts`` (holes subtracted); refuses bodies that cannot exist."""
+    """Total mass, centre of mass and inertia about it of ``parts`` (holes subtracted); refuses bodies that cannot
+    exist."""
     if not parts:
         raise ParameterError("bodies", "give at least one body", path=("bodies",))
     if all(p.hole for p in parts):
@@ -393,7 +398,10 @@ def combine(parts: Sequence[Part]) -> CompositeBody:
         principal = inertia.check_inertia_tensor(
             tensor,
             about="the composite body's centre of mass",
-            hint="a slender rod alone has none about its own axis (use a thin cylinder), and holes may remove more than the bodies have",
+            hint=(
+                "a slender rod alone has none about its own axis (use a thin "
+                "cylinder), and holes may remove more than the bodies have"
+            ),
         )
     except ValueError as exc:
         raise ParameterError("bodies", str(exc), path=("bodies",)) from None
@@ -421,7 +429,8 @@ def _triple(value: Any, path: tuple[Any, ...], limit: float, unit: str) -> list[
 
 
 def validate_record(raw: Any, index: int, *, name: str = "bodies") -> dict[str, Any]:
-    """One body of a request, checked and normalised (defaults filled); ParameterError names ``name → index → field``."""
+    """One body of a request, checked and normalised (defaults filled); ParameterError names
+    ``name → index → field``."""
     here = (name, index)
     if not isinstance(raw, Mapping):
         raise ParameterError(
@@ -452,7 +461,8 @@ def validate_record(raw: Any, index: int, *, name: str = "bodies") -> dict[str, 
     if shape.name == "tube" and out["inner_radius_m"] >= out["radius_m"]:
         raise ParameterError(
             name,
-            f"the inner radius ({out['inner_radius_m']:g} m) must be less than the outer radius ({out['radius_m']:g} m)",
+            f"the inner radius ({out['inner_radius_m']:g} m) must "
+            f"be less than the outer radius ({out['radius_m']:g} m)",
             path=(*here, "inner_radius_m"),
         )
     out["position_m"] = _triple(raw.get("position_m", [0.0, 0.0, 0.0]), (*here, "position_m"), POSITION_LIMIT_M, "m")
@@ -493,7 +503,8 @@ def body_place(path: tuple[str | int, ...]) -> str:
 
 
 def validate_records(raw: Any, *, name: str = "bodies") -> list[dict[str, Any]]:
-    """A whole list of bodies checked and normalised; the composite is formed too, so impossible bodies are refused here."""
+    """A whole list of bodies checked and normalised; the composite is formed too, so impossible bodies are refused
+    here."""
     if not isinstance(raw, (list, tuple)):
         raise ParameterError(name, "must be a list of bodies", path=(name,))
     if not 1 <= len(raw) <= MAX_PARTS:

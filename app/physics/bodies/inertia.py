@@ -235,7 +235,8 @@ def check_principal_inertia(inertia_kg_m2: tuple[float, float, float], *, about:
         if slack < -1e-12 * max(inertia_kg_m2):
             raise ValueError(
                 f"inertia about {about} violates the triangle inequality: {names[i]} = {inertia_kg_m2[i]:g} kg·m² "
-                f"exceeds {names[j]} + {names[k]} = {inertia_kg_m2[j] + inertia_kg_m2[k]:g} kg·m²; no real body has these moments"
+                f"exceeds {names[j]} + {names[k]} = {inertia_kg_m2[j] + inertia_kg_m2[k]:g} "
+                "kg·m²; no real body has these moments"
             )
 
 
@@ -259,8 +260,9 @@ def check_inertia_tensor(
     smallest = float(principal.moments_kg_m2[0])
     if smallest <= 1e-12 * scale:
         raise ValueError(
-            f"the inertia tensor about {about} is not positive definite: its smallest principal moment is {smallest:.6g} kg·m²"
-            f" (a body with mass has positive inertia about every axis{'; ' + hint if hint else ''})"
+            f"the inertia tensor about {about} is not positive definite: its "
+            f"smallest principal moment is {smallest:.6g} kg·m² (a body with mass "
+            f"has positive inertia about every axis{'; ' + hint if hint else ''})"
         )
     moments = cast("tuple[float, float, float]", tuple(float(m) for m in principal.moments_kg_m2))
     check_principal_inertia(moments, about=about)

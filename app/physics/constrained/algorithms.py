@@ -81,20 +81,37 @@ class Algorithm:
 ALGORITHMS: dict[str, Algorithm] = {
     a.name: a
     for a in (
-        Algorithm("uncorrected", UNCORRECTED, "uncorrected index reduction",
-                  "C v̇ = −Ċ v only: the constraint residuals are never fed back and drift"),
-        Algorithm("baumgarte", BAUMGARTE, "Baumgarte stabilisation",
-                  "C v̇ = −Ċ v − 2α C v − β² g: the residual is a damped oscillator driven back to zero"),
-        Algorithm("projection", PROJECTION, "coordinate projection",
-                  "index reduction, then positions and velocities projected back onto the constraints after every step"),
-        Algorithm("partitioning", PARTITIONING, "coordinate partitioning",
-                  "independent coordinates integrated; dependent ones solved by Newton on g(q) = 0 and from C v = 0"),
+        Algorithm(
+            "uncorrected",
+            UNCORRECTED,
+            "uncorrected index reduction",
+            "C v̇ = −Ċ v only: the constraint residuals are never fed back and drift",
+        ),
+        Algorithm(
+            "baumgarte",
+            BAUMGARTE,
+            "Baumgarte stabilisation",
+            "C v̇ = −Ċ v − 2α C v − β² g: the residual is a damped oscillator driven back to zero",
+        ),
+        Algorithm(
+            "projection",
+            PROJECTION,
+            "coordinate projection",
+            "index reduction, then positions and velocities projected back onto the constraints after every step",
+        ),
+        Algorithm(
+            "partitioning",
+            PARTITIONING,
+            "coordinate partitioning",
+            "independent coordinates integrated; dependent ones solved by Newton on g(q) = 0 and from C v = 0",
+        ),
     )
-}  # fmt: skip
+}
 
 
 def _shared_kernel(signature: Any) -> Callable[[Callable[..., Any]], Kernel]:
-    """Decorator: compile ``fn`` for ``signature`` as a disk-cached C callback (a first-class function value) with its twin.
+    """Decorator: compile ``fn`` for ``signature`` as a disk-cached C callback (a first-class function value) with its
+    twin.
 
     :func:`~app.physics.solvers.kernels.kernel` makes an ordinary ``njit`` function of a
     signature that is not a model function's; a caller compiled later would then link
@@ -125,7 +142,8 @@ def _shared_kernel(signature: Any) -> Callable[[Callable[..., Any]], Kernel]:
     )
 )
 def constrained_rhs(dynamics, constraints, t, y, p, dydt, n, n_holonomic, n_constraints):
-    """``dydt = (v, v̇)`` (2n,) of the algorithm named in ``p``'s tail, at time ``t`` (s) and state ``y = (q, v)`` (2n,)."""
+    """``dydt = (v, v̇)`` (2n,) of the algorithm named in ``p``'s tail, at time ``t`` (s) and state ``y = (q, v)``
+    (2n,)."""
     base = p.shape[0] - SETTINGS - n
     code = int(p[base + _CODE])
     state = y
@@ -167,7 +185,8 @@ def constrained_rhs(dynamics, constraints, t, y, p, dydt, n, n_holonomic, n_cons
 
 @_shared_kernel(types.void(MULTIPLIER_CONSTRAINTS_TYPE, VECTOR, VECTOR, types.int64, types.int64, types.int64))
 def constrained_project(constraints, y, p, n, n_holonomic, n_constraints):
-    """After a step: projection (positions onto ``g = 0``, then ``C v = 0``) or partitioning (dependent from independent)."""
+    """After a step: projection (positions onto ``g = 0``, then ``C v = 0``) or partitioning (dependent from
+    independent)."""
     base = p.shape[0] - SETTINGS - n
     code = int(p[base + _CODE])
     if code == PROJECTION:
@@ -307,7 +326,8 @@ def initial_partition(system: ConstrainedSystem, q: np.ndarray | None) -> np.nda
     partition = np.empty(n)
     if not choose_partition(jacobian, partition):
         raise ValueError(
-            f"method partitioning: the {m} constraint rows are dependent at this state; no coordinates can be solved for"
+            f"method partitioning: the {m} constraint rows are "
+            "dependent at this state; no coordinates can be solved for"
         )
     return partition
 

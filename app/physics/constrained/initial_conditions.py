@@ -136,9 +136,12 @@ def consistent_initial_conditions(
         if abs(consistent[k] - requested[k]) > 1e-12 * max(1.0, abs(requested[k]))
     )
     return ConsistentStart(
-        q=q, v=v, changes=changes,
-        position_residual=float(np.max(np.abs(g), initial=0.0)), velocity_residual=float(np.max(np.abs(jacobian @ v), initial=0.0)),
-    )  # fmt: skip
+        q=q,
+        v=v,
+        changes=changes,
+        position_residual=float(np.max(np.abs(g), initial=0.0)),
+        velocity_residual=float(np.max(np.abs(jacobian @ v), initial=0.0)),
+    )
 
 
 def _consistent_positions(system: ConstrainedSystem, q_requested: np.ndarray, free: np.ndarray) -> np.ndarray:
@@ -148,7 +151,8 @@ def _consistent_positions(system: ConstrainedSystem, q_requested: np.ndarray, fr
         return q
     if len(free) < m_h:
         raise ValueError(
-            f"positions: {m_h} position constraints but only {len(free)} free coordinates; free more of them (fewer fixed positions)"
+            f"positions: {m_h} position constraints but only {len(free)} "
+            "free coordinates; free more of them (fewer fixed positions)"
         )
     zero_rates = np.zeros(system.n_coordinates)
     size = max(1.0, float(np.max(np.abs(q_requested))))
@@ -171,8 +175,8 @@ def _consistent_positions(system: ConstrainedSystem, q_requested: np.ndarray, fr
                 return q
             break
     raise ValueError(
-        f"positions: no consistent start near the requested one (Gauss–Newton did not converge in {MAX_ITERATIONS} iterations): "
-        "the fixed coordinates ask for a place the constraints cannot reach"
+        f"positions: no consistent start near the requested one (Gauss–Newton did not converge in {MAX_ITERATIONS} "
+        "iterations): the fixed coordinates ask for a place the constraints cannot reach"
     )
 
 

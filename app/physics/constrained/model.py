@@ -45,7 +45,8 @@ MAX_BAUMGARTE_GAIN_1_S = 1000.0
 
 
 class ConstrainedModel(IntegratedModel):
-    """An :class:`IntegratedModel` over a :class:`ConstrainedSystem` (state ``(q, v)``, 2n; ``minimal``: the subclass's own).
+    """An :class:`IntegratedModel` over a :class:`ConstrainedSystem` (state ``(q, v)``, 2n; ``minimal``: the subclass's
+    own).
 
     A subclass gives ``parameters``, ``series_units``, ``invariant_units`` (with
     ``energy``, ``constraint_position``, ``constraint_velocity``), ``start_parameters``
@@ -109,7 +110,8 @@ class ConstrainedModel(IntegratedModel):
 
     @classmethod
     def controls(cls) -> tuple[Parameter, ...]:
-        """``method`` (the DAE algorithm), ``integrator``, ``steps_per_frame``, ``rtol``, ``baumgarte_alpha_1_s``, ``baumgarte_beta_1_s``."""
+        """``method`` (the DAE algorithm), ``integrator``, ``steps_per_frame``, ``rtol``, ``baumgarte_alpha_1_s``,
+        ``baumgarte_beta_1_s``."""
         integrator, steps, rtol = integration_parameters(
             INTEGRATORS, default_method=cls.default_method, target=cls.accuracy_target, auto_methods=cls.auto_methods
         )
@@ -119,16 +121,45 @@ class ConstrainedModel(IntegratedModel):
             described += f"; {MINIMAL}: the minimal-coordinate equations (no constraints to keep; the reference)"
         alpha, beta = cls.default_baumgarte_1_s
         return (
-            Parameter("method", "", AUTO, kind="choice", choices=(AUTO, *choices), label="DAE algorithm",
-                      description=f"How the constraints are kept ({AUTO} = {cls.default_algorithm}). {described}"),
+            Parameter(
+                "method",
+                "",
+                AUTO,
+                kind="choice",
+                choices=(AUTO, *choices),
+                label="DAE algorithm",
+                description=f"How the constraints are kept ({AUTO} = {cls.default_algorithm}). {described}",
+            ),
             replace(integrator, name="integrator"),
             steps,
             rtol,
-            Parameter("baumgarte_alpha_1_s", "1/s", alpha, 0.0, MAX_BAUMGARTE_GAIN_1_S, label="Baumgarte α", step=0.5,
-                      description="Damping gain α of Baumgarte's ë + 2α ė + β² e = 0 for a residual e (method baumgarte only); 0 with β = 0: uncorrected"),
-            Parameter("baumgarte_beta_1_s", "1/s", beta, 0.0, MAX_BAUMGARTE_GAIN_1_S, label="Baumgarte β", step=0.5,
-                      description="Stiffness gain β of Baumgarte's ë + 2α ė + β² e = 0 (method baumgarte only); h·β near 1 or more makes the step unstable"),
-        )  # fmt: skip
+            Parameter(
+                "baumgarte_alpha_1_s",
+                "1/s",
+                alpha,
+                0.0,
+                MAX_BAUMGARTE_GAIN_1_S,
+                label="Baumgarte α",
+                step=0.5,
+                description=(
+                    "Damping gain α of Baumgarte's ë + 2α ė + β² e = 0 for a "
+                    "residual e (method baumgarte only); 0 with β = 0: uncorrected"
+                ),
+            ),
+            Parameter(
+                "baumgarte_beta_1_s",
+                "1/s",
+                beta,
+                0.0,
+                MAX_BAUMGARTE_GAIN_1_S,
+                label="Baumgarte β",
+                step=0.5,
+                description=(
+                    "Stiffness gain β of Baumgarte's ë + 2α ė + β² e = 0 (method "
+                    "baumgarte only); h·β near 1 or more makes the step unstable"
+                ),
+            ),
+        )
 
     def algorithm(self) -> str:
         """The algorithm recorded by :meth:`integration_controls` (``auto`` resolved); the default before any."""
@@ -154,7 +185,7 @@ class ConstrainedModel(IntegratedModel):
             "rtol": controls.get("rtol"),
         }
 
-    # --- the accuracy target (each algorithm's pilot is its own: the key holds the algorithm and the gains) ------------
+    # --- the accuracy target (each algorithm's pilot is its own: the key holds the algorithm and the gains) ----
     accuracy_target = AccuracyTarget(
         1e-6, "", "state (q, v): largest component error relative to the largest component"
     )
@@ -218,7 +249,8 @@ class ConstrainedModel(IntegratedModel):
         return self.constrained_energy_parts(params, self.constrained_view(params, states))
 
     def invariant_scales(self, params: Mapping[str, Any], state: np.ndarray) -> dict[str, float]:
-        """Energy: :meth:`energy_scale_J`; residuals: :meth:`residual_scales` (a residual of 20% of these pauses a live scene)."""
+        """Energy: :meth:`energy_scale_J`; residuals: :meth:`residual_scales` (a residual of 20% of these pauses a live
+        scene)."""
         position, velocity = self.residual_scales(params)
         full = self.constrained_view(params, state)[0]
         return {
@@ -237,7 +269,8 @@ class ConstrainedModel(IntegratedModel):
         frame_rate_hz: float,
         request_limits: bool = True,
     ) -> SimulationReport:
-        """The integrated answer, with ``stats.method`` the algorithm, ``stats.integrator``, ``stats.initial_conditions``."""
+        """The integrated answer, with ``stats.method`` the algorithm, ``stats.integrator``,
+        ``stats.initial_conditions``."""
         report = super().simulate(
             params, controls, t_end_s=t_end_s, frame_rate_hz=frame_rate_hz, request_limits=request_limits
         )
@@ -250,6 +283,9 @@ class ConstrainedModel(IntegratedModel):
             count = repartition_count(system.parameters, self.constrained_system(params).n_coordinates)
             description += f"; independent coordinates re-chosen {count} time{'' if count == 1 else 's'}"
         return replace(
-            report, method=algorithm, integrator=report.method, description=description,
+            report,
+            method=algorithm,
+            integrator=report.method,
+            description=description,
             initial_conditions=[change.as_dict() for change in start.changes],
-        )  # fmt: skip
+        )

@@ -83,7 +83,8 @@ def choose_partition(C, partition):
 
 @register_jitable
 def dependent_gain(C, partition):
-    """max |C_d⁻¹ C_i| (dimensionless): how strongly the dependent rates follow the independent ones; inf if C_d is singular."""
+    """max |C_d⁻¹ C_i| (dimensionless): how strongly the dependent rates follow the independent ones; inf if C_d is
+    singular."""
     m, n = C.shape
     block = np.empty((m, m))
     for i in range(m):

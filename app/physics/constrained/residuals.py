@@ -91,7 +91,8 @@ def constraint_residuals(system: ConstrainedSystem, states: np.ndarray) -> tuple
 
 
 def multipliers(system: ConstrainedSystem, t_s: np.ndarray, states: np.ndarray) -> np.ndarray:
-    """λ (N, m) along ``states`` (N, 2n) at times ``t_s`` (N,) s, compiled; the unit is each row's (see :mod:`.system`)."""
+    """λ (N, m) along ``states`` (N, 2n) at times ``t_s`` (N,) s, compiled; the unit is each row's (see
+    :mod:`.system`)."""
     states = np.ascontiguousarray(np.atleast_2d(states), dtype=float)
     times = np.array(np.broadcast_to(np.asarray(t_s, dtype=float), states.shape[:1]), dtype=float)
     out = np.empty((states.shape[0], system.n_constraints))

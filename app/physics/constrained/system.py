@@ -57,7 +57,8 @@ class ConstrainedSystem:
             raise ValueError("a constrained system needs at least one coordinate")
         if self.n_holonomic < 0 or self.n_nonholonomic < 0 or self.n_constraints < 1:
             raise ValueError(
-                f"constraint counts must be ≥ 0 with at least one constraint (got {self.n_holonomic}, {self.n_nonholonomic})"
+                f"constraint counts must be ≥ 0 with at least one constraint (got {self.n_holonomic}, "
+                f"{self.n_nonholonomic})"
             )
         if self.n_constraints >= n:
             raise ValueError(f"{self.n_constraints} constraints on {n} coordinates leave no freedom to move")

@@ -318,8 +318,8 @@ class BoundedRunner:
             answer_arrived, paused_s = _await_answer(receiver, process, timeout_s)
             if not answer_arrived and paused_s > BUSY_PAUSED_SHARE * timeout_s:  # the machine's doing, not the work's
                 raise WorkBusy(
-                    f"{what} was paused for {paused_s:.0f} s of its {timeout_s:g} s while the server was busy with live scenes; "
-                    "try again in a minute",
+                    f"{what} was paused for {paused_s:.0f} s of its {timeout_s:g} s "
+                    "while the server was busy with live scenes; try again in a minute",
                     retry_after_s=60,
                 )
             if not answer_arrived:

@@ -76,3 +76,4 @@ class Model(ABC):
     def prepare(self, params: Mapping[str, Any]) -> None:
         """Build now what a first run for ``params`` would otherwise build (compiled equations): a scene worker
         calls it at start-up so that no student waits for it. Nothing by default."""
+        return None  # an optional hook: models with nothing to build keep this

@@ -78,7 +78,8 @@ class Integrator(ABC):
         *,
         backend: Backend = "numba",
     ) -> FramesOutcome:
-        """Advance ``y`` in place by ``n_frames`` frames, storing each frame's end state in ``y_frames`` (n_frames, n)."""
+        """Advance ``y`` in place by ``n_frames`` frames, storing each frame's end state in ``y_frames`` (n_frames,
+        n)."""
         self.spec.check_system(system)
         return self._run_frames(system, t0_s, y, frame_dt_s, n_frames, y_frames, backend=backend)
 
@@ -105,7 +106,10 @@ class FixedStepIntegrator(Integrator):
 
     def describe(self, frame_dt_s: float) -> str:
         h_ms = 1e3 * frame_dt_s / self.steps_per_frame
-        return f"{self.label}, {self.steps_per_frame} step{'' if self.steps_per_frame == 1 else 's'}/frame (h = {h_ms:.3g} ms)"
+        return (
+            f"{self.label}, {self.steps_per_frame} step{'' if self.steps_per_frame == 1 else 's'}/frame (h = "
+            f"{h_ms:.3g} ms)"
+        )
 
     def outcome(self, frames_done: int, n_frames: int, *, evals_per_run: int = 0) -> FramesOutcome:
         """Counters of a run that completed ``frames_done`` of ``n_frames`` (fewer: the state stopped being finite).

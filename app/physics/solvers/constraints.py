@@ -4,7 +4,8 @@ Both work from the residual ``g`` (m,) and Jacobian ``G = ∂g/∂q`` (m, n_q)
 of a :class:`~app.physics.solvers.system.Constraints` kernel:
 
 * :func:`project_onto_constraints` — after a step, Gauss–Newton corrections of
-  minimum norm (each one :func:`minimum_norm_correction`), ``q ← q − Gᵀ (G Gᵀ)⁻¹ g(q)``, until ``g`` is at round-off, then
+  minimum norm (each one :func:`minimum_norm_correction`), ``q ← q − Gᵀ (G Gᵀ)⁻¹ g(q)``, until ``g`` is at round-off,
+  then
   ``v ← v − Gᵀ (G Gᵀ)⁻¹ G v`` so that ``ġ = G v = 0``;
 * :func:`constrained_acceleration` — inside a right-hand side, solve
   ``[M Gᵀ; G 0] [a; λ] = [f; γ]`` for the accelerations ``a`` and multipliers ``λ``,

@@ -43,7 +43,8 @@ __all__ = ["IntegratedModel", "ModelLimit", "SimulationReport", "check_request_b
 
 @dataclass(frozen=True)
 class ModelLimit:
-    """Where a motion leaves what its model describes: the frames kept, the answer's status and the student's message."""
+    """Where a motion leaves what its model describes: the frames kept, the answer's status and the student's
+    message."""
 
     #: How many leading frames the model still describes (at least 1: the start is always kept, and shown).
     frames: int
@@ -55,7 +56,8 @@ class ModelLimit:
     def __post_init__(self) -> None:
         if self.frames < 1 or self.status in ("", "ok"):
             raise ValueError(
-                f"a model limit keeps at least one frame and names a status other than ok (got {self.frames}, {self.status!r})"
+                f"a model limit keeps at least one frame and names a status other than ok (got {self.frames}, "
+                f"{self.status!r})"
             )
 
 
@@ -151,7 +153,8 @@ class IntegratedModel(Model):
         return np.max(np.abs(states - reference), axis=1) / scale
 
     def reference_states(self, params: Mapping[str, Any], t_s: np.ndarray) -> np.ndarray | None:
-        """States (N, n) of an exact (or independent, tight) solution at times ``t_s`` (N,), or None if there is none."""
+        """States (N, n) of an exact (or independent, tight) solution at times ``t_s`` (N,), or None if there is
+        none."""
         return None
 
     def starting_rate_rad_s(self, params: Mapping[str, Any]) -> float:
@@ -299,7 +302,8 @@ def _automatic(controls: Mapping[str, Any]) -> bool:
 
 
 def _integrate(model: IntegratedModel, params, controls, *, t_end_s: float, frame_rate_hz: float, request_limits: bool):
-    """``(integrator, choice, result)`` of the run over ``t_end_s``, its blow-up cut off; or the exact fallback's report."""
+    """``(integrator, choice, result)`` of the run over ``t_end_s``, its blow-up cut off; or the exact fallback's
+    report."""
     frame_dt = 1.0 / frame_rate_hz
     integrator, choice = choose_integrator(
         model,

@@ -41,7 +41,8 @@ RESET_SIGNATURE = types.void(types.float64, _vector, _vector, types.int64)
 CONSTRAINT_SIGNATURE = types.void(_vector, _vector, _vector, _matrix)
 #: ``dynamics(t, q, v, p, M_out, f_out)``: mass matrix (n, n) and generalized forces (n,) of a constrained system.
 DYNAMICS_SIGNATURE = types.void(types.float64, _vector, _vector, _vector, _matrix, _vector)
-#: ``constraints(q, v, p, g_out, C_out, c_out)``: holonomic residuals (m_h,), velocity rows ``C`` (m, n), ``c = −Ċ v`` (m,).
+#: ``constraints(q, v, p, g_out, C_out, c_out)``: holonomic residuals (m_h,), velocity rows ``C`` (m, n), ``c = −Ċ v``
+#: (m,).
 MULTIPLIER_CONSTRAINTS_SIGNATURE = types.void(_vector, _vector, _vector, _vector, _matrix, _vector)
 
 RHS_TYPE = types.FunctionType(RHS_SIGNATURE)

@@ -133,7 +133,10 @@ RK4_SPEC = MethodSpec(
     name="rk4",
     label="RK4",
     short_label="RK4",
-    description="Classical Runge–Kutta 4; after each step the model's own projection, if it has one (a quaternion back to unit length)",
+    description=(
+        "Classical Runge–Kutta 4; after each step the model's own "
+        "projection, if it has one (a quaternion back to unit length)"
+    ),
     order=4,
     evals_per_step=4,
     substeps_per_step=1,

@@ -85,7 +85,8 @@ SAFETY = 0.5
 #: which the state error at frame times does not see (a belt's energy budget drifted 2e-8 at rtol 1e-3).
 RTOL_RANGE = (1e-12, 1e-8)
 PILOT_RTOL = RTOL_RANGE[1]
-#: The adaptive pilot's reference run is this much tighter (its own error then ~1/300 of the loose run's, corrected for).
+#: The adaptive pilot's reference run is this much tighter (its own error then ~1/300 of the loose run's, corrected
+#: for).
 PILOT_RTOL_REFERENCE_FACTOR = 1e-3
 #: Most steps an adaptive pilot run may take (a stiff model stops it here instead of running for seconds).
 PILOT_ADAPTIVE_STEPS = 50_000
@@ -98,7 +99,8 @@ STATE_LOST = 1.0
 REDUCED_ACCURACY = "reduced_accuracy"
 #: ``stats.status`` of a request answered by the model's exact solution instead of the integration it asked for.
 EXACT_FALLBACK = "exact_fallback"
-#: ``stats.status`` (and the live panel's) of a run whose explicitly chosen setting misses the model's target by estimate.
+#: ``stats.status`` (and the live panel's) of a run whose explicitly chosen setting misses the model's target by
+#: estimate.
 TARGET_MISSED = "target_missed"
 #: Status of a live choice whose pilot is still running: the fixed-ratio step runs meanwhile, its error not yet known.
 ESTIMATING = "estimating"
@@ -281,7 +283,10 @@ class StepChoice:
         estimate = (
             "estimating…" if self.status == ESTIMATING else f"estimated {self.target.format(self.estimated_error)}"
         )
-        return f"target {self.target.format(self.target.error)} over {self.horizon_s:g} s · {estimate} · {self.setting_text()}"
+        return (
+            f"target {self.target.format(self.target.error)} over {self.horizon_s:g} s · {estimate} · "
+            f"{self.setting_text()}"
+        )
 
     def as_dict(self) -> dict:
         """The keys the live readout and a simulate answer's stats carry."""
@@ -528,7 +533,8 @@ def _fixed_error_model(
     frame_dt_s: float,
     error: ErrorMeasure,
 ) -> ErrorModel | None:
-    """The error model from the pilot whose step is closest to what the target needs (re-piloted when shrinking steps)."""
+    """The error model from the pilot whose step is closest to what the target needs (re-piloted when shrinking
+    steps)."""
     n = max(1, min(start_steps, MAX_STEPS_PER_FRAME))
     trusted: ErrorModel | None = None
     spent = 0.0
@@ -607,7 +613,8 @@ class _PilotCache:
     def get(
         self, key: Hashable, compute: Callable[[], ErrorModel | None], *, run_pilot: bool = True
     ) -> ErrorModel | None:
-        """The cached value of ``key``, else ``compute()`` cached (``run_pilot=False``: :class:`PilotPending` instead)."""
+        """The cached value of ``key``, else ``compute()`` cached (``run_pilot=False``: :class:`PilotPending`
+        instead)."""
         with self._lock:
             if key in self._items:
                 self._items.move_to_end(key)
@@ -729,9 +736,9 @@ def choice_from_model(
         predictable = _two_figures_down(model.predictable_horizon_s(factor, SAFETY * target.error, measured_s))
         if predictable > 0.0:
             note = (
-                f"exponential error growth (×e every {1.0 / model.chaotic_rate_1_s:.2g} s, measured by the pilot: a chaotic "
-                f"motion, or one that keeps speeding up), so the target is stated over {predictable:g} s, the predictability "
-                f"horizon at these parameters, not over the {horizon_s:g} s asked for"
+                f"exponential error growth (×e every {1.0 / model.chaotic_rate_1_s:.2g} s, measured by the pilot: a "
+                f"chaotic motion, or one that keeps speeding up), so the target is stated over {predictable:g} s, the "
+                f"predictability horizon at these parameters, not over the {horizon_s:g} s asked for"
             )
             return StepChoice(
                 model.method,
@@ -819,12 +826,14 @@ def _two_figures_down(value: float) -> float:
 
 
 def _capped(error: float, target: AccuracyTarget) -> float:
-    """An error beyond :data:`PHASE_LOST_RAD` (angle) or :data:`STATE_LOST` (relative) only says all is lost: report it as that."""
+    """An error beyond :data:`PHASE_LOST_RAD` (angle) or :data:`STATE_LOST` (relative) only says all is lost: report it
+    as that."""
     return min(error, PHASE_LOST_RAD if target.unit == "rad" else STATE_LOST)
 
 
 def cheapest(choices: Sequence[StepChoice]) -> StepChoice:
-    """Least cost among the choices meeting their target; if none does, the longest horizon stated, then the smallest error."""
+    """Least cost among the choices meeting their target; if none does, the longest horizon stated, then the smallest
+    error."""
     if not choices:
         raise ValueError("no method to choose from")
     meeting = [c for c in choices if c.meets_target and c.status == "ok"]

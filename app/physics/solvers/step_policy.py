@@ -140,7 +140,10 @@ def _unmeasured(
     integrator = integrator_from_controls(
         controls, default_method=model.default_method, fastest_rate_rad_s=rate, frame_dt_s=frame_dt_s
     )
-    note = "no pilot run of any method finished (the motion is too stiff or too fast for the steps tried), so the error is unknown"
+    note = (
+        "no pilot run of any method finished (the motion is too stiff "
+        "or too fast for the steps tried), so the error is unknown"
+    )
     if isinstance(integrator, FixedStepIntegrator) and max_fixed_work is not None:
         cap = max(
             int(max_fixed_work // max(math.ceil(horizon_s / frame_dt_s) * integrator.spec.substeps_per_step, 1)), 1

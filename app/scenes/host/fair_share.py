@@ -138,8 +138,10 @@ class RequestTooCostly(ValueError):
     @classmethod
     def over_limit(cls, field: str, what: str, advice: str) -> RequestTooCostly:
         """ "``field``: ``what`` takes more than the limit …; ``advice``" (the words every such refusal uses)."""
-        return cls(f"{field}: {what} takes more than the {REQUEST_COMPUTE_S:g} s of computing one request may use while a class "
-                   f"shares the server; {advice}")  # fmt: skip
+        return cls(
+            f"{field}: {what} takes more than the {REQUEST_COMPUTE_S:g} s of "
+            f"computing one request may use while a class shares the server; {advice}"
+        )
 
 
 def check_request_cost(field: str, *, frames: int, frame_cost_s: float, what: str) -> None:
@@ -147,8 +149,8 @@ def check_request_cost(field: str, *, frames: int, frame_cost_s: float, what: st
     estimate_s = frames * frame_cost_s
     if estimate_s > REQUEST_COMPUTE_S:
         raise RequestTooCostly(
-            f"{field}: {what} needs {frames} frames at about {1e3 * frame_cost_s:.2g} ms each, about {estimate_s:.0f} s "
-            f"of computing; one request may take at most {REQUEST_COMPUTE_S:g} s while a class shares the server. "
+            f"{field}: {what} needs {frames} frames at about {1e3 * frame_cost_s:.2g} ms each, about {estimate_s:.0f} "
+            f"s of computing; one request may take at most {REQUEST_COMPUTE_S:g} s while a class shares the server. "
             f"Ask for less, or use fewer steps per frame."
         )
 
@@ -157,7 +159,8 @@ class Pace:
     """Called once a frame by a long computation of ``frames`` frames: every :data:`SLICE_S` it sleeps
     :data:`PACE_RATIO` times as long (the frame loop runs meanwhile), and it stops the computation (returns False) once
     ``limit_s`` is spent, or as soon as the frames done so far show that the whole would take longer (after
-    :data:`PROJECT_AFTER` of them), so a request whose cost was not known yet is refused for the price of a few frames."""
+    :data:`PROJECT_AFTER` of them), so a request whose cost was not known yet is refused for the price of a few
+    frames."""
 
     def __init__(
         self, *, frames: int, limit_s: float = REQUEST_COMPUTE_S, clock: Callable[[], float] = time.perf_counter

@@ -28,9 +28,25 @@ ENERGY_BAR_ORDER = ("translational_kinetic_J", "rotational_kinetic_J", "kinetic_
 ENERGY_PREFIX = "energy_"
 
 _GREEK = {
-    "alpha": "α", "beta": "β", "gamma": "γ", "delta": "δ", "theta": "θ", "phi": "φ", "psi": "ψ", "omega": "ω", "mu": "μ",
-    "lambda": "λ", "tau": "τ", "sigma": "σ", "kappa": "κ", "xi": "ξ", "rho": "ρ", "eta": "η", "epsilon": "ε", "zeta": "ζ",
-}  # fmt: skip
+    "alpha": "α",
+    "beta": "β",
+    "gamma": "γ",
+    "delta": "δ",
+    "theta": "θ",
+    "phi": "φ",
+    "psi": "ψ",
+    "omega": "ω",
+    "mu": "μ",
+    "lambda": "λ",
+    "tau": "τ",
+    "sigma": "σ",
+    "kappa": "κ",
+    "xi": "ξ",
+    "rho": "ρ",
+    "eta": "η",
+    "epsilon": "ε",
+    "zeta": "ζ",
+}
 _SUBSCRIPT = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
 #: Unit words at the end of a name (``crank_speed_rad_s``), dropped from its label: the unit column says them.
 _UNIT_WORDS = {"rad", "s", "s2", "m", "N", "J", "kg", "deg", "Hz", "W", "kg_m2", "m2"}
@@ -46,7 +62,8 @@ def check_graph_request(*, since_s: float, max_points: int) -> None:
 
 
 def readable_label(name: str) -> str:
-    """A name as a student reads it: unit words dropped, Greek letters and subscripts written (``theta1_rad`` → ``θ₁``)."""
+    """A name as a student reads it: unit words dropped, Greek letters and subscripts written (``theta1_rad``
+    → ``θ₁``)."""
     words = name.split("_")
     while len(words) > 1 and (words[-1] in _UNIT_WORDS or "_".join(words[-2:]) in _UNIT_WORDS):
         words.pop()
@@ -96,7 +113,10 @@ def no_graph_note(scene_cls: type[Scene]) -> str | None:
         )
     model = scene_cls.model
     if model is None or not model.integrated:
-        return "this scene's motion is a closed form in time, not integrated: its graph is not kept (its numbers are in the readout)"
+        return (
+            "this scene's motion is a closed form in time, not integrated: "
+            "its graph is not kept (its numbers are in the readout)"
+        )
     return None
 
 
@@ -169,8 +189,9 @@ def _energy_bars(model: IntegratedModel, params: Mapping[str, Any], budget: Mapp
     """The energy bars at the budget's last frame: parts in :data:`ENERGY_BAR_ORDER`, the total and the model's note."""
     parts = [
         {"name": ENERGY_PREFIX + key, "label": ENERGY_LABELS[key], "value_J": _finite(float(budget[key][-1]))}
-        for key in ENERGY_BAR_ORDER if key in budget
-    ]  # fmt: skip
+        for key in ENERGY_BAR_ORDER
+        if key in budget
+    ]
     return {"parts": parts, "total_J": _finite(float(budget["total_J"][-1])), "note": model.energy_note(params)}
 
 

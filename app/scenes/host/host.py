@@ -110,7 +110,8 @@ MAX_CAMERA_M = 1e4
 
 
 def checked_camera(raw: Mapping[str, Any]) -> dict[str, tuple[float, float, float]]:
-    """``{"position", "look_at"}`` as two finite 3-vectors within :data:`MAX_CAMERA_M`, distinct; ValueError otherwise."""
+    """``{"position", "look_at"}`` as two finite 3-vectors within :data:`MAX_CAMERA_M`, distinct; ValueError
+    otherwise."""
     try:
         view = {name: tuple(float(v) for v in raw[name]) for name in ("position", "look_at")}
     except (KeyError, TypeError, ValueError):
@@ -123,7 +124,8 @@ def checked_camera(raw: Mapping[str, Any]) -> dict[str, tuple[float, float, floa
 
 
 def tell_viewer(client: Any, text: str) -> None:
-    """Show ``text`` in the middle of a viewer's scene: the page hides viser's own panel, so a message there is unseen."""
+    """Show ``text`` in the middle of a viewer's scene: the page hides viser's own panel, so a message there is
+    unseen."""
     client.scene.add_label("/viewer-message", text, position=(0.0, 0.0, 0.0), font_screen_scale=1.5)
 
 
@@ -256,10 +258,15 @@ class Session:
         motion = scene.motion_state() if scene is not None else self.resume_motion
         camera = self.camera_now()
         return {
-            "scene_id": self.scene_id, "params": dict(self.params), "stage": self.stage is not None,
-            "playing": self.playing, "time_scale": self.time_scale, "motion": motion,
-            "go_to_s": self.go_to_s if motion is None else None, "camera": camera,
-        }  # fmt: skip
+            "scene_id": self.scene_id,
+            "params": dict(self.params),
+            "stage": self.stage is not None,
+            "playing": self.playing,
+            "time_scale": self.time_scale,
+            "motion": motion,
+            "go_to_s": self.go_to_s if motion is None else None,
+            "camera": camera,
+        }
 
     def restarted(self) -> None:
         """The motion started again (new parameters, a reset, a jump): the kept frames belong to the old one."""
@@ -473,7 +480,8 @@ class SceneHost:
                 }
                 if not motions:
                     raise ValueError(
-                        "seek_s: no motion is kept for this session yet (it has no viewer): open its scene, then go back in it"
+                        "seek_s: no motion is kept for this session yet (it "
+                        "has no viewer): open its scene, then go back in it"
                     )
             if playing is not None:
                 session.playing = playing
@@ -486,7 +494,8 @@ class SceneHost:
             if reset:
                 for scene in session.instances.values():
                     with scene.client.atomic():
-                        scene.restart_motion()  # the kit's own restart (go_to's too), not a re-application of the parameters
+                        # the kit's own restart (go_to's too), not a re-application of the parameters
+                        scene.restart_motion()
                 session.restarted()
             if go_to_s is not None:
                 for scene in session.instances.values():
@@ -677,12 +686,14 @@ class SceneHost:
 
     # -- a motion handed from one session to another (a room's students exploring) ----------
     def motion_state(self, session_id: str) -> dict[str, Any] | None:
-        """The session's scene's motion now (``Scene.motion_state``), or None (no scene, or one that restarts at t = 0)."""
+        """The session's scene's motion now (``Scene.motion_state``), or None (no scene, or one that restarts at
+        t = 0)."""
         with self.inspect(session_id) as scenes:
             return scenes[0].motion_state() if scenes else None
 
     def resume_from(self, session_id: str, motion: Mapping[str, Any]) -> None:
-        """Start the session's scene (now, and the next one built for a viewer) from ``motion``; set its parameters first."""
+        """Start the session's scene (now, and the next one built for a viewer) from ``motion``; set its parameters
+        first."""
         session = self._existing(session_id)
         with session.lock:
             for scene in session.instances.values():
@@ -817,7 +828,8 @@ class SceneHost:
     def restore(self, session_id: str, snapshot: Mapping[str, Any]) -> None:
         """Make the session as ``snapshot`` (:meth:`Session.snapshot`) describes it: its scene and parameters, play
         state and time scale, its motion (the next viewer resumes it) and camera. A stage is opened again and resumed
-        at once. Raises ``ValueError`` for a snapshot whose scene or parameters do not fit (and restores nothing); a kept
+        at once. Raises ``ValueError`` for a snapshot whose scene or parameters do not fit (and restores nothing); a
+        kept
         camera that does not fit is left out (logged), the rest restored."""
         scene_id = snapshot["scene_id"]
         motion = snapshot.get("motion")
@@ -873,11 +885,14 @@ class SceneHost:
         with self._lock:
             session = self._sessions.get(session_id)
             refusal = (
-                "This scene has not been opened by its page yet: reload the page." if session is None
-                else "This viewer is for another scene than its page shows: reload the page." if session.scene_id != scene_id or session.stage is not None
-                else f"This scene already has {MAX_VIEWERS_PER_SESSION} viewers open." if len(session.instances) >= MAX_VIEWERS_PER_SESSION
+                "This scene has not been opened by its page yet: reload the page."
+                if session is None
+                else "This viewer is for another scene than its page shows: reload the page."
+                if session.scene_id != scene_id or session.stage is not None
+                else f"This scene already has {MAX_VIEWERS_PER_SESSION} viewers open."
+                if len(session.instances) >= MAX_VIEWERS_PER_SESSION
                 else None
-            )  # fmt: skip
+            )
             if refusal is not None or session is None:
                 log.info("viewer of %s/%s refused: %s", scene_id, session_id, refusal)
                 tell_viewer(client, refusal or "")
@@ -986,10 +1001,16 @@ class SceneHost:
         wakeups.flush()
 
     def _advance_session(
-        self, session: Session, dt_s: float, demand: Mapping[str, float], allowed: Mapping[str, float],
-        viewers: Mapping[str, int], wakeups: BatchedWakeups,
-    ) -> None:  # fmt: skip
-        """Advance each viewer's scene of a playing session by the frames it is owed (caller holds the session's lock)."""
+        self,
+        session: Session,
+        dt_s: float,
+        demand: Mapping[str, float],
+        allowed: Mapping[str, float],
+        viewers: Mapping[str, int],
+        wakeups: BatchedWakeups,
+    ) -> None:
+        """Advance each viewer's scene of a playing session by the frames it is owed (caller holds the session's
+        lock)."""
         for client_id, scene in list(session.instances.items()):
             share = session.shares.get(client_id)
             history = session.histories.get(client_id)

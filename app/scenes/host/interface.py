@@ -94,7 +94,8 @@ class SceneHostInterface(Protocol):
         self, scene_id: str, session_id: str, raw: Mapping[str, Any], *, stage: bool = False
     ) -> dict[str, Any]:
         """Validate ``raw`` and apply it to every viewer of the session (created showing ``scene_id`` if new, or
-        switched to it); returns the parameters in force. ``ValueError``/``ParameterError`` and no change on bad input."""
+        switched to it); returns the parameters in force. ``ValueError``/``ParameterError`` and no change on bad
+        input."""
         ...
 
     @call()

@@ -162,9 +162,13 @@ class WorkerPool(SceneHostInterface):
     def _launch(self, index: int) -> tuple[Any, Connection]:
         front_end, worker_end = self._context.Pipe()
         process = self._context.Process(
-            target=run_worker, args=(index, worker_end, self._authkey, self._options), name=f"dynlab-scene-worker-{index}",
-            daemon=False,  # a worker starts children of its own (a typed Lagrangian's bounded derivation); it ends with the front by its pipe
-        )  # fmt: skip
+            target=run_worker,
+            args=(index, worker_end, self._authkey, self._options),
+            name=f"dynlab-scene-worker-{index}",
+            # a worker starts children of its own (a typed Lagrangian's bounded derivation);
+            # it ends with the front by its pipe
+            daemon=False,
+        )
         process.start()
         worker_end.close()
         return process, front_end

@@ -79,7 +79,8 @@ def checked_seconds(seconds: Any) -> float:
 
 
 def frames_for(seconds: float, *, frame_rate_hz: float) -> int:
-    """Kept frames that fill ``seconds`` of playback at one frame per displayed frame (at most :data:`MAX_RECORDING_FRAMES`)."""
+    """Kept frames that fill ``seconds`` of playback at one frame per displayed frame (at most
+    :data:`MAX_RECORDING_FRAMES`)."""
     return min(MAX_RECORDING_FRAMES, max(1, round(seconds * frame_rate_hz)))
 
 
@@ -153,8 +154,8 @@ class SceneRecorder:
         size = len(page.encode())
         if size > MAX_RECORDING_BYTES:
             raise ValueError(
-                f"seconds: this recording would be {size / 2**20:.0f} MB, over the {MAX_RECORDING_BYTES / 2**20:.0f} MB limit;"
-                " record fewer seconds"
+                f"seconds: this recording would be {size / 2**20:.0f} MB, over the "
+                f"{MAX_RECORDING_BYTES / 2**20:.0f} MB limit; record fewer seconds"
             )
         return page
 

@@ -1,4 +1,5 @@
-"""Geometry helpers for drawing: quaternions that aim +z, arrow and circle segments (float32, m), a disk's outline (body frame, m)."""
+"""Geometry helpers for drawing: quaternions that aim +z, arrow and circle segments (float32, m), a disk's outline (body
+frame, m)."""
 
 from __future__ import annotations
 
@@ -45,7 +46,8 @@ DISK_RIM_COLOR, DISK_SPOKE_COLOR = (40, 100, 220), (215, 45, 45)
 
 
 def disk_outline_segments(radius_m: float) -> np.ndarray:
-    """(DISK_RIM_SEGMENTS + DISK_SPOKES, 2, 3) segments of a disk's rim then spokes (m), in body components, axis along body y."""
+    """(DISK_RIM_SEGMENTS + DISK_SPOKES, 2, 3) segments of a disk's rim then spokes (m), in body components, axis along
+    body y."""
     angles = np.linspace(0.0, 2.0 * np.pi, DISK_RIM_SEGMENTS + 1)
     rim = radius_m * np.stack([np.cos(angles), np.zeros_like(angles), np.sin(angles)], axis=-1)
     spoke_angles = np.linspace(0.0, 2.0 * np.pi, DISK_SPOKES, endpoint=False)

@@ -172,9 +172,12 @@ class Scene(ABC):
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super().__init_subclass__(**kwargs)
         cls.parameters = compose_parameters(
-            model=cls.model, example=cls.example, controls=tuple(cls.controls),
-            slider_ranges=cls.slider_ranges, check_controls=cls.check_controls,
-        )  # fmt: skip
+            model=cls.model,
+            example=cls.example,
+            controls=tuple(cls.controls),
+            slider_ranges=cls.slider_ranges,
+            check_controls=cls.check_controls,
+        )
 
     def __init__(self, client: viser.ClientHandle, params: Mapping[str, Any]) -> None:
         self.client = client
