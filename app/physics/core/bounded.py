@@ -342,7 +342,7 @@ class BoundedRunner:
 #: While the machine is busy, a child computes in turns of :data:`BUSY_RUN_S` with pauses of :data:`BUSY_PAUSE_S`:
 #: even in the idle scheduling class it shares the processors' caches and memory with the live scenes (measured: a
 #: busy loop in the idle class cost 100 students half a frame a second). Busy: the 1-minute load, less this process's
-#: own children, over :data:`BUSY_LOAD_PER_CPU` a processor.
+#: own children, over :data:`BUSY_LOAD_PER_CPU` a processor, while the server shows live scenes (:data:`_live_scenes`).
 BUSY_LOAD_PER_CPU = 0.5
 BUSY_RUN_S = 0.05
 BUSY_PAUSE_S = 0.1
@@ -351,12 +351,43 @@ BUSY_PAUSE_S = 0.1
 BUSY_PAUSED_SHARE = 0.25
 
 
+#: Says whether this process's server is showing live scenes now (set by the scene host when it starts; None in a
+#: process without one, e.g. a benchmark, which yields to any load). A child is paused for the machine's load only
+#: while it is true: the pauses protect the frames a class is watching, and with none to protect (a server warming
+#: its models before anyone came, a machine busy with other work) they would only make a derivation fail as "busy".
+_live_scenes: Callable[[], bool] | None = None
+#: How long an answer of :data:`_live_scenes` is used (s): a pool asks its workers, so it is asked at most this often.
+LIVE_SCENES_CHECK_S = 1.0
+_live_scenes_seen: tuple[float, bool] = (-math.inf, True)
+
+
+def yield_only_to_live_scenes(live_scenes: Callable[[], bool]) -> None:
+    """Pause children for the machine's load only while ``live_scenes()`` says this server shows live scenes."""
+    global _live_scenes, _live_scenes_seen
+    _live_scenes, _live_scenes_seen = live_scenes, (-math.inf, True)
+
+
+def _showing_live_scenes() -> bool:
+    global _live_scenes_seen
+    if _live_scenes is None:
+        return True
+    asked_at, showing = _live_scenes_seen
+    now = time.monotonic()
+    if now - asked_at >= LIVE_SCENES_CHECK_S:
+        try:
+            showing = bool(_live_scenes())
+        except Exception:  # a host that cannot answer now (a worker restarting): yield, as without a host
+            showing = True
+        _live_scenes_seen = (now, showing)
+    return showing
+
+
 def _machine_busy(children: int) -> bool:
     try:
         load = os.getloadavg()[0]
     except OSError:
         return False
-    return (load - children) / (os.cpu_count() or 1) > BUSY_LOAD_PER_CPU
+    return (load - children) / (os.cpu_count() or 1) > BUSY_LOAD_PER_CPU and _showing_live_scenes()
 
 
 #: Counts the server's stops: a wait begun before the latest one ends at once (its child is killed), so a stop never

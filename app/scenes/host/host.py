@@ -49,6 +49,7 @@ from typing import Any
 
 import viser
 
+from app.physics.core.bounded import yield_only_to_live_scenes
 from app.scenes.host.fair_share import (
     FRAME_LOOP_SHARE,
     FrameCost,
@@ -307,6 +308,7 @@ class SceneHost:
         that steps the frames itself)."""
         share_prop_hints()
         make_message_events_thread_safe()
+        yield_only_to_live_scenes(lambda: self.total_viewers() > 0)  # a derivation here pauses only for viewers' frames
         server = quiet_server(host=self._host)
         log.info("scene server listening on loopback port %d (reached only through the relay)", server.get_port())
         start_callback_threads(server)  # a constant thread count, so a soak can tell a leak from a growing pool

@@ -43,6 +43,7 @@ from multiprocessing import AuthenticationError
 from multiprocessing.connection import Connection
 from typing import TYPE_CHECKING, Any
 
+from app.physics.core.bounded import yield_only_to_live_scenes
 from app.scenes.host.host import UnknownSceneError, check_session_id
 from app.scenes.host.interface import CALLS, RAISE, Call, SceneHostInterface
 from app.scenes.host.rpc import WorkerUnavailableError, connect, raise_answer
@@ -138,6 +139,7 @@ class WorkerPool(SceneHostInterface):
             self._workers[index].answering = True  # type: ignore[union-attr]
         self._supervisor = threading.Thread(target=self._supervise, name="scene-worker-supervisor", daemon=True)
         self._supervisor.start()
+        yield_only_to_live_scenes(lambda: self.total_viewers() > 0)  # the front's derivations: as in each worker
         log.info("%d scene workers ready", self.worker_count)
 
     def stop(self) -> None:

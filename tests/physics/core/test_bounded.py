@@ -431,3 +431,38 @@ def test_bad_call_limits_name_the_field(runner):
         runner.run(square, (1.0,), timeout_s=-1.0)
     with pytest.raises(ValueError, match="^memory_mb: "):
         runner.run(square, (1.0,), memory_mb=math.nan)
+
+
+#: The real rule (the autouse ``quiet_machine`` replaces it in every test).
+MACHINE_BUSY = bounded._machine_busy
+
+
+def test_a_busy_machine_pauses_children_only_while_the_server_shows_live_scenes(monkeypatch):
+    """The pauses protect the frames a class watches: with no viewer (a server warming its models, or a machine busy
+    with other work) a derivation runs on and is not refused as busy; the host's answer is asked at most once a second.
+    """
+    monkeypatch.setattr(bounded, "_machine_busy", MACHINE_BUSY)
+    monkeypatch.setattr(bounded.os, "getloadavg", lambda: (50.0, 50.0, 50.0))
+    monkeypatch.setattr(bounded, "_live_scenes", None)
+    assert bounded._machine_busy(children=1)  # no host in this process (a benchmark): yield to any load
+    asked = []
+    viewers = {"count": 0}
+
+    def showing() -> bool:
+        asked.append(viewers["count"])
+        return viewers["count"] > 0
+
+    clock = {"now": 100.0}
+    monkeypatch.setattr(bounded.time, "monotonic", lambda: clock["now"])
+    bounded.yield_only_to_live_scenes(showing)
+    try:
+        assert not bounded._machine_busy(children=1)
+        viewers["count"] = 3
+        assert not bounded._machine_busy(children=1), "the answer is kept for LIVE_SCENES_CHECK_S"
+        clock["now"] += bounded.LIVE_SCENES_CHECK_S
+        assert bounded._machine_busy(children=1)
+        assert asked == [0, 3]
+        monkeypatch.setattr(bounded.os, "getloadavg", lambda: (0.1, 0.1, 0.1))
+        assert not bounded._machine_busy(children=1)  # viewers, but an idle machine
+    finally:
+        bounded._live_scenes, bounded._live_scenes_seen = None, (-bounded.math.inf, True)
