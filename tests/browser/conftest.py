@@ -158,13 +158,13 @@ def live_server(served: ServedApp) -> LiveServer:
     return LiveServer(served)
 
 
-#: Frames per second the 3D viewer may draw in a test (see :class:`ViewerFramesLimited`).
-VIEWER_TEST_FPS = 2
+#: Frames per second the 3D viewer may draw in a test (see :class:`ViewerFramesLimited`): one every 4 s.
+VIEWER_TEST_FPS = 0.25
 #: In the viewer's own page (a lesson's /viewer/… frame or a room's /room-viewer/…), requestAnimationFrame waits
 #: 1/VIEWER_TEST_FPS s; every other page keeps the browser's own frames.
 LIMIT_VIEWER_FRAMES = """(() => {
   if (!/^\\/(room-)?viewer\\//.test(location.pathname)) return;
-  const period = 1000 / %d;
+  const period = 1000 / %g;
   window.requestAnimationFrame = (draw) => setTimeout(() => draw(performance.now()), period);
   window.cancelAnimationFrame = (id) => clearTimeout(id);
 })();""" % VIEWER_TEST_FPS
@@ -174,11 +174,14 @@ class ViewerFramesLimited:
     """The session's Chromium, whose new contexts let viser's viewer draw at most :data:`VIEWER_TEST_FPS` frames a
     second (unless screenshots are kept).
 
-    Software WebGL (SwiftShader; there is no GPU here) spends 200–300 ms of CPU on each of viser's frames whatever
-    the canvas size, so one open viewer asking for 60 frames a second keeps 1.7 of the machine's 2 cores busy at
-    about 8 frames a second (measured with ps on the GPU process: 17 CPU-s in 10 s; 6 CPU-s at 2 frames a second).
-    The tests read the scene's state from the server and the page, never a frame rate, so drawing fewer frames
-    changes no assertion and leaves the CPU to the server under test and the other xdist worker.
+    Software WebGL (SwiftShader; there is no GPU here) spends 200–300 ms of CPU on each of viser's frames, so one open
+    viewer asking for 60 frames a second keeps 1.7 of the machine's 2 cores busy at about 8 frames a second. At
+    2 frames a second a lesson page still cost 0.5–1 core (its GPU process 0.4–0.8 core, measured over 10 s); drawing
+    none, 0.13 (viser's client still takes every message of the scene, in the page's renderer). Over the browser
+    tests, 2 frames a second spent 770 CPU-s in Chromium (420 of them in its GPU process); one frame in 4 s, 370
+    (GPU 80). The tests read the scene's state from the server and the page, never a frame rate; a test that looks
+    at what the viewer drew or moves its camera by keys asks for every frame (``viewer_frames_limited=False``) and
+    waits for the drawing it needs (:func:`wait_for_scene_drawn`).
     """
 
     def __init__(self, browser) -> None:
@@ -290,6 +293,25 @@ def let_webgl_draw(page, milliseconds: int) -> None:
     """Give software WebGL ``milliseconds`` to draw before a kept screenshot (no wait when none is taken)."""
     if keeping_screenshots():
         page.wait_for_timeout(milliseconds)
+
+
+#: In a viewer's frame: how many frames viser's renderer has drawn since the scene's own nodes (beyond the ones its
+#: client always has) arrived in its scene tree (0 while they have not).
+FRAMES_WITH_THE_SCENE = """() => {
+  const tree = window.__viserSceneTree, points = window.__viserTestpoints;
+  if (!tree || !points) return 0;
+  const frame = points.rendererInfo.render.frame;
+  if (!Object.keys(tree.getState()).some((name) => name !== "" && name !== "/WorldAxes")) return 0;
+  if (window.__dynlabSceneFrom === undefined) window.__dynlabSceneFrom = frame;
+  return frame - window.__dynlabSceneFrom;
+}"""
+
+
+def wait_for_scene_drawn(page, *, frames: int = 3, timeout_s: float = 30.0) -> None:
+    """Wait until the lesson's viewer (``#viewer``) has drawn ``frames`` frames with its scene in them (software
+    WebGL draws the scene's first frames a while after its nodes arrive)."""
+    viewer = page.locator("#viewer").element_handle().content_frame()
+    wait_until(lambda: viewer.evaluate(FRAMES_WITH_THE_SCENE) >= frames, timeout_s, what=f"the viewer to draw {frames} frames of its scene")
 
 
 @pytest.hookimpl(wrapper=True, tryfirst=True)

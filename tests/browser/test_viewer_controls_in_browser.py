@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from tests.browser.conftest import dismiss_webgl_notice, open_lesson, screenshot
+from tests.browser.conftest import dismiss_webgl_notice, open_lesson, screenshot, wait_for_scene_drawn
 from tests.conftest import wait_until
 
 pytestmark = pytest.mark.browser
@@ -139,9 +139,9 @@ def test_keyboard_orbits_and_zooms_and_reset_view_restores_the_start_pose(browse
 
 
 def test_save_image_downloads_a_png_of_the_view(browser, live_server):
-    context, page, session_id, errors = open_lesson(browser, live_server, LESSON)
+    context, page, session_id, errors = open_lesson(browser, live_server, LESSON, viewer_frames_limited=False)
     viewer_frame(page).wait_for_selector(CANVAS)
-    page.wait_for_timeout(1500)  # software WebGL draws the first frames
+    wait_for_scene_drawn(page)
     with page.expect_download() as download_info:
         page.get_by_role("button", name="Save image").click()
     download = download_info.value
