@@ -5,7 +5,6 @@ from __future__ import annotations
 import logging
 from collections.abc import AsyncIterator
 from contextlib import asynccontextmanager
-from pathlib import Path
 
 from fastapi import FastAPI
 from fastapi.openapi.docs import get_swagger_ui_html
@@ -32,10 +31,10 @@ from app.scenes.host.pool import WorkerPool
 from app.settings import Settings
 from app.web import guard, pages, relay
 from app.web.page_config import add_page_config_section
+from app.web.static_files import STATIC_DIR
 from app.web.stopping import AnswerWhenStopping, RequestsInFlight
 
 log = logging.getLogger(__name__)
-STATIC_DIR = Path(__file__).resolve().parent.parent / "static"
 
 
 def create_app(settings: Settings | None = None) -> FastAPI:

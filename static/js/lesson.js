@@ -716,9 +716,9 @@ export const lesson = (function () {
     document.getElementById("viewer-wrap").hidden = false;
     if (viewerFrame.getAttribute("src") !== src && !(src === ownViewer && showsOwnViewer())) viewerFrame.src = src;
   }
-  function preloadViewer() {
+  function preloadViewer() { // as viewer_preload.js did while the page was parsed, unless it could not
     document.getElementById("viewer-wrap").hidden = false;
-    viewerFrame.src = preloadedViewer;
+    if (viewerFrame.getAttribute("src") !== preloadedViewer) viewerFrame.src = preloadedViewer;
   }
 
   // ---- what room.js drives: values shown without sending, locked controls, the viewer, the readout ------
