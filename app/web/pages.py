@@ -22,6 +22,7 @@ from app.physics.mechanics.engine import available_formulations
 from app.scenes.host.host import SESSION_ID_PATTERN
 from app.web.page_config import config_script, page_config
 from app.web.static_files import inline_script, modulepreload_links
+from app.web.viewer_client import unpacked_client
 
 router = APIRouter(tags=["pages"], include_in_schema=False)
 TEMPLATES = Path(__file__).resolve().parent / "templates"
@@ -93,9 +94,9 @@ _VIEWER_HEAD_END = b"</title>"
 
 @lru_cache(maxsize=1)
 def viewer_client_html() -> bytes:
-    """viser's single-file client (``viser/client/build/index.html``) with :data:`VIEWER_CSS` and
-    :data:`VIEWER_SCRIPT` in its head and a title saying what it shows: the page every viewer route serves."""
-    client = (Path(viser.__file__).resolve().parent / "client" / "build" / "index.html").read_bytes()
+    """viser's client page (unpacked: :func:`unpacked_client`) with :data:`VIEWER_CSS` and :data:`VIEWER_SCRIPT` in its
+    head and a title saying what it shows: the page every viewer route serves."""
+    client = unpacked_client().page
     if client.count(_VIEWER_HEAD_END) != 1:
         raise RuntimeError(
             f"viser {viser.__version__}'s client page has no single "
