@@ -21,7 +21,7 @@ from app.physics.mechanics.derivation import FORMULATION_TITLES, FORMULATIONS
 from app.physics.mechanics.engine import available_formulations
 from app.scenes.host.host import SESSION_ID_PATTERN
 from app.web.page_config import config_script, page_config
-from app.web.static_files import inline_script, modulepreload_links
+from app.web.static_files import inline_module, modulepreload_links
 from app.web.viewer_client import unpacked_client
 
 router = APIRouter(tags=["pages"], include_in_schema=False)
@@ -232,7 +232,7 @@ def lesson_page(lesson_id: str, catalogue: CatalogueDep, scene: str | None = Non
         nav=nav,
         scene_picker=_scene_picker(lesson, catalogue, shown),
         has_scene="has-scene" if lesson.scene or lesson.examples else "no-scene",
-        viewer_preload=inline_script("js/viewer_preload.js") if shown else "",
+        viewer_preload=inline_module("js/viewer_preload.js") if shown else "",
     )
     return _page(
         f"{lesson.section} {lesson.title} — Dynamics Lab",

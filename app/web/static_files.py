@@ -49,10 +49,11 @@ def modulepreload_links(entries: tuple[str, ...]) -> str:
 
 
 @cache
-def inline_script(path: str) -> str:
-    """The classic script ``static/<path>`` as a ``<script>`` element, for a page that must run it as the parser reaches
-    it (a module waits for its whole graph); its text must not contain ``</script``."""
+def inline_module(path: str) -> str:
+    """The script ``static/<path>`` as an inline ``<script type="module" async>``: it runs as soon as the parser has
+    read it, without waiting for the page's style sheets (as a classic script would) or for the end of parsing (as a
+    module from a file does). Its text must not contain ``</script``."""
     text = (STATIC_DIR / path).read_text(encoding="utf-8")
     if "</script" in text.lower():
         raise ValueError(f"static/{path} cannot be inlined: it contains </script")
-    return f"<script>{text}</script>"
+    return f'<script type="module" async>{text}</script>'
