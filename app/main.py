@@ -5,7 +5,6 @@ from __future__ import annotations
 import logging
 from collections.abc import AsyncIterator
 from contextlib import asynccontextmanager
-from pathlib import Path
 
 from fastapi import FastAPI
 from fastapi.openapi.docs import get_swagger_ui_html
@@ -30,12 +29,12 @@ from app.scenes import SCENES
 from app.scenes.host.host import SceneHost
 from app.scenes.host.pool import WorkerPool
 from app.settings import Settings
-from app.web import guard, pages, relay
+from app.web import guard, pages, relay, viewer_client
 from app.web.page_config import add_page_config_section
+from app.web.static_files import STATIC_DIR
 from app.web.stopping import AnswerWhenStopping, RequestsInFlight
 
 log = logging.getLogger(__name__)
-STATIC_DIR = Path(__file__).resolve().parent.parent / "static"
 
 
 def create_app(settings: Settings | None = None) -> FastAPI:
@@ -56,6 +55,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
             host = SceneHost(SCENES, frame_rate_hz=settings.frame_rate_hz, max_sessions=settings.max_sessions)
         host.start()
         app.state.scene_host = host
+        viewer_client.unpacked_client()  # unpacked (0.3 s) before a viewer asks for it, not while it waits
         try:
             yield
         finally:
@@ -98,6 +98,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
         bench.router,
         rooms.router,
         pages.router,
+        viewer_client.router,
         room_pages.router,
         relay.router,
         room_relay.router,

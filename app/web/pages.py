@@ -21,6 +21,8 @@ from app.physics.mechanics.derivation import FORMULATION_TITLES, FORMULATIONS
 from app.physics.mechanics.engine import available_formulations
 from app.scenes.host.host import SESSION_ID_PATTERN
 from app.web.page_config import config_script, page_config
+from app.web.static_files import inline_module, modulepreload_links
+from app.web.viewer_client import unpacked_client
 
 router = APIRouter(tags=["pages"], include_in_schema=False)
 TEMPLATES = Path(__file__).resolve().parent / "templates"
@@ -92,9 +94,9 @@ _VIEWER_HEAD_END = b"</title>"
 
 @lru_cache(maxsize=1)
 def viewer_client_html() -> bytes:
-    """viser's single-file client (``viser/client/build/index.html``) with :data:`VIEWER_CSS` and
-    :data:`VIEWER_SCRIPT` in its head and a title saying what it shows: the page every viewer route serves."""
-    client = (Path(viser.__file__).resolve().parent / "client" / "build" / "index.html").read_bytes()
+    """viser's client page (unpacked: :func:`unpacked_client`) with :data:`VIEWER_CSS` and :data:`VIEWER_SCRIPT` in its
+    head and a title saying what it shows: the page every viewer route serves."""
+    client = unpacked_client().page
     if client.count(_VIEWER_HEAD_END) != 1:
         raise RuntimeError(
             f"viser {viser.__version__}'s client page has no single "
@@ -112,8 +114,9 @@ def viewer_client_html() -> bytes:
 
 def _page(title: str, body: str, *, scripts: tuple[str, ...] = (), config: dict | None = None) -> HTMLResponse:
     """A page: ``body`` in the site's frame, its configuration (:func:`page_config` with ``config``) and its
-    ``scripts``, each an ES module that imports what it needs (so their order is no one's concern)."""
-    modules = "".join(f'<script type="module" src="{src}"></script>' for src in scripts)
+    ``scripts``, each an ES module that imports what it needs (so their order is no one's concern), with every module
+    they import preloaded (:func:`modulepreload_links`)."""
+    modules = modulepreload_links(scripts) + "".join(f'<script type="module" src="{src}"></script>' for src in scripts)
     return HTMLResponse(
         _template("page.html").substitute(
             title=esc(title), body=body, config=config_script(page_config(**(config or {}))), scripts=modules
@@ -229,6 +232,7 @@ def lesson_page(lesson_id: str, catalogue: CatalogueDep, scene: str | None = Non
         nav=nav,
         scene_picker=_scene_picker(lesson, catalogue, shown),
         has_scene="has-scene" if lesson.scene or lesson.examples else "no-scene",
+        viewer_preload=inline_module("js/viewer_preload.js") if shown else "",
     )
     return _page(
         f"{lesson.section} {lesson.title} — Dynamics Lab",

@@ -699,16 +699,22 @@ export const lesson = (function () {
   // session, and opens its websocket when told the session exists (app/web/pages.py VIEWER_SCRIPT, `wait`): a
   // viewer may not open a session its page has not made. It is the own viewer, so showing that keeps it.
   const preloadedViewer = scene ? `${ownViewer}&wait` : null;
-  let sessionMade = false;
+  // What must reach the session before its viewer opens (holdViewer: a share link's instant, which time_controls.js
+  // sends once the session exists), so the viewer's scene starts there rather than playing from t = 0 until it comes.
+  let sessionReady = false;
+  const viewerHolds = [];
+  const holdViewer = (promise) => { viewerHolds.push(promise.catch(() => {})); };
   const viewerFrame = document.getElementById("viewer");
   const tellViewer = () => viewerFrame.contentWindow.postMessage({ type: "dynlab:session-ready" }, location.origin);
   function sessionExists() {
-    sessionMade = true;
-    if (viewerFrame.getAttribute("src") === preloadedViewer) tellViewer();
+    Promise.all(viewerHolds).then(() => {
+      sessionReady = true;
+      if (viewerFrame.getAttribute("src") === preloadedViewer) tellViewer();
+    });
   }
   window.addEventListener("message", (event) => {
     if (event.origin !== location.origin || event.source !== viewerFrame.contentWindow) return;
-    if (event.data && event.data.type === "dynlab:viewer-waiting" && sessionMade) tellViewer();
+    if (event.data && event.data.type === "dynlab:viewer-waiting" && sessionReady) tellViewer();
   });
   const showsOwnViewer = () => ownViewer !== null && [ownViewer, preloadedViewer].includes(viewerFrame.getAttribute("src"));
   function showViewer(src) {
@@ -716,9 +722,9 @@ export const lesson = (function () {
     document.getElementById("viewer-wrap").hidden = false;
     if (viewerFrame.getAttribute("src") !== src && !(src === ownViewer && showsOwnViewer())) viewerFrame.src = src;
   }
-  function preloadViewer() {
+  function preloadViewer() { // as viewer_preload.js did while the page was parsed, unless it could not
     document.getElementById("viewer-wrap").hidden = false;
-    viewerFrame.src = preloadedViewer;
+    if (viewerFrame.getAttribute("src") !== preloadedViewer) viewerFrame.src = preloadedViewer;
   }
 
   // ---- what room.js drives: values shown without sending, locked controls, the viewer, the readout ------
@@ -773,7 +779,7 @@ export const lesson = (function () {
 
   const lesson = {
     session, schedule, scene, specs, defaults, ownViewer, shared,
-    setValues, lock, onChange, showViewer, showsOwnViewer, startPolling, stopPolling,
+    setValues, lock, onChange, showViewer, showsOwnViewer, startPolling, stopPolling, holdViewer,
     // The session's time controls and camera (PUT …/playback with the session key); rejects with the server's message.
     setPlayback: (body) => call("PUT", `/api/scenes/${scene.id}/sessions/${session.id}/playback`, body),
     renderReadout, renderLive: (data) => { if (scene && scene.integrated && data.invariants) renderLive(data); },

@@ -113,15 +113,16 @@ import { lesson } from "./lesson.js";
     try { await navigator.clipboard.writeText(shareBox.value); share.textContent = "Link copied"; } catch (e) { share.textContent = "Share link"; }
   });
 
-  // Opened from a share link: once the page's scene exists, go to the shared time, play state, speed and camera.
+  // Opened from a share link: once the page's session exists, go to the shared time, play state, speed and camera,
+  // and only then let the viewer open (lesson.holdViewer), so its scene starts at the shared instant.
   const shared = lesson.shared;
   if (shared) {
-    document.addEventListener("dynlab:viewer-started", () => {
+    lesson.holdViewer(new Promise((resolve) => document.addEventListener("dynlab:viewer-started", () => {
       const body = { go_to_s: shared.t_s, playing: shared.playing };
       if (shared.time_scale) body.time_scale = shared.time_scale;
       if (shared.camera) body.camera = shared.camera;
-      send(body);
-    }, { once: true });
+      send(body).then(resolve);
+    }, { once: true })));
   }
 })();
 

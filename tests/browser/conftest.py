@@ -347,9 +347,19 @@ def dismiss_webgl_notice(page) -> None:
             frame.evaluate("() => document.querySelectorAll('.mantine-Notification-closeButton').forEach((b) => b.click())")
 
 
+#: True once every ``.math`` element is typeset (static/js/katex.js draws those below the window when the page is idle).
+MATH_TYPESET = "() => [...document.querySelectorAll('.math')].every((el) => el.querySelector('.katex, .katex-error'))"
+
+
+def wait_for_math(page) -> None:
+    """Wait until the page has typeset all its equations (a second or two after it opens, at most)."""
+    page.wait_for_function(MATH_TYPESET, timeout=15_000)
+
+
 def show_scene_and_keep_screenshot(page, path: Path) -> None:
     """The end of every lesson test: no KaTeX errors, the viewer scrolled into view and, when screenshots are kept,
     saved to ``path`` once software WebGL has drawn."""
+    wait_for_math(page)
     assert page.locator(".katex-error").count() == 0
     page.evaluate("document.getElementById('viewer-wrap').scrollIntoView()")
     dismiss_webgl_notice(page)

@@ -9,7 +9,7 @@ import math
 import pytest
 
 from app.physics.systems.ch10 import free_gyroscope, gyrocompass, rate_gyro
-from tests.browser.conftest import let_webgl_draw, open_lesson, readout_values, screenshot
+from tests.browser.conftest import let_webgl_draw, open_lesson, readout_values, screenshot, wait_for_math
 
 pytestmark = pytest.mark.browser
 
@@ -21,6 +21,7 @@ def _open_lesson(browser, live_server, lesson_id):
 
 
 def _finish(context, page, errors, shots, lesson_id):
+    wait_for_math(page)
     assert page.locator(".katex-error").count() == 0
     assert page.locator(".lesson-text .katex").count() > 20  # the formulas were typeset
     page.evaluate("document.getElementById('viewer-wrap').scrollIntoView()")

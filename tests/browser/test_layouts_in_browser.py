@@ -50,6 +50,7 @@ def _answer_scene_parameters(context) -> None:
 
 PAGE_READY = """() => {
   if (document.readyState !== 'complete') return false;
+  if (![...document.querySelectorAll('.math')].every((el) => el.querySelector('.katex, .katex-error'))) return false;
   const config = document.getElementById('dynlab-config');
   if (!config || !JSON.parse(config.textContent).scene) return true;
   return !document.getElementById('viewer-wrap').hidden || !document.getElementById('control-error').hidden;
