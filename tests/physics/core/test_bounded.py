@@ -12,6 +12,8 @@ import math
 import os
 import resource
 import signal
+import subprocess
+import sys
 import threading
 import time
 from functools import partial
@@ -225,7 +227,8 @@ def test_refusals_are_value_errors_for_the_routes():
 # -- limits --------------------------------------------------------------------------------
 
 @pytest.mark.parametrize("function, args", [(sleep_for, (60.0,)), (spin_forever, ())])
-def test_work_is_killed_at_its_timeout(runner, function, args):
+def test_work_is_killed_at_its_timeout(runner, function, args, monkeypatch):
+    monkeypatch.setattr(bounded, "STARVED_SHARE", math.inf)  # the kill is tested, not how a busy machine is told apart
     start = time.monotonic()
     with pytest.raises(WorkTimeout, match="took longer than its limit of 0.5 s"):
         runner.run(function, args, timeout_s=0.5, what="deriving the equations")
@@ -317,6 +320,23 @@ def test_work_that_runs_out_of_time_while_the_machine_paused_it_is_busy_not_too_
     monkeypatch.setattr(bounded, "_machine_busy", lambda children: True)
     with pytest.raises(WorkBusy, match=r"was paused for \d+ s of its 1 s while the server was busy") as caught:
         runner.run(spin_forever, (), timeout_s=1.0, what="deriving these equations")
+    assert caught.value.retry_after_s >= 1
+    assert _wait_for(lambda: not _workers_left(), 5.0), _workers_left()
+
+
+def test_work_starved_of_processors_by_other_programs_is_busy_not_too_large(runner, monkeypatch):
+    """Two CPU-bound programs on a 2-core machine (one more than there are cores here) leave a child on idle time
+    almost nothing: out of time, it waited for a processor nearly all of it. The caller hears "busy, try again" (a 429
+    with Retry-After at the routes), not "try something smaller", which its size never showed."""
+    monkeypatch.setattr(bounded, "_machine_busy", lambda children: False)  # no pauses: only the other programs
+    hogs = [subprocess.Popen([sys.executable, "-c", "while True: pass"]) for _ in range((os.cpu_count() or 1) + 1)]
+    try:
+        with pytest.raises(WorkBusy, match=r"waited \d+ s of its 2 s for a processor that other work") as caught:
+            runner.run(spin_forever, (), timeout_s=2.0, what="deriving these equations")
+    finally:
+        for hog in hogs:
+            hog.kill()
+            hog.wait()
     assert caught.value.retry_after_s >= 1
     assert _wait_for(lambda: not _workers_left(), 5.0), _workers_left()
 
