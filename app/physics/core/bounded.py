@@ -29,9 +29,9 @@ to ``wait_s`` and is then refused with :class:`WorkBusy`. Outcomes:
   ``timeout_s``, the CPU limit's SIGXCPU, a ``MemoryError``, or a crash (SIGSEGV, SIGABRT, SIGBUS)
   within the address-space limit, which is how a C library fails when ``RLIMIT_AS`` refuses it memory;
 * :class:`WorkBusy` also when the child ran out of time after a busy machine paused it for more than
-  :data:`BUSY_PAUSED_SHARE` of it, or kept it waiting for a processor for more than :data:`STARVED_SHARE` of it
-  (other work took every processor: the child runs on idle time only): the machine's load, not the input, stopped
-  it (a 429 with Retry-After);
+  :data:`BUSY_PAUSED_SHARE` of it, or kept it waiting for a processor for more than :data:`STARVED_SHARE` of the
+  time it wanted one (other work took every processor: the child runs on idle time only): the machine's load, not
+  the input, stopped it (a 429 with Retry-After);
 * :class:`WorkInterrupted` when the child was ended by a signal the runner did not send and its
   limits do not raise (SIGTERM, SIGKILL, SIGINT, SIGHUP…: an administrator, the machine's
   out-of-memory killer, a shutdown): nothing is wrong with the input, so try again (a 503 for a route);
@@ -324,8 +324,9 @@ class BoundedRunner:
                     "while the server was busy with live scenes; try again in a minute",
                     retry_after_s=60,
                 )
-            waiting_s = _run_queue_wait_s(process.pid) if not answer_arrived else 0.0
-            if waiting_s > STARVED_SHARE * timeout_s:  # runnable all along, but other work had every processor
+            running_s, waiting_s = _processor_times_s(process.pid) if not answer_arrived else (0.0, 0.0)
+            starved = waiting_s > STARVED_SHARE * (running_s + waiting_s) and waiting_s > BUSY_PAUSED_SHARE * timeout_s
+            if starved:  # runnable, but other work had every processor (a child that slept never waits)
                 raise WorkBusy(
                     f"{what} waited {waiting_s:.0f} s of its {timeout_s:g} s for a processor that other work "
                     "on the server was using; try again in a minute",
@@ -358,21 +359,23 @@ BUSY_PAUSE_S = 0.1
 #: A child that ran out of time after being paused for more than this share of it was stopped by the machine's load,
 #: not by its own size: the caller hears "busy, try again" (:class:`WorkBusy`), not "try something smaller".
 BUSY_PAUSED_SHARE = 0.25
-#: A child that ran out of time after waiting, runnable, for a processor for more than this share of it got almost
-#: none: on idle time only, it yields to any other work (two CPU-bound programs on a 2-core machine leave it about
-#: 1 %). Its time says nothing about the size of the work, so the caller hears "busy", not "try something smaller".
-#: Less than this, it is the work's size: a test suite's own load can keep a child waiting for most of its time.
+#: A child that ran out of time after spending more than this share of the time it wanted a processor waiting for
+#: one got almost none: on idle time only, it yields to any other work (two CPU-bound programs on a 2-core machine
+#: leave it about 5 %, its own start included). Its time says nothing about the size of the work, so the caller hears
+#: "busy", not "try something smaller". (Shares of the child's own life: a busy forkserver may start it late.)
 STARVED_SHARE = 0.9
 
 
-def _run_queue_wait_s(pid: int | None) -> float:
-    """Seconds process ``pid`` has spent runnable but waiting for a processor (Linux's ``/proc/<pid>/schedstat``,
-    its second field in ns; a stopped or sleeping process is not waiting); 0.0 where this cannot be read."""
+def _processor_times_s(pid: int | None) -> tuple[float, float]:
+    """``(running, waiting)``: seconds process ``pid`` has run on a processor and has been runnable but waiting for
+    one (Linux's ``/proc/<pid>/schedstat``, in ns; a stopped or sleeping process is not waiting); zeros where this
+    cannot be read."""
     try:
         with open(f"/proc/{pid}/schedstat", encoding="ascii") as schedstat:
-            return int(schedstat.read().split()[1]) / 1e9
-    except (OSError, ValueError, IndexError):
-        return 0.0
+            running_ns, waiting_ns = (int(field) for field in schedstat.read().split()[:2])
+    except (OSError, ValueError):
+        return 0.0, 0.0
+    return running_ns / 1e9, waiting_ns / 1e9
 
 
 #: Says whether this process's server is showing live scenes now (set by the scene host when it starts; None in a
