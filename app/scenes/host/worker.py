@@ -84,11 +84,15 @@ def warm_compiled_models(scenes: dict) -> None:
     per system, numba about half a second); chapter 8 compiles each constrained system's right-hand-side and
     after-step callbacks, which are built per system at run time (0.1–0.25 s each with a warm disk cache).
     """
+    from app.physics.core.bounded import WorkBusy, WorkInterrupted
+
     for scene in scenes.values():
         model = getattr(scene, "model", None)
         try:
             if model is not None:
                 model().prepare(scene.parameters.defaults())  # (nothing for a model that builds nothing at run time)
+        except (WorkBusy, WorkInterrupted) as exc:  # a busy or stopping machine: the first viewer derives it instead
+            log.warning("warming %s put off: %s", scene.id, exc)
         except Exception:  # a failure here only means the first viewer compiles it, and sees the error then
             log.exception("warming %s failed", scene.id)
 
