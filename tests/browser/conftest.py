@@ -17,6 +17,7 @@ import uvicorn
 
 from app.main import create_app
 from app.settings import Settings
+from tests.browser.first_frame import VIEWER_BUILT_IN_NODES
 from tests.conftest import wait_until
 from tests.served import INSTRUCTOR_KEY as SERVED_INSTRUCTOR_KEY
 from tests.served import ServedApp, free_port
@@ -301,10 +302,11 @@ FRAMES_WITH_THE_SCENE = """() => {
   const tree = window.__viserSceneTree, points = window.__viserTestpoints;
   if (!tree || !points) return 0;
   const frame = points.rendererInfo.render.frame;
-  if (!Object.keys(tree.getState()).some((name) => name !== "" && name !== "/WorldAxes")) return 0;
+  const builtIn = new Set(%s);
+  if (!Object.keys(tree.getState()).some((name) => !builtIn.has(name))) return 0;
   if (window.__dynlabSceneFrom === undefined) window.__dynlabSceneFrom = frame;
   return frame - window.__dynlabSceneFrom;
-}"""
+}""" % json.dumps(VIEWER_BUILT_IN_NODES)
 
 
 def wait_for_scene_drawn(page, *, frames: int = 3, timeout_s: float = 30.0) -> None:

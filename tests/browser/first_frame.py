@@ -8,6 +8,7 @@ lesson page and its viewer frame share) and reported in ms after the lesson's na
 
 from __future__ import annotations
 
+import json
 import statistics
 import time
 
@@ -19,6 +20,9 @@ LESSONS = (
     "7-5-lagranges-equations",
     "9-3-gibbs-appell-and-kane",
 )
+
+#: The nodes viser's client has in its scene tree before a scene sends any (a scene's own are the others).
+VIEWER_BUILT_IN_NODES = ("", "/WorldAxes")
 
 #: Added to every frame of the measuring context. In the viewer's frame: when the client opened its websocket, when
 #: it opened and brought the first message (the socket lives in a web worker: its messages to the page), and the
@@ -43,7 +47,7 @@ MARKS_SCRIPT = """(() => {
       });
     }
   };
-  const builtIn = new Set(["", "/WorldAxes"]);
+  const builtIn = new Set(%s);
   const check = () => {
     if (marks.first_frame !== undefined) return;
     const tree = window.__viserSceneTree, points = window.__viserTestpoints;
@@ -57,7 +61,7 @@ MARKS_SCRIPT = """(() => {
   };
   const requestFrame = window.requestAnimationFrame.bind(window);
   window.requestAnimationFrame = (draw) => requestFrame((t) => { draw(t); check(); });
-})();"""
+})();""" % json.dumps(VIEWER_BUILT_IN_NODES)
 
 #: Read in the lesson page once the viewer has drawn: the page's own instants and the viewer frame's marks.
 READ_MARKS = """() => {

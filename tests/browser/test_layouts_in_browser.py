@@ -16,7 +16,7 @@ from urllib.parse import urlsplit
 
 import pytest
 
-from tests.browser.conftest import dismiss_webgl_notice, let_webgl_draw, open_lesson, screenshot, wait_for_polls
+from tests.browser.conftest import MATH_TYPESET, dismiss_webgl_notice, let_webgl_draw, open_lesson, screenshot, wait_for_polls
 from tests.browser.test_accessibility_in_browser import _stub_viewer, our_pages
 from tests.conftest import wait_until
 
@@ -50,11 +50,11 @@ def _answer_scene_parameters(context) -> None:
 
 PAGE_READY = """() => {
   if (document.readyState !== 'complete') return false;
-  if (![...document.querySelectorAll('.math')].every((el) => el.querySelector('.katex, .katex-error'))) return false;
+  if (!(%s)()) return false;
   const config = document.getElementById('dynlab-config');
   if (!config || !JSON.parse(config.textContent).scene) return true;
   return !document.getElementById('viewer-wrap').hidden || !document.getElementById('control-error').hidden;
-}"""
+}""" % MATH_TYPESET
 
 #: The smallest a touch target may be on a phone (px): a finger's width, as WCAG 2.5.5 and the platforms' guides ask.
 TOUCH_TARGET_PX = 44.0

@@ -318,21 +318,21 @@ class BoundedRunner:
             finally:
                 sender.close()
             answer_arrived, paused_s = _await_answer(receiver, process, timeout_s)
-            if not answer_arrived and paused_s > BUSY_PAUSED_SHARE * timeout_s:  # the machine's doing, not the work's
-                raise WorkBusy(
-                    f"{what} was paused for {paused_s:.0f} s of its {timeout_s:g} s "
-                    "while the server was busy with live scenes; try again in a minute",
-                    retry_after_s=60,
-                )
-            running_s, waiting_s = _processor_times_s(process.pid) if not answer_arrived else (0.0, 0.0)
-            starved = waiting_s > STARVED_SHARE * (running_s + waiting_s) and waiting_s > BUSY_PAUSED_SHARE * timeout_s
-            if starved:  # runnable, but other work had every processor (a child that slept never waits)
-                raise WorkBusy(
-                    f"{what} waited {waiting_s:.0f} s of its {timeout_s:g} s for a processor that other work "
-                    "on the server was using; try again in a minute",
-                    retry_after_s=60,
-                )
             if not answer_arrived:
+                if paused_s > BUSY_PAUSED_SHARE * timeout_s:  # the machine's doing, not the work's
+                    raise WorkBusy(
+                        f"{what} was paused for {paused_s:.0f} s of its {timeout_s:g} s "
+                        "while the server was busy with live scenes; try again in a minute",
+                        retry_after_s=60,
+                    )
+                running_s, waiting_s = _processor_times_s(process.pid)
+                # Runnable, but other work had every processor (a child that slept never waits).
+                if waiting_s > STARVED_SHARE * (running_s + waiting_s) and waiting_s > BUSY_PAUSED_SHARE * timeout_s:
+                    raise WorkBusy(
+                        f"{what} waited {waiting_s:.0f} s of its {timeout_s:g} s for a processor that other work "
+                        "on the server was using; try again in a minute",
+                        retry_after_s=60,
+                    )
                 raise WorkTimeout(
                     f"{what} took longer than its limit of {timeout_s:g} s and was stopped; try something smaller"
                 )
