@@ -513,6 +513,18 @@ def pilot_adaptive(
 # ---- the choice ----------------------------------------------------------------------------------
 
 
+def _tolerance_scaled(rtol: float, ratio: float, exponent: float) -> float:
+    """``rtol · ratio**exponent`` within :data:`RTOL_RANGE`. A pilot's error can be near the smallest float (over a
+    span of 1e-292 s), and the power then overflows before the range would clamp it: the range's end instead."""
+    if math.isnan(ratio):
+        return RTOL_RANGE[0]
+    try:
+        scaled = rtol * ratio**exponent
+    except OverflowError:
+        return RTOL_RANGE[1] if ratio > 1.0 else RTOL_RANGE[0]
+    return min(max(scaled, RTOL_RANGE[0]), RTOL_RANGE[1])
+
+
 def _fixed_steps_needed(model: ErrorModel, goal: float, horizon_s: float, frame_dt_s: float) -> int:
     """Fewest steps per frame whose estimated error over ``horizon_s`` is at most ``goal`` (at least 1)."""
     base = model.pilot_error_over(horizon_s)
@@ -589,8 +601,7 @@ def _adaptive_error_model(
         base = model.pilot_error_over(horizon_s)
         if base <= 0.0:
             return model
-        needed = rtol * (SAFETY * target.error / base) ** ((spec.order + 1) / spec.order)
-        needed = min(max(needed, RTOL_RANGE[0]), RTOL_RANGE[1])
+        needed = _tolerance_scaled(rtol, SAFETY * target.error / base, (spec.order + 1) / spec.order)
         if abs(math.log10(needed / rtol)) <= 1.0 or (
             needed > rtol and base <= SAFETY * target.error and rtol >= RTOL_RANGE[1]
         ):
@@ -787,22 +798,17 @@ def _setting(
     base = model.pilot_error_over(horizon_s)
     if model.adaptive:
         exponent = model.order / (model.order + 1)
-        rtol = model.rtol_pilot * (goal / base) ** (1.0 / exponent) if base > 0 else RTOL_RANGE[1]
-        rtol = float(min(max(rtol, RTOL_RANGE[0]), RTOL_RANGE[1]))
+        rtol = _tolerance_scaled(model.rtol_pilot, goal / base, 1.0 / exponent) if base > 0 else RTOL_RANGE[1]
         rtol = float(f"{rtol:.1g}")  # a tolerance a student can read (rounded down or up by less than 2×)
         limit = f"rtol {RTOL_RANGE[0]:g}, the tightest tolerance offered"
         if model.adaptive_steps(rtol, horizon_s) > max_adaptive_steps:
-            rtol = model.rtol_pilot * (model.adaptive_steps(model.rtol_pilot, horizon_s) / max_adaptive_steps) ** (
-                model.order + 1
-            )
-            rtol = float(min(max(rtol, RTOL_RANGE[0]), RTOL_RANGE[1]))
+            steps_over = model.adaptive_steps(model.rtol_pilot, horizon_s) / max_adaptive_steps
+            rtol = _tolerance_scaled(model.rtol_pilot, steps_over, model.order + 1)
             limit = limit_text or "the step limit"
         steps_in_budget = max_frame_cpu_s / max(model.cpu_per_step_s, 1e-12)
         if model.adaptive_steps(rtol, frame_dt_s) > steps_in_budget:
-            rtol = model.rtol_pilot * (model.adaptive_steps(model.rtol_pilot, frame_dt_s) / steps_in_budget) ** (
-                model.order + 1
-            )
-            rtol = float(f"{min(max(rtol, RTOL_RANGE[0]), RTOL_RANGE[1]):.1g}")
+            steps_over = model.adaptive_steps(model.rtol_pilot, frame_dt_s) / steps_in_budget
+            rtol = float(f"{_tolerance_scaled(model.rtol_pilot, steps_over, model.order + 1):.1g}")
             limit = _budget_text(max_frame_cpu_s)
         cost = model.adaptive_steps(rtol, horizon_s) * model.cpu_per_step_s
         return None, rtol, model.adaptive_factor(rtol), cost, f"rtol {rtol:.1g}", limit
