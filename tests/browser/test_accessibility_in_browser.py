@@ -21,7 +21,7 @@ import httpx
 import numpy as np
 import pytest
 
-from tests.browser.conftest import open_lesson, readout_values
+from tests.browser.conftest import open_lesson, readout_values, wait_for_math
 from tests.conftest import wait_until
 
 pytestmark = pytest.mark.browser
@@ -90,6 +90,7 @@ def _report(path: str, violations: list[dict]) -> None:
 def _open(page, url: str) -> None:
     page.goto(url)
     page.wait_for_function(PAGE_DRAWN, timeout=60_000)
+    wait_for_math(page)  # equations far down the page are typeset when the page is idle, after it is drawn
     # static/js/scroll_boxes.js marks overflowing boxes on the next animation frame after a change.
     page.evaluate("() => new Promise((done) => requestAnimationFrame(() => requestAnimationFrame(done)))")
 
