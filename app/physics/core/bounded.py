@@ -28,10 +28,10 @@ to ``wait_s`` and is then refused with :class:`WorkBusy`. Outcomes:
   more than its bounds, a 422 for a route) when the limits stop it: the runner's own kill at
   ``timeout_s``, the CPU limit's SIGXCPU, a ``MemoryError``, or a crash (SIGSEGV, SIGABRT, SIGBUS)
   within the address-space limit, which is how a C library fails when ``RLIMIT_AS`` refuses it memory;
-* :class:`WorkBusy` also when the child ran out of time after a busy machine paused it for more than
+* :class:`WorkBusy` also when the child ran out of time after the server's busy scenes paused it for more than
   :data:`BUSY_PAUSED_SHARE` of it, or kept it waiting for a processor for more than :data:`STARVED_SHARE` of the
-  time it wanted one (other work took every processor: the child runs on idle time only): the machine's load, not
-  the input, stopped it (a 429 with Retry-After);
+  time it wanted one (the server's own work took every processor: the child runs on the server's idle time only):
+  load, not the input, stopped it (a 429 with Retry-After);
 * :class:`WorkInterrupted` when the child was ended by a signal the runner did not send and its
   limits do not raise (SIGTERM, SIGKILL, SIGINT, SIGHUP…: an administrator, the machine's
   out-of-memory killer, a shutdown): nothing is wrong with the input, so try again (a 503 for a route);
@@ -129,11 +129,13 @@ def _address_space_bytes() -> int:
     return 0
 
 
-def _limit_resources(memory_bytes: int, cpu_seconds: int) -> None:
-    """In the child: allow ``memory_bytes`` more address space than now and ``cpu_seconds`` of CPU time, and run only
-    on processor time nothing else wants (Linux's SCHED_IDLE): work a student typed runs at full speed on a quiet
-    machine and never takes a class's frames on a busy one (its wall-clock limit still holds)."""
-    _run_on_idle_time()
+def _limit_resources(memory_bytes: int, cpu_seconds: int, *, idle_class: bool) -> None:
+    """In the child: allow ``memory_bytes`` more address space than now and ``cpu_seconds`` of CPU time, and (with
+    ``idle_class``: in a server) run only on processor time the server's own work does not want (Linux's SCHED_IDLE,
+    see :func:`_run_on_idle_time`): work a student typed runs at full speed on a quiet machine and never takes a
+    class's frames on a busy one (its wall-clock limit still holds)."""
+    if idle_class:
+        _run_on_idle_time()
     _, hard_as = resource.getrlimit(resource.RLIMIT_AS)
     limit_as = _address_space_bytes() + memory_bytes
     if hard_as != resource.RLIM_INFINITY:
@@ -145,22 +147,17 @@ def _limit_resources(memory_bytes: int, cpu_seconds: int) -> None:
 
 
 def _run_on_idle_time() -> None:
-    """Let this process take only processor time the server's scenes do not want. Linux shares the processor fairly
-    between sessions before it looks at a session's processes (autogroups), so a child that stayed in the server's
-    session would spend the server's share; it starts a session of its own instead, at the lowest weight, and runs in
-    the idle class. Measured with 100 students on their own heavy tops: a busy loop in the idle class of a session
-    of its own took their frames from 29.7 to 24.7 a second; in a session of its own at autogroup nice 19, 29.2
-    (the loop still used the 0.5 cores they left idle)."""
-    try:
-        os.setsid()
-        with open("/proc/self/autogroup", "w", encoding="ascii") as autogroup:
-            autogroup.write("19")
-    except OSError:  # no autogroups (not Linux, or switched off): the scheduling class below still applies
-        pass
+    """Let this process take only processor time the server's own processes (its scenes) do not want: the idle
+    scheduling class, in the server's session. Linux shares the processors fairly between sessions before it looks
+    at a session's processes (autogroups), so the child spends the server's share when the server's scenes leave it
+    idle, and yields to them at once when they want it; against other programs on the machine the server keeps its
+    fair share. Measured on this 2-core machine beside two CPU-bound programs of another session: a busy loop in the
+    idle class got 0.57 of a core in its parent's session, and 0.04 in a session of its own at autogroup nice 19
+    (what this did before: a derivation then failed as busy on any machine busy with other work)."""
     try:
         os.sched_setscheduler(0, os.SCHED_IDLE, os.sched_param(0))
-    except (AttributeError, OSError):  # no SCHED_IDLE (not Linux): a lower priority instead
-        os.nice(10)
+    except (AttributeError, OSError):  # no SCHED_IDLE (not Linux): the lowest priority instead
+        os.nice(19)
 
 
 def _answer(function: Callable[..., Any], args: tuple[Any, ...]) -> tuple[str, Any]:
@@ -181,7 +178,12 @@ def _answer(function: Callable[..., Any], args: tuple[Any, ...]) -> tuple[str, A
 
 
 def _child_main(
-    sender: Any, function: Callable[..., Any], args: tuple[Any, ...], memory_bytes: int, cpu_seconds: int
+    sender: Any,
+    function: Callable[..., Any],
+    args: tuple[Any, ...],
+    memory_bytes: int,
+    cpu_seconds: int,
+    idle_class: bool,
 ) -> None:
     """The child: set the limits, run, send one pickled ``(kind, payload)`` and exit.
 
@@ -189,7 +191,7 @@ def _child_main(
     from a crash), so an interrupt from outside is reported as one (:class:`WorkInterrupted`).
     """
     signal.signal(signal.SIGINT, signal.SIG_DFL)
-    _limit_resources(memory_bytes, cpu_seconds)
+    _limit_resources(memory_bytes, cpu_seconds, idle_class=idle_class)
     kind, payload = _answer(function, args)
     try:
         message = pickle.dumps((kind, payload), protocol=pickle.HIGHEST_PROTOCOL)
@@ -274,7 +276,7 @@ class BoundedRunner:
         """``function(*args)`` computed in a bounded child process; ``what`` names the work in refusals.
 
         Raises ``ValueError`` (the function's own), :class:`WorkTimeout`, :class:`WorkTooLarge`, :class:`WorkBusy` (no
-        slot, or out of time after the busy machine paused it), :class:`WorkInterrupted` (ended from outside, or the
+        slot, or out of time after the busy server paused it), :class:`WorkInterrupted` (ended from outside, or the
         server stopping) or :class:`WorkFailed`, as the module docstring says.
         """
         timeout_s = self.timeout_s if timeout_s is None else timeout_s
@@ -307,12 +309,14 @@ class BoundedRunner:
         cpu_seconds = math.ceil(timeout_s) + 1
         process = context.Process(
             target=_child_main,
-            args=(sender, function, args, int(memory_mb * 2**20), cpu_seconds),
+            # Only a server has frames to spare: elsewhere (a test, a benchmark) the child runs as any program does.
+            args=(sender, function, args, int(memory_mb * 2**20), cpu_seconds, _live_scenes is not None),
             name="dynlab-bounded",
             daemon=True,
         )
         answered = False
         try:
+            started = time.monotonic()
             try:
                 process.start()
             finally:
@@ -325,7 +329,7 @@ class BoundedRunner:
                         "while the server was busy with live scenes; try again in a minute",
                         retry_after_s=60,
                     )
-                running_s, waiting_s = _processor_times_s(process.pid)
+                running_s, waiting_s = _processor_times_s(process.pid, life_s=time.monotonic() - started - paused_s)
                 # Runnable, but other work had every processor (a child that slept never waits).
                 if waiting_s > STARVED_SHARE * (running_s + waiting_s) and waiting_s > BUSY_PAUSED_SHARE * timeout_s:
                     raise WorkBusy(
@@ -349,10 +353,12 @@ class BoundedRunner:
             _reap(process, kill=not answered)
 
 
-#: While the machine is busy, a child computes in turns of :data:`BUSY_RUN_S` with pauses of :data:`BUSY_PAUSE_S`:
+#: While the server is busy, a child computes in turns of :data:`BUSY_RUN_S` with pauses of :data:`BUSY_PAUSE_S`:
 #: even in the idle scheduling class it shares the processors' caches and memory with the live scenes (measured: a
-#: busy loop in the idle class cost 100 students half a frame a second). Busy: the 1-minute load, less this process's
-#: own children, over :data:`BUSY_LOAD_PER_CPU` a processor, while the server shows live scenes (:data:`_live_scenes`).
+#: busy loop in the idle class cost 100 students half a frame a second). Busy: the server's own processes (those of
+#: its session outside the idle class: the front and its scene workers) used more than :data:`BUSY_LOAD_PER_CPU` of
+#: the machine's processors since the last look, while the server shows live scenes (:data:`_live_scenes`). Other
+#: programs on the machine do not count: pausing for them spares no class a frame.
 BUSY_LOAD_PER_CPU = 0.5
 BUSY_RUN_S = 0.05
 BUSY_PAUSE_S = 0.1
@@ -360,28 +366,37 @@ BUSY_PAUSE_S = 0.1
 #: not by its own size: the caller hears "busy, try again" (:class:`WorkBusy`), not "try something smaller".
 BUSY_PAUSED_SHARE = 0.25
 #: A child that ran out of time after spending more than this share of the time it wanted a processor waiting for
-#: one got almost none: on idle time only, it yields to any other work (two CPU-bound programs on a 2-core machine
-#: leave it about 5 %, its own start included). Its time says nothing about the size of the work, so the caller hears
-#: "busy", not "try something smaller". (Shares of the child's own life: a busy forkserver may start it late.)
+#: one got almost none: on the server's idle time only, it yields to the server's other work (two CPU-bound
+#: processes of the server's session on a 2-core machine leave it about 5 %, its own start included). Its time says
+#: nothing about the size of the work, so the caller hears "busy", not "try something smaller". (Shares of the
+#: child's own life: a busy forkserver may start it late.)
 STARVED_SHARE = 0.9
 
 
-def _processor_times_s(pid: int | None) -> tuple[float, float]:
+def _processor_times_s(pid: int | None, *, life_s: float) -> tuple[float, float]:
     """``(running, waiting)``: seconds process ``pid`` has run on a processor and has been runnable but waiting for
     one (Linux's ``/proc/<pid>/schedstat``, in ns; a stopped or sleeping process is not waiting); zeros where this
-    cannot be read."""
+    cannot be read. Linux adds a wait to ``schedstat`` only when the wait ends, so a process runnable now that ran
+    less than its ``life_s`` (s, unpaused) is taken to have waited the rest: an idle-class child among busy programs
+    of its own session may not be given a processor once in two seconds (seen: 8 ms run, 14 ms waited, in 2 s)."""
     try:
         with open(f"/proc/{pid}/schedstat", encoding="ascii") as schedstat:
             running_ns, waiting_ns = (int(field) for field in schedstat.read().split()[:2])
-    except (OSError, ValueError):
+        with open(f"/proc/{pid}/stat", encoding="ascii", errors="replace") as stat:
+            runnable = stat.read().rsplit(")", 1)[1].split()[0] == "R"
+    except (OSError, ValueError, IndexError):
         return 0.0, 0.0
-    return running_ns / 1e9, waiting_ns / 1e9
+    running_s, waiting_s = running_ns / 1e9, waiting_ns / 1e9
+    if runnable:
+        waiting_s = max(waiting_s, life_s - running_s)
+    return running_s, waiting_s
 
 
 #: Says whether this process's server is showing live scenes now (set by the scene host when it starts; None in a
-#: process without one, e.g. a benchmark, which yields to any load). A child is paused for the machine's load only
-#: while it is true: the pauses protect the frames a class is watching, and with none to protect (a server warming
-#: its models before anyone came, a machine busy with other work) they would only make a derivation fail as "busy".
+#: process without one, e.g. a benchmark or a test, whose children neither pause nor run in the idle class: there is
+#: no class to spare). A child is paused for the server's load only while it is true: the pauses protect the frames a
+#: class is watching, and with none to protect (a server warming its models before anyone came) they would only make
+#: a derivation fail as "busy".
 _live_scenes: Callable[[], bool] | None = None
 #: How long an answer of :data:`_live_scenes` is used (s): a pool asks its workers, so it is asked at most this often.
 LIVE_SCENES_CHECK_S = 1.0
@@ -389,7 +404,8 @@ _live_scenes_seen: tuple[float, bool] = (-math.inf, True)
 
 
 def yield_only_to_live_scenes(live_scenes: Callable[[], bool]) -> None:
-    """Pause children for the machine's load only while ``live_scenes()`` says this server shows live scenes."""
+    """This process is a server: its children run in the idle class, and pause for its load only while
+    ``live_scenes()`` says it shows live scenes."""
     global _live_scenes, _live_scenes_seen
     _live_scenes, _live_scenes_seen = live_scenes, (-math.inf, True)
 
@@ -397,7 +413,7 @@ def yield_only_to_live_scenes(live_scenes: Callable[[], bool]) -> None:
 def _showing_live_scenes() -> bool:
     global _live_scenes_seen
     if _live_scenes is None:
-        return True
+        return False
     asked_at, showing = _live_scenes_seen
     now = time.monotonic()
     if now - asked_at >= LIVE_SCENES_CHECK_S:
@@ -409,12 +425,52 @@ def _showing_live_scenes() -> bool:
     return showing
 
 
-def _machine_busy(children: int) -> bool:
+#: The last look at the server's processes: (when, monotonic s; CPU seconds of each process, by pid), and whether
+#: they were busy since the look before.
+_server_seen: tuple[float, dict[int, float], bool] = (-math.inf, {}, False)
+_SERVER_SEEN_LOCK = threading.Lock()
+
+
+def _server_processes_cpu_s() -> dict[int, float]:
+    """CPU seconds used so far by each process of this process's session outside the idle class (from /proc; empty
+    where there is none)."""
+    session = os.getsid(0)
+    idle_class = getattr(os, "SCHED_IDLE", -1)
+    ticks_per_s = os.sysconf("SC_CLK_TCK")
+    used: dict[int, float] = {}
     try:
-        load = os.getloadavg()[0]
+        entries = [entry for entry in os.listdir("/proc") if entry.isdigit()]
     except OSError:
+        return used
+    for entry in entries:
+        try:
+            with open(f"/proc/{entry}/stat", "rb") as stat:
+                # pid (comm) state ppid pgrp session … utime stime … policy: comm may hold spaces and parentheses.
+                fields = stat.read().rsplit(b")", 1)[1].split()
+            if int(fields[3]) != session or int(fields[38]) == idle_class:
+                continue
+            used[int(entry)] = (int(fields[11]) + int(fields[12])) / ticks_per_s
+        except (OSError, ValueError, IndexError):
+            continue
+    return used
+
+
+def _server_busy() -> bool:
+    """Whether the server's own processes used more than :data:`BUSY_LOAD_PER_CPU` of the processors since the last
+    look (looked at most every :data:`LIVE_SCENES_CHECK_S`) while it shows live scenes."""
+    global _server_seen
+    if not _showing_live_scenes():
         return False
-    return (load - children) / (os.cpu_count() or 1) > BUSY_LOAD_PER_CPU and _showing_live_scenes()
+    with _SERVER_SEEN_LOCK:
+        seen_at, seen_cpu_s, busy = _server_seen
+        now = time.monotonic()
+        if now - seen_at >= LIVE_SCENES_CHECK_S:
+            cpu_s = _server_processes_cpu_s()
+            if math.isfinite(seen_at):
+                used_s = sum(max(0.0, spent - seen_cpu_s.get(pid, 0.0)) for pid, spent in cpu_s.items())
+                busy = used_s / (now - seen_at) / (os.cpu_count() or 1) > BUSY_LOAD_PER_CPU
+            _server_seen = (now, cpu_s, busy)
+        return busy
 
 
 #: Counts the server's stops: a wait begun before the latest one ends at once (its child is killed), so a stop never
@@ -431,7 +487,7 @@ def stop_all_work() -> None:
 
 def _await_answer(receiver: Any, process: Any, timeout_s: float) -> tuple[bool, float]:
     """Wait up to ``timeout_s`` (wall clock) for the child's answer: (whether it is there, seconds the child was
-    paused meanwhile). While the machine is busy the child is paused (SIGSTOP, then SIGCONT) for :data:`BUSY_PAUSE_S`
+    paused meanwhile). While the server is busy the child is paused (SIGSTOP, then SIGCONT) for :data:`BUSY_PAUSE_S`
     after each :data:`BUSY_RUN_S` it runs. Raises :class:`WorkInterrupted` when the server stops meanwhile
     (:func:`stop_all_work`)."""
     deadline = time.monotonic() + timeout_s
@@ -440,9 +496,9 @@ def _await_answer(receiver: Any, process: Any, timeout_s: float) -> tuple[bool, 
     while (left := deadline - time.monotonic()) > 0:
         if _stops != stops:
             raise WorkInterrupted("the server is stopping; try again when it is back", signal_number=signal.SIGTERM)
-        if receiver.poll(min(left, BUSY_RUN_S if _machine_busy(children=1) else 0.5)):
+        if receiver.poll(min(left, BUSY_RUN_S if _server_busy() else 0.5)):
             return True, paused_s
-        if not _machine_busy(children=1) or process.pid is None:
+        if not _server_busy() or process.pid is None:
             continue
         try:
             os.kill(process.pid, signal.SIGSTOP)

@@ -96,6 +96,11 @@ def limits_seen() -> tuple[int, int, int]:
     return resource.getrlimit(resource.RLIMIT_AS)[0], resource.getrlimit(resource.RLIMIT_CPU)[0], _address_space_bytes()
 
 
+def session_and_policy() -> tuple[int, int]:
+    """The child's session id and scheduling policy."""
+    return os.getsid(0), os.sched_getscheduler(0)
+
+
 def kinetic_energy_rate_derivative(text: str) -> sympy.Expr:
     """∂T/∂q1d of a typed kinetic energy: the kind of work the runner is for."""
     names = {name: sympy.Symbol(name, real=True) for name in ("q1", "q1d", "m", "l")}
@@ -176,7 +181,16 @@ def runner() -> BoundedRunner:
 def quiet_machine(monkeypatch):
     """These tests time their children to a tenth of a second: the machine counts as quiet (no pauses), whatever the
     rest of the suite is doing; the pauses have their own test below."""
-    monkeypatch.setattr(bounded, "_machine_busy", lambda children: False)
+    monkeypatch.setattr(bounded, "_server_busy", lambda: False)
+
+
+@pytest.fixture
+def as_a_server():
+    """This process counts as a server showing live scenes (as the scene host makes it): its children run in the idle
+    class."""
+    bounded.yield_only_to_live_scenes(lambda: True)
+    yield
+    bounded._live_scenes, bounded._live_scenes_seen = None, (-math.inf, True)
 
 
 # -- answers -------------------------------------------------------------------------------
@@ -317,18 +331,19 @@ def test_a_child_ended_from_outside_is_interrupted_not_blamed_on_its_limits(runn
 def test_work_that_runs_out_of_time_while_the_machine_paused_it_is_busy_not_too_large(runner, monkeypatch):
     """On a busy machine a child computes in turns (50 ms, then 100 ms paused): out of time after such pauses, the
     caller hears "busy, try again" (429 with Retry-After at the routes), not "try something smaller"."""
-    monkeypatch.setattr(bounded, "_machine_busy", lambda children: True)
+    monkeypatch.setattr(bounded, "_server_busy", lambda: True)
     with pytest.raises(WorkBusy, match=r"was paused for \d+ s of its 1 s while the server was busy") as caught:
         runner.run(spin_forever, (), timeout_s=1.0, what="deriving these equations")
     assert caught.value.retry_after_s >= 1
     assert _wait_for(lambda: not _workers_left(), 5.0), _workers_left()
 
 
-def test_work_starved_of_processors_by_other_programs_is_busy_not_too_large(runner, monkeypatch):
-    """Two CPU-bound programs on a 2-core machine (one more than there are cores here) leave a child on idle time
-    almost nothing: out of time, it waited for a processor nearly all of it. The caller hears "busy, try again" (a 429
-    with Retry-After at the routes), not "try something smaller", which its size never showed."""
-    monkeypatch.setattr(bounded, "_machine_busy", lambda children: False)  # no pauses: only the other programs
+def test_work_starved_of_processors_by_other_programs_is_busy_not_too_large(runner, monkeypatch, as_a_server):
+    """Two CPU-bound programs in a server's own session on a 2-core machine (one more than there are cores here: as
+    its busy scenes would be) leave a child on idle time almost nothing: out of time, it waited for a
+    processor nearly all of it. The caller hears "busy, try again" (a 429 with Retry-After at the routes), not "try
+    something smaller", which its size never showed."""
+    monkeypatch.setattr(bounded, "_server_busy", lambda: False)  # no pauses: only the other programs
     hogs = [subprocess.Popen([sys.executable, "-c", "while True: pass"]) for _ in range((os.cpu_count() or 1) + 1)]
     try:
         with pytest.raises(WorkBusy, match=r"waited \d+ s of its 2 s for a processor that other work") as caught:
@@ -454,35 +469,79 @@ def test_bad_call_limits_name_the_field(runner):
 
 
 #: The real rule (the autouse ``quiet_machine`` replaces it in every test).
-MACHINE_BUSY = bounded._machine_busy
+SERVER_BUSY = bounded._server_busy
 
 
-def test_a_busy_machine_pauses_children_only_while_the_server_shows_live_scenes(monkeypatch):
-    """The pauses protect the frames a class watches: with no viewer (a server warming its models, or a machine busy
-    with other work) a derivation runs on and is not refused as busy; the host's answer is asked at most once a second.
-    """
-    monkeypatch.setattr(bounded, "_machine_busy", MACHINE_BUSY)
-    monkeypatch.setattr(bounded.os, "getloadavg", lambda: (50.0, 50.0, 50.0))
+def test_a_busy_server_pauses_children_only_while_it_shows_live_scenes(monkeypatch):
+    """The pauses protect the frames a class watches: busy means the server's own processes used more than half the
+    processors since the last look (looked at once a second), and only while it shows live scenes; with no viewer (a
+    server warming its models) or no server at all (a test, a benchmark) a derivation runs on and is not refused as
+    busy."""
+    monkeypatch.setattr(bounded, "_server_busy", SERVER_BUSY)
+    monkeypatch.setattr(bounded.os, "cpu_count", lambda: 2)
+    clock = {"now": 100.0}
+    monkeypatch.setattr(bounded.time, "monotonic", lambda: clock["now"])
+    server_cpu_s = {41: 10.0, 42: 20.0}
+    monkeypatch.setattr(bounded, "_server_processes_cpu_s", lambda: dict(server_cpu_s))
+    monkeypatch.setattr(bounded, "_server_seen", (-bounded.math.inf, {}, False))
     monkeypatch.setattr(bounded, "_live_scenes", None)
-    assert bounded._machine_busy(children=1)  # no host in this process (a benchmark): yield to any load
     asked = []
-    viewers = {"count": 0}
+    viewers = {"count": 3}
 
     def showing() -> bool:
         asked.append(viewers["count"])
         return viewers["count"] > 0
 
-    clock = {"now": 100.0}
-    monkeypatch.setattr(bounded.time, "monotonic", lambda: clock["now"])
-    bounded.yield_only_to_live_scenes(showing)
     try:
-        assert not bounded._machine_busy(children=1)
-        viewers["count"] = 3
-        assert not bounded._machine_busy(children=1), "the answer is kept for LIVE_SCENES_CHECK_S"
+        assert not bounded._server_busy()  # no host in this process (a benchmark): nothing to yield to
+        bounded.yield_only_to_live_scenes(showing)
+        assert not bounded._server_busy()  # the first look: nothing to compare with yet
+        server_cpu_s[41] += 0.7
+        server_cpu_s[42] += 0.7
         clock["now"] += bounded.LIVE_SCENES_CHECK_S
-        assert bounded._machine_busy(children=1)
-        assert asked == [0, 3]
-        monkeypatch.setattr(bounded.os, "getloadavg", lambda: (0.1, 0.1, 0.1))
-        assert not bounded._machine_busy(children=1)  # viewers, but an idle machine
+        assert bounded._server_busy()  # 1.4 of 2 processors in 1 s is busy
+        server_cpu_s[41] += 0.7
+        assert bounded._server_busy(), "the answer is kept for LIVE_SCENES_CHECK_S"
+        clock["now"] += bounded.LIVE_SCENES_CHECK_S
+        assert not bounded._server_busy()  # 0.7 of 2 processors: not over half
+        server_cpu_s[43] = 1.5  # a process that started since the last look counts from zero
+        clock["now"] += bounded.LIVE_SCENES_CHECK_S
+        assert bounded._server_busy()
+        viewers["count"] = 0
+        clock["now"] += bounded.LIVE_SCENES_CHECK_S
+        assert not bounded._server_busy()  # busy, but nobody is watching a scene
+        assert asked == [3, 3, 3, 3, 0]  # once a second: not at the look that kept its answer
     finally:
         bounded._live_scenes, bounded._live_scenes_seen = None, (-bounded.math.inf, True)
+
+
+def test_the_server_is_the_session_outside_the_idle_class_and_not_other_programs():
+    """What :func:`bounded._server_busy` counts: this process's session (a server's front and scene workers), without
+    its idle-class children (the derivations themselves) and without programs of other sessions."""
+    spin = [sys.executable, "-c", "while True: pass"]
+    same_session = subprocess.Popen(spin)
+    other_session = subprocess.Popen(spin, start_new_session=True)
+    idle_class = subprocess.Popen(spin, preexec_fn=lambda: os.sched_setscheduler(0, os.SCHED_IDLE, os.sched_param(0)))
+    try:
+        counted = bounded._server_processes_cpu_s()
+        assert os.getpid() in counted and same_session.pid in counted
+        assert other_session.pid not in counted and idle_class.pid not in counted
+    finally:
+        for program in (same_session, other_session, idle_class):
+            program.kill()
+            program.wait()
+
+
+def test_a_server_child_runs_in_the_servers_session_in_the_idle_class(runner, as_a_server):
+    """In the server's session, so the server keeps its fair share of the machine against other programs; in the idle
+    class, so it yields to the server's scenes."""
+    session, policy = runner.run(session_and_policy)
+    assert session == os.getsid(0)
+    assert policy == os.SCHED_IDLE
+
+
+def test_a_child_of_a_process_that_is_no_server_runs_as_any_program(runner):
+    """A test or a benchmark has no class to spare: its children run in the normal class."""
+    session, policy = runner.run(session_and_policy)
+    assert session == os.getsid(0)
+    assert policy == os.SCHED_OTHER
