@@ -129,7 +129,8 @@ def test_a_typed_lagrangian_is_refused_clearly(client, request_body, field, word
 def test_a_derivation_over_its_time_bound_is_refused_and_the_server_answers_after(inprocess_client, monkeypatch):
     client = inprocess_client  # looks inside the scene instance: the app in this process
     monkeypatch.setattr(typed, "runner", BoundedRunner(max_jobs=1, timeout_s=0.05, memory_mb=1024))
-    monkeypatch.setattr(bounded, "_server_busy", lambda: False)  # the 422 path: no pauses, however busy the suite
+    monkeypatch.setattr(bounded, "_server_busy", lambda: False)  # the 422 path: no pauses, however busy the suite,
+    monkeypatch.setattr(bounded, "STARVED_SHARE", math.inf)  # and never "busy" for a child the machine starved
     start = time.perf_counter()
     answer = client.post(
         "/api/systems/custom/derive",

@@ -480,9 +480,11 @@ _stops = 0
 
 def stop_all_work() -> None:
     """The server is stopping: every bounded call running now ends at once with :class:`WorkInterrupted` and its child
-    is killed."""
-    global _stops
+    is killed; later calls in this process (one that starts and stops apps, such as a test's) run as in a process that
+    shows no scenes."""
+    global _stops, _live_scenes, _live_scenes_seen
     _stops += 1
+    _live_scenes, _live_scenes_seen = None, (-math.inf, True)
 
 
 def _await_answer(receiver: Any, process: Any, timeout_s: float) -> tuple[bool, float]:

@@ -541,7 +541,10 @@ def test_a_server_child_runs_in_the_servers_session_in_the_idle_class(runner, as
 
 
 def test_a_child_of_a_process_that_is_no_server_runs_as_any_program(runner):
-    """A test or a benchmark has no class to spare: its children run in the normal class."""
-    session, policy = runner.run(session_and_policy)
-    assert session == os.getsid(0)
-    assert policy == os.SCHED_OTHER
+    """A test or a benchmark has no class to spare: its children run in the normal class; so do those of a process
+    whose server has stopped."""
+    assert runner.run(session_and_policy) == (os.getsid(0), os.SCHED_OTHER)
+    bounded.yield_only_to_live_scenes(lambda: True)
+    assert runner.run(session_and_policy)[1] == os.SCHED_IDLE
+    bounded.stop_all_work()
+    assert runner.run(session_and_policy)[1] == os.SCHED_OTHER
