@@ -366,8 +366,8 @@ BUSY_PAUSE_S = 0.1
 #: not by its own size: the caller hears "busy, try again" (:class:`WorkBusy`), not "try something smaller".
 BUSY_PAUSED_SHARE = 0.25
 #: A child that ran out of time after spending more than this share of the time it wanted a processor waiting for
-#: one got almost none: on the server's idle time only, it yields to the server's other work (two CPU-bound
-#: processes of the server's session on a 2-core machine leave it about 5 %, its own start included). Its time says
+#: one got almost none: on the server's idle time only, it yields to the server's other work (three CPU-bound
+#: processes of the server's session on this 2-core machine left it 8–15 ms of 2 s). Its time says
 #: nothing about the size of the work, so the caller hears "busy", not "try something smaller". (Shares of the
 #: child's own life: a busy forkserver may start it late.)
 STARVED_SHARE = 0.9
@@ -457,7 +457,8 @@ def _server_processes_cpu_s() -> dict[int, float]:
 
 def _server_busy() -> bool:
     """Whether the server's own processes used more than :data:`BUSY_LOAD_PER_CPU` of the processors since the last
-    look (looked at most every :data:`LIVE_SCENES_CHECK_S`) while it shows live scenes."""
+    look (looked at most every :data:`LIVE_SCENES_CHECK_S`; after a long quiet spell the first answer averages over
+    it, and the next, a second later, is current) while it shows live scenes."""
     global _server_seen
     if not _showing_live_scenes():
         return False
