@@ -126,8 +126,9 @@ def _process_table() -> dict[int, tuple[int, str, str]]:
     return table
 
 
-def _descendants() -> list[tuple[int, int, str, str]]:
-    """(pid, parent pid, state, command) of every process below this one, the forkserver's children included."""
+def _descendants(*, not_below: set[int] = frozenset()) -> list[tuple[int, int, str, str]]:
+    """(pid, parent pid, state, command) of every process below this one, the forkserver's children included, and
+    none below the processes ``not_below`` (they are listed themselves)."""
     table = _process_table()
     found, frontier = [], [os.getpid()]
     while frontier:
@@ -135,7 +136,8 @@ def _descendants() -> list[tuple[int, int, str, str]]:
         for pid, (ppid, state, command) in table.items():
             if ppid == parent:
                 found.append((pid, ppid, state, command))
-                frontier.append(pid)
+                if pid not in not_below:
+                    frontier.append(pid)
     return found
 
 
@@ -146,11 +148,14 @@ _BEFORE: set[int] = set()
 
 def _workers_left() -> list[tuple[int, int, str, str]]:
     """Descendants other than the long-lived forkserver and resource tracker (our own children, started
-    with ``-c``) and other than what was there before the runner: leaked or zombie workers. A worker is
+    with ``-c``) and other than what was there before the runner, or below it (a browser of earlier tests in this
+    process starts helper processes of its own when it likes): leaked or zombie workers. A worker is
     forked from the forkserver, so it shares its command line but is the forkserver's child, not ours."""
     helpers = ("multiprocessing.forkserver import main", "multiprocessing.resource_tracker import main")
+    # Not below an earlier process, unless it is the forkserver (an earlier test's, which this runner then shares).
+    foreign = {p[0] for p in _descendants() if p[0] in _BEFORE and helpers[0] not in p[3]}
     return [
-        p for p in _descendants()
+        p for p in _descendants(not_below=foreign)
         if p[0] not in _BEFORE and (p[2] == "Z" or p[1] != os.getpid() or not any(helper in p[3] for helper in helpers))
     ]  # fmt: skip
 
