@@ -28,6 +28,10 @@ WARM_UP_FRAMES = 30
 FRAME_DT_S = 1.0 / 30.0
 
 
+#: What a viser scene node's pose is when it was made without one (a scene may read it back).
+_SCENE_NODE_DEFAULTS: dict[str, tuple[float, ...]] = {"position": (0.0, 0.0, 0.0), "wxyz": (1.0, 0.0, 0.0, 0.0)}
+
+
 class NullHandle:
     """Stands for any viser handle or API: remembers attributes set on it; any call returns a new handle.
 
@@ -44,10 +48,14 @@ class NullHandle:
     def __getattr__(self, name: str) -> Any:
         if name.startswith("__"):
             raise AttributeError(name)
-        return self._values.setdefault(name, NullHandle())
+        return self._values.setdefault(name, _SCENE_NODE_DEFAULTS.get(name) or NullHandle())
 
     def __call__(self, *args: Any, **kwargs: Any) -> NullHandle:
-        return NullHandle()
+        """A new handle holding the keyword arguments it was made with, as viser's handles do (``add_frame(...,
+        position=…)`` has that ``position``: a scene may read it back)."""
+        handle = NullHandle()
+        handle._values.update(kwargs)
+        return handle
 
     def __enter__(self) -> NullHandle:
         return self
