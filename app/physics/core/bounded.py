@@ -316,7 +316,6 @@ class BoundedRunner:
         )
         answered = False
         try:
-            started = time.monotonic()
             try:
                 process.start()
             finally:
@@ -329,11 +328,11 @@ class BoundedRunner:
                         "while the server was busy with live scenes; try again in a minute",
                         retry_after_s=60,
                     )
-                running_s, waiting_s = _processor_times_s(process.pid, life_s=time.monotonic() - started - paused_s)
+                running_s, waiting_s = _processor_times_s(process.pid, paused_s=paused_s)
                 # Runnable, but other work had every processor (a child that slept never waits).
                 if waiting_s > STARVED_SHARE * (running_s + waiting_s) and waiting_s > BUSY_PAUSED_SHARE * timeout_s:
                     raise WorkBusy(
-                        f"{what} waited {waiting_s:.0f} s of its {timeout_s:g} s for a processor that other work "
+                        f"{what} waited {waiting_s:.2g} s of its {timeout_s:g} s for a processor that other work "
                         "on the server was using; try again in a minute",
                         retry_after_s=60,
                     )
@@ -373,17 +372,24 @@ BUSY_PAUSED_SHARE = 0.25
 STARVED_SHARE = 0.9
 
 
-def _processor_times_s(pid: int | None, *, life_s: float) -> tuple[float, float]:
+def _processor_times_s(pid: int | None, *, paused_s: float = 0.0) -> tuple[float, float]:
     """``(running, waiting)``: seconds process ``pid`` has run on a processor and has been runnable but waiting for
     one (Linux's ``/proc/<pid>/schedstat``, in ns; a stopped or sleeping process is not waiting); zeros where this
     cannot be read. Linux adds a wait to ``schedstat`` only when the wait ends, so a process runnable now that ran
-    less than its ``life_s`` (s, unpaused) is taken to have waited the rest: an idle-class child among busy programs
-    of its own session may not be given a processor once in two seconds (seen: 8 ms run, 14 ms waited, in 2 s)."""
+    less than its life (since it was forked, less ``paused_s``) is taken to have waited the rest: an idle-class child
+    among busy programs of its own session may not be given a processor once in two seconds (seen: 8 ms run, 14 ms
+    waited, in 2 s). The life is the process's own, from its start time: the time a busy forkserver took to fork it
+    was no wait of the child's (counting it once turned a 0.1 s timeout into "busy" on a loaded machine)."""
     try:
         with open(f"/proc/{pid}/schedstat", encoding="ascii") as schedstat:
             running_ns, waiting_ns = (int(field) for field in schedstat.read().split()[:2])
         with open(f"/proc/{pid}/stat", encoding="ascii", errors="replace") as stat:
-            runnable = stat.read().rsplit(")", 1)[1].split()[0] == "R"
+            # pid (comm) state … starttime (the 22nd field, in clock ticks since boot): comm may hold ")".
+            fields = stat.read().rsplit(")", 1)[1].split()
+        with open("/proc/uptime", encoding="ascii") as uptime:
+            now_since_boot_s = float(uptime.read().split()[0])
+        runnable = fields[0] == "R"
+        life_s = now_since_boot_s - int(fields[19]) / os.sysconf("SC_CLK_TCK") - paused_s
     except (OSError, ValueError, IndexError):
         return 0.0, 0.0
     running_s, waiting_s = running_ns / 1e9, waiting_ns / 1e9

@@ -424,7 +424,7 @@ def test_no_children_or_descriptors_are_left_after_many_calls(runner):
                 runner.run(hold_megabytes, (1024,), memory_mb=64.0)
             else:
                 runner.run(exit_with, (5,))
-        except WorkTimeout:
+        except (WorkTimeout, WorkBusy):  # a child given 0.1 s on a loaded machine may spend it waiting for a processor
             outcomes["timeout"] += 1
         except WorkTooLarge:
             outcomes["memory"] += 1
