@@ -30,6 +30,8 @@ from app.physics.solvers.system import OdeSystem
 def failure_message(status: str, t_s: float, integrator: Integrator, frame_dt_s: float, *, system: OdeSystem) -> str:
     """A sentence a student can act on (naming only remedies ``system`` allows: :func:`remedy`)."""
     what = FAILURE_TEXT.get(status, status)
+    if status == "event":  # the model's own stop (a landing, a lift-off), not a numerical failure: nothing to loosen
+        return f"Stopped at t = {t_s:.3f} s: {what}."
     advice = "Loosen the tolerance or check the parameters." if integrator.spec.adaptive else f"{remedy(system)}."
     return f"Stopped at t = {t_s:.3f} s: {what} with {integrator.describe(frame_dt_s)}. {advice}"
 
@@ -147,6 +149,8 @@ class LiveRun:
     t_s: float = 0.0
     status: str = "ok"
     message: str = ""
+    #: The terminal event that stopped the run (status "event"), once playback has reached it.
+    stop_event: EventRecord | None = None
     steps: int = 0
     batch_frames: int = 15
     limit: Callable[[np.ndarray, np.ndarray], Any] | None = None
@@ -155,6 +159,7 @@ class LiveRun:
     _next: int = field(init=False, default=0, repr=False)
     _pending_status: str = field(init=False, default="ok", repr=False)
     _pending_message: str = field(init=False, default="", repr=False)
+    _pending_event: EventRecord | None = field(init=False, default=None, repr=False)
     _frame_dt_s: float = field(init=False, default=0.0, repr=False)
     _next_batch: int = field(init=False, default=1, repr=False)
 
@@ -191,6 +196,7 @@ class LiveRun:
             else (outcome.status if outcome.status != "ok" else "non_finite")
         )
         self._pending_message = ""
+        self._pending_event = outcome.events[-1] if outcome.status == "event" and outcome.events else None
         if self.limit is not None and done > 0:
             times = self.t_s + frame_dt_s * np.arange(done + 1)
             reached = self.limit(times, np.vstack([self.y[None, :], self._buffer[:done]]))
@@ -219,6 +225,7 @@ class LiveRun:
 
     def _fail(self, frame_dt_s: float) -> bool:
         self.status = self._pending_status if self._pending_status != "ok" else "non_finite"
+        self.stop_event = self._pending_event if self.status == "event" else None
         self.message = self._pending_message or failure_message(
             self.status, self.t_s, self.integrator, frame_dt_s, system=self.system
         )

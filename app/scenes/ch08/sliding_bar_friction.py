@@ -148,20 +148,32 @@ class SlidingBarFrictionScene(IntegratedScene):
         update_node(self.cone, points=cone.astype(np.float32))
 
     def step_motion(self, dt_s: float) -> bool:
-        """One frame; at the model's stop (jam, lift-off, landing) the bar is held there, then the run replays."""
+        """One frame; at the model's stop (jam, lift-off, landing) the bar is held there, then the run replays.
+
+        The run advances :attr:`frame_dt_s` a frame whatever the host's frame ``dt_s``, so the stop is judged on
+        that; a live run that reaches its terminal event first (its own located instant) is held there too."""
         stop = self.stop
-        if stop is not None and (not self.run.running or self.run.t_s + dt_s > stop.t_s):
-            if self._held_s == 0.0:
-                self.status = ""  # a stop the model explains (readout message), not a numerical failure
-            self._held_s += dt_s
-            self._clock_s += dt_s
-            if self._held_s > REPLAY_AFTER_STOP_S:
-                self.restart()
-                self._held_s = self._clock_s = 0.0
-            return True
+        if stop is not None and (not self.run.running or self.run.t_s + self.frame_dt_s > stop.t_s):
+            return self._hold(dt_s)
         running = self.step_physics()
         self._clock_s = self.run.t_s
+        if not running and self.run.status == "event" and self.run.stop_event is not None:
+            self.stop = self.run.stop_event  # the model's stop, not a numerical failure: held, then replayed
+            self.status = ""
+            return True
         return running
+
+    def _hold(self, dt_s: float) -> bool:
+        """Hold the bar at :attr:`stop` for one frame of ``dt_s`` s; replay from the start after
+        :data:`REPLAY_AFTER_STOP_S`."""
+        if self._held_s == 0.0:
+            self.status = ""  # a stop the model explains (readout message), not a numerical failure
+        self._held_s += dt_s
+        self._clock_s += dt_s
+        if self._held_s > REPLAY_AFTER_STOP_S:
+            self.restart()
+            self._held_s = self._clock_s = 0.0
+        return True
 
     def redraw(self) -> None:
         self._draw_state(self.stop.state if self._held_s > 0.0 and self.stop is not None else self.run.y)
@@ -185,13 +197,15 @@ class SlidingBarFrictionScene(IntegratedScene):
         forces = self._forces
         budget = physics.energy_budget(params, y)
         phase = int(y[physics.PHASE])
+        held = self._held_s > 0.0 and self.stop is not None
+        phase_word = physics.PHASE_WORDS[phase]
+        if held and self.stop is not None:
+            phase_word = physics.STOPPED_PHASE_WORDS.get(self.stop.index, phase_word)
         band = physics.painleve_band_deg(params["mu"])
         band_text = "none: μ < 4/3, sliding is always consistent"
         quantities = [
-            Quantity(
-                "t_s", "time t", self.stop.t_s if self._held_s > 0.0 and self.stop is not None else self.run.t_s, "s"
-            ),
-            Quantity.word("phase", "phase", physics.PHASE_WORDS[phase]),
+            Quantity("t_s", "time t", self.stop.t_s if held and self.stop is not None else self.run.t_s, "s"),
+            Quantity.word("phase", "phase", phase_word),
             Quantity("angle_deg", "angle from the floor θ", math.degrees(y[physics.THETA]), "deg"),
             Quantity("contact_speed_m_s", "sliding speed of B, u", float(y[physics.U]), "m/s"),
             Quantity("normal_force_N", "normal force N", float(forces[physics.C_NORMAL]), "N"),

@@ -138,7 +138,9 @@ class IntegratedScene(Scene):
         self._physics_s += time.perf_counter() - start
         self._frames += 1
         if not running:  # a blow-up, or the model's own edge (lift-off, a singular mass matrix…) in its words
-            self.status = self.run.message
+            event = self.run.stop_event
+            stopped = self.run_model.stop_message(self.physical_params(), event) if event is not None else ""
+            self.status = stopped or self.run.message
             return False
         if self._frames % REFERENCE_SAMPLE_EVERY == 0:
             self._sample_reference_error()

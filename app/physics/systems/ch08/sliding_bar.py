@@ -84,6 +84,11 @@ EVENT_WORDS = {
     LIFT_OFF: "B leaves the floor (free flight not modelled): run stops",
     LANDS: "the bar lands flat: run stops",
 }
+#: The phase while the run is held at the terminal event that stopped it (a jam keeps its own phase word).
+STOPPED_PHASE_WORDS = {
+    LIFT_OFF: "left the floor: the run stopped",
+    LANDS: "landed flat: the run stopped",
+}
 #: A jammed contact stops the run this long after it jammed (s): far below anything shown.
 JAM_STOP_DELAY_S = 1e-9
 #: Contact quantities from :func:`contact_dynamics`.
