@@ -66,13 +66,19 @@ import { renderPlot } from "./plot.js";
   const unitOf = (name) => (name === TIME ? "s" : byName[name].unit);
   const withUnit = (name) => (unitOf(name) ? `${labelOf(name)} (${unitOf(name)})` : labelOf(name));
 
+  // What the student picked (null: not yet), kept apart from the pickers: a rebuilt picker list (another run's
+  // quantities) puts it back wherever those quantities exist again.
+  const chosen = { x: null, y: yPicks.map(() => null) };
   function setQuantities(next) {
+    // A scene replaying from its start has kept no frames for a moment, and its answer then lists no quantities:
+    // that is not a new set of quantities, so the pickers (and the student's choice) stay as they are.
+    if (!next.length) return false;
     const names = next.map((q) => q.name).join("|");
     if (names === quantities.map((q) => q.name).join("|")) return false;
     quantities = next;
     for (const key of Object.keys(byName)) delete byName[key];
     for (const q of quantities) byName[q.name] = q;
-    const keep = [xPick.value, ...yPicks.map((s) => s.value)];
+    const keep = [chosen.x ?? xPick.value, ...yPicks.map((s, i) => chosen.y[i] ?? s.value)];
     const groups = [["series", "series"], ["invariant", "invariants"], ["energy", "energy"]];
     const fill = (select, first) => {
       select.replaceChildren(first);
@@ -105,6 +111,7 @@ import { renderPlot } from "./plot.js";
     const times = data.t_s || [];
     if (lastT !== null && !(times.length && Math.abs(times[0] - lastT) <= SAME_FRAME_S)) {
       clearStore();
+      replaying = true; // the last run's graph stays up until the new run has a line to draw
       renderGraph();
       return 0; // ask again at once, for the new run's frames from its start
     }
@@ -141,7 +148,8 @@ import { renderPlot } from "./plot.js";
     }
     renderEnergy(data.energy);
     if (added) renderGraph();
-    return added ? POLL_MS : IDLE_MS; // paused (nothing new): ask less often
+    // Paused (nothing new): ask less often; but a run that has just started again is asked at the usual rate.
+    return added || lastT === null ? POLL_MS : IDLE_MS;
   }
 
   // ---- energy bars, from a zero line (a negative potential is drawn to the left of it) ------------------------
@@ -189,7 +197,10 @@ import { renderPlot } from "./plot.js";
     const finite = values.filter(Number.isFinite);
     return finite.length ? [Math.min(...finite), Math.max(...finite)] : null;
   }
+  let replaying = false;
   function renderGraph() {
+    if (replaying && store.t.length < 2) return;
+    replaying = false;
     const xName = xPick.value;
     const yNames = [...new Set(yPicks.map((s) => s.value).filter((v) => v !== NONE && v in byName))];
     const from = store.t.findIndex((t) => t >= lastT - Number(windowPick.value) - SAME_FRAME_S);
@@ -222,9 +233,9 @@ import { renderPlot } from "./plot.js";
     });
     summary.textContent = description;
   }
-  xPick.addEventListener("change", renderGraph);
+  xPick.addEventListener("change", () => { chosen.x = xPick.value; renderGraph(); });
   windowPick.addEventListener("change", renderGraph);
-  yPicks.forEach((select) => select.addEventListener("change", renderGraph));
+  yPicks.forEach((select, i) => select.addEventListener("change", () => { chosen.y[i] = select.value; renderGraph(); }));
 
   // ---- polling: only while open, visible and the session has a scene ------------------------------------------
   let ready = false, timer = null, inFlight = false;

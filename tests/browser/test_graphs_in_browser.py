@@ -171,3 +171,41 @@ def test_energy_bars_phase_plot_live_time_graph_and_csv(browser, live_server, sh
 
     assert errors == [] and graph_console_errors == [], (errors, graph_console_errors)
     context.close()
+
+
+#: In the page: from now on, note every moment the graph is hidden, drawn empty or plots something other than the
+#: student's choice, and count the replays (the plotted span's end going back in time).
+WATCH_THE_GRAPH = """([y, x]) => {
+  const box = document.querySelector('#graphs .time-graph');
+  const watch = window.__graphWatch = { replays: 0, faults: [], lastEnd: null };
+  const look = () => {
+    const y1 = document.getElementById('graph-y1').value, xPick = document.getElementById('graph-x').value;
+    if (box.hidden) watch.faults.push('graph hidden');
+    if (y1 !== y || xPick !== x) watch.faults.push(`plots ${y1} against ${xPick}`);
+    if (!box.querySelector('.graph-plot svg polyline')) watch.faults.push('no line drawn');
+    const end = /to (-?[0-9.]+) s;/.exec(box.querySelector('.graph-summary').textContent);
+    if (end) {
+      const t = Number(end[1]);
+      if (watch.lastEnd !== null && t < watch.lastEnd) watch.replays += 1;
+      watch.lastEnd = t;
+    }
+  };
+  new MutationObserver(look).observe(box, { subtree: true, childList: true, attributes: true, characterData: true });
+}"""
+
+
+def test_a_replaying_scene_keeps_the_students_graph(browser, live_server):
+    # Issue 29, item 4: the ladder replays every ~3.5 s; at each replay the graph hid for about a second and the chosen
+    # plot (wall force against angle) went back to the first series against time.
+    context, page, session_id, errors = open_lesson(browser, live_server, "/lessons/6-2-sliding-ladder")
+    page.click("#graphs > summary")
+    page.wait_for_selector("#graph-y1 option[value='wall_force_N']", state="attached", timeout=15_000)
+    pick(page, "graph-y1", "wall_force_N")
+    pick(page, "graph-x", "angle_from_floor")
+    wait_until(lambda: points(page) > 10, timeout_s=15, what="the phase plot of the wall force")
+    page.evaluate(WATCH_THE_GRAPH, ["wall_force_N", "angle_from_floor"])
+    page.wait_for_function("window.__graphWatch.replays >= 2", timeout=30_000)
+    assert page.evaluate("window.__graphWatch.faults") == []
+    assert page.get_attribute("#graphs .time-graph", "data-kind") == "phase"
+    assert not errors, errors
+    context.close()
