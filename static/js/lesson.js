@@ -43,6 +43,7 @@ export const lesson = (function () {
   const form = document.getElementById("controls");
   const list = document.getElementById("control-list");
   const errorBox = document.getElementById("control-error");
+  const errorHome = errorBox.nextElementSibling; // where a message about no one control is shown (before "Reset")
   const widgets = {};
 
   function toSlider(spec, v) {
@@ -203,9 +204,21 @@ export const lesson = (function () {
       if (at >= 0) listName = name;
     }
     const invalid = listName || field;
-    list.querySelectorAll(".control").forEach((row) => row.classList.toggle("invalid", row.dataset.name === invalid));
+    let invalidRow = null;
+    list.querySelectorAll(".control").forEach((row) => {
+      row.classList.toggle("invalid", row.dataset.name === invalid);
+      if (row.dataset.name === invalid) invalidRow = row;
+    });
+    // The message goes right under the control it is about (on a phone the list below it is a screen or more
+    // long); one about no control in particular goes under the whole list.
+    if (message && invalidRow) invalidRow.append(errorBox);
+    else if (errorBox.parentNode !== errorHome.parentNode) errorHome.parentNode.insertBefore(errorBox, errorHome);
     errorBox.textContent = message;
     errorBox.hidden = !message;
+    if (message) {
+      const box = errorBox.getBoundingClientRect();
+      if (box.top < 0 || box.bottom > window.innerHeight) errorBox.scrollIntoView({ block: "nearest" });
+    }
   }
 
   // ---- body editor: one row per record of a "list" parameter (item_schema: fields, shapes, sequences) -----

@@ -112,3 +112,30 @@ def test_cylindrical_components_of_the_conical_spiral(browser, live_server, shot
     _screenshot(page, shots / "lesson-2-3-curvilinear-coordinates.png")
     assert not errors, errors
     context.close()
+
+
+#: Where the control error is, against the input of the control it names and the screen (px).
+ERROR_PLACE = """(name) => {
+  const input = document.getElementById(`ctl-${name}`).getBoundingClientRect();
+  const box = document.getElementById('control-error').getBoundingClientRect();
+  return { below_input_px: box.top - input.bottom, top: box.top, bottom: box.bottom, screen: window.innerHeight };
+}"""
+
+
+def test_on_a_phone_a_controls_error_shows_under_that_control(browser, live_server):
+    # Issue 29, item 7: on a phone the message appeared under the whole control list, far below the control (about
+    # 1,600 px on long lists), out of view. Now it is inside the control's row, under its input, and in view.
+    context = browser.new_context(viewport={"width": 390, "height": 844}, is_mobile=True, has_touch=True)
+    context, page, _, errors = open_lesson(browser, live_server, "/lessons/2-1-path-variables", context=context)
+    dismiss_webgl_notice(page)
+    page.locator("#ctl-x_of_t").scroll_into_view_if_needed()
+    _type(page, "x_of_t", "2*cos(t")
+    page.wait_for_function("() => !document.getElementById('control-error').hidden", timeout=10_000)
+    place = page.evaluate(ERROR_PLACE, "x_of_t")
+    assert page.evaluate("() => document.getElementById('control-error').closest('.control')?.dataset.name") == "x_of_t"
+    assert 0 <= place["below_input_px"] <= 120 and 0 <= place["top"] and place["bottom"] <= place["screen"], place
+    # Corrected, the message goes; a later message about no control in particular is under the list again.
+    _type(page, "x_of_t", "2*cos(t)")
+    page.wait_for_function("() => document.getElementById('control-error').hidden", timeout=10_000)
+    assert not errors, errors
+    context.close()
