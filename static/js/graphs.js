@@ -11,7 +11,9 @@ import { renderPlot } from "./plot.js";
 (function () {
   const section = document.getElementById("graphs");
   if (!lesson || !section || !lesson.scene || !lesson.scene.animated) return;
-  if (new URLSearchParams(location.search).has("room")) return; // a room's scene is the instructor's (room.js)
+  // A room's scene is the instructor's (room.js): a student graphs only their own copy, while exploring.
+  const inRoom = new URLSearchParams(location.search).has("room");
+  let own = !inRoom;
   const scene = lesson.scene;
   const session = lesson.session;
   const base = `/api/scenes/${scene.id}/sessions/${session.id}`;
@@ -239,7 +241,7 @@ import { renderPlot } from "./plot.js";
 
   // ---- polling: only while open, visible and the session has a scene ------------------------------------------
   let ready = false, timer = null, inFlight = false;
-  const wanted = () => ready && section.open && !document.hidden;
+  const wanted = () => own && ready && section.open && !document.hidden;
   function pollIn(ms) {
     clearTimeout(timer);
     timer = null;
@@ -274,8 +276,16 @@ import { renderPlot } from "./plot.js";
     try {
       const response = await fetch(`${base}/graph?max_points=10`);
       const data = response.ok ? await response.json() : null;
-      if (data && data.quantities && data.quantities.length) { section.hidden = false; pollIn(0); }
+      if (data && data.quantities && data.quantities.length) { probed = true; section.hidden = !own; pollIn(0); }
     } catch (e) { /* no graphs for this scene */ }
   }
-  section.hidden = !scene.integrated;
+  let probed = false; // an animated scene that is not integrated: whether the server graphs it
+  section.hidden = !own || !scene.integrated;
+  document.addEventListener("dynlab:own-scene", (event) => {
+    own = event.detail.own;
+    ready = false; // the own copy is a new run: wait for its first live readout
+    clearStore();
+    section.hidden = !own || !(scene.integrated || probed);
+    pollIn(0);
+  });
 })();

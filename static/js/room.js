@@ -105,6 +105,10 @@ export let classroom = null;
     });
   }
 
+  // While a student explores, the scene in the viewer is their own: the page's time controls, recording and graphs
+  // (time_controls.js, graphs.js) then work on it; following, they are hidden (the class's scene is the instructor's).
+  const ownScene = (own) => document.dispatchEvent(new CustomEvent("dynlab:own-scene", { detail: { own } }));
+
   // ---- a student (or the instructor previewing as one) ----------------------------------------------------
   function studentToken() {
     const raw = localStorage.getItem(`dynlab.room.${roomId}`);
@@ -184,6 +188,7 @@ export let classroom = null;
         lesson.showViewer(`/room-viewer/${roomId}/?hideViserLogo`);
         banner.textContent = FOLLOW_TEXT;
         bar.dataset.mode = "follow";
+        ownScene(false);
         if (back) socket.send({ type: "following", value: true });
       }
       const params = JSON.stringify(state.params);
@@ -216,6 +221,7 @@ export let classroom = null;
         lesson.startPolling();
         banner.textContent = EXPLORE_TEXT;
         bar.dataset.mode = "explore";
+        ownScene(true);
         showError("");
       } catch (err) {
         mode = null;

@@ -9,7 +9,8 @@ import { lesson } from "./lesson.js";
 (function () {
   if (!lesson || !lesson.scene || !lesson.scene.animated) return;
   const params = new URLSearchParams(location.search);
-  if (params.has("room")) return; // a room's play state is the instructor's (room.js)
+  // In a room the play state is the instructor's (room.js), except while a student explores their own copy.
+  const inRoom = params.has("room");
   const scene = lesson.scene;
   const session = lesson.session;
   const FRAME_S = 1 / 30;
@@ -33,6 +34,14 @@ import { lesson } from "./lesson.js";
     play, step, restart, el("label", { class: "tc-speed-label" }, "Speed ", speed), scrub, clock, share, shareBox, slowed, error);
   const wrap = document.getElementById("viewer-wrap");
   wrap.after(bar);
+  if (inRoom) {
+    bar.hidden = true;
+    document.addEventListener("dynlab:own-scene", (event) => {
+      bar.hidden = !event.detail.own;
+      error.hidden = true;
+      shareBox.hidden = true;
+    });
+  }
 
   // ---- state, from the server's answers and the live readout ----------------------------------------------------
   let state = { playing: true, time_scale: 1, t_s: 0, history_s: null };
@@ -84,6 +93,7 @@ import { lesson } from "./lesson.js";
   scrub.addEventListener("input", () => { scrubbing = true; });
   scrub.addEventListener("change", async () => { await send({ seek_s: Number(scrub.value) }); scrubbing = false; });
   document.addEventListener("keydown", (event) => {
+    if (bar.hidden) return; // following in a room: the keys are not this page's to use
     const target = event.target;
     if (target && (target.closest("input, select, textarea, [contenteditable]") || target.isContentEditable)) return;
     const onButton = target && target.closest("button, a, summary");
@@ -130,10 +140,14 @@ import { lesson } from "./lesson.js";
 // that plays offline in any browser, for walkthroughs and for preparing a class. Beside the time controls.
 (function () {
   if (!lesson || !lesson.scene) return;
-  if (new URLSearchParams(location.search).has("room")) return; // a room's scene is the instructor's
   const scene = lesson.scene;
   const session = lesson.session;
   const group = el("div", { class: "recording-controls", role: "group", "aria-label": "Save a recording" });
+  // A room's scene is the instructor's: a student records only their own copy, while exploring (room.js).
+  if (new URLSearchParams(location.search).has("room")) {
+    group.hidden = true;
+    document.addEventListener("dynlab:own-scene", (event) => { group.hidden = !event.detail.own; });
+  }
   const save = el("button", { type: "button", class: "rec-save", text: scene.animated ? "Save recording" : "Save recording (a still)" });
   const seconds = el("select", { class: "rec-seconds", "aria-label": "Recording length: the last seconds shown" });
   for (const s of [5, 10, 30, 60]) seconds.add(new Option(`last ${s} s`, String(s)));

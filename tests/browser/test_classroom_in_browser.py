@@ -179,6 +179,11 @@ def test_a_class_follows_explores_and_answers_a_poll(browser, live_server, shots
     after = _room_state(live_server, room_id)
     assert (after["revision"], after["params"], after["playing"], after["poll"]) == (state["revision"], state["params"], False, None)
 
+    # Following, the class's scene is the instructor's: no time controls, recording or graphs on a student's page.
+    for page in pages:
+        assert page.locator(".time-controls").is_hidden() and page.locator(".recording-controls").is_hidden()
+        assert page.locator("#graphs").is_hidden()
+
     # Explore: each student gets their own scene, started from the room's (spin 120 rad/s).
     teacher.get_by_role("button", name="Let everyone explore").click()
     sessions = []
@@ -200,6 +205,35 @@ def test_a_class_follows_explores_and_answers_a_poll(browser, live_server, shots
     assert _control(pages[1]) == 120 and _control(pages[2]) == 120
     assert _room_state(live_server, room_id)["params"][SPIN] == 120
 
+    # Exploring, a student's own scene has its time controls, graphs and recording (issue 29, item 5), and they act
+    # on that scene alone: student B pauses theirs, and the room and the other students play on.
+    explorer = pages[0]
+    for page in pages:
+        page.wait_for_selector(".time-controls", state="visible")
+        page.wait_for_selector(".recording-controls .rec-save", state="visible")
+        page.wait_for_selector("#graphs > summary", state="visible")
+    playing = [live_server.host.playback(session_id)["playing"] for session_id in sessions]
+    room_playing = _room_state(live_server, room_id)["playing"]
+    # viser's client connects only when laid out: B's viewer is shown (drawing at the test's slow frame rate).
+    explorer.evaluate("document.getElementById('test-not-drawing').disabled = true")
+    wait_until(lambda: live_server.host.viewer_count(sessions[0]) == 1, 30, what="student B's own viewer to connect")
+    explorer.wait_for_selector(f'.tc-play[data-playing="{str(playing[0]).lower()}"]')
+    explorer.click(".tc-play")
+    explorer.wait_for_selector(f'.tc-play[data-playing="{str(not playing[0]).lower()}"]')
+    wait_until(lambda: live_server.host.playback(sessions[0])["playing"] is not playing[0], 10, what="student B's play state to toggle")
+    assert [live_server.host.playback(session_id)["playing"] for session_id in sessions[1:]] == playing[1:]
+    assert _room_state(live_server, room_id)["playing"] is room_playing
+    if playing[0]:  # B's scene is paused now: played again, its graph grows
+        explorer.click(".tc-play")
+        explorer.wait_for_selector('.tc-play[data-playing="true"]')
+    explorer.click("#graphs > summary")
+    explorer.wait_for_selector("#graph-y1 option[value='theta']", state="attached", timeout=15_000)
+    explorer.wait_for_function("() => Number(document.querySelector('#graphs .time-graph').dataset.points) > 10", timeout=30_000)
+    assert explorer.evaluate(
+        "async () => (await fetch(document.querySelector('#graphs .graph-csv').href)).status"
+    ) == 200
+    explorer.evaluate("document.getElementById('test-not-drawing').disabled = false")
+
     # Back to follow: locked again, the room's viewer and values.
     teacher.get_by_role("button", name="Bring everyone back").click()
     for page in pages:
@@ -208,6 +242,9 @@ def test_a_class_follows_explores_and_answers_a_poll(browser, live_server, shots
         assert page.locator(f"#ctl-{SPIN}").is_disabled()
     wait_until(lambda: _control(pages[0]) == 120, 5, what="student B's controls to show the room's spin again")
     teacher.wait_for_selector(presence)
+    for page in pages:
+        assert page.locator(".time-controls").is_hidden() and page.locator(".recording-controls").is_hidden()
+        assert page.locator("#graphs").is_hidden()
 
     # A poll: a ready number question in rad/s; three answers reach the instructor's histogram.
     teacher.select_option("#room-ready", "heavy-top-sleeping-threshold")
