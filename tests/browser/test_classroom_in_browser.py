@@ -232,6 +232,12 @@ def test_a_class_follows_explores_and_answers_a_poll(browser, live_server, shots
     assert explorer.evaluate(
         "async () => (await fetch(document.querySelector('#graphs .graph-csv').href)).status"
     ) == 200
+    recording = explorer.evaluate(
+        "async (sid) => { const r = await fetch(`/api/scenes/heavy-top/sessions/${sid}/recording.html?seconds=5`);"
+        " return [r.status, (await r.text()).length]; }",
+        sessions[0],
+    )
+    assert recording[0] == 200 and recording[1] > 10_000, recording
     explorer.evaluate("document.getElementById('test-not-drawing').disabled = false")
 
     # Back to follow: locked again, the room's viewer and values.
