@@ -13,14 +13,39 @@ from tests.browser.conftest import (
     readout_values,
     show_scene_and_keep_screenshot,
 )
+from tests.browser.test_graphs_in_browser import pick, points
+from tests.conftest import wait_until
 
 pytestmark = pytest.mark.browser
 
 LESSON = "6-2-sliding-ladder"
 
 
-def test_ladder_lesson_connects_and_its_readout_matches_the_physics(browser, live_server, shots):
-    context, page, session_id, errors = open_lesson(browser, live_server, f"/lessons/{LESSON}")
+#: In the page: from now on, note every moment the graph is hidden, drawn empty or plots something other than the
+#: student's choice, and count the replays (the plotted span's end going back in time).
+WATCH_THE_GRAPH = """([y, x]) => {
+  const box = document.querySelector('#graphs .time-graph');
+  const watch = window.__graphWatch = { replays: 0, faults: [], lastEnd: null };
+  const look = () => {
+    const y1 = document.getElementById('graph-y1').value, xPick = document.getElementById('graph-x').value;
+    if (box.hidden) watch.faults.push('graph hidden');
+    if (y1 !== y || xPick !== x) watch.faults.push(`plots ${y1} against ${xPick}`);
+    if (!box.querySelector('.graph-plot svg polyline')) watch.faults.push('no line drawn');
+    const end = /to (-?[0-9.]+) s;/.exec(box.querySelector('.graph-summary').textContent);
+    if (end) {
+      const t = Number(end[1]);
+      if (watch.lastEnd !== null && t < watch.lastEnd) watch.replays += 1;
+      watch.lastEnd = t;
+    }
+  };
+  new MutationObserver(look).observe(box, { subtree: true, childList: true, attributes: true, characterData: true });
+}"""
+
+
+def test_ladder_lesson_connects_its_readout_matches_the_physics_and_a_replay_keeps_the_graph(
+    browser, live_server, shots
+):
+    context, page, _, errors = open_lesson(browser, live_server, f"/lessons/{LESSON}")
     page.wait_for_selector('#readout [data-quantity="separation_angle_closed_form_deg"]', timeout=30_000)
     values = readout_values(page)
     # The page shows the readout's numbers as sent (JSON doubles): the closed form to round-off.
@@ -35,4 +60,17 @@ def test_ladder_lesson_connects_and_its_readout_matches_the_physics(browser, liv
     show_scene_and_keep_screenshot(page, shots / f"lesson-{LESSON}.png")
     assert not errors, errors
     json.dumps(readout_values(page))  # the readout stays plain JSON while the scene runs
+
+    # Issue 29, item 4: the ladder replays every ~3.5 s; at each replay the graph hid for about a second and the chosen
+    # plot (wall force against angle) went back to the first series against time.
+    page.click("#graphs > summary")
+    page.wait_for_selector("#graph-y1 option[value='wall_force_N']", state="attached", timeout=15_000)
+    pick(page, "graph-y1", "wall_force_N")
+    pick(page, "graph-x", "angle_from_floor")
+    wait_until(lambda: points(page) > 10, timeout_s=15, what="the phase plot of the wall force")
+    page.evaluate(WATCH_THE_GRAPH, ["wall_force_N", "angle_from_floor"])
+    page.wait_for_function("window.__graphWatch.replays >= 2", timeout=30_000)
+    assert page.evaluate("window.__graphWatch.faults") == []
+    assert page.get_attribute("#graphs .time-graph", "data-kind") == "phase"
+    assert not errors, errors
     context.close()
