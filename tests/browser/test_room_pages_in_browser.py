@@ -2,6 +2,8 @@
 
 - A room on a scene without ready questions of its own (the gyrocompass, the free gyroscope) offers its chapter's;
   one on a scene with its own lists those first, then the rest of its chapter's.
+- The instructor's own question carries an optional answer (the right choice, or a number in the poll's unit) that
+  Reveal shows; a bad answer is a clear 422 whichever way it is sent; a poll without one still says so.
 """
 
 from __future__ import annotations
@@ -84,6 +86,98 @@ def test_a_room_on_a_scene_without_its_own_questions_offers_its_chapters(browser
     page.wait_for_selector(".room-results:not([hidden])")
     state = page.request.get(f"{live_server.url}/api/rooms/{room_id}/state").json()
     assert state["scene_id"] == "equinox-precession" and state["poll"]["open"], state
+    _close_room(page, live_server, room_id)
+    assert not errors, errors
+    context.close()
+
+
+# ---- 2. the instructor's own question can carry its answer --------------------------------------------------------
+def _ask_own(page, question: str, kind: str, *, choices: str = "", unit: str = "", answer: str | None = None) -> None:
+    """Fill in and send the panel's own-question form; ``answer`` is the right choice's text or the number."""
+    details = page.locator(".room-polls details")
+    if not details.evaluate("(d) => d.open"):
+        details.locator("summary").click()
+    page.fill("#room-own-question", question)
+    page.select_option("#room-own-kind", kind)
+    if kind == "choice":
+        page.fill("#room-own-choices", choices)
+        page.select_option("#room-own-answer-choice", label=answer or "No answer given")
+    else:
+        page.fill("#room-own-unit", unit)
+        page.fill("#room-own-answer-value", answer or "")
+    page.click('[data-room="ask-own"]')
+    page.wait_for_function(
+        "(q) => document.querySelector('.room-results:not([hidden]) .room-results-question')?.textContent.startsWith(q)", arg=question
+    )
+
+
+def _revealed(page) -> str:
+    page.click('[data-room="reveal"]')
+    page.wait_for_selector(".room-results-revealed:not([hidden])")
+    return page.text_content(".room-results-revealed")
+
+
+def test_the_instructors_own_question_reveals_the_answer_they_gave(browser, live_server):
+    context, page, errors, room_id = _instructor_room(browser, live_server, "10-2-spinning-top")
+    state_url = f"{live_server.url}/api/rooms/{room_id}/state"
+
+    # A choice poll: the right choice is picked from the choices typed above it.
+    _ask_own(page, "Which way does the top's axis go first?", "choice", choices="Up\nDown\nSideways", answer="Sideways")
+    assert page.eval_on_selector_all("#room-own-answer-choice option", "(os) => os.map((o) => o.text)")[1:] == ["Up", "Down", "Sideways"]
+    assert _revealed(page) == "Answer: Sideways — given by the instructor"
+    revealed = page.request.get(state_url).json()["poll"]["revealed"]  # what every student's page is sent
+    assert revealed["choice"] == 2 and revealed["source"] == "given by the instructor", revealed
+
+    # A number poll: the value, in the poll's unit.
+    _ask_own(page, "How long until it has turned once about the vertical?", "number", unit="s", answer="2.5")
+    assert _revealed(page) == "Answer: 2.50 s — given by the instructor"  # to three significant digits, as every answer
+    revealed = page.request.get(state_url).json()["poll"]["revealed"]
+    assert (revealed["value"], revealed["unit"]) == (2.5, "s"), revealed
+
+    # Something typed in the answer box that is not a number is not sent as "no answer": the form says so.
+    page.fill("#room-own-question", "And the next turn?")
+    page.fill("#room-own-answer-value", "")
+    page.locator("#room-own-answer-value").press_sequentially("1e")
+    page.click('[data-room="ask-own"]')
+    page.wait_for_selector(".room-own-error:not([hidden])")
+    assert "type a number" in page.text_content(".room-own-error")
+    assert page.request.get(state_url).json()["poll"]["question"].startswith("How long")
+
+    # Without an answer: Reveal still says, in words, that there is none to show, and shows nothing.
+    _ask_own(page, "Did you expect that?", "choice", choices="Yes\nNo")
+    page.click('[data-room="reveal"]')
+    page.wait_for_selector(".room-panel .room-error:not([hidden])")
+    assert "no answer to show" in page.text_content(".room-panel .room-error")
+    assert page.locator(".room-results-revealed").is_hidden()
+    assert page.request.get(state_url).json()["poll"]["revealed"] is None
+
+    # A bad answer is a 422 naming the field, by request or on the room socket, and opens no poll.
+    polls = f"{live_server.url}/api/rooms/{room_id}/polls"
+    choice = {"question": "Q?", "kind": "choice", "choices": ["a", "b"]}
+    number = {"question": "Q?", "kind": "number", "unit": "s"}
+    for body, field in (
+        (choice | {"answer_choice": 2}, "answer_choice"),
+        (choice | {"answer_choice": "1"}, "answer_choice"),
+        (choice | {"answer_value": 1.0}, "answer_value"),
+        (number | {"answer_value": "2.5"}, "answer_value"),
+        (number | {"answer_value": True}, "answer_value"),
+        (number | {"answer_value": 1e13}, "answer_value"),
+        (number | {"answer_choice": 0}, "answer_choice"),
+    ):
+        answer = page.request.post(polls, data=body)
+        assert answer.status == 422 and field in answer.text(), (body, answer.status, answer.text())
+    refusal = page.evaluate(
+        """async (action) => {
+          const room = (await import('/static/js/room.js')).classroom;
+          return new Promise((resolve) => {
+            document.addEventListener("dynlab:room", (e) => { if (e.detail.type === "error") resolve(e.detail); });
+            room.send(action);
+          });
+        }""",
+        {"type": "open_poll", **choice, "answer_choice": 5},
+    )
+    assert refusal["status"] == 422 and "answer_choice" in refusal["detail"], refusal
+    assert page.request.get(state_url).json()["poll"]["question"] == "Did you expect that?"
     _close_room(page, live_server, room_id)
     assert not errors, errors
     context.close()
