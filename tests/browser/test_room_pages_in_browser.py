@@ -4,6 +4,10 @@
   one on a scene with its own lists those first, then the rest of its chapter's.
 - The instructor's own question carries an optional answer (the right choice, or a number in the poll's unit) that
   Reveal shows; a bad answer is a clear 422 whichever way it is sent; a poll without one still says so.
+- A phone following the room passes axe-core (colour contrast included) while its controls are locked, and they
+  still look locked.
+
+Screenshots (docs/screenshots/, with DYNLAB_UPDATE_SCREENSHOTS=1): a phone following a room.
 """
 
 from __future__ import annotations
@@ -14,11 +18,14 @@ from pathlib import Path
 
 import pytest
 
+from tests.browser.conftest import dismiss_webgl_notice, let_webgl_draw, screenshot
+from tests.browser.test_accessibility_in_browser import _failing, _report, run_axe
 from tests.browser.test_classroom_in_browser import NOT_DRAWING
 
 pytestmark = pytest.mark.browser
 
 LAPTOP = {"width": 1366, "height": 768}
+PHONE = {"width": 375, "height": 812}
 POLLS_TOML = Path(__file__).resolve().parents[2] / "lessons" / "polls.toml"
 
 
@@ -179,5 +186,55 @@ def test_the_instructors_own_question_reveals_the_answer_they_gave(browser, live
     assert refusal["status"] == 422 and "answer_choice" in refusal["detail"], refusal
     assert page.request.get(state_url).json()["poll"]["question"] == "Did you expect that?"
     _close_room(page, live_server, room_id)
+    assert not errors, errors
+    context.close()
+
+
+# ---- 4. a phone following the room: locked controls that pass axe-core -------------------------------------------
+def test_a_phone_following_the_room_passes_axe_with_its_controls_locked(browser, live_server, shots):
+    http = live_server.host.http
+    created = http.post("/api/rooms", json={"lesson_id": "10-2-spinning-top", "scene_id": "heavy-top"}, headers=live_server.app.instructor_headers)
+    assert created.status_code == 200, created.text
+    room_id, code = created.json()["room_id"], created.json()["code"]
+    context = browser.new_context(viewport=PHONE, is_mobile=True, has_touch=True)
+    page = context.new_page()
+    errors: list[str] = []
+    page.on("pageerror", lambda exc: errors.append(str(exc)))
+    page.goto(f"{live_server.url}/join/{code}")
+    page.click("#join-button")
+    page.wait_for_url(re.compile(rf"\?room={room_id}"))
+    page.wait_for_selector('.room-bar[data-mode="follow"]')
+    page.wait_for_selector(".controls.locked .control .desc")
+    page.wait_for_selector('#readout [data-quantity="t_s"]')
+    assert page.locator("#control-list input").first.is_disabled()
+    assert page.locator(".controls-locked").is_visible()
+
+    violations = run_axe(page)
+    _report("a phone following a room", violations)
+    contrast = [v for v in violations if v["id"] == "color-contrast"]
+    assert not contrast, contrast
+    assert not _failing(violations), violations
+
+    # Still visibly locked: a locked row and its boxes look different from the same row unlocked.
+    looks = page.evaluate(
+        """() => {
+          const form = document.getElementById('controls'), row = form.querySelector('.control');
+          const look = () => {
+            const r = getComputedStyle(row), box = getComputedStyle(row.querySelector('input'));
+            return [r.opacity, r.backgroundColor, box.opacity].join(' | ');
+          };
+          const locked = look();
+          form.classList.remove('locked');
+          const unlocked = look();
+          form.classList.add('locked');
+          return [locked, unlocked];
+        }"""
+    )
+    assert looks[0] != looks[1], looks
+    page.evaluate("window.scrollTo(0, 0)")
+    dismiss_webgl_notice(page)
+    let_webgl_draw(page, 4000)
+    screenshot(page, shots / "classroom-student-phone-following.png")
+    http.delete(f"/api/rooms/{room_id}", headers=live_server.app.instructor_headers)
     assert not errors, errors
     context.close()
