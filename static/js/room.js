@@ -319,7 +319,9 @@ export let classroom = null;
       history.replaceState(history.state, "", clean.pathname + clean.search); // a reload does not offer it again
     }
     const panel = instructorPanel();
-    aside.prepend(panel.element);
+    // A column of its own beside the scene's (static/css/classroom.css): at 1366×768 the scene and the panel are in
+    // view together; on a phone it comes first, as it did inside the scene's column.
+    aside.after(panel.element);
     let latest = null, inStep = false, leaving = false, lastLocal = 0, pendingApply = null, shownParams = "";
     let pendingParams = {}, lastSent = 0, flushTimer = null;
 

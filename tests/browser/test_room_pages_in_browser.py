@@ -4,10 +4,13 @@
   one on a scene with its own lists those first, then the rest of its chapter's.
 - The instructor's own question carries an optional answer (the right choice, or a number in the poll's unit) that
   Reveal shows; a bad answer is a clear 422 whichever way it is sent; a poll without one still says so.
+- At 1366×768 the instructor's 3D scene and the room panel (code, playback, ready questions) are in view together
+  without scrolling; the page still fits a phone, and projector mode still gives the scene most of the width.
 - A phone following the room passes axe-core (colour contrast included) while its controls are locked, and they
   still look locked.
 
-Screenshots (docs/screenshots/, with DYNLAB_UPDATE_SCREENSHOTS=1): a phone following a room.
+Screenshots (docs/screenshots/, with DYNLAB_UPDATE_SCREENSHOTS=1): the instructor's room page at 1366×768 and a phone
+following a room.
 """
 
 from __future__ import annotations
@@ -26,7 +29,12 @@ pytestmark = pytest.mark.browser
 
 LAPTOP = {"width": 1366, "height": 768}
 PHONE = {"width": 375, "height": 812}
+PROJECTOR = {"width": 1920, "height": 1080}
 POLLS_TOML = Path(__file__).resolve().parents[2] / "lessons" / "polls.toml"
+#: Sub-pixel layout: a box may end this far past the edge from rounding alone.
+ROUNDING_PX = 1.0
+#: Projector mode on the instructor's page: the scene's share of a 1920 px wide screen at least.
+PROJECTOR_VIEWER_SHARE = 0.5
 
 
 def _chapter_questions(chapter: int) -> list[dict]:
@@ -185,6 +193,80 @@ def test_the_instructors_own_question_reveals_the_answer_they_gave(browser, live
     )
     assert refusal["status"] == 422 and "answer_choice" in refusal["detail"], refusal
     assert page.request.get(state_url).json()["poll"]["question"] == "Did you expect that?"
+    _close_room(page, live_server, room_id)
+    assert not errors, errors
+    context.close()
+
+
+# ---- 3. the instructor's scene and room panel in view together at 1366×768 ------------------------------------------
+#: Boxes (px, in the window) of what the instructor needs at once, and how far the page and the live column scrolled.
+INSTRUCTOR_BOXES = """() => {
+  const box = (selector) => {
+    const el = document.querySelector(selector);
+    if (!el) return null;
+    const r = el.getBoundingClientRect();
+    return { left: r.left, right: r.right, top: r.top, bottom: r.bottom, width: r.width, height: r.height };
+  };
+  const live = document.querySelector('.lesson-live');
+  return {
+    scrolled: window.scrollY + live.scrollTop + (document.querySelector('.room-panel')?.scrollTop || 0),
+    scroll_width: document.documentElement.scrollWidth,
+    viewer: box('#viewer'),
+    panel: box('.room-panel'),
+    parts: {
+      code: box('.room-code'), play: box('[data-room="play"]'), mode: box('[data-room="mode"]'),
+      ready: box('#room-ready'), ask: box('[data-room="ask-ready"]'),
+    },
+    first_control: box('#control-list input'),
+  };
+}"""
+
+
+def _in_view(box: dict, viewport: dict) -> bool:
+    return (
+        box["width"] > 0 and box["height"] > 0
+        and box["left"] >= -ROUNDING_PX and box["top"] >= -ROUNDING_PX
+        and box["right"] <= viewport["width"] + ROUNDING_PX and box["bottom"] <= viewport["height"] + ROUNDING_PX
+    )
+
+
+def _overlap(a: dict, b: dict) -> bool:
+    return a["left"] < b["right"] - ROUNDING_PX and b["left"] < a["right"] - ROUNDING_PX and a["top"] < b["bottom"] - ROUNDING_PX and b["top"] < a["bottom"] - ROUNDING_PX
+
+
+def test_at_1366x768_the_instructor_sees_the_scene_and_the_room_panel_together(browser, live_server, shots):
+    context, page, errors, room_id = _instructor_room(browser, live_server, "10-2-spinning-top", drawing=True)
+    page.wait_for_selector("#viewer-wrap:not([hidden])")
+    _ready_offered(page)
+    boxes = page.evaluate(INSTRUCTOR_BOXES)
+    assert boxes["scrolled"] == 0, boxes
+    assert _in_view(boxes["viewer"], LAPTOP), boxes["viewer"]
+    assert boxes["viewer"]["height"] >= 250 and boxes["viewer"]["width"] >= 450, boxes["viewer"]
+    hidden = {name: box for name, box in boxes["parts"].items() if box is None or not _in_view(box, LAPTOP)}
+    assert not hidden, (hidden, boxes["viewer"])
+    assert not _overlap(boxes["viewer"], boxes["panel"]), boxes
+    assert _in_view(boxes["first_control"], LAPTOP), boxes["first_control"]  # the scene and what drives it
+    assert boxes["scroll_width"] <= LAPTOP["width"], boxes
+    dismiss_webgl_notice(page)
+    let_webgl_draw(page, 4000)
+    screenshot(page, shots / "classroom-instructor-laptop.png")
+
+    # Projector mode (Alt+L) on a projector: the scene still takes most of the width, the panel stays in view.
+    page.set_viewport_size(PROJECTOR)
+    page.click("#large-text")
+    page.wait_for_selector('#large-text[aria-pressed="true"]')
+    boxes = page.evaluate(INSTRUCTOR_BOXES)
+    assert boxes["viewer"]["width"] >= PROJECTOR_VIEWER_SHARE * PROJECTOR["width"], boxes["viewer"]
+    assert _in_view(boxes["viewer"], PROJECTOR) and _in_view(boxes["parts"]["play"], PROJECTOR), boxes
+    page.click("#large-text")
+    page.wait_for_selector('#large-text[aria-pressed="false"]')
+
+    # A phone: one column, nothing wider than the screen, the room panel and then the scene first.
+    page.set_viewport_size(PHONE)
+    boxes = page.evaluate(INSTRUCTOR_BOXES)
+    assert boxes["scroll_width"] <= PHONE["width"], boxes
+    text_top = page.evaluate("document.querySelector('.lesson-text').getBoundingClientRect().top")
+    assert boxes["panel"]["top"] < boxes["viewer"]["top"] < text_top, (boxes, text_top)
     _close_room(page, live_server, room_id)
     assert not errors, errors
     context.close()
