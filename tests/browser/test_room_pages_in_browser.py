@@ -21,7 +21,7 @@ from pathlib import Path
 
 import pytest
 
-from tests.browser.conftest import dismiss_webgl_notice, let_webgl_draw, screenshot
+from tests.browser.conftest import keeping_screenshots, let_webgl_draw, screenshot
 from tests.browser.test_accessibility_in_browser import _failing, _report, run_axe
 from tests.browser.test_classroom_in_browser import NOT_DRAWING
 
@@ -70,6 +70,15 @@ def _ready_offered(page) -> list[str]:
 
 def _close_room(page, live_server, room_id: str) -> None:
     page.request.delete(f"{live_server.url}/api/rooms/{room_id}")
+
+
+def _keep_screenshot(page, path: Path) -> None:
+    """When screenshots are kept: let the room's viewer draw, close viser's "software WebGL" notice, keep ``path``."""
+    if not keeping_screenshots():
+        return
+    let_webgl_draw(page, 4000)
+    page.frame_locator("#viewer").locator(".mantine-Notification-closeButton").evaluate_all("(buttons) => buttons.forEach((b) => b.click())")
+    screenshot(page, path)
 
 
 # ---- 1. every scene of a chapter offers its chapter's ready questions -----------------------------------------------
@@ -247,9 +256,7 @@ def test_at_1366x768_the_instructor_sees_the_scene_and_the_room_panel_together(b
     assert not _overlap(boxes["viewer"], boxes["panel"]), boxes
     assert _in_view(boxes["first_control"], LAPTOP), boxes["first_control"]  # the scene and what drives it
     assert boxes["scroll_width"] <= LAPTOP["width"], boxes
-    dismiss_webgl_notice(page)
-    let_webgl_draw(page, 4000)
-    screenshot(page, shots / "classroom-instructor-laptop.png")
+    _keep_screenshot(page, shots / "classroom-instructor-laptop.png")
 
     # Projector mode (Alt+L) on a projector: the scene still takes most of the width, the panel stays in view.
     page.set_viewport_size(PROJECTOR)
@@ -314,9 +321,9 @@ def test_a_phone_following_the_room_passes_axe_with_its_controls_locked(browser,
     )
     assert looks[0] != looks[1], looks
     page.evaluate("window.scrollTo(0, 0)")
-    dismiss_webgl_notice(page)
-    let_webgl_draw(page, 4000)
-    screenshot(page, shots / "classroom-student-phone-following.png")
+    _keep_screenshot(page, shots / "classroom-student-phone-following.png")
+    page.evaluate("document.getElementById('controls').scrollIntoView()")
+    screenshot(page, shots / "classroom-student-phone-locked-controls.png")
     http.delete(f"/api/rooms/{room_id}", headers=live_server.app.instructor_headers)
     assert not errors, errors
     context.close()
