@@ -349,13 +349,16 @@ def room_qr(room: RoomDep) -> Response:
     dependencies=[Instructor],
     responses={**_FORBIDDEN, **error_responses(not_found=_NO_ROOM, unprocessable="A malformed room id")},
 )
-def ready_polls(room: RoomDep, ready: ReadyQuestionsDep) -> list[dict[str, Any]]:
-    """Ready questions for the room's scene first, then the rest of its chapter (instructor only)."""
-    if room.scene_id is None:
+def ready_polls(room: RoomDep, ready: ReadyQuestionsDep, catalogue: CatalogueDep) -> list[dict[str, Any]]:
+    """Ready questions for the room's scene first, then the rest of its chapter (instructor only).
+
+    The chapter is the scene's own, so a scene with no question of its own (the gyrocompass) still offers its
+    chapter's; a room on no scene gets every question."""
+    scene = catalogue.scenes.get(room.scene_id) if room.scene_id is not None else None
+    if scene is None:
         return [q.schema() for q in ready]
-    chapter = next((q.chapter for q in ready if q.scene_id == room.scene_id), None)
     ours = [q for q in ready if q.scene_id == room.scene_id]
-    same_chapter = [q for q in ready if q.chapter == chapter and q.scene_id != room.scene_id] if chapter else []
+    same_chapter = [q for q in ready if q.chapter == scene.chapter and q.scene_id != room.scene_id]
     return [q.schema() for q in (*ours, *same_chapter)]
 
 

@@ -107,8 +107,15 @@ class PollRequest(BaseModel):
     answer_choices: dict[str, StrictInt] | None = Field(
         None, description="For a word quantity: its value -> the right choice's index"
     )
-    answer_value: float | None = Field(None, allow_inf_nan=False)
-    answer_choice: StrictInt | None = None
+    answer_value: float | None = Field(
+        None,
+        strict=True,
+        allow_inf_nan=False,
+        description="The instructor's own answer to a number poll, in its unit (a JSON number): Reveal shows it",
+    )
+    answer_choice: StrictInt | None = Field(
+        None, description="The instructor's own answer to a choice poll: the right choice's index; Reveal shows it"
+    )
     show_names: StrictBool | None = None
 
 

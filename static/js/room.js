@@ -325,7 +325,9 @@ export let classroom = null;
       history.replaceState(history.state, "", clean.pathname + clean.search); // a reload does not offer it again
     }
     const panel = instructorPanel();
-    aside.prepend(panel.element);
+    // A column of its own beside the scene's (static/css/classroom.css): at 1366×768 the scene and the panel are in
+    // view together; on a phone it comes first, as it did inside the scene's column.
+    aside.after(panel.element);
     let latest = null, inStep = false, leaving = false, lastLocal = 0, pendingApply = null, shownParams = "";
     let pendingParams = {}, lastSent = 0, flushTimer = null;
 
@@ -571,10 +573,20 @@ export let classroom = null;
     const unit = el("input", { type: "text", id: "room-own-unit", maxlength: config.classroom.poll.unit_max_chars, placeholder: "e.g. rad/s" });
     const choicesRow = el("p", {}, el("label", { for: choices.id, text: `Choices (${config.classroom.poll.choices_min} to ${config.classroom.poll.choices_max}, one a line)` }), choices);
     const unitRow = el("p", { hidden: true }, el("label", { for: unit.id, text: "Unit" }), unit);
+    // The right answer, if the instructor gives one: Reveal shows it (a ready question's is computed by the scene).
+    const answerChoice = el("select", { id: "room-own-answer-choice" }, new Option("No answer given", ""));
+    const answerValue = el("input", { type: "number", step: "any", id: "room-own-answer-value", inputmode: "decimal" });
+    const answerUnit = el("span", { class: "unit" });
+    const answerChoiceRow = el("p", {}, el("label", { for: answerChoice.id, text: "Right answer (optional)" }), answerChoice);
+    const answerValueRow = el("p", { hidden: true }, el("label", { for: answerValue.id, text: "Right answer (optional)" }),
+      el("span", { class: "room-own-value" }, answerValue, answerUnit));
+    const ownError = el("p", { class: "room-own-error error", role: "alert", hidden: true });
     const askOwn = el("button", { type: "submit", text: "Ask", "data-room": "ask-own" });
-    const own = el("form", { class: "room-own" },
+    const own = el("form", { class: "room-own", novalidate: true }, // its own words for a bad answer, as /join
       el("p", {}, el("label", { for: question.id, text: "Question" }), question),
-      el("p", {}, el("label", { for: kind.id, text: "Answer as " }), kind), choicesRow, unitRow, askOwn);
+      el("p", {}, el("label", { for: kind.id, text: "Answer as " }), kind), choicesRow, unitRow, answerChoiceRow, answerValueRow,
+      el("p", { class: "room-own-hint muted", text: "Reveal shows the right answer you give here; without one it has nothing to show." }),
+      ownError, askOwn);
     const resultsQuestion = el("p", { class: "room-results-question" });
     const count = el("p", { class: "room-results-count", "aria-live": "polite" });
     const bars = el("ol", { class: "room-histogram", "aria-label": "Answers (anonymous counts)" });
@@ -592,13 +604,40 @@ export let classroom = null;
       el("details", {}, el("summary", { text: "Ask your own question" }), own), results);
     let poll = null, shownId = null;
 
-    kind.addEventListener("change", () => { choicesRow.hidden = kind.value !== "choice"; unitRow.hidden = kind.value === "choice"; });
+    const typedChoices = () => choices.value.split("\n").map((c) => c.trim()).filter(Boolean);
+    // The right-answer list follows the choices as they are typed, keeping the one picked while it is still there.
+    function listChoices() {
+      const picked = answerChoice.selectedIndex > 0 ? answerChoice.options[answerChoice.selectedIndex].text : null;
+      const typed = typedChoices();
+      answerChoice.replaceChildren(new Option("No answer given", ""), ...typed.map((c, index) => new Option(c, String(index))));
+      const again = picked === null ? -1 : typed.indexOf(picked);
+      answerChoice.value = again < 0 ? "" : String(again);
+    }
+    choices.addEventListener("input", listChoices);
+    unit.addEventListener("input", () => { answerUnit.textContent = unit.value.trim() ? ` ${unit.value.trim()}` : ""; });
+    kind.addEventListener("change", () => {
+      const choice = kind.value === "choice";
+      choicesRow.hidden = answerChoiceRow.hidden = !choice;
+      unitRow.hidden = answerValueRow.hidden = choice;
+    });
     askReady.addEventListener("click", () => { if (ready.value) act({ type: "open_poll", ready_id: ready.value }); });
     own.addEventListener("submit", (event) => {
       event.preventDefault();
+      ownError.hidden = true;
       const body = { type: "open_poll", question: question.value.trim(), kind: kind.value };
-      if (kind.value === "choice") body.choices = choices.value.split("\n").map((c) => c.trim()).filter(Boolean);
-      else body.unit = unit.value.trim();
+      if (kind.value === "choice") {
+        body.choices = typedChoices();
+        if (answerChoice.value !== "") body.answer_choice = Number(answerChoice.value);
+      } else {
+        body.unit = unit.value.trim();
+        const value = Number(answerValue.value);
+        if (answerValue.validity.badInput || (answerValue.value !== "" && !Number.isFinite(value))) {
+          ownError.textContent = "Right answer: type a number, or leave it empty.";
+          ownError.hidden = false;
+          return;
+        }
+        if (answerValue.value !== "") body.answer_value = value;
+      }
       act(body);
     });
     close.addEventListener("click", () => poll && act({ type: "update_poll", poll_id: poll.poll_id, open: !poll.open }));
