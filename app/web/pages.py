@@ -60,7 +60,13 @@ VIEWER_CSS = """
 #: once but opens the websocket only when the page says the session exists ("dynlab:session-ready"; it asks with
 #: "dynlab:viewer-waiting" in case it was told before it listened): viser 1.1.1's client keeps its websocket in a
 #: web worker and connects when told the server's address, so every message to its workers waits until then.
+#: A viewer that lost its connection (its scene worker restarted) retries while it is shown, not only while it has
+#: the focus as viser's client would have it.
 VIEWER_SCRIPT = """
+// viser 1.1.1's client retries a lost connection only while its own document has the focus (document.hasFocus()).
+// In a lesson page the focus is the page's (a student reading, or moving a slider), so after a scene worker restarted
+// the viewer stayed disconnected, the scene frozen, until someone clicked into it. Here it retries while it is shown.
+document.hasFocus = () => document.visibilityState === "visible";
 document.addEventListener("keydown", (event) => {
   const target = event.target instanceof Element ? event.target : null;
   if (event.ctrlKey || event.metaKey || event.altKey || \

@@ -11,6 +11,8 @@ from __future__ import annotations
 
 import io
 import math
+import os
+import signal
 
 import numpy as np
 import pytest
@@ -154,4 +156,24 @@ def test_save_image_downloads_a_png_of_the_view(browser, live_server):
     drawn = np.mean(np.abs(pixels - background).sum(axis=2) > 30)
     assert drawn > 0.005, f"only {drawn:.2%} of the saved image differs from its background"
     assert math.isfinite(drawn) and errors == []
+    context.close()
+
+
+def test_a_viewer_reconnects_by_itself_after_its_scene_worker_is_killed(browser, live_server):
+    # Found in issue 29's attack: viser's client retries only while its own document has the focus, so with the focus
+    # on the lesson page (a student reading) the viewer of a restarted worker stayed disconnected for 40 s and more.
+    context, page, session_id, errors = open_lesson(browser, live_server, LESSON)
+    page.click("h1")  # the focus is the lesson page's, not the viewer's
+    assert viewer_frame(page).evaluate("document.visibilityState") == "visible"
+    assert page.evaluate("document.hasFocus()")
+    before = live_server.app.worker_pids()
+    for pid in before:
+        os.kill(pid, signal.SIGKILL)
+    wait_until(
+        lambda: not set(live_server.app.worker_pids()) & set(before) and len(live_server.app.worker_pids()) == len(before),
+        30,
+        what="the killed scene workers to be replaced",
+    )
+    wait_until(lambda: live_server.host.viewer_count(session_id) == 1, 30, what="the viewer to reconnect by itself")
+    assert not errors, errors
     context.close()
