@@ -16,8 +16,12 @@
 
 from __future__ import annotations
 
+import html
 import math
+import re
 import secrets
+
+import pytest
 
 from tests.api.conftest import live_viewer
 from tests.conftest import wait_until
@@ -29,6 +33,38 @@ SWEPT_TOL_DEG = 2e-4
 #: The quadrature's numbers and the threshold: the same functions, printed to 12 significant figures.
 SAME_FUNCTIONS_REL = 1e-9
 FRAME_RATE_HZ = 30.0
+
+
+def _measured(client, session_id: str) -> dict:
+    """The live answer once the scene's step choice is measured (its pilot has answered)."""
+    answers: list[dict] = []
+
+    def measured() -> bool:
+        answer = client.get(f"/api/scenes/{SCENE}/sessions/{session_id}/live")
+        if answer.status_code != 200:
+            return False
+        answers.append(answer.json())
+        return answers[-1].get("accuracy", {}).get("status") not in (None, "estimating")
+
+    wait_until(measured, timeout_s=60, what="the heavy top's pilot to answer")
+    return answers[-1]
+
+
+def test_the_solver_lab_states_the_live_scenes_own_default(client):
+    session_id = f"lab-{secrets.token_hex(6)}"
+    with live_viewer(client, SCENE, session_id):
+        live = _measured(client, session_id)
+    page = client.get("/solver-lab")
+    assert page.status_code == 200
+    stated = [html.unescape(s) for s in re.findall(r'<span class="live-default" data-scene="heavy-top">(.*?)</span>', page.text)]
+    # Once in the prose, once beside the benchmark's heavy-top case: both the scene's own words.
+    assert len(stated) == 2, stated
+    assert all(s == live["description"] for s in stated), (stated, live["description"])
+    text = html.unescape(page.text)
+    assert f"at 30 frames per second ({live['accuracy']['accuracy']})" in text, live["accuracy"]
+    # The benchmark's choice stays, said to be for its own run; it is not called the live scene's default.
+    assert "Automatic choice over these 10 s at 60 frames per second:" in text
+    assert "Default for the live scene" not in text
 
 
 def test_the_heavy_top_script_prints_the_readout_the_page_shows(client, tmp_path):
@@ -61,3 +97,18 @@ def test_the_heavy_top_script_prints_the_readout_the_page_shows(client, tmp_path
     # What the band is: the swept one inside the predicted one, to the same tolerance.
     assert rows["theta_min_deg"]["value"] - SWEPT_TOL_DEG <= rows["theta_min_swept_deg"]["value"]
     assert rows["theta_max_swept_deg"]["value"] <= rows["theta_max_deg"]["value"] + SWEPT_TOL_DEG
+
+
+@pytest.mark.parametrize("scene_id", ["heavy-top"])
+def test_the_live_default_is_the_scenes_restart_choice(scene_id):
+    """In one process: the page's source and the scene's restart choose the same integrator once the pilot is in."""
+    from app.scenes import SCENES
+    from app.scenes.kit.integrated import live_integrator
+
+    cls = SCENES[scene_id]
+    integrator, choice, frame_dt_s = cls.live_default()
+    params = cls.parameters.defaults()
+    physical = {k: params[k] for k in cls.model.parameters.by_name}
+    again, choice_again = live_integrator(cls.model(), physical, {"method": "auto", "steps_per_frame": 0, "rtol": params["rtol"]}, frame_dt_s, run_pilots=False)
+    assert again.describe(frame_dt_s) == integrator.describe(frame_dt_s) and choice_again == choice
+    assert frame_dt_s == pytest.approx(1.0 / 30.0) and choice is not None and choice.meets_target
