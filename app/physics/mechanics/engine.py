@@ -20,7 +20,7 @@ import threading
 import time
 from collections import OrderedDict
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -37,6 +37,7 @@ from app.physics.mechanics.kane import derive_kane
 from app.physics.mechanics.lagrange import derive_lagrange
 from app.physics.mechanics.newton_euler import derive_newton_euler
 from app.physics.mechanics.routh import derive_routh
+from app.physics.mechanics.shown import shown_forms
 from app.physics.solvers.kernels import RHS_SIGNATURE, Kernel
 
 
@@ -266,28 +267,50 @@ def _from_disk(system: SystemDescription, formulation: str, directory: Path | No
 
 
 def _derive_and_store(system: SystemDescription, formulation: str, directory: Path | None) -> Derived:
+    """Derive, generate the right-hand side from the recipe, then simplify what is shown (bounded, :mod:`.shown`).
+
+    The code is generated before anything shown is simplified, from the recipe alone: the numbers never depend on
+    it. ``derive_s`` counts sympy's derivation and the simplification of what it shows. A simplification refused
+    for the machine's load (``outcome.refused``) leaves no entry on disk, so the next process derives it again.
+    """
     meta_path, source_path = _paths(system, formulation, directory)
     start = time.perf_counter()
-    derivation = DERIVERS[formulation](system)
+    with shown_forms() as forms:
+        derivation = DERIVERS[formulation](system)
+        matrices = derivation.latex(derivation.mass_matrix), derivation.latex(derivation.forcing)
     derive_s = time.perf_counter() - start
     start = time.perf_counter()
     rhs = load_recipe(system, derivation.recipe, formulation=formulation, path=source_path)
     compile_s = time.perf_counter() - start
+    start = time.perf_counter()
+    outcome = forms.simplify()
+    derive_s += time.perf_counter() - start
+    steps = tuple(replace(s, latex=forms.fill(s.latex)) for s in derivation.steps)
+    derivation = replace(
+        derivation, equations_latex=tuple(forms.fill(e) for e in derivation.equations_latex), steps=steps
+    )
     shown: dict[str, Any] = {
         "system_id": system.id,
         "formulation": formulation,
         "coordinates": [c.name for c in system.coordinates],
         "speeds": [s.name for s in system.speed_list],
         "equations_latex": list(derivation.equations_latex),
-        "mass_matrix_latex": derivation.latex(derivation.mass_matrix),
-        "forcing_latex": derivation.latex(derivation.forcing),
+        "mass_matrix_latex": forms.fill(matrices[0]),
+        "forcing_latex": forms.fill(matrices[1]),
         "steps": [s.as_dict() for s in derivation.steps],
         "variables": derivation.variables,
     }
-    meta = {"derived": shown, "derive_s": derive_s, "compile_s": compile_s, "sympy": sympy.__version__}
-    temporary = meta_path.with_suffix(f".{os.getpid()}.{threading.get_ident()}.tmp")
-    temporary.write_text(json.dumps(meta, ensure_ascii=False, indent=1))
-    os.replace(temporary, meta_path)
+    if not outcome.refused:
+        meta = {
+            "derived": shown,
+            "derive_s": derive_s,
+            "compile_s": compile_s,
+            "shown": outcome.as_dict(),
+            "sympy": sympy.__version__,
+        }
+        temporary = meta_path.with_suffix(f".{os.getpid()}.{threading.get_ident()}.tmp")
+        temporary.write_text(json.dumps(meta, ensure_ascii=False, indent=1))
+        os.replace(temporary, meta_path)
     return Derived(
         **shown, derive_s=derive_s, compile_s=compile_s, source_path=source_path, rhs_python=rhs, derivation=derivation
     )
