@@ -71,6 +71,9 @@ SIMPLIFY_TOTAL_IN_CHILD_S = 4.0
 #: The child's wall-clock limit beyond SIMPLIFY_TOTAL_S (starting, pickling the leaves there and back) and its memory.
 CHILD_MARGIN_S = 8.0
 CHILD_MEMORY_MB = 512.0
+#: How long a derivation waits for one of the two simplification slots (s): a lesson page asks for all its
+#: derivations at once (lesson 9.3: twelve), and from a cold cache each simplification takes a few seconds.
+SLOT_WAIT_S = 120.0
 
 _TOKEN = "⟦shown {}⟧"
 _TOKEN_PATTERN = re.compile(r"⟦shown (\d+)⟧")
@@ -82,7 +85,7 @@ runner = BoundedRunner(
     max_jobs=2,
     timeout_s=SIMPLIFY_TOTAL_S + CHILD_MARGIN_S,
     memory_mb=CHILD_MEMORY_MB,
-    wait_s=SIMPLIFY_TOTAL_S,
+    wait_s=SLOT_WAIT_S,
     preload=("app.physics.core.bounded", "numpy", "sympy", "app.physics.mechanics.typed"),
 )
 

@@ -201,3 +201,27 @@ def test_a_leaf_out_of_time_is_shown_as_derived(monkeypatch):
     results, outcome = shown.simplify_leaves([slow, quick], each_s=0.2, total_s=0.1)
     assert results == [None, None] and outcome.out_of_time == 2
     assert not math.isnan(outcome.seconds)
+
+
+def test_a_simplification_refused_for_load_is_tried_again_at_the_next_answer(fresh_cache, monkeypatch):
+    """No slot (or the child paused by a busy server): the derived forms are shown for now and nothing is stored; the
+    next answer simplifies them and stores the entry, so a busy moment does not fix the unsimplified form for good."""
+    from app.physics.core.bounded import WorkBusy
+
+    real_run = shown.runner.run
+    calls = []
+
+    def busy_once(*args, **kwargs):
+        calls.append(1)
+        if len(calls) == 1:
+            raise WorkBusy("busy: 2 such jobs are running already", retry_after_s=1)
+        return real_run(*args, **kwargs)
+
+    monkeypatch.setattr(shown.runner, "run", busy_once)
+    result = engine.derived(MOVING_SUPPORT, "lagrange", directory=fresh_cache)
+    assert "\\sin^{2}" in result.equations_latex[0] and not list(fresh_cache.glob("*.json"))
+    answer = result.answer()
+    assert len(calls) == 2 and "\\sin^{2}" not in answer["equations_latex"][0] and answer["equations_latex"][0].startswith("l^{2} m")
+    assert len(list(fresh_cache.glob("*.json"))) == 1 and result.equations_latex == answer["equations_latex"]
+    result.answer()
+    assert len(calls) == 2  # done: not tried again
