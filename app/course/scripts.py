@@ -6,7 +6,8 @@ values the page had. :func:`example_script` writes one for a worked example (its
 outputs and every step's values), :func:`scene_script` one for a scene: its
 model's ``simulate`` (the one path of every model, closed-form or integrated)
 over :data:`SCRIPT_T_END_S`, printing the last frame's series, the invariants
-and the drift; a scene that draws a worked example prints that example; the scenes
+and the drift (and, for the scenes in :data:`_READOUTS`, the readout beside the
+scene, row for row); a scene that draws a worked example prints that example; the scenes
 drawn from formulas of their own (rotation sequences, configuration space, the
 toggle press, finite rotations) print their readout's numbers from the same physics functions.
 
@@ -28,7 +29,7 @@ from typing import Any
 from app.physics.core.parameters import ParameterError, ParameterSet
 from app.physics.core.solution import WorkedExample
 from app.physics.systems import system_modules
-from app.scenes.kit import Scene
+from app.scenes.kit import FRAME_DT_S, Scene
 
 __all__ = [
     "SCRIPT_FRAME_RATE_HZ",
@@ -41,9 +42,10 @@ __all__ = [
     "script_values",
 ]
 
-#: Simulated time (s) a scene's script runs its model for, and its samples per simulated second (Hz).
+#: Simulated time (s) a scene's script runs its model for, and its samples per simulated second (Hz): the live
+#: scenes' own frame rate (30 Hz), so a scene's readout, which reads its drawn frames, is reproduced frame for frame.
 SCRIPT_T_END_S = 2.0
-SCRIPT_FRAME_RATE_HZ = 60.0
+SCRIPT_FRAME_RATE_HZ = float(round(1.0 / FRAME_DT_S))
 #: Longest ``params`` text the script routes read (a composite body's parts are the largest values).
 MAX_PARAMS_TEXT = 20_000
 
@@ -201,8 +203,36 @@ for number, step in enumerate(solution.steps, start=1):
 '''
 
 
+def _heavy_top_readout(scene: type[Scene]) -> tuple[str, str]:
+    """The heavy top's readout from the run: the quadrature's predictions and the band θ swept over every frame."""
+    return (
+        "from app.physics.systems.ch10 import heavy_top as readout_physics\n",
+        """
+# The readout beside the scene at t = T_END_S: the same rows (names, units) from the same functions. The swept band
+# is the least and largest θ over every frame from t = 0, as the scene reads it off the frames it draws.
+theta = answer["series"]["theta"]  # rad, one per frame
+reference, why = readout_physics.reference_or_none(params)
+print(f"readout at t = {t[-1]:g} s (the page's table):")
+show("t_s", t[-1], "s")
+if why:
+    print("  " + why)
+for quantity in readout_physics.readout_quantities(params, reference, (min(theta), max(theta))):
+    if quantity.value is None:  # a word, or why there is no number: shown without a unit
+        show(quantity.name, quantity.text)
+    else:
+        show(quantity.name, quantity.value, quantity.unit)
+""",
+    )
+
+
+#: Scenes whose readout a script prints after the model's numbers: ``(import lines, code)`` by scene id. The code
+#: runs after the simulation, with ``params``, ``answer`` and ``t`` (the frame times) set.
+_READOUTS: Mapping[str, Callable[[type[Scene]], tuple[str, str]]] = {"heavy-top": _heavy_top_readout}
+
+
 def _model_script(scene: type[Scene], params: Mapping[str, Any]) -> str:
-    """A scene drawing a model: simulate it, as the simulate route does, and print the last frame."""
+    """A scene drawing a model: simulate it, as the simulate route does, and print the last frame (and, for a scene
+    in :data:`_READOUTS`, its readout)."""
     model = scene.model
     assert model is not None
     module, name = _importable(model)
@@ -212,6 +242,8 @@ def _model_script(scene: type[Scene], params: Mapping[str, Any]) -> str:
     display = {k: v for k, v in params.items() if k not in physical and k not in controls}
     file = script_file_name(scene.id)
     imports = f"from {module} import {name}\n"
+    readout_imports, readout = _READOUTS[scene.id](scene) if scene.id in _READOUTS else ("", "")
+    imports += readout_imports
     how = model.how_computed
     values = f"{_dict_block('params', physical)}\n"
     check = f"params = {name}.parameters.validate(params)\n"
@@ -227,7 +259,8 @@ def _model_script(scene: type[Scene], params: Mapping[str, Any]) -> str:
     return f'''"""{scene.title} (scene {scene.id}, chapter {scene.chapter}): the page's numbers.
 
 {how[0].upper()}{how[1:]} with the project's own package for the values the page had, over
-T_END_S seconds, and prints the last frame's series, the invariants and how far they drifted.
+T_END_S seconds, and prints {"the readout beside the scene, then " if readout else ""}the last frame's series, the
+invariants and how far they drifted.
 {_RUN.format(file=file)}
 """
 
@@ -242,7 +275,7 @@ FRAME_RATE_HZ = {python_literal(SCRIPT_FRAME_RATE_HZ)}  # samples per simulated 
 {check}answer = {run}
 
 t = answer["t"]
-print(f"series at t = {{t[-1]:g}} s (frame {{len(t) - 1}} at {{FRAME_RATE_HZ:g}} Hz):")
+{readout}print(f"series at t = {{t[-1]:g}} s (frame {{len(t) - 1}} at {{FRAME_RATE_HZ:g}} Hz):")
 for name, values in answer["series"].items():
     show(name, values[-1], {name}.series_units.get(name, ""))
 print("invariants at the same instant:")

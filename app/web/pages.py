@@ -19,7 +19,9 @@ from app.course import Catalogue, Chapter, Lesson, bench_reports, render_markdow
 from app.course.lessons import split_front_matter
 from app.physics.mechanics.derivation import FORMULATION_TITLES, FORMULATIONS
 from app.physics.mechanics.engine import available_formulations
+from app.scenes import SCENES
 from app.scenes.host.host import SESSION_ID_PATTERN
+from app.scenes.kit import IntegratedScene
 from app.web.page_config import config_script, page_config
 from app.web.static_files import inline_module, modulepreload_links
 from app.web.viewer_client import unpacked_client
@@ -383,9 +385,15 @@ def _default_paragraph(scene: dict) -> str:
     name = esc(labels.get(str(default.get("method")), str(default.get("method"))))
     setting = f" with {_setting_name(setting_name)} = {fmt_setting(default['setting'])}" if "setting" in default else ""
     cpu = default.get("cpu_s")
-    parts = [f"<strong>Default for the live scene:</strong> {name}{setting}."]
+    # The benchmark's own automatic choice, for its span and frame rate: a live scene chooses for its own (below).
+    t_end, rate = scene.get("t_end_s"), scene.get("frame_rate_hz")
+    over = (
+        f" over these {fmt_setting(t_end)} s at {fmt_setting(rate)} frames per second"
+        if isinstance(t_end, (int, float)) and isinstance(rate, (int, float))
+        else ""
+    )
+    parts = [f"<strong>Automatic choice{over}:</strong> {name}{setting}."]
     if isinstance(cpu, (int, float)) and not isinstance(cpu, bool) and math.isfinite(cpu):
-        t_end, rate = scene.get("t_end_s"), scene.get("frame_rate_hz")
         span = f"the whole {fmt_setting(t_end)} s run" if isinstance(t_end, (int, float)) else "the whole run"
         sentence = f"CPU time <strong>{fmt_sig(1e3 * cpu)} ms</strong> for {span}"
         if isinstance(t_end, (int, float)) and isinstance(rate, (int, float)) and t_end > 0 and rate > 0:
@@ -403,6 +411,47 @@ def _default_paragraph(scene: dict) -> str:
         parts[-1] += f", {verdict} the target of {_with_unit(fmt_setting(target), unit)}"
     parts[-1] += "."
     return f'<p class="bench-default">{" ".join(parts)}</p>'
+
+
+#: Where solver-lab.md states what a live scene runs: ``{{live-default:<scene id>}}``, filled in on every request by
+#: :func:`live_default_text` (never typed by hand: the benchmark's run is not the live scene's).
+LIVE_DEFAULT_MARK = re.compile(r"\{\{live-default:([a-z0-9-]{1,64})\}\}")
+
+
+def live_default_text(scene_id: str) -> str:
+    """What the live scene ``scene_id`` runs at its defaults, as its live panel says it, in HTML: the integrator and
+    step ("Splitting, order 8 (exact free flow), 1 step/frame (h = 33.3 ms)"), its frame rate and its accuracy
+    ("target 1e-06 rad over 60 s · estimated 4e-07 rad · 1 step/frame"). Asked of the scene's own choice
+    (:meth:`IntegratedScene.live_default`, the step choice's pilots run or reused); a scene that is not integrated, or a
+    choice that fails, says so in words, never an error page."""
+    cls = SCENES.get(scene_id)
+    if cls is None or not issubclass(cls, IntegratedScene):
+        return "(no live integrated scene of that name)"
+    try:
+        integrator, choice, frame_dt_s = cls.live_default()
+    except Exception as exc:  # noqa: BLE001 - a page states what it cannot compute and goes on
+        return f"(its choice could not be computed here: {esc(str(exc))})"
+    text = (
+        f'<span class="live-default" data-scene="{esc(scene_id)}">{esc(integrator.describe(frame_dt_s))}</span> '
+        f"at {fmt_setting(round(1.0 / frame_dt_s, 6))} frames per second"
+    )
+    return text + (f" ({esc(choice.text())})" if choice is not None else "")
+
+
+def with_live_defaults(html_text: str) -> str:
+    """``html_text`` with each ``{{live-default:<scene id>}}`` replaced by :func:`live_default_text`."""
+    return LIVE_DEFAULT_MARK.sub(lambda match: live_default_text(match.group(1)), html_text)
+
+
+def _live_scene_paragraph(scene: dict) -> str:
+    """What the live scene the benchmark case stands for (its ``live_scene``) runs, beside the benchmark's choice."""
+    live = scene.get("live_scene")
+    if not isinstance(live, str) or not bench_reports.SCENE_ID_PATTERN.fullmatch(live):
+        return ""
+    return (
+        f'<p class="bench-live"><strong>The live scene</strong> ({esc(live)}, at its defaults, choosing for a minute '
+        f"of motion) runs {live_default_text(live)}.</p>"
+    )
 
 
 def _scene_section(scene: dict, settings) -> str:
@@ -441,7 +490,7 @@ def _scene_section(scene: dict, settings) -> str:
         f'<section class="bench-scene"{anchor}>'
         f"<h2>{title}</h2>"
         f'<p class="bench-meta">{" ".join(meta)}</p>'
-        f"{figure}{_default_paragraph(scene)}"
+        f"{figure}{_default_paragraph(scene)}{_live_scene_paragraph(scene)}"
         + (f'<ul class="bench-ratios">{ratios}</ul>' if ratios else "")
         + _points_table(scene)
         + "</section>"
@@ -703,7 +752,7 @@ def solver_lab_page(settings: SettingsDep) -> HTMLResponse:
     body = _template("solver_lab.html").substitute(
         title=esc(str(meta.get("title", "Solver lab"))),
         summary=esc(str(meta.get("summary", ""))),
-        prose=prose,
+        prose=with_live_defaults(prose),
         results=results_html,
         capacity=_capacity_section(settings),
     )

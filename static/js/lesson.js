@@ -572,7 +572,8 @@ export const lesson = (function () {
         ? shown : (item.text ? `${fmt(item.value)} (${item.text})` : fmt(item.value));
       tr.children[1].dataset.quantity = item.name;
       tr.children[1].dataset.value = JSON.stringify(shown);
-      tr.children[2].textContent = item.unit || "";
+      // A value that is text (a word, or why there is no number) has no unit: "no flips in this motion", not "… s".
+      tr.children[2].textContent = item.value === null || item.value === undefined ? "" : (item.unit || "");
     });
     const message = readoutBox.querySelector(".readout-message");
     if (message.dataset.source !== (readout.message || "")) {

@@ -145,3 +145,19 @@ def test_nan_outside_inputs_is_422_not_500(client, raw):
     # The validation error echoes the NaN input, which strict JSON cannot carry; the reply must
     # still be a 422 rather than a server error.
     assert solve(client, "1.1", raw=raw).status_code == 422
+
+
+@pytest.mark.parametrize(("inputs", "zero"), [({"gamma_deg": 45.0}, ("M_A_Nm", 0)), ({"theta_deg": 180.0, "gamma_deg": 0.0}, ("M_z_Nm", None))])
+def test_solve_1_1_shows_round_off_as_zero(client, inputs, zero):
+    """θ = 25°, γ = 45°: M_A's x component is 4.5e-13 N·m of 1.6e4 N·m, round-off of the cross product; θ = 180°, γ = 0:
+    M_z is −1.1e-12 N·m of a 17 500 N·m scale (|r_C| |F|). Both answer exactly 0, in the outputs and in the steps."""
+    response = solve(client, "1.1", {"inputs": inputs})
+    assert response.status_code == 200
+    data = response.json()
+    name, index = zero
+    shown = data["outputs"][name] if index is None else data["outputs"][name][index]
+    assert shown == 0.0
+    step_values = {key: value for step in data["steps"] for key, value in step["values"].items()}
+    symbol = name.removesuffix("_Nm")
+    assert (step_values[symbol] if index is None else step_values[symbol][index]) == 0.0
+    assert all(abs(v) > 1e3 for v in data["outputs"]["M_A_Nm"] if v != 0.0)  # the other components are the moment

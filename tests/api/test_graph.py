@@ -22,6 +22,7 @@ import viser
 from fastapi.testclient import TestClient
 
 from app.main import create_app
+from app.scenes.host.graph import csv_column
 from app.scenes.viser_boundary import viewer_camera_message
 from app.settings import Settings
 from tests.conftest import wait_until
@@ -143,8 +144,10 @@ def test_the_csv_holds_the_same_numbers(page):
     assert response.headers["content-disposition"] == 'attachment; filename="heavy-top-graph.csv"'
     rows = list(csv.reader(io.StringIO(response.text)))
     units = {q["name"]: q["unit"] for q in answer["quantities"]}
-    assert rows[0] == ["t_s"] + [f"{q['name']} ({q['unit']})" if q["unit"] else q["name"] for q in answer["quantities"]]
-    assert "theta (rad)" in rows[0] and "energy_total_J (J)" in rows[0] and units["quaternion_norm_error"] == ""
+    assert rows[0] == ["t_s"] + [csv_column(q["name"], q["unit"]) for q in answer["quantities"]]
+    # Each column names its unit once: in its name (energy_total_J), else in brackets (theta (rad)); none without one.
+    assert "theta (rad)" in rows[0] and "energy_total_J" in rows[0] and units["quaternion_norm_error"] == ""
+    assert "quaternion_norm_error" in rows[0] and not [h for h in rows[0] if h.endswith("_J (J)")]
     body = np.array([[float(cell) for cell in row] for row in rows[1:]])
     np.testing.assert_array_equal(body[:, 0], answer["t_s"])
     for column, quantity in enumerate(answer["quantities"], start=1):

@@ -7,6 +7,8 @@ where the name ends in ``_deg``) or ``None`` where it is undefined at this
 instant, in which case ``text`` says why ("undefined (gimbal lock)"). A
 quantity whose value is a word (a locus shape, a direction of precession) has
 ``value`` ``None`` and the word in ``text``. Time is always named ``t_s``.
+A ``None`` value keeps its quantity's ``unit`` (what the number is in when
+there is one); pages show a text value without it.
 """
 
 from __future__ import annotations

@@ -1,7 +1,10 @@
 """A worked solution as data: outputs, the named steps that produced them, and plots.
 
 The same object feeds the API (JSON), the lesson's step-by-step panel (LaTeX) and
-the tests (numbers), so a derivation is written once.
+the tests (numbers), so a derivation is written once. A number that is zero up to
+round-off (:data:`ROUND_OFF_RTOL` of its scale: a vector's own length unless the
+solution states a scale) is 0 in it: a student reads "M_A = [0, 10179, −12413] N·m",
+not "[4.5e-13, …]".
 """
 
 from __future__ import annotations
@@ -13,6 +16,60 @@ from typing import Any
 import numpy as np
 
 from app.physics.core.parameters import ParameterSet
+
+#: A number at most this fraction of its scale is zero up to round-off and is shown as 0. A worked solution's
+#: arithmetic (a few products, sums, a square root) is exact to a few ulps of its scale (about 1e-16 each: the
+#: robotic arm's M_A has an x component of 4.5e-13 N·m beside 1.6e4 N·m, 3e-17 of it), while a value 1e-12 of its
+#: scale is already far below anything the page shows (six significant figures).
+ROUND_OFF_RTOL = 1e-12
+
+
+def _magnitude(value: Any) -> float:
+    """The Euclidean length of all the finite numbers in ``value`` (a number, array or nested list; 0 for none)."""
+    if isinstance(value, bool) or value is None or isinstance(value, str):
+        return 0.0
+    if isinstance(value, (int, float, np.integer, np.floating)):
+        return abs(float(value)) if np.isfinite(value) else 0.0
+    if isinstance(value, np.ndarray) and value.dtype.kind in "iuf":
+        finite = value[np.isfinite(value)].astype(float)
+        return float(np.sqrt(np.sum(finite * finite)))
+    if isinstance(value, (list, tuple, np.ndarray)):
+        return float(np.sqrt(sum(_magnitude(v) ** 2 for v in value)))
+    return 0.0
+
+
+def _zeroed(value: Any, threshold: float) -> Any:
+    """``value`` with each floating-point number of magnitude at most ``threshold`` replaced by 0.0 (types kept)."""
+    if isinstance(value, np.ndarray) and value.dtype.kind == "f":
+        return np.where(np.abs(value) <= threshold, 0.0, value)
+    if isinstance(value, (float, np.floating)):
+        return type(value)(0.0) if abs(float(value)) <= threshold else value
+    if isinstance(value, (list, tuple)):
+        return type(value)(_zeroed(v, threshold) for v in value)
+    return value  # integers are exact; words, booleans and None have no round-off
+
+
+def _vector_or_matrix(value: Any) -> bool:
+    """A vector or matrix of one quantity (at most 3 × 3 numbers), whose length is its components' scale; not a
+    number alone, and not a sweep (a plotted series spans decades: 1e-12 s beside 2 s is no round-off)."""
+    if isinstance(value, (bool, str)) or value is None:
+        return False
+    try:
+        shape = np.shape(value)
+    except ValueError:  # a ragged list
+        return False
+    return 1 <= len(shape) <= 2 and all(1 <= n <= 3 for n in shape)
+
+
+def zero_round_off(value: Any, scale: float | None = None) -> Any:
+    """``value`` (a number, an array or a nested list of them, SI) with every number within :data:`ROUND_OFF_RTOL` of
+    ``scale`` replaced by exactly 0 (−0.0 included). ``scale`` None: a vector's or a matrix's (at most 3 × 3) own
+    length, so a component at round-off of its vector is 0; a lone number or a sweep is kept (nothing says how large
+    its numbers should be)."""
+    if scale is None and not _vector_or_matrix(value):
+        return value
+    reference = _magnitude(value) if scale is None else abs(float(scale))
+    return _zeroed(value, ROUND_OFF_RTOL * reference) if np.isfinite(reference) else value
 
 
 def _plain(value: Any) -> Any:
@@ -34,12 +91,20 @@ class Step:
 
     ``values`` maps a symbol (as the lesson prints it) to a number or an
     ``[x, y, z]`` vector in SI units; ``units`` gives each symbol's unit.
+    ``scales`` gives a symbol the magnitude its value is compared with
+    (default: the value's own length): a number within round-off of its scale
+    is stored as 0 (:func:`zero_round_off`).
     """
 
     title: str
     latex: str
     values: Mapping[str, Any] = field(default_factory=dict)
     units: Mapping[str, str] = field(default_factory=dict)
+    scales: Mapping[str, float] = field(default_factory=dict, compare=False, repr=False)
+
+    def __post_init__(self) -> None:
+        shown = {name: zero_round_off(value, self.scales.get(name)) for name, value in self.values.items()}
+        object.__setattr__(self, "values", shown)
 
     def as_dict(self) -> dict[str, Any]:
         return {"title": self.title, "latex": self.latex, "values": _plain(self.values), "units": dict(self.units)}
@@ -76,9 +141,20 @@ class Plot:
 
 @dataclass(frozen=True)
 class Solution:
+    """A worked solution: its ``outputs`` (by name, SI), the ``steps`` that produced them and its plots.
+
+    ``output_scales`` gives an output the magnitude it is compared with (default: its own length); an output within
+    round-off of its scale is stored as 0, as a step's values are.
+    """
+
     outputs: Mapping[str, Any]
     steps: tuple[Step, ...]
     plots: tuple[Plot, ...] = ()
+    output_scales: Mapping[str, float] = field(default_factory=dict, compare=False, repr=False)
+
+    def __post_init__(self) -> None:
+        shown = {name: zero_round_off(value, self.output_scales.get(name)) for name, value in self.outputs.items()}
+        object.__setattr__(self, "outputs", shown)
 
     def as_dict(self) -> dict[str, Any]:
         return {

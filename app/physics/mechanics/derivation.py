@@ -16,6 +16,8 @@ from dataclasses import dataclass, field
 
 import sympy
 
+from app.physics.mechanics.shown import print_latex
+
 #: The formulations, in the order the page shows them (ids are API contracts).
 FORMULATIONS = ("newton-euler", "lagrange", "hamilton", "routh", "gibbs-appell", "kane")
 FORMULATION_TITLES = {
@@ -29,8 +31,9 @@ FORMULATION_TITLES = {
 
 
 def latex_printer(names: dict) -> Callable[[sympy.Expr | sympy.Matrix], str]:
-    """LaTeX of an expression with the page's symbol names (θ₁, θ̇₁ …)."""
-    return lambda expr: sympy.latex(expr, symbol_names=names)
+    """LaTeX of an expression with the page's symbol names (θ₁, θ̇₁ …); inside :func:`~.shown.shown_forms` (the
+    engine's derivations) a token for it, filled in with its simplified form once the derivation is done."""
+    return lambda expr: print_latex(expr, names)
 
 
 def linear_equations_latex(

@@ -20,7 +20,7 @@ import threading
 import time
 from collections import OrderedDict
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -37,6 +37,7 @@ from app.physics.mechanics.kane import derive_kane
 from app.physics.mechanics.lagrange import derive_lagrange
 from app.physics.mechanics.newton_euler import derive_newton_euler
 from app.physics.mechanics.routh import derive_routh
+from app.physics.mechanics.shown import SimplifyOutcome, shown_forms
 from app.physics.solvers.kernels import RHS_SIGNATURE, Kernel
 
 
@@ -118,6 +119,10 @@ class Derived:
     _kernel: Kernel | None = field(default=None, repr=False)
     _answered: bool = field(default=False, repr=False)
     _lock: threading.Lock = field(default_factory=threading.Lock, repr=False)
+    #: Set while what is shown awaits its simplification (refused for the machine's load): tries it again, True once
+    #: done (see :func:`_derive_and_store`).
+    _pending_shown: Callable[[], bool] | None = field(default=None, repr=False)
+    _shown_lock: threading.Lock = field(default_factory=threading.Lock, repr=False)
 
     def state_derivative(self, t_s: float, state: np.ndarray, parameters: np.ndarray) -> np.ndarray:
         """(q̇, q̈) at the state (q, q̇) and time t (plain Python: no compile needed); NaN where they have no finite
@@ -161,12 +166,21 @@ class Derived:
                 self._kernel = Kernel(compiled=compiled, python=self.rhs_python)
             return self._kernel
 
+    def finish_shown(self) -> None:
+        """Simplify what is shown now if that was refused when it was derived (a busy machine); one try at a time."""
+        if self._pending_shown is None:
+            return
+        with self._shown_lock:
+            if self._pending_shown is not None and self._pending_shown():
+                self._pending_shown = None
+
     def answer(self) -> dict:
         """The derive route's body (names are API contracts).
 
         The timings are this request's: the first answer of a fresh derivation reports sympy's and the code
         generator's seconds; every later one (from memory or disk) reports what it cost then, 0 s to derive.
         """
+        self.finish_shown()
         with self._lock:
             first, self._answered = not self._answered, True
         derive_s, compile_s, cached = (self.derive_s, self.compile_s, self.from_cache) if first else (0.0, 0.0, True)
@@ -266,31 +280,75 @@ def _from_disk(system: SystemDescription, formulation: str, directory: Path | No
 
 
 def _derive_and_store(system: SystemDescription, formulation: str, directory: Path | None) -> Derived:
+    """Derive, generate the right-hand side from the recipe, then simplify what is shown (bounded, :mod:`.shown`).
+
+    The code is generated before anything shown is simplified, from the recipe alone: the numbers never depend on
+    it. ``derive_s`` counts sympy's derivation and the simplification of what it shows. A simplification refused for
+    the machine's load (``outcome.refused``: no slot, the child paused or stopped) shows the derived forms for now and
+    stores nothing on disk; the next answer tries again (:meth:`Derived.finish_shown`) and stores it once done.
+    """
     meta_path, source_path = _paths(system, formulation, directory)
     start = time.perf_counter()
-    derivation = DERIVERS[formulation](system)
+    with shown_forms() as forms:
+        derivation = DERIVERS[formulation](system)
+        matrices = derivation.latex(derivation.mass_matrix), derivation.latex(derivation.forcing)
     derive_s = time.perf_counter() - start
     start = time.perf_counter()
     rhs = load_recipe(system, derivation.recipe, formulation=formulation, path=source_path)
     compile_s = time.perf_counter() - start
+    start = time.perf_counter()
+    outcome = forms.simplify()
+    derive_s += time.perf_counter() - start
+    tokens = derivation  # its LaTeX holds the tokens the forms fill in
+
+    def shown_latex() -> dict[str, Any]:
+        return {
+            "equations_latex": [forms.fill(e) for e in tokens.equations_latex],
+            "mass_matrix_latex": forms.fill(matrices[0]),
+            "forcing_latex": forms.fill(matrices[1]),
+            "steps": [{"title": s.title, "latex": forms.fill(s.latex)} for s in tokens.steps],
+        }
+
     shown: dict[str, Any] = {
         "system_id": system.id,
         "formulation": formulation,
         "coordinates": [c.name for c in system.coordinates],
         "speeds": [s.name for s in system.speed_list],
-        "equations_latex": list(derivation.equations_latex),
-        "mass_matrix_latex": derivation.latex(derivation.mass_matrix),
-        "forcing_latex": derivation.latex(derivation.forcing),
-        "steps": [s.as_dict() for s in derivation.steps],
         "variables": derivation.variables,
+        **shown_latex(),
     }
-    meta = {"derived": shown, "derive_s": derive_s, "compile_s": compile_s, "sympy": sympy.__version__}
-    temporary = meta_path.with_suffix(f".{os.getpid()}.{threading.get_ident()}.tmp")
-    temporary.write_text(json.dumps(meta, ensure_ascii=False, indent=1))
-    os.replace(temporary, meta_path)
-    return Derived(
-        **shown, derive_s=derive_s, compile_s=compile_s, source_path=source_path, rhs_python=rhs, derivation=derivation
-    )
+    result = Derived(**shown, derive_s=derive_s, compile_s=compile_s, source_path=source_path, rhs_python=rhs)
+
+    def store(outcome: SimplifyOutcome) -> None:
+        """Show the filled-in forms and write the entry to disk."""
+        latex = shown_latex()
+        for name, value in latex.items():
+            setattr(result, name, value)
+        steps = tuple(replace(step, latex=filled["latex"]) for step, filled in zip(tokens.steps, latex["steps"]))
+        result.derivation = replace(tokens, equations_latex=tuple(latex["equations_latex"]), steps=steps)
+        meta = {
+            "derived": {**shown, **latex},
+            "derive_s": derive_s,
+            "compile_s": compile_s,
+            "shown": outcome.as_dict(),
+            "sympy": sympy.__version__,
+        }
+        temporary = meta_path.with_suffix(f".{os.getpid()}.{threading.get_ident()}.tmp")
+        temporary.write_text(json.dumps(meta, ensure_ascii=False, indent=1))
+        os.replace(temporary, meta_path)
+
+    def retry() -> bool:
+        again = forms.simplify()
+        if again.refused:
+            return False
+        store(again)
+        return True
+
+    if outcome.refused:
+        result._pending_shown = retry
+    else:
+        store(outcome)
+    return result
 
 
 def available_formulations(system: SystemDescription) -> dict[str, str]:

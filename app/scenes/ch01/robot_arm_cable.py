@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from app.physics.core.solution import zero_round_off
 from app.physics.systems.ch01 import robot_arm_cable as physics
 from app.scenes.kit import Quantity, Readout, Scene, arrow_segments, quaternion_z_to
 
@@ -118,16 +119,19 @@ class RobotArmCableScene(Scene):
         if self.status:
             return Readout((), message=f"Cannot solve: {self.status}")
         loads = self.loads
+        scale = physics.round_off_scales(loads)  # a load within round-off of its scale reads 0, as in the solution
         quantities = [
             Quantity(f"F_{axis}_N", f"cable force on C, {axis} component F_{axis}", float(component), "N")
-            for axis, component in zip("xyz", loads.F_N)
+            for axis, component in zip("xyz", zero_round_off(loads.F_N, scale["F_N"]))
         ]
         along = "toward B: it compresses BC" if loads.F_BC_N < 0.0 else "away from B: it stretches BC"
         quantities += [
-            Quantity("F_BC_N", "component along BC (B → C)", loads.F_BC_N, "N"),
+            Quantity("F_BC_N", "component along BC (B → C)", zero_round_off(loads.F_BC_N, scale["F_BC_N"]), "N"),
             Quantity("M_A_Nm", "moment about A |M_A|", float(np.linalg.norm(loads.M_A_Nm)), "N·m"),
-            Quantity("M_z_Nm", "moment about the vertical axis M_z", loads.M_z_Nm, "N·m"),
-            Quantity("M_AB_Nm", "moment about arm AB M_AB", loads.M_AB_Nm, "N·m"),
+            Quantity(
+                "M_z_Nm", "moment about the vertical axis M_z", zero_round_off(loads.M_z_Nm, scale["M_z_Nm"]), "N·m"
+            ),
+            Quantity("M_AB_Nm", "moment about arm AB M_AB", zero_round_off(loads.M_AB_Nm, scale["M_AB_Nm"]), "N·m"),
             Quantity.word("turning_about_z", "turns the arm about z, seen from above", physics.turning_about_z(loads)),
         ]
         message = (

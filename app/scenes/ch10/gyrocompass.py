@@ -107,10 +107,10 @@ class GyrocompassScene(IntegratedScene):
     def time_scale(self) -> float:
         return float(self.params[TIME_SCALE.name])
 
-    @property
-    def frame_dt_s(self) -> float:
+    @classmethod
+    def frame_dt_for(cls, params) -> float:
         """Each displayed frame covers ``time_scale`` frames of simulated time."""
-        return FRAME_DT_S * self.time_scale
+        return FRAME_DT_S * float(params[TIME_SCALE.name])
 
     def new_run(self, system, integrator, y0) -> ScaledLiveRun:
         return ScaledLiveRun(system, integrator, y0, time_scale=self.time_scale)

@@ -154,12 +154,8 @@ class HeavyTopScene(IntegratedScene):
 
     def _update_reference(self, params) -> None:
         """Quadrature solution for these parameters: nutation band rings and the reference tip."""
-        try:
-            self.reference: HeavyTopQuadrature | None = physics.quadrature(params)
-            self.reference_message = ""
-        except ValueError as exc:
-            self.reference = None
-            self.reference_message = f"No quadrature reference for these values: {exc}"
+        self.reference: HeavyTopQuadrature | None
+        self.reference, self.reference_message = physics.reference_or_none(params)
         self._theta_swept = [math.inf, -math.inf]
         rings = []
         if self.reference is not None:
@@ -224,51 +220,19 @@ class HeavyTopScene(IntegratedScene):
         """Quadrature predictions beside what the integration has done so far; the sleeping threshold mark."""
         params = self.physical_params()
         critical = physics.critical_spin_rad_s(params)
-        quantities = [Quantity("t_s", "time t", self.run.t_s, "s")]
-        reference = self.reference
-        if reference is not None:
-            quantities += [
-                Quantity(
-                    "theta_min_deg", "nutation band: θ min (quadrature)", math.degrees(reference.theta_min_rad), "deg"
-                ),
-                Quantity(
-                    "theta_max_deg", "nutation band: θ max (quadrature)", math.degrees(reference.theta_max_rad), "deg"
-                ),
-                # An upright top's axis never comes back: its nutation period is infinite.
-                Quantity.or_text(
-                    "nutation_period_s",
-                    "nutation period (quadrature)",
-                    reference.nutation_period_s,
-                    "s",
-                    "never returns",
-                ),
-                Quantity(
-                    "mean_precession_rate_rad_s",
-                    "mean precession rate (quadrature)",
-                    reference.mean_precession_rate_rad_s,
-                    "rad/s",
-                ),
-                Quantity.word("locus", "axis locus", physics.locus_shape(reference)),
-            ]
-        if self._theta_swept[0] <= self._theta_swept[1]:
-            quantities += [
-                Quantity(
-                    "theta_min_swept_deg", "θ min swept so far (integration)", math.degrees(self._theta_swept[0]), "deg"
-                ),
-                Quantity(
-                    "theta_max_swept_deg", "θ max swept so far (integration)", math.degrees(self._theta_swept[1]), "deg"
-                ),
-            ]
+        low, high = self._theta_swept
+        swept = (low, high) if low <= high else None  # the band the integration has swept (none before a frame)
+        quantities = [
+            Quantity("t_s", "time t", self.run.t_s, "s"),
+            *physics.readout_quantities(params, self.reference, swept),
+        ]
         spin = abs(params["spin_rad_s"])
         if params["g_m_s2"] == 0.0:
-            # Without gravity nothing pulls an upright top over: there is no threshold to cross.
-            quantities.append(Quantity.word("critical_spin_rad_s", "sleeping threshold |ω₃|", "none: no gravity"))
             message = self.reference_message or (
                 "g = 0: no gravity, so no torque about the pivot; the top moves as a torque-free body and any "
                 "spin, even none, keeps an upright top up."
             )
             return Readout(quantities, marks={}, message=message)
-        quantities.append(Quantity("critical_spin_rad_s", "sleeping threshold |ω₃|", critical, "rad/s"))
         message = self.reference_message or (
             f"|ω₃| = {spin:.4g} rad/s is above the sleeping threshold {critical:.4g} rad/s: started upright, "
             "this top would stay up."

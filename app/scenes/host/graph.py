@@ -195,10 +195,28 @@ def _energy_bars(model: IntegratedModel, params: Mapping[str, Any], budget: Mapp
     return {"parts": parts, "total_J": _finite(float(budget["total_J"][-1])), "note": model.energy_note(params)}
 
 
+#: How a unit is spelled at the end of a name (``kg·m²/s`` → ``kg_m2_s``, as in ``p_theta_kg_m2_s``).
+_UNIT_SPELLING = str.maketrans({"·": "_", "/": "_", " ": "_", "*": "_", "²": "2", "³": "3", "°": "deg"})
+
+
+def name_carries_unit(name: str, unit: str) -> bool:
+    """Whether ``name`` ends with ``unit`` spelled as names spell it (``energy_total_J`` and J, ``spin_rate_rad_s``
+    and rad/s, ``driving_torque_N_m`` and N·m); never for no unit."""
+    spelled = unit.translate(_UNIT_SPELLING)
+    return bool(spelled) and (name == spelled or name.endswith("_" + spelled))
+
+
+def csv_column(name: str, unit: str) -> str:
+    """A CSV column's heading: the name with its unit once: ``theta (rad)``, but ``energy_total_J`` as it is (its
+    name already says J; ``energy_total_J (J)`` wrote the unit twice), and a unitless name alone."""
+    return f"{name} ({unit})" if unit and not name_carries_unit(name, unit) else name
+
+
 def graph_csv(answer: Mapping[str, Any]) -> str:
-    """A graph answer as CSV: header ``t_s,<name> (<unit>),...``, one row per time; empty cells for missing values."""
+    """A graph answer as CSV: header ``t_s`` then each quantity's :func:`csv_column`, one row per time; empty cells
+    for missing values."""
     names = [q["name"] for q in answer["quantities"]]
-    header = ["t_s"] + [f"{q['name']} ({q['unit']})" if q["unit"] else q["name"] for q in answer["quantities"]]
+    header = ["t_s"] + [csv_column(q["name"], q["unit"]) for q in answer["quantities"]]
     lines = [",".join(header)]
     for i, t in enumerate(answer["t_s"]):
         cells = [repr(float(t))] + [

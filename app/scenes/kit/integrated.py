@@ -51,6 +51,23 @@ LIVE_PHYSICS_BUDGET_S = 1e-3
 RUNAWAY_DRIFT = 0.2
 
 
+def live_integrator(
+    model: IntegratedModel,
+    params: Mapping[str, Any],
+    controls: Mapping[str, Any],
+    frame_dt_s: float,
+    *,
+    run_pilots: bool = True,
+) -> tuple[Integrator, StepChoice | None]:
+    """The integrator a live scene runs for ``params`` and ``controls`` at ``frame_dt_s`` (s of simulated time a
+    frame), and the step choice behind it: the choice within a live frame's physics budget
+    (:data:`LIVE_PHYSICS_BUDGET_S`). The one place a live scene's integration is chosen: its restart (without pilots),
+    its background pilot, and the pages that state what the scene runs (the Solver lab) all ask here."""
+    return choose_integrator(
+        model, params, controls, frame_dt_s, run_pilots=run_pilots, max_frame_cpu_s=LIVE_PHYSICS_BUDGET_S
+    )
+
+
 class IntegratedScene(Scene):
     """A scene driven by an :class:`IntegratedModel`; subclasses draw :attr:`run`'s state."""
 
@@ -67,10 +84,27 @@ class IntegratedScene(Scene):
         """Method, steps per frame and tolerance."""
         return {k: v for k, v in self.params.items() if k in CONTROL_NAMES}
 
+    @classmethod
+    def frame_dt_for(cls, params: Mapping[str, Any]) -> float:
+        """Simulated seconds per displayed frame for the scene's values ``params`` (a scene showing time faster than
+        real time scales it)."""
+        return FRAME_DT_S
+
     @property
     def frame_dt_s(self) -> float:
-        """Simulated seconds per displayed frame (a scene showing time faster than real time scales it)."""
-        return FRAME_DT_S
+        """Simulated seconds per displayed frame (:meth:`frame_dt_for` the scene's values)."""
+        return self.frame_dt_for(self.params)
+
+    @classmethod
+    def live_default(cls, values: Mapping[str, Any] | None = None) -> tuple[Integrator, StepChoice | None, float]:
+        """``(integrator, step choice, frame_dt_s)`` a page's scene runs for ``values`` (omitted: the defaults) once its
+        step choice's pilot has answered, which this runs (or reuses): what the scene's live panel shows."""
+        params = cls.parameters.validate(dict(values or {}))
+        physical = {name: params[name] for name in cls.model.parameters.by_name}
+        controls = {k: v for k, v in params.items() if k in CONTROL_NAMES}
+        frame_dt = cls.frame_dt_for(params)
+        integrator, choice = live_integrator(cls.model(), physical, controls, frame_dt)
+        return integrator, choice, frame_dt
 
     def new_run(self, system: OdeSystem, integrator: Integrator, y0: np.ndarray) -> LiveRun:
         """The live run :meth:`step_physics` advances by :data:`FRAME_DT_S` a frame, stopping where the model's
@@ -95,9 +129,7 @@ class IntegratedScene(Scene):
         params = self.physical_params()
         controls = self.integration_controls()
         frame_dt = self.frame_dt_s
-        integrator, self.accuracy = choose_integrator(
-            model, params, controls, frame_dt, run_pilots=False, max_frame_cpu_s=LIVE_PHYSICS_BUDGET_S
-        )
+        integrator, self.accuracy = live_integrator(model, params, controls, frame_dt, run_pilots=False)
         self.run_model = model
         self.run = self.new_run(model.system(params), integrator, model.initial_state(params))
         self.description = self.describe(integrator)
@@ -108,9 +140,7 @@ class IntegratedScene(Scene):
             generation = self._generation
             PILOTS.submit(
                 id(self),
-                lambda: choose_integrator(
-                    self.model(), params, controls, frame_dt, max_frame_cpu_s=LIVE_PHYSICS_BUDGET_S
-                ),
+                lambda: live_integrator(self.model(), params, controls, frame_dt),
                 lambda chosen: setattr(self, "_measured", (generation, chosen)),
             )
         self._scales = model.invariant_scales(params, self.run.y)

@@ -108,6 +108,15 @@ def cable_loads(inputs: Mapping[str, Any]) -> CableLoads:
     )
 
 
+def round_off_scales(loads: CableLoads) -> dict[str, float]:
+    """The magnitude each load is computed against (N for forces, N·m for moments), by output name: |F| for the force
+    and its component along BC, |r_C|·|F| for the moments. A load within round-off of its scale is zero (θ = 180° leaves
+    M_z = −1e-12 N·m of a 17 500 N·m scale; θ = 25°, γ = 45° an x component of M_A of 4.5e-13 N·m)."""
+    force = float(np.linalg.norm(loads.F_N))
+    moment = float(np.linalg.norm(loads.geometry.C)) * force
+    return {"F_N": force, "F_BC_N": force, "M_A_Nm": moment, "M_z_Nm": moment, "M_AB_Nm": moment}
+
+
 def turning_about_z(loads: CableLoads) -> str:
     """How the cable turns the arm about the vertical z axis through A, seen from above (one of :data:`TURNING_WORDS`).
 
@@ -123,6 +132,7 @@ def turning_about_z(loads: CableLoads) -> str:
 def solve(inputs: Mapping[str, Any]) -> Solution:
     loads = cable_loads(inputs)
     g = loads.geometry
+    scale = round_off_scales(loads)
     steps = (
         Step(
             "Positions of B, C and D",
@@ -144,24 +154,28 @@ def solve(inputs: Mapping[str, Any]) -> Solution:
             r"F_{BC} = \bar F\cdot\bar e_{BC}",
             {"e_BC": g.e_BC, "F_BC": loads.F_BC_N},
             {"e_BC": "", "F_BC": "N"},
+            scales={"F_BC": scale["F_BC_N"]},
         ),
         Step(
             "(b) Moment of F about A",
             r"\bar M_A = \bar r_{C/A}\times\bar F",
             {"M_A": loads.M_A_Nm},
             {"M_A": "N·m"},
+            scales={"M_A": scale["M_A_Nm"]},
         ),
         Step(
             "(c) Moment about the vertical z axis",
             r"M_z = \bar M_A\cdot\bar k",
             {"M_z": loads.M_z_Nm},
             {"M_z": "N·m"},
+            scales={"M_z": scale["M_z_Nm"]},
         ),
         Step(
             "(d) Moment about the line of arm AB",
             r"M_{AB} = \bar M_A\cdot\bar e_{AB},\quad \bar e_{AB} = \cos\theta\,\bar i + \sin\theta\,\bar j",
             {"e_AB": g.e_AB, "M_AB": loads.M_AB_Nm},
             {"e_AB": "", "M_AB": "N·m"},
+            scales={"M_AB": scale["M_AB_Nm"]},
         ),
     )
     outputs = {
@@ -171,7 +185,7 @@ def solve(inputs: Mapping[str, Any]) -> Solution:
         "M_z_Nm": loads.M_z_Nm,
         "M_AB_Nm": loads.M_AB_Nm,
     }
-    return Solution(outputs=outputs, steps=steps)
+    return Solution(outputs=outputs, steps=steps, output_scales=scale)
 
 
 EXAMPLE = WorkedExample(

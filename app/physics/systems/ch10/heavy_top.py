@@ -32,6 +32,7 @@ from app.physics.bodies.inertia import centroidal_from_point
 from app.physics.bodies.rigid_body import PivotedBody
 from app.physics.core.energy import EnergyParts
 from app.physics.core.parameters import Parameter, ParameterError, ParameterSet
+from app.physics.core.readout import Quantity
 from app.physics.math.rotations import (
     body_rates_from_euler_313_rates,
     euler_313_from_quaternion,
@@ -282,6 +283,63 @@ def locus_shape(solution: HeavyTopQuadrature) -> str:
     if len(known) == 2 and known[0] * known[1] < 0.0:
         return "loops"
     return "waves"
+
+
+def reference_or_none(params: Mapping[str, Any]) -> tuple[HeavyTopQuadrature | None, str]:
+    """``(quadrature solution, "")``, or ``(None, why)`` for the motion it cannot represent (see :func:`quadrature`)."""
+    try:
+        return quadrature(params), ""
+    except ValueError as exc:
+        return None, f"No quadrature reference for these values: {exc}"
+
+
+def readout_quantities(
+    params: Mapping[str, Any],
+    reference: HeavyTopQuadrature | None,
+    theta_swept_rad: tuple[float, float] | None,
+) -> list[Quantity]:
+    """What the scene's readout shows beside time, the one list the scene and its "Open as Python" script print.
+
+    ``reference``: the quadrature solution (:func:`reference_or_none`; None: no predictions). ``theta_swept_rad``:
+    the least and largest nutation angle θ (rad) of the frames integrated so far (None: none yet). Rows: the
+    quadrature's nutation band (deg), nutation period (s), mean precession rate (rad/s) and axis locus (a word), the
+    band the integration swept (deg), and the sleeping threshold |ω₃| (rad/s; a word without gravity).
+    """
+    quantities: list[Quantity] = []
+    if reference is not None:
+        quantities += [
+            Quantity(
+                "theta_min_deg", "nutation band: θ min (quadrature)", math.degrees(reference.theta_min_rad), "deg"
+            ),
+            Quantity(
+                "theta_max_deg", "nutation band: θ max (quadrature)", math.degrees(reference.theta_max_rad), "deg"
+            ),
+            # An upright top's axis never comes back: its nutation period is infinite.
+            Quantity.or_text(
+                "nutation_period_s", "nutation period (quadrature)", reference.nutation_period_s, "s", "never returns"
+            ),
+            Quantity(
+                "mean_precession_rate_rad_s",
+                "mean precession rate (quadrature)",
+                reference.mean_precession_rate_rad_s,
+                "rad/s",
+            ),
+            Quantity.word("locus", "axis locus", locus_shape(reference)),
+        ]
+    if theta_swept_rad is not None:
+        low, high = theta_swept_rad
+        quantities += [
+            Quantity("theta_min_swept_deg", "θ min swept so far (integration)", math.degrees(low), "deg"),
+            Quantity("theta_max_swept_deg", "θ max swept so far (integration)", math.degrees(high), "deg"),
+        ]
+    if params["g_m_s2"] == 0.0:
+        # Without gravity nothing pulls an upright top over: there is no threshold to cross.
+        quantities.append(Quantity.word("critical_spin_rad_s", "sleeping threshold |ω₃|", "none: no gravity"))
+    else:
+        quantities.append(
+            Quantity("critical_spin_rad_s", "sleeping threshold |ω₃|", critical_spin_rad_s(params), "rad/s")
+        )
+    return quantities
 
 
 class HeavyTop(IntegratedModel):
