@@ -572,8 +572,9 @@ export const lesson = (function () {
         ? shown : (item.text ? `${fmt(item.value)} (${item.text})` : fmt(item.value));
       tr.children[1].dataset.quantity = item.name;
       tr.children[1].dataset.value = JSON.stringify(shown);
-      // A value that is text (a word, or why there is no number) has no unit: "no flips in this motion", not "… s".
-      tr.children[2].textContent = item.value === null || item.value === undefined ? "" : (item.unit || "");
+      // A value that is text (a word, or why there is no number) has no unit: "no flips in this motion", not "… s";
+      // a vector's components given as text (text_in_unit) keep theirs.
+      tr.children[2].textContent = (item.value === null || item.value === undefined) && !item.text_in_unit ? "" : (item.unit || "");
     });
     const message = readoutBox.querySelector(".readout-message");
     if (message.dataset.source !== (readout.message || "")) {

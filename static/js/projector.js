@@ -86,7 +86,7 @@ import { reconnectingSocket } from "./socket.js";
       // A word, or no value at this instant: the text says which (e.g. "undefined (gimbal lock)").
       row.querySelector(".value").textContent = hasNumber ? (q.text ? `${fmt(q.value)} (${q.text})` : fmt(q.value)) : (q.text || "—");
       row.querySelector(".value").classList.toggle("word", !hasNumber);
-      row.querySelector(".unit").textContent = hasNumber ? (q.unit || "") : "";
+      row.querySelector(".unit").textContent = hasNumber || q.text_in_unit ? (q.unit || "") : "";
     });
     fitRows(box, list);
   }

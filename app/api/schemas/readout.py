@@ -14,6 +14,8 @@ class QuantityOut(BaseModel):
     value: float | None
     unit: str
     text: str = ""
+    #: The text carries numbers in ``unit`` (a vector's components): shown with the unit, as a number is.
+    text_in_unit: bool = False
 
 
 class MarkOut(BaseModel):

@@ -8,7 +8,8 @@ instant, in which case ``text`` says why ("undefined (gimbal lock)"). A
 quantity whose value is a word (a locus shape, a direction of precession) has
 ``value`` ``None`` and the word in ``text``. Time is always named ``t_s``.
 A ``None`` value keeps its quantity's ``unit`` (what the number is in when
-there is one); pages show a text value without it.
+there is one); pages show a text value without it, unless the text is numbers
+in that unit (``text_in_unit``: a vector's components).
 """
 
 from __future__ import annotations
@@ -26,7 +27,9 @@ class Quantity:
     ``name`` is the stable id tests and pages find the row by (with the unit in
     it, e.g. ``theta_max_deg``); ``label`` is what the student reads (words and
     symbol); ``value`` is a finite number in ``unit`` or ``None``; ``text``
-    explains a ``None`` or carries a value that is a word.
+    explains a ``None`` or carries a value that is a word. ``text_in_unit``: the
+    text carries numbers in ``unit`` (a vector's components), so pages show the
+    unit beside it as beside a number; any other text is shown without it.
     """
 
     name: str
@@ -34,6 +37,7 @@ class Quantity:
     value: float | None
     unit: str = ""
     text: str = ""
+    text_in_unit: bool = False
 
     def __post_init__(self) -> None:
         value = self.value
@@ -63,6 +67,8 @@ class Quantity:
         out: dict[str, Any] = {"name": self.name, "label": self.label, "value": self.value, "unit": self.unit}
         if self.text:
             out["text"] = self.text
+        if self.text_in_unit:
+            out["text_in_unit"] = True
         return out
 
 

@@ -224,12 +224,32 @@ class AngleRatesScene(ReplayedScene):
                 "deg",
                 ", ".join(f"{math.degrees(a):.2f}" for a in k.angles_rad[i]),
             ),
-            Quantity("angle_rates", "θ̇1, θ̇2, θ̇3 now", None, "rad/s", ", ".join(f"{r:.3f}" for r in k.rates_rad_s[i])),
-            Quantity("omega_world", "ω (X, Y, Z)", None, "rad/s", components_text(k.omega_world_rad_s[i])),
-            Quantity("omega_body", "ω (x, y, z)", None, "rad/s", components_text(k.omega_body_rad_s[i])),
+            Quantity(
+                "angle_rates",
+                "θ̇1, θ̇2, θ̇3 now",
+                None,
+                "rad/s",
+                ", ".join(f"{r:.3f}" for r in k.rates_rad_s[i]),
+                text_in_unit=True,
+            ),
+            Quantity(
+                "omega_world", "ω (X, Y, Z)", None, "rad/s", components_text(k.omega_world_rad_s[i]), text_in_unit=True
+            ),
+            Quantity(
+                "omega_body", "ω (x, y, z)", None, "rad/s", components_text(k.omega_body_rad_s[i]), text_in_unit=True
+            ),
             Quantity("omega_magnitude", "|ω|", float(np.linalg.norm(k.omega_world_rad_s[i])), "rad/s"),
-            Quantity("alpha_world", "α (X, Y, Z)", None, "rad/s²", components_text(k.alpha_world_rad_s2[i])),
-            Quantity("alpha_body", "α (x, y, z)", None, "rad/s²", components_text(k.alpha_body_rad_s2[i])),
+            Quantity(
+                "alpha_world",
+                "α (X, Y, Z)",
+                None,
+                "rad/s²",
+                components_text(k.alpha_world_rad_s2[i]),
+                text_in_unit=True,
+            ),
+            Quantity(
+                "alpha_body", "α (x, y, z)", None, "rad/s²", components_text(k.alpha_body_rad_s2[i]), text_in_unit=True
+            ),
             Quantity("alpha_magnitude", "|α|", float(np.linalg.norm(k.alpha_world_rad_s2[i])), "rad/s²"),
             Quantity(
                 "alpha_along_axes",

@@ -325,13 +325,20 @@ class MovingFrameScene(Scene):
         """Vectors are written out as text (world X, Y, Z components); their magnitudes are numbers."""
         quantities = [
             Quantity("t_s", "t", float(self.t_s), "s"),
-            Quantity("omega", "ω (X, Y, Z)", None, "rad/s", _vector_text(self._omega)),
-            Quantity("alpha", "α (X, Y, Z)", None, "rad/s²", _vector_text(self._alpha)),
+            Quantity("omega", "ω (X, Y, Z)", None, "rad/s", _vector_text(self._omega), text_in_unit=True),
+            Quantity("alpha", "α (X, Y, Z)", None, "rad/s²", _vector_text(self._alpha), text_in_unit=True),
         ]
         for name in (*physics.TERM_NAMES, "total"):
             vector = self._terms[name]
             quantities.append(
-                Quantity(f"a_{name}", physics.TERM_LABELS[name], None, "m/s² (world X, Y, Z)", _vector_text(vector))
+                Quantity(
+                    f"a_{name}",
+                    physics.TERM_LABELS[name],
+                    None,
+                    "m/s² (world X, Y, Z)",
+                    _vector_text(vector),
+                    text_in_unit=True,
+                )
             )
             quantities.append(
                 Quantity(f"a_{name}_magnitude", f"|{SHORT_LABELS[name]}|", float(np.linalg.norm(vector)), "m/s²")

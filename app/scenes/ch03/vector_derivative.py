@@ -148,10 +148,10 @@ class VectorDerivativeScene(ReplayedScene):
         omega = self.motion.omega_world_rad_s
         quantities = [
             Quantity("t_s", "t", float(self.t_s), "s"),
-            Quantity("omega", "ω (X, Y, Z)", None, "rad/s", components_text(omega)),
+            Quantity("omega", "ω (X, Y, Z)", None, "rad/s", components_text(omega), text_in_unit=True),
             Quantity("omega_magnitude", "|ω|", float(np.linalg.norm(omega)), "rad/s"),
-            Quantity("A_world", "A (X, Y, Z)", None, "m", components_text(r.vector_world_m[0])),
-            Quantity("A_frame", "A (x, y, z)", None, "m", components_text(r.vector_frame_m[0])),
+            Quantity("A_world", "A (X, Y, Z)", None, "m", components_text(r.vector_world_m[0]), text_in_unit=True),
+            Quantity("A_frame", "A (x, y, z)", None, "m", components_text(r.vector_frame_m[0]), text_in_unit=True),
             Quantity("A_magnitude", "|A|", float(np.linalg.norm(r.vector_world_m[0])), "m"),
             Quantity(
                 "dA_relative_frame",
@@ -164,7 +164,14 @@ class VectorDerivativeScene(ReplayedScene):
         for name in physics.TERM_NAMES:
             vector = r.terms_m_s[name][0]
             quantities.append(
-                Quantity(f"dA_{name}", f"{physics.TERM_LABELS[name]} (X, Y, Z)", None, "m/s", components_text(vector))
+                Quantity(
+                    f"dA_{name}",
+                    f"{physics.TERM_LABELS[name]} (X, Y, Z)",
+                    None,
+                    "m/s",
+                    components_text(vector),
+                    text_in_unit=True,
+                )
             )
             quantities.append(
                 Quantity(f"dA_{name}_magnitude", f"|{LABELS[name]}|", float(np.linalg.norm(vector)), "m/s")

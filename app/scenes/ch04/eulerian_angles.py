@@ -294,6 +294,8 @@ class EulerianAnglesScene(CyclingScene):
             text = ", ".join(
                 f"{name} {value:+.3f}".replace("-", "−") for name, value in zip(("φ̇", "θ̇", "ψ̇"), recovered)
             )
-            quantities.append(Quantity("rates_from_omega", "φ̇, θ̇, ψ̇ read back from ω (rad/s)", None, "rad/s", text))
+            quantities.append(
+                Quantity("rates_from_omega", "φ̇, θ̇, ψ̇ read back from ω (rad/s)", None, "rad/s", text, text_in_unit=True)
+            )
         message = physics.singularity_note(theta_now) + f" The motion replays every {CYCLE_S:g} s."
         return Readout(quantities, message=message)

@@ -339,7 +339,9 @@ class RigidBodyPointsScene(CyclingScene):
             Quantity("spin_rate", "spin rate ω₂ now", float(rates[2]), "rad/s"),
         ]
         for name, label, vector, unit in rows:
-            quantities.append(Quantity(name, f"{label} (X, Y, Z)", None, unit, _components(vector[0])))
+            quantities.append(
+                Quantity(name, f"{label} (X, Y, Z)", None, unit, _components(vector[0]), text_in_unit=True)
+            )
             quantities.append(
                 Quantity(f"{name}_magnitude", f"|{label.split(' = ')[0]}|", float(np.linalg.norm(vector[0])), unit)
             )
