@@ -1,0 +1,76 @@
+"""A room change that is refused changes nothing, and one that is taken leaves the class able to go on (issue 29's
+hostile tester), against ``dynlab serve`` as a user runs it:
+
+- a ready question refused with 422 (the instructor's overrides do not fit it) leaves the class on its lesson, scene
+  and parameters, by request and on the instructor's socket;
+- a scene changed while the class explores gives the students a start on the new scene;
+- only the room's current poll can be closed or reopened: an old one is refused with 409.
+"""
+
+from __future__ import annotations
+
+import json
+import secrets
+from collections.abc import Iterator
+
+import pytest
+
+from tests.api.test_class_integrity import device, join, messages_until, room_socket, state_of
+
+FRICTION_LESSON = "8-2-coulomb-friction"
+#: What a refused change must leave as it was.
+KEPT = ("lesson_id", "scene_id", "params", "playing", "mode", "revision", "explore_start", "poll")
+
+
+@pytest.fixture
+def friction_room(served) -> Iterator[dict]:
+    """A room on the sliding bar with friction, its friction changed from the default (a reset would show)."""
+    instructor = served.instructor_headers
+    created = served.client.post(
+        "/api/rooms", json={"lesson_id": FRICTION_LESSON, "scene_id": "sliding-bar-friction"}, headers=instructor
+    )
+    assert created.status_code == 200, created.text
+    room = created.json()
+    changed = served.client.post(f"/api/rooms/{room['room_id']}/state", json={"params": {"mu": 0.45}}, headers=instructor)
+    assert changed.status_code == 200 and changed.json()["params"]["mu"] == 0.45, changed.text
+    yield room
+    served.client.delete(f"/api/rooms/{room['room_id']}", headers=instructor)
+
+
+def kept(state: dict) -> dict:
+    return {name: state[name] for name in KEPT}
+
+
+# ---- F1: a refused ready question does not move the class ---------------------------------------------------------
+#: Ready questions of other lessons, each with an override that does not fit it, and the field the 422 names.
+REFUSED_READY = (
+    ({"ready_id": "ladder-leaves-wall", "answer_value": 3}, "answer_value"),  # the scene computes its answer
+    ({"ready_id": "hoop-critical-spin", "question": ""}, "question"),
+    ({"ready_id": "four-bar-class", "answer_choice": 7}, "answer_choice"),
+    ({"ready_id": "baseball-range-with-drag", "choices": ["a", "b"]}, "choices"),  # a number question
+)
+
+
+def test_a_ready_question_refused_with_422_leaves_the_class_where_it_was(served, friction_room):
+    room_id, instructor = friction_room["room_id"], served.instructor_headers
+    before = state_of(served, room_id)
+    assert (before["scene_id"], before["params"]["mu"]) == ("sliding-bar-friction", 0.45)
+    for body, field in REFUSED_READY:
+        answer = served.client.post(f"/api/rooms/{room_id}/polls", json=body, headers=instructor)
+        assert answer.status_code == 422, (body, answer.text)
+        assert answer.json()["detail"][0]["loc"] == ["body", field], (body, answer.text)
+        assert kept(state_of(served, room_id)) == kept(before), body
+
+    with room_socket(served, room_id, instructor=True) as socket:
+        messages_until(socket, lambda m: m["type"] == "state")
+        for body, field in REFUSED_READY:
+            socket.send(json.dumps({"type": "open_poll", **body}))
+            refusal = messages_until(socket, lambda m: m["type"] == "error")
+            assert (refusal["status"], refusal["action"]) == (422, "open_poll") and field in refusal["detail"], refusal
+    assert kept(state_of(served, room_id)) == kept(before)
+
+    # The same question without the override that does not fit it moves the class and asks it.
+    asked = served.client.post(f"/api/rooms/{room_id}/polls", json={"ready_id": "ladder-leaves-wall"}, headers=instructor)
+    assert asked.status_code == 200, asked.text
+    after = state_of(served, room_id)
+    assert (after["scene_id"], after["poll"]["poll_id"]) == ("sliding-ladder", asked.json()["poll_id"]), after
