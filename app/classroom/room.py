@@ -94,7 +94,8 @@ class Room:
     mode: str = "follow"
     revision: int = 0
     reset_count: int = 0
-    #: Where explorers start (set on each switch to explore): scene, parameters and the stage's motion then.
+    #: Where explorers start (set on each switch to explore, and on each new scene while exploring): scene, parameters
+    #: and the stage's motion then (None: from the scene's start).
     explore_start: dict[str, Any] | None = None
     #: By token; ``_by_device`` finds a device's student, the ``_removed_*`` sets remember whom the instructor removed.
     students: dict[str, Student] = field(default_factory=dict)
@@ -285,8 +286,11 @@ class Room:
                 playback_changed = True
             new_params = dict(params) if params is not None else {} if scene_id is None else dict(self.params)
             explore_start = self.explore_start if mode == "explore" else None
-            if mode == "explore" and self.mode != "explore":  # explorers start from the stage's motion now
-                motion = host.motion_state(self.stage_id) if scene_id is not None else None
+            if mode == "explore" and (self.mode != "explore" or plan["new_scene"]):
+                # Explorers start from the stage's motion now; on a scene the room has just opened (another lesson or
+                # scene while they explore), from its start with its parameters: the scene their pages go to.
+                fresh = scene_id is None or plan["new_scene"]
+                motion = None if fresh else host.motion_state(self.stage_id)
                 explore_start = {"scene_id": scene_id, "params": new_params, "motion": motion}
         except Exception:
             if stage_changed or playback_changed:

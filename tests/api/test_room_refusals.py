@@ -74,3 +74,35 @@ def test_a_ready_question_refused_with_422_leaves_the_class_where_it_was(served,
     assert asked.status_code == 200, asked.text
     after = state_of(served, room_id)
     assert (after["scene_id"], after["poll"]["poll_id"]) == ("sliding-ladder", asked.json()["poll_id"]), after
+
+
+# ---- F3: a new scene while the class explores -----------------------------------------------------------------------
+def test_a_scene_changed_while_the_class_explores_gives_the_students_the_new_scene(served, friction_room):
+    """The room explored the sliding bar and the instructor showed the stick-slip belt: the students' pages went to the
+    belt, but the room's explore start still named the bar, so every student's own copy was refused (422)."""
+    room_id, instructor = friction_room["room_id"], served.instructor_headers
+    exploring = served.client.post(f"/api/rooms/{room_id}/state", json={"mode": "explore"}, headers=instructor).json()
+    assert exploring["explore_start"]["scene_id"] == "sliding-bar-friction"
+    student = device(served)
+    own = f"explore-{secrets.token_hex(6)}"
+
+    moved = served.client.post(f"/api/rooms/{room_id}/state", json={"scene_id": "stick-slip-belt"}, headers=instructor)
+    assert moved.status_code == 200, moved.text
+    state = moved.json()
+    assert state["mode"] == "explore" and state["scene_id"] == "stick-slip-belt"
+    # The new scene as the room opened it: its parameters, from its start (t = 0).
+    assert state["explore_start"] == {"scene_id": "stick-slip-belt", "params": state["params"], "motion": None}
+    copy = student.put(f"/api/scenes/stick-slip-belt/sessions/{own}", json={"params": {}, "from_room": room_id})
+    assert copy.status_code == 200 and copy.json()["params"] == state["params"], copy.text
+    old = student.put(f"/api/scenes/sliding-bar-friction/sessions/{own}-old", json={"params": {}, "from_room": room_id})
+    assert old.status_code == 422 and "explores 'stick-slip-belt'" in old.text, old.text
+
+    # Another lesson, the same: its scene is what the students explore.
+    lesson = served.client.post(f"/api/rooms/{room_id}/state", json={"lesson_id": "10-2-spinning-top"}, headers=instructor).json()
+    assert lesson["explore_start"] == {"scene_id": "heavy-top", "params": lesson["params"], "motion": None}
+    top = student.put(f"/api/scenes/heavy-top/sessions/{own}-top", json={"params": {}, "from_room": room_id})
+    assert top.status_code == 200, top.text
+    # Parameters changed on the same scene leave the students' start as it was (they explore their own copies).
+    spun = served.client.post(f"/api/rooms/{room_id}/state", json={"params": {"spin_rad_s": 80.0}}, headers=instructor).json()
+    assert spun["explore_start"] == lesson["explore_start"]
+    student.close()
