@@ -54,6 +54,10 @@ class RoomMovedOn(RoomError):
     """A change meant for a lesson or scene the room no longer shows (a stale instructor tab); nothing changed."""
 
 
+class NotCurrentPoll(RoomError):
+    """Opening or closing a poll that is no longer the room's current one (a newer poll was asked); nothing changed."""
+
+
 class StudentRemoved(PermissionError):
     """The instructor removed this student (their token) or this device from the room."""
 
@@ -414,7 +418,8 @@ class Room:
             self.poll(poll_id).submit(student.student_id, raw, name=student.name)
 
     def update_poll(self, poll_id: str, raw: Mapping[str, Any], *, host: Any) -> Poll:
-        """Close or reopen a poll, reveal its answer (computed by the room's scene now), show or hide names."""
+        """Close or reopen the current poll, reveal a poll's answer (computed by the room's scene now), show or hide
+        names; :class:`NotCurrentPoll` for opening or closing an older poll."""
         unknown = sorted(set(raw) - {"open", "reveal", "show_names"})
         if unknown:
             raise RoomError(unknown[0], f"{unknown[0]}: not a poll field (fields: open, reveal, show_names)")
@@ -423,6 +428,12 @@ class Room:
                 raise RoomError(name, f"{name}: must be true or false")
         with self.lock:
             poll = self.poll(poll_id)
+            if "open" in raw and poll_id != self.poll_id:  # students see, and answer, only the current poll
+                raise NotCurrentPoll(
+                    "open",
+                    f"open: poll {poll_id} can no longer be closed or reopened: {self.poll_id} is the room's current "
+                    "poll, and only it takes answers; nothing changed",
+                )
             if raw.get("reveal"):
                 live = host.live_readout(self.scene_id, self.stage_id) if self.scene_id else None
                 poll.reveal((live or {}).get("readout"))

@@ -32,7 +32,7 @@ from app.classroom.ready_questions import ReadyQuestion
 from app.classroom.registry import ROOM_ID_HEX_DIGITS, ROOM_ID_PATTERN, Rooms
 from app.classroom.relay import follower_count
 from app.classroom.roles import InstructorKey
-from app.classroom.room import Room, RoomError, RoomMovedOn, StudentRemoved
+from app.classroom.room import NotCurrentPoll, Room, RoomError, RoomMovedOn, StudentRemoved
 from app.classroom.schemas import (
     POLL_ID_PATTERN,
     STUDENT_ID_PATTERN,
@@ -428,16 +428,22 @@ def start_poll(
             not_found="No such room or poll",
             unprocessable="The answer cannot be computed now (the scene has no such quantity)",
         ),
+        409: {
+            "model": ErrorDetail,
+            "description": "open for a poll that is not the room's current one any more; nothing changed",
+        },
     },
 )
 def update_poll(
     room: RoomDep, poll_id: PollId, body: PollUpdate, host: SceneHostDep, hub: RoomHubDep
 ) -> dict[str, Any]:
-    """Close or reopen the poll, reveal the answer the scene computes, or show names (instructor only)."""
+    """Close or reopen the current poll, reveal the answer the scene computes, or show names (instructor only)."""
     try:
         poll = room.update_poll(poll_id, body.model_dump(exclude_none=True), host=host)
     except KeyError as exc:
         raise HTTPException(status_code=404, detail=str(exc.args[0])) from None
+    except NotCurrentPoll as exc:
+        raise HTTPException(status_code=409, detail=exc.message) from None
     except (RoomError, PollError) as exc:
         raise unprocessable(["body", getattr(exc, "field", "reveal")], str(exc)) from None
     hub.publish_poll(room, poll)

@@ -384,7 +384,7 @@ export let classroom = null;
       else if (message.type === "readout") showReadout(message);
       else if (message.type === "results") panel.results(message.results);
       else if (message.type === "students") panel.students(message.students);
-      else if (message.type === "error" && message.status === 409) { // sent from a scene the room had left
+      else if (message.type === "error" && message.status === 409 && message.action === "set_state") { // sent from a scene the room had left
         panel.error("Nothing was changed: the class had already moved on to another lesson or scene, and this tab follows it.");
       } else if (message.type === "error") panel.error(message.detail);
     }

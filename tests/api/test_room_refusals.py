@@ -106,3 +106,40 @@ def test_a_scene_changed_while_the_class_explores_gives_the_students_the_new_sce
     spun = served.client.post(f"/api/rooms/{room_id}/state", json={"params": {"spin_rad_s": 80.0}}, headers=instructor).json()
     assert spun["explore_start"] == lesson["explore_start"]
     student.close()
+
+
+# ---- F6: only the current poll opens and closes ---------------------------------------------------------------------
+def test_only_the_rooms_current_poll_can_be_closed_or_reopened(served, friction_room):
+    """An old poll (even a revealed one) could be reopened while a newer one stayed current, and a student could then
+    answer it. Opening and closing belong to the current poll alone; an old one is 409 and nothing changes."""
+    room_id, instructor = friction_room["room_id"], served.instructor_headers
+    polls = f"/api/rooms/{room_id}/polls"
+    choice = {"kind": "choice", "choices": ["left", "right"], "answer_choice": 1}
+    first = served.client.post(polls, json={"question": "First?", **choice}, headers=instructor).json()["poll_id"]
+    assert served.client.post(f"{polls}/{first}", json={"reveal": True}, headers=instructor).status_code == 200
+    current = served.client.post(polls, json={"question": "Second?", **choice}, headers=instructor).json()["poll_id"]
+    phone = device(served)
+    token = join(phone, friction_room["code"])["student_token"]
+    before, old_results = state_of(served, room_id), served.client.get(f"{polls}/{first}/results", headers=instructor).json()
+
+    for body in ({"open": True}, {"open": False}, {"open": True, "show_names": True}):
+        refused = served.client.post(f"{polls}/{first}", json=body, headers=instructor)
+        assert refused.status_code == 409, (body, refused.text)
+        assert f"{current} is the room's current poll" in refused.json()["detail"], refused.text
+    with room_socket(served, room_id, instructor=True) as socket:
+        messages_until(socket, lambda m: m["type"] == "state")
+        socket.send(json.dumps({"type": "update_poll", "poll_id": first, "open": True}))
+        refusal = messages_until(socket, lambda m: m["type"] == "error")
+        assert (refusal["status"], refusal["action"]) == (409, "update_poll") and current in refusal["detail"], refusal
+    assert state_of(served, room_id)["revision"] == before["revision"]
+    assert served.client.get(f"{polls}/{first}/results", headers=instructor).json() == old_results
+    answer = phone.post(f"{polls}/{first}/answers", json={"choice": 0}, headers={"X-Student-Token": token})
+    assert answer.status_code == 409, answer.text
+
+    # The current poll closes and reopens; an old one's names can still be shown (for its CSV).
+    for is_open in (False, True):
+        toggled = served.client.post(f"{polls}/{current}", json={"open": is_open}, headers=instructor)
+        assert toggled.status_code == 200 and toggled.json()["open"] is is_open, toggled.text
+    named = served.client.post(f"{polls}/{first}", json={"show_names": True}, headers=instructor)
+    assert named.status_code == 200 and named.json()["show_names"] is True, named.text
+    phone.close()
