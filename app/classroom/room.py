@@ -10,6 +10,7 @@ checked whole before anything is applied: a bad field answers with a
 
 from __future__ import annotations
 
+import logging
 import math
 import secrets
 import threading
@@ -22,6 +23,8 @@ from app.classroom.polls import Poll
 from app.course import Catalogue
 from app.scenes.host.host import STAGE_PREFIX, TIME_SCALE_RANGE
 from app.scenes.host.interface import SceneHostInterface
+
+log = logging.getLogger(__name__)
 
 #: Characters of a room code: capitals and digits a student cannot misread (no I, L, O, 0, 1).
 CODE_ALPHABET = "ABCDEFGHJKMNPQRSTUVWXYZ23456789"
@@ -49,6 +52,10 @@ class RoomError(ValueError):
 
 class RoomMovedOn(RoomError):
     """A change meant for a lesson or scene the room no longer shows (a stale instructor tab); nothing changed."""
+
+
+class NotCurrentPoll(RoomError):
+    """Opening or closing a poll that is no longer the room's current one (a newer poll was asked); nothing changed."""
 
 
 class StudentRemoved(PermissionError):
@@ -91,7 +98,8 @@ class Room:
     mode: str = "follow"
     revision: int = 0
     reset_count: int = 0
-    #: Where explorers start (set on each switch to explore): scene, parameters and the stage's motion then.
+    #: Where explorers start (set on each switch to explore, and on each new scene while exploring): scene, parameters
+    #: and the stage's motion then (None: from the scene's start).
     explore_start: dict[str, Any] | None = None
     #: By token; ``_by_device`` finds a device's student, the ``_removed_*`` sets remember whom the instructor removed.
     students: dict[str, Student] = field(default_factory=dict)
@@ -103,6 +111,8 @@ class Room:
     polls: dict[str, Poll] = field(default_factory=dict)
     poll_id: str | None = None
     last_used_s: float = field(default_factory=time.monotonic)
+    #: True after a change refused midway whose stage could not be put back: the next change opens the stage afresh.
+    _stage_unsure: bool = field(default=False, repr=False)
     #: Held while the room's state changes (routes run in threads, sockets in the event loop's executor).
     lock: threading.RLock = field(default_factory=threading.RLock, repr=False)
 
@@ -252,36 +262,65 @@ class Room:
         }
 
     def _apply(self, plan: dict[str, Any], *, host: SceneHostInterface) -> None:
+        """Carry out a checked plan: every call to the scene host first (any may answer :class:`HostBusy`, a worker
+        busy or restarting), then the room's own fields, all at once. A call refused after others have changed the
+        stage puts the stage back as the room says it is, so a 503 changes nothing and the same change can be sent
+        again; if even that is refused, the room's next change opens its stage afresh."""
         scene_id, params = plan["scene_id"], plan["params"]
-        if scene_id is not None and plan["new_scene"]:
-            params = host.open_stage(self.stage_id, scene_id, params or {})["params"]
-        elif scene_id is not None and params is not None:
-            params = host.set_params(scene_id, self.stage_id, params, stage=True)
-        elif scene_id is None and self.scene_id is not None:
-            host.close_stage(self.stage_id)
-        self.lesson_id, self.scene_id = plan["lesson_id"], scene_id
-        if params is not None:
-            self.params = dict(params)
-        elif scene_id is None:
-            self.params = {}
         playing = self.playing if plan["playing"] is None else plan["playing"]
         time_scale = self.time_scale if plan["time_scale"] is None else float(plan["time_scale"])
-        if scene_id is not None and (
-            plan["new_scene"] or plan["reset"] or plan["playing"] is not None or plan["time_scale"] is not None
-        ):
-            # A new stage starts playing at 1×: apply the room's own playback to it, and any reset. First, so that a
-            # worker too busy to take it (HostBusy) leaves the room saying what its stage does.
-            host.set_playback(self.stage_id, playing=playing, time_scale=time_scale, reset=plan["reset"])
-        self.playing, self.time_scale = playing, time_scale
+        mode = self.mode if plan["mode"] is None else plan["mode"]
+        # A stage that could not be put back after a refused change shows something else than the room: open it again.
+        reopen = scene_id is not None and (plan["new_scene"] or self._stage_unsure)
+        stage_changed = playback_changed = False
+        try:
+            if reopen:
+                opened = host.open_stage(self.stage_id, scene_id, self.params if params is None else params)
+                params, stage_changed = opened["params"], True
+            elif scene_id is not None and params is not None:
+                params = host.set_params(scene_id, self.stage_id, params, stage=True)
+                stage_changed = True
+            elif scene_id is None and (self.scene_id is not None or self._stage_unsure):
+                host.close_stage(self.stage_id)  # the change's last call: nothing after it can be refused
+            if scene_id is not None and (
+                reopen or plan["reset"] or plan["playing"] is not None or plan["time_scale"] is not None
+            ):
+                # A new stage starts playing at 1×: it takes the room's own playback, and any reset.
+                host.set_playback(self.stage_id, playing=playing, time_scale=time_scale, reset=plan["reset"])
+                playback_changed = True
+            new_params = dict(params) if params is not None else {} if scene_id is None else dict(self.params)
+            explore_start = self.explore_start if mode == "explore" else None
+            if mode == "explore" and (self.mode != "explore" or plan["new_scene"]):
+                # Explorers start from the stage's motion now; on a scene the room has just opened (another lesson or
+                # scene while they explore), from its start with its parameters: the scene their pages go to.
+                fresh = scene_id is None or plan["new_scene"]
+                motion = None if fresh else host.motion_state(self.stage_id)
+                explore_start = {"scene_id": scene_id, "params": new_params, "motion": motion}
+        except Exception:
+            if stage_changed or playback_changed:
+                self._put_stage_back(host, scene_changed=stage_changed)
+            raise
+        self.lesson_id, self.scene_id, self.params = plan["lesson_id"], scene_id, new_params
+        self.playing, self.time_scale, self.mode, self.explore_start = playing, time_scale, mode, explore_start
+        self._stage_unsure = False
         if plan["reset"]:
             self.reset_count += 1
-        if plan["mode"] is not None and plan["mode"] != self.mode:
-            self.mode = plan["mode"]
-            if self.mode == "explore":
-                motion = host.motion_state(self.stage_id) if scene_id is not None else None
-                self.explore_start = {"scene_id": scene_id, "params": dict(self.params), "motion": motion}
-            else:
-                self.explore_start = None
+
+    def _put_stage_back(self, host: SceneHostInterface, *, scene_changed: bool) -> None:
+        """After a change refused midway: the stage as the room says it is (its scene and parameters if the change
+        had reached them, and its playback). A worker that refuses this too leaves the stage unsure: the room's next
+        change opens it afresh."""
+        try:
+            if self.scene_id is None:
+                if scene_changed:
+                    host.close_stage(self.stage_id)
+                return
+            if scene_changed:
+                host.open_stage(self.stage_id, self.scene_id, self.params)
+            host.set_playback(self.stage_id, playing=self.playing, time_scale=self.time_scale)
+        except Exception as exc:  # busy again, or gone: the next change puts it right
+            self._stage_unsure = True
+            log.warning("room %s: its stage could not be put back after a refused change (%s)", self.room_id, exc)
 
     # -- students --------------------------------------------------------------------
     def student_of_device(self, device: str | None) -> Student | None:
@@ -379,7 +418,8 @@ class Room:
             self.poll(poll_id).submit(student.student_id, raw, name=student.name)
 
     def update_poll(self, poll_id: str, raw: Mapping[str, Any], *, host: Any) -> Poll:
-        """Close or reopen a poll, reveal its answer (computed by the room's scene now), show or hide names."""
+        """Close or reopen the current poll, reveal a poll's answer (computed by the room's scene now), show or hide
+        names; :class:`NotCurrentPoll` for opening or closing an older poll."""
         unknown = sorted(set(raw) - {"open", "reveal", "show_names"})
         if unknown:
             raise RoomError(unknown[0], f"{unknown[0]}: not a poll field (fields: open, reveal, show_names)")
@@ -388,6 +428,12 @@ class Room:
                 raise RoomError(name, f"{name}: must be true or false")
         with self.lock:
             poll = self.poll(poll_id)
+            if "open" in raw and poll_id != self.poll_id:  # students see, and answer, only the current poll
+                raise NotCurrentPoll(
+                    "open",
+                    f"open: poll {poll_id} can no longer be closed or reopened: {self.poll_id} is the room's current "
+                    "poll, and only it takes answers; nothing changed",
+                )
             if raw.get("reveal"):
                 live = host.live_readout(self.scene_id, self.stage_id) if self.scene_id else None
                 poll.reveal((live or {}).get("readout"))

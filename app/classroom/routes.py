@@ -26,13 +26,13 @@ from app.api.errors import unprocessable
 from app.api.schemas.errors import ErrorDetail, error_responses
 from app.classroom.hub import RoomHub, RoomHubDep
 from app.classroom.join_limits import JoinLimits
-from app.classroom.polls import PollClosedError, PollError
+from app.classroom.polls import Poll, PollClosedError, PollError
 from app.classroom.qr import qr_svg
 from app.classroom.ready_questions import ReadyQuestion
 from app.classroom.registry import ROOM_ID_HEX_DIGITS, ROOM_ID_PATTERN, Rooms
 from app.classroom.relay import follower_count
 from app.classroom.roles import InstructorKey
-from app.classroom.room import Room, RoomError, RoomMovedOn, StudentRemoved
+from app.classroom.room import NotCurrentPoll, Room, RoomError, RoomMovedOn, StudentRemoved
 from app.classroom.schemas import (
     POLL_ID_PATTERN,
     STUDENT_ID_PATTERN,
@@ -386,13 +386,23 @@ def open_poll(
 def start_poll(
     room: Room, raw: dict[str, Any], *, ready: tuple[ReadyQuestion, ...], catalogue: Any, host: Any, hub: RoomHub
 ) -> dict[str, Any]:
-    """Open a poll from a request body (a ready question first sets the room's scene as the question needs it)."""
+    """Open a poll from a request body (a ready question first sets the room's scene as the question needs it).
+
+    The whole poll (a ready question with the instructor's fields over it) is checked before the room moves to the
+    question's scene: a 422 leaves the class where it was."""
     ready_id = raw.pop("ready_id", None)
+    question = None
     if ready_id is not None:
         question = next((q for q in ready if q.id == ready_id), None)
         if question is None:
             raise unprocessable(["body", "ready_id"], f"ready_id: no ready question {ready_id!r}")
-        if room.scene_id != question.scene_id or question.params or question.preset:
+        raw = question.poll_body() | raw
+    try:
+        Poll.create(raw, poll_id="p0")  # a check only: the room numbers the poll it opens
+    except PollError as exc:
+        raise unprocessable(["body", exc.field], str(exc)) from None
+    with room.lock:  # the poll opens on the scene its question moved the room to, not one changed meanwhile
+        if question is not None and (room.scene_id != question.scene_id or question.params or question.preset):
             lesson = next((l for l in catalogue.lessons.values() if question.scene_id in l.scenes), None)
             # The question's whole setting (defaults, its preset, its params): what its wording assumes.
             change: dict[str, Any] = {"params": question.scene_params(host.scenes[question.scene_id])}
@@ -402,11 +412,7 @@ def start_poll(
                 change_room(room, change, catalogue=catalogue, host=host, hub=hub)
             except RoomError as exc:
                 raise room_error(exc) from None
-        raw = question.poll_body() | raw
-    try:
-        poll = room.open_poll(raw)
-    except PollError as exc:
-        raise unprocessable(["body", exc.field], str(exc)) from None
+        poll = room.open_poll(raw)  # checked above: it cannot be refused now
     hub.publish_poll(room, poll)
     return poll.public()
 
@@ -422,16 +428,22 @@ def start_poll(
             not_found="No such room or poll",
             unprocessable="The answer cannot be computed now (the scene has no such quantity)",
         ),
+        409: {
+            "model": ErrorDetail,
+            "description": "open for a poll that is not the room's current one any more; nothing changed",
+        },
     },
 )
 def update_poll(
     room: RoomDep, poll_id: PollId, body: PollUpdate, host: SceneHostDep, hub: RoomHubDep
 ) -> dict[str, Any]:
-    """Close or reopen the poll, reveal the answer the scene computes, or show names (instructor only)."""
+    """Close or reopen the current poll, reveal the answer the scene computes, or show names (instructor only)."""
     try:
         poll = room.update_poll(poll_id, body.model_dump(exclude_none=True), host=host)
     except KeyError as exc:
         raise HTTPException(status_code=404, detail=str(exc.args[0])) from None
+    except NotCurrentPoll as exc:
+        raise HTTPException(status_code=409, detail=exc.message) from None
     except (RoomError, PollError) as exc:
         raise unprocessable(["body", getattr(exc, "field", "reveal")], str(exc)) from None
     hub.publish_poll(room, poll)

@@ -337,6 +337,7 @@ export let classroom = null;
     const send = (message) => {
       if (message.type === "set_state" && !("if_lesson_id" in message)) Object.assign(message, shows);
       if (!socket.send(message)) panel.error("Not connected to the room: reconnecting, try again in a moment.");
+      else panel.sent();
     };
     panel.onAction(send);
     // Moving the class: its state comes back on the socket, and every page in the room (this one too) goes there.
@@ -384,7 +385,7 @@ export let classroom = null;
       else if (message.type === "readout") showReadout(message);
       else if (message.type === "results") panel.results(message.results);
       else if (message.type === "students") panel.students(message.students);
-      else if (message.type === "error" && message.status === 409) { // sent from a scene the room had left
+      else if (message.type === "error" && message.status === 409 && message.action === "set_state") { // sent from a scene the room had left
         panel.error("Nothing was changed: the class had already moved on to another lesson or scene, and this tab follows it.");
       } else if (message.type === "error") panel.error(message.detail);
     }
@@ -460,7 +461,7 @@ export let classroom = null;
     const offerBox = el("div", { class: "room-offer", role: "status", hidden: true });
     const preview = new URL(location.href);
     preview.searchParams.set("as", "student");
-    const polls = instructorPolls((message) => act(message));
+    const polls = instructorPolls((message) => act(message), () => clearErrors());
     const students = instructorStudents((text) => showError(text));
     const element = el("aside", { class: "room-panel", "aria-label": "Class room: instructor" },
       el("div", { class: "room-join" }, qr,
@@ -477,12 +478,19 @@ export let classroom = null;
     restart.addEventListener("click", () => act({ type: "set_state", reset: true }));
     scale.addEventListener("change", () => act({ type: "set_state", time_scale: Number(scale.value) }));
     mode.addEventListener("click", () => current && act({ type: "set_state", mode: current.mode === "follow" ? "explore" : "follow" }));
-    let errorTimer = null;
+    // An error stays until it is stale: 10 s, or a later action that the room took (its state comes back with a
+    // higher revision than when the action was sent); the own-question form's error goes too.
+    let errorTimer = null, sentAt = null;
     function showError(text) {
+      sentAt = null; // the action this answers was refused: only a later one can clear it
       error.textContent = text;
       error.hidden = false;
       clearTimeout(errorTimer);
       errorTimer = setTimeout(() => { error.hidden = true; }, 10000);
+    }
+    function clearErrors() {
+      error.hidden = true;
+      polls.clearError();
     }
     return {
       element,
@@ -490,6 +498,7 @@ export let classroom = null;
       onMove(fn) { move = fn; },
       connected() { error.hidden = true; },
       error: showError,
+      sent() { sentAt = current ? current.revision : -1; },
       results: polls.results,
       students: students.render,
       // "Show … to the class": the instructor's explicit choice to move the class to a lesson (or scene).
@@ -507,6 +516,7 @@ export let classroom = null;
       },
       state(state) {
         current = state;
+        if (sentAt !== null && state.revision > sentAt) { sentAt = null; clearErrors(); } // a later action was taken
         code.textContent = state.code;
         joinUrl.textContent = state.join_url;
         joinUrl.href = state.join_url;
@@ -564,7 +574,9 @@ export let classroom = null;
   }
 
   // The instructor's polls: ask a ready question or one's own, watch the answers, close, reveal, export.
-  function instructorPolls(act) {
+  // Its own question goes by request, so a refusal is shown in the form (the socket's errors go to the panel's line);
+  // `asked` clears the panel's errors once a question is asked.
+  function instructorPolls(act, asked) {
     const ready = el("select", { id: "room-ready" }, new Option("Loading ready questions…", ""));
     const askReady = el("button", { type: "button", text: "Ask", "data-room": "ask-ready" });
     const question = el("input", { type: "text", id: "room-own-question", maxlength: config.classroom.poll.question_max_chars });
@@ -621,10 +633,11 @@ export let classroom = null;
       unitRow.hidden = answerValueRow.hidden = choice;
     });
     askReady.addEventListener("click", () => { if (ready.value) act({ type: "open_poll", ready_id: ready.value }); });
-    own.addEventListener("submit", (event) => {
+    const showOwnError = (text) => { ownError.textContent = text; ownError.hidden = false; };
+    own.addEventListener("submit", async (event) => {
       event.preventDefault();
       ownError.hidden = true;
-      const body = { type: "open_poll", question: question.value.trim(), kind: kind.value };
+      const body = { question: question.value.trim(), kind: kind.value };
       if (kind.value === "choice") {
         body.choices = typedChoices();
         if (answerChoice.value !== "") body.answer_choice = Number(answerChoice.value);
@@ -632,13 +645,20 @@ export let classroom = null;
         body.unit = unit.value.trim();
         const value = Number(answerValue.value);
         if (answerValue.validity.badInput || (answerValue.value !== "" && !Number.isFinite(value))) {
-          ownError.textContent = "Right answer: type a number, or leave it empty.";
-          ownError.hidden = false;
+          showOwnError("Right answer: type a number, or leave it empty.");
           return;
         }
         if (answerValue.value !== "") body.answer_value = value;
       }
-      act(body);
+      askOwn.disabled = true;
+      try {
+        await api("POST", `/api/rooms/${roomId}/polls`, body); // the poll itself comes back on the room socket
+        asked();
+      } catch (err) {
+        showOwnError(`Not asked: ${err.message}`);
+      } finally {
+        askOwn.disabled = false;
+      }
     });
     close.addEventListener("click", () => poll && act({ type: "update_poll", poll_id: poll.poll_id, open: !poll.open }));
     reveal.addEventListener("click", () => poll && act({ type: "update_poll", poll_id: poll.poll_id, reveal: true }));
@@ -678,8 +698,10 @@ export let classroom = null;
     return {
       element,
       results: showResults,
+      clearError() { ownError.hidden = true; },
       state(state) {
         loadReady(state.scene_id);
+        if (state.poll && poll && state.poll.poll_id !== poll.poll_id) ownError.hidden = true; // a later poll was asked
         poll = state.poll;
         if (!poll) { results.hidden = true; shownId = null; return; }
         close.textContent = poll.open ? "Close" : "Reopen";

@@ -3,7 +3,8 @@
 - A room on a scene without ready questions of its own (the gyrocompass, the free gyroscope) offers its chapter's;
   one on a scene with its own lists those first, then the rest of its chapter's.
 - The instructor's own question carries an optional answer (the right choice, or a number in the poll's unit) that
-  Reveal shows; a bad answer is a clear 422 whichever way it is sent; a poll without one still says so.
+  Reveal shows; a bad answer is a clear 422 whichever way it is sent, and the form shows the server's refusal in its
+  own error line; a poll without one still says so; the panel's errors go once a later action is taken.
 - At 1366×768 the instructor's 3D scene and the room panel (code, playback, ready questions) are in view together
   without scrolling; the page still fits a phone, and projector mode still gives the scene most of the width.
 - A phone following the room passes axe-core (colour contrast included) while its controls are locked, and they
@@ -35,6 +36,8 @@ POLLS_TOML = Path(__file__).resolve().parents[2] / "lessons" / "polls.toml"
 ROUNDING_PX = 1.0
 #: Projector mode on the instructor's page: the scene's share of a 1920 px wide screen at least.
 PROJECTOR_VIEWER_SHARE = 0.5
+#: An error the instructor's panel shows is gone this soon after a later action is taken (it times out after 10 s).
+ERROR_CLEARED_MS = 5000
 
 
 def _chapter_questions(chapter: int) -> list[dict]:
@@ -158,6 +161,17 @@ def test_the_instructors_own_question_reveals_the_answer_they_gave(browser, live
     revealed = page.request.get(state_url).json()["poll"]["revealed"]
     assert (revealed["value"], revealed["unit"]) == (2.5, "s"), revealed
 
+    # The server's refusal (an answer over 1e12) shows in the form's own error line, not the panel's, and asks nothing;
+    # a later action the room takes (reopening the poll) clears it.
+    page.fill("#room-own-question", "And for ten turns?")
+    page.fill("#room-own-answer-value", "1e13")
+    page.click('[data-room="ask-own"]')
+    page.wait_for_selector(".room-own-error:not([hidden])")
+    assert "answer_value" in page.text_content(".room-own-error") and page.locator(".room-panel .room-error").is_hidden()
+    assert page.request.get(state_url).json()["poll"]["question"].startswith("How long")
+    page.click('[data-room="close-poll"]')
+    page.wait_for_selector(".room-own-error", state="hidden", timeout=ERROR_CLEARED_MS)
+
     # Something typed in the answer box that is not a number is not sent as "no answer": the form says so.
     page.fill("#room-own-question", "And the next turn?")
     page.fill("#room-own-answer-value", "")
@@ -174,6 +188,9 @@ def test_the_instructors_own_question_reveals_the_answer_they_gave(browser, live
     assert "no answer to show" in page.text_content(".room-panel .room-error")
     assert page.locator(".room-results-revealed").is_hidden()
     assert page.request.get(state_url).json()["poll"]["revealed"] is None
+    # A later action the room takes (names shown) clears the panel's error, well before it would time out.
+    page.check("#room-show-names")
+    page.wait_for_selector(".room-panel .room-error", state="hidden", timeout=ERROR_CLEARED_MS)
 
     # A bad answer is a 422 naming the field, by request or on the room socket, and opens no poll.
     polls = f"{live_server.url}/api/rooms/{room_id}/polls"
