@@ -111,6 +111,17 @@ def test_the_camera_is_placed_and_reported(page):
     assert answer["camera"] == view
 
 
+@pytest.mark.parametrize("position", [["1", "2", "3"], [True, 0, 1], [1, 2, None], [1, 2, {}]])
+def test_a_camera_coordinate_that_is_not_a_finite_json_number_is_refused_and_changes_nothing(client, page, position):
+    # Found by the attack on issue 29: strings and booleans were taken as numbers and moved the camera.
+    before = page.playback(camera={"position": [2.0, -3.0, 1.5], "look_at": [0.0, 0.0, 0.4]})["camera"]
+    body = {"camera": {"position": position, "look_at": [0, 0, 0]}}
+    refused = client.put(page.url, json=body, headers={"X-Session-Key": page.key})
+    assert refused.status_code == 422, refused.text
+    assert refused.json()["detail"][0]["loc"][:3] == ["body", "camera", "position"]
+    assert page.now()["camera"] == before
+
+
 def test_reset_view_puts_the_camera_back_at_the_scenes_start_pose(client, page):
     """Reset view (reset_camera) returns every viewer's camera to the scene's own start pose, whatever moved it;
     the answer (and GET) also counts the session's viewers, which a page waits for before polling live numbers."""

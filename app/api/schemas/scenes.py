@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Annotated, Any
 
 from pydantic import BaseModel, ConfigDict, Field
 
@@ -95,10 +95,14 @@ class PlaybackRequest(BaseModel):
     )
 
 
+#: A coordinate a client sends: a finite JSON number, never a string or a boolean taken as one.
+Coordinate = Annotated[float, Field(strict=True, allow_inf_nan=False)]
+
+
 class CameraIn(BaseModel):
     model_config = ConfigDict(extra="forbid")
-    position: list[float] = Field(min_length=3, max_length=3, description="m, world frame (+Z up)")
-    look_at: list[float] = Field(min_length=3, max_length=3, description="m, world frame")
+    position: list[Coordinate] = Field(min_length=3, max_length=3, description="m, world frame (+Z up)")
+    look_at: list[Coordinate] = Field(min_length=3, max_length=3, description="m, world frame")
 
 
 class CameraOut(BaseModel):
