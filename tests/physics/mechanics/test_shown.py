@@ -67,6 +67,18 @@ def derive_recording(system, formulation, directory, monkeypatch) -> tuple[engin
     return result, printed
 
 
+@pytest.fixture(scope="module")
+def derived_cases(tmp_path_factory) -> dict[str, tuple[engine.Derived, list]]:
+    """Each case derived once through the engine into a fresh cache, with what it printed: ``{case: (result,
+    printed)}`` (the tests below read the same derivation; deriving each again cost seconds per test)."""
+    out = {}
+    with pytest.MonkeyPatch.context() as monkeypatch:
+        monkeypatch.setattr(engine, "_memory", engine.OrderedDict())
+        for case, (system, formulation) in CASES.items():
+            out[case] = derive_recording(system, formulation, tmp_path_factory.mktemp("derived"), monkeypatch)
+    return out
+
+
 def sin_cos_pairs(expr) -> list:
     """Every c·sin²x + c·cos²x in one sum of ``expr`` (a matrix, an equation or an expression), as (c, x)."""
     found = []
@@ -90,9 +102,8 @@ def sin_cos_pairs(expr) -> list:
 
 
 @pytest.mark.parametrize("case", list(CASES))
-def test_what_is_shown_holds_no_sin_squared_plus_cos_squared(case, fresh_cache, monkeypatch):
-    system, formulation = CASES[case]
-    result, printed = derive_recording(system, formulation, fresh_cache, monkeypatch)
+def test_what_is_shown_holds_no_sin_squared_plus_cos_squared(case, derived_cases):
+    result, printed = derived_cases[case]
     assert printed and result.equations_latex
     pairs = [pair for expr in printed for pair in sin_cos_pairs(expr)]
     assert not pairs, pairs[:5]
@@ -102,13 +113,13 @@ def _routh_right_side_length(latex: str) -> int:
     return len(latex.split("=", 1)[1])
 
 
-def test_the_heavy_tops_routh_equation_is_shorter(fresh_cache, monkeypatch):
+def test_the_heavy_tops_routh_equation_is_shorter(derived_cases):
     """Derived: 17 terms, 3 837 characters of LaTeX. Shown: one fraction over I_t sin³θ, 5 terms in its numerator."""
     derivation = engine.DERIVERS["routh"](SYSTEMS["heavy-top"])
     derived_side = derivation.forcing[0]
     assert len(sympy.Add.make_args(derived_side)) == 17
     derived_length = len(sympy.latex(derived_side, symbol_names=derivation.latex_names))
-    result, printed = derive_recording(SYSTEMS["heavy-top"], "routh", fresh_cache, monkeypatch)
+    result, printed = derived_cases["heavy-top routh"]
     equation = next(e for e in printed if isinstance(e, sympy.Equality) and e.lhs.has(SYSTEMS["heavy-top"].qdd[1]))
     shown_side = equation.rhs
     numerator, denominator = sympy.fraction(sympy.together(shown_side))
@@ -159,14 +170,14 @@ def test_each_shown_form_equals_the_derived_one(case):
 
 
 @pytest.mark.parametrize("case", list(CASES))
-def test_the_computed_right_hand_side_is_untouched(case, fresh_cache):
+def test_the_computed_right_hand_side_is_untouched(case, derived_cases, tmp_path):
     """The engine compiles the code generated from the recipe alone (the same text), so its state derivative is
     bit-identical to that code's at random states (angles, rates and t in (−2, 2))."""
     system, formulation = CASES[case]
-    result = engine.derived(system, formulation, directory=fresh_cache)
+    result = derived_cases[case][0]
     recipe = engine.DERIVERS[formulation](system).recipe
     assert result.source_path.read_text() == generate_source(system, recipe, formulation=formulation)
-    plain = engine.load_recipe(system, recipe, formulation=formulation, path=fresh_cache / "plain" / "rhs_plain.py")
+    plain = engine.load_recipe(system, recipe, formulation=formulation, path=tmp_path / "plain" / "rhs_plain.py")
     parameters = np.array(system.parameter_array(system.parameters.defaults()))
     rng = np.random.default_rng(7)
     n = 2 * len(system.coordinates)  # (q, q̇)
