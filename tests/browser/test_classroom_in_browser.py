@@ -64,19 +64,28 @@ def _screenshot_with_scene(page, path) -> None:
     page.evaluate("document.getElementById('test-not-drawing').disabled = false")
 
 
-def _instructor(browser, live_server):
-    context = _new_context(browser, (1500, 1000))
+def instructor_room(browser, live_server, lesson: str, *, viewport=None, drawing: bool = False):
+    """An instructor's page that opened a room on ``lesson`` (its own scene); ``(context, page, errors, room_id)``.
+
+    Unless ``drawing``, the page's viewer stays connected but is not laid out (it draws nothing)."""
+    context = browser.new_context(viewport=viewport or {"width": 1366, "height": 768})
+    if not drawing:
+        context.add_init_script(NOT_DRAWING)
     page = context.new_page()
     errors: list[str] = []
     page.on("pageerror", lambda exc: errors.append(str(exc)))
     page.goto(live_server.instructor_link)
-    page.goto(f"{live_server.url}/lessons/{LESSON}")
+    page.goto(f"{live_server.url}/lessons/{lesson}")
     page.get_by_role("button", name="Start a class room here").click()
     page.wait_for_url(re.compile(r"\?room=[0-9a-f]{16}"))
     page.wait_for_function("() => document.querySelector('.room-code')?.textContent")  # the room's state arrived
     room_id = re.search(r"room=([0-9a-f]{16})", page.url).group(1)
-    code = page.text_content(".room-code")
-    return context, page, errors, room_id, code
+    return context, page, errors, room_id
+
+
+def _instructor(browser, live_server):
+    context, page, errors, room_id = instructor_room(browser, live_server, LESSON, viewport={"width": 1500, "height": 1000})
+    return context, page, errors, room_id, page.text_content(".room-code")
 
 
 def _student(browser, live_server, code, viewport):

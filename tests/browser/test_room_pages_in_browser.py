@@ -24,7 +24,7 @@ import pytest
 
 from tests.browser.conftest import keeping_screenshots, let_webgl_draw, screenshot
 from tests.browser.test_accessibility_in_browser import _failing, _report, run_axe
-from tests.browser.test_classroom_in_browser import NOT_DRAWING
+from tests.browser.test_classroom_in_browser import instructor_room as _instructor_room
 
 pytestmark = pytest.mark.browser
 
@@ -44,25 +44,6 @@ def _chapter_questions(chapter: int) -> list[dict]:
     """The ready questions of ``chapter``, in the file's order."""
     questions = tomllib.loads(POLLS_TOML.read_text(encoding="utf-8"))["question"]
     return [q for q in questions if q["chapter"] == chapter]
-
-
-def _instructor_room(browser, live_server, lesson: str, *, viewport=LAPTOP, drawing: bool = False):
-    """An instructor's page that opened a room on ``lesson`` (its own scene); ``(context, page, errors, room_id)``.
-
-    Unless ``drawing``, the page's viewer stays connected but is not laid out (it draws nothing)."""
-    context = browser.new_context(viewport=viewport)
-    if not drawing:
-        context.add_init_script(NOT_DRAWING)
-    page = context.new_page()
-    errors: list[str] = []
-    page.on("pageerror", lambda exc: errors.append(str(exc)))
-    page.goto(live_server.instructor_link)
-    page.goto(f"{live_server.url}/lessons/{lesson}")
-    page.get_by_role("button", name="Start a class room here").click()
-    page.wait_for_url(re.compile(r"\?room=[0-9a-f]{16}"))
-    page.wait_for_function("() => document.querySelector('.room-code')?.textContent")  # the room's state arrived
-    room_id = re.search(r"room=([0-9a-f]{16})", page.url).group(1)
-    return context, page, errors, room_id
 
 
 def _ready_offered(page) -> list[str]:
