@@ -113,7 +113,7 @@ import { renderPlot } from "./plot.js";
     const times = data.t_s || [];
     if (lastT !== null && !(times.length && Math.abs(times[0] - lastT) <= SAME_FRAME_S)) {
       clearStore();
-      replaying = true; // the last run's graph stays up until the new run has a line to draw
+      replaying = true; // the last run's graph stays up for now (see below)
       renderGraph();
       return 0; // ask again at once, for the new run's frames from its start
     }
@@ -149,7 +149,11 @@ import { renderPlot } from "./plot.js";
       }
     }
     renderEnergy(data.energy);
-    if (added) renderGraph();
+    // After a replay the last run's graph stays up until the new run has a line (two instants), or until an answer
+    // brings no new frame (the new run is paused): then the new run's graph, whatever it holds.
+    const replayed = replaying && (store.t.length >= 2 || (!added && lastT !== null));
+    if (replayed) replaying = false;
+    if (added || replayed) renderGraph();
     // Paused (nothing new): ask less often; but a run that has just started again is asked at the usual rate.
     return added || lastT === null ? POLL_MS : IDLE_MS;
   }
@@ -201,8 +205,7 @@ import { renderPlot } from "./plot.js";
   }
   let replaying = false;
   function renderGraph() {
-    if (replaying && store.t.length < 2) return;
-    replaying = false;
+    if (replaying) return;
     const xName = xPick.value;
     const yNames = [...new Set(yPicks.map((s) => s.value).filter((v) => v !== NONE && v in byName))];
     const from = store.t.findIndex((t) => t >= lastT - Number(windowPick.value) - SAME_FRAME_S);
