@@ -191,6 +191,9 @@ def create_room(
         except RoomError as exc:
             rooms.close(room.room_id)
             raise room_error(exc) from None
+        except Exception:  # the scene worker busy or restarting (503): no half-made room stays open either
+            rooms.close(room.room_id)
+            raise
     return {"room_id": room.room_id, "code": room.code, "join_url": room.join_url, "state": room.state()}
 
 

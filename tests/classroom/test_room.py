@@ -147,3 +147,29 @@ def test_a_stage_that_could_not_be_put_back_is_opened_afresh_by_the_next_change(
     assert host.calls == ["open_stage", "set_playback"]
     assert changed["params"]["mu"] == 0.45 and changed["playing"] is False
     assert (host.stage["params"], host.stage["playing"]) == (changed["params"], False)
+
+
+def test_a_room_whose_scene_worker_is_busy_at_creation_is_not_left_open(host):
+    # Found by the attack on issue 29: POST /api/rooms with a lesson answered 503 (its worker busy) but kept the new,
+    # empty room open. The route, in-process with the busy host in place of the scene workers.
+    from fastapi.testclient import TestClient
+
+    from app.api.deps import get_scene_host
+    from app.main import create_app
+    from app.settings import Settings
+
+    key = "room-busy-test-instructor-key"
+    app = create_app(Settings(instructor_key=key, workers=0))
+    app.dependency_overrides[get_scene_host] = lambda: host
+    host.busy = {"open_stage"}
+    with TestClient(app) as client:
+        refused = client.post(
+            "/api/rooms", json={"lesson_id": "10-2-spinning-top"}, headers={"X-Instructor-Key": key}
+        )
+        assert refused.status_code == 503 and refused.headers["Retry-After"], refused.text
+        assert host.calls == ["open_stage"]
+        assert app.state.rooms._rooms == {}
+        host.busy = set()
+        taken = client.post("/api/rooms", json={"lesson_id": "10-2-spinning-top"}, headers={"X-Instructor-Key": key})
+        assert taken.status_code == 200, taken.text
+        assert list(app.state.rooms._rooms) == [taken.json()["room_id"]]
