@@ -482,10 +482,11 @@ export const lesson = (function () {
         viewerConnected = playback.ok && (await playback.json()).viewers > 0;
       }
       if (viewerConnected) {
+        const askedAtMs = performance.now(); // listeners tell an answer that predates their own last change
         const response = await fetch(`/api/scenes/${scene.id}/sessions/${session.id}/live`);
         if (response.ok) {
           const data = await response.json();
-          document.dispatchEvent(new CustomEvent("dynlab:live", { detail: data }));
+          document.dispatchEvent(new CustomEvent("dynlab:live", { detail: { ...data, askedAtMs } }));
           if (data.readout) renderReadout(data.readout);
           if (scene.integrated && data.invariants) renderLive(data);
         } else if (response.status === 404) viewerConnected = false; // the viewer went (a reconnect): wait for it again

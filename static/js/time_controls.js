@@ -71,22 +71,48 @@ import { lesson } from "./lesson.js";
     clock.textContent = `t = ${t.toFixed(2)} s`;
   }
   setInterval(tick, 100);
-  document.addEventListener("dynlab:live", (event) => { if (event.detail && event.detail.playback) show(event.detail.playback); });
+  // A readout poll asked before the last change was answered may carry the state from before it: it is not shown
+  // (otherwise a quick Play then Pause, or a poll landing between them, would send "play" twice).
+  let changing = 0;
+  let changedAt = -Infinity;
+  document.addEventListener("dynlab:live", (event) => {
+    const live = event.detail;
+    if (!live || !live.playback || changing > 0 || !(live.askedAtMs > changedAt)) return;
+    show(live.playback);
+  });
 
-  async function send(body) {
-    let data;
-    try {
-      data = await lesson.setPlayback(body);
-    } catch (err) {
-      error.textContent = err.message;
-      error.hidden = false;
-      return null;
-    }
-    error.hidden = true;
-    show(data);
-    return data;
+  // Changes go to the server one at a time, in the order they were made.
+  let queue = Promise.resolve();
+  function send(body) {
+    changing += 1;
+    const answered = queue.then(async () => {
+      try {
+        const data = await lesson.setPlayback(body);
+        error.hidden = true;
+        show(data);
+        return data;
+      } catch (err) {
+        error.textContent = err.message;
+        error.hidden = false;
+        return null;
+      } finally {
+        changing -= 1;
+        changedAt = performance.now();
+      }
+    });
+    queue = answered;
+    return answered;
   }
-  play.addEventListener("click", () => send({ playing: !state.playing }));
+  // Play and pause take effect on the button at once, so a second press undoes the first even before the server's
+  // answer; the answer then shows what the server did.
+  function togglePlaying() {
+    const playing = !state.playing;
+    state = { ...state, playing };
+    play.textContent = playing ? "❚❚ Pause" : "▶ Play";
+    play.setAttribute("aria-label", playing ? "Pause" : "Play");
+    send({ playing });
+  }
+  play.addEventListener("click", togglePlaying);
   step.addEventListener("click", () => send({ step: 1 }));
   restart.addEventListener("click", () => send({ reset: true }));
   speed.addEventListener("change", () => send({ time_scale: Number(speed.value) }));
@@ -97,7 +123,7 @@ import { lesson } from "./lesson.js";
     const target = event.target;
     if (target && (target.closest("input, select, textarea, [contenteditable]") || target.isContentEditable)) return;
     const onButton = target && target.closest("button, a, summary");
-    if (event.key === " " && !onButton) { event.preventDefault(); send({ playing: !state.playing }); } // a focused button takes its own space
+    if (event.key === " " && !onButton) { event.preventDefault(); togglePlaying(); } // a focused button takes its own space
     else if (event.key === "ArrowRight" && !state.playing) { event.preventDefault(); send({ step: 1 }); }
     else if (event.key === "ArrowLeft" && !state.playing && state.history_s) {
       event.preventDefault();

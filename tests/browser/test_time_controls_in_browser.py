@@ -72,6 +72,45 @@ def test_time_controls_and_a_share_link_restore_parameters_and_time(browser, liv
     assert other.input_value("#ctl-spin_rad_s") == "80"
     assert host.playback(other_session)["playing"] is False
     wait_until(lambda: readout_quantity(other, "t_s") == pytest.approx(shared_t, abs=1e-3), timeout_s=10, what="the readout at the shared time")
+    _a_poll_answered_late_does_not_undo_a_press(other, host, other_session)
     assert errors == [] and other_errors == []
     other_context.close()
     context.close()
+
+
+#: In the page: every answer to the readout's poll (/live) arrives 1.5 s late, as on a slow connection; counts the
+#: polls asked and records each change of the play state the button shows.
+SLOW_POLLS = """() => {
+  const fetchNow = window.fetch;
+  window.__liveAsked = 0;
+  window.fetch = async (url, options) => {
+    if (!String(url).endsWith('/live')) return fetchNow(url, options);
+    window.__liveAsked += 1;
+    const answer = await fetchNow(url, options);
+    await new Promise((done) => setTimeout(done, 1500));
+    return answer;
+  };
+  const button = document.querySelector('.tc-play');
+  window.__playStates = [button.dataset.playing];
+  new MutationObserver(() => {
+    if (window.__playStates.at(-1) !== button.dataset.playing) window.__playStates.push(button.dataset.playing);
+  })
+    .observe(button, { attributes: true, attributeFilter: ['data-playing'] });
+}"""
+
+
+def _a_poll_answered_late_does_not_undo_a_press(page, host, session_id) -> None:
+    """Play pressed while a readout poll is on its way: the poll's late answer (still paused) must not turn the button
+    back, or the next press would send "play" again. CI once saw exactly this: Pause was pressed and the top played on."""
+    assert host.playback(session_id)["playing"] is False
+    page.evaluate(SLOW_POLLS)
+    asked = page.evaluate("() => window.__liveAsked")
+    page.wait_for_function(f"() => window.__liveAsked > {asked}")  # a poll is on its way, its answer 1.5 s off
+    page.click(".tc-play")
+    page.wait_for_selector('.tc-play[data-playing="true"]')
+    wait_until(lambda: page.evaluate("() => window.__liveAsked") >= asked + 3, timeout_s=20, what="two more slow polls")
+    states = page.evaluate("() => window.__playStates")
+    assert states[states.index("true"):] == ["true"], f"the button showed {states} after Play"
+    page.click(".tc-play")
+    page.wait_for_selector('.tc-play[data-playing="false"]')
+    assert host.playback(session_id)["playing"] is False
