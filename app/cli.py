@@ -14,8 +14,13 @@ import signal
 import sys
 from collections.abc import Callable
 from dataclasses import replace
+from pathlib import Path
+from typing import TYPE_CHECKING
 
 from app.settings import Settings, default_worker_count
+
+if TYPE_CHECKING:
+    from app.classroom.store import SqlRoomStore
 
 #: Ctrl+C ends ``dynlab serve`` within this long (s) whatever is in flight: requests get 1.5 s, the scene workers
 #: up to 3 s more (app/scenes/host/pool.py); anything still holding the process then (a thread blocked on a stopped
@@ -68,7 +73,7 @@ def _serve(args: argparse.Namespace) -> int:
     from app.scenes.host.worker import tune_garbage_collection
 
     workers = args.workers if args.workers is not None else default_worker_count()
-    settings = Settings.from_env(host=args.host, port=args.port, workers=workers, instructor_key=args.instructor_key)
+    settings = _kept_settings(args, host=args.host, port=args.port, workers=workers, instructor_key=args.instructor_key)
     if not settings.public_url and settings.host in ("0.0.0.0", "::"):
         settings = replace(settings, public_url=f"http://{lan_address()}:{settings.port}")
     app = create_app(settings)
@@ -82,6 +87,7 @@ def _serve(args: argparse.Namespace) -> int:
         else "scenes in this process"
     )
     print(f"Dynamics Lab: serving on http://{settings.host}:{settings.port}  ({where}; Ctrl+C to stop)", flush=True)
+    print(f"Rooms, polls, answers and the instructor's secret are kept in {app.state.database.url}", flush=True)
     base = settings.public_url or f"http://{settings.host}:{settings.port}"
     print(
         "Instructor link (keep it to yourself: whoever opens it runs the rooms): "
@@ -210,6 +216,75 @@ _OWN_OPTIONS = {
 }
 
 
+def _kept_settings(args: argparse.Namespace, **overrides: object) -> Settings:
+    """The environment's settings with the command's options; the class's data is always kept by the commands
+    (``--data-dir``, else ``DYNLAB_DATA_DIR`` or ``DYNLAB_DATABASE_URL``, else the per-user default)."""
+    from app.storage import default_data_dir
+
+    settings = Settings.from_env(data_dir=getattr(args, "data_dir", None), **overrides)
+    if settings.data_dir is None and not settings.database_url:
+        settings = replace(settings, data_dir=default_data_dir())
+    return settings
+
+
+def _kept_store(args: argparse.Namespace) -> SqlRoomStore:
+    from app.classroom.store import SqlRoomStore
+    from app.storage import open_database
+
+    url = _kept_settings(args).kept_database_url()
+    assert url is not None
+    return SqlRoomStore(open_database(url))
+
+
+def _rooms(args: argparse.Namespace) -> int:
+    """``dynlab rooms``: the kept rooms; ``dynlab rooms delete ID|CODE``: forget one with all its answers."""
+    store = _kept_store(args)
+    kept = store.listing()
+    if args.action == "delete":
+        wanted = args.room.strip()
+        if not wanted:
+            print("dynlab rooms delete ID|CODE: name the room (dynlab rooms lists them)", file=sys.stderr)
+            return 2
+        found = next((r for r in kept if wanted in (r["room_id"], r["code"], r["code"].lower())), None)
+        if found is None:
+            print(f"no kept room has the id or code {wanted!r} (dynlab rooms lists them)", file=sys.stderr)
+            return 1
+        store.delete(found["room_id"])
+        print(f"deleted room {found['code']} ({found['room_id']}) with its {found['answers']} answers")
+        print("a running server keeps it open until it stops: close it from the instructor's page to end it now")
+        return 0
+    if not kept:
+        print(f"no rooms kept in {store.database.url}")
+        return 0
+    print(f"{len(kept)} room{'s' if len(kept) != 1 else ''} kept in {store.database.url}:")
+    print(f"{'code':<8}{'room id':<18}{'lesson':<34}{'students':>9}{'polls':>6}{'answers':>8}  last used (UTC)")
+    for r in kept:
+        used = r["used_at"].strftime("%Y-%m-%d %H:%M")
+        print(
+            f"{r['code']:<8}{r['room_id']:<18}{(r['lesson_id'] or '-'):<34}{r['students']:>9}{r['polls']:>6}"
+            f"{r['answers']:>8}  {used}"
+        )
+    return 0
+
+
+def _instructor_key(args: argparse.Namespace) -> int:
+    """``dynlab instructor-key --rotate``: a new kept instructor secret (the server takes it at its next start)."""
+    from app.classroom.roles import rotate_instructor_secret
+    from app.storage import open_database
+
+    settings = _kept_settings(args)
+    url = settings.kept_database_url()
+    assert url is not None
+    database = open_database(url)
+    if not args.rotate:
+        print("dynlab serve prints the instructor link; --rotate makes a new secret (the old link stops working)")
+        return 0
+    secret = rotate_instructor_secret(database)
+    print(f"new instructor secret kept in {database.url}; restart dynlab serve, then open its new instructor link")
+    print(f"(…/instructor?key={secret})")
+    return 0
+
+
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
     if (
@@ -235,12 +310,26 @@ def main(argv: list[str] | None = None) -> int:
         "--instructor-key",
         default=None,
         help=(
-            "the instructor's secret in the printed instructor link (default: DYNLAB_INSTRUCTOR_KEY, else a new "
-            "random one each start)"
+            "the instructor's secret in the printed instructor link (default: DYNLAB_INSTRUCTOR_KEY, else the one "
+            "kept in the data directory, made on the first start)"
         ),
     )
     serve.add_argument("--log-level", default="info", choices=["critical", "error", "warning", "info", "debug"])
+    data_dir_help = (
+        "where the class's data is kept (default: DYNLAB_DATA_DIR, else $XDG_DATA_HOME/dynlab or "
+        "~/.local/share/dynlab; DYNLAB_DATABASE_URL names another database instead)"
+    )
+    serve.add_argument("--data-dir", type=Path, default=None, help=data_dir_help)
     serve.set_defaults(run=_serve)
+    rooms = commands.add_parser("rooms", help="list the kept rooms, or delete one with all its answers")
+    rooms.add_argument("action", nargs="?", choices=["list", "delete"], default="list")
+    rooms.add_argument("room", nargs="?", default="", help="the room's id or code (for delete)")
+    rooms.add_argument("--data-dir", type=Path, default=None, help=data_dir_help)
+    rooms.set_defaults(run=_rooms)
+    key = commands.add_parser("instructor-key", help="rotate the kept instructor secret (--rotate)")
+    key.add_argument("--rotate", action="store_true", help="make and keep a new secret; the old link stops working")
+    key.add_argument("--data-dir", type=Path, default=None, help=data_dir_help)
+    key.set_defaults(run=_instructor_key)
     for name, (run, help_text, options_help) in _OWN_OPTIONS.items():
         command = commands.add_parser(name, help=help_text, add_help=False)
         command.add_argument("bench_args", nargs=argparse.REMAINDER, help=options_help)

@@ -22,13 +22,15 @@ from app.classroom.join_limits import JoinLimits
 from app.classroom.page_config import classroom_page_config
 from app.classroom.ready_questions import DEFAULT_READY_QUESTIONS, load_ready_questions
 from app.classroom.registry import Rooms
-from app.classroom.roles import InstructorKey
+from app.classroom.roles import InstructorKey, kept_instructor_secret
+from app.classroom.store import SqlRoomStore
 from app.course import load_catalogue
 from app.physics.core.bounded import stop_all_work
 from app.scenes import SCENES
 from app.scenes.host.host import SceneHost
 from app.scenes.host.pool import WorkerPool
 from app.settings import Settings
+from app.storage import open_database
 from app.web import guard, pages, relay, viewer_client
 from app.web.page_config import add_page_config_section
 from app.web.static_files import STATIC_DIR
@@ -55,6 +57,8 @@ def create_app(settings: Settings | None = None) -> FastAPI:
             host = SceneHost(SCENES, frame_rate_hz=settings.frame_rate_hz, max_sessions=settings.max_sessions)
         host.start()
         app.state.scene_host = host
+        for room in app.state.rooms.all():  # rooms kept from the last run: their scenes as they were
+            room.put_stage_back(host)
         viewer_client.unpacked_client()  # unpacked (0.3 s) before a viewer asks for it, not while it waits
         try:
             yield
@@ -78,9 +82,13 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     )
     # Every lesson reference is checked here: a bad one stops the server before it starts.
     app.state.catalogue = load_catalogue(settings.lessons_dir)
-    # The classroom: the instructor's secret, the open rooms, their sockets and the ready poll questions (checked now).
-    app.state.instructor_key = InstructorKey(settings.instructor_key or None)
-    app.state.rooms = Rooms()
+    # What a class must not lose (None: nothing kept), and the classroom: the instructor's secret (given, or kept), the
+    # rooms (kept ones open again), their sockets and the ready poll questions (checked now).
+    kept_url = settings.kept_database_url()
+    database = open_database(kept_url) if kept_url else None
+    app.state.database = database
+    app.state.instructor_key = InstructorKey(settings.instructor_key or kept_instructor_secret(database))
+    app.state.rooms = Rooms(store=SqlRoomStore(database) if database is not None else None)
     app.state.join_limits = JoinLimits(settings)
     app.state.room_hub = RoomHub(lambda: app.state.scene_host)
     app.state.ready_questions = load_ready_questions(DEFAULT_READY_QUESTIONS, SCENES)

@@ -35,8 +35,16 @@ class Settings:
     #: Scene-worker processes (app/scenes/host/pool.py); 0 runs the scenes inside the front process
     #: (tests, a single user). ``dynlab serve`` defaults to one worker per core.
     workers: int = 0
-    #: The instructor's secret (``--instructor-key`` or ``DYNLAB_INSTRUCTOR_KEY``); empty: a new random one each start.
+    #: The instructor's secret (``--instructor-key`` or ``DYNLAB_INSTRUCTOR_KEY``); empty: the one kept in the database
+    #: (made on the first start), or with nothing kept a new random one each start.
     instructor_key: str = ""
+    #: Where the class's data is kept (``--data-dir`` or ``DYNLAB_DATA_DIR``; ``dynlab serve`` defaults to
+    #: app.storage.default_data_dir()): a SQLite database of the instructor's secret, rooms, students, polls and
+    #: answers. None keeps nothing (an app made in a test's process).
+    data_dir: Path | None = None
+    #: A database URL that replaces the data directory's SQLite file (``DYNLAB_DATABASE_URL``, e.g.
+    #: ``postgresql+psycopg://dynlab@db/dynlab``).
+    database_url: str = ""
     #: The address students reach this server at (``http://10.0.0.5:8000``), used in room join links and QR codes;
     #: empty: the address the instructor's browser used.
     public_url: str = ""
@@ -88,6 +96,16 @@ class Settings:
         if self.rate_limit_clients < 1:
             raise ValueError(f"rate_limit_clients must be >= 1 (got {self.rate_limit_clients!r})")
 
+    def kept_database_url(self) -> str | None:
+        """The database the class's data is kept in (None: nothing is kept)."""
+        if self.database_url:
+            return self.database_url
+        if self.data_dir is None:
+            return None
+        from app.storage.database import sqlite_url
+
+        return sqlite_url(self.data_dir)
+
     @classmethod
     def from_env(cls, **overrides: object) -> Settings:
         env = {
@@ -98,13 +116,15 @@ class Settings:
             "lessons_dir": os.environ.get("DYNLAB_LESSONS_DIR"),
             "workers": os.environ.get("DYNLAB_WORKERS"),
             "instructor_key": os.environ.get("DYNLAB_INSTRUCTOR_KEY"),
+            "data_dir": os.environ.get("DYNLAB_DATA_DIR"),
+            "database_url": os.environ.get("DYNLAB_DATABASE_URL"),
             "public_url": os.environ.get("DYNLAB_PUBLIC_URL"),
             **{name: os.environ.get(f"DYNLAB_{name.upper()}") for name in (*_GUARD_FIELDS, *_JOIN_FIELDS)},
         }
         values: dict[str, object] = {}
         for name, raw in env.items():
             if raw is not None:
-                values[name] = _parse(getattr(cls, name), raw, name=name)
+                values[name] = Path(raw) if name == "data_dir" else _parse(getattr(cls, name), raw, name=name)
         values.update({k: v for k, v in overrides.items() if v is not None})
         return cls(**values)  # type: ignore[arg-type]
 

@@ -14,6 +14,11 @@ from pathlib import Path
 import pytest
 from xdist.scheduler import LoadScopeScheduling
 
+#: No test keeps anything in the home directory: the per-user data directory (app.storage.default_data_dir, where
+#: ``dynlab serve`` keeps rooms without --data-dir) is one of this run's own. Served apps get their own data
+#: directories (tests/served.py).
+os.environ["XDG_DATA_HOME"] = str(Path(__file__).resolve().parents[1] / "test-results" / f"xdg-data-{os.getpid()}")
+
 #: Seconds each test file took (setup, call and teardown of its tests) in a measured run of README's test command:
 #: the order in which the files are handed out. ``DYNLAB_STORE_FILE_SECONDS=1 tests/run.sh`` measures it again.
 FILE_SECONDS = Path(__file__).with_name("file_seconds.json")

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+import shutil
 import signal
 import socket
 import subprocess
@@ -87,14 +88,33 @@ class DeviceClient(httpx.Client):
 class ServedApp:
     """``dynlab serve --host 127.0.0.1 --port <free>`` with the default scene workers, and an HTTP client for it."""
 
-    def __init__(self, *, name: str = "served", env: Mapping[str, str] | None = None, args: tuple[str, ...] = ()) -> None:
-        self.port = free_port()
+    def __init__(
+        self,
+        *,
+        name: str = "served",
+        env: Mapping[str, str] | None = None,
+        args: tuple[str, ...] = (),
+        data_dir: Path | None = None,
+        port: int | None = None,
+    ) -> None:
+        self.port = port or free_port()
         self.instructor_key = INSTRUCTOR_KEY
         self.name = name
         self.log_path = RESULTS / f"{name}-{os.getpid()}-{self.port}.log"
+        # Where it keeps the class's data: its own, new and removed when it stops, unless given (a restart test gives
+        # the one an earlier server kept its rooms in).
+        self._own_data_dir = data_dir is None
+        self.data_dir = data_dir or RESULTS / f"data-{name}-{os.getpid()}-{self.port}"
+        if self._own_data_dir:
+            shutil.rmtree(self.data_dir, ignore_errors=True)
         # Whatever this shell sets, the default is what README's command gets: no DYNLAB_* but ours.
         inherited = {k: v for k, v in os.environ.items() if not k.startswith("DYNLAB_")}
-        self._env = {**inherited, "DYNLAB_INSTRUCTOR_KEY": INSTRUCTOR_KEY, **(env or {})}
+        self._env = {
+            **inherited,
+            "DYNLAB_INSTRUCTOR_KEY": INSTRUCTOR_KEY,
+            "DYNLAB_DATA_DIR": str(self.data_dir),
+            **(env or {}),
+        }
         self._args = args
         self.process: subprocess.Popen[bytes] | None = None
         self.client = httpx.Client(base_url=self.url, timeout=60.0)
@@ -180,6 +200,8 @@ class ServedApp:
                 pass
         self.process.wait(timeout=5)
         self.client.close()
+        if self._own_data_dir:
+            shutil.rmtree(self.data_dir, ignore_errors=True)
         return took
 
     def __enter__(self) -> "ServedApp":

@@ -49,8 +49,10 @@ def recording_server(served: list):
     return Server
 
 
-def test_serve_prints_the_instructor_link_with_the_key_given_or_a_new_one(monkeypatch, capsys):
-    """The link beside the address carries the secret: --instructor-key's, else the environment's, else a random one."""
+def test_serve_prints_the_instructor_link_with_the_key_given_or_the_kept_one(monkeypatch, capsys, tmp_path):
+    """The link beside the address carries the secret: --instructor-key's, else the environment's, else the one kept
+    in the data directory (made at its first start, the same at every start after, new after a rotation)."""
+    monkeypatch.setenv("DYNLAB_DATA_DIR", str(tmp_path / "data"))
     served = []
     monkeypatch.setattr(cli, "_stopping_server_class", lambda on_stop: recording_server(served))
     monkeypatch.delenv("DYNLAB_INSTRUCTOR_KEY", raising=False)
@@ -65,7 +67,14 @@ def test_serve_prints_the_instructor_link_with_the_key_given_or_a_new_one(monkey
     cli.main(["serve", "--workers", "0"])
     cli.main(["serve", "--workers", "0"])
     first, second = (app.state.instructor_key.secret for app in served[-2:])
-    assert first != second and len(first) >= 20  # a new random secret each start
+    assert first == second and len(first) >= 20  # made at the first start, kept
+    assert f"/instructor?key={first}" in capsys.readouterr().out
+    assert cli.main(["instructor-key", "--rotate"]) == 0
+    assert "restart dynlab serve" in capsys.readouterr().out
+    cli.main(["serve", "--workers", "0"])
+    cli.main(["serve", "--workers", "0", "--data-dir", str(tmp_path / "other")])
+    rotated, elsewhere = (app.state.instructor_key.secret for app in served[-2:])
+    assert len({first, rotated, elsewhere}) == 3 and not served[-2].state.instructor_key.matches(first)
     with pytest.raises(ValueError, match="at least 12"):
         cli.main(["serve", "--workers", "0", "--instructor-key", "short"])
 

@@ -30,6 +30,7 @@ from app.physics.core.bounded import WorkBusy, WorkInterrupted, WorkRefused
 from app.physics.core.parameters import ParameterError
 from app.scenes.host.interface import HostBusy
 from app.scenes.host.rpc import WorkerUnavailableError
+from app.storage.database import StoreUnavailable
 
 log = logging.getLogger(__name__)
 
@@ -122,6 +123,12 @@ async def work_interrupted_handler(request: Request, exc: Exception) -> Response
     return JSONResponse({"detail": str(exc)}, status_code=503, headers={"Retry-After": str(exc.retry_after_s)})
 
 
+async def store_unavailable_handler(request: Request, exc: Exception) -> Response:
+    """The database did not take a write just now (app.storage): 503 with Retry-After."""
+    assert isinstance(exc, StoreUnavailable)
+    return JSONResponse({"detail": str(exc)}, status_code=503, headers={"Retry-After": str(exc.retry_after_s)})
+
+
 def install(app: FastAPI) -> None:
     app.add_exception_handler(RequestValidationError, request_validation_error_handler)
     app.add_exception_handler(ParameterError, parameter_error_handler)
@@ -130,6 +137,7 @@ def install(app: FastAPI) -> None:
     app.add_exception_handler(WorkRefused, work_refused_handler)
     app.add_exception_handler(WorkBusy, work_busy_handler)
     app.add_exception_handler(WorkInterrupted, work_interrupted_handler)
+    app.add_exception_handler(StoreUnavailable, store_unavailable_handler)
     app.add_exception_handler(Exception, internal_error_handler)
 
 

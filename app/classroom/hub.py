@@ -61,6 +61,8 @@ class Member:
     websocket: WebSocket
     instructor: bool
     student_token: str | None = None
+    #: The student's public id, once their hello named them (``student_token``).
+    student_id: str | None = None
     queue: asyncio.Queue[str | None] = field(default_factory=lambda: asyncio.Queue(QUEUE_LIMIT))
     sender: asyncio.Task[None] | None = None
     #: Closed for not reading, or dismissed: nothing more is queued for it.
@@ -108,7 +110,7 @@ class RoomHub:
         with room.lock:
             if member.instructor:
                 room.instructor_sockets -= 1
-            student = room.students.get(member.student_token) if member.student_token else None
+            student = room.students.get(member.student_id) if member.student_id else None
             if student is not None:
                 student.sockets -= 1
         self._presence_changed.add(room.room_id)
@@ -155,13 +157,13 @@ class RoomHub:
             asyncio.create_task(member.websocket.close(code=code, reason=member.close_reason))
         member.closing = True
 
-    def dismiss_student(self, room: Room, token: str, message: dict[str, Any]) -> None:
-        """Close every socket of the student holding ``token`` (removed by the instructor), ``message`` last (any
+    def dismiss_student(self, room: Room, student_id: str, message: dict[str, Any]) -> None:
+        """Close every socket of the student ``student_id`` (removed by the instructor), ``message`` last (any
         thread)."""
 
         def dismiss_all() -> None:
             for member in list(self._members.get(room.room_id, ())):
-                if member.student_token == token:
+                if member.student_id == student_id:
                     self.dismiss(member, message, reason="removed from the room by the instructor")
 
         self._in_loop(dismiss_all)

@@ -286,6 +286,66 @@ class Poll:
         shown_name = name.strip() if isinstance(name, str) else ""
         self._answers[student_id] = _Answer(number, shown_name, choice, value, datetime.now(UTC))
 
+    def answer_of(self, student_id: str) -> dict[str, Any] | None:
+        """A student's answer as the database keeps it (None if they have not answered)."""
+        answer = self._answers.get(student_id)
+        if answer is None:
+            return None
+        return {
+            "number": answer.number,
+            "name": answer.name,
+            "choice": answer.choice,
+            "value": answer.value,
+            "answered_at": answer.answered_at,
+        }
+
+    def record(self) -> dict[str, Any]:
+        """The poll as the database keeps it, without its answers (kept one row each: :meth:`answer_of`)."""
+        source = self.answer_source
+        return {
+            "poll_id": self.poll_id,
+            "question": self.question,
+            "kind": self.kind,
+            "choices": list(self.choices),
+            "unit": self.unit,
+            "answer_source": None
+            if source is None
+            else {"quantity": source.quantity, "choice_for": dict(source.choice_for)},
+            "answer_value": self.answer_value,
+            "answer_choice": self.answer_choice,
+            "show_names": self.show_names,
+            "open": self.open,
+            "revealed": self.revealed,
+            "answered_ever": self._answered_ever,
+        }
+
+    @classmethod
+    def from_record(cls, record: Mapping[str, Any], answers: Mapping[str, Mapping[str, Any]]) -> Poll:
+        """The poll :meth:`record` kept, with its answers (by student id, as :meth:`answer_of` gave them)."""
+        source = record["answer_source"]
+        poll = cls(
+            poll_id=record["poll_id"],
+            question=record["question"],
+            kind=record["kind"],
+            choices=tuple(record["choices"]),
+            unit=record["unit"],
+            answer_source=None if source is None else AnswerSource(source["quantity"], dict(source["choice_for"])),
+            answer_value=record["answer_value"],
+            answer_choice=record["answer_choice"],
+            show_names=record["show_names"],
+            open=record["open"],
+            revealed=record["revealed"],
+        )
+        poll._answered_ever = record["answered_ever"]
+        for student_id, kept in answers.items():
+            answered_at = kept["answered_at"]
+            if answered_at.tzinfo is None:  # SQLite gives back naive datetimes: they were written in UTC
+                answered_at = answered_at.replace(tzinfo=UTC)
+            poll._answers[student_id] = _Answer(
+                kept["number"], kept["name"], kept["choice"], kept["value"], answered_at
+            )
+        return poll
+
     def withdraw(self, student_id: str) -> None:
         """Take a student's answer out of the poll (the instructor removed them); nothing if they did not answer."""
         self._answers.pop(student_id, None)

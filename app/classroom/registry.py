@@ -5,9 +5,12 @@ from __future__ import annotations
 import secrets
 import threading
 import time
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from app.classroom.room import CODE_ALPHABET, CODE_LENGTH, Room, RoomError
+
+if TYPE_CHECKING:
+    from app.classroom.store import SqlRoomStore
 
 #: Rooms one server keeps open at once (each has its own stage: a viser server in a scene worker).
 MAX_ROOMS = 16
@@ -20,11 +23,12 @@ ROOM_ID_PATTERN = rf"^[0-9a-f]{{{ROOM_ID_HEX_DIGITS}}}$"
 
 class Rooms:
     """Open rooms (thread-safe). ``join_base`` is the address students use (``Settings.public_url`` or the
-    request's)."""
+    request's). With a ``store``, the rooms it kept are open again and every room is kept there as it changes."""
 
-    def __init__(self, *, max_rooms: int = MAX_ROOMS) -> None:
+    def __init__(self, *, max_rooms: int = MAX_ROOMS, store: SqlRoomStore | None = None) -> None:
         self.max_rooms = max_rooms
-        self._rooms: dict[str, Room] = {}
+        self.store = store
+        self._rooms: dict[str, Room] = {room.room_id: room for room in (store.load() if store else [])}
         self._lock = threading.Lock()
 
     def create(self, *, join_base: str) -> tuple[Room, list[Room]]:
@@ -38,7 +42,9 @@ class Rooms:
             while code in codes:
                 code = "".join(secrets.choice(CODE_ALPHABET) for _ in range(CODE_LENGTH))
             room_id = secrets.token_hex(ROOM_ID_HEX_DIGITS // 2)
-            room = Room(room_id=room_id, code=code, join_url=f"{join_base.rstrip('/')}/join/{code}")
+            room = Room(room_id=room_id, code=code, join_url=f"{join_base.rstrip('/')}/join/{code}", store=self.store)
+            if self.store is not None:
+                self.store.save(room)
             self._rooms[room_id] = room
             return room, closed
 
@@ -51,6 +57,8 @@ class Rooms:
         ]
         for room in idle:
             del self._rooms[room.room_id]
+            if self.store is not None:
+                self.store.delete(room.room_id)
         return idle
 
     def get(self, room_id: str) -> Room:
@@ -84,8 +92,12 @@ class Rooms:
         return room
 
     def close(self, room_id: str) -> Room | None:
+        """Close a room and forget it, with every answer in it."""
         with self._lock:
-            return self._rooms.pop(room_id, None)
+            room = self._rooms.pop(room_id, None)
+            if room is not None and self.store is not None:
+                self.store.delete(room_id)
+            return room
 
     def all(self) -> list[Room]:
         with self._lock:

@@ -13,8 +13,14 @@ import hashlib
 import hmac
 import secrets
 from collections.abc import Mapping
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from app.storage import Database
 
 COOKIE = "dynlab_instructor"
+#: The name the instructor's secret is kept under in the database's server values.
+KEPT_SECRET = "instructor_secret"
 HEADER = "X-Instructor-Key"
 #: Shortest secret accepted from ``--instructor-key`` or ``DYNLAB_INSTRUCTOR_KEY`` (characters).
 MIN_KEY_LENGTH = 12
@@ -26,7 +32,7 @@ class InstructorKey:
     def __init__(self, secret: str | None = None) -> None:
         if secret is not None and len(secret) < MIN_KEY_LENGTH:
             raise ValueError(f"instructor key: at least {MIN_KEY_LENGTH} characters (got {len(secret)})")
-        self.secret = secret or secrets.token_urlsafe(18)
+        self.secret = secret or new_secret()
         self.cookie_token = hmac.new(self.secret.encode(), b"dynlab instructor cookie", hashlib.sha256).hexdigest()
 
     def matches(self, key: str | None) -> bool:
@@ -43,3 +49,20 @@ class InstructorKey:
     def link(self, base_url: str) -> str:
         """The instructor link printed beside the server's address."""
         return f"{base_url.rstrip('/')}/instructor?key={self.secret}"
+
+
+def new_secret() -> str:
+    """A new instructor secret: 18 random bytes, URL-safe (24 characters)."""
+    return secrets.token_urlsafe(18)
+
+
+def kept_instructor_secret(database: Database | None) -> str | None:
+    """The instructor's secret kept in ``database`` (made and kept on its first start); None with no database."""
+    return database.kept_value(KEPT_SECRET, new_secret) if database is not None else None
+
+
+def rotate_instructor_secret(database: Database) -> str:
+    """A new instructor secret, kept in place of the old one (the server takes it at its next start)."""
+    secret = new_secret()
+    database.set_value(KEPT_SECRET, secret)
+    return secret

@@ -10,6 +10,7 @@ checked whole before anything is applied: a bad field answers with a
 
 from __future__ import annotations
 
+import hashlib
 import logging
 import math
 import secrets
@@ -17,7 +18,7 @@ import threading
 import time
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Protocol
 
 from app.classroom.polls import Poll
 from app.course import Catalogue
@@ -62,14 +63,30 @@ class StudentRemoved(PermissionError):
     """The instructor removed this student (their token) or this device from the room."""
 
 
+def digest(secret: str) -> str:
+    """What the room keeps of a student's token or a device's id: its SHA-256 (hex). The database holds only these,
+    so a copy of it lets nobody act as a student."""
+    return hashlib.sha256(secret.encode()).hexdigest()
+
+
+class RoomStore(Protocol):
+    """Where a room is kept as it changes (app.classroom.store): called with the room's lock held, after each change."""
+
+    def save(self, room: Room, *, withdrawn_student: str | None = None) -> None: ...
+
+    def save_answer(self, room: Room, poll_id: str, student_id: str) -> None: ...
+
+
 @dataclass
 class Student:
     """One student: one device, known to the room by the secret token it got on joining (kept across reconnects
-    and re-joins from that device) and to the instructor by ``student_id``, which reveals nothing of the token."""
+    and re-joins from that device) and to the instructor by ``student_id``, which reveals nothing of the token.
+    ``token`` is known only in the server run that gave it (the room keeps its digest); a student kept from an
+    earlier run who joins again from their device gets a new token beside the old one."""
 
     student_id: str
-    token: str
-    device: str | None = None
+    token: str | None
+    device_digest: str | None = None
     name: str = ""
     sockets: int = 0
     following: bool = True
@@ -101,8 +118,10 @@ class Room:
     #: Where explorers start (set on each switch to explore, and on each new scene while exploring): scene, parameters
     #: and the stage's motion then (None: from the scene's start).
     explore_start: dict[str, Any] | None = None
-    #: By token; ``_by_device`` finds a device's student, the ``_removed_*`` sets remember whom the instructor removed.
+    #: By student id; ``_by_token`` and ``_by_device`` find a student from a token's or a device's digest, the
+    #: ``_removed_*`` sets remember (as digests) whom the instructor removed.
     students: dict[str, Student] = field(default_factory=dict)
+    _by_token: dict[str, str] = field(default_factory=dict, repr=False)
     _by_device: dict[str, str] = field(default_factory=dict, repr=False)
     _removed_tokens: set[str] = field(default_factory=set, repr=False)
     _removed_devices: set[str] = field(default_factory=set, repr=False)
@@ -115,11 +134,106 @@ class Room:
     _stage_unsure: bool = field(default=False, repr=False)
     #: Held while the room's state changes (routes run in threads, sockets in the event loop's executor).
     lock: threading.RLock = field(default_factory=threading.RLock, repr=False)
+    #: Where the room is kept (None: in this process's memory only).
+    store: RoomStore | None = field(default=None, repr=False)
+    #: When the room was opened (UTC, for the database and ``dynlab rooms``).
+    created_at: float = field(default_factory=time.time)
 
     @property
     def stage_id(self) -> str:
         """The scene host's session id for this room's shared scene."""
         return f"{STAGE_PREFIX}{self.room_id}"
+
+    # -- kept --------------------------------------------------------------------------
+    def record(self) -> dict[str, Any]:
+        """What the database keeps of the room (app.classroom.store): its shared scene's lesson, scene, parameters and
+        play state, its students (digests of their tokens and devices, never the secrets), whom the instructor removed,
+        and its polls without their answers (kept one row each)."""
+        with self.lock:
+            return {
+                "join_url": self.join_url,
+                "lesson_id": self.lesson_id,
+                "scene_id": self.scene_id,
+                "params": dict(self.params),
+                "playing": self.playing,
+                "time_scale": self.time_scale,
+                "mode": self.mode,
+                "revision": self.revision,
+                "reset_count": self.reset_count,
+                "explore_start": self.explore_start,
+                "students": [
+                    {
+                        "student_id": s.student_id,
+                        "name": s.name,
+                        "device_digest": s.device_digest,
+                        "joined_s": s.joined_s,
+                    }
+                    for s in self.students.values()
+                ],
+                "students_ever": self._students_ever,
+                "token_digests": dict(self._by_token),
+                "removed_tokens": sorted(self._removed_tokens),
+                "removed_devices": sorted(self._removed_devices),
+                "polls": [poll.record() for poll in self.polls.values()],
+                "poll_id": self.poll_id,
+            }
+
+    @classmethod
+    def from_record(
+        cls,
+        *,
+        room_id: str,
+        code: str,
+        created_at: float,
+        record: Mapping[str, Any],
+        answers: Mapping[str, Mapping[str, Mapping[str, Any]]],
+    ) -> Room:
+        """The room :meth:`record` kept, with its polls' answers (by poll id, then student id). Its stage is not open
+        yet: the room's next change opens it (``_stage_unsure``), or :meth:`put_stage_back` does at start-up."""
+        room = cls(
+            room_id=room_id,
+            code=code,
+            join_url=record["join_url"],
+            lesson_id=record["lesson_id"],
+            scene_id=record["scene_id"],
+            params=dict(record["params"]),
+            playing=record["playing"],
+            time_scale=record["time_scale"],
+            mode=record["mode"],
+            revision=record["revision"] + 1,  # pages that saw the room before the restart take its state again
+            reset_count=record["reset_count"],
+            explore_start=record["explore_start"],
+            poll_id=record["poll_id"],
+            created_at=created_at,
+        )
+        for kept in record["students"]:
+            student = Student(
+                student_id=kept["student_id"],
+                token=None,
+                device_digest=kept["device_digest"],
+                name=kept["name"],
+                joined_s=kept["joined_s"],
+            )
+            room.students[student.student_id] = student
+            if student.device_digest is not None:
+                room._by_device[student.device_digest] = student.student_id
+        room._students_ever = record["students_ever"]
+        room._by_token = dict(record["token_digests"])
+        room._removed_tokens = set(record["removed_tokens"])
+        room._removed_devices = set(record["removed_devices"])
+        for kept_poll in record["polls"]:
+            poll = Poll.from_record(kept_poll, answers.get(kept_poll["poll_id"], {}))
+            room.polls[poll.poll_id] = poll
+        room._stage_unsure = room.scene_id is not None
+        return room
+
+    def put_stage_back(self, host: SceneHostInterface) -> None:
+        """Open the room's stage as the room says it is (a room kept from an earlier run): its scene, parameters and
+        play state. A worker that refuses leaves it for the room's next change."""
+        with self.lock:
+            if self.scene_id is not None and self._stage_unsure:
+                self._stage_unsure = False
+                self._put_stage_back(host, scene_changed=True)  # sets it again if the worker refused
 
     # -- state ---------------------------------------------------------------------
     def state(self) -> dict[str, Any]:
@@ -159,7 +273,13 @@ class Room:
             self._apply(plan, host=host)
             self.revision += 1
             self.last_used_s = time.monotonic()
+            self._keep()
         return self.state()
+
+    def _keep(self, *, withdrawn_student: str | None = None) -> None:
+        """Write the room to its store (with its lock held, so the store sees changes in the order they were made)."""
+        if self.store is not None:
+            self.store.save(self, withdrawn_student=withdrawn_student)
 
     def _check_conditions(self, raw: Mapping[str, Any]) -> None:
         """:class:`RoomMovedOn` if the change names a lesson or scene (``if_lesson_id``, ``if_scene_id``) that the room
@@ -326,8 +446,8 @@ class Room:
     def student_of_device(self, device: str | None) -> Student | None:
         """The student this device joined as, if it has (None for no device)."""
         with self.lock:
-            token = self._by_device.get(device) if device else None
-            return self.students.get(token) if token else None
+            student_id = self._by_device.get(digest(device)) if device else None
+            return self.students.get(student_id) if student_id else None
 
     def join(self, name: str = "", *, device: str | None = None) -> Student:
         """The device's student: the one it joined as before (a QR code scanned again, a reload, the code typed
@@ -342,30 +462,49 @@ class Room:
         name = name.strip()
         with self.lock:
             self.last_used_s = time.monotonic()
-            if device is not None and device in self._removed_devices:
+            if device is not None and digest(device) in self._removed_devices:
                 raise StudentRemoved(f"the instructor removed this device from room {self.code}")
             known = self.student_of_device(device)
             if known is not None:
+                if known.token is None:  # kept from an earlier run, which gave the token: a new one, beside it
+                    known.token = secrets.token_urlsafe(18)
+                    self._by_token[digest(known.token)] = known.student_id
                 if name:
                     known.name = name
+                self._keep()
                 return known
             if len(self.students) >= MAX_STUDENTS:
                 raise RoomError("code", f"this room is full ({MAX_STUDENTS} students)")
             self._students_ever += 1
+            device_digest = digest(device) if device is not None else None
             student = Student(
-                student_id=f"s{self._students_ever}", token=secrets.token_urlsafe(18), device=device, name=name
+                student_id=f"s{self._students_ever}",
+                token=secrets.token_urlsafe(18),
+                device_digest=device_digest,
+                name=name,
             )
-            self.students[student.token] = student
-            if device is not None:
-                self._by_device[device] = student.token
+            assert student.token is not None
+            self.students[student.student_id] = student
+            self._by_token[digest(student.token)] = student.student_id
+            if device_digest is not None:
+                self._by_device[device_digest] = student.student_id
+            self._keep()
             return student
 
     def student(self, token: str | None) -> Student | None:
         """The student holding ``token``; :class:`StudentRemoved` if the instructor removed them."""
+        if not token:
+            return None
         with self.lock:
-            if token in self._removed_tokens:
+            if digest(token) in self._removed_tokens:
                 raise StudentRemoved("the instructor removed you from this room")
-            return self.students.get(token) if token else None
+            return self.student_of_token(token)
+
+    def student_of_token(self, token: str | None) -> Student | None:
+        """The student holding ``token`` now (None if none, or removed)."""
+        with self.lock:
+            student_id = self._by_token.get(digest(token)) if token else None
+            return self.students.get(student_id) if student_id else None
 
     def student_list(self) -> list[dict[str, Any]]:
         """Every student, in the order they joined, as the instructor's list shows them."""
@@ -376,17 +515,19 @@ class Room:
         """Remove a student: their token stops working, their device cannot join again, and their answers leave
         every poll's results (KeyError if the room has no such student)."""
         with self.lock:
-            student = next((s for s in self.students.values() if s.student_id == student_id), None)
+            student = self.students.pop(student_id, None)
             if student is None:
                 raise KeyError(f"room {self.code} has no student {student_id!r}")
-            del self.students[student.token]
-            self._removed_tokens.add(student.token)
-            if student.device is not None:
-                self._by_device.pop(student.device, None)
-                self._removed_devices.add(student.device)
+            for token_digest in [t for t, owner in self._by_token.items() if owner == student_id]:
+                del self._by_token[token_digest]
+                self._removed_tokens.add(token_digest)
+            if student.device_digest is not None:
+                self._by_device.pop(student.device_digest, None)
+                self._removed_devices.add(student.device_digest)
             for poll in self.polls.values():
                 poll.withdraw(student.student_id)
             self.revision += 1
+            self._keep(withdrawn_student=student_id)
             return student
 
     # -- polls -------------------------------------------------------------------------
@@ -400,6 +541,7 @@ class Room:
             self.polls[poll.poll_id] = poll
             self.poll_id = poll.poll_id
             self.revision += 1
+            self._keep()
             return poll
 
     def poll(self, poll_id: str) -> Poll:
@@ -416,6 +558,8 @@ class Room:
             if student is None:
                 raise PermissionError("answering needs the X-Student-Token this room gave when you joined")
             self.poll(poll_id).submit(student.student_id, raw, name=student.name)
+            if self.store is not None:
+                self.store.save_answer(self, poll_id, student.student_id)
 
     def update_poll(self, poll_id: str, raw: Mapping[str, Any], *, host: Any) -> Poll:
         """Close or reopen the current poll, reveal a poll's answer (computed by the room's scene now), show or hide
@@ -442,4 +586,5 @@ class Room:
             if "show_names" in raw:
                 poll.show_names = raw["show_names"]
             self.revision += 1
+            self._keep()
             return poll

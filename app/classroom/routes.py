@@ -293,7 +293,7 @@ def remove_student(room: RoomDep, student_id: StudentId, hub: RoomHubDep) -> dic
     except KeyError as exc:
         raise HTTPException(status_code=404, detail=str(exc.args[0])) from None
     hub.dismiss_student(
-        room, student.token, {"type": "removed", "detail": "The instructor removed you from this room."}
+        room, student.student_id, {"type": "removed", "detail": "The instructor removed you from this room."}
     )
     hub.publish_state(room)
     hub.publish_students(room)
@@ -597,6 +597,7 @@ async def _socket_message(websocket: WebSocket, room: Room, member: Any, message
         if student is not None and member.student_token is None:
             with room.lock:
                 member.student_token = token
+                member.student_id = student.student_id
                 student.sockets += 1
                 student.following = message.get("following") is not False
         hub.presence_changed(room)

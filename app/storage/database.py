@@ -1,0 +1,141 @@
+"""Opening the database: where it is, its connection rules, and its schema brought up to date at start-up."""
+
+from __future__ import annotations
+
+import logging
+import os
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+from datetime import UTC, datetime
+from pathlib import Path
+from typing import Any
+
+import sqlalchemy as sa
+from alembic import command
+from alembic.config import Config
+from alembic.runtime.migration import MigrationContext
+from alembic.script import ScriptDirectory
+
+from app.storage.tables import server_values
+
+log = logging.getLogger(__name__)
+
+MIGRATIONS_DIR = Path(__file__).resolve().parent / "migrations"
+#: The SQLite file in the data directory.
+SQLITE_FILE = "dynlab.sqlite3"
+#: How long a write waits for another process's write to finish before it fails (ms): SQLite lets one write at a time.
+SQLITE_BUSY_TIMEOUT_MS = 10_000
+
+
+def default_data_dir() -> Path:
+    """Where a user's data lives unless ``--data-dir`` or ``DYNLAB_DATA_DIR`` says: ``$XDG_DATA_HOME/dynlab``, else
+    ``~/.local/share/dynlab`` (the XDG base directory default)."""
+    base = os.environ.get("XDG_DATA_HOME") or str(Path.home() / ".local" / "share")
+    return Path(base) / "dynlab"
+
+
+def sqlite_url(data_dir: Path) -> str:
+    """The default database: one SQLite file in ``data_dir`` (created, readable by its owner only, if missing)."""
+    data_dir.mkdir(parents=True, exist_ok=True, mode=0o700)
+    return f"sqlite:///{data_dir / SQLITE_FILE}"
+
+
+def _on_sqlite_connect(connection: Any, _record: Any) -> None:
+    """Every SQLite connection: write-ahead log (readers never wait for the writer, a crash mid-write loses nothing
+    committed), fsync at checkpoints (NORMAL: safe in WAL mode), foreign keys enforced, and waits for a lock."""
+    cursor = connection.cursor()
+    cursor.execute("PRAGMA journal_mode=WAL")
+    cursor.execute("PRAGMA synchronous=NORMAL")
+    cursor.execute("PRAGMA foreign_keys=ON")
+    cursor.execute(f"PRAGMA busy_timeout={SQLITE_BUSY_TIMEOUT_MS}")
+    cursor.close()
+
+
+class Database:
+    """The open database. Every write is one transaction (:meth:`transaction`): all of it is kept, or none."""
+
+    def __init__(self, engine: sa.Engine) -> None:
+        self.engine = engine
+
+    @property
+    def url(self) -> str:
+        """The database's URL without its password (for logs and messages)."""
+        return self.engine.url.render_as_string(hide_password=True)
+
+    @contextmanager
+    def transaction(self) -> Iterator[sa.Connection]:
+        with self.engine.begin() as connection:
+            yield connection
+
+    def kept_value(self, name: str, make: Callable[[], str]) -> str:
+        """The server value ``name``; made by ``make`` and kept the first time it is asked for."""
+        with self.transaction() as connection:
+            found = connection.execute(sa.select(server_values.c.value).where(server_values.c.name == name)).scalar()
+            if found is not None:
+                return str(found)
+            value = make()
+            connection.execute(sa.insert(server_values).values(name=name, value=value, updated_at=datetime.now(UTC)))
+            return value
+
+    def set_value(self, name: str, value: str) -> None:
+        """Keep ``value`` as the server value ``name`` (replacing any)."""
+        with self.transaction() as connection:
+            connection.execute(sa.delete(server_values).where(server_values.c.name == name))
+            connection.execute(sa.insert(server_values).values(name=name, value=value, updated_at=datetime.now(UTC)))
+
+    def schema_revision(self) -> str | None:
+        """The Alembic revision the database's schema is at (None for an empty database)."""
+        with self.engine.connect() as connection:
+            return MigrationContext.configure(connection).get_current_revision()
+
+    def close(self) -> None:
+        self.engine.dispose()
+
+
+def _alembic_config(connection: sa.Connection) -> Config:
+    config = Config()
+    config.set_main_option("script_location", str(MIGRATIONS_DIR))
+    config.attributes["connection"] = connection
+    return config
+
+
+def head_revision() -> str:
+    """The newest schema revision this code knows."""
+    head = ScriptDirectory.from_config(_alembic_config(None)).get_current_head()  # type: ignore[arg-type]
+    assert head is not None
+    return head
+
+
+def migrate(database: Database, *, to: str = "head") -> None:
+    """Bring the schema forward to ``to`` (forward only: this code never downgrades a database). A database newer
+    than this code (a later version ran on it) is refused rather than touched."""
+    known = ScriptDirectory.from_config(_alembic_config(None))  # type: ignore[arg-type]
+    current = database.schema_revision()
+    if current is not None and current not in {script.revision for script in known.walk_revisions()}:
+        raise RuntimeError(
+            f"the database at {database.url} has schema revision {current!r}, newer than this version of Dynamics Lab "
+            "knows: run the newer version, or give another --data-dir"
+        )
+    logging.getLogger("alembic").setLevel(logging.WARNING)  # its step-by-step notes; ours below says what changed
+    with database.engine.begin() as connection:
+        command.upgrade(_alembic_config(connection), to)
+    now = database.schema_revision()
+    if now != current:
+        log.info("database %s: schema %s → %s", database.url, current or "empty", now)
+
+
+def open_database(url: str, *, migrate_to: str = "head") -> Database:
+    """The database at ``url``, its schema brought up to date."""
+    engine = sa.create_engine(url)
+    if engine.dialect.name == "sqlite":
+        sa.event.listen(engine, "connect", _on_sqlite_connect)
+    database = Database(engine)
+    migrate(database, to=migrate_to)
+    return database
+
+
+class StoreUnavailable(RuntimeError):
+    """The database did not take a write (locked by another process past its timeout, a full disk, a lost
+    connection): answered 503 with ``Retry-After``."""
+
+    retry_after_s = 2

@@ -1,0 +1,46 @@
+"""The database's schema (SQLAlchemy Core): one table per thing a class keeps.
+
+Secrets a person holds (a student's token, a device's id) are kept only as SHA-256 hashes; the instructor's secret
+is kept as itself, since the server prints the instructor link from it. Times are UTC.
+"""
+
+from __future__ import annotations
+
+import sqlalchemy as sa
+
+metadata = sa.MetaData()
+
+#: Values the server keeps for itself, by name (``instructor_secret``).
+server_values = sa.Table(
+    "server_values",
+    metadata,
+    sa.Column("name", sa.String(64), primary_key=True),
+    sa.Column("value", sa.Text, nullable=False),
+    sa.Column("updated_at", sa.DateTime(timezone=True), nullable=False),
+)
+
+#: One row per room: its code, when it was last used, and its record (app.classroom.room.Room.record: the shared
+#: scene's lesson, scene, parameters and play state, its students by token hash, its polls without their answers).
+rooms = sa.Table(
+    "rooms",
+    metadata,
+    sa.Column("room_id", sa.String(32), primary_key=True),
+    sa.Column("code", sa.String(16), nullable=False, unique=True),
+    sa.Column("created_at", sa.DateTime(timezone=True), nullable=False),
+    sa.Column("used_at", sa.DateTime(timezone=True), nullable=False),
+    sa.Column("record", sa.JSON, nullable=False),
+)
+
+#: One row per student's answer to a poll (replaced while the poll is open); deleted with the room or the student.
+answers = sa.Table(
+    "answers",
+    metadata,
+    sa.Column("room_id", sa.String(32), sa.ForeignKey("rooms.room_id", ondelete="CASCADE"), primary_key=True),
+    sa.Column("poll_id", sa.String(16), primary_key=True),
+    sa.Column("student_id", sa.String(16), primary_key=True),
+    sa.Column("number", sa.Integer, nullable=False),
+    sa.Column("name", sa.String(64), nullable=False),
+    sa.Column("choice", sa.Integer, nullable=True),
+    sa.Column("value", sa.Float, nullable=True),
+    sa.Column("answered_at", sa.DateTime(timezone=True), nullable=False),
+)

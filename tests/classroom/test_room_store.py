@@ -1,0 +1,124 @@
+"""Rooms kept in the database come back whole after a restart: state, students (known by their tokens' and devices'
+digests, never the secrets), removals, polls with their answers and revealed results; the shared scene as it was. In
+process, on a real SQLite database in a temporary data directory and the room's in-memory host of test_room.py."""
+
+from __future__ import annotations
+
+import pytest
+import sqlalchemy as sa
+
+from app.classroom.registry import Rooms
+from app.classroom.room import StudentRemoved
+from app.classroom.store import SqlRoomStore
+from app.storage import open_database
+from app.storage.database import sqlite_url
+from app.storage.tables import answers
+from tests.classroom.test_room import FRICTION_LESSON, BusyWhenTold
+
+
+@pytest.fixture(scope="module")
+def catalogue():
+    from app.course import load_catalogue
+
+    return load_catalogue()
+
+
+def restarted(data_dir) -> Rooms:
+    """The rooms a new server run finds in ``data_dir``."""
+    return Rooms(store=SqlRoomStore(open_database(sqlite_url(data_dir))))
+
+
+def a_class(rooms: Rooms, catalogue, host) -> dict:
+    """A room in use: a scene with changed parameters, paused, exploring; three students (one named, one removed);
+    a revealed choice poll and an open number poll, with answers."""
+    room, _ = rooms.create(join_base="http://lab.example:8000")
+    room.change({"lesson_id": FRICTION_LESSON, "scene_id": "sliding-bar-friction", "params": {"mu": 0.45}}, catalogue=catalogue, host=host)
+    room.change({"playing": False, "time_scale": 0.5, "mode": "explore"}, catalogue=catalogue, host=host)
+    ada = room.join("Ada", device="device-of-ada")
+    ben = room.join("", device="device-of-ben")
+    cy = room.join("Cy", device="device-of-cy")
+    first = room.open_poll({"question": "Does it stick?", "kind": "choice", "choices": ["yes", "no"]})
+    room.answer(first.poll_id, ada.token, {"choice": 0})
+    room.answer(first.poll_id, ben.token, {"choice": 1})
+    room.answer(first.poll_id, cy.token, {"choice": 1})
+    room.update_poll(first.poll_id, {"show_names": True}, host=host)
+    room.update_poll(first.poll_id, {"open": False}, host=host)
+    second = room.open_poll({"question": "How far does it slide?", "kind": "number", "unit": "m"})
+    room.answer(second.poll_id, ada.token, {"value": 1.25})
+    room.answer(second.poll_id, ben.token, {"value": 0.75})
+    room.answer(second.poll_id, ada.token, {"value": 1.5})  # changed while open: one answer, the last
+    room.remove(cy.student_id)
+    return {"room": room, "ada": ada, "ben": ben, "cy": cy, "polls": (first.poll_id, second.poll_id)}
+
+
+def test_a_restart_brings_every_room_back_as_it_was(tmp_path, catalogue):
+    host = BusyWhenTold()
+    made = a_class(restarted(tmp_path), catalogue, host)
+    before = made["room"]
+    (after,) = restarted(tmp_path).all()
+
+    state_before, state_after = before.state(), after.state()
+    assert state_after["revision"] == state_before["revision"] + 1  # pages that knew the room take its state again
+    for name in ("room_id", "code", "join_url", "lesson_id", "scene_id", "params", "playing", "time_scale", "mode",
+                 "explore_start", "reset_count", "poll"):  # fmt: skip
+        assert state_after[name] == state_before[name], name
+    assert state_after["params"]["mu"] == 0.45 and state_after["playing"] is False and state_after["mode"] == "explore"
+    assert after.student_list() == [dict(s, connected=False) for s in before.student_list()]
+    assert [s["name"] for s in after.student_list()] == ["Ada", ""]
+    for poll_id in made["polls"]:
+        assert after.poll(poll_id).results() == before.poll(poll_id).results()
+        assert after.poll(poll_id).to_csv() == before.poll(poll_id).to_csv()
+    assert after.poll(made["polls"][1]).results()["answers"] == 2
+
+    # Students come back as themselves: by the token their page kept, or by their device (a new token beside the old).
+    assert after.student(made["ada"].token).student_id == made["ada"].student_id
+    again = after.join("", device="device-of-ben")
+    assert again.student_id == made["ben"].student_id and again.token not in (None, made["ben"].token)
+    assert after.student(made["ben"].token) is after.student(again.token)
+    # Whom the instructor removed stays removed.
+    with pytest.raises(StudentRemoved):
+        after.student(made["cy"].token)
+    with pytest.raises(StudentRemoved):
+        after.join("Cy", device="device-of-cy")
+
+
+def test_changes_after_a_restart_are_kept_too_and_a_new_student_takes_a_new_number(tmp_path, catalogue):
+    host = BusyWhenTold()
+    made = a_class(restarted(tmp_path), catalogue, host)
+    (room,) = restarted(tmp_path).all()
+    room.answer(made["polls"][1], made["ben"].token, {"value": 2.0})
+    newcomer = room.join("Dee", device="device-of-dee")
+    assert newcomer.student_id == "s4"  # s3 was removed: its number is never given again
+    room.change({"params": {"mu": 0.3}}, catalogue=catalogue, host=host)
+    (again,) = restarted(tmp_path).all()
+    assert again.state()["params"]["mu"] == 0.3
+    assert [s["name"] for s in again.student_list()] == ["Ada", "", "Dee"]
+    assert again.poll(made["polls"][1]).results()["answers"] == 2
+    assert again.poll(made["polls"][1]).answer_of(made["ben"].student_id)["value"] == 2.0
+
+
+def test_the_shared_scene_comes_back_with_its_parameters_and_play_state(tmp_path, catalogue):
+    a_class(restarted(tmp_path), catalogue, BusyWhenTold())
+    (room,) = restarted(tmp_path).all()
+    host = BusyWhenTold()
+    host.busy = {"open_stage"}  # a worker still starting: the room's next change opens it instead
+    room.put_stage_back(host)
+    assert host.stage is None
+    host.busy = set()
+    room.put_stage_back(host)
+    assert host.stage is not None
+    assert host.stage["scene_id"] == "sliding-bar-friction" and host.stage["params"]["mu"] == 0.45
+    assert host.stage["playing"] is False and host.stage["time_scale"] == 0.5
+
+
+def test_the_database_holds_no_token_or_device_id_and_a_closed_room_leaves_nothing(tmp_path, catalogue):
+    rooms = restarted(tmp_path)
+    made = a_class(rooms, catalogue, BusyWhenTold())
+    database_bytes = b"".join(path.read_bytes() for path in (tmp_path).iterdir())
+    for secret in (made["ada"].token, made["ben"].token, "device-of-ada", "device-of-ben"):
+        assert secret.encode() not in database_bytes
+    assert b"Ada" in database_bytes  # what the student chose to show is kept
+    rooms.close(made["room"].room_id)
+    assert restarted(tmp_path).all() == []
+    with rooms.store.database.engine.connect() as connection:
+        assert connection.execute(sa.select(sa.func.count()).select_from(answers)).scalar() == 0
