@@ -14,6 +14,7 @@ from fastapi.staticfiles import StaticFiles
 from app import __version__
 from app.api import bench, chapters, errors, examples, health, scenes, systems
 from app.api.access import SessionDirectory
+from app.api.kept_sessions import SqlSessionStore
 from app.classroom import pages as room_pages
 from app.classroom import relay as room_relay
 from app.classroom import routes as rooms
@@ -76,17 +77,22 @@ def create_app(settings: Settings | None = None) -> FastAPI:
         redoc_url=None,
     )
     app.state.settings = settings
-    # Page sessions: owners, viewers, per-client bounds; an evicted session is closed in its scene worker.
-    app.state.sessions = SessionDirectory(
-        max_sessions=settings.max_sessions, close=lambda session_id: _close_evicted(app, session_id)
-    )
-    # Every lesson reference is checked here: a bad one stops the server before it starts.
-    app.state.catalogue = load_catalogue(settings.lessons_dir)
-    # What a class must not lose (None: nothing kept), and the classroom: the instructor's secret (given, or kept), the
-    # rooms (kept ones open again), their sockets and the ready poll questions (checked now).
+    # What a class must not lose (None: nothing kept): the instructor's secret, rooms, page sessions.
     kept_url = settings.kept_database_url()
     database = open_database(kept_url) if kept_url else None
     app.state.database = database
+    # Page sessions: owners, viewers, per-client bounds; an evicted session is closed in its scene worker. Kept ones
+    # open in their scene worker when their page or viewer first asks after a restart.
+    app.state.sessions = SessionDirectory(
+        max_sessions=settings.max_sessions,
+        close=lambda session_id: _close_evicted(app, session_id),
+        store=SqlSessionStore(database) if database is not None else None,
+        reopen=lambda session_id, scene_id, params: app.state.scene_host.set_params(scene_id, session_id, params),
+    )
+    # Every lesson reference is checked here: a bad one stops the server before it starts.
+    app.state.catalogue = load_catalogue(settings.lessons_dir)
+    # The classroom: the instructor's secret (given, or kept), the rooms (kept ones open again), their sockets and the
+    # ready poll questions (checked now).
     app.state.instructor_key = InstructorKey(settings.instructor_key or kept_instructor_secret(database))
     app.state.rooms = Rooms(store=SqlRoomStore(database) if database is not None else None)
     app.state.join_limits = JoinLimits(settings)

@@ -29,16 +29,21 @@ from __future__ import annotations
 
 import hashlib
 import hmac
+import logging
 import re
 import threading
 import time
 from collections import OrderedDict
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Mapping
 from contextlib import contextmanager
 from dataclasses import dataclass
+from typing import Any
 
+from app.api.kept_sessions import KeptSession, SqlSessionStore
 from app.api.rate_limit import InFlight, TokenBuckets, retry_after_s
 from app.scenes.host.host import MAX_VIEWERS_PER_SESSION, STAGE_PREFIX
+
+log = logging.getLogger(__name__)
 
 #: 16–128 letters, digits, '-' or '_' (the lesson page sends 32 hex digits from crypto.getRandomValues).
 SESSION_KEY_PATTERN = re.compile(r"^[A-Za-z0-9_-]{16,128}$")
@@ -86,6 +91,8 @@ class SessionEntry:
     client: str | None
     key_hash: bytes | None = None
     viewers: int = 0
+    #: Parameters kept from an earlier server run, not yet opened in the scene host of this one (None: open).
+    kept_params: dict[str, Any] | None = None
 
 
 @contextmanager
@@ -111,7 +118,9 @@ class SessionDirectory:
     """Page sessions by id (thread-safe, bounded): who created and owns each, and its viewers.
 
     ``close`` is called, outside the directory's lock, with each session the directory evicts (the scene host's
-    ``close_session``)."""
+    ``close_session``). With a ``store`` every session is kept there as it changes, and the sessions it kept are known
+    again from the start: each is opened in the scene host (``reopen``: session id, scene id, kept parameters) when its
+    page or viewer first asks for it (:meth:`reopen_kept`)."""
 
     def __init__(
         self,
@@ -120,9 +129,13 @@ class SessionDirectory:
         close: Callable[[str], None] = lambda session_id: None,
         clock: Callable[[], float] = time.monotonic,
         max_clients: int = 10_000,
+        store: SqlSessionStore | None = None,
+        reopen: Callable[[str, str, dict[str, Any]], None] = lambda session_id, scene_id, params: None,
     ) -> None:
         self.max_sessions = max_sessions
         self._close = close
+        self._store = store
+        self._reopen = reopen
         self._clock = clock
         self._entries: OrderedDict[str, SessionEntry] = OrderedDict()  # least recently used first
         self._by_client: dict[str, OrderedDict[str, None]] = {}
@@ -142,6 +155,12 @@ class SessionDirectory:
             burst=LONG_REQUEST_BURST, rate_per_s=1.0 / LONG_REQUEST_EVERY_S, max_clients=max_clients, clock=clock
         )
         self._lock = threading.Lock()
+        for kept in store.load(max_sessions) if store is not None else []:
+            self._entries[kept.session_id] = SessionEntry(
+                kept.scene_id, kept.client, kept.key_hash, kept_params=kept.params
+            )
+            if kept.client is not None:
+                self._by_client.setdefault(kept.client, OrderedDict())[kept.session_id] = None
 
     def __len__(self) -> int:
         return len(self._entries)
@@ -179,9 +198,18 @@ class SessionDirectory:
             if not hmac.compare_digest(entry.key_hash, _hash(key)):
                 raise Refused(403, f"session {session_id!r} belongs to another page: the {KEY_HEADER} does not match")
 
-    def changed(self, session_id: str, scene_id: str, key: str | None, *, client: str | None) -> None:
-        """After a successful change: record the session (created by ``client``), the first key claims it, and make
-        room for it (evicting as the rules say; each evicted session is closed in the host)."""
+    def changed(
+        self,
+        session_id: str,
+        scene_id: str,
+        key: str | None,
+        *,
+        client: str | None,
+        params: Mapping[str, Any] | None = None,
+    ) -> None:
+        """After a successful change: record the session (created by ``client``) with its ``params`` (kept in the
+        store), the first key claims it, and make room for it (evicting as the rules say; each evicted session is
+        closed in the host)."""
         evicted: list[str] = []
         with self._lock:
             entry = self._entries.get(session_id)
@@ -206,11 +234,38 @@ class SessionDirectory:
                         break
                     evicted.append(self._forget_locked(oldest))
             entry.scene_id = scene_id
+            entry.kept_params = None  # the host has it now, with these parameters
             if entry.key_hash is None and key is not None:
                 entry.key_hash = _hash(key)
             self._touch_locked(session_id, entry)
+            kept = KeptSession(session_id, scene_id, entry.client, entry.key_hash, dict(params or {}))
+        if self._store is not None and params is not None:
+            self._store.save(kept)
         for old in evicted:
             self._close(old)
+
+    def reopen_kept(self, session_id: str) -> None:
+        """Open in the scene host a session kept from an earlier server run, with its kept parameters, the first time
+        its page or viewer asks for it in this run (nothing for any other session). Parameters this version refuses
+        give way to the scene's defaults; a busy host's :class:`HostBusy` is raised, and the next ask tries again."""
+        with self._lock:
+            entry = self._entries.get(session_id)
+            params = entry.kept_params if entry is not None else None
+            if entry is None or params is None:
+                return
+            entry.kept_params = None
+        try:
+            self._reopen(session_id, entry.scene_id, params)
+        except ValueError as exc:
+            log.warning(
+                "session %s: its kept parameters were refused (%s); it opens with the defaults", session_id, exc
+            )
+            self._reopen(session_id, entry.scene_id, {})
+        except Exception:
+            with self._lock:
+                if entry.kept_params is None:
+                    entry.kept_params = params
+            raise
 
     def touched(self, session_id: str) -> None:
         """The session was used (a playback change): it is the last to be evicted."""
@@ -226,6 +281,8 @@ class SessionDirectory:
 
     def _forget_locked(self, session_id: str) -> str:
         entry = self._entries.pop(session_id)
+        if self._store is not None:
+            self._store.delete(session_id)
         if entry.client is not None:
             owned = self._by_client.get(entry.client)
             if owned is not None:

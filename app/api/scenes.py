@@ -95,9 +95,10 @@ def list_scenes(host: SceneHostDep) -> list[dict[str, Any]]:
         unprocessable="The session id is malformed",
     ),
 )
-def session_params(scene_id: str, session_id: SessionId, host: SceneHostDep) -> dict[str, Any]:
+def session_params(scene_id: str, session_id: SessionId, host: SceneHostDep, sessions: SessionsDep) -> dict[str, Any]:
     """The session's parameters now and how many viewers are connected to it."""
     _scene_class(host, scene_id)
+    sessions.reopen_kept(session_id)  # kept from the server's last run: its scene comes back first
     params = host.session_params(session_id) if host.session_scene(session_id) == scene_id else None
     if params is None:
         raise HTTPException(status_code=404, detail=f"session {session_id!r} shows no {scene_id!r} scene")
@@ -151,7 +152,7 @@ def set_session_params(
         raise unprocessable(["body", "params", *exc.path], str(exc)) from None
     except ValueError as exc:  # values that cannot exist together (a linkage that cannot assemble, …)
         raise unprocessable(["body", "params"], str(exc)) from None
-    sessions.changed(session_id, scene_id, session_key, client=client)
+    sessions.changed(session_id, scene_id, session_key, client=client, params=params)
     if start and start["motion"] is not None and params == start["params"]:
         host.resume_from(session_id, start["motion"])  # same parameters: continue the room's motion, not restart it
     return {"scene_id": scene_id, "session_id": session_id, "params": params, "viewers": host.viewer_count(session_id)}
@@ -193,6 +194,7 @@ def set_session_playback(
         raise unprocessable(
             ["path", "session_id"], f"session {session_id!r} has no scene yet: set its parameters first"
         ) from None
+    sessions.reopen_kept(session_id)  # kept from the server's last run: its scene comes back first
     if host.session_scene(session_id) != scene_id:
         raise unprocessable(
             ["path", "session_id"], f"session {session_id!r} shows no {scene_id!r} scene: set its parameters first"
@@ -218,10 +220,11 @@ def set_session_playback(
         not_found="No scene has this id, or the session has none yet", unprocessable="The session id is malformed"
     ),
 )
-def session_playback(scene_id: str, session_id: SessionId, host: SceneHostDep) -> dict[str, Any]:
+def session_playback(scene_id: str, session_id: SessionId, host: SceneHostDep, sessions: SessionsDep) -> dict[str, Any]:
     """The session's play state, simulated time, the motion kept for scrubbing, the first viewer's camera (for a share
     link) and how many viewers are connected (a page waits for its viewer before asking for live numbers)."""
     _scene_class(host, scene_id)
+    sessions.reopen_kept(session_id)  # kept from the server's last run: its scene comes back first
     answer = host.playback(session_id)
     if answer is None:
         raise HTTPException(status_code=404, detail=f"session {session_id!r} has no scene yet")

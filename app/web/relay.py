@@ -71,6 +71,12 @@ async def viewer_relay(
     client = client_address(websocket.scope, trust_forwarded_for=websocket.app.state.settings.trust_forwarded_for)
     try:
         with sessions.viewer(session_id, scene_id, client=client):
+            # A session kept from the server's last run opens in the scene host first (a page reconnecting after a
+            # restart); a host too busy to open it closes this socket with "try again", as _relay would.
+            try:
+                await run_in_threadpool(sessions.reopen_kept, session_id)
+            except HostBusy as exc:
+                raise Refused(503, str(exc), retry_after_s=exc.retry_after_s) from None
             await _relay(websocket, host, scene_id, session_id, protocol, client)
     except Refused as exc:
         await close_refused(websocket, exc)

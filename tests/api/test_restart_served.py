@@ -21,6 +21,9 @@ from tests.conftest import wait_until
 from tests.served import RESULTS, ServedApp, Viewer
 
 LESSON = "10-2-spinning-top"
+#: A lesson page's session id and the key its page claims it with (the page makes both with crypto.getRandomValues).
+SOLO_SESSION = "5e55107e" * 4
+SOLO_KEY = "0123456789abcdef" * 2
 
 
 def printed_instructor_link(app: ServedApp) -> str:
@@ -57,6 +60,9 @@ def test_a_restart_keeps_the_instructor_the_room_its_students_poll_answers_and_s
         state_before = teacher.get(f"/api/rooms/{room_id}/state").json()
         follower = Viewer(first, f"/room-viewer/{room_id}", address=ada.address)
         wait_until(lambda: follower.frames > 0, timeout_s=30, what="the follower's first frame")
+        # A student working alone: their lesson page's own scene, claimed by its key, with a parameter changed.
+        solo = ben.put(f"/api/scenes/heavy-top/sessions/{SOLO_SESSION}", json={"params": {"spin_rad_s": 66.0}}, headers={"X-Session-Key": SOLO_KEY})
+        assert solo.status_code == 200, solo.text
     finally:
         stopped_at = time.monotonic()
         first.stop()
@@ -93,6 +99,20 @@ def test_a_restart_keeps_the_instructor_the_room_its_students_poll_answers_and_s
         histogram = teacher.get(f"/api/rooms/{room_id}/polls/{poll['poll_id']}/results").json()["histogram"]
         assert [bar["count"] for bar in histogram] == [0, 2]
         assert teacher.get(f"/api/rooms/{room_id}/state").json()["students"]["joined"] == 2
+
+        # The solo page's scene is back as it was when its viewer reconnects, and still refuses a keyless change.
+        solo_viewer = Viewer(second, f"/viewer/heavy-top/{SOLO_SESSION}", address=ben.address)
+        try:
+            wait_until(lambda: solo_viewer.frames > 0, timeout_s=30, what="the solo page's viewer to reconnect")
+        finally:
+            solo_viewer.close()
+        assert ben.get(f"/api/scenes/heavy-top/sessions/{SOLO_SESSION}").json()["params"]["spin_rad_s"] == 66.0
+        keyless = ada.put(f"/api/scenes/heavy-top/sessions/{SOLO_SESSION}", json={"params": {"spin_rad_s": 5.0}})
+        assert keyless.status_code == 403, keyless.text
+        wrong = ada.put(f"/api/scenes/heavy-top/sessions/{SOLO_SESSION}", json={"params": {"spin_rad_s": 5.0}}, headers={"X-Session-Key": "k" * 32})
+        assert wrong.status_code == 403, wrong.text
+        owner = ben.put(f"/api/scenes/heavy-top/sessions/{SOLO_SESSION}", json={"params": {"spin_rad_s": 70.0}}, headers={"X-Session-Key": SOLO_KEY})
+        assert owner.status_code == 200 and owner.json()["params"]["spin_rad_s"] == 70.0
     finally:
         follower.close()
         second.stop()

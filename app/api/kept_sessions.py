@@ -1,0 +1,74 @@
+"""Page sessions kept in the database (app.api.access.SessionDirectory writes through this): a restart keeps each
+page's scene, its parameters and who claimed it (a key's digest, never the key), so the page's viewer reconnects to
+the same scene and a claimed session still refuses a keyless change."""
+
+from __future__ import annotations
+
+import logging
+from dataclasses import dataclass
+from datetime import UTC, datetime
+from typing import Any
+
+import sqlalchemy as sa
+from sqlalchemy.exc import SQLAlchemyError
+
+from app.storage.database import Database
+from app.storage.tables import sessions
+
+log = logging.getLogger(__name__)
+
+
+@dataclass(frozen=True)
+class KeptSession:
+    session_id: str
+    scene_id: str
+    client: str | None
+    key_hash: bytes | None
+    params: dict[str, Any]
+
+
+class SqlSessionStore:
+    """Page sessions in ``database``. A failed write is logged, not raised: a page's change still applies, and only a
+    restart before its next change could forget it."""
+
+    def __init__(self, database: Database) -> None:
+        self.database = database
+
+    def save(self, kept: KeptSession) -> None:
+        values = {
+            "scene_id": kept.scene_id,
+            "client": kept.client,
+            "key_digest": kept.key_hash.hex() if kept.key_hash is not None else None,
+            "params": kept.params,
+            "used_at": datetime.now(UTC),
+        }
+        try:
+            with self.database.transaction() as connection:
+                where = sessions.c.session_id == kept.session_id
+                if connection.execute(sa.update(sessions).where(where).values(**values)).rowcount == 0:
+                    connection.execute(sa.insert(sessions).values(session_id=kept.session_id, **values))
+        except SQLAlchemyError as exc:
+            log.error("the database did not keep session %s: %s", kept.session_id, exc)
+
+    def delete(self, session_id: str) -> None:
+        try:
+            with self.database.transaction() as connection:
+                connection.execute(sa.delete(sessions).where(sessions.c.session_id == session_id))
+        except SQLAlchemyError as exc:
+            log.error("the database did not forget session %s: %s", session_id, exc)
+
+    def load(self, limit: int) -> list[KeptSession]:
+        """The ``limit`` most recently used sessions, least recent first."""
+        query = sa.select(sessions).order_by(sessions.c.used_at.desc()).limit(limit)
+        with self.database.engine.connect() as connection:
+            rows = list(connection.execute(query).mappings())
+        return [
+            KeptSession(
+                session_id=row["session_id"],
+                scene_id=row["scene_id"],
+                client=row["client"],
+                key_hash=bytes.fromhex(row["key_digest"]) if row["key_digest"] else None,
+                params=dict(row["params"]),
+            )
+            for row in reversed(rows)
+        ]

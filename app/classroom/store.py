@@ -1,0 +1,128 @@
+"""Rooms kept in the database: each room's record (app.classroom.room.Room.record) and its polls' answers.
+
+A room is written whole (one row) after each change the room makes, in one transaction with the rows that change
+touches (a removed student's answers go with them); an answer is one row of its own, since a class answers in bursts.
+At start-up every kept room comes back (:meth:`SqlRoomStore.load`), its students known by their tokens' digests.
+"""
+
+from __future__ import annotations
+
+import logging
+from collections import defaultdict
+from collections.abc import Iterator
+from contextlib import contextmanager
+from datetime import UTC, datetime
+from typing import Any
+
+import sqlalchemy as sa
+from sqlalchemy.exc import SQLAlchemyError
+
+from app.classroom.room import Room
+from app.storage.database import Database, StoreUnavailable
+from app.storage.tables import answers, rooms
+
+log = logging.getLogger(__name__)
+
+
+def _utc(seconds: float) -> datetime:
+    return datetime.fromtimestamp(seconds, UTC)
+
+
+class SqlRoomStore:
+    """Rooms in ``database`` (the :class:`~app.classroom.room.RoomStore` every kept room writes to)."""
+
+    def __init__(self, database: Database) -> None:
+        self.database = database
+
+    @contextmanager
+    def _writing(self, what: str) -> Iterator[sa.Connection]:
+        try:
+            with self.database.transaction() as connection:
+                yield connection
+        except SQLAlchemyError as exc:
+            log.error("the database did not keep %s: %s", what, exc)
+            raise StoreUnavailable(f"the server could not keep {what} just now; try again in a moment") from exc
+
+    def save(self, room: Room, *, withdrawn_student: str | None = None) -> None:
+        record = room.record()
+        with self._writing(f"room {room.code}") as connection:
+            now = datetime.now(UTC)
+            updated = connection.execute(
+                sa.update(rooms).where(rooms.c.room_id == room.room_id).values(used_at=now, record=record)
+            )
+            if updated.rowcount == 0:
+                connection.execute(
+                    sa.insert(rooms).values(
+                        room_id=room.room_id,
+                        code=room.code,
+                        created_at=_utc(room.created_at),
+                        used_at=now,
+                        record=record,
+                    )
+                )
+            if withdrawn_student is not None:
+                connection.execute(
+                    sa.delete(answers).where(
+                        answers.c.room_id == room.room_id, answers.c.student_id == withdrawn_student
+                    )
+                )
+
+    def save_answer(self, room: Room, poll_id: str, student_id: str) -> None:
+        kept = room.poll(poll_id).answer_of(student_id)
+        if kept is None:
+            return
+        with self._writing(f"an answer in room {room.code}") as connection:
+            key = (answers.c.room_id == room.room_id, answers.c.poll_id == poll_id, answers.c.student_id == student_id)
+            connection.execute(sa.delete(answers).where(*key))
+            connection.execute(
+                sa.insert(answers).values(room_id=room.room_id, poll_id=poll_id, student_id=student_id, **kept)
+            )
+
+    def delete(self, room_id: str) -> bool:
+        """Forget a room and every answer in it; False if there was no such room."""
+        with self._writing(f"the deletion of room {room_id}") as connection:
+            connection.execute(sa.delete(answers).where(answers.c.room_id == room_id))
+            return connection.execute(sa.delete(rooms).where(rooms.c.room_id == room_id)).rowcount > 0
+
+    def load(self) -> list[Room]:
+        """Every kept room, with its answers, written to this store again as it changes."""
+        with self.database.engine.connect() as connection:
+            kept_answers: dict[str, dict[str, dict[str, dict[str, Any]]]] = defaultdict(lambda: defaultdict(dict))
+            for row in connection.execute(sa.select(answers)).mappings():
+                kept_answers[row["room_id"]][row["poll_id"]][row["student_id"]] = dict(row)
+            loaded = []
+            for row in connection.execute(sa.select(rooms).order_by(rooms.c.created_at)).mappings():
+                created = row["created_at"]
+                created = created if created.tzinfo else created.replace(tzinfo=UTC)
+                room = Room.from_record(
+                    room_id=row["room_id"],
+                    code=row["code"],
+                    created_at=created.timestamp(),
+                    record=row["record"],
+                    answers=kept_answers.get(row["room_id"], {}),
+                )
+                room.store = self
+                loaded.append(room)
+            return loaded
+
+    def listing(self) -> list[dict[str, Any]]:
+        """Every kept room in brief (``dynlab rooms``): id, code, lesson, students, polls, answers, created, used."""
+        with self.database.engine.connect() as connection:
+            counted = connection.execute(sa.select(answers.c.room_id, sa.func.count()).group_by(answers.c.room_id))
+            counts: dict[str, int] = {room_id: count for room_id, count in counted}
+            listed = []
+            for row in connection.execute(sa.select(rooms).order_by(rooms.c.created_at)).mappings():
+                record = row["record"]
+                listed.append(
+                    {
+                        "room_id": row["room_id"],
+                        "code": row["code"],
+                        "lesson_id": record["lesson_id"],
+                        "students": len(record["students"]),
+                        "polls": len(record["polls"]),
+                        "answers": counts.get(row["room_id"], 0),
+                        "created_at": row["created_at"],
+                        "used_at": row["used_at"],
+                    }
+                )
+            return listed
