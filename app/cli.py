@@ -267,6 +267,23 @@ def _rooms(args: argparse.Namespace) -> int:
     return 0
 
 
+def _export(args: argparse.Namespace) -> int:
+    """``dynlab export [ROOM] [--out DIR]``: a room's data (or every kept room's) as JSON and CSV files."""
+    from app.classroom.export import export_rooms
+
+    store = _kept_store(args)
+    kept = store.load()
+    wanted = args.room.strip()
+    if wanted:
+        kept = [room for room in kept if wanted in (room.room_id, room.code, room.code.lower())]
+        if not kept:
+            print(f"no kept room has the id or code {wanted!r} (dynlab rooms lists them)", file=sys.stderr)
+            return 1
+    written = export_rooms(kept, args.out)
+    print(f"wrote {len(written)} files for {len(kept)} room{'s' if len(kept) != 1 else ''} into {args.out}")
+    return 0
+
+
 def _instructor_key(args: argparse.Namespace) -> int:
     """``dynlab instructor-key --rotate``: a new kept instructor secret (the server takes it at its next start)."""
     from app.classroom.roles import rotate_instructor_secret
@@ -326,6 +343,13 @@ def main(argv: list[str] | None = None) -> int:
     rooms.add_argument("room", nargs="?", default="", help="the room's id or code (for delete)")
     rooms.add_argument("--data-dir", type=Path, default=None, help=data_dir_help)
     rooms.set_defaults(run=_rooms)
+    export = commands.add_parser("export", help="write a kept room's data (or every room's) as JSON and CSV files")
+    export.add_argument("room", nargs="?", default="", help="the room's id or code (default: every kept room)")
+    export.add_argument(
+        "--out", type=Path, default=Path("dynlab-export"), help="folder to write (default ./dynlab-export)"
+    )
+    export.add_argument("--data-dir", type=Path, default=None, help=data_dir_help)
+    export.set_defaults(run=_export)
     key = commands.add_parser("instructor-key", help="rotate the kept instructor secret (--rotate)")
     key.add_argument("--rotate", action="store_true", help="make and keep a new secret; the old link stops working")
     key.add_argument("--data-dir", type=Path, default=None, help=data_dir_help)

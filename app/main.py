@@ -31,7 +31,7 @@ from app.scenes import SCENES
 from app.scenes.host.host import SceneHost
 from app.scenes.host.pool import WorkerPool
 from app.settings import Settings
-from app.storage import open_database
+from app.storage import Database, open_database
 from app.web import guard, pages, relay, viewer_client
 from app.web.page_config import add_page_config_section
 from app.web.static_files import STATIC_DIR
@@ -86,7 +86,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     app.state.sessions = SessionDirectory(
         max_sessions=settings.max_sessions,
         close=lambda session_id: _close_evicted(app, session_id),
-        store=SqlSessionStore(database) if database is not None else None,
+        store=_kept_sessions(database, keep_days=settings.keep_rooms_days),
         reopen=lambda session_id, scene_id, params: app.state.scene_host.set_params(scene_id, session_id, params),
     )
     # Every lesson reference is checked here: a bad one stops the server before it starts.
@@ -94,7 +94,9 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     # The classroom: the instructor's secret (given, or kept), the rooms (kept ones open again), their sockets and the
     # ready poll questions (checked now).
     app.state.instructor_key = InstructorKey(settings.instructor_key or kept_instructor_secret(database))
-    app.state.rooms = Rooms(store=SqlRoomStore(database) if database is not None else None)
+    app.state.rooms = Rooms(
+        store=SqlRoomStore(database) if database is not None else None, keep_days=settings.keep_rooms_days
+    )
     app.state.join_limits = JoinLimits(settings)
     app.state.room_hub = RoomHub(lambda: app.state.scene_host)
     app.state.ready_questions = load_ready_questions(DEFAULT_READY_QUESTIONS, SCENES)
@@ -123,6 +125,15 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     _offline_docs(app)
     app.mount("/static", StaticFiles(directory=STATIC_DIR), name="static")
     return app
+
+
+def _kept_sessions(database: Database | None, *, keep_days: float) -> SqlSessionStore | None:
+    """Page sessions in ``database``, those unused for ``keep_days`` forgotten first (None with nothing kept)."""
+    if database is None:
+        return None
+    store = SqlSessionStore(database)
+    store.forget_unused(days=keep_days)
+    return store
 
 
 def _close_evicted(app: FastAPI, session_id: str) -> None:

@@ -45,6 +45,8 @@ class Settings:
     #: A database URL that replaces the data directory's SQLite file (``DYNLAB_DATABASE_URL``, e.g.
     #: ``postgresql+psycopg://dynlab@db/dynlab``).
     database_url: str = ""
+    #: Kept rooms (with their answers) and page sessions nobody has used for this many days are forgotten.
+    keep_rooms_days: float = 180.0
     #: The address students reach this server at (``http://10.0.0.5:8000``), used in room join links and QR codes;
     #: empty: the address the instructor's browser used.
     public_url: str = ""
@@ -93,6 +95,8 @@ class Settings:
                 raise ValueError(f"{name} must be a finite rate > 0 per second (got {getattr(self, name)!r})")
         if not 0 <= self.workers <= 64:
             raise ValueError(f"workers must be 0 (scenes in the front process) to 64 (got {self.workers!r})")
+        if not math.isfinite(self.keep_rooms_days) or self.keep_rooms_days <= 0:
+            raise ValueError(f"keep_rooms_days must be a finite number of days > 0 (got {self.keep_rooms_days!r})")
         if self.rate_limit_clients < 1:
             raise ValueError(f"rate_limit_clients must be >= 1 (got {self.rate_limit_clients!r})")
 
@@ -118,6 +122,7 @@ class Settings:
             "instructor_key": os.environ.get("DYNLAB_INSTRUCTOR_KEY"),
             "data_dir": os.environ.get("DYNLAB_DATA_DIR"),
             "database_url": os.environ.get("DYNLAB_DATABASE_URL"),
+            "keep_rooms_days": os.environ.get("DYNLAB_KEEP_ROOMS_DAYS"),
             "public_url": os.environ.get("DYNLAB_PUBLIC_URL"),
             **{name: os.environ.get(f"DYNLAB_{name.upper()}") for name in (*_GUARD_FIELDS, *_JOIN_FIELDS)},
         }

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import logging
 from dataclasses import dataclass
-from datetime import UTC, datetime
+from datetime import UTC, datetime, timedelta
 from typing import Any
 
 import sqlalchemy as sa
@@ -56,6 +56,15 @@ class SqlSessionStore:
                 connection.execute(sa.delete(sessions).where(sessions.c.session_id == session_id))
         except SQLAlchemyError as exc:
             log.error("the database did not forget session %s: %s", session_id, exc)
+
+    def forget_unused(self, *, days: float) -> None:
+        """Forget every session nobody has used for ``days``."""
+        cutoff = datetime.now(UTC) - timedelta(days=days)
+        try:
+            with self.database.transaction() as connection:
+                connection.execute(sa.delete(sessions).where(sessions.c.used_at < cutoff))
+        except SQLAlchemyError as exc:
+            log.error("the database did not forget unused sessions: %s", exc)
 
     def load(self, limit: int) -> list[KeptSession]:
         """The ``limit`` most recently used sessions, least recent first."""

@@ -8,13 +8,14 @@ import time
 from typing import TYPE_CHECKING, Any
 
 from app.classroom.room import CODE_ALPHABET, CODE_LENGTH, Room, RoomError
+from app.settings import Settings
 
 if TYPE_CHECKING:
     from app.classroom.store import SqlRoomStore
 
 #: Rooms one server keeps open at once (each has its own stage: a viser server in a scene worker).
 MAX_ROOMS = 16
-#: A room nobody has used for this long (s) is closed when a new one needs its place.
+#: A room nobody has used for this long (s) is closed when a new one needs its place (the database still keeps it).
 IDLE_ROOM_S = 6 * 3600.0
 #: A room's id: this many random hex digits (the API's paths and the room viewer's accept only this form).
 ROOM_ID_HEX_DIGITS = 16
@@ -25,14 +26,26 @@ class Rooms:
     """Open rooms (thread-safe). ``join_base`` is the address students use (``Settings.public_url`` or the
     request's). With a ``store``, the rooms it kept are open again and every room is kept there as it changes."""
 
-    def __init__(self, *, max_rooms: int = MAX_ROOMS, store: SqlRoomStore | None = None) -> None:
+    def __init__(
+        self,
+        *,
+        max_rooms: int = MAX_ROOMS,
+        store: SqlRoomStore | None = None,
+        keep_days: float = Settings.keep_rooms_days,
+    ) -> None:
         self.max_rooms = max_rooms
         self.store = store
-        self._rooms: dict[str, Room] = {room.room_id: room for room in (store.load() if store else [])}
+        self.keep_days = keep_days
+        if store is not None:
+            store.forget_unused(days=keep_days)
+        kept = store.load(limit=max_rooms) if store is not None else []
+        self._rooms: dict[str, Room] = {room.room_id: room for room in kept}
         self._lock = threading.Lock()
 
     def create(self, *, join_base: str) -> tuple[Room, list[Room]]:
         """A new room, and the idle rooms closed to make space for it (their stages are the caller's to close)."""
+        if self.store is not None:
+            self.store.forget_unused(days=self.keep_days)
         with self._lock:
             closed = self._drop_idle()
             if len(self._rooms) >= self.max_rooms:
@@ -55,10 +68,8 @@ class Rooms:
             for room in self._rooms.values()
             if now - room.last_used_s > IDLE_ROOM_S and not room.instructor_sockets
         ]
-        for room in idle:
+        for room in idle:  # its scene stops; the database keeps it (dynlab rooms, dynlab export) for keep_days
             del self._rooms[room.room_id]
-            if self.store is not None:
-                self.store.delete(room.room_id)
         return idle
 
     def get(self, room_id: str) -> Room:

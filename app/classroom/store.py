@@ -11,7 +11,7 @@ import logging
 from collections import defaultdict
 from collections.abc import Iterator
 from contextlib import contextmanager
-from datetime import UTC, datetime
+from datetime import UTC, datetime, timedelta
 from typing import Any
 
 import sqlalchemy as sa
@@ -84,14 +84,28 @@ class SqlRoomStore:
             connection.execute(sa.delete(answers).where(answers.c.room_id == room_id))
             return connection.execute(sa.delete(rooms).where(rooms.c.room_id == room_id)).rowcount > 0
 
-    def load(self) -> list[Room]:
-        """Every kept room, with its answers, written to this store again as it changes."""
+    def forget_unused(self, *, days: float) -> int:
+        """Forget every room (with its answers) nobody has used for ``days``; returns how many."""
+        cutoff = datetime.now(UTC) - timedelta(days=days)
+        with self._writing("the removal of unused rooms") as connection:
+            old = [row[0] for row in connection.execute(sa.select(rooms.c.room_id).where(rooms.c.used_at < cutoff))]
+            if old:
+                connection.execute(sa.delete(answers).where(answers.c.room_id.in_(old)))
+                connection.execute(sa.delete(rooms).where(rooms.c.room_id.in_(old)))
+        if old:
+            log.info("forgot %d room(s) unused for %g days", len(old), days)
+        return len(old)
+
+    def load(self, *, limit: int | None = None) -> list[Room]:
+        """The kept rooms (the ``limit`` most recently used), with their answers, written to this store again as they
+        change; oldest first."""
         with self.database.engine.connect() as connection:
             kept_answers: dict[str, dict[str, dict[str, dict[str, Any]]]] = defaultdict(lambda: defaultdict(dict))
             for row in connection.execute(sa.select(answers)).mappings():
                 kept_answers[row["room_id"]][row["poll_id"]][row["student_id"]] = dict(row)
             loaded = []
-            for row in connection.execute(sa.select(rooms).order_by(rooms.c.created_at)).mappings():
+            recent = sa.select(rooms).order_by(rooms.c.used_at.desc()).limit(limit)
+            for row in reversed(list(connection.execute(recent).mappings())):
                 created = row["created_at"]
                 created = created if created.tzinfo else created.replace(tzinfo=UTC)
                 room = Room.from_record(

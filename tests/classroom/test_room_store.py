@@ -4,15 +4,19 @@ process, on a real SQLite database in a temporary data directory and the room's 
 
 from __future__ import annotations
 
+import json
+from datetime import UTC, datetime, timedelta
+
 import pytest
 import sqlalchemy as sa
 
 from app.classroom.registry import Rooms
-from app.classroom.room import StudentRemoved
+from app.classroom.room import StudentRemoved, digest
 from app.classroom.store import SqlRoomStore
 from app.storage import open_database
 from app.storage.database import sqlite_url
 from app.storage.tables import answers
+from app.storage.tables import rooms as rooms_table
 from tests.classroom.test_room import FRICTION_LESSON, BusyWhenTold
 
 
@@ -122,3 +126,43 @@ def test_the_database_holds_no_token_or_device_id_and_a_closed_room_leaves_nothi
     assert restarted(tmp_path).all() == []
     with rooms.store.database.engine.connect() as connection:
         assert connection.execute(sa.select(sa.func.count()).select_from(answers)).scalar() == 0
+
+
+def test_dynlab_rooms_lists_exports_and_deletes_a_kept_room(tmp_path, catalogue, capsys):
+    from app import cli
+
+    made = a_class(restarted(tmp_path / "data"), catalogue, BusyWhenTold())
+    code = made["room"].code
+    assert cli.main(["rooms", "--data-dir", str(tmp_path / "data")]) == 0
+    listed = capsys.readouterr().out
+    assert code in listed and "8-2-coulomb-friction" in listed
+    assert [line.split()[3:6] for line in listed.splitlines() if line.startswith(code)] == [["2", "2", "4"]]
+
+    out = tmp_path / "export"
+    assert cli.main(["export", code.lower(), "--out", str(out), "--data-dir", str(tmp_path / "data")]) == 0
+    document = json.loads((out / f"room-{code}.json").read_text())
+    assert [s["name"] for s in document["students"]] == ["Ada", ""]
+    assert document["params"]["mu"] == 0.45 and [p["results"]["answers"] for p in document["polls"]] == [2, 2]
+    table = (out / f"room-{code}-answers.csv").read_text().splitlines()
+    assert table[0].startswith("poll_id,question") and len(table) == 1 + 4
+    assert "Ada" in table[1] or "Ada" in table[2]  # the first poll showed names
+    written = (out / f"room-{code}.json").read_text() + "\n".join(table)
+    for secret in (made["ada"].token, made["ben"].token, "device-of-ada"):
+        assert secret not in written
+    assert digest(made["ada"].token) not in written
+
+    assert cli.main(["rooms", "delete", code, "--data-dir", str(tmp_path / "data")]) == 0
+    assert restarted(tmp_path / "data").all() == []
+    assert cli.main(["rooms", "delete", code, "--data-dir", str(tmp_path / "data")]) == 1
+
+
+def test_a_room_unused_for_the_kept_days_is_forgotten_with_its_answers(tmp_path, catalogue):
+    rooms = restarted(tmp_path)
+    made = a_class(rooms, catalogue, BusyWhenTold())
+    with rooms.store.database.transaction() as connection:
+        connection.execute(sa.update(rooms_table).values(used_at=datetime.now(UTC) - timedelta(days=31)))
+    assert len(Rooms(store=SqlRoomStore(open_database(sqlite_url(tmp_path))), keep_days=60).all()) == 1
+    assert Rooms(store=SqlRoomStore(open_database(sqlite_url(tmp_path))), keep_days=30).all() == []
+    with rooms.store.database.engine.connect() as connection:
+        assert connection.execute(sa.select(sa.func.count()).select_from(answers)).scalar() == 0
+    assert made["room"].code not in [r["code"] for r in rooms.store.listing()]
