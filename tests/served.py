@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+import re
 import shutil
 import signal
 import socket
@@ -166,6 +167,12 @@ class ServedApp:
             if time.monotonic() > deadline:
                 raise RuntimeError(f"dynlab serve did not answer within {timeout_s:.0f} s; its log: {self.log_path}\n{self.log_tail()}")
             time.sleep(0.1)
+
+    def printed_instructor_link(self) -> str:
+        """The instructor link ``dynlab serve`` printed at its start (with the secret it was given or kept)."""
+        found = re.search(r"Instructor link[^\n]*?(http://\S+/instructor\?key=\S+)", self.log_path.read_text())
+        assert found, self.log_tail()
+        return found.group(1)
 
     def log_tail(self, lines: int = 40) -> str:
         try:

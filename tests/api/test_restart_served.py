@@ -11,7 +11,6 @@ How long the class waited (from Ctrl+C until the room's state and its scene answ
 
 from __future__ import annotations
 
-import re
 import shutil
 import time
 
@@ -26,12 +25,6 @@ SOLO_SESSION = "5e55107e" * 4
 SOLO_KEY = "0123456789abcdef" * 2
 
 
-def printed_instructor_link(app: ServedApp) -> str:
-    found = re.search(r"Instructor link[^\n]*?(http://\S+/instructor\?key=(\S+))", app.log_path.read_text())
-    assert found, app.log_tail()
-    return found.group(1)
-
-
 def instructor(app: ServedApp, link: str) -> httpx.Client:
     """A browser that opened the instructor link (it holds the cookie the link sets)."""
     client = httpx.Client(base_url=app.url, timeout=30.0)
@@ -44,7 +37,7 @@ def test_a_restart_keeps_the_instructor_the_room_its_students_poll_answers_and_s
     data_dir = RESULTS / f"data-restart-{tmp_path.name}"
     first = ServedApp(name="restart-before", data_dir=data_dir, env={"DYNLAB_INSTRUCTOR_KEY": ""}).start()
     try:
-        link = printed_instructor_link(first)
+        link = first.printed_instructor_link()
         teacher = instructor(first, link)
         room = teacher.post("/api/rooms", json={"lesson_id": LESSON}).json()
         room_id, code = room["room_id"], room["code"]
@@ -75,7 +68,7 @@ def test_a_restart_keeps_the_instructor_the_room_its_students_poll_answers_and_s
         waited_s = time.monotonic() - stopped_at
         print(f"the class waited {waited_s:.1f} s from Ctrl+C to the room's scene reaching its follower again")
 
-        assert printed_instructor_link(second) == link
+        assert second.printed_instructor_link() == link
         for client in (teacher, instructor(second, link)):  # the cookie from before, and the link opened again
             assert client.get("/api/me").json() == {"role": "instructor"}
         assert second.client.get("/api/me", headers={"X-Instructor-Key": link.rsplit("=", 1)[1]}).json() == {"role": "instructor"}
