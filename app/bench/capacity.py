@@ -313,7 +313,10 @@ def started_server(
     env = dict(os.environ)
     if instructor_key is not None:
         env["DYNLAB_INSTRUCTOR_KEY"] = instructor_key
-    with tempfile.TemporaryFile() as log:
+    # The tool's rooms and sessions go to a data directory of its own, removed afterwards: never into the classes'.
+    env.pop("DYNLAB_DATABASE_URL", None)
+    with tempfile.TemporaryFile() as log, tempfile.TemporaryDirectory(prefix="dynlab-load-") as data_dir:
+        env["DYNLAB_DATA_DIR"] = data_dir
         process = subprocess.Popen(
             command, cwd=PROJECT_ROOT, stdout=log, stderr=subprocess.STDOUT, env=env, start_new_session=True
         )
