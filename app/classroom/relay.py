@@ -240,6 +240,8 @@ async def room_viewer(websocket: WebSocket, room_id: str) -> None:
     client = client_address(websocket.scope, trust_forwarded_for=app.state.settings.trust_forwarded_for)
     try:
         with app.state.sessions.follower(client=client):
+            # A room kept from the last run whose scene a busy worker could not open at start-up: open it now.
+            await run_in_threadpool(room.put_stage_back, app.state.scene_host)
             await _follow(websocket, app, room_id, room.stage_id, protocol)
     except Refused as exc:
         await close_refused(websocket, exc)
