@@ -67,14 +67,29 @@ def _stopping_server_class(on_stop: Callable[[], None]):
 
 
 def _serve(args: argparse.Namespace) -> int:
+    from app.storage.database import DataDirInUse, DataDirLock
+
+    workers = args.workers if args.workers is not None else default_worker_count()
+    settings = _kept_settings(args, host=args.host, port=args.port, workers=workers, instructor_key=args.instructor_key)
+    try:  # one server per data directory (a database server, DYNLAB_DATABASE_URL, takes several)
+        lock = DataDirLock(settings.data_dir) if settings.data_dir is not None and not settings.database_url else None
+    except DataDirInUse as exc:
+        print(f"dynlab serve: {exc}", file=sys.stderr)
+        return 1
+    try:
+        return _serve_with(settings, args)
+    finally:
+        if lock is not None:
+            lock.release()
+
+
+def _serve_with(settings: Settings, args: argparse.Namespace) -> int:
     import uvicorn
 
     from app.main import create_app
     from app.physics.core.bounded import stop_all_work
     from app.scenes.host.worker import tune_garbage_collection
 
-    workers = args.workers if args.workers is not None else default_worker_count()
-    settings = _kept_settings(args, host=args.host, port=args.port, workers=workers, instructor_key=args.instructor_key)
     if not settings.public_url and settings.host in ("0.0.0.0", "::"):
         settings = replace(settings, public_url=f"http://{lan_address()}:{settings.port}")
     app = create_app(settings)

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import os
+
 import subprocess
 import sys
 import time
@@ -108,3 +110,22 @@ def test_a_stop_past_its_deadline_kills_the_workers_and_exits_whatever_still_wai
     assert "still stopping after 0.5 s" in done.stderr
     wait_until(lambda: not Path(f"/proc/{child}").exists() or "Z" in Path(f"/proc/{child}/stat").read_text().split()[2], 5,
                what="the child to be killed")  # fmt: skip
+
+
+def test_a_second_server_on_the_same_data_directory_is_refused(monkeypatch, capsys, tmp_path):
+    """Two servers writing one SQLite file would each serve rooms the other changes: the second says so and exits."""
+    from app.storage.database import DataDirLock
+
+    served = []
+    monkeypatch.setattr(cli, "_stopping_server_class", lambda on_stop: recording_server(served))
+    monkeypatch.delenv("DYNLAB_INSTRUCTOR_KEY", raising=False)
+    held = DataDirLock(tmp_path / "data")  # the first server
+    try:
+        assert cli.main(["serve", "--workers", "0", "--data-dir", str(tmp_path / "data")]) == 1
+        refused = capsys.readouterr().err
+        assert f"another dynlab serve (pid {os.getpid()}) keeps its data in {tmp_path / 'data'}" in refused
+        assert served == []
+    finally:
+        held.release()
+    assert cli.main(["serve", "--workers", "0", "--data-dir", str(tmp_path / "data")]) == 0  # stopped: free again
+    assert cli.main(["serve", "--workers", "0", "--data-dir", str(tmp_path / "data")]) == 0  # and after that one

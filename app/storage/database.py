@@ -139,3 +139,38 @@ class StoreUnavailable(RuntimeError):
     connection): answered 503 with ``Retry-After``."""
 
     retry_after_s = 2
+
+
+class DataDirInUse(RuntimeError):
+    """Another ``dynlab serve`` keeps its class's data in this data directory."""
+
+
+class DataDirLock:
+    """The data directory held by one ``dynlab serve`` (an exclusive ``flock`` on ``serve.lock`` in it, released when
+    the process ends however it ends): two servers writing one SQLite file would each serve rooms the other changes."""
+
+    def __init__(self, data_dir: Path) -> None:
+        import fcntl
+
+        data_dir.mkdir(parents=True, exist_ok=True, mode=0o700)
+        self._file = (data_dir / "serve.lock").open("a+")
+        try:
+            fcntl.flock(self._file, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            self._file.seek(0)
+            holder = self._file.read().strip() or "another process"
+            self._file.close()
+            raise DataDirInUse(
+                f"another dynlab serve ({holder}) keeps its data in {data_dir}: stop it, or give this one another "
+                "--data-dir"
+            ) from None
+        self._file.seek(0)
+        self._file.truncate()
+        self._file.write(f"pid {os.getpid()}")
+        self._file.flush()
+
+    def release(self) -> None:
+        import fcntl
+
+        fcntl.flock(self._file, fcntl.LOCK_UN)
+        self._file.close()
