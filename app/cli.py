@@ -22,6 +22,7 @@ from app.settings import Settings, default_worker_count
 
 if TYPE_CHECKING:
     from app.classroom.store import SqlRoomStore
+    from app.storage import Database
 
 #: Ctrl+C ends ``dynlab serve`` within this long (s) whatever is in flight: requests get 1.5 s, the scene workers
 #: up to 3 s more (app/scenes/host/pool.py); anything still holding the process then (a thread blocked on a stopped
@@ -243,13 +244,24 @@ def _kept_settings(args: argparse.Namespace, **overrides: object) -> Settings:
     return settings
 
 
+def _kept_database(args: argparse.Namespace) -> Database:
+    """The database a server keeps its class's data in, for the commands that read or change it. A data directory
+    that does not exist is refused (a mistyped --data-dir would otherwise show an empty database just made)."""
+    from app.storage import open_database
+    from app.storage.database import DatabaseUnusable
+
+    settings = _kept_settings(args)
+    if not settings.database_url and settings.data_dir is not None and not settings.data_dir.is_dir():
+        raise DatabaseUnusable(f"no data directory at {settings.data_dir}: give the --data-dir a server used")
+    url = settings.kept_database_url()
+    assert url is not None
+    return open_database(url)
+
+
 def _kept_store(args: argparse.Namespace) -> SqlRoomStore:
     from app.classroom.store import SqlRoomStore
-    from app.storage import open_database
 
-    url = _kept_settings(args).kept_database_url()
-    assert url is not None
-    return SqlRoomStore(open_database(url))
+    return SqlRoomStore(_kept_database(args))
 
 
 def _rooms(args: argparse.Namespace) -> int:
@@ -265,9 +277,23 @@ def _rooms(args: argparse.Namespace) -> int:
         if found is None:
             print(f"no kept room has the id or code {wanted!r} (dynlab rooms lists them)", file=sys.stderr)
             return 1
-        store.delete(found["room_id"])
+        from app.storage.database import DataDirInUse, DataDirLock
+
+        data_dir = _kept_settings(args).data_dir
+        try:  # a running server serves its rooms from memory and would write this one back: it must be stopped
+            lock = DataDirLock(data_dir) if data_dir is not None and not _kept_settings(args).database_url else None
+        except DataDirInUse as exc:
+            print(
+                f"dynlab rooms delete: {exc}. Close the room from the instructor's page instead (that forgets it too)",
+                file=sys.stderr,
+            )
+            return 1
+        try:
+            store.delete(found["room_id"])
+        finally:
+            if lock is not None:
+                lock.release()
         print(f"deleted room {found['code']} ({found['room_id']}) with its {found['answers']} answers")
-        print("a running server keeps it open until it stops: close it from the instructor's page to end it now")
         return 0
     if not kept:
         print(f"no rooms kept in {store.database.url}")
@@ -295,7 +321,14 @@ def _export(args: argparse.Namespace) -> int:
         if not kept:
             print(f"no kept room has the id or code {wanted!r} (dynlab rooms lists them)", file=sys.stderr)
             return 1
-    written = export_rooms(kept, args.out)
+    if args.out.exists() and not args.out.is_dir():
+        print(f"dynlab export: {args.out} is a file; --out names a folder to write into", file=sys.stderr)
+        return 1
+    try:
+        written = export_rooms(kept, args.out)
+    except OSError as exc:
+        print(f"dynlab export: cannot write into {args.out}: {exc.strerror or exc}", file=sys.stderr)
+        return 1
     print(f"wrote {len(written)} files for {len(kept)} room{'s' if len(kept) != 1 else ''} into {args.out}")
     return 0
 
@@ -303,12 +336,8 @@ def _export(args: argparse.Namespace) -> int:
 def _instructor_key(args: argparse.Namespace) -> int:
     """``dynlab instructor-key --rotate``: a new kept instructor secret (the server takes it at its next start)."""
     from app.classroom.roles import rotate_instructor_secret
-    from app.storage import open_database
 
-    settings = _kept_settings(args)
-    url = settings.kept_database_url()
-    assert url is not None
-    database = open_database(url)
+    database = _kept_database(args)
     if not args.rotate:
         print("dynlab serve prints the instructor link; --rotate makes a new secret (the old link stops working)")
         return 0
@@ -379,7 +408,13 @@ def main(argv: list[str] | None = None) -> int:
         level=getattr(logging, getattr(args, "log_level", "warning").upper()),
         format="%(levelname)s %(name)s: %(message)s",
     )
-    return args.run(args)
+    from app.storage.database import DatabaseUnusable
+
+    try:
+        return args.run(args)
+    except DatabaseUnusable as exc:  # the data directory or its database: one line saying why, not a traceback
+        print(f"dynlab {args.command}: {exc}", file=sys.stderr)
+        return 1
 
 
 if __name__ == "__main__":

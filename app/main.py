@@ -95,7 +95,9 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     # ready poll questions (checked now).
     app.state.instructor_key = InstructorKey(settings.instructor_key or kept_instructor_secret(database))
     app.state.rooms = Rooms(
-        store=SqlRoomStore(database) if database is not None else None, keep_days=settings.keep_rooms_days
+        store=SqlRoomStore(database) if database is not None else None,
+        keep_days=settings.keep_rooms_days,
+        join_base=settings.public_url or f"http://{settings.host}:{settings.port}",  # kept rooms' join links
     )
     app.state.join_limits = JoinLimits(settings)
     app.state.room_hub = RoomHub(lambda: app.state.scene_host)

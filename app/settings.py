@@ -95,8 +95,8 @@ class Settings:
                 raise ValueError(f"{name} must be a finite rate > 0 per second (got {getattr(self, name)!r})")
         if not 0 <= self.workers <= 64:
             raise ValueError(f"workers must be 0 (scenes in the front process) to 64 (got {self.workers!r})")
-        if not math.isfinite(self.keep_rooms_days) or self.keep_rooms_days <= 0:
-            raise ValueError(f"keep_rooms_days must be a finite number of days > 0 (got {self.keep_rooms_days!r})")
+        if not 0 < self.keep_rooms_days <= 36_500:
+            raise ValueError(f"keep_rooms_days must be a number of days from 0 to 36500 (got {self.keep_rooms_days!r})")
         if self.rate_limit_clients < 1:
             raise ValueError(f"rate_limit_clients must be >= 1 (got {self.rate_limit_clients!r})")
 

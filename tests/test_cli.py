@@ -128,3 +128,38 @@ def test_a_second_server_on_the_same_data_directory_is_refused(monkeypatch, caps
         held.release()
     assert cli.main(["serve", "--workers", "0", "--data-dir", str(tmp_path / "data")]) == 0  # stopped: free again
     assert cli.main(["serve", "--workers", "0", "--data-dir", str(tmp_path / "data")]) == 0  # and after that one
+
+
+def test_the_kept_data_commands_say_what_is_wrong_in_one_line(monkeypatch, capsys, tmp_path):
+    """A mistyped --data-dir, a file where the directory should be, a file that is not a database, an export onto a
+    file, and a delete while a server holds the data: each is refused with one line, never a traceback."""
+    from app.storage.database import DataDirLock
+
+    monkeypatch.setattr(cli, "_stopping_server_class", lambda on_stop: recording_server([]))
+    data = tmp_path / "data"
+    assert cli.main(["rooms", "--data-dir", str(tmp_path / "typo")]) == 1
+    assert f"no data directory at {tmp_path / 'typo'}" in capsys.readouterr().err and not (tmp_path / "typo").exists()
+    (tmp_path / "a-file").write_text("not a directory")
+    assert cli.main(["serve", "--workers", "0", "--instructor-key", "chalk-and-talk-2026", "--data-dir", str(tmp_path / "a-file")]) == 1
+    assert "is a file, not a directory" in capsys.readouterr().err
+    (tmp_path / "garbage").mkdir()
+    (tmp_path / "garbage" / "dynlab.sqlite3").write_bytes(b"this is not a database" * 100)
+    assert cli.main(["rooms", "--data-dir", str(tmp_path / "garbage")]) == 1
+    assert "cannot be used" in capsys.readouterr().err
+    assert cli.main(["serve", "--workers", "0", "--data-dir", str(data)]) == 0  # makes the data directory
+    capsys.readouterr()
+    assert cli.main(["export", "--out", str(tmp_path / "a-file"), "--data-dir", str(data)]) == 1
+    assert "is a file" in capsys.readouterr().err
+    from app.classroom.registry import Rooms
+    from app.classroom.store import SqlRoomStore
+    from app.storage import open_database
+    from app.storage.database import sqlite_url
+
+    room, _ = Rooms(store=SqlRoomStore(open_database(sqlite_url(data)))).create(join_base="http://127.0.0.1:8000")
+    held = DataDirLock(data)  # a server running on it serves the room from its memory
+    try:
+        assert cli.main(["rooms", "delete", room.code, "--data-dir", str(data)]) == 1
+        assert "Close the room from the instructor's page instead" in capsys.readouterr().err
+    finally:
+        held.release()
+    assert cli.main(["rooms", "delete", room.code, "--data-dir", str(data)]) == 0

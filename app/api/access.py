@@ -156,11 +156,7 @@ class SessionDirectory:
         )
         self._lock = threading.Lock()
         for kept in store.load(max_sessions) if store is not None else []:
-            self._entries[kept.session_id] = SessionEntry(
-                kept.scene_id, kept.client, kept.key_hash, kept_params=kept.params
-            )
-            if kept.client is not None:
-                self._by_client.setdefault(kept.client, OrderedDict())[kept.session_id] = None
+            self._entries[kept.session_id] = SessionEntry(kept.scene_id, None, kept.key_hash, kept_params=kept.params)
 
     def __len__(self) -> int:
         return len(self._entries)
@@ -238,7 +234,7 @@ class SessionDirectory:
             if entry.key_hash is None and key is not None:
                 entry.key_hash = _hash(key)
             self._touch_locked(session_id, entry)
-            kept = KeptSession(session_id, scene_id, entry.client, entry.key_hash, dict(params or {}))
+            kept = KeptSession(session_id, scene_id, entry.key_hash, dict(params or {}))
         if self._store is not None and params is not None:
             self._store.save(kept)
         for old in evicted:
@@ -256,6 +252,12 @@ class SessionDirectory:
             entry.kept_params = None
         try:
             self._reopen(session_id, entry.scene_id, params)
+        except KeyError:  # a scene this version no longer has: the session is forgotten, its page starts afresh
+            log.warning("session %s: its kept scene %r no longer exists; it is forgotten", session_id, entry.scene_id)
+            with self._lock:
+                if self._entries.get(session_id) is entry:
+                    self._forget_locked(session_id)
+            return
         except ValueError as exc:
             log.warning(
                 "session %s: its kept parameters were refused (%s); it opens with the defaults", session_id, exc

@@ -32,13 +32,14 @@ class Rooms:
         max_rooms: int = MAX_ROOMS,
         store: SqlRoomStore | None = None,
         keep_days: float = Settings.keep_rooms_days,
+        join_base: str = "http://127.0.0.1:8000",
     ) -> None:
         self.max_rooms = max_rooms
         self.store = store
         self.keep_days = keep_days
         if store is not None:
             store.forget_unused(days=keep_days)
-        kept = store.load(limit=max_rooms) if store is not None else []
+        kept = store.load(join_base=join_base, limit=max_rooms) if store is not None else []
         self._rooms: dict[str, Room] = {room.room_id: room for room in kept}
         self._lock = threading.Lock()
 
@@ -49,7 +50,11 @@ class Rooms:
         with self._lock:
             closed = self._drop_idle()
             if len(self._rooms) >= self.max_rooms:
-                raise RoomError("room", f"{self.max_rooms} rooms are open already; close one first")
+                raise RoomError(
+                    "room",
+                    f"{self.max_rooms} rooms are open already: close one first (a room unused for "
+                    f"{IDLE_ROOM_S / 3600:g} h makes way by itself; `dynlab export` keeps a copy of a room's answers)",
+                )
             codes = {room.code for room in self._rooms.values()}
             code = "".join(secrets.choice(CODE_ALPHABET) for _ in range(CODE_LENGTH))
             while code in codes:
@@ -103,12 +108,16 @@ class Rooms:
         return room
 
     def close(self, room_id: str) -> Room | None:
-        """Close a room and forget it, with every answer in it."""
+        """Close a room and forget it, with every answer in it (a change still in flight finishes first; later ones
+        are refused, and nothing of the room is written again)."""
         with self._lock:
             room = self._rooms.pop(room_id, None)
-            if room is not None and self.store is not None:
-                self.store.delete(room_id)
-            return room
+        if room is not None:
+            with room.lock:
+                room.closed = True
+                if self.store is not None:
+                    self.store.delete(room_id)
+        return room
 
     def all(self) -> list[Room]:
         with self._lock:

@@ -24,6 +24,7 @@ from app.classroom.polls import Poll
 from app.course import Catalogue
 from app.scenes.host.host import STAGE_PREFIX, TIME_SCALE_RANGE
 from app.scenes.host.interface import SceneHostInterface
+from app.storage.database import StoreUnavailable
 
 log = logging.getLogger(__name__)
 
@@ -53,6 +54,10 @@ class RoomError(ValueError):
 
 class RoomMovedOn(RoomError):
     """A change meant for a lesson or scene the room no longer shows (a stale instructor tab); nothing changed."""
+
+
+class RoomClosed(RoomMovedOn):
+    """A change to a room its instructor has closed meanwhile (answered 409); nothing changed."""
 
 
 class NotCurrentPoll(RoomError):
@@ -138,6 +143,10 @@ class Room:
     store: RoomStore | None = field(default=None, repr=False)
     #: When the room was opened (UTC, for the database and ``dynlab rooms``).
     created_at: float = field(default_factory=time.time)
+    #: Set when the room is closed: nothing more is kept of it, and a change that raced the closing is refused.
+    closed: bool = field(default=False, repr=False)
+    #: Answers the store could not take (poll id, student id): written with the room's next successful write.
+    _unsaved_answers: set[tuple[str, str]] = field(default_factory=set, repr=False)
 
     @property
     def stage_id(self) -> str:
@@ -151,7 +160,6 @@ class Room:
         and its polls without their answers (kept one row each)."""
         with self.lock:
             return {
-                "join_url": self.join_url,
                 "lesson_id": self.lesson_id,
                 "scene_id": self.scene_id,
                 "params": dict(self.params),
@@ -185,15 +193,18 @@ class Room:
         room_id: str,
         code: str,
         created_at: float,
+        used_at: float,
+        join_base: str,
         record: Mapping[str, Any],
         answers: Mapping[str, Mapping[str, Mapping[str, Any]]],
     ) -> Room:
-        """The room :meth:`record` kept, with its polls' answers (by poll id, then student id). Its stage is not open
-        yet: the room's next change opens it (``_stage_unsure``), or :meth:`put_stage_back` does at start-up."""
+        """The room :meth:`record` kept, with its polls' answers (by poll id, then student id), last used at
+        ``used_at`` (UTC s) and joined at ``join_base`` now (this server's address may differ from the last run's).
+        Its stage is not open yet: :meth:`put_stage_back` opens it at start-up, or a follower or the next change."""
         room = cls(
             room_id=room_id,
             code=code,
-            join_url=record["join_url"],
+            join_url=f"{join_base.rstrip('/')}/join/{code}",
             lesson_id=record["lesson_id"],
             scene_id=record["scene_id"],
             params=dict(record["params"]),
@@ -205,6 +216,7 @@ class Room:
             explore_start=record["explore_start"],
             poll_id=record["poll_id"],
             created_at=created_at,
+            last_used_s=time.monotonic() - max(0.0, time.time() - used_at),
         )
         for kept in record["students"]:
             student = Student(
@@ -221,8 +233,9 @@ class Room:
         room._by_token = dict(record["token_digests"])
         room._removed_tokens = set(record["removed_tokens"])
         room._removed_devices = set(record["removed_devices"])
-        for kept_poll in record["polls"]:
-            poll = Poll.from_record(kept_poll, answers.get(kept_poll["poll_id"], {}))
+        for kept_poll in record["polls"]:  # answers of students no longer in the room (removed) stay out
+            kept_answers = answers.get(kept_poll["poll_id"], {})
+            poll = Poll.from_record(kept_poll, {s: a for s, a in kept_answers.items() if s in room.students})
             room.polls[poll.poll_id] = poll
         room._stage_unsure = room.scene_id is not None
         return room
@@ -269,6 +282,8 @@ class Room:
         if unknown:
             raise RoomError(unknown[0], f"{unknown[0]}: not a room field (fields: {', '.join(STATE_FIELDS)})")
         with self.lock:
+            if self.closed:
+                raise RoomClosed("room", f"room {self.code} was closed by its instructor; nothing changed")
             plan = self._plan(raw, catalogue=catalogue, host=host)
             self._apply(plan, host=host)
             self.revision += 1
@@ -277,9 +292,30 @@ class Room:
         return self.state()
 
     def _keep(self, *, withdrawn_student: str | None = None) -> None:
-        """Write the room to its store (with its lock held, so the store sees changes in the order they were made)."""
-        if self.store is not None:
+        """Write the room to its store (with its lock held, so the store sees changes in the order they were made).
+
+        A write the database refuses (locked past its timeout, a full disk) is logged and the change stands: the
+        room is written whole, so its next write keeps this change too, with any answers not kept meanwhile. Only a
+        restart before that would lose it."""
+        if self.store is None or self.closed:
+            return
+        try:
             self.store.save(self, withdrawn_student=withdrawn_student)
+            for poll_id, student_id in sorted(self._unsaved_answers):
+                self.store.save_answer(self, poll_id, student_id)
+            self._unsaved_answers.clear()
+        except StoreUnavailable as exc:
+            log.error("room %s: not kept this time (%s); its next change writes it again", self.code, exc)
+
+    def _keep_answer(self, poll_id: str, student_id: str) -> None:
+        """Write one answer to the store; one it cannot take now goes with the room's next write."""
+        if self.store is None or self.closed:
+            return
+        try:
+            self.store.save_answer(self, poll_id, student_id)
+        except StoreUnavailable as exc:
+            self._unsaved_answers.add((poll_id, student_id))
+            log.error("room %s: an answer not kept this time (%s); the room's next change writes it", self.code, exc)
 
     def _check_conditions(self, raw: Mapping[str, Any]) -> None:
         """:class:`RoomMovedOn` if the change names a lesson or scene (``if_lesson_id``, ``if_scene_id``) that the room
@@ -558,8 +594,7 @@ class Room:
             if student is None:
                 raise PermissionError("answering needs the X-Student-Token this room gave when you joined")
             self.poll(poll_id).submit(student.student_id, raw, name=student.name)
-            if self.store is not None:
-                self.store.save_answer(self, poll_id, student.student_id)
+            self._keep_answer(poll_id, student.student_id)
 
     def update_poll(self, poll_id: str, raw: Mapping[str, Any], *, host: Any) -> Poll:
         """Close or reopen the current poll, reveal a poll's answer (computed by the room's scene now), show or hide

@@ -96,9 +96,9 @@ class SqlRoomStore:
             log.info("forgot %d room(s) unused for %g days", len(old), days)
         return len(old)
 
-    def load(self, *, limit: int | None = None) -> list[Room]:
+    def load(self, *, join_base: str = "http://127.0.0.1:8000", limit: int | None = None) -> list[Room]:
         """The kept rooms (the ``limit`` most recently used), with their answers, written to this store again as they
-        change; oldest first."""
+        change; oldest first. Students join them at ``join_base``."""
         with self.database.engine.connect() as connection:
             kept_answers: dict[str, dict[str, dict[str, dict[str, Any]]]] = defaultdict(lambda: defaultdict(dict))
             for row in connection.execute(sa.select(answers)).mappings():
@@ -108,10 +108,13 @@ class SqlRoomStore:
             for row in reversed(list(connection.execute(recent).mappings())):
                 created = row["created_at"]
                 created = created if created.tzinfo else created.replace(tzinfo=UTC)
+                used = row["used_at"] if row["used_at"].tzinfo else row["used_at"].replace(tzinfo=UTC)
                 room = Room.from_record(
                     room_id=row["room_id"],
                     code=row["code"],
                     created_at=created.timestamp(),
+                    used_at=used.timestamp(),
+                    join_base=join_base,
                     record=row["record"],
                     answers=kept_answers.get(row["room_id"], {}),
                 )

@@ -15,6 +15,7 @@ from alembic import command
 from alembic.config import Config
 from alembic.runtime.migration import MigrationContext
 from alembic.script import ScriptDirectory
+from sqlalchemy.exc import SQLAlchemyError
 
 from app.storage.tables import server_values
 
@@ -27,6 +28,10 @@ SQLITE_FILE = "dynlab.sqlite3"
 SQLITE_BUSY_TIMEOUT_MS = 10_000
 
 
+class DatabaseUnusable(RuntimeError):
+    """The data directory or database cannot be used (not a directory, not a database, newer than this code)."""
+
+
 def default_data_dir() -> Path:
     """Where a user's data lives unless ``--data-dir`` or ``DYNLAB_DATA_DIR`` says: ``$XDG_DATA_HOME/dynlab``, else
     ``~/.local/share/dynlab`` (the XDG base directory default)."""
@@ -36,8 +41,16 @@ def default_data_dir() -> Path:
 
 def sqlite_url(data_dir: Path) -> str:
     """The default database: one SQLite file in ``data_dir`` (created, readable by its owner only, if missing)."""
-    data_dir.mkdir(parents=True, exist_ok=True, mode=0o700)
-    return f"sqlite:///{data_dir / SQLITE_FILE}"
+    try:
+        data_dir.mkdir(parents=True, exist_ok=True, mode=0o700)
+    except (FileExistsError, NotADirectoryError):
+        raise DatabaseUnusable(f"the data directory {data_dir} is a file, not a directory") from None
+    database = data_dir / SQLITE_FILE
+    # SQLite gives its -wal and -shm files the database file's permissions: made owner-only here, they are too, even
+    # in a data directory others may read (a container's volume).
+    database.touch(mode=0o600, exist_ok=True)
+    database.chmod(0o600)
+    return f"sqlite:///{database}"
 
 
 def _on_sqlite_connect(connection: Any, _record: Any) -> None:
@@ -112,7 +125,7 @@ def migrate(database: Database, *, to: str = "head") -> None:
     known = ScriptDirectory.from_config(_alembic_config(None))  # type: ignore[arg-type]
     current = database.schema_revision()
     if current is not None and current not in {script.revision for script in known.walk_revisions()}:
-        raise RuntimeError(
+        raise DatabaseUnusable(
             f"the database at {database.url} has schema revision {current!r}, newer than this version of Dynamics Lab "
             "knows: run the newer version, or give another --data-dir"
         )
@@ -125,12 +138,16 @@ def migrate(database: Database, *, to: str = "head") -> None:
 
 
 def open_database(url: str, *, migrate_to: str = "head") -> Database:
-    """The database at ``url``, its schema brought up to date."""
-    engine = sa.create_engine(url)
-    if engine.dialect.name == "sqlite":
-        sa.event.listen(engine, "connect", _on_sqlite_connect)
-    database = Database(engine)
-    migrate(database, to=migrate_to)
+    """The database at ``url``, its schema brought up to date; :class:`DatabaseUnusable` saying why not."""
+    try:
+        engine = sa.create_engine(url)
+        if engine.dialect.name == "sqlite":
+            sa.event.listen(engine, "connect", _on_sqlite_connect)
+        database = Database(engine)
+        migrate(database, to=migrate_to)
+    except (SQLAlchemyError, OSError) as exc:
+        shown = sa.engine.make_url(url).render_as_string(hide_password=True)
+        raise DatabaseUnusable(f"the database at {shown} cannot be used: {str(exc).splitlines()[0]}") from exc
     return database
 
 
@@ -152,7 +169,10 @@ class DataDirLock:
     def __init__(self, data_dir: Path) -> None:
         import fcntl
 
-        data_dir.mkdir(parents=True, exist_ok=True, mode=0o700)
+        try:
+            data_dir.mkdir(parents=True, exist_ok=True, mode=0o700)
+        except (FileExistsError, NotADirectoryError):
+            raise DatabaseUnusable(f"the data directory {data_dir} is a file, not a directory") from None
         self._file = (data_dir / "serve.lock").open("a+")
         try:
             fcntl.flock(self._file, fcntl.LOCK_EX | fcntl.LOCK_NB)

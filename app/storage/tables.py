@@ -45,14 +45,13 @@ answers = sa.Table(
     sa.Column("answered_at", sa.DateTime(timezone=True), nullable=False),
 )
 
-#: One row per page session (a lesson page's own scene): its scene, its parameters, the digest of the key that claimed
-#: it (None: unclaimed), and the address that made it (its per-device limits); forgotten when the session is evicted.
+#: One row per page session (a lesson page's own scene): its scene, its parameters and the digest of the key that
+#: claimed it (None: unclaimed); forgotten when the session is evicted. No address is kept.
 sessions = sa.Table(
     "sessions",
     metadata,
     sa.Column("session_id", sa.String(128), primary_key=True),
     sa.Column("scene_id", sa.String(64), nullable=False),
-    sa.Column("client", sa.String(64), nullable=True),
     sa.Column("key_digest", sa.String(64), nullable=True),
     sa.Column("params", sa.JSON, nullable=False),
     sa.Column("used_at", sa.DateTime(timezone=True), nullable=False),

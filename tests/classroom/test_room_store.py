@@ -5,16 +5,17 @@ process, on a real SQLite database in a temporary data directory and the room's 
 from __future__ import annotations
 
 import json
+import time
 from datetime import UTC, datetime, timedelta
 
 import pytest
 import sqlalchemy as sa
 
 from app.classroom.registry import Rooms
-from app.classroom.room import StudentRemoved, digest
+from app.classroom.room import RoomClosed, StudentRemoved, digest
 from app.classroom.store import SqlRoomStore
 from app.storage import open_database
-from app.storage.database import sqlite_url
+from app.storage.database import StoreUnavailable, sqlite_url
 from app.storage.tables import answers
 from app.storage.tables import rooms as rooms_table
 from tests.classroom.test_room import FRICTION_LESSON, BusyWhenTold
@@ -27,9 +28,9 @@ def catalogue():
     return load_catalogue()
 
 
-def restarted(data_dir) -> Rooms:
-    """The rooms a new server run finds in ``data_dir``."""
-    return Rooms(store=SqlRoomStore(open_database(sqlite_url(data_dir))))
+def restarted(data_dir, *, join_base: str = "http://lab.example:8000") -> Rooms:
+    """The rooms a new server run at ``join_base`` finds in ``data_dir``."""
+    return Rooms(store=SqlRoomStore(open_database(sqlite_url(data_dir))), join_base=join_base)
 
 
 def a_class(rooms: Rooms, catalogue, host) -> dict:
@@ -166,3 +167,54 @@ def test_a_room_unused_for_the_kept_days_is_forgotten_with_its_answers(tmp_path,
     with rooms.store.database.engine.connect() as connection:
         assert connection.execute(sa.select(sa.func.count()).select_from(answers)).scalar() == 0
     assert made["room"].code not in [r["code"] for r in rooms.store.listing()]
+
+
+def test_a_kept_room_is_joined_at_the_servers_address_now_and_keeps_its_last_use(tmp_path, catalogue):
+    """A laptop back on another network address projects a QR code that works; a room unused for a day before the
+    restart is idle at once (it makes way for a new room), not as if just used."""
+    made = a_class(restarted(tmp_path), catalogue, BusyWhenTold())
+    (moved,) = restarted(tmp_path, join_base="http://10.0.0.9:8000").all()
+    assert moved.state()["join_url"] == f"http://10.0.0.9:8000/join/{made['room'].code}"
+    store = SqlRoomStore(open_database(sqlite_url(tmp_path)))
+    with store.database.transaction() as connection:
+        connection.execute(sa.update(rooms_table).values(used_at=datetime.now(UTC) - timedelta(days=1)))
+    rooms = Rooms(store=store, max_rooms=1)
+    (idle,) = rooms.all()
+    assert 23 * 3600 < time.monotonic() - idle.last_used_s < 25 * 3600
+    fresh, made_way = rooms.create(join_base="http://10.0.0.9:8000")
+    assert made_way == [idle] and [r.room_id for r in rooms.all()] == [fresh.room_id]
+    assert {r["code"] for r in store.listing()} == {idle.code, fresh.code}  # made way, still kept
+
+
+def test_a_change_racing_the_closing_of_its_room_is_refused_and_the_room_stays_forgotten(tmp_path, catalogue):
+    rooms = restarted(tmp_path)
+    made = a_class(rooms, catalogue, BusyWhenTold())
+    room = made["room"]
+    rooms.close(room.room_id)
+    with pytest.raises(RoomClosed):
+        room.change({"params": {"mu": 0.2}}, catalogue=catalogue, host=BusyWhenTold())
+    room.answer(made["polls"][1], made["ada"].token, {"value": 3.0})  # a late answer: harmless, and not kept
+    room.join("Late", device="device-late")
+    assert restarted(tmp_path).all() == [] and rooms.store.listing() == []
+
+
+def test_a_write_the_database_refuses_is_kept_by_the_rooms_next_write(tmp_path, catalogue):
+    rooms = restarted(tmp_path)
+    made = a_class(rooms, catalogue, BusyWhenTold())
+    room, store = made["room"], rooms.store
+    real_save, real_answer = store.save, store.save_answer
+
+    def refuse(*args, **kwargs):
+        raise StoreUnavailable("the database is locked")
+
+    store.save, store.save_answer = refuse, refuse  # a disk full, a lock held past its timeout
+    room.answer(made["polls"][1], made["ben"].token, {"value": 9.0})
+    room.remove(made["ben"].student_id)
+    store.save, store.save_answer = real_save, real_answer
+    room.answer(made["polls"][1], made["ada"].token, {"value": 4.0})  # an answer alone does not rewrite the room
+    room.join("Dee", device="device-of-dee")  # the room's next write
+    (after,) = restarted(tmp_path).all()
+    assert [s["name"] for s in after.student_list()] == ["Ada", "Dee"]
+    with pytest.raises(StudentRemoved):
+        after.student(made["ben"].token)
+    assert after.poll(made["polls"][1]).results()["answers"] == 1  # Ada's; Ben's left with him

@@ -32,6 +32,12 @@ def test_an_empty_database_migrates_to_exactly_the_schema_the_code_uses(tmp_path
     assert database.schema_revision() == head_revision()
     assert schema_differences(database) == []
     assert (tmp_path / "data").stat().st_mode & 0o777 == 0o700  # the data directory is its owner's alone
+    shared = tmp_path / "volume"  # a directory others may read (a container's volume): the files are still owner-only
+    shared.mkdir(mode=0o755)
+    open_database(sqlite_url(shared)).set_value("instructor_secret", "not for others")
+    assert {path.name: path.stat().st_mode & 0o777 for path in shared.iterdir()} == {
+        name: 0o600 for name in ("dynlab.sqlite3", "dynlab.sqlite3-wal", "dynlab.sqlite3-shm")
+    }
 
 
 def test_each_version_migrates_forward_to_the_next_keeping_what_was_kept(tmp_path):

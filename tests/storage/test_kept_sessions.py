@@ -6,10 +6,13 @@ forgotten in the database too."""
 from __future__ import annotations
 
 import pytest
+import sqlalchemy as sa
 
 from app.api.access import Refused, SessionDirectory
 from app.api.kept_sessions import SqlSessionStore
+from app.scenes.host.host import UnknownSceneError
 from app.scenes.host.interface import HostBusy
+from app.storage.tables import sessions
 from app.storage import open_database
 from app.storage.database import sqlite_url
 
@@ -35,7 +38,8 @@ def test_a_kept_session_is_claimed_still_and_opens_once_with_its_parameters(tmp_
     reopened: list = []
     after = directory(tmp_path, reopened)
     assert after.is_claimed("s" * 32) and not after.is_claimed("u" * 32)
-    assert after.sessions_of("10.0.0.7") == 1 and after.scene_of("s" * 32) == "heavy-top"
+    assert after.sessions_of("10.0.0.7") == 0 and after.scene_of("s" * 32) == "heavy-top"  # no address is kept
+    assert b"10.0.0.7" not in b"".join(path.read_bytes() for path in (tmp_path / "data").iterdir())
     with pytest.raises(Refused) as refused:
         after.check_change("s" * 32, None, client="10.0.0.9")
     assert refused.value.status == 403
@@ -66,3 +70,21 @@ def test_an_evicted_session_is_forgotten_in_the_database_too(tmp_path):
         full.changed(f"{n}" * 32, "heavy-top", None, client=None, params={})
     after = directory(tmp_path, [], max_sessions=2)
     assert after.scene_of("0" * 32) is None and after.scene_of("2" * 32) == "heavy-top" and len(after) == 2
+
+
+def test_a_kept_session_of_a_scene_this_version_lacks_is_forgotten_and_a_malformed_row_is_left_out(tmp_path):
+    kept = directory(tmp_path, [])
+    kept.changed("g" * 32, "heavy-top", KEY, client=None, params={})
+    kept.changed("m" * 32, "heavy-top", KEY, client=None, params={})
+    with kept._store.database.transaction() as connection:
+        connection.execute(sa.update(sessions).where(sessions.c.session_id == "m" * 32).values(params=[1, 2]))
+
+    def no_such_scene(session_id, scene_id, params):
+        raise UnknownSceneError(scene_id)
+
+    after = SessionDirectory(store=kept._store, reopen=no_such_scene)
+    assert after.scene_of("m" * 32) is None  # not an object: not restored
+    after.reopen_kept("g" * 32)  # no 500 on every ask: forgotten, its page starts afresh
+    assert after.scene_of("g" * 32) is None
+    with kept._store.database.engine.connect() as connection:
+        assert connection.execute(sa.select(sessions.c.session_id)).scalars().all() == ["m" * 32]

@@ -19,7 +19,6 @@ def upgrade() -> None:
         "sessions",
         sa.Column("session_id", sa.String(128), primary_key=True),
         sa.Column("scene_id", sa.String(64), nullable=False),
-        sa.Column("client", sa.String(64), nullable=True),
         sa.Column("key_digest", sa.String(64), nullable=True),
         sa.Column("params", sa.JSON, nullable=False),
         sa.Column("used_at", sa.DateTime(timezone=True), nullable=False),
