@@ -199,6 +199,12 @@ def _soak(args: argparse.Namespace) -> int:
     return run_soak_command(parser.parse_args(args.bench_args), parser)
 
 
+def _restart(args: argparse.Namespace) -> int:
+    from app.bench.restart import main as run_restart
+
+    return run_restart(args.bench_args)
+
+
 #: Commands that parse their own options: name → (runner, help, help of the options). Each runner imports its tool
 #: (app.bench) only when it runs: nothing else of the app imports the tools.
 _OWN_OPTIONS = {
@@ -229,6 +235,11 @@ _OWN_OPTIONS = {
         _soak,
         "N viewers for M minutes, then all gone: resources back to baseline",
         "options (see dynlab soak --help)",
+    ),
+    "restart": (
+        _restart,
+        "dynlab serve restarted under a class: how long it waits, and that it loses nothing (docs/bench/restart.json)",
+        "options (see dynlab restart --help)",
     ),
 }
 
