@@ -180,7 +180,7 @@ def _one_restart(served: Served, room_id: str, before: dict, followers: list[Fol
     _wait(all_back, BACK_TIMEOUT_S)
     times = sorted(back_at.values())
     return {
-        "stop_s": stop_s,
+        "stop_s": None if stop_s is None else round(stop_s, 2),
         "health_s": round(health_s, 2),
         "state_s": None if state_wait is None else round(health_s + state_wait, 2),
         "lost_nothing": state_wait is not None,
@@ -269,6 +269,7 @@ def restart_svg(report: dict) -> str:
     bottom = top + row_h * len(rows)
     for tick in range(int(longest * 1.1) + 1):
         out.append(f'<text x="{x(tick):.1f}" y="{bottom + 16}" font-size="10" text-anchor="middle">{tick}</text>')
+    out.append(f'<text x="{right + 4}" y="{bottom + 16}" font-size="10">s</text>')
     for j, (_, colour, label) in enumerate(marks):
         out.append(f'<circle cx="{left + j * 120}" cy="{bottom + 36}" r="5" fill="{colour}"/>')
         out.append(f'<text x="{left + j * 120 + 9}" y="{bottom + 40}" font-size="11">{label}</text>')
