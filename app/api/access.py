@@ -158,6 +158,17 @@ class SessionDirectory:
         for kept in store.load(max_sessions) if store is not None else []:
             self._entries[kept.session_id] = SessionEntry(kept.scene_id, None, kept.key_hash, kept_params=kept.params)
 
+    def _known_locked(self, session_id: str) -> SessionEntry | None:
+        """The session's entry: in memory, else kept in the store (by another server sharing the database, whose
+        sessions this one takes over when a balancer sends their pages here), so its claim holds here too."""
+        entry = self._entries.get(session_id)
+        if entry is None and self._store is not None and not session_id.startswith(STAGE_PREFIX):
+            kept = self._store.load_one(session_id)
+            if kept is not None:
+                entry = SessionEntry(kept.scene_id, None, kept.key_hash, kept_params=kept.params)
+                self._entries[session_id] = entry
+        return entry
+
     def __len__(self) -> int:
         return len(self._entries)
 
@@ -173,7 +184,7 @@ class SessionDirectory:
                 "scene: only its instructor changes it, through the room",
             )
         with self._lock:
-            entry = self._entries.get(session_id)
+            entry = self._known_locked(session_id)
             if entry is None:
                 if not creating:
                     raise Refused(404, f"session {session_id!r} has no scene yet: set its parameters first")
@@ -208,7 +219,7 @@ class SessionDirectory:
         closed in the host)."""
         evicted: list[str] = []
         with self._lock:
-            entry = self._entries.get(session_id)
+            entry = self._known_locked(session_id)
             if entry is None:
                 entry = SessionEntry(scene_id, client)
                 self._entries[session_id] = entry
@@ -245,7 +256,7 @@ class SessionDirectory:
         its page or viewer asks for it in this run (nothing for any other session). Parameters this version refuses
         give way to the scene's defaults; a busy host's :class:`HostBusy` is raised, and the next ask tries again."""
         with self._lock:
-            entry = self._entries.get(session_id)
+            entry = self._known_locked(session_id)
             params = entry.kept_params if entry is not None else None
             if entry is None or params is None:
                 return
@@ -272,7 +283,7 @@ class SessionDirectory:
     def touched(self, session_id: str) -> None:
         """The session was used (a playback change): it is the last to be evicted."""
         with self._lock:
-            entry = self._entries.get(session_id)
+            entry = self._known_locked(session_id)
             if entry is not None:
                 self._touch_locked(session_id, entry)
 
@@ -295,12 +306,12 @@ class SessionDirectory:
 
     def is_claimed(self, session_id: str) -> bool:
         with self._lock:
-            entry = self._entries.get(session_id)
+            entry = self._known_locked(session_id)
             return entry is not None and entry.key_hash is not None
 
     def scene_of(self, session_id: str) -> str | None:
         with self._lock:
-            entry = self._entries.get(session_id)
+            entry = self._known_locked(session_id)
             return None if entry is None else entry.scene_id
 
     def sessions_of(self, client: str) -> int:
@@ -352,7 +363,7 @@ class SessionDirectory:
         with self._lock:
             if session_id.startswith(STAGE_PREFIX):
                 raise Refused(403, "a classroom room's shared scene is watched through the room (/room-viewer/…)")
-            entry = self._entries.get(session_id)
+            entry = self._known_locked(session_id)
             if entry is None:
                 raise Refused(404, "this scene has not been opened by its page yet (or was closed): reload the page")
             if entry.scene_id != scene_id:

@@ -65,22 +65,33 @@ class SqlSessionStore:
         except SQLAlchemyError as exc:
             log.error("the database did not forget unused sessions: %s", exc)
 
+    def load_one(self, session_id: str) -> KeptSession | None:
+        """One kept session (None if none is kept, or its row is not one this code wrote)."""
+        query = sa.select(sessions).where(sessions.c.session_id == session_id)
+        try:
+            with self.database.engine.connect() as connection:
+                row = connection.execute(query).mappings().first()
+        except SQLAlchemyError as exc:
+            log.error("the database did not answer for session %s: %s", session_id, exc)
+            return None
+        return None if row is None else _kept(row)
+
     def load(self, limit: int) -> list[KeptSession]:
         """The ``limit`` most recently used sessions, least recent first."""
         query = sa.select(sessions).order_by(sessions.c.used_at.desc()).limit(limit)
         with self.database.engine.connect() as connection:
             rows = list(connection.execute(query).mappings())
-        kept = []
-        for row in reversed(rows):
-            if not isinstance(row["params"], dict):  # not written by this code: left out, and said
-                log.warning("session %s: its kept parameters are not an object; it is not restored", row["session_id"])
-                continue
-            kept.append(
-                KeptSession(
-                    session_id=row["session_id"],
-                    scene_id=row["scene_id"],
-                    key_hash=bytes.fromhex(row["key_digest"]) if row["key_digest"] else None,
-                    params=dict(row["params"]),
-                )
-            )
-        return kept
+        return [kept for kept in map(_kept, reversed(rows)) if kept is not None]
+
+
+def _kept(row: Any) -> KeptSession | None:
+    """A session's row as kept; None (and said) for one this code did not write."""
+    if not isinstance(row["params"], dict):
+        log.warning("session %s: its kept parameters are not an object; it is not restored", row["session_id"])
+        return None
+    return KeptSession(
+        session_id=row["session_id"],
+        scene_id=row["scene_id"],
+        key_hash=bytes.fromhex(row["key_digest"]) if row["key_digest"] else None,
+        params=dict(row["params"]),
+    )

@@ -2,13 +2,16 @@
 
 from __future__ import annotations
 
+import logging
 import secrets
 import threading
 import time
 from typing import TYPE_CHECKING, Any
 
-from app.classroom.room import CODE_ALPHABET, CODE_LENGTH, Room, RoomError
+from app.classroom.room import CODE_ALPHABET, CODE_LENGTH, MAX_TYPED_CODE_LENGTH, Room, RoomError
 from app.settings import Settings
+
+log = logging.getLogger(__name__)
 
 if TYPE_CHECKING:
     from app.classroom.store import SqlRoomStore
@@ -37,6 +40,7 @@ class Rooms:
         self.max_rooms = max_rooms
         self.store = store
         self.keep_days = keep_days
+        self.join_base = join_base
         if store is not None:
             store.forget_unused(days=keep_days)
         kept = store.load(join_base=join_base, limit=max_rooms) if store is not None else []
@@ -79,9 +83,26 @@ class Rooms:
 
     def get(self, room_id: str) -> Room:
         with self._lock:
-            room = self._rooms.get(room_id)
+            room = self._rooms.get(room_id) or self._take_up_locked(room_id=room_id)
         if room is None:
             raise KeyError(f"no room {room_id!r} (it may have been closed)")
+        return room
+
+    def _take_up_locked(self, *, room_id: str | None = None, code: str | None = None) -> Room | None:
+        """A room kept in the store but not open here: one that made way for others (idle), or one another server
+        sharing the database kept, whose class a balancer now sends here. It opens here (its stage with its first
+        follower or change) if there is a place for it."""
+        if self.store is None:
+            return None
+        room = self.store.load_one(join_base=self.join_base, room_id=room_id, code=code)
+        if room is None or room.room_id in self._rooms:
+            return self._rooms.get(room.room_id) if room is not None else None
+        self._drop_idle()
+        if len(self._rooms) >= self.max_rooms:
+            log.warning("room %s is kept but %d rooms are open here: it stays closed", room.code, self.max_rooms)
+            return None
+        room.last_used_s = time.monotonic()
+        self._rooms[room.room_id] = room
         return room
 
     def explore_start(self, room_id: str, scene_id: str) -> dict[str, Any]:
@@ -103,6 +124,8 @@ class Rooms:
         wanted = code.strip().upper()
         with self._lock:
             room = next((r for r in self._rooms.values() if r.code == wanted), None)
+            if room is None and len(wanted) <= MAX_TYPED_CODE_LENGTH:
+                room = self._take_up_locked(code=wanted)
         if room is None:
             raise KeyError(f"no open room has the code {wanted!r}")
         return room

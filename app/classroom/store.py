@@ -96,16 +96,25 @@ class SqlRoomStore:
             log.info("forgot %d room(s) unused for %g days", len(old), days)
         return len(old)
 
+    def load_one(self, *, join_base: str, room_id: str | None = None, code: str | None = None) -> Room | None:
+        """The kept room with this id or code (None if none is kept)."""
+        where = rooms.c.room_id == room_id if room_id is not None else rooms.c.code == code
+        return next(iter(self._load(sa.select(rooms).where(where), join_base=join_base)), None)
+
     def load(self, *, join_base: str = "http://127.0.0.1:8000", limit: int | None = None) -> list[Room]:
         """The kept rooms (the ``limit`` most recently used), with their answers, written to this store again as they
         change; oldest first. Students join them at ``join_base``."""
+        recent = sa.select(rooms).order_by(rooms.c.used_at.desc()).limit(limit)
+        return list(reversed(self._load(recent, join_base=join_base)))
+
+    def _load(self, query: sa.Select[Any], *, join_base: str) -> list[Room]:
         with self.database.engine.connect() as connection:
-            kept_answers: dict[str, dict[str, dict[str, dict[str, Any]]]] = defaultdict(lambda: defaultdict(dict))
-            for row in connection.execute(sa.select(answers)).mappings():
-                kept_answers[row["room_id"]][row["poll_id"]][row["student_id"]] = dict(row)
             loaded = []
-            recent = sa.select(rooms).order_by(rooms.c.used_at.desc()).limit(limit)
-            for row in reversed(list(connection.execute(recent).mappings())):
+            for row in connection.execute(query).mappings():
+                kept_answers: dict[str, dict[str, dict[str, Any]]] = defaultdict(dict)
+                in_room = sa.select(answers).where(answers.c.room_id == row["room_id"])
+                for answer in connection.execute(in_room).mappings():
+                    kept_answers[answer["poll_id"]][answer["student_id"]] = dict(answer)
                 created = row["created_at"]
                 created = created if created.tzinfo else created.replace(tzinfo=UTC)
                 used = row["used_at"] if row["used_at"].tzinfo else row["used_at"].replace(tzinfo=UTC)
@@ -116,7 +125,7 @@ class SqlRoomStore:
                     used_at=used.timestamp(),
                     join_base=join_base,
                     record=row["record"],
-                    answers=kept_answers.get(row["room_id"], {}),
+                    answers=kept_answers,
                 )
                 room.store = self
                 loaded.append(room)

@@ -218,3 +218,32 @@ def test_a_write_the_database_refuses_is_kept_by_the_rooms_next_write(tmp_path, 
     with pytest.raises(StudentRemoved):
         after.student(made["ben"].token)
     assert after.poll(made["polls"][1]).results()["answers"] == 1  # Ada's; Ben's left with him
+
+
+def test_a_room_kept_by_another_server_or_made_way_for_is_taken_up_when_asked(tmp_path, catalogue):
+    """Two servers sharing one database (as behind a balancer with PostgreSQL): a room the first keeps opens on the
+    second when its class is sent there (by id, or by its code from the join page), whole; and a room that made way
+    for others on a full server opens again when asked, if there is a place."""
+    here = restarted(tmp_path)
+    there = restarted(tmp_path)  # started before the room existed
+    made = a_class(here, catalogue, BusyWhenTold())
+    room = made["room"]
+    taken = there.get(room.room_id)
+    assert there.by_code(room.code.lower()) is taken
+    assert taken.student_list() == [dict(s, connected=False) for s in room.student_list()]
+    assert taken.poll(made["polls"][0]).results() == room.poll(made["polls"][0]).results()
+    assert taken.student(made["ada"].token).student_id == made["ada"].student_id
+    with pytest.raises(KeyError):
+        there.get("0" * 16)
+    with pytest.raises(KeyError):
+        there.by_code("NOSUCH")
+
+    full = Rooms(store=SqlRoomStore(open_database(sqlite_url(tmp_path / "full"))), max_rooms=1)
+    first, _ = full.create(join_base="http://127.0.0.1:8000")
+    first.last_used_s -= 7 * 3600  # idle: it makes way
+    second, made_way = full.create(join_base="http://127.0.0.1:8000")
+    assert made_way == [first]
+    with pytest.raises(KeyError):  # no place while the second is in use
+        full.get(first.room_id)
+    second.last_used_s -= 7 * 3600
+    assert full.get(first.room_id).code == first.code

@@ -88,3 +88,18 @@ def test_a_kept_session_of_a_scene_this_version_lacks_is_forgotten_and_a_malform
     assert after.scene_of("g" * 32) is None
     with kept._store.database.engine.connect() as connection:
         assert connection.execute(sa.select(sessions.c.session_id)).scalars().all() == ["m" * 32]
+
+
+def test_a_session_another_server_claimed_is_claimed_here_too(tmp_path):
+    """Two servers sharing one database: a page's session claimed on the first, its page then sent to the second
+    (the first died), is refused to anyone without its key there, and opens there with its parameters."""
+    reopened: list = []
+    there = directory(tmp_path, reopened)  # started before the session existed
+    here = directory(tmp_path, [])
+    here.changed("s" * 32, "heavy-top", KEY, client="10.0.0.7", params={"spin_rad_s": 66.0})
+    with pytest.raises(Refused) as refused:
+        there.check_change("s" * 32, None, client="10.0.0.9")
+    assert refused.value.status == 403
+    there.reopen_kept("s" * 32)
+    assert reopened == [("s" * 32, "heavy-top", {"spin_rad_s": 66.0})]
+    there.check_change("n" * 32, None, client="10.0.0.9")  # a session nobody kept is new, as before
