@@ -4,17 +4,21 @@
 # tests/references/ and checks them (DYNLAB_REGENERATE_REFERENCES=1 rewrites them instead).
 #   - uv (from PyPI) for the project environment
 #   - Debian's Chromium for the real-browser tests (Playwright drives it; it never downloads a browser)
+#   - Debian's PostgreSQL for the database tests on PostgreSQL (each starts a throwaway cluster on loopback)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 python3 -m uv --version >/dev/null 2>&1 || python3 -m pip install --quiet uv
-if [ ! -x /usr/bin/chromium ]; then
-  echo "Installing Debian's chromium for the browser tests..."
+MISSING=""
+[ -x /usr/bin/chromium ] || MISSING="$MISSING chromium"
+ls /usr/lib/postgresql/*/bin/initdb >/dev/null 2>&1 || MISSING="$MISSING postgresql"
+if [ -n "$MISSING" ]; then
+  echo "Installing Debian's$MISSING for the tests..."
   SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
   $SUDO apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq chromium >/dev/null
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq $MISSING >/dev/null
 fi
 # Keep compiled bytecode (and pytest's rewritten test modules) in __pycache__ even where the environment says not to
 # write it: a run starts dozens of Python processes (served apps, their scene workers, bounded children), and each
 # would otherwise compile app/ again from source.
 unset PYTHONDONTWRITEBYTECODE
-exec python3 -m uv run --group test --group bench pytest -n 2 "$@"
+exec python3 -m uv run --group test --group bench --group postgres pytest -n 2 "$@"

@@ -148,6 +148,11 @@ def open_database(url: str, *, migrate_to: str = "head") -> Database:
     except (SQLAlchemyError, OSError) as exc:
         shown = sa.engine.make_url(url).render_as_string(hide_password=True)
         raise DatabaseUnusable(f"the database at {shown} cannot be used: {str(exc).splitlines()[0]}") from exc
+    except ImportError as exc:  # a database whose driver is not installed (PostgreSQL's is in the `postgres` group)
+        raise DatabaseUnusable(
+            f"no driver for {sa.engine.make_url(url).drivername}: {exc.name} is not installed (for PostgreSQL: "
+            "python3 -m uv run --group postgres dynlab serve)"
+        ) from exc
     return database
 
 

@@ -12,9 +12,9 @@ from app.api.access import Refused, SessionDirectory
 from app.api.kept_sessions import SqlSessionStore
 from app.scenes.host.host import UnknownSceneError
 from app.scenes.host.interface import HostBusy
-from app.storage.tables import sessions
 from app.storage import open_database
 from app.storage.database import sqlite_url
+from app.storage.tables import sessions
 
 KEY = "a-page-key-0123456789"
 
