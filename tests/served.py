@@ -22,6 +22,8 @@ from typing import Any
 
 import httpx
 
+from app.bench.load_client import ReconnectingViewer
+
 RESULTS = Path(__file__).resolve().parents[1] / "test-results"
 #: The instructor's secret the served apps of the tests are started with.
 INSTRUCTOR_KEY = "served-tests-instructor-key"
@@ -218,48 +220,10 @@ class ServedApp:
         self.stop()
 
 
-class Viewer:
-    """A browser's 3D viewer on a served app, in a thread: it connects to ``path`` (``/viewer/<scene>/<session>`` or
-    ``/room-viewer/<room>``) from ``address``, sends the first camera message (``camera``: position, look_at in m),
-    reads every frame, and reconnects half a second after a drop, as viser's client does, until :meth:`close`."""
+class Viewer(ReconnectingViewer):
+    """A browser's 3D viewer on a served app, in a thread (:class:`app.bench.load_client.ReconnectingViewer`): it
+    connects to ``path`` (``/viewer/<scene>/<session>`` or ``/room-viewer/<room>``) from ``address``, reads every frame,
+    and reconnects half a second after a drop, as viser's client does, until :meth:`close`."""
 
     def __init__(self, app: ServedApp, path: str, *, address: str = "127.0.0.1", camera: tuple | None = None) -> None:
-        import threading
-
-        self.url = app.url.replace("http://", "ws://") + path
-        self.address = address
-        self.camera = camera
-        self.frames = 0
-        self.connections = 0
-        self.last_frame_s = 0.0
-        self._stop = threading.Event()
-        self._thread = threading.Thread(target=self._run, name=f"viewer {path}", daemon=True)
-        self._thread.start()
-
-    def _run(self) -> None:
-        import viser
-        from websockets.sync.client import connect
-
-        from app.scenes.viser_boundary import viewer_camera_message
-
-        message = viewer_camera_message(**({"position": self.camera[0], "look_at": self.camera[1]} if self.camera else {}))
-        while not self._stop.is_set():
-            try:
-                with connect(self.url, subprotocols=[f"viser-v{viser.__version__}"], max_size=None, open_timeout=10,  # type: ignore[list-item]
-                             source_address=(self.address, 0)) as ws:  # fmt: skip
-                    self.connections += 1
-                    ws.send(message)
-                    while not self._stop.is_set():
-                        try:
-                            ws.recv(timeout=0.5)
-                        except TimeoutError:
-                            continue
-                        self.frames += 1
-                        self.last_frame_s = time.monotonic()
-            except Exception:
-                pass
-            self._stop.wait(0.5)
-
-    def close(self) -> None:
-        self._stop.set()
-        self._thread.join(timeout=10)
+        super().__init__(app.url, path, address=address, camera=camera)

@@ -437,3 +437,57 @@ async def probe_health(host: str, port: int, stop: asyncio.Event, into: HealthLa
         with contextlib.suppress(TimeoutError):
             async with asyncio.timeout(max(0.0, HEALTH_PERIOD_S - (time.monotonic() - started))):
                 await stop.wait()
+
+
+class ReconnectingViewer:
+    """A viewer that stays, in a thread: it connects to ``base_url`` + ``path`` (``/viewer/<scene>/<session>`` or
+    ``/room-viewer/<room>``) from ``address``, sends the first camera message (``camera``: position, look_at in m),
+    reads every frame, and reconnects half a second after a drop, as viser's client does, until :meth:`close`
+    (``frames``, ``connections`` and ``last_frame_s``, a monotonic time, say how it went)."""
+
+    def __init__(self, base_url: str, path: str, *, address: str = "127.0.0.1", camera: tuple | None = None) -> None:
+        import threading
+
+        self.url = base_url.replace("http://", "ws://") + path
+        self.address = address
+        self.camera = camera
+        self.frames = 0
+        self.connections = 0
+        self.last_frame_s = 0.0
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._run, name=f"viewer {path}", daemon=True)
+        self._thread.start()
+
+    def _run(self) -> None:
+        from websockets.sync.client import connect
+
+        from app.scenes.viser_boundary import viewer_camera_message
+
+        message = viewer_camera_message(
+            **({"position": self.camera[0], "look_at": self.camera[1]} if self.camera else {})
+        )
+        while not self._stop.is_set():
+            try:
+                with connect(
+                    self.url,
+                    subprotocols=[f"viser-v{viser.__version__}"],  # type: ignore[list-item]
+                    max_size=None,
+                    open_timeout=10,
+                    source_address=(self.address, 0),
+                ) as socket:
+                    self.connections += 1
+                    socket.send(message)
+                    while not self._stop.is_set():
+                        try:
+                            socket.recv(timeout=0.5)
+                        except TimeoutError:
+                            continue
+                        self.frames += 1
+                        self.last_frame_s = time.monotonic()
+            except Exception:
+                pass
+            self._stop.wait(0.5)
+
+    def close(self) -> None:
+        self._stop.set()
+        self._thread.join(timeout=10)

@@ -20,7 +20,6 @@ import statistics
 import subprocess
 import sys
 import tempfile
-import threading
 import time
 from collections.abc import Callable
 from html import escape
@@ -39,7 +38,7 @@ from app.bench.capacity import (
     utc_now,
     wait_for_health,
 )
-from app.bench.load_client import http_request, student_address
+from app.bench.load_client import ReconnectingViewer, http_request, student_address
 from app.classroom.roles import HEADER as INSTRUCTOR_HEADER
 
 REPORT = "restart.json"
@@ -51,52 +50,6 @@ MAX_RESTARTS = 10
 #: Longest wait for the class to be back after a restart (s); beyond it the restart is reported as failed.
 BACK_TIMEOUT_S = 90.0
 SCENE = "heavy-top"
-
-
-class Follower:
-    """A student's viewer of the room's scene from ``address``: connects, sends viser's first camera message, counts
-    frames, and reconnects half a second after any drop, until :meth:`close`."""
-
-    def __init__(self, base_url: str, room_id: str, address: str) -> None:
-        self.url = base_url.replace("http://", "ws://") + f"/room-viewer/{room_id}"
-        self.address = address
-        self.frames = 0
-        self.last_frame_s = 0.0
-        self._stop = threading.Event()
-        self._thread = threading.Thread(target=self._run, name=f"follower {address}", daemon=True)
-        self._thread.start()
-
-    def _run(self) -> None:
-        import viser
-        from websockets.sync.client import connect
-
-        from app.scenes.viser_boundary import viewer_camera_message
-
-        message = viewer_camera_message()
-        while not self._stop.is_set():
-            try:
-                with connect(
-                    self.url,
-                    subprotocols=[f"viser-v{viser.__version__}"],  # type: ignore[list-item]
-                    max_size=None,
-                    open_timeout=10,
-                    source_address=(self.address, 0),
-                ) as socket:
-                    socket.send(message)
-                    while not self._stop.is_set():
-                        try:
-                            socket.recv(timeout=0.5)
-                        except TimeoutError:
-                            continue
-                        self.frames += 1
-                        self.last_frame_s = time.monotonic()
-            except Exception:
-                pass
-            self._stop.wait(0.5)
-
-    def close(self) -> None:
-        self._stop.set()
-        self._thread.join(timeout=10)
 
 
 def _request(port: int, method: str, path: str, *, address: str = "127.0.0.1", **options: Any) -> Any:
@@ -153,7 +106,7 @@ def _wait(condition: Callable[[], bool], timeout_s: float) -> float | None:
     return None
 
 
-def _one_restart(served: Served, room_id: str, before: dict, followers: list[Follower]) -> dict:
+def _one_restart(served: Served, room_id: str, before: dict, followers: list[ReconnectingViewer]) -> dict:
     """Ctrl+C, start again, and the seconds from Ctrl+C until each part of the class is back."""
     port, students = served.port, before["students"]["joined"]
     stopped_at = time.monotonic()
@@ -198,7 +151,7 @@ def run_restarts(*, students: int, restarts: int, workers: int | None) -> dict:
         served.start()
         port, instructor = served.port, {INSTRUCTOR_HEADER: instructor_key}
         measured: list[dict] = []
-        followers: list[Follower] = []
+        followers: list[ReconnectingViewer] = []
         try:
             room = open_room(served.base_url, SCENE, instructor_key=instructor_key)
             room_id = room["room_id"]
@@ -209,7 +162,7 @@ def run_restarts(*, students: int, restarts: int, workers: int | None) -> dict:
                 joined = _request(port, "POST", "/api/rooms/join", address=address, body={"code": room["code"]})
                 _request(port, "POST", f"/api/rooms/{room_id}/polls/{poll['poll_id']}/answers", address=address,
                          headers={"X-Student-Token": joined["student_token"]}, body={"choice": index % 2})  # fmt: skip
-                followers.append(Follower(served.base_url, room_id, address))
+                followers.append(ReconnectingViewer(served.base_url, f"/room-viewer/{room_id}", address=address))
             before = _request(port, "GET", f"/api/rooms/{room_id}/state")
             if _wait(lambda: all(f.frames > 0 for f in followers), BACK_TIMEOUT_S) is None:
                 raise RuntimeError("the followers did not all receive frames before the first restart")

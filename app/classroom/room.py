@@ -160,15 +160,7 @@ class Room:
         and its polls without their answers (kept one row each)."""
         with self.lock:
             return {
-                "lesson_id": self.lesson_id,
-                "scene_id": self.scene_id,
-                "params": dict(self.params),
-                "playing": self.playing,
-                "time_scale": self.time_scale,
-                "mode": self.mode,
-                "revision": self.revision,
-                "reset_count": self.reset_count,
-                "explore_start": self.explore_start,
+                **self._shown(),
                 "students": [
                     {
                         "student_id": s.student_id,
@@ -249,6 +241,21 @@ class Room:
                 self._put_stage_back(host, scene_changed=True)  # sets it again if the worker refused
 
     # -- state ---------------------------------------------------------------------
+    def _shown(self) -> dict[str, Any]:
+        """What the room shows its class (its state's and its record's common part): lesson, scene, parameters, play
+        state, follow or explore, where explorers start, and the revision that counts changes."""
+        return {
+            "lesson_id": self.lesson_id,
+            "scene_id": self.scene_id,
+            "params": dict(self.params),
+            "playing": self.playing,
+            "time_scale": self.time_scale,
+            "mode": self.mode,
+            "revision": self.revision,
+            "reset_count": self.reset_count,
+            "explore_start": self.explore_start,
+        }
+
     def state(self) -> dict[str, Any]:
         """The room's state as every page reads it (``GET /api/rooms/{room_id}/state``)."""
         with self.lock:
@@ -258,15 +265,7 @@ class Room:
                 "room_id": self.room_id,
                 "code": self.code,
                 "join_url": self.join_url,
-                "lesson_id": self.lesson_id,
-                "scene_id": self.scene_id,
-                "params": dict(self.params),
-                "playing": self.playing,
-                "time_scale": self.time_scale,
-                "mode": self.mode,
-                "revision": self.revision,
-                "reset_count": self.reset_count,
-                "explore_start": self.explore_start,
+                **self._shown(),
                 "students": {
                     "joined": len(self.students),
                     "connected": sum(1 for s in self.students.values() if s.sockets),
