@@ -1,5 +1,6 @@
 """Command line: ``dynlab serve [--host H] [--port P]``, ``dynlab bench [--quick] [--case C]``,
 ``dynlab load [--students 10,30] [--scene ID] [--room | --attack]``, ``dynlab soak [--students N] [--minutes M]``,
+``dynlab restart [--students N] [--restarts K]``,
 ``dynlab derivations [--no-proofs]``, ``dynlab constrained [--quick] [--case C]``, and for the kept data
 ``dynlab rooms [delete ID|CODE]``, ``dynlab export [ID|CODE] [--out DIR]``, ``dynlab instructor-key --rotate``."""
 
