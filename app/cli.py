@@ -16,6 +16,7 @@ import signal
 import sys
 from collections.abc import Callable
 from dataclasses import replace
+from datetime import UTC
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -313,7 +314,8 @@ def _rooms(args: argparse.Namespace) -> int:
     print(f"{len(kept)} room{'s' if len(kept) != 1 else ''} kept in {store.database.url}:")
     print(f"{'code':<8}{'room id':<18}{'lesson':<34}{'students':>9}{'polls':>6}{'answers':>8}  last used (UTC)")
     for r in kept:
-        used = r["used_at"].strftime("%Y-%m-%d %H:%M")
+        used_at = r["used_at"]  # naive UTC from SQLite, aware from PostgreSQL
+        used = (used_at.astimezone(UTC) if used_at.tzinfo else used_at).strftime("%Y-%m-%d %H:%M")
         print(
             f"{r['code']:<8}{r['room_id']:<18}{(r['lesson_id'] or '-'):<34}{r['students']:>9}{r['polls']:>6}"
             f"{r['answers']:>8}  {used}"

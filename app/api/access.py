@@ -245,9 +245,8 @@ class SessionDirectory:
             if entry.key_hash is None and key is not None:
                 entry.key_hash = _hash(key)
             self._touch_locked(session_id, entry)
-            kept = KeptSession(session_id, scene_id, entry.key_hash, dict(params or {}))
-        if self._store is not None and params is not None:
-            self._store.save(kept)
+            if self._store is not None and params is not None:  # in the lock: two changes are kept in their order
+                self._store.save(KeptSession(session_id, scene_id, entry.key_hash, dict(params)))
         for old in evicted:
             self._close(old)
 
@@ -262,19 +261,20 @@ class SessionDirectory:
                 return
             entry.kept_params = None
         try:
-            self._reopen(session_id, entry.scene_id, params)
+            try:
+                self._reopen(session_id, entry.scene_id, params)
+            except ValueError as exc:
+                log.warning(
+                    "session %s: its kept parameters were refused (%s); it opens with the defaults", session_id, exc
+                )
+                self._reopen(session_id, entry.scene_id, {})
         except KeyError:  # a scene this version no longer has: the session is forgotten, its page starts afresh
             log.warning("session %s: its kept scene %r no longer exists; it is forgotten", session_id, entry.scene_id)
             with self._lock:
                 if self._entries.get(session_id) is entry:
                     self._forget_locked(session_id)
             return
-        except ValueError as exc:
-            log.warning(
-                "session %s: its kept parameters were refused (%s); it opens with the defaults", session_id, exc
-            )
-            self._reopen(session_id, entry.scene_id, {})
-        except Exception:
+        except Exception:  # a busy host (or defaults it refused too): the next ask tries again with the kept ones
             with self._lock:
                 if entry.kept_params is None:
                     entry.kept_params = params

@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING, Any
 
 from app.classroom.room import CODE_ALPHABET, CODE_LENGTH, MAX_TYPED_CODE_LENGTH, Room, RoomError
 from app.settings import Settings
+from app.storage.database import StoreUnavailable
 
 log = logging.getLogger(__name__)
 
@@ -41,6 +42,8 @@ class Rooms:
         self.store = store
         self.keep_days = keep_days
         self.join_base = join_base
+        #: Rooms closed in this run: never taken up from the database again, whatever it still holds.
+        self._closed: set[str] = set()
         if store is not None:
             store.forget_unused(days=keep_days)
         kept = store.load(join_base=join_base, limit=max_rooms) if store is not None else []
@@ -50,7 +53,10 @@ class Rooms:
     def create(self, *, join_base: str) -> tuple[Room, list[Room]]:
         """A new room, and the idle rooms closed to make space for it (their stages are the caller's to close)."""
         if self.store is not None:
-            self.store.forget_unused(days=self.keep_days)
+            try:
+                self.store.forget_unused(days=self.keep_days)
+            except StoreUnavailable as exc:  # housekeeping: the next room's creation tries again
+                log.warning("unused rooms not forgotten this time: %s", exc)
         with self._lock:
             closed = self._drop_idle()
             if len(self._rooms) >= self.max_rooms:
@@ -66,7 +72,7 @@ class Rooms:
             room_id = secrets.token_hex(ROOM_ID_HEX_DIGITS // 2)
             room = Room(room_id=room_id, code=code, join_url=f"{join_base.rstrip('/')}/join/{code}", store=self.store)
             if self.store is not None:
-                self.store.save(room)
+                self.store.insert(room)
             self._rooms[room_id] = room
             return room, closed
 
@@ -95,8 +101,8 @@ class Rooms:
         if self.store is None:
             return None
         room = self.store.load_one(join_base=self.join_base, room_id=room_id, code=code)
-        if room is None or room.room_id in self._rooms:
-            return self._rooms.get(room.room_id) if room is not None else None
+        if room is None or room.room_id in self._closed:
+            return None
         self._drop_idle()
         if len(self._rooms) >= self.max_rooms:
             log.warning("room %s is kept but %d rooms are open here: it stays closed", room.code, self.max_rooms)
@@ -135,11 +141,16 @@ class Rooms:
         are refused, and nothing of the room is written again)."""
         with self._lock:
             room = self._rooms.pop(room_id, None)
+            if room is not None:
+                self._closed.add(room_id)  # never taken up again in this run, even if its deletion fails
         if room is not None:
             with room.lock:
                 room.closed = True
                 if self.store is not None:
-                    self.store.delete(room_id)
+                    try:
+                        self.store.delete(room_id)
+                    except StoreUnavailable as exc:  # closed here; the database keeps it until it answers again
+                        log.error("room %s is closed but still kept in the database: %s", room.code, exc)
         return room
 
     def all(self) -> list[Room]:

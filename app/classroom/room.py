@@ -56,7 +56,7 @@ class RoomMovedOn(RoomError):
     """A change meant for a lesson or scene the room no longer shows (a stale instructor tab); nothing changed."""
 
 
-class RoomClosed(RoomMovedOn):
+class RoomAlreadyClosed(RoomMovedOn):
     """A change to a room its instructor has closed meanwhile (answered 409); nothing changed."""
 
 
@@ -282,7 +282,7 @@ class Room:
             raise RoomError(unknown[0], f"{unknown[0]}: not a room field (fields: {', '.join(STATE_FIELDS)})")
         with self.lock:
             if self.closed:
-                raise RoomClosed("room", f"room {self.code} was closed by its instructor; nothing changed")
+                raise RoomAlreadyClosed("room", f"room {self.code} was closed by its instructor; nothing changed")
             plan = self._plan(raw, catalogue=catalogue, host=host)
             self._apply(plan, host=host)
             self.revision += 1
@@ -302,7 +302,7 @@ class Room:
             self.store.save(self, withdrawn_student=withdrawn_student)
             for poll_id, student_id in sorted(self._unsaved_answers):
                 self.store.save_answer(self, poll_id, student_id)
-            self._unsaved_answers.clear()
+                self._unsaved_answers.discard((poll_id, student_id))
         except StoreUnavailable as exc:
             log.error("room %s: not kept this time (%s); its next change writes it again", self.code, exc)
 
@@ -501,12 +501,14 @@ class Room:
                 raise StudentRemoved(f"the instructor removed this device from room {self.code}")
             known = self.student_of_device(device)
             if known is not None:
+                changed = known.token is None or bool(name and name != known.name)
                 if known.token is None:  # kept from an earlier run, which gave the token: a new one, beside it
                     known.token = secrets.token_urlsafe(18)
                     self._by_token[digest(known.token)] = known.student_id
                 if name:
                     known.name = name
-                self._keep()
+                if changed:
+                    self._keep()
                 return known
             if len(self.students) >= MAX_STUDENTS:
                 raise RoomError("code", f"this room is full ({MAX_STUDENTS} students)")

@@ -43,23 +43,27 @@ class SqlRoomStore:
             log.error("the database did not keep %s: %s", what, exc)
             raise StoreUnavailable(f"the server could not keep {what} just now; try again in a moment") from exc
 
+    def insert(self, room: Room) -> None:
+        """Keep a new room."""
+        with self._writing(f"room {room.code}") as connection:
+            connection.execute(
+                sa.insert(rooms).values(
+                    room_id=room.room_id,
+                    code=room.code,
+                    created_at=_utc(room.created_at),
+                    used_at=datetime.now(UTC),
+                    record=room.record(),
+                )
+            )
+
     def save(self, room: Room, *, withdrawn_student: str | None = None) -> None:
+        """Keep a kept room as it is now (a room deleted meanwhile stays deleted: only :meth:`insert` adds one)."""
         record = room.record()
         with self._writing(f"room {room.code}") as connection:
             now = datetime.now(UTC)
-            updated = connection.execute(
+            connection.execute(
                 sa.update(rooms).where(rooms.c.room_id == room.room_id).values(used_at=now, record=record)
             )
-            if updated.rowcount == 0:
-                connection.execute(
-                    sa.insert(rooms).values(
-                        room_id=room.room_id,
-                        code=room.code,
-                        created_at=_utc(room.created_at),
-                        used_at=now,
-                        record=record,
-                    )
-                )
             if withdrawn_student is not None:
                 connection.execute(
                     sa.delete(answers).where(
@@ -108,6 +112,13 @@ class SqlRoomStore:
         return list(reversed(self._load(recent, join_base=join_base)))
 
     def _load(self, query: sa.Select[Any], *, join_base: str) -> list[Room]:
+        try:
+            return self._load_from(query, join_base=join_base)
+        except SQLAlchemyError as exc:
+            log.error("the database did not answer for rooms: %s", exc)
+            raise StoreUnavailable("the server could not read its rooms just now; try again in a moment") from exc
+
+    def _load_from(self, query: sa.Select[Any], *, join_base: str) -> list[Room]:
         with self.database.engine.connect() as connection:
             loaded = []
             for row in connection.execute(query).mappings():

@@ -12,7 +12,7 @@ import pytest
 import sqlalchemy as sa
 
 from app.classroom.registry import Rooms
-from app.classroom.room import RoomClosed, StudentRemoved, digest
+from app.classroom.room import RoomAlreadyClosed, StudentRemoved, digest
 from app.classroom.store import SqlRoomStore
 from app.storage import open_database
 from app.storage.database import StoreUnavailable, sqlite_url
@@ -191,7 +191,7 @@ def test_a_change_racing_the_closing_of_its_room_is_refused_and_the_room_stays_f
     made = a_class(rooms, catalogue, BusyWhenTold())
     room = made["room"]
     rooms.close(room.room_id)
-    with pytest.raises(RoomClosed):
+    with pytest.raises(RoomAlreadyClosed):
         room.change({"params": {"mu": 0.2}}, catalogue=catalogue, host=BusyWhenTold())
     room.answer(made["polls"][1], made["ada"].token, {"value": 3.0})  # a late answer: harmless, and not kept
     room.join("Late", device="device-late")
@@ -247,3 +247,24 @@ def test_a_room_kept_by_another_server_or_made_way_for_is_taken_up_when_asked(tm
         full.get(first.room_id)
     second.last_used_s -= 7 * 3600
     assert full.get(first.room_id).code == first.code
+
+
+def test_a_closed_room_is_never_taken_up_or_written_back_even_if_its_deletion_failed(tmp_path, catalogue):
+    rooms = restarted(tmp_path)
+    made = a_class(rooms, catalogue, BusyWhenTold())
+    room, store = made["room"], rooms.store
+    real_delete = store.delete
+
+    def refuse(room_id):
+        raise StoreUnavailable("the database is locked")
+
+    store.delete = refuse
+    assert rooms.close(room.room_id) is room  # closed here all the same; the failure is logged
+    store.delete = real_delete
+    with pytest.raises(KeyError):
+        rooms.get(room.room_id)  # the database still holds it: not taken up again in this run
+    with pytest.raises(KeyError):
+        rooms.by_code(room.code)
+    store.delete(room.room_id)
+    store.save(room)  # a save racing the deletion: only insert adds a room
+    assert store.listing() == []

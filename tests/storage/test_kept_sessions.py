@@ -103,3 +103,21 @@ def test_a_session_another_server_claimed_is_claimed_here_too(tmp_path):
     there.reopen_kept("s" * 32)
     assert reopened == [("s" * 32, "heavy-top", {"spin_rad_s": 66.0})]
     there.check_change("n" * 32, None, client="10.0.0.9")  # a session nobody kept is new, as before
+
+
+def test_kept_parameters_survive_a_busy_host_after_their_refusal(tmp_path):
+    directory(tmp_path, []).changed("s" * 32, "heavy-top", KEY, client=None, params={"spin_rad_s": 66.0})
+    asked: list = []
+
+    def refuse_then_busy(session_id, scene_id, params):
+        asked.append(params)
+        if params:
+            raise ValueError("spin_rad_s: out of range")
+        raise HostBusy("scene worker 0 is restarting")
+
+    after = SessionDirectory(store=directory(tmp_path, [])._store, reopen=refuse_then_busy)
+    with pytest.raises(HostBusy):
+        after.reopen_kept("s" * 32)
+    with pytest.raises(HostBusy):
+        after.reopen_kept("s" * 32)  # asked again, with the kept parameters first
+    assert asked == [{"spin_rad_s": 66.0}, {}, {"spin_rad_s": 66.0}, {}]
