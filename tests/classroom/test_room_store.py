@@ -37,7 +37,11 @@ def a_class(rooms: Rooms, catalogue, host) -> dict:
     """A room in use: a scene with changed parameters, paused, exploring; three students (one named, one removed);
     a revealed choice poll and an open number poll, with answers."""
     room, _ = rooms.create(join_base="http://lab.example:8000")
-    room.change({"lesson_id": FRICTION_LESSON, "scene_id": "sliding-bar-friction", "params": {"mu": 0.45}}, catalogue=catalogue, host=host)
+    room.change(
+        {"lesson_id": FRICTION_LESSON, "scene_id": "sliding-bar-friction", "params": {"mu": 0.45}},
+        catalogue=catalogue,
+        host=host,
+    )
     room.change({"playing": False, "time_scale": 0.5, "mode": "explore"}, catalogue=catalogue, host=host)
     ada = room.join("Ada", device="device-of-ada")
     ben = room.join("", device="device-of-ben")
