@@ -40,6 +40,7 @@ from app.api.rate_limit import client_address
 from app.classroom.registry import ROOM_ID_PATTERN
 from app.scenes.host.interface import HostBusy
 from app.scenes.viser_boundary import viewer_camera_message
+from app.storage.database import StoreUnavailable
 from app.web.relay import UPSTREAM_CLOSE_TIMEOUT_S, close_refused, viser_protocol
 
 log = logging.getLogger(__name__)
@@ -226,10 +227,13 @@ async def room_viewer(websocket: WebSocket, room_id: str) -> None:
     if not ROOM_ID.match(room_id):
         await websocket.close(code=1008, reason="malformed room id")
         return
-    try:
-        room = app.state.rooms.get(room_id)
+    try:  # off the event loop: a room not open here is looked up in the database
+        room = await run_in_threadpool(app.state.rooms.get, room_id)
     except KeyError:
         await websocket.close(code=1008, reason="no open room has this id")
+        return
+    except StoreUnavailable:
+        await websocket.close(code=1013, reason="the server could not read its rooms just now: try again")
         return
     protocol = await viser_protocol(websocket)
     if protocol is None:

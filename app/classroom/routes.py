@@ -56,6 +56,7 @@ from app.classroom.schemas import (
 )
 from app.scenes.host.interface import HostBusy
 from app.settings import Settings
+from app.storage.database import StoreUnavailable
 
 router = APIRouter(prefix="/api", tags=["rooms"])
 
@@ -534,10 +535,13 @@ async def room_socket(websocket: WebSocket, room_id: str) -> None:
     """Every change to the room as it happens, the room's readout twice a second; students say hello and whether
     they follow; the instructor may send the actions of the instructor-only routes (a student's are refused, 403)."""
     app = websocket.app
-    try:
-        room = app.state.rooms.get(room_id)
+    try:  # off the event loop: a room not open here is looked up in the database
+        room = await run_in_threadpool(app.state.rooms.get, room_id)
     except KeyError:
         await websocket.close(code=1008, reason="no open room has this id")
+        return
+    except StoreUnavailable:
+        await websocket.close(code=1013, reason="the server could not read its rooms just now: try again")
         return
     hub: RoomHub = app.state.room_hub
     await websocket.accept()

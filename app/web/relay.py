@@ -69,6 +69,7 @@ async def viewer_relay(
     if protocol is None:
         return
     client = client_address(websocket.scope, trust_forwarded_for=websocket.app.state.settings.trust_forwarded_for)
+    await run_in_threadpool(sessions.scene_of, session_id)  # a session kept in the database is read in, off the loop
     try:
         with sessions.viewer(session_id, scene_id, client=client):
             # A session kept from the server's last run opens in the scene host first (a page reconnecting after a
