@@ -8,7 +8,14 @@ import threading
 import time
 from typing import TYPE_CHECKING, Any
 
-from app.classroom.room import CODE_ALPHABET, CODE_LENGTH, MAX_TYPED_CODE_LENGTH, Room, RoomError
+from app.classroom.room import (
+    CODE_ALPHABET,
+    CODE_LENGTH,
+    DEFAULT_JOIN_BASE,
+    MAX_TYPED_CODE_LENGTH,
+    Room,
+    RoomError,
+)
 from app.settings import Settings
 from app.storage.database import StoreUnavailable
 
@@ -36,7 +43,7 @@ class Rooms:
         max_rooms: int = MAX_ROOMS,
         store: SqlRoomStore | None = None,
         keep_days: float = Settings.keep_rooms_days,
-        join_base: str = "http://127.0.0.1:8000",
+        join_base: str = DEFAULT_JOIN_BASE,
     ) -> None:
         self.max_rooms = max_rooms
         self.store = store

@@ -41,6 +41,8 @@ STATE_FIELDS = ("lesson_id", "scene_id", "params", "playing", "time_scale", "mod
 #: Students one room admits (a lecture hall's worth; a device joining again is the same student and takes no seat).
 MAX_STUDENTS = 500
 MAX_NAME_LENGTH = 40
+#: The address students join at when no other is known (``dynlab serve``'s default address).
+DEFAULT_JOIN_BASE = "http://127.0.0.1:8000"
 
 
 class RoomError(ValueError):

@@ -17,7 +17,7 @@ from typing import Any
 import sqlalchemy as sa
 from sqlalchemy.exc import SQLAlchemyError
 
-from app.classroom.room import Room
+from app.classroom.room import DEFAULT_JOIN_BASE, Room
 from app.storage.database import Database, StoreUnavailable
 from app.storage.tables import answers, rooms
 
@@ -105,7 +105,7 @@ class SqlRoomStore:
         where = rooms.c.room_id == room_id if room_id is not None else rooms.c.code == code
         return next(iter(self._load(sa.select(rooms).where(where), join_base=join_base)), None)
 
-    def load(self, *, join_base: str = "http://127.0.0.1:8000", limit: int | None = None) -> list[Room]:
+    def load(self, *, join_base: str = DEFAULT_JOIN_BASE, limit: int | None = None) -> list[Room]:
         """The kept rooms (the ``limit`` most recently used), with their answers, written to this store again as they
         change; oldest first. Students join them at ``join_base``."""
         recent = sa.select(rooms).order_by(rooms.c.used_at.desc()).limit(limit)

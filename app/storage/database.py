@@ -101,9 +101,6 @@ class Database:
         with self.engine.connect() as connection:
             return MigrationContext.configure(connection).get_current_revision()
 
-    def close(self) -> None:
-        self.engine.dispose()
-
 
 def _alembic_config(connection: sa.Connection) -> Config:
     config = Config()
