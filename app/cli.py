@@ -1,6 +1,6 @@
 """Command line: ``dynlab serve [--host H] [--port P]``, ``dynlab bench [--quick] [--case C]``,
 ``dynlab load [--students 10,30] [--scene ID] [--room | --attack]``, ``dynlab soak [--students N] [--minutes M]``,
-``dynlab restart [--students N] [--restarts K]``,
+``dynlab restart [--students N] [--restarts K]``, ``dynlab scale-out [--students N] [--changes K]``,
 ``dynlab derivations [--no-proofs]``, ``dynlab constrained [--quick] [--case C]``, and for the kept data
 ``dynlab rooms [delete ID|CODE]``, ``dynlab export [ID|CODE] [--out DIR]``, ``dynlab instructor-key --rotate``."""
 
@@ -207,6 +207,12 @@ def _restart(args: argparse.Namespace) -> int:
     return run_restart(args.bench_args)
 
 
+def _scale_out(args: argparse.Namespace) -> int:
+    from app.bench.scale_out import main as run_scale_out
+
+    return run_scale_out(args.bench_args)
+
+
 #: Commands that parse their own options: name → (runner, help, help of the options). Each runner imports its tool
 #: (app.bench) only when it runs: nothing else of the app imports the tools.
 _OWN_OPTIONS = {
@@ -242,6 +248,12 @@ _OWN_OPTIONS = {
         _restart,
         "dynlab serve restarted under a class: how long it waits, and that it loses nothing (docs/bench/restart.json)",
         "options (see dynlab restart --help)",
+    ),
+    "scale-out": (
+        _scale_out,
+        "one class on two dynlab serve behind HAProxy on PostgreSQL, on loopback: cross-server follow latency and "
+        "failover time (docs/bench/scale_out.json)",
+        "options (see dynlab scale-out --help)",
     ),
 }
 

@@ -25,6 +25,7 @@ from app.classroom.ready_questions import DEFAULT_READY_QUESTIONS, load_ready_qu
 from app.classroom.registry import Rooms
 from app.classroom.roles import InstructorKey, kept_instructor_secret
 from app.classroom.store import SqlRoomStore
+from app.classroom.sync import ClassSync
 from app.course import load_catalogue
 from app.physics.core.bounded import stop_all_work
 from app.scenes import SCENES
@@ -32,6 +33,7 @@ from app.scenes.host.host import SceneHost
 from app.scenes.host.pool import WorkerPool
 from app.settings import Settings
 from app.storage import Database, open_database
+from app.storage.changes import ChangeListener
 from app.web import guard, pages, relay, viewer_client
 from app.web.page_config import add_page_config_section
 from app.web.static_files import STATIC_DIR
@@ -60,10 +62,13 @@ def create_app(settings: Settings | None = None) -> FastAPI:
         app.state.scene_host = host
         for room in app.state.rooms.all():  # rooms kept from the last run: their scenes as they were
             room.put_stage_back(host)
+        changes = _listen_to_other_servers(app, database)
         viewer_client.unpacked_client()  # unpacked (0.3 s) before a viewer asks for it, not while it waits
         try:
             yield
         finally:
+            if changes is not None:
+                changes.stop()
             stop_all_work()  # a derivation in flight ends now, not at its 20 s bound
             await room_relay.close_streams(app)
             host.stop()
@@ -98,6 +103,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
         store=SqlRoomStore(database) if database is not None else None,
         keep_days=settings.keep_rooms_days,
         join_base=settings.public_url or f"http://{settings.host}:{settings.port}",  # kept rooms' join links
+        open_kept=database is None or not database.shared,  # servers sharing one take rooms up as classes arrive
     )
     app.state.join_limits = JoinLimits(settings)
     app.state.room_hub = RoomHub(lambda: app.state.scene_host)
@@ -127,6 +133,17 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     _offline_docs(app)
     app.mount("/static", StaticFiles(directory=STATIC_DIR), name="static")
     return app
+
+
+def _listen_to_other_servers(app: FastAPI, database: Database | None) -> ChangeListener | None:
+    """On a database several servers share (PostgreSQL), what the others change reaches this one's rooms and page
+    sessions (app.classroom.sync); None on a database only this server uses."""
+    if database is None or not database.shared:
+        return None
+    sync = ClassSync(app)
+    listener = ChangeListener(database, on_change=sync.on_change, on_missed=sync.on_missed)
+    listener.start()
+    return listener
 
 
 def _kept_sessions(database: Database | None, *, keep_days: float) -> SqlSessionStore | None:

@@ -280,6 +280,29 @@ class SessionDirectory:
                     entry.kept_params = params
             raise
 
+    def changed_elsewhere(self, session_id: str) -> None:
+        """Another server sharing the database changed this session (a balancer sent its page there): if it is open
+        here too, it takes that server's scene, parameters and claim, and its scene here shows them now; a session
+        that server forgot is forgotten here."""
+        if self._store is None:
+            return
+        with self._lock:
+            entry = self._entries.get(session_id)
+            if entry is None:
+                return
+            kept = self._store.load_one(session_id)
+            if kept is None:
+                self._forget_locked(session_id, from_store=False)
+            else:
+                entry.scene_id, entry.key_hash, entry.kept_params = kept.scene_id, kept.key_hash, dict(kept.params)
+        if kept is None:
+            self._close(session_id)
+            return
+        try:
+            self.reopen_kept(session_id)
+        except Exception as exc:  # a busy host: the page's next ask opens it with the kept parameters
+            log.info("session %s: not brought to another server's change yet (%s)", session_id, exc)
+
     def touched(self, session_id: str) -> None:
         """The session was used (a playback change): it is the last to be evicted."""
         with self._lock:
@@ -292,9 +315,9 @@ class SessionDirectory:
         if entry.client is not None and session_id in self._by_client.get(entry.client, {}):
             self._by_client[entry.client].move_to_end(session_id)
 
-    def _forget_locked(self, session_id: str) -> str:
+    def _forget_locked(self, session_id: str, *, from_store: bool = True) -> str:
         entry = self._entries.pop(session_id)
-        if self._store is not None:
+        if self._store is not None and from_store:
             self._store.delete(session_id)
         if entry.client is not None:
             owned = self._by_client.get(entry.client)

@@ -46,6 +46,7 @@ class SqlSessionStore:
                 where = sessions.c.session_id == kept.session_id
                 if connection.execute(sa.update(sessions).where(where).values(**values)).rowcount == 0:
                     connection.execute(sa.insert(sessions).values(session_id=kept.session_id, **values))
+                self.database.announce(connection, "session", kept.session_id)
         except SQLAlchemyError as exc:
             log.error("the database did not keep session %s: %s", kept.session_id, exc)
 
@@ -53,6 +54,7 @@ class SqlSessionStore:
         try:
             with self.database.transaction() as connection:
                 connection.execute(sa.delete(sessions).where(sessions.c.session_id == session_id))
+                self.database.announce(connection, "session", session_id)
         except SQLAlchemyError as exc:
             log.error("the database did not forget session %s: %s", session_id, exc)
 

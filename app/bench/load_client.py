@@ -105,6 +105,8 @@ class HttpAnswer:
     elapsed_ms: float
     #: Why there was no answer ("timeout", "ConnectionRefusedError", …); None when there was one.
     failure: str | None = None
+    #: The answer's headers, names in lower case.
+    headers: Mapping[str, str] = field(default_factory=dict)
 
     @property
     def label(self) -> str:
@@ -161,6 +163,7 @@ async def http_request(
     lines += [f"{name}: {value}" for name, value in (headers or {}).items()]
     writer = None
     status, kept, failure = None, b"", None
+    answer_headers: dict[str, str] = {}
     try:
         async with asyncio.timeout(timeout_s):
             reader, writer = await asyncio.open_connection(
@@ -170,6 +173,10 @@ async def http_request(
             await writer.drain()
             head = await reader.readuntil(b"\r\n\r\n")
             status = int(head.split(b" ", 2)[1])
+            for line in head.decode("latin-1").split("\r\n")[1:]:
+                name, _, value = line.partition(":")
+                if name:
+                    answer_headers[name.strip().lower()] = value.strip()
             while chunk := await reader.read(64 * 1024):  # to the end: the answer's time includes its body
                 if len(kept) < KEPT_BODY_BYTES:
                     kept += chunk[: KEPT_BODY_BYTES - len(kept)]
@@ -188,7 +195,8 @@ async def http_request(
     if failure is not None and status is not None:
         failure = f"{status}, then {failure}"  # the status came, the body did not finish
         status = None
-    return HttpAnswer(status=status, body=kept, elapsed_ms=1e3 * (time.perf_counter() - started), failure=failure)
+    elapsed_ms = 1e3 * (time.perf_counter() - started)
+    return HttpAnswer(status=status, body=kept, elapsed_ms=elapsed_ms, failure=failure, headers=answer_headers)
 
 
 def viser_messages_in_frame(data: bytes) -> int:
@@ -445,10 +453,20 @@ class ReconnectingViewer:
     reads every frame, and reconnects half a second after a drop, as viser's client does, until :meth:`close`
     (``frames``, ``connections`` and ``last_frame_s``, a monotonic time, say how it went)."""
 
-    def __init__(self, base_url: str, path: str, *, address: str = "127.0.0.1", camera: tuple | None = None) -> None:
+    def __init__(
+        self,
+        base_url: str,
+        path: str,
+        *,
+        address: str = "127.0.0.1",
+        camera: tuple | None = None,
+        reconnect_base_url: str | None = None,
+    ) -> None:
         import threading
 
         self.url = base_url.replace("http://", "ws://") + path
+        #: Where it reconnects after a drop (a balancer in front of the server it first reached); else the same.
+        self.reconnect_url = (reconnect_base_url or base_url).replace("http://", "ws://") + path
         self.address = address
         self.camera = camera
         self.frames = 0
@@ -469,7 +487,7 @@ class ReconnectingViewer:
         while not self._stop.is_set():
             try:
                 with connect(
-                    self.url,
+                    self.url if self.connections == 0 else self.reconnect_url,
                     subprotocols=[f"viser-v{viser.__version__}"],  # type: ignore[list-item]
                     max_size=None,
                     open_timeout=10,

@@ -34,6 +34,8 @@ log = logging.getLogger(__name__)
 QUEUE_LIMIT = 64
 #: Seconds between readout and presence messages.
 PUMP_PERIOD_S = 0.5
+#: The last message a removed student's page gets before its socket closes.
+REMOVED_MESSAGE = {"type": "removed", "detail": "The instructor removed you from this room."}
 
 
 def finite_json(message: Any) -> str:

@@ -338,13 +338,16 @@ class Poll:
         )
         poll._answered_ever = record["answered_ever"]
         for student_id, kept in answers.items():
-            answered_at = kept["answered_at"]
-            if answered_at.tzinfo is None:  # SQLite gives back naive datetimes: they were written in UTC
-                answered_at = answered_at.replace(tzinfo=UTC)
-            poll._answers[student_id] = _Answer(
-                kept["number"], kept["name"], kept["choice"], kept["value"], answered_at
-            )
+            poll.take_kept_answer(student_id, kept)
         return poll
+
+    def take_kept_answer(self, student_id: str, kept: Mapping[str, Any]) -> None:
+        """A student's answer as the database keeps it (:meth:`answer_of`'s fields; one given on another server)."""
+        answered_at = kept["answered_at"]
+        if answered_at.tzinfo is None:  # SQLite gives back naive datetimes: they were written in UTC
+            answered_at = answered_at.replace(tzinfo=UTC)
+        self._answers[student_id] = _Answer(kept["number"], kept["name"], kept["choice"], kept["value"], answered_at)
+        self._answered_ever = max(self._answered_ever, kept["number"])
 
     def withdraw(self, student_id: str) -> None:
         """Take a student's answer out of the poll (the instructor removed them); nothing if they did not answer."""

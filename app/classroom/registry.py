@@ -44,6 +44,7 @@ class Rooms:
         store: SqlRoomStore | None = None,
         keep_days: float = Settings.keep_rooms_days,
         join_base: str = DEFAULT_JOIN_BASE,
+        open_kept: bool = True,
     ) -> None:
         self.max_rooms = max_rooms
         self.store = store
@@ -53,7 +54,9 @@ class Rooms:
         self._closed: set[str] = set()
         if store is not None:
             store.forget_unused(days=keep_days)
-        kept = store.load(join_base=join_base, limit=max_rooms) if store is not None else []
+        # One server on its own database opens every kept room at once (a restart); servers sharing one (``open_kept``
+        # False) each take a room up when a balancer first sends it that room's class.
+        kept = store.load(join_base=join_base, limit=max_rooms) if store is not None and open_kept else []
         self._rooms: dict[str, Room] = {room.room_id: room for room in kept}
         self._lock = threading.Lock()
 
@@ -158,6 +161,28 @@ class Rooms:
                         self.store.delete(room_id)
                     except StoreUnavailable as exc:  # closed here; the database keeps it until it answers again
                         log.error("room %s is closed but still kept in the database: %s", room.code, exc)
+        return room
+
+    def held(self, room_id: str) -> Room | None:
+        """The room if it is open here (never taken up from the store)."""
+        with self._lock:
+            return self._rooms.get(room_id)
+
+    def release(self, room_id: str) -> Room | None:
+        """Let an open room go without closing it (no page here uses it; another server serves its class): the
+        database keeps it, and it is taken up again if its class comes back. Its stage is the caller's to close."""
+        with self._lock:
+            return self._rooms.pop(room_id, None)
+
+    def closed_elsewhere(self, room_id: str) -> Room | None:
+        """Another server sharing the database closed this room: it closes here too (nothing is deleted: that server
+        did). Its stage and sockets are the caller's to close."""
+        with self._lock:
+            room = self._rooms.pop(room_id, None)
+            self._closed.add(room_id)
+        if room is not None:
+            with room.lock:
+                room.closed = True
         return room
 
     def all(self) -> list[Room]:

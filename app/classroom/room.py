@@ -16,9 +16,9 @@ import math
 import secrets
 import threading
 import time
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
-from typing import Any, Protocol
+from typing import Any, Protocol, TypeVar
 
 from app.classroom.polls import Poll
 from app.course import Catalogue
@@ -27,6 +27,7 @@ from app.scenes.host.interface import SceneHostInterface
 from app.storage.database import StoreUnavailable
 
 log = logging.getLogger(__name__)
+T = TypeVar("T")
 
 #: Characters of a room code: capitals and digits a student cannot misread (no I, L, O, 0, 1).
 CODE_ALPHABET = "ABCDEFGHJKMNPQRSTUVWXYZ23456789"
@@ -62,6 +63,11 @@ class RoomAlreadyClosed(RoomMovedOn):
     """A change to a room its instructor has closed meanwhile (answered 409); nothing changed."""
 
 
+class RoomChangedElsewhere(Exception):
+    """The store refused a write: another server sharing the database wrote the room since this one read it. The
+    room takes that version up and the change runs again on it (:meth:`Room._changing`)."""
+
+
 class NotCurrentPoll(RoomError):
     """Opening or closing a poll that is no longer the room's current one (a newer poll was asked); nothing changed."""
 
@@ -76,12 +82,22 @@ def digest(secret: str) -> str:
     return hashlib.sha256(secret.encode()).hexdigest()
 
 
+#: Times a change runs when other servers keep writing the room first (each time it takes their version up).
+CHANGE_ATTEMPTS = 4
+
+
 class RoomStore(Protocol):
-    """Where a room is kept as it changes (app.classroom.store): called with the room's lock held, after each change."""
+    """Where a room is kept as it changes (app.classroom.store): called with the room's lock held, after each change.
+    ``save`` writes over the version the room last read (:attr:`Room.kept_version`) and raises
+    :class:`RoomChangedElsewhere` if another server wrote a newer one; ``load_newer`` reads that one."""
 
     def save(self, room: Room, *, withdrawn_student: str | None = None) -> None: ...
 
     def save_answer(self, room: Room, poll_id: str, student_id: str) -> None: ...
+
+    def load_newer(self, room: Room) -> Room | None: ...
+
+    def load_answer(self, room_id: str, poll_id: str, student_id: str) -> dict[str, Any] | None: ...
 
 
 @dataclass
@@ -149,6 +165,11 @@ class Room:
     closed: bool = field(default=False, repr=False)
     #: Answers the store could not take (poll id, student id): written with the room's next successful write.
     _unsaved_answers: set[tuple[str, str]] = field(default_factory=set, repr=False)
+    #: The version of the room's row this server last read or wrote (app.classroom.store).
+    kept_version: int = field(default=0, repr=False)
+    #: What the stage showed before this server took up another's version (:meth:`take_up`), until
+    #: :meth:`follow_stage` brings the stage to the room; None: the stage shows the room.
+    _stage_behind: dict[str, Any] | None = field(default=None, repr=False)
 
     @property
     def stage_id(self) -> str:
@@ -242,6 +263,87 @@ class Room:
                 self._stage_unsure = False
                 self._put_stage_back(host, scene_changed=True)  # sets it again if the worker refused
 
+    # -- several servers, one database ----------------------------------------------------
+    def take_up(self, kept: Room) -> None:
+        """Become ``kept``, the version another server sharing the database wrote (app.classroom.sync): its state,
+        students and polls with their answers. What this server alone knows stays: open sockets, tokens it gave.
+        The stage is brought to the new state by :meth:`follow_stage`."""
+        with self.lock:
+            before = self._shown()
+            sockets = {s.student_id: s for s in self.students.values()}
+            self.lesson_id, self.scene_id, self.params = kept.lesson_id, kept.scene_id, dict(kept.params)
+            self.playing, self.time_scale, self.mode = kept.playing, kept.time_scale, kept.mode
+            self.reset_count, self.explore_start = kept.reset_count, kept.explore_start
+            self.revision = max(self.revision, kept.revision) + 1  # every page here takes the new state
+            for student in kept.students.values():
+                known = sockets.get(student.student_id)
+                if known is not None:
+                    student.sockets, student.following = known.sockets, known.following
+                    if known.token is not None and kept._by_token.get(digest(known.token)) == student.student_id:
+                        student.token = known.token  # one this server gave and wrote (else the change runs again)
+            self.students = kept.students
+            self._by_token, self._by_device = kept._by_token, kept._by_device
+            self._removed_tokens, self._removed_devices = kept._removed_tokens, kept._removed_devices
+            self._students_ever = kept._students_ever
+            self.polls, self.poll_id = kept.polls, kept.poll_id
+            self.kept_version = kept.kept_version
+            self.last_used_s = time.monotonic()
+            stage_fields = ("scene_id", "params", "playing", "time_scale", "reset_count")
+            if self._stage_behind is None and any(before[f] != getattr(self, f) for f in stage_fields):
+                self._stage_behind = before
+
+    def take_up_newer(self) -> bool:
+        """Read the room's newest version from its store and take it up; False if the store no longer has the room
+        (another server closed it)."""
+        with self.lock:
+            kept = self.store.load_newer(self) if self.store is not None else None
+            if kept is None:
+                return self.store is None
+            self.take_up(kept)
+            return True
+
+    def follow_stage(self, host: SceneHostInterface) -> None:
+        """Bring the stage to the room after :meth:`take_up`: another scene opens afresh, new parameters and play
+        state are set, a reset restarts the motion. A stage not open here opens with its first follower as the room
+        is then (:meth:`put_stage_back`)."""
+        with self.lock:
+            before, self._stage_behind = self._stage_behind, None
+            if before is None or self._stage_unsure:
+                return
+            try:
+                if self.scene_id is None:
+                    if before["scene_id"] is not None:
+                        host.close_stage(self.stage_id)
+                    return
+                if self.scene_id != before["scene_id"]:
+                    host.open_stage(self.stage_id, self.scene_id, self.params)
+                elif self.params != before["params"]:
+                    host.set_params(self.scene_id, self.stage_id, self.params, stage=True)
+                host.set_playback(
+                    self.stage_id,
+                    playing=self.playing,
+                    time_scale=self.time_scale,
+                    reset=self.reset_count != before["reset_count"],
+                )
+            except Exception as exc:  # busy, or restarting: the room's next change or follower opens it afresh
+                self._stage_unsure = True
+                log.warning("room %s: its stage did not follow another server's change (%s)", self.code, exc)
+
+    def _changing(self, work: Callable[[], T], *, host: SceneHostInterface | None = None) -> T:
+        """Run ``work`` (one change, ending in :meth:`_keep`) with the room's lock held. If another server sharing
+        the database wrote the room since this one read it, the write is refused: the room takes that version up
+        (its stage follows, given ``host``) and ``work`` runs again on it, so neither server's change is lost."""
+        for _ in range(CHANGE_ATTEMPTS):
+            with self.lock:
+                try:
+                    return work()
+                except RoomChangedElsewhere:
+                    if not self.take_up_newer():
+                        raise RoomAlreadyClosed("room", f"room {self.code} was closed; nothing changed") from None
+                    if host is not None:
+                        self.follow_stage(host)
+        raise StoreUnavailable(f"room {self.code} is changing on other servers too fast to keep this change")
+
     # -- state ---------------------------------------------------------------------
     def _shown(self) -> dict[str, Any]:
         """What the room shows its class (its state's and its record's common part): lesson, scene, parameters, play
@@ -282,7 +384,8 @@ class Room:
         unknown = sorted(set(raw) - set(STATE_FIELDS))
         if unknown:
             raise RoomError(unknown[0], f"{unknown[0]}: not a room field (fields: {', '.join(STATE_FIELDS)})")
-        with self.lock:
+
+        def work() -> None:
             if self.closed:
                 raise RoomAlreadyClosed("room", f"room {self.code} was closed by its instructor; nothing changed")
             plan = self._plan(raw, catalogue=catalogue, host=host)
@@ -290,6 +393,8 @@ class Room:
             self.revision += 1
             self.last_used_s = time.monotonic()
             self._keep()
+
+        self._changing(work, host=host)
         return self.state()
 
     def _keep(self, *, withdrawn_student: str | None = None) -> None:
@@ -497,7 +602,8 @@ class Room:
         ):
             raise RoomError("name", f"name: at most {MAX_NAME_LENGTH} printable characters")
         name = name.strip()
-        with self.lock:
+
+        def work() -> Student:
             self.last_used_s = time.monotonic()
             if device is not None and digest(device) in self._removed_devices:
                 raise StudentRemoved(f"the instructor removed this device from room {self.code}")
@@ -530,11 +636,15 @@ class Room:
             self._keep()
             return student
 
+        return self._changing(work)
+
     def student(self, token: str | None) -> Student | None:
         """The student holding ``token``; :class:`StudentRemoved` if the instructor removed them."""
         if not token:
             return None
         with self.lock:
+            if digest(token) not in self._by_token and getattr(self.store, "shared", False):
+                self.take_up_newer()  # a student who joined on another server a moment ago
             if digest(token) in self._removed_tokens:
                 raise StudentRemoved("the instructor removed you from this room")
             return self.student_of_token(token)
@@ -553,7 +663,8 @@ class Room:
     def remove(self, student_id: str) -> Student:
         """Remove a student: their token stops working, their device cannot join again, and their answers leave
         every poll's results (KeyError if the room has no such student)."""
-        with self.lock:
+
+        def work() -> Student:
             student = self.students.pop(student_id, None)
             if student is None:
                 raise KeyError(f"room {self.code} has no student {student_id!r}")
@@ -569,10 +680,13 @@ class Room:
             self._keep(withdrawn_student=student_id)
             return student
 
+        return self._changing(work)
+
     # -- polls -------------------------------------------------------------------------
     def open_poll(self, raw: Mapping[str, Any]) -> Poll:
         """A new poll (closing the one open before it); it becomes the room's current poll."""
-        with self.lock:
+
+        def work() -> Poll:
             poll = Poll.create(raw, poll_id=f"p{len(self.polls) + 1}")
             current = self.polls.get(self.poll_id) if self.poll_id else None
             if current is not None and current.open:
@@ -582,6 +696,8 @@ class Room:
             self.revision += 1
             self._keep()
             return poll
+
+        return self._changing(work)
 
     def poll(self, poll_id: str) -> Poll:
         with self.lock:
@@ -608,7 +724,8 @@ class Room:
         for name in ("open", "reveal", "show_names"):
             if name in raw and not isinstance(raw[name], bool):
                 raise RoomError(name, f"{name}: must be true or false")
-        with self.lock:
+
+        def work() -> Poll:
             poll = self.poll(poll_id)
             if "open" in raw and poll_id != self.poll_id:  # students see, and answer, only the current poll
                 raise NotCurrentPoll(
@@ -626,3 +743,5 @@ class Room:
             self.revision += 1
             self._keep()
             return poll
+
+        return self._changing(work)

@@ -24,7 +24,7 @@ from starlette.websockets import WebSocketDisconnect
 from app.api.deps import CatalogueDep, SceneHostDep, SettingsDep
 from app.api.errors import unprocessable
 from app.api.schemas.errors import ErrorDetail, error_responses
-from app.classroom.hub import RoomHub, RoomHubDep
+from app.classroom.hub import REMOVED_MESSAGE, RoomHub, RoomHubDep
 from app.classroom.join_limits import JoinLimits
 from app.classroom.polls import Poll, PollClosedError, PollError
 from app.classroom.qr import qr_svg
@@ -293,9 +293,7 @@ def remove_student(room: RoomDep, student_id: StudentId, hub: RoomHubDep) -> dic
         student = room.remove(student_id)
     except KeyError as exc:
         raise HTTPException(status_code=404, detail=str(exc.args[0])) from None
-    hub.dismiss_student(
-        room, student.student_id, {"type": "removed", "detail": "The instructor removed you from this room."}
-    )
+    hub.dismiss_student(room, student.student_id, REMOVED_MESSAGE)
     hub.publish_state(room)
     hub.publish_students(room)
     poll = room.polls.get(room.poll_id) if room.poll_id else None

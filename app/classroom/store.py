@@ -17,7 +17,7 @@ from typing import Any
 import sqlalchemy as sa
 from sqlalchemy.exc import SQLAlchemyError
 
-from app.classroom.room import DEFAULT_JOIN_BASE, Room
+from app.classroom.room import DEFAULT_JOIN_BASE, Room, RoomChangedElsewhere
 from app.storage.database import Database, StoreUnavailable
 from app.storage.tables import answers, rooms
 
@@ -34,6 +34,11 @@ class SqlRoomStore:
     def __init__(self, database: Database) -> None:
         self.database = database
 
+    @property
+    def shared(self) -> bool:
+        """True if other servers may change the rooms too (a shared PostgreSQL)."""
+        return self.database.shared
+
     @contextmanager
     def _writing(self, what: str) -> Iterator[sa.Connection]:
         try:
@@ -44,7 +49,7 @@ class SqlRoomStore:
             raise StoreUnavailable(f"the server could not keep {what} just now; try again in a moment") from exc
 
     def insert(self, room: Room) -> None:
-        """Keep a new room."""
+        """Keep a new room (at version 0)."""
         with self._writing(f"room {room.code}") as connection:
             connection.execute(
                 sa.insert(rooms).values(
@@ -53,23 +58,35 @@ class SqlRoomStore:
                     created_at=_utc(room.created_at),
                     used_at=datetime.now(UTC),
                     record=room.record(),
+                    version=0,
                 )
             )
+        room.kept_version = 0
 
     def save(self, room: Room, *, withdrawn_student: str | None = None) -> None:
-        """Keep a kept room as it is now (a room deleted meanwhile stays deleted: only :meth:`insert` adds one)."""
+        """Keep a kept room as it is now, over the version it last read (a room deleted meanwhile stays deleted: only
+        :meth:`insert` adds one). :class:`RoomChangedElsewhere` if another server sharing the database wrote a newer
+        version: nothing is written, and the room takes that one up before its change runs again."""
         record = room.record()
         with self._writing(f"room {room.code}") as connection:
             now = datetime.now(UTC)
-            connection.execute(
-                sa.update(rooms).where(rooms.c.room_id == room.room_id).values(used_at=now, record=record)
-            )
+            this_version = (rooms.c.room_id == room.room_id) & (rooms.c.version == room.kept_version)
+            written = connection.execute(
+                sa.update(rooms).where(this_version).values(used_at=now, record=record, version=rooms.c.version + 1)
+            ).rowcount
+            if written == 0:
+                still_kept = connection.execute(sa.select(rooms.c.version).where(rooms.c.room_id == room.room_id))
+                if still_kept.first() is not None:
+                    raise RoomChangedElsewhere(room.room_id)
+                return
             if withdrawn_student is not None:
                 connection.execute(
                     sa.delete(answers).where(
                         answers.c.room_id == room.room_id, answers.c.student_id == withdrawn_student
                     )
                 )
+            self.database.announce(connection, "room", room.room_id, version=room.kept_version + 1)
+        room.kept_version += 1
 
     def save_answer(self, room: Room, poll_id: str, student_id: str) -> None:
         kept = room.poll(poll_id).answer_of(student_id)
@@ -81,12 +98,27 @@ class SqlRoomStore:
             connection.execute(
                 sa.insert(answers).values(room_id=room.room_id, poll_id=poll_id, student_id=student_id, **kept)
             )
+            self.database.announce(connection, "answer", room.room_id, poll_id=poll_id, student_id=student_id)
+
+    def load_answer(self, room_id: str, poll_id: str, student_id: str) -> dict[str, Any] | None:
+        """One kept answer (as :meth:`app.classroom.polls.Poll.answer_of` gives it), None if none is kept."""
+        key = (answers.c.room_id == room_id, answers.c.poll_id == poll_id, answers.c.student_id == student_id)
+        columns = (answers.c.number, answers.c.name, answers.c.choice, answers.c.value, answers.c.answered_at)
+        try:
+            with self.database.engine.connect() as connection:
+                row = connection.execute(sa.select(*columns).where(*key)).mappings().first()
+        except SQLAlchemyError as exc:
+            raise StoreUnavailable(f"the server could not read an answer just now: {exc}") from exc
+        return None if row is None else dict(row)
 
     def delete(self, room_id: str) -> bool:
         """Forget a room and every answer in it; False if there was no such room."""
         with self._writing(f"the deletion of room {room_id}") as connection:
             connection.execute(sa.delete(answers).where(answers.c.room_id == room_id))
-            return connection.execute(sa.delete(rooms).where(rooms.c.room_id == room_id)).rowcount > 0
+            deleted = connection.execute(sa.delete(rooms).where(rooms.c.room_id == room_id)).rowcount > 0
+            if deleted:
+                self.database.announce(connection, "room_closed", room_id)
+            return deleted
 
     def forget_unused(self, *, days: float) -> int:
         """Forget every room (with its answers) nobody has used for ``days``; returns how many."""
@@ -104,6 +136,11 @@ class SqlRoomStore:
         """The kept room with this id or code (None if none is kept)."""
         where = rooms.c.room_id == room_id if room_id is not None else rooms.c.code == code
         return next(iter(self._load(sa.select(rooms).where(where), join_base=join_base)), None)
+
+    def load_newer(self, room: Room) -> Room | None:
+        """``room`` as the database keeps it now (a version another server wrote), joined at the same address; None
+        if it is no longer kept (closed)."""
+        return self.load_one(join_base=room.join_url.rsplit("/join/", 1)[0], room_id=room.room_id)
 
     def load(self, *, join_base: str = DEFAULT_JOIN_BASE, limit: int | None = None) -> list[Room]:
         """The kept rooms (the ``limit`` most recently used), with their answers, written to this store again as they
@@ -139,6 +176,7 @@ class SqlRoomStore:
                     answers=kept_answers,
                 )
                 room.store = self
+                room.kept_version = row["version"]
                 loaded.append(room)
             return loaded
 

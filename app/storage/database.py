@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+import json
 import logging
 import os
+import secrets
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from datetime import UTC, datetime
@@ -24,6 +26,10 @@ log = logging.getLogger(__name__)
 MIGRATIONS_DIR = Path(__file__).resolve().parent / "migrations"
 #: The SQLite file in the data directory.
 SQLITE_FILE = "dynlab.sqlite3"
+#: The PostgreSQL channel servers sharing a database announce their changes on (app.storage.changes).
+CHANGES_CHANNEL = "dynlab_changes"
+#: The PostgreSQL advisory lock held while the schema is brought forward: servers starting together migrate in turn.
+MIGRATION_LOCK = 0x64796E6C6162
 #: How long a write waits for another process's write to finish before it fails (ms): SQLite lets one write at a time.
 SQLITE_BUSY_TIMEOUT_MS = 10_000
 
@@ -65,10 +71,28 @@ def _on_sqlite_connect(connection: Any, _record: Any) -> None:
 
 
 class Database:
-    """The open database. Every write is one transaction (:meth:`transaction`): all of it is kept, or none."""
+    r"""The open database. Every write is one transaction (:meth:`transaction`): all of it is kept, or none.
+
+    ``origin`` names this process among the servers that may share the database (PostgreSQL): what it
+    :meth:`announce`\ s carries it, so a server can tell its own changes from others' (app.storage.changes)."""
 
     def __init__(self, engine: sa.Engine) -> None:
         self.engine = engine
+        self.origin = secrets.token_hex(6)
+
+    @property
+    def shared(self) -> bool:
+        """True for a database server several ``dynlab serve`` may share (PostgreSQL); False for the SQLite file one
+        server holds (its data directory's lock says so)."""
+        return self.engine.dialect.name != "sqlite"
+
+    def announce(self, connection: sa.Connection, kind: str, key: str, **fields: Any) -> None:
+        """Tell the other servers sharing the database, when ``connection``'s transaction commits, that this one
+        changed ``kind`` ``key`` (app.storage.changes). Nothing on SQLite: no other server can share it."""
+        if not self.shared:
+            return
+        payload = json.dumps({"kind": kind, "key": key, "origin": self.origin, **fields}, separators=(",", ":"))
+        connection.execute(sa.select(sa.func.pg_notify(CHANGES_CHANNEL, payload)))
 
     @property
     def url(self) -> str:
@@ -128,6 +152,8 @@ def migrate(database: Database, *, to: str = "head") -> None:
         )
     logging.getLogger("alembic").setLevel(logging.WARNING)  # its step-by-step notes; ours below says what changed
     with database.engine.begin() as connection:
+        if database.shared:  # another server starting now waits here, then finds the schema current
+            connection.execute(sa.select(sa.func.pg_advisory_xact_lock(MIGRATION_LOCK)))
         command.upgrade(_alembic_config(connection), to)
     now = database.schema_revision()
     if now != current:

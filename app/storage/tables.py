@@ -19,8 +19,9 @@ server_values = sa.Table(
     sa.Column("updated_at", sa.DateTime(timezone=True), nullable=False),
 )
 
-#: One row per room: its code, when it was last used, and its record (app.classroom.room.Room.record: the shared
-#: scene's lesson, scene, parameters and play state, its students by token hash, its polls without their answers).
+#: One row per room: its code, when it was last used, its record (app.classroom.room.Room.record: the shared scene's
+#: lesson, scene, parameters and play state, its students by token hash, its polls without their answers) and the
+#: record's version (one more with each write; a server writes only over the version it read).
 rooms = sa.Table(
     "rooms",
     metadata,
@@ -29,6 +30,7 @@ rooms = sa.Table(
     sa.Column("created_at", sa.DateTime(timezone=True), nullable=False),
     sa.Column("used_at", sa.DateTime(timezone=True), nullable=False),
     sa.Column("record", sa.JSON, nullable=False),
+    sa.Column("version", sa.Integer, nullable=False, server_default="0"),
 )
 
 #: One row per student's answer to a poll (replaced while the poll is open); deleted with the room or the student.

@@ -1,7 +1,8 @@
 """The same code on PostgreSQL (``DYNLAB_DATABASE_URL``), as several servers of one class would share it: the
 migrations give exactly the schema the code uses; a room with students, a removed student, polls and answers
 round-trips, and is taken up whole by a second registry on the same database; a claimed page session is claimed for
-a second directory too; a newer schema is refused untouched. On a throwaway cluster (tests/storage/postgres.py)."""
+a second directory too; a newer schema is refused untouched. Two servers changing one room keep both changes, and each
+hears of the other's as it commits (LISTEN/NOTIFY). On a throwaway cluster (app/bench/loopback_postgres.py)."""
 
 from __future__ import annotations
 
@@ -15,9 +16,11 @@ from app.classroom.room import StudentRemoved
 from app.classroom.store import SqlRoomStore
 from app.storage import open_database
 from app.storage.database import DatabaseUnusable, head_revision
-from tests.classroom.test_room import BusyWhenTold
+from app.storage.changes import Change, ChangeListener
+from tests.classroom.test_room import FRICTION_LESSON, BusyWhenTold
+from tests.conftest import wait_until
 from tests.classroom.test_room_store import a_class
-from tests.storage.postgres import postgres_server
+from app.bench.loopback_postgres import postgres_server
 from tests.storage.test_database import schema_differences
 
 
@@ -81,3 +84,57 @@ def test_a_newer_schema_on_postgresql_is_refused_untouched(url):
     finally:
         with database.transaction() as connection:
             connection.execute(sa.text(f"UPDATE alembic_version SET version_num = '{head_revision()}'"))
+
+
+def test_two_servers_changing_one_room_keep_both_changes(url, catalogue):
+    """Server B holds an older version of the room when it writes: its write is refused, it takes A's version up
+    (its stage follows A's parameters) and its change runs again on it."""
+    here = Rooms(store=SqlRoomStore(open_database(url)))
+    there = Rooms(store=SqlRoomStore(open_database(url)))
+    host_here, host_there = BusyWhenTold(), BusyWhenTold()
+    room, _ = here.create(join_base="http://lab.example:8000")
+    room.change({"lesson_id": FRICTION_LESSON, "scene_id": "sliding-bar-friction"}, catalogue=catalogue, host=host_here)
+    same = there.get(room.room_id)
+    same.change({"playing": False}, catalogue=catalogue, host=host_there)  # B opens its stage: now B is current
+    room.change({"params": {"mu": 0.6}}, catalogue=catalogue, host=host_here)  # over B's version: A takes it up first
+    assert room.state()["playing"] is False and room.state()["params"]["mu"] == 0.6
+    ada = same.join("Ada", device="device-of-ada")  # B is behind A now: its join runs again on A's version
+    assert same.state()["params"]["mu"] == 0.6 and host_there.stage["params"]["mu"] == 0.3
+    same.follow_stage(host_there)  # as B's sync does when A's announcement arrives
+    assert host_there.stage["params"]["mu"] == 0.6 and host_there.stage["playing"] is False
+    kept = Rooms(store=SqlRoomStore(open_database(url))).get(room.room_id)
+    assert kept.state()["params"]["mu"] == 0.6 and kept.state()["playing"] is False
+    assert kept.student(ada.token).name == "Ada"
+    here.close(room.room_id)
+
+
+def test_each_server_hears_of_the_others_changes_as_they_commit(url, catalogue):
+    heard: list[Change] = []
+    missed: list[bool] = []
+    listening_database = open_database(url)
+    listener = ChangeListener(listening_database, on_change=heard.append, on_missed=lambda: missed.append(True))
+    listener.start()
+    try:
+        assert listener.listening.wait(10) and missed == [True]
+        here = Rooms(store=SqlRoomStore(open_database(url)))
+        room, _ = here.create(join_base="http://lab.example:8000")
+        room.change({"lesson_id": FRICTION_LESSON}, catalogue=catalogue, host=BusyWhenTold())
+        ada = room.join("Ada", device="device-of-ada")
+        poll = room.open_poll({"question": "Does it stick?", "kind": "choice", "choices": ["yes", "no"]})
+        room.answer(poll.poll_id, ada.token, {"choice": 0})
+        here.close(room.room_id)
+        wait_until(lambda: len(heard) >= 5, timeout_s=10, what="five changes heard")
+        assert [(c.kind, c.key) for c in heard] == [("room", room.room_id)] * 3 + [
+            ("answer", room.room_id),
+            ("room_closed", room.room_id),
+        ]
+        assert [c.fields["version"] for c in heard[:3]] == [1, 2, 3]
+        assert heard[3].fields == {"poll_id": poll.poll_id, "student_id": ada.student_id}
+        # Its own changes are not handed back to a server.
+        Rooms(store=SqlRoomStore(listening_database)).create(join_base="http://lab.example:8000")[0].join("x")
+        other = Rooms(store=SqlRoomStore(open_database(url))).create(join_base="http://lab.example:8000")[0]
+        other.join("y")
+        wait_until(lambda: len(heard) >= 6, timeout_s=10, what="the other server's join heard")
+        assert [c.key for c in heard[5:]] == [other.room_id]
+    finally:
+        listener.stop()

@@ -1,5 +1,6 @@
-"""A throwaway PostgreSQL server for the tests: Debian's ``postgresql`` binaries (tests/run.sh installs them), a new
-cluster in a temporary directory, on a free loopback port, trust authentication, stopped and removed afterwards."""
+"""A throwaway PostgreSQL server on loopback, for the tests and ``dynlab scale-out``: Debian's ``postgresql``
+binaries (tests/run.sh installs them), a new cluster in a temporary directory on a free loopback port, trust
+authentication, fsync off; stopped and removed afterwards."""
 
 from __future__ import annotations
 
@@ -11,7 +12,7 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
-from tests.served import free_port
+from app.bench.capacity import free_loopback_port
 
 
 def postgres_bin() -> Path | None:
@@ -29,11 +30,12 @@ def _as_owner(command: list[str]) -> list[str]:
 def postgres_server() -> Iterator[str]:
     """A new PostgreSQL cluster with an empty ``dynlab`` database; yields its SQLAlchemy URL."""
     bin_dir = postgres_bin()
-    assert bin_dir is not None, "PostgreSQL is not installed: run the README's test command (tests/run.sh)"
+    if bin_dir is None:
+        raise RuntimeError("PostgreSQL is not installed: apt-get install postgresql (tests/run.sh does)")
     root = Path(tempfile.mkdtemp(prefix="dynlab-pg-"))
     if os.geteuid() == 0:
         shutil.chown(root, "postgres", "postgres")
-    data, port = root / "data", free_port()
+    data, port = root / "data", free_loopback_port()
     run = lambda *command: subprocess.run(_as_owner(list(command)), check=True, capture_output=True, timeout=60)  # noqa: E731
     try:
         run(str(bin_dir / "initdb"), "-D", str(data), "-A", "trust", "-U", "dynlab", "--no-sync")
