@@ -138,3 +138,23 @@ def test_each_server_hears_of_the_others_changes_as_they_commit(url, catalogue):
         assert [c.key for c in heard[5:]] == [other.room_id]
     finally:
         listener.stop()
+
+
+def test_a_session_changed_on_another_server_follows_there_and_here(url):
+    """A page session open on two servers (a balancer moved its page): the change made on one reaches the other's
+    scene (its reopen, the scene host's set_params) and its claim; one forgotten there is forgotten here."""
+    applied: list = []
+    closed: list = []
+    here = SessionDirectory(store=SqlSessionStore(open_database(url)), reopen=lambda *args: applied.append(args),
+                            close=closed.append)  # fmt: skip
+    there = SessionDirectory(store=SqlSessionStore(open_database(url)))
+    session_id = "m" * 32
+    here.changed(session_id, "heavy-top", None, client="10.0.0.7", params={"spin_rad_s": 60.0})
+    there.changed(session_id, "heavy-top", "a-page-key-0123456789", client="10.0.0.8", params={"spin_rad_s": 72.0})
+    here.changed_elsewhere(session_id)
+    assert applied == [(session_id, "heavy-top", {"spin_rad_s": 72.0})]
+    with pytest.raises(Refused):  # the claim made there holds here now
+        here.check_change(session_id, None, client="10.0.0.7")
+    SqlSessionStore(open_database(url)).delete(session_id)
+    here.changed_elsewhere(session_id)
+    assert closed == [session_id] and not here.is_claimed(session_id)
