@@ -28,6 +28,7 @@ from app.classroom.store import SqlRoomStore
 from app.classroom.sync import ClassSync
 from app.course import load_catalogue
 from app.physics.core.bounded import stop_all_work
+from app.practice.progress import SqlProgressStore
 from app.scenes import SCENES
 from app.scenes.host.host import SceneHost
 from app.scenes.host.pool import WorkerPool
@@ -105,6 +106,9 @@ def create_app(settings: Settings | None = None) -> FastAPI:
         join_base=settings.public_url or f"http://{settings.host}:{settings.port}",  # kept rooms' join links
         open_kept=database is None or not database.shared,  # servers sharing one take rooms up as classes arrive
     )
+    # Learners working alone and their exercise progress (None with nothing kept); those unused for the rooms' keeping
+    # time are forgotten at start-up.
+    app.state.progress = _kept_progress(database, keep_days=settings.keep_rooms_days)
     app.state.join_limits = JoinLimits(settings)
     app.state.room_hub = RoomHub(lambda: app.state.scene_host)
     app.state.ready_questions = load_ready_questions(DEFAULT_READY_QUESTIONS, SCENES)
@@ -151,6 +155,14 @@ def _kept_sessions(database: Database | None, *, keep_days: float) -> SqlSession
     if database is None:
         return None
     store = SqlSessionStore(database)
+    store.forget_unused(days=keep_days)
+    return store
+
+
+def _kept_progress(database: Database | None, *, keep_days: float) -> SqlProgressStore | None:
+    if database is None:
+        return None
+    store = SqlProgressStore(database)
     store.forget_unused(days=keep_days)
     return store
 

@@ -4,7 +4,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 python3 -m uv --version >/dev/null 2>&1 || python3 -m pip install --quiet uv
-in_env() { python3 -m uv run --group test --group bench "$@"; }
+in_env() { python3 -m uv run --group test --group bench --group postgres "$@"; }
 in_env ruff check app
 in_env ruff format --check app
 in_env mypy

@@ -58,3 +58,44 @@ sessions = sa.Table(
     sa.Column("params", sa.JSON, nullable=False),
     sa.Column("used_at", sa.DateTime(timezone=True), nullable=False),
 )
+
+#: One row per learner (issue 27's practice: no account). Their browsers hold secret tokens (kept in
+#: ``learner_tokens`` as SHA-256 digests); a short resume code, kept as its digest, carries them to another device.
+learners = sa.Table(
+    "learners",
+    metadata,
+    sa.Column("learner_id", sa.String(32), primary_key=True),
+    sa.Column("resume_digest", sa.String(64), nullable=False, unique=True),
+    sa.Column("created_at", sa.DateTime(timezone=True), nullable=False),
+    sa.Column("used_at", sa.DateTime(timezone=True), nullable=False),
+)
+
+#: One row per browser a learner uses: the digest of its token.
+learner_tokens = sa.Table(
+    "learner_tokens",
+    metadata,
+    sa.Column("token_digest", sa.String(64), primary_key=True),
+    sa.Column(
+        "learner_id",
+        sa.String(32),
+        sa.ForeignKey("learners.learner_id", ondelete="CASCADE"),
+        nullable=False,
+        index=True,
+    ),
+)
+
+#: One row per learner, exercise and part: the variant they work on, attempts, solved or given up, and the ids of the
+#: named mistakes their wrong answers matched (in the order made).
+exercise_progress = sa.Table(
+    "exercise_progress",
+    metadata,
+    sa.Column("learner_id", sa.String(32), sa.ForeignKey("learners.learner_id", ondelete="CASCADE"), primary_key=True),
+    sa.Column("exercise_id", sa.String(64), primary_key=True),
+    sa.Column("part_id", sa.String(32), primary_key=True),
+    sa.Column("variant", sa.Integer, nullable=False),
+    sa.Column("attempts", sa.Integer, nullable=False),
+    sa.Column("solved", sa.Boolean, nullable=False),
+    sa.Column("gave_up", sa.Boolean, nullable=False),
+    sa.Column("mistakes", sa.JSON, nullable=False),
+    sa.Column("updated_at", sa.DateTime(timezone=True), nullable=False),
+)
