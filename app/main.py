@@ -24,6 +24,7 @@ from app.classroom.page_config import classroom_page_config
 from app.classroom.ready_questions import DEFAULT_READY_QUESTIONS, load_ready_questions
 from app.classroom.registry import Rooms
 from app.classroom.roles import InstructorKey, kept_instructor_secret
+from app.classroom.room import RoomError
 from app.classroom.store import SqlRoomStore
 from app.classroom.sync import ClassSync
 from app.course import load_catalogue
@@ -113,6 +114,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     app.state.room_hub = RoomHub(lambda: app.state.scene_host)
     app.state.ready_questions = load_ready_questions(DEFAULT_READY_QUESTIONS, SCENES)
     errors.install(app)
+    app.add_exception_handler(RoomError, rooms.room_error_handler)
     app.add_middleware(guard.RequestGuard, settings=settings, heavy_in_flight=app.state.sessions.heavy_work)
     # Outermost: on Ctrl+C every request still waiting for its answer gets a 503 at once, not uvicorn's 500 later.
     app.state.requests_in_flight = RequestsInFlight()

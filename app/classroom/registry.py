@@ -100,6 +100,9 @@ class Rooms:
     def get(self, room_id: str) -> Room:
         with self._lock:
             room = self._rooms.get(room_id) or self._take_up_locked(room_id=room_id)
+            if room is not None and room.closed:  # found deleted by its last change (closed elsewhere): gone here too
+                self._forget_closed_locked(room)
+                room = None
         if room is None:
             raise KeyError(f"no room {room_id!r} (it may have been closed)")
         return room
@@ -142,9 +145,16 @@ class Rooms:
             room = next((r for r in self._rooms.values() if r.code == wanted), None)
             if room is None and len(wanted) <= MAX_TYPED_CODE_LENGTH:
                 room = self._take_up_locked(code=wanted)
+            if room is not None and room.closed:
+                self._forget_closed_locked(room)
+                room = None
         if room is None:
             raise KeyError(f"no open room has the code {wanted!r}")
         return room
+
+    def _forget_closed_locked(self, room: Room) -> None:
+        self._rooms.pop(room.room_id, None)
+        self._closed.add(room.room_id)
 
     def close(self, room_id: str) -> Room | None:
         """Close a room and forget it, with every answer in it (a change still in flight finishes first; later ones

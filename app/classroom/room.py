@@ -335,11 +335,13 @@ class Room:
         (its stage follows, given ``host``) and ``work`` runs again on it, so neither server's change is lost."""
         for _ in range(CHANGE_ATTEMPTS):
             with self.lock:
+                if self.closed:
+                    raise RoomAlreadyClosed("room", f"room {self.code} was closed by its instructor; nothing changed")
                 try:
                     return work()
                 except RoomChangedElsewhere:
-                    if not self.take_up_newer():
-                        raise RoomAlreadyClosed("room", f"room {self.code} was closed; nothing changed") from None
+                    if not self.take_up_newer():  # deleted: closed on another server, or by `dynlab rooms delete`
+                        self.closed = True
                     if host is not None:
                         self.follow_stage(host)
         raise StoreUnavailable(f"room {self.code} is changing on other servers too fast to keep this change")
@@ -386,8 +388,6 @@ class Room:
             raise RoomError(unknown[0], f"{unknown[0]}: not a room field (fields: {', '.join(STATE_FIELDS)})")
 
         def work() -> None:
-            if self.closed:
-                raise RoomAlreadyClosed("room", f"room {self.code} was closed by its instructor; nothing changed")
             plan = self._plan(raw, catalogue=catalogue, host=host)
             self._apply(plan, host=host)
             self.revision += 1

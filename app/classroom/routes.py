@@ -16,6 +16,7 @@ from typing import Annotated, Any, cast
 
 from fastapi import APIRouter, Depends, Header, HTTPException, Path, Request, WebSocket
 from fastapi.concurrency import run_in_threadpool
+from fastapi.exception_handlers import http_exception_handler
 from fastapi.responses import PlainTextResponse, Response
 from pydantic import BaseModel, ValidationError
 from starlette.requests import HTTPConnection
@@ -143,6 +144,13 @@ def room_error(exc: RoomError) -> HTTPException:
     if isinstance(exc, RoomMovedOn):
         return HTTPException(status_code=409, detail=exc.message)
     return unprocessable(["body", *exc.field.split(".")], exc.message)
+
+
+async def room_error_handler(request: Request, exc: Exception) -> Response:
+    """A :class:`RoomError` no route turned into its answer (a room another server closed while this one changed
+    it): answered as :func:`room_error` says, never a 500."""
+    assert isinstance(exc, RoomError)
+    return await http_exception_handler(request, room_error(exc))
 
 
 def change_room(room: Room, raw: dict[str, Any], *, catalogue: Any, host: Any, hub: RoomHub) -> dict[str, Any]:
@@ -598,6 +606,8 @@ async def _socket_message(websocket: WebSocket, room: Room, member: Any, message
             return
         if student is not None and member.student_token is None:
             with room.lock:
+                # The room's own record of the student now (another server's version taken up meanwhile replaces it).
+                student = room.students.get(student.student_id, student)
                 member.student_token = token
                 member.student_id = student.student_id
                 student.sockets += 1

@@ -64,9 +64,9 @@ class SqlRoomStore:
         room.kept_version = 0
 
     def save(self, room: Room, *, withdrawn_student: str | None = None) -> None:
-        """Keep a kept room as it is now, over the version it last read (a room deleted meanwhile stays deleted: only
-        :meth:`insert` adds one). :class:`RoomChangedElsewhere` if another server sharing the database wrote a newer
-        version: nothing is written, and the room takes that one up before its change runs again."""
+        """Keep a kept room as it is now, over the version it last read. :class:`RoomChangedElsewhere` if another
+        server sharing the database wrote a newer version, or deleted the room (only :meth:`insert` adds one): nothing
+        is written, and the room takes that version up before its change runs again, or is closed."""
         record = room.record()
         with self._writing(f"room {room.code}") as connection:
             now = datetime.now(UTC)
@@ -74,11 +74,8 @@ class SqlRoomStore:
             written = connection.execute(
                 sa.update(rooms).where(this_version).values(used_at=now, record=record, version=rooms.c.version + 1)
             ).rowcount
-            if written == 0:
-                still_kept = connection.execute(sa.select(rooms.c.version).where(rooms.c.room_id == room.room_id))
-                if still_kept.first() is not None:
-                    raise RoomChangedElsewhere(room.room_id)
-                return
+            if written == 0:  # a newer version, or the room deleted (closed on another server, `dynlab rooms delete`)
+                raise RoomChangedElsewhere(room.room_id)
             if withdrawn_student is not None:
                 connection.execute(
                     sa.delete(answers).where(

@@ -364,3 +364,23 @@ def test_a_number_poll_takes_json_numbers_only(served, room):
     assert phone.post(answers_url, json={"value": 12}, headers={"X-Student-Token": token}).status_code == 200
     results = served.client.get(f"/api/rooms/{room['room_id']}/polls/{poll['poll_id']}/results", headers=served.instructor_headers).json()
     assert results["answers"] == 1
+
+
+def test_a_change_to_a_room_deleted_behind_the_servers_back_is_409_and_the_room_stays_closed(served):
+    """The room's row deleted while the server holds it (another server sharing the database closed it, or an
+    operator's ``dynlab rooms delete``): the instructor's next change is refused as closed, 409, never a 500, and
+    the room stays closed."""
+    import sqlalchemy as sa
+
+    from app.storage.database import sqlite_url
+
+    room = open_room(served)
+    engine = sa.create_engine(sqlite_url(served.data_dir), connect_args={"timeout": 30})
+    with engine.begin() as connection:
+        connection.execute(sa.text("DELETE FROM rooms WHERE room_id = :room_id"), {"room_id": room["room_id"]})
+    engine.dispose()
+    question = {"question": "Still there?", "kind": "choice", "choices": ["yes", "no"]}
+    answer = served.client.post(f"/api/rooms/{room['room_id']}/polls", json=question, headers=served.instructor_headers)
+    assert answer.status_code == 409 and "closed" in answer.json()["detail"]
+    again = served.client.post(f"/api/rooms/{room['room_id']}/polls", json=question, headers=served.instructor_headers)
+    assert again.status_code == 404  # and the server has let it go

@@ -12,7 +12,7 @@ import pytest
 import sqlalchemy as sa
 
 from app.classroom.registry import Rooms
-from app.classroom.room import RoomAlreadyClosed, StudentRemoved, digest
+from app.classroom.room import RoomAlreadyClosed, RoomChangedElsewhere, StudentRemoved, digest
 from app.classroom.store import SqlRoomStore
 from app.storage import open_database
 from app.storage.database import StoreUnavailable, sqlite_url
@@ -198,7 +198,8 @@ def test_a_change_racing_the_closing_of_its_room_is_refused_and_the_room_stays_f
     with pytest.raises(RoomAlreadyClosed):
         room.change({"params": {"mu": 0.2}}, catalogue=catalogue, host=BusyWhenTold())
     room.answer(made["polls"][1], made["ada"].token, {"value": 3.0})  # a late answer: harmless, and not kept
-    room.join("Late", device="device-late")
+    with pytest.raises(RoomAlreadyClosed):  # a join racing the closing is told the room is closed (409)
+        room.join("Late", device="device-late")
     assert restarted(tmp_path).all() == [] and rooms.store.listing() == []
 
 
@@ -270,5 +271,6 @@ def test_a_closed_room_is_never_taken_up_or_written_back_even_if_its_deletion_fa
     with pytest.raises(KeyError):
         rooms.by_code(room.code)
     store.delete(room.room_id)
-    store.save(room)  # a save racing the deletion: only insert adds a room
+    with pytest.raises(RoomChangedElsewhere):  # a save racing the deletion adds nothing (only insert adds a room)
+        store.save(room)
     assert store.listing() == []

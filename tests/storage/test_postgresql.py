@@ -12,7 +12,7 @@ import sqlalchemy as sa
 from app.api.access import Refused, SessionDirectory
 from app.api.kept_sessions import SqlSessionStore
 from app.classroom.registry import Rooms
-from app.classroom.room import StudentRemoved
+from app.classroom.room import RoomAlreadyClosed, StudentRemoved
 from app.classroom.store import SqlRoomStore
 from app.storage import open_database
 from app.storage.database import DatabaseUnusable, head_revision
@@ -158,3 +158,13 @@ def test_a_session_changed_on_another_server_follows_there_and_here(url):
     SqlSessionStore(open_database(url)).delete(session_id)
     here.changed_elsewhere(session_id)
     assert closed == [session_id] and not here.is_claimed(session_id)
+
+
+def test_a_change_to_a_room_another_server_closed_is_refused_as_closed(url, catalogue):
+    here = Rooms(store=SqlRoomStore(open_database(url)))
+    there = Rooms(store=SqlRoomStore(open_database(url)))
+    room, _ = here.create(join_base="http://lab.example:8000")
+    there.get(room.room_id)
+    there.close(room.room_id)
+    with pytest.raises(RoomAlreadyClosed):  # answered 409 by the app's RoomError handler, never a 500
+        room.open_poll({"question": "Still there?", "kind": "choice", "choices": ["yes", "no"]})
