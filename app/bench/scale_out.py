@@ -14,7 +14,9 @@ change to each student's socket receiving the state that shows it (follow latenc
 opened and everyone answers on their own server; the instructor's results show every answer. Last, the server the
 room hashes to is killed (SIGKILL, its workers with it) and the clock runs until every student's socket has the room's
 state back with the same spin, play state and answers, the instructor's list shows every student connected, and every
-student's viewer receives frames again (failover). Writes docs/bench/scale_out.json and scale_out.svg.
+student's viewer receives frames again (failover); a lesson page's own scene that lived on the killed server answers
+from the other with its parameters, and still refuses a change without its key. Writes docs/bench/scale_out.json and
+scale_out.svg.
 """
 
 from __future__ import annotations
@@ -51,7 +53,14 @@ from app.bench.capacity import (
     utc_now,
     wait_for_health,
 )
-from app.bench.load_client import ReconnectingViewer, http_request, student_address
+from app.bench.load_client import (
+    SESSION_KEY_HEADER,
+    ReconnectingViewer,
+    http_request,
+    new_session_id,
+    new_session_key,
+    student_address,
+)
 from app.bench.loopback_postgres import postgres_server
 from app.classroom.roles import HEADER as INSTRUCTOR_HEADER
 
@@ -62,6 +71,8 @@ SCENE = "heavy-top"
 #: The parameter the instructor changes, and the values it alternates between (rad/s).
 SPIN_PARAMETER = "spin_rad_s"
 SPIN_VALUES = (55.0, 70.0)
+#: The spin of the lesson page's own scene that must survive its server (rad/s).
+SESSION_SPIN = 61.0
 DEFAULT_STUDENTS = 30
 DEFAULT_CHANGES = 20
 MAX_STUDENTS = 100
@@ -247,6 +258,24 @@ def _wait(condition: Callable[[], bool], timeout_s: float) -> float | None:
     return None
 
 
+def _status(base: str, method: str, path: str, **options: Any) -> int | None:
+    """Only the status of a request to ``base`` (None: no answer)."""
+    port = int(base.rsplit(":", 1)[1])
+    return asyncio.run(http_request("127.0.0.1", port, method, path, timeout_s=30.0, **options)).status
+
+
+def _claimed_session_on(server: Server, balancer_url: str) -> tuple[str, str]:
+    """A page session the balancer sends to ``server``, claimed with its key and set to :data:`SESSION_SPIN`: its
+    path and key."""
+    for _ in range(64):  # each id hashes to either server: one in 2⁶⁴ fails
+        path, key = f"/api/scenes/{SCENE}/sessions/{new_session_id()}", new_session_key()
+        body = {"params": {SPIN_PARAMETER: SESSION_SPIN}}
+        _, answered_by = _request(balancer_url, "PUT", path, headers={SESSION_KEY_HEADER: key}, body=body)
+        if answered_by == server.name:
+            return path, key
+    raise RuntimeError(f"no session id hashed to {server.name} in 64 tries: is the balancer's affinity on?")
+
+
 def _arrivals(pages: list[RoomPage], *, since_s: float, spin: float) -> list[float]:
     """When each page's socket first showed the spin ``spin`` after ``since_s`` (monotonic s)."""
 
@@ -371,6 +400,10 @@ def _measure(
     student_ids = sorted(s["student_id"] for s in _request(balancer_url, "GET", f"/api/rooms/{room_id}/students",
                                                              headers=instructor)[0]["students"])  # fmt: skip
 
+    # A lesson page's own scene, claimed by its key, on the room's server (session ids are tried until the balancer's
+    # hash puts one there).
+    session_path, session_key = _claimed_session_on(home, balancer_url)
+
     # The room's server dies; every page reconnects through the balancer to the other.
     killed_s = time.monotonic()
     home.kill()
@@ -392,6 +425,8 @@ def _measure(
 
     back = _wait(everyone_back, WAIT_TIMEOUT_S)
     after, server_after = _request(balancer_url, "GET", f"/api/rooms/{room_id}/state")
+    session_after, session_server = _request(balancer_url, "GET", session_path)
+    keyless = _status(balancer_url, "PUT", session_path, body={"params": {SPIN_PARAMETER: 40.0}})
     moved_pages = [p for i, p in enumerate(student_pages) if i % 2 == 0]
     return {
         "created": utc_now(),
@@ -420,6 +455,12 @@ def _measure(
             "server": server_after,
             "same": same_state(after) and after["students"]["joined"] == students,
             "students_reconnected": sum(1 for p in moved_pages if p.connections > 1),
+        },
+        "page_session_after_failover": {
+            "server": session_server,
+            "params_kept": session_after["params"].get(SPIN_PARAMETER) == SESSION_SPIN,
+            "keyless_change": keyless,
+            "claimed_with_key": bool(session_key),
         },
     }
 

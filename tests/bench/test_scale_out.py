@@ -1,7 +1,8 @@
 """Several machines, one class, on loopback (issue 26, point 6): PostgreSQL, two ``dynlab serve`` as the README
 starts them (with their scene workers) and HAProxy with deploy/haproxy.cfg. An instructor and 30 students (half on
 each server) run a room: they follow it, the instructor changes the spin ten times, a poll is answered; then the
-room's server is killed and every student is back in the same room with the same state (``dynlab scale-out``, whose
+room's server is killed and every student is back in the same room with the same state, and a lesson page's claimed
+scene that lived there comes back on the other server with its parameters and its claim (``dynlab scale-out``, whose
 committed report is docs/bench/scale_out.json)."""
 
 from __future__ import annotations
@@ -34,5 +35,8 @@ def test_one_class_on_two_servers_follows_answers_and_survives_losing_one(tmp_pa
     after = report["state_after_failover"]
     assert after["same"] is True and after["server"] != report["room_server"]
     assert after["students_reconnected"] == 15  # the room server's half came back through the balancer
+    session = report["page_session_after_failover"]  # a lesson page's own scene, claimed, on the killed server
+    assert session["server"] != report["room_server"] and session["params_kept"] is True
+    assert session["keyless_change"] == 403  # its claim holds on the server that took it up
     assert (tmp_path / "scale_out.svg").read_text().startswith("<svg")
     assert "failover" in capsys.readouterr().out
