@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import logging
-from collections.abc import AsyncIterator
+from collections.abc import AsyncIterator, Callable
 from contextlib import asynccontextmanager
 
 from fastapi import FastAPI
@@ -24,7 +24,7 @@ from app.classroom.page_config import classroom_page_config
 from app.classroom.ready_questions import DEFAULT_READY_QUESTIONS, load_ready_questions
 from app.classroom.registry import Rooms
 from app.classroom.roles import InstructorKey, kept_instructor_secret
-from app.classroom.room import RoomError
+from app.classroom.room import Room, RoomError
 from app.classroom.store import SqlRoomStore
 from app.classroom.sync import ClassSync
 from app.course import load_catalogue
@@ -111,7 +111,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     # time are forgotten at start-up.
     app.state.progress = _kept_progress(database, keep_days=settings.keep_rooms_days)
     app.state.join_limits = JoinLimits(settings)
-    app.state.room_hub = RoomHub(lambda: app.state.scene_host)
+    app.state.room_hub = RoomHub(lambda: app.state.scene_host, say_presence=_presence_sayer(database))
     app.state.ready_questions = load_ready_questions(DEFAULT_READY_QUESTIONS, SCENES)
     errors.install(app)
     app.add_exception_handler(RoomError, rooms.room_error_handler)
@@ -159,6 +159,13 @@ def _kept_sessions(database: Database | None, *, keep_days: float) -> SqlSession
     store = SqlSessionStore(database)
     store.forget_unused(days=keep_days)
     return store
+
+
+def _presence_sayer(database: Database | None) -> Callable[[Room], None] | None:
+    """How this server tells the others sharing its database who its sockets of a room hold (None: no others)."""
+    if database is None or not database.shared:
+        return None
+    return lambda room: database.notify("presence", room.room_id, **room.presence_here())
 
 
 def _kept_progress(database: Database | None, *, keep_days: float) -> SqlProgressStore | None:

@@ -369,6 +369,17 @@ def _measure(
             + "; ".join(sorted({e for p in pages for e in p.errors}))
         )
 
+    # Every student counts as connected for the instructor, wherever their socket is (each server says who its
+    # sockets hold).
+    everyone = {f"s{i + 1}" for i in range(students)}
+    presence = _wait(
+        lambda: any(
+            {s["student_id"] for s in listed if s["connected"] and s["following"]} == everyone
+            for _, listed in list(instructor_page.students)
+        ),
+        WAIT_TIMEOUT_S,
+    )
+
     # The instructor's changes, through the balancer to the room's server; each student's socket shows each.
     latencies_ms: list[float] = []
     per_server: dict[str, list[float]] = {home.name: [], other.name: []}
@@ -437,6 +448,8 @@ def _measure(
         "room_server": home.name,
         "students_joined_on": {name: joined_on.count(name) for name in (home.name, other.name)},
         "connect_s": round(connected, 2),
+        # From the last student's page opening until the instructor's list shows every student connected, following.
+        "instructor_sees_everyone_s": None if presence is None else round(connected + presence, 2),
         "follow_latency_ms": {
             "median": round(statistics.median(latencies_ms), 1),
             "p99": round(_percentile(latencies_ms, 0.99), 1),

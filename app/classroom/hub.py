@@ -18,6 +18,8 @@ import contextlib
 import json
 import logging
 import math
+import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Annotated, Any
 
@@ -26,7 +28,7 @@ from starlette.concurrency import run_in_threadpool
 from starlette.requests import HTTPConnection
 
 from app.classroom.polls import Poll
-from app.classroom.room import Room
+from app.classroom.room import PRESENCE_EVERY_S, Room
 
 log = logging.getLogger(__name__)
 
@@ -81,13 +83,19 @@ class Member:
 class RoomHub:
     """Sockets by room, and the pumps that feed them (one event loop; publishing is thread-safe)."""
 
-    def __init__(self, host_of: Any) -> None:
+    def __init__(self, host_of: Any, *, say_presence: Callable[[Room], None] | None = None) -> None:
         #: Called with no arguments: the scene host (read at pump time, as the app sets it in its lifespan).
         self._host_of = host_of
+        #: Tells the other servers sharing the database who this one's sockets of a room hold (in a thread; None:
+        #: no other server): on each change, and every PRESENCE_EVERY_S while the room has sockets here.
+        self._say_presence = say_presence
         self._loop: asyncio.AbstractEventLoop | None = None
         self._members: dict[str, set[Member]] = {}
         self._pumps: dict[str, asyncio.Task[None]] = {}
+        #: Rooms whose presence (here or on another server) changed since their pump last published it.
         self._presence_changed: set[str] = set()
+        #: Rooms whose sockets here changed since their pump last told the other servers.
+        self._presence_to_say: set[str] = set()
 
     # -- sockets (event loop) -------------------------------------------------------------
     def join(self, room: Room, websocket: WebSocket, *, instructor: bool) -> Member:
@@ -103,7 +111,7 @@ class RoomHub:
         self._queue(member, finite_json({"type": "state", "state": room.state()}))
         if instructor:
             self._queue(member, finite_json(students_message(room)))
-        self._presence_changed.add(room.room_id)
+        self.presence_changed(room)
         return member
 
     async def leave(self, room: Room, member: Member) -> None:
@@ -115,13 +123,20 @@ class RoomHub:
             student = room.students.get(member.student_id) if member.student_id else None
             if student is not None:
                 student.sockets -= 1
-        self._presence_changed.add(room.room_id)
+        self.presence_changed(room)
         if member.sender is not None:
             member.sender.cancel()
             with contextlib.suppress(asyncio.CancelledError, Exception):
                 await member.sender
 
     def presence_changed(self, room: Room) -> None:
+        """Who this server's sockets of the room hold changed: published at the room's next pump, and said to the
+        other servers."""
+        self._presence_changed.add(room.room_id)
+        self._presence_to_say.add(room.room_id)
+
+    def others_presence_changed(self, room: Room) -> None:
+        """Another server said who its sockets hold: published at the room's next pump (nothing to say back)."""
         self._presence_changed.add(room.room_id)
 
     def reply(self, member: Member, message: dict[str, Any]) -> None:
@@ -171,9 +186,18 @@ class RoomHub:
         self._in_loop(dismiss_all)
 
     async def _pump(self, room: Room) -> None:
-        """While the room has sockets: its readout and (coalesced) presence, every :data:`PUMP_PERIOD_S`."""
+        """While the room has sockets: its readout and (coalesced) presence, every :data:`PUMP_PERIOD_S`; who its
+        sockets here hold, to the other servers (and once more, nobody, when the last has gone)."""
+        said_s = -math.inf
         try:
             while self._members.get(room.room_id):
+                now = time.monotonic()
+                if room.room_id in self._presence_to_say or now - said_s >= PRESENCE_EVERY_S:
+                    self._presence_to_say.discard(room.room_id)
+                    said_s = now
+                    await self._say(room)
+                if said_s == now and room.remote_presence:  # as often: another server's word may have lapsed (it died)
+                    self._presence_changed.add(room.room_id)
                 if room.room_id in self._presence_changed:
                     self._presence_changed.discard(room.room_id)
                     self._deliver(room.room_id, finite_json({"type": "state", "state": room.state()}), False)
@@ -190,8 +214,17 @@ class RoomHub:
                             room.room_id, finite_json({"type": "readout", "scene_id": scene_id, "data": live}), False
                         )
                 await asyncio.sleep(PUMP_PERIOD_S)
+            await self._say(room)  # nobody here any more
         finally:
             self._pumps.pop(room.room_id, None)
+
+    async def _say(self, room: Room) -> None:
+        if self._say_presence is None:
+            return
+        try:
+            await run_in_threadpool(self._say_presence, room)
+        except Exception as exc:  # the database not answering: the next pump says it again
+            log.info("room %s: presence not said to the other servers (%s)", room.code, exc)
 
     # -- publishing (any thread) ---------------------------------------------------------------
     def _in_loop(self, work: Any, *args: Any) -> None:

@@ -84,6 +84,12 @@ def digest(secret: str) -> str:
 
 #: Times a change runs when other servers keep writing the room first (each time it takes their version up).
 CHANGE_ATTEMPTS = 4
+#: Seconds between a server's words on who its sockets of a room hold (app.classroom.hub), and how long one holds:
+#: a server that stopped saying (it died) no longer counts its students as connected after this.
+PRESENCE_EVERY_S = 2.0
+PRESENCE_HOLDS_S = 5.0
+#: Most student ids one server's word on presence carries (the room's limit: a word always fits PostgreSQL's NOTIFY).
+MAX_PRESENCE_IDS = 500
 
 
 class RoomStore(Protocol):
@@ -115,14 +121,20 @@ class Student:
     following: bool = True
     joined_s: float = field(default_factory=time.time)
 
-    def listing(self) -> dict[str, Any]:
-        """What the instructor's list shows (never the token or the device)."""
-        return {
-            "student_id": self.student_id,
-            "name": self.name,
-            "connected": self.sockets > 0,
-            "following": self.following,
-        }
+    def listing(self, *, connected: bool, following: bool) -> dict[str, Any]:
+        """What the instructor's list shows (never the token or the device), connected and following on any server."""
+        return {"student_id": self.student_id, "name": self.name, "connected": connected, "following": following}
+
+
+@dataclass(frozen=True)
+class Presence:
+    """Who one server's sockets of a room hold (another server sharing the database said so, at ``seen_s``,
+    monotonic): the students connected there, those of them following, and the instructor's sockets."""
+
+    connected: frozenset[str]
+    following: frozenset[str]
+    instructor_sockets: int
+    seen_s: float
 
 
 @dataclass
@@ -167,6 +179,8 @@ class Room:
     _unsaved_answers: set[tuple[str, str]] = field(default_factory=set, repr=False)
     #: The version of the room's row this server last read or wrote (app.classroom.store).
     kept_version: int = field(default=0, repr=False)
+    #: Who other servers' sockets of this room hold, by server (app.classroom.sync): one class on several servers.
+    remote_presence: dict[str, Presence] = field(default_factory=dict, repr=False)
     #: What the stage showed before this server took up another's version (:meth:`take_up`), until
     #: :meth:`follow_stage` brings the stage to the room; None: the stage shows the room.
     _stage_behind: dict[str, Any] | None = field(default=None, repr=False)
@@ -365,7 +379,7 @@ class Room:
     def state(self) -> dict[str, Any]:
         """The room's state as every page reads it (``GET /api/rooms/{room_id}/state``)."""
         with self.lock:
-            following = sum(1 for s in self.students.values() if s.sockets and s.following and self.mode == "follow")
+            connected, following, instructor = self._presence()
             poll = self.polls.get(self.poll_id) if self.poll_id else None
             return {
                 "room_id": self.room_id,
@@ -374,12 +388,53 @@ class Room:
                 **self._shown(),
                 "students": {
                     "joined": len(self.students),
-                    "connected": sum(1 for s in self.students.values() if s.sockets),
-                    "following": following,
+                    "connected": len(connected),
+                    "following": len(following) if self.mode == "follow" else 0,
                 },
-                "instructor_connected": self.instructor_sockets > 0,
+                "instructor_connected": instructor,
                 "poll": poll.public() if poll is not None else None,
             }
+
+    # -- presence: who is connected, on this server and on the others ----------------------------
+    def presence_here(self) -> dict[str, Any]:
+        """Who this server's sockets of the room hold (what it tells the others sharing the database)."""
+        with self.lock:
+            here = [s for s in self.students.values() if s.sockets > 0]
+            return {
+                "connected": [s.student_id for s in here],
+                "following": [s.student_id for s in here if s.following],
+                "instructor_sockets": self.instructor_sockets,
+            }
+
+    def take_presence(self, server: str, said: Mapping[str, Any]) -> None:
+        """Another server's word on who its sockets of the room hold (:meth:`presence_here` there)."""
+        connected, following = said.get("connected"), said.get("following")
+        sockets = said.get("instructor_sockets")
+        if not (isinstance(connected, list) and isinstance(following, list) and isinstance(sockets, int)):
+            return
+        with self.lock:
+            self.remote_presence[server] = Presence(
+                connected=frozenset(str(i) for i in connected[:MAX_PRESENCE_IDS]),
+                following=frozenset(str(i) for i in following[:MAX_PRESENCE_IDS]),
+                instructor_sockets=max(0, sockets),
+                seen_s=time.monotonic(),
+            )
+
+    def _presence(self) -> tuple[set[str], set[str], bool]:
+        """Students connected (on any server), those of them following, and whether the instructor is connected."""
+        connected = {s.student_id for s in self.students.values() if s.sockets > 0}
+        following = {s.student_id for s in self.students.values() if s.sockets > 0 and s.following}
+        instructor = self.instructor_sockets > 0
+        now = time.monotonic()
+        for server, said in list(self.remote_presence.items()):
+            if now - said.seen_s > PRESENCE_HOLDS_S:  # that server stopped saying: it has no sockets, or died
+                del self.remote_presence[server]
+                continue
+            connected |= said.connected
+            following |= said.following
+            instructor = instructor or said.instructor_sockets > 0
+        connected &= self.students.keys()
+        return connected, following & connected, instructor
 
     def change(self, raw: Mapping[str, Any], *, catalogue: Catalogue, host: SceneHostInterface) -> dict[str, Any]:
         """Apply an instructor's change (any of :data:`STATE_FIELDS`), checked whole first; returns the new state."""
@@ -658,7 +713,14 @@ class Room:
     def student_list(self) -> list[dict[str, Any]]:
         """Every student, in the order they joined, as the instructor's list shows them."""
         with self.lock:
-            return [s.listing() for s in sorted(self.students.values(), key=lambda s: int(s.student_id[1:]))]
+            connected, following, _ = self._presence()
+            return [
+                s.listing(
+                    connected=s.student_id in connected,
+                    following=s.student_id in following if s.student_id in connected else s.following,
+                )
+                for s in sorted(self.students.values(), key=lambda s: int(s.student_id[1:]))
+            ]
 
     def remove(self, student_id: str) -> Student:
         """Remove a student: their token stops working, their device cannot join again, and their answers leave

@@ -3,7 +3,8 @@ others change (app.storage.changes delivers their announcements; this module tak
 
 A room another server changed is read anew from the database, its stage here follows (parameters, play state, a
 reset, another scene), and every page here gets the new state; an answer given there reaches this server's
-instructor; a room closed there closes here. A room no page here uses any more is let go instead of kept in step:
+instructor; who is connected there counts here (each server says who its sockets hold, app.classroom.hub); a room
+closed there closes here. A room no page here uses any more is let go instead of kept in step:
 the balancer sends its class to the other server, and it is taken up again if the class comes back.
 """
 
@@ -49,7 +50,10 @@ class ClassSync:
         room = self._rooms.held(change.key)
         if room is None:
             return
-        if change.kind == "room_closed":
+        if change.kind == "presence":  # who that server's sockets hold: this server's pages count them too
+            room.take_presence(change.origin, change.fields)
+            self._hub.others_presence_changed(room)
+        elif change.kind == "room_closed":
             self._closed_elsewhere(room)
         elif not self._in_use_here(room):
             self._let_go(room)

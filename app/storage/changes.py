@@ -31,11 +31,14 @@ RECONNECT_DELAYS_S = (0.2, 0.5, 1.0, 2.0, 5.0)
 
 @dataclass(frozen=True)
 class Change:
-    """One change another server committed: ``kind`` (``room``, ``answer``, ``room_closed``, ``session``) of ``key``
-    (a room or session id), with what the kind adds (a room's ``version``; an answer's ``poll_id``, ``student_id``)."""
+    """One change another server committed: ``kind`` (``room``, ``answer``, ``room_closed``, ``session``,
+    ``presence``) of ``key`` (a room or session id), with what the kind adds (a room's ``version``; an answer's
+    ``poll_id``, ``student_id``; who the server's sockets of a room hold)."""
 
     kind: str
     key: str
+    #: The server that made it (:attr:`app.storage.database.Database.origin` there).
+    origin: str = ""
     fields: dict[str, Any] = field(default_factory=dict)
 
 
@@ -108,9 +111,10 @@ class ChangeListener:
     def _hand_on(self, payload: str) -> None:
         try:
             message = json.loads(payload)
-            if message.pop("origin") == self.database.origin:
+            origin = message.pop("origin")
+            if origin == self.database.origin:
                 return  # this server's own change: it already holds it
-            change = Change(kind=message.pop("kind"), key=message.pop("key"), fields=message)
+            change = Change(kind=message.pop("kind"), key=message.pop("key"), origin=str(origin), fields=message)
         except (ValueError, KeyError, TypeError, AttributeError):
             log.warning("an announcement that is not one of ours on %s: %.80r", CHANGES_CHANNEL, payload)
             return

@@ -104,6 +104,13 @@ class Database:
         with self.engine.begin() as connection:
             yield connection
 
+    def notify(self, kind: str, key: str, **fields: Any) -> None:
+        """:meth:`announce` something nothing is written for (who a server's sockets hold), in a transaction of its
+        own. Nothing on SQLite."""
+        if self.shared:
+            with self.transaction() as connection:
+                self.announce(connection, kind, key, **fields)
+
     def kept_value(self, name: str, make: Callable[[], str]) -> str:
         """The server value ``name``; made by ``make`` and kept the first time it is asked for."""
         with self.transaction() as connection:

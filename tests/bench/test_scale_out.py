@@ -24,6 +24,8 @@ def test_one_class_on_two_servers_follows_answers_and_survives_losing_one(tmp_pa
     report = json.loads((tmp_path / "scale_out.json").read_text())
     # Joining through the balancer's round robin, students arrived on both servers: each took the room up.
     assert sorted(report["students_joined_on"].values()) != [0, 30]
+    # The instructor's list counts every student as connected and following, whichever server their page is on.
+    assert report["instructor_sees_everyone_s"] is not None
     latency = report["follow_latency_ms"]
     assert latency["samples"] == 300  # every change reached every student's socket (else main raised)
     # The median on each server is held to the bound here, where other tests share the two cores; the committed
