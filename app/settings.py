@@ -47,8 +47,9 @@ class Settings:
     database_url: str = ""
     #: Kept rooms (with their answers) and page sessions nobody has used for this many days are forgotten.
     keep_rooms_days: float = 180.0
-    #: The address students reach this server at (``http://10.0.0.5:8000``), used in room join links and QR codes;
-    #: empty: the address the instructor's browser used.
+    #: The address students reach this server at (``http://10.0.0.5:8000``, or a balancer's in front of several),
+    #: used in room join links and QR codes, and a ``Host`` this server accepts; empty: the address the instructor's
+    #: browser used.
     public_url: str = ""
 
     # --- The web front's guard (app/web/guard.py): what one client may send, from where, how often ---

@@ -59,6 +59,20 @@ def _split_authority(authority: str) -> tuple[str, int | None] | None:
     return parts.hostname, port
 
 
+def public_host(public_url: str) -> tuple[str, ...]:
+    """The ``Host`` (``name:port``) of ``Settings.public_url``, the address students reach the server at (a balancer
+    in front of it): requests carrying it are meant for this server. Empty without one."""
+    parts = urlsplit(public_url.strip()) if public_url.strip() else None
+    if parts is None or not parts.hostname:
+        return ()
+    try:
+        port = parts.port or _DEFAULT_PORTS.get(parts.scheme, 80)
+    except ValueError:  # a malformed port: nothing is added
+        return ()
+    host = f"[{parts.hostname}]" if ":" in parts.hostname else parts.hostname
+    return (f"{host}:{port}",)
+
+
 class HostPolicy:
     """Which ``Host`` names reach this server.
 
@@ -117,7 +131,9 @@ class RequestGuard:
         self.app = RequestBodyLimitMiddleware(app, max_body_size=settings.max_body_bytes)
         self.max_body_bytes = settings.max_body_bytes
         self.hosts = HostPolicy(
-            served_host=settings.host, served_port=settings.port, extra_hosts=settings.allowed_hosts
+            served_host=settings.host,
+            served_port=settings.port,
+            extra_hosts=(*settings.allowed_hosts, *public_host(settings.public_url)),
         )
         self.allowed_origins = frozenset(o.strip().rstrip("/").lower() for o in settings.allowed_origins if o.strip())
         self.trust_forwarded_for = settings.trust_forwarded_for

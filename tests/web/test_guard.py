@@ -191,6 +191,18 @@ def test_allowed_origins_and_hosts_admit_a_reverse_proxy():
     assert guarded(allowed_hosts=("*",)).post("/x", headers={"host": "any.name", "origin": "http://any.name"}).status_code == 200
 
 
+def test_the_public_address_behind_a_balancer_is_this_servers_own():
+    """DYNLAB_PUBLIC_URL is where students reach the server (a balancer in front of it): its Host is accepted, on its
+    port only; another port or name still is not."""
+    through = {"host": "127.0.0.1:9000", "origin": "http://127.0.0.1:9000"}
+    assert guarded().post("/x", headers=through).status_code == 403
+    assert guarded(public_url="http://127.0.0.1:9000").post("/x", headers=through).status_code == 200
+    assert guarded(public_url="http://127.0.0.1:9001").post("/x", headers=through).status_code == 403
+    lab = {"host": "lab.example.org", "origin": "https://lab.example.org"}
+    assert guarded(public_url="https://lab.example.org/").post("/x", headers=lab).status_code == 200
+    assert guarded(public_url="http://lab.example.org:bad").post("/x", headers=lab).status_code == 403
+
+
 @pytest.mark.parametrize(
     ("served_host", "name", "port", "allowed"),
     [
