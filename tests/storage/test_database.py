@@ -84,3 +84,28 @@ def test_a_value_is_made_once_and_a_failed_write_keeps_nothing(tmp_path):
         connection.execute(sa.update(server_values).values(value="half-written"))
         raise RuntimeError("a crash between two writes of one transaction")
     assert database.kept_value("a", lambda: "third") == "first"
+
+
+def test_a_room_kept_before_rooms_had_versions_loads_and_is_written_at_version_0(tmp_path):
+    """A room written by the version before 0003 (no version column) comes back at version 0 and is written on."""
+    import json as json_module
+    from datetime import UTC, datetime
+
+    import sqlalchemy as sa
+
+    from app.classroom.room import Room
+    from app.classroom.store import SqlRoomStore
+
+    database = open_database(sqlite_url(tmp_path / "data"), migrate_to="0002")
+    record = Room(room_id="a" * 16, code="ABCDEF", join_url="http://lab.example:8000/join/ABCDEF").record()
+    with database.transaction() as connection:
+        connection.execute(
+            sa.text("INSERT INTO rooms (room_id, code, created_at, used_at, record) VALUES (:i, :c, :t, :t, :r)"),
+            {"i": "a" * 16, "c": "ABCDEF", "t": datetime.now(UTC), "r": json_module.dumps(record)},
+        )
+    migrate(database, to=head_revision())
+    (room,) = SqlRoomStore(database).load()
+    assert room.kept_version == 0 and room.code == "ABCDEF"
+    room.join("Ada", device="device-of-ada")
+    (again,) = SqlRoomStore(open_database(sqlite_url(tmp_path / "data"))).load()
+    assert again.kept_version == 1 and [s["name"] for s in again.student_list()] == ["Ada"]
