@@ -106,6 +106,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
         keep_days=settings.keep_rooms_days,
         join_base=settings.public_url or f"http://{settings.host}:{settings.port}",  # kept rooms' join links
         open_kept=database is None or not database.shared,  # servers sharing one take rooms up as classes arrive
+        stop_stage=lambda room: room.rest_stage(app.state.scene_host),
     )
     # Learners working alone and their exercise progress (None with nothing kept); those unused for the rooms' keeping
     # time are forgotten at start-up.

@@ -6,6 +6,7 @@ import logging
 import secrets
 import threading
 import time
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from app.classroom.room import (
@@ -28,6 +29,9 @@ if TYPE_CHECKING:
 MAX_ROOMS = 16
 #: A room nobody has used for this long (s) is closed when a new one needs its place (the database still keeps it).
 IDLE_ROOM_S = 6 * 3600.0
+#: On a database several servers share, a room with no socket here unused this long (s) makes way when all places
+#: are taken (its class is on another server; it is taken up again if the class comes back).
+MAKE_WAY_AFTER_S = 60.0
 #: A room's id: this many random hex digits (the API's paths and the room viewer's accept only this form).
 ROOM_ID_HEX_DIGITS = 16
 ROOM_ID_PATTERN = rf"^[0-9a-f]{{{ROOM_ID_HEX_DIGITS}}}$"
@@ -45,8 +49,11 @@ class Rooms:
         keep_days: float = Settings.keep_rooms_days,
         join_base: str = DEFAULT_JOIN_BASE,
         open_kept: bool = True,
+        stop_stage: Callable[[Room], object] = lambda room: None,
     ) -> None:
         self.max_rooms = max_rooms
+        #: Stops the scene of a room taken out of memory to make way for another (the scene host's).
+        self._stop_stage = stop_stage
         self.store = store
         self.keep_days = keep_days
         self.join_base = join_base
@@ -87,6 +94,10 @@ class Rooms:
             return room, closed
 
     def _drop_idle(self) -> list[Room]:
+        """Rooms taken out of memory to make way (the database keeps them, to be taken up again): every room unused
+        for :data:`IDLE_ROOM_S` with no instructor here; and on a database several servers share, while every place
+        is taken, the least recently used with no socket here, unused for :data:`MAKE_WAY_AFTER_S` (a class another
+        server serves now)."""
         now = time.monotonic()
         idle = [
             room
@@ -95,19 +106,46 @@ class Rooms:
         ]
         for room in idle:  # its scene stops; the database keeps it (dynlab rooms, dynlab export) for keep_days
             del self._rooms[room.room_id]
+        if self.store is not None and self.store.shared and len(self._rooms) >= self.max_rooms:
+            elsewhere = sorted(
+                (
+                    room
+                    for room in self._rooms.values()
+                    if now - room.last_used_s > MAKE_WAY_AFTER_S
+                    and not room.instructor_sockets
+                    and not any(s.sockets for s in room.students.values())
+                ),
+                key=lambda room: room.last_used_s,
+            )
+            for room in elsewhere[: len(self._rooms) - self.max_rooms + 1]:
+                del self._rooms[room.room_id]
+                idle.append(room)
         return idle
 
     def get(self, room_id: str) -> Room:
+        made_way: list[Room] = []
         with self._lock:
-            room = self._rooms.get(room_id) or self._take_up_locked(room_id=room_id)
+            room = self._rooms.get(room_id) or self._take_up_locked(made_way, room_id=room_id)
             if room is not None and room.closed:  # found deleted by its last change (closed elsewhere): gone here too
                 self._forget_closed_locked(room)
                 room = None
+            if room is not None:
+                room.last_used_s = time.monotonic()
+        self._stop_stages(made_way)
         if room is None:
             raise KeyError(f"no room {room_id!r} (it may have been closed)")
         return room
 
-    def _take_up_locked(self, *, room_id: str | None = None, code: str | None = None) -> Room | None:
+    def _stop_stages(self, rooms: list[Room]) -> None:
+        for room in rooms:
+            try:
+                self._stop_stage(room)
+            except Exception as exc:  # a worker restarting forgets it anyway
+                log.warning("room %s: its scene did not stop as it made way (%s)", room.code, exc)
+
+    def _take_up_locked(
+        self, made_way: list[Room], *, room_id: str | None = None, code: str | None = None
+    ) -> Room | None:
         """A room kept in the store but not open here: one that made way for others (idle), or one another server
         sharing the database kept, whose class a balancer now sends here. It opens here (its stage with its first
         follower or change) if there is a place for it."""
@@ -116,7 +154,7 @@ class Rooms:
         room = self.store.load_one(join_base=self.join_base, room_id=room_id, code=code)
         if room is None or room.room_id in self._closed:
             return None
-        self._drop_idle()
+        made_way += self._drop_idle()
         if len(self._rooms) >= self.max_rooms:
             log.warning("room %s is kept but %d rooms are open here: it stays closed", room.code, self.max_rooms)
             return None
@@ -141,13 +179,15 @@ class Rooms:
 
     def by_code(self, code: str) -> Room:
         wanted = code.strip().upper()
+        made_way: list[Room] = []
         with self._lock:
             room = next((r for r in self._rooms.values() if r.code == wanted), None)
-            if room is None and len(wanted) <= MAX_TYPED_CODE_LENGTH:
-                room = self._take_up_locked(code=wanted)
+            if room is None and len(wanted) <= MAX_TYPED_CODE_LENGTH and all(c in CODE_ALPHABET for c in wanted):
+                room = self._take_up_locked(made_way, code=wanted)
             if room is not None and room.closed:
                 self._forget_closed_locked(room)
                 room = None
+        self._stop_stages(made_way)
         if room is None:
             raise KeyError(f"no open room has the code {wanted!r}")
         return room
@@ -156,11 +196,12 @@ class Rooms:
         self._rooms.pop(room.room_id, None)
         self._closed.add(room.room_id)
 
-    def close(self, room_id: str) -> Room | None:
+    def close(self, room_id: str, *, room: Room | None = None) -> Room | None:
         """Close a room and forget it, with every answer in it (a change still in flight finishes first; later ones
-        are refused, and nothing of the room is written again)."""
+        are refused, and nothing of the room is written again). ``room``: the copy a request found, closed and
+        deleted even if it made way meanwhile."""
         with self._lock:
-            room = self._rooms.pop(room_id, None)
+            room = self._rooms.pop(room_id, None) or room
             if room is not None:
                 self._closed.add(room_id)  # never taken up again in this run, even if its deletion fails
         if room is not None:
@@ -177,12 +218,6 @@ class Rooms:
         """The room if it is open here (never taken up from the store)."""
         with self._lock:
             return self._rooms.get(room_id)
-
-    def release(self, room_id: str) -> Room | None:
-        """Let an open room go without closing it (no page here uses it; another server serves its class): the
-        database keeps it, and it is taken up again if its class comes back. Its stage is the caller's to close."""
-        with self._lock:
-            return self._rooms.pop(room_id, None)
 
     def closed_elsewhere(self, room_id: str) -> Room | None:
         """Another server sharing the database closed this room: it closes here too (nothing is deleted: that server

@@ -10,6 +10,7 @@ checked whole before anything is applied: a bad field answers with a
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import logging
 import math
@@ -82,7 +83,8 @@ def digest(secret: str) -> str:
     return hashlib.sha256(secret.encode()).hexdigest()
 
 
-#: Times a change runs when other servers keep writing the room first (each time it takes their version up).
+#: Times a change runs when its room's row changed under it outside a turn (two copies of the room in one server, or
+#: a room deleted meanwhile): each time the room takes the kept version up first.
 CHANGE_ATTEMPTS = 4
 #: Seconds between a server's words on who its sockets of a room hold (app.classroom.hub), and how long one holds:
 #: a server that stopped saying (it died) no longer counts its students as connected after this.
@@ -104,6 +106,11 @@ class RoomStore(Protocol):
     def load_newer(self, room: Room) -> Room | None: ...
 
     def load_answer(self, room_id: str, poll_id: str, student_id: str) -> dict[str, Any] | None: ...
+
+    def turn(self, room: Room) -> contextlib.AbstractContextManager[int | None]: ...
+
+    @property
+    def shared(self) -> bool: ...
 
 
 @dataclass
@@ -343,22 +350,53 @@ class Room:
                 self._stage_unsure = True
                 log.warning("room %s: its stage did not follow another server's change (%s)", self.code, exc)
 
+    def rest_stage(self, host: SceneHostInterface) -> bool:
+        """Stop the room's scene on this server (nobody here follows it); it opens again, as the room is then, with
+        its next follower or change. Under the room's lock: a change under way finishes first. True if it stopped."""
+        with self.lock:
+            if self.scene_id is None or self._stage_unsure:
+                return False
+            self._stage_unsure, self._stage_behind = True, None
+            try:
+                host.close_stage(self.stage_id)
+            except Exception as exc:  # a worker restarting forgets it anyway
+                log.warning("room %s: its scene here did not stop (%s)", self.code, exc)
+            return True
+
     def _changing(self, work: Callable[[], T], *, host: SceneHostInterface | None = None) -> T:
-        """Run ``work`` (one change, ending in :meth:`_keep`) with the room's lock held. If another server sharing
-        the database wrote the room since this one read it, the write is refused: the room takes that version up
-        (its stage follows, given ``host``) and ``work`` runs again on it, so neither server's change is lost."""
+        """Run ``work`` (one change, ending in :meth:`_keep`) with the room's lock held, in the room's turn at its
+        store (:meth:`RoomStore.turn`): on a database several servers share, the others' changes of this room wait
+        until this one is written, and a version another server wrote first is taken up before ``work`` runs (its
+        stage follows, given ``host``), so no server's change is lost or refused. A store that cannot give the turn,
+        or keep the change, refuses it (:class:`StoreUnavailable`, a 503): the room reads its kept version again."""
         for _ in range(CHANGE_ATTEMPTS):
             with self.lock:
                 if self.closed:
                     raise RoomAlreadyClosed("room", f"room {self.code} was closed by its instructor; nothing changed")
                 try:
-                    return work()
-                except RoomChangedElsewhere:
-                    if not self.take_up_newer():  # deleted: closed on another server, or by `dynlab rooms delete`
+                    with self._turn() as kept_version:
+                        if kept_version is None:  # deleted: closed on another server, or by `dynlab rooms delete`
+                            self.closed = True
+                            continue
+                        if kept_version != self.kept_version and self.take_up_newer() and host is not None:
+                            self.follow_stage(host)
+                        return work()
+                except RoomChangedElsewhere:  # written outside any turn meanwhile (one server's copies of the room)
+                    if not self.take_up_newer():
                         self.closed = True
                     if host is not None:
                         self.follow_stage(host)
+                except StoreUnavailable:
+                    if self.store is not None and self.store.shared:  # not kept: nor does it stand here
+                        with contextlib.suppress(StoreUnavailable):
+                            self.take_up_newer()
+                    raise
         raise StoreUnavailable(f"room {self.code} is changing on other servers too fast to keep this change")
+
+    def _turn(self) -> contextlib.AbstractContextManager[int | None]:
+        if self.store is None:
+            return contextlib.nullcontext(self.kept_version)
+        return self.store.turn(self)
 
     # -- state ---------------------------------------------------------------------
     def _shown(self) -> dict[str, Any]:
@@ -397,12 +435,14 @@ class Room:
 
     # -- presence: who is connected, on this server and on the others ----------------------------
     def presence_here(self) -> dict[str, Any]:
-        """Who this server's sockets of the room hold (what it tells the others sharing the database)."""
+        """Who this server's sockets of the room hold (what it tells the others sharing the database): the numbers of
+        the students connected (``s12`` is 12, so a class of 500 fits one PostgreSQL announcement), those following,
+        and the instructor's sockets."""
         with self.lock:
             here = [s for s in self.students.values() if s.sockets > 0]
             return {
-                "connected": [s.student_id for s in here],
-                "following": [s.student_id for s in here if s.following],
+                "connected": [int(s.student_id[1:]) for s in here],
+                "following": [int(s.student_id[1:]) for s in here if s.following],
                 "instructor_sockets": self.instructor_sockets,
             }
 
@@ -412,10 +452,11 @@ class Room:
         sockets = said.get("instructor_sockets")
         if not (isinstance(connected, list) and isinstance(following, list) and isinstance(sockets, int)):
             return
+        ids = lambda numbers: frozenset(f"s{n}" for n in numbers[:MAX_PRESENCE_IDS] if isinstance(n, int))  # noqa: E731
         with self.lock:
             self.remote_presence[server] = Presence(
-                connected=frozenset(str(i) for i in connected[:MAX_PRESENCE_IDS]),
-                following=frozenset(str(i) for i in following[:MAX_PRESENCE_IDS]),
+                connected=ids(connected),
+                following=ids(following),
                 instructor_sockets=max(0, sockets),
                 seen_s=time.monotonic(),
             )
@@ -457,7 +498,8 @@ class Room:
 
         A write the database refuses (locked past its timeout, a full disk) is logged and the change stands: the
         room is written whole, so its next write keeps this change too, with any answers not kept meanwhile. Only a
-        restart before that would lose it."""
+        restart before that would lose it. On a database several servers share the write's failure refuses the change
+        instead (the others could not see it, and would write over it)."""
         if self.store is None or self.closed:
             return
         try:
@@ -466,15 +508,20 @@ class Room:
                 self.store.save_answer(self, poll_id, student_id)
                 self._unsaved_answers.discard((poll_id, student_id))
         except StoreUnavailable as exc:
+            if self.store.shared:  # the other servers would never see it: the change is refused (503)
+                raise
             log.error("room %s: not kept this time (%s); its next change writes it again", self.code, exc)
 
     def _keep_answer(self, poll_id: str, student_id: str) -> None:
-        """Write one answer to the store; one it cannot take now goes with the room's next write."""
+        """Write one answer to the store; one it cannot take now goes with the room's next write (on a database
+        several servers share, :class:`StoreUnavailable`: the caller takes the answer back)."""
         if self.store is None or self.closed:
             return
         try:
             self.store.save_answer(self, poll_id, student_id)
         except StoreUnavailable as exc:
+            if self.store.shared:
+                raise
             self._unsaved_answers.add((poll_id, student_id))
             log.error("room %s: an answer not kept this time (%s); the room's next change writes it", self.code, exc)
 
@@ -698,7 +745,7 @@ class Room:
         if not token:
             return None
         with self.lock:
-            if digest(token) not in self._by_token and getattr(self.store, "shared", False):
+            if digest(token) not in self._by_token and self.store is not None and self.store.shared:
                 self.take_up_newer()  # a student who joined on another server a moment ago
             if digest(token) in self._removed_tokens:
                 raise StudentRemoved("the instructor removed you from this room")
@@ -774,8 +821,16 @@ class Room:
             student = self.student(token)
             if student is None:
                 raise PermissionError("answering needs the X-Student-Token this room gave when you joined")
-            self.poll(poll_id).submit(student.student_id, raw, name=student.name)
-            self._keep_answer(poll_id, student.student_id)
+            poll = self.poll(poll_id)
+            earlier = poll.answer_of(student.student_id)
+            poll.submit(student.student_id, raw, name=student.name)
+            try:
+                self._keep_answer(poll_id, student.student_id)
+            except StoreUnavailable:  # not kept (a shared database): the student's earlier answer stands
+                poll.withdraw(student.student_id)
+                if earlier is not None:
+                    poll.take_kept_answer(student.student_id, earlier)
+                raise
 
     def update_poll(self, poll_id: str, raw: Mapping[str, Any], *, host: Any) -> Poll:
         """Close or reopen the current poll, reveal a poll's answer (computed by the room's scene now), show or hide

@@ -214,7 +214,7 @@ def create_room(
 )
 def close_room(room: RoomDep, rooms: RoomsDep, host: SceneHostDep, hub: RoomHubDep) -> dict[str, str]:
     """Close the room (instructor only): its scene stops and every page in it is told."""
-    rooms.close(room.room_id)
+    rooms.close(room.room_id, room=room)
     if room.scene_id is not None:
         host.close_stage(room.stage_id)
     hub.publish(room.room_id, {"type": "closed"})
@@ -585,8 +585,13 @@ async def _socket_message(websocket: WebSocket, room: Room, member: Any, message
     kind = message.pop("type")
     if kind == "hello":
         token = message.get("student_token")
-        try:
-            student = room.student(token) if isinstance(token, str) else None
+        try:  # off the event loop: a token this server has not seen is looked for in the database's newest version
+            student = await run_in_threadpool(room.student, token) if isinstance(token, str) else None
+        except StoreUnavailable:
+            hub.reply(
+                member, {"type": "error", "status": 503, "detail": "the server could not read the room: reconnect"}
+            )
+            return
         except StudentRemoved as exc:
             hub.dismiss(
                 member,
@@ -614,8 +619,8 @@ async def _socket_message(websocket: WebSocket, room: Room, member: Any, message
                 student.following = message.get("following") is not False
         hub.presence_changed(room)
     elif kind == "following":
-        with contextlib.suppress(StudentRemoved):  # removed meanwhile: the socket is closing
-            student = room.student(member.student_token)
+        with contextlib.suppress(StudentRemoved, StoreUnavailable):  # removed meanwhile: the socket is closing
+            student = await run_in_threadpool(room.student, member.student_token)
             if student is not None and isinstance(message.get("value"), bool):
                 student.following = message["value"]
                 hub.presence_changed(room)

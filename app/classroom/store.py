@@ -8,6 +8,7 @@ At start-up every kept room comes back (:meth:`SqlRoomStore.load`), its students
 from __future__ import annotations
 
 import logging
+import threading
 from collections import defaultdict
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -33,6 +34,8 @@ class SqlRoomStore:
 
     def __init__(self, database: Database) -> None:
         self.database = database
+        #: The connection of the turn this thread holds (:meth:`turn`), which this thread's writes join.
+        self._turn = threading.local()
 
     @property
     def shared(self) -> bool:
@@ -41,12 +44,35 @@ class SqlRoomStore:
 
     @contextmanager
     def _writing(self, what: str) -> Iterator[sa.Connection]:
+        held = getattr(self._turn, "connection", None)
+        if held is not None:  # part of this thread's turn: written when the turn commits
+            yield held
+            return
         try:
             with self.database.transaction() as connection:
                 yield connection
         except SQLAlchemyError as exc:
             log.error("the database did not keep %s: %s", what, exc)
             raise StoreUnavailable(f"the server could not keep {what} just now; try again in a moment") from exc
+
+    @contextmanager
+    def turn(self, room: Room) -> Iterator[int | None]:
+        """This server's turn to change ``room``. On a database several servers share: one transaction that holds
+        the room's row (``SELECT … FOR UPDATE``), so the other servers' changes of the room wait for it, and that
+        this thread's writes of the room join (written, and announced, when the turn ends); it yields the version
+        kept now (None: the room is no longer kept). On SQLite, which one server holds, nothing waits: it yields the
+        version the room read."""
+        if not self.shared:
+            yield room.kept_version
+            return
+        with self._writing(f"room {room.code}") as connection:
+            query = sa.select(rooms.c.version).where(rooms.c.room_id == room.room_id).with_for_update()
+            version = connection.execute(query).scalar()
+            self._turn.connection = connection
+            try:
+                yield version
+            finally:
+                self._turn.connection = None
 
     def insert(self, room: Room) -> None:
         """Keep a new room (at version 0)."""

@@ -4,8 +4,9 @@ others change (app.storage.changes delivers their announcements; this module tak
 A room another server changed is read anew from the database, its stage here follows (parameters, play state, a
 reset, another scene), and every page here gets the new state; an answer given there reaches this server's
 instructor; who is connected there counts here (each server says who its sockets hold, app.classroom.hub); a room
-closed there closes here. A room no page here uses any more is let go instead of kept in step:
-the balancer sends its class to the other server, and it is taken up again if the class comes back.
+closed there closes here. A room held here that no page here follows any more stops its scene here (the balancer sends
+its class to another server), and opens it again with its next follower; the room itself stays, one copy per server,
+so no request or socket still using it is left with a copy nobody keeps in step.
 """
 
 from __future__ import annotations
@@ -55,8 +56,6 @@ class ClassSync:
             self._hub.others_presence_changed(room)
         elif change.kind == "room_closed":
             self._closed_elsewhere(room)
-        elif not self._in_use_here(room):
-            self._let_go(room)
         elif change.kind == "answer":
             self._answer(room, poll_id=change.fields["poll_id"], student_id=change.fields["student_id"])
         elif change.kind == "room":
@@ -67,10 +66,7 @@ class ClassSync:
     def on_missed(self) -> None:
         """Changes may have been missed (the listening connection was lost): every room held here is read anew."""
         for room in self._rooms.all():
-            if self._in_use_here(room):
-                self._take_up(room)
-            else:
-                self._let_go(room)
+            self._take_up(room)
 
     def _in_use_here(self, room: Room) -> bool:
         return self._hub.socket_count(room.room_id) > 0 or follower_count(self.app, room.room_id) > 0
@@ -80,7 +76,10 @@ class ClassSync:
         if read and not room.take_up_newer():
             self._closed_elsewhere(room)
             return
-        room.follow_stage(self._host)
+        if self._in_use_here(room):
+            room.follow_stage(self._host)
+        elif room.rest_stage(self._host):  # nobody here follows it: its scene stops here until someone does
+            log.info("room %s: nobody here follows its scene; it stops here until someone does", room.code)
         self._hub.publish_state(room)
         self._hub.publish_students(room)
         if room.poll_id is not None:
@@ -105,11 +104,6 @@ class ClassSync:
         self._rooms.closed_elsewhere(room.room_id)
         self._close_stage(room)
         self._hub.publish(room.room_id, {"type": "closed"})
-
-    def _let_go(self, room: Room) -> None:
-        if self._rooms.release(room.room_id) is not None:
-            log.info("room %s: no page here uses it; another server serves its class", room.code)
-            self._close_stage(room)
 
     def _close_stage(self, room: Room) -> None:
         if room.scene_id is None:

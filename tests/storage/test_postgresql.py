@@ -59,6 +59,8 @@ def test_a_class_round_trips_and_a_second_server_takes_it_up(url, catalogue):
     assert taken.student(made["ada"].token).student_id == made["ada"].student_id
     with pytest.raises(StudentRemoved):
         taken.student(made["cy"].token)
+    with pytest.raises(KeyError):  # no room; never a question PostgreSQL refuses (its text cannot hold NUL)
+        there.by_code("\x00" * 6)
     here.close(room.room_id)
     assert Rooms(store=SqlRoomStore(open_database(url))).all() == []
 
@@ -168,3 +170,66 @@ def test_a_change_to_a_room_another_server_closed_is_refused_as_closed(url, cata
     there.close(room.room_id)
     with pytest.raises(RoomAlreadyClosed):  # answered 409 by the app's RoomError handler, never a 500
         room.open_poll({"question": "Still there?", "kind": "choice", "choices": ["yes", "no"]})
+
+
+def test_a_class_joining_at_once_on_two_servers_all_get_in_as_distinct_students(url, catalogue):
+    """80 joins at once, half on each server, while the instructor changes the room on one: each change of the room
+    takes its turn (the row's lock), so none is refused or lost and no two students share an id."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    here = Rooms(store=SqlRoomStore(open_database(url)))
+    there = Rooms(store=SqlRoomStore(open_database(url)))
+    host = BusyWhenTold()
+    room, _ = here.create(join_base="http://lab.example:8000")
+    room.change({"lesson_id": FRICTION_LESSON, "scene_id": "sliding-bar-friction"}, catalogue=catalogue, host=host)
+    copies = (room, there.get(room.room_id))
+
+    def join(index: int):
+        return copies[index % 2].join(f"student {index}", device=f"device-{index}")
+
+    def change(index: int):
+        return room.change({"params": {"mu": 0.1 + 0.01 * index}}, catalogue=catalogue, host=host)
+
+    with ThreadPoolExecutor(max_workers=16) as pool:
+        joins = [pool.submit(join, i) for i in range(80)]
+        changes = [pool.submit(change, i) for i in range(10)]
+        joined = [future.result(timeout=60) for future in joins]
+        [future.result(timeout=60) for future in changes]
+    assert len({s.student_id for s in joined}) == 80
+    kept = Rooms(store=SqlRoomStore(open_database(url))).get(room.room_id)
+    assert kept.state()["students"]["joined"] == 80
+    assert all(kept.student(s.token).student_id == s.student_id for s in joined)
+    here.close(room.room_id)
+
+
+def test_while_the_shared_database_is_down_changes_are_refused_not_kept_only_here(url, catalogue):
+    """A server that cannot reach the database several servers share refuses every change (503, Retry-After): one
+    kept only in its memory would be undone when the others' version is read again. Its earlier state stands."""
+    from app.storage.database import Database, StoreUnavailable
+
+    here = Rooms(store=SqlRoomStore(open_database(url)))
+    host = BusyWhenTold()
+    room, _ = here.create(join_base="http://lab.example:8000")
+    room.change({"lesson_id": FRICTION_LESSON, "scene_id": "sliding-bar-friction", "params": {"mu": 0.3}},
+                catalogue=catalogue, host=host)  # fmt: skip
+    ada = room.join("Ada", device="device-of-ada")
+    poll = room.open_poll({"question": "Does it stick?", "kind": "choice", "choices": ["yes", "no"]})
+    room.answer(poll.poll_id, ada.token, {"choice": 0})
+    store = room.store
+    reachable = store.database
+    store.database = Database(sa.create_engine("postgresql+psycopg://dynlab@127.0.0.1:1/dynlab"))  # down
+    try:
+        with pytest.raises(StoreUnavailable):
+            room.change({"params": {"mu": 0.9}}, catalogue=catalogue, host=host)
+        with pytest.raises(StoreUnavailable):
+            room.join("Ben", device="device-of-ben")
+        with pytest.raises(StoreUnavailable):
+            room.answer(poll.poll_id, ada.token, {"choice": 1})
+        state = room.state()
+        assert state["params"]["mu"] == 0.3 and state["students"]["joined"] == 1
+        assert room.poll(poll.poll_id).answer_of(ada.student_id)["choice"] == 0  # her earlier answer stands
+    finally:
+        store.database = reachable
+    room.change({"params": {"mu": 0.9}}, catalogue=catalogue, host=host)  # back: the same change goes through
+    assert Rooms(store=SqlRoomStore(open_database(url))).get(room.room_id).state()["params"]["mu"] == 0.9
+    here.close(room.room_id)
