@@ -205,13 +205,14 @@ class Rooms:
             if room is not None:
                 self._closed.add(room_id)  # never taken up again in this run, even if its deletion fails
         if room is not None:
-            with room.lock:
-                room.closed = True
-                if self.store is not None:
-                    try:
+            try:
+                with room.turn(), room.lock:  # a change under way, here or on another server, finishes first
+                    room.closed = True
+                    if self.store is not None:
                         self.store.delete(room_id)
-                    except StoreUnavailable as exc:  # closed here; the database keeps it until it answers again
-                        log.error("room %s is closed but still kept in the database: %s", room.code, exc)
+            except StoreUnavailable as exc:  # closed here; the database keeps it until it answers again
+                room.closed = True
+                log.error("room %s is closed but still kept in the database: %s", room.code, exc)
         return room
 
     def held(self, room_id: str) -> Room | None:

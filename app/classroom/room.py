@@ -17,7 +17,7 @@ import math
 import secrets
 import threading
 import time
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass, field
 from typing import Any, Protocol, TypeVar
 
@@ -176,6 +176,9 @@ class Room:
     _stage_unsure: bool = field(default=False, repr=False)
     #: Held while the room's state changes (routes run in threads, sockets in the event loop's executor).
     lock: threading.RLock = field(default_factory=threading.RLock, repr=False)
+    #: Held for a change's whole turn (:meth:`turn`), taken before :attr:`lock`.
+    turn_lock: threading.RLock = field(default_factory=threading.RLock, repr=False)
+    _turn_depth: int = field(default=0, repr=False)
     #: Where the room is kept (None: in this process's memory only).
     store: RoomStore | None = field(default=None, repr=False)
     #: When the room was opened (UTC, for the database and ``dynlab rooms``).
@@ -370,33 +373,55 @@ class Room:
         stage follows, given ``host``), so no server's change is lost or refused. A store that cannot give the turn,
         or keep the change, refuses it (:class:`StoreUnavailable`, a 503): the room reads its kept version again."""
         for _ in range(CHANGE_ATTEMPTS):
-            with self.lock:
-                if self.closed:
-                    raise RoomAlreadyClosed("room", f"room {self.code} was closed by its instructor; nothing changed")
-                try:
-                    with self._turn() as kept_version:
-                        if kept_version is None:  # deleted: closed on another server, or by `dynlab rooms delete`
-                            self.closed = True
-                            continue
-                        if kept_version != self.kept_version and self.take_up_newer() and host is not None:
-                            self.follow_stage(host)
-                        return work()
-                except RoomChangedElsewhere:  # written outside any turn meanwhile (one server's copies of the room)
+            if self.closed:
+                raise RoomAlreadyClosed("room", f"room {self.code} was closed by its instructor; nothing changed")
+            try:
+                # The turn first, then the lock: while another server's change holds the turn, this server's pages
+                # (and its event loop, which reads the room under its lock) do not wait with it.
+                with self.turn() as kept_version, self.lock:
+                    if self.closed:
+                        continue
+                    if kept_version is None:  # deleted: closed on another server, or by `dynlab rooms delete`
+                        self.closed = True
+                        continue
+                    if kept_version != self.kept_version and self.take_up_newer() and host is not None:
+                        self.follow_stage(host)
+                    return work()
+            except RoomChangedElsewhere:  # written outside any turn meanwhile (one server's copies of the room)
+                with self.lock:
                     if not self.take_up_newer():
                         self.closed = True
                     if host is not None:
                         self.follow_stage(host)
-                except StoreUnavailable:
-                    if self.store is not None and self.store.shared:  # not kept: nor does it stand here
-                        with contextlib.suppress(StoreUnavailable):
-                            self.take_up_newer()
-                    raise
+            except StoreUnavailable:
+                if self.store is not None and self.store.shared:  # not kept: nor does it stand here
+                    with contextlib.suppress(StoreUnavailable):
+                        self.take_up_newer()
+                raise
+        if self.closed:
+            raise RoomAlreadyClosed("room", f"room {self.code} was closed by its instructor; nothing changed")
         raise StoreUnavailable(f"room {self.code} is changing on other servers too fast to keep this change")
 
-    def _turn(self) -> contextlib.AbstractContextManager[int | None]:
-        if self.store is None:
-            return contextlib.nullcontext(self.kept_version)
-        return self.store.turn(self)
+    @contextlib.contextmanager
+    def turn(self) -> Iterator[int | None]:
+        """This server's turn to change the room: one thread of this server at a time and, on a database several
+        servers share, one server at a time (:meth:`RoomStore.turn`); yields the version kept now (None: the room is
+        no longer kept). Taken before the room's lock, never while holding it; a thread already in the turn (a change
+        made of changes) stays in it."""
+        with self.turn_lock:
+            if self._turn_depth or self.store is None:
+                self._turn_depth += 1
+                try:
+                    yield self.kept_version
+                finally:
+                    self._turn_depth -= 1
+                return
+            with self.store.turn(self) as version:
+                self._turn_depth += 1
+                try:
+                    yield version
+                finally:
+                    self._turn_depth -= 1
 
     # -- state ---------------------------------------------------------------------
     def _shown(self) -> dict[str, Any]:

@@ -411,7 +411,7 @@ def start_poll(
         Poll.create(raw, poll_id="p0")  # a check only: the room numbers the poll it opens
     except PollError as exc:
         raise unprocessable(["body", exc.field], str(exc)) from None
-    with room.lock:  # the poll opens on the scene its question moved the room to, not one changed meanwhile
+    with room.turn(), room.lock:  # the poll opens on the scene its question moved the room to, not one changed since
         if question is not None and (room.scene_id != question.scene_id or question.params or question.preset):
             lesson = next((l for l in catalogue.lessons.values() if question.scene_id in l.scenes), None)
             # The question's whole setting (defaults, its preset, its params): what its wording assumes.

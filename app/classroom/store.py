@@ -59,14 +59,17 @@ class SqlRoomStore:
     def turn(self, room: Room) -> Iterator[int | None]:
         """This server's turn to change ``room``. On a database several servers share: one transaction that holds
         the room's row (``SELECT … FOR UPDATE``), so the other servers' changes of the room wait for it, and that
-        this thread's writes of the room join (written, and announced, when the turn ends); it yields the version
+        this thread's writes of the room join (written, and announced, when the turn ends; taken through
+        :meth:`app.classroom.room.Room.turn`, which orders it before the room's lock); it yields the version
         kept now (None: the room is no longer kept). On SQLite, which one server holds, nothing waits: it yields the
         version the room read."""
         if not self.shared:
             yield room.kept_version
             return
         with self._writing(f"room {room.code}") as connection:
-            query = sa.select(rooms.c.version).where(rooms.c.room_id == room.room_id).with_for_update()
+            # FOR NO KEY UPDATE: other servers' changes of the room wait; an answer's row (whose key refers to the
+            # room's) does not.
+            query = sa.select(rooms.c.version).where(rooms.c.room_id == room.room_id).with_for_update(key_share=True)
             version = connection.execute(query).scalar()
             self._turn.connection = connection
             try:

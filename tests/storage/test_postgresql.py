@@ -173,8 +173,9 @@ def test_a_change_to_a_room_another_server_closed_is_refused_as_closed(url, cata
 
 
 def test_a_class_joining_at_once_on_two_servers_all_get_in_as_distinct_students(url, catalogue):
-    """80 joins at once, half on each server, while the instructor changes the room on one: each change of the room
-    takes its turn (the row's lock), so none is refused or lost and no two students share an id."""
+    """80 joins at once, half on each server, while the instructor changes the room on one (once a change and a poll
+    in one turn), then 80 answers: each change of the room takes its turn (the row's lock), so none is refused or lost,
+    nothing deadlocks, and no two students share an id."""
     from concurrent.futures import ThreadPoolExecutor
 
     here = Rooms(store=SqlRoomStore(open_database(url)))
@@ -190,15 +191,27 @@ def test_a_class_joining_at_once_on_two_servers_all_get_in_as_distinct_students(
     def change(index: int):
         return room.change({"params": {"mu": 0.1 + 0.01 * index}}, catalogue=catalogue, host=host)
 
+    poll = room.open_poll({"question": "Does it stick?", "kind": "choice", "choices": ["yes", "no"]})
+
+    def answer(student) -> None:
+        copies[int(student.student_id[1:]) % 2].answer(poll.poll_id, student.token, {"choice": 1})
+
+    def question_on_a_new_scene() -> None:  # the poll route: a change and a poll in one turn (no deadlock with others)
+        with room.turn(), room.lock:
+            change(99)
+            room.update_poll(poll.poll_id, {"show_names": True}, host=host)
+
     with ThreadPoolExecutor(max_workers=16) as pool:
         joins = [pool.submit(join, i) for i in range(80)]
-        changes = [pool.submit(change, i) for i in range(10)]
+        changes = [pool.submit(change, i) for i in range(10)] + [pool.submit(question_on_a_new_scene)]
         joined = [future.result(timeout=60) for future in joins]
-        [future.result(timeout=60) for future in changes]
+        answers = [pool.submit(answer, student) for student in joined]
+        [future.result(timeout=60) for future in changes + answers]
     assert len({s.student_id for s in joined}) == 80
     kept = Rooms(store=SqlRoomStore(open_database(url))).get(room.room_id)
     assert kept.state()["students"]["joined"] == 80
     assert all(kept.student(s.token).student_id == s.student_id for s in joined)
+    assert kept.poll(poll.poll_id).results()["answers"] == 80 and kept.poll(poll.poll_id).show_names
     here.close(room.room_id)
 
 
