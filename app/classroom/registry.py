@@ -177,12 +177,23 @@ class Rooms:
             raise ValueError(f"room {room_id} explores {start['scene_id']!r}, not {scene_id!r}")
         return start
 
-    def by_code(self, code: str) -> Room:
+    def by_code(self, code: str, *, open_here: bool = True) -> Room:
+        """The room with this code (KeyError if none). One kept in the database but not open here is opened here; or,
+        with ``open_here`` False (a student joining: the balancer sends joins anywhere, and the room's class to one
+        server), read for this request only, so joins do not fill every server with every room."""
         wanted = code.strip().upper()
         made_way: list[Room] = []
+        can_be_a_code = len(wanted) <= MAX_TYPED_CODE_LENGTH and all(c in CODE_ALPHABET for c in wanted)
         with self._lock:
             room = next((r for r in self._rooms.values() if r.code == wanted), None)
-            if room is None and len(wanted) <= MAX_TYPED_CODE_LENGTH and all(c in CODE_ALPHABET for c in wanted):
+        if room is None and can_be_a_code and not open_here and self.store is not None:
+            room = self.store.load_one(join_base=self.join_base, code=wanted)
+            if room is None or room.room_id in self._closed:
+                raise KeyError(f"no open room has the code {wanted!r}")
+            return room
+        with self._lock:
+            room = next((r for r in self._rooms.values() if r.code == wanted), None)
+            if room is None and can_be_a_code:
                 room = self._take_up_locked(made_way, code=wanted)
             if room is not None and room.closed:
                 self._forget_closed_locked(room)

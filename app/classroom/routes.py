@@ -243,7 +243,7 @@ def join_room(
     The device cookie this sets makes a device that joins again the same student, with the same token."""
     limits.check_address(request.scope)
     try:
-        room = rooms.by_code(body.code)
+        room = rooms.by_code(body.code, open_here=False)
     except KeyError as exc:
         raise HTTPException(status_code=404, detail=str(exc.args[0])) from None
     device = request.cookies.get(DEVICE_COOKIE, "")

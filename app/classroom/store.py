@@ -16,9 +16,9 @@ from datetime import UTC, datetime, timedelta
 from typing import Any
 
 import sqlalchemy as sa
-from sqlalchemy.exc import SQLAlchemyError
+from sqlalchemy.exc import IntegrityError, SQLAlchemyError
 
-from app.classroom.room import DEFAULT_JOIN_BASE, Room, RoomChangedElsewhere
+from app.classroom.room import DEFAULT_JOIN_BASE, Room, RoomAlreadyClosed, RoomChangedElsewhere
 from app.storage.database import Database, StoreUnavailable
 from app.storage.tables import answers, rooms
 
@@ -51,6 +51,8 @@ class SqlRoomStore:
         try:
             with self.database.transaction() as connection:
                 yield connection
+        except IntegrityError as exc:  # a row the write refers to is gone (the room closed meanwhile): the caller says
+            raise StoreUnavailable(f"the server could not keep {what}: what it belongs to is gone") from exc
         except SQLAlchemyError as exc:
             log.error("the database did not keep %s: %s", what, exc)
             raise StoreUnavailable(f"the server could not keep {what} just now; try again in a moment") from exc
@@ -118,13 +120,22 @@ class SqlRoomStore:
         kept = room.poll(poll_id).answer_of(student_id)
         if kept is None:
             return
-        with self._writing(f"an answer in room {room.code}") as connection:
-            key = (answers.c.room_id == room.room_id, answers.c.poll_id == poll_id, answers.c.student_id == student_id)
-            connection.execute(sa.delete(answers).where(*key))
-            connection.execute(
-                sa.insert(answers).values(room_id=room.room_id, poll_id=poll_id, student_id=student_id, **kept)
-            )
-            self.database.announce(connection, "answer", room.room_id, poll_id=poll_id, student_id=student_id)
+        try:
+            with self._writing(f"an answer in room {room.code}") as connection:
+                key = (
+                    answers.c.room_id == room.room_id,
+                    answers.c.poll_id == poll_id,
+                    answers.c.student_id == student_id,
+                )
+                connection.execute(sa.delete(answers).where(*key))
+                connection.execute(
+                    sa.insert(answers).values(room_id=room.room_id, poll_id=poll_id, student_id=student_id, **kept)
+                )
+                self.database.announce(connection, "answer", room.room_id, poll_id=poll_id, student_id=student_id)
+        except StoreUnavailable as exc:
+            if isinstance(exc.__cause__, IntegrityError):  # the room's row is gone: closed meanwhile (409)
+                raise RoomAlreadyClosed("room", f"room {room.code} was closed; the answer was not kept") from None
+            raise
 
     def load_answer(self, room_id: str, poll_id: str, student_id: str) -> dict[str, Any] | None:
         """One kept answer (as :meth:`app.classroom.polls.Poll.answer_of` gives it), None if none is kept."""

@@ -21,7 +21,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
-from app.storage.database import CHANGES_CHANNEL, Database
+from app.storage.database import CHANGES_CHANNEL, Database, postgresql_connect_args
 
 log = logging.getLogger(__name__)
 
@@ -85,7 +85,8 @@ class ChangeListener:
         attempt = 0
         while not self._stopping.is_set():
             try:
-                with psycopg.connect(self._conninfo(), autocommit=True) as connection:
+                bounds = {k: v for k, v in postgresql_connect_args().items() if k != "options"}
+                with psycopg.connect(self._conninfo(), autocommit=True, **bounds) as connection:
                     self._connection = connection
                     connection.execute(f"LISTEN {CHANGES_CHANNEL}")
                     if attempt:

@@ -30,6 +30,12 @@ SQLITE_FILE = "dynlab.sqlite3"
 CHANGES_CHANNEL = "dynlab_changes"
 #: The PostgreSQL advisory lock held while the schema is brought forward: servers starting together migrate in turn.
 MIGRATION_LOCK = 0x64796E6C6162
+#: On PostgreSQL: longest wait for a lock (another server's turn at a room), and longest a transaction may sit idle
+#: (a server frozen inside its turn) before the database ends it (ms).
+PG_LOCK_TIMEOUT_MS = 3_000
+PG_IDLE_IN_TRANSACTION_MS = 20_000
+#: Longest wait for another server's migration, or for the tables a migration alters (ms).
+MIGRATION_LOCK_TIMEOUT_MS = 60_000
 #: How long a write waits for another process's write to finish before it fails (ms): SQLite lets one write at a time.
 SQLITE_BUSY_TIMEOUT_MS = 10_000
 
@@ -160,6 +166,7 @@ def migrate(database: Database, *, to: str = "head") -> None:
     logging.getLogger("alembic").setLevel(logging.WARNING)  # its step-by-step notes; ours below says what changed
     with database.engine.begin() as connection:
         if database.shared:  # another server starting now waits here, then finds the schema current
+            connection.execute(sa.text(f"SET LOCAL lock_timeout = {MIGRATION_LOCK_TIMEOUT_MS}"))
             connection.execute(sa.select(sa.func.pg_advisory_xact_lock(MIGRATION_LOCK)))
         command.upgrade(_alembic_config(connection), to)
     now = database.schema_revision()
@@ -167,10 +174,29 @@ def migrate(database: Database, *, to: str = "head") -> None:
         log.info("database %s: schema %s → %s", database.url, current or "empty", now)
 
 
+def postgresql_connect_args() -> dict[str, Any]:
+    """Every PostgreSQL connection's bounds: a wait for a lock (another server's turn at a room) ends after
+    :data:`PG_LOCK_TIMEOUT_MS` (the change answers 503, try again) instead of holding a request, and so a thread, for
+    as long as that server is stuck; a server frozen inside a transaction loses it after
+    :data:`PG_IDLE_IN_TRANSACTION_MS`; TCP keepalives find a dead link in about half a minute; connecting gives up
+    after 5 s."""
+    return {
+        "options": (
+            f"-c lock_timeout={PG_LOCK_TIMEOUT_MS} -c idle_in_transaction_session_timeout={PG_IDLE_IN_TRANSACTION_MS}"
+        ),
+        "connect_timeout": 5,
+        "keepalives": 1,
+        "keepalives_idle": 10,
+        "keepalives_interval": 5,
+        "keepalives_count": 3,
+    }
+
+
 def open_database(url: str, *, migrate_to: str = "head") -> Database:
     """The database at ``url``, its schema brought up to date; :class:`DatabaseUnusable` saying why not."""
     try:
-        engine = sa.create_engine(url)
+        postgresql = sa.engine.make_url(url).get_backend_name() == "postgresql"
+        engine = sa.create_engine(url, connect_args=postgresql_connect_args() if postgresql else {})
         if engine.dialect.name == "sqlite":
             sa.event.listen(engine, "connect", _on_sqlite_connect)
         database = Database(engine)

@@ -246,3 +246,68 @@ def test_while_the_shared_database_is_down_changes_are_refused_not_kept_only_her
     room.change({"params": {"mu": 0.9}}, catalogue=catalogue, host=host)  # back: the same change goes through
     assert Rooms(store=SqlRoomStore(open_database(url))).get(room.room_id).state()["params"]["mu"] == 0.9
     here.close(room.room_id)
+
+
+def test_a_turn_held_elsewhere_lets_answers_through_bounds_other_changes_and_closing_waits_for_it(url, catalogue):
+    """Server A holds the room's turn (a change under way, or a server frozen in it). On server B an answer goes
+    through at once (its row refers to the room's; the turn does not hold it); a change waits at most the lock timeout
+    and is refused (503, nothing changed) instead of holding its request; closing the room waits for A's change, then
+    closes it. Nothing deadlocks."""
+    import threading
+    import time as clock
+    from concurrent.futures import ThreadPoolExecutor
+
+    from app.storage.database import PG_LOCK_TIMEOUT_MS, StoreUnavailable
+
+    here = Rooms(store=SqlRoomStore(open_database(url)))
+    there = Rooms(store=SqlRoomStore(open_database(url)))
+    host = BusyWhenTold()
+    room, _ = here.create(join_base="http://lab.example:8000")
+    room.change({"lesson_id": FRICTION_LESSON, "scene_id": "sliding-bar-friction"}, catalogue=catalogue, host=host)
+    ada = room.join("Ada", device="device-of-ada")
+    poll = room.open_poll({"question": "Does it stick?", "kind": "choice", "choices": ["yes", "no"]})
+    other = there.get(room.room_id)
+    holding, release = threading.Event(), threading.Event()
+
+    def hold_the_turn() -> None:
+        def work() -> None:
+            holding.set()
+            assert release.wait(30)
+            room.params = {**room.params, "mu": 0.77}
+            room.revision += 1
+            room._keep()
+
+        room._changing(work, host=host)
+
+    with ThreadPoolExecutor(max_workers=4) as pool:
+        held = pool.submit(hold_the_turn)
+        assert holding.wait(30)
+        pool.submit(other.answer, poll.poll_id, ada.token, {"choice": 1}).result(timeout=10)  # not held back
+        started = clock.monotonic()
+        with pytest.raises(StoreUnavailable):
+            other.change({"params": {"mu": 0.11}}, catalogue=catalogue, host=BusyWhenTold())
+        assert clock.monotonic() - started < PG_LOCK_TIMEOUT_MS / 1000 + 5
+        assert other.state()["params"].get("mu") != 0.11  # refused: nothing changed
+        closing = pool.submit(there.close, room.room_id)
+        release.set()
+        held.result(timeout=30)
+        closing.result(timeout=30)
+    assert room.room_id not in {r["room_id"] for r in SqlRoomStore(open_database(url)).listing()}
+
+
+def test_a_join_on_a_server_that_does_not_serve_the_room_does_not_open_it_there(url):
+    """The balancer sends joins (a code in the body) to any server: the room is read for the join only, so a class
+    joining through two servers does not fill both with every room. An answer racing the room's closing is told the
+    room is closed (409), not that the database failed."""
+    here = Rooms(store=SqlRoomStore(open_database(url)))
+    there = Rooms(store=SqlRoomStore(open_database(url)))
+    room, _ = here.create(join_base="http://lab.example:8000")
+    poll = room.open_poll({"question": "Does it stick?", "kind": "choice", "choices": ["yes", "no"]})
+    read = there.by_code(room.code.lower(), open_here=False)
+    ada = read.join("Ada", device="device-of-ada")
+    assert there.all() == [] and room.student(ada.token).name == "Ada"  # here reads the join it did not make
+    here.close(room.room_id)
+    with pytest.raises(KeyError):
+        there.by_code(room.code, open_here=False)
+    with pytest.raises(RoomAlreadyClosed):
+        read.answer(poll.poll_id, ada.token, {"choice": 0})
