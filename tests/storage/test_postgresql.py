@@ -300,7 +300,7 @@ def test_a_join_on_a_server_that_does_not_serve_the_room_does_not_open_it_there(
     joining through two servers does not fill both with every room. An answer racing the room's closing is told the
     room is closed (409), not that the database failed."""
     here = Rooms(store=SqlRoomStore(open_database(url)))
-    there = Rooms(store=SqlRoomStore(open_database(url)))
+    there = Rooms(store=SqlRoomStore(open_database(url)), open_kept=False)  # as a server sharing the database
     room, _ = here.create(join_base="http://lab.example:8000")
     poll = room.open_poll({"question": "Does it stick?", "kind": "choice", "choices": ["yes", "no"]})
     read = there.by_code(room.code.lower(), open_here=False)
