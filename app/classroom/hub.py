@@ -131,13 +131,16 @@ class RoomHub:
 
     def presence_changed(self, room: Room) -> None:
         """Who this server's sockets of the room hold changed: published at the room's next pump, and said to the
-        other servers."""
+        other servers (nothing for a room no socket here has joined: a join read on this server for itself)."""
+        if room.room_id not in self._members:
+            return
         self._presence_changed.add(room.room_id)
         self._presence_to_say.add(room.room_id)
 
     def others_presence_changed(self, room: Room) -> None:
         """Another server said who its sockets hold: published at the room's next pump (nothing to say back)."""
-        self._presence_changed.add(room.room_id)
+        if room.room_id in self._members:
+            self._presence_changed.add(room.room_id)
 
     def reply(self, member: Member, message: dict[str, Any]) -> None:
         self._queue(member, finite_json(message))
@@ -250,7 +253,7 @@ class RoomHub:
     def publish_state(self, room: Room, *, presence_only: bool = False) -> None:
         """The room's state to every page now; ``presence_only`` changes wait for the next pump (coalesced)."""
         if presence_only:
-            self._presence_changed.add(room.room_id)
+            self.presence_changed(room)
             return
         self.publish(room.room_id, {"type": "state", "state": room.state()})
 
