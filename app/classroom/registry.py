@@ -6,6 +6,7 @@ import logging
 import secrets
 import threading
 import time
+from collections import OrderedDict
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
@@ -29,12 +30,20 @@ if TYPE_CHECKING:
 MAX_ROOMS = 16
 #: A room nobody has used for this long (s) is closed when a new one needs its place (the database still keeps it).
 IDLE_ROOM_S = 6 * 3600.0
+#: Rooms kept read for joins only (:meth:`Rooms.by_code`), beyond the open ones.
+MAX_READ_FOR_JOINS = 64
 #: On a database several servers share, a room with no socket here unused this long (s) makes way when all places
 #: are taken (its class is on another server; it is taken up again if the class comes back).
 MAKE_WAY_AFTER_S = 60.0
 #: A room's id: this many random hex digits (the API's paths and the room viewer's accept only this form).
 ROOM_ID_HEX_DIGITS = 16
 ROOM_ID_PATTERN = rf"^[0-9a-f]{{{ROOM_ID_HEX_DIGITS}}}$"
+
+
+class NoPlaceHere(StoreUnavailable):
+    """A kept room this server has no place to open now (every place taken by rooms in use): 503, Retry-After."""
+
+    retry_after_s = 30
 
 
 class Rooms:
@@ -59,6 +68,9 @@ class Rooms:
         self.join_base = join_base
         #: Rooms closed in this run: never taken up from the database again, whatever it still holds.
         self._closed: set[str] = set()
+        #: Rooms read only for students joining here (:meth:`by_code`), by id, least recently used first: one copy
+        #: per room, so a class joining at once takes its turns in order on this server too.
+        self._read_for_joins: OrderedDict[str, Room] = OrderedDict()
         if store is not None:
             store.forget_unused(days=keep_days)
         # One server on its own database opens every kept room at once (a restart); servers sharing one (``open_kept``
@@ -154,10 +166,17 @@ class Rooms:
         room = self.store.load_one(join_base=self.join_base, room_id=room_id, code=code)
         if room is None or room.room_id in self._closed:
             return None
+        read = self._read_for_joins.pop(room.room_id, None)
+        if read is not None and not read.closed:  # the copy joins took their turns on: one copy of the room here
+            read.take_up(room)
+            room = read
         made_way += self._drop_idle()
         if len(self._rooms) >= self.max_rooms:
             log.warning("room %s is kept but %d rooms are open here: it stays closed", room.code, self.max_rooms)
-            return None
+            raise NoPlaceHere(
+                f"this server has {self.max_rooms} rooms open and no place for room {room.code} just now: try again "
+                "in a minute (a room nobody here has used for a minute makes way)"
+            )
         room.last_used_s = time.monotonic()
         self._rooms[room.room_id] = room
         return room
@@ -186,10 +205,19 @@ class Rooms:
         can_be_a_code = len(wanted) <= MAX_TYPED_CODE_LENGTH and all(c in CODE_ALPHABET for c in wanted)
         with self._lock:
             room = next((r for r in self._rooms.values() if r.code == wanted), None)
-        if room is None and can_be_a_code and not open_here and self.store is not None:
+            if room is None and not open_here:
+                room = next((r for r in self._read_for_joins.values() if r.code == wanted and not r.closed), None)
+            if room is not None:
+                return room
+        if can_be_a_code and not open_here and self.store is not None:
             room = self.store.load_one(join_base=self.join_base, code=wanted)
             if room is None or room.room_id in self._closed:
                 raise KeyError(f"no open room has the code {wanted!r}")
+            with self._lock:  # one copy: a join racing this one may have read the room too
+                room = self._read_for_joins.setdefault(room.room_id, room)
+                self._read_for_joins.move_to_end(room.room_id)
+                while len(self._read_for_joins) > MAX_READ_FOR_JOINS:
+                    self._read_for_joins.popitem(last=False)
             return room
         with self._lock:
             room = next((r for r in self._rooms.values() if r.code == wanted), None)
@@ -205,6 +233,7 @@ class Rooms:
 
     def _forget_closed_locked(self, room: Room) -> None:
         self._rooms.pop(room.room_id, None)
+        self._read_for_joins.pop(room.room_id, None)
         self._closed.add(room.room_id)
 
     def close(self, room_id: str, *, room: Room | None = None) -> Room | None:
@@ -212,7 +241,7 @@ class Rooms:
         are refused, and nothing of the room is written again). ``room``: the copy a request found, closed and
         deleted even if it made way meanwhile."""
         with self._lock:
-            room = self._rooms.pop(room_id, None) or room
+            room = self._rooms.pop(room_id, None) or self._read_for_joins.pop(room_id, None) or room
             if room is not None:
                 self._closed.add(room_id)  # never taken up again in this run, even if its deletion fails
         if room is not None:
@@ -236,10 +265,12 @@ class Rooms:
         did). Its stage and sockets are the caller's to close."""
         with self._lock:
             room = self._rooms.pop(room_id, None)
+            read = self._read_for_joins.pop(room_id, None)
             self._closed.add(room_id)
-        if room is not None:
-            with room.lock:
-                room.closed = True
+        for copy in (room, read):
+            if copy is not None:
+                with copy.lock:
+                    copy.closed = True
         return room
 
     def all(self) -> list[Room]:

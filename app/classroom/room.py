@@ -86,6 +86,9 @@ def digest(secret: str) -> str:
 #: Times a change runs when its room's row changed under it outside a turn (two copies of the room in one server, or
 #: a room deleted meanwhile): each time the room takes the kept version up first.
 CHANGE_ATTEMPTS = 4
+#: Longest wait for the room's turn in this server (s): a change queued behind one stuck at another server's turn
+#: (see app.storage.database.PG_LOCK_TIMEOUT_MS) is refused (503, try again) instead of holding its request longer.
+TURN_WAIT_S = 5.0
 #: Seconds between a server's words on who its sockets of a room hold (app.classroom.hub), and how long one holds:
 #: a server that stopped saying (it died) no longer counts its students as connected after this.
 PRESENCE_EVERY_S = 2.0
@@ -375,10 +378,12 @@ class Room:
         for _ in range(CHANGE_ATTEMPTS):
             if self.closed:
                 raise RoomAlreadyClosed("room", f"room {self.code} was closed by its instructor; nothing changed")
+            in_turn = False
             try:
                 # The turn first, then the lock: while another server's change holds the turn, this server's pages
                 # (and its event loop, which reads the room under its lock) do not wait with it.
                 with self.turn() as kept_version, self.lock:
+                    in_turn = True
                     if self.closed:
                         continue
                     if kept_version is None:  # deleted: closed on another server, or by `dynlab rooms delete`
@@ -394,7 +399,7 @@ class Room:
                     if host is not None:
                         self.follow_stage(host)
             except StoreUnavailable:
-                if self.store is not None and self.store.shared:  # not kept: nor does it stand here
+                if in_turn and self.store is not None and self.store.shared:  # not kept: nor does it stand here
                     with contextlib.suppress(StoreUnavailable):
                         self.take_up_newer()
                 raise
@@ -408,7 +413,9 @@ class Room:
         servers share, one server at a time (:meth:`RoomStore.turn`); yields the version kept now (None: the room is
         no longer kept). Taken before the room's lock, never while holding it; a thread already in the turn (a change
         made of changes) stays in it."""
-        with self.turn_lock:
+        if not self.turn_lock.acquire(timeout=TURN_WAIT_S):  # queued behind a turn stuck at another server's
+            raise StoreUnavailable(f"room {self.code} is busy with another change just now; try again in a moment")
+        try:
             if self._turn_depth or self.store is None:
                 self._turn_depth += 1
                 try:
@@ -422,6 +429,8 @@ class Room:
                     yield version
                 finally:
                     self._turn_depth -= 1
+        finally:
+            self.turn_lock.release()
 
     # -- state ---------------------------------------------------------------------
     def _shown(self) -> dict[str, Any]:

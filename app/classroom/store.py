@@ -24,6 +24,10 @@ from app.storage.tables import answers, rooms
 
 log = logging.getLogger(__name__)
 
+#: PostgreSQL's codes for a wait that reached its bound (lock_not_available, idle_in_transaction_session_timeout):
+#: a busy room, answered 503 like any other, but not a database failure worth an error in the log.
+BUSY_SQLSTATES = frozenset({"55P03", "25P03"})
+
 
 def _utc(seconds: float) -> datetime:
     return datetime.fromtimestamp(seconds, UTC)
@@ -54,6 +58,10 @@ class SqlRoomStore:
         except IntegrityError as exc:  # a row the write refers to is gone (the room closed meanwhile): the caller says
             raise StoreUnavailable(f"the server could not keep {what}: what it belongs to is gone") from exc
         except SQLAlchemyError as exc:
+            cause = getattr(exc, "orig", None)  # the driver's own error (a DBAPIError's)
+            if getattr(cause, "sqlstate", None) in BUSY_SQLSTATES:  # another server's turn held it past the bound
+                log.warning("%s not kept: the room was busy on another server (%s)", what, type(cause).__name__)
+                raise StoreUnavailable(f"the server could not keep {what}: busy elsewhere just now; try again") from exc
             log.error("the database did not keep %s: %s", what, exc)
             raise StoreUnavailable(f"the server could not keep {what} just now; try again in a moment") from exc
 

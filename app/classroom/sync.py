@@ -48,6 +48,9 @@ class ClassSync:
         if change.kind == "session":
             self.app.state.sessions.changed_elsewhere(change.key)
             return
+        if change.kind == "room_closed" and self._rooms.held(change.key) is None:
+            self._rooms.closed_elsewhere(change.key)  # a copy read for joins only closes too
+            return
         room = self._rooms.held(change.key)
         if room is None:
             return
@@ -76,14 +79,14 @@ class ClassSync:
         if read and not room.take_up_newer():
             self._closed_elsewhere(room)
             return
+        self._hub.publish_state(room)  # the pages first; the scene here follows next (a call to its worker)
+        self._hub.publish_students(room)
+        if room.poll_id is not None:
+            self._hub.publish_results(room, room.poll(room.poll_id))
         if self._in_use_here(room):
             room.follow_stage(self._host)
         elif room.rest_stage(self._host):  # nobody here follows it: its scene stops here until someone does
             log.info("room %s: nobody here follows its scene; it stops here until someone does", room.code)
-        self._hub.publish_state(room)
-        self._hub.publish_students(room)
-        if room.poll_id is not None:
-            self._hub.publish_results(room, room.poll(room.poll_id))
         for student_id in students_before - set(room.students):  # removed on the other server: out here too
             self._hub.dismiss_student(room, student_id, REMOVED_MESSAGE)
 

@@ -1,8 +1,8 @@
 // The join page (/join, /join/<code>): a student types the room's code (or opens the QR code's link, which fills it
 // in), may give a name, and joins; keeps the token the room gives in localStorage ("dynlab.room.<room_id>") and goes
 // to the room's lesson; before the instructor has opened one it waits on the room socket. The server knows the
-// device by a cookie, so joining again from it is the same student. Too many joins at once (429): it waits as the
-// server says (Retry-After) and tries again by itself.
+// device by a cookie, so joining again from it is the same student. Too many joins at once (429), or a server too
+// busy to keep the join just now (503): it waits as the server says (Retry-After) and tries again by itself.
 import "./common.js";
 import { config } from "./config.js";
 import { reconnectingSocket } from "./socket.js";
@@ -72,9 +72,10 @@ import { reconnectingSocket } from "./socket.js";
         headers: { "Content-Type": "application/json" },
         body: JSON.stringify({ code, name: nameBox.value.trim() }),
       });
-      if (response.status === 429) { // many joining at once: wait as long as the server says, then try again
-        const waitS = Math.max(1, Math.min(60, Number(response.headers.get("Retry-After")) || 5));
-        showStatus(`Many people are joining right now. Trying again in ${waitS} s…`);
+      if (response.status === 429 || response.status === 503) { // many joining at once, or the server busy: wait
+        const waitS = Math.max(1, Math.min(60, Number(response.headers.get("Retry-After")) || 5)); // as it says
+        showStatus(response.status === 429 ? `Many people are joining right now. Trying again in ${waitS} s…`
+          : `The server is busy. Trying again in ${waitS} s…`);
         retryTimer = setTimeout(() => { retryTimer = null; join(); }, waitS * 1000);
         return;
       }

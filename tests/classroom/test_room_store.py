@@ -11,7 +11,7 @@ from datetime import UTC, datetime, timedelta
 import pytest
 import sqlalchemy as sa
 
-from app.classroom.registry import Rooms
+from app.classroom.registry import NoPlaceHere, Rooms
 from app.classroom.room import RoomAlreadyClosed, RoomChangedElsewhere, StudentRemoved, digest
 from app.classroom.store import SqlRoomStore
 from app.storage import open_database
@@ -248,7 +248,7 @@ def test_a_room_kept_by_another_server_or_made_way_for_is_taken_up_when_asked(tm
     first.last_used_s -= 7 * 3600  # idle: it makes way
     second, made_way = full.create(join_base="http://127.0.0.1:8000")
     assert made_way == [first]
-    with pytest.raises(KeyError):  # no place while the second is in use
+    with pytest.raises(NoPlaceHere, match="no place for room"):  # 503, try again: not "no such room"
         full.get(first.room_id)
     second.last_used_s -= 7 * 3600
     assert full.get(first.room_id).code == first.code

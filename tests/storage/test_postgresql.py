@@ -257,6 +257,7 @@ def test_a_turn_held_elsewhere_lets_answers_through_bounds_other_changes_and_clo
     import time as clock
     from concurrent.futures import ThreadPoolExecutor
 
+    from app.classroom.room import TURN_WAIT_S
     from app.storage.database import PG_LOCK_TIMEOUT_MS, StoreUnavailable
 
     here = Rooms(store=SqlRoomStore(open_database(url)))
@@ -288,6 +289,10 @@ def test_a_turn_held_elsewhere_lets_answers_through_bounds_other_changes_and_clo
             other.change({"params": {"mu": 0.11}}, catalogue=catalogue, host=BusyWhenTold())
         assert clock.monotonic() - started < PG_LOCK_TIMEOUT_MS / 1000 + 5
         assert other.state()["params"].get("mu") != 0.11  # refused: nothing changed
+        started = clock.monotonic()
+        with pytest.raises(StoreUnavailable, match="busy"):  # queued behind the held turn on the same server
+            room.change({"params": {"mu": 0.22}}, catalogue=catalogue, host=host)
+        assert clock.monotonic() - started < TURN_WAIT_S + 5
         closing = pool.submit(there.close, room.room_id)
         release.set()
         held.result(timeout=30)
@@ -304,10 +309,13 @@ def test_a_join_on_a_server_that_does_not_serve_the_room_does_not_open_it_there(
     room, _ = here.create(join_base="http://lab.example:8000")
     poll = room.open_poll({"question": "Does it stick?", "kind": "choice", "choices": ["yes", "no"]})
     read = there.by_code(room.code.lower(), open_here=False)
+    assert there.by_code(room.code, open_here=False) is read  # one copy: a class's joins take their turns in order
     ada = read.join("Ada", device="device-of-ada")
     assert there.all() == [] and room.student(ada.token).name == "Ada"  # here reads the join it did not make
-    here.close(room.room_id)
-    with pytest.raises(KeyError):
-        there.by_code(room.code, open_here=False)
+    here.close(room.room_id)  # (the other server's listener is not running here: its copy learns as it writes)
     with pytest.raises(RoomAlreadyClosed):
         read.answer(poll.poll_id, ada.token, {"choice": 0})
+    with pytest.raises(RoomAlreadyClosed):
+        read.join("Ben", device="device-of-ben")
+    with pytest.raises(KeyError):
+        there.by_code(room.code, open_here=False)

@@ -1,5 +1,14 @@
-"""Issue 26, point 5, in Chromium: one class on two ``dynlab serve`` sharing PostgreSQL behind HAProxy
-(deploy/haproxy.cfg), as app/bench/scale_out.py starts them.
+"""Issue 26, points 5 and 6: one class on two ``dynlab serve`` sharing PostgreSQL behind HAProxy (deploy/haproxy.cfg),
+on loopback, as app/bench/scale_out.py starts them. Both tests are in one file so that they run one after the other
+(each starts its own PostgreSQL, two servers with their workers and HAProxy; two such stacks at once on two cores
+would measure the machine, not the product).
+
+The loopback test (``dynlab scale-out``, whose committed report is docs/bench/scale_out.json): an instructor and 30
+students (half on each server) run a room: they follow it, the instructor changes the spin ten times, a poll is
+answered; then the room's server is killed and every student is back in the same room with the same state, and a
+lesson page's claimed scene that lived there comes back on the other server with its parameters and its claim.
+
+In Chromium:
 
 The instructor's page comes through the balancer (to the server the room's id hashes to); one phone comes through
 the balancer too, the other opened the join link straight on the other server. The instructor sees both phones
@@ -10,6 +19,7 @@ spin, and a new change reaches both phones. No page has an error."""
 
 from __future__ import annotations
 
+import json
 import re
 import time
 from contextlib import ExitStack
@@ -21,7 +31,7 @@ import sqlalchemy as sa
 
 from app.bench.capacity import free_loopback_port
 from app.bench.loopback_postgres import postgres_server
-from app.bench.scale_out import Server, balancer, haproxy_binary
+from app.bench.scale_out import Server, balancer, haproxy_binary, main
 from app.classroom.room import PRESENCE_HOLDS_S
 from tests.browser.conftest import readout_quantity, screenshot
 from tests.browser.test_classroom_in_browser import LESSON, SPIN, _control, _student, instructor_room
@@ -34,8 +44,9 @@ pytestmark = [
 PHONE = (390, 844)
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture
 def two_servers(tmp_path_factory):
+    """The stack, for one test: stopped before the next starts its own."""
     with ExitStack() as stack:
         database_url = stack.enter_context(postgres_server())
         root = tmp_path_factory.mktemp("two-servers")
@@ -104,3 +115,38 @@ def test_a_class_split_between_two_servers_is_one_class_and_survives_losing_one(
     finally:
         for context in contexts:
             context.close()
+
+
+#: The issue's bounds: a change reaches every student within 200 ms; the class is back within 10 s of the kill.
+FOLLOW_LATENCY_MS = 200.0
+FAILOVER_S = 10.0
+
+
+def test_one_class_on_two_servers_follows_answers_and_survives_losing_one(tmp_path, capsys):
+    from concurrent.futures import ThreadPoolExecutor
+
+    # In a thread of its own: the tool runs its requests with asyncio.run, which the browser's loop here forbids.
+    with ThreadPoolExecutor(max_workers=1) as own_thread:
+        ran = own_thread.submit(main, ["--students", "30", "--changes", "10", "--out-dir", str(tmp_path)])
+        assert ran.result(timeout=600) == 0
+    report = json.loads((tmp_path / "scale_out.json").read_text())
+    # Joining through the balancer's round robin, students arrived on both servers: each took the room up.
+    assert sorted(report["students_joined_on"].values()) != [0, 30]
+    # The instructor's list counts every student as connected and following, whichever server their page is on.
+    assert report["instructor_sees_everyone_s"] is not None
+    latency = report["follow_latency_ms"]
+    assert latency["samples"] == 300  # every change reached every student's socket (else main raised)
+    # The median on each server is held to the bound here, where other tests share the two cores; the committed
+    # report (an idle machine) holds its 99th percentile and maximum to it too.
+    assert latency["median_on_room_server"] < FOLLOW_LATENCY_MS
+    assert latency["median_on_other_server"] < FOLLOW_LATENCY_MS
+    assert report["poll_answers_seen_by_instructor"] is True
+    assert report["failover_s"] is not None and report["failover_s"] < FAILOVER_S
+    after = report["state_after_failover"]
+    assert after["same"] is True and after["server"] != report["room_server"]
+    assert after["students_reconnected"] == 15  # the room server's half came back through the balancer
+    session = report["page_session_after_failover"]  # a lesson page's own scene, claimed, on the killed server
+    assert session["server"] != report["room_server"] and session["params_kept"] is True
+    assert session["keyless_change"] == 403  # its claim holds on the server that took it up
+    assert (tmp_path / "scale_out.svg").read_text().startswith("<svg")
+    assert "failover" in capsys.readouterr().out
