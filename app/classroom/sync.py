@@ -48,17 +48,17 @@ class ClassSync:
         if change.kind == "session":
             self.app.state.sessions.changed_elsewhere(change.key)
             return
-        if change.kind == "room_closed" and self._rooms.held(change.key) is None:
-            self._rooms.closed_elsewhere(change.key)  # a copy read for joins only closes too
-            return
         room = self._rooms.held(change.key)
+        if change.kind == "room_closed":  # closes here too, with any copy read for joins only
+            self._rooms.closed_elsewhere(change.key)
+            if room is not None:
+                self._closed_elsewhere(room)
+            return
         if room is None:
             return
         if change.kind == "presence":  # who that server's sockets hold: this server's pages count them too
             room.take_presence(change.origin, change.fields)
             self._hub.others_presence_changed(room)
-        elif change.kind == "room_closed":
-            self._closed_elsewhere(room)
         elif change.kind == "answer":
             self._answer(room, poll_id=change.fields["poll_id"], student_id=change.fields["student_id"])
         elif change.kind == "room":
