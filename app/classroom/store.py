@@ -59,8 +59,8 @@ class SqlRoomStore:
             raise StoreUnavailable(f"the server could not keep {what}: what it belongs to is gone") from exc
         except SQLAlchemyError as exc:
             cause = getattr(exc, "orig", None)  # the driver's own error (a DBAPIError's)
-            if getattr(cause, "sqlstate", None) in BUSY_SQLSTATES:  # another server's turn held it past the bound
-                log.warning("%s not kept: the room was busy on another server (%s)", what, type(cause).__name__)
+            if getattr(cause, "sqlstate", None) in BUSY_SQLSTATES:  # a turn (another's, or this one) held past its bound
+                log.warning("%s not kept: a turn at the room was held past its bound (%s)", what, type(cause).__name__)
                 raise StoreUnavailable(f"the server could not keep {what}: busy elsewhere just now; try again") from exc
             log.error("the database did not keep %s: %s", what, exc)
             raise StoreUnavailable(f"the server could not keep {what} just now; try again in a moment") from exc
