@@ -59,7 +59,7 @@ class SqlRoomStore:
             raise StoreUnavailable(f"the server could not keep {what}: what it belongs to is gone") from exc
         except SQLAlchemyError as exc:
             cause = getattr(exc, "orig", None)  # the driver's own error (a DBAPIError's)
-            if getattr(cause, "sqlstate", None) in BUSY_SQLSTATES:  # a turn (another's, or this one) held past its bound
+            if getattr(cause, "sqlstate", None) in BUSY_SQLSTATES:  # a turn (another's, or this one) overran
                 log.warning("%s not kept: a turn at the room was held past its bound (%s)", what, type(cause).__name__)
                 raise StoreUnavailable(f"the server could not keep {what}: busy elsewhere just now; try again") from exc
             log.error("the database did not keep %s: %s", what, exc)
