@@ -12,7 +12,7 @@ COPY lessons ./lessons
 RUN python3 -m uv sync --frozen --no-dev --group postgres
 # Derive and compile the chapter 7-9 scenes' equations into the image's caches (sympy and numba), so the
 # first class after a start does not wait for them.
-RUN python3 -m uv run --frozen --no-dev python -c "from app.scenes import SCENES; from app.scenes.host.worker import warm_compiled_models; warm_compiled_models(SCENES)"
+RUN python3 -m uv run --frozen --no-dev dynlab warm
 # The class's data (rooms, answers, the instructor's secret): keep it on a volume, `docker run -v dynlab-data:/data …`.
 ENV DYNLAB_DATA_DIR=/data
 VOLUME /data

@@ -1,4 +1,4 @@
-"""Command line: ``dynlab serve [--host H] [--port P]``, ``dynlab bench [--quick] [--case C]``,
+"""Command line: ``dynlab serve [--host H] [--port P]``, ``dynlab warm``, ``dynlab bench [--quick] [--case C]``,
 ``dynlab load [--students 10,30] [--scene ID] [--room | --attack]``, ``dynlab soak [--students N] [--minutes M]``,
 ``dynlab restart [--students N] [--restarts K]``, ``dynlab scale-out [--students N] [--changes K]``,
 ``dynlab derivations [--no-proofs]``, ``dynlab constrained [--quick] [--case C]``, and for the kept data
@@ -205,6 +205,21 @@ def _restart(args: argparse.Namespace) -> int:
     from app.bench.restart import main as run_restart
 
     return run_restart(args.bench_args)
+
+
+def _warm(args: argparse.Namespace) -> int:
+    import time
+
+    print("dynlab warm: compiling every scene's kernels and deriving its equations into the disk caches…", flush=True)
+    started = time.perf_counter()
+    from app.scenes.host.warm import warm_caches  # imports every scene: their kernels compile (or load) here
+
+    warmed = warm_caches(started=started)
+    print(
+        f"dynlab warm: {warmed.scenes} scenes ready: kernels compiled or loaded in {warmed.import_s:.1f} s, "
+        f"models prepared in {warmed.models_s:.1f} s"
+    )
+    return 0
 
 
 def _scale_out(args: argparse.Namespace) -> int:
@@ -421,6 +436,14 @@ def main(argv: list[str] | None = None) -> int:
     )
     export.add_argument("--data-dir", type=Path, default=None, help=data_dir_help)
     export.set_defaults(run=_export)
+    warm = commands.add_parser(
+        "warm",
+        help=(
+            "compile every scene's numba kernels and derive its equations into the disk caches, so that the first "
+            "server start and the first student do not wait for them (run once after installing)"
+        ),
+    )
+    warm.set_defaults(run=_warm)
     key = commands.add_parser("instructor-key", help="rotate the kept instructor secret (--rotate)")
     key.add_argument("--rotate", action="store_true", help="make and keep a new secret; the old link stops working")
     key.add_argument("--data-dir", type=Path, default=None, help=data_dir_help)

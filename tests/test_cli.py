@@ -22,6 +22,17 @@ def test_bench_options_reach_the_benchmark(monkeypatch):
     assert received == [["--quick", "--case", "heavy-top"]]
 
 
+def test_warm_prepares_every_scenes_model_and_says_how_long_it_took(monkeypatch, capsys):
+    from app.scenes import SCENES
+
+    prepared = []
+    monkeypatch.setattr("app.scenes.host.warm.warm_compiled_models", lambda scenes: prepared.append(set(scenes)))
+    assert cli.main(["warm"]) == 0
+    assert prepared == [set(SCENES)]
+    out = capsys.readouterr().out
+    assert f"{len(SCENES)} scenes ready: kernels compiled or loaded in " in out and "models prepared in " in out
+
+
 def test_serve_refuses_an_unknown_option():
     with pytest.raises(SystemExit):
         cli.main(["serve", "--quick"])

@@ -54,6 +54,7 @@ def run_worker(index: int, start_pipe: Connection, authkey: bytes, options: dict
     from app.physics.core.bounded import stop_all_work
     from app.scenes import SCENES  # importing the scenes loads every numba kernel (compiled eagerly, cached on disk)
     from app.scenes.host.host import SceneHost
+    from app.scenes.host.warm import warm_compiled_models
 
     host = SceneHost(SCENES, frame_rate_hz=options["frame_rate_hz"], max_sessions=options["max_sessions"])
     host.start()
@@ -74,27 +75,6 @@ def run_worker(index: int, start_pipe: Connection, authkey: bytes, options: dict
         listener.close()
         stop_all_work()
         host.stop()
-
-
-def warm_compiled_models(scenes: dict) -> None:
-    """Compile, at their defaults, the equations that scenes build at run time rather than import time.
-
-    Runs in the background after the worker starts, so that the first student to open a scene does not wait:
-    chapters 7 and 9 derive (or load from the disk cache) and compile their equations (sympy up to a few seconds
-    per system, numba about half a second); chapter 8 compiles each constrained system's right-hand-side and
-    after-step callbacks, which are built per system at run time (0.1–0.25 s each with a warm disk cache).
-    """
-    from app.physics.core.bounded import WorkBusy, WorkInterrupted
-
-    for scene in scenes.values():
-        model = getattr(scene, "model", None)
-        try:
-            if model is not None:
-                model().prepare(scene.parameters.defaults())  # (nothing for a model that builds nothing at run time)
-        except (WorkBusy, WorkInterrupted) as exc:  # a busy or stopping machine: the first viewer derives it instead
-            log.warning("warming %s put off: %s", scene.id, exc)
-        except Exception:  # a failure here only means the first viewer compiles it, and sees the error then
-            log.exception("warming %s failed", scene.id)
 
 
 def tune_garbage_collection() -> None:
