@@ -13,10 +13,11 @@ import concurrent.futures
 import secrets
 import time
 
+import httpx
 import viser
 from websockets.sync.client import connect
 
-from app.api.access import MAX_VIEWERS_PER_CLIENT
+from app.api.access import LONG_REQUEST_BURST, LONG_REQUEST_EVERY_S, MAX_VIEWERS_PER_CLIENT
 from app.scenes.host.fair_share import REQUEST_COMPUTE_S
 from app.scenes.viser_boundary import viewer_camera_message
 from tests.conftest import wait_until
@@ -35,20 +36,29 @@ def test_a_dear_session_cannot_take_the_worker_with_a_jump_or_steps(served):
     viewer = Viewer(served, f"/viewer/double-pendulum/{sid}", address=attacker.address)
     playback = f"/api/scenes/double-pendulum/sessions/{sid}/playback"
     wait_until(lambda: (attacker.get(playback).json().get("t_s") or 0.0) > 0.3, 60, what="the dear pendulum to move")
-    started = time.monotonic()
+    first_long_request = started = time.monotonic()
     jump = attacker.put(playback, json={"go_to_s": 600}, headers=headers)
     assert time.monotonic() - started < 10.0
     assert jump.status_code == 422 and jump.json()["detail"][0]["loc"] == ["body", "go_to_s"]
     assert f"at most {REQUEST_COMPUTE_S:g} s" in jump.json()["detail"][0]["msg"]
-    for _ in range(2):  # within the device's three long requests at once
+    # The device's long requests are a token bucket: LONG_REQUEST_BURST at once, one more every LONG_REQUEST_EVERY_S.
+    # Steps are asked until one is refused; on a busy machine a step may take seconds, so the bucket may have refilled
+    # meanwhile, and the steps let through are counted against what it allows by then.
+    let_through = 1  # the jump
+    while True:
         started = time.monotonic()
         stepped = attacker.put(playback, json={"step": 300}, headers=headers)
         assert time.monotonic() - started < 10.0
+        if stepped.status_code == 429:  # beyond its share: told when to come back
+            assert int(stepped.headers["Retry-After"]) >= 1, stepped.headers
+            break
         assert stepped.status_code in (200, 422), stepped.text
         if stepped.status_code == 422:
             assert stepped.json()["detail"][0]["loc"] == ["body", "step"]
-    again = attacker.put(playback, json={"step": 300}, headers=headers)  # and beyond them, told when to come back
-    assert again.status_code == 429 and int(again.headers["Retry-After"]) >= 1, again.text
+        let_through += 1
+        allowed = LONG_REQUEST_BURST + (time.monotonic() - first_long_request) / LONG_REQUEST_EVERY_S
+        assert let_through <= allowed, f"{let_through} long requests let through where the bucket allows {allowed:.2f}"
+    assert let_through >= LONG_REQUEST_BURST, "the device's first long requests at once were refused"
     viewer.close()
     attacker.close()
 
@@ -77,14 +87,21 @@ def test_one_device_opens_at_most_its_share_of_viewers(served):
 
 
 def test_one_device_derives_one_typed_lagrangian_at_a_time_and_another_student_still_can(served):
+    """While one device's derivation runs (one that runs into the 20 s limit), its second is refused (429) and so is
+    its typed scene's change, and another student derives at once; the first is then stopped at 20 s, saying so."""
     attacker, student = served.new_client(timeout_s=60.0), served.new_client(timeout_s=60.0)
     body = {"coordinates": ["q1"], "kinetic_energy": SLOW_KINETIC, "potential_energy": "0", "parameters": {}}
 
     def derive(_n: int) -> int:
         return attacker.post("/api/systems/custom/derive", json=body).status_code
 
+    def derive_slowly() -> tuple[float, httpx.Response]:
+        answer = attacker.post("/api/systems/custom/derive", json=body)
+        return time.monotonic() - started, answer
+
     with concurrent.futures.ThreadPoolExecutor(2) as pool:
-        first = pool.submit(derive, 0)
+        started = time.monotonic()
+        first = pool.submit(derive_slowly)
         time.sleep(0.3)  # the first is running: what is checked is the second's answer while it runs
         second = pool.submit(derive, 1)
         assert second.result() == 429
@@ -93,6 +110,19 @@ def test_one_device_derives_one_typed_lagrangian_at_a_time_and_another_student_s
         simple = {"coordinates": ["q1"], "kinetic_energy": "m*q1d^2/2", "potential_energy": "m*g*q1", "parameters": {"m": 1.0, "g": 9.81}}
         answer = student.post("/api/systems/custom/derive", json=simple)
         assert answer.status_code == 200, answer.text
-        assert first.result() in (200, 422, 429)  # 429: its 20 s ran out while a busy machine paused it
+        took_s, slow = first.result()
+    # The slow one is stopped at its 20 s limit with the truth: too big (422) on a quiet machine; on a busy one, where
+    # the derivation computed in turns (paused two thirds of the time, app.physics.core.bounded) or waited for a
+    # processor nearly all its time (other programs took both), "busy, try again" (429 with Retry-After). Which one
+    # depends on the machine's load at that moment; tests/physics/core/test_bounded.py pins each down. (This one slow
+    # derivation serves both checks: each costs a processor 20 s.)
+    assert 20.0 <= took_s < 30.0, took_s
+    if slow.status_code == 429:
+        detail = slow.json()["detail"]
+        assert "of its 20 s" in detail and "try again" in detail and int(slow.headers["Retry-After"]) >= 1
+    else:
+        assert slow.status_code == 422, (slow.status_code, slow.text[:500])
+        (issue,) = slow.json()["detail"]
+        assert "longer than its limit of 20 s" in issue["msg"], issue
     attacker.close()
     student.close()
