@@ -183,9 +183,19 @@ class ServedApp:
             return ""
 
     def worker_pids(self) -> list[int]:
-        """The scene workers' process ids (the front's children that run a worker)."""
+        """The scene workers' process ids, in worker order: forks of the front's forkserver, named
+        ``dynlab-worker<index>`` (app.scenes.host.worker.process_name)."""
         assert self.process is not None
-        return children_running(self.process.pid, b"spawn_main")
+        named = {}
+        for server in children_running(self.process.pid, b"forkserver"):
+            for pid in children_of(server):
+                try:
+                    name = Path(f"/proc/{pid}/comm").read_text().strip()
+                except OSError:
+                    continue
+                if name.startswith("dynlab-worker"):
+                    named[int(name.removeprefix("dynlab-worker"))] = pid
+        return [named[index] for index in sorted(named)]
 
     def stop(self, *, timeout_s: float = 15.0) -> float:
         """Ctrl+C, as a user stops it; returns the seconds it took to exit. Anything left of the tree is killed."""

@@ -105,10 +105,11 @@ class WorkFailed(RuntimeError):
 _PRELOAD_LOCK = threading.Lock()
 
 
-def _forkserver_context(preload: Sequence[str]) -> multiprocessing.context.ForkServerContext:
+def forkserver_context(preload: Sequence[str]) -> multiprocessing.context.ForkServerContext:
     """The forkserver context, its server started with ``preload`` imported if it is not running yet.
 
-    The process has one forkserver: the preload list of whichever runner starts it applies.
+    The process has one forkserver: the preload list of whichever user starts it applies (a server's scene-worker
+    pool starts it first, with the scenes: app.scenes.host.pool).
     """
     context = multiprocessing.get_context("forkserver")
     with _PRELOAD_LOCK:
@@ -262,7 +263,7 @@ class BoundedRunner:
 
     def warm(self) -> None:
         """Start the forkserver now; it imports ``preload`` in the background (about 0.5 s) before its first child."""
-        _forkserver_context(self.preload)
+        forkserver_context(self.preload)
 
     def run(
         self,
@@ -304,7 +305,7 @@ class BoundedRunner:
     def _run_in_child(
         self, function: Callable[..., Any], args: tuple[Any, ...], timeout_s: float, memory_mb: float, what: str
     ) -> tuple[str, Any]:
-        context = _forkserver_context(self.preload)
+        context = forkserver_context(self.preload)
         receiver, sender = context.Pipe(duplex=False)
         cpu_seconds = math.ceil(timeout_s) + 1
         process = context.Process(

@@ -43,7 +43,7 @@ from multiprocessing import AuthenticationError
 from multiprocessing.connection import Connection
 from typing import TYPE_CHECKING, Any
 
-from app.physics.core.bounded import yield_only_to_live_scenes
+from app.physics.core.bounded import DEFAULT_PRELOAD, forkserver_context, yield_only_to_live_scenes
 from app.scenes.host.host import UnknownSceneError, check_session_id
 from app.scenes.host.interface import CALLS, RAISE, Call, SceneHostInterface
 from app.scenes.host.rpc import WorkerUnavailableError, connect, raise_answer
@@ -52,8 +52,14 @@ from app.scenes.kit import Scene
 
 log = logging.getLogger(__name__)
 
-#: How long a worker may take to import the scenes and bind its ports (s); a cold numba cache is the slow part.
+#: How long a worker may take to start and bind its ports (s); the forkserver's first import of the scenes with a cold
+#: numba cache is the slow part.
 START_TIMEOUT_S = 180.0
+#: What the forkserver the workers are forked from imports once: every scene (their numba kernels load from the disk
+#: cache then) and the worker's entry, besides what bounded work needs. A worker then starts in about 0.1 s, not the
+#: 2 s of CPU a new interpreter took to import them (measured on the 2-core test machine, warm caches), and one killed
+#: mid-class is back that much sooner.
+WORKER_PRELOAD = (*DEFAULT_PRELOAD, "app.scenes.host.worker", "app.scenes")
 #: Calls one worker may have in flight from the front at once: its share of the front's threads (AnyIO's pool has 40).
 CALLS_PER_WORKER = 8
 #: Longest a call waits for one of its worker's places before the front answers 503 (s).
@@ -72,7 +78,7 @@ STOP_TIMEOUT_S = 2.0
 @dataclass
 class _Worker:
     index: int
-    process: Any  # multiprocessing.Process (spawn context)
+    process: Any  # multiprocessing.Process (forkserver context)
     start_pipe: Connection
     viewer_url: str
     rpc_address: tuple[str, int]
@@ -117,7 +123,9 @@ class WorkerPool(SceneHostInterface):
         # A worker's own eviction is only a backstop: the front's session directory bounds sessions and closes them.
         self._options = {"frame_rate_hz": frame_rate_hz, "max_sessions": 2 * max_sessions, "log_level": log_level}
         self._authkey = secrets.token_bytes(32)
-        self._context = multiprocessing.get_context("spawn")  # never fork a process that runs threads
+        # Workers are forked from the forkserver (a process of its own, with no threads, that imported the scenes
+        # once), never from this process, which runs threads.
+        self._context: multiprocessing.context.ForkServerContext | None = None
         self._workers: list[_Worker | None] = [None] * workers
         self._restarting: set[int] = set()
         #: Session id -> the worker it is pinned to, and sessions pinned per worker (a creating call pins).
@@ -162,6 +170,8 @@ class WorkerPool(SceneHostInterface):
             self._close_connections(worker)
 
     def _launch(self, index: int) -> tuple[Any, Connection]:
+        if self._context is None:
+            self._context = forkserver_context(WORKER_PRELOAD)
         front_end, worker_end = self._context.Pipe()
         process = self._context.Process(
             target=run_worker,

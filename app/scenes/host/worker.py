@@ -45,14 +45,29 @@ class ViewerMessageRefused(logging.Filter):
         return True
 
 
+def process_name(index: int) -> str:
+    """What scene worker ``index`` is called in ``ps`` and ``top`` (Linux's process name, at most 15 bytes)."""
+    return f"dynlab-worker{index}"
+
+
+def _name_this_process(name: str) -> None:
+    """Every worker is a fork of the same forkserver, with its command line: its name says which process it is."""
+    try:
+        with open("/proc/self/comm", "w", encoding="ascii") as comm:
+            comm.write(name[:15])
+    except OSError:  # not Linux: the name is only a convenience
+        pass
+
+
 def run_worker(index: int, start_pipe: Connection, authkey: bytes, options: dict[str, Any]) -> None:
     """Process entry: serve scenes until ``"stop"`` arrives on ``start_pipe`` or it closes."""
+    _name_this_process(process_name(index))
     logging.basicConfig(
         level=options.get("log_level", "WARNING"), format=f"%(levelname)s worker{index} %(name)s: %(message)s"
     )
     logging.getLogger("websockets.server").addFilter(ViewerMessageRefused())
     from app.physics.core.bounded import stop_all_work
-    from app.scenes import SCENES  # importing the scenes loads every numba kernel (compiled eagerly, cached on disk)
+    from app.scenes import SCENES  # imported by the forkserver already: every numba kernel is loaded
     from app.scenes.host.host import SceneHost
     from app.scenes.host.warm import warm_compiled_models
 
