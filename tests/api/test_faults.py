@@ -15,6 +15,7 @@ import secrets
 import signal
 import threading
 import time
+from pathlib import Path
 
 import httpx
 import pytest
@@ -22,7 +23,7 @@ from websockets.sync.client import connect as websocket_connect
 
 from app.scenes.host.pool import PLACE_WAIT_S
 from tests.conftest import wait_until
-from tests.served import ServedApp, Viewer
+from tests.served import ServedApp, Viewer, children_running
 
 HEAVY_TOP_LESSON = "10-2-spinning-top"
 #: A typed kinetic energy whose derivation runs to its 20 s bound.
@@ -339,3 +340,31 @@ def test_the_instructors_socket_stays_open_and_the_room_unchanged_while_its_scen
     assert (after["playing"], after["time_scale"], after["revision"]) == (before["playing"], before["time_scale"], before["revision"])
     wait_until(lambda: stage_state(app, room_id).get("playing") is True, 30, what="the stage to answer again")
     app.client.delete(f"/api/rooms/{room_id}", headers=app.instructor_headers)
+
+
+def test_a_killed_forkserver_costs_the_class_a_worker_restart_and_leaves_no_worker_behind(app):
+    """The scene workers are forks of the front's forkserver, which also reports their exit: killed, it reports both
+    as gone. Both are replaced (the forkserver is started again), every session comes back as it was, and the old
+    workers, alive after all, stop when the front closes their start pipes instead of running on beside the new."""
+    page = Page(app, params={"spin_rad_s": 77.0})
+    page.playback(playing=False, time_scale=2.0)
+    time.sleep(1.5)  # the supervisor's snapshot period is 1 s
+    before = app.worker_pids()
+    (forkserver,) = children_running(app.process.pid, b"forkserver")
+    os.kill(forkserver, signal.SIGKILL)
+    wait_until(lambda: len(app.worker_pids()) == 2 and not set(app.worker_pids()) & set(before)
+               and all(w["state"] == "answering" for w in app.client.get("/api/health").json()["workers"]), 30,
+               what="both workers to be replaced")  # fmt: skip
+    wait_until(lambda: not [pid for pid in before if _running(pid)], 10, what="the old workers to stop")
+    wait_until(lambda: "playing" in page.playback(), 30, what="the session to answer again")
+    after = page.state()
+    assert (after["params"]["spin_rad_s"], after["playing"], after["time_scale"]) == (77.0, False, 2.0), after
+    page.close()
+
+
+def _running(pid: int) -> bool:
+    """Whether ``pid`` is a live process (not gone, not a zombie waiting to be reaped)."""
+    try:
+        return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0] != "Z"
+    except OSError:
+        return False

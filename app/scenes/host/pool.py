@@ -242,6 +242,12 @@ class WorkerPool(SceneHostInterface):
         try:
             log.error("scene worker %d exited (code %s): restarting it", index, dead.process.exitcode)
             self._close_connections(dead)
+            # Its start pipe too: a worker reported dead because the forkserver that reports its exit died (killed)
+            # is in fact alive; the pipe's end tells it to stop (and no descriptor is kept per restart).
+            try:
+                dead.start_pipe.close()
+            except OSError:
+                pass
             self._workers[index] = None
             while not self._stopping.is_set():
                 try:

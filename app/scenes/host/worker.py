@@ -84,7 +84,7 @@ def run_worker(index: int, start_pipe: Connection, authkey: bytes, options: dict
     try:
         start_pipe.recv()  # "stop", or EOFError when the front process has gone
     except (EOFError, OSError):
-        log.warning("front process gone: worker %d stopping", index)
+        log.warning("worker %d stopping: the front closed its start pipe (it stopped, or replaced this worker)", index)
     finally:
         closing.set()
         listener.close()
