@@ -23,6 +23,7 @@ from typing import Any
 import httpx
 
 from app.bench.load_client import ReconnectingViewer
+from app.scenes.host.worker import PROCESS_NAME_PREFIX
 
 RESULTS = Path(__file__).resolve().parents[1] / "test-results"
 #: The instructor's secret the served apps of the tests are started with.
@@ -184,7 +185,7 @@ class ServedApp:
 
     def worker_pids(self) -> list[int]:
         """The scene workers' process ids, in worker order: forks of the front's forkserver, named
-        ``dynlab-worker<index>`` (app.scenes.host.worker.process_name)."""
+        ``dynlab-worker<index>`` (:func:`app.scenes.host.worker.process_name`)."""
         assert self.process is not None
         named = {}
         for server in children_running(self.process.pid, b"forkserver"):
@@ -193,8 +194,8 @@ class ServedApp:
                     name = Path(f"/proc/{pid}/comm").read_text().strip()
                 except OSError:
                     continue
-                if name.startswith("dynlab-worker"):
-                    named[int(name.removeprefix("dynlab-worker"))] = pid
+                if name.startswith(PROCESS_NAME_PREFIX):
+                    named[int(name.removeprefix(PROCESS_NAME_PREFIX))] = pid
         return [named[index] for index in sorted(named)]
 
     def stop(self, *, timeout_s: float = 15.0) -> float:

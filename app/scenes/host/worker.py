@@ -45,9 +45,13 @@ class ViewerMessageRefused(logging.Filter):
         return True
 
 
+#: Scene worker ``N`` is called ``dynlab-worker<N>`` in ``ps`` and ``top`` (Linux's process name, at most 15 bytes).
+PROCESS_NAME_PREFIX = "dynlab-worker"
+
+
 def process_name(index: int) -> str:
-    """What scene worker ``index`` is called in ``ps`` and ``top`` (Linux's process name, at most 15 bytes)."""
-    return f"dynlab-worker{index}"
+    """What scene worker ``index`` is called in ``ps`` and ``top``."""
+    return f"{PROCESS_NAME_PREFIX}{index}"
 
 
 def _name_this_process(name: str) -> None:
