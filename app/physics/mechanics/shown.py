@@ -212,12 +212,16 @@ def simplify_leaves(
                 out_of_time += len(leaves) - index
                 break
             best: list[sympy.Expr] = []
+            bounded_by_total = left_s <= each_s
             signal.setitimer(signal.ITIMER_PROF, min(each_s, left_s))
             try:
                 results[index] = readable(leaf, best)
             except _OutOfTime:  # the best form found before the timer went off, if any
                 results[index] = best[0] if best else None
                 out_of_time += 1
+                if bounded_by_total:  # the total is spent, whatever process_time reads a tick later
+                    out_of_time += len(leaves) - index - 1
+                    break
                 continue
             finally:
                 signal.setitimer(signal.ITIMER_PROF, 0.0)
