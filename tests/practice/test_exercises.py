@@ -23,16 +23,27 @@ EXERCISES = load_exercises(LESSONS)
 VARIANTS = range(100)
 #: For each unit an exercise asks in: another unit of the same dimension, and what one of it is in the first.
 OTHER_UNITS = {
-    "kg*m^2": ("g*cm^2", 1e-7),
-    "kg*m^2/s": ("g*cm^2/s", 1e-7),
-    "N": ("kN", 1e3),
-    "N*m": ("N*mm", 1e-3),
+    "1": ("percent", 0.01),
     "m": ("mm", 1e-3),
-    "m/s": ("km/h", 1 / 3.6),
-    "rad/s": ("rpm", 2 * np.pi / 60),
-    "deg": ("rad", 180 / np.pi),
     "kg": ("g", 1e-3),
     "s": ("ms", 1e-3),
+    "deg": ("rad", 180 / np.pi),
+    "rad": ("deg", np.pi / 180),
+    "m/s": ("km/h", 1 / 3.6),
+    "m/s^2": ("mm/s^2", 1e-3),
+    "rad/s": ("rpm", 2 * np.pi / 60),
+    "1/s": ("1/min", 1 / 60),
+    "rad/s^2": ("deg/s^2", np.pi / 180),
+    "N": ("kN", 1e3),
+    "N*m": ("N*mm", 1e-3),
+    "J": ("kJ", 1e3),
+    "W": ("kW", 1e3),
+    "N/m": ("N/mm", 1e3),
+    "N*s": ("N*ms", 1e-3),
+    "kg*m/s": ("g*m/s", 1e-3),
+    "kg*m^2": ("g*cm^2", 1e-7),
+    "kg*m^2/s": ("g*cm^2/s", 1e-7),
+    "N*m*s": ("N*mm*s", 1e-3),
 }
 
 
