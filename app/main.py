@@ -29,6 +29,9 @@ from app.classroom.store import SqlRoomStore
 from app.classroom.sync import ClassSync
 from app.course import load_catalogue
 from app.physics.core.bounded import stop_all_work
+from app.practice import pages as practice_pages
+from app.practice import routes as practice
+from app.practice.book import load_book
 from app.practice.progress import SqlProgressStore
 from app.scenes import SCENES
 from app.scenes.host.host import SceneHost
@@ -111,6 +114,9 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     # Learners working alone and their exercise progress (None with nothing kept); those unused for the rooms' keeping
     # time are forgotten at start-up.
     app.state.progress = _kept_progress(database, keep_days=settings.keep_rooms_days)
+    # The exercises beside the lessons, checked against the course (a bad one stops the server, as a bad lesson does).
+    app.state.exercises = load_book(settings.lessons_dir, chapters=app.state.catalogue.chapters, scenes=SCENES)
+    app.state.practice_limits = practice.PracticeLimits()
     app.state.join_limits = JoinLimits(settings)
     app.state.room_hub = RoomHub(lambda: app.state.scene_host, say_presence=_presence_sayer(database))
     app.state.ready_questions = load_ready_questions(DEFAULT_READY_QUESTIONS, SCENES)
@@ -125,10 +131,12 @@ def create_app(settings: Settings | None = None) -> FastAPI:
         chapters.router,
         scenes.router,
         examples.router,
+        practice.router,
         systems.router,
         bench.router,
         rooms.router,
         pages.router,
+        practice_pages.router,
         viewer_client.router,
         room_pages.router,
         relay.router,

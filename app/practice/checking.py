@@ -111,7 +111,7 @@ def in_part_unit(value: float, unit_text: str, part: Part) -> float:
     wanted = parse_unit(part.unit)
     if unit.dimensionality != wanted.dimensionality:
         raise WrongDimension(
-            f"that is {dimension_name(str(unit))}; the question asks for {dimension_name(part.unit)} (in {part.unit})"
+            f"That is {dimension_name(str(unit))}; the question asks for {dimension_name(part.unit)} (in {part.unit})"
         )
     return float(units().Quantity(value, unit).to(wanted).magnitude)
 

@@ -236,6 +236,8 @@ def _answer_function(name: Any, source: str) -> AnswerFunction:
 
 def _given(name: str, table: Mapping[str, Any], source: str) -> Given:
     where = f"{source}: given {name!r}"
+    if not re.fullmatch(r"[a-z_][a-z0-9_]*", name):
+        raise ValueError(f"{where}: a given's name is lower-case letters, digits and '_' (it fills {{{{name}}}} slots)")
     given = Given(
         name=name,
         unit=str(table.get("unit", "")),
@@ -340,6 +342,13 @@ def parse_exercise(text: str, source: str, *, chapter: int) -> Exercise:
     )
     if not exercise.title:
         raise ValueError(f"{source}: an exercise needs a title")
+    texts = [body, *(p.prompt for p in parts), *(h for p in parts for h in p.hints), *(m.text for m in mistakes)]
+    named = {match.group(1) for text in texts for match in PLACEHOLDER.finditer(text)}
+    unknown = named - {g.name for g in given}
+    if unknown:
+        raise ValueError(f"{source}: {{{{…}}}} names no given number: {', '.join(sorted(unknown))}")
+    if re.search(r"\{\{(?!\s*[a-z_][a-z0-9_]*\s*\}\})", "".join(texts)):
+        raise ValueError(f"{source}: a {{{{…}}}} slot must hold a given's lower-case name")
     return exercise
 
 

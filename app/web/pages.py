@@ -139,7 +139,7 @@ def _section_item(number: str, title: str, lessons: list[Lesson]) -> str:
         status = f'<span class="sec-status has-lesson">lesson{"s" if len(lessons) > 1 else ""}:</span> {links}'
     else:
         status = '<span class="sec-status no-lesson">no lesson yet</span>'
-    return f"<li><span class=sec-num>{esc(number)}</span> {esc(title)} — {status}</li>"
+    return f'<li data-section="{esc(number)}"><span class=sec-num>{esc(number)}</span> {esc(title)} — {status}</li>'
 
 
 def _chapter_card(chapter: Chapter) -> str:
@@ -171,7 +171,7 @@ def _chapter_card(chapter: Chapter) -> str:
 @router.get("/", response_class=HTMLResponse)
 def course_page(catalogue: CatalogueDep) -> HTMLResponse:
     body = _template("course.html").substitute(chapters="".join(_chapter_card(ch) for ch in catalogue.chapters))
-    return _page("Dynamics Lab — course", body, scripts=("/static/js/common.js",))
+    return _page("Dynamics Lab — course", body, scripts=("/static/js/course_page.js",))
 
 
 def _lesson_config(lesson: Lesson, catalogue: Catalogue, scene_id: str | None) -> dict:
@@ -181,6 +181,7 @@ def _lesson_config(lesson: Lesson, catalogue: Catalogue, scene_id: str | None) -
     """
     return {
         "lesson_id": lesson.id,
+        "section": lesson.section,
         "scene": catalogue.scenes[scene_id].schema() if scene_id else None,
         "examples": [catalogue.examples[example_id].schema() for example_id in lesson.examples],
         "derivations": [_derivation_config(catalogue.derivations[system_id]) for system_id in lesson.derivations],

@@ -1,7 +1,9 @@
 // The lesson page: the lesson text's equations, then its parts (each imports what it uses; lesson.js, which they
-// share, runs first).
+// share, runs first), and after the text its section's exercises.
 import "./common.js";
+import { config } from "./config.js";
 import { renderMath } from "./katex.js";
+import { listSectionExercises } from "./practice_list.js";
 import "./lesson.js";
 import "./room.js";
 import "./time_controls.js";
@@ -10,3 +12,6 @@ import "./graphs.js";
 import "./derivations.js";
 
 renderMath();
+
+const prevnext = document.querySelector("article.lesson-text nav.prevnext");
+if (config.section && prevnext) listSectionExercises(config.section, prevnext);

@@ -32,7 +32,11 @@ EXAMPLES = int(os.environ.get("DYNLAB_FUZZ_EXAMPLES", "60"))
 APP = create_app()  # only for its OpenAPI document: the requests go to the served app
 SCHEMA = schemathesis.openapi.from_dict(APP.openapi())
 #: Real ids: the document cannot list them, and a random id only ever meets the 404.
-KNOWN_IDS = {"scene_id": sorted(SCENES), "example_id": sorted(APP.state.catalogue.examples)}
+KNOWN_IDS = {
+    "scene_id": sorted(SCENES),
+    "example_id": sorted(APP.state.catalogue.examples),
+    "exercise_id": sorted(APP.state.exercises.exercises),
+}
 _devices = itertools.count(1)
 
 

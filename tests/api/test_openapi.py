@@ -39,11 +39,21 @@ ROOM_ROUTES = {
 PLAYBACK_ROUTES = {("/api/scenes/{scene_id}/sessions/{session_id}/playback", "put"), ("/api/scenes/{scene_id}/sessions/{session_id}/playback", "get")}
 #: Graphs of a session's kept motion (issue 15): an unknown scene or a session without one; a bad since_s or max_points.
 GRAPH_ROUTES = {("/api/scenes/{scene_id}/sessions/{session_id}/graph", "get")}
-CAN_BE_NOT_FOUND |= ROOM_ROUTES | PLAYBACK_ROUTES | GRAPH_ROUTES
-CAN_BE_UNPROCESSABLE = (CAN_BE_NOT_FOUND - {("/api/bench/work-precision", "get")}) | {("/api/systems/custom/derive", "post"), ("/api/rooms", "post")}
+#: Practice (issue 27): an exercise or a resume code that may not exist; a variant, an answer, a section, a token header.
+EXERCISE_ROUTES = {
+    ("/api/exercises/{exercise_id}", "get"), ("/api/exercises/{exercise_id}/attempts", "post"),
+    ("/api/exercises/{exercise_id}/give-up", "post"), ("/api/exercises/{exercise_id}/solution", "get"),
+    ("/api/learners/resume", "post"),
+}  # fmt: skip
+CAN_BE_NOT_FOUND |= ROOM_ROUTES | PLAYBACK_ROUTES | GRAPH_ROUTES | EXERCISE_ROUTES
+CAN_BE_UNPROCESSABLE = (CAN_BE_NOT_FOUND - {("/api/bench/work-precision", "get")}) | {
+    ("/api/systems/custom/derive", "post"), ("/api/rooms", "post"), ("/api/exercises", "get"), ("/api/progress", "get"),
+    ("/api/progress", "delete"),
+}  # fmt: skip
 #: Instructor-only reads: a student gets 403 (app/api/rooms.py require_instructor), as on every state-changing route.
 INSTRUCTOR_ONLY_READS = {
     ("/api/rooms/{room_id}/polls/ready", "get"), ("/api/rooms/{room_id}/polls/{poll_id}/results", "get"), ("/api/rooms/{room_id}/students", "get"),
+    ("/api/exercises/{exercise_id}/solution", "get"),  # an instructor's always; a learner's once done with it
 }  # fmt: skip
 #: Answers the web front's guard gives before any route runs (app/web/guard.py), which FastAPI cannot see by itself.
 WITH_BODY = [(path, method) for path, method, op in OPERATIONS if "requestBody" in op]

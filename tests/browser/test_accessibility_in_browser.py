@@ -37,6 +37,7 @@ PHONE = {"width": 390, "height": 844}
 #: Ready when the page's own scripts have drawn what they fetch: worked solutions (or the error that replaced them)
 #: and every derivation column (equations or its "could not derive" line).
 PAGE_DRAWN = """() => {
+  if (document.getElementById('exercise')) return document.body.dataset.exerciseReady === 'true';
   const config = document.getElementById('dynlab-config');
   if (!config) return document.readyState === 'complete';
   const c = JSON.parse(config.textContent);
@@ -58,11 +59,15 @@ RUN_AXE = """async () => {
 
 
 def our_pages(live_server) -> list[str]:
-    """The course page, every lesson page (from GET /api/chapters), the solver lab and the join page."""
+    """The course page, every lesson page (from GET /api/chapters), the solver lab, the join page and an exercise."""
     chapters = httpx.get(live_server.url + "/api/chapters", timeout=30).json()
     lessons = [lesson["url"] for chapter in chapters for lesson in chapter["lessons"]]
     assert len(lessons) == len(set(lessons)) and lessons, lessons
-    return ["/", *lessons, "/solver-lab", "/join"]
+    return ["/", *lessons, "/solver-lab", "/join", EXERCISE_PAGE]
+
+
+#: An exercise page (one stands for all: the page is the same for every exercise, filled by static/js/exercise.js).
+EXERCISE_PAGE = "/exercises/5-3-tilted-disk-bearings"
 
 
 def _stub_viewer(context) -> None:
@@ -130,10 +135,10 @@ def test_each_kind_of_page_has_no_serious_or_critical_violation_on_a_laptop(brow
 
 #: On a phone, one page of each kind (axe costs 1–25 s a page; the markup is shared by kind): the course page, a lesson
 #: with a scene and worked solutions, one with the body editor, one with derivation columns, a text-only one, the
-#: solver lab and /join.
+#: solver lab, /join and an exercise.
 PHONE_PAGES = (
     "/", "/lessons/1-1-vector-operations", "/lessons/5-2-inertia-properties", "/lessons/7-6-bead-on-hoop",
-    "/lessons/1-3-biographical-perspective", "/solver-lab", "/join",
+    "/lessons/1-3-biographical-perspective", "/solver-lab", "/join", EXERCISE_PAGE,
 )
 
 

@@ -50,6 +50,7 @@ def _answer_scene_parameters(context) -> None:
 
 PAGE_READY = """() => {
   if (document.readyState !== 'complete') return false;
+  if (document.getElementById('exercise') && document.body.dataset.exerciseReady !== 'true') return false;
   if (!(%s)()) return false;
   const config = document.getElementById('dynlab-config');
   if (!config || !JSON.parse(config.textContent).scene) return true;

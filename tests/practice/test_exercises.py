@@ -167,3 +167,10 @@ def test_a_malformed_exercise_file_is_refused_naming_the_file(change, message):
         parse_exercise(GOOD.replace(*change), "ch05/exercises/x.md", chapter=5)
     assert "ch05/exercises/x.md" in str(refused.value)
     parse_exercise(GOOD, "ch05/exercises/x.md", chapter=5)  # and the unchanged file is taken
+
+
+def test_a_slot_that_names_no_given_number_is_refused():
+    with pytest.raises(ValueError, match="names no given number: mass_g"):
+        parse_exercise(GOOD.replace("Body {{mass_kg}}.", "Body {{mass_g}}."), "x.md", chapter=5)
+    with pytest.raises(ValueError, match="must hold a given's lower-case name"):
+        parse_exercise(GOOD.replace("Body {{mass_kg}}.", "Body {{Pull_N}}."), "x.md", chapter=5)

@@ -1,0 +1,411 @@
+"""Exercises checked part by part, and the progress of a learner working alone.
+
+A learner has no account: ``POST /api/learners`` gives a browser a secret token (sent back as ``X-Learner-Token``)
+and a resume code for another device. Without a token an answer is still checked, and nothing is kept. A server
+started with nothing kept (no database) checks answers and keeps no learners (503 on the learner routes).
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Mapping
+from typing import Annotated, Any
+from urllib.parse import urlencode
+
+from fastapi import APIRouter, Depends, Header, HTTPException, Path, Query, Request
+from starlette.requests import HTTPConnection
+
+from app.api.deps import CatalogueDep, ClientDep
+from app.api.errors import unprocessable
+from app.api.rate_limit import TokenBuckets, retry_after_s
+from app.api.schemas.errors import ErrorDetail, error_responses
+from app.api.schemas.exercises import (
+    AttemptAnswer,
+    AttemptRequest,
+    ExerciseSolution,
+    ExerciseSummary,
+    ExerciseVariant,
+    Forgotten,
+    GiveUpRequest,
+    NewLearner,
+    ProgressView,
+    ResumeRequest,
+)
+from app.classroom.routes import is_instructor
+from app.course import Catalogue, render_markdown
+from app.practice.book import ExerciseBook
+from app.practice.checking import AnswerUnreadable, check
+from app.practice.exercise import Exercise, Part, fill
+from app.practice.progress import Learner, SqlProgressStore
+from app.practice.variants import NoValidVariant, Variant, learner_variant
+
+router = APIRouter(prefix="/api", tags=["exercises"])
+
+#: The learner refusals a route that reads ``X-Learner-Token`` can give, documented with the others.
+_NO_LEARNER: dict[int | str, dict[str, Any]] = {
+    401: {"model": ErrorDetail, "description": "No learner has this token (or none was sent where one is needed)"},
+    503: {"model": ErrorDetail, "description": "This server keeps no progress (started with nothing kept)"},
+}
+
+LEARNER_HEADER = "X-Learner-Token"
+#: New learners (and resumes) one client address may ask for at once, and per second after that: a class behind one
+#: school address starts sixty at the start of a lesson; a script making thousands is refused (429).
+LEARNER_BURST = 120
+LEARNER_RATE_PER_S = 1.0
+#: Answers one client address may have checked at once, and per second after that (an expression costs a few ms).
+ATTEMPT_BURST = 120
+ATTEMPT_RATE_PER_S = 10.0
+
+ExerciseId = Annotated[str, Path(pattern=r"^[a-z0-9][a-z0-9-]{0,31}$", description="The exercise's id")]
+LearnerToken = Annotated[
+    str | None, Header(alias=LEARNER_HEADER, max_length=64, description="The token POST /api/learners gave")
+]
+VariantQuery = Annotated[
+    int | None,
+    Query(ge=0, le=2**31 - 1, description="The variant (its numbers); default: the learner's own, else 0"),
+]
+
+
+def get_book(request: HTTPConnection) -> ExerciseBook:
+    return request.app.state.exercises
+
+
+def get_progress(request: HTTPConnection) -> SqlProgressStore | None:
+    return request.app.state.progress
+
+
+def get_practice_limits(request: HTTPConnection) -> PracticeLimits:
+    return request.app.state.practice_limits
+
+
+class PracticeLimits:
+    """Per client address: learners made or resumed, and answers checked (token buckets)."""
+
+    def __init__(self) -> None:
+        self.learners = TokenBuckets(burst=LEARNER_BURST, rate_per_s=LEARNER_RATE_PER_S, max_clients=10_000)
+        self.attempts = TokenBuckets(burst=ATTEMPT_BURST, rate_per_s=ATTEMPT_RATE_PER_S, max_clients=10_000)
+
+
+BookDep = Annotated[ExerciseBook, Depends(get_book)]
+ProgressDep = Annotated[SqlProgressStore | None, Depends(get_progress)]
+LimitsDep = Annotated[PracticeLimits, Depends(get_practice_limits)]
+
+
+def _limit(buckets: TokenBuckets, client: str | None, what: str) -> None:
+    wait_s = buckets.take(client or "local")
+    if wait_s > 0:
+        raise HTTPException(
+            status_code=429,
+            detail=f"too many {what} from this address just now; try again in {retry_after_s(wait_s)} s",
+            headers={"Retry-After": str(retry_after_s(wait_s))},
+        )
+
+
+def _exercise(book: ExerciseBook, exercise_id: str) -> Exercise:
+    exercise = book.get(exercise_id)
+    if exercise is None:
+        raise HTTPException(status_code=404, detail=f"no exercise {exercise_id!r}: GET /api/exercises lists them")
+    return exercise
+
+
+def _store(progress: SqlProgressStore | None) -> SqlProgressStore:
+    if progress is None:
+        raise HTTPException(
+            status_code=503,
+            detail="this server keeps no progress (it was started with nothing kept); answers are still checked",
+            headers={"Retry-After": "3600"},
+        )
+    return progress
+
+
+def _learner(progress: SqlProgressStore | None, token: str | None, *, required: bool) -> Learner | None:
+    """The learner of ``token``; None without a token (unless ``required``); 401 for a token no learner has."""
+    if token is None and not required:
+        return None
+    if token is None:
+        raise HTTPException(status_code=401, detail=f"send the learner's token as {LEARNER_HEADER}")
+    learner = _store(progress).learner(token)
+    if learner is None:
+        raise HTTPException(
+            status_code=401, detail="no learner has this token (forgotten after long unused?): POST /api/learners"
+        )
+    return learner
+
+
+def _variant(book: ExerciseBook, exercise: Exercise, number: int) -> Variant:
+    try:
+        return book.variant(exercise, number)
+    except NoValidVariant as exc:  # a defect of the exercise's ranges (the tests draw 100 of each): say so, no 500
+        raise HTTPException(status_code=422, detail=str(exc)) from None
+
+
+def _given(variant: Variant) -> dict[str, dict[str, Any]]:
+    return {g.name: {"value": variant.given[g.name], "unit": g.unit} for g in variant.exercise.given}
+
+
+@router.get(
+    "/exercises",
+    response_model=list[ExerciseSummary],
+    responses=error_responses(unprocessable="The section is not written as a section number (5.2)"),
+)
+def list_exercises(
+    book: BookDep,
+    section: Annotated[str | None, Query(pattern=r"^\d{1,2}\.\d{1,2}$", description="A section, e.g. 5.2")] = None,
+) -> list[dict[str, Any]]:
+    """The exercises of a section (or all), in course order."""
+    return [exercise.summary() for exercise in book.of_section(section)]
+
+
+@router.get(
+    "/exercises/{exercise_id}",
+    response_model=ExerciseVariant,
+    responses={
+        **error_responses(not_found="No exercise has this id", unprocessable="The variant is out of range"),
+        **_NO_LEARNER,
+    },
+)
+def get_exercise(
+    exercise_id: ExerciseId,
+    book: BookDep,
+    progress: ProgressDep,
+    catalogue: CatalogueDep,
+    variant: VariantQuery = None,
+    token: LearnerToken = None,
+) -> dict[str, Any]:
+    """One variant of an exercise: its statement and parts with that variant's numbers. Without ``variant`` a learner
+    (``X-Learner-Token``) gets their own variant, the same every time; anyone else variant 0."""
+    exercise = _exercise(book, exercise_id)
+    if variant is None:
+        learner = _learner(progress, token, required=False) if progress is not None else None
+        variant = learner_variant(exercise.id, learner.learner_id) if learner is not None else 0
+    drawn = _variant(book, exercise, variant)
+    text = drawn.given_text()
+    statement = fill(exercise.statement, text)
+    parts = []
+    for part in exercise.parts:
+        shown = part.public(text)
+        shown["prompt_html"] = render_markdown(shown["prompt"])
+        shown["hints_html"] = [render_markdown(hint) for hint in shown["hints"]]
+        parts.append(shown)
+    scene = None
+    if exercise.scene is not None:
+        scene = exercise.scene.at(drawn.given)
+        scene["url"] = scene_url(catalogue, scene["scene_id"], scene["params"])
+    return {
+        **exercise.summary(),
+        "statement": statement,
+        "statement_html": render_markdown(statement),
+        "given": _given(drawn),
+        "parts": parts,
+        "scene": scene,
+        "variant": variant,
+    }
+
+
+def scene_url(catalogue: Catalogue, scene_id: str, params: Mapping[str, Any]) -> str | None:
+    """The first lesson showing ``scene_id``, opened at ``params`` (its share link's form), or None if no lesson
+    shows it."""
+    lesson = next((lesson for lesson in catalogue.lessons.values() if scene_id in lesson.scenes), None)
+    if lesson is None:
+        return None
+    query = urlencode({"scene": scene_id, "params": json.dumps(dict(params), separators=(",", ":"))})
+    return f"{lesson.url}?{query}"
+
+
+def _part(exercise: Exercise, part_id: str) -> Part:
+    part = exercise.part(part_id)
+    if part is None:
+        raise unprocessable(
+            ["body", "part"],
+            f"exercise {exercise.id!r} has no part {part_id!r}; its parts: " + ", ".join(p.id for p in exercise.parts),
+        )
+    return part
+
+
+@router.post(
+    "/exercises/{exercise_id}/attempts",
+    response_model=AttemptAnswer,
+    responses={
+        **error_responses(
+            not_found="No exercise has this id",
+            unprocessable="The answer cannot be read (its unit, expression or form) or names no part; not counted",
+        ),
+        **_NO_LEARNER,
+    },
+)
+def attempt(
+    exercise_id: ExerciseId,
+    request: AttemptRequest,
+    book: BookDep,
+    progress: ProgressDep,
+    limits: LimitsDep,
+    client: ClientDep,
+    token: LearnerToken = None,
+) -> dict[str, Any]:
+    """Check an answer to one part of one variant: ``correct``, ``feedback`` and, when it matches a named mistake,
+    ``mistake``. With ``X-Learner-Token`` the attempt is kept in the learner's progress."""
+    _limit(limits.attempts, client, "answers")
+    exercise = _exercise(book, exercise_id)
+    part = _part(exercise, request.part)
+    answer = request.answer.model_dump()
+    kind = {"value": "number", "vector": "vector", "expression": "expression", "choice": "choice"}
+    sent = next(kind[key] for key in kind if key in answer)
+    if sent != part.kind:
+        raise unprocessable(["body", "answer"], f"part {part.id!r} asks for a {part.kind}, not a {sent}")
+    learner = _learner(progress, token, required=False)
+    drawn = _variant(book, exercise, request.variant)
+    try:
+        verdict = check(exercise, part, answer, drawn.answers[part.id])
+    except AnswerUnreadable as exc:
+        raise unprocessable(["body", "answer"], str(exc)) from None
+    if learner is not None and progress is not None:
+        progress.record(
+            learner.learner_id,
+            exercise_id=exercise.id,
+            part_id=part.id,
+            variant=request.variant,
+            correct=verdict.correct,
+            mistake_id=verdict.mistake.id if verdict.mistake else None,
+        )
+    return {**verdict.public(), "feedback_html": render_markdown(verdict.feedback)}
+
+
+def _solution(drawn: Variant) -> dict[str, Any]:
+    parts = []
+    for part in drawn.exercise.parts:
+        answer = drawn.answers[part.id]
+        value = answer.value
+        if part.kind == "number":
+            shown: dict[str, Any] = {"value": float(value), "unit": part.unit}  # type: ignore[arg-type]
+        elif part.kind == "vector":
+            shown = {"vector": [float(c) for c in value], "unit": part.unit, "frame": part.frame}  # type: ignore[union-attr]
+        elif part.kind == "expression":
+            shown = {"expression": str(value).replace("**", "^")}
+        else:
+            shown = {"choice": value}
+        parts.append({"id": part.id, "answer": shown, "working": answer.working})
+    return {"id": drawn.exercise.id, "variant": drawn.variant, "given": _given(drawn), "parts": parts}
+
+
+@router.post(
+    "/exercises/{exercise_id}/give-up",
+    response_model=ExerciseSolution,
+    responses={
+        **error_responses(not_found="No exercise has this id", unprocessable="The variant is out of range"),
+        **_NO_LEARNER,
+    },
+)
+def give_up(
+    exercise_id: ExerciseId, request: GiveUpRequest, book: BookDep, progress: ProgressDep, token: LearnerToken = None
+) -> dict[str, Any]:
+    """Give up on a variant (every part not yet solved is kept as given up) and get its worked solution."""
+    exercise = _exercise(book, exercise_id)
+    learner = _learner(progress, token, required=True)
+    assert learner is not None and progress is not None
+    drawn = _variant(book, exercise, request.variant)
+    solved = {
+        p.part_id
+        for p in progress.progress(learner.learner_id)
+        if p.exercise_id == exercise.id and p.variant == request.variant and p.solved
+    }
+    for part in exercise.parts:
+        if part.id not in solved:
+            progress.record(
+                learner.learner_id, exercise_id=exercise.id, part_id=part.id, variant=request.variant, gave_up=True
+            )
+    return _solution(drawn)
+
+
+@router.get(
+    "/exercises/{exercise_id}/solution",
+    response_model=ExerciseSolution,
+    responses={
+        **error_responses(not_found="No exercise has this id", unprocessable="The variant is out of range"),
+        **_NO_LEARNER,
+        403: {"model": ErrorDetail, "description": "A learner who has not yet solved or given up every part"},
+    },
+)
+def solution(
+    exercise_id: ExerciseId,
+    http: Request,
+    book: BookDep,
+    progress: ProgressDep,
+    variant: VariantQuery = None,
+    token: LearnerToken = None,
+) -> dict[str, Any]:
+    """A variant's worked solution with every part's answer: for an instructor always; for a learner once every part
+    is solved or given up."""
+    exercise = _exercise(book, exercise_id)
+    if not is_instructor(http):
+        learner = _learner(progress, token, required=True)
+        assert learner is not None and progress is not None
+        number = variant if variant is not None else learner_variant(exercise.id, learner.learner_id)
+        done = {
+            p.part_id
+            for p in progress.progress(learner.learner_id)
+            if p.exercise_id == exercise.id and p.variant == number and (p.solved or p.gave_up)
+        }
+        if done != {part.id for part in exercise.parts}:
+            raise HTTPException(
+                status_code=403, detail="the solution opens once every part is solved, or you give up on it"
+            )
+        variant = number
+    return _solution(_variant(book, exercise, variant or 0))
+
+
+@router.post("/learners", response_model=NewLearner, responses={503: _NO_LEARNER[503]})
+def new_learner(progress: ProgressDep, limits: LimitsDep, client: ClientDep) -> dict[str, Any]:
+    """A new learner: this browser's secret token and a resume code for another device (each shown only now)."""
+    _limit(limits.learners, client, "new learners")
+    learner = _store(progress).new_learner()
+    return {"learner_id": learner.learner_id, "token": learner.token, "resume_code": learner.resume_code}
+
+
+@router.post(
+    "/learners/resume",
+    response_model=NewLearner,
+    responses={
+        **error_responses(not_found="No learner has this resume code", unprocessable="The code is too long"),
+        503: _NO_LEARNER[503],
+    },
+)
+def resume(request: ResumeRequest, progress: ProgressDep, limits: LimitsDep, client: ClientDep) -> dict[str, Any]:
+    """Carry a learner's progress to this browser: a resume code gives it a token of its own."""
+    _limit(limits.learners, client, "resume codes")
+    learner = _store(progress).resume(request.code)
+    if learner is None:
+        raise HTTPException(status_code=404, detail="no learner has this resume code (check it, letter by letter)")
+    return {"learner_id": learner.learner_id, "token": learner.token, "resume_code": None}
+
+
+@router.get(
+    "/progress",
+    response_model=ProgressView,
+    responses={**error_responses(unprocessable="The token header is too long"), **_NO_LEARNER},
+)
+def get_learner_progress(book: BookDep, progress: ProgressDep, token: LearnerToken = None) -> dict[str, Any]:
+    """The learner's progress: every part worked on, and per section how many exercises are started and solved."""
+    learner = _learner(progress, token, required=True)
+    assert learner is not None and progress is not None
+    parts = progress.progress(learner.learner_id)
+    sections: dict[str, dict[str, int]] = {}
+    for exercise in book.exercises.values():
+        mine = [p for p in parts if p.exercise_id == exercise.id]
+        counts = sections.setdefault(exercise.section, {"exercises": 0, "started": 0, "solved": 0})
+        counts["exercises"] += 1
+        counts["started"] += bool(mine)
+        counts["solved"] += {p.part_id for p in mine if p.solved} == {part.id for part in exercise.parts}
+    return {"learner_id": learner.learner_id, "parts": [p.public() for p in parts], "sections": sections}
+
+
+@router.delete(
+    "/progress",
+    response_model=Forgotten,
+    responses={**error_responses(unprocessable="The token header is too long"), **_NO_LEARNER},
+)
+def forget_learner(progress: ProgressDep, token: LearnerToken = None) -> dict[str, Any]:
+    """Forget this learner and all their progress (every device's token stops working)."""
+    learner = _learner(progress, token, required=True)
+    assert learner is not None and progress is not None
+    progress.forget(learner.learner_id)
+    return {"learner_id": learner.learner_id, "forgotten": True}

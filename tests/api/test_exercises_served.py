@@ -1,0 +1,143 @@
+"""The exercise API against ``dynlab serve`` (tests/served.py), as a student and an instructor use it: a learner's own
+numbers, answers checked part by part (units converted, a wrong dimension named, a named mistake told, an unreadable
+answer refused and not counted), the solution closed until every part is solved or given up, progress kept and carried
+to another device by its resume code, and what a hostile student tries (another's token, a guessed exercise, absurd
+answers, a flood of learners)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import httpx
+import pytest
+
+from app.practice.exercise import load_exercises
+from app.practice.variants import learner_variant, variant
+
+EXERCISES = load_exercises(Path(__file__).resolve().parents[2] / "lessons")
+PLATE = "5-2-plate-about-corner"
+DISK = "5-3-tilted-disk-bearings"
+
+
+@pytest.fixture(scope="module")
+def api(served) -> httpx.Client:
+    with served.new_client() as client:
+        yield client
+
+
+def _learner(api: httpx.Client) -> tuple[str, dict[str, str], dict]:
+    made = api.post("/api/learners")
+    assert made.status_code == 200, made.text
+    body = made.json()
+    return body["learner_id"], {"X-Learner-Token": body["token"]}, body
+
+
+def _attempt(api, exercise_id: str, number: int, part: str, answer: dict, headers=None) -> httpx.Response:
+    return api.post(
+        f"/api/exercises/{exercise_id}/attempts",
+        json={"variant": number, "part": part, "answer": answer},
+        headers=headers or {},
+    )
+
+
+def test_the_exercises_are_listed_by_section_and_an_unknown_one_is_a_404(api):
+    listed = api.get("/api/exercises", params={"section": "5.2"}).json()
+    assert [e["id"] for e in listed] == [e.id for e in EXERCISES.values() if e.section == "5.2"]
+    assert listed[0] == {"id": PLATE, "title": EXERCISES[PLATE].title, "chapter": 5, "section": "5.2", "parts": 3}
+    assert api.get("/api/exercises", params={"section": "5.2; drop"}).status_code == 422
+    assert api.get("/api/exercises/no-such-exercise").status_code == 404
+    assert api.get(f"/api/exercises/{PLATE}", params={"variant": -1}).status_code == 422
+    assert api.get(f"/api/exercises/{PLATE}", params={"variant": 2**31}).status_code == 422
+
+
+def test_a_learner_works_an_exercise_part_by_part_and_keeps_it(api, served):
+    learner_id, me, made = _learner(api)
+    shown = api.get(f"/api/exercises/{DISK}", headers=me).json()
+    number = shown["variant"]
+    assert number == learner_variant(DISK, learner_id)  # their own numbers, the same each time
+    assert api.get(f"/api/exercises/{DISK}", headers=me).json()["given"] == shown["given"]
+    drawn = variant(EXERCISES[DISK], number)
+    assert {name: g["value"] for name, g in shown["given"].items()} == drawn.given
+    assert shown["scene"]["params"]["mass_kg"] == drawn.given["mass_kg"] and shown["scene"]["url"].startswith("/lessons/")
+    assert "{{" not in shown["statement"] and shown["parts"][0]["answer_kind"] == "number"
+    h = drawn.answers["h"]
+
+    wrong = _attempt(api, DISK, number, "h", {"value": h.mistakes["h-along-axis"], "unit": "kg*m^2/s"}, me).json()
+    assert wrong["correct"] is False and wrong["mistake"]["id"] == "h-along-axis"
+    unreadable = _attempt(api, DISK, number, "h", {"value": 1.0, "unit": "kg*m^2/s; rm"}, me)
+    assert unreadable.status_code == 422 and unreadable.json()["detail"][0]["loc"] == ["body", "answer"]
+    in_grams = _attempt(api, DISK, number, "h", {"value": h.value * 1e7, "unit": "g*cm^2/s"}, me).json()
+    assert in_grams["correct"] is True
+    foreign = _attempt(api, DISK, number, "force", {"value": 3.0, "unit": "N*m"}, me).json()
+    assert foreign["correct"] is False and "a moment or an energy" in foreign["feedback"]
+
+    kept = api.get("/api/progress", headers=me).json()
+    assert kept["learner_id"] == learner_id
+    h_kept = next(p for p in kept["parts"] if p["part"] == "h")
+    assert h_kept == {
+        "exercise_id": DISK, "part": "h", "variant": number, "attempts": 2, "solved": True, "gave_up": False,
+        "mistakes": ["h-along-axis"],
+    }  # the unreadable answer was not counted
+    assert kept["sections"]["5.3"] == {"exercises": 1, "started": 1, "solved": 0}
+    assert api.get(f"/api/exercises/{DISK}/solution", headers=me).status_code == 403  # two parts still open
+    for part in ("angle", "force"):
+        assert _attempt(api, DISK, number, part, {"value": drawn.answers[part].value, "unit": ""}, me).json()["correct"]
+    solution = api.get(f"/api/exercises/{DISK}/solution", headers=me).json()
+    assert [p["answer"]["value"] for p in solution["parts"]] == pytest.approx([drawn.answers[p].value for p in ("h", "angle", "force")])
+    assert api.get("/api/progress", headers=me).json()["sections"]["5.3"]["solved"] == 1
+
+    # Another device: the resume code carries the same learner and progress; the first token still works.
+    with served.new_client() as phone:
+        resumed = phone.post("/api/learners/resume", json={"code": made["resume_code"].lower().replace("-", " ")})
+        assert resumed.status_code == 200, resumed.text
+        there = phone.get("/api/progress", headers={"X-Learner-Token": resumed.json()["token"]}).json()
+        assert there["learner_id"] == learner_id and there["sections"]["5.3"]["solved"] == 1
+    assert api.get("/api/progress", headers=me).status_code == 200
+
+
+def test_giving_up_opens_the_solution_and_is_kept(api):
+    _, me, _ = _learner(api)
+    number = 7
+    drawn = variant(EXERCISES[PLATE], number)
+    assert _attempt(api, PLATE, number, "ixx", {"value": drawn.answers["ixx"].value, "unit": "kg*m^2"}, me).json()["correct"]
+    solution = api.post(f"/api/exercises/{PLATE}/give-up", json={"variant": number}, headers=me).json()
+    assert solution["variant"] == number and [p["id"] for p in solution["parts"]] == ["ixx", "ixy", "izz"]
+    parts = {p["part"]: p for p in api.get("/api/progress", headers=me).json()["parts"]}
+    assert parts["ixx"]["solved"] and not parts["ixx"]["gave_up"] and parts["ixy"]["gave_up"] and parts["izz"]["gave_up"]
+    assert api.get(f"/api/exercises/{PLATE}/solution", params={"variant": number}, headers=me).status_code == 200
+
+
+def test_an_instructor_sees_any_solution_and_a_student_without_a_token_sees_none(api, served):
+    assert api.get(f"/api/exercises/{PLATE}/solution", params={"variant": 3}, headers=served.instructor_headers).status_code == 200
+    refused = api.get(f"/api/exercises/{PLATE}/solution", params={"variant": 3})
+    assert refused.status_code == 401 and "X-Learner-Token" in refused.json()["detail"]
+    forged = api.get(f"/api/exercises/{PLATE}/solution", params={"variant": 3}, headers={"X-Learner-Token": "x" * 32})
+    assert forged.status_code == 401
+    # Someone else's progress is out of reach: a token is the only key, and one learner's shows only their own parts.
+    _, first, _ = _learner(api)
+    _, second, _ = _learner(api)
+    _attempt(api, PLATE, 1, "ixx", {"value": 1.0, "unit": "kg*m^2"}, first)
+    assert api.get("/api/progress", headers=second).json()["parts"] == []
+
+
+@pytest.mark.parametrize(
+    "answer",
+    [
+        {"value": "1e400"}, {"value": 1e300, "unit": "kg*m^2"}, {"value": 1.0, "unit": "x" * 41}, {"expression": "x" * 401},
+        {"vector": [1, 2]}, {"choice": "a" * 33}, {"value": 1.0, "unit": "kg", "extra": 1}, {},
+        {"expression": "__import__('os').system('id')"},
+    ],
+)
+def test_absurd_answers_are_refused_with_a_4xx_and_change_nothing(api, answer):
+    _, me, _ = _learner(api)
+    response = _attempt(api, "7-5-bead-on-hoop-lagrange", 0, "kinetic" if "expression" in answer else "steady", answer, me)
+    assert response.status_code == 422, response.text
+    assert api.get("/api/progress", headers=me).json()["parts"] == []
+
+
+def test_a_flood_of_new_learners_from_one_address_gets_a_429_with_retry_after(served):
+    with served.new_client() as flood:
+        statuses = [flood.post("/api/learners").status_code for _ in range(140)]
+    assert statuses.count(200) >= 100 and statuses[-1] == 429
+    refused = next(code for code in statuses if code != 200)
+    assert refused == 429

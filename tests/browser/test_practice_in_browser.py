@@ -1,0 +1,121 @@
+"""Issue 27 in Chromium: a student works a three-part exercise on ``dynlab serve`` (its own data directory, so it can
+be restarted): one wrong step meets its named mistake's feedback, a wrong dimension is named, a hint is shown, the
+step is fixed, the worked solution opens once every part is right, "See it" opens the scene at the exercise's
+numbers, and the progress is there after a reload and after the server is stopped and started again. The lesson page
+lists its section's exercises and the course page counts what the student solved."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from urllib.parse import parse_qs, urlsplit
+
+import pytest
+
+from app.practice.exercise import load_exercises
+from app.practice.variants import variant
+from tests.browser.conftest import screenshot
+from tests.served import RESULTS, ServedApp
+
+pytestmark = pytest.mark.browser
+
+EXERCISE = "5-3-tilted-disk-bearings"
+LESSONS = Path(__file__).resolve().parents[2] / "lessons"
+READY = "body[data-exercise-ready=true]"
+
+
+def _check(page, part: str, value: float, unit: str | None = None) -> str:
+    """Type an answer to ``part`` and press Check; the feedback's class (correct, wrong or unreadable)."""
+    page.fill(f"#p-{part}-value", f"{value:.6g}")
+    if unit is not None:
+        page.fill(f"#p-{part}-unit", unit)
+    feedback = page.locator(f"#p-{part}-feedback")
+    before = feedback.get_attribute("data-checked") or "0"
+    page.click(f"#part-{part} button[type=submit]")
+    page.wait_for_function(
+        "([part, before]) => { const f = document.getElementById(`p-${part}-feedback`);"
+        " return (f.dataset.checked || '0') !== before; }",
+        arg=[part, before],
+    )
+    classes = feedback.get_attribute("class") or ""
+    found = [c for c in ("correct", "wrong", "unreadable") if c in classes.split()]
+    assert found, (classes, feedback.inner_text())
+    return found[0]
+
+
+def test_a_student_works_an_exercise_step_by_step_and_keeps_it_through_a_restart(browser, tmp_path, shots):
+    data_dir = RESULTS / f"data-practice-{tmp_path.name}"
+    server = ServedApp(name="practice", data_dir=data_dir).start()
+    restarted = None
+    context = browser.new_context(viewport={"width": 1366, "height": 900})
+    try:
+        page = context.new_page()
+        errors: list[str] = []
+        page.on("pageerror", lambda exc: errors.append(str(exc)))
+        page.goto(f"{server.url}/exercises/{EXERCISE}")
+        page.wait_for_selector(READY)
+        shown = page.evaluate(
+            "async (id) => (await fetch(`/api/exercises/${id}`, {headers: {'X-Learner-Token':"
+            " JSON.parse(localStorage.getItem('dynlab.learner')).token}})).json()",
+            EXERCISE,
+        )
+        drawn = variant(load_exercises(LESSONS)[EXERCISE], shown["variant"])
+        answers = drawn.answers
+        assert page.locator("#statement").inner_text().count(drawn.given_text()["mass_kg"]) == 1
+
+        # Part 1: the common mistake first (H taken along the shaft), its feedback, a hint, then the right answer.
+        assert _check(page, "h", answers["h"].mistakes["h-along-shaft"]) == "wrong"
+        assert "only the component of" in page.inner_text("#p-h-feedback")
+        page.click("#part-h .hint-button")
+        assert page.locator("#part-h .hints li").count() == 1
+        assert _check(page, "h", answers["h"].value) == "correct"
+        # Part 2 in radians (any unit of the dimension); part 3 first in N·m (a moment: named), then in kN.
+        assert _check(page, "angle", answers["angle"].value * 3.141592653589793 / 180, "rad") == "correct"
+        assert _check(page, "force", answers["force"].value, "N*m") == "wrong"
+        assert "the question asks for a force" in page.inner_text("#p-force-feedback")
+        screenshot(page, shots / "exercise-feedback.png")
+        assert _check(page, "force", answers["force"].value / 1000, "kN") == "correct"
+        page.wait_for_selector("#worked:not([hidden])")
+        assert page.locator("#worked-steps li").count() == 3
+        screenshot(page, shots / "exercise-solved.png")
+
+        # See it: the lesson's scene at this exercise's numbers.
+        with context.expect_page() as opened:
+            page.click("#see-it")
+        scene_page = opened.value
+        scene_page.wait_for_load_state()
+        query = parse_qs(urlsplit(scene_page.url).query)
+        assert query["scene"] == ["angular-momentum"]
+        assert json.loads(query["params"][0])["mass_kg"] == drawn.given["mass_kg"]
+        scene_page.wait_for_function(
+            "(mass) => Number(document.getElementById('ctl-mass_kg')?.value) === mass", arg=drawn.given["mass_kg"]
+        )
+        scene_page.close()
+
+        # A reload, then a restart of the server: the parts stay solved and the solution stays open.
+        page.reload()
+        page.wait_for_selector(READY)
+        page.wait_for_selector("#worked:not([hidden])")
+        assert "Solved earlier (2 attempts)" in page.inner_text("#p-h-feedback")
+        port = int(urlsplit(server.url).port)
+        server.stop()
+        restarted = ServedApp(name="practice", data_dir=data_dir, port=port).start()
+        page.reload()
+        page.wait_for_selector(READY)
+        page.wait_for_selector("#worked:not([hidden])")
+        for part in ("h", "angle", "force"):
+            assert "Solved earlier" in page.inner_text(f"#p-{part}-feedback"), part
+
+        # The lesson lists its section's exercises; the course page counts the solved one.
+        page.goto(f"{restarted.url}/lessons/5-3-rate-of-change-of-angular-momentum")
+        page.wait_for_selector("#practice li")
+        assert "3 of 3 parts solved" in page.inner_text("#practice")
+        page.goto(f"{restarted.url}/")
+        page.wait_for_selector("li[data-section='5.3'] .practice-link", state="attached")
+        assert "1 of 1 exercises solved" in page.locator("li[data-section='5.3'] .practice-link").text_content()
+        assert not errors, errors
+    finally:
+        context.close()
+        for app in (restarted, server):
+            if app is not None:
+                app.stop()
