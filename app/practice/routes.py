@@ -120,7 +120,7 @@ def _store(progress: SqlProgressStore | None) -> SqlProgressStore:
 
 def _learner(progress: SqlProgressStore | None, token: str | None, *, required: bool) -> Learner | None:
     """The learner of ``token``; None without a token (unless ``required``); 401 for a token no learner has."""
-    if token is None and not required:
+    if not required and (token is None or progress is None):  # nothing to find, or nowhere to keep it
         return None
     if token is None:
         raise HTTPException(status_code=401, detail=f"send the learner's token as {LEARNER_HEADER}")
@@ -176,7 +176,7 @@ def get_exercise(
     (``X-Learner-Token``) gets their own variant, the same every time; anyone else variant 0."""
     exercise = _exercise(book, exercise_id)
     if variant is None:
-        learner = _learner(progress, token, required=False) if progress is not None else None
+        learner = _learner(progress, token, required=False)
         variant = learner_variant(exercise.id, learner.learner_id) if learner is not None else 0
     drawn = _variant(book, exercise, variant)
     text = drawn.given_text()

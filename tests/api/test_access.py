@@ -298,7 +298,9 @@ def test_a_playback_number_or_switch_of_the_wrong_json_type_is_a_422(client, fie
 #: Every state-changing route and socket, and what it takes: "session-key" (a claimed page's X-Session-Key),
 #: "instructor" (the instructor's cookie or key), "student-token" (X-Student-Token of the room), "room-code" (a room's
 #: code: joining is public to whoever has it), "stateless" (computes an answer, changes nothing), "watch" (a socket
-#: that only watches; nothing it sends changes anything another person sees).
+#: that only watches; nothing it sends changes anything another person sees), "learner-token" (X-Learner-Token:
+#: changes only that learner's own progress), "new-learner" (anyone may become a learner: a new one, rate limited),
+#: "resume-code" (a learner's resume code: whoever has it carries the progress).
 DOORS = {
     ("PUT", "/api/scenes/{scene_id}/sessions/{session_id}"): "session-key",
     ("PUT", "/api/scenes/{scene_id}/sessions/{session_id}/playback"): "session-key",
@@ -318,7 +320,16 @@ DOORS = {
     ("WS", "/viewer/{scene_id}/{session_id}"): "watch",
     ("WS", "/room-viewer/{room_id}"): "watch",
     ("WS", "/api/rooms/{room_id}/socket"): "instructor",
+    ("POST", "/api/exercises/{exercise_id}/attempts"): "learner-token",
+    ("POST", "/api/exercises/{exercise_id}/give-up"): "learner-token",
+    ("DELETE", "/api/progress"): "learner-token",
+    ("POST", "/api/learners"): "new-learner",
+    ("POST", "/api/learners/resume"): "resume-code",
 }
+
+
+#: The exercise the learner doors are tried on.
+EXERCISE = "5-2-plate-about-corner"
 
 
 def every_route(routes) -> Iterator:
@@ -352,9 +363,14 @@ def test_every_door_refuses_a_caller_without_its_credential_and_nothing_changes(
     poll = served.client.post(f"/api/rooms/{rid}/polls", json={"question": "Which way?", "kind": "choice", "choices": ["up", "down"]},
                               headers=served.instructor_headers).json()  # fmt: skip
     state_before = served.client.get(f"/api/rooms/{rid}/state").json()
+    learner = {"X-Learner-Token": served.client.post("/api/learners").json()["token"]}  # a learner with progress
+    solved = served.client.post(f"/api/exercises/{EXERCISE}/attempts", json={"variant": 0, "part": "ixx", "answer": {"value": 2.0, "unit": "kg*m^2"}}, headers=learner)
+    assert solved.status_code == 200
+    victim_parts = served.client.get("/api/progress", headers=learner).json()["parts"]
+    assert len(victim_parts) == 1
     tried = set()
     for (method, path), credential in DOORS.items():
-        url = path.format(scene_id="heavy-top", session_id=sid, room_id=rid, poll_id=poll["poll_id"], example_id="1.1", system_id="double-pendulum", student_id="s1")
+        url = path.format(scene_id="heavy-top", session_id=sid, room_id=rid, poll_id=poll["poll_id"], example_id="1.1", system_id="double-pendulum", student_id="s1", exercise_id=EXERCISE)
         if credential == "session-key":
             body = {"params": {"spin_rad_s": 1.0}} if path.endswith("{session_id}") else {"playing": False}
             for headers in ({}, {"X-Session-Key": secrets.token_hex(16)}):
@@ -376,6 +392,14 @@ def test_every_door_refuses_a_caller_without_its_credential_and_nothing_changes(
                 assert client.post(url, json={"choice": 0}, headers=headers).status_code == 403, (method, path)
         elif credential == "room-code":
             assert client.post(url, json={"code": "ZZZZZZ", "name": ""}).status_code == 404
+        elif credential == "learner-token":  # someone else's token cannot be guessed: a wrong one changes nothing
+            body = {"variant": 0, "part": "ixx", "answer": {"value": 1.0, "unit": "kg*m^2"}} if path.endswith("attempts") else {"variant": 0}
+            answer = client.request(method, url, json=None if method == "DELETE" else body, headers={"X-Learner-Token": secrets.token_urlsafe(24)})
+            assert answer.status_code == 401, (method, path)
+        elif credential == "resume-code":
+            assert client.post(url, json={"code": "ZZZZZ-ZZZZZ"}).status_code == 404
+        elif credential == "new-learner":
+            assert client.post(url).status_code == 200
         tried.add((method, path))
     assert tried == set(DOORS)
     state_after = served.client.get(f"/api/rooms/{rid}/state").json()
@@ -384,3 +408,4 @@ def test_every_door_refuses_a_caller_without_its_credential_and_nothing_changes(
     assert state_after["poll"]["open"] is True
     assert put(owner, sid, {}, key).json()["params"]["spin_rad_s"] == 66.0
     assert owner.get(f"/api/scenes/heavy-top/sessions/{sid}/playback").json()["playing"] is True
+    assert served.client.get("/api/progress", headers=learner).json()["parts"] == victim_parts

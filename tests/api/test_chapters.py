@@ -87,7 +87,7 @@ def test_course_page_says_in_words_which_sections_have_a_lesson(client, chapters
     page = client.get("/").text
     for ch in chapters:
         card = re.search(rf'<section class="chapter" id="chapter-{ch["number"]}".*?</section>', page, re.S).group(0)
-        items = re.findall(r"<li><span class=sec-num>([^<]+)</span>(.*?)</li>", re.search(r'<ul class="sections">(.*?)</ul>', card, re.S).group(1), re.S)
+        items = re.findall(r'<li data-section="[^"]+"><span class=sec-num>([^<]+)</span>(.*?)</li>', re.search(r'<ul class="sections">(.*?)</ul>', card, re.S).group(1), re.S)
         assert [number for number, _ in items] == [s["number"] for s in ch["sections"]], ch["title"]
         with_lessons = {lesson["section"] for lesson in ch["lessons"]}
         for number, item in items:

@@ -141,3 +141,23 @@ def test_a_flood_of_new_learners_from_one_address_gets_a_429_with_retry_after(se
     assert statuses.count(200) >= 100 and statuses[-1] == 429
     refused = next(code for code in statuses if code != 200)
     assert refused == 429
+
+
+def test_a_server_that_keeps_nothing_still_checks_answers_and_says_it_keeps_no_learners():
+    """In-process (no data directory: nothing kept), beside the served tests: a page's stale token does not stop its
+    answer from being checked; asking for a learner is a 503 with Retry-After that says why."""
+    from fastapi.testclient import TestClient
+
+    from app.main import create_app
+
+    with TestClient(create_app()) as client:
+        made = client.post("/api/learners")
+        assert made.status_code == 503 and "keeps no progress" in made.json()["detail"] and made.headers["Retry-After"]
+        drawn = variant(EXERCISES[PLATE], 0)
+        checked = client.post(
+            f"/api/exercises/{PLATE}/attempts",
+            json={"variant": 0, "part": "ixx", "answer": {"value": drawn.answers["ixx"].value, "unit": "kg*m^2"}},
+            headers={"X-Learner-Token": "a-token-from-another-server"},
+        )
+        assert checked.status_code == 200 and checked.json()["correct"] is True
+        assert client.get("/api/progress", headers={"X-Learner-Token": "x"}).status_code == 503
