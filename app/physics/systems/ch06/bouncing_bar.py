@@ -54,7 +54,10 @@ The reset map and its helpers are ``register_jitable``: the compiled reset
 kernel runs them with the compiled impulse law
 (:func:`~app.physics.systems.ch06.impact.impact_core`) inlined, and the same
 source runs as plain Python for the kernel's Python twin and for
-:func:`reset_state` called from Python.
+:func:`reset_state` called from Python. numba's disk cache keys a compiled kernel on
+its own file only, so a change to ``impact.py`` must come with a change here (this
+file's date is what makes the reset kernel compile again: last for the restitution
+root at zero normal speed, 2026-11-29).
 """
 
 from __future__ import annotations

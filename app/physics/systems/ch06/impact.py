@@ -83,8 +83,16 @@ def _check_inputs(W: np.ndarray, v: np.ndarray, restitution: float, friction_coe
 
 @register_jitable
 def _first_root_of_work(vn, rate, work):
-    """Smallest Δp ≥ 0 with ``vn Δp + ½ rate Δp² = work`` (vn ≥ 0, rate > 0, work ≥ 0), cancellation-free."""
-    return 2.0 * work / (vn + math.sqrt(vn * vn + 2.0 * rate * work)) if work > 0.0 else 0.0
+    """Smallest Δp ≥ 0 with ``vn Δp + ½ rate Δp² = work`` (vn ≥ 0, rate > 0, work ≥ 0), cancellation-free.
+
+    At vn = 0 (restitution starts from rest along the normal) the root is √(2 work / rate), taken directly: the
+    general form's ``2 rate work`` underflows to 0 for a work of a few 1e-324 (a restitution of 1e-161 squared) and
+    would divide by zero."""
+    if work <= 0.0:
+        return 0.0
+    if vn == 0.0:
+        return math.sqrt(2.0 * work / rate)
+    return 2.0 * work / (vn + math.sqrt(vn * vn + 2.0 * rate * work))
 
 
 @register_jitable

@@ -115,6 +115,10 @@ plane = st.floats(-20.0, 20.0)
 )  # fmt: skip
 @example(m1=5.0, m2=20.0, r1=4.0, r2=1.0, v1=(0.0, 1.0), v2=(0.0, 1.0), w1=6.983523722197165e-162, w2=0.0, beta=92.0, e=1.0,
          mu=0.0)  # an approach of 1e-163 m/s: its works underflowed before the law was scaled  # fmt: skip
+@example(m1=6.0, m2=12.0, r1=3.0, r2=1.0, v1=(0.0, -1.0), v2=(0.0, 0.0), w1=1.0, w2=0.0, beta=-11.0,
+         e=1.1907349770501229e-161, mu=0.0)  # e² underflowed in the restitution phase's root: a division by zero  # fmt: skip
+@example(m1=6.0, m2=12.0, r1=3.0, r2=1.0, v1=(0.0, -1.0), v2=(0.0, 0.0), w1=1.0, w2=0.0, beta=-11.0,
+         e=1.1907349770501229e-161, mu=1.7207033471796733e-154)  # the same, then an absurd slip-stop impulse  # fmt: skip
 def test_every_impact_conserves_momenta_and_never_creates_energy(m1, m2, r1, r2, v1, v2, w1, w2, beta, e, mu):
     values = dict(m1_kg=m1, m2_kg=m2, r1_m=r1, r2_m=r2, v1_m_s=[*v1, 0.0], v2_m_s=[*v2, 0.0], omega1_rad_s=w1,
                   omega2_rad_s=w2, line_of_centres_deg=beta, restitution=e, friction_coefficient=mu)  # fmt: skip
