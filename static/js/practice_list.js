@@ -37,7 +37,7 @@ export async function listSectionExercises(section, before) {
   });
   const block = element("section", { id: "practice", class: "practice", "aria-labelledby": "practice-title" },
     element("h2", { id: "practice-title" }, "Practice"),
-    element("p", {}, "Exercises on this section, checked step by step. Each has its own numbers for you, named feedback on common mistakes, hints on request, and the 3D scene at your numbers."),
+    element("p", {}, "Exercises on this section, checked step by step: your own numbers, feedback that names a common mistake, hints on request, and (where a scene shows the system) that scene at your numbers."),
     element("ul", {}, ...items));
   before.before(block);
 }
