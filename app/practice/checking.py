@@ -32,6 +32,13 @@ MAX_UNIT_LENGTH = 40
 UNIT_TEXT = re.compile(r"^[A-Za-z0-9 *·/^()._°µμ²³-]*$")
 #: Largest magnitude a typed number may have (an answer is a physical quantity, not a stress test).
 MAX_NUMBER = 1e15
+#: A power in a typed unit: a plain number (``2``, ``-1``, ``0.5``) of at most this size.
+MAX_UNIT_EXPONENT = 6
+UNIT_EXPONENT = re.compile(r"\s*(?:\(\s*([+-]?\d{1,2}(?:\.\d{1,3})?)\s*\)|([+-]?\d{1,2}(?:\.\d{1,3})?)(?![\w.]))")
+#: A typed unit's size in SI units must lie within this factor of 1 (a yoctometre to the 99th is not a unit).
+MIN_UNIT_FACTOR = 1e-30
+#: Distinct unit texts pint may keep parsed before its cache is emptied (it would otherwise grow with every one).
+MAX_KEPT_UNITS = 2000
 
 
 class AnswerUnreadable(ValueError):
@@ -91,18 +98,46 @@ def _pint_text(unit: str) -> str:
     return unit.replace("·", "*").replace("^", "**").replace("²", "**2").replace("³", "**3").replace("μ", "µ")
 
 
-def parse_unit(text: str) -> pint.Unit:
-    """A unit a student typed (``kg*m^2``, ``N·m``, ``deg``, ``rad/s``); :class:`AnswerUnreadable` if it is none."""
+def _check_unit_text(text: str) -> None:
+    """Refuse, before pint reads it, a unit whose powers are not small plain numbers: pint evaluates ``m^9^9^9``
+    exactly, as a Python integer, holding the interpreter for minutes (an outside attack found it)."""
     if not isinstance(text, str) or len(text) > MAX_UNIT_LENGTH or not UNIT_TEXT.match(text):
         raise AnswerUnreadable(
             f"a unit is at most {MAX_UNIT_LENGTH} characters of letters, digits, * / ^ ( ) and spaces, e.g. kg*m^2/s"
         )
+    powers = text.replace("**", "^")
+    for match in re.finditer(r"\^", powers):
+        exponent = UNIT_EXPONENT.match(powers, match.end())
+        if exponent is None or abs(float(exponent.group(1) or exponent.group(2))) > MAX_UNIT_EXPONENT:
+            raise AnswerUnreadable(
+                f"a power in a unit is a plain number from -{MAX_UNIT_EXPONENT} to {MAX_UNIT_EXPONENT} (m^2, s^-1)"
+            )
+        if powers[exponent.end() :].lstrip().startswith("^"):
+            raise AnswerUnreadable("a power in a unit is a plain number, not a power of a power")
+    depth = 0
+    for char in text:
+        depth += (char == "(") - (char == ")")
+        if depth > 2:
+            raise AnswerUnreadable("a unit nests brackets two deep at most")
+
+
+def parse_unit(text: str) -> pint.Unit:
+    """A unit a student typed (``kg*m^2``, ``N·m``, ``deg``, ``rad/s``); :class:`AnswerUnreadable` if it is none,
+    or if it is a thousand orders of magnitude from SI (``ym^99/m^97``)."""
+    _check_unit_text(text)
     if not text.strip() or text.strip() == "1":
         return units().dimensionless
+    registry = units()
+    if len(registry._cache.parse_unit) > MAX_KEPT_UNITS:  # pint keeps every text it parsed: bounded here
+        registry._cache.parse_unit.clear()
     try:
-        return units().parse_units(_pint_text(text.strip()))
+        unit = registry.parse_units(_pint_text(text.strip()))
+        factor = float(registry.Quantity(1.0, unit).to_base_units().magnitude)
     except Exception as exc:  # noqa: BLE001 - pint's parser fails in many ways (even AssertionError): all unreadable
         raise AnswerUnreadable(f"{text!r} is not a unit we know ({exc}); write units like kg*m^2/s or N*m") from None
+    if not (math.isfinite(factor) and MIN_UNIT_FACTOR <= abs(factor) <= 1 / MIN_UNIT_FACTOR):
+        raise AnswerUnreadable(f"{text!r} is more than 30 orders of magnitude from SI units; use a nearer one")
+    return unit
 
 
 def in_part_unit(value: float, unit_text: str, part: Part) -> float:
@@ -111,9 +146,19 @@ def in_part_unit(value: float, unit_text: str, part: Part) -> float:
     wanted = parse_unit(part.unit)
     if unit.dimensionality != wanted.dimensionality:
         raise WrongDimension(
-            f"That is {dimension_name(str(unit))}; the question asks for {dimension_name(part.unit)} (in {part.unit})"
+            f"That is {_dimension_of(unit)}; the question asks for {dimension_name(part.unit)} (in {part.unit})"
         )
-    return float(units().Quantity(value, unit).to(wanted).magnitude)
+    try:
+        converted = float(units().Quantity(value, unit).to(wanted).magnitude)
+    except Exception as exc:  # noqa: BLE001 - a conversion pint cannot make is an answer we cannot read
+        raise AnswerUnreadable(f"{unit_text!r} cannot be converted to {part.unit} ({exc})") from None
+    if not math.isfinite(converted):
+        raise AnswerUnreadable(f"{value:g} {unit_text} is not a finite number of {part.unit}")
+    return converted
+
+
+def _dimension_of(unit: pint.Unit) -> str:
+    return _dimension_names().get(unit.dimensionality, f"a quantity of dimension {unit.dimensionality}")
 
 
 class WrongDimension(Exception):

@@ -42,6 +42,9 @@ from app.practice.variants import NoValidVariant, Variant, learner_variant
 router = APIRouter(prefix="/api", tags=["exercises"])
 
 #: The learner refusals a route that reads ``X-Learner-Token`` can give, documented with the others.
+_NOT_OWN: dict[int | str, dict[str, Any]] = {
+    409: {"model": ErrorDetail, "description": "A learner's request names a variant that is not their own"},
+}
 _NO_LEARNER: dict[int | str, dict[str, Any]] = {
     401: {"model": ErrorDetail, "description": "No learner has this token (or none was sent where one is needed)"},
     503: {"model": ErrorDetail, "description": "This server keeps no progress (started with nothing kept)"},
@@ -130,6 +133,18 @@ def _learner(progress: SqlProgressStore | None, token: str | None, *, required: 
             status_code=401, detail="no learner has this token (forgotten after long unused?): POST /api/learners"
         )
     return learner
+
+
+def _own_variant(exercise: Exercise, learner: Learner, number: int) -> None:
+    """409 unless ``number`` is the learner's own variant: progress, solutions and give-ups are per learner's numbers
+    (an outside attack gave up on a classmate's variant to read its answers, and solved variant 0 to count as
+    solved)."""
+    own = learner_variant(exercise.id, learner.learner_id)
+    if number != own:
+        raise HTTPException(
+            status_code=409,
+            detail=f"this learner works on variant {own} of {exercise.id!r}, not {number}: open the exercise again",
+        )
 
 
 def _variant(book: ExerciseBook, exercise: Exercise, number: int) -> Variant:
@@ -231,6 +246,7 @@ def _part(exercise: Exercise, part_id: str) -> Part:
             unprocessable="The answer cannot be read (its unit, expression or form) or names no part; not counted",
         ),
         **_NO_LEARNER,
+        **_NOT_OWN,
     },
 )
 def attempt(
@@ -253,6 +269,8 @@ def attempt(
     if sent != part.kind:
         raise unprocessable(["body", "answer"], f"part {part.id!r} asks for a {part.kind}, not a {sent}")
     learner = _learner(progress, token, required=False)
+    if learner is not None:
+        _own_variant(exercise, learner, request.variant)
     drawn = _variant(book, exercise, request.variant)
     try:
         verdict = check(exercise, part, answer, drawn.answers[part.id])
@@ -293,6 +311,7 @@ def _solution(drawn: Variant) -> dict[str, Any]:
     responses={
         **error_responses(not_found="No exercise has this id", unprocessable="The variant is out of range"),
         **_NO_LEARNER,
+        **_NOT_OWN,
     },
 )
 def give_up(
@@ -302,6 +321,7 @@ def give_up(
     exercise = _exercise(book, exercise_id)
     learner = _learner(progress, token, required=True)
     assert learner is not None and progress is not None
+    _own_variant(exercise, learner, request.variant)
     drawn = _variant(book, exercise, request.variant)
     solved = {
         p.part_id
@@ -322,6 +342,7 @@ def give_up(
     responses={
         **error_responses(not_found="No exercise has this id", unprocessable="The variant is out of range"),
         **_NO_LEARNER,
+        **_NOT_OWN,
         403: {"model": ErrorDetail, "description": "A learner who has not yet solved or given up every part"},
     },
 )
@@ -340,6 +361,7 @@ def solution(
         learner = _learner(progress, token, required=True)
         assert learner is not None and progress is not None
         number = variant if variant is not None else learner_variant(exercise.id, learner.learner_id)
+        _own_variant(exercise, learner, number)
         done = {
             p.part_id
             for p in progress.progress(learner.learner_id)

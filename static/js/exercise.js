@@ -124,6 +124,10 @@ function renderPart(part, index) {
       html(feedback, (verdict.correct ? "<p><strong>Correct.</strong></p>" : verdict.mistake ? "<p><strong>Not quite — a common mistake:</strong></p>" : "") + (verdict.correct ? "" : verdict.feedback_html));
       if (verdict.correct) partDone(part.id);
     } catch (error) {
+      if (error instanceof ApiError && error.status === 409) { // another tab or device changed whose numbers these are
+        location.reload();
+        return;
+      }
       feedback.classList.add("unreadable");
       feedback.textContent = error.message;
     } finally {

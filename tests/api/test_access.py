@@ -31,6 +31,7 @@ from app.api.access import (
     SessionDirectory,
 )
 from app.main import create_app
+from app.practice.variants import learner_variant
 from app.scenes.viser_boundary import viewer_camera_message
 from tests.api.conftest import live_viewer
 from tests.conftest import wait_until
@@ -363,8 +364,10 @@ def test_every_door_refuses_a_caller_without_its_credential_and_nothing_changes(
     poll = served.client.post(f"/api/rooms/{rid}/polls", json={"question": "Which way?", "kind": "choice", "choices": ["up", "down"]},
                               headers=served.instructor_headers).json()  # fmt: skip
     state_before = served.client.get(f"/api/rooms/{rid}/state").json()
-    learner = {"X-Learner-Token": served.client.post("/api/learners").json()["token"]}  # a learner with progress
-    solved = served.client.post(f"/api/exercises/{EXERCISE}/attempts", json={"variant": 0, "part": "ixx", "answer": {"value": 2.0, "unit": "kg*m^2"}}, headers=learner)
+    made = served.client.post("/api/learners").json()
+    learner = {"X-Learner-Token": made["token"]}  # a learner with progress
+    own = learner_variant(EXERCISE, made["learner_id"])
+    solved = served.client.post(f"/api/exercises/{EXERCISE}/attempts", json={"variant": own, "part": "ixx", "answer": {"value": 2.0, "unit": "kg*m^2"}}, headers=learner)
     assert solved.status_code == 200
     victim_parts = served.client.get("/api/progress", headers=learner).json()["parts"]
     assert len(victim_parts) == 1

@@ -96,8 +96,8 @@ def test_a_learner_works_an_exercise_part_by_part_and_keeps_it(api, served):
 
 
 def test_giving_up_opens_the_solution_and_is_kept(api):
-    _, me, _ = _learner(api)
-    number = 7
+    learner_id, me, _ = _learner(api)
+    number = learner_variant(PLATE, learner_id)
     drawn = variant(EXERCISES[PLATE], number)
     assert _attempt(api, PLATE, number, "ixx", {"value": drawn.answers["ixx"].value, "unit": "kg*m^2"}, me).json()["correct"]
     solution = api.post(f"/api/exercises/{PLATE}/give-up", json={"variant": number}, headers=me).json()
@@ -114,10 +114,34 @@ def test_an_instructor_sees_any_solution_and_a_student_without_a_token_sees_none
     forged = api.get(f"/api/exercises/{PLATE}/solution", params={"variant": 3}, headers={"X-Learner-Token": "x" * 32})
     assert forged.status_code == 401
     # Someone else's progress is out of reach: a token is the only key, and one learner's shows only their own parts.
-    _, first, _ = _learner(api)
+    first_id, first, _ = _learner(api)
     _, second, _ = _learner(api)
-    _attempt(api, PLATE, 1, "ixx", {"value": 1.0, "unit": "kg*m^2"}, first)
+    _attempt(api, PLATE, learner_variant(PLATE, first_id), "ixx", {"value": 1.0, "unit": "kg*m^2"}, first)
     assert api.get("/api/progress", headers=second).json()["parts"] == []
+
+
+def test_a_learner_works_on_their_own_numbers_only(api):
+    """Found by an outside attack: a second learner gave up on a classmate's variant to read its answers; solving
+    variant 0 counted as solving; an attempt on another variant wiped a solved part. A learner's attempts, give-ups
+    and solutions are for their own variant (409 otherwise, nothing kept); without a token any variant is checked
+    and nothing is kept."""
+    first_id, first, _ = _learner(api)
+    _, second, _ = _learner(api)
+    mine = learner_variant(PLATE, first_id)
+    other = (mine + 1) % 2**31
+    assert api.post(f"/api/exercises/{PLATE}/give-up", json={"variant": mine}, headers=second).status_code == 409
+    assert api.get(f"/api/exercises/{PLATE}/solution", params={"variant": mine}, headers=second).status_code == 409
+    zero = variant(EXERCISES[PLATE], 0).answers["ixx"].value
+    refused = _attempt(api, PLATE, 0 if mine else 1, "ixx", {"value": zero, "unit": "kg*m^2"}, first)
+    assert refused.status_code == 409 and f"variant {mine}" in refused.json()["detail"]
+    assert api.get("/api/progress", headers=first).json()["parts"] == []
+    right = variant(EXERCISES[PLATE], mine).answers["ixx"].value
+    assert _attempt(api, PLATE, mine, "ixx", {"value": right, "unit": "kg*m^2"}, first).json()["correct"]
+    assert _attempt(api, PLATE, other, "ixx", {"value": 1.0, "unit": "kg*m^2"}, first).status_code == 409
+    (kept,) = api.get("/api/progress", headers=first).json()["parts"]
+    assert kept["solved"] and kept["variant"] == mine
+    anonymous = _attempt(api, PLATE, other, "ixx", {"value": 1.0, "unit": "kg*m^2"})
+    assert anonymous.status_code == 200 and anonymous.json()["correct"] is False
 
 
 @pytest.mark.parametrize(
@@ -125,12 +149,14 @@ def test_an_instructor_sees_any_solution_and_a_student_without_a_token_sees_none
     [
         {"value": "1e400"}, {"value": 1e300, "unit": "kg*m^2"}, {"value": 1.0, "unit": "x" * 41}, {"expression": "x" * 401},
         {"vector": [1, 2]}, {"choice": "a" * 33}, {"value": 1.0, "unit": "kg", "extra": 1}, {},
-        {"expression": "__import__('os').system('id')"},
+        {"expression": "__import__('os').system('id')"}, {"value": 1.0, "unit": "m^9^9^9"},
     ],
 )
 def test_absurd_answers_are_refused_with_a_4xx_and_change_nothing(api, answer):
-    _, me, _ = _learner(api)
-    response = _attempt(api, "7-5-bead-on-hoop-lagrange", 0, "kinetic" if "expression" in answer else "steady", answer, me)
+    learner_id, me, _ = _learner(api)
+    bead = "7-5-bead-on-hoop-lagrange"
+    part = "kinetic" if "expression" in answer else "steady"
+    response = _attempt(api, bead, learner_variant(bead, learner_id), part, answer, me)
     assert response.status_code == 422, response.text
     assert api.get("/api/progress", headers=me).json()["parts"] == []
 

@@ -174,3 +174,25 @@ def test_a_slot_that_names_no_given_number_is_refused():
         parse_exercise(GOOD.replace("Body {{mass_kg}}.", "Body {{mass_g}}."), "x.md", chapter=5)
     with pytest.raises(ValueError, match="must hold a given's lower-case name"):
         parse_exercise(GOOD.replace("Body {{mass_kg}}.", "Body {{Pull_N}}."), "x.md", chapter=5)
+
+
+@pytest.mark.parametrize(
+    "unit",
+    ["m^9^9^9", "m^9^9^7", "m^99^99^2", "m^9999^9999", "m^1e308", "kg*m^2*(Ym/m)^99", "ym^99/m^97*kg", "kg*m^2^1.0000001",
+     "kg*m^2*m^1e308*m^1e308/m^1e308/m^1e308", "(((kg)))*m^2", "m^(9^9)"],
+)  # fmt: skip
+def test_a_unit_with_a_tower_a_huge_power_or_an_absurd_scale_is_refused_before_pint_computes_it(unit):
+    """Found by an outside attack: pint computes m^9^9^7 exactly (8 s holding the interpreter), 500s on huge powers,
+    and scale factors that turn any number into 0 or inf."""
+    part = EXERCISES["5-2-plate-about-corner"].part("ixx")
+    with pytest.raises(AnswerUnreadable):
+        read_answer(part, {"value": 1.0, "unit": unit})
+
+
+def test_ordinary_units_with_powers_still_read():
+    part = EXERCISES["5-2-plate-about-corner"].part("ixx")
+    assert read_answer(part, {"value": 1.0, "unit": "kg*m^2"}) == pytest.approx(1.0)
+    assert read_answer(part, {"value": 1.0, "unit": "kg m²"}) == pytest.approx(1.0)
+    assert read_answer(part, {"value": 1.0, "unit": "g*cm**2"}) == pytest.approx(1e-7)
+    assert read_answer(part, {"value": 1.0, "unit": "kg*m^2*s^-1*s"}) == pytest.approx(1.0)
+    assert read_answer(part, {"value": 2.0, "unit": "kg*(m^0.5)^(4)"}) == pytest.approx(2.0)

@@ -33,6 +33,7 @@ character position (1-based) and says what is allowed.
 from __future__ import annotations
 
 import builtins
+import cmath
 import keyword
 import math
 import re
@@ -388,8 +389,54 @@ def _is_constant(expr: sympy.Expr) -> bool:
     return not expr.free_symbols
 
 
+_NUMERIC_FUNCTIONS: dict[object, Callable[[complex], complex]] = {
+    sympy.sin: cmath.sin,
+    sympy.cos: cmath.cos,
+    sympy.tan: cmath.tan,
+    sympy.exp: cmath.exp,
+    sympy.log: cmath.log,
+}
+
+
+def _numeric(expr: sympy.Basic) -> complex:
+    """A constant expression's value in double precision, walking its tree once (its size bounds the time).
+
+    Not ``sympy.N``: its precision tracking re-evaluates nested powers at rising precision, which an outside attack
+    showed grows exponentially with their depth (a 145-character tower of radicals took 7 s, 25 levels minutes).
+    Overflow gives an infinity, which the callers refuse."""
+    if expr.is_Number:
+        try:
+            return complex(float(expr))
+        except OverflowError:
+            return complex(math.inf)
+    if expr is sympy.pi:
+        return complex(math.pi)
+    if expr is sympy.E:
+        return complex(math.e)
+    if expr is sympy.I:
+        return 1j
+    arguments = [_numeric(argument) for argument in expr.args]
+    try:
+        if expr.is_Add:
+            return sum(arguments, 0j)
+        if expr.is_Mul:
+            product = 1 + 0j
+            for factor in arguments:
+                product *= factor
+            return product
+        if expr.is_Pow:
+            base, exponent = arguments
+            return complex(math.inf) if base == 0 and exponent.real < 0 else base**exponent
+        function = _NUMERIC_FUNCTIONS.get(expr.func)
+        if function is not None:
+            return function(arguments[0])
+    except (OverflowError, ZeroDivisionError, ValueError):
+        return complex(math.inf)
+    return complex(sympy.N(expr, 15))  # not reached by the parser's own trees (numbers, + × ^ and its functions)
+
+
 def _constant_value(expr: sympy.Expr, position: int) -> complex:
-    value = complex(sympy.N(expr, 20))
+    value = _numeric(expr)
     if not (math.isfinite(value.real) and math.isfinite(value.imag)):
         raise _fail(position, "this part of the formula is infinite")
     return value
@@ -418,6 +465,11 @@ def _power(base: sympy.Expr, exponent: sympy.Expr, position: int) -> sympy.Expr:
                 raise _fail(position, f"this power is larger than the limit {MAX_CONSTANT_POWER:g}")
             if b.real < 0 and not float(e.real).is_integer():
                 raise _fail(position, "a negative number to a fractional power is not a real number")
+            if not base.is_Number:  # a power of a constant sum or power: its value, not a tower sympy would study
+                value = b**e
+                if abs(value.imag) > 1e-12 * (1 + abs(value.real)):
+                    raise _fail(position, "this power is not a real number")
+                return sympy.Float(value.real)
     elif _is_constant(base) and _constant_value(base, position).real <= 0:
         variable = min(str(symbol) for symbol in exponent.free_symbols)
         raise _fail(position, f"a power whose exponent depends on {variable} needs a positive base, e.g. 2^{variable}")
@@ -531,9 +583,9 @@ def _check_constants(expr: sympy.Expr) -> None:
     for node in sympy.preorder_traversal(expr):
         if node.free_symbols or not isinstance(node, sympy.Expr):
             continue
-        magnitude = abs(sympy.N(node, 15))
-        if not magnitude.is_finite or magnitude > MAX_FORMULA_CONSTANT:
-            shown = f"{float(magnitude):.3g}" if magnitude < 1e300 else f"{node}"
+        magnitude = abs(_numeric(node))
+        if not math.isfinite(magnitude) or magnitude > MAX_FORMULA_CONSTANT:
+            shown = f"{magnitude:.3g}" if magnitude < 1e300 else f"{node}"
             raise ValueError(f"the formula forms the constant {shown}, larger than the limit {MAX_FORMULA_CONSTANT:g}")
 
 

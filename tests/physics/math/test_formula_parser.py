@@ -359,3 +359,21 @@ def test_long_near_valid_formulas_stay_fast(text):
 def test_worst_cases_within_the_limits_are_fast(text):
     assert len(text) <= MAX_FORMULA_LENGTH
     _parse_guarded(text)
+
+
+def test_a_tower_of_radicals_is_folded_to_its_value_without_sympys_arbitrary_precision(monkeypatch):
+    """An outside attack: 13 nested radicals (149 characters) took 7 s on the server and 25 took minutes, in sympy's
+    evalf (called by sympy itself while building each power, and by the parser's checks). A constant power of a
+    constant sum is now its double-precision value, and the checks walk the tree once; sympy.N is never needed."""
+    monkeypatch.setattr(sympy, "N", lambda *args, **kwargs: (_ for _ in ()).throw(AssertionError("sympy.N called")))
+    text = "(7+2)"
+    for k in range(25):
+        text = f"({text}^(1/{k + 3})+{k + 3})"
+    t = sympy.Symbol("t", real=True)
+    parsed = parse_formula(text + "*t", symbols={"t": t})
+    coefficient = parsed / t
+    value = 9.0
+    for k in range(25):
+        value = value ** (1 / (k + 3)) + k + 3
+    assert coefficient.is_Float and float(coefficient) == pytest.approx(value, rel=1e-14)
+    assert parse_formula("sqrt(2)*t", symbols={"t": t}) == sympy.sqrt(2) * t  # a plain radical stays exact
