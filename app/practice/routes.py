@@ -36,7 +36,7 @@ from app.course import Catalogue, render_markdown
 from app.practice.book import ExerciseBook
 from app.practice.checking import AnswerUnreadable, check
 from app.practice.exercise import Exercise, Part, fill
-from app.practice.progress import Learner, SqlProgressStore
+from app.practice.progress import Learner, PartProgress, SqlProgressStore
 from app.practice.variants import NoValidVariant, Variant, learner_variant
 
 router = APIRouter(prefix="/api", tags=["exercises"])
@@ -133,6 +133,17 @@ def _learner(progress: SqlProgressStore | None, token: str | None, *, required: 
             status_code=401, detail="no learner has this token (forgotten after long unused?): POST /api/learners"
         )
     return learner
+
+
+def _kept_parts(
+    progress: SqlProgressStore, learner: Learner, exercise: Exercise, number: int
+) -> dict[str, PartProgress]:
+    """The learner's kept progress on the parts of variant ``number`` of ``exercise``, by part id."""
+    return {
+        p.part_id: p
+        for p in progress.progress(learner.learner_id)
+        if p.exercise_id == exercise.id and p.variant == number
+    }
 
 
 def _own_variant(exercise: Exercise, learner: Learner, number: int) -> None:
@@ -323,13 +334,9 @@ def give_up(
     assert learner is not None and progress is not None
     _own_variant(exercise, learner, request.variant)
     drawn = _variant(book, exercise, request.variant)
-    solved = {
-        p.part_id
-        for p in progress.progress(learner.learner_id)
-        if p.exercise_id == exercise.id and p.variant == request.variant and p.solved
-    }
+    kept = _kept_parts(progress, learner, exercise, request.variant)
     for part in exercise.parts:
-        if part.id not in solved:
+        if part.id not in kept or not kept[part.id].solved:
             progress.record(
                 learner.learner_id, exercise_id=exercise.id, part_id=part.id, variant=request.variant, gave_up=True
             )
@@ -362,12 +369,8 @@ def solution(
         assert learner is not None and progress is not None
         number = variant if variant is not None else learner_variant(exercise.id, learner.learner_id)
         _own_variant(exercise, learner, number)
-        done = {
-            p.part_id
-            for p in progress.progress(learner.learner_id)
-            if p.exercise_id == exercise.id and p.variant == number and (p.solved or p.gave_up)
-        }
-        if done != {part.id for part in exercise.parts}:
+        kept = _kept_parts(progress, learner, exercise, number)
+        if not all(part.id in kept and (kept[part.id].solved or kept[part.id].gave_up) for part in exercise.parts):
             raise HTTPException(
                 status_code=403, detail="the solution opens once every part is solved, or you give up on it"
             )
