@@ -1,5 +1,5 @@
 """Helpers shared by more than one test folder (import them: ``from tests.conftest import wait_until``), and how the
-suite is shared between README's three xdist workers."""
+suite is shared between README's xdist workers."""
 
 from __future__ import annotations
 
@@ -30,14 +30,15 @@ def file_of(nodeid: str) -> str:
 
 
 class LongestFilesFirst(LoadScopeScheduling):
-    """README's test command runs the suite on three xdist workers (``-n 3``) on a 2-core machine: two keep the
-    processors busy and the third takes the files whose tests mostly wait (:data:`WAITING_FILES`), so that waiting
-    overlaps work (measured on the idle 2-core machine: 405 s instead of 467 s with ``-n 2``). Each test file is one
-    unit of work, so a file's module fixtures (a served app, a browser page, a derivation) are set up once, on one
-    worker; each worker starts its own served app and Chromium on its first test that needs them. The units go out
-    longest first (:data:`FILE_SECONDS`, in the order the workers collected them: see
-    :func:`pytest_collection_modifyitems`), so the workers finish together. (xdist's own ``--dist loadgroup`` marks a
-    test by rewriting ``Item._nodeid``, which pytest 9.2 no longer reads.)"""
+    """README's test command runs the suite on two xdist workers (``-n 2``). Each test file is one unit of work, so a
+    file's module fixtures (a served app, a browser page, a derivation) are set up once, on one worker; each worker
+    starts its own served app and Chromium on its first test that needs them. The units go out longest first
+    (:data:`FILE_SECONDS`, in the order the workers collected them: see :func:`pytest_collection_modifyitems`), so the
+    workers finish together. With three workers (``tests/run.sh -n 3``, for an idle machine) the third takes the files
+    that mostly wait (:data:`WAITING_FILES`) and the other two the rest, so that waiting overlaps work: on the idle
+    2-core machine 405 s instead of 467 s of pytest; beside two CPU-bound programs four timing tests failed, so it is
+    not the default. (xdist's own ``--dist loadgroup`` marks a test by rewriting ``Item._nodeid``, which pytest 9.2 no
+    longer reads.)"""
 
     def __init__(self, config: pytest.Config, log=None) -> None:
         config.option.loadscopereorder = False  # keep the collected order: longest file first

@@ -26,4 +26,4 @@ unset PYTHONDONTWRITEBYTECODE
 # Fill the numba and derivation caches once, in one process, before the dozens of processes that read them start: on a
 # fresh clone each of them would otherwise compile and derive the same kernels and equations at the same time.
 python3 -m uv run --group test --group bench --group postgres dynlab warm
-exec python3 -m uv run --group test --group bench --group postgres pytest -n 3 "$@"
+exec python3 -m uv run --group test --group bench --group postgres pytest -n 2 "$@"
