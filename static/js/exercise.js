@@ -5,8 +5,8 @@ import "./common.js";
 import { api, ApiError } from "./api.js";
 import { element } from "./dom.js";
 import { katexInto, renderMath } from "./katex.js";
+import { LEARNER_KEY, learner } from "./practice_list.js";
 
-const LEARNER_KEY = "dynlab.learner";
 const root = document.getElementById("exercise");
 const exerciseId = root.dataset.exercise;
 const partsList = document.getElementById("parts");
@@ -16,9 +16,6 @@ const seeIt = document.getElementById("see-it");
 let exercise = null;
 const answered = new Set();
 
-function learner() {
-  try { return JSON.parse(localStorage.getItem(LEARNER_KEY)); } catch { return null; }
-}
 function learnerHeaders() {
   const me = learner();
   return me ? { "X-Learner-Token": me.token } : {};

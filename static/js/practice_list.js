@@ -4,9 +4,10 @@
 import { api } from "./api.js";
 import { element } from "./dom.js";
 
-const LEARNER_KEY = "dynlab.learner";
+// This browser's learner (the token exercise.js keeps), read by every practice script from here.
+export const LEARNER_KEY = "dynlab.learner";
 
-function learner() {
+export function learner() {
   try { return JSON.parse(localStorage.getItem(LEARNER_KEY)); } catch { return null; }
 }
 
