@@ -188,10 +188,13 @@ def _child_main(
 ) -> None:
     """The child: set the limits, run, send one pickled ``(kind, payload)`` and exit.
 
-    SIGINT ends it as the signal itself (not Python's KeyboardInterrupt, an exit status 1 the runner could not tell
-    from a crash), so an interrupt from outside is reported as one (:class:`WorkInterrupted`).
+    SIGHUP, SIGTERM and SIGINT end it as the signal itself, whatever this server inherited (a server started in the
+    background ignores SIGINT, one started under ``nohup`` SIGHUP) and whatever Python made of them (SIGINT as a
+    KeyboardInterrupt, an exit status 1 the runner could not tell from a crash): an interrupt from outside is reported
+    as one (:class:`WorkInterrupted`). SIGINT is set last, so a child whose SIGINT is the default has set all three.
     """
-    signal.signal(signal.SIGINT, signal.SIG_DFL)
+    for number in (signal.SIGHUP, signal.SIGTERM, signal.SIGINT):
+        signal.signal(number, signal.SIG_DFL)
     _limit_resources(memory_bytes, cpu_seconds, idle_class=idle_class)
     kind, payload = _answer(function, args)
     try:
