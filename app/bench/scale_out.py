@@ -397,8 +397,19 @@ def _measure(
 
     # A poll, answered by everyone on the server their page is on; the instructor sees every answer.
     question = {"question": "Does the top stay up?", "kind": "choice", "choices": ["yes", "no"]}
+    opened_s = time.monotonic()
     poll, _ = _request(balancer_url, "POST", f"/api/rooms/{room_id}/polls", headers=instructor, body=question)
     answers_path = f"/api/rooms/{room_id}/polls/{poll['poll_id']}/answers"
+    # A student answers a poll their page has shown: on the other server, once that server has taken the poll up.
+    polls_shown = _wait(
+        lambda: all(
+            p.first_state_since(opened_s, lambda state: (state.get("poll") or {}).get("poll_id") == poll["poll_id"])
+            for p in student_pages
+        ),
+        WAIT_TIMEOUT_S,
+    )
+    if polls_shown is None:
+        raise RuntimeError(f"the poll did not reach every student's page within {WAIT_TIMEOUT_S:g} s")
     for index, token in enumerate(tokens):
         answer_url = balancer_url if index % 2 == 0 else other.base_url
         token_header = {"X-Student-Token": token}
