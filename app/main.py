@@ -29,6 +29,7 @@ from app.classroom.store import SqlRoomStore
 from app.classroom.sync import ClassSync
 from app.course import load_catalogue
 from app.physics.core.bounded import stop_all_work
+from app.practice import in_room as practice_in_room
 from app.practice import pages as practice_pages
 from app.practice import routes as practice
 from app.practice.book import load_book
@@ -132,6 +133,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
         scenes.router,
         examples.router,
         practice.router,
+        practice_in_room.router,
         systems.router,
         bench.router,
         rooms.router,

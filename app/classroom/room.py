@@ -21,6 +21,7 @@ from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass, field
 from typing import Any, Protocol, TypeVar
 
+from app.classroom.assignment import MAX_LEARNERS_PER_STUDENT, Assignment
 from app.classroom.polls import Poll
 from app.course import Catalogue
 from app.scenes.host.host import STAGE_PREFIX, TIME_SCALE_RANGE
@@ -174,6 +175,10 @@ class Room:
     instructor_sockets: int = 0
     polls: dict[str, Poll] = field(default_factory=dict)
     poll_id: str | None = None
+    #: The exercises the instructor assigned (app.classroom.assignment; None: none), and by student id the learners
+    #: (app.practice.progress) whose work on them the instructor's results read.
+    assignment: Assignment | None = None
+    student_learners: dict[str, list[str]] = field(default_factory=dict)
     last_used_s: float = field(default_factory=time.monotonic)
     #: True after a change refused midway whose stage could not be put back: the next change opens the stage afresh.
     _stage_unsure: bool = field(default=False, repr=False)
@@ -226,6 +231,8 @@ class Room:
                 "removed_devices": sorted(self._removed_devices),
                 "polls": [poll.record() for poll in self.polls.values()],
                 "poll_id": self.poll_id,
+                "assignment": self.assignment.record() if self.assignment is not None else None,
+                "student_learners": {s: list(ids) for s, ids in self.student_learners.items()},
             }
 
     @classmethod
@@ -279,6 +286,11 @@ class Room:
             kept_answers = answers.get(kept_poll["poll_id"], {})
             poll = Poll.from_record(kept_poll, {s: a for s, a in kept_answers.items() if s in room.students})
             room.polls[poll.poll_id] = poll
+        kept_assignment = record.get("assignment")  # rooms kept before exercises were assigned have none
+        room.assignment = Assignment.from_record(kept_assignment) if kept_assignment else None
+        room.student_learners = {
+            s: list(ids) for s, ids in record.get("student_learners", {}).items() if s in room.students
+        }
         room._stage_unsure = room.scene_id is not None
         return room
 
@@ -313,6 +325,7 @@ class Room:
             self._removed_tokens, self._removed_devices = kept._removed_tokens, kept._removed_devices
             self._students_ever = kept._students_ever
             self.polls, self.poll_id = kept.polls, kept.poll_id
+            self.assignment, self.student_learners = kept.assignment, kept.student_learners
             self.kept_version = kept.kept_version
             self.last_used_s = time.monotonic()
             stage_fields = ("scene_id", "params", "playing", "time_scale", "reset_count")
@@ -465,6 +478,7 @@ class Room:
                 },
                 "instructor_connected": instructor,
                 "poll": poll.public() if poll is not None else None,
+                "assignment": self.assignment.public() if self.assignment is not None else None,
             }
 
     # -- presence: who is connected, on this server and on the others ----------------------------
@@ -819,11 +833,41 @@ class Room:
                 self._removed_devices.add(student.device_digest)
             for poll in self.polls.values():
                 poll.withdraw(student.student_id)
+            self.student_learners.pop(student.student_id, None)  # their exercise work leaves the results too
             self.revision += 1
             self._keep(withdrawn_student=student_id)
             return student
 
         return self._changing(work)
+
+    # -- assigned exercises ------------------------------------------------------------------
+    def assign(self, assignment: Assignment | None) -> Assignment | None:
+        """Assign exercises (replacing what was assigned), or none: every page sees it with the room's next state."""
+
+        def work() -> Assignment | None:
+            self.assignment = assignment
+            self.revision += 1
+            self._keep()
+            return assignment
+
+        return self._changing(work)
+
+    def link_learner(self, student_id: str, learner_id: str) -> None:
+        """The room's results read ``learner_id``'s work as ``student_id``'s (a student working an assigned exercise
+        with that learner's token); kept with the room. At most :data:`MAX_LEARNERS_PER_STUDENT` per student, the
+        most recent."""
+        with self.lock:
+            if learner_id in self.student_learners.get(student_id, ()):
+                return
+
+        def work() -> None:
+            if student_id not in self.students:
+                raise StudentRemoved("the instructor removed you from this room")
+            linked = [i for i in self.student_learners.get(student_id, []) if i != learner_id]
+            self.student_learners[student_id] = [*linked, learner_id][-MAX_LEARNERS_PER_STUDENT:]
+            self._keep()
+
+        self._changing(work)
 
     # -- polls -------------------------------------------------------------------------
     def open_poll(self, raw: Mapping[str, Any]) -> Poll:

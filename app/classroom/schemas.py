@@ -202,6 +202,14 @@ class StudentCounts(BaseModel):
     following: int = Field(description="Of those, following the instructor's scene")
 
 
+class AssignmentPublic(BaseModel):
+    """What every page of a room sees of its assigned exercises."""
+
+    exercise_ids: list[str]
+    class_variant: bool = Field(description="Every student works on the same numbers (else each on their own)")
+    assigned_at: str = Field(description="When they were assigned (UTC, ISO 8601)")
+
+
 class RoomState(BaseModel):
     """What the room shows now; every page in the room follows it."""
 
@@ -222,6 +230,9 @@ class RoomState(BaseModel):
     students: StudentCounts
     instructor_connected: bool
     poll: PollPublic | None
+    assignment: AssignmentPublic | None = Field(
+        None, description="The exercises the instructor assigned (GET /api/exercises/{id}?room= for each), or null"
+    )
     followers: int | None = Field(
         None, description="3D viewers showing the room's shared scene now (in the state route's answer)"
     )

@@ -252,6 +252,16 @@ class SqlProgressStore:
             updated_at=values["updated_at"],
         )
 
+    def parts_of(self, learner_ids: list[str], exercise_ids: list[str]) -> list[tuple[str, PartProgress]]:
+        """``(learner_id, part)`` for every part of ``exercise_ids`` that one of ``learner_ids`` worked on (a room's
+        results: app.practice.in_room)."""
+        if not learner_ids or not exercise_ids:
+            return []
+        query = sa.select(exercise_progress).where(
+            exercise_progress.c.learner_id.in_(learner_ids), exercise_progress.c.exercise_id.in_(exercise_ids)
+        )
+        return [(row["learner_id"], part) for row, part in self._read(query, "a room's results")]
+
     def progress(self, learner_id: str) -> list[PartProgress]:
         """Every part the learner has worked on, by exercise then part."""
         query = (
@@ -259,21 +269,27 @@ class SqlProgressStore:
             .where(exercise_progress.c.learner_id == learner_id)
             .order_by(exercise_progress.c.exercise_id, exercise_progress.c.part_id)
         )
+        return [part for _, part in self._read(query, "progress")]
+
+    def _read(self, query: sa.Select[Any], what: str) -> list[tuple[Any, PartProgress]]:
         try:
             with self.database.engine.connect() as connection:
                 rows = list(connection.execute(query).mappings())
         except SQLAlchemyError as exc:
-            raise StoreUnavailable(f"the server could not read progress just now: {exc}") from exc
+            raise StoreUnavailable(f"the server could not read {what} just now: {exc}") from exc
         return [
-            PartProgress(
-                exercise_id=row["exercise_id"],
-                part_id=row["part_id"],
-                variant=row["variant"],
-                attempts=row["attempts"],
-                solved=row["solved"],
-                gave_up=row["gave_up"],
-                mistakes=tuple(row["mistakes"]),
-                updated_at=row["updated_at"],
+            (
+                row,
+                PartProgress(
+                    exercise_id=row["exercise_id"],
+                    part_id=row["part_id"],
+                    variant=row["variant"],
+                    attempts=row["attempts"],
+                    solved=row["solved"],
+                    gave_up=row["gave_up"],
+                    mistakes=tuple(row["mistakes"]),
+                    updated_at=row["updated_at"],
+                ),
             )
             for row in rows
         ]

@@ -31,11 +31,15 @@ from app.api.schemas.exercises import (
     ProgressView,
     ResumeRequest,
 )
-from app.classroom.routes import is_instructor
+from app.classroom.registry import Rooms
+from app.classroom.room import Room, StudentRemoved
+from app.classroom.routes import RoomsDep, StudentToken, is_instructor
 from app.course import Catalogue, render_markdown
 from app.practice.book import ExerciseBook
 from app.practice.checking import AnswerUnreadable, check
+from app.practice.deps import BookDep, ProgressDep
 from app.practice.exercise import Exercise, Part, fill
+from app.practice.in_room import RoomWork, assigned_variant, room_of, room_work
 from app.practice.progress import Learner, PartProgress, SqlProgressStore
 from app.practice.variants import NoValidVariant, Variant, learner_variant
 
@@ -63,18 +67,14 @@ ExerciseId = Annotated[str, Path(pattern=r"^[a-z0-9][a-z0-9-]{0,31}$", descripti
 LearnerToken = Annotated[
     str | None, Header(alias=LEARNER_HEADER, max_length=64, description="The token POST /api/learners gave")
 ]
+RoomQuery = Annotated[
+    str | None,
+    Query(pattern=r"^[0-9a-f]{16}$", description="A room that assigned the exercise: the variant it gives"),
+]
 VariantQuery = Annotated[
     int | None,
     Query(ge=0, le=2**31 - 1, description="The variant (its numbers); default: the learner's own, else 0"),
 ]
-
-
-def get_book(request: HTTPConnection) -> ExerciseBook:
-    return request.app.state.exercises
-
-
-def get_progress(request: HTTPConnection) -> SqlProgressStore | None:
-    return request.app.state.progress
 
 
 def get_practice_limits(request: HTTPConnection) -> PracticeLimits:
@@ -89,8 +89,6 @@ class PracticeLimits:
         self.attempts = TokenBuckets(burst=ATTEMPT_BURST, rate_per_s=ATTEMPT_RATE_PER_S, max_clients=10_000)
 
 
-BookDep = Annotated[ExerciseBook, Depends(get_book)]
-ProgressDep = Annotated[SqlProgressStore | None, Depends(get_progress)]
 LimitsDep = Annotated[PracticeLimits, Depends(get_practice_limits)]
 
 
@@ -146,16 +144,34 @@ def _kept_parts(
     }
 
 
-def _own_variant(exercise: Exercise, learner: Learner, number: int) -> None:
-    """409 unless ``number`` is the learner's own variant: progress, solutions and give-ups are per learner's numbers
+def _own_variant(exercise: Exercise, learner: Learner, number: int, *, room: Room | None = None) -> None:
+    """409 unless ``number`` is the learner's own variant, or in ``room`` the variant the room gives them (the class's
+    when the instructor gave the class one set of numbers): progress, solutions and give-ups are per learner's numbers
     (an outside attack gave up on a classmate's variant to read its answers, and solved variant 0 to count as
     solved)."""
     own = learner_variant(exercise.id, learner.learner_id)
+    if room is not None:
+        assigned = assigned_variant(room, exercise, learner.learner_id)
+        own = assigned if assigned is not None else own
     if number != own:
         raise HTTPException(
             status_code=409,
             detail=f"this learner works on variant {own} of {exercise.id!r}, not {number}: open the exercise again",
         )
+
+
+def _in_room(rooms: Rooms, room_id: str | None, student_token: str | None, exercise: Exercise) -> RoomWork | None:
+    return room_work(rooms, room_id, student_token, exercise) if room_id is not None else None
+
+
+def _room_view(room: Room) -> dict[str, Any]:
+    with room.lock:
+        return {
+            "room_id": room.room_id,
+            "code": room.code,
+            "lesson_id": room.lesson_id,
+            "class_variant": room.assignment is not None and room.assignment.class_seed is not None,
+        }
 
 
 def _variant(book: ExerciseBook, exercise: Exercise, number: int) -> Variant:
@@ -195,15 +211,24 @@ def get_exercise(
     book: BookDep,
     progress: ProgressDep,
     catalogue: CatalogueDep,
+    rooms: RoomsDep,
     variant: VariantQuery = None,
+    room: RoomQuery = None,
     token: LearnerToken = None,
 ) -> dict[str, Any]:
     """One variant of an exercise: its statement and parts with that variant's numbers. Without ``variant`` a learner
-    (``X-Learner-Token``) gets their own variant, the same every time; anyone else variant 0."""
+    (``X-Learner-Token``) gets their own variant, the same every time; anyone else variant 0. With ``room`` (the
+    exercise assigned there): the class's variant when the instructor gave the class one set of numbers."""
     exercise = _exercise(book, exercise_id)
+    in_room = room_of(rooms, room) if room is not None else None
+    if in_room is not None and (in_room.assignment is None or exercise.id not in in_room.assignment.exercise_ids):
+        raise HTTPException(status_code=409, detail=f"exercise {exercise.id!r} is not assigned in room {in_room.code}")
     if variant is None:
         learner = _learner(progress, token, required=False)
-        variant = learner_variant(exercise.id, learner.learner_id) if learner is not None else 0
+        learner_id = learner.learner_id if learner is not None else None
+        variant = assigned_variant(in_room, exercise, learner_id) if in_room is not None else None
+        if variant is None:
+            variant = learner_variant(exercise.id, learner_id) if learner_id is not None else 0
     drawn = _variant(book, exercise, variant)
     text = drawn.given_text()
     statement = fill(exercise.statement, text)
@@ -225,6 +250,7 @@ def get_exercise(
         "parts": parts,
         "scene": scene,
         "variant": variant,
+        "room": _room_view(in_room) if in_room is not None else None,
     }
 
 
@@ -267,10 +293,14 @@ def attempt(
     progress: ProgressDep,
     limits: LimitsDep,
     client: ClientDep,
+    rooms: RoomsDep,
     token: LearnerToken = None,
+    student_token: StudentToken = None,
 ) -> dict[str, Any]:
     """Check an answer to one part of one variant: ``correct``, ``feedback`` and, when it matches a named mistake,
-    ``mistake``. With ``X-Learner-Token`` the attempt is kept in the learner's progress."""
+    ``mistake``. With ``X-Learner-Token`` the attempt is kept in the learner's progress; with ``room_id`` (and the
+    room's ``X-Student-Token``) as the student's work on an exercise assigned there, which the instructor's results
+    count."""
     _limit(limits.attempts, client, "answers")
     exercise = _exercise(book, exercise_id)
     part = _part(exercise, request.part)
@@ -279,9 +309,10 @@ def attempt(
     sent = next(kind[key] for key in kind if key in answer)
     if sent != part.kind:
         raise unprocessable(["body", "answer"], f"part {part.id!r} asks for a {part.kind}, not a {sent}")
-    learner = _learner(progress, token, required=False)
+    work = _in_room(rooms, request.room_id, student_token, exercise)
+    learner = _learner(progress, token, required=work is not None)
     if learner is not None:
-        _own_variant(exercise, learner, request.variant)
+        _own_variant(exercise, learner, request.variant, room=work.room if work is not None else None)
     drawn = _variant(book, exercise, request.variant)
     try:
         verdict = check(exercise, part, answer, drawn.answers[part.id])
@@ -296,7 +327,18 @@ def attempt(
             correct=verdict.correct,
             mistake_id=verdict.mistake.id if verdict.mistake else None,
         )
+        if work is not None:
+            _link(work, learner)
     return {**verdict.public(), "feedback_html": render_markdown(verdict.feedback)}
+
+
+def _link(work: RoomWork, learner: Learner) -> None:
+    """The room's results read this learner's work as the student's (a database that refuses it now: the next
+    attempt links them)."""
+    try:
+        work.room.link_learner(work.student.student_id, learner.learner_id)
+    except StudentRemoved as exc:
+        raise HTTPException(status_code=403, detail=str(exc)) from None
 
 
 def _solution(drawn: Variant) -> dict[str, Any]:
@@ -326,13 +368,21 @@ def _solution(drawn: Variant) -> dict[str, Any]:
     },
 )
 def give_up(
-    exercise_id: ExerciseId, request: GiveUpRequest, book: BookDep, progress: ProgressDep, token: LearnerToken = None
+    exercise_id: ExerciseId,
+    request: GiveUpRequest,
+    book: BookDep,
+    progress: ProgressDep,
+    rooms: RoomsDep,
+    token: LearnerToken = None,
+    student_token: StudentToken = None,
 ) -> dict[str, Any]:
-    """Give up on a variant (every part not yet solved is kept as given up) and get its worked solution."""
+    """Give up on a variant (every part not yet solved is kept as given up) and get its worked solution; with
+    ``room_id`` as work on an exercise assigned there (as for an attempt)."""
     exercise = _exercise(book, exercise_id)
+    work = _in_room(rooms, request.room_id, student_token, exercise)
     learner = _learner(progress, token, required=True)
     assert learner is not None and progress is not None
-    _own_variant(exercise, learner, request.variant)
+    _own_variant(exercise, learner, request.variant, room=work.room if work is not None else None)
     drawn = _variant(book, exercise, request.variant)
     kept = _kept_parts(progress, learner, exercise, request.variant)
     for part in exercise.parts:
@@ -340,6 +390,8 @@ def give_up(
             progress.record(
                 learner.learner_id, exercise_id=exercise.id, part_id=part.id, variant=request.variant, gave_up=True
             )
+    if work is not None:
+        _link(work, learner)
     return _solution(drawn)
 
 
@@ -358,17 +410,22 @@ def solution(
     http: Request,
     book: BookDep,
     progress: ProgressDep,
+    rooms: RoomsDep,
     variant: VariantQuery = None,
+    room: RoomQuery = None,
     token: LearnerToken = None,
 ) -> dict[str, Any]:
     """A variant's worked solution with every part's answer: for an instructor always; for a learner once every part
-    is solved or given up."""
+    is solved or given up (with ``room``: the variant that room gives them)."""
     exercise = _exercise(book, exercise_id)
     if not is_instructor(http):
         learner = _learner(progress, token, required=True)
         assert learner is not None and progress is not None
-        number = variant if variant is not None else learner_variant(exercise.id, learner.learner_id)
-        _own_variant(exercise, learner, number)
+        in_room = room_of(rooms, room) if room is not None else None
+        assigned = assigned_variant(in_room, exercise, learner.learner_id) if in_room is not None else None
+        own = assigned if assigned is not None else learner_variant(exercise.id, learner.learner_id)
+        number = variant if variant is not None else own
+        _own_variant(exercise, learner, number, room=in_room)
         kept = _kept_parts(progress, learner, exercise, number)
         if not all(part.id in kept and (kept[part.id].solved or kept[part.id].gave_up) for part in exercise.parts):
             raise HTTPException(

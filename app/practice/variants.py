@@ -106,3 +106,10 @@ def learner_variant(exercise_id: str, learner_id: str) -> int:
     """The variant a learner works on when none is asked for: theirs, the same every time they come back."""
     digest = hashlib.sha256(f"{learner_id}/{exercise_id}".encode()).digest()
     return int.from_bytes(digest[:4], "little") & MAX_VARIANT
+
+
+def class_variant(exercise_id: str, class_seed: int) -> int:
+    """The variant every student of a room works on when its instructor gives the class one set of numbers: the same
+    for each exercise and seed, different between exercises."""
+    digest = hashlib.sha256(f"class/{class_seed}/{exercise_id}".encode()).digest()
+    return int.from_bytes(digest[:4], "little") & MAX_VARIANT

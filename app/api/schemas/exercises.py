@@ -3,7 +3,7 @@ progress."""
 
 from __future__ import annotations
 
-from typing import Any, Literal
+from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field
 
@@ -52,6 +52,13 @@ class SceneAt(BaseModel):
     url: str | None = Field(description="A lesson showing the scene, opened at these parameters")
 
 
+class RoomAssigning(BaseModel):
+    room_id: str
+    code: str
+    lesson_id: str | None = Field(description="The lesson the room shows (a page to go back to)")
+    class_variant: bool = Field(description="The class works on one set of numbers")
+
+
 class ExerciseVariant(BaseModel):
     """One variant of an exercise: its statement with this variant's numbers, the numbers, the parts."""
 
@@ -65,6 +72,7 @@ class ExerciseVariant(BaseModel):
     parts: list[PartSpec]
     scene: SceneAt | None = Field(description='The scene at this variant\'s numbers ("See it")')
     variant: int
+    room: RoomAssigning | None = Field(None, description="The room the exercise was opened from (?room=), or null")
 
 
 class NumberAnswer(BaseModel):
@@ -95,6 +103,11 @@ class AttemptRequest(BaseModel):
     variant: int = Field(ge=0, le=2**31 - 1)
     part: str = Field(max_length=32)
     answer: NumberAnswer | VectorAnswer | ExpressionAnswer | ChoiceAnswer
+    room_id: str | None = Field(
+        None,
+        pattern=r"^[0-9a-f]{16}$",
+        description="Work assigned in this room (with the room's X-Student-Token): the instructor's results count it",
+    )
 
 
 class MistakeNamed(BaseModel):
@@ -112,6 +125,11 @@ class AttemptAnswer(BaseModel):
 class GiveUpRequest(BaseModel):
     model_config = ConfigDict(extra="forbid")
     variant: int = Field(ge=0, le=2**31 - 1)
+    room_id: str | None = Field(
+        None,
+        pattern=r"^[0-9a-f]{16}$",
+        description="Work assigned in this room (with the room's X-Student-Token): the instructor's results count it",
+    )
 
 
 class PartSolution(BaseModel):
@@ -163,3 +181,61 @@ class ProgressView(BaseModel):
 class Forgotten(BaseModel):
     learner_id: str
     forgotten: bool = Field(description="True: the learner and every part of their progress are gone")
+
+
+class AssignmentRequest(BaseModel):
+    """Exercises to assign a room: a section's set, or chosen ones (in the order given)."""
+
+    model_config = ConfigDict(extra="forbid")
+    section: str | None = Field(
+        None, pattern=r"^\d{1,2}\.\d{1,2}$", description="Every exercise of a section, e.g. 5.2"
+    )
+    exercise_ids: list[Annotated[str, Field(pattern=r"^[a-z0-9][a-z0-9-]{0,31}$")]] | None = Field(
+        None, min_length=1, max_length=24, description="Chosen exercises (instead of a section)"
+    )
+    class_variant: bool = Field(
+        False, description="Every student works on the same numbers (kept while the assignment is changed)"
+    )
+    seed: int | None = Field(
+        None, ge=0, le=2**31 - 1, description="The class's numbers (with class_variant; default: drawn, or kept)"
+    )
+    show_names: bool = Field(False, description="The results name the students (else 'student 3')")
+
+
+class MistakeCount(BaseModel):
+    mistake: str
+    text: str = Field(description="What the feedback says when an answer matches it")
+    students: int = Field(description="Students whose answers matched it")
+
+
+class StudentPartWork(BaseModel):
+    student: str = Field(description="The name they gave (or 'student 3')")
+    attempts: int
+    solved: bool
+    gave_up: bool
+    mistakes: list[str]
+
+
+class PartResults(BaseModel):
+    part: str
+    kind: str
+    tried: int = Field(description="Students who answered it at least once, or gave up")
+    solved: int
+    gave_up: int
+    mistakes: list[MistakeCount] = Field(description="Named mistakes, most common first")
+    names: list[StudentPartWork] | None = Field(None, description="Each student's work (only when names are on)")
+
+
+class ExerciseResults(BaseModel):
+    exercise_id: str
+    title: str
+    section: str
+    variant: int | None = Field(description="The class's variant (null: each student works on their own)")
+    parts: list[PartResults]
+
+
+class AssignmentResults(BaseModel):
+    assignment: dict[str, Any] | None
+    students: int = Field(description="Students in the room now")
+    show_names: bool
+    exercises: list[ExerciseResults]
