@@ -21,7 +21,7 @@ from fastapi import APIRouter, HTTPException
 from fastapi.responses import PlainTextResponse
 
 from app.api.schemas.errors import ErrorDetail, error_responses
-from app.api.schemas.exercises import AssignmentRequest, AssignmentResults
+from app.api.schemas.exercises import AssignmentRequest, AssignmentResults, AssignmentView, Unassigned
 from app.classroom.assignment import MAX_ASSIGNED, Assignment
 from app.classroom.hub import RoomHubDep
 from app.classroom.polls import spreadsheet_text
@@ -119,7 +119,7 @@ def _requested_ids(book: ExerciseBook, body: AssignmentRequest) -> tuple[str, ..
 
 @router.put(
     "/rooms/{room_id}/assignment",
-    response_model=dict[str, Any],
+    response_model=AssignmentView,
     dependencies=[Instructor],
     responses={**_FORBIDDEN, **error_responses(not_found=_NO_ROOM, unprocessable=_BAD_ASSIGNMENT)},
 )
@@ -140,7 +140,7 @@ def assign(room: RoomDep, body: AssignmentRequest, book: BookDep, hub: RoomHubDe
 
 @router.delete(
     "/rooms/{room_id}/assignment",
-    response_model=dict[str, Any],
+    response_model=Unassigned,
     dependencies=[Instructor],
     responses={**_FORBIDDEN, **error_responses(not_found=_NO_ROOM, unprocessable="A malformed room id")},
 )

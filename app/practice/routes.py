@@ -47,7 +47,14 @@ router = APIRouter(prefix="/api", tags=["exercises"])
 
 #: The learner refusals a route that reads ``X-Learner-Token`` can give, documented with the others.
 _NOT_OWN: dict[int | str, dict[str, Any]] = {
-    409: {"model": ErrorDetail, "description": "A learner's request names a variant that is not their own"},
+    409: {
+        "model": ErrorDetail,
+        "description": "A learner's request names a variant that is not their own (in a room: the room's), or the "
+        "room (room_id) does not assign this exercise",
+    },
+}
+_NOT_ASSIGNED: dict[int | str, dict[str, Any]] = {
+    409: {"model": ErrorDetail, "description": "The room (?room=) does not assign this exercise (any more)"},
 }
 _NO_LEARNER: dict[int | str, dict[str, Any]] = {
     401: {"model": ErrorDetail, "description": "No learner has this token (or none was sent where one is needed)"},
@@ -202,8 +209,9 @@ def list_exercises(
     "/exercises/{exercise_id}",
     response_model=ExerciseVariant,
     responses={
-        **error_responses(not_found="No exercise has this id", unprocessable="The variant is out of range"),
+        **error_responses(not_found="No exercise (or room) has this id", unprocessable="The variant is out of range"),
         **_NO_LEARNER,
+        **_NOT_ASSIGNED,
     },
 )
 def get_exercise(

@@ -1,11 +1,14 @@
 // An exercise page: its numbers (the learner's own variant), its parts checked one by one, hints one at a time, the
 // named mistake's feedback, the worked solution once solved or given up, and "See it" (the scene at these numbers).
 // The learner is this browser's token (localStorage), made when it first opens an exercise; nothing else is kept here.
+// Opened from a class room (?room=, an exercise the instructor assigned): the room's numbers, and every answer goes
+// with the room's student token too, so the instructor's results count it.
 import "./common.js";
 import { api, ApiError } from "./api.js";
 import { element } from "./dom.js";
 import { katexInto, renderMath } from "./katex.js";
 import { LEARNER_KEY, learner } from "./practice_list.js";
+import { studentToken } from "./room_practice.js";
 
 const root = document.getElementById("exercise");
 const exerciseId = root.dataset.exercise;
@@ -15,10 +18,15 @@ const giveUp = document.getElementById("give-up");
 const seeIt = document.getElementById("see-it");
 let exercise = null;
 const answered = new Set();
+// The class room this exercise was opened from, while the room assigns it and this browser is one of its students.
+const askedRoom = new URLSearchParams(location.search).get("room");
+let roomId = askedRoom && /^[0-9a-f]{16}$/.test(askedRoom) && studentToken(askedRoom) ? askedRoom : null;
+const inRoom = (body) => (roomId ? { ...body, room_id: roomId } : body);
+const roomQuery = () => (roomId ? `room=${roomId}` : "");
 
 function learnerHeaders() {
   const me = learner();
-  return me ? { "X-Learner-Token": me.token } : {};
+  return { ...(me ? { "X-Learner-Token": me.token } : {}), ...(roomId ? { "X-Student-Token": studentToken(roomId) } : {}) };
 }
 async function ensureLearner() {
   if (learner()) return learner();
@@ -116,7 +124,7 @@ function renderPart(part, index) {
     feedback.className = "feedback";
     try {
       await ensureLearner();
-      const verdict = await asLearner("POST", `/api/exercises/${exerciseId}/attempts`, { variant: exercise.variant, part: part.id, answer: inputs.read() });
+      const verdict = await asLearner("POST", `/api/exercises/${exerciseId}/attempts`, inRoom({ variant: exercise.variant, part: part.id, answer: inputs.read() }));
       feedback.classList.add(verdict.correct ? "correct" : "wrong");
       html(feedback, (verdict.correct ? "<p><strong>Correct.</strong></p>" : verdict.mistake ? "<p><strong>Not quite — a common mistake:</strong></p>" : "") + (verdict.correct ? "" : verdict.feedback_html));
       if (verdict.correct) partDone(part.id);
@@ -144,8 +152,8 @@ function partDone(partId) {
 async function showSolution(method) {
   try {
     const solution = method === "GET"
-      ? await asLearner("GET", `/api/exercises/${exerciseId}/solution?variant=${exercise.variant}`)
-      : await asLearner("POST", `/api/exercises/${exerciseId}/give-up`, { variant: exercise.variant });
+      ? await asLearner("GET", `/api/exercises/${exerciseId}/solution?variant=${exercise.variant}${roomId ? `&${roomQuery()}` : ""}`)
+      : await asLearner("POST", `/api/exercises/${exerciseId}/give-up`, inRoom({ variant: exercise.variant }));
     const steps = document.getElementById("worked-steps");
     steps.textContent = "";
     for (const part of solution.parts) {
@@ -189,15 +197,32 @@ async function showKept() {
   if (answered.size === exercise.parts.length) showSolution("GET");
 }
 
+function showRoomNote(...content) {
+  const note = document.getElementById("room-note");
+  note.replaceChildren(...content);
+  note.hidden = false;
+}
+
 async function load() {
   await ensureLearner(); // first, so that the numbers shown are this learner's own from the start
   try {
-    exercise = await asLearner("GET", `/api/exercises/${exerciseId}`);
+    try {
+      exercise = await asLearner("GET", `/api/exercises/${exerciseId}${roomId ? `?${roomQuery()}` : ""}`);
+    } catch (error) {
+      if (!(roomId && error instanceof ApiError && [403, 404, 409].includes(error.status))) throw error;
+      roomId = null; // taken back, the room closed, or this browser left it: the exercise is still theirs to practise
+      showRoomNote(`Not counted for your class: ${error.message}.`);
+      exercise = await asLearner("GET", `/api/exercises/${exerciseId}`);
+    }
   } catch (error) {
     html(document.getElementById("statement"), "");
     errorBox.textContent = `This exercise could not be loaded: ${error.message}`;
     errorBox.hidden = false;
     return;
+  }
+  if (exercise.room) {
+    const back = exercise.room.lesson_id ? element("a", { href: `/lessons/${encodeURIComponent(exercise.room.lesson_id)}?room=${roomId}` }, "Back to the class") : "";
+    showRoomNote(`Assigned in class room ${exercise.room.code}${exercise.room.class_variant ? ", with the same numbers for the whole class" : ""}: your instructor sees how the class does. `, back);
   }
   html(document.getElementById("statement"), exercise.statement_html);
   exercise.parts.forEach((part, i) => partsList.append(renderPart(part, i)));

@@ -13,6 +13,7 @@ import { config } from "./config.js";
 import { element as el } from "./dom.js";
 import { formatNumber } from "./format.js";
 import { lesson } from "./lesson.js"; // null on a lesson page without a scene or examples
+import { instructorAssignment, studentAssignment, studentToken as savedStudentToken } from "./room_practice.js";
 import { reconnectingSocket } from "./socket.js";
 
 export let classroom = null;
@@ -110,16 +111,7 @@ export let classroom = null;
   const ownScene = (own) => document.dispatchEvent(new CustomEvent("dynlab:own-scene", { detail: { own } }));
 
   // ---- a student (or the instructor previewing as one) ----------------------------------------------------
-  function studentToken() {
-    const raw = localStorage.getItem(`dynlab.room.${roomId}`);
-    if (!raw) return null;
-    try {
-      const saved = JSON.parse(raw);
-      return typeof saved === "string" ? saved : saved && saved.student_token;
-    } catch (e) {
-      return raw;
-    }
-  }
+  const studentToken = () => savedStudentToken(roomId);
 
   function studentPage(preview) {
     const token = preview ? null : studentToken();
@@ -131,7 +123,8 @@ export let classroom = null;
     const bar = el("section", { class: "room-bar", "aria-label": "Class room" }, banner, status, error);
     if (preview) bar.append(el("p", { class: "muted", text: "Preview: this is what a student sees (your changes here are not sent)." }));
     const poll = studentPoll(token, preview);
-    aside.prepend(bar, poll.element);
+    const practice = studentAssignment(roomId);
+    aside.prepend(bar, poll.element, practice.element);
     let mode = null, latest = null, shownParams = "";
 
     const socket = roomSocket({
@@ -152,6 +145,7 @@ export let classroom = null;
       else if (message.type === "removed") {
         localStorage.removeItem(`dynlab.room.${roomId}`);
         poll.element.hidden = true;
+        practice.element.hidden = true;
         bar.hidden = true;
       } else if (message.type === "error") {
         if (message.status === 403 && !message.action && token) { // the room does not know this token: join again
@@ -174,6 +168,7 @@ export let classroom = null;
       status.textContent = state.lesson_id ? playStatus(state, "the instructor") : "Waiting for the instructor to choose a lesson";
       status.dataset.playing = String(state.playing);
       poll.render(state.poll);
+      practice.render(state.assignment);
       if (!lesson || !pageScene) { banner.textContent = "Following the instructor"; return; }
       if (state.mode === "explore" && state.explore_start) explore(state);
       else follow(state);
@@ -463,6 +458,7 @@ export let classroom = null;
     preview.searchParams.set("as", "student");
     const polls = instructorPolls((message) => act(message), () => clearErrors());
     const students = instructorStudents((text) => showError(text));
+    const practice = instructorAssignment(roomId, (text) => showError(text));
     const element = el("aside", { class: "room-panel", "aria-label": "Class room: instructor" },
       el("div", { class: "room-join" }, qr,
         el("div", {}, el("p", { class: "room-code-label", text: "Join with the code" }), code,
@@ -473,7 +469,7 @@ export let classroom = null;
       el("p", { class: "room-links" },
         el("a", { href: `/rooms/${roomId}/projector`, target: "_blank", rel: "noopener", text: "Projector view" }), " · ",
         el("a", { href: preview.pathname + preview.search, target: "_blank", rel: "noopener", text: "Preview as a student" })),
-      error, students.element, polls.element);
+      error, students.element, polls.element, practice.element);
     play.addEventListener("click", () => current && act({ type: "set_state", playing: !current.playing }));
     restart.addEventListener("click", () => act({ type: "set_state", reset: true }));
     scale.addEventListener("change", () => act({ type: "set_state", time_scale: Number(scale.value) }));
@@ -533,6 +529,7 @@ export let classroom = null;
         mode.textContent = state.mode === "follow" ? "Let everyone explore" : "Bring everyone back";
         element.dataset.mode = state.mode;
         polls.state(state);
+        practice.state(state);
       },
     };
   }

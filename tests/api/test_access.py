@@ -316,6 +316,8 @@ DOORS = {
     ("POST", "/api/rooms/{room_id}/polls"): "instructor",
     ("POST", "/api/rooms/{room_id}/polls/{poll_id}"): "instructor",
     ("DELETE", "/api/rooms/{room_id}/students/{student_id}"): "instructor",
+    ("PUT", "/api/rooms/{room_id}/assignment"): "instructor",
+    ("DELETE", "/api/rooms/{room_id}/assignment"): "instructor",
     ("POST", "/api/rooms/{room_id}/polls/{poll_id}/answers"): "student-token",
     ("POST", "/api/rooms/join"): "room-code",
     ("WS", "/viewer/{scene_id}/{session_id}"): "watch",
@@ -388,7 +390,7 @@ def test_every_door_refuses_a_caller_without_its_credential_and_nothing_changes(
                         reply = json.loads(ws.recv(timeout=10))
                     assert reply["status"] == 403
             else:
-                body = {"lesson_id": HEAVY_TOP_LESSON} if path == "/api/rooms" else {"question": "x?", "kind": "choice", "choices": ["a", "b"]} if path.endswith("/polls") else {"playing": False} if path.endswith("/state") else {"open": False}
+                body = {"lesson_id": HEAVY_TOP_LESSON} if path == "/api/rooms" else {"exercise_ids": [EXERCISE]} if path.endswith("/assignment") else {"question": "x?", "kind": "choice", "choices": ["a", "b"]} if path.endswith("/polls") else {"playing": False} if path.endswith("/state") else {"open": False}
                 assert client.request(method, url, json=body).status_code == 403, (method, path)
         elif credential == "student-token":
             for headers in ({}, {"X-Student-Token": secrets.token_urlsafe(18)}):
@@ -406,7 +408,7 @@ def test_every_door_refuses_a_caller_without_its_credential_and_nothing_changes(
         tried.add((method, path))
     assert tried == set(DOORS)
     state_after = served.client.get(f"/api/rooms/{rid}/state").json()
-    for field in ("lesson_id", "scene_id", "params", "playing", "time_scale", "mode", "revision"):
+    for field in ("lesson_id", "scene_id", "params", "playing", "time_scale", "mode", "revision", "assignment"):
         assert state_after[field] == state_before[field], field
     assert state_after["poll"]["open"] is True
     assert put(owner, sid, {}, key).json()["params"]["spin_rad_s"] == 66.0

@@ -34,6 +34,9 @@ ROOM_ROUTES = {
     ("/api/rooms/{room_id}/polls/{poll_id}/results", "get"),
     ("/api/rooms/{room_id}/students", "get"),
     ("/api/rooms/{room_id}/students/{student_id}", "delete"),
+    ("/api/rooms/{room_id}/assignment", "put"),
+    ("/api/rooms/{room_id}/assignment", "delete"),
+    ("/api/rooms/{room_id}/assignment/results", "get"),
 }
 #: A page's time controls (issue 15): an unknown scene, or a session without one yet.
 PLAYBACK_ROUTES = {("/api/scenes/{scene_id}/sessions/{session_id}/playback", "put"), ("/api/scenes/{scene_id}/sessions/{session_id}/playback", "get")}
@@ -54,6 +57,7 @@ CAN_BE_UNPROCESSABLE = (CAN_BE_NOT_FOUND - {("/api/bench/work-precision", "get")
 INSTRUCTOR_ONLY_READS = {
     ("/api/rooms/{room_id}/polls/ready", "get"), ("/api/rooms/{room_id}/polls/{poll_id}/results", "get"), ("/api/rooms/{room_id}/students", "get"),
     ("/api/exercises/{exercise_id}/solution", "get"),  # an instructor's always; a learner's once done with it
+    ("/api/rooms/{room_id}/assignment/results", "get"),
 }  # fmt: skip
 #: Answers the web front's guard gives before any route runs (app/web/guard.py), which FastAPI cannot see by itself.
 WITH_BODY = [(path, method) for path, method, op in OPERATIONS if "requestBody" in op]

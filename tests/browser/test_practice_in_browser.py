@@ -119,3 +119,61 @@ def test_a_student_works_an_exercise_step_by_step_and_keeps_it_through_a_restart
         for app in (restarted, server):
             if app is not None:
                 app.stop()
+
+
+def test_an_instructor_assigns_an_exercise_and_watches_the_class_work_it(browser, live_server, shots):
+    """Issue 27, point 7, in Chromium: the instructor's room panel assigns 5.3's exercise with one set of numbers for
+    the class; a student's room bar lists it, its page says it is the class's and shows the class's numbers; the
+    student's named mistake and then the right answer reach the instructor's results table (tried, solved, the
+    mistake counted), anonymous until names are turned on."""
+    from tests.browser.test_classroom_in_browser import _student, instructor_room
+
+    teacher_context, teacher, teacher_errors, room_id = instructor_room(
+        browser, live_server, "10-2-spinning-top", viewport={"width": 1500, "height": 1000}
+    )
+    code = teacher.text_content(".room-code")
+    student_context = None
+    try:
+        teacher.click(".room-practice summary")
+        teacher.wait_for_selector("#room-assign-section option[value='5.3']", state="attached")
+        teacher.select_option("#room-assign-section", "5.3")
+        teacher.wait_for_selector(f".room-assign-choices input[value='{EXERCISE}']:checked")
+        teacher.check("#room-assign-class-variant")
+        teacher.click("[data-room=assign]")
+        teacher.wait_for_function("() => document.querySelector('.room-assigned-now').textContent.startsWith('Assigned')")
+        teacher.wait_for_selector(f"table[data-exercise='{EXERCISE}']")
+
+        student_context, student, student_errors = _student(browser, live_server, code, (412, 915))
+        link = student.locator(f".room-assigned a[data-exercise='{EXERCISE}']")
+        link.wait_for()
+        assert "same numbers" in student.inner_text(".room-assigned")
+        screenshot(student, shots / "room-assigned-phone.png")
+        link.click()
+        student.wait_for_selector(READY)
+        assert code in student.inner_text("#room-note") and "whole class" in student.inner_text("#room-note")
+        number = student.evaluate(
+            "async ([id, room]) => (await fetch(`/api/exercises/${id}?room=${room}`)).json()", [EXERCISE, room_id]
+        )["variant"]
+        answers = variant(load_exercises(LESSONS)[EXERCISE], number).answers
+        assert _check(student, "h", answers["h"].mistakes["h-along-shaft"]) == "wrong"
+        assert _check(student, "h", answers["h"].value) == "correct"
+
+        row = teacher.locator(f"table[data-exercise='{EXERCISE}'] tr[data-part='h']")
+        teacher.wait_for_function(  # the panel's results refresh by themselves
+            "(sel) => { const r = document.querySelector(sel); return r && r.children[2].textContent === '1'; }",
+            arg=f"table[data-exercise='{EXERCISE}'] tr[data-part='h']",
+        )
+        cells = row.locator("td").all_inner_texts()
+        assert cells[:3] == ["1", "1", "0"] and "h-along-shaft × 1" in cells[3]
+        assert teacher.locator(f"table[data-exercise='{EXERCISE}'] .room-part-names").count() == 0  # anonymous
+        teacher.check("#room-assign-names")
+        names = teacher.locator(f"table[data-exercise='{EXERCISE}'] tr[data-names-of='h']")
+        names.wait_for()
+        assert names.inner_text() == "student 1: solved"
+        teacher.locator(f"table[data-exercise='{EXERCISE}']").scroll_into_view_if_needed()
+        screenshot(teacher, shots / "room-exercise-results.png")
+        assert not teacher_errors and not student_errors, (teacher_errors, student_errors)
+    finally:
+        if student_context is not None:
+            student_context.close()
+        teacher_context.close()

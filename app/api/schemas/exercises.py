@@ -239,3 +239,17 @@ class AssignmentResults(BaseModel):
     students: int = Field(description="Students in the room now")
     show_names: bool
     exercises: list[ExerciseResults]
+
+
+class AssignmentView(BaseModel):
+    """The room's assignment as the instructor set it."""
+
+    exercise_ids: list[str]
+    class_variant: bool
+    assigned_at: str = Field(description="UTC, ISO 8601")
+    show_names: bool
+    seed: int | None = Field(description="The class's numbers (null: each student works on their own)")
+
+
+class Unassigned(BaseModel):
+    assignment: None = Field(description="Nothing is assigned now")
