@@ -20,6 +20,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import sympy
+from scipy.integrate import solve_ivp
 from scipy.spatial.transform import Rotation
 
 from app.practice.exercise import load_exercises
@@ -370,3 +371,202 @@ def test_collars_side_push_is_mass_times_the_differenced_acceleration_across_the
         point |= {"r": rng.uniform(0.1, 2.0), "u": rng.uniform(0.1, 3.0)}
         expected = across(point["omega"], point["alpha"], point["r"], point["u"])
         assert float(formula.subs({symbols[k]: v for k, v in point.items()})) == pytest.approx(expected, rel=1e-6)
+
+
+# -- 3.2 ---------------------------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("number", VARIANTS)
+def test_the_lids_point_is_turned_by_scipys_rotation_vector(number):
+    """scipy's rotation by the rotation vector φ n applied to P (its own quaternion code, not Rodrigues' matrix):
+    the image agrees to 1e-12 of |P| (round-off); the distance moved is |P' − P| to 1e-12; and the chord formula at
+    d = |n × P| (the distance from the line, by a cross product) gives that distance to 1e-12."""
+    drawn = _drawn("3-2-rodrigues-lid", number)
+    g, answers = drawn.given, drawn.answers
+    delta, angle = math.radians(g["hinge_tilt_deg"]), math.radians(g["turn_deg"])
+    n = np.array([math.sin(delta), 0.0, math.cos(delta)])
+    p = np.array([g["x_m"], g["y_m"], 0.0])
+    image = Rotation.from_rotvec(angle * n).apply(p)
+    _close(answers["image"].value, image, 1e-12)
+    moved = float(np.linalg.norm(image - p))
+    assert answers["distance"].value == pytest.approx(moved, rel=1e-12)
+    names = _named("d phi")
+    formula = answers["chord"].value.subs({names["d"]: float(np.linalg.norm(np.cross(n, p))), names["phi"]: angle})
+    assert float(formula) == pytest.approx(moved, rel=1e-12)
+
+
+def test_the_chord_formula_is_sympys_distance_between_the_ends_of_the_arc():
+    """A point at distance d from the axis, turned by φ about it: sympy's |r' − r| equals 2 d sin(φ/2) for
+    0 < φ < π (exact simplification)."""
+    drawn = _drawn("3-2-rodrigues-lid", 0)
+    d, phi = sympy.symbols("d phi", positive=True)
+    moved = sympy.sqrt((d * sympy.cos(phi) - d) ** 2 + (d * sympy.sin(phi)) ** 2)
+    names = _named("d phi")
+    formula = drawn.answers["chord"].value.subs({names["d"]: d, names["phi"]: phi})
+    assert sympy.simplify(sympy.trigsimp(moved**2 - formula**2)) == 0
+    assert float((moved - formula).subs({d: 0.7, phi: 2.9})) == pytest.approx(0.0, abs=1e-15)
+
+
+@pytest.mark.parametrize("number", VARIANTS)
+def test_the_two_orders_are_scipys_compositions_of_fixed_axis_turns(number):
+    """scipy's Rotation composition (``B * A``: A first, then B, about fixed axes): the angle and axis of
+    "A then B" from its rotation vector, and the gap as the magnitude of ``AB * BA⁻¹``, agree with the answers to
+    1e-10 (scipy works through quaternions and atan2: ~1e-15); the cos φ formula at a, b is cos of scipy's angle
+    to 1e-12."""
+    drawn = _drawn("3-2-two-turns-order", number)
+    g, answers = drawn.given, drawn.answers
+    a, b = math.radians(g["a_deg"]), math.radians(g["b_deg"])
+    turn_a, turn_b = Rotation.from_rotvec([a, 0.0, 0.0]), Rotation.from_rotvec([0.0, b, 0.0])
+    ab, ba = turn_b * turn_a, turn_a * turn_b
+    rotvec = ab.as_rotvec()
+    angle = float(np.linalg.norm(rotvec))
+    assert answers["angle"].value == pytest.approx(math.degrees(angle), rel=1e-10)
+    _close(answers["axis"].value, rotvec / angle, 1e-10)
+    assert answers["gap"].value == pytest.approx(math.degrees((ab * ba.inv()).magnitude()), rel=1e-10)
+    assert float(ab.magnitude()) == pytest.approx(float(ba.magnitude()), rel=1e-12)  # same angle, both orders
+    names = _named("a b")
+    formula = answers["cos-angle"].value.subs({names["a"]: a, names["b"]: b})
+    assert float(formula) == pytest.approx(math.cos(angle), abs=1e-12)
+
+
+@pytest.mark.parametrize("number", VARIANTS)
+def test_small_turns_gap_is_scipys_and_its_leading_order_is_the_product(number):
+    """scipy's compositions of a about Y and b about Z: the gap magnitude of ``AB * BA⁻¹`` (and with both angles
+    doubled) to 1e-9 relative (the gap is ~1e-4 rad, the quaternions' round-off ~1e-16, so ~1e-12 relative); its
+    rotation vector points along −X, with off-axis parts of relative size (a/2, b/2) (the next order of the
+    product), so within 0.06 for a, b ≤ 6° = 0.105 rad; and the gap divided by the estimate formula at angles
+    scaled down by 1e-3 is 1 to 1e-6 (the next term is relative O(a + b) ≈ 1e-4 × 1e-3, and the gap, ~1e-9 rad, is
+    computed to ~1e-7 relative)."""
+    drawn = _drawn("3-2-small-turns-commute", number)
+    g, answers = drawn.given, drawn.answers
+
+    def gap(a: float, b: float) -> Rotation:
+        turn_a, turn_b = Rotation.from_rotvec([0.0, a, 0.0]), Rotation.from_rotvec([0.0, 0.0, b])
+        return (turn_b * turn_a) * (turn_a * turn_b).inv()
+
+    a, b = math.radians(g["a_deg"]), math.radians(g["b_deg"])
+    assert answers["gap"].value == pytest.approx(math.degrees(gap(a, b).magnitude()), rel=1e-9)
+    assert answers["doubled"].value == pytest.approx(math.degrees(gap(2 * a, 2 * b).magnitude()), rel=1e-9)
+    direction = gap(a, b).as_rotvec() / gap(a, b).magnitude()
+    assert direction == pytest.approx([-1.0, 0.0, 0.0], abs=0.06)
+    assert answers["gap-axis"].value == "minus-x"
+    names = _named("a b")
+    small_a, small_b = a * 1e-3, b * 1e-3
+    estimate = float(answers["estimate"].value.subs({names["a"]: small_a, names["b"]: small_b}))
+    assert gap(small_a, small_b).magnitude() / estimate == pytest.approx(1.0, abs=1e-6)
+
+
+# -- 3.6 ---------------------------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("number", VARIANTS)
+def test_foucault_plane_turns_as_scipys_integrated_swing_measures(number):
+    """The lesson's small-swing equations ẍ − 2Ω_z ẏ + ω₀²x = 0, ÿ + 2Ω_z ẋ + ω₀²y = 0 (Ω_z = k Ω sin λ, the Earth's
+    rate exaggerated k = 1000 times, which scales the plane's rate exactly), released from rest at (a, 0), integrated
+    by scipy (DOP853, rtol 1e-12) for 40 s with every turning point (|r| largest, an event) recorded. The bearings of
+    the turning points, folded to a line and unwrapped, are fitted with a straight line: its slope divided by k is
+    the plane's rate, to 1e-6 relative (each event's bearing is good to ~1e-10 rad over a fitted span of radians);
+    its sign gives the sense; the period is 2π over it."""
+    drawn = _drawn("3-6-foucault-plane-turn", number)
+    g, answers = drawn.given, drawn.answers
+    k = 1000.0
+    earth = 7.292115e-5
+    omega_z = k * earth * math.sin(math.radians(g["latitude_deg"]))
+    w0 = math.sqrt(9.81 / g["length_m"])
+
+    def rhs(_t, y):
+        x, yy, vx, vy = y
+        return [vx, vy, 2 * omega_z * vy - w0**2 * x, -2 * omega_z * vx - w0**2 * yy]
+
+    def turning(_t, y):
+        return y[0] * y[2] + y[1] * y[3]
+
+    turning.direction = -1  # |r| stops growing: a largest swing
+    run = solve_ivp(rhs, (0.0, 40.0), [1.0, 0.0, 0.0, 0.0], method="DOP853", rtol=1e-12, atol=1e-12, events=turning)
+    times, states = run.t_events[0], run.y_events[0]
+    bearings = np.unwrap(2 * np.arctan2(states[:, 1], states[:, 0])) / 2  # a swing's line: bearing modulo π
+    slope = float(np.polyfit(times, bearings, 1)[0]) / k  # rad/s, counterclockwise positive
+    rate_deg_h = math.degrees(abs(slope)) * 3600
+    assert answers["rate"].value == pytest.approx(rate_deg_h, rel=1e-6)
+    assert answers["period"].value == pytest.approx(2 * math.pi / abs(slope), rel=1e-6)
+    assert answers["sense"].value == ("clockwise" if slope < 0 else "counterclockwise")
+
+
+@pytest.mark.parametrize("number", VARIANTS)
+def test_the_dropped_stone_lands_where_scipys_rotating_frame_integration_says(number):
+    """r̈ = −g k − 2Ω × ṙ in the ground's frame (Ω = Ω(0, cos λ, sin λ)), integrated by scipy (DOP853, rtol 1e-13,
+    atol 1e-13 m) from rest at height h to the ground (an event). The landing time and the eastward landing point
+    agree with the first-order answers to 1e-6 relative: the terms the first-order answers leave out are relative
+    O((Ω t)²) ≤ (7.3e-5 × 9 s)² ≈ 4e-7, and the integration's error in x is below 1e-10 m against x ≥ 1e-3 m. The
+    formula, evaluated at the given numbers and the integrated fall time, gives the same deflection to 1e-6."""
+    drawn = _drawn("3-6-stone-dropped-east", number)
+    g, answers = drawn.given, drawn.answers
+    lam, gg, earth = math.radians(g["latitude_deg"]), g["g_m_s2"], 7.292115e-5
+    omega = earth * np.array([0.0, math.cos(lam), math.sin(lam)])
+
+    def rhs(_t, y):
+        return [*y[3:], *(np.array([0.0, 0.0, -gg]) - 2 * np.cross(omega, y[3:]))]
+
+    def ground(_t, y):
+        return y[2]
+
+    ground.terminal, ground.direction = True, -1
+    run = solve_ivp(
+        rhs, (0.0, 100.0), [0.0, 0.0, g["height_m"], 0.0, 0.0, 0.0], method="DOP853", rtol=1e-13, atol=1e-13,
+        events=ground,
+    )  # fmt: skip
+    t_land, east = float(run.t_events[0][0]), float(run.y_events[0][0][0])
+    assert answers["fall-time"].value == pytest.approx(t_land, rel=1e-6)
+    assert answers["deflection"].value == pytest.approx(east, rel=1e-6)
+    assert answers["direction"].value == ("east" if east > 0 else "west")
+    names = _named("Omega g t lam")
+    formula = answers["formula"].value.subs(
+        {names["Omega"]: earth, names["g"]: gg, names["t"]: t_land, names["lam"]: lam}
+    )
+    assert float(formula) == pytest.approx(east, rel=1e-6)
+
+
+@pytest.mark.parametrize("number", VARIANTS)
+def test_the_riders_view_of_the_puck_is_the_difference_of_its_position_on_the_table(number):
+    """The puck's straight path over the ground, r(t) = r₀ + v t, written on the table's axes, Rz(−Ωt) r(t) (scipy),
+    and differenced at t = 0 (h = 1e-3 s, fourth order: truncation ~1e-12, rounding ~5ε/h² ~ 1e-9 of |r|): v_rel
+    to 1e-9 and a_rel to 1e-7 relative; the bend is the sign of their cross product."""
+    drawn = _drawn("3-6-puck-on-turntable", number)
+    g, answers = drawn.given, drawn.answers
+    spin = g["table_rate_rad_s"]
+    start, velocity = np.array([g["distance_m"], 0.0, 0.0]), np.array([g["u_x_m_s"], g["u_y_m_s"], 0.0])
+
+    def on_table(t: float) -> np.ndarray:
+        return _rz(-spin * t) @ (start + velocity * t)
+
+    v_rel, a_rel = _d1(on_table, 0.0, 1e-3), _d2(on_table, 0.0, 1e-3)
+    _close(answers["v-rel"].value, v_rel, 1e-9)
+    _close(answers["a-rel"].value, a_rel, 1e-7)
+    assert answers["bend"].value == ("left" if np.cross(v_rel, a_rel)[2] > 0 else "right")
+
+
+@pytest.mark.parametrize("number", VARIANTS)
+def test_the_trains_coriolis_term_is_the_difference_of_its_position_seen_from_the_stars(number):
+    """The ground's frame turns about the Earth's axis, (0, cos λ, sin λ) on its own axes at t = 0; the train goes
+    straight over the ground, r_rel = v t from the frame's origin. Its position against the stars, R(Ω t) r_rel(t)
+    with R by scipy, differenced twice at t = 0 (h = 1 s, fourth order: truncation ~(Ω h)⁴ ≈ 3e-17 relative and
+    rounding ~5ε · 180 m / 1 s² ≈ 2e-13 m/s², against at least 2Ωv sin 10° ≈ 5e-4 m/s²) is the absolute acceleration,
+    2Ω × v here (a_rel = 0, r = 0); the Coriolis term is minus it, to 1e-8 relative. The side force, the rail and the
+    load change follow from it (1e-8)."""
+    drawn = _drawn("3-6-train-coriolis-rails", number)
+    g, answers = drawn.given, drawn.answers
+    lam, psi = math.radians(g["latitude_deg"]), math.radians(g["heading_deg"])
+    axis = np.array([0.0, math.cos(lam), math.sin(lam)])
+    velocity = g["speed_m_s"] * np.array([math.sin(psi), math.cos(psi), 0.0])
+    earth = 7.292115e-5
+
+    def against_stars(t: float) -> np.ndarray:
+        return Rotation.from_rotvec(earth * t * axis).apply(velocity * t)
+
+    coriolis = -_d2(against_stars, 0.0, 1.0)
+    _close(answers["coriolis"].value, coriolis, 1e-8)
+    mass = g["mass_kg"]
+    assert answers["side-force"].value == pytest.approx(mass * math.hypot(coriolis[0], coriolis[1]), rel=1e-8)
+    across = float(np.cross(velocity, coriolis)[2])  # > 0: the push is to the left of the motion
+    assert answers["rail"].value == ("left" if across > 0 else "right")
+    assert answers["load"].value == pytest.approx(-mass * coriolis[2], rel=1e-8)

@@ -25,6 +25,7 @@ VARIANTS = range(100)
 OTHER_UNITS = {
     "1": ("percent", 0.01),
     "m": ("mm", 1e-3),
+    "mm": ("m", 1e3),
     "kg": ("g", 1e-3),
     "s": ("ms", 1e-3),
     "deg": ("rad", 180 / np.pi),
@@ -33,7 +34,9 @@ OTHER_UNITS = {
     "m/s^2": ("mm/s^2", 1e-3),
     "rad/s": ("rpm", 2 * np.pi / 60),
     "1/s": ("1/min", 1 / 60),
+    "1/m": ("1/mm", 1e3),
     "rad/s^2": ("deg/s^2", np.pi / 180),
+    "deg/h": ("deg/min", 60.0),
     "N": ("kN", 1e3),
     "N*m": ("N*mm", 1e-3),
     "J": ("kJ", 1e3),
@@ -44,6 +47,7 @@ OTHER_UNITS = {
     "kg*m^2": ("g*cm^2", 1e-7),
     "kg*m^2/s": ("g*cm^2/s", 1e-7),
     "N*m*s": ("N*mm*s", 1e-3),
+    "J*s": ("kJ*s", 1e3),
 }
 
 

@@ -21,9 +21,12 @@ from app.physics.math.rotations import (
     angular_velocity_world,
     axis_angle_from_matrix,
     matrix_from_angles,
+    matrix_from_axis_angle,
 )
+from app.physics.systems.ch03.finite_rotation import finite_rotation
 from app.physics.systems.ch03.moving_frame import MovingFrameMotion
 from app.physics.systems.ch03.vector_derivative import VectorMotion
+from app.physics.systems.earth import EARTH_RATE_RAD_S
 from app.practice.exercise import PartAnswer
 
 #: Symbols of the expression parts (real, as the checker's are).
@@ -494,5 +497,323 @@ def collar_on_spinning_arm(given: Mapping[str, float]) -> dict[str, PartAnswer]:
             "trailing",
             r"\alpha r + 2\omega u > 0:\ \text{the push is forward, in the sense of the arm's turning}",
             {"none": "none", "leading": "leading"},
+        ),
+    }
+
+
+# -- 3.2 displacement: Euler's theorem and finite rotations ------------------------------------------------------
+
+#: Symbols of the 3.2 and 3.6 expression parts (real, as the checker's are).
+d_s, phi_s, a_s, b_s, g_s, t_s, lam_s = sympy.symbols("d phi a b g t lam", real=True)
+
+
+def _skew(n: np.ndarray) -> np.ndarray:
+    return np.array([[0.0, -n[2], n[1]], [n[2], 0.0, -n[0]], [-n[1], n[0], 0.0]])
+
+
+def rodrigues_lid(given: Mapping[str, float]) -> dict[str, PartAnswer]:
+    """A lid turned by φ about the fixed hinge line through O along n = (sin δ, 0, cos δ): where the point
+    P = (x, y, 0) goes (Rodrigues), the chord 2 d sin(φ/2) in symbols (d: P's distance from the hinge line), and
+    its value."""
+    delta, angle = math.radians(given["hinge_tilt_deg"]), math.radians(given["turn_deg"])
+    n = np.array([math.sin(delta), 0.0, math.cos(delta)])
+    p = np.array([given["x_m"], given["y_m"], 0.0])
+    R = matrix_from_axis_angle(n, angle)
+    image = R @ p
+    along = float(n @ p)
+    d = float(np.linalg.norm(p - along * n))
+    chord = float(np.linalg.norm(image - p))
+    first_order = p + math.sin(angle) * _skew(n) @ p
+    return {
+        "image": PartAnswer(
+            _vec(image),
+            r"[R] = [I] + \sin\phi\,[\tilde n] + (1 - \cos\phi)[\tilde n]^2,\ "
+            rf"\bar n = {_tex(n)},\ \{{r_P'\}} = [R]\{{r_P\}} = {_tex(image)}\ \mathrm{{m}}",
+            {
+                "sin-sign": _vec(matrix_from_axis_angle(n, -angle) @ p),
+                "no-second-order": _vec(first_order),
+            },
+        ),
+        "chord": PartAnswer(
+            2 * d_s * sympy.sin(phi_s / 2),
+            r"|\bar r_P' - \bar r_P| = 2d\sin\frac{\phi}{2}\ \text{(a chord of the circle of radius } d)",
+            {"arc": d_s * phi_s, "sin-whole": d_s * sympy.sin(phi_s)},
+        ),
+        "distance": PartAnswer(
+            chord,
+            rf"\bar r_P\cdot\bar n = {along:.4g}\ \mathrm{{m}},\ d = \sqrt{{|\bar r_P|^2 - (\bar r_P\cdot\bar n)^2}}"
+            rf" = {d:.4g}\ \mathrm{{m}},\ 2d\sin\frac{{\phi}}{{2}} = {chord:.4g}\ \mathrm{{m}}",
+            {"radius-from-o": 2 * float(np.linalg.norm(p)) * math.sin(angle / 2), "arc": d * angle},
+        ),
+    }
+
+
+def two_turns_order(given: Mapping[str, float]) -> dict[str, PartAnswer]:
+    """A = a about fixed X, B = b about fixed Y. 'A then B' is [R_Y(b)][R_X(a)]: cos φ = (cos a + cos b +
+    cos a cos b − 1)/2 in symbols, φ, its axis, and the angle between the two orders' results. Uses the
+    finite-rotation scene's model."""
+    a, b = math.radians(given["a_deg"]), math.radians(given["b_deg"])
+    model = finite_rotation(np.array([a, 0.0, 0.0]), "1-2-3", second_axis="Y", second_angle_rad=b)
+    turn, other = model.a_then_b, model.b_then_a
+    angle = math.degrees(turn.angle_rad)
+    gap = math.degrees(model.order_gap_rad)
+    trace = float(np.trace(turn.R_world_body))
+    return {
+        "cos-angle": PartAnswer(
+            (sympy.cos(a_s) + sympy.cos(b_s) + sympy.cos(a_s) * sympy.cos(b_s) - 1) / 2,
+            r"\operatorname{tr}([R_Y(b)][R_X(a)]) = \cos b + \cos a + \cos a\cos b = 1 + 2\cos\phi",
+            {
+                "angles-added": sympy.cos(a_s + b_s),
+                "trace-no-one": (sympy.cos(a_s) + sympy.cos(b_s) + sympy.cos(a_s) * sympy.cos(b_s)) / 2,
+            },
+        ),
+        "angle": PartAnswer(
+            angle,
+            rf"\operatorname{{tr}}[R] = {trace:.4g} = 1 + 2\cos\phi,\ \phi = {angle:.4g}^\circ",
+            {"angles-added": given["a_deg"] + given["b_deg"], "radian-number": math.radians(angle)},
+        ),
+        "axis": PartAnswer(
+            _vec(turn.axis_world),
+            r"\{n\} = \frac{(R_{32} - R_{23},\ R_{13} - R_{31},\ R_{21} - R_{12})}{2\sin\phi}"
+            rf" = {_tex(turn.axis_world)}",
+            {"order-swapped": _vec(other.axis_world), "opposite": _vec(-turn.axis_world)},
+        ),
+        "gap": PartAnswer(
+            gap,
+            r"[R_{AB}][R_{BA}]^{\mathsf T}\ \text{is one turn, by}\ "
+            rf"{gap:.4g}^\circ\ (\text{{both orders turn by }} {angle:.4g}^\circ\text{{, about different axes}})",
+            {"commute": 0.0},
+        ),
+    }
+
+
+#: The choice ids of a small gap turn's axis, by (axis index, sign).
+GAP_AXES = {(0, 1): "x", (0, -1): "minus-x", (1, 1): "y", (1, -1): "minus-y", (2, 1): "z", (2, -1): "minus-z"}
+
+
+def small_turns_commute(given: Mapping[str, float]) -> dict[str, PartAnswer]:
+    """A = a about fixed Y, B = b about fixed Z, both small: the exact angle of the turn between the two orders'
+    results, the leading-order a·b in symbols, which axis that turn is about, and the gap with both angles doubled.
+    Uses the finite-rotation scene's model."""
+    a_deg, b_deg = given["a_deg"], given["b_deg"]
+
+    def model(scale: float):
+        return finite_rotation(
+            np.radians([scale * a_deg, 0.0, 0.0]),
+            "2-1-3",
+            second_axis="Z",
+            second_angle_rad=math.radians(scale * b_deg),
+        )
+
+    turns, doubled = model(1.0), model(2.0)
+    gap = math.degrees(turns.order_gap_rad)
+    gap_matrix = turns.a_then_b.R_world_body @ turns.b_then_a.R_world_body.T
+    axis, _ = axis_angle_from_matrix(gap_matrix)
+    index = int(np.argmax(np.abs(axis)))
+    if abs(axis[index]) < 0.99:
+        raise ValueError("the gap turn is not about a fixed axis")
+    choice = GAP_AXES[(index, 1 if axis[index] > 0 else -1)]
+    estimate = math.degrees(math.radians(a_deg) * math.radians(b_deg))
+    gap2 = math.degrees(doubled.order_gap_rad)
+    return {
+        "gap": PartAnswer(
+            gap,
+            r"[R_{AB}] = [R_Z(b)][R_Y(a)],\ [R_{BA}] = [R_Y(a)][R_Z(b)],\ "
+            rf"\operatorname{{tr}}([R_{{AB}}][R_{{BA}}]^{{\mathsf T}}) = 1 + 2\cos\gamma,\ \gamma = {gap:.4g}^\circ"
+            rf"\ (a b = {estimate:.4g}^\circ)",
+            {"commute": 0.0, "degree-product": a_deg * b_deg},
+        ),
+        "estimate": PartAnswer(
+            a_s * b_s,
+            r"[R_Z(b)][R_Y(a)] - [R_Y(a)][R_Z(b)] \approx a b\,([\tilde K][\tilde J] - [\tilde J][\tilde K])"
+            r" = -a b\,[\tilde I]:\ \gamma \approx a b",
+            {"sum": a_s + b_s, "half": a_s * b_s / 2},
+        ),
+        "gap-axis": PartAnswer(
+            choice,
+            r"[R_{AB}][R_{BA}]^{\mathsf T} \approx [I] - a b\,[\tilde I]:\ \text{a turn } a b \text{ about } -\bar I",
+            {"sense": "x", "turn-axis-y": "y", "turn-axis-z": "z"},
+        ),
+        "doubled": PartAnswer(
+            gap2,
+            rf"\gamma(2a, 2b) = {gap2:.4g}^\circ \approx 4\,a b",
+            {"twice": 2 * gap},
+        ),
+    }
+
+
+# -- 3.6 observations from a moving reference frame --------------------------------------------------------------
+
+SECONDS_PER_HOUR = 3600.0
+
+
+def foucault_plane_turn(given: Mapping[str, float]) -> dict[str, PartAnswer]:
+    """A Foucault pendulum at latitude λ: the plane's rate relative to the floor, Ω|sin λ| (deg/h), the time of one
+    full turn 2π/(Ω|sin λ|), and its sense seen from above (clockwise north of the equator)."""
+    lam = math.radians(given["latitude_deg"])
+    if abs(given["latitude_deg"]) < 10.0:
+        raise ValueError("too near the equator: the plane hardly turns")
+    omega = EARTH_RATE_RAD_S
+    rate = math.degrees(omega * abs(math.sin(lam))) * SECONDS_PER_HOUR
+    period = 2 * math.pi / (omega * abs(math.sin(lam)))
+    sense = "clockwise" if lam > 0 else "counterclockwise"
+    return {
+        "rate": PartAnswer(
+            rate,
+            rf"\Omega_z = \Omega\sin\lambda,\ |\dot\psi| = \Omega|\sin\lambda| = {omega:.6g} \times "
+            rf"{abs(math.sin(lam)):.4g}\ \mathrm{{rad/s}} = {rate:.4g}\ \mathrm{{deg/h}}",
+            {
+                "cos-lat": math.degrees(omega * math.cos(lam)) * SECONDS_PER_HOUR,
+                "full-rate": math.degrees(omega) * SECONDS_PER_HOUR,
+            },
+        ),
+        "period": PartAnswer(
+            period,
+            rf"T = \frac{{2\pi}}{{\Omega|\sin\lambda|}} = {period:.5g}\ \mathrm{{s}} = "
+            rf"{period / SECONDS_PER_HOUR:.4g}\ \mathrm{{h}}",
+            {"one-day": 2 * math.pi / omega, "cos-lat": 2 * math.pi / (omega * math.cos(lam))},
+        ),
+        "sense": PartAnswer(
+            sense,
+            r"\dot\psi = -\Omega\sin\lambda:\ "
+            + (r"\text{clockwise (north)}" if lam > 0 else r"\text{counterclockwise (south)}"),
+            {
+                "reversed": "counterclockwise" if lam > 0 else "clockwise",
+                "none": "none",
+            },
+        ),
+    }
+
+
+def stone_dropped_east(given: Mapping[str, float]) -> dict[str, PartAnswer]:
+    """A stone dropped from rest from height h at latitude λ: the fall time √(2h/g), the first-order eastward
+    deflection ⅓ Ω g t³ cos λ in symbols and its value, and its direction."""
+    h, lam, g = given["height_m"], math.radians(given["latitude_deg"]), given["g_m_s2"]
+    omega = EARTH_RATE_RAD_S
+    t = math.sqrt(2 * h / g)
+    east = omega * g * t**3 * math.cos(lam) / 3
+    return {
+        "fall-time": PartAnswer(
+            t,
+            rf"t = \sqrt{{2h/g}} = {t:.4g}\ \mathrm{{s}}",
+            {"missing-two": math.sqrt(h / g)},
+        ),
+        "formula": PartAnswer(
+            sympy.Rational(1, 3) * Omega * g_s * t_s**3 * sympy.cos(lam_s),
+            r"-2\bar\Omega\times(-g t\,\bar k) = 2 g t\,\Omega\cos\lambda\,\bar i,\ "
+            r"x = \int_0^t\!\!\int_0^{t'} 2 g \tau\,\Omega\cos\lambda\,d\tau\,dt' = \tfrac13\Omega g t^3\cos\lambda",
+            {
+                "sin-lat": sympy.Rational(1, 3) * Omega * g_s * t_s**3 * sympy.sin(lam_s),
+                "constant-coriolis": Omega * g_s * t_s**3 * sympy.cos(lam_s),
+            },
+        ),
+        "deflection": PartAnswer(
+            east,
+            rf"x = \tfrac13 \Omega g t^3\cos\lambda = {east * 1000:.4g}\ \mathrm{{mm}}",
+            {
+                "sin-lat": omega * g * t**3 * math.sin(lam) / 3,
+                "constant-coriolis": 3 * east,
+            },
+        ),
+        "direction": PartAnswer(
+            "east",
+            r"x > 0\ \text{for}\ \cos\lambda > 0:\ \text{east in both hemispheres}",
+            {"west": "west", "equator": "equator"},
+        ),
+    }
+
+
+def puck_on_turntable(given: Mapping[str, float]) -> dict[str, PartAnswer]:
+    """A frictionless puck moving straight at a constant velocity (u_x, u_y) (ground frame) over a turntable that
+    turns counterclockwise at Ω; at the instant it is at (d, 0, 0) and the table's axes xyz coincide with XYZ.
+    What a rider measures: v_rel = v − Ω×r, a_rel = −Ω×(Ω×r) − 2Ω×v_rel, and which way the path bends."""
+    spin, d, ux, uy = given["table_rate_rad_s"], given["distance_m"], given["u_x_m_s"], given["u_y_m_s"]
+    omega_vec = np.array([0.0, 0.0, spin])
+    r = np.array([d, 0.0, 0.0])
+    v = np.array([ux, uy, 0.0])
+    v_rel = v - np.cross(omega_vec, r)
+    centrifugal = -np.cross(omega_vec, np.cross(omega_vec, r))
+    coriolis = -2 * np.cross(omega_vec, v_rel)
+    a_rel = centrifugal + coriolis
+    speed, size = float(np.linalg.norm(v_rel)), float(np.linalg.norm(a_rel))
+    if speed < 0.1 or size < 0.1 * spin**2 * d:
+        raise ValueError("keep the puck moving on the table and its relative acceleration clear of zero")
+    turning = float(np.cross(v_rel, a_rel)[2]) / (speed * size)
+    if abs(turning) < 0.1:
+        raise ValueError("the relative path hardly bends here")
+    bend = "left" if turning > 0 else "right"
+    return {
+        "v-rel": PartAnswer(
+            _vec(v_rel),
+            rf"\bar v_{{\text{{rel}}}} = \bar v - \bar\Omega\times\bar r = {_tex(v)} - {_tex(np.cross(omega_vec, r))}"
+            rf" = {_tex(v_rel)}\ \mathrm{{m/s}}",
+            {"transport-sign": _vec(v + np.cross(omega_vec, r)), "no-transport": _vec(v)},
+        ),
+        "a-rel": PartAnswer(
+            _vec(a_rel),
+            r"\bar a_{\text{rel}} = \bar a - \bar\Omega\times(\bar\Omega\times\bar r) - 2\bar\Omega\times"
+            rf"\bar v_{{\text{{rel}}}} = \bar 0 + {_tex(centrifugal)} + {_tex(coriolis)} = {_tex(a_rel)}\ "
+            r"\mathrm{m/s^2}",
+            {
+                "no-coriolis": _vec(centrifugal),
+                "ground-velocity": _vec(centrifugal - 2 * np.cross(omega_vec, v)),
+                "straight-means-zero": (0.0, 0.0, 0.0),
+            },
+        ),
+        "bend": PartAnswer(
+            bend,
+            rf"(\bar v_{{\text{{rel}}}}\times\bar a_{{\text{{rel}}}})\cdot\bar k = "
+            rf"{float(np.cross(v_rel, a_rel)[2]):.4g}\ \mathrm{{m^2/s^3}}"
+            + (r" > 0:\ \text{left}" if bend == "left" else r" < 0:\ \text{right}"),
+            {"opposite": "right" if bend == "left" else "left", "straight": "straight"},
+        ),
+    }
+
+
+def train_coriolis_rails(given: Mapping[str, float]) -> dict[str, PartAnswer]:
+    """A train at speed v on a straight, level track heading ψ (compass bearing, clockwise from north) at latitude λ:
+    the Coriolis term −2Ω × v on the ground's (east, north, up) axes, the side force the rails give, 2 m Ω v |sin λ|
+    whatever the heading, which rail gives it, and the change in the vertical load, −2 m Ω v cos λ sin ψ."""
+    mass, v = given["mass_kg"], given["speed_m_s"]
+    psi, lam = math.radians(given["heading_deg"]), math.radians(given["latitude_deg"])
+    if abs(given["latitude_deg"]) < 10.0 or abs(math.sin(psi)) < 0.2:
+        raise ValueError(
+            "keep away from the equator and from a heading so near north-south that the load hardly changes"
+        )
+    omega_vec = EARTH_RATE_RAD_S * np.array([0.0, math.cos(lam), math.sin(lam)])
+    velocity = v * np.array([math.sin(psi), math.cos(psi), 0.0])
+    coriolis = -2 * np.cross(omega_vec, velocity)
+    side = mass * math.hypot(coriolis[0], coriolis[1])
+    load = -mass * float(coriolis[2])
+    vertical_only = -2 * np.cross(np.array([0.0, 0.0, omega_vec[2]]), velocity)
+    rail = "right" if lam > 0 else "left"
+    return {
+        "coriolis": PartAnswer(
+            _vec(coriolis),
+            rf"\bar\Omega = \Omega(0,\ \cos\lambda,\ \sin\lambda),\ \bar v = v(\sin\psi,\ \cos\psi,\ 0),\ "
+            r"-2\bar\Omega\times\bar v = 2\Omega v(\sin\lambda\cos\psi,\ -\sin\lambda\sin\psi,\ \cos\lambda\sin\psi)"
+            rf" = {_tex(coriolis)}\ \mathrm{{m/s^2}}",
+            {"sign": _vec(-coriolis), "vertical-omega-only": _vec(vertical_only)},
+        ),
+        "side-force": PartAnswer(
+            side,
+            rf"F = 2 m\Omega v|\sin\lambda| = {side:.4g}\ \mathrm{{N}}\ \text{{(for any heading)}}",
+            {
+                "cos-lat": 2 * mass * EARTH_RATE_RAD_S * v * abs(math.cos(lam)),
+                "no-two": side / 2,
+            },
+        ),
+        "rail": PartAnswer(
+            rail,
+            r"-2\bar\Omega\times\bar v\ \text{points to the "
+            + ("right" if lam > 0 else "left")
+            + r" of }\bar v\text{; that rail pushes back}",
+            {"opposite": "left" if lam > 0 else "right", "neither": "neither"},
+        ),
+        "load": PartAnswer(
+            load,
+            rf"\Delta N = -m\,(-2\bar\Omega\times\bar v)\cdot\bar k = -2 m\Omega v\cos\lambda\sin\psi = {load:.4g}\ "
+            r"\mathrm{N}",
+            {"sign": -load},
         ),
     }
