@@ -17,6 +17,7 @@ from fastapi.responses import HTMLResponse, RedirectResponse, Response
 from app.api.deps import CatalogueDep, SceneHostDep, SettingsDep
 from app.course import Catalogue, Chapter, Lesson, bench_reports, render_markdown
 from app.course.lessons import split_front_matter
+from app.physics.core.solution import WorkedExample
 from app.physics.mechanics.derivation import FORMULATION_TITLES, FORMULATIONS
 from app.physics.mechanics.engine import available_formulations
 from app.scenes import SCENES
@@ -183,9 +184,17 @@ def _lesson_config(lesson: Lesson, catalogue: Catalogue, scene_id: str | None) -
         "lesson_id": lesson.id,
         "section": lesson.section,
         "scene": catalogue.scenes[scene_id].schema() if scene_id else None,
-        "examples": [catalogue.examples[example_id].schema() for example_id in lesson.examples],
+        "examples": [_example_config(catalogue.examples[example_id]) for example_id in lesson.examples],
         "derivations": [_derivation_config(catalogue.derivations[system_id]) for system_id in lesson.derivations],
     }
+
+
+def _example_config(example: WorkedExample) -> dict:
+    """An example's schema, with its story rendered (Markdown to HTML; the page typesets the math)."""
+    config = example.schema()
+    if example.story is not None:
+        config["story_html"] = {part: render_markdown(text) for part, text in example.story.as_dict().items()}
+    return config
 
 
 def _derivation_config(system) -> dict:

@@ -4,7 +4,7 @@
 import { api } from "./api.js";
 import { config } from "./config.js";
 import { formatNumber } from "./format.js";
-import { katexInto } from "./katex.js";
+import { katexInto, renderMath } from "./katex.js";
 import { renderPlot } from "./plot.js";
 
 export const lesson = (function () {
@@ -339,14 +339,37 @@ export const lesson = (function () {
 
   // ---- solution panel ---------------------------------------------------------------
   const panel = document.getElementById("solution");
+  // An example's story (the words around its steps), typeset once and moved into each new rendering of its solution.
+  const STORY_PARTS = { situation: "The situation", wanted: "What is wanted", approach: "Why this approach", check: "The check", what_if: "What if" };
+  const stories = {};
+  function story(example) {
+    if (!example.story_html) return null;
+    if (!stories[example.id]) {
+      const part = (name) => {
+        const section = document.createElement("section");
+        section.className = `story story-${name.replace("_", "-")}`;
+        const title = document.createElement("h3");
+        title.textContent = STORY_PARTS[name];
+        const body = document.createElement("div");
+        body.innerHTML = example.story_html[name]; // server-rendered Markdown of our own example modules
+        renderMath(body);
+        section.append(title, body);
+        return section;
+      };
+      stories[example.id] = { before: ["situation", "wanted", "approach"].map(part), after: ["check", "what_if"].map(part) };
+    }
+    return stories[example.id];
+  }
   function renderSolution(example, result) {
     const box = document.createElement("div");
     box.className = "example";
     box.dataset.example = example.id;
     box.dataset.inputs = JSON.stringify(result.inputs);
     const h = document.createElement("h2");
-    h.textContent = `Worked solution — ${example.title}`;
+    h.textContent = `Worked ${example.story_html ? "example" : "solution"} — ${example.title}`;
     box.appendChild(h);
+    const words = story(example);
+    if (words) box.append(...words.before);
     const outputs = document.createElement("table");
     outputs.className = "outputs";
     outputs.innerHTML = "<thead><tr><th>output</th><th>value</th><th>unit</th></tr></thead>";
@@ -388,6 +411,7 @@ export const lesson = (function () {
       renderPlot(div, plot);
       box.appendChild(div);
     }
+    if (words) box.append(...words.after);
     return box;
   }
 

@@ -9,14 +9,26 @@ from pydantic import BaseModel, ConfigDict, Field, JsonValue
 from app.api.schemas.parameters import ParameterSpec, ParameterValue
 
 
+class ExampleStoryText(BaseModel):
+    situation: str
+    wanted: str
+    approach: str = Field(description="Why this frame, coordinates and method; what the alternatives would cost")
+    check: str = Field(description="The conservation law, limiting case or second method the Check step computes")
+    what_if: str = Field(description="One input to move, and what to look for in the scene")
+
+
 class ExampleSummary(BaseModel):
     """A worked example: its inputs (name, unit, default, range) and the unit of each output."""
 
     id: str
     title: str
     chapter: int
+    section: str = Field(description="The course section it belongs to (empty: not placed yet)")
     inputs: list[ParameterSpec]
     output_units: dict[str, str]
+    story: ExampleStoryText | None = Field(
+        description="The words around the steps (Markdown with $…$ LaTeX): situation, wanted, approach, check, what_if"
+    )
 
 
 class SolveRequest(BaseModel):

@@ -165,12 +165,37 @@ class Solution:
 
 
 @dataclass(frozen=True)
+class ExampleStory:
+    """The words around a worked example's steps, in one structure (Markdown with $…$ LaTeX, in our own words):
+    ``situation`` (the system and what is known), ``wanted`` (what is asked), ``approach`` (why this frame, these
+    coordinates and this method, and what the alternatives would cost), ``check`` (the conservation law, limiting
+    case or second method the solution's "Check" step computes) and ``what_if`` (one input to move, and what to look
+    for in the scene)."""
+
+    situation: str
+    wanted: str
+    approach: str
+    check: str
+    what_if: str
+
+    def as_dict(self) -> dict[str, str]:
+        return {
+            "situation": self.situation,
+            "wanted": self.wanted,
+            "approach": self.approach,
+            "check": self.check,
+            "what_if": self.what_if,
+        }
+
+
+@dataclass(frozen=True)
 class WorkedExample:
     """A worked example: its inputs and the function that solves it.
 
     ``solve`` takes validated inputs (SI; angles in degrees where the name ends in
     ``_deg``) and returns a :class:`Solution`; it raises ``ValueError`` for inputs
-    that are in range but physically impossible together.
+    that are in range but physically impossible together. ``section`` is the course section it
+    belongs to (``"4.3"``) and ``story`` the words around its steps (:class:`ExampleStory`).
     """
 
     id: str
@@ -179,12 +204,16 @@ class WorkedExample:
     inputs: ParameterSet
     solve: Callable[[Mapping[str, Any]], Solution]
     output_units: Mapping[str, str] = field(default_factory=dict)
+    section: str = ""
+    story: ExampleStory | None = None
 
     def schema(self) -> dict[str, Any]:
         return {
             "id": self.id,
             "title": self.title,
             "chapter": self.chapter,
+            "section": self.section,
             "inputs": self.inputs.schema(),
             "output_units": dict(self.output_units),
+            "story": self.story.as_dict() if self.story is not None else None,
         }

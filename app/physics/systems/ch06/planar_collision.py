@@ -26,7 +26,7 @@ import numpy as np
 
 from app.physics.bodies.inertia import thin_disk
 from app.physics.core.parameters import Parameter, ParameterError, ParameterSet
-from app.physics.core.solution import Solution, Step, WorkedExample
+from app.physics.core.solution import ExampleStory, Solution, Step, WorkedExample
 from app.physics.systems.ch06.impact import ImpactResult, resolve_impact
 
 _VECTORS = ("v1_m_s", "v2_m_s")
@@ -292,6 +292,27 @@ def solve(inputs: Mapping[str, Any]) -> Solution:
             },
             {"T": "J", "T'": "J", "Delta_T": "J"},
         ),
+        Step(
+            "Check: the impulse is internal to the pair and acts at C",
+            r"m_1\bar v_1 + m_2\bar v_2 = m_1\bar v_1' + m_2\bar v_2',\quad H_{C,i} = I_i\omega_i + "
+            r"m_i\,[(\bar r_i - \bar r_C)\times\bar v_i]_z \text{ unchanged for each disk}",
+            {
+                "p_before": d1.momentum_N_s + d2.momentum_N_s,
+                "p_after": a1.momentum_N_s + a2.momentum_N_s,
+                "H_C1_before": d1.angular_momentum_about(c.contact_point_m),
+                "H_C1_after": a1.angular_momentum_about(c.contact_point_m),
+                "H_C2_before": d2.angular_momentum_about(c.contact_point_m),
+                "H_C2_after": a2.angular_momentum_about(c.contact_point_m),
+            },
+            {
+                "p_before": "N·s",
+                "p_after": "N·s",
+                "H_C1_before": "kg·m²/s",
+                "H_C1_after": "kg·m²/s",
+                "H_C2_before": "kg·m²/s",
+                "H_C2_after": "kg·m²/s",
+            },
+        ),
     )
     outputs = {
         "v1_after_m_s": a1.velocity_m_s,
@@ -320,4 +341,41 @@ EXAMPLE = WorkedExample(
         "energy_loss_J": "J",
         "slip_state": "",
     },
+    section="6.4",
+    story=ExampleStory(
+        situation=(
+            "Two uniform disks slide on a smooth horizontal table and strike each other. Before the impact we know "
+            "each disk's mass, radius, velocity and spin, and the direction $\\beta$ of the line from disk 1's "
+            "centre to disk 2's at the instant of contact. The contact has a restitution coefficient $e$ and a "
+            "friction coefficient $\\mu$."
+        ),
+        wanted=(
+            "Both disks' velocities and spins just after the impact, the impulse that passed between them, and the "
+            "kinetic energy the impact took."
+        ),
+        approach=(
+            "The impact lasts so short a time that the disks do not move while it acts: only the impulse "
+            "$\\bar P$ at the contact changes their velocities, and every finite force (gravity and the "
+            "table's support) can be left out. So we work with impulse and momentum, not with forces and "
+            "accelerations. "
+            "We resolve everything along the contact's own normal $\\bar n$ and tangent $\\bar t$, where "
+            "restitution and friction are stated, and describe how the impulse changes the contact's relative "
+            "velocity with one $2\\times2$ matrix $W$, the inverse effective mass. Tracking each disk's "
+            "velocity separately through the impact would take twice the unknowns and hide the one number "
+            "friction cares about, the contact's slip speed $v_t$."
+        ),
+        check=(
+            "The impulse on disk 2 is the opposite of the one on disk 1, so the pair's linear momentum cannot "
+            "change. Each impulse acts at the contact point $C$, so each disk's angular momentum about $C$ cannot "
+            "change either. The last step computes all three before and after: they agree to round-off, while the "
+            "energy drops by $\\Delta T \\ge 0$."
+        ),
+        what_if=(
+            "Move the **friction coefficient** from 0 to about 1 with the disks striking off-centre. With "
+            "$\\mu = 0$ the impulse is purely normal: only the velocities' normal parts change and the spins stay "
+            "as they were. As $\\mu$ grows, $P_t$ grows until the slip stops during the impact (the slip "
+            "state says *stick*); beyond that, more friction changes nothing. In the scene, watch the disks "
+            "leave spinning."
+        ),
+    ),
 )
