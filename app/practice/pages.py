@@ -7,7 +7,7 @@ from fastapi import APIRouter, HTTPException
 from fastapi.responses import HTMLResponse
 
 from app.api.deps import CatalogueDep
-from app.practice.routes import BookDep
+from app.practice.deps import BookDep
 from app.web.pages import _page, _template, esc
 
 router = APIRouter(tags=["pages"], include_in_schema=False)

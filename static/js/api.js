@@ -21,3 +21,6 @@ export async function api(method, url, body, headers = {}) {
   if (!response.ok) throw new ApiError(response.status, data, response.statusText);
   return data;
 }
+
+// A random 128-bit id in hex: a page session's id, or the key that claims it.
+export const randomId = () => Array.from(crypto.getRandomValues(new Uint8Array(16)), (b) => b.toString(16).padStart(2, "0")).join("");

@@ -4,7 +4,7 @@
 // Opened from a class room (?room=, an exercise the instructor assigned): the room's numbers, and every answer goes
 // with the room's student token too, so the instructor's results count it.
 import "./common.js";
-import { api, ApiError } from "./api.js";
+import { api, ApiError, randomId } from "./api.js";
 import { element } from "./dom.js";
 import { katexInto, renderMath } from "./katex.js";
 import { LEARNER_KEY, learner } from "./practice_list.js";
@@ -143,9 +143,34 @@ function renderPart(part, index) {
   return element("li", { class: "part", id: `part-${part.id}` }, prompt, form, hints, feedback);
 }
 
+// On a laptop, once a part is answered, the scene at this exercise's numbers beside it (a page session of its own, kept
+// for this tab); on a phone the "See it" link opens it in its lesson instead.
+const roomForScene = window.matchMedia("(min-width: 1100px)");
+let sceneShown = false;
+async function showSceneBeside() {
+  if (sceneShown || !exercise.scene || !exercise.scene.url || !roomForScene.matches) return;
+  sceneShown = true;
+  const { scene_id: sceneId, params } = exercise.scene;
+  const kept = `dynlab.exercise-scene.${exerciseId}.${exercise.variant}`;
+  let session = null;
+  try { session = JSON.parse(sessionStorage.getItem(kept)); } catch { session = null; }
+  session ||= { id: randomId(), key: randomId() };
+  try {
+    await api("PUT", `/api/scenes/${encodeURIComponent(sceneId)}/sessions/${session.id}`, { params }, { "X-Session-Key": session.key });
+  } catch (error) {
+    sceneShown = false; // busy, or this device holds its share of scenes: "See it" still opens it
+    return;
+  }
+  sessionStorage.setItem(kept, JSON.stringify(session));
+  document.getElementById("exercise-viewer").src = `/viewer/${encodeURIComponent(sceneId)}/${session.id}/?hideViserLogo`;
+  document.getElementById("exercise-scene-lesson").href = exercise.scene.url;
+  document.getElementById("exercise-scene").hidden = false;
+}
+
 function partDone(partId) {
   answered.add(partId);
   if (exercise.scene && exercise.scene.url) seeIt.hidden = false;
+  showSceneBeside();
   if (answered.size === exercise.parts.length) showSolution("GET");
 }
 
@@ -169,6 +194,7 @@ async function showSolution(method) {
     document.getElementById("worked").hidden = false;
     giveUp.hidden = true;
     if (exercise.scene && exercise.scene.url) seeIt.hidden = false;
+    showSceneBeside();
   } catch (error) {
     if (method === "POST") { errorBox.textContent = error.message; errorBox.hidden = false; }
   }
@@ -194,6 +220,7 @@ async function showKept() {
     }
   }
   if (answered.size && exercise.scene && exercise.scene.url) seeIt.hidden = false;
+  if (answered.size) showSceneBeside();
   if (answered.size === exercise.parts.length) showSolution("GET");
 }
 

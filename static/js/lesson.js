@@ -1,7 +1,7 @@
 // Lesson page: controls generated from the scene's parameter schema, the live
 // viewer (one scene per page session) and the worked-solution panel. `lesson` is what the page's other scripts drive
 // (null on a lesson with neither a scene nor worked examples); the browser tests read it too, by importing this module.
-import { api } from "./api.js";
+import { api, randomId } from "./api.js";
 import { config } from "./config.js";
 import { formatNumber } from "./format.js";
 import { katexInto, renderMath } from "./katex.js";
@@ -16,7 +16,6 @@ export const lesson = (function () {
 
   // ---- session: one per tab and lesson, kept across reloads --------------------
   const storageKey = `dynlab.session.${config.lesson_id}`;
-  const randomId = () => Array.from(crypto.getRandomValues(new Uint8Array(16)), (b) => b.toString(16).padStart(2, "0")).join("");
   let saved = null;
   try { saved = JSON.parse(sessionStorage.getItem(storageKey)); } catch (e) { saved = null; }
   // The key claims the session on the first change: nobody who only learns the id can drive this page's scene.

@@ -7,9 +7,11 @@ lists its section's exercises and the course page counts what the student solved
 from __future__ import annotations
 
 import json
+import re
 from pathlib import Path
 from urllib.parse import parse_qs, urlsplit
 
+import httpx
 import pytest
 
 from app.practice.exercise import load_exercises
@@ -69,6 +71,12 @@ def test_a_student_works_an_exercise_step_by_step_and_keeps_it_through_a_restart
         page.click("#part-h .hint-button")
         assert page.locator("#part-h .hints li").count() == 1
         assert _check(page, "h", answers["h"].value) == "correct"
+        # A part answered: on a laptop the scene at these numbers opens beside the exercise (its own page session).
+        page.wait_for_selector("#exercise-scene:not([hidden])")
+        viewer = re.search(r"^/viewer/angular-momentum/([A-Za-z0-9_-]+)/", page.get_attribute("#exercise-viewer", "src"))
+        assert viewer is not None
+        beside = httpx.get(f"{server.url}/api/scenes/angular-momentum/sessions/{viewer.group(1)}").json()
+        assert beside["params"]["mass_kg"] == drawn.given["mass_kg"]
         # Part 2 in radians (any unit of the dimension); part 3 first in N·m (a moment: named), then in kN.
         assert _check(page, "angle", answers["angle"].value * 3.141592653589793 / 180, "rad") == "correct"
         assert _check(page, "force", answers["force"].value, "N*m") == "wrong"
