@@ -167,22 +167,32 @@ def test_an_instructor_assigns_an_exercise_and_watches_the_class_work_it(browser
         assert _check(student, "h", answers["h"].mistakes["h-along-shaft"]) == "wrong"
         assert _check(student, "h", answers["h"].value) == "correct"
 
+        # A second student, on a laptop: the same mistake, then gives up and reads the worked solution.
+        second_context, second, second_errors = _student(browser, live_server, code, (1366, 900))
+        student_context = [student_context, second_context]
+        second.click(f".room-assigned a[data-exercise='{EXERCISE}']")
+        second.wait_for_selector(READY)
+        assert _check(second, "h", answers["h"].mistakes["h-along-shaft"]) == "wrong"  # the class's numbers: the same
+        second.click("#give-up")
+        second.wait_for_selector("#worked:not([hidden])")
+
         row = teacher.locator(f"table[data-exercise='{EXERCISE}'] tr[data-part='h']")
         teacher.wait_for_function(  # the panel's results refresh by themselves
-            "(sel) => { const r = document.querySelector(sel); return r && r.children[2].textContent === '1'; }",
+            "(sel) => { const r = document.querySelector(sel); return r && r.children[1].textContent === '2'; }",
             arg=f"table[data-exercise='{EXERCISE}'] tr[data-part='h']",
         )
         cells = row.locator("td").all_inner_texts()
-        assert cells[:3] == ["1", "1", "0"] and "h-along-shaft × 1" in cells[3]
+        assert cells[:3] == ["2", "1", "1"] and "h-along-shaft × 2" in cells[3]  # tried, solved, gave up; the mistake
         assert teacher.locator(f"table[data-exercise='{EXERCISE}'] .room-part-names").count() == 0  # anonymous
         teacher.check("#room-assign-names")
         names = teacher.locator(f"table[data-exercise='{EXERCISE}'] tr[data-names-of='h']")
         names.wait_for()
-        assert names.inner_text() == "student 1: solved"
+        assert names.inner_text() == "student 1: solved · student 2: gave up"
         teacher.locator(f"table[data-exercise='{EXERCISE}']").scroll_into_view_if_needed()
         screenshot(teacher, shots / "room-exercise-results.png")
-        assert not teacher_errors and not student_errors, (teacher_errors, student_errors)
+        assert not teacher_errors and not student_errors and not second_errors, (teacher_errors, student_errors)
     finally:
-        if student_context is not None:
-            student_context.close()
+        for context in student_context if isinstance(student_context, list) else [student_context]:
+            if context is not None:
+                context.close()
         teacher_context.close()
