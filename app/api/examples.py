@@ -57,7 +57,12 @@ def solve_example(example_id: str, request: SolveRequest, catalogue: CatalogueDe
             status_code=404, detail=f"no worked example {example_id!r}; known: {', '.join(catalogue.examples)}"
         )
     inputs = example.inputs.validate(request.inputs)
-    result = example.solve(inputs).as_dict()
+    try:
+        result = example.solve(inputs).as_dict()
+    except ParameterError:
+        raise  # names its input: the handler's 422
+    except ValueError as exc:  # in range, but impossible together (WorkedExample.solve's contract): a 422, not a 500
+        raise unprocessable(["body", "inputs"], str(exc)) from None
     result["inputs"] = inputs
     return result
 
