@@ -43,7 +43,9 @@ def _attempt(api, exercise_id: str, number: int, part: str, answer: dict, header
 def test_the_exercises_are_listed_by_section_and_an_unknown_one_is_a_404(api):
     listed = api.get("/api/exercises", params={"section": "5.2"}).json()
     assert [e["id"] for e in listed] == [e.id for e in EXERCISES.values() if e.section == "5.2"]
-    assert listed[0] == {"id": PLATE, "title": EXERCISES[PLATE].title, "chapter": 5, "section": "5.2", "parts": 3}
+    assert next(e for e in listed if e["id"] == PLATE) == {
+        "id": PLATE, "title": EXERCISES[PLATE].title, "chapter": 5, "section": "5.2", "parts": 3
+    }  # fmt: skip
     assert api.get("/api/exercises", params={"section": "5.2; drop"}).status_code == 422
     assert api.get("/api/exercises/no-such-exercise").status_code == 404
     assert api.get(f"/api/exercises/{PLATE}", params={"variant": -1}).status_code == 422
@@ -78,7 +80,8 @@ def test_a_learner_works_an_exercise_part_by_part_and_keeps_it(api, served):
         "exercise_id": DISK, "part": "h", "variant": number, "attempts": 2, "solved": True, "gave_up": False,
         "mistakes": ["h-along-axis"],
     }  # the unreadable answer was not counted
-    assert kept["sections"]["5.3"] == {"exercises": 1, "started": 1, "solved": 0}
+    in_section = sum(e.section == "5.3" for e in EXERCISES.values())
+    assert kept["sections"]["5.3"] == {"exercises": in_section, "started": 1, "solved": 0}
     assert api.get(f"/api/exercises/{DISK}/solution", headers=me).status_code == 403  # two parts still open
     for part in ("angle", "force"):
         assert _attempt(api, DISK, number, part, {"value": drawn.answers[part].value, "unit": ""}, me).json()["correct"]

@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 
 from app.physics.core.parameters import Parameter, ParameterError, ParameterSet
-from app.physics.core.solution import Solution, Step, WorkedExample
+from app.physics.core.solution import ExampleStory, Solution, Step, WorkedExample
 from app.physics.math.vectors import moment_about_point, unit_vector
 
 
@@ -177,6 +177,24 @@ def solve(inputs: Mapping[str, Any]) -> Solution:
             {"e_AB": "", "M_AB": "N·m"},
             scales={"M_AB": scale["M_AB_Nm"]},
         ),
+        Step(
+            "Check: other points of the line of action and of the axis give the same moments",
+            r"\bar M_A = \bar r_{D/A}\times\bar F = \bar r_{C/A}\times\bar F,\qquad "
+            r"M_{AB} = (\bar r_{C/B}\times\bar F)\cdot\bar e_{AB} = (\bar r_{C/A}\times\bar F)\cdot\bar e_{AB}",
+            {
+                "M_A (via C)": loads.M_A_Nm,
+                "M_A (via D)": moment_about_point(g.D, loads.F_N, g.A),
+                "M_AB (about A)": loads.M_AB_Nm,
+                "M_AB (about B)": float(moment_about_point(g.C, loads.F_N, g.B) @ g.e_AB),
+            },
+            {"M_A (via C)": "N·m", "M_A (via D)": "N·m", "M_AB (about A)": "N·m", "M_AB (about B)": "N·m"},
+            scales={
+                "M_A (via C)": scale["M_A_Nm"],
+                "M_A (via D)": scale["M_A_Nm"],
+                "M_AB (about A)": scale["M_AB_Nm"],
+                "M_AB (about B)": scale["M_AB_Nm"],
+            },
+        ),
     )
     outputs = {
         "F_N": loads.F_N,
@@ -195,4 +213,39 @@ EXAMPLE = WorkedExample(
     inputs=INPUTS,
     solve=solve,
     output_units={"F_N": "N", "F_BC_N": "N", "M_A_Nm": "N·m", "M_z_Nm": "N·m", "M_AB_Nm": "N·m"},
+    section="1.1",
+    story=ExampleStory(
+        situation=(
+            "A robotic arm has a base link $AB$, 2 m long, lying in the horizontal plane at $\\theta = 25°$ "
+            "from the $x$ axis, and a second link $BC$, 1.5 m long, raised $\\gamma = 40°$ about a horizontal "
+            "pin at $B$, so both links stand in one vertical plane. A cable from the tip $C$ to the anchor "
+            "$D$ on the $x$ axis, 3.5 m from the base $A$, pulls with a tension of 5000 N."
+        ),
+        wanted=(
+            "(a) The part of the cable force that acts along link $BC$; (b) the moment of the cable force about "
+            "the base $A$; (c) its moment about the vertical axis through $A$, which the base's turning motor "
+            "must resist; (d) its moment about the line of link $AB$, which twists that link."
+        ),
+        approach=(
+            "Everything is done with Cartesian components on one fixed frame $xyz$ at $A$, $z$ up: write the "
+            "position of every point, turn the cable's direction into a unit vector, and let dot and cross "
+            "products do the geometry. A component along a line is a dot product with that line's unit "
+            "vector; a moment about a point is a cross product; a moment about an axis is the moment about "
+            "any point of it, dotted with the axis. Finding perpendicular distances and angles in 3D with "
+            "trigonometry instead would need a sketch for each part and is where sign mistakes creep in."
+        ),
+        check=(
+            "A force's moment about a point does not depend on which point of its line of action we use, so "
+            "$\\bar r_D\\times\\bar F$ must equal $\\bar r_C\\times\\bar F$: $D$ is on the cable too. A "
+            "moment about an axis does not depend on which point of the axis we take moments about, so using "
+            "$B$ instead of $A$ for $M_{AB}$ must give the same number. The last step computes both pairs, and "
+            "they agree to round-off."
+        ),
+        what_if=(
+            "Move **θ** down to 0°. The arm then lies in the vertical $xz$ plane with the cable, so the "
+            "force crosses the $z$ axis and is coplanar with line $AB$: $M_z$ and $M_{AB}$ both fall to zero "
+            "and $\\bar M_A$ points purely along $\\bar j$ (16 445 N·m). In the scene, watch the green $M_z$ "
+            "and blue $M_{AB}$ arrows shrink away while the purple $\\bar M_A$ swings round to horizontal."
+        ),
+    ),
 )

@@ -28,7 +28,7 @@ from app.physics.bodies.composite import (
     validate_records,
 )
 from app.physics.core.parameters import Parameter, ParameterSet
-from app.physics.core.solution import Solution, Step, WorkedExample
+from app.physics.core.solution import ExampleStory, Solution, Step, WorkedExample
 from app.physics.math.rotations import SEQUENCES
 
 #: A bracket: a 12 kg plate (100 kg/m²) with a 80 mm hole, and a 3 kg handle standing on one edge.
@@ -119,6 +119,33 @@ def composite_from_inputs(inputs: Mapping[str, Any]) -> CompositeBody:
     return combine(parts_from_records(inputs["bodies"]))
 
 
+def _check_step(body: CompositeBody, point: np.ndarray, inertia_point: np.ndarray) -> Step:
+    """The inertia about P again, each part moved straight from its own centre of mass to P (never through G), and the
+    trace of the tensor at G beside the sum of the principal moments (a turn of the axes keeps it)."""
+    direct = sum(
+        (
+            inertia.parallel_axis(p.inertia_cm_reference_kg_m2, p.signed_mass_kg, p.position_m - point)
+            for p in body.parts
+        ),
+        np.zeros((3, 3)),
+    )
+    scale = float(np.trace(np.abs(inertia_point))) + float(np.trace(np.abs(body.inertia_cm_kg_m2)))
+    return Step(
+        "Check: I_P part by part, each moved straight to P; the trace at G equals I₁ + I₂ + I₃",
+        r"\mathbf{I}_P = \sum_k \left[\mathbf{I}_{G_k} + m_k\left(|\mathbf{e}_k|^2\,\mathbf{1} - "
+        r"\mathbf{e}_k\mathbf{e}_k^{\mathsf T}\right)\right],\quad \mathbf{e}_k = \mathbf{r}_{G_k} - "
+        r"\mathbf{r}_P;\qquad \operatorname{tr}\mathbf{I}_G = I_1 + I_2 + I_3",
+        {
+            "I_P (part by part)": direct,
+            "I_P (through G)": inertia_point,
+            "tr I_G": float(np.trace(body.inertia_cm_kg_m2)),
+            "I_1 + I_2 + I_3": float(np.sum(body.principal.moments_kg_m2)),
+        },
+        {"I_P (part by part)": "kg·m²", "I_P (through G)": "kg·m²", "tr I_G": "kg·m²", "I_1 + I_2 + I_3": "kg·m²"},
+        scales={"I_P (part by part)": scale, "I_P (through G)": scale},
+    )
+
+
 def solve(inputs: Mapping[str, Any]) -> Solution:
     body = composite_from_inputs(inputs)
     point = np.asarray(inputs["about_point_m"], float)
@@ -170,6 +197,7 @@ def solve(inputs: Mapping[str, Any]) -> Solution:
             },
             {"I_1..3": "kg·m²", "e_1": "", "e_2": "", "e_3": ""},
         ),
+        _check_step(body, point, inertia_point),
     )
     outputs = {
         "mass_kg": body.mass_kg,
@@ -204,4 +232,43 @@ EXAMPLE = WorkedExample(
         "principal_moments_point_kg_m2": "kg·m²",
         "principal_axes_point": "",
     },
+    section="5.2",
+    story=ExampleStory(
+        situation=(
+            "A bracket is made from a 12 kg steel plate, 0.4 m by 0.3 m, with a hole of 80 mm radius cut through it "
+            "(centred 0.1 m along $x$ and 0.05 m along $y$ from the plate's centre), and a 3 kg rod 0.5 m long "
+            "standing upright on the middle of one short edge as a handle. Each piece's mass, size, position and "
+            "orientation is known in the reference frame $xyz$, "
+            "whose origin is the centre of the plate."
+        ),
+        wanted=(
+            "The bracket's mass and centre of mass $G$, its inertia tensor about $G$ on the reference axes, the "
+            "tensor about a second point $P$ (the origin, unless you move it), and its principal moments and "
+            "principal axes at $G$."
+        ),
+        approach=(
+            "Integrating $\\int(|\\bar d|^2\\mathbf 1 - \\bar d\\bar d^{\\mathsf T})\\,dm$ over a plate with a hole "
+            "and a handle is possible but slow, and every new part would need a new integral. Instead each piece is "
+            "a shape whose inertia about its own centre of mass, on its own axes, is in a table, and the hole is a "
+            "piece with negative mass. We turn each table tensor onto the reference axes, move each one to the "
+            "common centre of mass $G$ with the parallel-axis theorem, and add. We go to $G$ first because the "
+            "principal moments and axes that describe the body are those at $G$; the tensor at any other point "
+            "$P$ is then one more shift. The principal axes are an eigenproblem of one symmetric 3 × 3 matrix."
+        ),
+        check=(
+            "The check builds the tensor about $P$ a second way: each piece is moved straight from its own "
+            "centre of mass to $P$, never through $G$, and the pieces are added there. The two routes differ only "
+            "by cross terms that are sums of each mass times its offset from $G$, and those add up to zero "
+            "because $G$ is the centre of mass, so the two tensors must agree to round-off. The step also compares "
+            "the trace of the tensor at $G$ with the sum of the principal moments: turning the axes cannot change "
+            "the trace."
+        ),
+        what_if=(
+            "Move the point **P** (m) away from the origin, for example to the top of the handle at "
+            "$(-0.2, 0, 0.5)$ m. Every entry of $\\mathbf I_P$ grows or shifts by the parallel-axis terms, while "
+            "$\\mathbf I_G$ and its principal moments stay exactly as they were. Then delete the hole from the "
+            "body list: the mass rises by 2.01 kg, $G$ moves back towards the plate's centre, and in the scene the "
+            "principal axes and the ellipsoid turn."
+        ),
+    ),
 )
