@@ -33,7 +33,7 @@ from app.practice import in_room as practice_in_room
 from app.practice import pages as practice_pages
 from app.practice import routes as practice
 from app.practice.book import load_book
-from app.practice.progress import SqlProgressStore
+from app.practice.progress import SqlProgressStore, SqlRoomWorkStore
 from app.scenes import SCENES
 from app.scenes.host.host import SceneHost
 from app.scenes.host.pool import WorkerPool
@@ -115,6 +115,8 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     # Learners working alone and their exercise progress (None with nothing kept); those unused for the rooms' keeping
     # time are forgotten at start-up.
     app.state.progress = _kept_progress(database, keep_days=settings.keep_rooms_days)
+    # A room's record of its students' work on what it assigned (with the rooms: deleted with them).
+    app.state.room_work = SqlRoomWorkStore(database) if database is not None else None
     # The exercises beside the lessons, checked against the course (a bad one stops the server, as a bad lesson does).
     app.state.exercises = load_book(settings.lessons_dir, chapters=app.state.catalogue.chapters, scenes=SCENES)
     app.state.practice_limits = practice.PracticeLimits()

@@ -2,7 +2,7 @@
 numbers, and whether the instructor's view of the results shows names.
 
 The room keeps the assignment as data (with its state and record); the practice package (:mod:`app.practice.in_room`)
-checks the exercise ids, draws the class's numbers and reads the students' progress.
+checks the exercise ids, draws the class's numbers and keeps and reads the students' work.
 """
 
 from __future__ import annotations
@@ -15,8 +15,6 @@ from typing import Any
 
 #: Most exercises one assignment holds (a section has three to five; an instructor may pick across sections).
 MAX_ASSIGNED = 24
-#: Most learners one student's work in a room is read from (a phone and a laptop, each with its own learner token).
-MAX_LEARNERS_PER_STUDENT = 4
 
 
 @dataclass(frozen=True)

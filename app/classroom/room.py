@@ -21,7 +21,7 @@ from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass, field
 from typing import Any, Protocol, TypeVar
 
-from app.classroom.assignment import MAX_LEARNERS_PER_STUDENT, Assignment
+from app.classroom.assignment import Assignment
 from app.classroom.polls import Poll
 from app.course import Catalogue
 from app.scenes.host.host import STAGE_PREFIX, TIME_SCALE_RANGE
@@ -46,6 +46,11 @@ MAX_STUDENTS = 500
 MAX_NAME_LENGTH = 40
 #: The address students join at when no other is known (``dynlab serve``'s default address).
 DEFAULT_JOIN_BASE = "http://127.0.0.1:8000"
+
+
+#: Characters that turn the direction of the text after them (a name "\u202eecilA" shows as "Alice" and reverses what
+#: follows it on the instructor's page): refused in names.
+BIDI_CONTROLS = frozenset("\u061c\u200e\u200f\u202a\u202b\u202c\u202d\u202e\u2066\u2067\u2068\u2069")
 
 
 class RoomError(ValueError):
@@ -175,10 +180,10 @@ class Room:
     instructor_sockets: int = 0
     polls: dict[str, Poll] = field(default_factory=dict)
     poll_id: str | None = None
-    #: The exercises the instructor assigned (app.classroom.assignment; None: none), and by student id the learners
-    #: (app.practice.progress) whose work on them the instructor's results read.
+    #: The exercises the instructor assigned (app.classroom.assignment; None: none), and the seed of the class's one
+    #: set of numbers, kept while the assignment changes, is taken back or turns the class's numbers off and on.
     assignment: Assignment | None = None
-    student_learners: dict[str, list[str]] = field(default_factory=dict)
+    class_seed: int | None = None
     last_used_s: float = field(default_factory=time.monotonic)
     #: True after a change refused midway whose stage could not be put back: the next change opens the stage afresh.
     _stage_unsure: bool = field(default=False, repr=False)
@@ -232,7 +237,7 @@ class Room:
                 "polls": [poll.record() for poll in self.polls.values()],
                 "poll_id": self.poll_id,
                 "assignment": self.assignment.record() if self.assignment is not None else None,
-                "student_learners": {s: list(ids) for s, ids in self.student_learners.items()},
+                "class_seed": self.class_seed,
             }
 
     @classmethod
@@ -288,9 +293,7 @@ class Room:
             room.polls[poll.poll_id] = poll
         kept_assignment = record.get("assignment")  # rooms kept before exercises were assigned have none
         room.assignment = Assignment.from_record(kept_assignment) if kept_assignment else None
-        room.student_learners = {
-            s: list(ids) for s, ids in record.get("student_learners", {}).items() if s in room.students
-        }
+        room.class_seed = record.get("class_seed")
         room._stage_unsure = room.scene_id is not None
         return room
 
@@ -325,7 +328,7 @@ class Room:
             self._removed_tokens, self._removed_devices = kept._removed_tokens, kept._removed_devices
             self._students_ever = kept._students_ever
             self.polls, self.poll_id = kept.polls, kept.poll_id
-            self.assignment, self.student_learners = kept.assignment, kept.student_learners
+            self.assignment, self.class_seed = kept.assignment, kept.class_seed
             self.kept_version = kept.kept_version
             self.last_used_s = time.monotonic()
             stage_fields = ("scene_id", "params", "playing", "time_scale", "reset_count")
@@ -748,9 +751,11 @@ class Room:
         if (
             not isinstance(name, str)
             or len(name) > MAX_NAME_LENGTH
-            or any(ord(c) < 32 or 0x7F <= ord(c) < 0xA0 for c in name)
+            or any(ord(c) < 32 or 0x7F <= ord(c) < 0xA0 or c in BIDI_CONTROLS for c in name)
         ):
-            raise RoomError("name", f"name: at most {MAX_NAME_LENGTH} printable characters")
+            raise RoomError(
+                "name", f"name: at most {MAX_NAME_LENGTH} printable characters, without text-direction controls"
+            )
         name = name.strip()
 
         def work() -> Student:
@@ -833,7 +838,6 @@ class Room:
                 self._removed_devices.add(student.device_digest)
             for poll in self.polls.values():
                 poll.withdraw(student.student_id)
-            self.student_learners.pop(student.student_id, None)  # their exercise work leaves the results too
             self.revision += 1
             self._keep(withdrawn_student=student_id)
             return student
@@ -846,28 +850,13 @@ class Room:
 
         def work() -> Assignment | None:
             self.assignment = assignment
+            if assignment is not None and assignment.class_seed is not None:
+                self.class_seed = assignment.class_seed
             self.revision += 1
             self._keep()
             return assignment
 
         return self._changing(work)
-
-    def link_learner(self, student_id: str, learner_id: str) -> None:
-        """The room's results read ``learner_id``'s work as ``student_id``'s (a student working an assigned exercise
-        with that learner's token); kept with the room. At most :data:`MAX_LEARNERS_PER_STUDENT` per student, the
-        most recent."""
-        with self.lock:
-            if learner_id in self.student_learners.get(student_id, ()):
-                return
-
-        def work() -> None:
-            if student_id not in self.students:
-                raise StudentRemoved("the instructor removed you from this room")
-            linked = [i for i in self.student_learners.get(student_id, []) if i != learner_id]
-            self.student_learners[student_id] = [*linked, learner_id][-MAX_LEARNERS_PER_STUDENT:]
-            self._keep()
-
-        self._changing(work)
 
     # -- polls -------------------------------------------------------------------------
     def open_poll(self, raw: Mapping[str, Any]) -> Poll:

@@ -20,7 +20,7 @@ from sqlalchemy.exc import IntegrityError, SQLAlchemyError
 
 from app.classroom.room import DEFAULT_JOIN_BASE, Room, RoomAlreadyClosed, RoomChangedElsewhere
 from app.storage.database import Database, StoreUnavailable
-from app.storage.tables import answers, rooms
+from app.storage.tables import answers, room_exercise_work, rooms
 
 log = logging.getLogger(__name__)
 
@@ -121,6 +121,12 @@ class SqlRoomStore:
                         answers.c.room_id == room.room_id, answers.c.student_id == withdrawn_student
                     )
                 )
+                work = room_exercise_work.c
+                connection.execute(
+                    sa.delete(room_exercise_work).where(
+                        work.room_id == room.room_id, work.student_id == withdrawn_student
+                    )
+                )
             self.database.announce(connection, "room", room.room_id, version=room.kept_version + 1)
         room.kept_version += 1
 
@@ -160,6 +166,7 @@ class SqlRoomStore:
         """Forget a room and every answer in it; False if there was no such room."""
         with self._writing(f"the deletion of room {room_id}") as connection:
             connection.execute(sa.delete(answers).where(answers.c.room_id == room_id))
+            connection.execute(sa.delete(room_exercise_work).where(room_exercise_work.c.room_id == room_id))
             deleted = connection.execute(sa.delete(rooms).where(rooms.c.room_id == room_id)).rowcount > 0
             if deleted:
                 self.database.announce(connection, "room_closed", room_id)
@@ -172,6 +179,7 @@ class SqlRoomStore:
             old = [row[0] for row in connection.execute(sa.select(rooms.c.room_id).where(rooms.c.used_at < cutoff))]
             if old:
                 connection.execute(sa.delete(answers).where(answers.c.room_id.in_(old)))
+                connection.execute(sa.delete(room_exercise_work).where(room_exercise_work.c.room_id.in_(old)))
                 connection.execute(sa.delete(rooms).where(rooms.c.room_id.in_(old)))
         if old:
             log.info("forgot %d room(s) unused for %g days", len(old), days)

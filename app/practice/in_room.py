@@ -3,8 +3,10 @@ for the whole class, and watches per exercise and per part how many students tri
 named mistakes are common; the results download as CSV.
 
 A student works an assigned exercise on its page with two tokens: the room's (``X-Student-Token``: they are in the
-room) and their learner's (``X-Learner-Token``: their progress, app.practice.progress). The room links the two, and
-its results read the linked learners' progress. Anonymous ("student 3") unless the instructor turns names on.
+room) and their learner's (``X-Learner-Token``: their own progress, app.practice.progress). Each attempt is kept twice:
+in the learner's progress, and in the room's record of that student's work (:class:`SqlRoomWorkStore`), which the
+results read — a learner forgetting their progress, or working from another device, leaves the room's record as it
+was. Anonymous ("student 3") unless the instructor turns names on.
 """
 
 from __future__ import annotations
@@ -29,15 +31,16 @@ from app.classroom.registry import Rooms
 from app.classroom.room import Room, Student, StudentRemoved
 from app.classroom.routes import _FORBIDDEN, _NO_ROOM, Instructor, RoomDep
 from app.practice.book import ExerciseBook
-from app.practice.deps import BookDep, ProgressDep
+from app.practice.deps import BookDep, RoomWorkDep
 from app.practice.exercise import Exercise
-from app.practice.progress import PartProgress, SqlProgressStore
-from app.practice.variants import class_variant, learner_variant
+from app.practice.progress import PartProgress, SqlRoomWorkStore
+from app.practice.variants import class_variant, room_student_variant
 
 router = APIRouter(prefix="/api", tags=["exercises"])
 
 #: The CSV's columns: one row per student, exercise and part they worked on.
 CSV_HEADER = (
+    "student_id",
     "student",
     "exercise_id",
     "part",
@@ -66,15 +69,16 @@ def room_of(rooms: Rooms, room_id: str) -> Room:
         raise HTTPException(status_code=404, detail=str(exc.args[0])) from None
 
 
-def assigned_variant(room: Room, exercise: Exercise, learner_id: str | None) -> int | None:
+def assigned_variant(room: Room, exercise: Exercise, student_id: str | None) -> int | None:
     """The variant a student of ``room`` works on for ``exercise``: the class's when the instructor gave the class
-    one set of numbers, else the learner's own (None: the exercise is not assigned there, or no learner to ask)."""
+    one set of numbers, else the student's own in that room, the same on each of their devices (None: the exercise
+    is not assigned there, or no student to ask)."""
     assignment = room.assignment
     if assignment is None or exercise.id not in assignment.exercise_ids:
         return None
     if assignment.class_seed is not None:
         return class_variant(exercise.id, assignment.class_seed)
-    return learner_variant(exercise.id, learner_id) if learner_id is not None else None
+    return room_student_variant(room.room_id, student_id, exercise.id) if student_id is not None else None
 
 
 def room_work(rooms: Rooms, room_id: str, student_token: str | None, exercise: Exercise) -> RoomWork:
@@ -129,10 +133,19 @@ def assign(room: RoomDep, body: AssignmentRequest, book: BookDep, hub: RoomHubDe
     while the assignment changes); ``show_names`` names the students in the results. Every page sees it at once."""
     ids = _requested_ids(book, body)
     seed = None
-    if body.class_variant:
-        earlier = room.assignment.class_seed if room.assignment is not None else None
-        seed = body.seed if body.seed is not None else earlier if earlier is not None else secrets.randbelow(2**31)
-    assigned = room.assign(Assignment(exercise_ids=ids, class_seed=seed, show_names=body.show_names))
+    if body.class_variant:  # the room's seed, kept while the assignment changes (students keep their numbers)
+        kept = room.class_seed
+        seed = body.seed if body.seed is not None else kept if kept is not None else secrets.randbelow(2**31)
+    earlier = room.assignment
+    same_work = earlier is not None and earlier.exercise_ids == ids and earlier.class_seed == seed
+    assigned = room.assign(
+        Assignment(
+            exercise_ids=ids,
+            class_seed=seed,
+            show_names=body.show_names,
+            **({"assigned_at": earlier.assigned_at} if same_work and earlier is not None else {}),
+        )
+    )
     hub.publish_state(room)
     assert assigned is not None
     return {**assigned.public(), "show_names": assigned.show_names, "seed": assigned.class_seed}
@@ -162,18 +175,18 @@ def unassign(room: RoomDep, hub: RoomHubDep) -> dict[str, Any]:
         503: {"model": ErrorDetail, "description": "This server keeps no progress (started with nothing kept)"},
     },
 )
-def results(room: RoomDep, book: BookDep, progress: ProgressDep) -> dict[str, Any]:
+def results(room: RoomDep, book: BookDep, room_work: RoomWorkDep) -> dict[str, Any]:
     """Per assigned exercise and part (instructor only): how many students tried, solved and gave up, and the named
     mistakes their answers matched, most common first; each student's work when names are on."""
-    return assignment_results(room, book, _kept_work(room, progress))
+    return assignment_results(room, book, _kept_work(room, room_work))
 
 
 @router.get("/rooms/{room_id}/assignment/results.csv", dependencies=[Instructor], include_in_schema=False)
-def results_csv(room: RoomDep, book: BookDep, progress: ProgressDep) -> PlainTextResponse:
+def results_csv(room: RoomDep, book: BookDep, room_work: RoomWorkDep) -> PlainTextResponse:
     """Every student's work on every assigned part, one row each (instructor only); anonymous unless names are on."""
     filename = f"room-{room.code}-exercises.csv"
     return PlainTextResponse(
-        results_to_csv(room, book, _kept_work(room, progress)),
+        results_to_csv(room, book, _kept_work(room, room_work)),
         media_type="text/csv",
         headers={"Content-Disposition": f'attachment; filename="{filename}"'},
     )
@@ -182,8 +195,9 @@ def results_csv(room: RoomDep, book: BookDep, progress: ProgressDep) -> PlainTex
 # ---- the results ------------------------------------------------------------------------------------
 @dataclass(frozen=True)
 class StudentWork:
-    """One student's work on one part, from every learner the room linked to them."""
+    """One student's work on one part, as the room kept it."""
 
+    student_id: str
     label: str
     variant: int
     attempts: int
@@ -193,48 +207,45 @@ class StudentWork:
     updated_at: str
 
 
-def _kept_work(room: Room, progress: SqlProgressStore | None) -> list[tuple[str, PartProgress]]:
-    if progress is None:
+def _kept_work(room: Room, room_work: SqlRoomWorkStore | None) -> list[tuple[str, PartProgress]]:
+    if room_work is None:
         raise HTTPException(
             status_code=503,
             detail="this server keeps no progress (it was started with nothing kept): no results to show",
             headers={"Retry-After": "3600"},
         )
     with room.lock:
-        learners = [i for ids in room.student_learners.values() for i in ids]
         assigned = list(room.assignment.exercise_ids) if room.assignment is not None else []
-    return progress.parts_of(learners, assigned)
+    return room_work.work_of(room.room_id, assigned)
 
 
 def _work_by_part(
     room: Room, book: ExerciseBook, kept: Iterable[tuple[str, PartProgress]]
 ) -> dict[tuple[str, str], dict[str, StudentWork]]:
-    """By (exercise, part), then student id: each student's work on the variant the room gives them (work on another
-    variant, such as their own before the class was given one, does not count)."""
+    """By (exercise, part), then student id: each student's work on the variant the room gives them now (work on
+    another — before the class was given one set of numbers, or another set — does not count), students still in the
+    room only. Given up counts over solved: a right answer typed after giving up is the solution's, copied."""
     with room.lock:
         students = {s.student_id: s.name for s in room.students.values()}
-        learner_student = {i: s for s, ids in room.student_learners.items() for i in ids if s in students}
         show_names = room.assignment is not None and room.assignment.show_names
-    found: dict[tuple[str, str], dict[str, list[PartProgress]]] = {}
-    for learner_id, part in kept:
-        exercise = book.get(part.exercise_id)
-        student_id = learner_student.get(learner_id)
-        if exercise is None or student_id is None or part.variant != assigned_variant(room, exercise, learner_id):
-            continue
-        found.setdefault((part.exercise_id, part.part_id), {}).setdefault(student_id, []).append(part)
     work: dict[tuple[str, str], dict[str, StudentWork]] = {}
-    for key, by_student in found.items():
-        for student_id, parts in by_student.items():
-            label = students[student_id] if show_names and students[student_id] else f"student {student_id[1:]}"
-            work.setdefault(key, {})[student_id] = StudentWork(
-                label=label,
-                variant=parts[0].variant,
-                attempts=sum(p.attempts for p in parts),
-                solved=any(p.solved for p in parts),
-                gave_up=any(p.gave_up for p in parts) and not any(p.solved for p in parts),
-                mistakes=tuple(dict.fromkeys(m for p in parts for m in p.mistakes)),
-                updated_at=max(p.updated_at for p in parts).strftime("%Y-%m-%dT%H:%M:%SZ"),
-            )
+    for student_id, part in kept:
+        exercise = book.get(part.exercise_id)
+        if exercise is None or student_id not in students:
+            continue
+        if part.variant != assigned_variant(room, exercise, student_id):
+            continue
+        name = students[student_id]
+        work.setdefault((part.exercise_id, part.part_id), {})[student_id] = StudentWork(
+            student_id=student_id,
+            label=name if show_names and name else f"student {student_id[1:]}",
+            variant=part.variant,
+            attempts=part.attempts,
+            solved=part.solved and not part.gave_up,
+            gave_up=part.gave_up,
+            mistakes=part.mistakes,
+            updated_at=part.updated_at.strftime("%Y-%m-%dT%H:%M:%SZ"),
+        )
     return work
 
 
@@ -266,6 +277,7 @@ def assignment_results(room: Room, book: ExerciseBook, kept: Iterable[tuple[str,
                 shown["names"] = [
                     {
                         "student": w.label,
+                        "student_id": w.student_id,
                         "attempts": w.attempts,
                         "solved": w.solved,
                         "gave_up": w.gave_up,
@@ -300,7 +312,9 @@ def results_to_csv(room: Room, book: ExerciseBook, kept: Iterable[tuple[str, Par
     spreadsheet (:func:`spreadsheet_text`): a student's name is what they typed."""
     work = _work_by_part(room, book, kept)
     buffer = io.StringIO()
-    writer = csv.writer(buffer, lineterminator="\n")
+    # Every text cell quoted too: a spreadsheet whose list separator is ";" would otherwise split "x;=1+1" into a
+    # second cell that starts with a formula. Numbers stay numbers.
+    writer = csv.writer(buffer, lineterminator="\n", quoting=csv.QUOTE_NONNUMERIC)
     writer.writerow(CSV_HEADER)
     for exercise in _assigned(book, room.assignment):
         for part in exercise.parts:
@@ -308,6 +322,7 @@ def results_to_csv(room: Room, book: ExerciseBook, kept: Iterable[tuple[str, Par
             for _, w in sorted(by_student.items(), key=lambda item: int(item[0][1:])):
                 writer.writerow(
                     (
+                        w.student_id,
                         spreadsheet_text(w.label),
                         spreadsheet_text(exercise.id),
                         spreadsheet_text(part.id),

@@ -9,10 +9,11 @@ answers matched. Learners nobody has used for the configured number of days are 
 
 from __future__ import annotations
 
+import contextlib
 import logging
 import secrets
 import threading
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass
 from datetime import UTC, datetime, timedelta
@@ -23,7 +24,7 @@ from sqlalchemy.exc import IntegrityError, SQLAlchemyError
 
 from app.classroom.room import CODE_ALPHABET, digest
 from app.storage.database import Database, StoreUnavailable
-from app.storage.tables import exercise_progress, learner_tokens, learners
+from app.storage.tables import exercise_progress, learner_tokens, learners, room_exercise_work
 
 log = logging.getLogger(__name__)
 
@@ -97,18 +98,10 @@ class SqlProgressStore:
 
     def __init__(self, database: Database) -> None:
         self.database = database
-        #: One progress write at a time in this process (SQLite would refuse a second writer's stale read; on
-        #: PostgreSQL the row lock below orders the writes of several servers).
-        self._recording = threading.Lock()
+        self._parts = PartRecords(database, exercise_progress, ("learner_id",))
 
-    @contextmanager
-    def _writing(self, what: str) -> Iterator[sa.Connection]:
-        try:
-            with self.database.transaction() as connection:
-                yield connection
-        except SQLAlchemyError as exc:
-            log.error("the database did not keep %s: %s", what, exc)
-            raise StoreUnavailable(f"the server could not keep {what} just now; try again in a moment") from exc
+    def _writing(self, what: str) -> contextlib.AbstractContextManager[sa.Connection]:
+        return _writing(self.database, what)
 
     # -- learners -------------------------------------------------------------------------------
     def new_learner(self) -> Learner:
@@ -195,48 +188,93 @@ class SqlProgressStore:
         mistake_id: str | None = None,
         gave_up: bool = False,
     ) -> PartProgress:
+        """An attempt at a part (``correct``, or matching the named ``mistake_id``), or giving up on it, kept as
+        :meth:`PartRecords.record` says; the learner counts as used."""
+
+        def used(connection: sa.Connection) -> None:
+            connection.execute(
+                sa.update(learners).where(learners.c.learner_id == learner_id).values(used_at=datetime.now(UTC))
+            )
+
+        return self._parts.record(
+            (learner_id,),
+            exercise_id=exercise_id,
+            part_id=part_id,
+            variant=variant,
+            correct=correct,
+            mistake_id=mistake_id,
+            gave_up=gave_up,
+            also=used,
+        )
+
+    def progress(self, learner_id: str) -> list[PartProgress]:
+        """Every part the learner has worked on, by exercise then part."""
+        return [part for _, part in self._parts.read(*self._parts.owner((learner_id,)), what="progress")]
+
+
+class PartRecords:
+    """Work on exercise parts in one ``table`` keyed by ``key_columns`` (a learner; a room and a student), then the
+    exercise and the part: the variant worked on, attempts, solved or given up, and the named mistakes matched."""
+
+    def __init__(self, database: Database, table: sa.Table, key_columns: tuple[str, ...]) -> None:
+        self.database, self.table, self.key_columns = database, table, key_columns
+        #: One write at a time in this process (SQLite would refuse a second writer's stale read; on PostgreSQL the
+        #: row lock below orders the writes of several servers).
+        self._recording = threading.Lock()
+
+    def owner(self, key: tuple[str, ...]) -> list[sa.ColumnElement[bool]]:
+        """The conditions that select ``key``'s rows."""
+        return [self.table.c[name] == value for name, value in zip(self.key_columns, key, strict=True)]
+
+    def record(
+        self,
+        key: tuple[str, ...],
+        *,
+        exercise_id: str,
+        part_id: str,
+        variant: int,
+        correct: bool = False,
+        mistake_id: str | None = None,
+        gave_up: bool = False,
+        also: Callable[[sa.Connection], None] | None = None,
+    ) -> PartProgress:
         """An attempt at a part (``correct``, or matching the named ``mistake_id``), or giving up on it: kept in one
-        transaction with the part's earlier progress. Working on another variant starts the part afresh. Once solved
-        a part stays solved."""
+        transaction with the part's earlier work (and ``also``'s statements). Working on another variant starts the
+        part afresh. Once solved a part stays solved; once given up, a right answer typed afterwards (the solution's,
+        copied) is checked but does not make it solved."""
         _checked_id(exercise_id, "exercise_id")
         _checked_id(part_id, "part")
         if mistake_id is not None:
             _checked_id(mistake_id, "mistake")
         if isinstance(variant, bool) or not isinstance(variant, int) or not 0 <= variant < 2**31:
             raise ValueError("variant: an integer from 0 to 2³¹ − 1")
-        key = (
-            exercise_progress.c.learner_id == learner_id,
-            exercise_progress.c.exercise_id == exercise_id,
-            exercise_progress.c.part_id == part_id,
-        )
+        where = (*self.owner(key), self.table.c.exercise_id == exercise_id, self.table.c.part_id == part_id)
         for attempt in range(2):  # two servers' first attempts at once: the second insert finds the first's row
             try:
-                with self._recording, self._writing(f"progress on {exercise_id}") as connection:
-                    locked = sa.select(exercise_progress).where(*key).with_for_update()
-                    row = connection.execute(locked).mappings().first()
-                    same = row is not None and row["variant"] == variant
-                    mistakes = list(row["mistakes"]) if same and row is not None else []
+                with self._recording, _writing(self.database, f"work on {exercise_id}") as connection:
+                    row = connection.execute(sa.select(self.table).where(*where).with_for_update()).mappings().first()
+                    earlier = row if row is not None and row["variant"] == variant else None
+                    mistakes = list(earlier["mistakes"]) if earlier is not None else []
                     if mistake_id is not None:
                         mistakes = [*mistakes, mistake_id][-MAX_KEPT_MISTAKES:]
+                    gave_up_before = earlier is not None and bool(earlier["gave_up"])
                     values: dict[str, Any] = {
                         "variant": variant,
-                        "attempts": (row["attempts"] if same and row is not None else 0) + (0 if gave_up else 1),
-                        "solved": bool(same and row is not None and row["solved"]) or correct,
-                        "gave_up": bool(same and row is not None and row["gave_up"]) or gave_up,
+                        "attempts": (earlier["attempts"] if earlier is not None else 0) + (0 if gave_up else 1),
+                        "solved": (earlier is not None and bool(earlier["solved"])) or (correct and not gave_up_before),
+                        "gave_up": gave_up_before or gave_up,
                         "mistakes": mistakes,
                         "updated_at": datetime.now(UTC),
                     }
                     if row is None:
+                        owner = dict(zip(self.key_columns, key, strict=True))
                         connection.execute(
-                            sa.insert(exercise_progress).values(
-                                learner_id=learner_id, exercise_id=exercise_id, part_id=part_id, **values
-                            )
+                            sa.insert(self.table).values(**owner, exercise_id=exercise_id, part_id=part_id, **values)
                         )
                     else:
-                        connection.execute(sa.update(exercise_progress).where(*key).values(**values))
-                    connection.execute(
-                        sa.update(learners).where(learners.c.learner_id == learner_id).values(used_at=datetime.now(UTC))
-                    )
+                        connection.execute(sa.update(self.table).where(*where).values(**values))
+                    if also is not None:
+                        also(connection)
                 break
             except StoreUnavailable as exc:
                 if attempt or not isinstance(exc.__cause__, IntegrityError):
@@ -252,26 +290,9 @@ class SqlProgressStore:
             updated_at=values["updated_at"],
         )
 
-    def parts_of(self, learner_ids: list[str], exercise_ids: list[str]) -> list[tuple[str, PartProgress]]:
-        """``(learner_id, part)`` for every part of ``exercise_ids`` that one of ``learner_ids`` worked on (a room's
-        results: app.practice.in_room)."""
-        if not learner_ids or not exercise_ids:
-            return []
-        query = sa.select(exercise_progress).where(
-            exercise_progress.c.learner_id.in_(learner_ids), exercise_progress.c.exercise_id.in_(exercise_ids)
-        )
-        return [(row["learner_id"], part) for row, part in self._read(query, "a room's results")]
-
-    def progress(self, learner_id: str) -> list[PartProgress]:
-        """Every part the learner has worked on, by exercise then part."""
-        query = (
-            sa.select(exercise_progress)
-            .where(exercise_progress.c.learner_id == learner_id)
-            .order_by(exercise_progress.c.exercise_id, exercise_progress.c.part_id)
-        )
-        return [part for _, part in self._read(query, "progress")]
-
-    def _read(self, query: sa.Select[Any], what: str) -> list[tuple[Any, PartProgress]]:
+    def read(self, *conditions: sa.ColumnElement[bool], what: str) -> list[tuple[Any, PartProgress]]:
+        """``(row, part)`` for every row that meets ``conditions``, by exercise then part."""
+        query = sa.select(self.table).where(*conditions).order_by(self.table.c.exercise_id, self.table.c.part_id)
         try:
             with self.database.engine.connect() as connection:
                 rows = list(connection.execute(query).mappings())
@@ -293,3 +314,53 @@ class SqlProgressStore:
             )
             for row in rows
         ]
+
+
+class SqlRoomWorkStore:
+    """A room's record of its students' work on the exercises it assigned (app.practice.in_room): by room and student,
+    apart from each learner's own progress (which the learner may forget; this stays while the room does)."""
+
+    def __init__(self, database: Database) -> None:
+        self._parts = PartRecords(database, room_exercise_work, ("room_id", "student_id"))
+
+    def record(
+        self,
+        room_id: str,
+        student_id: str,
+        *,
+        exercise_id: str,
+        part_id: str,
+        variant: int,
+        correct: bool = False,
+        mistake_id: str | None = None,
+        gave_up: bool = False,
+    ) -> PartProgress:
+        return self._parts.record(
+            (room_id, student_id),
+            exercise_id=exercise_id,
+            part_id=part_id,
+            variant=variant,
+            correct=correct,
+            mistake_id=mistake_id,
+            gave_up=gave_up,
+        )
+
+    def work_of(self, room_id: str, exercise_ids: list[str]) -> list[tuple[str, PartProgress]]:
+        """``(student_id, part)`` for every part of ``exercise_ids`` a student of room ``room_id`` worked on."""
+        if not exercise_ids:
+            return []
+        table = self._parts.table
+        work = self._parts.read(
+            table.c.room_id == room_id, table.c.exercise_id.in_(exercise_ids), what="a room's results"
+        )
+        return [(row["student_id"], part) for row, part in work]
+
+
+@contextmanager
+def _writing(database: Database, what: str) -> Iterator[sa.Connection]:
+    try:
+        with database.transaction() as connection:
+            yield connection
+    except SQLAlchemyError as exc:
+        log.error("the database did not keep %s: %s", what, exc)
+        raise StoreUnavailable(f"the server could not keep {what} just now; try again in a moment") from exc

@@ -37,10 +37,10 @@ from app.classroom.routes import RoomsDep, StudentToken, is_instructor
 from app.course import Catalogue, render_markdown
 from app.practice.book import ExerciseBook
 from app.practice.checking import AnswerUnreadable, check
-from app.practice.deps import BookDep, ProgressDep
+from app.practice.deps import BookDep, ProgressDep, RoomWorkDep
 from app.practice.exercise import Exercise, Part, fill
 from app.practice.in_room import RoomWork, assigned_variant, room_of, room_work
-from app.practice.progress import Learner, PartProgress, SqlProgressStore
+from app.practice.progress import Learner, PartProgress, SqlProgressStore, SqlRoomWorkStore
 from app.practice.variants import NoValidVariant, Variant, learner_variant
 
 router = APIRouter(prefix="/api", tags=["exercises"])
@@ -151,15 +151,11 @@ def _kept_parts(
     }
 
 
-def _own_variant(exercise: Exercise, learner: Learner, number: int, *, room: Room | None = None) -> None:
-    """409 unless ``number`` is the learner's own variant, or in ``room`` the variant the room gives them (the class's
-    when the instructor gave the class one set of numbers): progress, solutions and give-ups are per learner's numbers
-    (an outside attack gave up on a classmate's variant to read its answers, and solved variant 0 to count as
-    solved)."""
-    own = learner_variant(exercise.id, learner.learner_id)
-    if room is not None:
-        assigned = assigned_variant(room, exercise, learner.learner_id)
-        own = assigned if assigned is not None else own
+def _own_variant(exercise: Exercise, learner: Learner, number: int, *, expected: int | None = None) -> None:
+    """409 unless ``number`` is the learner's own variant, or the ``expected`` one (the variant a room gives its
+    student): progress, solutions and give-ups are per learner's numbers (an outside attack gave up on a classmate's
+    variant to read its answers, and solved variant 0 to count as solved)."""
+    own = expected if expected is not None else learner_variant(exercise.id, learner.learner_id)
     if number != own:
         raise HTTPException(
             status_code=409,
@@ -169,6 +165,25 @@ def _own_variant(exercise: Exercise, learner: Learner, number: int, *, room: Roo
 
 def _in_room(rooms: Rooms, room_id: str | None, student_token: str | None, exercise: Exercise) -> RoomWork | None:
     return room_work(rooms, room_id, student_token, exercise) if room_id is not None else None
+
+
+def _student_here(room: Room, student_token: str | None) -> str | None:
+    """The id of the student of ``room`` holding ``student_token`` (None: no token, not theirs, or removed)."""
+    try:
+        student = room.student(student_token)
+    except StudentRemoved:
+        return None
+    return student.student_id if student is not None else None
+
+
+def _room_work_store(store: SqlRoomWorkStore | None) -> SqlRoomWorkStore:
+    if store is None:
+        raise HTTPException(
+            status_code=503,
+            detail="this server keeps no progress (it was started with nothing kept)",
+            headers={"Retry-After": "3600"},
+        )
+    return store
 
 
 def _room_view(room: Room) -> dict[str, Any]:
@@ -223,10 +238,12 @@ def get_exercise(
     variant: VariantQuery = None,
     room: RoomQuery = None,
     token: LearnerToken = None,
+    student_token: StudentToken = None,
 ) -> dict[str, Any]:
     """One variant of an exercise: its statement and parts with that variant's numbers. Without ``variant`` a learner
     (``X-Learner-Token``) gets their own variant, the same every time; anyone else variant 0. With ``room`` (the
-    exercise assigned there): the class's variant when the instructor gave the class one set of numbers."""
+    exercise assigned there): the variant the room gives its student (``X-Student-Token``): the class's when the
+    instructor gave the class one set of numbers, else the student's own in that room."""
     exercise = _exercise(book, exercise_id)
     in_room = room_of(rooms, room) if room is not None else None
     if in_room is not None and (in_room.assignment is None or exercise.id not in in_room.assignment.exercise_ids):
@@ -234,7 +251,8 @@ def get_exercise(
     if variant is None:
         learner = _learner(progress, token, required=False)
         learner_id = learner.learner_id if learner is not None else None
-        variant = assigned_variant(in_room, exercise, learner_id) if in_room is not None else None
+        student_id = _student_here(in_room, student_token) if in_room is not None else None
+        variant = assigned_variant(in_room, exercise, student_id) if in_room is not None else None
         if variant is None:
             variant = learner_variant(exercise.id, learner_id) if learner_id is not None else 0
     drawn = _variant(book, exercise, variant)
@@ -302,6 +320,7 @@ def attempt(
     limits: LimitsDep,
     client: ClientDep,
     rooms: RoomsDep,
+    kept_work: RoomWorkDep,
     token: LearnerToken = None,
     student_token: StudentToken = None,
 ) -> dict[str, Any]:
@@ -319,8 +338,9 @@ def attempt(
         raise unprocessable(["body", "answer"], f"part {part.id!r} asks for a {part.kind}, not a {sent}")
     work = _in_room(rooms, request.room_id, student_token, exercise)
     learner = _learner(progress, token, required=work is not None)
+    expected = assigned_variant(work.room, exercise, work.student.student_id) if work is not None else None
     if learner is not None:
-        _own_variant(exercise, learner, request.variant, room=work.room if work is not None else None)
+        _own_variant(exercise, learner, request.variant, expected=expected)
     drawn = _variant(book, exercise, request.variant)
     try:
         verdict = check(exercise, part, answer, drawn.answers[part.id])
@@ -335,18 +355,17 @@ def attempt(
             correct=verdict.correct,
             mistake_id=verdict.mistake.id if verdict.mistake else None,
         )
-        if work is not None:
-            _link(work, learner)
+    if work is not None:
+        _room_work_store(kept_work).record(
+            work.room.room_id,
+            work.student.student_id,
+            exercise_id=exercise.id,
+            part_id=part.id,
+            variant=request.variant,
+            correct=verdict.correct,
+            mistake_id=verdict.mistake.id if verdict.mistake else None,
+        )
     return {**verdict.public(), "feedback_html": render_markdown(verdict.feedback)}
-
-
-def _link(work: RoomWork, learner: Learner) -> None:
-    """The room's results read this learner's work as the student's (a database that refuses it now: the next
-    attempt links them)."""
-    try:
-        work.room.link_learner(work.student.student_id, learner.learner_id)
-    except StudentRemoved as exc:
-        raise HTTPException(status_code=403, detail=str(exc)) from None
 
 
 def _solution(drawn: Variant) -> dict[str, Any]:
@@ -381,6 +400,7 @@ def give_up(
     book: BookDep,
     progress: ProgressDep,
     rooms: RoomsDep,
+    kept_work: RoomWorkDep,
     token: LearnerToken = None,
     student_token: StudentToken = None,
 ) -> dict[str, Any]:
@@ -390,7 +410,8 @@ def give_up(
     work = _in_room(rooms, request.room_id, student_token, exercise)
     learner = _learner(progress, token, required=True)
     assert learner is not None and progress is not None
-    _own_variant(exercise, learner, request.variant, room=work.room if work is not None else None)
+    expected = assigned_variant(work.room, exercise, work.student.student_id) if work is not None else None
+    _own_variant(exercise, learner, request.variant, expected=expected)
     drawn = _variant(book, exercise, request.variant)
     kept = _kept_parts(progress, learner, exercise, request.variant)
     for part in exercise.parts:
@@ -399,7 +420,18 @@ def give_up(
                 learner.learner_id, exercise_id=exercise.id, part_id=part.id, variant=request.variant, gave_up=True
             )
     if work is not None:
-        _link(work, learner)
+        store = _room_work_store(kept_work)
+        room_id, student_id = work.room.room_id, work.student.student_id
+        done = {
+            p.part_id
+            for s, p in store.work_of(room_id, [exercise.id])
+            if s == student_id and p.variant == request.variant and p.solved
+        }
+        for part in exercise.parts:
+            if part.id not in done:
+                store.record(
+                    room_id, student_id, exercise_id=exercise.id, part_id=part.id, variant=request.variant, gave_up=True
+                )
     return _solution(drawn)
 
 
@@ -422,18 +454,22 @@ def solution(
     variant: VariantQuery = None,
     room: RoomQuery = None,
     token: LearnerToken = None,
+    student_token: StudentToken = None,
 ) -> dict[str, Any]:
     """A variant's worked solution with every part's answer: for an instructor always; for a learner once every part
     is solved or given up (with ``room``: the variant that room gives them)."""
     exercise = _exercise(book, exercise_id)
+    in_room = room_of(rooms, room) if room is not None else None
+    student_id = _student_here(in_room, student_token) if in_room is not None else None
+    assigned = assigned_variant(in_room, exercise, student_id) if in_room is not None else None
+    if is_instructor(http) and variant is None and assigned is not None:
+        variant = assigned  # the class's numbers, for the instructor of a room that gives the class one set
     if not is_instructor(http):
         learner = _learner(progress, token, required=True)
         assert learner is not None and progress is not None
-        in_room = room_of(rooms, room) if room is not None else None
-        assigned = assigned_variant(in_room, exercise, learner.learner_id) if in_room is not None else None
         own = assigned if assigned is not None else learner_variant(exercise.id, learner.learner_id)
         number = variant if variant is not None else own
-        _own_variant(exercise, learner, number, room=in_room)
+        _own_variant(exercise, learner, number, expected=assigned)
         kept = _kept_parts(progress, learner, exercise, number)
         if not all(part.id in kept and (kept[part.id].solved or kept[part.id].gave_up) for part in exercise.parts):
             raise HTTPException(

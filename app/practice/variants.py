@@ -113,3 +113,10 @@ def class_variant(exercise_id: str, class_seed: int) -> int:
     for each exercise and seed, different between exercises."""
     digest = hashlib.sha256(f"class/{class_seed}/{exercise_id}".encode()).digest()
     return int.from_bytes(digest[:4], "little") & MAX_VARIANT
+
+
+def room_student_variant(room_id: str, student_id: str, exercise_id: str) -> int:
+    """The variant a student of a room works on when the class has no one set of numbers: theirs in that room, the same
+    on every device they join from."""
+    digest = hashlib.sha256(f"room/{room_id}/{student_id}/{exercise_id}".encode()).digest()
+    return int.from_bytes(digest[:4], "little") & MAX_VARIANT

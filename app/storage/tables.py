@@ -99,3 +99,21 @@ exercise_progress = sa.Table(
     sa.Column("mistakes", sa.JSON, nullable=False),
     sa.Column("updated_at", sa.DateTime(timezone=True), nullable=False),
 )
+
+#: One row per room, student and part of an exercise the room assigned (issue 27, point 7): the class's record of that
+#: student's work, which the instructor's results read — kept apart from the learner's own progress, which the learner
+#: may forget. Deleted with the room, or with the student when the instructor removes them.
+room_exercise_work = sa.Table(
+    "room_exercise_work",
+    metadata,
+    sa.Column("room_id", sa.String(32), sa.ForeignKey("rooms.room_id", ondelete="CASCADE"), primary_key=True),
+    sa.Column("student_id", sa.String(16), primary_key=True),
+    sa.Column("exercise_id", sa.String(64), primary_key=True),
+    sa.Column("part_id", sa.String(32), primary_key=True),
+    sa.Column("variant", sa.Integer, nullable=False),
+    sa.Column("attempts", sa.Integer, nullable=False),
+    sa.Column("solved", sa.Boolean, nullable=False),
+    sa.Column("gave_up", sa.Boolean, nullable=False),
+    sa.Column("mistakes", sa.JSON, nullable=False),
+    sa.Column("updated_at", sa.DateTime(timezone=True), nullable=False),
+)

@@ -129,6 +129,10 @@ function renderPart(part, index) {
       html(feedback, (verdict.correct ? "<p><strong>Correct.</strong></p>" : verdict.mistake ? "<p><strong>Not quite — a common mistake:</strong></p>" : "") + (verdict.correct ? "" : verdict.feedback_html));
       if (verdict.correct) partDone(part.id);
     } catch (error) {
+      if (roomId && error instanceof ApiError && [403, 404].includes(error.status)) {
+        leaveRoom(error.message); // removed from the room, or it closed: the exercise stays theirs to practise
+        return;
+      }
       if (error instanceof ApiError && error.status === 409) { // another tab or device changed whose numbers these are
         location.reload();
         return;
@@ -224,6 +228,15 @@ async function showKept() {
   if (answered.size === exercise.parts.length) showSolution("GET");
 }
 
+// This page no longer works for the room (the student was removed, or the room closed): reopen it without the room,
+// the student's own practice from now on.
+function leaveRoom(why) {
+  sessionStorage.setItem("dynlab.exercise.left-room", why);
+  const own = new URL(location.href);
+  own.searchParams.delete("room");
+  location.replace(own.pathname + own.search);
+}
+
 function showRoomNote(...content) {
   const note = document.getElementById("room-note");
   note.replaceChildren(...content);
@@ -246,6 +259,11 @@ async function load() {
     errorBox.textContent = `This exercise could not be loaded: ${error.message}`;
     errorBox.hidden = false;
     return;
+  }
+  const left = sessionStorage.getItem("dynlab.exercise.left-room");
+  if (left) {
+    sessionStorage.removeItem("dynlab.exercise.left-room");
+    showRoomNote(`No longer counted for your class (${left}); your answers are your own practice now.`);
   }
   if (exercise.room) {
     const back = exercise.room.lesson_id ? element("a", { href: `/lessons/${encodeURIComponent(exercise.room.lesson_id)}?room=${roomId}` }, "Back to the class") : "";

@@ -67,6 +67,7 @@ export function instructorAssignment(roomId, showError) {
     el("p", {}, el("label", { for: section.id, text: "Section " }), section),
     choices,
     el("p", {}, el("label", { for: classVariant.id }, classVariant, " One set of numbers for the whole class")),
+    el("p", { class: "muted room-assign-caveat", text: "With one set, a student who gives up sees worked answers the others could copy; the table counts them as given up, and keeps the class's numbers while you change what is assigned." }),
     el("p", {}, el("label", { for: names.id }, names, " Show names in the results")),
     el("div", { class: "room-buttons" }, assign, takeBack, csv),
     current, results);
@@ -75,10 +76,15 @@ export function instructorAssignment(roomId, showError) {
   exercises().then((all) => {
     bySection = {};
     for (const e of all) { (bySection[e.section] ||= []).push(e); titles[e.id] = e; }
+    if (assignment) describe(assignment);
     const sections = Object.keys(bySection);
     section.replaceChildren(...sections.map((s) => new Option(`${s} — ${bySection[s].length} exercise${bySection[s].length === 1 ? "" : "s"}`, s)));
     listChoices();
   });
+  function describe(a) {
+    current.textContent = `Assigned: ${a.exercise_ids.map((id) => (titles[id] ? titles[id].title : id)).join(", ")}` +
+      (a.class_variant ? " — one set of numbers for the class." : " — each student's own numbers.");
+  }
   function listChoices() {
     const mine = bySection[section.value] || [];
     choices.replaceChildren(el("legend", { text: "Assign" }), ...mine.map((e) => el("label", { class: "choice" },
@@ -110,7 +116,9 @@ export function instructorAssignment(roomId, showError) {
 
   // One table per exercise: a row per part (tried, solved, gave up, its named mistakes with how many made each);
   // with names on, a row under it with each student's work.
-  const work = (n) => `${n.student}: ${n.solved ? "solved" : n.gave_up ? "gave up" : `${n.attempts} tried`}`;
+  // A name beside the id it belongs to (two students may give the same name); "student 3" is its own id.
+  const who = (n) => (n.student === `student ${n.student_id.slice(1)}` ? n.student : `${n.student} (${n.student_id})`);
+  const work = (n) => `${who(n)}: ${n.solved ? "solved" : n.gave_up ? "gave up" : `${n.attempts} tried`}`;
   function table(exercise, showNames) {
     const rows = exercise.parts.flatMap((p) => [el("tr", { "data-part": p.part },
       el("th", { scope: "row", text: p.part }),
@@ -152,8 +160,7 @@ export function instructorAssignment(roomId, showError) {
       takeBack.hidden = csv.hidden = !assignment;
       if (!changed) return;
       if (assignment) {
-        current.textContent = `Assigned: ${assignment.exercise_ids.map((id) => (titles[id] ? titles[id].title : id)).join(", ")}` +
-          (assignment.class_variant ? " — one set of numbers for the class." : " — each student's own numbers.");
+        describe(assignment);
         classVariant.checked = assignment.class_variant;
       } else {
         current.textContent = "Nothing assigned yet.";

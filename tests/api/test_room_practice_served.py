@@ -14,7 +14,7 @@ import httpx
 import pytest
 
 from app.practice.exercise import load_exercises
-from app.practice.variants import class_variant, learner_variant, variant
+from app.practice.variants import class_variant, learner_variant, room_student_variant, variant
 
 EXERCISES = load_exercises(Path(__file__).resolve().parents[2] / "lessons")
 SECTION = "6.1"
@@ -39,7 +39,7 @@ class Student:
         self.client = served.new_client()
         joined = self.client.post("/api/rooms/join", json={"code": code, "name": name})
         assert joined.status_code == 200, joined.text
-        self.student_token = joined.json()["student_token"]
+        self.student_token, self.student_id = joined.json()["student_token"], joined.json()["student_id"]
         made = self.client.post("/api/learners").json()
         self.learner_id, self.learner_token = made["learner_id"], made["token"]
         self.headers = {"X-Student-Token": self.student_token, "X-Learner-Token": self.learner_token}
@@ -121,7 +121,8 @@ def test_an_assigned_section_is_worked_from_the_room_and_counted_for_the_instruc
 
             anonymous = list(csv.reader(io.StringIO(api.get(
                 f"/api/rooms/{room_id}/assignment/results.csv", headers=instructor).text)))  # fmt: skip
-            assert anonymous[0][0] == "student" and {r[0] for r in anonymous[1:]} == {"student 1", "student 2"}
+            assert anonymous[0][:2] == ["student_id", "student"]
+            assert {r[1] for r in anonymous[1:]} == {"student 1", "student 2"}
 
             # Names on: the instructor sees who, and the CSV keeps a typed formula as text.
             named = api.put(
@@ -138,10 +139,10 @@ def test_an_assigned_section_is_worked_from_the_room_and_counted_for_the_instruc
             ]
             rows = list(csv.reader(io.StringIO(api.get(
                 f"/api/rooms/{room_id}/assignment/results.csv", headers=instructor).text)))  # fmt: skip
-            names = {r[0] for r in rows[1:]}
+            names = {r[1] for r in rows[1:]}
             assert names == {"Ada", "'=HYPERLINK(1)"}
-            ada_first = next(r for r in rows if r[0] == "Ada" and r[1] == PLATE and r[2] == part.id)
-            assert ada_first[3:8] == [str(number), "2", "yes", "no", mistake.id]
+            ada_first = next(r for r in rows if r[1] == "Ada" and r[2] == PLATE and r[3] == part.id)
+            assert ada_first[0] == ada.student_id and ada_first[4:9] == [str(number), "2", "yes", "no", mistake.id]
 
             # Bob removed: his work leaves the results.
             students = api.get(f"/api/rooms/{room_id}/students", headers=instructor).json()["students"]
@@ -174,8 +175,10 @@ def test_a_hostile_student_cannot_assign_read_results_or_count_work_that_is_not_
                 answer = eve.client.request(method, path, json=body, headers=eve.headers)
                 assert answer.status_code == 403, (method, path, answer.text)
             assert api.get(f"/api/rooms/{room_id}/state").json()["assignment"]["exercise_ids"] == [PLATE]
-            # Own numbers now (no class variant): the learner's own variant, in the room too.
-            number = learner_variant(PLATE, eve.learner_id)
+            # Own numbers now (no class variant): the student's own in this room, whatever device or learner asks.
+            number = room_student_variant(room_id, eve.student_id, PLATE)
+            shown = eve.client.get(f"/api/exercises/{PLATE}", params={"room": room_id}, headers=eve.headers).json()
+            assert shown["variant"] == number
             part = EXERCISES[PLATE].parts[0]
             answer = _number_answer(PLATE, number, part.id)
             assert eve.attempt(room_id, PLATE, number, part.id, answer).json()["correct"] is True
@@ -208,3 +211,70 @@ def test_a_hostile_student_cannot_assign_read_results_or_count_work_that_is_not_
             assert eve.attempt(room_id, PLATE, number, part.id, answer).status_code == 409
         finally:
             eve.client.close()
+
+
+@pytest.fixture
+def fresh_room(served) -> dict:
+    with served.new_client() as instructor:
+        made = instructor.post("/api/rooms", json={"lesson_id": None}, headers=served.instructor_headers)
+        assert made.status_code == 200, made.text
+        yield made.json()
+        instructor.delete(f"/api/rooms/{made.json()['room_id']}", headers=served.instructor_headers)
+
+
+def test_a_students_record_in_the_room_is_the_rooms_whatever_they_do_with_their_own_progress(served, fresh_room):
+    """The hostile student's session (helper-41's findings), each now a test: giving up and then typing the worked
+    answers in stays "gave up"; forgetting one's own progress (DELETE /api/progress) leaves the room's record; a
+    learner token two students share (a lab PC) keeps each student's work apart; the class's numbers survive turning
+    one set off and on and taking the assignment back; names that turn the text's direction are refused; every CSV
+    text cell is quoted; loose types are refused; the instructor's solution in the room is the class's."""
+    room_id, code = fresh_room["room_id"], fresh_room["code"]
+    instructor = served.instructor_headers
+    with served.new_client() as api:
+        put = lambda body: api.put(f"/api/rooms/{room_id}/assignment", json=body, headers=instructor)  # noqa: E731
+        seed = put({"exercise_ids": [PLATE], "class_variant": True}).json()["seed"]
+        assert put({"exercise_ids": [PLATE], "class_variant": False}).json()["seed"] is None
+        assert put({"exercise_ids": [PLATE], "class_variant": True}).json()["seed"] == seed  # off and on: the same
+        assert api.delete(f"/api/rooms/{room_id}/assignment", headers=instructor).status_code == 200
+        assert put({"exercise_ids": [PLATE, DISK], "class_variant": True}).json()["seed"] == seed  # taken back too
+        for loose in ({"seed": "12"}, {"class_variant": "yes"}, {"class_variant": 1}, {"show_names": "false"}):
+            assert put({"exercise_ids": [PLATE], **loose}).status_code == 422, loose
+        number = class_variant(PLATE, seed)
+        solution = api.get(f"/api/exercises/{PLATE}/solution", params={"room": room_id}, headers=instructor).json()
+        assert solution["variant"] == number
+
+        bidi = served.new_client()
+        refused = bidi.post("/api/rooms/join", json={"code": code, "name": "\u202eecilA"})
+        assert refused.status_code == 422, refused.text
+        bidi.close()
+
+        cheat, careful = Student(served, code, "x;=1+1"), Student(served, code, "Careful")
+        try:
+            part = EXERCISES[PLATE].parts[0]
+            solved = cheat.client.post(
+                f"/api/exercises/{PLATE}/give-up", json={"variant": number, "room_id": room_id}, headers=cheat.headers
+            ).json()
+            copied = next(p["answer"] for p in solved["parts"] if p["id"] == part.id)
+            assert cheat.attempt(room_id, PLATE, number, part.id, copied).json()["correct"] is True  # still checked
+            # The careful student works on the cheat's computer: the cheat's learner token, the careful one's room
+            # token. The room keeps each student's work as theirs.
+            shared_pc = {**careful.headers, "X-Learner-Token": cheat.learner_token}
+            body = {"variant": number, "part": part.id, "answer": _number_answer(PLATE, number, part.id),
+                    "room_id": room_id}  # fmt: skip
+            assert careful.client.post(f"/api/exercises/{PLATE}/attempts", json=body, headers=shared_pc).json()[
+                "correct"] is True  # fmt: skip
+            # The cheat forgets their own progress: the room's record stays.
+            assert cheat.client.delete("/api/progress", headers={"X-Learner-Token": cheat.learner_token}).status_code == 200
+            put({"exercise_ids": [PLATE, DISK], "class_variant": True, "show_names": True})
+            results = api.get(f"/api/rooms/{room_id}/assignment/results", headers=instructor).json()
+            first = next(e for e in results["exercises"] if e["exercise_id"] == PLATE)["parts"][0]
+            work = {n["student_id"]: n for n in first["names"]}
+            assert work[cheat.student_id]["gave_up"] is True and work[cheat.student_id]["solved"] is False
+            assert work[cheat.student_id]["attempts"] == 1
+            assert work[careful.student_id]["solved"] is True and work[careful.student_id]["attempts"] == 1
+            assert (first["tried"], first["solved"], first["gave_up"]) == (2, 1, 1)
+            text = api.get(f"/api/rooms/{room_id}/assignment/results.csv", headers=instructor).text
+            assert '"x;=1+1"' in text and f'"{cheat.student_id}"' in text  # text cells quoted: one cell, no formula
+        finally:
+            cheat.client.close()
+            careful.client.close()

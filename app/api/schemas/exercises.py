@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from typing import Annotated, Any, Literal
 
-from pydantic import BaseModel, ConfigDict, Field
+from pydantic import BaseModel, ConfigDict, Field, StrictBool, StrictInt
 
 
 class ExerciseSummary(BaseModel):
@@ -193,13 +193,13 @@ class AssignmentRequest(BaseModel):
     exercise_ids: list[Annotated[str, Field(pattern=r"^[a-z0-9][a-z0-9-]{0,31}$")]] | None = Field(
         None, min_length=1, max_length=24, description="Chosen exercises (instead of a section)"
     )
-    class_variant: bool = Field(
+    class_variant: StrictBool = Field(
         False, description="Every student works on the same numbers (kept while the assignment is changed)"
     )
-    seed: int | None = Field(
-        None, ge=0, le=2**31 - 1, description="The class's numbers (with class_variant; default: drawn, or kept)"
+    seed: StrictInt | None = Field(
+        None, ge=0, le=2**31 - 1, description="The class's numbers (with class_variant; default: the room's, or drawn)"
     )
-    show_names: bool = Field(False, description="The results name the students (else 'student 3')")
+    show_names: StrictBool = Field(False, description="The results name the students (else 'student 3')")
 
 
 class MistakeCount(BaseModel):
@@ -210,6 +210,7 @@ class MistakeCount(BaseModel):
 
 class StudentPartWork(BaseModel):
     student: str = Field(description="The name they gave (or 'student 3')")
+    student_id: str = Field(description="Their id in the room (s3): two students may give the same name")
     attempts: int
     solved: bool
     gave_up: bool
