@@ -29,7 +29,7 @@ from app.classroom.hub import RoomHubDep
 from app.classroom.polls import spreadsheet_text
 from app.classroom.registry import Rooms
 from app.classroom.room import Room, Student, StudentRemoved
-from app.classroom.routes import _FORBIDDEN, _NO_ROOM, Instructor, RoomDep
+from app.classroom.routes import _FORBIDDEN, _NO_ROOM, Instructor, RoomDep, room_of
 from app.practice.book import ExerciseBook
 from app.practice.deps import BookDep, RoomWorkDep
 from app.practice.exercise import Exercise
@@ -62,13 +62,6 @@ class RoomWork:
     exercise: Exercise
 
 
-def room_of(rooms: Rooms, room_id: str) -> Room:
-    try:
-        return rooms.get(room_id)
-    except KeyError as exc:
-        raise HTTPException(status_code=404, detail=str(exc.args[0])) from None
-
-
 def assigned_variant(room: Room, exercise: Exercise, student_id: str | None) -> int | None:
     """The variant a student of ``room`` works on for ``exercise``: the class's when the instructor gave the class
     one set of numbers, else the student's own in that room, the same on each of their devices (None: the exercise
@@ -84,7 +77,7 @@ def assigned_variant(room: Room, exercise: Exercise, student_id: str | None) -> 
 def room_work(rooms: Rooms, room_id: str, student_token: str | None, exercise: Exercise) -> RoomWork:
     """The student of ``student_token`` in room ``room_id`` working ``exercise``, which must be assigned there:
     404 no room, 403 not a student of it, 409 not assigned (any more)."""
-    room = room_of(rooms, room_id)
+    room = room_of(room_id, rooms)
     try:
         student = room.student(student_token)
     except StudentRemoved as exc:

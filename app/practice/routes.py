@@ -33,13 +33,13 @@ from app.api.schemas.exercises import (
 )
 from app.classroom.registry import Rooms
 from app.classroom.room import Room, StudentRemoved
-from app.classroom.routes import RoomsDep, StudentToken, is_instructor
+from app.classroom.routes import RoomsDep, StudentToken, is_instructor, room_of
 from app.course import Catalogue, render_markdown
 from app.practice.book import ExerciseBook
 from app.practice.checking import AnswerUnreadable, check
 from app.practice.deps import BookDep, ProgressDep, RoomWorkDep
 from app.practice.exercise import Exercise, Part, fill
-from app.practice.in_room import RoomWork, assigned_variant, room_of, room_work
+from app.practice.in_room import RoomWork, assigned_variant, room_work
 from app.practice.progress import Learner, PartProgress, SqlProgressStore, SqlRoomWorkStore
 from app.practice.variants import NoValidVariant, Variant, learner_variant
 
@@ -245,7 +245,7 @@ def get_exercise(
     exercise assigned there): the variant the room gives its student (``X-Student-Token``): the class's when the
     instructor gave the class one set of numbers, else the student's own in that room."""
     exercise = _exercise(book, exercise_id)
-    in_room = room_of(rooms, room) if room is not None else None
+    in_room = room_of(room, rooms) if room is not None else None
     if in_room is not None and (in_room.assignment is None or exercise.id not in in_room.assignment.exercise_ids):
         raise HTTPException(status_code=409, detail=f"exercise {exercise.id!r} is not assigned in room {in_room.code}")
     if variant is None:
@@ -459,7 +459,7 @@ def solution(
     """A variant's worked solution with every part's answer: for an instructor always; for a learner once every part
     is solved or given up (with ``room``: the variant that room gives them)."""
     exercise = _exercise(book, exercise_id)
-    in_room = room_of(rooms, room) if room is not None else None
+    in_room = room_of(room, rooms) if room is not None else None
     student_id = _student_here(in_room, student_token) if in_room is not None else None
     assigned = assigned_variant(in_room, exercise, student_id) if in_room is not None else None
     if is_instructor(http) and variant is None and assigned is not None:

@@ -36,7 +36,7 @@ export const lesson = (function () {
 
   // ---- number formatting (significant figures, units shown beside) -------------
   const fmt = (v) => (typeof v === "number" ? formatNumber(v) : String(v));
-  const fmtValue = (v) => Array.isArray(v) ? `[${v.map(fmt).join(", ")}]` : fmt(v);
+  const fmtValue = (v) => (Array.isArray(v) ? `[${v.map(fmtValue).join(", ")}]` : fmt(v)); // a vector, or a matrix row by row
 
   // ---- controls -------------------------------------------------------------------
   const form = document.getElementById("controls");

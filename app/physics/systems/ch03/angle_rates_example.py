@@ -26,6 +26,10 @@ from app.physics.core.solution import ExampleStory, Solution, Step, WorkedExampl
 from app.physics.math.rotations import angle_rate_matrix_body, matrix_from_angles
 from app.physics.systems.ch03.angle_rates import PARAMETERS, AngleMotion
 
+#: The ``gimbal_lock`` output, in words (a verdict the page shows as it is).
+AT_GIMBAL_LOCK, CLEAR_OF_GIMBAL_LOCK = "at gimbal lock", "clear of gimbal lock"
+
+
 #: Step (s) of the fourth-order central differences in the check: truncation h⁴|f⁽⁵⁾|/30 ≈ 1e-13 at rates of a few
 #: rad/s, round-off about ε/h ≈ 2e-13 rad/s.
 DIFFERENCE_STEP_S = 1e-3
@@ -171,7 +175,7 @@ def solve(inputs: Mapping[str, Any]) -> Solution:
         "alpha_world_rad_s2": alpha,
         "alpha_along_axes_rad_s2": along,
         "alpha_turning_axes_rad_s2": turning,
-        "gimbal_lock": recovered is None,
+        "gimbal_lock": AT_GIMBAL_LOCK if recovered is None else CLEAR_OF_GIMBAL_LOCK,
     }
     return Solution(outputs=outputs, steps=steps)
 

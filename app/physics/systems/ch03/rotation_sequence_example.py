@@ -29,6 +29,10 @@ from app.physics.math.rotations import (
     rotation_sequence,
 )
 
+#: The ``readback_at_gimbal_lock`` output, in words (a verdict the page shows as it is).
+AT_GIMBAL_LOCK, CLEAR_OF_GIMBAL_LOCK = "at gimbal lock", "clear of gimbal lock"
+
+
 #: A line of sight shorter than this (dimensionless, in body components) is taken as no direction at all.
 SHORTEST_SIGHT = 1e-9
 
@@ -192,7 +196,7 @@ def solve(inputs: Mapping[str, Any]) -> Solution:
         "azimuth_deg": azimuth_deg,
         "elevation_deg": elevation_deg,
         "readback_angles_deg": other_deg,
-        "readback_at_gimbal_lock": bool(readback.degenerate),
+        "readback_at_gimbal_lock": AT_GIMBAL_LOCK if readback.degenerate else CLEAR_OF_GIMBAL_LOCK,
     }
     return Solution(outputs=outputs, steps=steps)
 

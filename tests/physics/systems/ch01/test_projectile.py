@@ -209,12 +209,16 @@ def test_every_example_solves_its_defaults_into_strict_json(example_id):
         else:  # sweeps for plots: flat lists of numbers
             assert isinstance(value, list) and all(isinstance(v, float) for v in value), name
     assert data["steps"], "a worked example shows its steps"
+    number = lambda x: isinstance(x, float | int) and not isinstance(x, bool)  # noqa: E731
     for step in data["steps"]:
         assert step["title"] and step["latex"] and isinstance(step["values"], dict)
         for v in step["values"].values():
-            assert isinstance(v, float | int) or (isinstance(v, list) and len(v) == 3), (step["title"], v)
-            if isinstance(v, list) and isinstance(v[0], list):  # a 3×3 tensor
-                assert all(isinstance(row, list) and len(row) == 3 and all(isinstance(x, float) for x in row) for row in v)
+            # A number; a vector (3 components in space, 2 in a plane, or a row of a constraint matrix); or a matrix
+            # given as rows of equal length (the page writes each as [a, b, …]).
+            if isinstance(v, list) and v and isinstance(v[0], list):
+                assert all(isinstance(row, list) and len(row) == len(v[0]) and all(map(number, row)) for row in v), v
+            else:
+                assert number(v) or (isinstance(v, list) and v and all(map(number, v))), (step["title"], v)
 
 
 # -- the apex, the vacuum comparison and the two legs of the flight ---------------------------

@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from app.physics.systems.ch03.rotation_sequence_example import EXAMPLE
+from app.physics.systems.ch03.rotation_sequence_example import AT_GIMBAL_LOCK, CLEAR_OF_GIMBAL_LOCK, EXAMPLE
 
 MATRIX_TOL = 1e-12
 ANGLE_TOL_DEG = 1e-9
@@ -73,7 +73,7 @@ def test_matrix_sight_and_readback_agree_with_scipy(case):
 
     other = inputs["readback_sequence"]
     expected_angles = rotation.as_euler("".join("XYZ"[int(a) - 1] for a in other.split("-")), degrees=True)
-    assert not out["readback_at_gimbal_lock"]
+    assert out["readback_at_gimbal_lock"] == CLEAR_OF_GIMBAL_LOCK
     assert np.abs(wrapped_difference_deg(out["readback_angles_deg"], expected_angles)).max() < ANGLE_TOL_DEG
     # and the read-back angles put the body in the same attitude
     again = scipy_rotation(other, out["readback_angles_deg"]).as_matrix()
@@ -91,7 +91,7 @@ def test_the_check_step_shows_round_off_only():
 def test_a_readback_at_gimbal_lock_is_flagged_and_still_rebuilds_the_attitude():
     inputs = EXAMPLE.inputs.validate({"sequence": "3-2-1", "angle2_deg": 90.0, "readback_sequence": "3-2-1"})
     out = EXAMPLE.solve(inputs).outputs
-    assert out["readback_at_gimbal_lock"]
+    assert out["readback_at_gimbal_lock"] == AT_GIMBAL_LOCK
     rebuilt = scipy_rotation("3-2-1", out["readback_angles_deg"]).as_matrix()
     assert np.abs(rebuilt - out["R_world_body"]).max() < MATRIX_TOL
 
