@@ -22,7 +22,7 @@ from typing import Any
 
 from scipy.integrate import solve_ivp
 
-from app.physics.core.parameters import Parameter, ParameterSet
+from app.physics.core.parameters import ParameterSet
 from app.physics.core.solution import ExampleStory, Solution, Step, WorkedExample
 from app.physics.systems.ch10 import rate_gyro
 
@@ -30,71 +30,19 @@ from app.physics.systems.ch10 import rate_gyro
 #: six figures shown).
 CHECK_RTOL = 1e-11
 
+#: The scene's own controls (its ``input_kind`` aside: the example works both inputs), so the page's sliders drive it.
 INPUTS = ParameterSet(
-    (
-        Parameter(
+    tuple(
+        rate_gyro.PARAMETERS.by_name[name]
+        for name in (
             "rotor_axial_inertia_kg_m2",
-            "kg·m²",
-            2e-4,
-            1e-7,
-            1.0,
-            "Rotor moment of inertia I_a about its spin axis",
-            "I_a",
-            scale="log",
-        ),
-        Parameter(
             "spin_rad_s",
-            "rad/s",
-            1000.0,
-            -30000.0,
-            30000.0,
-            "Rotor spin ω_s (held constant by its motor)",
-            "ω_s",
-            scale="symlog",
-        ),
-        Parameter(
             "gimbal_inertia_kg_m2",
-            "kg·m²",
-            0.005,
-            1e-6,
-            10.0,
-            "Moment of inertia I_g of gimbal and rotor about the output axis",
-            "I_g",
-            scale="log",
-        ),
-        Parameter(
             "stiffness_N_m_rad",
-            "N·m/rad",
-            0.5,
-            1e-4,
-            1000.0,
-            "Stiffness k of the torsion spring restraining the gimbal",
-            "k",
-            scale="log",
-        ),
-        Parameter(
-            "damping_N_m_s_rad", "N·m·s/rad", 0.02, 0.0, 10.0, "Viscous damping c on the gimbal", "c", step=0.001
-        ),
-        Parameter(
+            "damping_N_m_s_rad",
             "input_rate_rad_s",
-            "rad/s",
-            0.5,
-            -5.0,
-            5.0,
-            "Input rate Ω₀ about the case's input axis (the step's height, the sine's amplitude)",
-            "Ω₀",
-            step=0.05,
-        ),
-        Parameter(
             "input_frequency_rad_s",
-            "rad/s",
-            5.0,
-            0.01,
-            500.0,
-            "Angular frequency w of a sine input",
-            "w",
-            scale="log",
-        ),
+        )
     ),
     check=rate_gyro._check,
 )
