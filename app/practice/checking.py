@@ -142,19 +142,31 @@ def parse_unit(text: str) -> pint.Unit:
 
 def in_part_unit(value: float, unit_text: str, part: Part) -> float:
     """``value`` ``unit_text`` expressed in the part's unit; :class:`WrongDimension` if it measures something else."""
-    unit = parse_unit(unit_text) if unit_text.strip() else parse_unit(part.unit)
-    wanted = parse_unit(part.unit)
-    if unit.dimensionality != wanted.dimensionality:
-        raise WrongDimension(
-            f"That is {_dimension_of(unit)}; the question asks for {dimension_name(part.unit)} (in {part.unit})"
-        )
-    try:
-        converted = float(units().Quantity(value, unit).to(wanted).magnitude)
-    except Exception as exc:  # noqa: BLE001 - a conversion pint cannot make is an answer we cannot read
-        raise AnswerUnreadable(f"{unit_text!r} cannot be converted to {part.unit} ({exc})") from None
+    conversion = _conversion(unit_text.strip() or part.unit, part.unit)
+    if isinstance(conversion, str):
+        raise WrongDimension(conversion)
+    scale, offset = conversion
+    converted = scale * value + offset
     if not math.isfinite(converted):
         raise AnswerUnreadable(f"{value:g} {unit_text} is not a finite number of {part.unit}")
     return converted
+
+
+@lru_cache(maxsize=MAX_KEPT_UNITS)
+def _conversion(unit_text: str, wanted_text: str) -> tuple[float, float] | str:
+    """How a number in ``unit_text`` becomes one in ``wanted_text``: (scale, offset), an offset only for a unit such
+    as degC; or, for a unit of another dimension, the feedback saying so. Kept per pair of texts: pint builds several
+    objects for every unit it reads (most of the time of checking an answer). :class:`AnswerUnreadable` (not kept)
+    for a unit that is none."""
+    unit, wanted = parse_unit(unit_text), parse_unit(wanted_text)
+    if unit.dimensionality != wanted.dimensionality:
+        return f"That is {_dimension_of(unit)}; the question asks for {dimension_name(wanted_text)} (in {wanted_text})"
+    try:
+        offset = float(units().Quantity(0.0, unit).to(wanted).magnitude)
+        scale = float(units().Quantity(1.0, unit).to(wanted).magnitude) - offset
+    except Exception as exc:  # noqa: BLE001 - a conversion pint cannot make is an answer we cannot read
+        raise AnswerUnreadable(f"{unit_text!r} cannot be converted to {wanted_text} ({exc})") from None
+    return scale, offset
 
 
 def _dimension_of(unit: pint.Unit) -> str:
