@@ -72,6 +72,13 @@ def cache_directory() -> Path:
     return Path(configured) if configured else Path.home() / ".cache" / "dynlab" / "derivations"
 
 
+#: The catalogue systems' derivations, every formulation that applies, shipped with the app in the cache's own form
+#: (:func:`ship_catalogue_derivations` writes them): a fresh install reads them instead of spending sympy's minutes.
+#: Their names hold :data:`ENGINE_VERSION` and each system's fingerprint, so a changed engine or system never reads
+#: them; ``tests/physics/mechanics/test_shipped_derivations.py`` fails until they are derived again.
+SHIPPED_DIRECTORY = Path(__file__).with_name("shipped")
+
+
 #: Why a derivation's right-hand side has no finite value at a state, in words that finish "… because …".
 NOT_FINITE_BECAUSE = {
     "overflow": "a number overflows (exceeds 1.8e308, the largest double-precision number)",
@@ -230,7 +237,9 @@ def _entry_name(system: SystemDescription, formulation: str) -> str:
 
 
 def derived(system: SystemDescription, formulation: str, *, directory: Path | None = None) -> Derived:
-    """The derivation of ``system`` by ``formulation``, from memory, disk, or sympy (in that order).
+    """The derivation of ``system`` by ``formulation``, from memory, disk, or sympy (in that order). Disk is
+    ``directory`` when given, else the cache (:func:`cache_directory`), then the derivations shipped with the app
+    (:data:`SHIPPED_DIRECTORY`).
 
     Raises :class:`FormulationUnavailable` (a ValueError saying why) when the
     formulation does not apply, and ValueError for an unknown formulation.
@@ -249,7 +258,11 @@ def derived(system: SystemDescription, formulation: str, *, directory: Path | No
         with _memory_lock:
             if key in _memory:
                 return _memory[key]
-        result = _from_disk(system, formulation, directory) or _derive_and_store(system, formulation, directory)
+        result = (
+            _from_disk(system, formulation, directory)
+            or (directory is None and _from_disk(system, formulation, SHIPPED_DIRECTORY))
+            or _derive_and_store(system, formulation, directory)
+        )
         with _memory_lock:
             _memory[key] = result
             _key_locks.pop(key, None)  # later callers find the result in memory; waiters still hold the lock
@@ -258,13 +271,14 @@ def derived(system: SystemDescription, formulation: str, *, directory: Path | No
         return result
 
 
-def _paths(system: SystemDescription, formulation: str, directory: Path | None) -> tuple[Path, Path]:
+def entry_paths(system: SystemDescription, formulation: str, directory: Path | None) -> tuple[Path, Path]:
+    """A derivation's two files in ``directory`` (default: the cache): what it shows (JSON) and its right-hand side."""
     base = (directory or cache_directory()) / _entry_name(system, formulation)
     return base.with_suffix(".json"), base.with_name(base.name.replace("-", "_").replace(".", "_") + ".py")
 
 
 def _from_disk(system: SystemDescription, formulation: str, directory: Path | None) -> Derived | None:
-    meta_path, source_path = _paths(system, formulation, directory)
+    meta_path, source_path = entry_paths(system, formulation, directory)
     if not (meta_path.exists() and source_path.exists()):
         return None
     try:
@@ -287,7 +301,7 @@ def _derive_and_store(system: SystemDescription, formulation: str, directory: Pa
     the machine's load (``outcome.refused``: no slot, the child paused or stopped) shows the derived forms for now and
     stores nothing on disk; the next answer tries again (:meth:`Derived.finish_shown`) and stores it once done.
     """
-    meta_path, source_path = _paths(system, formulation, directory)
+    meta_path, source_path = entry_paths(system, formulation, directory)
     start = time.perf_counter()
     with shown_forms() as forms:
         derivation = DERIVERS[formulation](system)
