@@ -159,41 +159,45 @@ def live_server(served: ServedApp) -> LiveServer:
     return LiveServer(served)
 
 
-#: Frames per second the 3D viewer may draw in a test (see :class:`ViewerFramesLimited`): one every 4 s.
-VIEWER_TEST_FPS = 0.25
-#: In the viewer's own page (a lesson's /viewer/… frame or a room's /room-viewer/…), requestAnimationFrame waits
-#: 1/VIEWER_TEST_FPS s; every other page keeps the browser's own frames.
-LIMIT_VIEWER_FRAMES = """(() => {
+#: Frames a second a test that looks at what viser's viewer shows (its panel, its notices) lets it draw: one in 4 s.
+VIEWER_FEW_FPS = 0.25
+
+
+def limit_viewer_frames(frames_per_s: float) -> str:
+    """An init script for the viewer's own page (a lesson's /viewer/… frame or a room's /room-viewer/…): its
+    requestAnimationFrame draws ``frames_per_s`` frames a second, or never at 0 (the callback is dropped). Every other
+    page keeps the browser's own frames."""
+    draw = "() => 0" if frames_per_s == 0 else f"(draw) => setTimeout(() => draw(performance.now()), {1000 / frames_per_s:g})"
+    return f"""(() => {{
   if (!/^\\/(room-)?viewer\\//.test(location.pathname)) return;
-  const period = 1000 / %g;
-  window.requestAnimationFrame = (draw) => setTimeout(() => draw(performance.now()), period);
+  window.requestAnimationFrame = {draw};
   window.cancelAnimationFrame = (id) => clearTimeout(id);
-})();""" % VIEWER_TEST_FPS
+}})();"""
 
 
 class ViewerFramesLimited:
-    """The session's Chromium, whose new contexts let viser's viewer draw at most :data:`VIEWER_TEST_FPS` frames a
-    second (unless screenshots are kept).
+    """The session's Chromium, whose new contexts let viser's viewer draw no frame at all (unless screenshots are
+    kept), a few (``viewer_frames_per_s=VIEWER_FEW_FPS``) or every one (``viewer_frames_per_s=None``).
 
     Software WebGL (SwiftShader; there is no GPU here) spends 200–300 ms of CPU on each of viser's frames, so one open
     viewer asking for 60 frames a second keeps 1.7 of the machine's 2 cores busy at about 8 frames a second. At
-    2 frames a second a lesson page still cost 0.5–1 core (its GPU process 0.4–0.8 core, measured over 10 s); drawing
-    none, 0.13 (viser's client still takes every message of the scene, in the page's renderer). Over the browser
-    tests, 2 frames a second spent 770 CPU-s in Chromium (420 of them in its GPU process); one frame in 4 s, 370
-    (GPU 80). The tests read the scene's state from the server and the page, never a frame rate; a test that looks
-    at what the viewer drew or moves its camera by keys asks for every frame (``viewer_frames_limited=False``) and
-    waits for the drawing it needs (:func:`wait_for_scene_drawn`).
+    2 frames a second a lesson page still cost 0.5–1 core (its GPU process 0.4–0.8 core, measured over 10 s). One
+    frame in 4 s cost 8.5 CPU-s over a lesson's first 10 s (its GPU process 4.0: the first frames compile the scene's
+    shaders in software); no frame, 4.8 (GPU 0.3). The tests read the scene's state from the server and the page,
+    never from a drawing; a test of what the viewer shows asks for a few frames, one that moves the camera by keys
+    (viser moves it a step a frame while a key is held) or waits for the drawing itself (:func:`wait_for_scene_drawn`)
+    for every one.
     """
 
     def __init__(self, browser) -> None:
         self._browser = browser
 
-    def new_context(self, *, viewer_frames_limited: bool = True, **options):
-        """A new context (Playwright's ``options``); ``viewer_frames_limited=False`` for a test of what the viewer does
-        frame by frame (viser moves the camera a step a frame while a key is held)."""
+    def new_context(self, *, viewer_frames_per_s: float | None = 0, **options):
+        """A new context (Playwright's ``options``) whose viewer draws ``viewer_frames_per_s`` frames a second (None:
+        the browser's own rate)."""
         context = self._browser.new_context(**options)
-        if viewer_frames_limited and not keeping_screenshots():
-            context.add_init_script(LIMIT_VIEWER_FRAMES)
+        if viewer_frames_per_s is not None and not keeping_screenshots():
+            context.add_init_script(limit_viewer_frames(viewer_frames_per_s))
         return context
 
     def __getattr__(self, name: str):
@@ -233,16 +237,16 @@ def screenshot(target, path: Path) -> None:
 
 def open_lesson(
     browser, live_server, path: str, *, viewport=(1500, 1000), context=None, viewer: bool = True, timeout_s: float = 40.0,
-    viewer_frames_limited: bool = True,
+    viewer_frames_per_s: float | None = 0,
 ):
     """Open ``path`` (e.g. ``/lessons/3-1-rotation-sequences``) in a new page; returns ``(context, page, session_id, errors)``.
 
     A new browser context of ``viewport`` (width, height) px is made unless ``context`` is given (its viewer draws
-    :data:`VIEWER_TEST_FPS` frames a second unless ``viewer_frames_limited`` is false).
+     ``viewer_frames_per_s`` frames a second: none by default, see :class:`ViewerFramesLimited`).
     ``errors`` collects the page's uncaught JavaScript errors. With ``viewer`` it waits on the
     server's own client list until the lesson's 3D viewer has connected through the relay.
     """
-    context = context or browser.new_context(viewport={"width": viewport[0], "height": viewport[1]}, viewer_frames_limited=viewer_frames_limited)
+    context = context or browser.new_context(viewport={"width": viewport[0], "height": viewport[1]}, viewer_frames_per_s=viewer_frames_per_s)
     page = context.new_page()
     errors: list[str] = []
     page.on("pageerror", lambda exc: errors.append(str(exc)))

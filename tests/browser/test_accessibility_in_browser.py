@@ -204,7 +204,7 @@ def _orbit_and_move_in_from_the_keyboard(page, camera) -> None:
 
 def test_a_running_scene_announces_its_motion_politely_moves_by_keyboard_and_keeps_our_markup_clean(browser, live_server):
     context, page, session_id, errors = open_lesson(
-        browser, live_server, "/lessons/10-2-spinning-top", viewport=(1366, 768), viewer_frames_limited=False  # keys move the camera a step a frame
+        browser, live_server, "/lessons/10-2-spinning-top", viewport=(1366, 768), viewer_frames_per_s=None  # keys move the camera a step a frame
     )
     page.wait_for_selector("#readout:not([hidden]) [data-quantity]", timeout=20_000)
     # The table is not live (30 numbers a second would drown a screen reader); one short line is, politely.

@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from tests.browser.conftest import dismiss_webgl_notice, open_lesson, screenshot, wait_for_scene_drawn
+from tests.browser.conftest import VIEWER_FEW_FPS, dismiss_webgl_notice, open_lesson, screenshot, wait_for_scene_drawn
 from tests.conftest import wait_until
 
 pytestmark = pytest.mark.browser
@@ -66,7 +66,8 @@ def hold(page, key: str, milliseconds: int) -> None:
 
 
 def test_viser_panel_is_hidden_and_the_scene_shows(browser, live_server, shots):
-    context, page, session_id, errors = open_lesson(browser, live_server, LESSON)
+    # viser's panel and its tab come with the viewer's first frames
+    context, page, session_id, errors = open_lesson(browser, live_server, LESSON, viewer_frames_per_s=VIEWER_FEW_FPS)
     frame = viewer_frame(page)
     tab = frame.locator(CONTROL_PANEL_TAB)
     panel_shown: list[bool] = []  # viser draws its floating panel a second or more before the panel's tab exists
@@ -104,7 +105,7 @@ def test_viser_panel_is_hidden_and_the_scene_shows(browser, live_server, shots):
 
 def test_keyboard_orbits_and_zooms_and_reset_view_restores_the_start_pose(browser, live_server):
     # Every frame: viser moves the camera a step a frame while a key is held, and our zoom eases over frames.
-    context, page, session_id, errors = open_lesson(browser, live_server, LESSON, viewer_frames_limited=False)
+    context, page, session_id, errors = open_lesson(browser, live_server, LESSON, viewer_frames_per_s=None)
     viewer_frame(page).wait_for_selector(CANVAS)
     wait_until(lambda: live_server.host.camera(session_id) is not None, 20, what="the viewer's first camera report")
     start = start_pose(live_server, session_id)
@@ -141,7 +142,7 @@ def test_keyboard_orbits_and_zooms_and_reset_view_restores_the_start_pose(browse
 
 
 def test_save_image_downloads_a_png_of_the_view(browser, live_server):
-    context, page, session_id, errors = open_lesson(browser, live_server, LESSON, viewer_frames_limited=False)
+    context, page, session_id, errors = open_lesson(browser, live_server, LESSON, viewer_frames_per_s=None)
     viewer_frame(page).wait_for_selector(CANVAS)
     wait_for_scene_drawn(page)
     with page.expect_download() as download_info:
