@@ -357,9 +357,9 @@ def _run(
     integrator = spec.factory(**setting)
     if spec.adaptive:
         cast("DormandPrince", integrator).max_steps = max(int(max_steps), 1)
-    start = time.process_time()
+    start = time.thread_time()
     result = simulate(system, integrator, y0, t_end_s=frames * frame_dt_s, frame_rate_hz=1.0 / frame_dt_s)
-    cpu = time.process_time() - start
+    cpu = time.thread_time() - start
     complete = result.status == "ok" and len(result.t_s) == frames + 1
     partial = result.status == "too_many_steps" and len(result.t_s) > PILOT_MIN_FRAMES
     finished = (complete or partial or result.status == "event") and bool(np.all(np.isfinite(result.states)))
@@ -384,16 +384,19 @@ def _affordable_frames(
     CPU, not in its cost per frame (in a fresh test process they made the Foucault pendulum's pilot afford 9.3 s of
     its 60 s, and its target was stated over that span only).
     """
-    spent = _run(system, spec, y0, 1, frame_dt_s, **setting)[1]
+    once = _run(system, spec, y0, 1, frame_dt_s, **setting)[1]
     # A cheap model's first frames take a fraction of a millisecond, where one page fault or collection would decide
-    # the estimate: the calibration runs longer (four times the frames each time) until it has measured enough.
-    calibration_frames = PILOT_MIN_FRAMES
+    # the estimate: the calibration runs longer (four times the frames each time) until it has measured enough, or
+    # has spent a quarter of the budget itself (the one-frame run's once-only costs do not cut it short: a kernel
+    # loaded on a loaded machine once left a 20-frame calibration's noise to decide the Foucault pendulum's span).
+    calibration_frames, calibrating = PILOT_MIN_FRAMES, 0.0
     while True:
         calibration, cpu, _ = _run(system, spec, y0, calibration_frames, frame_dt_s, **setting)
-        spent += cpu
-        if cpu >= CALIBRATION_CPU_S or calibration_frames >= frames or spent >= cpu_budget_s / 4:
+        calibrating += cpu
+        if cpu >= CALIBRATION_CPU_S or calibration_frames >= frames or calibrating >= cpu_budget_s / 4:
             break
         calibration_frames = min(4 * calibration_frames, frames)
+    spent = once + calibrating
     per_frame = cpu / max(len(calibration.t_s) - 1, 1)
     if per_frame <= 0.0:
         return frames, spent

@@ -11,6 +11,7 @@ estimate's own error, and the measured errors below sit at 0.3–0.7 of the targ
 from __future__ import annotations
 
 import math
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -19,6 +20,7 @@ from app.physics.bodies.rigid_body import PivotedBody
 from app.physics.core.parameters import ParameterError, ParameterSet
 from app.physics.core.report import MAX_FIXED_STEP_WORK
 from app.physics.solvers import METHODS, make_integrator, simulate
+from app.physics.solvers import step_choice
 from app.physics.solvers.integrated_model import check_request_bounds
 from app.physics.solvers.step_choice import (
     EXACT_FALLBACK,
@@ -212,3 +214,21 @@ def test_the_quadrature_states_agree_with_a_tight_integration():
     result = simulate(body.system(), make_integrator("dopri5", rtol=1e-12), heavy_top.initial_state(params), t_end_s=2.0, frame_rate_hz=30.0)
     assert np.max(attitude_difference_rad(exact[:, :4], result.states[:, :4])) < 1e-7
     assert np.max(np.abs(exact[:, 4:] - result.states[:, 4:])) < 1e-6 * math.fabs(params["spin_rad_s"])
+
+
+def test_a_costly_first_frame_does_not_cut_the_calibration_short(monkeypatch):
+    """The pilot's calibration measures a model's cost per frame. Its one-frame run pays once-only costs (a kernel
+    compiled or loaded); on a loaded machine that once took a quarter of the budget, the calibration stopped after
+    20 frames, whose noise (12 ms for 20 frames of a 1 µs/frame model) let the Foucault pendulum's pilot afford only
+    9.2 s of its 60 s, and its target was stated over that span. Faked runs: 0.3 s for the first frame, 12 ms for the
+    first 20-frame calibration, 1 µs a frame after that."""
+    costs = iter([0.3, 0.012])
+
+    def run(system, spec, y0, frames, frame_dt_s, **setting):
+        cpu = next(costs, None)
+        return SimpleNamespace(t_s=np.arange(frames + 1) * frame_dt_s), 1e-6 * frames if cpu is None else cpu, True
+
+    monkeypatch.setattr(step_choice, "_run", run)
+    frames, spent = step_choice._affordable_frames(None, None, None, 3600, 1 / 60, runs_cost=3.0, cpu_budget_s=1.0)
+    assert frames == 3600  # 60 s at 60 frames a second: all of the horizon
+    assert spent == pytest.approx(0.3 + 0.012 + 1e-6 * (80 + 320 + 1280 + 3600))
