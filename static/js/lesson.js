@@ -1,7 +1,7 @@
 // Lesson page: controls generated from the scene's parameter schema, the live
 // viewer (one scene per page session) and the worked-solution panel. `lesson` is what the page's other scripts drive
 // (null on a lesson with neither a scene nor worked examples); the browser tests read it too, by importing this module.
-import { api, randomId } from "./api.js";
+import { api, apiPatient, randomId } from "./api.js";
 import { config } from "./config.js";
 import { formatNumber } from "./format.js";
 import { katexInto, renderMath } from "./katex.js";
@@ -335,6 +335,12 @@ export const lesson = (function () {
 
   // A change to this page's scene or a solve, with the session's key: nobody who only learns its id may change it.
   const call = (method, url, body) => api(method, url, body, { "X-Session-Key": session.key });
+  // Setting the scene's parameters and solving the examples may be sent again unchanged: a busy server is waited out
+  // (its Retry-After), with a word in the error line meanwhile, instead of losing the student's change.
+  const callPatiently = (method, url, body) =>
+    apiPatient(method, url, body, { "X-Session-Key": session.key }, {
+      onWait: (seconds) => showError(null, `The server is busy; sending your change again in ${seconds} s…`),
+    });
 
   // ---- solution panel ---------------------------------------------------------------
   const panel = document.getElementById("solution");
@@ -448,7 +454,7 @@ export const lesson = (function () {
     const values = { ...session.values };
     try {
       if (scene && !changeHook) {
-        const reply = await call("PUT", `/api/scenes/${scene.id}/sessions/${session.id}`, { params: values });
+        const reply = await callPatiently("PUT", `/api/scenes/${scene.id}/sessions/${session.id}`, { params: values });
         Object.assign(values, reply.params);
         pollSoon();
         sessionExists();
@@ -457,7 +463,7 @@ export const lesson = (function () {
       const rendered = [];
       for (const example of examples) {
         const inputs = Object.fromEntries(example.inputs.map((s) => [s.name, values[s.name]]));
-        const result = await call("POST", `/api/examples/${encodeURIComponent(example.id)}/solve`, { inputs });
+        const result = await callPatiently("POST", `/api/examples/${encodeURIComponent(example.id)}/solve`, { inputs });
         rendered.push(renderSolution(example, result));
       }
       if (rendered.length) {

@@ -103,3 +103,33 @@ def test_mixed_description_lesson_shows_the_rotating_arm_and_its_coriolis_term(b
     assert page.locator('.scene-picker a[href$="?scene=space-curve"]').count() == 1
     assert not errors, errors
     context.close()
+
+
+def test_a_busy_server_is_waited_out_and_the_students_preset_still_reaches_the_scene(browser, live_server):
+    """The scene's worker busy or restarting answers the page's change with 503 and Retry-After: the page says so in
+    its error line, waits as told and sends the change again, so a student's preset is not lost (it was: the page
+    showed the refusal and the scene kept its old parameters)."""
+    context, page, session_id, errors = open_lesson(browser, live_server, "/lessons/2-4-mixed-descriptions")
+    refused: list[str] = []
+
+    def busy_once(route):
+        if route.request.method == "PUT" and not refused:
+            refused.append(route.request.post_data or "")
+            route.fulfill(status=503, headers={"Retry-After": "1"}, content_type="application/json",
+                          body=json.dumps({"detail": "this scene's worker is busy; try again shortly"}))
+        else:
+            route.continue_()
+
+    route = f"**/api/scenes/rotating-arm/sessions/{session_id}"
+    page.route(route, busy_once)
+    page.click('button[data-preset="fixed-collar"]')  # once: the page itself must send it again
+    page.wait_for_function("() => /server is busy; sending your change again in 1 s/.test(document.getElementById('control-error').textContent)")
+    # The page's next request goes straight to the server (a routed one would wait for this thread's Playwright calls).
+    page.unroute(route)
+    preset = {"collar_amplitude_m": 0.0, "collar_mean_m": 1.0}
+    params = live_server.host.session_params
+    wait_until(lambda: all(params(session_id)[k] == v for k, v in preset.items()), 15, what="the preset sent again")
+    assert len(refused) == 1 and json.loads(refused[0])["params"]["collar_amplitude_m"] == 0.0
+    page.wait_for_function("() => document.getElementById('control-error').hidden")
+    assert not errors, errors
+    context.close()
