@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from tests.browser.conftest import VIEWER_FEW_FPS, dismiss_webgl_notice, open_lesson, screenshot, wait_for_scene_drawn
+from tests.browser.conftest import dismiss_webgl_notice, open_lesson, screenshot, wait_for_scene_drawn
 from tests.conftest import wait_until
 
 pytestmark = pytest.mark.browser
@@ -66,8 +66,7 @@ def hold(page, key: str, milliseconds: int) -> None:
 
 
 def test_viser_panel_is_hidden_and_the_scene_shows(browser, live_server, shots):
-    # viser's panel and its tab come with the viewer's first frames
-    context, page, session_id, errors = open_lesson(browser, live_server, LESSON, viewer_frames_per_s=VIEWER_FEW_FPS)
+    context, page, session_id, errors = open_lesson(browser, live_server, LESSON)
     frame = viewer_frame(page)
     tab = frame.locator(CONTROL_PANEL_TAB)
     panel_shown: list[bool] = []  # viser draws its floating panel a second or more before the panel's tab exists
