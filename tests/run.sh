@@ -3,14 +3,14 @@
 # The default run skips the `slow` tests; `tests/run.sh -m slow` recomputes the stored references in
 # tests/references/ and checks them (DYNLAB_REGENERATE_REFERENCES=1 rewrites them instead).
 #   - uv (from PyPI) for the project environment
-#   - Debian's Chromium for the real-browser tests (Playwright drives it; it never downloads a browser)
+#   - Debian's Chromium, as its headless shell, for the real-browser tests (Playwright drives it; it never downloads one)
 #   - Debian's PostgreSQL for the database tests on PostgreSQL (each starts a throwaway cluster on loopback)
 #   - Debian's HAProxy for the test of one class on two servers behind a balancer (deploy/haproxy.cfg)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 python3 -m uv --version >/dev/null 2>&1 || python3 -m pip install --quiet uv
 MISSING=""
-[ -x /usr/bin/chromium ] || MISSING="$MISSING chromium"
+[ -x /usr/bin/chromium-headless-shell ] || MISSING="$MISSING chromium-headless-shell"
 ls /usr/lib/postgresql/*/bin/initdb >/dev/null 2>&1 || MISSING="$MISSING postgresql"
 [ -x /usr/sbin/haproxy ] || MISSING="$MISSING haproxy"
 if [ -n "$MISSING" ]; then

@@ -22,7 +22,12 @@ from tests.conftest import wait_until
 from tests.served import INSTRUCTOR_KEY as SERVED_INSTRUCTOR_KEY
 from tests.served import ServedApp, free_port
 
-CHROMIUM = "/usr/bin/chromium"
+#: Debian's Chromium as its headless shell (package ``chromium-headless-shell``: the same Blink, V8 and SwiftShader
+#: as ``/usr/bin/chromium``, without the browser's own window and pages). Playwright drives it the way it drives
+#: Chromium headless by default. The full browser opened its omnibox's WebUI page in every new context: 0.6 CPU-s of a
+#: lesson page's 3.3 (its browser process 0.42 CPU-s against 0.16, and a WebUI renderer of 0.24), measured over a
+#: lesson's first 14 s on this machine.
+CHROMIUM = "/usr/bin/chromium-headless-shell"
 CHROMIUM_ARGS = (
     "--no-sandbox --disable-gpu --disable-quic --no-first-run --disable-background-networking "
     "--disable-component-update --disable-sync --enable-unsafe-swiftshader --use-gl=angle --use-angle=swiftshader"
@@ -164,41 +169,57 @@ def live_server(served: ServedApp) -> LiveServer:
 VIEWER_FEW_FPS = 0.25
 
 
-def limit_viewer_frames(frames_per_s: float) -> str:
+def limit_viewer_frames(frames_per_s: float | None, *, draws: bool = False) -> str:
     """An init script for the viewer's own page (a lesson's /viewer/… frame or a room's /room-viewer/…): its
-    requestAnimationFrame draws ``frames_per_s`` frames a second, or never at 0 (the callback is dropped). Every other
-    page keeps the browser's own frames."""
-    draw = "() => 0" if frames_per_s == 0 else f"(draw) => setTimeout(() => draw(performance.now()), {1000 / frames_per_s:g})"
+    requestAnimationFrame calls back ``frames_per_s`` times a second (None: at the browser's own rate; 0: never, the
+    callback is dropped), and unless ``draws``, WebGL's draw calls draw nothing. viser's renderer still runs each frame
+    (three.js culls, sorts and counts it, binds its programs, and viser moves its camera) but software WebGL never
+    builds the pipelines that would draw it: a scene's first frame cost the GPU process 4.2 CPU-s of SwiftShader's
+    compiling, every time, in a fresh context or not; with no drawing, 0.3. Every other page keeps the browser's own
+    frames."""
+    lines = []
+    if frames_per_s is not None:
+        draw = "() => 0" if frames_per_s == 0 else f"(draw) => setTimeout(() => draw(performance.now()), {1000 / frames_per_s:g})"
+        lines += [f"window.requestAnimationFrame = {draw};", "window.cancelAnimationFrame = (id) => clearTimeout(id);"]
+    if not draws:
+        lines += [
+            "for (const context of [window.WebGLRenderingContext, window.WebGL2RenderingContext]) {",
+            '  for (const name of ["drawArrays", "drawElements", "drawArraysInstanced", "drawElementsInstanced", "drawRangeElements"]) {',
+            "    if (context && name in context.prototype) context.prototype[name] = () => undefined;",
+            "  }",
+            "}",
+        ]
+    body = "\n".join("  " + line for line in lines)
     return f"""(() => {{
   if (!/^\\/(room-)?viewer\\//.test(location.pathname)) return;
-  window.requestAnimationFrame = {draw};
-  window.cancelAnimationFrame = (id) => clearTimeout(id);
+{body}
 }})();"""
 
 
 class ViewerFramesLimited:
-    """The session's Chromium, whose new contexts let viser's viewer draw a few frames (:data:`VIEWER_FEW_FPS`,
-    unless screenshots are kept), none (``viewer_frames_per_s=0``) or every one (``viewer_frames_per_s=None``).
+    """The session's Chromium, whose new contexts let viser's viewer run a few frames (:data:`VIEWER_FEW_FPS`), none
+    (``viewer_frames_per_s=0``) or every one (``viewer_frames_per_s=None``), drawing nothing in them unless
+    ``viewer_draws`` (see :func:`limit_viewer_frames`); when screenshots are kept, every frame is drawn.
 
     Software WebGL (SwiftShader; there is no GPU here) spends 200–300 ms of CPU on each of viser's frames, so one open
     viewer asking for 60 frames a second keeps 1.7 of the machine's 2 cores busy at about 8 frames a second. At
     2 frames a second a lesson page still cost 0.5–1 core (its GPU process 0.4–0.8 core, measured over 10 s). One
     frame in 4 s cost 8.5 CPU-s over a lesson's first 10 s (its GPU process 4.0: the first frames compile the scene's
-    shaders in software); no frame, 4.8 (GPU 0.3). The tests read the scene's state from the server and the page,
-    never from a drawing; a test of what the viewer shows asks for a few frames, one that moves the camera by keys
-    (viser moves it a step a frame while a key is held) or waits for the drawing itself (:func:`wait_for_scene_drawn`)
-    for every one.
+    shaders in software); no frame, 4.8 (GPU 0.3), but then a lesson's first preset was lost twice in six fresh-clone
+    runs (never at one frame in 4 s). The tests read the scene's state from the server and the page, never from a
+    drawing: a test that moves the camera by keys (viser moves it a step a frame while a key is held) asks for every
+    frame, and only one that looks at the drawing itself (:func:`wait_for_scene_drawn`, a saved image) draws.
     """
 
     def __init__(self, browser) -> None:
         self._browser = browser
 
-    def new_context(self, *, viewer_frames_per_s: float | None = VIEWER_FEW_FPS, **options):
-        """A new context (Playwright's ``options``) whose viewer draws ``viewer_frames_per_s`` frames a second (None:
-        the browser's own rate)."""
+    def new_context(self, *, viewer_frames_per_s: float | None = VIEWER_FEW_FPS, viewer_draws: bool = False, **options):
+        """A new context (Playwright's ``options``) whose viewer runs ``viewer_frames_per_s`` frames a second (None:
+        the browser's own rate), drawn only if ``viewer_draws``."""
         context = self._browser.new_context(**options)
-        if viewer_frames_per_s is not None and not keeping_screenshots():
-            context.add_init_script(limit_viewer_frames(viewer_frames_per_s))
+        if not keeping_screenshots() and not (viewer_frames_per_s is None and viewer_draws):
+            context.add_init_script(limit_viewer_frames(viewer_frames_per_s, draws=viewer_draws))
         return context
 
     def __getattr__(self, name: str):
@@ -238,16 +259,19 @@ def screenshot(target, path: Path) -> None:
 
 def open_lesson(
     browser, live_server, path: str, *, viewport=(1500, 1000), context=None, viewer: bool = True, timeout_s: float = 40.0,
-    viewer_frames_per_s: float | None = VIEWER_FEW_FPS,
+    viewer_frames_per_s: float | None = VIEWER_FEW_FPS, viewer_draws: bool = False,
 ):
     """Open ``path`` (e.g. ``/lessons/3-1-rotation-sequences``) in a new page; returns ``(context, page, session_id, errors)``.
 
     A new browser context of ``viewport`` (width, height) px is made unless ``context`` is given (its viewer draws
-     ``viewer_frames_per_s`` frames a second: :data:`VIEWER_FEW_FPS` by default, see :class:`ViewerFramesLimited`).
+     ``viewer_frames_per_s`` frames a second, :data:`VIEWER_FEW_FPS` by default, drawn if ``viewer_draws``: see
+    :class:`ViewerFramesLimited`).
     ``errors`` collects the page's uncaught JavaScript errors. With ``viewer`` it waits on the
     server's own client list until the lesson's 3D viewer has connected through the relay.
     """
-    context = context or browser.new_context(viewport={"width": viewport[0], "height": viewport[1]}, viewer_frames_per_s=viewer_frames_per_s)
+    context = context or browser.new_context(
+        viewport={"width": viewport[0], "height": viewport[1]}, viewer_frames_per_s=viewer_frames_per_s, viewer_draws=viewer_draws
+    )
     page = context.new_page()
     errors: list[str] = []
     page.on("pageerror", lambda exc: errors.append(str(exc)))

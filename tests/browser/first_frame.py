@@ -102,7 +102,7 @@ def measure_once(browser, url: str, lesson_id: str, *, timeout_s: float = 30.0) 
     first frame, the marks reached so far with ``timed_out``."""
     from playwright.sync_api import TimeoutError as PlaywrightTimeout
 
-    context = browser.new_context(viewport={"width": 1366, "height": 768}, viewer_frames_per_s=None)
+    context = browser.new_context(viewport={"width": 1366, "height": 768}, viewer_frames_per_s=None, viewer_draws=True)
     try:
         context.add_init_script(MARKS_SCRIPT)
         page = context.new_page()

@@ -141,7 +141,7 @@ def test_keyboard_orbits_and_zooms_and_reset_view_restores_the_start_pose(browse
 
 
 def test_save_image_downloads_a_png_of_the_view(browser, live_server):
-    context, page, session_id, errors = open_lesson(browser, live_server, LESSON, viewer_frames_per_s=None)
+    context, page, session_id, errors = open_lesson(browser, live_server, LESSON, viewer_frames_per_s=None, viewer_draws=True)
     viewer_frame(page).wait_for_selector(CANVAS)
     wait_for_scene_drawn(page)
     with page.expect_download() as download_info:
