@@ -3,7 +3,7 @@ sampler of every process's CPU by kind. Neither runs unless asked; README's issu
 
     python -m tests.suite_profile sample &                  # CPU by kind of process, once a second
     bash tests/run.sh -p tests.suite_profile                # the timeline of every test on every worker
-    kill %1; python -m tests.suite_profile report           # CPU by kind, busy fraction, longest files and tests
+    kill %1; python -m tests.suite_profile report           # CPU by kind, busy fraction, longest and dearest files
 
 Everything goes to ``test-results/suite-profile/`` (``cpu.jsonl`` and one ``<worker>.jsonl`` per xdist worker).
 """
@@ -66,7 +66,9 @@ def _kind(pid: str) -> str | None:
         return "served apps' fronts"
     if "exec(eval(sys.stdin.readline()))" in command:
         return "test workers"
-    return "other"
+    if "pytest" in command:
+        return "xdist's controller"
+    return f"other: {name}"
 
 
 def sample(period_s: float = 1.0) -> None:
@@ -91,7 +93,7 @@ def sample(period_s: float = 1.0) -> None:
 
 
 def report() -> None:
-    """CPU by kind over the tests' span, how busy the machine was, and the longest files and tests."""
+    """CPU by kind over the tests' span, how busy the machine was, the longest files and tests, and the dearest files."""
     spans, cpu_of_test = defaultdict(lambda: [float("inf"), 0.0]), {}
     started: dict[str, tuple[float, float]] = {}
     for path in OUT.glob("*.jsonl"):
@@ -122,6 +124,42 @@ def report() -> None:
     print("longest tests (wall s, the worker's own CPU s):")
     for nodeid, (wall, cpu) in sorted(cpu_of_test.items(), key=lambda kv: -kv[1][0])[:20]:
         print(f"  {wall:7.1f} {cpu:7.1f}  {nodeid}")
+    print("dearest files (CPU-s of every process; see _cpu_by_file):")
+    for name, seconds in _cpu_by_file(samples, cpu_of_test).most_common(25):
+        print(f"  {seconds:7.1f}  {name}")
+
+
+def _cpu_by_file(samples: list[dict], cpu_of_test: dict[str, tuple[float, float]]) -> Counter[str]:
+    """Each file's CPU over every process, estimated: a test's own CPU in its worker exactly; each second's CPU of the
+    other processes shared equally among the tests running in that second (Chromium's among the browser tests
+    running, if any). Two tests side by side on a served app they share cannot be told apart any better."""
+    running: dict[str, list[tuple[float, float, str]]] = defaultdict(list)
+    for path in OUT.glob("*.jsonl"):
+        if path.name == "cpu.jsonl":
+            continue
+        started: dict[str, float] = {}
+        for line in path.read_text().splitlines():
+            row = json.loads(line)
+            if row["ev"] == "start":
+                started[row["id"]] = row["t"]
+            elif row["id"] in started:
+                running[path.stem].append((started.pop(row["id"]), row["t"], row["id"]))
+    by_file: Counter[str] = Counter()
+    for nodeid, (_, cpu) in cpu_of_test.items():
+        by_file[nodeid.split("::")[0]] += cpu
+    for sample in samples:
+        at = sample["t"] - 0.5  # the middle of the second the sample covers
+        now = [nodeid for spans in running.values() for a, b, nodeid in spans if a - 1 <= at <= b + 1][: len(running)]
+        if not now:
+            continue
+        in_browser = [nodeid for nodeid in now if nodeid.startswith("tests/browser/")]
+        for kind, seconds in sample["cpu"].items():
+            if kind == "test workers":
+                continue  # counted exactly above
+            sharing = in_browser if kind.startswith("chromium") and in_browser else now
+            for nodeid in sharing:
+                by_file[nodeid.split("::")[0]] += seconds / len(sharing)
+    return by_file
 
 
 if __name__ == "__main__":
