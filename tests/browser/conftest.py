@@ -263,8 +263,8 @@ def open_lesson(
 ):
     """Open ``path`` (e.g. ``/lessons/3-1-rotation-sequences``) in a new page; returns ``(context, page, session_id, errors)``.
 
-    A new browser context of ``viewport`` (width, height) px is made unless ``context`` is given (its viewer draws
-     ``viewer_frames_per_s`` frames a second, :data:`VIEWER_FEW_FPS` by default, drawn if ``viewer_draws``: see
+    A new browser context of ``viewport`` (width, height) px is made unless ``context`` is given (its viewer runs
+    ``viewer_frames_per_s`` frames a second, :data:`VIEWER_FEW_FPS` by default, drawn if ``viewer_draws``: see
     :class:`ViewerFramesLimited`).
     ``errors`` collects the page's uncaught JavaScript errors. With ``viewer`` it waits on the
     server's own client list until the lesson's 3D viewer has connected through the relay.

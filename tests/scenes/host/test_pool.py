@@ -212,3 +212,26 @@ def test_one_slow_ping_is_not_a_stopped_worker_but_two_in_a_row_are(pool, monkey
     assert worker.answering
     pool._check(worker)
     assert not worker.answering
+
+
+def test_a_stopped_process_is_told_from_a_running_or_gone_one():
+    """What ``WorkerPool.stop`` asks before it waits for a worker: one SIGSTOP'd by someone cannot exit by itself and is
+    killed at once (waiting STOP_TIMEOUT_S for it cost Ctrl+C 2 of its 5 s: tests/api/test_faults.py)."""
+    import signal
+    import subprocess
+    import sys
+
+    from app.scenes.host.pool import _is_stopped
+    from tests.conftest import wait_until
+
+    child = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(60)"])
+    try:
+        assert not _is_stopped(child.pid)
+        child.send_signal(signal.SIGSTOP)
+        wait_until(lambda: _is_stopped(child.pid), 10, what="the child to be stopped")
+        child.send_signal(signal.SIGCONT)
+        wait_until(lambda: not _is_stopped(child.pid), 10, what="the child to run again")
+    finally:
+        child.kill()
+        child.wait()
+    assert not _is_stopped(child.pid)  # gone
