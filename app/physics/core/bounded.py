@@ -376,6 +376,13 @@ BUSY_PAUSED_SHARE = 0.25
 STARVED_SHARE = 0.9
 
 
+def process_stat_fields(pid: int | str | None) -> list[str]:
+    """The fields of Linux's ``/proc/<pid>/stat`` after ``comm`` (which may hold spaces and ``)``): state, ppid, pgrp,
+    session, … (``proc(5)``'s field n is index n − 3). Raises OSError if the process is gone or cannot be read."""
+    with open(f"/proc/{pid}/stat", encoding="ascii", errors="replace") as stat:
+        return stat.read().rsplit(")", 1)[1].split()
+
+
 def _processor_times_s(pid: int | None, *, paused_s: float = 0.0) -> tuple[float, float]:
     """``(running, waiting)``: seconds process ``pid`` has run on a processor and has been runnable but waiting for
     one (Linux's ``/proc/<pid>/schedstat``, in ns; a stopped or sleeping process is not waiting); zeros where this
@@ -387,9 +394,7 @@ def _processor_times_s(pid: int | None, *, paused_s: float = 0.0) -> tuple[float
     try:
         with open(f"/proc/{pid}/schedstat", encoding="ascii") as schedstat:
             running_ns, waiting_ns = (int(field) for field in schedstat.read().split()[:2])
-        with open(f"/proc/{pid}/stat", encoding="ascii", errors="replace") as stat:
-            # pid (comm) state … starttime (the 22nd field, in clock ticks since boot): comm may hold ")".
-            fields = stat.read().rsplit(")", 1)[1].split()
+        fields = process_stat_fields(pid)  # state … starttime (the 22nd field, in clock ticks since boot)
         with open("/proc/uptime", encoding="ascii") as uptime:
             now_since_boot_s = float(uptime.read().split()[0])
         runnable = fields[0] == "R"
@@ -454,9 +459,7 @@ def _server_processes_cpu_s() -> dict[int, float]:
         return used
     for entry in entries:
         try:
-            with open(f"/proc/{entry}/stat", "rb") as stat:
-                # pid (comm) state ppid pgrp session … utime stime … policy: comm may hold spaces and parentheses.
-                fields = stat.read().rsplit(b")", 1)[1].split()
+            fields = process_stat_fields(entry)  # state ppid pgrp session … utime stime … policy
             if int(fields[3]) != session or int(fields[38]) == idle_class:
                 continue
             used[int(entry)] = (int(fields[11]) + int(fields[12])) / ticks_per_s

@@ -43,7 +43,12 @@ from multiprocessing import AuthenticationError
 from multiprocessing.connection import Connection
 from typing import TYPE_CHECKING, Any
 
-from app.physics.core.bounded import DEFAULT_PRELOAD, forkserver_context, yield_only_to_live_scenes
+from app.physics.core.bounded import (
+    DEFAULT_PRELOAD,
+    forkserver_context,
+    process_stat_fields,
+    yield_only_to_live_scenes,
+)
 from app.scenes.host.host import UnknownSceneError, check_session_id
 from app.scenes.host.interface import CALLS, RAISE, Call, SceneHostInterface
 from app.scenes.host.rpc import WorkerUnavailableError, connect, raise_answer
@@ -79,8 +84,7 @@ def _is_stopped(pid: int | None) -> bool:
     """Whether process ``pid`` is stopped (SIGSTOP: state ``T``, or ``t`` under a debugger), from Linux's
     ``/proc/<pid>/stat``; False if it cannot be read (gone already)."""
     try:
-        with open(f"/proc/{pid}/stat", encoding="ascii", errors="replace") as stat:
-            return stat.read().rsplit(")", 1)[1].split()[0] in ("T", "t")  # pid (comm) state …: comm may hold ")"
+        return process_stat_fields(pid)[0] in ("T", "t")
     except (OSError, IndexError):
         return False
 
