@@ -11,13 +11,37 @@ a state makes every output NaN, which the integrators stop on.
 from __future__ import annotations
 
 import itertools
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
+from typing import Protocol
 
 import sympy
 from sympy.printing.pycode import PythonCodePrinter
 
 from app.physics.mechanics.derivation import Assign, Recipe, Solve
-from app.physics.mechanics.description import TIME, SystemDescription
+from app.physics.mechanics.description import TIME, Coordinate
+
+
+class CodeSystem(Protocol):
+    """What the generator reads of a system: its id and fingerprint (for the header), coordinates, their rates (the
+    state is (q, q̇)) and parameter symbols (in the parameter array's order)."""
+
+    @property
+    def id(self) -> str: ...
+
+    @property
+    def coordinates(self) -> Sequence[Coordinate]: ...
+
+    @property
+    def q(self) -> list[sympy.Symbol]: ...
+
+    @property
+    def qd(self) -> list[sympy.Symbol]: ...
+
+    @property
+    def parameter_symbols(self) -> list[sympy.Symbol]: ...
+
+    def fingerprint(self) -> str: ...
+
 
 HEADER = (
     (
@@ -42,7 +66,7 @@ class _Printer(PythonCodePrinter):
         super().__init__({"fully_qualified_modules": True, "standard": "python3"})
 
 
-def generate_source(system: SystemDescription, recipe: Recipe, *, formulation: str) -> str:
+def generate_source(system: CodeSystem, recipe: Recipe, *, formulation: str) -> str:
     """The module text defining ``rhs(t, y, p, dydt)`` for ``recipe``."""
     printer = _Printer()
     names: dict[sympy.Symbol, sympy.Symbol] = {TIME: sympy.Symbol("t")}
@@ -103,3 +127,27 @@ def generate_source(system: SystemDescription, recipe: Recipe, *, formulation: s
         lines.append(f"    dydt[{i}] = {value}")
     header = HEADER.format(system_id=system.id, formulation=formulation, fingerprint=system.fingerprint())
     return header + "\n".join(lines) + "\n"
+
+
+def generate_function(
+    name: str, arguments: Sequence[tuple[str, Sequence[sympy.Symbol]]], outputs: Sequence[sympy.Expr]
+) -> str:
+    """``def name(<arguments>, out):`` filling ``out[i]`` with ``outputs[i]`` in straight-line code (common
+    subexpressions shared); each argument is an array whose entries are the given symbols, in order."""
+    printer = _Printer()
+    names: dict[sympy.Symbol, sympy.Symbol] = {}
+    lines = [f"def {name}({', '.join(a for a, _ in arguments)}, out):"]
+    for array, symbols in arguments:
+        for i, symbol in enumerate(symbols):
+            names[symbol] = sympy.Symbol(f"{array}_{i}")
+            lines.append(f"    {array}_{i} = {array}[{i}]")
+    counter = itertools.count(1)
+
+    def fresh_names() -> Iterator[sympy.Symbol]:
+        while True:
+            yield sympy.Symbol(f"c{next(counter)}")
+
+    replacements, reduced = sympy.cse([sympy.sympify(e).xreplace(names) for e in outputs], symbols=fresh_names())
+    lines += [f"    {symbol} = {printer.doprint(value)}" for symbol, value in replacements]
+    lines += [f"    out[{i}] = {printer.doprint(value)}" for i, value in enumerate(reduced)]
+    return "\n".join(lines) + "\n"

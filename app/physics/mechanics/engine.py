@@ -22,13 +22,14 @@ from collections import OrderedDict
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from pathlib import Path
+from types import ModuleType
 from typing import Any
 
 import numba
 import numpy as np
 import sympy
 
-from app.physics.mechanics.codegen import generate_source
+from app.physics.mechanics.codegen import CodeSystem, generate_source
 from app.physics.mechanics.derivation import FORMULATIONS, Derivation, FormulationUnavailable
 from app.physics.mechanics.description import SystemDescription
 from app.physics.mechanics.gibbs_appell import derive_gibbs_appell
@@ -212,17 +213,22 @@ _memory_lock = threading.Lock()
 _key_locks: dict[tuple[str, str], threading.Lock] = {}
 
 
-def _load_module(path: Path) -> Callable[..., None]:
+def load_generated(path: Path) -> ModuleType:
+    """Import a generated module (registered under its own name: numba's cache finds a function's module by it)."""
     name = f"dynlab_derived_{path.stem.replace('-', '_')}"
     spec = importlib.util.spec_from_file_location(name, path)
     assert spec is not None and spec.loader is not None
     module = importlib.util.module_from_spec(spec)
-    sys.modules[name] = module  # numba's cache finds the function's module by name
+    sys.modules[name] = module
     spec.loader.exec_module(module)
-    return module.rhs
+    return module
 
 
-def load_recipe(system: SystemDescription, recipe, *, formulation: str, path: Path) -> Callable[..., None]:
+def _load_module(path: Path) -> Callable[..., None]:
+    return load_generated(path).rhs
+
+
+def load_recipe(system: CodeSystem, recipe, *, formulation: str, path: Path) -> Callable[..., None]:
     """Generate ``recipe``'s source at ``path`` (written atomically) and load its ``rhs(t, y, p, dydt)``."""
     source = generate_source(system, recipe, formulation=formulation)
     path.parent.mkdir(parents=True, exist_ok=True)

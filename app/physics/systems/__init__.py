@@ -50,3 +50,18 @@ def analytical_systems() -> dict:
                 raise ValueError(f"two catalogue systems share the id {system.id!r} ({name})")
             systems[system.id] = system
     return systems
+
+
+def multibody_systems() -> dict:
+    """Every system described by its parts (bodies, joints, rolling contacts) by id: the ``SYSTEM`` a module
+    declares as a :class:`~app.physics.mechanics.multibody.parts.MultibodySystem`."""
+    from app.physics.mechanics.multibody.parts import MultibodySystem
+
+    systems: dict[str, MultibodySystem] = {}
+    for name in system_modules():
+        system = getattr(importlib.import_module(name), "SYSTEM", None)
+        if isinstance(system, MultibodySystem):
+            if systems.get(system.id, system) is not system:
+                raise ValueError(f"two multibody systems share the id {system.id!r} ({name})")
+            systems[system.id] = system
+    return systems

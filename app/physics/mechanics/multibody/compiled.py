@@ -1,0 +1,217 @@
+"""A multibody system's equations as generated code, derived once and kept on disk.
+
+:func:`compiled` derives the constrained equations (:mod:`.kane`), shares their
+common subexpressions and writes one Python module beside the derivation cache
+(``$DYNLAB_DERIVATION_CACHE``): the right-hand side ``rhs(t, y, p, dydt)`` (the
+state y = (q, q̇); the (n + m) system solved by LU at each call), the
+configuration constraints and their Jacobian, the velocity-constraint matrix and
+the energies. A later call, in this process or the next, imports the module
+without sympy. The operation counts before and after common-subexpression
+elimination are kept with it.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import threading
+import time
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import sympy
+
+from app.physics.mechanics.codegen import generate_function, generate_source
+from app.physics.mechanics.engine import cache_directory, load_generated
+from app.physics.mechanics.multibody.kane import ConstrainedEquations, equations, lagrange_form
+from app.physics.mechanics.multibody.parts import MultibodySystem
+
+
+def _source_digest() -> str:
+    digest = hashlib.sha256()
+    for path in sorted(Path(__file__).parent.glob("*.py")):
+        digest.update(path.name.encode() + path.read_bytes())
+    digest.update((Path(__file__).parents[1] / "codegen.py").read_bytes())
+    return digest.hexdigest()[:10]
+
+
+#: Part of every cache key: this package's source (and the generator's), so a changed engine never reads old code.
+MULTIBODY_VERSION = _source_digest()
+
+
+class ConstraintsNotMet(ValueError):
+    """The dependent coordinates could not be found (the configuration cannot be assembled), or the dependent speeds
+    are not determined (the constraint matrix is singular there)."""
+
+
+def operation_count(expressions: list[sympy.Expr]) -> tuple[int, int]:
+    """Operations (sympy's count) written out in full, and after common subexpressions are shared."""
+    before = sum(sympy.count_ops(e) for e in expressions)
+    replacements, reduced = sympy.cse(expressions)
+    after = sum(sympy.count_ops(v) for _, v in replacements) + sum(sympy.count_ops(e) for e in reduced)
+    return int(before), int(after)
+
+
+@dataclass
+class CompiledSystem:
+    """The generated functions of one system, and how long they took (s) and how big they are (operations)."""
+
+    system: MultibodySystem
+    rhs: Callable[..., None]
+    configuration: Callable[..., None]
+    configuration_jacobian: Callable[..., None]
+    constraint_matrix: Callable[..., None]
+    energies: Callable[..., None]
+    derive_s: float
+    generate_s: float
+    load_s: float
+    operations: Mapping[str, int]
+    from_cache: bool
+
+    @property
+    def n(self) -> int:
+        return len(self.system.coordinates)
+
+    def parameter_array(self, params: Mapping[str, float]) -> np.ndarray:
+        return np.array(self.system.parameter_array(params), dtype=float)
+
+    def assemble(self, q: np.ndarray, u: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(q, u) with the dependent coordinates solved from the configuration constraints (Newton's method, from
+        the values given) and the dependent speeds from the velocity constraints; the rest as given.
+
+        Raises :class:`ConstraintsNotMet` where either cannot be done."""
+        system = self.system
+        dependent_q = [system.index(name) for name in system.dependent_coordinates]
+        dependent_u = [system.index(name) for name in system.dependent_speeds]
+        independent_u = [i for i in range(self.n) if i not in dependent_u]
+        q = np.array(q, dtype=float)
+        if dependent_q:
+            g = np.empty(len(dependent_q))
+            jacobian = np.empty(len(dependent_q) * self.n)
+            for _ in range(30):
+                self.configuration(q, p, g)
+                self.configuration_jacobian(q, p, jacobian)
+                J = jacobian.reshape(len(dependent_q), self.n)[:, dependent_q]
+                try:
+                    step = np.linalg.solve(J, g)
+                except np.linalg.LinAlgError:
+                    raise ConstraintsNotMet("the configuration constraints are singular here") from None
+                q[dependent_q] -= step
+                if np.max(np.abs(step)) < 1e-14 * (1.0 + np.max(np.abs(q[dependent_q]))):
+                    break
+            else:
+                raise ConstraintsNotMet("no configuration meets the constraints near the one given")
+        u = np.array(u, dtype=float)
+        if dependent_u:
+            entries = np.empty(len(dependent_u) * self.n)
+            self.constraint_matrix(q, p, entries)
+            A = entries.reshape(len(dependent_u), self.n)
+            try:
+                u[dependent_u] = np.linalg.solve(A[:, dependent_u], -A[:, independent_u] @ u[independent_u])
+            except np.linalg.LinAlgError:
+                raise ConstraintsNotMet("the velocity constraints do not fix the dependent speeds here") from None
+        return q, u
+
+    def accelerations(self, q: np.ndarray, u: np.ndarray, p: np.ndarray) -> np.ndarray:
+        """u̇ (= q̈) at a state that meets the constraints."""
+        out = np.empty(2 * self.n)
+        self.rhs(0.0, np.concatenate([q, u]), p, out)
+        return out[self.n :]
+
+    def energy(self, q: np.ndarray, u: np.ndarray, p: np.ndarray) -> tuple[float, float]:
+        """(kinetic, potential), J."""
+        out = np.empty(2)
+        self.energies(q, u, p, out)
+        return float(out[0]), float(out[1])
+
+
+_memory: dict[str, CompiledSystem] = {}
+_lock = threading.Lock()
+
+
+#: How the equations are formed: Kane's (partial velocities) or Lagrange's (from the energies), both with multipliers.
+FORMULATIONS = {"kane": equations, "lagrange": lambda system: lagrange_form(equations(system))}
+
+
+def _paths(system: MultibodySystem, formulation: str, directory: Path | None) -> tuple[Path, Path]:
+    name = f"{system.id}_{formulation}".replace("-", "_")
+    stem = f"multibody_{name}_{system.fingerprint()}_v{MULTIBODY_VERSION}"
+    base = (directory or cache_directory()) / stem
+    return base.with_suffix(".py"), base.with_suffix(".json")
+
+
+def _generate(system: MultibodySystem, derived: ConstrainedEquations, formulation: str) -> tuple[str, dict[str, int]]:
+    q, u, p = system.q, system.u, system.parameter_symbols
+    n = len(q)
+    source = generate_source(system, derived.recipe(), formulation=f"{formulation} with multipliers")
+    configuration = list(derived.configuration_constraints)
+    jacobian = list(derived.configuration_constraints.jacobian(q)) if configuration else []
+    pieces = [
+        generate_function("configuration", [("q", q), ("p", p)], configuration),
+        generate_function("configuration_jacobian", [("q", q), ("p", p)], jacobian),
+        generate_function("constraint_matrix", [("q", q), ("p", p)], list(derived.constraint_matrix)),
+        generate_function(
+            "energies", [("q", q), ("u", u), ("p", p)], [derived.kinetic_energy, derived.potential_energy]
+        ),
+    ]
+    equations_in_full = [*derived.mass_matrix, *derived.forcing, *derived.constraint_matrix, *derived.constraint_rate]
+    before, after = operation_count(equations_in_full)
+    operations = {
+        "speeds": n,
+        "constraints": derived.constraint_matrix.shape[0],
+        "before_cse": before,
+        "after_cse": after,
+    }
+    return source + "\n\n" + "\n\n".join(pieces), operations
+
+
+def compiled(system: MultibodySystem, *, formulation: str = "kane", directory: Path | None = None) -> CompiledSystem:
+    """The system's generated functions by ``formulation`` (:data:`FORMULATIONS`): from memory, the disk cache, or
+    derived now (and stored)."""
+    module_path, meta_path = _paths(system, formulation, directory)
+    key = str(module_path)
+    with _lock:
+        if key in _memory:
+            return _memory[key]
+        start = time.perf_counter()
+        meta = None
+        if module_path.exists() and meta_path.exists():
+            try:
+                meta = json.loads(meta_path.read_text())
+            except (OSError, ValueError):
+                meta = None
+        derive_s = generate_s = 0.0
+        if meta is None:
+            derived = FORMULATIONS[formulation](system)
+            derive_s = time.perf_counter() - start
+            source, operations = _generate(system, derived, formulation)
+            generate_s = time.perf_counter() - start - derive_s
+            meta = {"derive_s": derive_s, "generate_s": generate_s, "operations": operations}
+            module_path.parent.mkdir(parents=True, exist_ok=True)
+            for path, text in ((module_path, source), (meta_path, json.dumps(meta))):
+                temporary = path.with_suffix(f".{os.getpid()}.tmp")
+                temporary.write_text(text)
+                os.replace(temporary, path)
+            from_cache = False
+        else:
+            from_cache = True
+        loading = time.perf_counter()
+        module = load_generated(module_path)
+        result = CompiledSystem(
+            system=system,
+            rhs=module.rhs,
+            configuration=module.configuration,
+            configuration_jacobian=module.configuration_jacobian,
+            constraint_matrix=module.constraint_matrix,
+            energies=module.energies,
+            derive_s=derive_s,
+            generate_s=generate_s,
+            load_s=time.perf_counter() - loading,
+            operations=meta["operations"],
+            from_cache=from_cache,
+        )
+        _memory[key] = result
+        return result

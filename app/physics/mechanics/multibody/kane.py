@@ -1,0 +1,131 @@
+"""Kane's equations of a :class:`~.parts.MultibodySystem` with dependent speeds, solved numerically at run time.
+
+With every speed u = q̇ (independent and dependent together), each body's
+partial velocities are the columns of ∂v/∂u and ∂ω/∂u (its own components), and
+
+    M(q) u̇ = f(q, u) + Aᵀ λ,    A(q) u̇ = b(q, u)
+
+where M = Σ m VᵀV + WᵀIW, f = Σ Vᵀ(m g − m a_u) − Wᵀ(I α_u + ω × Iω) (a_u, α_u:
+the accelerations with u̇ = 0), A u = 0 the velocity constraints and b = −Ȧu
+their rate. Kane's equations with dependent speeds are these projected on the
+independent speeds (Cᵀ M C u̇_i = Cᵀ(f − M Ċ u_i), C spanning A's null space);
+the multipliers λ are the constraint forces they never show. Nothing is inverted
+symbolically: the generated code assembles the (n + m) square system and solves
+it by LU at each call, so the equations stay the size of the kinematics.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import sympy
+
+from app.physics.mechanics.derivation import Recipe, Solve
+from app.physics.mechanics.multibody.kinematics import Kinematics, cross, kinematics
+from app.physics.mechanics.multibody.parts import MultibodySystem
+
+
+@dataclass(frozen=True)
+class ConstrainedEquations:
+    """M u̇ = f + Aᵀλ, A u̇ = b, the configuration constraints g(q) = 0, and the energies (J)."""
+
+    system: MultibodySystem
+    mass_matrix: sympy.Matrix
+    forcing: sympy.Matrix
+    constraint_matrix: sympy.Matrix
+    constraint_rate: sympy.Matrix
+    configuration_constraints: sympy.Matrix
+    kinetic_energy: sympy.Expr
+    potential_energy: sympy.Expr
+
+    def recipe(self) -> Recipe:
+        """(q, q̇) → (q̇, q̈): solve [[M, Aᵀ], [A, 0]] [u̇; λ] = [f; b]."""
+        n, m = self.mass_matrix.shape[0], self.constraint_matrix.shape[0]
+        augmented = sympy.zeros(n + m, n + m)
+        augmented[:n, :n] = self.mass_matrix
+        augmented[:n, n:] = self.constraint_matrix.T
+        augmented[n:, :n] = self.constraint_matrix
+        rhs = sympy.Matrix.vstack(self.forcing, self.constraint_rate)
+        multipliers = tuple(sympy.Symbol(f"lambda_{k}") for k in range(m))
+        targets = tuple(self.system.ud) + multipliers
+        return Recipe(stages=(Solve(augmented, rhs, targets),), outputs=(*self.system.u, *self.system.ud))
+
+
+def _rate(expression: sympy.Matrix, q: list[sympy.Symbol], u: list[sympy.Symbol]) -> sympy.Matrix:
+    """d/dt of an expression of (q, u) with u̇ = 0 and q̇ = u: Σ ∂e/∂q_k u_k."""
+    return sum((expression.diff(qk) * uk for qk, uk in zip(q, u)), sympy.zeros(*expression.shape))
+
+
+def equations(system: MultibodySystem, frames: Kinematics | None = None) -> ConstrainedEquations:
+    """The system's constrained equations of motion (Kane's, in the unreduced form above)."""
+    frames = frames or kinematics(system)
+    q, u = system.q, system.u
+    n = len(q)
+    mass_matrix = sympy.zeros(n, n)
+    forcing = sympy.zeros(n, 1)
+    kinetic = sympy.Integer(0)
+    potential = sympy.Integer(0)
+    for body in system.bodies:
+        frame = frames.frames[body.name]
+        omega = frame.angular_velocity
+        velocity = frames.mass_centre_velocity(system, body.name)
+        V, W = velocity.jacobian(u), omega.jacobian(u)
+        # Accelerations with u̇ = 0, own components: the transport theorem adds ω × v to the components' rate.
+        acceleration_u = _rate(velocity, q, u) + cross(omega, velocity)
+        angular_acceleration_u = _rate(omega, q, u)
+        weight = -body.mass * system.gravity * frame.up
+        spin_momentum = body.inertia * omega
+        mass_matrix += body.mass * V.T * V + W.T * body.inertia * W
+        forcing += V.T * (weight - body.mass * acceleration_u) - W.T * (
+            body.inertia * angular_acceleration_u + cross(omega, spin_momentum)
+        )
+        kinetic += (body.mass * (velocity.T * velocity)[0] + (omega.T * spin_momentum)[0]) / 2
+        potential += body.mass * system.gravity * (frame.height + (frame.up.T * body.mass_centre)[0])
+    constraints = sympy.Matrix(list(frames.velocity_constraints))
+    if len(frames.configuration_constraints) != len(system.dependent_coordinates):
+        raise ValueError(
+            f"{system.id}: {len(frames.configuration_constraints)} configuration constraints, but "
+            f"{len(system.dependent_coordinates)} dependent coordinates named"
+        )
+    if constraints.shape[0] != len(system.dependent_speeds):
+        raise ValueError(
+            f"{system.id}: {constraints.shape[0]} velocity constraints, but {len(system.dependent_speeds)} dependent "
+            "speeds named"
+        )
+    if constraints.shape[0]:
+        A = constraints.jacobian(u)
+        rate = -_rate(constraints, q, u)
+    else:
+        A, rate = sympy.zeros(0, n), sympy.zeros(0, 1)
+    return ConstrainedEquations(
+        system,
+        mass_matrix,
+        forcing,
+        A,
+        rate,
+        sympy.Matrix(list(frames.configuration_constraints)),
+        kinetic,
+        potential,
+    )
+
+
+def lagrange_form(derived: ConstrainedEquations) -> ConstrainedEquations:
+    """The same system by Lagrange's equations with multipliers, from the energies alone:
+    ∂²T/∂q̇² q̈ = ∂T/∂q − ∂V/∂q − (∂²T/∂q̇∂q) q̇ + Aᵀλ. An independent route to M and f (no partial velocities, no
+    transport theorem): where both are right they agree to rounding."""
+    system = derived.system
+    q, u = system.q, system.u
+    T, V = derived.kinetic_energy, derived.potential_energy
+    momentum = sympy.Matrix([T]).jacobian(u).T
+    mass_matrix = momentum.jacobian(u)
+    forcing = sympy.Matrix([T - V]).jacobian(q).T - momentum.jacobian(q) * sympy.Matrix(u)
+    return ConstrainedEquations(
+        system,
+        mass_matrix,
+        forcing,
+        derived.constraint_matrix,
+        derived.constraint_rate,
+        derived.configuration_constraints,
+        T,
+        V,
+    )
