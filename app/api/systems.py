@@ -22,6 +22,8 @@ from app.api.schemas.systems import (
     CustomDeriveRequest,
     DeriveAnswer,
     DeriveRequest,
+    EigenvaluesAnswer,
+    EigenvaluesRequest,
     RhsAnswer,
     RhsRequest,
     SystemSummary,
@@ -30,7 +32,12 @@ from app.physics.core.parameters import ParameterError
 from app.physics.mechanics.derivation import FormulationUnavailable
 from app.physics.mechanics.description import SystemDescription
 from app.physics.mechanics.engine import available_formulations, derived
+from app.physics.mechanics.multibody.compiled import FORMULATIONS as PARTS_FORMULATIONS
+from app.physics.mechanics.multibody.compiled import ConstraintsNotMet, compiled
+from app.physics.mechanics.multibody.linearise import eigenvalues, state_matrix
+from app.physics.mechanics.multibody.parts import MultibodySystem
 from app.physics.mechanics.typed import derive_typed_bounded
+from app.physics.systems import multibody_catalogue
 
 router = APIRouter(prefix="/api/systems", tags=["systems"])
 
@@ -50,12 +57,51 @@ def summary(system: SystemDescription) -> dict[str, Any]:
     }
 
 
+def parts_summary(system: MultibodySystem) -> dict[str, Any]:
+    """A system built of parts, in the same shape, with its dependent coordinates and speeds and reference motion."""
+    coordinates = [{"name": c.name, "latex": c.latex, "unit": c.unit} for c in system.coordinates]
+    reference = system.reference
+    return {
+        "id": system.id,
+        "title": system.title,
+        "chapter": system.chapter,
+        "coordinates": coordinates,
+        "speeds": [
+            {"name": c.rate.name, "latex": f"\\dot{{{c.latex}}}", "unit": c.rate_unit} for c in system.coordinates
+        ],
+        "formulations": list(PARTS_FORMULATIONS),
+        "unavailable": {},
+        "parameters": system.parameters.schema(),
+        "assumptions": system.assumptions,
+        "dependent_coordinates": list(system.dependent_coordinates),
+        "dependent_speeds": list(system.dependent_speeds),
+        "reference": None if reference is None else {"about": reference.about, "states": reference.state_names},
+    }
+
+
+def _known(catalogue) -> str:
+    return ", ".join([*catalogue.derivations, *multibody_catalogue()])
+
+
 def _system(catalogue, system_id: str) -> SystemDescription:
     system = catalogue.derivations.get(system_id)
     if system is None:
-        raise HTTPException(
-            status_code=404, detail=f"no system {system_id!r}; known: {', '.join(catalogue.derivations)}"
-        )
+        if system_id in multibody_catalogue():
+            raise ParameterError(
+                "formulation",
+                f"{system_id} is built of parts; its equations are generated code, not shown as LaTeX: ask "
+                f"/api/systems/{system_id}/rhs or /eigenvalues",
+            )
+        raise HTTPException(status_code=404, detail=f"no system {system_id!r}; known: {_known(catalogue)}")
+    return system
+
+
+def _parts_system(catalogue, system_id: str) -> MultibodySystem:
+    system = multibody_catalogue().get(system_id)
+    if system is None:
+        if system_id in catalogue.derivations:
+            raise ParameterError("system_id", f"{system_id} has no reference motion to linearise about")
+        raise HTTPException(status_code=404, detail=f"no system {system_id!r}; known: {_known(catalogue)}")
     return system
 
 
@@ -69,7 +115,9 @@ def _derived(system: SystemDescription, formulation: str):
 @router.get("", response_model=list[SystemSummary])
 def list_systems(catalogue: CatalogueDep) -> list[dict[str, Any]]:
     """Every catalogue system: id, title, chapter, coordinates, speeds, the formulations available, parameter schema."""
-    return [summary(system) for system in catalogue.derivations.values()]
+    return [summary(system) for system in catalogue.derivations.values()] + [
+        parts_summary(system) for system in multibody_catalogue().values()
+    ]
 
 
 @router.post(
@@ -127,6 +175,8 @@ def derive_system(system_id: str, request: DeriveRequest, catalogue: CatalogueDe
 def system_rhs(system_id: str, request: RhsRequest, catalogue: CatalogueDep) -> dict[str, Any]:
     """The state derivative (q̇, q̈) at a state (q, q̇) by one formulation: every formulation answers the same
     quantity."""
+    if system_id in multibody_catalogue():
+        return _parts_rhs(multibody_catalogue()[system_id], request)
     system = _system(catalogue, system_id)
     params = system.parameters.validate(request.params)
     n = len(system.coordinates)
@@ -192,3 +242,80 @@ def _not_finite(
 
 #: A singularity's expression this close to zero (its natural scale is 1: a sine or cosine) counts as being at it.
 AT_SINGULARITY = 1e-6
+
+
+#: A state meets a system's constraints when its configuration residual (m) and velocity residual (m/s) are this small.
+CONSTRAINT_TOLERANCE = 1e-8
+
+
+def _parts_rhs(system: MultibodySystem, request: RhsRequest) -> dict[str, Any]:
+    """(q̇, q̈) of a system built of parts, at a state that meets its constraints (else 422 saying by how much)."""
+    if request.formulation not in PARTS_FORMULATIONS:
+        raise ParameterError(
+            "formulation", f"{system.id} is derived by {' and '.join(PARTS_FORMULATIONS)} (with multipliers)"
+        )
+    params = system.parameters.validate(request.params)
+    n = len(system.coordinates)
+    if len(request.state) != 2 * n:
+        names = [c.name for c in system.coordinates]
+        raise ParameterError(
+            "state", f"give {2 * n} numbers: {', '.join(names)}, then their rates (got {len(request.state)})"
+        )
+    if not all(math.isfinite(x) for x in request.state):
+        raise ParameterError("state", "every number of the state must be finite")
+    model = compiled(system, formulation=request.formulation)
+    p = model.parameter_array(params)
+    q, u = np.array(request.state[:n]), np.array(request.state[n:])
+    residual = model.constraint_residual(q, u, p)
+    if residual > CONSTRAINT_TOLERANCE:
+        raise ParameterError(
+            "state",
+            f"the state does not meet the constraints (residual {residual:.3g}, in m and m/s; at most "
+            f"{CONSTRAINT_TOLERANCE:g}): {', '.join(system.dependent_coordinates)} and the rates of "
+            f"{', '.join(system.dependent_speeds)} follow from the others",
+        )
+    with np.errstate(all="ignore"):
+        accelerations = model.accelerations(q, u, p)
+    if not np.all(np.isfinite(accelerations)):
+        raise ParameterError("state", "at this state the equations have no finite value (a singular mass matrix)")
+    return {"state_derivative": [*u.tolist(), *accelerations.tolist()]}
+
+
+@router.post(
+    "/{system_id}/eigenvalues",
+    response_model=EigenvaluesAnswer,
+    responses=error_responses(
+        not_found="No system has this id",
+        unprocessable=(
+            "A parameter is out of range, the system has no reference motion, or with these parameters the "
+            "reference motion cannot be assembled or has no finite linear model (the message says why)"
+        ),
+    ),
+)
+def system_eigenvalues(system_id: str, request: EigenvaluesRequest, catalogue: CatalogueDep) -> dict[str, Any]:
+    """The eigenvalues (1/s) of the system linearised about its reference motion (for the bicycle: upright,
+    straight-ahead rolling at ``speed_m_s``), and the states of that linear model."""
+    system = _parts_system(catalogue, system_id)
+    reference = system.reference
+    if reference is None:
+        raise ParameterError("system_id", f"{system_id} has no reference motion to linearise about")
+    params = system.parameters.validate(request.params)
+    model = compiled(system)
+    try:
+        with np.errstate(all="ignore"):
+            A = state_matrix(model, params, reference)
+    except ConstraintsNotMet as error:
+        raise ParameterError(
+            "params", f"with these parameters the reference motion cannot be assembled: {error}"
+        ) from None
+    if not np.all(np.isfinite(A)):
+        raise ParameterError("params", "with these parameters the equations have no finite value at the reference")
+    values = eigenvalues(A)
+    return {
+        "eigenvalues": [{"re": float(v.real), "im": float(v.imag)} for v in values],
+        "states": reference.state_names,
+        "about": reference.about,
+        "stable": bool(np.all(values.real < 0)),
+        "unit": "1/s",
+        "params": params,
+    }

@@ -20,6 +20,7 @@ CAN_BE_NOT_FOUND = {
     ("/api/bench/work-precision", "get"),
     ("/api/systems/{system_id}/derive", "post"),
     ("/api/systems/{system_id}/rhs", "post"),
+    ("/api/systems/{system_id}/eigenvalues", "post"),
 }
 #: The classroom: a room, poll or code that may not exist; every one of these reads a body or a checked id.
 ROOM_ROUTES = {

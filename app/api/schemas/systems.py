@@ -17,6 +17,11 @@ class CoordinateSpec(BaseModel):
     unit: str
 
 
+class ReferenceSpec(BaseModel):
+    about: str = Field(description="The reference motion, in words")
+    states: list[str] = Field(description="The linear model's states: coordinates, then their rates (name_d)")
+
+
 class SystemSummary(BaseModel):
     """A catalogue system: its coordinates and speeds, which formulations apply (and why not), its parameters."""
 
@@ -29,6 +34,15 @@ class SystemSummary(BaseModel):
     unavailable: dict[str, str] = Field(description="Formulation → why it does not apply here")
     parameters: list[ParameterSpec]
     assumptions: str
+    dependent_coordinates: list[str] = Field(
+        default_factory=list, description="Coordinates the configuration constraints fix (a system built of parts)"
+    )
+    dependent_speeds: list[str] = Field(
+        default_factory=list, description="Rates the velocity (rolling) constraints fix (a system built of parts)"
+    )
+    reference: ReferenceSpec | None = Field(
+        None, description="The motion its linear model is about (POST …/eigenvalues), if it has one"
+    )
 
 
 class DeriveRequest(BaseModel):
@@ -92,3 +106,22 @@ class RhsCheck(BaseModel):
 
 class CustomDeriveAnswer(DeriveAnswer):
     rhs_check: RhsCheck
+
+
+class EigenvaluesRequest(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    params: dict[str, Any] = Field(default_factory=dict, description="Parameters by name (the rest: defaults)")
+
+
+class Eigenvalue(BaseModel):
+    re: float = Field(description="Real part, 1/s: the growth (> 0) or decay (< 0) rate")
+    im: float = Field(description="Imaginary part, rad/s: the angular frequency of an oscillating pair")
+
+
+class EigenvaluesAnswer(BaseModel):
+    eigenvalues: list[Eigenvalue] = Field(description="Sorted by real part, then imaginary part")
+    states: list[str] = Field(description="The linear model's states: coordinates, then their rates (name_d)")
+    about: str = Field(description="The motion the model is linearised about")
+    stable: bool = Field(description="Every eigenvalue's real part is negative: a small push dies out")
+    unit: str = "1/s"
+    params: dict[str, Any]

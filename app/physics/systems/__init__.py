@@ -7,6 +7,7 @@ its reference solution beside it. Systems used by more than one chapter
 
 from __future__ import annotations
 
+import functools
 import importlib
 import pkgutil
 from functools import cache
@@ -65,3 +66,9 @@ def multibody_systems() -> dict:
                 raise ValueError(f"two multibody systems share the id {system.id!r} ({name})")
             systems[system.id] = system
     return systems
+
+
+@functools.cache
+def multibody_catalogue() -> dict:
+    """:func:`multibody_systems`, found once."""
+    return multibody_systems()

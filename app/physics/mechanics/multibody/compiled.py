@@ -115,6 +115,16 @@ class CompiledSystem:
                 raise ConstraintsNotMet("the velocity constraints do not fix the dependent speeds here") from None
         return q, u
 
+    def constraint_residual(self, q: np.ndarray, u: np.ndarray, p: np.ndarray) -> float:
+        """The largest violation of a configuration constraint (m) or a velocity constraint (m/s) at (q, u)."""
+        system = self.system
+        g = np.empty(len(system.dependent_coordinates))
+        self.configuration(q, p, g)
+        entries = np.empty(len(system.dependent_speeds) * self.n)
+        self.constraint_matrix(q, p, entries)
+        velocity = entries.reshape(len(system.dependent_speeds), self.n) @ u
+        return float(max(np.max(np.abs(g), initial=0.0), np.max(np.abs(velocity), initial=0.0)))
+
     def accelerations(self, q: np.ndarray, u: np.ndarray, p: np.ndarray) -> np.ndarray:
         """u̇ (= q̈) at a state that meets the constraints."""
         out = np.empty(2 * self.n)
