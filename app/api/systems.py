@@ -10,6 +10,8 @@ a 422 naming the field when it cannot be.
 from __future__ import annotations
 
 import math
+import threading
+from collections import OrderedDict
 from typing import Any
 
 import numpy as np
@@ -34,10 +36,9 @@ from app.physics.mechanics.description import SystemDescription
 from app.physics.mechanics.engine import available_formulations, derived
 from app.physics.mechanics.multibody.compiled import FORMULATIONS as PARTS_FORMULATIONS
 from app.physics.mechanics.multibody.compiled import ConstraintsNotMet, compiled
-from app.physics.mechanics.multibody.linearise import eigenvalues, state_matrix
+from app.physics.mechanics.multibody.linearise import Sweep, eigenvalues, state_matrix, sweep
 from app.physics.mechanics.multibody.parts import MultibodySystem
 from app.physics.mechanics.typed import derive_typed_bounded
-from app.physics.systems import multibody_catalogue
 
 router = APIRouter(prefix="/api/systems", tags=["systems"])
 
@@ -80,13 +81,13 @@ def parts_summary(system: MultibodySystem) -> dict[str, Any]:
 
 
 def _known(catalogue) -> str:
-    return ", ".join([*catalogue.derivations, *multibody_catalogue()])
+    return ", ".join([*catalogue.derivations, *catalogue.multibody])
 
 
 def _system(catalogue, system_id: str) -> SystemDescription:
     system = catalogue.derivations.get(system_id)
     if system is None:
-        if system_id in multibody_catalogue():
+        if system_id in catalogue.multibody:
             raise ParameterError(
                 "formulation",
                 f"{system_id} is built of parts; its equations are generated code, not shown as LaTeX: ask "
@@ -97,7 +98,7 @@ def _system(catalogue, system_id: str) -> SystemDescription:
 
 
 def _parts_system(catalogue, system_id: str) -> MultibodySystem:
-    system = multibody_catalogue().get(system_id)
+    system = catalogue.multibody.get(system_id)
     if system is None:
         if system_id in catalogue.derivations:
             raise ParameterError("system_id", f"{system_id} has no reference motion to linearise about")
@@ -116,7 +117,7 @@ def _derived(system: SystemDescription, formulation: str):
 def list_systems(catalogue: CatalogueDep) -> list[dict[str, Any]]:
     """Every catalogue system: id, title, chapter, coordinates, speeds, the formulations available, parameter schema."""
     return [summary(system) for system in catalogue.derivations.values()] + [
-        parts_summary(system) for system in multibody_catalogue().values()
+        parts_summary(system) for system in catalogue.multibody.values()
     ]
 
 
@@ -175,8 +176,8 @@ def derive_system(system_id: str, request: DeriveRequest, catalogue: CatalogueDe
 def system_rhs(system_id: str, request: RhsRequest, catalogue: CatalogueDep) -> dict[str, Any]:
     """The state derivative (q̇, q̈) at a state (q, q̇) by one formulation: every formulation answers the same
     quantity."""
-    if system_id in multibody_catalogue():
-        return _parts_rhs(multibody_catalogue()[system_id], request)
+    if system_id in catalogue.multibody:
+        return _parts_rhs(catalogue.multibody[system_id], request)
     system = _system(catalogue, system_id)
     params = system.parameters.validate(request.params)
     n = len(system.coordinates)
@@ -311,11 +312,70 @@ def system_eigenvalues(system_id: str, request: EigenvaluesRequest, catalogue: C
     if not np.all(np.isfinite(A)):
         raise ParameterError("params", "with these parameters the equations have no finite value at the reference")
     values = eigenvalues(A)
-    return {
-        "eigenvalues": [{"re": float(v.real), "im": float(v.imag)} for v in values],
+    answer: dict[str, Any] = {
+        "eigenvalues": _listed(values),
         "states": reference.state_names,
         "about": reference.about,
         "stable": bool(np.all(values.real < 0)),
         "unit": "1/s",
         "params": params,
+    }
+    if request.sweep is not None:
+        answer["sweep"] = _sweep(system, model, params, request.sweep)
+    return answer
+
+
+def _listed(values: np.ndarray) -> list[dict[str, float]]:
+    return [{"re": float(v.real), "im": float(v.imag)} for v in values]
+
+
+#: Sweeps kept (the lesson page asks the same one for every student who opens it).
+_SWEEPS: OrderedDict[tuple, Sweep] = OrderedDict()
+_SWEEPS_KEPT = 32
+_sweeps_lock = threading.Lock()
+
+
+def _sweep(system: MultibodySystem, model, params: dict[str, Any], request) -> dict[str, Any]:
+    """The eigenvalues along the sweep the request asks for (each value validated as the parameter's)."""
+    reference = system.reference
+    assert reference is not None
+    if request.parameter not in system.parameters.by_name:
+        raise ParameterError("sweep", f"{request.parameter!r} is no parameter of {system.id}")
+    if not request.low < request.high:
+        raise ParameterError("sweep", f"low ({request.low:g}) must be below high ({request.high:g})")
+    for end in (request.low, request.high):
+        system.parameters.validate({**params, request.parameter: end})  # each end in the parameter's range
+    key = (
+        system.fingerprint(),
+        tuple(sorted(params.items())),
+        request.parameter,
+        request.low,
+        request.high,
+        request.points,
+    )
+    with _sweeps_lock:
+        found = _SWEEPS.get(key)
+    if found is None:
+        try:
+            with np.errstate(all="ignore"):
+                found = sweep(
+                    model, params, reference, parameter=request.parameter, low=request.low, high=request.high,
+                    points=request.points,
+                )  # fmt: skip
+        except ConstraintsNotMet as error:
+            raise ParameterError(
+                "sweep", f"along the sweep the reference motion cannot be assembled: {error}"
+            ) from None
+        if not np.all(np.isfinite(found.eigenvalues)):
+            raise ParameterError("sweep", "along the sweep the equations have no finite value at the reference")
+        with _sweeps_lock:
+            _SWEEPS[key] = found
+            while len(_SWEEPS) > _SWEEPS_KEPT:
+                _SWEEPS.popitem(last=False)
+    return {
+        "parameter": found.parameter,
+        "unit": system.parameters.by_name[found.parameter].unit,
+        "values": found.values.tolist(),
+        "eigenvalues": [_listed(row) for row in found.eigenvalues],
+        "crossings": [{"value": c.value, "becomes": c.becomes, "oscillating": c.oscillating} for c in found.crossings],
     }

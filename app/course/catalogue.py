@@ -3,8 +3,9 @@
 :func:`load_catalogue` reads ``lessons/course.toml`` and ``lessons/chNN/*.md``
 and joins them with the registries a lesson may name: scenes
 (``app.scenes.SCENES``), worked examples (``worked_examples()``) and
-derivations (the analytical systems of chapters 7–9, ``analytical_systems()``). Every reference is
-checked at load: an unknown scene, example or derivation, a duplicated lesson
+derivations (the analytical systems of chapters 7–9, ``analytical_systems()``) and the systems built of parts whose
+eigenvalues a page plots (``multibody_catalogue()``). Every reference is
+checked at load: an unknown scene, example, derivation or linearised system, a duplicated lesson
 id, a chapter missing from ``course.toml`` or a section missing from its
 chapter raises :class:`CatalogueError`, naming the lesson file and the bad
 reference. ``create_app`` builds the catalogue, so a bad reference stops the
@@ -14,17 +15,18 @@ server from starting instead of vanishing from a page.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 from app.course.lessons import LESSONS_DIR, Chapter, Lesson, parse_lesson, parse_outline
 from app.physics.core.solution import WorkedExample
-from app.physics.systems import analytical_systems, worked_examples
+from app.physics.systems import analytical_systems, multibody_catalogue, worked_examples
 from app.scenes import SCENES, Scene
 
 if TYPE_CHECKING:
     from app.physics.mechanics.description import SystemDescription
+    from app.physics.mechanics.multibody.parts import MultibodySystem
 
 
 class CatalogueError(ValueError):
@@ -44,6 +46,8 @@ class Catalogue:
     scenes: Mapping[str, type[Scene]]
     examples: Mapping[str, WorkedExample]
     derivations: Mapping[str, SystemDescription]
+    #: Systems built of parts (bodies, joints, rolling contacts) by id.
+    multibody: Mapping[str, MultibodySystem] = field(default_factory=dict)
 
     def chapter_of(self, lesson: Lesson) -> Chapter:
         return next(ch for ch in self.chapters if ch.number == lesson.chapter)
@@ -69,6 +73,7 @@ def load_catalogue(
     scenes: Mapping[str, type[Scene]] | None = None,
     examples: Mapping[str, WorkedExample] | None = None,
     derivations: Mapping[str, SystemDescription] | None = None,
+    multibody: Mapping[str, MultibodySystem] | None = None,
 ) -> Catalogue:
     """Read the outline and lesson files under ``root`` and check every reference.
 
@@ -79,6 +84,8 @@ def load_catalogue(
     scenes = SCENES if scenes is None else scenes
     examples = worked_examples() if examples is None else examples
     derivations = analytical_systems() if derivations is None else derivations
+    multibody = multibody_catalogue() if multibody is None else multibody
+    linearisable = {key: system for key, system in multibody.items() if system.reference is not None}
     outline_path = root / "course.toml"
     outline = parse_outline(outline_path.read_text(encoding="utf-8"), str(outline_path))
     lessons = sorted(
@@ -93,7 +100,14 @@ def load_catalogue(
             continue
         by_id[lesson.id] = lesson
         problems += _reference_problems(
-            lesson, outline, {"scene": scenes, "worked example": examples, "derivation": derivations}
+            lesson,
+            outline,
+            {
+                "scene": scenes,
+                "worked example": examples,
+                "derivation": derivations,
+                "linearised system": linearisable,
+            },
         )
     if problems:
         raise CatalogueError("the course catalogue is inconsistent:\n  " + "\n  ".join(problems))
@@ -101,7 +115,12 @@ def load_catalogue(
         replace(ch, lessons=tuple(lesson for lesson in lessons if lesson.chapter == ch.number)) for ch in outline
     )
     return Catalogue(
-        chapters=chapters, lessons=by_id, scenes=dict(scenes), examples=dict(examples), derivations=dict(derivations)
+        chapters=chapters,
+        lessons=by_id,
+        scenes=dict(scenes),
+        examples=dict(examples),
+        derivations=dict(derivations),
+        multibody=dict(multibody),
     )
 
 
@@ -121,7 +140,12 @@ def _reference_problems(
         problems.append(
             f"{lesson.source}: section {lesson.section!r} is not a section of chapter {chapter.number} (known: {known})"
         )
-    references = {"scene": lesson.scenes, "worked example": lesson.examples, "derivation": lesson.derivations}
+    references = {
+        "scene": lesson.scenes,
+        "worked example": lesson.examples,
+        "derivation": lesson.derivations,
+        "linearised system": lesson.linearised,
+    }
     for kind, ids in references.items():
         registry = registries[kind]
         for ref in ids:

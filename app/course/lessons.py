@@ -2,8 +2,9 @@
 
 ``lessons/course.toml`` lists the ten chapters and their sections. Each lesson
 is ``lessons/chNN/<id>.md``: TOML front matter between ``+++`` lines (id,
-chapter, section, order, title, summary, optional ``scenes``, ``examples`` and
-``derivations``, each a list of ids; ``scene = "id"`` is accepted as a
+chapter, section, order, title, summary, optional ``scenes``, ``examples``,
+``derivations`` and ``linearised`` (systems built of parts whose eigenvalues the
+page plots), each a list of ids; ``scene = "id"`` is accepted as a
 one-scene shorthand) and a Markdown body with LaTeX math (``$...$`` inline,
 ``$$...$$`` display). Math is set aside before Markdown runs and rendered in
 the browser by the vendored KaTeX. Whether the ids exist is checked by
@@ -73,6 +74,8 @@ class Lesson:
     scenes: tuple[str, ...] = ()
     examples: tuple[str, ...] = ()
     derivations: tuple[str, ...] = ()
+    #: Systems built of parts whose eigenvalues the page plots against their reference motion's sweep parameter.
+    linearised: tuple[str, ...] = ()
 
     @property
     def scene(self) -> str | None:
@@ -139,6 +142,7 @@ def parse_lesson(text: str, source: str) -> Lesson:
         scenes=_id_list(meta, "scenes", source),
         examples=_id_list(meta, "examples", source),
         derivations=_id_list(meta, "derivations", source),
+        linearised=_id_list(meta, "linearised", source),
     )
 
 

@@ -186,6 +186,7 @@ def _lesson_config(lesson: Lesson, catalogue: Catalogue, scene_id: str | None) -
         "scene": catalogue.scenes[scene_id].schema() if scene_id else None,
         "examples": [_example_config(catalogue.examples[example_id]) for example_id in lesson.examples],
         "derivations": [_derivation_config(catalogue.derivations[system_id]) for system_id in lesson.derivations],
+        "linearised": [_linearised_config(catalogue.multibody[system_id]) for system_id in lesson.linearised],
     }
 
 
@@ -206,6 +207,27 @@ def _derivation_config(system) -> dict:
         "title": system.title,
         "formulations": [{"id": f, "title": FORMULATION_TITLES[f], "unavailable": reasons[f]} for f in FORMULATIONS],
         "assumptions": system.assumptions,
+    }
+
+
+def _linearised_config(system) -> dict:
+    """What stability.js needs to ask /api/systems/{id}/eigenvalues along the reference motion's sweep and name
+    where stability changes."""
+    reference = system.reference
+    parameter, low, high = reference.sweep
+    return {
+        "id": system.id,
+        "title": system.title,
+        "about": reference.about,
+        "parameters": [p.name for p in system.parameters.parameters],
+        "parameter": parameter,
+        "label": system.parameters.by_name[parameter].display_name(),
+        "low": low,
+        "high": high,
+        "crossing_names": [
+            {"becomes": becomes, "oscillating": oscillating, "name": name}
+            for becomes, oscillating, name in reference.crossing_names
+        ],
     }
 
 

@@ -10,6 +10,7 @@ import "./time_controls.js";
 import "./viewer_toolbar.js";
 import "./graphs.js";
 import "./derivations.js";
+import "./stability.js";
 
 renderMath();
 

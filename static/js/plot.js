@@ -1,5 +1,7 @@
 // renderPlot(container, plot): a small SVG line plot (linear or log axes) for solution panels and the graphs panel. No dependencies.
-// plot: {title, x_label, y_label, log_x, log_y, series: [{name, x, y}], description?}; non-finite points are skipped.
+// plot: {title, x_label, y_label, log_x, log_y, series: [{name, x, y, dots?}], description?, bands?, markers?};
+// non-finite points are skipped. A series with dots draws points, not a line; bands ([{from, to, label}], on x) are
+// shaded behind the data, markers ([{x, label}]) are labelled vertical lines, and y = 0 is drawn when in range.
 import { formatNumber } from "./format.js";
 
 export const renderPlot = (function () {
@@ -65,6 +67,19 @@ export const renderPlot = (function () {
       svg.appendChild(el("line", { x1: M.l, x2: W - M.r, y1: y, y2: y, stroke: "#e3e6ec" }));
       svg.appendChild(el("text", { x: M.l - 6, y: y + 4, "text-anchor": "end", "font-size": 12 }, ay.log ? `1e${t}` : fmt(t)));
     }
+    for (const band of plot.bands || []) {
+      const x1 = tx(Math.max(band.from, ax.lo)), x2 = tx(Math.min(band.to, ax.hi));
+      svg.appendChild(el("rect", { x: x1, y: M.t, width: Math.max(0, x2 - x1), height: H - M.t - M.b, fill: "#d8f0dc", class: "band" }));
+      if (band.label) svg.appendChild(el("text", { x: (x1 + x2) / 2, y: M.t + 14, "text-anchor": "middle", "font-size": 12, fill: "#1d6b33" }, band.label));
+    }
+    if ((plot.bands || plot.markers) && ay.lo < 0 && ay.hi > 0 && !plot.log_y) {
+      svg.appendChild(el("line", { x1: M.l, x2: W - M.r, y1: ty(0), y2: ty(0), stroke: "#6b7280" }));
+    }
+    (plot.markers || []).forEach((marker, i) => {
+      const x = tx(marker.x);
+      svg.appendChild(el("line", { x1: x, x2: x, y1: M.t, y2: H - M.b, stroke: "#374151", "stroke-dasharray": "4 3", class: "marker" }));
+      svg.appendChild(el("text", { x: x + 4, y: M.t + 30 + 14 * i, "font-size": 12, fill: "#111827" }, marker.label));
+    });
     svg.appendChild(el("rect", { x: M.l, y: M.t, width: W - M.l - M.r, height: H - M.t - M.b, fill: "none", stroke: "#9aa3b2" }));
     svg.appendChild(el("text", { x: (M.l + W - M.r) / 2, y: H - 10, "text-anchor": "middle", "font-size": 13 }, plot.x_label));
     svg.appendChild(el("text", { x: 16, y: (M.t + H - M.b) / 2, "text-anchor": "middle", "font-size": 13, transform: `rotate(-90 16 ${(M.t + H - M.b) / 2})` }, plot.y_label));
@@ -77,7 +92,16 @@ export const renderPlot = (function () {
         const y = s.y[j];
         if (Number.isFinite(x) && Number.isFinite(y) && (!plot.log_x || x > 0) && (!plot.log_y || y > 0)) pts.push(`${tx(x).toFixed(1)},${ty(y).toFixed(1)}`);
       });
-      svg.appendChild(el("polyline", { points: pts.join(" "), fill: "none", stroke: color, "stroke-width": i === 0 ? 2.5 : 1.6, "stroke-dasharray": i === 0 ? "" : "6 4" }));
+      if (s.dots) {
+        const dots = el("g", { fill: color });
+        for (const pt of pts) {
+          const [cx, cy] = pt.split(",");
+          dots.appendChild(el("circle", { cx, cy, r: 1.8 }));
+        }
+        svg.appendChild(dots);
+      } else {
+        svg.appendChild(el("polyline", { points: pts.join(" "), fill: "none", stroke: color, "stroke-width": i === 0 ? 2.5 : 1.6, "stroke-dasharray": i === 0 ? "" : "6 4" }));
+      }
       const item = document.createElement("span");
       item.style.setProperty("--c", color);
       item.textContent = s.name;

@@ -108,14 +108,39 @@ class CustomDeriveAnswer(DeriveAnswer):
     rhs_check: RhsCheck
 
 
+class SweepRequest(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    parameter: str = Field(description="The parameter to vary (one of the system's, e.g. speed_m_s)")
+    low: float = Field(description="From this value (the parameter's unit)")
+    high: float = Field(description="To this value (the parameter's unit)")
+    points: int = Field(51, ge=2, le=201, description="How many values, evenly spaced, ends included")
+
+
 class EigenvaluesRequest(BaseModel):
     model_config = ConfigDict(extra="forbid")
     params: dict[str, Any] = Field(default_factory=dict, description="Parameters by name (the rest: defaults)")
+    sweep: SweepRequest | None = Field(
+        None, description="Also the eigenvalues as one parameter varies, and where stability changes"
+    )
 
 
 class Eigenvalue(BaseModel):
     re: float = Field(description="Real part, 1/s: the growth (> 0) or decay (< 0) rate")
     im: float = Field(description="Imaginary part, rad/s: the angular frequency of an oscillating pair")
+
+
+class StabilityCrossing(BaseModel):
+    value: float = Field(description="Where the largest real part crosses zero (the parameter's unit), to 1e-12")
+    becomes: Literal["stable", "unstable"] = Field(description="What the motion becomes as the parameter grows past it")
+    oscillating: bool = Field(description="The crossing eigenvalue is one of an oscillating pair (a bicycle's weave)")
+
+
+class SweepAnswer(BaseModel):
+    parameter: str
+    unit: str
+    values: list[float]
+    eigenvalues: list[list[Eigenvalue]] = Field(description="At each value, sorted by real part, then imaginary part")
+    crossings: list[StabilityCrossing]
 
 
 class EigenvaluesAnswer(BaseModel):
@@ -125,3 +150,4 @@ class EigenvaluesAnswer(BaseModel):
     stable: bool = Field(description="Every eigenvalue's real part is negative: a small push dies out")
     unit: str = "1/s"
     params: dict[str, Any]
+    sweep: SweepAnswer | None = None

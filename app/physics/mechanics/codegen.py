@@ -130,13 +130,15 @@ def generate_source(system: CodeSystem, recipe: Recipe, *, formulation: str) -> 
 
 
 def generate_function(
-    name: str, arguments: Sequence[tuple[str, Sequence[sympy.Symbol]]], outputs: Sequence[sympy.Expr]
+    signature: str,
+    arguments: Sequence[tuple[str, Sequence[sympy.Symbol]]],
+    assignments: Sequence[tuple[str, sympy.Expr]],
 ) -> str:
-    """``def name(<arguments>, out):`` filling ``out[i]`` with ``outputs[i]`` in straight-line code (common
-    subexpressions shared); each argument is an array whose entries are the given symbols, in order."""
+    """``def <signature>:`` in straight-line code (common subexpressions shared), giving each target (``out[3]``,
+    ``M_out[1, 2]``) its expression; each argument is an array whose entries are the given symbols, in order."""
     printer = _Printer()
     names: dict[sympy.Symbol, sympy.Symbol] = {}
-    lines = [f"def {name}({', '.join(a for a, _ in arguments)}, out):"]
+    lines = [f"def {signature}:"]
     for array, symbols in arguments:
         for i, symbol in enumerate(symbols):
             names[symbol] = sympy.Symbol(f"{array}_{i}")
@@ -147,7 +149,10 @@ def generate_function(
         while True:
             yield sympy.Symbol(f"c{next(counter)}")
 
-    replacements, reduced = sympy.cse([sympy.sympify(e).xreplace(names) for e in outputs], symbols=fresh_names())
+    renamed = [sympy.sympify(e).xreplace(names) for _, e in assignments]
+    replacements, reduced = sympy.cse(renamed, symbols=fresh_names())
     lines += [f"    {symbol} = {printer.doprint(value)}" for symbol, value in replacements]
-    lines += [f"    out[{i}] = {printer.doprint(value)}" for i, value in enumerate(reduced)]
+    lines += [f"    {target} = {printer.doprint(value)}" for (target, _), value in zip(assignments, reduced)]
+    if not assignments:
+        lines.append("    pass")
     return "\n".join(lines) + "\n"

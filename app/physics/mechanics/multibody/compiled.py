@@ -18,16 +18,18 @@ import os
 import threading
 import time
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 import sympy
 
+from app.physics.constrained.system import ConstrainedSystem
 from app.physics.mechanics.codegen import generate_function, generate_source
 from app.physics.mechanics.engine import cache_directory, load_generated
 from app.physics.mechanics.multibody.kane import ConstrainedEquations, equations, lagrange_form
 from app.physics.mechanics.multibody.parts import MultibodySystem
+from app.physics.solvers.kernels import DYNAMICS_SIGNATURE, MULTIPLIER_CONSTRAINTS_SIGNATURE, Kernel, kernel
 
 
 def _source_digest() -> str:
@@ -65,15 +67,47 @@ class CompiledSystem:
     configuration_jacobian: Callable[..., None]
     constraint_matrix: Callable[..., None]
     energies: Callable[..., None]
+    dynamics: Callable[..., None]
+    constraints: Callable[..., None]
     derive_s: float
     generate_s: float
     load_s: float
     operations: Mapping[str, int]
     from_cache: bool
 
+    _kernels: tuple[Kernel, Kernel] | None = field(default=None, repr=False)
+    _kernel_lock: threading.Lock = field(default_factory=threading.Lock, repr=False)
+
     @property
     def n(self) -> int:
         return len(self.system.coordinates)
+
+    def kernels(self) -> tuple[Kernel, Kernel]:
+        """``dynamics`` and ``constraints`` as numba C callbacks for the DAE algorithms (compiled once a process;
+        numba keeps them on disk beside the generated module)."""
+        with self._kernel_lock:
+            if self._kernels is None:
+                self._kernels = (
+                    kernel(DYNAMICS_SIGNATURE)(self.dynamics),
+                    kernel(MULTIPLIER_CONSTRAINTS_SIGNATURE)(self.constraints),
+                )
+            return self._kernels
+
+    def constrained_system(self, params: Mapping[str, float]) -> ConstrainedSystem:
+        """The system as the chapter-8 DAE algorithms see it: M v̇ = f + Cᵀλ with the configuration constraints'
+        rows first, the rolling rows after; coordinate partitioning keeps the independent speeds' coordinates."""
+        system = self.system
+        dynamics, constraints = self.kernels()
+        dependent = {system.index(name) for name in system.dependent_speeds}
+        return ConstrainedSystem(
+            dynamics=dynamics,
+            constraints=constraints,
+            parameters=self.parameter_array(params),
+            coordinate_names=tuple(c.name for c in system.coordinates),
+            n_holonomic=len(system.dependent_coordinates),
+            n_nonholonomic=len(system.dependent_speeds) - len(system.dependent_coordinates),
+            independent=tuple(i for i in range(self.n) if i not in dependent),
+        )
 
     def parameter_array(self, params: Mapping[str, float]) -> np.ndarray:
         return np.array(self.system.parameter_array(params), dtype=float)
@@ -157,14 +191,35 @@ def _generate(system: MultibodySystem, derived: ConstrainedEquations, formulatio
     q, u, p = system.q, system.u, system.parameter_symbols
     n = len(q)
     source = generate_source(system, derived.recipe(), formulation=f"{formulation} with multipliers")
-    configuration = list(derived.configuration_constraints)
-    jacobian = list(derived.configuration_constraints.jacobian(q)) if configuration else []
+    M, f, A, b = derived.mass_matrix, derived.forcing, derived.constraint_matrix, derived.constraint_rate
+    g = list(derived.configuration_constraints)
+    jacobian = derived.configuration_constraints.jacobian(q) if g else sympy.zeros(0, n)
+
+    def vector(name: str, values) -> list[tuple[str, sympy.Expr]]:
+        return [(f"{name}[{i}]", value) for i, value in enumerate(values)]
+
+    def matrix(name: str, values: sympy.Matrix) -> list[tuple[str, sympy.Expr]]:
+        return [(f"{name}[{i}, {j}]", values[i, j]) for i in range(values.shape[0]) for j in range(values.shape[1])]
+
     pieces = [
-        generate_function("configuration", [("q", q), ("p", p)], configuration),
-        generate_function("configuration_jacobian", [("q", q), ("p", p)], jacobian),
-        generate_function("constraint_matrix", [("q", q), ("p", p)], list(derived.constraint_matrix)),
+        generate_function("configuration(q, p, out)", [("q", q), ("p", p)], vector("out", g)),
+        generate_function("configuration_jacobian(q, p, out)", [("q", q), ("p", p)], vector("out", list(jacobian))),
+        generate_function("constraint_matrix(q, p, out)", [("q", q), ("p", p)], vector("out", list(A))),
         generate_function(
-            "energies", [("q", q), ("u", u), ("p", p)], [derived.kinetic_energy, derived.potential_energy]
+            "energies(q, u, p, out)",
+            [("q", q), ("u", u), ("p", p)],
+            vector("out", [derived.kinetic_energy, derived.potential_energy]),
+        ),
+        # The chapter-8 DAE algorithms' kernels (app.physics.constrained.system): M and f; g, C = A and c = b.
+        generate_function(
+            "dynamics(t, q, v, p, M_out, f_out)",
+            [("q", q), ("v", u), ("p", p)],
+            matrix("M_out", M) + vector("f_out", f),
+        ),
+        generate_function(
+            "constraints(q, v, p, g_out, C_out, c_out)",
+            [("q", q), ("v", u), ("p", p)],
+            vector("g_out", g) + matrix("C_out", A) + vector("c_out", list(b)),
         ),
     ]
     equations_in_full = [*derived.mass_matrix, *derived.forcing, *derived.constraint_matrix, *derived.constraint_rate]
@@ -217,6 +272,8 @@ def compiled(system: MultibodySystem, *, formulation: str = "kane", directory: P
             configuration_jacobian=module.configuration_jacobian,
             constraint_matrix=module.constraint_matrix,
             energies=module.energies,
+            dynamics=module.dynamics,
+            constraints=module.constraints,
             derive_s=derive_s,
             generate_s=generate_s,
             load_s=time.perf_counter() - loading,

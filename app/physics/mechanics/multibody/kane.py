@@ -27,7 +27,9 @@ from app.physics.mechanics.multibody.parts import MultibodySystem
 
 @dataclass(frozen=True)
 class ConstrainedEquations:
-    """M u̇ = f + Aᵀλ, A u̇ = b, the configuration constraints g(q) = 0, and the energies (J)."""
+    """M u̇ = f + Aᵀλ, A u̇ = b, the configuration constraints g(q) = 0, and the energies (J).
+
+    A's rows: the configuration constraints' rates first (∂g/∂q, as u = q̇), then the nonholonomic rows."""
 
     system: MultibodySystem
     mass_matrix: sympy.Matrix
@@ -81,7 +83,10 @@ def equations(system: MultibodySystem, frames: Kinematics | None = None) -> Cons
         )
         kinetic += (body.mass * (velocity.T * velocity)[0] + (omega.T * spin_momentum)[0]) / 2
         potential += body.mass * system.gravity * (frame.height + (frame.up.T * body.mass_centre)[0])
-    constraints = sympy.Matrix(list(frames.velocity_constraints))
+    configuration = sympy.Matrix(list(frames.configuration_constraints))
+    # The velocity rows, holonomic first: ġ = (∂g/∂q) q̇ with q̇ = u, then the rolling rows.
+    holonomic_rates = list(configuration.jacobian(q) * sympy.Matrix(u)) if configuration.shape[0] else []
+    constraints = sympy.Matrix(holonomic_rates + list(frames.velocity_constraints))
     if len(frames.configuration_constraints) != len(system.dependent_coordinates):
         raise ValueError(
             f"{system.id}: {len(frames.configuration_constraints)} configuration constraints, but "
@@ -103,7 +108,7 @@ def equations(system: MultibodySystem, frames: Kinematics | None = None) -> Cons
         forcing,
         A,
         rate,
-        sympy.Matrix(list(frames.configuration_constraints)),
+        configuration,
         kinetic,
         potential,
     )

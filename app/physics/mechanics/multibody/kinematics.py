@@ -80,8 +80,8 @@ def _child(parent: Frame, name: str, rotation: sympy.Matrix, rate: sympy.Matrix,
 
 @dataclass(frozen=True)
 class Kinematics:
-    """Every frame, and the constraints: configuration ones (expressions of q, zero when met) and velocity ones
-    (linear in u, zero when met)."""
+    """Every frame, and the constraints: configuration ones (expressions of q, zero when met) and the nonholonomic
+    velocity ones (linear in u, zero when met; the configuration constraints' rates are not among them)."""
 
     frames: dict[str, Frame]
     configuration_constraints: tuple[sympy.Expr, ...]
@@ -150,13 +150,15 @@ def _rolling_wheel(joint: RollingWheel) -> dict[str, Frame]:
 
 def _contact(wheel: Frame, contact: RollingContact) -> tuple[sympy.Expr, list[sympy.Expr]]:
     """A carried wheel's contact: its lowest point's height (zero when it touches) and that material point's
-    velocity (three components, the wheel's own, zero when it rolls)."""
+    velocity along the floor, forward and sideways (zero when it rolls; its upward part is the height's rate)."""
     a, up, r = contact.axle, wheel.up, contact.radius
     along = (up.T * a)[0]
     # The lowest point of the disk: from the centre, −r along up's part in the disk's plane, normalised.
-    in_plane = up - a * along
     length = sympy.sqrt(1 - along**2)
-    offset = -r * in_plane / length
+    offset = -r * (up - a * along) / length
     height = wheel.height - r * length
     velocity = wheel.origin_velocity + cross(wheel.angular_velocity, offset)
-    return height, [velocity[0], velocity[1], velocity[2]]
+    # Horizontal unit vectors in the wheel's components: forward along the disk's track, and sideways.
+    forward = cross(a, up) / length
+    sideways = cross(up, forward)
+    return height, [(velocity.T * forward)[0], (velocity.T * sideways)[0]]

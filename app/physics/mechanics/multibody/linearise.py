@@ -89,3 +89,39 @@ def stability_crossings(
         crossing = values[np.argmax(values.real)]
         found.append(Crossing(root, "unstable" if gb > 0 else "stable", bool(abs(crossing.imag) > 1e-9)))
     return found
+
+
+@dataclass(frozen=True)
+class Sweep:
+    """The eigenvalues (points, k) at each value of one parameter, and where stability changes."""
+
+    parameter: str
+    values: np.ndarray
+    eigenvalues: np.ndarray
+    crossings: list[Crossing]
+
+
+def sweep(
+    model: CompiledSystem,
+    params: Mapping[str, float],
+    reference: ReferenceMotion,
+    *,
+    parameter: str,
+    low: float,
+    high: float,
+    points: int,
+) -> Sweep:
+    """The linear model's eigenvalues as ``parameter`` runs from ``low`` to ``high`` (``points`` values), and the
+    values where the largest real part crosses zero (to 1e-12, :func:`stability_crossings`)."""
+    base = dict(params)
+
+    def spectrum(value: float) -> np.ndarray:
+        return eigenvalues(state_matrix(model, {**base, parameter: value}, reference))
+
+    values = np.linspace(low, high, points)
+    return Sweep(
+        parameter,
+        values,
+        np.array([spectrum(v) for v in values]),
+        stability_crossings(spectrum, low, high, samples=points),
+    )

@@ -119,6 +119,11 @@ class ReferenceMotion:
     coordinates: tuple[str, ...]
     speeds: tuple[str, ...]
     state: Callable[[Mapping[str, float]], tuple[np.ndarray, np.ndarray]]
+    #: The parameter a page plots the eigenvalues against, and over what range (its unit): a bicycle's speed.
+    sweep: tuple[str, float, float] | None = None
+    #: Names of the stability changes along the sweep: (what it becomes, whether an oscillating pair crosses, name),
+    #: as a bicycle's ("stable", True, "weave speed") and ("unstable", False, "capsize speed").
+    crossing_names: tuple[tuple[str, bool, str], ...] = ()
 
     @property
     def state_names(self) -> list[str]:

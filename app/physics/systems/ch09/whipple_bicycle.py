@@ -113,6 +113,8 @@ REFERENCE = ReferenceMotion(
     coordinates=("lean", "steer"),
     speeds=("lean", "steer"),
     state=_upright,
+    sweep=("speed_m_s", 0.0, 10.0),
+    crossing_names=(("stable", True, "weave speed"), ("unstable", False, "capsize speed")),
 )
 
 

@@ -1,0 +1,201 @@
+"""The Whipple bicycle coasting on a floor after a sideways push, integrated by the chapter-8 DAE algorithms.
+
+State ``(q, v)`` (16,): the coordinates of :mod:`.whipple_bicycle` (x, y, yaw, lean, rear_spin, pitch, steer,
+front_spin; m and rad) and their rates. The equations are the engine's (Kane's with dependent speeds, generated code,
+:mod:`app.physics.mechanics.multibody`): the front wheel touching the floor is the one configuration row, no slip at
+both wheels the four rolling rows. The start is upright or leaned and steered as asked, rolling at ``speed_m_s`` with
+the push's lean rate; the pitch and the five dependent rates are solved from the constraints (only they change).
+
+The model holds while both knife-edge wheels roll on the floor: it stops where the bicycle has fallen (lean beyond
+:data:`FALLEN_LEAN_DEG`: the pedals and bars of a real one would strike the floor first; the model has no such parts)
+or where the floor would have to pull the front wheel down (its normal force, the configuration row's multiplier,
+below zero: the wheel would lift off).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+
+from app.physics.constrained.initial_conditions import ConsistentStart, consistent_initial_conditions
+from app.physics.constrained.model import ConstrainedModel
+from app.physics.constrained.residuals import multipliers
+from app.physics.constrained.system import ConstrainedSystem
+from app.physics.core.parameters import Parameter, ParameterSet
+from app.physics.math.rotations import elementary_rotation_matrix
+from app.physics.mechanics.multibody.compiled import CompiledSystem, compiled
+from app.physics.solvers.integrated_model import ModelLimit
+from app.physics.systems.ch09.whipple_bicycle import PARAMETERS as BICYCLE_PARAMETERS
+from app.physics.systems.ch09.whipple_bicycle import SYSTEM
+
+COORDINATES = tuple(c.name for c in SYSTEM.coordinates)
+N = len(COORDINATES)
+X, Y, YAW, LEAN, REAR_SPIN, PITCH, STEER, FRONT_SPIN = range(N)
+#: Beyond this lean the model stops: a real bicycle's pedals or handlebar would have struck the floor.
+FALLEN_LEAN_DEG = 60.0
+FALLEN = "fallen"
+LIFT_OFF = "lift_off"
+
+PARAMETERS = ParameterSet(
+    (
+        *BICYCLE_PARAMETERS.parameters,
+        Parameter(
+            "push_lean_rate_rad_s", "rad/s", 0.5, -5.0, 5.0,
+            "The sideways push: the lean rate it gives the bicycle at the start", "φ̇₀",
+        ),
+        Parameter("lean_0_deg", "deg", 0.0, -45.0, 45.0, "Lean at the start (positive: to the right)", "φ₀"),
+        Parameter("steer_0_deg", "deg", 0.0, -45.0, 45.0, "Steer angle at the start (positive: to the left)", "δ₀"),
+    )
+)  # fmt: skip
+
+
+def bicycle_model() -> CompiledSystem:
+    """The generated equations (derived once, kept on disk; see :mod:`app.physics.mechanics.multibody.compiled`)."""
+    return compiled(SYSTEM)
+
+
+def _about(axis: np.ndarray, angle: float) -> np.ndarray:
+    c, s = math.cos(angle), math.sin(angle)
+    skew = np.array([[0.0, -axis[2], axis[1]], [axis[2], 0.0, -axis[0]], [-axis[1], axis[0], 0.0]])
+    return np.eye(3) * c + skew * s + np.outer(axis, axis) * (1.0 - c)
+
+
+def pose(params: Mapping[str, Any], q: np.ndarray) -> dict[str, tuple[np.ndarray, np.ndarray]]:
+    """Each body's (origin (3,) m, R (3, 3) body → world) at coordinates ``q``: the wheels' origins are their
+    centres, the rear frame's the rear wheel's centre, the front frame's the steer axis's foot (level with the rear
+    contact when upright)."""
+    w, c, tilt = (float(params[k]) for k in ("wheelbase_m", "trail_m", "steer_axis_tilt_rad"))
+    r_rear, r_front = float(params["rear_wheel_radius_m"]), float(params["front_wheel_radius_m"])
+    axle = elementary_rotation_matrix(2, float(q[YAW])) @ elementary_rotation_matrix(0, float(q[LEAN]))
+    rear_centre = np.array([float(q[X]), float(q[Y]), 0.0]) + axle @ np.array([0.0, 0.0, r_rear])
+    rear_frame = axle @ elementary_rotation_matrix(1, float(q[PITCH]))
+    foot = rear_centre + rear_frame @ np.array([w + c, 0.0, -r_rear])
+    front_frame = rear_frame @ _about(np.array([-math.sin(tilt), 0.0, math.cos(tilt)]), float(q[STEER]))
+    front_centre = foot + front_frame @ np.array([-c, 0.0, r_front])
+    return {
+        "rear_wheel": (rear_centre, axle @ elementary_rotation_matrix(1, float(q[REAR_SPIN]))),
+        "rear_frame": (rear_centre, rear_frame),
+        "front_frame": (foot, front_frame),
+        "front_wheel": (front_centre, front_frame @ elementary_rotation_matrix(1, float(q[FRONT_SPIN]))),
+    }
+
+
+def forward_speed_m_s(params: Mapping[str, Any], states: np.ndarray) -> np.ndarray:
+    """The rear wheel's rolling speed r_R θ̇_R (m/s) along ``states`` (N, 16)."""
+    return float(params["rear_wheel_radius_m"]) * np.atleast_2d(states)[:, N + REAR_SPIN]
+
+
+class WhippleBicycleMotion(ConstrainedModel):
+    """The riderless bicycle given a sideways push while rolling at ``speed_m_s``: inside the self-stable band the
+    wobble dies away; below it the weave grows, above it the bicycle slowly capsizes."""
+
+    parameters = PARAMETERS
+    start_parameters = ()  # the start is built from the speed and the push (see consistent_start)
+    series_units = {
+        "x_m": "m",
+        "y_m": "m",
+        "yaw_rad": "rad",
+        "lean_rad": "rad",
+        "steer_rad": "rad",
+        "forward_speed_m_s": "m/s",
+        "energy_J": "J",
+        "front_normal_force_N": "N",
+    }
+    invariant_units = {"energy": "J", "constraint_position": "m", "constraint_velocity": "m/s"}
+
+    def model(self) -> CompiledSystem:
+        return bicycle_model()
+
+    def constrained_system(self, params: Mapping[str, Any]) -> ConstrainedSystem:
+        return self.model().constrained_system(params)
+
+    def consistent_start(self, params: Mapping[str, Any]) -> ConsistentStart:
+        """Upright (or leaned and steered as asked) at the origin heading along +x, the rear wheel rolling at
+        speed_m_s with the push's lean rate; the pitch and the dependent rates are solved for, nothing else moves."""
+        speed = float(params["speed_m_s"])
+        q0, v0 = np.zeros(N), np.zeros(N)
+        q0[LEAN], q0[STEER] = math.radians(float(params["lean_0_deg"])), math.radians(float(params["steer_0_deg"]))
+        v0[X], v0[REAR_SPIN] = speed, speed / float(params["rear_wheel_radius_m"])
+        v0[FRONT_SPIN] = speed / float(params["front_wheel_radius_m"])
+        v0[LEAN] = float(params["push_lean_rate_rad_s"])
+        system = self.constrained_system(params)
+        dependent_q = {SYSTEM.index(name) for name in SYSTEM.dependent_coordinates}
+        dependent_v = {SYSTEM.index(name) for name in SYSTEM.dependent_speeds}
+        units = ("m", "m", *("rad",) * 6, "m/s", "m/s", *("rad/s",) * 6)
+        return consistent_initial_conditions(
+            system,
+            q0,
+            v0,
+            fixed_positions=[i for i in range(N) if i not in dependent_q],
+            fixed_velocities=[i for i in range(N) if i not in dependent_v],
+            names=(*COORDINATES, *(f"{name}_rate" for name in COORDINATES)),
+            units=units,
+        )
+
+    def energy_J(self, params: Mapping[str, Any], states: np.ndarray) -> np.ndarray:
+        """T + V (J) along ``states`` (N, 16); V = 0 with every mass centre on the floor."""
+        model, p = self.model(), self.model().parameter_array(params)
+        return np.array([sum(model.energy(state[:N], state[N:], p)) for state in np.atleast_2d(states)])
+
+    def energy_scale_J(self, params: Mapping[str, Any], state: np.ndarray) -> float:
+        """The rider's fall m_B g |z_B| or the energy, whichever is larger (J)."""
+        fall = (
+            float(params["rear_frame_mass_kg"]) * float(params["gravity_m_s2"]) * abs(float(params["rear_frame_z_m"]))
+        )
+        return max(fall, float(abs(self.energy_J(params, state[None, :])[0])), 1e-12)
+
+    def residual_scales(self, params: Mapping[str, Any]) -> tuple[float, float]:
+        """The rear wheel's radius (m) and the speed, at least 1 m/s (m/s)."""
+        return float(params["rear_wheel_radius_m"]), max(abs(float(params["speed_m_s"])), 1.0)
+
+    def fastest_rate_rad_s(self, params: Mapping[str, Any], state: np.ndarray) -> float:
+        """The wheels' spin rates, the lean and steer rates, and the fastest linear mode (about 3 v + 5 1/s for the
+        benchmark: 14 1/s at 5 m/s), rad/s."""
+        rates = np.abs(np.asarray(state[N:], dtype=float))
+        speed = abs(float(params["speed_m_s"]))
+        return max(float(np.max(rates)), 3.0 * speed + 5.0, 1.0)
+
+    def constrained_series(self, params, t_s, states, multipliers_N):
+        return {
+            "x_m": states[:, X],
+            "y_m": states[:, Y],
+            "yaw_rad": states[:, YAW],
+            "lean_rad": states[:, LEAN],
+            "steer_rad": states[:, STEER],
+            "forward_speed_m_s": forward_speed_m_s(params, states),
+            "energy_J": self.energy_J(params, states),
+            "front_normal_force_N": multipliers_N[:, 0],
+        }
+
+    def front_normal_force_N(self, params: Mapping[str, Any], t_s: np.ndarray, states: np.ndarray) -> np.ndarray:
+        """The floor's push on the front wheel (N): the multiplier of the row that keeps it on the floor."""
+        return multipliers(self.constrained_system(params), t_s, np.atleast_2d(states))[:, 0]
+
+    def model_limit(self, params: Mapping[str, Any], t_s: np.ndarray, states: np.ndarray) -> ModelLimit | None:
+        """Where the bicycle has fallen (|lean| > 60°) or the front wheel would lift off (its normal force < 0)."""
+        full = self.constrained_view(params, states)
+        fallen = np.nonzero(np.abs(np.degrees(full[:, LEAN])) > FALLEN_LEAN_DEG)[0]
+        normal = self.front_normal_force_N(params, t_s, full)
+        lifted = np.nonzero(normal < 0.0)[0]
+        first = min([*fallen[:1], *lifted[:1]], default=None)
+        if first is None:
+            return None
+        frames = max(int(first), 1)
+        if first in fallen[:1]:
+            return ModelLimit(
+                frames,
+                FALLEN,
+                f"At t = {float(t_s[first]):.2f} s the bicycle has fallen: its lean passed {FALLEN_LEAN_DEG:.0f}° "
+                f"({math.degrees(float(full[first, LEAN])):.1f}°). A real one's pedals or handlebar would have struck "
+                "the floor; the model has no such parts, so the motion stops here.",
+            )
+        return ModelLimit(
+            frames,
+            LIFT_OFF,
+            f"At t = {float(t_s[first]):.2f} s the floor would have to pull the front wheel down (normal force "
+            f"{float(normal[first]):.1f} N): it would lift off, which this model (wheels always on the floor) cannot "
+            "describe, so the motion stops here.",
+        )
