@@ -37,7 +37,7 @@ from app.physics.mechanics.engine import available_formulations, derived
 from app.physics.mechanics.multibody.compiled import FORMULATIONS as PARTS_FORMULATIONS
 from app.physics.mechanics.multibody.compiled import ConstraintsNotMet, compiled
 from app.physics.mechanics.multibody.linearise import Sweep, eigenvalues, state_matrix, sweep
-from app.physics.mechanics.multibody.parts import MultibodySystem
+from app.physics.mechanics.multibody.parts import MultibodyFamily, MultibodySystem
 from app.physics.mechanics.typed import derive_typed_bounded
 
 router = APIRouter(prefix="/api/systems", tags=["systems"])
@@ -58,22 +58,24 @@ def summary(system: SystemDescription) -> dict[str, Any]:
     }
 
 
-def parts_summary(system: MultibodySystem) -> dict[str, Any]:
-    """A system built of parts, in the same shape, with its dependent coordinates and speeds and reference motion."""
+def parts_summary(entry: MultibodySystem | MultibodyFamily) -> dict[str, Any]:
+    """A system built of parts, in the same shape, with its dependent coordinates and speeds and reference motion
+    (a family's: its default member's coordinates, and the family's parameters, which choose the member)."""
+    system = entry.member(entry.parameters.defaults())
     coordinates = [{"name": c.name, "latex": c.latex, "unit": c.unit} for c in system.coordinates]
     reference = system.reference
     return {
-        "id": system.id,
-        "title": system.title,
-        "chapter": system.chapter,
+        "id": entry.id,
+        "title": entry.title,
+        "chapter": entry.chapter,
         "coordinates": coordinates,
         "speeds": [
             {"name": c.rate.name, "latex": f"\\dot{{{c.latex}}}", "unit": c.rate_unit} for c in system.coordinates
         ],
         "formulations": list(PARTS_FORMULATIONS),
         "unavailable": {},
-        "parameters": system.parameters.schema(),
-        "assumptions": system.assumptions,
+        "parameters": entry.parameters.schema(),
+        "assumptions": entry.assumptions,
         "dependent_coordinates": list(system.dependent_coordinates),
         "dependent_speeds": list(system.dependent_speeds),
         "reference": None if reference is None else {"about": reference.about, "states": reference.state_names},
@@ -97,7 +99,7 @@ def _system(catalogue, system_id: str) -> SystemDescription:
     return system
 
 
-def _parts_system(catalogue, system_id: str) -> MultibodySystem:
+def _parts_system(catalogue, system_id: str) -> MultibodySystem | MultibodyFamily:
     system = catalogue.multibody.get(system_id)
     if system is None:
         if system_id in catalogue.derivations:
@@ -249,13 +251,14 @@ AT_SINGULARITY = 1e-6
 CONSTRAINT_TOLERANCE = 1e-8
 
 
-def _parts_rhs(system: MultibodySystem, request: RhsRequest) -> dict[str, Any]:
+def _parts_rhs(entry: MultibodySystem | MultibodyFamily, request: RhsRequest) -> dict[str, Any]:
     """(q̇, q̈) of a system built of parts, at a state that meets its constraints (else 422 saying by how much)."""
     if request.formulation not in PARTS_FORMULATIONS:
         raise ParameterError(
-            "formulation", f"{system.id} is derived by {' and '.join(PARTS_FORMULATIONS)} (with multipliers)"
+            "formulation", f"{entry.id} is derived by {' and '.join(PARTS_FORMULATIONS)} (with multipliers)"
         )
-    params = system.parameters.validate(request.params)
+    params = entry.parameters.validate(request.params)
+    system = entry.member(params)
     n = len(system.coordinates)
     if len(request.state) != 2 * n:
         names = [c.name for c in system.coordinates]
@@ -296,11 +299,12 @@ def _parts_rhs(system: MultibodySystem, request: RhsRequest) -> dict[str, Any]:
 def system_eigenvalues(system_id: str, request: EigenvaluesRequest, catalogue: CatalogueDep) -> dict[str, Any]:
     """The eigenvalues (1/s) of the system linearised about its reference motion (for the bicycle: upright,
     straight-ahead rolling at ``speed_m_s``), and the states of that linear model."""
-    system = _parts_system(catalogue, system_id)
+    entry = _parts_system(catalogue, system_id)
+    params = entry.parameters.validate(request.params)
+    system = entry.member(params)
     reference = system.reference
     if reference is None:
         raise ParameterError("system_id", f"{system_id} has no reference motion to linearise about")
-    params = system.parameters.validate(request.params)
     model = compiled(system)
     try:
         with np.errstate(all="ignore"):
@@ -321,7 +325,7 @@ def system_eigenvalues(system_id: str, request: EigenvaluesRequest, catalogue: C
         "params": params,
     }
     if request.sweep is not None:
-        answer["sweep"] = _sweep(system, model, params, request.sweep)
+        answer["sweep"] = _sweep(entry, system, model, params, request.sweep)
     return answer
 
 
@@ -335,16 +339,20 @@ _SWEEPS_KEPT = 32
 _sweeps_lock = threading.Lock()
 
 
-def _sweep(system: MultibodySystem, model, params: dict[str, Any], request) -> dict[str, Any]:
-    """The eigenvalues along the sweep the request asks for (each value validated as the parameter's)."""
+def _sweep(
+    entry: MultibodySystem | MultibodyFamily, system: MultibodySystem, model, params: dict[str, Any], request
+) -> dict[str, Any]:
+    """The eigenvalues along the sweep the request asks for (each value validated as the parameter's; a family's
+    structure, such as a chain's number of links, is not swept)."""
     reference = system.reference
     assert reference is not None
     if request.parameter not in system.parameters.by_name:
-        raise ParameterError("sweep", f"{request.parameter!r} is no parameter of {system.id}")
+        known = ", ".join(system.parameters.by_name)
+        raise ParameterError("sweep", f"{request.parameter!r} is no parameter to sweep of {entry.id} (known: {known})")
     if not request.low < request.high:
         raise ParameterError("sweep", f"low ({request.low:g}) must be below high ({request.high:g})")
     for end in (request.low, request.high):
-        system.parameters.validate({**params, request.parameter: end})  # each end in the parameter's range
+        entry.parameters.validate({**params, request.parameter: end})  # each end in the parameter's range
     key = (
         system.fingerprint(),
         tuple(sorted(params.items())),

@@ -26,7 +26,7 @@ from app.scenes import SCENES, Scene
 
 if TYPE_CHECKING:
     from app.physics.mechanics.description import SystemDescription
-    from app.physics.mechanics.multibody.parts import MultibodySystem
+    from app.physics.mechanics.multibody.parts import MultibodyFamily, MultibodySystem
 
 
 class CatalogueError(ValueError):
@@ -46,8 +46,8 @@ class Catalogue:
     scenes: Mapping[str, type[Scene]]
     examples: Mapping[str, WorkedExample]
     derivations: Mapping[str, SystemDescription]
-    #: Systems built of parts (bodies, joints, rolling contacts) by id.
-    multibody: Mapping[str, MultibodySystem] = field(default_factory=dict)
+    #: Systems built of parts (bodies, joints, rolling contacts) by id, or families of them.
+    multibody: Mapping[str, MultibodySystem | MultibodyFamily] = field(default_factory=dict)
 
     def chapter_of(self, lesson: Lesson) -> Chapter:
         return next(ch for ch in self.chapters if ch.number == lesson.chapter)
@@ -73,7 +73,7 @@ def load_catalogue(
     scenes: Mapping[str, type[Scene]] | None = None,
     examples: Mapping[str, WorkedExample] | None = None,
     derivations: Mapping[str, SystemDescription] | None = None,
-    multibody: Mapping[str, MultibodySystem] | None = None,
+    multibody: Mapping[str, MultibodySystem | MultibodyFamily] | None = None,
 ) -> Catalogue:
     """Read the outline and lesson files under ``root`` and check every reference.
 
@@ -85,7 +85,11 @@ def load_catalogue(
     examples = worked_examples() if examples is None else examples
     derivations = analytical_systems() if derivations is None else derivations
     multibody = multibody_catalogue() if multibody is None else multibody
-    linearisable = {key: system for key, system in multibody.items() if system.reference is not None}
+    linearisable = {
+        key: entry
+        for key, entry in multibody.items()
+        if entry.member(entry.parameters.defaults()).reference is not None
+    }
     outline_path = root / "course.toml"
     outline = parse_outline(outline_path.read_text(encoding="utf-8"), str(outline_path))
     lessons = sorted(

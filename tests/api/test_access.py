@@ -309,6 +309,7 @@ DOORS = {
     ("POST", "/api/examples/{example_id}/solve"): "stateless",
     ("POST", "/api/systems/{system_id}/derive"): "stateless",
     ("POST", "/api/systems/{system_id}/rhs"): "stateless",
+    ("POST", "/api/systems/{system_id}/eigenvalues"): "stateless",
     ("POST", "/api/systems/custom/derive"): "stateless",
     ("POST", "/api/rooms"): "instructor",
     ("DELETE", "/api/rooms/{room_id}"): "instructor",

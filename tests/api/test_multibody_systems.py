@@ -77,3 +77,24 @@ def test_rhs_answers_at_a_state_on_the_constraints_and_refuses_one_off_them(clie
     q[names.index("pitch")] = 1e-3
     off = client.post("/api/systems/whipple-bicycle/rhs", json={"formulation": "kane", "state": q + u})
     assert off.status_code == 422 and "constraints" in off.text and "pitch" in off.text
+
+
+def test_the_chain_is_listed_with_links_and_planar_and_its_eigenvalues_are_its_frequencies(client):
+    from tests.physics.mechanics.multibody.test_n_link_pendulum import frequencies_by_hand
+
+    chain = {s["id"]: s for s in client.get("/api/systems").json()}["n-link-pendulum"]
+    assert {"links", "planar", "link_mass_kg", "link_length_m"} <= {p["name"] for p in chain["parameters"]}
+    answer = client.post("/api/systems/n-link-pendulum/eigenvalues", json={"params": {"links": 4}})
+    assert answer.status_code == 200, answer.text
+    body = answer.json()
+    assert body["states"] == ["theta1", "theta2", "theta3", "theta4", "theta1_d", "theta2_d", "theta3_d", "theta4_d"]
+    omega = np.sort([e["im"] for e in body["eigenvalues"] if e["im"] > 0])
+    np.testing.assert_allclose(omega, frequencies_by_hand(4, 1.0, 0.5, 9.81), rtol=1e-8)
+    assert body["stable"] is False  # undamped: every real part is zero, none negative
+    refused = client.post("/api/systems/n-link-pendulum/eigenvalues", json={"params": {"links": 50}})
+    assert refused.status_code == 422 and "links" in refused.text
+    swept = client.post(
+        "/api/systems/n-link-pendulum/eigenvalues",
+        json={"params": {"links": 3}, "sweep": {"parameter": "links", "low": 2, "high": 5}},
+    )
+    assert swept.status_code == 422 and "sweep" in swept.text

@@ -129,28 +129,42 @@ def generate_source(system: CodeSystem, recipe: Recipe, *, formulation: str) -> 
     return header + "\n".join(lines) + "\n"
 
 
+class _NamingPrinter(_Printer):
+    """Prints chosen symbols under given names (the arrays' entries), so no expression is rebuilt to rename them."""
+
+    def __init__(self, names: dict[sympy.Symbol, str]) -> None:
+        super().__init__()
+        self._names = names
+
+    def _print_Symbol(self, expr: sympy.Symbol) -> str:
+        return self._names.get(expr) or super()._print_Symbol(expr)
+
+
 def generate_function(
     signature: str,
     arguments: Sequence[tuple[str, Sequence[sympy.Symbol]]],
     assignments: Sequence[tuple[str, sympy.Expr]],
 ) -> str:
     """``def <signature>:`` in straight-line code (common subexpressions shared), giving each target (``out[3]``,
-    ``M_out[1, 2]``) its expression; each argument is an array whose entries are the given symbols, in order."""
-    printer = _Printer()
-    names: dict[sympy.Symbol, sympy.Symbol] = {}
+    ``M_out[1, 2]``) its expression; each argument is an array whose entries are the given symbols, in order.
+
+    Nothing walks the expressions as trees: a long chain's are deep graphs whose tree walk never ends. The
+    subexpressions are found in sympy's own order of appearance (``order="none"``) and the arguments' symbols are
+    renamed by the printer."""
+    names: dict[sympy.Symbol, str] = {}
     lines = [f"def {signature}:"]
     for array, symbols in arguments:
         for i, symbol in enumerate(symbols):
-            names[symbol] = sympy.Symbol(f"{array}_{i}")
+            names[symbol] = f"{array}_{i}"
             lines.append(f"    {array}_{i} = {array}[{i}]")
+    printer = _NamingPrinter(names)
     counter = itertools.count(1)
 
     def fresh_names() -> Iterator[sympy.Symbol]:
         while True:
             yield sympy.Symbol(f"c{next(counter)}")
 
-    renamed = [sympy.sympify(e).xreplace(names) for _, e in assignments]
-    replacements, reduced = sympy.cse(renamed, symbols=fresh_names())
+    replacements, reduced = sympy.cse([sympy.sympify(e) for _, e in assignments], symbols=fresh_names(), order="none")
     lines += [f"    {symbol} = {printer.doprint(value)}" for symbol, value in replacements]
     lines += [f"    {target} = {printer.doprint(value)}" for (target, _), value in zip(assignments, reduced)]
     if not assignments:

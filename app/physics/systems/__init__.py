@@ -55,13 +55,14 @@ def analytical_systems() -> dict:
 
 def multibody_systems() -> dict:
     """Every system described by its parts (bodies, joints, rolling contacts) by id: the ``SYSTEM`` a module
-    declares as a :class:`~app.physics.mechanics.multibody.parts.MultibodySystem`."""
-    from app.physics.mechanics.multibody.parts import MultibodySystem
+    declares as a :class:`~app.physics.mechanics.multibody.parts.MultibodySystem`, or a family of them (one id whose
+    parameters choose the member)."""
+    from app.physics.mechanics.multibody.parts import MultibodyFamily, MultibodySystem
 
-    systems: dict[str, MultibodySystem] = {}
+    systems: dict[str, MultibodySystem | MultibodyFamily] = {}
     for name in system_modules():
         system = getattr(importlib.import_module(name), "SYSTEM", None)
-        if isinstance(system, MultibodySystem):
+        if isinstance(system, MultibodySystem | MultibodyFamily):
             if systems.get(system.id, system) is not system:
                 raise ValueError(f"two multibody systems share the id {system.id!r} ({name})")
             systems[system.id] = system

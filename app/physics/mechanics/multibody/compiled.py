@@ -12,6 +12,7 @@ elimination are kept with it.
 
 from __future__ import annotations
 
+import ast
 import hashlib
 import json
 import os
@@ -24,8 +25,7 @@ from pathlib import Path
 import numpy as np
 import sympy
 
-from app.physics.constrained.system import ConstrainedSystem
-from app.physics.mechanics.codegen import generate_function, generate_source
+from app.physics.mechanics.codegen import generate_function
 from app.physics.mechanics.engine import cache_directory, load_generated
 from app.physics.mechanics.multibody.kane import ConstrainedEquations, equations, lagrange_form
 from app.physics.mechanics.multibody.parts import MultibodySystem
@@ -49,12 +49,26 @@ class ConstraintsNotMet(ValueError):
     are not determined (the constraint matrix is singular there)."""
 
 
-def operation_count(expressions: list[sympy.Expr]) -> tuple[int, int]:
-    """Operations (sympy's count) written out in full, and after common subexpressions are shared."""
-    before = sum(sympy.count_ops(e) for e in expressions)
-    replacements, reduced = sympy.cse(expressions)
-    after = sum(sympy.count_ops(v) for _, v in replacements) + sum(sympy.count_ops(e) for e in reduced)
-    return int(before), int(after)
+def operations_written_out(expressions: list[sympy.Expr]) -> int:
+    """Arithmetic operations in ``expressions`` written out in full, as trees: one per argument an addition or a
+    product joins, one per power or function. Counted once per distinct subexpression (the count of a tree is the
+    sum of its branches'), so a huge count costs no more than the expressions' size in memory."""
+    memo: dict[sympy.Basic, int] = {}
+
+    def count(expr: sympy.Basic) -> int:
+        found = memo.get(expr)
+        if found is None:
+            own = len(expr.args) - 1 if isinstance(expr, sympy.Add | sympy.Mul) else (1 if expr.args else 0)
+            found = own + sum(count(arg) for arg in expr.args)
+            memo[expr] = found
+        return found
+
+    return sum(count(sympy.sympify(e)) for e in expressions)
+
+
+def operations_in_code(source: str) -> int:
+    """Arithmetic operations in generated Python: binary and unary operators and function calls."""
+    return sum(isinstance(node, ast.BinOp | ast.UnaryOp | ast.Call) for node in ast.walk(ast.parse(source)))
 
 
 @dataclass
@@ -92,22 +106,6 @@ class CompiledSystem:
                     kernel(MULTIPLIER_CONSTRAINTS_SIGNATURE)(self.constraints),
                 )
             return self._kernels
-
-    def constrained_system(self, params: Mapping[str, float]) -> ConstrainedSystem:
-        """The system as the chapter-8 DAE algorithms see it: M v̇ = f + Cᵀλ with the configuration constraints'
-        rows first, the rolling rows after; coordinate partitioning keeps the independent speeds' coordinates."""
-        system = self.system
-        dynamics, constraints = self.kernels()
-        dependent = {system.index(name) for name in system.dependent_speeds}
-        return ConstrainedSystem(
-            dynamics=dynamics,
-            constraints=constraints,
-            parameters=self.parameter_array(params),
-            coordinate_names=tuple(c.name for c in system.coordinates),
-            n_holonomic=len(system.dependent_coordinates),
-            n_nonholonomic=len(system.dependent_speeds) - len(system.dependent_coordinates),
-            independent=tuple(i for i in range(self.n) if i not in dependent),
-        )
 
     def parameter_array(self, params: Mapping[str, float]) -> np.ndarray:
         return np.array(self.system.parameter_array(params), dtype=float)
@@ -167,9 +165,14 @@ class CompiledSystem:
 
     def energy(self, q: np.ndarray, u: np.ndarray, p: np.ndarray) -> tuple[float, float]:
         """(kinetic, potential), J."""
-        out = np.empty(2)
+        translational, rotational, potential = self.energy_parts(q, u, p)
+        return translational + rotational, potential
+
+    def energy_parts(self, q: np.ndarray, u: np.ndarray, p: np.ndarray) -> tuple[float, float, float]:
+        """(½ Σ m v_G², ½ Σ ω·I_G ω, V), J."""
+        out = np.empty(3)
         self.energies(q, u, p, out)
-        return float(out[0]), float(out[1])
+        return float(out[0]), float(out[1]), float(out[2])
 
 
 _memory: dict[str, CompiledSystem] = {}
@@ -187,10 +190,47 @@ def _paths(system: MultibodySystem, formulation: str, directory: Path | None) ->
     return base.with_suffix(".py"), base.with_suffix(".json")
 
 
+_GLUE = """
+N_COORDINATES, N_CONSTRAINTS, N_HOLONOMIC = {n}, {m}, {h}
+
+
+def configuration(q, p, out):
+    g, C, c = np.empty(N_HOLONOMIC), np.empty((N_CONSTRAINTS, N_COORDINATES)), np.empty(N_CONSTRAINTS)
+    constraints(q, np.zeros(N_COORDINATES), p, g, C, c)
+    out[:N_HOLONOMIC] = g
+
+
+def constraint_matrix(q, p, out):
+    g, C, c = np.empty(N_HOLONOMIC), np.empty((N_CONSTRAINTS, N_COORDINATES)), np.empty(N_CONSTRAINTS)
+    constraints(q, np.zeros(N_COORDINATES), p, g, C, c)
+    out[: N_CONSTRAINTS * N_COORDINATES] = C.ravel()
+
+
+def rhs(t, y, p, dydt):
+    n, m = N_COORDINATES, N_CONSTRAINTS
+    q, v = y[:n], y[n:]
+    M, f = np.empty((n, n)), np.empty(n)
+    dynamics(t, q, v, p, M, f)
+    g, C, c = np.empty(N_HOLONOMIC), np.empty((m, n)), np.empty(m)
+    constraints(q, v, p, g, C, c)
+    A = np.zeros((n + m, n + m))
+    A[:n, :n] = M
+    A[:n, n:] = C.T
+    A[n:, :n] = C
+    b = np.concatenate((f, c))
+    if not solve_small(A, b):
+        dydt[:] = math.nan
+        return
+    dydt[:n] = v
+    dydt[n:] = b[:n]
+"""
+
+
 def _generate(system: MultibodySystem, derived: ConstrainedEquations, formulation: str) -> tuple[str, dict[str, int]]:
+    """The module: M, f (``dynamics``) and g, C, c (``constraints``) as the DAE algorithms' kernels, each with its
+    common subexpressions shared; ``rhs`` and the constraint helpers are glue over them (the (n + m) solve by LU)."""
     q, u, p = system.q, system.u, system.parameter_symbols
     n = len(q)
-    source = generate_source(system, derived.recipe(), formulation=f"{formulation} with multipliers")
     M, f, A, b = derived.mass_matrix, derived.forcing, derived.constraint_matrix, derived.constraint_rate
     g = list(derived.configuration_constraints)
     jacobian = derived.configuration_constraints.jacobian(q) if g else sympy.zeros(0, n)
@@ -201,16 +241,8 @@ def _generate(system: MultibodySystem, derived: ConstrainedEquations, formulatio
     def matrix(name: str, values: sympy.Matrix) -> list[tuple[str, sympy.Expr]]:
         return [(f"{name}[{i}, {j}]", values[i, j]) for i in range(values.shape[0]) for j in range(values.shape[1])]
 
-    pieces = [
-        generate_function("configuration(q, p, out)", [("q", q), ("p", p)], vector("out", g)),
-        generate_function("configuration_jacobian(q, p, out)", [("q", q), ("p", p)], vector("out", list(jacobian))),
-        generate_function("constraint_matrix(q, p, out)", [("q", q), ("p", p)], vector("out", list(A))),
-        generate_function(
-            "energies(q, u, p, out)",
-            [("q", q), ("u", u), ("p", p)],
-            vector("out", [derived.kinetic_energy, derived.potential_energy]),
-        ),
-        # The chapter-8 DAE algorithms' kernels (app.physics.constrained.system): M and f; g, C = A and c = b.
+    # The chapter-8 DAE algorithms' kernels (app.physics.constrained.system): M and f; g, C = A and c = b.
+    kernels = [
         generate_function(
             "dynamics(t, q, v, p, M_out, f_out)",
             [("q", q), ("v", u), ("p", p)],
@@ -222,15 +254,29 @@ def _generate(system: MultibodySystem, derived: ConstrainedEquations, formulatio
             vector("g_out", g) + matrix("C_out", A) + vector("c_out", list(b)),
         ),
     ]
-    equations_in_full = [*derived.mass_matrix, *derived.forcing, *derived.constraint_matrix, *derived.constraint_rate]
-    before, after = operation_count(equations_in_full)
+    kinetic, rotational = derived.kinetic_energy, derived.rotational_kinetic_energy
+    helpers = [
+        generate_function("configuration_jacobian(q, p, out)", [("q", q), ("p", p)], vector("out", list(jacobian))),
+        generate_function(
+            "energies(q, u, p, out)",
+            [("q", q), ("u", u), ("p", p)],
+            vector("out", [kinetic - rotational, rotational, derived.potential_energy]),
+        ),
+    ]
+    header = (
+        f'"""Generated by app.physics.mechanics.multibody.compiled for {system.id} ({formulation} with multipliers); '
+        f'fingerprint {system.fingerprint()}. Do not edit."""\n\nimport math\n\nimport numpy as np\n\n'
+        "from app.physics.mechanics.linear import solve_small\n\n\n"
+    )
+    glue = _GLUE.format(n=n, m=A.shape[0], h=len(g))
+    source = header + "\n\n".join([*kernels, *helpers]) + "\n" + glue
     operations = {
         "speeds": n,
-        "constraints": derived.constraint_matrix.shape[0],
-        "before_cse": before,
-        "after_cse": after,
+        "constraints": A.shape[0],
+        "before_cse": operations_written_out([*M, *f, *A, *b]),
+        "after_cse": operations_in_code("\n".join(kernels)),
     }
-    return source + "\n\n" + "\n\n".join(pieces), operations
+    return source, operations
 
 
 def compiled(system: MultibodySystem, *, formulation: str = "kane", directory: Path | None = None) -> CompiledSystem:

@@ -21,7 +21,7 @@ from dataclasses import dataclass
 import sympy
 
 from app.physics.mechanics.derivation import Recipe, Solve
-from app.physics.mechanics.multibody.kinematics import Kinematics, cross, kinematics
+from app.physics.mechanics.multibody.kinematics import Kinematics, component_rate, cross, kinematics
 from app.physics.mechanics.multibody.parts import MultibodySystem
 
 
@@ -39,6 +39,8 @@ class ConstrainedEquations:
     configuration_constraints: sympy.Matrix
     kinetic_energy: sympy.Expr
     potential_energy: sympy.Expr
+    #: The kinetic energy's rotational part, ½ Σ ω·I_G ω (J); the rest is ½ Σ m v_G².
+    rotational_kinetic_energy: sympy.Expr = sympy.Integer(0)
 
     def recipe(self) -> Recipe:
         """(q, q̇) → (q̇, q̈): solve [[M, Aᵀ], [A, 0]] [u̇; λ] = [f; b]."""
@@ -53,11 +55,6 @@ class ConstrainedEquations:
         return Recipe(stages=(Solve(augmented, rhs, targets),), outputs=(*self.system.u, *self.system.ud))
 
 
-def _rate(expression: sympy.Matrix, q: list[sympy.Symbol], u: list[sympy.Symbol]) -> sympy.Matrix:
-    """d/dt of an expression of (q, u) with u̇ = 0 and q̇ = u: Σ ∂e/∂q_k u_k."""
-    return sum((expression.diff(qk) * uk for qk, uk in zip(q, u)), sympy.zeros(*expression.shape))
-
-
 def equations(system: MultibodySystem, frames: Kinematics | None = None) -> ConstrainedEquations:
     """The system's constrained equations of motion (Kane's, in the unreduced form above)."""
     frames = frames or kinematics(system)
@@ -66,15 +63,16 @@ def equations(system: MultibodySystem, frames: Kinematics | None = None) -> Cons
     mass_matrix = sympy.zeros(n, n)
     forcing = sympy.zeros(n, 1)
     kinetic = sympy.Integer(0)
+    rotational = sympy.Integer(0)
     potential = sympy.Integer(0)
     for body in system.bodies:
         frame = frames.frames[body.name]
         omega = frame.angular_velocity
         velocity = frames.mass_centre_velocity(system, body.name)
-        V, W = velocity.jacobian(u), omega.jacobian(u)
-        # Accelerations with u̇ = 0, own components: the transport theorem adds ω × v to the components' rate.
-        acceleration_u = _rate(velocity, q, u) + cross(omega, velocity)
-        angular_acceleration_u = _rate(omega, q, u)
+        V, W = frames.mass_centre_partials(system, body.name), frame.angular_velocity_partials
+        # Accelerations with u̇ = 0, own components, built joint by joint as the velocities are (no time derivative).
+        acceleration_u = frames.mass_centre_acceleration(system, body.name)
+        angular_acceleration_u = frame.angular_acceleration
         weight = -body.mass * system.gravity * frame.up
         spin_momentum = body.inertia * omega
         mass_matrix += body.mass * V.T * V + W.T * body.inertia * W
@@ -82,6 +80,7 @@ def equations(system: MultibodySystem, frames: Kinematics | None = None) -> Cons
             body.inertia * angular_acceleration_u + cross(omega, spin_momentum)
         )
         kinetic += (body.mass * (velocity.T * velocity)[0] + (omega.T * spin_momentum)[0]) / 2
+        rotational += (omega.T * spin_momentum)[0] / 2
         potential += body.mass * system.gravity * (frame.height + (frame.up.T * body.mass_centre)[0])
     configuration = sympy.Matrix(list(frames.configuration_constraints))
     # The velocity rows, holonomic first: ġ = (∂g/∂q) q̇ with q̇ = u, then the rolling rows.
@@ -99,7 +98,7 @@ def equations(system: MultibodySystem, frames: Kinematics | None = None) -> Cons
         )
     if constraints.shape[0]:
         A = constraints.jacobian(u)
-        rate = -_rate(constraints, q, u)
+        rate = -component_rate(constraints, q, u)
     else:
         A, rate = sympy.zeros(0, n), sympy.zeros(0, 1)
     return ConstrainedEquations(
@@ -111,6 +110,7 @@ def equations(system: MultibodySystem, frames: Kinematics | None = None) -> Cons
         configuration,
         kinetic,
         potential,
+        rotational,
     )
 
 
@@ -133,4 +133,5 @@ def lagrange_form(derived: ConstrainedEquations) -> ConstrainedEquations:
         derived.configuration_constraints,
         T,
         V,
+        derived.rotational_kinetic_energy,
     )

@@ -38,10 +38,26 @@ class Frame:
     origin_velocity: sympy.Matrix
     up: sympy.Matrix
     height: sympy.Expr
+    #: The angular acceleration (rad/s²) and the origin's acceleration (m/s²) with every u̇ = 0: the velocity terms.
+    angular_acceleration: sympy.Matrix
+    origin_acceleration: sympy.Matrix
+    #: ∂ω/∂u and ∂v/∂u (3, n): the partial angular velocities and the origin's partial velocities, column by speed.
+    angular_velocity_partials: sympy.Matrix
+    origin_velocity_partials: sympy.Matrix
+
+
+def skew(a: sympy.Matrix) -> sympy.Matrix:
+    """[a]×: skew(a) b = a × b."""
+    return sympy.Matrix([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
 
 
 def cross(a: sympy.Matrix, b: sympy.Matrix) -> sympy.Matrix:
     return sympy.Matrix([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
+
+
+def component_rate(expression: sympy.Matrix, q: list[sympy.Symbol], u: list[sympy.Symbol]) -> sympy.Matrix:
+    """d/dt of components that are expressions of (q, u), with u̇ = 0 and q̇ = u: Σ ∂e/∂q_k u_k."""
+    return sum((expression.diff(qk) * uk for qk, uk in zip(q, u)), sympy.zeros(*expression.shape))
 
 
 def rotation_about(axis: sympy.Matrix, angle: sympy.Expr) -> sympy.Matrix:
@@ -58,23 +74,43 @@ def rotation_about(axis: sympy.Matrix, angle: sympy.Expr) -> sympy.Matrix:
     return sympy.eye(3) * c + skew * s + (axis * axis.T) * (1 - c)
 
 
-def _ground() -> Frame:
+def _ground(n: int) -> Frame:
     zero = column(0, 0, 0)
-    return Frame(GROUND, None, sympy.eye(3), zero, zero, column(0, 0, 1), sympy.Integer(0))
+    none = sympy.zeros(3, n)
+    return Frame(GROUND, None, sympy.eye(3), zero, zero, column(0, 0, 1), sympy.Integer(0), zero, zero, none, none)
 
 
-def _child(parent: Frame, name: str, rotation: sympy.Matrix, rate: sympy.Matrix, at: sympy.Matrix) -> Frame:
-    """The frame at ``at`` on ``parent`` turned by ``rotation`` with relative angular velocity ``rate`` (parent's
-    components)."""
+def _child(
+    parent: Frame,
+    name: str,
+    rotation: sympy.Matrix,
+    axis: sympy.Matrix,
+    speed: sympy.Symbol,
+    column_of_speed: int,
+    at: sympy.Matrix,
+) -> Frame:
+    """The frame at ``at`` on ``parent`` turned by ``rotation`` about ``axis`` (parent's components) at the rate
+    ``speed`` (the column ``column_of_speed`` of the partials). The partial velocities and the accelerations follow
+    the same recursion as the velocities, nothing differentiated: W = Rᵀ(W_p + axis·e), V = Rᵀ(V_p − [at]× W_p),
+    α = α_p + ω_p × rate and a = a_p + α_p × at + ω_p × (ω_p × at), with every u̇ = 0."""
     back = rotation.T
+    omega = parent.angular_velocity
+    rate = axis * speed
+    reach = cross(omega, at)
+    turning = parent.angular_velocity_partials.copy()
+    turning[:, column_of_speed] += axis
     return Frame(
         name,
         parent.name,
         rotation,
-        back * (parent.angular_velocity + rate),
-        back * (parent.origin_velocity + cross(parent.angular_velocity, at)),
+        back * (omega + rate),
+        back * (parent.origin_velocity + reach),
         back * parent.up,
         parent.height + (parent.up.T * at)[0],
+        back * (parent.angular_acceleration + cross(omega, rate)),
+        back * (parent.origin_acceleration + cross(parent.angular_acceleration, at) + cross(omega, reach)),
+        back * turning,
+        back * (parent.origin_velocity_partials - skew(at) * parent.angular_velocity_partials),
     )
 
 
@@ -93,10 +129,26 @@ class Kinematics:
         centre = next(b for b in system.bodies if b.name == body).mass_centre
         return frame.origin_velocity + cross(frame.angular_velocity, centre)
 
+    def mass_centre_partials(self, system: MultibodySystem, body: str) -> sympy.Matrix:
+        """∂v_G/∂u (3, n), the body's own components."""
+        frame = self.frames[body]
+        centre = next(b for b in system.bodies if b.name == body).mass_centre
+        return frame.origin_velocity_partials - skew(centre) * frame.angular_velocity_partials
+
+    def mass_centre_acceleration(self, system: MultibodySystem, body: str) -> sympy.Matrix:
+        """The body's mass-centre acceleration with every u̇ = 0 (m/s²), its own components."""
+        frame = self.frames[body]
+        centre = next(b for b in system.bodies if b.name == body).mass_centre
+        omega = frame.angular_velocity
+        return (
+            frame.origin_acceleration + cross(frame.angular_acceleration, centre) + cross(omega, cross(omega, centre))
+        )
+
 
 def kinematics(system: MultibodySystem) -> Kinematics:
     """The frames of every body (and axle frame), and the rolling constraints."""
-    frames = {GROUND: _ground()}
+    u = system.u
+    frames = {GROUND: _ground(len(u))}
     velocity: list[sympy.Expr] = []
     configuration: list[sympy.Expr] = []
     for joint in system.joints:
@@ -106,12 +158,18 @@ def kinematics(system: MultibodySystem) -> Kinematics:
                     f"{system.id}: {joint.child!r} hangs on {joint.parent!r}, which comes later or not at all"
                 )
             parent = frames[joint.parent]
-            q = joint.coordinate.symbol
+            coordinate = joint.coordinate
             frames[joint.child] = _child(
-                parent, joint.child, rotation_about(joint.axis, q), joint.axis * joint.coordinate.rate, joint.at
+                parent,
+                joint.child,
+                rotation_about(joint.axis, coordinate.symbol),
+                joint.axis,
+                coordinate.rate,
+                system.index(coordinate.name),
+                joint.at,
             )
         else:
-            frames.update(_rolling_wheel(joint))
+            frames.update(_rolling_wheel(joint, u, system.index(joint.spin.name)))
             # The contact point is the radius straight below the centre in the axle frame (the disk's plane is
             # upright in it); its material velocity, in the heading's horizontal components, is zero.
             axle = frames[joint.axle_frame]
@@ -128,7 +186,7 @@ def kinematics(system: MultibodySystem) -> Kinematics:
     return Kinematics(frames, tuple(configuration), tuple(velocity))
 
 
-def _rolling_wheel(joint: RollingWheel) -> dict[str, Frame]:
+def _rolling_wheel(joint: RollingWheel, u: list[sympy.Symbol], spin_column: int) -> dict[str, Frame]:
     """The axle frame (heading, then lean, origin at the wheel's centre) and the wheel's frame (then spin)."""
     x_d, y_d, yaw, yaw_d = joint.x.rate, joint.y.rate, joint.yaw.symbol, joint.yaw.rate
     lean, lean_d = joint.lean.symbol, joint.lean.rate
@@ -140,11 +198,25 @@ def _rolling_wheel(joint: RollingWheel) -> dict[str, Frame]:
     contact_velocity = back * rotation_about(column(0, 0, 1), yaw).T * column(x_d, y_d, 0)
     centre_velocity = contact_velocity + cross(angular_velocity, column(0, 0, joint.radius))
     up = back * column(0, 0, 1)
+    # Its components' rates (short expressions of yaw and lean), with the transport term for the centre's.
+    own_q, own_u = [c.symbol for c in joint.coordinates], [c.rate for c in joint.coordinates]
+    angular_acceleration = component_rate(angular_velocity, own_q, own_u)
+    centre_acceleration = component_rate(centre_velocity, own_q, own_u) + cross(angular_velocity, centre_velocity)
     axle = Frame(
-        joint.axle_frame, GROUND, to_ground, angular_velocity, centre_velocity, up, joint.radius * sympy.cos(lean)
+        joint.axle_frame,
+        GROUND,
+        to_ground,
+        angular_velocity,
+        centre_velocity,
+        up,
+        joint.radius * sympy.cos(lean),
+        angular_acceleration,
+        centre_acceleration,
+        angular_velocity.jacobian(u),
+        centre_velocity.jacobian(u),
     )
     spin = rotation_about(column(0, 1, 0), joint.spin.symbol)
-    wheel = _child(axle, joint.wheel, spin, column(0, joint.spin.rate, 0), column(0, 0, 0))
+    wheel = _child(axle, joint.wheel, spin, column(0, 1, 0), joint.spin.rate, spin_column, column(0, 0, 0))
     return {joint.axle_frame: axle, joint.wheel: wheel}
 
 

@@ -16,6 +16,7 @@ from __future__ import annotations
 import hashlib
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 import sympy
@@ -59,8 +60,9 @@ class Body:
 class Revolute:
     """The child's frame turns about ``axis`` (a unit vector, the parent's components) through the point ``at`` (m,
     from the parent frame's origin, the parent's components) by ``coordinate``; the child's origin is that point,
-    and its axes are the parent's when the coordinate is zero. ``parent`` is a body, a wheel's axle frame
-    (``"<wheel>.axle"``) or :data:`GROUND`."""
+    and its axes are the parent's when the coordinate is zero. ``parent`` is a body, a massless frame another joint
+    made, a wheel's axle frame (``"<wheel>.axle"``) or :data:`GROUND`; a ``child`` that names no body is a massless
+    frame (two revolutes through one point make a universal joint)."""
 
     parent: str
     child: str
@@ -168,10 +170,12 @@ class MultibodySystem:
         if set(self.symbols) != {p.name for p in self.parameters.parameters}:
             raise ValueError(f"{self.id}: symbols and parameters must name the same things")
         bodies = {b.name for b in self.bodies}
+        moved = [joint.wheel if isinstance(joint, RollingWheel) else joint.child for joint in self.joints]
+        for body in bodies - set(moved):
+            raise ValueError(f"{self.id}: no joint moves the body {body!r}")
         for joint in self.joints:
-            child = joint.wheel if isinstance(joint, RollingWheel) else joint.child
-            if child not in bodies:
-                raise ValueError(f"{self.id}: a joint moves {child!r}, which is no body")
+            if isinstance(joint, RollingWheel) and joint.wheel not in bodies:
+                raise ValueError(f"{self.id}: the rolling wheel {joint.wheel!r} is no body")
 
     @property
     def coordinates(self) -> tuple[Coordinate, ...]:
@@ -213,6 +217,27 @@ class MultibodySystem:
         parts += [repr(self.dependent_coordinates), repr(self.dependent_speeds), repr(self.parameter_symbols)]
         return hashlib.sha256("\n".join(parts).encode()).hexdigest()[:16]
 
+    def member(self, params: Mapping[str, Any]) -> MultibodySystem:
+        """The system itself (a :class:`MultibodyFamily` picks one of its members by its parameters)."""
+        return self
+
     def index(self, name: str) -> int:
         """The position of a coordinate (and its speed) in q and u."""
         return [c.name for c in self.coordinates].index(name)
+
+
+@dataclass(frozen=True)
+class MultibodyFamily:
+    """Systems built of parts whose structure parameters choose the member (an N-link chain's N and whether it is
+    planar): one id and one parameter set, the structure's and every member's physical ones."""
+
+    id: str
+    title: str
+    chapter: int
+    assumptions: str
+    parameters: ParameterSet
+    #: The member for validated parameters (kept: the same structure gives the same object).
+    build: Callable[[Mapping[str, Any]], MultibodySystem] = field(compare=False)
+
+    def member(self, params: Mapping[str, Any]) -> MultibodySystem:
+        return self.build(params)

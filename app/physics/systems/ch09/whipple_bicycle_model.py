@@ -22,8 +22,10 @@ import numpy as np
 
 from app.physics.constrained.initial_conditions import ConsistentStart, consistent_initial_conditions
 from app.physics.constrained.model import ConstrainedModel
+from app.physics.constrained.multibody import multibody_constrained_system
 from app.physics.constrained.residuals import multipliers
 from app.physics.constrained.system import ConstrainedSystem
+from app.physics.core.energy import EnergyParts
 from app.physics.core.parameters import Parameter, ParameterSet
 from app.physics.math.rotations import elementary_rotation_matrix
 from app.physics.mechanics.multibody.compiled import CompiledSystem, compiled
@@ -110,7 +112,7 @@ class WhippleBicycleMotion(ConstrainedModel):
         return bicycle_model()
 
     def constrained_system(self, params: Mapping[str, Any]) -> ConstrainedSystem:
-        return self.model().constrained_system(params)
+        return multibody_constrained_system(self.model(), params)
 
     def consistent_start(self, params: Mapping[str, Any]) -> ConsistentStart:
         """Upright (or leaned and steered as asked) at the origin heading along +x, the rear wheel rolling at
@@ -137,8 +139,13 @@ class WhippleBicycleMotion(ConstrainedModel):
 
     def energy_J(self, params: Mapping[str, Any], states: np.ndarray) -> np.ndarray:
         """T + V (J) along ``states`` (N, 16); V = 0 with every mass centre on the floor."""
+        return self.constrained_energy_parts(params, states).total_J
+
+    def constrained_energy_parts(self, params: Mapping[str, Any], states: np.ndarray) -> EnergyParts:
+        """½ Σ m v_G², ½ Σ ω·I_G ω over the four bodies, and Σ m g z_G (J) along ``states`` (N, 16)."""
         model, p = self.model(), self.model().parameter_array(params)
-        return np.array([sum(model.energy(state[:N], state[N:], p)) for state in np.atleast_2d(states)])
+        parts = np.array([model.energy_parts(state[:N], state[N:], p) for state in np.atleast_2d(states)])
+        return EnergyParts(parts[:, 2], translational_kinetic_J=parts[:, 0], rotational_kinetic_J=parts[:, 1])
 
     def energy_scale_J(self, params: Mapping[str, Any], state: np.ndarray) -> float:
         """The rider's fall m_B g |z_B| or the energy, whichever is larger (J)."""
