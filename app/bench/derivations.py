@@ -22,6 +22,7 @@ import argparse
 import json
 import os
 import statistics
+import sys
 import tempfile
 import time
 from collections.abc import Sequence
@@ -181,7 +182,13 @@ def write_svg(report: dict[str, Any], path: Path) -> None:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
+    arguments = list(sys.argv[1:] if argv is None else argv)
+    if "--scaling" in arguments:  # the scaling study of the N-link pendulum and the bicycle (app.bench.scaling)
+        from app.bench.scaling import main as scaling_main
+
+        return scaling_main([a for a in arguments if a != "--scaling"])
     parser = argparse.ArgumentParser(prog="dynlab derivations", description=__doc__.splitlines()[0])
+    parser.add_argument("--scaling", action="store_true", help="instead: the N-link pendulum's scaling (scaling.json)")
     parser.add_argument("--no-proofs", action="store_true", help="skip the symbolic proofs (10 s each at most)")
     parser.add_argument("--out", type=Path, default=OUT_DIR, help="output folder (default docs/bench)")
     args = parser.parse_args(argv)
