@@ -93,6 +93,8 @@ def test_the_chain_is_listed_with_links_and_planar_and_its_eigenvalues_are_its_f
     assert body["stable"] is False  # undamped: every real part is zero, none negative
     refused = client.post("/api/systems/n-link-pendulum/eigenvalues", json={"params": {"links": 50}})
     assert refused.status_code == 422 and "links" in refused.text
+    too_long = client.post("/api/systems/n-link-pendulum/eigenvalues", json={"params": {"links": 11, "planar": "spatial"}})
+    assert too_long.status_code == 422 and "at most 10 links" in too_long.text
     swept = client.post(
         "/api/systems/n-link-pendulum/eigenvalues",
         json={"params": {"links": 3}, "sweep": {"parameter": "links", "low": 2, "high": 5}},

@@ -177,6 +177,8 @@ class CompiledSystem:
 
 _memory: dict[str, CompiledSystem] = {}
 _lock = threading.Lock()
+#: One lock per system and formulation: a long derivation of one never holds up another.
+_key_locks: dict[str, threading.Lock] = {}
 
 
 #: How the equations are formed: Kane's (partial velocities) or Lagrange's (from the energies), both with multipliers.
@@ -287,6 +289,11 @@ def compiled(system: MultibodySystem, *, formulation: str = "kane", directory: P
     with _lock:
         if key in _memory:
             return _memory[key]
+        key_lock = _key_locks.setdefault(key, threading.Lock())
+    with key_lock:
+        with _lock:
+            if key in _memory:
+                return _memory[key]
         start = time.perf_counter()
         meta = None
         if module_path.exists() and meta_path.exists():
@@ -326,5 +333,6 @@ def compiled(system: MultibodySystem, *, formulation: str = "kane", directory: P
             operations=meta["operations"],
             from_cache=from_cache,
         )
-        _memory[key] = result
+        with _lock:
+            _memory[key] = result
         return result

@@ -63,3 +63,11 @@ def test_the_family_builds_each_member_once_and_refuses_a_chain_out_of_range():
     with pytest.raises(ValueError, match="between 2 and 20") as refused:
         PARAMETERS.validate({"links": 21})
     assert refused.value.field == "links"
+
+
+def test_a_spatial_chain_longer_than_ten_links_is_refused_naming_links():
+    from app.physics.core.parameters import ParameterError
+
+    with pytest.raises(ParameterError, match="at most 10 links") as refused:
+        FAMILY.member(PARAMETERS.validate({"links": 11, "planar": "spatial"}))
+    assert refused.value.field == "links"
