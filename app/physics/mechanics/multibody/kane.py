@@ -20,7 +20,6 @@ from dataclasses import dataclass
 
 import sympy
 
-from app.physics.mechanics.derivation import Recipe, Solve
 from app.physics.mechanics.multibody.kinematics import Kinematics, component_rate, cross, kinematics
 from app.physics.mechanics.multibody.parts import MultibodySystem
 
@@ -41,18 +40,6 @@ class ConstrainedEquations:
     potential_energy: sympy.Expr
     #: The kinetic energy's rotational part, ½ Σ ω·I_G ω (J); the rest is ½ Σ m v_G².
     rotational_kinetic_energy: sympy.Expr = sympy.Integer(0)
-
-    def recipe(self) -> Recipe:
-        """(q, q̇) → (q̇, q̈): solve [[M, Aᵀ], [A, 0]] [u̇; λ] = [f; b]."""
-        n, m = self.mass_matrix.shape[0], self.constraint_matrix.shape[0]
-        augmented = sympy.zeros(n + m, n + m)
-        augmented[:n, :n] = self.mass_matrix
-        augmented[:n, n:] = self.constraint_matrix.T
-        augmented[n:, :n] = self.constraint_matrix
-        rhs = sympy.Matrix.vstack(self.forcing, self.constraint_rate)
-        multipliers = tuple(sympy.Symbol(f"lambda_{k}") for k in range(m))
-        targets = tuple(self.system.ud) + multipliers
-        return Recipe(stages=(Solve(augmented, rhs, targets),), outputs=(*self.system.u, *self.system.ud))
 
 
 def equations(system: MultibodySystem, frames: Kinematics | None = None) -> ConstrainedEquations:

@@ -195,11 +195,6 @@ class MultibodySystem:
         return [c.rate for c in self.coordinates]
 
     @property
-    def qd(self) -> list[sympy.Symbol]:
-        """The coordinates' rates: the speeds themselves."""
-        return self.u
-
-    @property
     def ud(self) -> list[sympy.Symbol]:
         return [c.acceleration for c in self.coordinates]
 

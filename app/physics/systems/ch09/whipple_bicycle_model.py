@@ -27,7 +27,7 @@ from app.physics.constrained.residuals import multipliers
 from app.physics.constrained.system import ConstrainedSystem
 from app.physics.core.energy import EnergyParts
 from app.physics.core.parameters import Parameter, ParameterSet
-from app.physics.math.rotations import elementary_rotation_matrix
+from app.physics.math.rotations import elementary_rotation_matrix, matrix_from_axis_angle
 from app.physics.mechanics.multibody.compiled import CompiledSystem, compiled
 from app.physics.solvers.integrated_model import ModelLimit
 from app.physics.systems.ch09.whipple_bicycle import PARAMETERS as BICYCLE_PARAMETERS
@@ -59,12 +59,6 @@ def bicycle_model() -> CompiledSystem:
     return compiled(SYSTEM)
 
 
-def _about(axis: np.ndarray, angle: float) -> np.ndarray:
-    c, s = math.cos(angle), math.sin(angle)
-    skew = np.array([[0.0, -axis[2], axis[1]], [axis[2], 0.0, -axis[0]], [-axis[1], axis[0], 0.0]])
-    return np.eye(3) * c + skew * s + np.outer(axis, axis) * (1.0 - c)
-
-
 def pose(params: Mapping[str, Any], q: np.ndarray) -> dict[str, tuple[np.ndarray, np.ndarray]]:
     """Each body's (origin (3,) m, R (3, 3) body → world) at coordinates ``q``: the wheels' origins are their
     centres, the rear frame's the rear wheel's centre, the front frame's the steer axis's foot (level with the rear
@@ -75,7 +69,7 @@ def pose(params: Mapping[str, Any], q: np.ndarray) -> dict[str, tuple[np.ndarray
     rear_centre = np.array([float(q[X]), float(q[Y]), 0.0]) + axle @ np.array([0.0, 0.0, r_rear])
     rear_frame = axle @ elementary_rotation_matrix(1, float(q[PITCH]))
     foot = rear_centre + rear_frame @ np.array([w + c, 0.0, -r_rear])
-    front_frame = rear_frame @ _about(np.array([-math.sin(tilt), 0.0, math.cos(tilt)]), float(q[STEER]))
+    front_frame = rear_frame @ matrix_from_axis_angle(np.array([-math.sin(tilt), 0.0, math.cos(tilt)]), float(q[STEER]))
     front_centre = foot + front_frame @ np.array([-c, 0.0, r_front])
     return {
         "rear_wheel": (rear_centre, axle @ elementary_rotation_matrix(1, float(q[REAR_SPIN]))),
