@@ -18,9 +18,11 @@ import sympy
 from app.physics.mechanics.multibody.parts import (
     GROUND,
     MultibodySystem,
+    Prismatic,
     Revolute,
     RollingContact,
     RollingWheel,
+    EllipsoidContact,
     column,
 )
 
@@ -114,6 +116,41 @@ def _child(
     )
 
 
+def _slid(
+    parent: Frame,
+    name: str,
+    axis: sympy.Matrix,
+    slide: sympy.Expr,
+    speed: sympy.Symbol,
+    column_of_speed: int,
+    at: sympy.Matrix,
+) -> Frame:
+    """The frame at ``at + axis·slide`` on ``parent`` (parent's components), its axes the parent's, sliding at the rate
+    ``speed`` (the column ``column_of_speed`` of the partials): v = v_p + ω_p × r + axis·ṡ, a = a_p + α_p × r +
+    ω_p × (ω_p × r) + 2 ω_p × axis·ṡ (every u̇ = 0), V = V_p − [r]× W_p + axis·e."""
+    omega = parent.angular_velocity
+    reach = at + axis * slide
+    rate = axis * speed
+    sliding = parent.origin_velocity_partials - skew(reach) * parent.angular_velocity_partials
+    sliding[:, column_of_speed] += axis
+    return Frame(
+        name,
+        parent.name,
+        sympy.eye(3),
+        omega,
+        parent.origin_velocity + cross(omega, reach) + rate,
+        parent.up,
+        parent.height + (parent.up.T * reach)[0],
+        parent.angular_acceleration,
+        parent.origin_acceleration
+        + cross(parent.angular_acceleration, reach)
+        + cross(omega, cross(omega, reach))
+        + 2 * cross(omega, rate),
+        parent.angular_velocity_partials,
+        sliding,
+    )
+
+
 @dataclass(frozen=True)
 class Kinematics:
     """Every frame, and the constraints: configuration ones (expressions of q, zero when met) and the nonholonomic
@@ -152,11 +189,20 @@ def kinematics(system: MultibodySystem) -> Kinematics:
     velocity: list[sympy.Expr] = []
     configuration: list[sympy.Expr] = []
     for joint in system.joints:
-        if isinstance(joint, Revolute):
-            if joint.parent not in frames:
-                raise ValueError(
-                    f"{system.id}: {joint.child!r} hangs on {joint.parent!r}, which comes later or not at all"
-                )
+        if isinstance(joint, Revolute | Prismatic) and joint.parent not in frames:
+            raise ValueError(f"{system.id}: {joint.child!r} hangs on {joint.parent!r}, which comes later or not at all")
+        if isinstance(joint, Prismatic):
+            coordinate = joint.coordinate
+            frames[joint.child] = _slid(
+                frames[joint.parent],
+                joint.child,
+                joint.axis,
+                coordinate.symbol,
+                coordinate.rate,
+                system.index(coordinate.name),
+                joint.at,
+            )
+        elif isinstance(joint, Revolute):
             parent = frames[joint.parent]
             coordinate = joint.coordinate
             frames[joint.child] = _child(
@@ -180,7 +226,10 @@ def kinematics(system: MultibodySystem) -> Kinematics:
             heading = rotation_about(column(1, 0, 0), joint.lean.symbol) * contact
             velocity += [heading[0], heading[1]]
     for contact in system.contacts:
-        configuration_row, velocity_rows = _contact(frames[contact.wheel], contact)
+        if isinstance(contact, EllipsoidContact):
+            configuration_row, velocity_rows = _ellipsoid_contact(frames[contact.body], contact)
+        else:
+            configuration_row, velocity_rows = _contact(frames[contact.wheel], contact)
         configuration.append(configuration_row)
         velocity += velocity_rows
     return Kinematics(frames, tuple(configuration), tuple(velocity))
@@ -234,3 +283,19 @@ def _contact(wheel: Frame, contact: RollingContact) -> tuple[sympy.Expr, list[sy
     forward = cross(a, up) / length
     sideways = cross(up, forward)
     return height, [(velocity.T * forward)[0], (velocity.T * sideways)[0]]
+
+
+def _ellipsoid_contact(body: Frame, contact: EllipsoidContact) -> tuple[sympy.Expr, list[sympy.Expr]]:
+    """An ellipsoid's contact: with n = up and E = diag(a², b², c²) (body components), the lowest point is
+    s = centre − E n / √(nᵀ E n), where the outward normal E⁻¹(s − centre) points along −n; its height is the body's
+    origin's plus n·s, and the material point there moves at v_O + ω × s. The two rows are that velocity along
+    e_x − n_x n and n × e_x, horizontal and independent while the body's x axis is not vertical."""
+    n = body.up
+    squares = [axis**2 for axis in contact.semi_axes]
+    reach = sympy.sqrt(sum((e * component**2 for e, component in zip(squares, n)), sympy.Integer(0)))
+    touching = contact.centre - column(*(e * component for e, component in zip(squares, n))) / reach
+    height = body.height + (n.T * contact.centre)[0] - reach
+    velocity = body.origin_velocity + cross(body.angular_velocity, touching)
+    along_x = column(1, 0, 0) - n * n[0]
+    across = cross(n, column(1, 0, 0))
+    return height, [(velocity.T * along_x)[0], (velocity.T * across)[0]]

@@ -72,6 +72,19 @@ class Revolute:
 
 
 @dataclass(frozen=True)
+class Prismatic:
+    """The child's frame slides along ``axis`` (a unit vector, the parent's components) by ``coordinate`` (m) from
+    the point ``at`` (m, the parent's components); its axes stay the parent's. Three of them on the ground carry a
+    body that moves anywhere (the rattleback's mass centre)."""
+
+    parent: str
+    child: str
+    coordinate: Coordinate
+    axis: sympy.Matrix
+    at: sympy.Matrix = field(default_factory=lambda: column(0, 0, 0))
+
+
+@dataclass(frozen=True)
 class RollingWheel:
     """A wheel (the body ``wheel``, a thin disk of radius ``radius``, m) rolling on the ground plane z = 0 without
     slipping, its axle along its frame's y axis.
@@ -112,6 +125,19 @@ class RollingContact:
 
 
 @dataclass(frozen=True)
+class EllipsoidContact:
+    """A body whose surface is the ellipsoid with semi-axes ``semi_axes`` (a, b, c along its frame's x, y, z, m) and
+    centre ``centre`` (m, from the frame's origin, its own components) touches the ground plane and rolls on it
+    without slipping: its lowest point's height is zero (a configuration constraint) and the material point there is
+    at rest (two velocity constraints along the floor, the third being the height's rate). The touching point moves
+    over the surface as the body tilts: it is where the outward normal points straight down (a rattleback)."""
+
+    body: str
+    semi_axes: sympy.Matrix
+    centre: sympy.Matrix = field(default_factory=lambda: column(0, 0, 0))
+
+
+@dataclass(frozen=True)
 class ReferenceMotion:
     """A motion to linearise about (an equilibrium or a steady motion): what it is, in words (``about``), the linear
     model's states (coordinate names, then speed names: the rates of those coordinates) and the reference state for
@@ -146,8 +172,8 @@ class MultibodySystem:
     #: Parameter name → its symbol in the expressions.
     symbols: Mapping[str, sympy.Symbol]
     bodies: tuple[Body, ...]
-    joints: tuple[Revolute | RollingWheel, ...]
-    contacts: tuple[RollingContact, ...] = ()
+    joints: tuple[Revolute | Prismatic | RollingWheel, ...]
+    contacts: tuple[RollingContact | EllipsoidContact, ...] = ()
     #: Gravitational acceleration (m/s²) along −z, as an expression of the parameters.
     gravity: sympy.Expr = sympy.Integer(0)
     #: Coordinates the configuration constraints fix (one per configuration constraint), by name.
@@ -176,6 +202,10 @@ class MultibodySystem:
         for joint in self.joints:
             if isinstance(joint, RollingWheel) and joint.wheel not in bodies:
                 raise ValueError(f"{self.id}: the rolling wheel {joint.wheel!r} is no body")
+        for contact in self.contacts:
+            touching = contact.body if isinstance(contact, EllipsoidContact) else contact.wheel
+            if touching not in bodies:
+                raise ValueError(f"{self.id}: the contact's body {touching!r} is no body")
 
     @property
     def coordinates(self) -> tuple[Coordinate, ...]:
