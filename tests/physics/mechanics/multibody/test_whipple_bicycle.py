@@ -37,7 +37,9 @@ def model():
 
 
 def _eigenvalues(model, speed_m_s: float) -> np.ndarray:
-    return eigenvalues(state_matrix(model, {**bicycle.PARAMETERS.defaults(), "speed_m_s": speed_m_s}, bicycle.REFERENCE))
+    return eigenvalues(
+        state_matrix(model, {**bicycle.PARAMETERS.defaults(), "speed_m_s": speed_m_s}, bicycle.REFERENCE)
+    )
 
 
 def _published_eigenvalues(speed_m_s: float) -> np.ndarray:
@@ -122,3 +124,48 @@ def test_the_equations_shrink_under_common_subexpression_elimination(model):
     operations = model.operations
     assert operations["speeds"] == 8 and operations["constraints"] == 5
     assert operations["after_cse"] * 10 < operations["before_cse"]
+
+
+#: Basu-Mandal, Chatterjee and Papadopoulos (2007, "Hands-free circular motions of a benchmark bicycle", Proc. R.
+#: Soc. A 463), Table 1: a general nonlinear state
+#: of the benchmark bicycle (leaned 35.6°, steered 13.2°, turning) and its accelerations, to 12–14 significant figures.
+#: Their frame has z up and x backwards; their lean ψ is π/2 upright, their pitch φ is π less the rear frame's angle
+#: from the steer axis. Turned into this model's coordinates (x forward, y left, z up; lean positive to the right,
+#: steer positive to the left, pitch zero at the nominal pose, wheel spins about the left axle, the rear one relative
+#: to the unpitched axle frame): q, q̇ and q̈ below. The rear contact's x, y rates and accelerations are the table's
+#: wheel-centre values moved to the contact (as DynamicistToolKit's basu_to_moore_input does; symbrim's test of its
+#: Whipple model uses the same numbers).
+BASU_MANDAL_Q = {"y": 0.17447337661787718, "lean": 0.6206670416476966, "steer": 0.2311385135743}
+BASU_MANDAL_PITCH = -0.0158853521003932
+BASU_MANDAL_FREE_RATES = {
+    "lean": -0.6068425835418,
+    "rear_spin": 8.9129896614890 - 0.0119185528069,
+    "steer": 0.4859824687093,
+}
+BASU_MANDAL_RATES = {"x": 2.6703213326046784, "y": 0.0, "yaw": 0.7830033527065, "pitch": -0.0119185528069,
+                     "front_spin": 8.0133620584155}  # fmt: skip
+BASU_MANDAL_ACCELERATIONS = {
+    "x": 0.5903429412631302, "y": 2.090870556233152, "yaw": 0.8353281706379, "lean": 7.8555281128244,
+    "rear_spin": 1.8472554144217 + 0.1205543897884, "pitch": 0.1205543897884, "steer": -4.6198904039403,
+    "front_spin": 2.4548072904550,
+}  # fmt: skip
+
+
+def test_the_nonlinear_accelerations_match_basu_mandal_2007_table_1_to_1e_11(model):
+    """The only inputs are the free coordinates and rates; the pitch and the five dependent rates come from the
+    model's own constraints (against the table: 1e-12), the accelerations from its equations (1e-11; the table has
+    13 significant figures, |q̈| ≤ 8)."""
+    system = bicycle.SYSTEM
+    p = model.parameter_array(bicycle.PARAMETERS.defaults())
+    q, u = np.zeros(model.n), np.zeros(model.n)
+    for name, value in BASU_MANDAL_Q.items():
+        q[system.index(name)] = value
+    for name, value in BASU_MANDAL_FREE_RATES.items():
+        u[system.index(name)] = value
+    q, u = model.assemble(q, u, p)
+    assert abs(q[system.index("pitch")] - BASU_MANDAL_PITCH) < 1e-12
+    for name, value in BASU_MANDAL_RATES.items():
+        assert abs(u[system.index(name)] - value) < 1e-12, name
+    accelerations = model.accelerations(q, u, p)
+    for name, value in BASU_MANDAL_ACCELERATIONS.items():
+        assert abs(accelerations[system.index(name)] - value) < 1e-11, (name, accelerations[system.index(name)], value)
