@@ -18,6 +18,7 @@ import json
 import os
 import threading
 import time
+import types
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -281,9 +282,70 @@ def _generate(system: MultibodySystem, derived: ConstrainedEquations, formulatio
     return source, operations
 
 
+#: Generated modules larger than this are not loaded (bytes): a described system's code could otherwise fill memory.
+MAX_MODULE_BYTES = 16 * 2**20
+
+
+def _private_module(path: Path) -> types.ModuleType:
+    """A generated module executed into a module object of its own, not registered in ``sys.modules`` (a described
+    system is anyone's: the caller keeps it as long as it wants it)."""
+    module = types.ModuleType(f"dynlab_described_{path.stem}")
+    exec(compile(path.read_text(), str(path), "exec"), module.__dict__)  # noqa: S102 - our own generated code
+    return module
+
+
+def _load(system: MultibodySystem, module_path: Path, meta_path: Path, *, keep: bool) -> CompiledSystem | None:
+    """The generated functions from the disk cache, or None if they are not there (or unreadable)."""
+    if not (module_path.exists() and meta_path.exists()):
+        return None
+    try:
+        meta = json.loads(meta_path.read_text())
+        size = module_path.stat().st_size
+    except (OSError, ValueError):
+        return None
+    if size > MAX_MODULE_BYTES:
+        raise ValueError(f"{system.id}: its generated code is larger than {MAX_MODULE_BYTES // 2**20} MB")
+    loading = time.perf_counter()
+    module = load_generated(module_path) if keep else _private_module(module_path)
+    return CompiledSystem(
+        system=system,
+        rhs=module.rhs,
+        configuration=module.configuration,
+        configuration_jacobian=module.configuration_jacobian,
+        constraint_matrix=module.constraint_matrix,
+        energies=module.energies,
+        dynamics=module.dynamics,
+        constraints=module.constraints,
+        derive_s=float(meta["derive_s"]),
+        generate_s=float(meta["generate_s"]),
+        load_s=time.perf_counter() - loading,
+        operations=meta["operations"],
+        from_cache=True,
+    )
+
+
+def loaded(
+    system: MultibodySystem, *, formulation: str = "kane", directory: Path | None = None, keep: bool = True
+) -> CompiledSystem | None:
+    """The system's generated functions from memory or the disk cache, never derived here: None if no process has
+    derived them yet. ``keep=False`` loads them privately and keeps nothing (a described system: see
+    :mod:`.prepared`)."""
+    module_path, meta_path = _paths(system, formulation, directory)
+    key = str(module_path)
+    with _lock:
+        if key in _memory:
+            return _memory[key]
+    result = _load(system, module_path, meta_path, keep=keep)
+    if result is not None and keep:
+        with _lock:
+            result = _memory.setdefault(key, result)
+    return result
+
+
 def compiled(system: MultibodySystem, *, formulation: str = "kane", directory: Path | None = None) -> CompiledSystem:
     """The system's generated functions by ``formulation`` (:data:`FORMULATIONS`): from memory, the disk cache, or
-    derived now (and stored)."""
+    derived now (and stored). Deriving a large system takes seconds to minutes: a server derives in a bounded child
+    (:mod:`.prepared`) and only loads here."""
     module_path, meta_path = _paths(system, formulation, directory)
     key = str(module_path)
     with _lock:
@@ -291,48 +353,21 @@ def compiled(system: MultibodySystem, *, formulation: str = "kane", directory: P
             return _memory[key]
         key_lock = _key_locks.setdefault(key, threading.Lock())
     with key_lock:
-        with _lock:
-            if key in _memory:
-                return _memory[key]
+        found = loaded(system, formulation=formulation, directory=directory)
+        if found is not None:
+            return found
         start = time.perf_counter()
-        meta = None
-        if module_path.exists() and meta_path.exists():
-            try:
-                meta = json.loads(meta_path.read_text())
-            except (OSError, ValueError):
-                meta = None
-        derive_s = generate_s = 0.0
-        if meta is None:
-            derived = FORMULATIONS[formulation](system)
-            derive_s = time.perf_counter() - start
-            source, operations = _generate(system, derived, formulation)
-            generate_s = time.perf_counter() - start - derive_s
-            meta = {"derive_s": derive_s, "generate_s": generate_s, "operations": operations}
-            module_path.parent.mkdir(parents=True, exist_ok=True)
-            for path, text in ((module_path, source), (meta_path, json.dumps(meta))):
-                temporary = path.with_suffix(f".{os.getpid()}.tmp")
-                temporary.write_text(text)
-                os.replace(temporary, path)
-            from_cache = False
-        else:
-            from_cache = True
-        loading = time.perf_counter()
-        module = load_generated(module_path)
-        result = CompiledSystem(
-            system=system,
-            rhs=module.rhs,
-            configuration=module.configuration,
-            configuration_jacobian=module.configuration_jacobian,
-            constraint_matrix=module.constraint_matrix,
-            energies=module.energies,
-            dynamics=module.dynamics,
-            constraints=module.constraints,
-            derive_s=derive_s,
-            generate_s=generate_s,
-            load_s=time.perf_counter() - loading,
-            operations=meta["operations"],
-            from_cache=from_cache,
-        )
-        with _lock:
-            _memory[key] = result
+        derived = FORMULATIONS[formulation](system)
+        derive_s = time.perf_counter() - start
+        source, operations = _generate(system, derived, formulation)
+        generate_s = time.perf_counter() - start - derive_s
+        meta = {"derive_s": derive_s, "generate_s": generate_s, "operations": operations}
+        module_path.parent.mkdir(parents=True, exist_ok=True)
+        for path, text in ((module_path, source), (meta_path, json.dumps(meta))):
+            temporary = path.with_suffix(f".{os.getpid()}.{threading.get_ident()}.tmp")
+            temporary.write_text(text)
+            os.replace(temporary, path)
+        result = loaded(system, formulation=formulation, directory=directory)
+        assert result is not None
+        result.from_cache = False
         return result

@@ -17,12 +17,12 @@ import sympy
 
 from app.physics.mechanics.multibody.parts import (
     GROUND,
+    EllipsoidContact,
     MultibodySystem,
     Prismatic,
     Revolute,
     RollingContact,
     RollingWheel,
-    EllipsoidContact,
     column,
 )
 

@@ -1,0 +1,119 @@
+"""A system built of parts, prepared for a server: its generated code loaded, derived first in a bounded child.
+
+Deriving is sympy work whose time grows fast with the system: a 20-link chain takes about 2 s by Kane's method and
+minutes by Lagrange's from the energies; a described system is whatever its author made it. A server therefore
+never derives in its own process. :func:`prepared` loads the generated code if any process derived it before (from
+memory or the disk cache, :func:`~.compiled.loaded`); otherwise it derives it in a child of the typed-Lagrangian
+runner (time and memory limits; a 429 when every place is taken, :mod:`app.physics.core.bounded`), which writes the
+code to the disk cache, and then loads it. A derivation that ran into its limits is remembered and refused at once
+for :data:`REFUSED_KEPT_S`, so asking again does not spend another :data:`DERIVE_TIMEOUT_S` of a processor.
+
+A described system (:mod:`.data`) is anyone's: its code is loaded privately, and only the last
+:data:`DESCRIBED_KEPT` are kept in this process.
+"""
+
+from __future__ import annotations
+
+import threading
+import time
+from collections import OrderedDict
+from collections.abc import Callable, Mapping
+from typing import Any
+
+from app.physics.core.bounded import WorkInterrupted, WorkRefused, WorkTimeout, WorkTooLarge
+from app.physics.mechanics import typed
+from app.physics.mechanics.multibody import shown
+from app.physics.mechanics.multibody.compiled import CompiledSystem, compiled, loaded
+from app.physics.mechanics.multibody.data import system_from_data
+from app.physics.mechanics.multibody.parts import MultibodySystem
+
+#: How long a first derivation may take in its child (s): a spatial 10-link chain takes about 5 s by Kane's method
+#: on an idle machine (15 s with its LaTeX); Lagrange's equations of a long chain take far longer and are refused.
+DERIVE_TIMEOUT_S = 45.0
+#: A derivation that ran into its limits is refused again at once for this long (s).
+REFUSED_KEPT_S = 600.0
+#: Described systems' generated functions kept in this process.
+DESCRIBED_KEPT = 16
+
+_refused: dict[tuple[str, str, str], tuple[float, WorkRefused]] = {}
+_described: OrderedDict[str, CompiledSystem] = OrderedDict()
+_lock = threading.Lock()
+
+
+def _derive_member(system_id: str, params: Mapping[str, Any], formulation: str) -> dict[str, Any]:
+    """In the child: derive the catalogue system's member for ``params`` and write its code to the disk cache."""
+    from app.physics.systems import multibody_catalogue
+
+    entry = multibody_catalogue()[system_id]
+    model = compiled(entry.member(entry.parameters.validate(params)), formulation=formulation)
+    return {"derive_s": model.derive_s, "generate_s": model.generate_s}
+
+
+def _derive_described(data: Mapping[str, Any], root: str) -> dict[str, Any]:
+    """In the child: build the described system, derive it by Kane's method and write its code to the disk cache."""
+    model = compiled(system_from_data(data, root=root))
+    return {"derive_s": model.derive_s, "generate_s": model.generate_s}
+
+
+def _in_child(key: tuple[str, str, str], function: Callable[..., Any], arguments: tuple, what: str) -> Any:
+    """``function(*arguments)`` in a bounded child, unless the same work ran into its limits lately."""
+    with _lock:
+        refused = _refused.get(key)
+    if refused is not None and time.monotonic() - refused[0] < REFUSED_KEPT_S:
+        raise refused[1]
+    try:
+        return typed.runner.run(function, arguments, timeout_s=DERIVE_TIMEOUT_S, what=what)
+    except (WorkTimeout, WorkTooLarge) as error:
+        with _lock:
+            _refused[key] = (time.monotonic(), error)
+        raise
+
+
+def prepared(system_id: str, params: Mapping[str, Any], system: MultibodySystem, formulation: str) -> CompiledSystem:
+    """The generated functions of ``system``, the catalogue entry ``system_id``'s member for the validated
+    ``params``: loaded, after deriving them in a bounded child if no process has yet."""
+    found = loaded(system, formulation=formulation)
+    if found is not None:
+        return found
+    key = (system.fingerprint(), formulation, "code")
+    _in_child(key, _derive_member, (system_id, dict(params), formulation), f"deriving {system.title} by {formulation}")
+    found = loaded(system, formulation=formulation)
+    if found is None:  # the child wrote it; another process's cleaning may have removed it since
+        raise WorkInterrupted("the derived code was not found where it was written; try again", signal_number=0)
+    return found
+
+
+def prepared_description(data: Mapping[str, Any], root: str, system: MultibodySystem) -> tuple[CompiledSystem, bool]:
+    """A described system's generated functions, and whether they were derived for this call (else: cached)."""
+    key = system.fingerprint()
+    with _lock:
+        found = _described.get(key)
+        if found is not None:
+            _described.move_to_end(key)
+            return found, False
+    derived_now = False
+    model = loaded(system, keep=False)
+    if model is None:
+        _in_child((key, "kane", "code"), _derive_described, (dict(data), root), "deriving this system")
+        derived_now = True
+        model = loaded(system, keep=False)
+        if model is None:
+            raise WorkInterrupted("the derived code was not found where it was written; try again", signal_number=0)
+    with _lock:
+        _described[key] = model
+        while len(_described) > DESCRIBED_KEPT:
+            _described.popitem(last=False)
+    return model, derived_now
+
+
+def shown_derivation(
+    system_id: str, params: Mapping[str, Any], system: MultibodySystem, formulation: str
+) -> dict[str, Any]:
+    """The derive route's body (:mod:`.shown`): from memory or the disk cache, else derived in a bounded child."""
+    found = shown.shown_cached(system, formulation)
+    if found is not None:
+        return {**found, "derive_s": 0.0, "compile_s": 0.0, "cached": True}
+    key = (system.fingerprint(), formulation, "shown")
+    return _in_child(
+        key, shown.derive_shown, (system_id, dict(params), formulation), f"deriving {system.title} by {formulation}"
+    )
