@@ -18,26 +18,32 @@ import numpy as np
 from fastapi import APIRouter, HTTPException
 
 from app.api.deps import CatalogueDep
+from app.api.errors import unprocessable
 from app.api.schemas.errors import error_responses
 from app.api.schemas.systems import (
     CustomDeriveAnswer,
     CustomDeriveRequest,
     DeriveAnswer,
     DeriveRequest,
+    DescribeAnswer,
+    DescribeRequest,
     EigenvaluesAnswer,
     EigenvaluesRequest,
     RhsAnswer,
     RhsRequest,
     SystemSummary,
 )
+from app.physics.core.bounded import WorkRefused
 from app.physics.core.parameters import ParameterError
 from app.physics.mechanics.derivation import FormulationUnavailable
 from app.physics.mechanics.description import SystemDescription
 from app.physics.mechanics.engine import available_formulations, derived
+from app.physics.mechanics.multibody import data as parts_data
 from app.physics.mechanics.multibody.compiled import FORMULATIONS as PARTS_FORMULATIONS
-from app.physics.mechanics.multibody.compiled import ConstraintsNotMet, compiled
+from app.physics.mechanics.multibody.compiled import CompiledSystem, ConstraintsNotMet
 from app.physics.mechanics.multibody.linearise import Sweep, eigenvalues, state_matrix, sweep
-from app.physics.mechanics.multibody.parts import MultibodyFamily, MultibodySystem
+from app.physics.mechanics.multibody.parts import MultibodyFamily, MultibodySystem, ReferenceMotion
+from app.physics.mechanics.multibody.prepared import prepared, prepared_description, shown_derivation
 from app.physics.mechanics.typed import derive_typed_bounded
 
 router = APIRouter(prefix="/api/systems", tags=["systems"])
@@ -89,12 +95,6 @@ def _known(catalogue) -> str:
 def _system(catalogue, system_id: str) -> SystemDescription:
     system = catalogue.derivations.get(system_id)
     if system is None:
-        if system_id in catalogue.multibody:
-            raise ParameterError(
-                "formulation",
-                f"{system_id} is built of parts; its equations are generated code, not shown as LaTeX: ask "
-                f"/api/systems/{system_id}/rhs or /eigenvalues",
-            )
         raise HTTPException(status_code=404, detail=f"no system {system_id!r}; known: {_known(catalogue)}")
     return system
 
@@ -146,19 +146,220 @@ def derive_custom(request: CustomDeriveRequest) -> dict[str, Any]:
     return answer
 
 
+#: Rest at a configuration is an equilibrium when every acceleration there is at most this (rad/s², m/s²).
+EQUILIBRIUM_TOLERANCE = 1e-8
+
+
+@router.post(
+    "/custom/describe",
+    response_model=DescribeAnswer,
+    responses=error_responses(
+        unprocessable=(
+            "The description (JSON or TOML) is refused, a parameter or the state is refused (off the constraints: "
+            "by how much), rest there is no equilibrium, or the derivation exceeded its time or memory bound; "
+            "`loc` names the field"
+        ),
+        busy="Every place for a derivation is taken; the `Retry-After` header says when to try again (s)",
+        unavailable=(
+            "The derivation's process was stopped from outside (not by its limits); the `Retry-After` header says "
+            "when to try again (s)"
+        ),
+    ),
+)
+def describe_custom(request: DescribeRequest) -> dict[str, Any]:
+    """A system described by its parts (bodies, joints, contacts) as JSON or TOML: derived in the bounded process
+    typed Lagrangians use (its generated code kept on disk), then its size, energies, state derivative and, with
+    ``linearise``, its eigenvalues."""
+    try:
+        system, data, root = _described_system(request)
+        params = _validated(system, request.params)
+    except ParameterError as error:
+        raise unprocessable(["body", *error.path], error.message) from None
+    try:
+        model, derived_now = prepared_description(data, root, system)
+    except ParameterError as error:
+        raise unprocessable(["body", *error.path], error.message) from None
+    except ValueError as error:
+        if isinstance(error, WorkRefused):
+            raise
+        raise unprocessable(["body", root], str(error)) from None
+    cached = not derived_now
+    try:
+        return _describe_answer(system, model, params, request, cached=cached)
+    except ParameterError as error:
+        raise unprocessable(["body", *error.path], error.message) from None
+
+
+def _described_system(request: DescribeRequest) -> tuple[MultibodySystem, dict[str, Any], str]:
+    if (request.description is None) == (request.toml is None):
+        raise ParameterError("description", "give the system as description (JSON) or as toml, one of the two")
+    data: dict[str, Any] | None = request.description
+    root = "description"
+    if request.toml is not None:
+        data, root = parts_data.parse_toml(request.toml), "toml"
+    assert data is not None
+    return parts_data.system_from_data(data, root=root), data, root
+
+
+def _validated(system: MultibodySystem, params: dict[str, Any]) -> dict[str, Any]:
+    try:
+        return system.parameters.validate(params)
+    except ParameterError as error:
+        if error.path[0] in system.parameters.by_name:
+            raise ParameterError("params", error.message, path=("params", *error.path)) from None
+        raise ParameterError("params", error.message, path=("params", *error.path[1:])) from None
+
+
+def _units(system: MultibodySystem) -> tuple[list[str], list[str], list[str]]:
+    """The units of q, of q̇ and of q̈, coordinate by coordinate."""
+    units = [c.unit for c in system.coordinates]
+    return units, [f"{u}/s" for u in units], [f"{u}/s²" for u in units]
+
+
+def _describe_answer(
+    system: MultibodySystem, model: CompiledSystem, params: dict[str, Any], request: DescribeRequest, *, cached: bool
+) -> dict[str, Any]:
+    n = len(system.coordinates)
+    p = model.parameter_array(params)
+    q_units, u_units, a_units = _units(system)
+    answer: dict[str, Any] = {
+        "id": system.id,
+        "title": system.title,
+        "coordinates": [{"name": c.name, "latex": c.latex, "unit": c.unit} for c in system.coordinates],
+        "dependent_coordinates": list(system.dependent_coordinates),
+        "dependent_speeds": list(system.dependent_speeds),
+        "degrees_of_freedom": {
+            "configuration": n - len(system.dependent_coordinates),
+            "speeds": n - len(system.dependent_speeds),
+        },
+        "operations": dict(model.operations),
+        "derive_s": model.derive_s,
+        "generate_s": model.generate_s,
+        "load_s": model.load_s,
+        "cached": cached,
+        "parameters": system.parameters.schema(),
+        "params": params,
+        "state_units": q_units + u_units,
+    }
+    if request.state is not None:
+        if len(request.state) != 2 * n:
+            names = [c.name for c in system.coordinates]
+            raise ParameterError(
+                "state", f"give {2 * n} numbers: {', '.join(names)}, then their rates (got {len(request.state)})"
+            )
+        if not all(math.isfinite(x) and abs(x) <= 1e6 for x in request.state):
+            raise ParameterError("state", "every number of the state must be finite, of magnitude at most 1e6")
+        answer["state_derivative"] = _state_derivative(model, p, request.state, "state")
+        answer["state_derivative_units"] = u_units + a_units
+        q, u = np.array(request.state[:n]), np.array(request.state[n:])
+        answer["state_is"] = "given"
+    else:
+        try:
+            with np.errstate(all="ignore"):
+                q, u = model.assemble(np.zeros(n), np.zeros(n), p)
+        except ConstraintsNotMet as error:
+            raise ParameterError("description", f"the zero configuration cannot be assembled: {error}") from None
+        answer["state_is"] = "rest at the zero configuration (the dependent coordinates solved from the constraints)"
+    with np.errstate(all="ignore"):
+        translational, rotational, potential = model.energy_parts(q, u, p)
+    if not all(math.isfinite(x) for x in (translational, rotational, potential)):
+        raise ParameterError("state", "the energies have no finite value at this state")
+    answer["state"] = [*q.tolist(), *u.tolist()]
+    answer["energies"] = {
+        "kinetic_J": translational + rotational,
+        "potential_J": potential,
+        "translational_J": translational,
+        "rotational_J": rotational,
+        "total_J": translational + rotational + potential,
+    }
+    if request.linearise:
+        answer["linear"] = _described_linear(system, model, params, q)
+    return answer
+
+
+def _described_linear(
+    system: MultibodySystem, model: CompiledSystem, params: dict[str, Any], q: np.ndarray
+) -> dict[str, Any]:
+    """Eigenvalues about the description's reference motion, or about rest at the configuration ``q``."""
+    reference = system.reference
+    p = model.parameter_array(params)
+    n = len(system.coordinates)
+    if reference is None:
+        try:
+            with np.errstate(all="ignore"):
+                q0, u0 = model.assemble(q, np.zeros(n), p)
+                accelerations = model.accelerations(q0, u0, p)
+        except ConstraintsNotMet as error:
+            raise ParameterError("state", f"rest at this configuration cannot be assembled: {error}") from None
+        worst = int(np.argmax(np.abs(accelerations))) if n else 0
+        if not np.all(np.isfinite(accelerations)) or abs(accelerations[worst]) > EQUILIBRIUM_TOLERANCE:
+            c = system.coordinates[worst]
+            raise ParameterError(
+                "linearise",
+                f"rest at this configuration is no equilibrium: released there, {c.name} accelerates at "
+                f"{accelerations[worst]:.6g} {c.unit}/s² (at most {EQUILIBRIUM_TOLERANCE:g} counts as rest); give a "
+                "state at an equilibrium, or a reference motion in the description",
+            )
+        independent_q = tuple(c.name for c in system.coordinates if c.name not in system.dependent_coordinates)
+        independent_u = tuple(c.name for c in system.coordinates if c.name not in system.dependent_speeds)
+        reference = ReferenceMotion(
+            about="rest at the given configuration" if q.any() else "rest at the zero configuration",
+            coordinates=independent_q,
+            speeds=independent_u,
+            state=lambda _params: (q0, u0),
+        )
+    try:
+        with np.errstate(all="ignore"):
+            A = state_matrix(model, params, reference)
+    except ConstraintsNotMet as error:
+        raise ParameterError("linearise", f"the reference motion cannot be assembled: {error}") from None
+    if not np.all(np.isfinite(A)):
+        raise ParameterError("linearise", "the equations have no finite value about the reference motion")
+    values = eigenvalues(A)
+    return {
+        "about": reference.about,
+        "states": reference.state_names,
+        "eigenvalues": _listed(values),
+        "stable": bool(np.all(values.real < 0)),
+        "unit": "1/s",
+    }
+
+
 @router.post(
     "/{system_id}/derive",
     response_model=DeriveAnswer,
     responses=error_responses(
         not_found="No system has this id",
-        unprocessable="A parameter is out of range, or the formulation does not apply (the message says why)",
+        unprocessable=(
+            "A parameter is out of range, the formulation does not apply (the message says why), or a system built "
+            "of parts took longer than its bound to derive the first time"
+        ),
+        busy="A system built of parts, derived the first time: every place for a derivation is taken (Retry-After)",
+        unavailable="A first derivation's process was stopped from outside; the `Retry-After` header says when",
     ),
 )
 def derive_system(system_id: str, request: DeriveRequest, catalogue: CatalogueDep) -> dict[str, Any]:
-    """The equations of motion by one formulation, with the steps that lead to them (LaTeX)."""
+    """The equations of motion by one formulation, with the steps that lead to them (LaTeX). A system built of parts
+    (kane or lagrange, with multipliers) shows each frame's angular velocity and each body's mass-centre velocity,
+    the constraint rows and M u̇ = f + Aᵀλ, A u̇ = b, entries written out where short; its first derivation runs in
+    the bounded process typed Lagrangians use, and is kept."""
+    if system_id in catalogue.multibody:
+        return _parts_derive(system_id, catalogue.multibody[system_id], request)
     system = _system(catalogue, system_id)
     params = system.parameters.validate(request.params)
     answer = _derived(system, request.formulation).answer()
+    answer["params"] = params
+    return answer
+
+
+def _parts_derive(system_id: str, entry: MultibodySystem | MultibodyFamily, request: DeriveRequest) -> dict[str, Any]:
+    if request.formulation not in PARTS_FORMULATIONS:
+        raise ParameterError(
+            "formulation", f"{system_id} is derived by {' and '.join(PARTS_FORMULATIONS)} (with multipliers)"
+        )
+    params = entry.parameters.validate(request.params)
+    system = entry.member(params)
+    answer = dict(shown_derivation(system_id, params, system, request.formulation))
     answer["params"] = params
     return answer
 
@@ -267,13 +468,21 @@ def _parts_rhs(entry: MultibodySystem | MultibodyFamily, request: RhsRequest) ->
         )
     if not all(math.isfinite(x) for x in request.state):
         raise ParameterError("state", "every number of the state must be finite")
-    model = compiled(system, formulation=request.formulation)
-    p = model.parameter_array(params)
-    q, u = np.array(request.state[:n]), np.array(request.state[n:])
-    residual = model.constraint_residual(q, u, p)
-    if residual > CONSTRAINT_TOLERANCE:
+    model = prepared(entry.id, params, system, request.formulation)
+    return {"state_derivative": _state_derivative(model, model.parameter_array(params), request.state, "state")}
+
+
+def _state_derivative(model: CompiledSystem, p: np.ndarray, state: list[float], field: str) -> list[float]:
+    """(q̇, q̈) at a state (q, q̇) that meets the constraints; a ParameterError naming ``field`` if it does not (by how
+    much) or the equations have no finite value there."""
+    system = model.system
+    n = len(system.coordinates)
+    q, u = np.array(state[:n]), np.array(state[n:])
+    with np.errstate(all="ignore"):
+        residual = model.constraint_residual(q, u, p)
+    if not residual <= CONSTRAINT_TOLERANCE:
         raise ParameterError(
-            "state",
+            field,
             f"the state does not meet the constraints (residual {residual:.3g}, in m and m/s; at most "
             f"{CONSTRAINT_TOLERANCE:g}): {', '.join(system.dependent_coordinates)} and the rates of "
             f"{', '.join(system.dependent_speeds)} follow from the others",
@@ -281,8 +490,8 @@ def _parts_rhs(entry: MultibodySystem | MultibodyFamily, request: RhsRequest) ->
     with np.errstate(all="ignore"):
         accelerations = model.accelerations(q, u, p)
     if not np.all(np.isfinite(accelerations)):
-        raise ParameterError("state", "at this state the equations have no finite value (a singular mass matrix)")
-    return {"state_derivative": [*u.tolist(), *accelerations.tolist()]}
+        raise ParameterError(field, "at this state the equations have no finite value (a singular mass matrix)")
+    return [*u.tolist(), *accelerations.tolist()]
 
 
 @router.post(
@@ -305,7 +514,7 @@ def system_eigenvalues(system_id: str, request: EigenvaluesRequest, catalogue: C
     reference = system.reference
     if reference is None:
         raise ParameterError("system_id", f"{system_id} has no reference motion to linearise about")
-    model = compiled(system)
+    model = prepared(entry.id, params, system, "kane")
     try:
         with np.errstate(all="ignore"):
             A = state_matrix(model, params, reference)

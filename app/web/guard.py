@@ -36,9 +36,10 @@ log = logging.getLogger(__name__)
 
 #: Methods that never change state: no Origin check.
 SAFE_METHODS = frozenset({"GET", "HEAD", "OPTIONS"})
-#: Paths whose POST is rate limited as heavy work: simulations, typed-Lagrangian derivations and linearisations (an
-#: eigenvalue sweep runs hundreds of them; a template such as ``/api/scenes/{scene_id}/simulate`` matches too).
-SIMULATE_PATH = re.compile(r"^/api/(scenes/[^/]+/simulate|systems/custom/derive|systems/[^/]+/eigenvalues)$")
+#: Paths whose POST is rate limited as heavy work: simulations, typed-Lagrangian and described-system derivations and
+#: linearisations (an eigenvalue sweep runs hundreds of them; a template such as ``/api/scenes/{scene_id}/simulate``
+#: matches too).
+SIMULATE_PATH = re.compile(r"^/api/(scenes/[^/]+/simulate|systems/custom/(derive|describe)|systems/[^/]+/eigenvalues)$")
 #: Websocket paths whose opening is rate limited: a page's own viewer, a room's shared scene and the room socket.
 VIEWER_PREFIXES = ("/viewer/", "/room-viewer/", "/api/rooms/")
 #: Longest a request over its device's rate is held before its 429 (s).

@@ -311,6 +311,7 @@ DOORS = {
     ("POST", "/api/systems/{system_id}/rhs"): "stateless",
     ("POST", "/api/systems/{system_id}/eigenvalues"): "stateless",
     ("POST", "/api/systems/custom/derive"): "stateless",
+    ("POST", "/api/systems/custom/describe"): "stateless",
     ("POST", "/api/rooms"): "instructor",
     ("DELETE", "/api/rooms/{room_id}"): "instructor",
     ("POST", "/api/rooms/{room_id}/state"): "instructor",

@@ -49,7 +49,7 @@ def test_the_answer_says_stable_only_inside_the_band_and_matches_the_published_e
         ("/api/systems/whipple-bicycle/eigenvalues", {"params": {"wheels": 3}}, 422, "wheels"),
         ("/api/systems/whipple-bicycle/eigenvalues", {"params": {}, "extra": 1}, 422, None),
         ("/api/systems/double-pendulum/eigenvalues", {"params": {}}, 422, "system_id"),
-        ("/api/systems/whipple-bicycle/derive", {"formulation": "kane"}, 422, "formulation"),
+        ("/api/systems/whipple-bicycle/derive", {"formulation": "hamilton"}, 422, "formulation"),
         ("/api/systems/whipple-bicycle/rhs", {"formulation": "hamilton", "state": [0.0] * 16}, 422, "formulation"),
         ("/api/systems/whipple-bicycle/rhs", {"formulation": "kane", "state": [0.0] * 3}, 422, "state"),
     ],

@@ -51,7 +51,7 @@ EXERCISE_ROUTES = {
 }  # fmt: skip
 CAN_BE_NOT_FOUND |= ROOM_ROUTES | PLAYBACK_ROUTES | GRAPH_ROUTES | EXERCISE_ROUTES
 CAN_BE_UNPROCESSABLE = (CAN_BE_NOT_FOUND - {("/api/bench/work-precision", "get")}) | {
-    ("/api/systems/custom/derive", "post"), ("/api/rooms", "post"), ("/api/exercises", "get"), ("/api/progress", "get"),
+    ("/api/systems/custom/derive", "post"), ("/api/systems/custom/describe", "post"), ("/api/rooms", "post"), ("/api/exercises", "get"), ("/api/progress", "get"),
     ("/api/progress", "delete"),
 }  # fmt: skip
 #: Instructor-only reads: a student gets 403 (app/api/rooms.py require_instructor), as on every state-changing route.

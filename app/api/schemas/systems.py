@@ -72,6 +72,13 @@ class DeriveAnswer(BaseModel):
     compile_s: float = Field(description="Seconds spent generating and loading the right-hand side for this request")
     cached: bool
     params: dict[str, Any] = Field(default_factory=dict)
+    operations: dict[str, int] | None = Field(
+        None,
+        description=(
+            "A system built of parts: its generated code's size, operations written out in full (before_cse) and "
+            "after common subexpressions are shared (after_cse), with its speeds and constraint rows"
+        ),
+    )
 
 
 class RhsRequest(BaseModel):
@@ -151,3 +158,77 @@ class EigenvaluesAnswer(BaseModel):
     unit: str = "1/s"
     params: dict[str, Any]
     sweep: SweepAnswer | None = None
+
+
+class DescribeRequest(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    description: dict[str, Any] | None = Field(
+        None, description="The system's parts as JSON (app/physics/mechanics/multibody/data.py): give this or toml"
+    )
+    toml: str | None = Field(None, description="The same as TOML text (at most 20 kB)", max_length=20_000)
+    params: dict[str, Any] = Field(
+        default_factory=dict, description="Values for the described parameters, by name (the rest: their values)"
+    )
+    state: list[float] | None = Field(
+        None,
+        description="The coordinates, then their rates, in the listed order (SI); must meet the constraints",
+        max_length=48,
+    )
+    linearise: bool = Field(
+        False,
+        description=(
+            "Also the eigenvalues about the description's reference motion, or (without one) about rest at the "
+            "state's configuration (zero if no state), which must be an equilibrium"
+        ),
+    )
+
+
+class DegreesOfFreedom(BaseModel):
+    configuration: int = Field(description="Coordinates less configuration constraints (a count)")
+    speeds: int = Field(description="Speeds less velocity constraints (a count)")
+
+
+class Operations(BaseModel):
+    speeds: int = Field(description="How many speeds (one per coordinate)")
+    constraints: int = Field(description="How many velocity-constraint rows")
+    before_cse: int = Field(description="Arithmetic operations in M, f, A and b written out in full (a count)")
+    after_cse: int = Field(description="Operations in the generated code, subexpressions shared (a count)")
+
+
+class Energies(BaseModel):
+    kinetic_J: float
+    potential_J: float = Field(description="Gravity's, zero at z = 0, J")
+    translational_J: float = Field(description="½ Σ m v_G², J")
+    rotational_J: float = Field(description="½ Σ ω·I_G ω, J")
+    total_J: float
+
+
+class LinearModel(BaseModel):
+    about: str = Field(description="The motion the model is linearised about")
+    states: list[str] = Field(description="The linear model's states: coordinates, then their rates (name_d)")
+    eigenvalues: list[Eigenvalue] = Field(description="Sorted by real part, then imaginary part")
+    stable: bool = Field(description="Every eigenvalue's real part is negative")
+    unit: str = "1/s"
+
+
+class DescribeAnswer(BaseModel):
+    id: str
+    title: str
+    coordinates: list[CoordinateSpec]
+    dependent_coordinates: list[str]
+    dependent_speeds: list[str]
+    degrees_of_freedom: DegreesOfFreedom
+    operations: Operations
+    derive_s: float = Field(description="Seconds sympy took to derive the equations (when first derived)")
+    generate_s: float = Field(description="Seconds the code generator took (when first derived)")
+    load_s: float = Field(description="Seconds this server took to load the generated code")
+    cached: bool = Field(description="The generated code was already on disk or in memory: nothing derived now")
+    parameters: list[ParameterSpec] = Field(description="The described parameters, with their units")
+    params: dict[str, Any] = Field(description="The parameter values used (their units in `parameters`)")
+    state: list[float] = Field(description="The state the energies are at: q, then q̇ (units in state_units)")
+    state_units: list[str]
+    state_is: str = Field(description="Where the state came from: given, or rest at the zero configuration")
+    energies: Energies
+    state_derivative: list[float] | None = Field(None, description="d(state)/dt at the given state")
+    state_derivative_units: list[str] | None = None
+    linear: LinearModel | None = Field(None, description="With linearise: the linear model's eigenvalues")
