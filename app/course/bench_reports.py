@@ -23,6 +23,8 @@ CAPACITY_REPORT = "capacity.json"
 #: A ``dynlab load --room`` run: students following one room's shared scene.
 CLASSROOM_REPORT = "classroom.json"
 ATTACK_REPORT = "attack.json"
+#: The derivation engine at scale: written by ``dynlab derivations --scaling``.
+SCALING_REPORT = "scaling.json"
 #: The class size whose cost ``classroom.json``'s ``follow_cost`` gives beside one follower's.
 FOLLOW_COST_CLASS = 100
 
@@ -103,6 +105,11 @@ def read_capacity_report(path: Path) -> dict | None:
     """A saved capacity report (``capacity.json`` or ``classroom.json``), None if the file is missing; ValueError if
     it is unreadable or has no steps."""
     return read_report_file(path, list_key="steps", shown_as=path.name)
+
+
+def read_scaling_report(path: Path) -> dict | None:
+    """The derivation engine's scaling report, None if the file is missing; ValueError if unreadable or rowless."""
+    return read_report_file(path, list_key="rows", shown_as=path.name)
 
 
 def read_attack_report(path: Path) -> dict | None:

@@ -759,6 +759,85 @@ def _capacity_section(settings) -> str:
     )
 
 
+def _scaling_row(ours: dict, sympy_row: dict | None) -> str:
+    def cell(value: object, unit: str = "") -> str:
+        return f"<td>{_with_unit(fmt_sig(value), unit)}</td>"
+
+    compile_s = (ours.get("derive_generate_load_s") or 0) + (ours.get("numba_s") or 0)
+    baseline = sympy_row or {}
+    return (
+        f"<tr><td>{esc(str(ours.get('links')))}</td><td>{'planar' if ours.get('planar') else 'spatial'}</td>"
+        f"{cell(ours.get('derive_generate_load_s'), 's')}{cell(ours.get('numba_s'), 's')}{cell(compile_s, 's')}"
+        f"{cell(ours.get('rhs_us'), 'µs')}{cell(ours.get('operations_written_out'))}"
+        f"{cell(ours.get('operations_in_code'))}{cell(baseline.get('derive_lambdify_s'), 's')}"
+        f"{cell(baseline.get('rhs_us'), 'µs')}</tr>"
+    )
+
+
+def _scaling_section(settings) -> str:
+    """The "Derivation engine at scale" section: ``scaling.json`` (``dynlab derivations --scaling``) as a plot and a
+    table, the N-link chain against sympy's KanesMethod + lambdify, and the bicycle cold and cached."""
+    how = "<code>dynlab derivations --scaling</code> measures it (each size cold, in a fresh process) and writes it"
+    try:
+        report = bench_reports.read_scaling_report(Path(settings.bench_dir) / bench_reports.SCALING_REPORT)
+    except ValueError as exc:
+        content = f'<p class="notice">{esc(str(exc))}; {how} again.</p>'
+    else:
+        if report is None:
+            content = f'<p class="notice">No scaling measurement yet: {how}.</p>'
+        else:
+            try:
+                content = _scaling_content(report, settings)
+            except (AttributeError, TypeError, KeyError, ValueError):
+                content = f'<p class="notice">The scaling measurement is malformed; {how} again.</p>'
+    return (
+        '<section class="bench-scene bench-scaling" id="bench-scaling"><h2>The derivation engine at scale</h2>'
+        "<p>How long a system built of parts takes to derive, generate and compile, how big its equations are before "
+        "and after common subexpressions are shared, and one right-hand side, against sympy's "
+        "<code>KanesMethod</code> with <code>lambdify</code> (what a user writes) on the same machine.</p>"
+        f"{content}</section>"
+    )
+
+
+def _scaling_content(report: dict, settings) -> str:
+    rows = [r for r in report["rows"] if isinstance(r, dict)]
+    baseline = {(r.get("links"), r.get("planar")): r for r in rows if r.get("engine") == "sympy"}
+    ours = [r for r in rows if r.get("engine") == "ours"]
+    figure = ""
+    if bench_reports.diagram_path(settings, "scaling"):
+        figure = (
+            '<figure class="bench-figure"><a href="/bench/scaling.svg" title="Open the plot on its own">'
+            '<img src="/bench/scaling.svg" alt="Derive, generate and compile time and operation counts of the N-link '
+            "pendulum against its number of links, ours and sympy's. The measured values are in the table below.\" "
+            'width="760" height="460"></a></figure>'
+        )
+    body = "".join(_scaling_row(r, baseline.get((r.get("links"), r.get("planar")))) for r in ours)
+    targets = report.get("targets") or {}
+    chain = targets.get("chain_20_derive_and_compile_cold_s") or {}
+    bicycle = report.get("bicycle") or {}
+    cold, cached = bicycle.get("cold") or {}, bicycle.get("cached") or {}
+    notes = (
+        "<p>The 20-link chain cold: derived, generated and loaded in "
+        f"{_with_unit(fmt_sig(chain.get('derive_generate_load_s')), 's')}; with numba's compiled kernels, "
+        f"{_with_unit(fmt_sig(chain.get('with_numba_s')), 's')} (target "
+        f"{_with_unit(fmt_sig(chain.get('target')), 's')}). The Whipple bicycle: "
+        f"{_with_unit(fmt_sig(cold.get('total_s')), 's')} cold with its kernels (target 15 s), "
+        f"{_with_unit(fmt_sig(cached.get('total_s')), 's')} from the disk cache (target 0.05 s); "
+        f"{fmt_sig(cold.get('operations_written_out'))} operations written out, "
+        f"{fmt_sig(cold.get('operations_in_code'))} in its generated code.</p>"
+    )
+    return (
+        f'<p class="bench-meta">Measured by <code>{esc(str(report.get("generated_by", "")))}</code> on '
+        f"{esc(str(report.get('machine', 'this machine')))}.</p>{figure}{notes}"
+        '<div class="table-wrap"><table><thead><tr><th scope="col">Links</th><th scope="col">Motion</th>'
+        '<th scope="col">Derive + generate + load</th><th scope="col">numba kernels</th><th scope="col">Cold total</th>'
+        '<th scope="col">One rhs, plain Python</th><th scope="col">Operations written out</th>'
+        '<th scope="col">Operations in code</th><th scope="col">sympy KanesMethod + lambdify</th>'
+        '<th scope="col">sympy rhs</th></tr></thead>'
+        f"<tbody>{body}</tbody></table></div>"
+    )
+
+
 @router.get("/solver-lab", response_class=HTMLResponse)
 def solver_lab_page(settings: SettingsDep) -> HTMLResponse:
     meta, prose = _solver_lab_text(Path(settings.lessons_dir))
@@ -787,6 +866,7 @@ def solver_lab_page(settings: SettingsDep) -> HTMLResponse:
         prose=with_live_defaults(prose),
         results=results_html,
         capacity=_capacity_section(settings),
+        scaling=_scaling_section(settings),
     )
     return _page("Solver lab — Dynamics Lab", body, scripts=("/static/js/solver_lab.js",))
 

@@ -22,30 +22,50 @@ from tests.conftest import HEAVY_TOP_BENCH_SETUP
 
 RESULTS = {
     "created": "2026-11-22T10:00:00Z",
-    "machine": {"cpu": "Test CPU 9000", "cores": 2, "python": "3.11.7", "numpy": "2.1.3", "scipy": "1.14.1",
-                "numba": "0.61.0", "mujoco": "3.2.6"},
+    "machine": {
+        "cpu": "Test CPU 9000",
+        "cores": 2,
+        "python": "3.11.7",
+        "numpy": "2.1.3",
+        "scipy": "1.14.1",
+        "numba": "0.61.0",
+        "mujoco": "3.2.6",
+    },
     "scenes": [
         {
             **HEAVY_TOP_BENCH_SETUP,
             "title": "Heavy symmetric top, 10 s",
             "default": {"method": "splitting4", "setting": 3, "cpu_s": 0.0012, "error": 2e-7},
             "methods": [
-                {"method": "splitting4", "family": "dynlab", "label": "Splitting 4 (numba)",
-                 "setting_name": "steps_per_frame",
-                 "points": [
-                     {"setting": 1, "cpu_s": 0.0004, "error": 1.6e-5, "rhs_evals": 6000, "status": "ok"},
-                     {"setting": 3, "cpu_s": 0.0012, "error": 2e-7, "rhs_evals": 18000, "status": "ok"},
-                 ]},
-                {"method": "scipy-DOP853", "family": "scipy", "label": "scipy DOP853 (numpy RHS)", "setting_name": "rtol",
-                 "points": [
-                     {"setting": 1e-6, "cpu_s": 0.0912345, "error": 3.3e-6, "rhs_evals": 4000, "status": "ok"},
-                     {"setting": 1e-9, "cpu_s": 0.2, "error": 4e-9, "rhs_evals": 9000, "status": "ok"},
-                     {"setting": 1e-13, "cpu_s": 3.0, "error": None, "rhs_evals": 0, "status": "failed"},
-                 ]},
+                {
+                    "method": "splitting4",
+                    "family": "dynlab",
+                    "label": "Splitting 4 (numba)",
+                    "setting_name": "steps_per_frame",
+                    "points": [
+                        {"setting": 1, "cpu_s": 0.0004, "error": 1.6e-5, "rhs_evals": 6000, "status": "ok"},
+                        {"setting": 3, "cpu_s": 0.0012, "error": 2e-7, "rhs_evals": 18000, "status": "ok"},
+                    ],
+                },
+                {
+                    "method": "scipy-DOP853",
+                    "family": "scipy",
+                    "label": "scipy DOP853 (numpy RHS)",
+                    "setting_name": "rtol",
+                    "points": [
+                        {"setting": 1e-6, "cpu_s": 0.0912345, "error": 3.3e-6, "rhs_evals": 4000, "status": "ok"},
+                        {"setting": 1e-9, "cpu_s": 0.2, "error": 4e-9, "rhs_evals": 9000, "status": "ok"},
+                        {"setting": 1e-13, "cpu_s": 3.0, "error": None, "rhs_evals": 0, "status": "failed"},
+                    ],
+                },
             ],
             "ratios": [
-                {"baseline": "scipy-DOP853", "at_error": 1e-6, "ratio": 140.0,
-                 "text": "At an error of 1e-6 rad the default needs 140 times less CPU time than scipy DOP853."},
+                {
+                    "baseline": "scipy-DOP853",
+                    "at_error": 1e-6,
+                    "ratio": 140.0,
+                    "text": "At an error of 1e-6 rad the default needs 140 times less CPU time than scipy DOP853.",
+                },
                 {"baseline": "mujoco-RK4", "at_error": 1e-6, "ratio": 12.345},
             ],
         },
@@ -58,8 +78,13 @@ RESULTS = {
             "error_unit": "relative",
             "default": {"method": "rk4", "setting": 2, "cpu_s": 0.0005, "error": 3e-9},
             "methods": [
-                {"method": "rk4", "family": "dynlab", "label": "RK4 (numba)", "setting_name": "steps_per_frame",
-                 "points": [{"setting": 2, "cpu_s": 0.0005, "error": 3e-9, "rhs_evals": 9600, "status": "ok"}]},
+                {
+                    "method": "rk4",
+                    "family": "dynlab",
+                    "label": "RK4 (numba)",
+                    "setting_name": "steps_per_frame",
+                    "points": [{"setting": 2, "cpu_s": 0.0005, "error": 3e-9, "rhs_evals": 9600, "status": "ok"}],
+                },
             ],
             "ratios": [],
         },
@@ -212,7 +237,9 @@ def test_settings_format():
     assert fmt_setting(2.5e-7) == "2.50 × 10<sup>−7</sup>"
 
 
-@pytest.mark.parametrize("name", ["../secret", "..", "bench/../secret", "heavy-top\n", "heavy-top/", "", "HEAVY", "a.b"])
+@pytest.mark.parametrize(
+    "name", ["../secret", "..", "bench/../secret", "heavy-top\n", "heavy-top/", "", "HEAVY", "a.b"]
+)
 def test_diagram_path_accepts_only_plain_scene_ids(bench_dir, name):
     settings = dataclasses.replace(Settings(), bench_dir=bench_dir)
     assert diagram_path(settings, name) is None
@@ -230,3 +257,21 @@ def test_a_malformed_scene_does_not_break_the_page(client, use_bench_dir, tmp_pa
     assert "The entry for Broken scene in the benchmark results is malformed" in page.text
     assert "An entry in the benchmark results is malformed" in page.text
     assert "Heavy symmetric top, 10 s" in page.text
+
+
+def test_the_scaling_report_is_shown_with_its_plot_targets_and_sympy_baseline(client, bench_dir):
+    """docs/bench/scaling.json as committed: every chain row, sympy's column beside ours, the bicycle, the targets."""
+    shipped = Path(__file__).resolve().parents[2] / "docs" / "bench"
+    for name in ("scaling.json", "scaling.svg"):
+        (bench_dir / name).write_bytes((shipped / name).read_bytes())
+    page = client.get("/solver-lab").text
+    section = page[page.index('id="bench-scaling"') :]
+    report = json.loads((shipped / "scaling.json").read_text())
+    ours = [r for r in report["rows"] if r["engine"] == "ours"]
+    assert section.count("<tr><td>") == len(ours) and '<img src="/bench/scaling.svg"' in section
+    assert "KanesMethod" in section and "target 15 s" in section and "from the disk cache" in section
+
+
+def test_a_missing_scaling_report_says_how_to_make_it(client, empty_bench_dir):
+    page = client.get("/solver-lab").text
+    assert "No scaling measurement yet" in page and "dynlab derivations --scaling" in page
