@@ -44,8 +44,10 @@ import { renderPlot } from "./plot.js";
     const heading = el("h2", {}, `${system.title}: eigenvalues against ${system.label}`);
     const about = el("p", { class: "about" }, `Linearised about ${system.about}; dots: real parts (growth rate, 1/s) and imaginary parts (frequency, rad/s) of every eigenvalue.`);
     const plot = el("div", { class: "stability-plot" });
+    // Where the frequencies dwarf the growth rates (a rattleback: 100 rad/s against 2 1/s), they get a plot of their own.
+    const frequencies = el("div", { class: "stability-plot stability-frequencies", hidden: "" });
     const summary = el("p", { class: "stability-summary", role: "status" }, "computing…");
-    const box = el("article", { class: "stability", "data-system": system.id }, heading, about, plot, summary);
+    const box = el("article", { class: "stability", "data-system": system.id }, heading, about, plot, frequencies, summary);
     section.appendChild(box);
     let asked = null;
 
@@ -71,11 +73,26 @@ import { renderPlot } from "./plot.js";
         const markers = sweep.crossings.map((c) => ({ x: c.value, label: `${nameOf(system, c)} ${number(c.value)} ${sweep.unit}` }));
         const bands = stableBands(sweep);
         const said = sweep.crossings.map((c) => `${nameOf(system, c)} ${number(c.value)} ${sweep.unit}`).join(", ");
-        renderPlot(plot, {
-          title: `Eigenvalues against ${system.label}`,
-          x_label: system.label, y_label: "eigenvalue", series: [re, im], bands, markers,
-          description: `${POINTS} values of ${system.parameter} from ${system.low} to ${system.high} ${sweep.unit}; ${said || "no change of stability"}.`,
-        });
+        const description = `${POINTS} values of ${system.parameter} from ${system.low} to ${system.high} ${sweep.unit}; ${said || "no change of stability"}.`;
+        const largest = (ys) => ys.reduce((m, y) => Math.max(m, Math.abs(y)), 0);
+        const apart = largest(im.y) > 5 * Math.max(largest(re.y), 1e-12);
+        if (apart) {
+          renderPlot(plot, {
+            title: `Growth rates against ${system.label}`,
+            x_label: system.label, y_label: "Re λ (1/s)", series: [re], bands, markers, description,
+          });
+          frequencies.hidden = false;
+          renderPlot(frequencies, {
+            title: `Frequencies against ${system.label}`,
+            x_label: system.label, y_label: "Im λ (rad/s)", series: [im], bands: [], markers: [], description,
+          });
+        } else {
+          frequencies.hidden = true;
+          renderPlot(plot, {
+            title: `Eigenvalues against ${system.label}`,
+            x_label: system.label, y_label: "eigenvalue", series: [re, im], bands, markers, description,
+          });
+        }
         summary.textContent = bands.length
           ? `Stable (every real part negative) for ${bands.map((b) => `${number(b.from)}–${number(b.to)} ${sweep.unit}`).join(" and ")}: ${said}.`
           : `Unstable at every ${system.parameter} from ${system.low} to ${system.high} ${sweep.unit}.`;

@@ -2,8 +2,8 @@
 
 World frame (m, +Z up, floor z = 0), true scale: the body is drawn as the model's own ellipsoid; a dark line over its
 top marks the long principal axis of inertia, turned δ (under a degree for Kane and Levinson's body) from the
-ellipsoid's long axis. The touching point leaves an orange trail on the floor, and a blue arrow there shows the
-floor's upward push. Each frame sends the body's pose, the arrow and a trail chunk every few frames.
+ellipsoid's long axis. The touching point leaves an orange trail on the floor, and a blue bar from under the floor
+up to it shows the floor's upward push. Each frame sends the body's pose, the arrow and a trail chunk every few frames.
 
 The readout says, from the engine's own linearisation about steady upright spinning at the start's spin, whether that
 spin is stable, and how fast the rocking that reverses it grows.
@@ -92,7 +92,7 @@ class RattlebackScene(IntegratedScene):
     model = RattlebackMotion
     run_model: RattlebackMotion
     frame_message_budget = 4.5
-    camera_position = (0.30, -0.42, 0.26)
+    camera_position = (0.24, -0.34, 0.20)
     camera_look_at = (0.0, 0.0, 0.0)
     presets = (
         Preset(
@@ -186,8 +186,9 @@ class RattlebackScene(IntegratedScene):
         contact = centre + R @ touching_point(params, q)
         self.path.add(np.array([contact[0], contact[1], 5e-4]))
         normal = float(self.run_model.normal_force_N(params, np.array([self.run.t_s]), y[None, :])[0])
-        tip = contact + np.array([0.0, 0.0, normal * FORCE_M_PER_N])
-        update_node(self.force, points=np.array([[contact, tip]], np.float32))
+        # The floor's push, drawn under the floor (where it comes from) up to the touching point it acts at.
+        tail = contact - np.array([0.0, 0.0, normal * FORCE_M_PER_N])
+        update_node(self.force, points=np.array([[tail, contact]], np.float32))
 
     def readout(self) -> Readout:
         params = self.physical_params()
