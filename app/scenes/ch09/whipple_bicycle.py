@@ -17,6 +17,7 @@ import math
 
 import numpy as np
 
+from app.physics.core.parameters import ParameterError
 from app.physics.mechanics.multibody.linearise import eigenvalues, state_matrix
 from app.physics.systems.ch09 import whipple_bicycle as bicycle
 from app.physics.systems.ch09.whipple_bicycle_model import (
@@ -29,6 +30,7 @@ from app.physics.systems.ch09.whipple_bicycle_model import (
     Y,
     bicycle_model,
     forward_speed_m_s,
+    mode_shape,
     pose,
 )
 from app.scenes.kit import IntegratedScene, Preset, Quantity, Readout, Trail, update_node
@@ -87,7 +89,7 @@ class WhippleBicycleScene(IntegratedScene):
         Preset(
             "self-stable",
             "Pushed at 5 m/s: it recovers",
-            {"speed_m_s": 5.0, "push_lean_rate_rad_s": 0.5, "lean_0_deg": 0.0, "steer_0_deg": 0.0},
+            {"speed_m_s": 5.0, "push_lean_rate_rad_s": 0.5, "lean_0_deg": 0.0, "steer_0_deg": 0.0, "start": "push"},
             "5 m/s lies inside the self-stable band (4.29–6.02 m/s for the benchmark): the push makes the bicycle "
             "lean, the front wheel steers into the lean, and within a few seconds it rolls upright and straight "
             "again, on a new heading.",
@@ -95,21 +97,50 @@ class WhippleBicycleScene(IntegratedScene):
         Preset(
             "weave",
             "Too slow, 3 m/s: the weave grows",
-            {"speed_m_s": 3.0, "push_lean_rate_rad_s": 0.2, "lean_0_deg": 0.0, "steer_0_deg": 0.0},
+            {"speed_m_s": 3.0, "push_lean_rate_rad_s": 0.2, "lean_0_deg": 0.0, "steer_0_deg": 0.0, "start": "push"},
             "Below the weave speed the oscillating lean-and-steer mode grows: each swing is larger than the last "
             "until the bicycle falls (the run stops when the model no longer holds).",
         ),
         Preset(
             "capsize",
             "Too fast, 8 m/s: a slow capsize",
-            {"speed_m_s": 8.0, "push_lean_rate_rad_s": 0.2, "lean_0_deg": 0.0, "steer_0_deg": 0.0},
+            {"speed_m_s": 8.0, "push_lean_rate_rad_s": 0.2, "lean_0_deg": 0.0, "steer_0_deg": 0.0, "start": "push"},
             "Above the capsize speed the steering no longer catches the lean: there is no wobble, but the lean "
             "creeps up over tens of seconds while the bicycle spirals in.",
         ),
         Preset(
+            "weave-mode",
+            "The weave alone, 4 m/s",
+            {
+                "speed_m_s": 4.0,
+                "start": "weave mode",
+                "mode_lean_deg": 3.0,
+                "push_lean_rate_rad_s": 0.0,
+                "lean_0_deg": 0.0,
+                "steer_0_deg": 0.0,
+            },
+            "Started in the weave's own shape (lean, steer and their rates in the eigenvector's proportions), the "
+            "bicycle does nothing but that mode: lean and steer swing together, the steer leading, and just below "
+            "the weave speed each swing is a little larger than the last.",
+        ),
+        Preset(
+            "capsize-mode",
+            "The capsize alone, 7 m/s",
+            {
+                "speed_m_s": 7.0,
+                "start": "capsize mode",
+                "mode_lean_deg": 3.0,
+                "push_lean_rate_rad_s": 0.0,
+                "lean_0_deg": 0.0,
+                "steer_0_deg": 0.0,
+            },
+            "Started in the capsize mode's shape: a lean with a small steer into it and no oscillation at all, which "
+            "above the capsize speed creeps slowly larger.",
+        ),
+        Preset(
             "standing",
             "Standing still: it falls like a pendulum",
-            {"speed_m_s": 0.0, "push_lean_rate_rad_s": 0.0, "lean_0_deg": 2.0, "steer_0_deg": 0.0},
+            {"speed_m_s": 0.0, "push_lean_rate_rad_s": 0.0, "lean_0_deg": 2.0, "steer_0_deg": 0.0, "start": "push"},
             "Without speed nothing steers the wheels under the rider: the bicycle topples from 2° like an inverted "
             "pendulum (the eigenvalues at 0 m/s are real, ±3.13 and ±5.53 1/s).",
         ),
@@ -159,6 +190,15 @@ class WhippleBicycleScene(IntegratedScene):
         values = eigenvalues(state_matrix(model, design, bicycle.REFERENCE))
         self._growth_1_s = float(np.max(values.real))
         self._weave_hz = float(np.max(np.abs(values.imag))) / (2 * math.pi)
+        try:
+            into_lean = -mode_shape(params, "weave").steer_per_lean  # steer > 0 is to the left, lean > 0 to the right
+            phase = math.degrees(math.atan2(into_lean.imag, into_lean.real))
+            self._weave_words = (
+                f"steer {abs(into_lean):.2f} rad per rad of lean, into the lean, "
+                f"{'leading' if phase >= 0 else 'lagging'} it by {abs(phase):.0f}°"
+            )
+        except ParameterError:
+            self._weave_words = "none at this speed (the weave is two real modes)"
         key = tuple(sorted((k, v) for k, v in design.items() if k != "speed_m_s"))
         if key != self._band_for:
             self._band = bicycle.weave_and_capsize(model, design)
@@ -219,6 +259,7 @@ class WhippleBicycleScene(IntegratedScene):
                 "stable: a push dies out" if stable else "unstable: a push grows",
             ),
             Quantity.word("self_stable_band", "self-stable speeds (weave to capsize)", band),
+            Quantity.word("weave_shape", "the weave's shape (its eigenvector)", self._weave_words),
             Quantity.word("algorithm", "DAE algorithm", f"{self.run_model.algorithm()} ({self.description})"),
         ]  # fmt: skip
         return Readout(quantities, message=self.status)

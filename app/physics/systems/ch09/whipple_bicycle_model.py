@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -26,12 +27,13 @@ from app.physics.constrained.multibody import multibody_constrained_system
 from app.physics.constrained.residuals import multipliers
 from app.physics.constrained.system import ConstrainedSystem
 from app.physics.core.energy import EnergyParts
-from app.physics.core.parameters import Parameter, ParameterSet
+from app.physics.core.parameters import Parameter, ParameterError, ParameterSet
 from app.physics.math.rotations import elementary_rotation_matrix, matrix_from_axis_angle
 from app.physics.mechanics.multibody.compiled import CompiledSystem, compiled
+from app.physics.mechanics.multibody.linearise import state_matrix
 from app.physics.solvers.integrated_model import ModelLimit
 from app.physics.systems.ch09.whipple_bicycle import PARAMETERS as BICYCLE_PARAMETERS
-from app.physics.systems.ch09.whipple_bicycle import SYSTEM
+from app.physics.systems.ch09.whipple_bicycle import REFERENCE, SYSTEM
 
 COORDINATES = tuple(c.name for c in SYSTEM.coordinates)
 N = len(COORDINATES)
@@ -40,6 +42,9 @@ X, Y, YAW, LEAN, REAR_SPIN, PITCH, STEER, FRONT_SPIN = range(N)
 FALLEN_LEAN_DEG = 60.0
 FALLEN = "fallen"
 LIFT_OFF = "lift_off"
+
+#: How the run starts: a push from upright, or one of the two modes of the linear model at the speed.
+START_CHOICES = ("push", "weave mode", "capsize mode")
 
 PARAMETERS = ParameterSet(
     (
@@ -50,6 +55,11 @@ PARAMETERS = ParameterSet(
         ),
         Parameter("lean_0_deg", "deg", 0.0, -45.0, 45.0, "Lean at the start (positive: to the right)", "φ₀"),
         Parameter("steer_0_deg", "deg", 0.0, -45.0, 45.0, "Steer angle at the start (positive: to the left)", "δ₀"),
+        Parameter("start", "", "push", kind="choice", choices=START_CHOICES, label="start",
+                  description="push: the lean rate above, from upright; weave mode or capsize mode: lean, steer and "
+                  "their rates in the proportions of that eigenvector of the linear model at this speed"),
+        Parameter("mode_lean_deg", "deg", 3.0, 0.01, 20.0, "A mode start's lean (its largest lean for the weave)",
+                  "φ_mode"),
     )
 )  # fmt: skip
 
@@ -82,6 +92,47 @@ def pose(params: Mapping[str, Any], q: np.ndarray) -> dict[str, tuple[np.ndarray
 def forward_speed_m_s(params: Mapping[str, Any], states: np.ndarray) -> np.ndarray:
     """The rear wheel's rolling speed r_R θ̇_R (m/s) along ``states`` (N, 16)."""
     return float(params["rear_wheel_radius_m"]) * np.atleast_2d(states)[:, N + REAR_SPIN]
+
+
+@dataclass(frozen=True)
+class ModeShape:
+    """One mode of the linear model about upright rolling: its eigenvalue (1/s) and eigenvector over (lean, steer,
+    lean rate, steer rate), the lean component made real and positive."""
+
+    name: str
+    eigenvalue: complex
+    vector: np.ndarray
+
+    def start(self, lean_rad: float) -> tuple[float, float, float, float]:
+        """(lean, steer, lean rate, steer rate) at the mode's start: the vector's real part, scaled to ``lean_rad``
+        of lean (for an oscillating mode, the lean's largest value; the phase where it is)."""
+        x = np.real(self.vector) * lean_rad
+        return float(x[0]), float(x[1]), float(x[2]), float(x[3])
+
+    @property
+    def steer_per_lean(self) -> complex:
+        """Steer over lean in the mode (rad/rad): its size and, for an oscillating mode, its phase lead."""
+        return complex(self.vector[1] / self.vector[0])
+
+
+def mode_shape(params: Mapping[str, Any], name: str) -> ModeShape:
+    """The weave (the oscillating pair, the one with Im λ > 0) or the capsize (the real mode nearest zero) of the
+    linear model at ``params``' speed. Raises ParameterError where the model has no such mode at that speed (the
+    weave is two real modes below about 0.7 m/s for the benchmark)."""
+    design = {name_: params[name_] for name_ in BICYCLE_PARAMETERS.by_name}
+    values, vectors = np.linalg.eig(state_matrix(bicycle_model(), design, REFERENCE))
+    if name == "weave":
+        oscillating = [k for k in range(len(values)) if values[k].imag > 1e-9]
+        if not oscillating:
+            raise ParameterError(
+                "start", f"at {float(params['speed_m_s']):g} m/s the linear model has no oscillating (weave) mode"
+            )
+        k = max(oscillating, key=lambda i: values[i].real)
+    else:
+        real = [k for k in range(len(values)) if abs(values[k].imag) <= 1e-9]
+        k = min(real, key=lambda i: abs(values[i].real))
+    vector = vectors[:, k] / vectors[0, k]  # lean component 1: real and positive
+    return ModeShape(name, complex(values[k]), vector)
 
 
 class WhippleBicycleMotion(ConstrainedModel):
@@ -117,6 +168,10 @@ class WhippleBicycleMotion(ConstrainedModel):
         v0[X], v0[REAR_SPIN] = speed, speed / float(params["rear_wheel_radius_m"])
         v0[FRONT_SPIN] = speed / float(params["front_wheel_radius_m"])
         v0[LEAN] = float(params["push_lean_rate_rad_s"])
+        start = params.get("start", "push")
+        if start != "push":
+            shape = mode_shape(params, "weave" if start == "weave mode" else "capsize")
+            q0[LEAN], q0[STEER], v0[LEAN], v0[STEER] = shape.start(math.radians(float(params["mode_lean_deg"])))
         system = self.constrained_system(params)
         dependent_q = {SYSTEM.index(name) for name in SYSTEM.dependent_coordinates}
         dependent_v = {SYSTEM.index(name) for name in SYSTEM.dependent_speeds}

@@ -169,3 +169,22 @@ def test_the_nonlinear_accelerations_match_basu_mandal_2007_table_1_to_1e_11(mod
     accelerations = model.accelerations(q, u, p)
     for name, value in BASU_MANDAL_ACCELERATIONS.items():
         assert abs(accelerations[system.index(name)] - value) < 1e-11, (name, accelerations[system.index(name)], value)
+
+
+@pytest.mark.parametrize(("start", "speed_m_s"), [("weave mode", 4.0), ("capsize mode", 7.0)])
+def test_a_mode_start_moves_in_that_mode_alone_as_the_linear_model_says(start, speed_m_s):
+    """Started in a mode's shape at 0.05° of lean, the nonlinear lean and steer over 3 s are the linear mode's
+    lean₀ Re(v e^{λt}) to 1e-3 of the amplitude (the neglected terms are of the order of the amplitude squared)."""
+    from app.physics.systems.ch09.whipple_bicycle_model import PARAMETERS, WhippleBicycleMotion, mode_shape
+
+    motion = WhippleBicycleMotion()
+    params = PARAMETERS.validate({"speed_m_s": speed_m_s, "start": start, "mode_lean_deg": 0.05})
+    shape = mode_shape(params, "weave" if start == "weave mode" else "capsize")
+    controls = {c.name: c.default for c in motion.controls()}
+    report = motion.simulate(params, controls, t_end_s=3.0, frame_rate_hz=20)
+    assert report.status == "ok", report.message
+    t = np.asarray(report.t_s)
+    lean0 = np.radians(0.05)
+    linear = lean0 * np.real(np.outer(np.exp(shape.eigenvalue * t), shape.vector[:2]))
+    nonlinear = np.column_stack([report.series["lean_rad"], report.series["steer_rad"]])
+    assert np.max(np.abs(nonlinear - linear)) < 1e-3 * lean0 * max(1.0, np.max(np.abs(linear)) / lean0)
