@@ -21,8 +21,11 @@ Joints: ``revolute`` and ``prismatic`` take ``parent``, ``child``, ``coordinate`
 ``coordinates`` (three). ``rolling_wheel`` takes ``wheel`` (a body), ``radius`` and the coordinates ``x``, ``y``,
 ``yaw``, ``lean``, ``spin``, and makes the frame ``<wheel>.axle``. Contacts: ``rolling_contact`` (``wheel``,
 ``radius``, ``axle`` [x, y, z]) and ``ellipsoid_contact`` (``body``, ``semi_axes`` [a, b, c] and ``centre`` [x, y, z],
-m, the body's components). Then ``dependent_coordinates`` (one per contact), ``dependent_speeds`` (two per rolling
-wheel, three per contact) and an optional ``reference`` (``about``, ``coordinates``, ``speeds``, ``state``: 2n
+m, the body's components). Loads: ``force`` (``body``, ``vector`` N, ``point`` m in the body's components,
+``follower``: the vector in the body's components rather than the ground's), ``torque`` (``body``, ``vector`` N·m,
+``follower``) and ``spring`` (``coordinate``, ``stiffness``, ``rest``, ``damping``). Then
+``dependent_coordinates`` (one per contact), ``dependent_speeds`` (two per rolling wheel, three per contact) and an
+optional ``reference`` (``about``, ``coordinates``, ``speeds``, ``state``: 2n
 numbers, q then q̇, zero if absent, ``sweep`` {parameter, low, high}, ``crossing_names``).
 
 Every numeric field is a finite number, a declared parameter's name, or a small expression tree of them: an object
@@ -53,12 +56,16 @@ from app.physics.mechanics.multibody.parts import (
     GROUND,
     Body,
     EllipsoidContact,
+    Force,
+    JointSpring,
+    Load,
     MultibodySystem,
     Prismatic,
     ReferenceMotion,
     Revolute,
     RollingContact,
     RollingWheel,
+    Torque,
     column,
 )
 
@@ -99,6 +106,8 @@ _UNARY = ("neg", "sin", "cos")
 _OPERATORS = ("neg", "add", "mul", "div", "pow", "sin", "cos")
 _TYPES = ("revolute", "prismatic", "spherical", "rolling_wheel")
 _CONTACT_TYPES = ("rolling_contact", "ellipsoid_contact")
+_LOAD_TYPES = ("force", "torque", "spring")
+MAX_LOADS = 24
 _WHEEL_COORDINATES = (("x", "m"), ("y", "m"), ("yaw", "rad"), ("lean", "rad"), ("spin", "rad"))
 
 Where = tuple[str | int, ...]
@@ -282,6 +291,8 @@ class _PartsCheck:
             numbers = [float(v) for v in values if v is not None]
             if check.kind == "positive" and not numbers[0] > 0:
                 raise _refuse(check.path, f"must be positive (it is {numbers[0]:.6g} at these parameters)")
+            if check.kind == "nonnegative" and not numbers[0] >= 0:
+                raise _refuse(check.path, f"must not be negative (it is {numbers[0]:.6g} at these parameters)")
             if check.kind == "axis" and math.sqrt(sum(x * x for x in numbers)) < 1e-9:
                 raise _refuse(check.path, "an axis of zero length: give a direction")
             if check.kind == "inertia":
@@ -332,7 +343,7 @@ def system_from_toml(text: str) -> MultibodySystem:
 def system_from_data(data: Any, *, root: str = "description") -> MultibodySystem:
     """The system a mapping of the module docstring's form describes; raises ParameterError whose path starts with
     ``root`` and names the field at fault."""
-    optional = ("parameters", "gravity", "contacts", "dependent_coordinates", "dependent_speeds", "reference")
+    optional = ("parameters", "gravity", "contacts", "loads", "dependent_coordinates", "dependent_speeds", "reference")
     top = _keys(
         data, (root,), required=("id", "title", "bodies", "joints"), optional=(*optional, "chapter", "assumptions")
     )
@@ -522,6 +533,42 @@ def system_from_data(data: Any, *, root: str = "description") -> MultibodySystem
             checks.append(_Check((*where, "centre"), "finite", tuple(centre)))
             contacts.append(EllipsoidContact(touching, semi_axes, centre))
 
+    # Loads: forces and couples on bodies, springs and dampers on coordinates.
+    loads: list[Load] = []
+    for k, entry in enumerate(_list(top.get("loads", []), (*r, "loads"), most=MAX_LOADS)):
+        where = (*r, "loads", k)
+        if not isinstance(entry, Mapping) or entry.get("type") not in _LOAD_TYPES:
+            raise _refuse((*where, "type"), f"must be one of {', '.join(_LOAD_TYPES)}")
+        if entry["type"] == "spring":
+            spec = _keys(entry, where, required=("type", "coordinate"), optional=("stiffness", "rest", "damping"))
+            name = _name(spec["coordinate"], (*where, "coordinate"))
+            if name not in coordinate_names:
+                raise _refuse((*where, "coordinate"), f"{name!r} is no coordinate")
+            stiffness, rest, damping = (
+                read.number(spec.get(key, 0), (*where, key)) for key in ("stiffness", "rest", "damping")
+            )
+            checks.append(_Check((*where, "stiffness"), "nonnegative", (stiffness,)))
+            checks.append(_Check((*where, "damping"), "nonnegative", (damping,)))
+            checks.append(_Check((*where, "rest"), "finite", (rest,)))
+            loads.append(JointSpring(name, stiffness, rest, damping))
+            continue
+        extras: tuple[str, ...] = ("point", "follower") if entry["type"] == "force" else ("follower",)
+        spec = _keys(entry, where, required=("type", "body", "vector"), optional=extras)
+        acted_on = _name(spec["body"], (*where, "body"))
+        if acted_on not in body_names:
+            raise _refuse((*where, "body"), f"the load's body {acted_on!r} is no body")
+        follower = spec.get("follower", False)
+        if not isinstance(follower, bool):
+            raise _refuse((*where, "follower"), "true (it turns with the body) or false (a fixed direction)")
+        vector = read.vector(spec["vector"], (*where, "vector"))
+        checks.append(_Check((*where, "vector"), "finite", tuple(vector)))
+        if entry["type"] == "force":
+            point = read.vector(spec.get("point", [0, 0, 0]), (*where, "point"))
+            checks.append(_Check((*where, "point"), "finite", tuple(point)))
+            loads.append(Force(acted_on, vector, point, follower))
+        else:
+            loads.append(Torque(acted_on, vector, follower))
+
     # Dependent coordinates and speeds: one per configuration constraint, one per velocity constraint.
     dependent: dict[str, tuple[str, ...]] = {}
     needed = {"dependent_coordinates": len(contacts), "dependent_speeds": 2 * wheels + 3 * len(contacts)}
@@ -557,6 +604,7 @@ def system_from_data(data: Any, *, root: str = "description") -> MultibodySystem
         bodies=tuple(bodies),
         joints=tuple(joints),
         contacts=tuple(contacts),
+        loads=tuple(loads),
         gravity=gravity,
         dependent_coordinates=dependent["dependent_coordinates"],
         dependent_speeds=dependent["dependent_speeds"],
@@ -754,6 +802,23 @@ def system_to_data(system: MultibodySystem, *, reference_state: Sequence[Any] | 
                 {"type": "ellipsoid_contact", "body": contact.body, "semi_axes": vector(contact.semi_axes),
                  "centre": vector(contact.centre)}
             )  # fmt: skip
+    if system.loads:
+        data["loads"] = []
+    for load in system.loads:
+        if isinstance(load, JointSpring):
+            data["loads"].append(
+                {"type": "spring", "coordinate": load.coordinate, "stiffness": number(load.stiffness),
+                 "rest": number(load.rest), "damping": number(load.damping)}
+            )  # fmt: skip
+        elif isinstance(load, Force):
+            data["loads"].append(
+                {"type": "force", "body": load.body, "vector": vector(load.vector), "point": vector(load.point),
+                 "follower": load.follower}
+            )  # fmt: skip
+        else:
+            data["loads"].append(
+                {"type": "torque", "body": load.body, "vector": vector(load.vector), "follower": load.follower}
+            )
     data["dependent_coordinates"] = list(system.dependent_coordinates)
     data["dependent_speeds"] = list(system.dependent_speeds)
     reference = system.reference

@@ -6,7 +6,8 @@ partial velocities are the columns of ∂v/∂u and ∂ω/∂u (its own componen
     M(q) u̇ = f(q, u) + Aᵀ λ,    A(q) u̇ = b(q, u)
 
 where M = Σ m VᵀV + WᵀIW, f = Σ Vᵀ(m g − m a_u) − Wᵀ(I α_u + ω × Iω) (a_u, α_u:
-the accelerations with u̇ = 0), A u = 0 the velocity constraints and b = −Ȧu
+the accelerations with u̇ = 0; applied loads add V_Pᵀ F, Wᵀ τ and a spring's
+−k (q − rest)), A u = 0 the velocity constraints and b = −Ȧu
 their rate. Kane's equations with dependent speeds are these projected on the
 independent speeds (Cᵀ M C u̇_i = Cᵀ(f − M Ċ u_i), C spanning A's null space);
 the multipliers λ are the constraint forces they never show. Nothing is inverted
@@ -21,7 +22,7 @@ from dataclasses import dataclass
 import sympy
 
 from app.physics.mechanics.multibody.kinematics import Kinematics, component_rate, cross, kinematics
-from app.physics.mechanics.multibody.parts import MultibodySystem
+from app.physics.mechanics.multibody.parts import Force, JointSpring, MultibodySystem
 
 
 @dataclass(frozen=True)
@@ -40,6 +41,9 @@ class ConstrainedEquations:
     potential_energy: sympy.Expr
     #: The kinetic energy's rotational part, ½ Σ ω·I_G ω (J); the rest is ½ Σ m v_G².
     rotational_kinetic_energy: sympy.Expr = sympy.Integer(0)
+    #: The generalized forces of the applied loads that no potential energy accounts for (forces, couples, dampers),
+    #: already in ``forcing``: Lagrange's route adds them to what it finds from T and V.
+    applied_forcing: sympy.Matrix | None = None
 
 
 def equations(system: MultibodySystem, frames: Kinematics | None = None) -> ConstrainedEquations:
@@ -69,6 +73,9 @@ def equations(system: MultibodySystem, frames: Kinematics | None = None) -> Cons
         kinetic += (body.mass * (velocity.T * velocity)[0] + (omega.T * spin_momentum)[0]) / 2
         rotational += (omega.T * spin_momentum)[0] / 2
         potential += body.mass * system.gravity * (frame.height + (frame.up.T * body.mass_centre)[0])
+    applied, spring_forcing, spring_energy = applied_loads(system, frames)
+    forcing += applied + spring_forcing
+    potential += spring_energy
     configuration = sympy.Matrix(list(frames.configuration_constraints))
     # The velocity rows, holonomic first: ġ = (∂g/∂q) q̇ with q̇ = u, then the rolling rows.
     holonomic_rates = list(configuration.jacobian(q) * sympy.Matrix(u)) if configuration.shape[0] else []
@@ -98,7 +105,30 @@ def equations(system: MultibodySystem, frames: Kinematics | None = None) -> Cons
         kinetic,
         potential,
         rotational,
+        applied,
     )
+
+
+def applied_loads(system: MultibodySystem, frames: Kinematics) -> tuple[sympy.Matrix, sympy.Matrix, sympy.Expr]:
+    """The loads' generalized forces: those no potential accounts for (a force F at P: V_Pᵀ F; a couple τ: Wᵀ τ; a
+    damper: −c q̇), the springs' −k (q − rest), and the springs' potential energy ½ k (q − rest)² (J)."""
+    n = len(system.coordinates)
+    applied, springs = sympy.zeros(n, 1), sympy.zeros(n, 1)
+    energy = sympy.Integer(0)
+    for load in system.loads:
+        if isinstance(load, JointSpring):
+            i = system.index(load.coordinate)
+            stretch = system.q[i] - load.rest
+            springs[i] -= load.stiffness * stretch
+            applied[i] -= load.damping * system.u[i]
+            energy += load.stiffness * stretch**2 / 2
+            continue
+        own = load.vector if load.follower else frames.rotation_to_ground(load.body).T * load.vector
+        if isinstance(load, Force):
+            applied += frames.point_velocity_partials(load.body, load.point).T * own
+        else:
+            applied += frames.frames[load.body].angular_velocity_partials.T * own
+    return applied, springs, energy
 
 
 def lagrange_form(derived: ConstrainedEquations) -> ConstrainedEquations:
@@ -111,6 +141,8 @@ def lagrange_form(derived: ConstrainedEquations) -> ConstrainedEquations:
     momentum = sympy.Matrix([T]).jacobian(u).T
     mass_matrix = momentum.jacobian(u)
     forcing = sympy.Matrix([T - V]).jacobian(q).T - momentum.jacobian(q) * sympy.Matrix(u)
+    if derived.applied_forcing is not None:
+        forcing += derived.applied_forcing
     return ConstrainedEquations(
         system,
         mass_matrix,
@@ -121,4 +153,5 @@ def lagrange_form(derived: ConstrainedEquations) -> ConstrainedEquations:
         T,
         V,
         derived.rotational_kinetic_energy,
+        derived.applied_forcing,
     )

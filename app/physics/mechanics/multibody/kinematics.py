@@ -160,6 +160,20 @@ class Kinematics:
     configuration_constraints: tuple[sympy.Expr, ...]
     velocity_constraints: tuple[sympy.Expr, ...]
 
+    def rotation_to_ground(self, name: str) -> sympy.Matrix:
+        """R (3, 3): the frame ``name``'s components → the ground's, the product of the rotations up its chain."""
+        rotation = sympy.eye(3)
+        frame = self.frames[name]
+        while frame.parent is not None:
+            rotation = frame.rotation_to_parent * rotation
+            frame = self.frames[frame.parent]
+        return rotation
+
+    def point_velocity_partials(self, body: str, point: sympy.Matrix) -> sympy.Matrix:
+        """∂v_P/∂u (3, n) of the body-fixed point at ``point`` (m, the body's components), its own components."""
+        frame = self.frames[body]
+        return frame.origin_velocity_partials - skew(point) * frame.angular_velocity_partials
+
     def mass_centre_velocity(self, system: MultibodySystem, body: str) -> sympy.Matrix:
         """The body's mass-centre velocity (m/s), its own components."""
         frame = self.frames[body]

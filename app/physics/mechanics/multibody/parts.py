@@ -138,6 +138,43 @@ class EllipsoidContact:
 
 
 @dataclass(frozen=True)
+class Force:
+    """A force (N) on ``body`` applied at ``point`` (m, from the body frame's origin, its own components): ``vector``
+    in the ground's components (a fixed direction, as a weight or a pull on a rope over a distant pulley) or, with
+    ``follower``, in the body's own (it turns with the body, as a thrust)."""
+
+    body: str
+    vector: sympy.Matrix
+    point: sympy.Matrix = field(default_factory=lambda: column(0, 0, 0))
+    follower: bool = False
+
+
+@dataclass(frozen=True)
+class Torque:
+    """A couple (N·m) on ``body``: ``vector`` in the ground's components or, with ``follower``, in the body's own."""
+
+    body: str
+    vector: sympy.Matrix
+    follower: bool = False
+
+
+@dataclass(frozen=True)
+class JointSpring:
+    """A spring and a damper on one coordinate: the generalized force −stiffness·(q − rest) − damping·q̇ (N for a
+    sliding coordinate, N·m for a turning one). The spring stores ½·stiffness·(q − rest)² of potential energy (J); the
+    damper takes energy out. Stiffness in N/m or N·m/rad, damping in N·s/m or N·m·s/rad."""
+
+    coordinate: str
+    stiffness: sympy.Expr = sympy.Integer(0)
+    rest: sympy.Expr = sympy.Integer(0)
+    damping: sympy.Expr = sympy.Integer(0)
+
+
+#: What may act on a system besides gravity and its contacts.
+Load = Force | Torque | JointSpring
+
+
+@dataclass(frozen=True)
 class ReferenceMotion:
     """A motion to linearise about (an equilibrium or a steady motion): what it is, in words (``about``), the linear
     model's states (coordinate names, then speed names: the rates of those coordinates) and the reference state for
@@ -174,6 +211,8 @@ class MultibodySystem:
     bodies: tuple[Body, ...]
     joints: tuple[Revolute | Prismatic | RollingWheel, ...]
     contacts: tuple[RollingContact | EllipsoidContact, ...] = ()
+    #: Applied forces and couples, and springs and dampers on coordinates.
+    loads: tuple[Load, ...] = ()
     #: Gravitational acceleration (m/s²) along −z, as an expression of the parameters.
     gravity: sympy.Expr = sympy.Integer(0)
     #: Coordinates the configuration constraints fix (one per configuration constraint), by name.
@@ -206,6 +245,12 @@ class MultibodySystem:
             touching = contact.body if isinstance(contact, EllipsoidContact) else contact.wheel
             if touching not in bodies:
                 raise ValueError(f"{self.id}: the contact's body {touching!r} is no body")
+        for load in self.loads:
+            if isinstance(load, JointSpring):
+                if load.coordinate not in names:
+                    raise ValueError(f"{self.id}: the spring's coordinate {load.coordinate!r} is no coordinate")
+            elif load.body not in bodies:
+                raise ValueError(f"{self.id}: the load's body {load.body!r} is no body")
 
     @property
     def coordinates(self) -> tuple[Coordinate, ...]:
@@ -239,6 +284,7 @@ class MultibodySystem:
     def fingerprint(self) -> str:
         """A hash of everything that shapes the equations (not the parameter values)."""
         parts = [self.id, repr(self.bodies), repr(self.joints), repr(self.contacts), repr(self.gravity)]
+        parts += [repr(self.loads)] if self.loads else []
         parts += [repr(self.dependent_coordinates), repr(self.dependent_speeds), repr(self.parameter_symbols)]
         return hashlib.sha256("\n".join(parts).encode()).hexdigest()[:16]
 
