@@ -9,6 +9,7 @@ a 422 naming the field when it cannot be.
 
 from __future__ import annotations
 
+import json
 import math
 import threading
 from collections import OrderedDict
@@ -17,7 +18,7 @@ from typing import Any
 import numpy as np
 from fastapi import APIRouter, HTTPException
 
-from app.api.deps import CatalogueDep
+from app.api.deps import CatalogueDep, ClientDep
 from app.api.errors import unprocessable
 from app.api.schemas.errors import error_responses
 from app.api.schemas.systems import (
@@ -40,10 +41,16 @@ from app.physics.mechanics.description import SystemDescription
 from app.physics.mechanics.engine import available_formulations, derived
 from app.physics.mechanics.multibody import data as parts_data
 from app.physics.mechanics.multibody.compiled import FORMULATIONS as PARTS_FORMULATIONS
-from app.physics.mechanics.multibody.compiled import CompiledSystem, ConstraintsNotMet
+from app.physics.mechanics.multibody.compiled import CompiledSystem, ConstraintsNotMet, NoValueHere
 from app.physics.mechanics.multibody.linearise import Sweep, eigenvalues, state_matrix, sweep
 from app.physics.mechanics.multibody.parts import MultibodyFamily, MultibodySystem, ReferenceMotion
-from app.physics.mechanics.multibody.prepared import prepared, prepared_description, shown_derivation
+from app.physics.mechanics.multibody.prepared import (
+    description_key,
+    prepared,
+    prepared_description,
+    refused_before,
+    shown_derivation,
+)
 from app.physics.mechanics.typed import derive_typed_bounded
 
 router = APIRouter(prefix="/api/systems", tags=["systems"])
@@ -166,17 +173,19 @@ EQUILIBRIUM_TOLERANCE = 1e-8
         ),
     ),
 )
-def describe_custom(request: DescribeRequest) -> dict[str, Any]:
+def describe_custom(request: DescribeRequest, client: ClientDep) -> dict[str, Any]:
     """A system described by its parts (bodies, joints, contacts) as JSON or TOML: derived in the bounded process
     typed Lagrangians use (its generated code kept on disk), then its size, energies, state derivative and, with
     ``linearise``, its eigenvalues."""
+    text = request.toml if request.toml is not None else json.dumps(request.description, sort_keys=True)
+    refused_before(description_key(text))  # a description that ran into its limits lately: refused before reading
     try:
         system, data, root = _described_system(request)
         params = _validated(system, request.params)
     except ParameterError as error:
         raise unprocessable(["body", *error.path], error.message) from None
     try:
-        model, derived_now = prepared_description(data, root, system)
+        model, derived_now = prepared_description(data, root, system, text=text, client=client)
     except ParameterError as error:
         raise unprocessable(["body", *error.path], error.message) from None
     except ValueError as error:
@@ -257,11 +266,13 @@ def _describe_answer(
         try:
             with np.errstate(all="ignore"):
                 q, u = model.assemble(np.zeros(n), np.zeros(n), p)
-        except ConstraintsNotMet as error:
+        except (ConstraintsNotMet, NoValueHere) as error:
             raise ParameterError("description", f"the zero configuration cannot be assembled: {error}") from None
         answer["state_is"] = "rest at the zero configuration (the dependent coordinates solved from the constraints)"
-    with np.errstate(all="ignore"):
+    try:
         translational, rotational, potential = model.energy_parts(q, u, p)
+    except NoValueHere as error:
+        raise ParameterError("state", f"at this state {error}") from None
     if not all(math.isfinite(x) for x in (translational, rotational, potential)):
         raise ParameterError("state", "the energies have no finite value at this state")
     answer["state"] = [*q.tolist(), *u.tolist()]
@@ -289,7 +300,7 @@ def _described_linear(
             with np.errstate(all="ignore"):
                 q0, u0 = model.assemble(q, np.zeros(n), p)
                 accelerations = model.accelerations(q0, u0, p)
-        except ConstraintsNotMet as error:
+        except (ConstraintsNotMet, NoValueHere) as error:
             raise ParameterError("state", f"rest at this configuration cannot be assembled: {error}") from None
         worst = int(np.argmax(np.abs(accelerations))) if n else 0
         if not np.all(np.isfinite(accelerations)) or abs(accelerations[worst]) > EQUILIBRIUM_TOLERANCE:
@@ -311,7 +322,7 @@ def _described_linear(
     try:
         with np.errstate(all="ignore"):
             A = state_matrix(model, params, reference)
-    except ConstraintsNotMet as error:
+    except (ConstraintsNotMet, NoValueHere) as error:
         raise ParameterError("linearise", f"the reference motion cannot be assembled: {error}") from None
     if not np.all(np.isfinite(A)):
         raise ParameterError("linearise", "the equations have no finite value about the reference motion")
@@ -338,13 +349,13 @@ def _described_linear(
         unavailable="A first derivation's process was stopped from outside; the `Retry-After` header says when",
     ),
 )
-def derive_system(system_id: str, request: DeriveRequest, catalogue: CatalogueDep) -> dict[str, Any]:
+def derive_system(system_id: str, request: DeriveRequest, catalogue: CatalogueDep, client: ClientDep) -> dict[str, Any]:
     """The equations of motion by one formulation, with the steps that lead to them (LaTeX). A system built of parts
     (kane or lagrange, with multipliers) shows each frame's angular velocity and each body's mass-centre velocity,
     the constraint rows and M u̇ = f + Aᵀλ, A u̇ = b, entries written out where short; its first derivation runs in
     the bounded process typed Lagrangians use, and is kept."""
     if system_id in catalogue.multibody:
-        return _parts_derive(system_id, catalogue.multibody[system_id], request)
+        return _parts_derive(system_id, catalogue.multibody[system_id], request, client)
     system = _system(catalogue, system_id)
     params = system.parameters.validate(request.params)
     answer = _derived(system, request.formulation).answer()
@@ -352,14 +363,16 @@ def derive_system(system_id: str, request: DeriveRequest, catalogue: CatalogueDe
     return answer
 
 
-def _parts_derive(system_id: str, entry: MultibodySystem | MultibodyFamily, request: DeriveRequest) -> dict[str, Any]:
+def _parts_derive(
+    system_id: str, entry: MultibodySystem | MultibodyFamily, request: DeriveRequest, client: str | None
+) -> dict[str, Any]:
     if request.formulation not in PARTS_FORMULATIONS:
         raise ParameterError(
             "formulation", f"{system_id} is derived by {' and '.join(PARTS_FORMULATIONS)} (with multipliers)"
         )
     params = entry.parameters.validate(request.params)
     system = entry.member(params)
-    answer = dict(shown_derivation(system_id, params, system, request.formulation))
+    answer = dict(shown_derivation(system_id, params, system, request.formulation, client=client))
     answer["params"] = params
     return answer
 
@@ -376,11 +389,11 @@ def _parts_derive(system_id: str, entry: MultibodySystem | MultibodyFamily, requ
         ),
     ),
 )
-def system_rhs(system_id: str, request: RhsRequest, catalogue: CatalogueDep) -> dict[str, Any]:
+def system_rhs(system_id: str, request: RhsRequest, catalogue: CatalogueDep, client: ClientDep) -> dict[str, Any]:
     """The state derivative (q̇, q̈) at a state (q, q̇) by one formulation: every formulation answers the same
     quantity."""
     if system_id in catalogue.multibody:
-        return _parts_rhs(catalogue.multibody[system_id], request)
+        return _parts_rhs(catalogue.multibody[system_id], request, client)
     system = _system(catalogue, system_id)
     params = system.parameters.validate(request.params)
     n = len(system.coordinates)
@@ -452,7 +465,7 @@ AT_SINGULARITY = 1e-6
 CONSTRAINT_TOLERANCE = 1e-8
 
 
-def _parts_rhs(entry: MultibodySystem | MultibodyFamily, request: RhsRequest) -> dict[str, Any]:
+def _parts_rhs(entry: MultibodySystem | MultibodyFamily, request: RhsRequest, client: str | None) -> dict[str, Any]:
     """(q̇, q̈) of a system built of parts, at a state that meets its constraints (else 422 saying by how much)."""
     if request.formulation not in PARTS_FORMULATIONS:
         raise ParameterError(
@@ -468,7 +481,7 @@ def _parts_rhs(entry: MultibodySystem | MultibodyFamily, request: RhsRequest) ->
         )
     if not all(math.isfinite(x) for x in request.state):
         raise ParameterError("state", "every number of the state must be finite")
-    model = prepared(entry.id, params, system, request.formulation)
+    model = prepared(entry.id, params, system, request.formulation, client=client)
     return {"state_derivative": _state_derivative(model, model.parameter_array(params), request.state, "state")}
 
 
@@ -478,17 +491,18 @@ def _state_derivative(model: CompiledSystem, p: np.ndarray, state: list[float], 
     system = model.system
     n = len(system.coordinates)
     q, u = np.array(state[:n]), np.array(state[n:])
-    with np.errstate(all="ignore"):
+    try:
         residual = model.constraint_residual(q, u, p)
-    if not residual <= CONSTRAINT_TOLERANCE:
+        accelerations = model.accelerations(q, u, p) if residual <= CONSTRAINT_TOLERANCE else None
+    except NoValueHere as error:
+        raise ParameterError(field, f"at this state {error}") from None
+    if accelerations is None:
         raise ParameterError(
             field,
             f"the state does not meet the constraints (residual {residual:.3g}, in m and m/s; at most "
             f"{CONSTRAINT_TOLERANCE:g}): {', '.join(system.dependent_coordinates)} and the rates of "
             f"{', '.join(system.dependent_speeds)} follow from the others",
         )
-    with np.errstate(all="ignore"):
-        accelerations = model.accelerations(q, u, p)
     if not np.all(np.isfinite(accelerations)):
         raise ParameterError(field, "at this state the equations have no finite value (a singular mass matrix)")
     return [*u.tolist(), *accelerations.tolist()]
@@ -505,7 +519,9 @@ def _state_derivative(model: CompiledSystem, p: np.ndarray, state: list[float], 
         ),
     ),
 )
-def system_eigenvalues(system_id: str, request: EigenvaluesRequest, catalogue: CatalogueDep) -> dict[str, Any]:
+def system_eigenvalues(
+    system_id: str, request: EigenvaluesRequest, catalogue: CatalogueDep, client: ClientDep
+) -> dict[str, Any]:
     """The eigenvalues (1/s) of the system linearised about its reference motion (for the bicycle: upright,
     straight-ahead rolling at ``speed_m_s``), and the states of that linear model."""
     entry = _parts_system(catalogue, system_id)
@@ -514,11 +530,11 @@ def system_eigenvalues(system_id: str, request: EigenvaluesRequest, catalogue: C
     reference = system.reference
     if reference is None:
         raise ParameterError("system_id", f"{system_id} has no reference motion to linearise about")
-    model = prepared(entry.id, params, system, "kane")
+    model = prepared(entry.id, params, system, "kane", client=client)
     try:
         with np.errstate(all="ignore"):
             A = state_matrix(model, params, reference)
-    except ConstraintsNotMet as error:
+    except (ConstraintsNotMet, NoValueHere) as error:
         raise ParameterError(
             "params", f"with these parameters the reference motion cannot be assembled: {error}"
         ) from None
@@ -579,7 +595,7 @@ def _sweep(
                     model, params, reference, parameter=request.parameter, low=request.low, high=request.high,
                     points=request.points,
                 )  # fmt: skip
-        except ConstraintsNotMet as error:
+        except (ConstraintsNotMet, NoValueHere) as error:
             raise ParameterError(
                 "sweep", f"along the sweep the reference motion cannot be assembled: {error}"
             ) from None

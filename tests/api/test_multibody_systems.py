@@ -52,6 +52,13 @@ def test_the_answer_says_stable_only_inside_the_band_and_matches_the_published_e
         ("/api/systems/whipple-bicycle/derive", {"formulation": "hamilton"}, 422, "formulation"),
         ("/api/systems/whipple-bicycle/rhs", {"formulation": "hamilton", "state": [0.0] * 16}, 422, "formulation"),
         ("/api/systems/whipple-bicycle/rhs", {"formulation": "kane", "state": [0.0] * 3}, 422, "state"),
+        # Lying flat: the front contact's geometry divides by zero in the generated code (a 422, never a 500).
+        (
+            "/api/systems/whipple-bicycle/rhs",
+            {"formulation": "kane", "state": [0, 0, 0, 1.5707963267948966] + [0.0] * 12},
+            422,
+            "state",
+        ),
     ],
 )
 def test_bad_requests_get_a_clear_4xx(client, path, body, status, field):
@@ -93,7 +100,9 @@ def test_the_chain_is_listed_with_links_and_planar_and_its_eigenvalues_are_its_f
     assert body["stable"] is False  # undamped: every real part is zero, none negative
     refused = client.post("/api/systems/n-link-pendulum/eigenvalues", json={"params": {"links": 50}})
     assert refused.status_code == 422 and "links" in refused.text
-    too_long = client.post("/api/systems/n-link-pendulum/eigenvalues", json={"params": {"links": 11, "planar": "spatial"}})
+    too_long = client.post(
+        "/api/systems/n-link-pendulum/eigenvalues", json={"params": {"links": 11, "planar": "spatial"}}
+    )
     assert too_long.status_code == 422 and "at most 10 links" in too_long.text
     swept = client.post(
         "/api/systems/n-link-pendulum/eigenvalues",

@@ -215,6 +215,10 @@ def _reap(process: Any, *, kill: bool) -> None:
     if process.pid is None:
         return
     if kill:
+        # By pid as well: with its forkserver gone, the process object thinks the child has already exited and its
+        # own kill() sends nothing, while the child runs on past its limit.
+        with contextlib.suppress(ProcessLookupError, PermissionError):
+            os.kill(process.pid, signal.SIGKILL)
         process.kill()
     process.join(_EXIT_GRACE_S)
     if process.exitcode is None:

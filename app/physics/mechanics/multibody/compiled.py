@@ -22,6 +22,7 @@ import types
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import sympy
@@ -43,6 +44,20 @@ def _source_digest() -> str:
 
 #: Part of every cache key: this package's source (and the generator's), so a changed engine never reads old code.
 MULTIBODY_VERSION = _source_digest()
+
+
+class NoValueHere(ValueError):
+    """The generated code has no value at this state and these parameters: it divided by zero, took the square root
+    of a negative number or overflowed (a bicycle lying flat, whose contact geometry degenerates)."""
+
+
+def _valued(call: Callable[..., None], *args: Any) -> None:
+    """``call(*args)``, its arithmetic failures (Python floats raise, numpy's warn) raised as :class:`NoValueHere`."""
+    try:
+        with np.errstate(all="ignore"):
+            call(*args)
+    except (ArithmeticError, ValueError) as error:
+        raise NoValueHere(f"the equations have no value here ({type(error).__name__}: {error})") from None
 
 
 class ConstraintsNotMet(ValueError):
@@ -125,8 +140,8 @@ class CompiledSystem:
             g = np.empty(len(dependent_q))
             jacobian = np.empty(len(dependent_q) * self.n)
             for _ in range(30):
-                self.configuration(q, p, g)
-                self.configuration_jacobian(q, p, jacobian)
+                _valued(self.configuration, q, p, g)
+                _valued(self.configuration_jacobian, q, p, jacobian)
                 J = jacobian.reshape(len(dependent_q), self.n)[:, dependent_q]
                 try:
                     step = np.linalg.solve(J, g)
@@ -140,7 +155,7 @@ class CompiledSystem:
         u = np.array(u, dtype=float)
         if dependent_u:
             entries = np.empty(len(dependent_u) * self.n)
-            self.constraint_matrix(q, p, entries)
+            _valued(self.constraint_matrix, q, p, entries)
             A = entries.reshape(len(dependent_u), self.n)
             try:
                 u[dependent_u] = np.linalg.solve(A[:, dependent_u], -A[:, independent_u] @ u[independent_u])
@@ -152,16 +167,16 @@ class CompiledSystem:
         """The largest violation of a configuration constraint (m) or a velocity constraint (m/s) at (q, u)."""
         system = self.system
         g = np.empty(len(system.dependent_coordinates))
-        self.configuration(q, p, g)
+        _valued(self.configuration, q, p, g)
         entries = np.empty(len(system.dependent_speeds) * self.n)
-        self.constraint_matrix(q, p, entries)
+        _valued(self.constraint_matrix, q, p, entries)
         velocity = entries.reshape(len(system.dependent_speeds), self.n) @ u
         return float(max(np.max(np.abs(g), initial=0.0), np.max(np.abs(velocity), initial=0.0)))
 
     def accelerations(self, q: np.ndarray, u: np.ndarray, p: np.ndarray) -> np.ndarray:
         """u̇ (= q̈) at a state that meets the constraints."""
         out = np.empty(2 * self.n)
-        self.rhs(0.0, np.concatenate([q, u]), p, out)
+        _valued(self.rhs, 0.0, np.concatenate([q, u]), p, out)
         return out[self.n :]
 
     def energy(self, q: np.ndarray, u: np.ndarray, p: np.ndarray) -> tuple[float, float]:
@@ -172,7 +187,7 @@ class CompiledSystem:
     def energy_parts(self, q: np.ndarray, u: np.ndarray, p: np.ndarray) -> tuple[float, float, float]:
         """(½ Σ m v_G², ½ Σ ω·I_G ω, V), J."""
         out = np.empty(3)
-        self.energies(q, u, p, out)
+        _valued(self.energies, q, u, p, out)
         return float(out[0]), float(out[1]), float(out[2])
 
 

@@ -185,6 +185,12 @@ class _Reader:
         return expression
 
     def _node(self, value: Any, path: Where, depth: int, count: list[int]) -> sympy.Expr:
+        node = self._built(value, path, depth, count)
+        if node.is_Number and abs(node) > MAX_FIELD_VALUE:  # 1e6 ** 4 ** 4: a literal too large for the code
+            raise _refuse(path, f"a number of magnitude above {MAX_FIELD_VALUE:g}")
+        return node
+
+    def _built(self, value: Any, path: Where, depth: int, count: list[int]) -> sympy.Expr:
         count[0] += 1
         if count[0] > MAX_EXPRESSION_NODES:
             raise _refuse(path, f"an expression may have at most {MAX_EXPRESSION_NODES} parts")
@@ -379,6 +385,7 @@ def system_from_data(data: Any, *, root: str = "description") -> MultibodySystem
         )
         symbols[name] = sympy.Symbol(name, real=True)
     read = _Reader(symbols)
+    samples = _parameter_samples(parameters, symbols)
     checks: list[_Check] = []
 
     gravity = read.number(top.get("gravity", 0), (*r, "gravity"))
@@ -487,7 +494,7 @@ def system_from_data(data: Any, *, root: str = "description") -> MultibodySystem
         coordinate = new_coordinate(
             _coordinate(spec["coordinate"], (*where, "coordinate"), unit), (*where, "coordinate")
         )
-        axis = _unit_axis(read.vector(spec["axis"], (*where, "axis")), (*where, "axis"))
+        axis = _unit_axis(read.vector(spec["axis"], (*where, "axis")), (*where, "axis"), samples)
         checks.append(_Check((*where, "axis"), "axis", tuple(axis)))
         new_frame(child, parent, (*where, "child"))
         joints.append((Prismatic if kind == "prismatic" else Revolute)(parent, child, coordinate, axis, at))
@@ -518,7 +525,7 @@ def system_from_data(data: Any, *, root: str = "description") -> MultibodySystem
                 raise _refuse((*where, "wheel"), f"the contact's wheel {wheel!r} is no body")
             radius = read.number(spec["radius"], (*where, "radius"))
             checks.append(_Check((*where, "radius"), "positive", (radius,)))
-            axle = _unit_axis(read.vector(spec.get("axle", [0, 1, 0]), (*where, "axle")), (*where, "axle"))
+            axle = _unit_axis(read.vector(spec.get("axle", [0, 1, 0]), (*where, "axle")), (*where, "axle"), samples)
             checks.append(_Check((*where, "axle"), "axis", tuple(axle)))
             contacts.append(RollingContact(wheel, radius, axle))
         else:
@@ -618,17 +625,38 @@ def system_from_data(data: Any, *, root: str = "description") -> MultibodySystem
     return system
 
 
-def _unit_axis(axis: sympy.Matrix, path: Where) -> sympy.Matrix:
-    """``axis`` normalised: exactly when its components are numbers; else divided by its length unless that is 1
-    identically (sin² + cos²)."""
-    squared = sympy.expand((axis.T * axis)[0])
+def _unit_axis(axis: sympy.Matrix, path: Where, samples: Sequence[Mapping[sympy.Symbol, float]]) -> sympy.Matrix:
+    """``axis`` normalised: exactly when its components are numbers; else divided by its length unless that is 1 at
+    every one of ``samples`` (parameter values: the declared ones and others within the bounds), as a bicycle's
+    (−sin λ, 0, cos λ) is. Nothing is expanded or simplified: a component may be a large power of a sum, and the
+    server must not multiply it out."""
+    squared = sum((component**2 for component in axis), sympy.Integer(0))
     if squared.is_number:
         if squared == 0 or float(squared) < 1e-18:
             raise _refuse(path, "an axis of zero length: give a direction")
         return axis if squared == 1 else axis / sympy.sqrt(squared)
-    if sympy.trigsimp(squared) == 1:
+    values = [_value_at(squared, sample) for sample in samples]
+    if all(v is not None and abs(v - 1.0) < 1e-12 for v in values):
         return axis
     return axis / sympy.sqrt(squared)
+
+
+def _value_at(expression: sympy.Expr, values: Mapping[sympy.Symbol, float]) -> float | None:
+    """``expression``'s value (float) with the symbols replaced by ``values``; None where it has none finite."""
+    try:
+        value = complex(expression.xreplace({k: sympy.Float(v) for k, v in values.items()}).evalf())
+    except (TypeError, ValueError, OverflowError, ZeroDivisionError):
+        return None
+    return value.real if value.imag == 0 and math.isfinite(value.real) else None
+
+
+def _parameter_samples(parameters: Sequence[Parameter], symbols: Mapping[str, sympy.Symbol]) -> list[dict]:
+    """The declared values and four other points within the bounds (fixed, so a description always reads the same)."""
+    rng = np.random.default_rng(20261129)
+    samples = [{symbols[p.name]: float(p.default) for p in parameters}]  # type: ignore[arg-type]
+    for _ in range(4):
+        samples.append({symbols[p.name]: float(rng.uniform(p.min, p.max)) for p in parameters})  # type: ignore[arg-type]
+    return samples
 
 
 @dataclass(frozen=True)
@@ -667,7 +695,7 @@ def _reference(value: Any, path: Where, system: MultibodySystem, read: _Reader) 
     sweep = None
     if "sweep" in spec:
         s = _keys(spec["sweep"], (*path, "sweep"), required=("parameter", "low", "high"))
-        if s["parameter"] not in system.parameters.by_name:
+        if _name(s["parameter"], (*path, "sweep", "parameter")) not in system.parameters.by_name:
             raise _refuse((*path, "sweep", "parameter"), "must name a declared parameter")
         low, high = (float(_plain_number(s[key], (*path, "sweep", key))) for key in ("low", "high"))
         if not low < high:

@@ -6,7 +6,8 @@ never derives in its own process. :func:`prepared` loads the generated code if a
 memory or the disk cache, :func:`~.compiled.loaded`); otherwise it derives it in a child of the typed-Lagrangian
 runner (time and memory limits; a 429 when every place is taken, :mod:`app.physics.core.bounded`), which writes the
 code to the disk cache, and then loads it. A derivation that ran into its limits is remembered and refused at once
-for :data:`REFUSED_KEPT_S`, so asking again does not spend another :data:`DERIVE_TIMEOUT_S` of a processor.
+for :data:`REFUSED_KEPT_S`, so asking again does not spend another :data:`DERIVE_TIMEOUT_S` of a processor; and one
+client (an address) has at most one derivation in a child at a time, so one student cannot take every place.
 
 A described system (:mod:`.data`) is anyone's: its code is loaded privately, and only the last
 :data:`DESCRIBED_KEPT` are kept in this process.
@@ -14,13 +15,14 @@ A described system (:mod:`.data`) is anyone's: its code is loaded privately, and
 
 from __future__ import annotations
 
+import hashlib
 import threading
 import time
 from collections import OrderedDict
 from collections.abc import Callable, Mapping
 from typing import Any
 
-from app.physics.core.bounded import WorkInterrupted, WorkRefused, WorkTimeout, WorkTooLarge
+from app.physics.core.bounded import WorkBusy, WorkInterrupted, WorkRefused, WorkTimeout, WorkTooLarge
 from app.physics.mechanics import typed
 from app.physics.mechanics.multibody import shown
 from app.physics.mechanics.multibody.compiled import CompiledSystem, compiled, loaded
@@ -36,6 +38,8 @@ REFUSED_KEPT_S = 600.0
 DESCRIBED_KEPT = 16
 
 _refused: dict[tuple[str, str, str], tuple[float, WorkRefused]] = {}
+#: Clients with a derivation in a child now.
+_deriving: set[str] = set()
 _described: OrderedDict[str, CompiledSystem] = OrderedDict()
 _lock = threading.Lock()
 
@@ -55,36 +59,69 @@ def _derive_described(data: Mapping[str, Any], root: str) -> dict[str, Any]:
     return {"derive_s": model.derive_s, "generate_s": model.generate_s}
 
 
-def _in_child(key: tuple[str, str, str], function: Callable[..., Any], arguments: tuple, what: str) -> Any:
-    """``function(*arguments)`` in a bounded child, unless the same work ran into its limits lately."""
+def _in_child(
+    key: tuple[str, str, str], function: Callable[..., Any], arguments: tuple, what: str, client: str | None
+) -> Any:
+    """``function(*arguments)`` in a bounded child, unless the same work ran into its limits lately or ``client``
+    already has a derivation running (WorkBusy: a 429)."""
     with _lock:
         refused = _refused.get(key)
-    if refused is not None and time.monotonic() - refused[0] < REFUSED_KEPT_S:
-        raise refused[1]
+        if refused is not None and time.monotonic() - refused[0] < REFUSED_KEPT_S:
+            raise refused[1]
+        if client is not None and client in _deriving:
+            raise WorkBusy(
+                "you already have a derivation running; one at a time each, so everyone gets a place",
+                retry_after_s=int(DERIVE_TIMEOUT_S),
+            )
+        if client is not None:
+            _deriving.add(client)
     try:
         return typed.runner.run(function, arguments, timeout_s=DERIVE_TIMEOUT_S, what=what)
     except (WorkTimeout, WorkTooLarge) as error:
         with _lock:
             _refused[key] = (time.monotonic(), error)
         raise
+    finally:
+        if client is not None:
+            with _lock:
+                _deriving.discard(client)
 
 
-def prepared(system_id: str, params: Mapping[str, Any], system: MultibodySystem, formulation: str) -> CompiledSystem:
+def refused_before(key: tuple[str, str, str]) -> None:
+    """Raise the remembered refusal for ``key`` if the same work ran into its limits lately (else nothing)."""
+    with _lock:
+        refused = _refused.get(key)
+    if refused is not None and time.monotonic() - refused[0] < REFUSED_KEPT_S:
+        raise refused[1]
+
+
+def prepared(
+    system_id: str, params: Mapping[str, Any], system: MultibodySystem, formulation: str, *, client: str | None = None
+) -> CompiledSystem:
     """The generated functions of ``system``, the catalogue entry ``system_id``'s member for the validated
     ``params``: loaded, after deriving them in a bounded child if no process has yet."""
     found = loaded(system, formulation=formulation)
     if found is not None:
         return found
     key = (system.fingerprint(), formulation, "code")
-    _in_child(key, _derive_member, (system_id, dict(params), formulation), f"deriving {system.title} by {formulation}")
+    arguments = (system_id, dict(params), formulation)
+    _in_child(key, _derive_member, arguments, f"deriving {system.title} by {formulation}", client)
     found = loaded(system, formulation=formulation)
     if found is None:  # the child wrote it; another process's cleaning may have removed it since
         raise WorkInterrupted("the derived code was not found where it was written; try again", signal_number=0)
     return found
 
 
-def prepared_description(data: Mapping[str, Any], root: str, system: MultibodySystem) -> tuple[CompiledSystem, bool]:
-    """A described system's generated functions, and whether they were derived for this call (else: cached)."""
+def description_key(text: str) -> tuple[str, str, str]:
+    """The refusal key of a description, from its text (the request's JSON or TOML): checked before it is read."""
+    return (hashlib.sha256(text.encode()).hexdigest()[:32], "kane", "described")
+
+
+def prepared_description(
+    data: Mapping[str, Any], root: str, system: MultibodySystem, *, text: str, client: str | None = None
+) -> tuple[CompiledSystem, bool]:
+    """A described system's generated functions, and whether they were derived for this call (else: cached).
+    ``text`` is the request's own form of it (see :func:`description_key`)."""
     key = system.fingerprint()
     with _lock:
         found = _described.get(key)
@@ -94,7 +131,7 @@ def prepared_description(data: Mapping[str, Any], root: str, system: MultibodySy
     derived_now = False
     model = loaded(system, keep=False)
     if model is None:
-        _in_child((key, "kane", "code"), _derive_described, (dict(data), root), "deriving this system")
+        _in_child(description_key(text), _derive_described, (dict(data), root), "deriving this system", client)
         derived_now = True
         model = loaded(system, keep=False)
         if model is None:
@@ -107,13 +144,12 @@ def prepared_description(data: Mapping[str, Any], root: str, system: MultibodySy
 
 
 def shown_derivation(
-    system_id: str, params: Mapping[str, Any], system: MultibodySystem, formulation: str
+    system_id: str, params: Mapping[str, Any], system: MultibodySystem, formulation: str, *, client: str | None = None
 ) -> dict[str, Any]:
     """The derive route's body (:mod:`.shown`): from memory or the disk cache, else derived in a bounded child."""
     found = shown.shown_cached(system, formulation)
     if found is not None:
         return {**found, "derive_s": 0.0, "compile_s": 0.0, "cached": True}
     key = (system.fingerprint(), formulation, "shown")
-    return _in_child(
-        key, shown.derive_shown, (system_id, dict(params), formulation), f"deriving {system.title} by {formulation}"
-    )
+    arguments = (system_id, dict(params), formulation)
+    return _in_child(key, shown.derive_shown, arguments, f"deriving {system.title} by {formulation}", client)

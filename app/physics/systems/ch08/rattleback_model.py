@@ -93,9 +93,15 @@ def body_velocity(q: np.ndarray, v: np.ndarray) -> np.ndarray:
     ) + np.array([0.0, float(v[PITCH]), 0.0])
 
 
-def check_inertia(params: Mapping[str, Any]) -> None:
-    """A ParameterError unless the central inertia is a rigid body's: positive definite, each principal moment at
-    most the sum of the other two."""
+def check_body(params: Mapping[str, Any]) -> None:
+    """A ParameterError unless the body can be: its mass centre inside it, above its lowest point (h < c), and its
+    central inertia a rigid body's (positive definite, each principal moment at most the sum of the other two)."""
+    if not float(params["mass_centre_drop_m"]) < float(params["semi_axis_c_m"]):
+        raise ParameterError(
+            "mass_centre_drop_m",
+            f"the mass centre must lie above the lowest point: h below the centre less than c = "
+            f"{float(params['semi_axis_c_m']):g} m (got h = {float(params['mass_centre_drop_m']):g} m)",
+        )
     tensor = np.array(
         [
             [float(params["inertia_xx_kg_m2"]), float(params["inertia_xy_kg_m2"]), 0.0],
@@ -136,7 +142,7 @@ class RattlebackMotion(ConstrainedModel):
     def consistent_start(self, params: Mapping[str, Any]) -> ConsistentStart:
         """Tilted by the start's roll and pitch, spinning and rocking at the start's rates; G's height and the rates
         of x, y, z are solved for, nothing else moves."""
-        check_inertia(params)
+        check_body(params)
         q0, v0 = np.zeros(N), np.zeros(N)
         q0[Z] = float(params["semi_axis_c_m"]) - float(params["mass_centre_drop_m"])
         q0[ROLL], q0[PITCH] = math.radians(float(params["roll_0_deg"])), math.radians(float(params["pitch_0_deg"]))
@@ -145,7 +151,7 @@ class RattlebackMotion(ConstrainedModel):
         dependent_q = {SYSTEM.index(name) for name in SYSTEM.dependent_coordinates}
         dependent_v = {SYSTEM.index(name) for name in SYSTEM.dependent_speeds}
         units = ("m", "m", "m", "rad", "rad", "rad", "m/s", "m/s", "m/s", "rad/s", "rad/s", "rad/s")
-        return consistent_initial_conditions(
+        start = consistent_initial_conditions(
             self.constrained_system(params),
             q0,
             v0,
@@ -154,6 +160,15 @@ class RattlebackMotion(ConstrainedModel):
             names=(*COORDINATES, *(f"{name}_rate" for name in COORDINATES)),
             units=units,
         )
+        normal = float(self.normal_force_N(params, np.zeros(1), np.concatenate([start.q, start.v])[None, :])[0])
+        if not normal >= 0.0:
+            rates = {k: abs(float(params[k])) for k in ("spin_0_rad_s", "roll_rate_0_rad_s", "pitch_rate_0_rad_s")}
+            raise ParameterError(
+                max(rates, key=lambda k: rates[k]),
+                f"so violent a start would throw the body off the floor at once (the floor would have to pull it "
+                f"down with {-normal:.3g} N): spin or rock it more gently",
+            )
+        return start
 
     def energy_J(self, params: Mapping[str, Any], states: np.ndarray) -> np.ndarray:
         """T + V (J) along ``states`` (N, 12); V = m g z_G."""

@@ -7,6 +7,7 @@ import copy
 from pathlib import Path
 
 import numpy as np
+import sympy
 import pytest
 
 from app.physics.core.parameters import ParameterError
@@ -142,3 +143,31 @@ def test_an_infinite_number_in_toml_is_refused_where_it_stands():
     with pytest.raises(ParameterError) as refused:
         data.system_from_toml(data.to_toml(DOUBLE_PENDULUM).replace("value = 9.81", "value = inf"))
     assert refused.value.path[:3] == ("toml", "parameters", 1)
+
+
+def test_a_symbolic_axis_is_never_multiplied_out_in_the_server():
+    """A hostile axis, an 8-term sum to the 9th power: reading it must not expand (a² would have 18th powers of the
+    sum, minutes of sympy in the server's own thread); it is checked at sampled parameter values instead."""
+    described = copy.deepcopy(DOUBLE_PENDULUM)
+    names = [f"a{i}" for i in range(8)]
+    described["parameters"] += [
+        {"name": n, "value": 1.0, "unit": "", "low": 0.5, "high": 2.0, "description": "a weight"} for n in names
+    ]
+    described["joints"][0]["axis"] = [{"pow": [{"pow": [{"add": names}, 3]}, 3]}, 0, 0]
+    system = data.system_from_data(described)
+    assert system.joints[0].axis[0].has(sympy.Pow)  # divided by its length, never expanded
+
+
+@pytest.mark.parametrize(
+    ("change", "where"),
+    [
+        ((("bodies", 0, "mass"), {"add": [2, {"sin": {"pow": [{"pow": [{"pow": [1e6, 4]}, 4]}, 4]}}]}),
+         ("bodies", 0, "mass")),
+        ((("reference",), {"coordinates": ["theta1"], "speeds": ["theta1"],
+                           "sweep": {"parameter": ["m"], "low": 0, "high": 1}}), ("reference", "sweep", "parameter")),
+    ],
+)  # fmt: skip
+def test_numbers_too_large_for_the_code_and_misshapen_sweeps_are_refused(change, where):
+    with pytest.raises(ParameterError) as refused:
+        data.system_from_data(_changed(*change))
+    assert tuple(refused.value.path[1 : 1 + len(where)]) == where, refused.value.path

@@ -25,7 +25,7 @@ from app.physics.systems.ch08.rattleback_model import (
     PARAMETERS,
     RattlebackMotion,
     body_velocity,
-    check_inertia,
+    check_body,
     orientation,
     system_params,
 )
@@ -167,7 +167,23 @@ def test_the_floor_push_is_the_multiplier_and_newtons_m_times_z_acceleration_plu
 
 def test_no_rigid_body_has_these_moments():
     with pytest.raises(ParameterError) as refused:
-        check_inertia({**DEFAULTS, "inertia_xy_kg_m2": 1e-3})
+        check_body({**DEFAULTS, "inertia_xy_kg_m2": 1e-3})
     assert refused.value.field == "inertia_xy_kg_m2"
-    check_inertia(DEFAULTS)
+    check_body(DEFAULTS)
     assert np.allclose(orientation(np.zeros(6)), elementary_rotation_matrix(2, 0.0))
+
+
+def test_a_mass_centre_below_the_lowest_point_is_refused():
+    with pytest.raises(ParameterError) as refused:
+        check_body({**DEFAULTS, "mass_centre_drop_m": 0.03})
+    assert refused.value.field == "mass_centre_drop_m"
+
+
+def test_a_start_that_would_throw_it_off_the_floor_is_refused_before_any_integration():
+    violent = PARAMETERS.validate(
+        {"spin_0_rad_s": 30.0, "roll_0_deg": 10.0, "pitch_0_deg": 10.0, "roll_rate_0_rad_s": 10.0,
+         "pitch_rate_0_rad_s": 10.0, "mass_centre_drop_m": 0.019}
+    )  # fmt: skip
+    with pytest.raises(ParameterError) as refused:
+        RattlebackMotion().consistent_start(violent)
+    assert refused.value.field == "spin_0_rad_s" and "off the floor" in str(refused.value)
