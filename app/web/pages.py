@@ -763,15 +763,23 @@ def _scaling_row(ours: dict, sympy_row: dict | None) -> str:
     def cell(value: object, unit: str = "") -> str:
         return f"<td>{_with_unit(fmt_sig(value), unit)}</td>"
 
+    def count(value: object) -> str:
+        return f"<td>{_operations(value)}</td>"
+
     compile_s = (ours.get("derive_generate_load_s") or 0) + (ours.get("numba_s") or 0)
     baseline = sympy_row or {}
     return (
         f"<tr><td>{esc(str(ours.get('links')))}</td><td>{'planar' if ours.get('planar') else 'spatial'}</td>"
         f"{cell(ours.get('derive_generate_load_s'), 's')}{cell(ours.get('numba_s'), 's')}{cell(compile_s, 's')}"
-        f"{cell(ours.get('rhs_us'), 'µs')}{cell(ours.get('frame_us'), 'µs')}{cell(ours.get('operations_written_out'))}"
-        f"{cell(ours.get('operations_in_code'))}{cell(baseline.get('derive_lambdify_s'), 's')}"
+        f"{cell(ours.get('rhs_us'), 'µs')}{cell(ours.get('frame_us'), 'µs')}{count(ours.get('operations_written_out'))}"
+        f"{count(ours.get('operations_in_code'))}{cell(baseline.get('derive_lambdify_s'), 's')}"
         f"{cell(baseline.get('rhs_us'), 'µs')}</tr>"
     )
+
+
+def _operations(value: object) -> str:
+    """A count of operations, exactly, with thousands separated ("—" if it is not a count)."""
+    return f"{value:,}" if isinstance(value, int) and not isinstance(value, bool) else "—"
 
 
 def _scaling_section(settings) -> str:
@@ -826,8 +834,8 @@ def _scaling_content(report: dict, settings) -> str:
         " The Whipple bicycle: "
         f"{_with_unit(fmt_sig(cold.get('total_s')), 's')} cold with its kernels (target 15 s), "
         f"{_with_unit(fmt_sig(cached.get('total_s')), 's')} from the disk cache (target 0.05 s); "
-        f"{fmt_sig(cold.get('operations_written_out'))} operations written out, "
-        f"{fmt_sig(cold.get('operations_in_code'))} in its generated code.</p>"
+        f"{_operations(cold.get('operations_written_out'))} operations written out, "
+        f"{_operations(cold.get('operations_in_code'))} in its generated code.</p>"
     )
     return (
         f'<p class="bench-meta">Measured by <code>{esc(str(report.get("generated_by", "")))}</code> on '
