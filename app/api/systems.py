@@ -52,6 +52,7 @@ from app.physics.mechanics.multibody.prepared import (
     shown_derivation,
 )
 from app.physics.mechanics.typed import derive_typed_bounded
+from app.physics.systems import multibody_member
 
 router = APIRouter(prefix="/api/systems", tags=["systems"])
 
@@ -372,7 +373,7 @@ def _parts_derive(
         )
     params = entry.parameters.validate(request.params)
     system = entry.member(params)
-    answer = dict(shown_derivation(system_id, params, system, request.formulation, client=client))
+    answer = dict(shown_derivation(multibody_member, system_id, params, system, request.formulation, client=client))
     answer["params"] = params
     return answer
 
@@ -481,7 +482,7 @@ def _parts_rhs(entry: MultibodySystem | MultibodyFamily, request: RhsRequest, cl
         )
     if not all(math.isfinite(x) for x in request.state):
         raise ParameterError("state", "every number of the state must be finite")
-    model = prepared(entry.id, params, system, request.formulation, client=client)
+    model = prepared(multibody_member, entry.id, params, system, request.formulation, client=client)
     return {"state_derivative": _state_derivative(model, model.parameter_array(params), request.state, "state")}
 
 
@@ -530,7 +531,7 @@ def system_eigenvalues(
     reference = system.reference
     if reference is None:
         raise ParameterError("system_id", f"{system_id} has no reference motion to linearise about")
-    model = prepared(entry.id, params, system, "kane", client=client)
+    model = prepared(multibody_member, entry.id, params, system, "kane", client=client)
     try:
         with np.errstate(all="ignore"):
             A = state_matrix(model, params, reference)

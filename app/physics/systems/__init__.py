@@ -69,6 +69,12 @@ def multibody_systems() -> dict:
     return systems
 
 
+def multibody_member(system_id: str, params):
+    """The catalogue system ``system_id``'s member for ``params`` (validated here): what a bounded child derives."""
+    entry = multibody_catalogue()[system_id]
+    return entry.member(entry.parameters.validate(params))
+
+
 @functools.cache
 def multibody_catalogue() -> dict:
     """:func:`multibody_systems`, found once."""

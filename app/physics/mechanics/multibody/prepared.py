@@ -44,12 +44,15 @@ _described: OrderedDict[str, CompiledSystem] = OrderedDict()
 _lock = threading.Lock()
 
 
-def _derive_member(system_id: str, params: Mapping[str, Any], formulation: str) -> dict[str, Any]:
-    """In the child: derive the catalogue system's member for ``params`` and write its code to the disk cache."""
-    from app.physics.systems import multibody_catalogue
+#: Finds a catalogue system's member by id and parameters, in the child: a module-level function of the catalogue's
+#: layer (app.physics.systems.multibody_member), passed down and pickled by reference, since mechanics imports nothing
+#: above it.
+MemberOf = Callable[[str, Mapping[str, Any]], MultibodySystem]
 
-    entry = multibody_catalogue()[system_id]
-    model = compiled(entry.member(entry.parameters.validate(params)), formulation=formulation)
+
+def _derive_member(member_of: MemberOf, system_id: str, params: Mapping[str, Any], formulation: str) -> dict[str, Any]:
+    """In the child: derive the catalogue system's member for ``params`` and write its code to the disk cache."""
+    model = compiled(member_of(system_id, params), formulation=formulation)
     return {"derive_s": model.derive_s, "generate_s": model.generate_s}
 
 
@@ -96,7 +99,13 @@ def refused_before(key: tuple[str, str, str]) -> None:
 
 
 def prepared(
-    system_id: str, params: Mapping[str, Any], system: MultibodySystem, formulation: str, *, client: str | None = None
+    member_of: MemberOf,
+    system_id: str,
+    params: Mapping[str, Any],
+    system: MultibodySystem,
+    formulation: str,
+    *,
+    client: str | None = None,
 ) -> CompiledSystem:
     """The generated functions of ``system``, the catalogue entry ``system_id``'s member for the validated
     ``params``: loaded, after deriving them in a bounded child if no process has yet."""
@@ -104,7 +113,7 @@ def prepared(
     if found is not None:
         return found
     key = (system.fingerprint(), formulation, "code")
-    arguments = (system_id, dict(params), formulation)
+    arguments = (member_of, system_id, dict(params), formulation)
     _in_child(key, _derive_member, arguments, f"deriving {system.title} by {formulation}", client)
     found = loaded(system, formulation=formulation)
     if found is None:  # the child wrote it; another process's cleaning may have removed it since
@@ -144,12 +153,18 @@ def prepared_description(
 
 
 def shown_derivation(
-    system_id: str, params: Mapping[str, Any], system: MultibodySystem, formulation: str, *, client: str | None = None
+    member_of: MemberOf,
+    system_id: str,
+    params: Mapping[str, Any],
+    system: MultibodySystem,
+    formulation: str,
+    *,
+    client: str | None = None,
 ) -> dict[str, Any]:
     """The derive route's body (:mod:`.shown`): from memory or the disk cache, else derived in a bounded child."""
     found = shown.shown_cached(system, formulation)
     if found is not None:
         return {**found, "derive_s": 0.0, "compile_s": 0.0, "cached": True}
     key = (system.fingerprint(), formulation, "shown")
-    arguments = (system_id, dict(params), formulation)
+    arguments = (member_of, system_id, dict(params), formulation)
     return _in_child(key, shown.derive_shown, arguments, f"deriving {system.title} by {formulation}", client)

@@ -16,7 +16,7 @@ import threading
 import time
 import unicodedata
 from collections import OrderedDict
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any
 
@@ -135,13 +135,16 @@ def shown(system: MultibodySystem, formulation: str) -> dict[str, Any]:
     return {**body, "derive_s": derive_s, "compile_s": compile_s, "cached": False}
 
 
-def derive_shown(system_id: str, params: Mapping[str, Any], formulation: str) -> dict[str, Any]:
-    """:func:`shown` for the catalogue system ``system_id`` (its member for ``params``): run this in a bounded child
-    process, which writes the answer to the disk cache for the server to read."""
-    from app.physics.systems import multibody_catalogue
-
-    entry = multibody_catalogue()[system_id]
-    return shown(entry.member(entry.parameters.validate(params)), formulation)
+def derive_shown(
+    member_of: Callable[[str, Mapping[str, Any]], MultibodySystem],
+    system_id: str,
+    params: Mapping[str, Any],
+    formulation: str,
+) -> dict[str, Any]:
+    """:func:`shown` for the catalogue system ``system_id``'s member for ``params`` (``member_of`` finds it: a
+    module-level function of the catalogue's layer, pickled by reference): run this in a bounded child process, which
+    writes the answer to the disk cache for the server to read."""
+    return shown(member_of(system_id, params), formulation)
 
 
 def _shown_body(system: MultibodySystem, formulation: str) -> dict[str, Any]:
