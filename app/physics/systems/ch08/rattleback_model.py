@@ -19,6 +19,7 @@ from typing import Any
 
 import numpy as np
 
+from app.physics.bodies.inertia import check_inertia_tensor
 from app.physics.constrained.initial_conditions import ConsistentStart, consistent_initial_conditions
 from app.physics.constrained.model import ConstrainedModel
 from app.physics.constrained.multibody import multibody_constrained_system
@@ -109,13 +110,10 @@ def check_body(params: Mapping[str, Any]) -> None:
             [0.0, 0.0, float(params["inertia_zz_kg_m2"])],
         ]
     )
-    moments = np.linalg.eigvalsh(tensor)
-    if moments[0] <= 0 or moments[2] > moments[0] + moments[1] * (1 + 1e-12):
-        raise ParameterError(
-            "inertia_xy_kg_m2",
-            f"these moments and product are no rigid body's: principal moments {', '.join(f'{x:.3g}' for x in moments)}"
-            " kg·m² must be positive and each at most the sum of the other two",
-        )
+    try:
+        check_inertia_tensor(tensor)
+    except ValueError as error:
+        raise ParameterError("inertia_xy_kg_m2", f"no rigid body has these moments and product: {error}") from None
 
 
 class RattlebackMotion(ConstrainedModel):
