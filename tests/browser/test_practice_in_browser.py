@@ -177,8 +177,9 @@ def test_an_instructor_assigns_an_exercise_and_watches_the_class_work_it(browser
         second.wait_for_selector("#worked:not([hidden])")
 
         row = teacher.locator(f"table[data-exercise='{EXERCISE}'] tr[data-part='h']")
-        teacher.wait_for_function(  # the panel's results refresh by themselves
-            "(sel) => { const r = document.querySelector(sel); return r && r.children[1].textContent === '2'; }",
+        teacher.wait_for_function(  # the panel's results refresh by themselves: both tries and the give-up arrived
+            "(sel) => { const r = document.querySelector(sel);"
+            " return r && r.children[1].textContent === '2' && r.children[3].textContent === '1'; }",
             arg=f"table[data-exercise='{EXERCISE}'] tr[data-part='h']",
         )
         cells = row.locator("td").all_inner_texts()
