@@ -265,18 +265,11 @@ class _Check:
 def _values(
     expressions: Sequence[sympy.Expr], symbols: Mapping[str, sympy.Symbol], params: Mapping[str, Any]
 ) -> list[float | None]:
-    """Each expression's value (float) at ``params``; None where it has no finite real value."""
-    replace = {symbol: sympy.Float(float(params[name])) for name, symbol in symbols.items()}
-    out: list[float | None] = []
-    for expression in expressions:
-        try:
-            value = complex(sympy.sympify(expression).xreplace(replace).evalf())
-        except (TypeError, ValueError, OverflowError, ZeroDivisionError):
-            out.append(None)
-            continue
-        good = value.imag == 0 and math.isfinite(value.real) and abs(value.real) <= MAX_FIELD_VALUE
-        out.append(value.real if good else None)
-    return out
+    """Each expression's value (float) at ``params``; None where it has no finite real value of magnitude at most
+    :data:`MAX_FIELD_VALUE`."""
+    at = {symbol: float(params[name]) for name, symbol in symbols.items()}
+    values = [_value_at(sympy.S(expression), at) for expression in expressions]
+    return [v if v is not None and abs(v) <= MAX_FIELD_VALUE else None for v in values]
 
 
 class _PartsCheck:
