@@ -12,7 +12,6 @@ import os
 import re
 import shutil
 import signal
-import socket
 import subprocess
 import sys
 import time
@@ -23,6 +22,7 @@ from typing import Any
 import httpx
 
 from app.bench.load_client import ReconnectingViewer
+from app.bench.ports import free_loopback_port
 from app.scenes.host.worker import PROCESS_NAME_PREFIX
 
 RESULTS = Path(__file__).resolve().parents[1] / "test-results"
@@ -33,9 +33,8 @@ START_TIMEOUT_S = 240.0
 
 
 def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
+    """A port for a server of the tests' own: see :func:`app.bench.ports.free_loopback_port`."""
+    return free_loopback_port()
 
 
 def dynlab_command() -> list[str]:

@@ -45,7 +45,6 @@ import os
 import platform
 import secrets
 import signal
-import socket
 import subprocess
 import sys
 import tempfile
@@ -64,6 +63,7 @@ import numpy as np
 from app.bench.attacks import AttackBounds
 from app.bench.load_client import Classroom, ClassroomSnapshot, HealthLatency, loopback_base, probe_health
 from app.bench.plot import FONT, SVG_NS, _f, _marker, _text
+from app.bench.ports import free_loopback_port
 from app.bench.process_tree import TreeUsage, process_group_members, tree_pids, tree_usage
 from app.classroom.roles import HEADER as INSTRUCTOR_HEADER
 from app.classroom.roles import MIN_KEY_LENGTH
@@ -231,12 +231,6 @@ def machine_busy_cpu_s() -> float | None:
         return None
     user, nice, system, _idle, _iowait, irq, softirq = (int(v) for v in fields[1:8])
     return (user + nice + system + irq + softirq) / os.sysconf("SC_CLK_TCK")
-
-
-def free_loopback_port() -> int:
-    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as probe:
-        probe.bind(("127.0.0.1", 0))
-        return probe.getsockname()[1]
 
 
 def wait_for_health(base_url: str, *, timeout_s: float, process: subprocess.Popen | None = None) -> None:

@@ -12,7 +12,7 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
-from app.bench.capacity import free_loopback_port
+from app.bench.ports import free_loopback_port
 
 
 def postgres_bin() -> Path | None:

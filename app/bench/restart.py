@@ -31,7 +31,6 @@ from app.bench.capacity import (
     PROJECT_ROOT,
     SERVER_START_TIMEOUT_S,
     SERVER_STOP_TIMEOUT_S,
-    free_loopback_port,
     machine_facts,
     open_room,
     stop_process_group,
@@ -39,6 +38,7 @@ from app.bench.capacity import (
     wait_for_health,
 )
 from app.bench.load_client import ReconnectingViewer, http_request, student_address
+from app.bench.ports import free_loopback_port
 from app.classroom.roles import HEADER as INSTRUCTOR_HEADER
 
 REPORT = "restart.json"

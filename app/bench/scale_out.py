@@ -46,7 +46,6 @@ from app.bench.capacity import (
     PROJECT_ROOT,
     SERVER_START_TIMEOUT_S,
     SERVER_STOP_TIMEOUT_S,
-    free_loopback_port,
     machine_facts,
     open_room,
     stop_process_group,
@@ -62,6 +61,7 @@ from app.bench.load_client import (
     student_address,
 )
 from app.bench.loopback_postgres import postgres_server
+from app.bench.ports import free_loopback_port
 from app.classroom.roles import HEADER as INSTRUCTOR_HEADER
 
 REPORT = "scale_out.json"

@@ -29,8 +29,8 @@ import httpx
 import pytest
 import sqlalchemy as sa
 
-from app.bench.capacity import free_loopback_port
 from app.bench.loopback_postgres import postgres_server
+from app.bench.ports import free_loopback_port
 from app.bench.scale_out import Server, balancer, haproxy_binary, main
 from app.classroom.room import PRESENCE_HOLDS_S
 from tests.browser.conftest import readout_quantity, screenshot
