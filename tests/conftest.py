@@ -30,15 +30,15 @@ def file_of(nodeid: str) -> str:
 
 
 class LongestFilesFirst(LoadScopeScheduling):
-    """README's test command runs the suite on two xdist workers (``-n 2``). Each test file is one unit of work, so a
-    file's module fixtures (a served app, a browser page, a derivation) are set up once, on one worker; each worker
-    starts its own served app and Chromium on its first test that needs them. The units go out longest first
-    (:data:`FILE_SECONDS`, in the order the workers collected them: see :func:`pytest_collection_modifyitems`), so the
-    workers finish together. With three workers (``tests/run.sh -n 3``, for an idle machine) the third takes the files
-    that mostly wait (:data:`WAITING_FILES`) and the other two the rest, so that waiting overlaps work: on the idle
-    2-core machine 405 s instead of 467 s of pytest; beside two CPU-bound programs four timing tests failed, so it is
-    not the default. (xdist's own ``--dist loadgroup`` marks a test by rewriting ``Item._nodeid``, which pytest 9.2 no
-    longer reads.)"""
+    """README's test command runs the suite on three xdist workers on an idle machine and two on a busy one
+    (tests/workers.py). Each test file is one unit of work, so a file's module fixtures (a served app, a browser page,
+    a derivation) are set up once, on one worker; each worker starts its own served app and Chromium on its first test
+    that needs them. The units go out longest first (:data:`FILE_SECONDS`, in the order the workers collected them:
+    see :func:`pytest_collection_modifyitems`), so the workers finish together. With three workers the third takes
+    the files that mostly wait (:data:`WAITING_FILES`) and the other two the rest, so that waiting overlaps work: on
+    the idle 2-core machine 460 s instead of 528 s of pytest (2026-11-30); beside two CPU-bound programs there is no
+    idle time to fill and four timing tests failed once, so a busy machine gets two. (xdist's own ``--dist
+    loadgroup`` marks a test by rewriting ``Item._nodeid``, which pytest 9.2 no longer reads.)"""
 
     def __init__(self, config: pytest.Config, log=None) -> None:
         config.option.loadscopereorder = False  # keep the collected order: longest file first
@@ -51,7 +51,7 @@ class LongestFilesFirst(LoadScopeScheduling):
         """With three workers or more, the last one takes the files that mostly wait (:data:`WAITING_FILES`) and the
         others the rest, each falling back to the other kind once its own is gone."""
         if len(self.nodes) >= 3:
-            waiting_node = node is self.nodes[-1]
+            waiting_node = node.gateway.id == waiting_worker(len(self.nodes))
             mine = [scope for scope in self.workqueue if (scope in WAITING_FILES) == waiting_node]
             if mine:
                 self.workqueue.move_to_end(mine[0], last=False)
@@ -66,6 +66,23 @@ WAITING_FILES = frozenset({
     "tests/bench/test_attack.py", "tests/bench/test_restart.py", "tests/web/test_slow_clients.py",
     "tests/browser/test_viewer_controls_in_browser.py",
 })
+
+
+def waiting_worker(workers: int) -> str:
+    """The xdist worker that takes the files that mostly wait, when there are three workers or more: the last."""
+    return f"gw{workers - 1}"
+
+
+def pytest_configure(config: pytest.Config) -> None:
+    """With three workers or more, the workers that keep the processors busy run at a lower priority (nice 5) than
+    the one whose files mostly wait: its tests time what a class would feel (a change reaching 30 students' sockets
+    within 200 ms on two servers, a stopped worker's health), and its load tools' clients run in this pytest session,
+    beside the other workers. Their served apps and Chromium are sessions of their own, which Linux shares the
+    processors between fairly whatever their niceness (autogroups); the niceness settles the share inside this one."""
+    worker = getattr(config, "workerinput", {}).get("workerid")
+    workers = int(os.environ.get("PYTEST_XDIST_WORKER_COUNT", "1"))
+    if worker is not None and workers >= 3 and worker != waiting_worker(workers):
+        os.nice(5)
 
 
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:

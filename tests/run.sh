@@ -26,4 +26,7 @@ unset PYTHONDONTWRITEBYTECODE
 # Fill the numba and derivation caches once, in one process, before the dozens of processes that read them start: on a
 # fresh clone each of them would otherwise compile and derive the same kernels and equations at the same time.
 python3 -m uv run --group test --group bench --group postgres dynlab warm
-exec python3 -m uv run --group test --group bench --group postgres pytest -n 2 "$@"
+# Three xdist workers on an idle machine, two on a busy one (tests/workers.py says why); a -n given here wins.
+WORKERS=$(python3 tests/workers.py)
+echo "pytest on $WORKERS workers (tests/workers.py)"
+exec python3 -m uv run --group test --group bench --group postgres pytest -n "$WORKERS" "$@"
