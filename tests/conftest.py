@@ -35,10 +35,9 @@ class LongestFilesFirst(LoadScopeScheduling):
     a derivation) are set up once, on one worker; each worker starts its own served app and Chromium on its first test
     that needs them. The units go out longest first (:data:`FILE_SECONDS`, in the order the workers collected them:
     see :func:`pytest_collection_modifyitems`), so the workers finish together. With three workers the third takes
-    the files that mostly wait (:data:`WAITING_FILES`) and the other two the rest, so that waiting overlaps work: on
-    the idle 2-core machine 460 s instead of 528 s of pytest (2026-11-30); beside two CPU-bound programs there is no
-    idle time to fill and four timing tests failed once, so a busy machine gets two. (xdist's own ``--dist
-    loadgroup`` marks a test by rewriting ``Item._nodeid``, which pytest 9.2 no longer reads.)"""
+    the files that mostly wait (:data:`WAITING_FILES`) and the other two the rest, so that waiting overlaps work
+    (README's Conventions section has the figures). (xdist's own ``--dist loadgroup`` marks a test by rewriting
+    ``Item._nodeid``, which pytest 9.2 no longer reads.)"""
 
     def __init__(self, config: pytest.Config, log=None) -> None:
         config.option.loadscopereorder = False  # keep the collected order: longest file first

@@ -3,10 +3,9 @@ now, two on a busy one.
 
 The third worker takes the files whose tests mostly wait (``WAITING_FILES`` in tests/conftest.py: a killed worker's
 restart, a balancer's health checks, a slow client's deadline), so their waiting overlaps the other two workers'
-work. On the idle 2-core machine that took the suite from 528 s to 460 s of pytest (2026-11-30). On a machine that
-other programs keep busy a third worker adds load without any idle time to fill, and the timing bounds of a few tests
-(a class's follow latency, a stopped worker's health) are then measured on an overloaded machine: two workers, as
-before.
+work (README's Conventions section has the figures). On a machine that other programs keep busy a third worker adds load
+without any idle time to fill, and the timing bounds of a few tests (a class's follow latency, a stopped worker's
+health) are then measured on an overloaded machine: two workers.
 
     python -m tests.workers        # prints 2 or 3
 """
@@ -15,6 +14,7 @@ from __future__ import annotations
 
 import os
 import time
+from pathlib import Path
 
 #: Idle processors (of the whole machine, measured over :data:`LOOK_S`) needed for a third worker.
 IDLE_CORES_FOR_THREE = 1.6
@@ -22,7 +22,7 @@ LOOK_S = 1.0
 
 
 def _idle_and_total_ticks() -> tuple[int, int]:
-    fields = [int(v) for v in open("/proc/stat").readline().split()[1:]]
+    fields = [int(v) for v in Path("/proc/stat").read_text().split("\n", 1)[0].split()[1:]]
     return fields[3] + fields[4], sum(fields[:8])  # idle + iowait; user … softirq, steal
 
 
