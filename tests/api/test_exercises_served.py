@@ -6,15 +6,12 @@ answers, a flood of learners)."""
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import httpx
 import pytest
 
-from app.practice.exercise import load_exercises
 from app.practice.variants import learner_variant, variant
+from tests.practice.shipped import EXERCISES
 
-EXERCISES = load_exercises(Path(__file__).resolve().parents[2] / "lessons")
 PLATE = "5-2-plate-about-corner"
 DISK = "5-3-tilted-disk-bearings"
 

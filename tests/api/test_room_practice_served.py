@@ -8,15 +8,13 @@ from __future__ import annotations
 
 import csv
 import io
-from pathlib import Path
 
 import httpx
 import pytest
 
-from app.practice.exercise import load_exercises
 from app.practice.variants import class_variant, learner_variant, room_student_variant, variant
+from tests.practice.shipped import EXERCISES
 
-EXERCISES = load_exercises(Path(__file__).resolve().parents[2] / "lessons")
 SECTION = "6.1"
 PLATE = "5-2-plate-about-corner"
 DISK = "5-3-tilted-disk-bearings"

@@ -5,7 +5,6 @@ model, the bead's energies from its position vector and its equation from the de
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -15,11 +14,10 @@ from app.physics.mechanics.description import TIME
 from app.physics.mechanics.engine import derived
 from app.physics.systems.ch05.angular_momentum import ShaftSpin
 from app.physics.systems.ch07 import bead_on_hoop
-from app.practice.exercise import load_exercises
 from app.practice.variants import variant
 from app.scenes import SCENES
+from tests.practice.shipped import EXERCISES
 
-EXERCISES = load_exercises(Path(__file__).resolve().parents[2] / "lessons")
 VARIANTS = range(0, 100, 7)
 
 

@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -23,10 +22,9 @@ import sympy
 from scipy.integrate import solve_ivp
 from scipy.spatial.transform import Rotation
 
-from app.practice.exercise import load_exercises
 from app.practice.variants import variant
+from tests.practice.shipped import EXERCISES
 
-EXERCISES = load_exercises(Path(__file__).resolve().parents[2] / "lessons")
 VARIANTS = range(0, 100, 9)
 
 

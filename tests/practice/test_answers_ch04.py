@@ -19,7 +19,6 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -28,10 +27,9 @@ from scipy.optimize import brentq
 from scipy.spatial.transform import Rotation
 
 from app.physics.systems.ch04.rolling import SteadyRolling
-from app.practice.exercise import load_exercises
 from app.practice.variants import variant
+from tests.practice.shipped import EXERCISES
 
-EXERCISES = load_exercises(Path(__file__).resolve().parents[2] / "lessons")
 VARIANTS = range(0, 100, 9)
 H = 1e-3
 

@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import math
 from functools import cache
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -21,11 +20,10 @@ from scipy.optimize import brentq, minimize_scalar
 from app.physics.math.rotations import elementary_rotation_matrix
 from app.physics.systems.ch09.ritz_beam import RitzCantilever
 from app.physics.systems.ch09.rolling_disk_model import disk_pose
-from app.practice.exercise import load_exercises
 from app.practice.variants import variant
 from app.scenes import SCENES
+from tests.practice.shipped import EXERCISES
 
-EXERCISES = load_exercises(Path(__file__).resolve().parents[2] / "lessons")
 VARIANTS = range(0, 100, 9)
 #: The integrators' tolerances: far below every check's tolerance.
 TIGHT = {"method": "DOP853", "rtol": 1e-12, "atol": 1e-12}

@@ -8,7 +8,6 @@ tolerance and why."""
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -17,11 +16,10 @@ from scipy.integrate import solve_ivp
 
 from app.physics.systems.ch10 import gyrocompass, heavy_top, rate_gyro
 from app.physics.systems.ch10.heavy_top_quadrature import heavy_top_quadrature
-from app.practice.exercise import load_exercises
 from app.practice.variants import variant
 from app.scenes import SCENES
+from tests.practice.shipped import EXERCISES
 
-EXERCISES = load_exercises(Path(__file__).resolve().parents[2] / "lessons")
 VARIANTS = range(0, 100, 9)
 #: The integrators' tolerances: far below every check's tolerance.
 TIGHT = {"method": "DOP853", "rtol": 1e-12, "atol": 1e-12}

@@ -14,12 +14,12 @@ import sympy
 from app.course.catalogue import load_catalogue
 from app.practice.book import ExerciseBook, book_problems
 from app.practice.checking import AnswerUnreadable, check, read_answer
-from app.practice.exercise import Part, load_exercises, parse_exercise
+from app.practice.exercise import Part, parse_exercise
 from app.practice.variants import variant
 from app.scenes import SCENES
+from tests.practice.shipped import EXERCISES
 
 LESSONS = Path(__file__).resolve().parents[2] / "lessons"
-EXERCISES = load_exercises(LESSONS)
 VARIANTS = range(100)
 #: For each unit an exercise asks in: another unit of the same dimension, and what one of it is in the first.
 OTHER_UNITS = {
