@@ -8,21 +8,19 @@ from __future__ import annotations
 
 import json
 import re
-from pathlib import Path
 from urllib.parse import parse_qs, urlsplit
 
 import httpx
 import pytest
 
-from app.practice.exercise import load_exercises
 from app.practice.variants import variant
 from tests.browser.conftest import screenshot
+from tests.practice.shipped import EXERCISES
 from tests.served import RESULTS, ServedApp
 
 pytestmark = pytest.mark.browser
 
 EXERCISE = "5-3-tilted-disk-bearings"
-LESSONS = Path(__file__).resolve().parents[2] / "lessons"
 READY = "body[data-exercise-ready=true]"
 
 
@@ -61,7 +59,7 @@ def test_a_student_works_an_exercise_step_by_step_and_keeps_it_through_a_restart
             " JSON.parse(localStorage.getItem('dynlab.learner')).token}})).json()",
             EXERCISE,
         )
-        drawn = variant(load_exercises(LESSONS)[EXERCISE], shown["variant"])
+        drawn = variant(EXERCISES[EXERCISE], shown["variant"])
         answers = drawn.answers
         assert page.locator("#statement").inner_text().count(drawn.given_text()["mass_kg"]) == 1
 
@@ -120,7 +118,7 @@ def test_a_student_works_an_exercise_step_by_step_and_keeps_it_through_a_restart
         assert "3 of 3 parts solved" in page.inner_text("#practice")
         page.goto(f"{restarted.url}/")
         page.wait_for_selector("li[data-section='5.3'] .practice-link", state="attached")
-        in_section = sum(e.section == "5.3" for e in load_exercises(LESSONS).values())
+        in_section = sum(e.section == "5.3" for e in EXERCISES.values())
         assert f"1 of {in_section} exercises solved" in page.locator("li[data-section='5.3'] .practice-link").text_content()
         assert not errors, errors
     finally:
@@ -163,7 +161,7 @@ def test_an_instructor_assigns_an_exercise_and_watches_the_class_work_it(browser
         number = student.evaluate(
             "async ([id, room]) => (await fetch(`/api/exercises/${id}?room=${room}`)).json()", [EXERCISE, room_id]
         )["variant"]
-        answers = variant(load_exercises(LESSONS)[EXERCISE], number).answers
+        answers = variant(EXERCISES[EXERCISE], number).answers
         assert _check(student, "h", answers["h"].mistakes["h-along-shaft"]) == "wrong"
         assert _check(student, "h", answers["h"].value) == "correct"
 

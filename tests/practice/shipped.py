@@ -1,5 +1,5 @@
-"""The shipped exercises (``lessons/chNN/exercises/*.md``), parsed once per test process: eight test files check them,
-and each parse of all of them costs about 0.15 s of every xdist worker's collection."""
+"""The shipped exercises (``lessons/chNN/exercises/*.md``), parsed once per test process for every test file that
+checks them: each parse of all of them cost about 0.15 s of every xdist worker's collection, eight times over."""
 
 from __future__ import annotations
 

@@ -5,8 +5,6 @@ numbers. Then what a student may type that is not an answer, and the loader's re
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 import pytest
 import sympy
@@ -19,7 +17,6 @@ from app.practice.variants import variant
 from app.scenes import SCENES
 from tests.practice.shipped import EXERCISES
 
-LESSONS = Path(__file__).resolve().parents[2] / "lessons"
 VARIANTS = range(100)
 #: For each unit an exercise asks in: another unit of the same dimension, and what one of it is in the first.
 OTHER_UNITS = {
