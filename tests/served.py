@@ -32,11 +32,6 @@ INSTRUCTOR_KEY = "served-tests-instructor-key"
 START_TIMEOUT_S = 240.0
 
 
-def free_port() -> int:
-    """A port for a server of the tests' own: see :func:`app.bench.ports.free_loopback_port`."""
-    return free_loopback_port()
-
-
 def dynlab_command() -> list[str]:
     """The ``dynlab`` console script of this environment (what ``uv run dynlab`` runs); ``DYNLAB_SERVED_CHECKOUT``
     names another checkout whose own ``.venv/bin/dynlab`` to run instead (to try these tests against another build,
@@ -100,7 +95,7 @@ class ServedApp:
         data_dir: Path | None = None,
         port: int | None = None,
     ) -> None:
-        self.port = port or free_port()
+        self.port = port or free_loopback_port()
         self.instructor_key = INSTRUCTOR_KEY
         self.name = name
         self.log_path = RESULTS / f"{name}-{os.getpid()}-{self.port}.log"
@@ -161,7 +156,7 @@ class ServedApp:
             assert self.process is not None
             if self.process.poll() is not None:
                 raise RuntimeError(f"dynlab serve exited with {self.process.returncode}; its log: {self.log_path}\n{self.log_tail()}")
-            try:  # on the one client: a new one per poll builds an SSL context each time (15 ms of CPU, 10 times a second)
+            try:  # the one client: httpx.get builds an SSL context per call (15 ms of CPU, 10 times a second)
                 if self.client.get("/api/health", timeout=2.0).status_code == 200:
                     return
             except httpx.HTTPError:

@@ -15,12 +15,13 @@ import httpx
 import pytest
 import uvicorn
 
+from app.bench.ports import free_loopback_port
 from app.main import create_app
 from app.settings import Settings
 from tests.browser.first_frame import VIEWER_BUILT_IN_NODES
 from tests.conftest import wait_until
 from tests.served import INSTRUCTOR_KEY as SERVED_INSTRUCTOR_KEY
-from tests.served import ServedApp, free_port
+from tests.served import ServedApp
 
 #: Debian's Chromium as its headless shell (package ``chromium-headless-shell``: the same Blink, V8 and SwiftShader
 #: as ``/usr/bin/chromium``, without the browser's own window and pages). Playwright drives it the way it drives
@@ -127,7 +128,7 @@ class InProcessLiveServer:
     a scene instance (what it drew at one instant)."""
 
     def __init__(self) -> None:
-        self.port = free_port()
+        self.port = free_loopback_port()
         self.instructor_key = INSTRUCTOR_KEY
         self.app = create_app(Settings(port=self.port, instructor_key=INSTRUCTOR_KEY))
         config = uvicorn.Config(self.app, host="127.0.0.1", port=self.port, log_level="warning")

@@ -16,10 +16,10 @@ import pytest
 import uvicorn
 from fastapi import FastAPI, Request
 
+from app.bench.ports import free_loopback_port
 from app.web import slow_clients
 from app.web.slow_clients import HEADER_TIMEOUT_S, MAX_CONNECTIONS_PER_CLIENT, GuardedHttpProtocol
 from tests.conftest import wait_until
-from tests.served import free_port
 
 
 def open_partial(port: int, address: str, data: bytes) -> socket.socket:
@@ -68,7 +68,7 @@ def short_body_deadline(monkeypatch) -> int:
     async def echo(request: Request) -> dict:
         return {"length": len(await request.body())}
 
-    port = free_port()
+    port = free_loopback_port()
     server = uvicorn.Server(uvicorn.Config(app, host="127.0.0.1", port=port, http=GuardedHttpProtocol, log_level="warning"))
     thread = threading.Thread(target=server.run, daemon=True)
     thread.start()
