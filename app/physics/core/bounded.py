@@ -210,8 +210,13 @@ def _child_main(
     sender.close()
 
 
-def _reap(process: Any, *, kill: bool) -> None:
-    """Kill (if asked, or if it outlives its grace) and join ``process``, then release its sentinel."""
+def _reap(process: Any, *, kill: bool, wait: bool = True) -> None:
+    """Kill (if asked, or if it outlives its grace) and join ``process``, then release its sentinel.
+
+    Without ``wait`` (the server is stopping) a killed child is left to die on its own: its forkserver reaps it. A
+    child in the idle class dies only when the machine gives it a processor, and beside a busy suite that once took
+    2 s of the 5 s a Ctrl+C may take, the server's exit waiting on the request thread that waited on the child.
+    """
     if process.pid is None:
         return
     if kill:
@@ -220,6 +225,8 @@ def _reap(process: Any, *, kill: bool) -> None:
         with contextlib.suppress(ProcessLookupError, PermissionError):
             os.kill(process.pid, signal.SIGKILL)
         process.kill()
+        if not wait:
+            return
     process.join(_EXIT_GRACE_S)
     if process.exitcode is None:
         process.kill()
@@ -313,6 +320,7 @@ class BoundedRunner:
         self, function: Callable[..., Any], args: tuple[Any, ...], timeout_s: float, memory_mb: float, what: str
     ) -> tuple[str, Any]:
         context = forkserver_context(self.preload)
+        stops = _stops
         receiver, sender = context.Pipe(duplex=False)
         cpu_seconds = math.ceil(timeout_s) + 1
         process = context.Process(
@@ -357,7 +365,7 @@ class BoundedRunner:
             return pickle.loads(message)
         finally:
             receiver.close()
-            _reap(process, kill=not answered)
+            _reap(process, kill=not answered, wait=_stops == stops)
 
 
 #: While the server is busy, a child computes in turns of :data:`BUSY_RUN_S` with pauses of :data:`BUSY_PAUSE_S`:

@@ -307,6 +307,38 @@ def _running_child(after: set[int]) -> int | None:
     return found[0] if found else None
 
 
+def test_a_call_running_when_the_server_stops_ends_at_once_without_waiting_for_its_child_to_die(runner, as_a_server):
+    """Ctrl+C once took 5.5 s (its bound: 5): the server's exit waited for a request thread that waited for its killed
+    child, which in the idle class on a busy machine died only when it got a processor. Here the child cannot be seen
+    to die at all (its forkserver, which reports its exit, is stopped): the call still ends at once."""
+    before = {p[0] for p in _descendants()}
+    outcome: dict[str, BaseException] = {}
+
+    def call() -> None:
+        try:
+            runner.run(sleep_for, (30.0,), what="deriving these equations")
+        except BaseException as exc:  # noqa: BLE001 - the outcome is what the test reads
+            outcome["error"] = exc
+
+    caller = threading.Thread(target=call, daemon=True)
+    caller.start()
+    assert _wait_for(lambda: _running_child(before) is not None), "no bounded child appeared"
+    child = _running_child(before)
+    forkserver = next(p[1] for p in _descendants() if p[0] == child)
+    os.kill(forkserver, signal.SIGSTOP)
+    try:
+        stopped = time.monotonic()
+        bounded.stop_all_work()
+        caller.join(5.0)
+        took = time.monotonic() - stopped
+    finally:
+        os.kill(forkserver, signal.SIGCONT)
+        caller.join(10.0)
+    assert took < 1.5, f"the call took {took:.1f} s to end after the server stopped"
+    assert isinstance(outcome["error"], WorkInterrupted), repr(outcome["error"])
+    assert _wait_for(lambda: child not in {p[0] for p in _descendants() if p[2] != "Z"}), "the killed child lives on"
+
+
 @pytest.mark.parametrize("number", [signal.SIGTERM, signal.SIGKILL, signal.SIGINT, signal.SIGHUP])
 def test_a_child_ended_from_outside_is_interrupted_not_blamed_on_its_limits(runner, number):
     """Issue 24, Found 11: SIGTERM from outside gave a 500 (WorkFailed), SIGKILL a 422 blaming memory (WorkTooLarge).
