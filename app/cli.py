@@ -30,17 +30,23 @@ if TYPE_CHECKING:
 #: up to 3 s more (app/scenes/host/pool.py); anything still holding the process then (a thread blocked on a stopped
 #: worker, an executor's join) is not waited for: the workers are killed and the process exits.
 EXIT_DEADLINE_S = 4.5
+#: Once the server has stopped (its requests answered, its workers stopped, its database closed), Python's own exit
+#: gets this long (s): it joins every thread and child process still alive, and a bounded child killed in the idle
+#: class dies only when a busy machine gives it a processor (beside the test suite that took 2 s of Ctrl+C's 5).
+AFTER_STOP_EXIT_S = 0.5
 
 
-def _exit_by_deadline(deadline_s: float) -> None:
-    """From now on, the process exits within ``deadline_s`` even if something in it would wait longer."""
+def _exit_by_deadline(deadline_s: float, *, warn: bool = True) -> None:
+    """From now on, the process exits within ``deadline_s`` even if something in it would wait longer (saying so in
+    the log if ``warn``)."""
     import multiprocessing
     import threading
 
     def force() -> None:
-        logging.getLogger(__name__).warning(
-            "still stopping after %.1f s: the scene workers are killed and the server exits", deadline_s
-        )
+        if warn:
+            logging.getLogger(__name__).warning(
+                "still stopping after %.1f s: its child processes are killed and the server exits", deadline_s
+            )
         for child in multiprocessing.active_children():
             child.kill()
         logging.shutdown()
@@ -58,13 +64,21 @@ def _stopping_server_class(on_stop: Callable[[], None]):
 
     class StoppingServer(uvicorn.Server):
         """uvicorn's server, with a deadline on stopping (:data:`EXIT_DEADLINE_S`) from the first Ctrl+C or SIGTERM,
-        when ``on_stop`` is called first (the requests still waiting get their answer)."""
+        when ``on_stop`` is called first (the requests still waiting get their answer), and another on the process's
+        exit once it has stopped (:data:`AFTER_STOP_EXIT_S`)."""
 
         def handle_exit(self, sig: int, frame: object) -> None:
             if not self.should_exit:
                 _exit_by_deadline(EXIT_DEADLINE_S)
                 on_stop()
             super().handle_exit(sig, frame)  # type: ignore[arg-type]
+
+        def run(self, sockets: list | None = None) -> None:
+            try:
+                super().run(sockets)
+            finally:
+                if self.started:  # stopped, its state kept: the rest of Python's exit is not waited for long
+                    _exit_by_deadline(AFTER_STOP_EXIT_S, warn=False)
 
     return StoppingServer
 
