@@ -162,6 +162,35 @@ def test_forty_requests_at_once_right_after_start_are_all_answered_and_ctrl_c_st
 
 
 # -- Found 7: a stopped worker stalls nobody else ------------------------------------------------------------------------
+def _running(pid: int) -> bool:
+    """Whether process ``pid`` exists and has not ended (a zombie has)."""
+    try:
+        return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0] != "Z"
+    except OSError:
+        return False
+
+
+def test_ctrl_c_in_a_terminal_stops_every_process_of_the_server_without_a_traceback():
+    """Ctrl+C in a terminal signals the server's whole process group, its scene workers too, and each worker printed a
+    KeyboardInterrupt traceback. The front alone stops them, in order; the log tells of no interrupt."""
+    app = ServedApp(name="faults-terminal").start()
+    try:
+        page = Page(app)
+        page.open_viewer()
+        processes = [app.process.pid, *app.worker_pids()]
+        started = time.monotonic()
+        os.killpg(app.process.pid, signal.SIGINT)  # the served app is a session of its own: its group is the terminal's
+        app.process.wait(timeout=15.0)
+        took = time.monotonic() - started
+        page.close()
+        log = app.log_tail(400)
+        assert took <= 5.0 and app.process.returncode == 0, (took, app.process.returncode, log)
+        assert "Traceback" not in log and "KeyboardInterrupt" not in log, log
+        wait_until(lambda: not any(map(_running, processes)), 10, what="every process of the server to end")
+    finally:
+        app.stop()
+
+
 @pytest.fixture(scope="module")
 def app():
     with ServedApp(name="faults") as served:

@@ -15,6 +15,7 @@ from __future__ import annotations
 import gc
 import logging
 import os
+import signal
 import socket
 import threading
 from multiprocessing import AuthenticationError
@@ -64,7 +65,11 @@ def _name_this_process(name: str) -> None:
 
 
 def run_worker(index: int, start_pipe: Connection, authkey: bytes, options: dict[str, Any]) -> None:
-    """Process entry: serve scenes until ``"stop"`` arrives on ``start_pipe`` or it closes."""
+    """Process entry: serve scenes until ``"stop"`` arrives on ``start_pipe`` or it closes.
+
+    Ctrl+C in a terminal reaches every process of ``dynlab serve``'s group, this one too: it is ignored here (it printed
+    a KeyboardInterrupt traceback per worker), as the front stops its workers through their pipes, in order."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
     _name_this_process(process_name(index))
     logging.basicConfig(
         level=options.get("log_level", "WARNING"), format=f"%(levelname)s worker{index} %(name)s: %(message)s"
